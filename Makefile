@@ -1,0 +1,35 @@
+# flexmm-mi: every target that needs Python depends on `setup`, so each works on a fresh machine.
+PY ?= python3
+VENV := .venv
+VPY := $(VENV)/bin/python
+STAMP := $(VENV)/.setup-stamp
+GENERATED := generated/coefficients.py generated/derivation.md
+
+.PHONY: setup derive test test-all run figures bench bench-quick stress clean
+
+setup: $(STAMP)
+
+$(STAMP): pyproject.toml
+	@test -x $(VPY) || $(PY) -m venv $(VENV)
+	$(VPY) -m pip install -q --upgrade pip
+	$(VPY) -m pip install -q -e '.[dev]'
+	@touch $(STAMP)
+
+# Regenerate only when the derivation sources changed (make's own staleness check).
+$(GENERATED) &: $(wildcard derivation/*.py) pyproject.toml | $(STAMP)
+	$(VPY) -m derivation --out generated
+
+derive: $(STAMP)
+	$(VPY) -m derivation --out generated
+
+test: $(STAMP)
+	$(VPY) -m pytest -q
+
+test-all: $(STAMP)
+	$(VPY) -m pytest -q -m ''
+
+run: $(STAMP) $(GENERATED)
+	$(VPY) -m derivation.table
+
+clean:
+	rm -rf $(VENV) out .pytest_cache

@@ -1,0 +1,59 @@
+"""`python -m derivation --out DIR`: derive and write coefficients.py and derivation.md."""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+MODULE_DOC = """NLS coefficients and MI band of rotational waves in a flexible mechanical metamaterial.
+
+Continuum-limit multiple-scales results of Demiquel, Achilleos, Theocharis & Tournat,
+"Modulation instability in nonlinear flexible mechanical metamaterials". Equation labels
+are the paper's. Case (I): rotation only; case (II): rotation coupled to displacement.
+Arguments: carrier wavenumber k (rad per site), inertia alpha, stiffnesses K_s, K_theta;
+the MI functions take the NLS nonlinearity g = g2/g1 and the envelope amplitude A0.
+"""
+
+
+def write_outputs(out_dir: Path) -> list[Path]:
+    """Derive and write both files atomically into ``out_dir``; returns their paths."""
+    from . import _codegen, _report
+    from ._pipeline import derive
+
+    d = derive()
+    files = {
+        "coefficients.py": _codegen.module_source(d, MODULE_DOC),
+        "derivation.md": _report.render(d),
+    }
+    out_dir.mkdir(parents=True, exist_ok=True)
+    written = []
+    for name, text in files.items():
+        target = out_dir / name
+        # write-then-rename: an interrupted derive never leaves a half-written file
+        fd, tmp = tempfile.mkstemp(dir=out_dir, prefix=f".{name}.", suffix=".tmp")
+        with os.fdopen(fd, "w", encoding="utf-8", newline="\n") as fh:
+            fh.write(text)
+        os.replace(tmp, target)
+        written.append(target)
+    return written
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(prog="python -m derivation", description=__doc__)
+    parser.add_argument("--out", default="generated", help="output folder (default: generated)")
+    args = parser.parse_args(argv)
+    t0 = time.perf_counter()
+    paths = write_outputs(Path(args.out))
+    dt = time.perf_counter() - t0
+    for p in paths:
+        print(f"wrote {p}")
+    print(f"derivation took {dt:.1f} s")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

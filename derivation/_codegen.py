@@ -1,0 +1,79 @@
+"""Print the derived closed forms as a NumPy-only Python module.
+
+Deterministic by construction: fixed SymPy version, canonical CSE ordering, numbered
+subexpression names, no timestamps or paths in the output.
+"""
+
+from __future__ import annotations
+
+import sympy as sp
+from sympy.printing.numpy import NumPyPrinter
+
+BANNER = """\
+# -----------------------------------------------------------------------------
+# GENERATED FILE - DO NOT EDIT BY HAND.
+# Written by `make derive` (python -m derivation --out generated) from the
+# SymPy derivation in derivation/ (SymPy {sympy}). Regenerate, never edit.
+# -----------------------------------------------------------------------------
+"""
+
+
+class _Printer(NumPyPrinter):
+    """NumPy printer whose output broadcasts like the rest of NumPy."""
+
+    def __init__(self):
+        super().__init__({"fully_qualified_modules": True, "inline": True,
+                          "allow_unknown_functions": False})
+
+    def _print_Max(self, expr):
+        args = [self._print(a) for a in sorted(expr.args, key=sp.default_sort_key)]
+        out = args[0]
+        for a in args[1:]:
+            out = f"numpy.maximum({out}, {a})"
+        return out
+
+    def _print_Abs(self, expr):
+        return f"numpy.abs({self._print(expr.args[0])})"
+
+
+def _function_source(form, printer):
+    args = [str(a) for a in form.args]
+    subs, (body,) = sp.cse([form.expr], symbols=sp.numbered_symbols("x"),
+                           optimizations=None, order="canonical")
+    lines = [f"def {form.name}({', '.join(args)}):"]
+    latex = sp.latex(form.expr)
+    lines.append(f'    r"""{form.doc}')
+    lines.append("")
+    lines.append(f"    Paper: eq. `{form.label}`. Derived closed form:")
+    lines.append("")
+    lines.append(f"    .. math:: {latex}")
+    lines.append("")
+    lines.append("    Parameters are floats or arrays (NumPy broadcasting); singular points")
+    lines.append("    give inf/nan with NumPy's RuntimeWarning, never an exception.")
+    lines.append('    """')
+    for a in args:
+        lines.append(f"    {a} = numpy.asarray({a}, dtype=float)")
+    for sym, val in subs:
+        lines.append(f"    {sym} = {printer.doprint(val)}")
+    lines.append(f"    return {printer.doprint(body)}")
+    return "\n".join(lines)
+
+
+def module_source(derivation, module_doc):
+    """Source text of the generated module for ``derivation.forms``."""
+    printer = _Printer()
+    names = [f.name for f in derivation.forms]
+    parts = [
+        BANNER.format(sympy=sp.__version__),
+        f'"""{module_doc}"""',
+        "",
+        "import numpy",
+        "",
+        f"__all__ = {names!r}",
+        "",
+    ]
+    for form in derivation.forms:
+        parts.append("")
+        parts.append(_function_source(form, printer))
+        parts.append("")
+    return "\n".join(parts).rstrip() + "\n"

@@ -1,0 +1,90 @@
+"""Run the whole derivation: continuum limit, both cases, MI analysis."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import lru_cache
+
+import sympy as sp
+
+from . import _continuum, _mi, _multiscale
+from ._continuum import K_s, K_theta, alpha, k
+
+#: Argument lists of the generated functions, by kind.
+MATERIAL_ARGS = (k, alpha, K_s, K_theta)
+MI_ARGS = (_mi.g, _mi.A0)
+GROWTH_ARGS = (_mi.K, _mi.g, _mi.A0)
+
+
+@dataclass(frozen=True)
+class ClosedForm:
+    """One derived quantity: its expression, arguments and documentation."""
+
+    name: str
+    expr: sp.Expr
+    args: tuple
+    doc: str
+    label: str  # the paper's equation label it corresponds to
+
+
+@dataclass(frozen=True)
+class Derivation:
+    continuum: _continuum.ContinuumLimit
+    cases: dict  # case -> _multiscale.CaseResult
+    mi: _mi.MIResult
+    forms: tuple  # ClosedForm, in the order of the generated module
+
+    def form(self, name):
+        return next(f for f in self.forms if f.name == name)
+
+
+@lru_cache(maxsize=1)
+def derive() -> Derivation:
+    """Derive every closed form (about 3 s; cached per process)."""
+    cont = _continuum.derive_continuum()
+    mismatch = {n: sp.simplify(cont.C[n] - _continuum.PAPER_C[n]) for n in cont.C}
+    if any(v != 0 for v in mismatch.values()):
+        raise ArithmeticError(f"continuum limit disagrees with the paper's C_i: {mismatch}")
+    cases = {c: _multiscale.solve_case(c) for c in _multiscale.CASES}
+    rot, cpl = cases["rotation"], cases["coupled"]
+    for name in ("dispersion", "group_velocity", "g1"):
+        if sp.simplify(getattr(rot, name) - getattr(cpl, name)) != 0:
+            raise ArithmeticError(f"{name} differs between the two cases")
+    mi = _mi.analyse()
+    # Omega_I is real inside the band; outside it the plane wave is stable: rate 0.
+    R = sp.expand(mi.growth_rate**2 / _mi.K**2)
+    growth = sp.Abs(_mi.K) * sp.sqrt(sp.Max(R, 0))
+
+    forms = (
+        ClosedForm("omega", rot.dispersion, MATERIAL_ARGS,
+                   "Carrier frequency of the rotational branch, continuum limit.", "continuum2"),
+        ClosedForm("group_velocity", rot.group_velocity, MATERIAL_ARGS,
+                   "Group velocity v_g = d omega/dk, from the O(eps^2) solvability condition.",
+                   "solvability_condition"),
+        ClosedForm("g1", rot.g1, MATERIAL_ARGS,
+                   "Dispersion coefficient of the NLS, g1 = d^2 omega/dk^2. Vanishes at "
+                   "delta = 0 (alpha^2 delta = v_g^2).", "g_i"),
+        ClosedForm("g2_rotation", rot.g2, MATERIAL_ARGS,
+                   "Nonlinear coefficient of the NLS, case (I) (rotation only).", "g_i"),
+        ClosedForm("g2_coupled", cpl.g2, MATERIAL_ARGS,
+                   "Nonlinear coefficient of the NLS, case (II) (rotation + displacement). "
+                   "Diverges at the resonance k^2 = omega^2.", "g_i"),
+        ClosedForm("g_rotation", rot.g, MATERIAL_ARGS,
+                   "g = g2/g1, case (I); g > 0: focusing (MI), g < 0: defocusing. "
+                   "Diverges at delta = 0.", "g1"),
+        ClosedForm("g_coupled", cpl.g, MATERIAL_ARGS,
+                   "g = g2/g1, case (II). Diverges at delta = 0 and at k^2 = omega^2.", "g2"),
+        ClosedForm("u2_coefficient", cpl.u2_coefficient, MATERIAL_ARGS,
+                   "Complex c of the second-harmonic displacement, u2 = c B^2 e^{2 i sigma} + "
+                   "c.c. (case II). Diverges at the resonance k^2 = omega^2.", "u1"),
+        ClosedForm("mi_cutoff", mi.cutoff, MI_ARGS,
+                   "Cutoff K_c of the unstable band |K| < K_c (NLS units, xi1 = eps X). "
+                   "NaN for g < 0: there is no band.", "kc"),
+        ClosedForm("mi_fastest", mi.fastest, MI_ARGS,
+                   "Fastest-growing perturbation wavenumber K_m. NaN for g < 0.", "K_m"),
+        ClosedForm("mi_growth_rate", growth, GROWTH_ARGS,
+                   "Growth rate Omega_I(K) in the NLS time tilde-tau2 = g1 eps^2 T; 0 outside "
+                   "the band (and for g <= 0). The lattice rate is eps^2 |g1| Omega_I.",
+                   "Omega_I"),
+    )
+    return Derivation(continuum=cont, cases=cases, mi=mi, forms=forms)

@@ -1,0 +1,172 @@
+"""The readable derivation report, generated/derivation.md (Markdown + LaTeX)."""
+
+from __future__ import annotations
+
+import re
+
+import sympy as sp
+
+from . import paper_forms
+from ._continuum import K_s, K_theta, alpha, k, lattice_accelerations
+from ._multiscale import FAST_SLOW, SLOW, tau1, tau2, xi1, xi2
+from .errata import ERRATA
+
+#: The paper's two test points (alpha = 2.5, K_s = 0.01851).
+TEST_POINTS = {
+    "blue": {"k": 0.81681, "alpha": 2.5, "K_s": 0.01851, "K_theta": 0.01551},
+    "green": {"k": 0.92991, "alpha": 2.5, "K_s": 0.01851, "K_theta": 0.02151},
+}
+
+def _arglist(args):
+    """The LaTeX SymPy prints for an argument list, e.g. {\\left(X_{0},T_{0} \\right)}."""
+    full = sp.latex(sp.Function("f")(*args))
+    return full[full.index("{"):]
+
+
+_ELIDED = tuple(_arglist(a) for a in (FAST_SLOW, SLOW, (xi1, tau1, xi2, tau2)))
+
+
+def tex(expr):
+    """LaTeX with the (X0, T0, ...) argument lists of the fields elided."""
+    out = sp.latex(expr)
+    for args in _ELIDED:
+        out = out.replace(args, "")
+    return out
+
+
+def same(derived, typed):
+    """True when derived - typed simplifies to exactly zero."""
+    return sp.simplify(derived - typed) == 0
+
+
+def compare_with_paper(derivation):
+    """{name: (derived, paper, label, equal)} for every generated closed form."""
+    out = {}
+    for f in derivation.forms:
+        paper, label = paper_forms.FORMS[f.name]
+        derived = f.expr
+        if f.name == "mi_growth_rate":
+            derived = derivation.mi.growth_rate  # inside the band, where the paper's applies
+        out[f.name] = (derived, paper, label, same(derived, paper))
+    return out
+
+
+def _eq(lhs, rhs="0"):
+    return f"$$ {lhs} = {rhs} $$"
+
+
+def render(derivation) -> str:
+    d = derivation
+    L = []
+    add = L.append
+    add("<!-- GENERATED FILE - DO NOT EDIT BY HAND. Written by `make derive` "
+        f"(SymPy {sp.__version__}). -->")
+    add("# Derivation report: NLS for rotational waves in a flexible mechanical metamaterial")
+    add("")
+    add("Every expression below is computed by `derivation/` from the equations of motion; "
+        "nothing is copied from the paper except in the last section, where the paper's "
+        "typed forms are compared with the derived ones.")
+    add("")
+    add("## 1. Discrete equations (eq. `norm`)")
+    U, th = sp.symbols("U_{n-1} U_n U_{n+1}"), sp.symbols(r"\theta_{n-1} \theta_n \theta_{n+1}")
+    aU, at = lattice_accelerations(*U, *th)
+    add(_eq(r"\ddot U_n", tex(aU)))
+    add(_eq(r"\ddot \theta_n", tex(at)))
+    add("")
+    add("## 2. Continuum limit (eqs. `eqnorm1`, `eqnorm2`), derived by Taylor expansion")
+    add("Linear terms are kept to second order in the lattice spacing, nonlinear terms at "
+        "their lowest order (weak nonlinearity, long waves), theta to cubic order, U counted "
+        "as O(theta^2).")
+    c = d.continuum
+    add(_eq("U_{TT}", tex(c.eq_U)))
+    add(_eq(r"\theta_{TT}", tex(c.eq_theta)))
+    add("")
+    add("| constant | derived | paper | equal |")
+    add("|---|---|---|---|")
+    for name, val in c.C.items():
+        paper = getattr(paper_forms, name)
+        add(f"| {name} | ${tex(val)}$ | ${tex(paper)}$ | {'yes' if same(val, paper) else 'NO'} |")
+    add("")
+    add(f"Terms discarded by the long-wave ordering ({len(c.dropped)}): "
+        + ", ".join(f"${tex(t)}$" for t in c.dropped))
+    add("")
+    add("## 3. Multiple scales (eq. `msm`)")
+    add("Fields: $U = \\sum_i \\epsilon^i u_i$, $\\theta = \\sum_i \\epsilon^i \\theta_i$, "
+        "functions of $X_0, T_0, X_1, T_1, X_2, T_2$ with $X_i = \\epsilon^i X$, "
+        "$T_i = \\epsilon^i T$; $\\partial_T = D_0 + \\epsilon D_1 + \\epsilon^2 D_2$ "
+        "(eq. `diff`). Residuals (lhs - rhs) collected at each order:")
+    for case, res in d.cases.items():
+        add("")
+        add(f"### Case {'(I) rotation only' if case == 'rotation' else '(II) coupled'}")
+        for n, (rU, rth) in res.hierarchy.items():
+            add(f"**O(eps^{n})**")
+            if rU is not None:
+                add(_eq(tex(rU)))
+            add(_eq(tex(rth)))
+        for rec in res.records:
+            add(f"**Solving O(eps^{rec.order})**")
+            if rec.order == 1:
+                add("Leading order $u_1 = 0$, $\\theta_1 = B e^{i\\sigma} + c.c.$, "
+                    "$\\sigma = k X_0 - \\omega T_0$. The coefficient of $e^{i\\sigma}$ "
+                    "vanishes iff (dispersion relation, eq. `continuum2`):")
+                add(_eq(tex(rec.condition.lhs)))
+                continue
+            add("Harmonics of the rotational source (coefficient of $e^{im\\sigma}$):")
+            for m, s in rec.source_theta.items():
+                add(f"- m = {m}: ${tex(s)}$")
+            if rec.source_U:
+                add("Harmonics of the displacement source:")
+                for m, s in rec.source_U.items():
+                    add(f"- m = {m}: ${tex(s)}$")
+            add("Secular term (m = 1) set to zero:")
+            add(_eq(tex(rec.condition.lhs), tex(rec.condition.rhs)))
+            if rec.order == 2:
+                add(f"Non-secular solution: $\\theta_2 = {tex(rec.theta_solution)}$"
+                    + (f", $u_2 = {tex(rec.U_solution)}$" if rec.source_U else ""))
+            for note in rec.notes:
+                add(f"- {note}")
+            add("")
+        add("Resulting NLS (eq. `NLS`) in $\\xi_1 = X_1 - v_g T_1$, $\\tau_2 = T_2$:")
+        add(_eq(tex(res.nls)))
+        add("")
+    add("The zeroth harmonic of $u_2$ (the induced mean flow) satisfies the homogeneous "
+        "equation at $O(\\epsilon^2)$ and is set to zero, as in the paper.")
+    add("")
+    add("## 4. Closed forms (generated into `generated/coefficients.py`)")
+    for f in d.forms:
+        add(f"- `{f.name}{tuple(str(a) for a in f.args)}` (eq. `{f.label}`): "
+            f"${tex(f.expr)}$")
+    add("")
+    add("## 5. Modulation instability of the NLS (eqs. `perturbed` .. `K_m`)")
+    mi = d.mi
+    add(f"Plane wave: $\\omega_0 = {tex(mi.omega0)}$. Linearised perturbation equations:")
+    for e in mi.perturbation_equations:
+        add(_eq(tex(e.lhs)))
+    add(f"Perturbation dispersion: $\\Omega = {tex(mi.branches[0])}$ and "
+        f"${tex(mi.branches[1])}$.")
+    add(f"Cutoff $K_c = {tex(mi.cutoff)}$, fastest $K_m = {tex(mi.fastest)}$, growth "
+        f"$\\Omega_I = {tex(mi.growth_rate)}$, peak $\\Omega_I(K_m) = {tex(mi.peak_growth)}$.")
+    add("")
+    add("## 6. The paper's test points (alpha = 2.5, K_s = 0.01851)")
+    add("| point | k | delta | omega | v_g | g1 | g (I) | g (II) | abs(u2 coefficient) |")
+    add("|---|---|---|---|---|---|---|---|---|")
+    for name, p in TEST_POINTS.items():
+        sub = {k: p["k"], alpha: p["alpha"], K_s: p["K_s"], K_theta: p["K_theta"]}
+        vals = [d.form(n).expr.subs(sub) for n in
+                ("omega", "group_velocity", "g1", "g_rotation", "g_coupled")]
+        cu = sp.Abs(d.form("u2_coefficient").expr.subs(sub))
+        cells = " | ".join(f"{float(v):.6g}" for v in (*vals, cu))
+        add(f"| {name} | {p['k']} | {p['K_s'] - p['K_theta']:.3g} | {cells} |")
+    add("")
+    add("## 7. Comparison with the paper's typed forms (`derivation/paper_forms.py`)")
+    add("| quantity | paper eq. | derived - paper simplifies to 0 |")
+    add("|---|---|---|")
+    for name, (_, _, label, ok) in compare_with_paper(d).items():
+        add(f"| `{name}` | `{label}` | {'yes' if ok else '**NO**'} |")
+    add("")
+    add("## 8. Errata")
+    for i, e in enumerate(ERRATA, 1):
+        add(f"{i}. **{e['where']}.** Says: {e['says']}. Right: {e['right']}. "
+            f"How we know: {e['how']}.")
+    return "\n".join(L).rstrip() + "\n"
+

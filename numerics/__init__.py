@@ -1,0 +1,1 @@
+"""Lattice simulator of eq. `norm` (filled in by the simulator issue)."""
