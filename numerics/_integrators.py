@@ -1,0 +1,116 @@
+"""Registry of time integrators (``numerics.METHODS``).
+
+Fixed-step methods run their whole loop in compiled code (``_kernels``); ``dop853``
+(and ``rk45``) wrap scipy's adaptive ``solve_ivp`` as a reference, not a hot path.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+# Blanes & Moan, J. Comput. Appl. Math. 142 (2002) 313, symmetric BAB SRKN methods
+# (positions drift with a_i, velocities are kicked with b_i; a_last = 0).
+_SRKN6B_A = (0.24529895718427100, 0.60487266571108000, -0.35017162289535100,
+             -0.35017162289535100, 0.60487266571108000, 0.24529895718427100, 0.0)
+_SRKN6B_B = (0.082984406417405200, 0.39630980149836800, -0.039056304922348600,
+             0.1195241940131508, -0.039056304922348600, 0.39630980149836800,
+             0.082984406417405200)
+_SRKN11B_A = (0.12322977594627100, 0.29055379779955800, -0.12704921262541700,
+              -0.24633176106207500, 0.35720887279592800, 0.2047770542914700,
+              0.35720887279592800, -0.24633176106207500, -0.12704921262541700,
+              0.29055379779955800, 0.12322977594627100, 0.0)
+_SRKN11B_B = (0.041464998518262400, 0.19812867191806700, -0.040006192104153300,
+              0.075253984301580700, -0.011511387420687900, 0.23666992478693110,
+              0.23666992478693110, -0.011511387420687900, 0.075253984301580700,
+              -0.040006192104153300, 0.19812867191806700, 0.041464998518262400)
+
+
+@dataclass(frozen=True)
+class Method:
+    """One integrator: name, order, force evaluations per step, kind."""
+
+    name: str
+    order: int
+    evaluations: int  # force evaluations per step (fixed-step methods)
+    kind: str  # "rk4", "srkn" or "scipy"
+    symplectic: bool
+    description: str
+    a: tuple = field(default=(), repr=False)
+    b: tuple = field(default=(), repr=False)
+
+    @property
+    def fixed_step(self) -> bool:
+        return self.kind != "scipy"
+
+    def stability_limit(self) -> float:
+        """Largest omega*dt for which the method is stable on x'' = -omega^2 x.
+
+        Computed from the coefficients (one-step matrix of the harmonic oscillator,
+        stable while |trace|/2 <= 1); RK4 gives 2 sqrt(2).
+        """
+        if not self.fixed_step:
+            return float("inf")
+        hs = np.linspace(1e-3, 8.0, 8000)
+        ok = np.array([abs(np.trace(self._oscillator_matrix(h))) / 2 <= 1 + 1e-12
+                       and np.max(np.abs(np.linalg.eigvals(self._oscillator_matrix(h))))
+                       <= 1 + 1e-9 for h in hs])
+        first_bad = np.argmin(ok) if not ok.all() else len(hs) - 1
+        lo, hi = hs[first_bad - 1], hs[first_bad]
+        for _ in range(50):  # bisection on the first loss of stability
+            mid = 0.5 * (lo + hi)
+            M = self._oscillator_matrix(mid)
+            if np.max(np.abs(np.linalg.eigvals(M))) <= 1 + 1e-9:
+                lo = mid
+            else:
+                hi = mid
+        return lo
+
+    def _oscillator_matrix(self, h):
+        if self.kind == "rk4":
+            A = np.array([[0.0, 1.0], [-1.0, 0.0]])
+            Ah = A * h
+            M = np.eye(2)
+            term = np.eye(2)
+            for j in range(1, 5):
+                term = term @ Ah / j
+                M = M + term
+            return M
+        M = np.eye(2)
+        for j, bj in enumerate(self.b):
+            M = np.array([[1.0, 0.0], [-bj * h, 1.0]]) @ M  # kick
+            if j < len(self.a) and self.a[j] != 0:
+                M = np.array([[1.0, self.a[j] * h], [0.0, 1.0]]) @ M  # drift
+        return M
+
+
+_REGISTRY: dict[str, Method] = {}
+
+
+def register(method: Method) -> Method:
+    if method.name in _REGISTRY:
+        raise ValueError(f"method {method.name!r} registered twice")
+    _REGISTRY[method.name] = method
+    return method
+
+
+register(Method("rk4", 4, 4, "rk4", False, "classical Runge-Kutta 4 (the paper's method)"))
+register(Method("verlet", 2, 1, "srkn", True, "Stormer-Verlet (kick-drift-kick)",
+                a=(1.0, 0.0), b=(0.5, 0.5)))
+register(Method("srkn6b", 4, 6, "srkn", True,
+                "Blanes & Moan 2002 SRKN6b, symplectic RKN order 4", _SRKN6B_A, _SRKN6B_B))
+register(Method("srkn11b", 6, 11, "srkn", True,
+                "Blanes & Moan 2002 SRKN11b, symplectic RKN order 6", _SRKN11B_A, _SRKN11B_B))
+register(Method("dop853", 8, 0, "scipy", False, "scipy solve_ivp DOP853 (adaptive reference)"))
+register(Method("rk45", 5, 0, "scipy", False, "scipy solve_ivp RK45 (adaptive)"))
+
+#: Names of all integrators, usable as ``method=``.
+METHODS = tuple(_REGISTRY)
+
+
+def get_method(name: str) -> Method:
+    try:
+        return _REGISTRY[name]
+    except (KeyError, TypeError):
+        raise ValueError(f"unknown method {name!r}; choose one of {', '.join(METHODS)}") from None

@@ -1,0 +1,442 @@
+"""Driving the integrators: ``integrate`` (state -> state) and ``simulate`` (the paper's run)."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from . import _kernels as K
+from ._integrators import Method, get_method
+from ._model import LatticeState, Material, check_case, discrete_omega_rotation, energy
+
+#: Bumped whenever a change alters simulated numbers (keys the scene cache).
+SIMULATOR_VERSION = "1"
+STORE_CHOICES = ("snapshots", "spectrum", "energy")
+OMEGA_MODELS = ("continuum", "discrete")
+
+
+class BlowUpError(FloatingPointError):
+    """The solution stopped being finite; ``run`` holds what was saved before."""
+
+    def __init__(self, message, run=None, time=None):
+        super().__init__(message)
+        self.run = run
+        self.time = time
+
+
+class SimulationInterrupted(KeyboardInterrupt):
+    """Ctrl-C during a run; ``run`` holds the saved part, ``state`` the last state."""
+
+    def __init__(self, message, run=None, state=None):
+        super().__init__(message)
+        self.run = run
+        self.state = state
+
+
+def _check_time(t_end, dt):
+    for name, v in (("t_end", t_end), ("dt", dt)):
+        try:
+            v = float(v)
+        except (TypeError, ValueError):
+            raise ValueError(f"{name} must be a real number, got {v!r}") from None
+        if not math.isfinite(v) or v <= 0:
+            raise ValueError(f"{name} must be finite and > 0, got {v!r}")
+    if dt > t_end:
+        raise ValueError(f"dt = {dt} is larger than t_end = {t_end}")
+    nsteps = math.ceil(float(t_end) / float(dt) - 1e-9)
+    if nsteps > 10**10:
+        raise ValueError(f"t_end/dt = {nsteps:.3g} steps is absurd; use a larger dt")
+    return nsteps, float(t_end) / nsteps
+
+
+class _Stepper:
+    """Holds the work arrays of one run and advances it by whole chunks of steps."""
+
+    def __init__(self, state: LatticeState, material: Material, case: str, method: Method,
+                 dt: float, rtol: float = 1e-10, atol: float = 1e-12):
+        self.case = case
+        self.coupled = case == "coupled"
+        self.material = material
+        self.method = method
+        self.dt = dt
+        self.rtol, self.atol = rtol, atol
+        n = state.N
+        self.th = state.theta.copy()
+        self.w = state.theta_dot.copy()
+        self.U = state.U.copy() if self.coupled else K.empty_u()
+        self.V = state.U_dot.copy() if self.coupled else K.empty_u()
+        self.s, self.c, self.v = np.empty(n), np.empty(n), np.empty(n)
+        self.ath = np.empty(n)
+        self.aU = np.empty(n if self.coupled else 0)
+        self.params = (material.alpha**2, material.K_s, material.K_theta)
+        self.evaluations = 0
+        if method.kind == "srkn":
+            self.acoef = np.array(method.a)
+            self.bcoef = np.array(method.b)
+            self._accel()
+        elif method.kind == "rk4":
+            self.work = np.empty((10, n))
+
+    def _accel(self):
+        K.accel(self.th, self.U, self.coupled, *self.params, self.s, self.c, self.v,
+                self.ath, self.aU)
+        self.evaluations += 1
+
+    def state(self) -> LatticeState:
+        if self.coupled:
+            return LatticeState(self.U.copy(), self.V.copy(), self.th.copy(), self.w.copy())
+        return LatticeState(None, None, self.th.copy(), self.w.copy())
+
+    def advance(self, nsteps: int) -> int:
+        """Advance ``nsteps`` steps; returns the number completed while finite."""
+        m = self.method
+        if m.kind == "srkn":
+            done = K.srkn_steps(self.th, self.w, self.U, self.V, self.ath, self.aU,
+                                self.coupled, *self.params, self.acoef, self.bcoef,
+                                self.dt, nsteps, self.s, self.c, self.v)
+            self.evaluations += done * m.evaluations
+        elif m.kind == "rk4":
+            done = K.rk4_steps(self.th, self.w, self.U, self.V, self.coupled, *self.params,
+                               self.dt, nsteps, self.s, self.c, self.v, self.work)
+            self.evaluations += done * 4
+        else:
+            done = self._scipy(nsteps * self.dt)
+        return done
+
+    def _scipy(self, span):
+        from scipy.integrate import solve_ivp
+
+        n = self.th.size
+        nf = 4 * n if self.coupled else 2 * n
+        y0 = (np.concatenate([self.th, self.w, self.U, self.V]) if self.coupled
+              else np.concatenate([self.th, self.w]))
+        ath, aU = np.empty(n), np.empty(n if self.coupled else 0)
+        s, c, v = np.empty(n), np.empty(n), np.empty(n)
+        a2, Ks, Kt = self.params
+        coupled = self.coupled
+
+        def rhs(_t, y):
+            th = y[:n]
+            U = y[2 * n:3 * n] if coupled else K.empty_u()
+            K.accel(np.ascontiguousarray(th), np.ascontiguousarray(U), coupled, a2, Ks, Kt,
+                    s, c, v, ath, aU)
+            out = np.empty(nf)
+            out[:n] = y[n:2 * n]
+            out[n:2 * n] = ath
+            if coupled:
+                out[2 * n:3 * n] = y[3 * n:]
+                out[3 * n:] = aU
+            return out
+
+        sol = solve_ivp(rhs, (0.0, span), y0, method=self.method.name.upper(),
+                        rtol=self.rtol, atol=self.atol)
+        self.evaluations += sol.nfev
+        if not sol.success or not np.all(np.isfinite(sol.y[:, -1])):
+            return 0
+        y = sol.y[:, -1]
+        self.th[:], self.w[:] = y[:n], y[n:2 * n]
+        if coupled:
+            self.U[:], self.V[:] = y[2 * n:3 * n], y[3 * n:]
+        return int(round(span / self.dt))
+
+
+def _blowup_message(t, dt, material, case, method):
+    safe = 0.5 * method.stability_limit() / material.omega_max(case)
+    return (f"solution blew up (non-finite theta) near T = {t:.6g} with dt = {dt:g} and "
+            f"method {method.name!r}; its linear stability limit is dt < "
+            f"{method.stability_limit() / material.omega_max(case):.4g} here: "
+            f"try dt <= {safe:.3g}")
+
+
+def integrate(state: LatticeState, material: Material, case: str, t_end: float, dt: float,
+              method: str = "rk4", *, rtol: float = 1e-10, atol: float = 1e-12
+              ) -> LatticeState:
+    """Integrate eq. `norm` from ``state`` to ``t_end``; the input is not modified.
+
+    Parameters
+    ----------
+    state : LatticeState
+        Initial condition (U, U_dot None for case "rotation").
+    material : Material
+    case : {"rotation", "coupled"}
+    t_end, dt : float
+        Final time and step; the step used is t_end / ceil(t_end / dt) <= dt so that
+        the run lands exactly on t_end.
+    method : str
+        One of ``numerics.METHODS``; rtol/atol apply to the scipy methods only.
+
+    Returns
+    -------
+    LatticeState at t_end.
+
+    Raises
+    ------
+    BlowUpError
+        When the solution stops being finite (the message names the time and a safe dt).
+    """
+    check_case(case)
+    m = get_method(method)
+    state = state.for_case(case)
+    nsteps, dt_eff = _check_time(t_end, dt)
+    st = _Stepper(state, material, case, m, dt_eff, rtol, atol)
+    done = st.advance(nsteps)
+    if done < nsteps:
+        raise BlowUpError(_blowup_message(done * dt_eff, dt_eff, material, case, m),
+                          time=done * dt_eff)
+    return st.state()
+
+
+@dataclass
+class Run:
+    """Output of :func:`simulate`.
+
+    Attributes
+    ----------
+    t : ndarray, shape (nt,)
+    theta, U : ndarray, shape (nt, N), or None (U for case "rotation"; both when
+        ``store`` is not "snapshots")
+    theta_hat, U_hat : ndarray, shape (nt, N//2 + 1), or None
+        |rfft| * 2/N of theta and U (a plane wave of amplitude a shows as a peak a);
+        stored when ``store == "spectrum"``.
+    energy : ndarray, shape (nt,)
+    """
+
+    t: np.ndarray
+    theta: np.ndarray | None
+    U: np.ndarray | None
+    energy: np.ndarray
+    material: Material
+    case: str
+    N: int
+    k: float  # snapped carrier wavenumber 2 pi m / N
+    m: int
+    k_requested: float
+    eps: float
+    A0: float
+    noise: float
+    seed: int
+    method: str
+    dt: float
+    t_end: float
+    save_every: float
+    store: str
+    omega_model: str
+    theta_hat: np.ndarray | None = None
+    U_hat: np.ndarray | None = None
+    final_state: LatticeState | None = None
+    force_evaluations: int = 0
+    completed: bool = True
+    extra: dict = field(default_factory=dict)
+
+    @property
+    def wavenumbers(self) -> np.ndarray:
+        """q of the spectrum columns, rad per site."""
+        return 2 * np.pi * np.arange(self.N // 2 + 1) / self.N
+
+    @property
+    def relative_energy_error(self) -> np.ndarray:
+        return np.abs(self.energy - self.energy[0]) / abs(self.energy[0])
+
+
+def snap_wavenumber(k: float, N: int, rel_tol: float = 1e-3):
+    """Nearest periodic wavenumber 2 pi m / N to k; ValueError if further than rel_tol."""
+    k = float(k)
+    if not math.isfinite(k) or k <= 0 or k >= math.pi:
+        raise ValueError(f"k must be in (0, pi), got {k!r}")
+    m = int(round(k * N / (2 * math.pi)))
+    ks = 2 * math.pi * m / N
+    if m == 0 or abs(ks - k) > rel_tol * k:
+        raise ValueError(
+            f"k = {k} is not commensurate with N = {N} periodic sites: the nearest "
+            f"2 pi m / N is {ks:.6g} (m = {m}), {abs(ks - k) / k:.2e} away (> {rel_tol:g} "
+            f"relative); choose k = 2 pi m / N")
+    return ks, m
+
+
+def initial_condition(material: Material, case: str, N: int, k: float, eps: float = 0.01,
+                      A0: float = 1.0, noise: float = 1e-3, seed: int = 0,
+                      omega_model: str = "continuum") -> LatticeState:
+    """The paper's noisy plane wave (eq. `IC`), with amplitude 2 eps A0.
+
+    theta = 2 eps A0 (1 + b0) cos(k n), theta_dot = 2 eps A0 omega(k) (1 + b0) sin(k n),
+    b0 ~ U[-noise, noise] per site from ``numpy.random.default_rng(seed)``, U = U_dot = 0.
+    ``omega_model="continuum"`` (the paper's) uses eq. `continuum2`; "discrete" uses
+    eq. `discrete2`, the frequency the lattice actually has (less initial mismatch).
+    """
+    from generated.coefficients import omega as omega_continuum
+
+    check_case(case)
+    if omega_model not in OMEGA_MODELS:
+        raise ValueError(f"omega_model must be one of {OMEGA_MODELS}, got {omega_model!r}")
+    if not (isinstance(N, (int, np.integer)) and N >= 3):
+        raise ValueError(f"N must be an integer >= 3, got {N!r}")
+    if N > 10**8:
+        raise ValueError(f"N = {N} sites is absurd (> 1e8)")
+    for name, val in (("eps", eps), ("A0", A0)):
+        if not (math.isfinite(val) and val > 0):
+            raise ValueError(f"{name} must be finite and > 0, got {val!r}")
+    if not (math.isfinite(noise) and noise >= 0):
+        raise ValueError(f"noise must be finite and >= 0, got {noise!r}")
+    if omega_model == "continuum":
+        w = float(omega_continuum(k, material.alpha, material.K_s, material.K_theta))
+    else:
+        w = float(discrete_omega_rotation(k, material))
+    rng = np.random.default_rng(seed)
+    b0 = rng.uniform(-noise, noise, N)
+    n = np.arange(N)
+    amp = 2 * eps * A0 * (1 + b0)
+    theta = amp * np.cos(k * n)
+    theta_dot = amp * w * np.sin(k * n)
+    if case == "coupled":
+        return LatticeState(np.zeros(N), np.zeros(N), theta, theta_dot)
+    return LatticeState(None, None, theta, theta_dot)
+
+
+def _progress(total, enabled):
+    try:
+        from tqdm.auto import tqdm
+    except ImportError:  # pragma: no cover - tqdm is a dependency
+        return None
+    # disable=None: silent when stderr is not a terminal
+    return tqdm(total=total, unit="T", disable=None if enabled is None else not enabled,
+                leave=False, desc="lattice")
+
+
+def simulate(material: Material, case: str, N: int, k: float, eps: float = 0.01,
+             A0: float = 1.0, noise: float = 1e-3, seed: int = 0, t_end: float = 5000.0,
+             dt: float = 0.05, method: str = "rk4", save_every: float | None = None, *,
+             store: str = "snapshots", omega_model: str = "continuum",
+             initial: LatticeState | None = None, progress: bool | None = None,
+             rtol: float = 1e-10, atol: float = 1e-12) -> Run:
+    """Run the paper's numerical experiment: a noisy plane wave on a periodic chain.
+
+    Parameters
+    ----------
+    material, case : Material, {"rotation", "coupled"}
+    N : int
+        Number of sites (periodic).
+    k : float
+        Carrier wavenumber; snapped to 2 pi m / N when within 1e-3 relative.
+    eps, A0, noise, seed : initial condition, see :func:`initial_condition`.
+    t_end, dt : float
+        Duration and time step (defaults: the paper's run, T = 5000 with dt = 0.05).
+    method : str
+        One of ``numerics.METHODS`` (default "rk4", the paper's).
+    save_every : float, optional
+        Time between saved records (rounded to whole steps); default about 1000 records.
+    store : {"snapshots", "spectrum", "energy"}
+        What is kept at each record: full fields, only |theta_hat| (and |U_hat|), or only
+        the energy (always kept). Memory grows with the records, never with the steps.
+    omega_model : {"continuum", "discrete"}
+        Frequency used for the initial theta_dot (default: the paper's continuum one).
+    initial : LatticeState, optional
+        Start from this state instead of eq. `IC` (e.g. to resume an interrupted run).
+    progress : bool or None
+        Progress bar; None shows it only on a terminal.
+
+    Returns
+    -------
+    Run
+
+    Raises
+    ------
+    BlowUpError
+        Non-finite solution: message names the time and a safe dt; ``.run`` keeps the
+        records saved before.
+    SimulationInterrupted
+        Ctrl-C: ``.run`` keeps the records saved so far, ``.state`` the last state, from
+        which ``simulate(..., initial=exc.state, t_end=remaining)`` resumes.
+    """
+    check_case(case)
+    m_ = get_method(method)
+    if store not in STORE_CHOICES:
+        raise ValueError(f"store must be one of {STORE_CHOICES}, got {store!r}")
+    ks, mode = snap_wavenumber(k, int(N) if isinstance(N, (int, np.integer)) else 3)
+    nsteps, dt_eff = _check_time(t_end, dt)
+    if initial is None:
+        state = initial_condition(material, case, N, ks, eps, A0, noise, seed, omega_model)
+    else:
+        state = initial.for_case(case)
+        if state.N != N:
+            raise ValueError(f"initial state has {state.N} sites, N = {N}")
+    if save_every is None:
+        per_save = max(1, round(nsteps / 1000))
+    else:
+        if not (math.isfinite(save_every) and save_every > 0):
+            raise ValueError(f"save_every must be finite and > 0, got {save_every!r}")
+        per_save = max(1, round(save_every / dt_eff))
+    nrec = -(-nsteps // per_save) + 1
+    coupled = case == "coupled"
+    nq = N // 2 + 1
+    t = np.empty(nrec)
+    en = np.empty(nrec)
+    th_rec = np.empty((nrec, N)) if store == "snapshots" else None
+    U_rec = np.empty((nrec, N)) if store == "snapshots" and coupled else None
+    thh = np.empty((nrec, nq)) if store == "spectrum" else None
+    Uh = np.empty((nrec, nq)) if store == "spectrum" and coupled else None
+
+    st = _Stepper(state, material, case, m_, dt_eff, rtol, atol)
+    run = Run(t=t, theta=th_rec, U=U_rec, energy=en, material=material, case=case, N=N, k=ks,
+              m=mode, k_requested=float(k), eps=eps, A0=A0, noise=noise, seed=seed,
+              method=m_.name, dt=dt_eff, t_end=float(t_end), save_every=per_save * dt_eff,
+              store=store, omega_model=omega_model, theta_hat=thh, U_hat=Uh)
+
+    def record(j, time):
+        t[j] = time
+        cur = LatticeState(st.U, st.V, st.th, st.w) if coupled else \
+            LatticeState(None, None, st.th, st.w)
+        en[j] = energy(cur, material, case)
+        if th_rec is not None:
+            th_rec[j] = st.th
+            if U_rec is not None:
+                U_rec[j] = st.U
+        if thh is not None:
+            thh[j] = np.abs(np.fft.rfft(st.th)) * (2.0 / N)
+            if Uh is not None:
+                Uh[j] = np.abs(np.fft.rfft(st.U)) * (2.0 / N)
+
+    def truncate(j):
+        for name in ("t", "energy", "theta", "U", "theta_hat", "U_hat"):
+            arr = getattr(run, name)
+            if arr is not None:
+                setattr(run, name, arr[:j])
+        run.completed = False
+
+    record(0, 0.0)
+    done_steps = 0
+    state_time = 0.0  # time of the stepper's state (may run ahead of the last record)
+    j = 1
+    bar = _progress(float(t_end), progress)
+    try:
+        while done_steps < nsteps:
+            chunk = min(per_save, nsteps - done_steps)
+            got = st.advance(chunk)
+            state_time = (done_steps + got) * dt_eff
+            if got < chunk:
+                truncate(j)
+                run.force_evaluations = st.evaluations
+                tb = (done_steps + got) * dt_eff
+                raise BlowUpError(_blowup_message(tb, dt_eff, material, case, m_), run, tb)
+            done_steps += chunk
+            record(j, done_steps * dt_eff)
+            j += 1
+            if bar is not None:
+                bar.update(chunk * dt_eff)
+    except KeyboardInterrupt as exc:
+        if isinstance(exc, SimulationInterrupted):
+            raise
+        truncate(j)
+        run.force_evaluations = st.evaluations
+        raise SimulationInterrupted(
+            f"interrupted at T = {state_time:g} of {t_end:g}; exc.run keeps {len(run.t)} "
+            f"records. Resume with simulate(..., initial=exc.state, "
+            f"t_end={t_end - state_time:g}) (times then count from 0)",
+            run=run, state=st.state()) from None
+    finally:
+        if bar is not None:
+            bar.close()
+    run.final_state = st.state()
+    run.force_evaluations = st.evaluations
+    return run
