@@ -31,5 +31,11 @@ test-all: $(STAMP)
 run: $(STAMP) $(GENERATED)
 	$(VPY) -m derivation.table
 
+bench: $(STAMP)
+	$(VPY) bench/simulator.py
+
+bench-quick: $(STAMP)
+	$(VPY) bench/simulator.py --quick
+
 clean:
 	rm -rf $(VENV) out .pytest_cache

@@ -1,0 +1,105 @@
+"""Simulator speed, measured in one run (ratios are what to read; machines are noisy).
+
+Reports: ns per site per force evaluation of the compiled kernel and of the plain NumPy
+force; compiled RK4 vs the plain NumPy RK4 (np.roll stencil) at the same dt; the paper's
+run (N = 500, t_end = 5000, dt = 0.05, case II) wall time. Writes bench/simulator.json.
+
+    python bench/simulator.py [--quick]
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import platform
+import time
+from pathlib import Path
+
+import numpy as np
+
+from numerics import Material, integrate, simulate
+from numerics._baseline import numpy_accel, numpy_rk4
+from numerics._kernels import accel
+
+BLUE = Material(2.5, 0.01851, 0.01551)
+
+
+def best_of(fn, repeat):
+    times = []
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        fn()
+        times.append(time.perf_counter() - t0)
+    return min(times)
+
+
+def machine():
+    return {"python": platform.python_version(), "machine": platform.machine(),
+            "processor": platform.processor() or platform.machine(), "cpus": os.cpu_count(),
+            "numpy": np.__version__}
+
+
+def main(quick=False):
+    rng = np.random.default_rng(0)
+    N = 500
+    th, U = rng.normal(0, 0.02, N), rng.normal(0, 1e-4, N)
+    s, c, v, a1, a2 = (np.empty(N) for _ in range(5))
+    reps = 2000 if quick else 20000
+    accel(th, U, True, 6.25, 0.01851, 0.01551, s, c, v, a1, a2)  # compile
+
+    def kernel():
+        for _ in range(reps):
+            accel(th, U, True, 6.25, 0.01851, 0.01551, s, c, v, a1, a2)
+
+    def sincos():
+        for _ in range(reps):
+            np.sin(th, out=s)
+            np.cos(th, out=c)
+
+    def npforce():
+        for _ in range(reps // 10):
+            numpy_accel(th, U, BLUE, True)
+
+    t_kernel = best_of(kernel, 3) / reps / N * 1e9
+    t_sincos = best_of(sincos, 3) / reps / N * 1e9
+    t_np = best_of(npforce, 3) / (reps // 10) / N * 1e9
+
+    state = simulate(BLUE, "coupled", N, 0.81681, t_end=1.0, dt=0.05).final_state
+    T = 20.0 if quick else 100.0
+    integrate(state, BLUE, "coupled", 1.0, 0.05)  # compile
+    t_rk4 = best_of(lambda: integrate(state, BLUE, "coupled", T, 0.05), 3)
+    t_np_rk4 = best_of(lambda: numpy_rk4(state, BLUE, "coupled", T, 0.05), 1 if quick else 2)
+
+    t_end = 500.0 if quick else 5000.0
+    t0 = time.perf_counter()
+    run = simulate(BLUE, "coupled", N, 0.81681, t_end=t_end, dt=0.05, store="spectrum",
+                   save_every=5.0, progress=False)
+    t_paper = time.perf_counter() - t0
+    res = {
+        "machine": machine(),
+        "force_ns_per_site_compiled": t_kernel,
+        "force_ns_per_site_numpy": t_np,
+        "sincos_ns_per_site_numpy": t_sincos,
+        "kernel_over_sincos": t_kernel / t_sincos,
+        "rk4_compiled_s": t_rk4, "rk4_numpy_s": t_np_rk4, "rk4_T": T,
+        "rk4_speedup_vs_numpy": t_np_rk4 / t_rk4,
+        "paper_run_s": t_paper, "paper_run_t_end": t_end,
+        "paper_run_energy_error": float(run.relative_energy_error.max()),
+        "quick": quick,
+    }
+    out = Path(__file__).with_name("simulator.json")
+    out.write_text(json.dumps(res, indent=2) + "\n")
+    print(f"force kernel: {t_kernel:.1f} ns/site (NumPy force {t_np:.1f}, NumPy sin+cos alone "
+          f"{t_sincos:.1f}; kernel/sincos = {t_kernel / t_sincos:.2f})")
+    print(f"RK4 over T = {T:g}, N = {N}: compiled {t_rk4 * 1e3:.1f} ms, NumPy "
+          f"{t_np_rk4 * 1e3:.1f} ms -> {t_np_rk4 / t_rk4:.1f}x")
+    print(f"paper run (case II, N = 500, T = {t_end:g}, dt = 0.05): {t_paper:.2f} s, "
+          f"max relative energy error {res['paper_run_energy_error']:.2e}")
+    return res
+
+
+if __name__ == "__main__":
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--quick", action="store_true")
+    main(ap.parse_args().quick)
