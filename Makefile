@@ -5,7 +5,7 @@ VPY := $(VENV)/bin/python
 STAMP := $(VENV)/.setup-stamp
 GENERATED := generated/coefficients.py generated/derivation.md
 
-.PHONY: setup derive test test-all run figures bench bench-quick stress clean
+.PHONY: setup derive test test-all run figures bench bench-quick clean
 
 setup: $(STAMP)
 
@@ -28,8 +28,18 @@ test: $(STAMP)
 test-all: $(STAMP)
 	$(VPY) -m pytest -q -m ''
 
+# The main job: coefficients at the test points, then every scene (quick) and out/report.md.
 run: $(STAMP) $(GENERATED)
 	$(VPY) -m derivation.table
+	$(VENV)/bin/flexmm run --quick
+
+# Full-size figures (about a minute), copied small into docs/figures/ for the README.
+figures: $(STAMP) $(GENERATED)
+	$(VENV)/bin/flexmm run --out out/full
+	mkdir -p docs/figures
+	for d in out/full/*/; do n=$$(basename $$d); \
+	  [ -f $$d/figure.png ] && cp $$d/figure.png docs/figures/$$n.png; done; true
+	cp out/full/report.md docs/figures/report.md
 
 bench: $(STAMP)
 	$(VPY) bench/simulator.py
