@@ -90,11 +90,13 @@ def growth_rates(t: np.ndarray, spec: np.ndarray, window) -> np.ndarray:
     return (tc @ (y - y.mean(axis=0))) / (tc @ tc)
 
 
-def band_summary(q: np.ndarray, sigma: np.ndarray, k: float, frac: float = 0.1) -> dict:
+def band_summary(q: np.ndarray, sigma: np.ndarray, k: float, frac: float = 0.5) -> dict:
     """Peak gain, its offset from the carrier, and the band edge of a gain curve.
 
     Uses the upper side q > k. The edge is where sigma falls to ``frac`` of its peak,
-    interpolated linearly, outward of the peak.
+    interpolated linearly, outward of the peak. The default, half the peak, sits well
+    above the floor of out-of-band "growth" (nonlinear products of the unstable modes,
+    ~30-50% of the peak late in the linear stage), where a 10% level would not.
     """
     up = q > k
     qq, ss = q[up] - k, sigma[up]
@@ -129,9 +131,13 @@ def forced_second_harmonic(t: np.ndarray, U: np.ndarray, k_bin: int, omega_carri
             "free_minus": float(abs(coef[2])), "fit_residual": float(resid)}
 
 
+def carrier_amplitude(theta: np.ndarray, m: int) -> float:
+    """Mean amplitude a of the carrier a cos(k n - omega t) over the records."""
+    return float(np.mean(np.abs(np.fft.fft(theta, axis=1)[:, m])) * 2.0 / theta.shape[1])
+
+
 def carrier_frequency(t: np.ndarray, theta: np.ndarray, m: int) -> float:
     """Frequency of the carrier from the phase of theta_hat(k, t) (unwrapped, fitted)."""
-    N = theta.shape[1]
     c = np.fft.fft(theta, axis=1)[:, m]
     phase = np.unwrap(np.angle(c))
     slope = np.polyfit(t, phase, 1)[0]
