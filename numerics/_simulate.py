@@ -9,7 +9,8 @@ import numpy as np
 
 from . import _kernels as K
 from ._integrators import Method, get_method
-from ._model import LatticeState, Material, check_case, discrete_omega_rotation, energy
+from ._model import (LatticeState, Material, _positive_finite, check_case,
+                     discrete_omega_rotation, energy)
 
 #: Bumped whenever a change alters simulated numbers (keys the scene cache).
 SIMULATOR_VERSION = "1"
@@ -36,19 +37,14 @@ class SimulationInterrupted(KeyboardInterrupt):
 
 
 def _check_time(t_end, dt):
-    for name, v in (("t_end", t_end), ("dt", dt)):
-        try:
-            v = float(v)
-        except (TypeError, ValueError):
-            raise ValueError(f"{name} must be a real number, got {v!r}") from None
-        if not math.isfinite(v) or v <= 0:
-            raise ValueError(f"{name} must be finite and > 0, got {v!r}")
+    t_end = _positive_finite("t_end", t_end)
+    dt = _positive_finite("dt", dt)
     if dt > t_end:
         raise ValueError(f"dt = {dt} is larger than t_end = {t_end}")
-    nsteps = math.ceil(float(t_end) / float(dt) - 1e-9)
+    nsteps = math.ceil(t_end / dt - 1e-9)
     if nsteps > 10**10:
         raise ValueError(f"t_end/dt = {nsteps:.3g} steps is absurd; use a larger dt")
-    return nsteps, float(t_end) / nsteps
+    return nsteps, t_end / nsteps
 
 
 class _Stepper:
