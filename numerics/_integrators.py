@@ -52,20 +52,19 @@ class Method:
         """
         if not self.fixed_step:
             return float("inf")
+
+        def stable(h):
+            return np.max(np.abs(np.linalg.eigvals(self._oscillator_matrix(h)))) <= 1 + 1e-9
+
         hs = np.linspace(1e-3, 8.0, 8000)
-        ok = np.array([abs(np.trace(self._oscillator_matrix(h))) / 2 <= 1 + 1e-12
-                       and np.max(np.abs(np.linalg.eigvals(self._oscillator_matrix(h))))
-                       <= 1 + 1e-9 for h in hs])
-        first_bad = np.argmin(ok) if not ok.all() else len(hs) - 1
-        lo, hi = hs[first_bad - 1], hs[first_bad]
+        bad = next((i for i, h in enumerate(hs) if not stable(h)), None)
+        if bad is None:
+            return float(hs[-1])
+        lo, hi = hs[bad - 1], hs[bad]
         for _ in range(50):  # bisection on the first loss of stability
             mid = 0.5 * (lo + hi)
-            M = self._oscillator_matrix(mid)
-            if np.max(np.abs(np.linalg.eigvals(M))) <= 1 + 1e-9:
-                lo = mid
-            else:
-                hi = mid
-        return lo
+            lo, hi = (mid, hi) if stable(mid) else (lo, mid)
+        return float(lo)
 
     def _oscillator_matrix(self, h):
         if self.kind == "rk4":
