@@ -20,6 +20,16 @@ def spectrum(fields: np.ndarray) -> np.ndarray:
     return np.abs(np.fft.rfft(fields, axis=-1)) * (2.0 / fields.shape[-1])
 
 
+def mode(fields: np.ndarray, j: int) -> np.ndarray:
+    """Complex amplitude of wavenumber bin j per record, normalised 2/N (one DFT bin).
+
+    a cos(2 pi j n / N - phi) gives a e^{i phi}. Shape (nt,) for fields (nt, N).
+    """
+    fields = np.asarray(fields, dtype=float)
+    N = fields.shape[-1]
+    return fields @ np.exp(-2j * np.pi * (j % N) * np.arange(N) / N) * (2.0 / N)
+
+
 def harmonic_bins(m: int, N: int, hmax: int = 9) -> list[int]:
     """rfft bins of the odd harmonics h*k (h = 1, 3, .., hmax) of the carrier bin m.
 
@@ -121,8 +131,7 @@ def forced_second_harmonic(t: np.ndarray, U: np.ndarray, k_bin: int, omega_carri
     + C e^{+i W t}, W = ``omega_free`` (the lattice U branch at 2k). |A| is the forced
     second harmonic that eq. `u1` predicts (2 eps^2 |u2 coefficient| A0^2).
     """
-    N = U.shape[1]
-    c = np.fft.fft(U, axis=1)[:, (2 * k_bin) % N] * (2.0 / N)
+    c = mode(U, 2 * k_bin)
     freqs = (2 * omega_carrier, omega_free, -omega_free)
     M = np.exp(-1j * np.outer(t, freqs))
     coef, *_ = np.linalg.lstsq(M, c, rcond=None)
@@ -133,12 +142,11 @@ def forced_second_harmonic(t: np.ndarray, U: np.ndarray, k_bin: int, omega_carri
 
 def carrier_amplitude(theta: np.ndarray, m: int) -> float:
     """Mean amplitude a of the carrier a cos(k n - omega t) over the records."""
-    return float(np.mean(np.abs(np.fft.fft(theta, axis=1)[:, m])) * 2.0 / theta.shape[1])
+    return float(np.mean(np.abs(mode(theta, m))))
 
 
 def carrier_frequency(t: np.ndarray, theta: np.ndarray, m: int) -> float:
     """Frequency of the carrier from the phase of theta_hat(k, t) (unwrapped, fitted)."""
-    c = np.fft.fft(theta, axis=1)[:, m]
-    phase = np.unwrap(np.angle(c))
+    phase = np.unwrap(np.angle(mode(theta, m)))
     slope = np.polyfit(t, phase, 1)[0]
     return float(-slope)

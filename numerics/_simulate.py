@@ -8,6 +8,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import _kernels as K
+from ._analysis import spectrum
 from ._integrators import Method, get_method
 from ._model import (LatticeState, Material, _positive_finite, check_case,
                      discrete_omega_rotation, energy)
@@ -45,6 +46,14 @@ def _check_time(t_end, dt):
     if nsteps > 10**10:
         raise ValueError(f"t_end/dt = {nsteps:.3g} steps is absurd; use a larger dt")
     return nsteps, t_end / nsteps
+
+
+def _check_sites(N):
+    if not (isinstance(N, (int, np.integer)) and N >= 3):
+        raise ValueError(f"N must be an integer >= 3, got {N!r}")
+    if N > 10**8:
+        raise ValueError(f"N = {N} sites is absurd (> 1e8)")
+    return int(N)
 
 
 class _Stepper:
@@ -96,7 +105,7 @@ class _Stepper:
         elif m.kind == "rk4":
             done = K.rk4_steps(self.th, self.w, self.U, self.V, self.coupled, *self.params,
                                self.dt, nsteps, self.s, self.c, self.v, self.work)
-            self.evaluations += done * 4
+            self.evaluations += done * m.evaluations
         else:
             done = self._scipy(nsteps * self.dt)
         return done
@@ -108,16 +117,14 @@ class _Stepper:
         nf = 4 * n if self.coupled else 2 * n
         y0 = (np.concatenate([self.th, self.w, self.U, self.V]) if self.coupled
               else np.concatenate([self.th, self.w]))
-        ath, aU = np.empty(n), np.empty(n if self.coupled else 0)
-        s, c, v = np.empty(n), np.empty(n), np.empty(n)
-        a2, Ks, Kt = self.params
+        ath, aU = self.ath, self.aU
         coupled = self.coupled
 
         def rhs(_t, y):
             th = y[:n]
             U = y[2 * n:3 * n] if coupled else K.empty_u()
-            K.accel(np.ascontiguousarray(th), np.ascontiguousarray(U), coupled, a2, Ks, Kt,
-                    s, c, v, ath, aU)
+            K.accel(np.ascontiguousarray(th), np.ascontiguousarray(U), coupled, *self.params,
+                    self.s, self.c, self.v, ath, aU)
             out = np.empty(nf)
             out[:n] = y[n:2 * n]
             out[n:2 * n] = ath
@@ -139,11 +146,10 @@ class _Stepper:
 
 
 def _blowup_message(t, dt, material, case, method):
-    safe = 0.5 * method.stability_limit() / material.omega_max(case)
+    limit = method.stability_limit() / material.omega_max(case)
     return (f"solution blew up (non-finite theta) near T = {t:.6g} with dt = {dt:g} and "
-            f"method {method.name!r}; its linear stability limit is dt < "
-            f"{method.stability_limit() / material.omega_max(case):.4g} here: "
-            f"try dt <= {safe:.3g}")
+            f"method {method.name!r}; its linear stability limit is dt < {limit:.4g} "
+            f"here: try dt <= {0.5 * limit:.3g}")
 
 
 def integrate(state: LatticeState, material: Material, case: str, t_end: float, dt: float,
@@ -266,10 +272,7 @@ def initial_condition(material: Material, case: str, N: int, k: float, eps: floa
     check_case(case)
     if omega_model not in OMEGA_MODELS:
         raise ValueError(f"omega_model must be one of {OMEGA_MODELS}, got {omega_model!r}")
-    if not (isinstance(N, (int, np.integer)) and N >= 3):
-        raise ValueError(f"N must be an integer >= 3, got {N!r}")
-    if N > 10**8:
-        raise ValueError(f"N = {N} sites is absurd (> 1e8)")
+    N = _check_sites(N)
     for name, val in (("eps", eps), ("A0", A0)):
         if not (math.isfinite(val) and val > 0):
             raise ValueError(f"{name} must be finite and > 0, got {val!r}")
@@ -353,7 +356,8 @@ def simulate(material: Material, case: str, N: int, k: float, eps: float = 0.01,
     m_ = get_method(method)
     if store not in STORE_CHOICES:
         raise ValueError(f"store must be one of {STORE_CHOICES}, got {store!r}")
-    ks, mode = snap_wavenumber(k, int(N) if isinstance(N, (int, np.integer)) else 3)
+    N = _check_sites(N)
+    ks, mode = snap_wavenumber(k, N)
     nsteps, dt_eff = _check_time(t_end, dt)
     if initial is None:
         state = initial_condition(material, case, N, ks, eps, A0, noise, seed, omega_model)
@@ -393,9 +397,9 @@ def simulate(material: Material, case: str, N: int, k: float, eps: float = 0.01,
             if U_rec is not None:
                 U_rec[j] = st.U
         if thh is not None:
-            thh[j] = np.abs(np.fft.rfft(st.th)) * (2.0 / N)
+            thh[j] = spectrum(st.th)
             if Uh is not None:
-                Uh[j] = np.abs(np.fft.rfft(st.U)) * (2.0 / N)
+                Uh[j] = spectrum(st.U)
 
     def truncate(j):
         for name in ("t", "energy", "theta", "U", "theta_hat", "U_hat"):

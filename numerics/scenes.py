@@ -490,7 +490,7 @@ def harmonics(ctx: Context):
     a = an.carrier_amplitude(run.theta, run.m)  # theta = a cos(...), a = 2 eps A0 at T = 0
     F_cont, F_latt = 2 * EPS**2 * c_cont, c_latt * a**2 / 2
     fig, axes = plt.subplots(1, 2, figsize=(10, 3.8))
-    U2 = np.fft.fft(run.U, axis=1)[:, (2 * run.m) % run.N] * (2.0 / run.N)
+    U2 = an.mode(run.U, 2 * run.m)
     axes[0].plot(run.t, np.abs(U2), lw=0.7, label="|U_hat(2k, t)|")
     axes[0].axhline(fit["forced"], color="k", label="fitted forced part")
     axes[0].axhline(F_cont, color="C1", ls="--", label="2 eps^2 |c| (continuum, eq. u1)")
