@@ -16,7 +16,7 @@ from ._model import (LatticeState, Material, _positive_finite, check_case,
 #: Bumped whenever a change alters simulated numbers (keys the scene cache).
 SIMULATOR_VERSION = "1"
 STORE_CHOICES = ("snapshots", "spectrum", "energy")
-OMEGA_MODELS = ("continuum", "discrete")
+OMEGA_MODELS = ("continuum", "discrete", "travelling")
 
 
 class BlowUpError(FloatingPointError):
@@ -266,6 +266,10 @@ def initial_condition(material: Material, case: str, N: int, k: float, eps: floa
     b0 ~ U[-noise, noise] per site from ``numpy.random.default_rng(seed)``, U = U_dot = 0.
     ``omega_model="continuum"`` (the paper's) uses eq. `continuum2`; "discrete" uses
     eq. `discrete2`, the frequency the lattice actually has (less initial mismatch).
+    ``"travelling"`` starts from the lattice's own nonlinear plane wave
+    (:func:`numerics.plane_wave`, peak rotation 2 eps A0: amplitude-dependent frequency,
+    odd theta harmonics, the forced U harmonics and their velocities), every field
+    multiplied by the same (1 + b0): no free U waves beat against the forced ones.
     """
     from generated.coefficients import omega as omega_continuum
 
@@ -278,13 +282,21 @@ def initial_condition(material: Material, case: str, N: int, k: float, eps: floa
             raise ValueError(f"{name} must be finite and > 0, got {val!r}")
     if not (math.isfinite(noise) and noise >= 0):
         raise ValueError(f"noise must be finite and >= 0, got {noise!r}")
+    rng = np.random.default_rng(seed)
+    b0 = rng.uniform(-noise, noise, N)
+    n = np.arange(N)
+    if omega_model == "travelling":
+        from ._hill import plane_wave
+
+        th, thd, U, Ud = plane_wave(material, case, k, 2 * eps * A0).fields(n)
+        f = 1 + b0
+        if case == "coupled":
+            return LatticeState(U * f, Ud * f, th * f, thd * f)
+        return LatticeState(None, None, th * f, thd * f)
     if omega_model == "continuum":
         w = float(omega_continuum(k, material.alpha, material.K_s, material.K_theta))
     else:
         w = float(discrete_omega_rotation(k, material))
-    rng = np.random.default_rng(seed)
-    b0 = rng.uniform(-noise, noise, N)
-    n = np.arange(N)
     amp = 2 * eps * A0 * (1 + b0)
     theta = amp * np.cos(k * n)
     theta_dot = amp * w * np.sin(k * n)
@@ -328,8 +340,9 @@ def simulate(material: Material, case: str, N: int, k: float, eps: float = 0.01,
     store : {"snapshots", "spectrum", "energy"}
         What is kept at each record: full fields, only |theta_hat| (and |U_hat|), or only
         the energy (always kept). Memory grows with the records, never with the steps.
-    omega_model : {"continuum", "discrete"}
-        Frequency used for the initial theta_dot (default: the paper's continuum one).
+    omega_model : {"continuum", "discrete", "travelling"}
+        Frequency used for the initial theta_dot (default: the paper's continuum one), or
+        "travelling": start from the lattice's exact plane wave (see `initial_condition`).
     initial : LatticeState, optional
         Start from this state instead of eq. `IC` (e.g. to resume an interrupted run).
     progress : bool or None

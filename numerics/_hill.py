@@ -1,0 +1,390 @@
+"""Exact lattice plane waves and their linear stability (harmonic balance + Hill's method).
+
+A nonlinear plane wave of eq. `norm` is a travelling wave theta_n(T) = Theta(phi_n),
+U_n(T) = V(phi_n), phi_n = k n - Omega T, with Theta 2 pi-periodic. The equations are odd
+in theta, so Theta carries odd harmonics and V even ones; the reflection (n, T) -> (-n, -T),
+U -> -U lets us take Theta even and V odd in phi:
+
+    Theta = sum_{m odd} a_m cos(m phi),   V = sum_{m even >= 2} b_m sin(m phi).
+
+Harmonic balance solves Omega^2 Theta'' = F_theta, Omega^2 V'' = F_U on a phase grid
+(neighbours are exact phase shifts by +-k) with Newton's method, the peak rotation
+Theta(0) = amplitude fixing the branch.
+
+Linearising about the wave, a perturbation x_n = e^{lambda T} sum_p X_p e^{i (q n + p phi_n)}
+turns the lattice into (lambda - i p Omega)^2 X_p = sum_m L_pm(q) X_m: constant coefficients
+in the harmonic index p (Hill's method). The sidebands k + q (p = 1) and k - q (p = -1, as
+its conjugate q - k) sit in the family x: p odd, y: p even, which also holds the induced
+mean flow (y_0 at wavenumber q) and the second harmonic of U. The growth rate is the
+largest real part of the eigenvalues of the 2n x 2n first-order form. The only
+approximation is the truncation |p| <= P, whose convergence tests/test_hill.py shows.
+
+References
+----------
+G. W. Hill, Acta Math. 8 (1886); B. Deconinck & J. N. Kutz, J. Comput. Phys. 219 (2006)
+296 (Hill's method for periodic coefficients).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ._model import Material, check_case
+
+#: default truncation: theta harmonics |p| <= HARMONICS (odd), U harmonics |p| < HARMONICS.
+HARMONICS = 4
+
+
+def _rhs(tm, t0, tp, dU, al2, Ks, Kt):
+    """theta acceleration of eq. `norm` (with alpha^2); dU = U_{n+1} - U_{n-1}."""
+    s0, c0 = np.sin(t0), np.cos(t0)
+    return al2 * (-Kt * (tp + 4 * t0 + tm) + Ks * c0 * (np.sin(tp) + np.sin(tm) - 2 * s0)
+                  - s0 * (2 * dU + 4 - 2 * c0 - np.cos(tp) - np.cos(tm)))
+
+
+def _shift(coef, harm, k, phi, kind):
+    """Evaluate sum_m coef_m f(m (phi + k)) on the grid, f = cos or sin; k shape (B,)."""
+    arg = harm[None, :, None] * (phi[None, None, :] + k[:, None, None])
+    f = np.cos(arg) if kind == "cos" else np.sin(arg)
+    return np.einsum("bm,bmj->bj", coef, f)
+
+
+@dataclass(frozen=True)
+class PlaneWave:
+    """A travelling wave of the lattice (see module docstring).
+
+    Attributes
+    ----------
+    k, amplitude, omega : float
+        Wavenumber (rad per site), peak rotation Theta(0), frequency Omega (1/T).
+    omega_linear : float
+        Frequency of eq. `discrete2` (the amplitude -> 0 limit).
+    theta_harmonics : ndarray, shape (H,)
+        a_m, m = 1, 3, 5, ...: Theta(phi) = sum a_m cos(m phi).
+    U_harmonics : ndarray, shape (H,)
+        b_m, m = 2, 4, ...: V(phi) = sum b_m sin(m phi); zeros in case "rotation".
+    residual : float
+        Max abs residual of the harmonic-balance equations on the phase grid.
+    """
+
+    case: str
+    k: float
+    amplitude: float
+    omega: float
+    omega_linear: float
+    theta_harmonics: np.ndarray
+    U_harmonics: np.ndarray
+    residual: float
+
+    def fields(self, n, t=0.0):
+        """theta_n, theta_dot_n, U_n, U_dot_n at time t (arrays over the sites n)."""
+        phi = self.k * np.asarray(n, dtype=float) - self.omega * t
+        mo = 2 * np.arange(self.theta_harmonics.size) + 1
+        me = mo + 1
+        a, b = self.theta_harmonics, self.U_harmonics
+        th = np.cos(np.outer(phi, mo)) @ a
+        thd = self.omega * (np.sin(np.outer(phi, mo)) @ (mo * a))
+        U = np.sin(np.outer(phi, me)) @ b
+        Ud = -self.omega * (np.cos(np.outer(phi, me)) @ (me * b))
+        return th, thd, U, Ud
+
+
+def _residual(x, k, amp, al2, Ks, Kt, H, coupled, phi):
+    """Harmonic-balance residuals, batched: x = (a_1..a_H, b_1..b_H, Omega), shape (B, 2H+1)."""
+    mo = 2.0 * np.arange(H) + 1
+    me = mo + 1
+    a, b, W = x[:, :H], x[:, H:2 * H], x[:, -1]
+    zero = np.zeros_like(k)
+    th0 = _shift(a, mo, zero, phi, "cos")
+    thp, thm = _shift(a, mo, k, phi, "cos"), _shift(a, mo, -k, phi, "cos")
+    d2th = _shift(-a * mo**2, mo, zero, phi, "cos")
+    if coupled:
+        dU = _shift(b, me, k, phi, "sin") - _shift(b, me, -k, phi, "sin")
+    else:
+        dU = 0.0
+    rt = W[:, None] ** 2 * d2th - _rhs(thm, th0, thp, dU, al2[:, None], Ks[:, None],
+                                       Kt[:, None])
+    M = phi.size
+    proj_c = np.cos(np.outer(phi, mo)) * (2.0 / M)  # (M, H)
+    R = [rt @ proj_c]
+    if coupled:
+        d2U = _shift(-b * me**2, me, zero, phi, "sin")
+        Fu = (_shift(b, me, k, phi, "sin") - 2 * _shift(b, me, zero, phi, "sin")
+              + _shift(b, me, -k, phi, "sin") - (np.cos(thp) - np.cos(thm)) / 2)
+        ru = W[:, None] ** 2 * d2U - Fu
+        R.append(ru @ (np.sin(np.outer(phi, me)) * (2.0 / M)))
+    else:
+        R.append(b)  # b = 0 in case (I)
+    R.append((a.sum(axis=1) - amp)[:, None])
+    return np.concatenate(R, axis=1)
+
+
+def _omega_linear(k, al, Ks, Kt):
+    return al * np.sqrt(4 * (Ks - Kt) * np.sin(k / 2) ** 2 + 6 * Kt)
+
+
+def _solve_plane_waves(k, amp, al, Ks, Kt, coupled, H, tol=1e-13, max_iter=30, x0=None):
+    """Newton on the batch; returns x (B, 2H+1) and the final residual norm (B,)."""
+    B = k.size
+    M = max(32, 8 * H)
+    phi = 2 * np.pi * np.arange(M) / M
+    al2 = al**2
+    n = 2 * H + 1
+    if x0 is None:
+        x = np.zeros((B, n))
+        x[:, 0] = amp
+        x[:, -1] = _omega_linear(k, al, Ks, Kt)
+    else:
+        x = x0.copy()
+    scale = np.maximum(amp, 1e-300)
+    for _ in range(max_iter):
+        R = _residual(x, k, amp, al2, Ks, Kt, H, coupled, phi)
+        res = np.max(np.abs(R), axis=1) / np.maximum(scale * al2, 1e-300)
+        if np.all(res < tol):
+            break
+        J = np.empty((B, n, n))
+        for j in range(n):
+            h = 1e-7 * (scale if j < 2 * H else x[:, -1])
+            xp = x.copy()
+            xp[:, j] += h
+            J[:, :, j] = (_residual(xp, k, amp, al2, Ks, Kt, H, coupled, phi) - R) / h[:, None]
+        try:
+            dx = np.linalg.solve(J, R[:, :, None])[:, :, 0]
+        except np.linalg.LinAlgError:
+            raise ArithmeticError("harmonic balance: singular Jacobian (a harmonic of the "
+                                  "wave is resonant with a lattice mode)") from None
+        x = x - dx
+    R = _residual(x, k, amp, al2, Ks, Kt, H, coupled, phi)
+    res = np.max(np.abs(R), axis=1) / np.maximum(scale * al2, 1e-300)
+    return x, res
+
+
+def _check(material, case, k, amplitude):
+    if not isinstance(material, Material):
+        raise TypeError(f"material must be a Material, got {type(material).__name__}")
+    check_case(case)
+    k = float(k)
+    if not (math.isfinite(k) and 0 < k < math.pi):
+        raise ValueError(f"k must be in (0, pi) rad per site, got {k!r}")
+    amplitude = float(amplitude)
+    if not (math.isfinite(amplitude) and 0 < amplitude < 1.5):
+        raise ValueError(f"amplitude (peak rotation, rad) must be in (0, 1.5), got {amplitude!r}")
+    return k, amplitude
+
+
+def plane_wave(material: Material, case: str, k: float, amplitude: float,
+               harmonics: int = HARMONICS) -> PlaneWave:
+    """Nonlinear plane wave of the lattice by harmonic balance (Newton).
+
+    Parameters
+    ----------
+    material : Material
+    case : {"rotation", "coupled"}
+    k : float
+        Carrier wavenumber, rad per site, in (0, pi).
+    amplitude : float
+        Peak rotation Theta(0) in rad (2 eps A0 for the paper's initial condition).
+    harmonics : int
+        Number H of odd theta harmonics (1, 3, ..., 2H - 1) and even U harmonics.
+
+    Returns
+    -------
+    PlaneWave
+        Its frequency ``omega`` includes the amplitude-dependent shift.
+
+    Raises
+    ------
+    ArithmeticError
+        If Newton (with continuation in the amplitude) does not converge to the branch
+        of the linear wave. At the second-harmonic resonance sin^2 k = omega^2, where the
+        NLS's u2 diverges, the exact wave still exists: its frequency shift detunes the
+        resonance and the U harmonic grows like the amplitude instead of its square.
+    """
+    k, amplitude = _check(material, case, k, amplitude)
+    H = _check_harmonics(harmonics)
+    args = (np.array([k]), None, np.array([material.alpha]), np.array([material.K_s]),
+            np.array([material.K_theta]), case == "coupled", H)
+    x, res = _solve_plane_waves(args[0], np.array([amplitude]), *args[2:])
+    if not _is_branch(x[0], res[0], k, amplitude, material):
+        # continuation in the amplitude from the linear wave (large amplitudes)
+        x = None
+        for a in np.linspace(0, amplitude, 9)[1:]:
+            x, res = _solve_plane_waves(args[0], np.array([a]), *args[2:], x0=x)
+            if not _is_branch(x[0], res[0], k, a, material):
+                break
+    return _wave_from(x[0], res[0], material, case, k, amplitude, H)
+
+
+def _is_branch(x, res, k, amplitude, material):
+    """Converged, and still the continuation of the linear wave: Omega > 0 and the first
+    harmonic carrying most of the peak (else Newton found another orbit)."""
+    return bool(np.all(np.isfinite(x)) and res < 1e-8 and abs(x[0] / amplitude - 1) < 0.5
+                and x[-1] > 0)
+
+
+def _check_harmonics(h):
+    if not (isinstance(h, (int, np.integer)) and 1 <= h <= 64):
+        raise ValueError(f"harmonics must be an integer in [1, 64], got {h!r}")
+    return int(h)
+
+
+def _wave_from(x, res, material, case, k, amplitude, H):
+    if not _is_branch(x, res, k, amplitude, material):
+        raise ArithmeticError(
+            f"harmonic balance did not converge for case {case!r}, k = {k}, amplitude = "
+            f"{amplitude} (residual {res:.2e}, or Newton left the branch of the linear wave); near a resonance of a harmonic with a "
+            "lattice mode (e.g. sin^2 k = omega^2 for the U second harmonic) no small-"
+            "amplitude plane wave exists")
+    w_lin = float(_omega_linear(k, material.alpha, material.K_s, material.K_theta))
+    return PlaneWave(case, k, amplitude, float(x[-1]), w_lin, x[:H].copy(),
+                     x[H:2 * H].copy(), float(res))
+
+
+# --- Hill's method ------------------------------------------------------------------------
+
+def _coefficients(wave: PlaneWave, material: Material, M: int):
+    """Fourier coefficients c_l, l = -M/2..M/2-1, of the linearised lattice's couplings.
+
+    Returns a dict name -> (3, M) complex array over neighbour offsets j = -1, 0, +1
+    (axis 0) of d(acceleration)/d(field_{n+j}) at the wave, as functions of phi_n.
+    """
+    phi = 2 * np.pi * np.arange(M) / M
+    H = wave.theta_harmonics.size
+    mo = 2.0 * np.arange(H) + 1
+    me = mo + 1
+    k = wave.k
+    th = lambda s: np.cos(np.outer(phi + s, mo)) @ wave.theta_harmonics  # noqa: E731
+    V = lambda s: np.sin(np.outer(phi + s, me)) @ wave.U_harmonics  # noqa: E731
+    tm, t0, tp = th(-k), th(0.0), th(k)
+    s0, c0, sp_, cp, sm, cm = np.sin(t0), np.cos(t0), np.sin(tp), np.cos(tp), np.sin(tm), np.cos(tm)
+    a2, Ks, Kt = material.alpha**2, material.K_s, material.K_theta
+    dU = V(k) - V(-k)
+    tt = np.array([a2 * (-Kt + Ks * c0 * cm - s0 * sm),
+                   a2 * (-4 * Kt - Ks * s0 * (sp_ + sm - 2 * s0) - 2 * Ks * c0**2
+                         - c0 * (2 * dU + 4 - 2 * c0 - cp - cm) - 2 * s0**2),
+                   a2 * (-Kt + Ks * c0 * cp - s0 * sp_)])
+    tU = np.array([2 * a2 * s0, 0 * s0, -2 * a2 * s0])
+    Ut = np.array([-sm / 2, 0 * s0, sp_ / 2])
+    f = lambda z: np.fft.fft(z, axis=-1) / M  # noqa: E731
+    return {"tt": f(tt), "tU": f(tU), "Ut": f(Ut)}
+
+
+def _hill_matrices(wave, material, q, P):
+    """First-order Hill matrices, shape (nq, 2n, 2n), and the harmonic labels."""
+    coupled = wave.case == "coupled"
+    px = np.arange(-P, P + 1, 2)  # odd
+    py = np.arange(-(P - 1), P, 2) if coupled else np.arange(0)
+    M = max(64, 4 * (2 * P + 2))
+    C = _coefficients(wave, material, M)
+    k, W = wave.k, wave.omega
+    j = np.array([-1, 0, 1])
+    labels = np.concatenate([px, py])
+    nx, n = px.size, px.size + py.size
+    q = np.asarray(q, float).ravel()
+    # block[p, m] = sum_j c_{j, p - m} e^{i (q + m k) j}
+    def block(c, rows, cols):
+        l = (rows[:, None] - cols[None, :]) % M
+        cj = c[:, l]  # (3, nr, nc)
+        ph = np.exp(1j * (q[:, None, None] + cols[None, None, :] * k)[None] * j[:, None, None, None])
+        return np.einsum("jrc,jqrc->qrc", cj, ph)
+    L = np.zeros((q.size, n, n), complex)
+    L[:, :nx, :nx] = block(C["tt"], px, px)
+    if coupled:
+        L[:, :nx, nx:] = block(C["tU"], px, py)
+        L[:, nx:, :nx] = block(C["Ut"], py, px)
+        L[:, nx:, nx:] = -4 * np.sin((q[:, None] + py[None, :] * k) / 2)[:, :, None] ** 2 \
+            * np.eye(py.size)[None]
+    D = 1j * W * np.diag(labels.astype(float))
+    A = np.zeros((q.size, 2 * n, 2 * n), complex)
+    A[:, :n, :n] = D
+    A[:, :n, n:] = np.eye(n)
+    A[:, n:, :n] = L
+    A[:, n:, n:] = D
+    return A, labels
+
+
+def hill_spectrum(wave: PlaneWave, material: Material, q, P: int):
+    """Eigenvalues of the Hill matrices and the sideband share of each eigenvector.
+
+    Returns ``(lam, share)``, shapes (nq, 2n) and (nq, 2n, 2): ``share[..., 0]`` and
+    ``share[..., 1]`` are the fractions of the mode's kinetic energy (theta_dot^2 /
+    (2 alpha^2) + 2 U_dot^2 per harmonic, eq. `norm`'s energy) carried by the theta
+    harmonics p = +1 and p = -1, i.e. by the sidebands k + q and q - k.
+    The Hill spectrum at q + 2k is that at q shifted by 2 i Omega (relabel p -> p - 2),
+    so a growth rate shows up at many q in some eigenvector; the share picks the mode
+    whose sidebands are k +- q, and leaves out modes that live in U (see ``modes``).
+    """
+    A, labels = _hill_matrices(wave, material, q, P)
+    lam, vec = np.linalg.eig(A)
+    n = labels.size
+    # velocity of harmonic p in the lab frame: (lambda - i p Omega) X_p = W_p
+    kin = np.abs(vec[:, n:]) ** 2
+    xs = labels % 2 == 1  # theta harmonics are the odd labels
+    kin[:, xs] /= 2 * material.alpha**2
+    kin[:, ~xs] *= 2
+    total = kin.sum(axis=1)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        share = np.stack([kin[:, labels == 1, :][:, 0] / total,
+                          kin[:, labels == -1, :][:, 0] / total], axis=-1)
+    return lam, np.nan_to_num(share)
+
+
+#: growth rates below this fraction of Omega are round-off (the q = 0 Jordan block).
+ROUNDOFF = 1e-8
+
+
+def mi_gain(material: Material, case: str, k: float, amplitude: float, q,
+            harmonics: int = HARMONICS, wave: PlaneWave | None = None,
+            modes: str = "sidebands") -> np.ndarray:
+    """Exact linear growth rate of the sidebands k + q and k - q of a lattice plane wave.
+
+    Parameters
+    ----------
+    material : Material
+    case : {"rotation", "coupled"}
+    k : float
+        Carrier wavenumber (rad per site).
+    amplitude : float
+        Peak rotation of the carrier, rad (2 eps A0 in the paper's eq. `IC`).
+    q : array_like
+        Sideband offsets, rad per site.
+    harmonics : int
+        Truncation: theta perturbation harmonics |p| <= 2 H - 1... see ``plane_wave``;
+        the same H is used for the wave and for the Hill matrix (|p| <= 2H - 1).
+    wave : PlaneWave, optional
+        A wave already computed by :func:`plane_wave` (same material, case, k, amplitude).
+    modes : {"sidebands", "all"}
+        "sidebands": modes whose kinetic energy sits mostly (> 3/4) in theta at k + q
+        and k - q, both present: the modulational instability. "all": every Hill mode at Bloch offset q, which
+        also holds resonant instabilities living in U (pairs of longitudinal waves
+        driven by the carrier, 2 Omega = omega_U(q) + omega_U(q - 2k)).
+
+    Returns
+    -------
+    ndarray, same shape as q
+        sigma(q) = max Re lambda >= 0, per unit of lattice time T. No long-wave or weak-
+        modulation approximation: the truncation is the only one.
+    """
+    k, amplitude = _check(material, case, k, amplitude)
+    H = _check_harmonics(harmonics)
+    q_arr = np.asarray(q, dtype=float)
+    if not np.all(np.isfinite(q_arr)):
+        raise ValueError("q must be finite")
+    if wave is None:
+        wave = plane_wave(material, case, k, amplitude, H)
+    if modes not in ("sidebands", "all"):
+        raise ValueError(f"modes must be 'sidebands' or 'all', got {modes!r}")
+    lam, share = hill_spectrum(wave, material, q_arr.ravel(), 2 * H - 1)
+    # MI modes hold nearly all their energy in the two sidebands, both present; the
+    # relabelled copy of a mode at q - 2k holds about half, in p = -1 and p = -3 only.
+    is_mi = (share.sum(axis=-1) > 0.75) & (share.min(axis=-1) > 0.05)
+    growth = lam.real if modes == "all" else np.where(is_mi, lam.real, 0.0)
+    sigma = growth.max(axis=1)
+    sigma[sigma < ROUNDOFF * wave.omega] = 0.0
+    # q = 0 (mod 2 pi) shifts the wave's phase, amplitude or U: neutral, a Jordan block
+    # whose eigenvalues round-off splits by ~sqrt(machine eps)
+    sigma[np.isclose(np.mod(q_arr.ravel() + np.pi, 2 * np.pi), np.pi, atol=1e-12, rtol=0)] = 0.0
+    return sigma.reshape(q_arr.shape)
