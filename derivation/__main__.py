@@ -18,6 +18,16 @@ Arguments: carrier wavenumber k (rad per site), inertia alpha, stiffnesses K_s, 
 the MI functions take the NLS nonlinearity g = g2/g1 and the envelope amplitude A0.
 """
 
+LATTICE_DOC = """Semi-discrete NLS coefficients: the multiple-scales derivation repeated on the lattice.
+
+Same functions and arguments as `generated.coefficients`, derived from the discrete
+eq. `norm` of Demiquel, Achilleos, Theocharis & Tournat instead of its continuum limit:
+the carrier is exact on the lattice (eq. `discrete2`), the cubic terms are the lattice's,
+the second harmonic of U has the lattice dispersion (eq. `discrete1` at 2k), and case (II)
+includes the induced mean flow (`mean_flow_coefficient`), which the paper sets to zero.
+Each tends to the paper's form as k -> 0 (the mean-flow part of g2_coupled excepted).
+"""
+
 
 def write_outputs(out_dir: Path) -> list[Path]:
     """Derive and write both files atomically into ``out_dir``; returns their paths."""
@@ -27,6 +37,7 @@ def write_outputs(out_dir: Path) -> list[Path]:
     d = derive()
     files = {
         "coefficients.py": _codegen.module_source(d, MODULE_DOC),
+        "lattice_coefficients.py": _codegen.module_source(d, LATTICE_DOC, d.lattice_forms),
         "derivation.md": _report.render(d),
     }
     out_dir.mkdir(parents=True, exist_ok=True)

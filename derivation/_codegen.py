@@ -59,10 +59,11 @@ def _function_source(form, printer):
     return "\n".join(lines)
 
 
-def module_source(derivation, module_doc):
-    """Source text of the generated module for ``derivation.forms``."""
+def module_source(derivation, module_doc, forms=None):
+    """Source text of the generated module for ``forms`` (default ``derivation.forms``)."""
     printer = _Printer()
-    names = [f.name for f in derivation.forms]
+    forms = derivation.forms if forms is None else forms
+    names = [f.name for f in forms]
     parts = [
         BANNER.format(sympy=sp.__version__),
         f'"""{module_doc}"""',
@@ -72,7 +73,7 @@ def module_source(derivation, module_doc):
         f"__all__ = {names!r}",
         "",
     ]
-    for form in derivation.forms:
+    for form in forms:
         parts.append("")
         parts.append(_function_source(form, printer))
         parts.append("")

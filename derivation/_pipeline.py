@@ -33,6 +33,8 @@ class Derivation:
     cases: dict  # case -> _multiscale.CaseResult
     mi: _mi.MIResult
     forms: tuple  # ClosedForm, in the order of the generated module
+    lattice: dict  # case -> _multiscale.CaseResult of the semi-discrete derivation
+    lattice_forms: tuple  # ClosedForm of generated/lattice_coefficients.py
 
     def form(self, name):
         return next(f for f in self.forms if f.name == name)
@@ -87,4 +89,46 @@ def derive() -> Derivation:
                    "the band (and for g <= 0). The lattice rate is eps^2 |g1| Omega_I.",
                    "Omega_I"),
     )
-    return Derivation(continuum=cont, cases=cases, mi=mi, forms=forms)
+    lattice = {c: _multiscale.solve_case(c, "lattice") for c in _multiscale.CASES}
+    return Derivation(continuum=cont, cases=cases, mi=mi, forms=forms, lattice=lattice,
+                      lattice_forms=_lattice_forms(lattice, forms))
+
+
+def _lattice_forms(lattice, forms):
+    """The semi-discrete NLS closed forms, same names and arguments as the continuum's."""
+    rot, cpl = lattice["rotation"], lattice["coupled"]
+    for name in ("dispersion", "group_velocity", "g1"):
+        if sp.simplify(getattr(rot, name) - getattr(cpl, name)) != 0:
+            raise ArithmeticError(f"lattice {name} differs between the two cases")
+    note = " Semi-discrete: derived from eq. `norm` itself (exact carrier on the lattice)."
+    out = (
+        ClosedForm("omega", rot.dispersion, MATERIAL_ARGS,
+                   "Carrier frequency, the lattice's rotational branch." + note, "discrete2"),
+        ClosedForm("group_velocity", rot.group_velocity, MATERIAL_ARGS,
+                   "Group velocity d omega/dk of the lattice branch." + note,
+                   "solvability_condition"),
+        ClosedForm("g1", rot.g1, MATERIAL_ARGS,
+                   "Dispersion coefficient g1 = d^2 omega/dk^2 of the lattice branch." + note,
+                   "g_i"),
+        ClosedForm("g2_rotation", rot.g2, MATERIAL_ARGS,
+                   "Nonlinear coefficient, case (I): the lattice's own cubic terms "
+                   "(neighbour products, shear nonlinearity)." + note, "g_i"),
+        ClosedForm("g2_coupled", cpl.g2, MATERIAL_ARGS,
+                   "Nonlinear coefficient, case (II): lattice cubic terms, the discrete "
+                   "second harmonic of U (eq. `discrete1` at 2k) and the induced mean flow "
+                   "(mean_flow_coefficient)." + note, "g_i"),
+        ClosedForm("g_rotation", rot.g2 / rot.g1, MATERIAL_ARGS,
+                   "g = g2/g1, case (I), lattice." + note, "g1"),
+        ClosedForm("g_coupled", cpl.g2 / cpl.g1, MATERIAL_ARGS,
+                   "g = g2/g1, case (II), lattice, mean flow included." + note, "g2"),
+        ClosedForm("u2_coefficient", cpl.u2_coefficient, MATERIAL_ARGS,
+                   "c in u2 = c B^2 e^{2 i sigma} + c.c. on the lattice: i sin 2k / "
+                   "(8 (sin^2 k - omega^2)). Diverges at sin^2 k = omega^2." + note, "u1"),
+        ClosedForm("mean_flow_coefficient", cpl.mean_flow, MATERIAL_ARGS,
+                   "mu in the induced mean strain U_n+1 - U_n = eps^2 mu |A|^2 (zeroth "
+                   "harmonic of U, driven by gradients of |A|^2): mu = 1/(v_g^2 - 1). The "
+                   "paper sets it to zero; it adds -2 alpha^2 mu / omega = 2 alpha^2 / "
+                   "(omega (1 - v_g^2)) > 0 to g2_coupled." + note, "u1"),
+    )
+    mi = tuple(f for f in forms if f.name.startswith("mi_"))
+    return out + mi
