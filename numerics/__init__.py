@@ -11,7 +11,7 @@ plane_wave, mi_gain, PlaneWave          exact lattice plane wave and its sideban
                                         rate (harmonic balance + Hill's method)
 """
 
-from ._hill import PlaneWave, hill_spectrum, mi_gain, plane_wave
+from ._hill import PlaneWave, hill_spectrum, mi_gain, plane_wave, stability_map
 from ._integrators import METHODS, Method, get_method
 from ._model import (CASES, LatticeState, Material, discrete_omega_longitudinal,
                      discrete_omega_rotation, energy)
@@ -22,5 +22,5 @@ __all__ = [
     "Material", "LatticeState", "energy", "integrate", "simulate", "Run", "METHODS", "Method",
     "get_method", "CASES", "BlowUpError", "SimulationInterrupted", "initial_condition",
     "snap_wavenumber", "discrete_omega_rotation", "discrete_omega_longitudinal",
-    "SIMULATOR_VERSION", "plane_wave", "mi_gain", "PlaneWave", "hill_spectrum",
+    "SIMULATOR_VERSION", "plane_wave", "mi_gain", "PlaneWave", "hill_spectrum", "stability_map",
 ]

@@ -245,65 +245,95 @@ def _wave_from(x, res, material, case, k, amplitude, H):
 
 # --- Hill's method ------------------------------------------------------------------------
 
-def _coefficients(wave: PlaneWave, material: Material, M: int):
-    """Fourier coefficients c_l, l = -M/2..M/2-1, of the linearised lattice's couplings.
+def _coefficients(a, b, k, a2, Ks, Kt, M):
+    """Fourier coefficients c_l (index l mod M) of the linearised lattice's couplings.
 
-    Returns a dict name -> (3, M) complex array over neighbour offsets j = -1, 0, +1
-    (axis 0) of d(acceleration)/d(field_{n+j}) at the wave, as functions of phi_n.
+    Batched over waves: a, b (B, H) harmonics, k, a2, Ks, Kt (B,). Returns a dict name ->
+    (B, 3, M) complex array over neighbour offsets j = -1, 0, +1 of
+    d(acceleration)/d(field_{n+j}) at the wave, as functions of phi_n.
     """
     phi = 2 * np.pi * np.arange(M) / M
-    H = wave.theta_harmonics.size
+    H = a.shape[1]
     mo = 2.0 * np.arange(H) + 1
     me = mo + 1
-    k = wave.k
-    th = lambda s: np.cos(np.outer(phi + s, mo)) @ wave.theta_harmonics  # noqa: E731
-    V = lambda s: np.sin(np.outer(phi + s, me)) @ wave.U_harmonics  # noqa: E731
-    tm, t0, tp = th(-k), th(0.0), th(k)
+    zero = np.zeros_like(k)
+    tm, t0, tp = (_shift(a, mo, s, phi, "cos") for s in (-k, zero, k))
     s0, c0, sp_, cp, sm, cm = np.sin(t0), np.cos(t0), np.sin(tp), np.cos(tp), np.sin(tm), np.cos(tm)
-    a2, Ks, Kt = material.alpha**2, material.K_s, material.K_theta
-    dU = V(k) - V(-k)
-    tt = np.array([a2 * (-Kt + Ks * c0 * cm - s0 * sm),
+    a2, Ks, Kt = a2[:, None], Ks[:, None], Kt[:, None]
+    dU = _shift(b, me, k, phi, "sin") - _shift(b, me, -k, phi, "sin")
+    tt = np.stack([a2 * (-Kt + Ks * c0 * cm - s0 * sm),
                    a2 * (-4 * Kt - Ks * s0 * (sp_ + sm - 2 * s0) - 2 * Ks * c0**2
                          - c0 * (2 * dU + 4 - 2 * c0 - cp - cm) - 2 * s0**2),
-                   a2 * (-Kt + Ks * c0 * cp - s0 * sp_)])
-    tU = np.array([2 * a2 * s0, 0 * s0, -2 * a2 * s0])
-    Ut = np.array([-sm / 2, 0 * s0, sp_ / 2])
+                   a2 * (-Kt + Ks * c0 * cp - s0 * sp_)], axis=1)
+    tU = np.stack([2 * a2 * s0, 0 * s0, -2 * a2 * s0], axis=1)
+    Ut = np.stack([-sm / 2, 0 * s0, sp_ / 2], axis=1)
     f = lambda z: np.fft.fft(z, axis=-1) / M  # noqa: E731
     return {"tt": f(tt), "tU": f(tU), "Ut": f(Ut)}
 
 
-def _hill_matrices(wave, material, q, P):
-    """First-order Hill matrices, shape (nq, 2n, 2n), and the harmonic labels."""
-    coupled = wave.case == "coupled"
-    px = np.arange(-P, P + 1, 2)  # odd
-    py = np.arange(-(P - 1), P, 2) if coupled else np.arange(0)
+def _labels(P, coupled):
+    px = np.arange(-P, P + 1, 2)  # theta: odd harmonics
+    py = np.arange(-(P + 1), P + 2, 2) if coupled else np.arange(0)  # U: even, |p| <= P + 1
+    return px, py
+
+
+def _hill_batch(a, b, k, W, a2, Ks, Kt, q, P, coupled):
+    """First-order Hill matrices, shape (B, nq, 2n, 2n), and the harmonic labels."""
+    px, py = _labels(P, coupled)
     M = max(64, 4 * (2 * P + 2))
-    C = _coefficients(wave, material, M)
-    k, W = wave.k, wave.omega
-    j = np.array([-1, 0, 1])
+    C = _coefficients(a, b, k, a2, Ks, Kt, M)
+    j = np.array([-1.0, 0.0, 1.0])
     labels = np.concatenate([px, py])
     nx, n = px.size, px.size + py.size
-    q = np.asarray(q, float).ravel()
-    # block[p, m] = sum_j c_{j, p - m} e^{i (q + m k) j}
+    B, nq = k.size, q.size
+
     def block(c, rows, cols):
-        l = (rows[:, None] - cols[None, :]) % M
-        cj = c[:, l]  # (3, nr, nc)
-        ph = np.exp(1j * (q[:, None, None] + cols[None, None, :] * k)[None] * j[:, None, None, None])
-        return np.einsum("jrc,jqrc->qrc", cj, ph)
-    L = np.zeros((q.size, n, n), complex)
-    L[:, :nx, :nx] = block(C["tt"], px, px)
+        # block[p, m] = sum_j c_{j, p - m} e^{i (q + m k) j}
+        lidx = (rows[:, None] - cols[None, :]) % M
+        cj = c[:, :, lidx]  # (B, 3, nr, nc)
+        wav = q[None, :, None] + cols[None, None, :] * k[:, None, None]  # (B, nq, nc)
+        ph = np.exp(1j * j[None, :, None, None] * wav[:, None])  # (B, 3, nq, nc)
+        return np.einsum("bjrc,bjqc->bqrc", cj, ph)
+
+    L = np.zeros((B, nq, n, n), complex)
+    L[:, :, :nx, :nx] = block(C["tt"], px, px)
     if coupled:
-        L[:, :nx, nx:] = block(C["tU"], px, py)
-        L[:, nx:, :nx] = block(C["Ut"], py, px)
-        L[:, nx:, nx:] = -4 * np.sin((q[:, None] + py[None, :] * k) / 2)[:, :, None] ** 2 \
-            * np.eye(py.size)[None]
-    D = 1j * W * np.diag(labels.astype(float))
-    A = np.zeros((q.size, 2 * n, 2 * n), complex)
-    A[:, :n, :n] = D
-    A[:, :n, n:] = np.eye(n)
-    A[:, n:, :n] = L
-    A[:, n:, n:] = D
+        L[:, :, :nx, nx:] = block(C["tU"], px, py)
+        L[:, :, nx:, :nx] = block(C["Ut"], py, px)
+        lap = -4 * np.sin((q[None, :, None] + py[None, None, :] * k[:, None, None]) / 2) ** 2
+        L[:, :, nx:, nx:] = lap[..., None] * np.eye(py.size)
+    D = 1j * W[:, None, None] * labels[None, :].astype(float)  # (B, 1, n) diagonal
+    A = np.zeros((B, nq, 2 * n, 2 * n), complex)
+    idx = np.arange(n)
+    A[:, :, idx, idx] = D
+    A[:, :, idx, n + idx] = 1.0
+    A[:, :, n:, :n] = L
+    A[:, :, n + idx, n + idx] = D
     return A, labels
+
+
+def _sideband_share(vec, labels, a2):
+    """Kinetic-energy share of the theta harmonics p = +1, -1 in each eigenvector."""
+    n = labels.size
+    kin = np.abs(vec[..., n:, :]) ** 2  # (..., n, 2n): lab velocities W_p
+    xs = labels % 2 == 1
+    kin[..., xs, :] /= 2 * a2.reshape(a2.shape + (1,) * (kin.ndim - a2.ndim))
+    kin[..., ~xs, :] *= 2
+    total = kin.sum(axis=-2)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        share = np.stack([kin[..., labels == 1, :][..., 0, :] / total,
+                          kin[..., labels == -1, :][..., 0, :] / total], axis=-1)
+    return np.nan_to_num(share)
+
+
+def _hill_matrices(wave, material, q, P):
+    """Hill matrices of one wave, shape (nq, 2n, 2n), and the harmonic labels."""
+    A, labels = _hill_batch(wave.theta_harmonics[None], wave.U_harmonics[None],
+                            np.array([wave.k]), np.array([wave.omega]),
+                            np.array([material.alpha**2]), np.array([material.K_s]),
+                            np.array([material.K_theta]), np.asarray(q, float).ravel(), P,
+                            wave.case == "coupled")
+    return A[0], labels
 
 
 def hill_spectrum(wave: PlaneWave, material: Material, q, P: int):
@@ -319,17 +349,13 @@ def hill_spectrum(wave: PlaneWave, material: Material, q, P: int):
     """
     A, labels = _hill_matrices(wave, material, q, P)
     lam, vec = np.linalg.eig(A)
-    n = labels.size
-    # velocity of harmonic p in the lab frame: (lambda - i p Omega) X_p = W_p
-    kin = np.abs(vec[:, n:]) ** 2
-    xs = labels % 2 == 1  # theta harmonics are the odd labels
-    kin[:, xs] /= 2 * material.alpha**2
-    kin[:, ~xs] *= 2
-    total = kin.sum(axis=1)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        share = np.stack([kin[:, labels == 1, :][:, 0] / total,
-                          kin[:, labels == -1, :][:, 0] / total], axis=-1)
-    return lam, np.nan_to_num(share)
+    return lam, _sideband_share(vec, labels, np.array(material.alpha**2))
+
+
+def _is_mi(share):
+    # MI modes hold nearly all their energy in the two sidebands, both present; the
+    # relabelled copy of a mode at q - 2k holds about half, in p = -1 and p = -3 only.
+    return (share.sum(axis=-1) > 0.75) & (share.min(axis=-1) > 0.05)
 
 
 #: growth rates below this fraction of Omega are round-off (the q = 0 Jordan block).
@@ -380,11 +406,64 @@ def mi_gain(material: Material, case: str, k: float, amplitude: float, q,
     lam, share = hill_spectrum(wave, material, q_arr.ravel(), 2 * H - 1)
     # MI modes hold nearly all their energy in the two sidebands, both present; the
     # relabelled copy of a mode at q - 2k holds about half, in p = -1 and p = -3 only.
-    is_mi = (share.sum(axis=-1) > 0.75) & (share.min(axis=-1) > 0.05)
-    growth = lam.real if modes == "all" else np.where(is_mi, lam.real, 0.0)
+    growth = lam.real if modes == "all" else np.where(_is_mi(share), lam.real, 0.0)
     sigma = growth.max(axis=1)
     sigma[sigma < ROUNDOFF * wave.omega] = 0.0
     # q = 0 (mod 2 pi) shifts the wave's phase, amplitude or U: neutral, a Jordan block
     # whose eigenvalues round-off splits by ~sqrt(machine eps)
     sigma[np.isclose(np.mod(q_arr.ravel() + np.pi, 2 * np.pi), np.pi, atol=1e-12, rtol=0)] = 0.0
     return sigma.reshape(q_arr.shape)
+
+
+def stability_map(k, delta, case: str, alpha: float, K_s: float, amplitude: float,
+                  q=None, harmonics: int = 1, chunk: int = 2000):
+    """Peak sideband growth rate max_q sigma(q) over a grid of (k, delta), batched.
+
+    Parameters
+    ----------
+    k, delta : array_like, same shape
+        Carrier wavenumbers and delta = K_s - K_theta (K_theta must stay > 0).
+    case, alpha, K_s, amplitude : as in :func:`mi_gain`.
+    q : array_like, optional
+        Offsets searched (default 20 values in (0, 1.5]: at amplitude 0.02 every
+        sideband band of the paper's parameter range lies inside).
+    harmonics : int
+        Truncation H (default 1: theta at k +- q, U at 0 and +-2: the mean flow and the
+        second harmonic; the peak gain is converged to ~a^2 relative, see the tests).
+
+    Returns
+    -------
+    ndarray, shape of k
+        Peak growth rate; 0 where the plane wave is stable (to the q grid).
+    """
+    check_case(case)
+    k = np.asarray(k, float)
+    delta = np.broadcast_to(np.asarray(delta, float), k.shape)
+    q = np.linspace(0.075, 1.5, 20) if q is None else np.asarray(q, float).ravel()
+    H = _check_harmonics(harmonics)
+    if np.any(K_s - delta <= 0) or np.any((k <= 0) | (k >= np.pi)):
+        raise ValueError("need K_theta = K_s - delta > 0 and 0 < k < pi on the whole grid")
+    kf, df = k.ravel(), delta.ravel()
+    out = np.zeros(kf.size)
+    coupled = case == "coupled"
+    for s in range(0, kf.size, chunk):
+        kk, Kt = kf[s:s + chunk], K_s - df[s:s + chunk]
+        B = kk.size
+        al, Ks = np.full(B, float(alpha)), np.full(B, float(K_s))
+        x, res = _solve_plane_waves(kk, np.full(B, float(amplitude)), al, Ks, Kt, coupled, H)
+        ok = (res < 1e-8) & (np.abs(x[:, 0] / amplitude - 1) < 0.5) & (x[:, -1] > 0)
+        A, labels = _hill_batch(x[:, :H], x[:, H:2 * H], kk, x[:, -1], al**2, Ks, Kt, q,
+                                2 * H - 1, coupled)
+        # eigenvalues everywhere, eigenvectors (to tell sideband modes) only where needed
+        lam = np.linalg.eigvals(A)
+        grow = lam.real.max(axis=-1) > ROUNDOFF * x[:, -1:]
+        gq = np.zeros(grow.shape)
+        if np.any(grow):
+            lam_u, vec = np.linalg.eig(A[grow])
+            share = _sideband_share(vec, labels, np.broadcast_to(al[:, None] ** 2,
+                                                                 grow.shape)[grow])
+            gq[grow] = np.where(_is_mi(share), lam_u.real, 0.0).max(axis=-1)
+        g = gq.max(axis=1)
+        g[g < ROUNDOFF * x[:, -1]] = 0.0
+        out[s:s + chunk] = np.where(ok, g, np.nan)  # nan: no plane wave (resonance)
+    return out.reshape(k.shape)

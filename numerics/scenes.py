@@ -20,9 +20,11 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from generated import coefficients as co  # noqa: E402
+from generated import lattice_coefficients as la  # noqa: E402
 
 from . import _analysis as an  # noqa: E402
 from ._cache import cached_simulate, write_h5  # noqa: E402
+from ._hill import mi_gain, stability_map  # noqa: E402
 from ._model import (Material, discrete_omega_longitudinal,  # noqa: E402
                      discrete_omega_rotation)
 
@@ -165,38 +167,89 @@ def _sign_grid(quick):
     return k, delta
 
 
-@scene("fig3-g-sign", "sign of g over (k, delta): case I and case II for alpha = 1.5, 2.5, 3.5",
-       "Fig. 3 (Panels_delta_map)", "<1 s", simulates=False)
+@scene("fig3-g-sign", "sign of g over (k, delta): case I and case II for alpha = 1.5, 2.5, 3.5; "
+       "plus semi-discrete NLS and exact lattice maps", "Fig. 3 (Panels_delta_map)",
+       "~40 s (quick ~2 s)", simulates=False)
 def fig3(ctx: Context):
     """Fig. 3: sign of g (white: g > 0, MI; black: g < 0), eqs. `g1`, `g2`.
 
-    Panel (a) case (I), alpha = 2.5; (b-d) case (II), alpha = 1.5, 2.5, 3.5;
-    K_theta = K_s - delta. Checks that case (I) has sign(g) = -sign(delta) everywhere.
+    Top row, the paper's: (a) case (I), alpha = 2.5; (b-d) case (II), alpha = 1.5, 2.5,
+    3.5; K_theta = K_s - delta. Bottom row, beyond the paper, alpha = 2.5: (e, f) sign of
+    the semi-discrete NLS's g (generated/lattice_coefficients.py, mean flow included),
+    (g, h) the exact lattice verdict at the paper's amplitude 2 eps A0 = 0.02: white where
+    some sideband grows (Hill's method, `numerics.stability_map`, 200 x 200 full).
+    Checks that case (I) has sign(g) = -sign(delta) everywhere.
     """
     k, delta = _sign_grid(ctx.quick)
     K, D = np.meshgrid(k, delta, indexing="xy")
     panels = [("rotation", 2.5), ("coupled", 1.5), ("coupled", 2.5), ("coupled", 3.5)]
-    fig, axes = plt.subplots(1, 4, figsize=(13, 3.6), sharey=True)
+    fig, axes = plt.subplots(2, 4, figsize=(13, 7), sharey=True)
     data = {"k": k, "delta": delta}
-    for ax, (case, al), lab in zip(axes, panels, "abcd"):
+
+    def mark(ax):
+        for name, mk in (("blue", "s"), ("green", "o")):
+            p = POINTS[name]
+            ax.plot(p["k"], K_S - p["K_theta"], mk, color=name, mec="k")
+
+    for ax, (case, al), lab in zip(axes[0], panels, "abcd"):
         with np.errstate(all="ignore"):
             g = G_FUNCS[case](K, al, K_S, K_S - D)
         sign = np.sign(g)
         _image(ax, k, delta, sign, cmap="gray", vmin=-1, vmax=1)
         ax.set_title(f"({lab}) case {'I' if case == 'rotation' else 'II'}, alpha = {al}",
                      fontsize=9)
-        ax.set_xlabel("k")
         if al == 2.5:
-            for name, mk in (("blue", "s"), ("green", "o")):
-                p = POINTS[name]
-                ax.plot(p["k"], K_S - p["K_theta"], mk, color=name, mec="k")
+            mark(ax)
         data[f"sign_{lab}"] = sign
-    axes[0].set_ylabel("delta")
+    # beyond the paper: semi-discrete NLS and exact lattice, alpha = 2.5
+    n_exact = 40 if ctx.quick else 200
+    ke = np.linspace(0.01, np.pi - 0.01, n_exact)
+    de = np.linspace(-0.015, 0.015, n_exact)
+    KE, DE = np.meshgrid(ke, de, indexing="xy")
+    timing = {}
+    import time
+    for ax, case, lab in zip(axes[1, :2], ("rotation", "coupled"), "ef"):
+        t0 = time.perf_counter()
+        with np.errstate(all="ignore"):
+            sign = np.sign(getattr(la, f"g_{case}")(K, ALPHA, K_S, K_S - D))
+        timing[f"semi_discrete_{case}_s"] = time.perf_counter() - t0
+        _image(ax, k, delta, sign, cmap="gray", vmin=-1, vmax=1)
+        ax.set_title(f"({lab}) semi-discrete NLS, case {'I' if case == 'rotation' else 'II'}",
+                     fontsize=9)
+        mark(ax)
+        data[f"sign_{lab}"] = sign
+    for ax, case, lab in zip(axes[1, 2:], ("rotation", "coupled"), "gh"):
+        t0 = time.perf_counter()
+        gain = stability_map(KE, DE, case, ALPHA, K_S, 2 * EPS * 1.0)
+        timing[f"exact_{case}_s"] = time.perf_counter() - t0
+        verdict = np.where(np.isnan(gain), 0.0, np.where(gain > 0, 1.0, -1.0))
+        _image(ax, ke, de, verdict, cmap="gray", vmin=-1, vmax=1)
+        ax.set_title(f"({lab}) exact lattice, case {'I' if case == 'rotation' else 'II'}, "
+                     "a = 0.02", fontsize=9)
+        mark(ax)
+        data[f"gain_{lab}"] = gain
+    data["k_exact"], data["delta_exact"] = ke, de
+    for ax in axes[1]:
+        ax.set_xlabel("k")
+    for row in axes:
+        row[0].set_ylabel("delta")
     fig.tight_layout()
-    ctx.save(fig, data, {"alpha": [2.5, 1.5, 2.5, 3.5], "K_s": K_S})
+    ctx.save(fig, data, {"alpha": [2.5, 1.5, 2.5, 3.5, 2.5, 2.5, 2.5, 2.5], "K_s": K_S,
+                         "amplitude_exact": 2 * EPS})
     ok_I = bool(np.all(data["sign_a"] == -np.sign(D)))
-    frac = {lab: float(np.mean(data[f"sign_{lab}"] > 0)) for lab in "abcd"}
-    return {"focusing_fraction": frac, "checks": [
+    frac = {lab: float(np.mean(data[f"sign_{lab}"] > 0)) for lab in "abcdef"}
+    frac.update({lab: float(np.mean(data[f"gain_{lab}"] > 0)) for lab in "gh"})
+    # how often each theory's verdict agrees with the exact one, on the exact grid
+    agree = {}
+    for case, lab in (("rotation", "g"), ("coupled", "h")):
+        exact = data[f"gain_{lab}"] > 0
+        with np.errstate(all="ignore"):
+            paper = G_FUNCS[case](KE, ALPHA, K_S, K_S - DE) > 0
+            semi = getattr(la, f"g_{case}")(KE, ALPHA, K_S, K_S - DE) > 0
+        agree[case] = {"paper_nls": float(np.mean(paper == exact)),
+                       "semi_discrete_nls": float(np.mean(semi == exact))}
+    return {"focusing_fraction": frac, "verdict_agreement_with_exact": agree,
+            "timing_s": timing, "exact_grid": [n_exact, n_exact], "checks": [
         {"check": "case I: sign(g) = -sign(delta) on the whole (k, delta) grid",
          "theory": "paper, Sec. 'Parametric study'", "numerics": str(ok_I), "pass": ok_I}]}
 
@@ -460,6 +513,130 @@ def gain_spectrum(ctx: Context):
     return {"results": results, "checks": checks}
 
 
+THEORY_POINTS = (  # (label, point, case, A0, k or None for the point's own)
+    ("blue II A0=1", "blue", "coupled", 1.0, None),
+    ("green I A0=1", "green", "rotation", 1.0, None),
+    ("blue II A0=0.8", "blue", "coupled", 0.8, None),
+    ("blue II A0=1.4", "blue", "coupled", 1.4, None),
+    ("green I A0=0.8", "green", "rotation", 0.8, None),
+    ("green I A0=1.4", "green", "rotation", 1.4, None),
+    ("blue II k=0.704", "blue", "coupled", 1.0, 2 * np.pi * 28 / 250),
+)
+THEORIES = ("paper NLS", "semi-discrete NLS", "exact lattice")
+
+
+def theory_gain(theory, q_offset, k, point, case, A0):
+    """sigma(q) of one theory at offsets q from the carrier (lattice units)."""
+    mat = material(point)
+    args = (k, ALPHA, K_S, POINTS[point]["K_theta"])
+    if theory == "exact lattice":
+        return mi_gain(mat, case, k, 2 * EPS * A0, q_offset)
+    mod = co if theory == "paper NLS" else la
+    g = getattr(mod, f"g_{case}")(*args)
+    return EPS**2 * abs(mod.g1(*args)) * mod.mi_growth_rate(q_offset / EPS, g, A0)
+
+
+@scene("gain-theories", "measured sigma(q) vs paper NLS, semi-discrete NLS and exact lattice "
+       "gain (Hill), 7 points, both starts", "beyond the paper", "~2 min (quick ~25 s)",
+       simulates=True)
+def gain_theories(ctx: Context):
+    """Which theory do the simulations obey? At the two unstable test points (A0 = 0.8,
+    1, 1.4) and at case II with k = 0.704, the measured growth rate of every sideband
+    (linear-stage fits, mean and spread over seeds) from the paper's initial condition
+    (eq. `IC`) and from the exact travelling wave, against: the paper's NLS (eqs. `NLS`,
+    `Omega_I`), the semi-discrete NLS (generated/lattice_coefficients.py) and the exact
+    lattice gain (numerics.mi_gain). Reports each theory's relative error of the peak gain
+    and of the half-gain band edge, and each theory's verdict on the four paper runs."""
+    n = len(THEORY_POINTS)
+    ncol = 4
+    fig, axes = plt.subplots(2, ncol, figsize=(15, 7))
+    axes = axes.ravel()
+    data, rows, checks = {}, [], []
+    qf = np.linspace(0, np.pi, 3001)
+    for ax, (label, point, case, A0, kk) in zip(axes, THEORY_POINTS):
+        k0 = POINTS[point]["k"] if kk is None else kk
+        N = (250 if kk is not None else (200 if point == "blue" else 250)) if ctx.quick else 500
+        exact_peak = float(theory_gain("exact lattice", qf - k0, k0, point, case, A0).max())
+        t_end = float(np.clip(round(9.0 / exact_peak, -2), 1000, 20000))
+        seeds = range(2) if ctx.quick else range(4)
+        meas = {}
+        for start in ("continuum", "travelling"):
+            rates = []
+            for sd in seeds:
+                run = ctx.simulate(**_sim_params(
+                    ctx, point, N, t_end, case=case, A0=A0, seed=ctx.seed + sd, k=k0, N=N,
+                    t_end=t_end, save_every=5.0, store="spectrum", omega_model=start))
+                win = an.linear_stage(run.theta_hat, run.m, run.N)
+                if win is not None:
+                    rates.append(an.growth_rates(run.t, run.theta_hat, win))
+            if rates:
+                r = np.array(rates)
+                meas[start] = (run.wavenumbers, r.mean(axis=0), r.std(axis=0, ddof=1)
+                               if len(r) > 1 else np.zeros(r.shape[1]), run.k)
+        for start, (q, sig, err, kr) in meas.items():
+            ax.errorbar(q, sig, yerr=err, fmt="." if start == "travelling" else "x", ms=3,
+                        lw=0.5, label=f"measured, {'travelling wave' if start == 'travelling' else 'paper IC'}")
+            data[f"{label}/{start}/q"], data[f"{label}/{start}/sigma"] = q, sig
+            data[f"{label}/{start}/sigma_std"] = err
+        kr = meas["travelling"][3] if "travelling" in meas else k0
+        curves = {}
+        for th, style in zip(THEORIES, ("k--", "C2-", "C3-")):
+            curves[th] = theory_gain(th, qf - kr, kr, point, case, A0)
+            ax.plot(qf, curves[th], style, lw=1, label=th)
+            data[f"{label}/{th}"] = curves[th]
+        top = max(c.max() for c in curves.values())
+        ax.set_ylim(-0.1 * top, 1.3 * top)
+        ax.set_title(label, fontsize=9)
+        ax.set_xlabel("q (rad per site)")
+        for start, (q, sig, err, _) in meas.items():
+            m_sum = an.band_summary(q, sig, kr)
+            row = {"point": label, "start": start, "t_end": t_end, "N": N,
+                   "measured": m_sum}
+            for th in THEORIES:
+                t_sum = an.band_summary(qf, curves[th], kr)
+                pe = m_sum["peak_gain"] / t_sum["peak_gain"] - 1 if t_sum["peak_gain"] else None
+                ee = (m_sum["band_edge"] / t_sum["band_edge"] - 1
+                      if t_sum["peak_gain"] and np.isfinite(t_sum["band_edge"]) else None)
+                row[th] = {"peak_gain": t_sum["peak_gain"], "band_edge": t_sum["band_edge"],
+                           "peak_error": pe, "edge_error": ee}
+            rows.append(row)
+            if start == "travelling":
+                ex = row["exact lattice"]
+                ok = ex["peak_error"] is not None and abs(ex["peak_error"]) < 0.05 and \
+                    ex["edge_error"] is not None and abs(ex["edge_error"]) < 0.05
+                checks.append({"check": f"gain-theories {label}: exact lattice gain vs measured "
+                               "(travelling-wave start), peak and band edge within 5%",
+                               "theory": f"peak {ex['peak_gain']:.4g}, edge {ex['band_edge']:.4g}",
+                               "numerics": f"errors {_pct(ex['peak_error'])}, {_pct(ex['edge_error'])}",
+                               "pass": bool(ok)})
+    axes[0].set_ylabel("growth rate sigma (1/T)")
+    axes[0].legend(fontsize=7)
+    for ax in axes[n:]:
+        ax.axis("off")
+    fig.tight_layout()
+    ctx.save(fig, data, {"alpha": ALPHA, "K_s": K_S, "eps": EPS, "noise": NOISE,
+                         "seed": ctx.seed})
+    # verdicts of the four paper runs, per theory
+    verdicts = {}
+    q = np.linspace(0, np.pi, 2001)
+    for point in POINTS:
+        for case in ("rotation", "coupled"):
+            kk = POINTS[point]["k"]
+            verdicts[f"{point}-{case}"] = {
+                th: ("MI" if theory_gain(th, q - kk, kk, point, case, 1.0).max() > 0 else "stable")
+                for th in THEORIES}
+            # U-pair modes exist in case II only (verified in the green II run's U spectrum)
+            verdicts[f"{point}-{case}"]["exact lattice, U modes too"] = "n/a" if \
+                case == "rotation" else ("MI" if mi_gain(material(point), case, kk, 2 * EPS,
+                                                         q - kk, modes="all").max() > 0
+                                         else "stable")
+    return {"rows": rows, "verdicts": verdicts, "checks": checks}
+
+
+def _pct(x):
+    return "n/a" if x is None else f"{100 * x:+.1f}%"
+
+
 @scene("harmonics", "stable case II: U at 2k vs |u2|, carrier frequency vs omega(k)",
        "beyond the paper", "~2 s (quick <1 s)", simulates=True)
 def harmonics(ctx: Context):
@@ -594,6 +771,23 @@ def write_report(summaries: dict, out: Path, quick: bool) -> Path:
         lines.append("")
         lines.append("Band edge: offset q - k where the gain falls to half its peak "
                      "(same definition for both curves).")
+    gt = summaries.get("gain-theories", {})
+    if gt.get("rows"):
+        lines += ["", "## Which theory the simulations obey (scene gain-theories)", "",
+                  "Relative error of each theory's peak gain and half-gain band edge against "
+                  "the measured sigma(q) (measured / theory - 1). Start: `paper` = eq. `IC` "
+                  "(U at rest), `travelling` = the lattice's exact plane wave.", "",
+                  "| point | start | " + " | ".join(f"{t}: peak, edge" for t in THEORIES) + " |",
+                  "|---|---|" + "---|" * len(THEORIES)]
+        for r in gt["rows"]:
+            cells = [f"{_pct(r[t]['peak_error'])}, {_pct(r[t]['edge_error'])}" for t in THEORIES]
+            start = "travelling" if r["start"] == "travelling" else "paper"
+            lines.append(f"| {r['point']} | {start} | " + " | ".join(cells) + " |")
+        lines += ["", "Stability verdicts of the four paper runs (A0 = 1):", "",
+                  "| run | " + " | ".join(gt["verdicts"][next(iter(gt["verdicts"]))]) + " |",
+                  "|---|" + "---|" * (len(THEORIES) + 1)]
+        for run, v in gt["verdicts"].items():
+            lines.append(f"| {run} | " + " | ".join(v.values()) + " |")
     path = Path(out) / "report.md"
     path.write_text("\n".join(lines) + "\n")
     return path

@@ -58,7 +58,7 @@ def test_hill_small_amplitude_spectrum_is_the_linear_lattice():
     for p in range(-5, 6, 2):
         wr = discrete_omega_rotation(q + p * K_BLUE, BLUE)
         expect += [p * w.omega + wr, p * w.omega - wr]
-    for p in range(-4, 5, 2):
+    for p in range(-6, 7, 2):
         wl = discrete_omega_longitudinal(q + p * K_BLUE)
         expect += [p * w.omega + wl, p * w.omega - wl]
     assert np.max(np.abs(lam.real)) < 1e-10
