@@ -5,7 +5,7 @@ VPY := $(VENV)/bin/python
 STAMP := $(VENV)/.setup-stamp
 GENERATED := generated/coefficients.py generated/lattice_coefficients.py generated/derivation.md
 
-.PHONY: setup derive test test-all run figures bench bench-quick clean
+.PHONY: setup derive test test-all run figures bench bench-quick stress stress-quick clean
 
 setup: $(STAMP)
 
@@ -41,11 +41,21 @@ figures: $(STAMP) $(GENERATED)
 	  [ -f $$d/figure.png ] && cp $$d/figure.png docs/figures/$$n.png; done; true
 	cp out/full/report.md docs/figures/report.md
 
+# Work-precision, long-time energy, scaling, derive/import cost -> bench/results.json, PNGs
 bench: $(STAMP)
 	$(VPY) bench/simulator.py
+	$(VPY) bench/work_precision.py
 
 bench-quick: $(STAMP)
 	$(VPY) bench/simulator.py --quick
+	$(VPY) bench/work_precision.py --quick
+
+# Where numerical stability ends -> bench/stress.json, bench/stress.md
+stress: $(STAMP)
+	$(VPY) bench/stress.py
+
+stress-quick: $(STAMP)
+	$(VPY) bench/stress.py --quick
 
 clean:
 	rm -rf $(VENV) out .pytest_cache

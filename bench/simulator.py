@@ -88,7 +88,7 @@ def main(quick=False):
         "paper_run_energy_error": float(run.relative_energy_error.max()),
         "quick": quick,
     }
-    out = Path(__file__).with_name("simulator.json")
+    out = Path(__file__).with_name("simulator_quick.json" if quick else "simulator.json")
     out.write_text(json.dumps(res, indent=2) + "\n")
     print(f"force kernel: {t_kernel:.1f} ns/site (NumPy force {t_np:.1f}, NumPy sin+cos alone "
           f"{t_sincos:.1f}; kernel/sincos = {t_kernel / t_sincos:.2f})")
