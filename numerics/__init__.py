@@ -9,6 +9,7 @@ METHODS, get_method                     integrators: rk4, verlet, srkn6b, srkn11
 BlowUpError, SimulationInterrupted      errors that keep what was computed
 plane_wave, mi_gain, PlaneWave          exact lattice plane wave and its sideband growth
                                         rate (harmonic balance + Hill's method)
+stability_map, hill_spectrum            batched verdicts over (k, delta); raw Hill spectrum
 """
 
 from ._hill import PlaneWave, hill_spectrum, mi_gain, plane_wave, stability_map

@@ -378,8 +378,9 @@ def mi_gain(material: Material, case: str, k: float, amplitude: float, q,
     q : array_like
         Sideband offsets, rad per site.
     harmonics : int
-        Truncation: theta perturbation harmonics |p| <= 2 H - 1... see ``plane_wave``;
-        the same H is used for the wave and for the Hill matrix (|p| <= 2H - 1).
+        Truncation H: the wave keeps theta harmonics 1, 3, .., 2H - 1 and U harmonics
+        2, .., 2H; the Hill matrix keeps theta harmonics |p| <= 2H - 1 and U harmonics
+        |p| <= 2H of the perturbation (default 4: a 34 x 34 matrix in case II, 16 x 16 in case I).
     wave : PlaneWave, optional
         A wave already computed by :func:`plane_wave` (same material, case, k, amplitude).
     modes : {"sidebands", "all"}

@@ -776,7 +776,7 @@ def write_report(summaries: dict, out: Path, quick: bool) -> Path:
         lines += ["", "## Which theory the simulations obey (scene gain-theories)", "",
                   "Relative error of each theory's peak gain and half-gain band edge against "
                   "the measured sigma(q) (measured / theory - 1). Start: `paper` = eq. `IC` "
-                  "(U at rest), `travelling` = the lattice's exact plane wave.", "",
+                  "(U at rest), `travelling` = the lattice's exact plane wave; n/a: the theory predicts no gain there.", "",
                   "| point | start | " + " | ".join(f"{t}: peak, edge" for t in THEORIES) + " |",
                   "|---|---|" + "---|" * len(THEORIES)]
         for r in gt["rows"]:
