@@ -81,7 +81,8 @@ def linear_stage(spec: np.ndarray, m: int, N: int, rise: float = 5.0, ceiling: f
     sigma_1 + sigma_2 from a level ~ r^2, so they stay below the noise floor r0 while
     r < sqrt(r0): the default 1% keeps them out of the fit at the paper's noise (r0 ~ 1e-4),
     where 3% let them fake "growth" outside the band (the green band edge came out 1.5x
-    too wide against the exact lattice gain; at 1% it agrees to 0.3%). Returns None when the run never gets there.
+    too wide against the exact lattice gain; at 1% it agrees to 0.3%). Returns None when
+    the run never gets there.
     """
     r = sideband_to_carrier(spec, m, N)
     above = np.flatnonzero(r > rise * r[0])

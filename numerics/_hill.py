@@ -235,7 +235,8 @@ def _wave_from(x, res, material, case, k, amplitude, H):
     if not _is_branch(x, res, k, amplitude, material):
         raise ArithmeticError(
             f"harmonic balance did not converge for case {case!r}, k = {k}, amplitude = "
-            f"{amplitude} (residual {res:.2e}, or Newton left the branch of the linear wave); near a resonance of a harmonic with a "
+            f"{amplitude} (residual {res:.2e}, or Newton left the branch of the linear "
+            "wave); near a resonance of a harmonic with a "
             "lattice mode (e.g. sin^2 k = omega^2 for the U second harmonic) no small-"
             "amplitude plane wave exists")
     w_lin = float(_omega_linear(k, material.alpha, material.K_s, material.K_theta))
@@ -385,7 +386,8 @@ def mi_gain(material: Material, case: str, k: float, amplitude: float, q,
         A wave already computed by :func:`plane_wave` (same material, case, k, amplitude).
     modes : {"sidebands", "all"}
         "sidebands": modes whose kinetic energy sits mostly (> 3/4) in theta at k + q
-        and k - q, both present: the modulational instability. "all": every Hill mode at Bloch offset q, which
+        and k - q, both present: the modulational instability. "all": every Hill
+        mode at Bloch offset q, which
         also holds resonant instabilities living in U (pairs of longitudinal waves
         driven by the carrier, 2 Omega = omega_U(q) + omega_U(q - 2k)).
 

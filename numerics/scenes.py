@@ -575,7 +575,8 @@ def gain_theories(ctx: Context):
                                if len(r) > 1 else np.zeros(r.shape[1]), run.k)
         for start, (q, sig, err, kr) in meas.items():
             ax.errorbar(q, sig, yerr=err, fmt="." if start == "travelling" else "x", ms=3,
-                        lw=0.5, label=f"measured, {'travelling wave' if start == 'travelling' else 'paper IC'}")
+                        lw=0.5, label="measured, " + ("travelling wave" if start == "travelling"
+                                                      else "paper IC"))
             data[f"{label}/{start}/q"], data[f"{label}/{start}/sigma"] = q, sig
             data[f"{label}/{start}/sigma_std"] = err
         kr = meas["travelling"][3] if "travelling" in meas else k0
@@ -607,7 +608,8 @@ def gain_theories(ctx: Context):
                 checks.append({"check": f"gain-theories {label}: exact lattice gain vs measured "
                                "(travelling-wave start), peak and band edge within 5%",
                                "theory": f"peak {ex['peak_gain']:.4g}, edge {ex['band_edge']:.4g}",
-                               "numerics": f"errors {_pct(ex['peak_error'])}, {_pct(ex['edge_error'])}",
+                               "numerics": f"errors {_pct(ex['peak_error'])}, "
+                                           f"{_pct(ex['edge_error'])}",
                                "pass": bool(ok)})
     axes[0].set_ylabel("growth rate sigma (1/T)")
     axes[0].legend(fontsize=7)
@@ -776,7 +778,8 @@ def write_report(summaries: dict, out: Path, quick: bool) -> Path:
         lines += ["", "## Which theory the simulations obey (scene gain-theories)", "",
                   "Relative error of each theory's peak gain and half-gain band edge against "
                   "the measured sigma(q) (measured / theory - 1). Start: `paper` = eq. `IC` "
-                  "(U at rest), `travelling` = the lattice's exact plane wave; n/a: the theory predicts no gain there.", "",
+                  "(U at rest), `travelling` = the lattice's exact plane wave; n/a: the "
+                  "theory predicts no gain there.", "",
                   "| point | start | " + " | ".join(f"{t}: peak, edge" for t in THEORIES) + " |",
                   "|---|---|" + "---|" * len(THEORIES)]
         for r in gt["rows"]:
