@@ -35,9 +35,15 @@ def best_of(fn, repeat):
 
 
 def machine():
+    """The machine and the versions that affect the numbers (shared by every bench script)."""
+    import numba
+    import scipy
+    import sympy
+
     return {"python": platform.python_version(), "machine": platform.machine(),
             "processor": platform.processor() or platform.machine(), "cpus": os.cpu_count(),
-            "numpy": np.__version__}
+            "numpy": np.__version__, "scipy": scipy.__version__, "sympy": sympy.__version__,
+            "numba": numba.__version__}
 
 
 def main(quick=False):

@@ -25,6 +25,7 @@ from numerics import Material, energy, initial_condition, integrate  # noqa: E40
 from numerics._baseline import numpy_rk4  # noqa: E402
 from numerics._integrators import get_method  # noqa: E402
 from numerics._simulate import _Stepper  # noqa: E402
+from simulator import machine  # noqa: E402  (bench/ is on sys.path as the script's folder)
 
 HERE = Path(__file__).parent
 ROOT = HERE.parent
@@ -36,18 +37,6 @@ SWEEP = {"rk4": [0.4, 0.2, 0.1, 0.05, 0.025], "verlet": [0.2, 0.1, 0.05, 0.025, 
          "numpy-rk4": [0.2, 0.1, 0.05]}
 QUICK_SWEEP = {"rk4": [0.2, 0.1], "srkn11b": [0.4, 0.2], "dop853": [1e-6, 1e-8],
                "numpy-rk4": [0.2]}
-
-
-def machine():
-    import platform
-
-    import scipy
-    import sympy
-
-    return {"python": platform.python_version(), "machine": platform.machine(),
-            "cpus": __import__("os").cpu_count(), "numpy": np.__version__,
-            "scipy": scipy.__version__, "sympy": sympy.__version__,
-            "numba": __import__("numba").__version__}
 
 
 def run_method(name, param, state, mat, case, t_end):

@@ -324,18 +324,18 @@ def solve_case(case: str, model: str = "continuum") -> CaseResult:
         rec2.notes += notes
         rec2.U_solution = u2
     records.append(rec2)
-    c_u2 = sp.simplify(harm(u2).get(2, sp.S.Zero) / B**2) if coupled else sp.S.Zero
+    u2_parts = harm(u2) if coupled else {}
+    c_u2 = sp.simplify(u2_parts.get(2, sp.S.Zero) / B**2) if coupled else sp.S.Zero
 
     u2_values = {}
     if lattice and coupled:
         # carry u2 as symbols c_m B^2 e^{2 i sigma} through O(eps^3) (its lattice value has
         # trigonometric denominators that would swell every product); substitute at the end
-        parts = harm(u2)
         u2 = sp.S.Zero
-        for m, c in parts.items():
+        for m, c in u2_parts.items():
             sym = sp.Symbol(f"c_u{'m' if m < 0 else 'p'}{abs(m)}")
             amp = B**2 if m > 0 else Bc**2
-            u2_values[sym] = sp.simplify(c / amp) if m else c
+            u2_values[sym] = c_u2 if m == 2 else (sp.simplify(c / amp) if m else c)
             u2 += sym * (amp if m else 1) * sp.exp(sp.I * m * PHASE)
 
     # O(eps^3): secular term of the rotational equation -> NLS.

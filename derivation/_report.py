@@ -55,6 +55,16 @@ def _eq(lhs, rhs="0"):
     return f"$$ {lhs} = {rhs} $$"
 
 
+#: the closed forms tabulated at the test points (sections 6 and 8)
+POINT_COLUMNS = ("omega", "group_velocity", "g1", "g_rotation", "g_coupled")
+
+
+def _at_point(forms, point, names):
+    """Values of the named closed forms (name -> ClosedForm) at a TEST_POINTS entry."""
+    sub = {k: point["k"], alpha: point["alpha"], K_s: point["K_s"], K_theta: point["K_theta"]}
+    return [forms[n].expr.subs(sub) for n in names]
+
+
 def render(derivation) -> str:
     d = derivation
     L = []
@@ -150,11 +160,10 @@ def render(derivation) -> str:
     add("## 6. The paper's test points (alpha = 2.5, K_s = 0.01851)")
     add("| point | k | delta | omega | v_g | g1 | g (I) | g (II) | abs(u2 coefficient) |")
     add("|---|---|---|---|---|---|---|---|---|")
+    continuum = {f.name: f for f in d.forms}
     for name, p in TEST_POINTS.items():
-        sub = {k: p["k"], alpha: p["alpha"], K_s: p["K_s"], K_theta: p["K_theta"]}
-        vals = [d.form(n).expr.subs(sub) for n in
-                ("omega", "group_velocity", "g1", "g_rotation", "g_coupled")]
-        cu = sp.Abs(d.form("u2_coefficient").expr.subs(sub))
+        vals = _at_point(continuum, p, POINT_COLUMNS)
+        cu = sp.Abs(_at_point(continuum, p, ("u2_coefficient",))[0])
         cells = " | ".join(f"{float(v):.6g}" for v in (*vals, cu))
         add(f"| {name} | {p['k']} | {p['K_s'] - p['K_theta']:.3g} | {cells} |")
     add("")
@@ -207,11 +216,10 @@ def render(derivation) -> str:
     add("| point | model | omega | v_g | g1 | g (I) | g (II) | mean flow mu |")
     add("|---|---|---|---|---|---|---|---|")
     for name, p in TEST_POINTS.items():
-        sub = {k: p["k"], alpha: p["alpha"], K_s: p["K_s"], K_theta: p["K_theta"]}
-        for model, forms in (("continuum", {f.name: f for f in d.forms}), ("lattice", lat)):
-            vals = [float(forms[n].expr.subs(sub)) for n in
-                    ("omega", "group_velocity", "g1", "g_rotation", "g_coupled")]
-            mu = float(lat["mean_flow_coefficient"].expr.subs(sub)) if model == "lattice" else 0.0
+        for model, forms in (("continuum", continuum), ("lattice", lat)):
+            vals = [float(v) for v in _at_point(forms, p, POINT_COLUMNS)]
+            mu = (float(_at_point(lat, p, ("mean_flow_coefficient",))[0])
+                  if model == "lattice" else 0.0)
             add(f"| {name} | {model} | " + " | ".join(f"{v:.6g}" for v in vals) + f" | {mu:.4g} |")
     add("")
     add("## 9. Errata")

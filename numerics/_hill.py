@@ -102,7 +102,8 @@ def _residual(x, k, amp, al2, Ks, Kt, H, coupled, phi):
     thp, thm = _shift(a, mo, k, phi, "cos"), _shift(a, mo, -k, phi, "cos")
     d2th = _shift(-a * mo**2, mo, zero, phi, "cos")
     if coupled:
-        dU = _shift(b, me, k, phi, "sin") - _shift(b, me, -k, phi, "sin")
+        Up, Um = _shift(b, me, k, phi, "sin"), _shift(b, me, -k, phi, "sin")
+        dU = Up - Um
     else:
         dU = 0.0
     rt = W[:, None] ** 2 * d2th - _rhs(thm, th0, thp, dU, al2[:, None], Ks[:, None],
@@ -112,8 +113,7 @@ def _residual(x, k, amp, al2, Ks, Kt, H, coupled, phi):
     R = [rt @ proj_c]
     if coupled:
         d2U = _shift(-b * me**2, me, zero, phi, "sin")
-        Fu = (_shift(b, me, k, phi, "sin") - 2 * _shift(b, me, zero, phi, "sin")
-              + _shift(b, me, -k, phi, "sin") - (np.cos(thp) - np.cos(thm)) / 2)
+        Fu = Up - 2 * _shift(b, me, zero, phi, "sin") + Um - (np.cos(thp) - np.cos(thm)) / 2
         ru = W[:, None] ** 2 * d2U - Fu
         R.append(ru @ (np.sin(np.outer(phi, me)) * (2.0 / M)))
     else:
@@ -205,24 +205,29 @@ def plane_wave(material: Material, case: str, k: float, amplitude: float,
     """
     k, amplitude = _check(material, case, k, amplitude)
     H = _check_harmonics(harmonics)
-    args = (np.array([k]), None, np.array([material.alpha]), np.array([material.K_s]),
-            np.array([material.K_theta]), case == "coupled", H)
-    x, res = _solve_plane_waves(args[0], np.array([amplitude]), *args[2:])
-    if not _is_branch(x[0], res[0], k, amplitude, material):
+    params = (np.array([material.alpha]), np.array([material.K_s]),
+              np.array([material.K_theta]), case == "coupled", H)
+
+    def solve(a, x0=None):
+        return _solve_plane_waves(np.array([k]), np.array([a]), *params, x0=x0)
+
+    x, res = solve(amplitude)
+    if not _on_branch(x[0], res[0], amplitude):
         # continuation in the amplitude from the linear wave (large amplitudes)
         x = None
         for a in np.linspace(0, amplitude, 9)[1:]:
-            x, res = _solve_plane_waves(args[0], np.array([a]), *args[2:], x0=x)
-            if not _is_branch(x[0], res[0], k, a, material):
+            x, res = solve(a, x)
+            if not _on_branch(x[0], res[0], a):
                 break
     return _wave_from(x[0], res[0], material, case, k, amplitude, H)
 
 
-def _is_branch(x, res, k, amplitude, material):
+def _on_branch(x, res, amplitude):
     """Converged, and still the continuation of the linear wave: Omega > 0 and the first
-    harmonic carrying most of the peak (else Newton found another orbit)."""
-    return bool(np.all(np.isfinite(x)) and res < 1e-8 and abs(x[0] / amplitude - 1) < 0.5
-                and x[-1] > 0)
+    harmonic carrying most of the peak (else Newton found another orbit). Batched over
+    leading axes: x (..., 2H+1), res (...)."""
+    return (np.all(np.isfinite(x), axis=-1) & (res < 1e-8)
+            & (np.abs(x[..., 0] / amplitude - 1) < 0.5) & (x[..., -1] > 0))
 
 
 def _check_harmonics(h):
@@ -232,7 +237,7 @@ def _check_harmonics(h):
 
 
 def _wave_from(x, res, material, case, k, amplitude, H):
-    if not _is_branch(x, res, k, amplitude, material):
+    if not _on_branch(x, res, amplitude):
         raise ArithmeticError(
             f"harmonic balance did not converge for case {case!r}, k = {k}, amplitude = "
             f"{amplitude} (residual {res:.2e}, or Newton left the branch of the linear "
@@ -454,7 +459,7 @@ def stability_map(k, delta, case: str, alpha: float, K_s: float, amplitude: floa
         B = kk.size
         al, Ks = np.full(B, float(alpha)), np.full(B, float(K_s))
         x, res = _solve_plane_waves(kk, np.full(B, float(amplitude)), al, Ks, Kt, coupled, H)
-        ok = (res < 1e-8) & (np.abs(x[:, 0] / amplitude - 1) < 0.5) & (x[:, -1] > 0)
+        ok = _on_branch(x, res, amplitude)
         A, labels = _hill_batch(x[:, :H], x[:, H:2 * H], kk, x[:, -1], al**2, Ks, Kt, q,
                                 2 * H - 1, coupled)
         # eigenvalues everywhere, eigenvectors (to tell sideband modes) only where needed

@@ -9,6 +9,7 @@ the runner writes ``summary.json``, the figure (PNG + PDF) and ``data.h5`` under
 from __future__ import annotations
 
 import json
+import time
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable
@@ -207,7 +208,6 @@ def fig3(ctx: Context):
     de = np.linspace(-0.015, 0.015, n_exact)
     KE, DE = np.meshgrid(ke, de, indexing="xy")
     timing = {}
-    import time
     for ax, case, lab in zip(axes[1, :2], ("rotation", "coupled"), "ef"):
         t0 = time.perf_counter()
         with np.errstate(all="ignore"):
@@ -431,15 +431,20 @@ def fig9(ctx: Context):
     return {"checks": checks}
 
 
-def measured_gain(ctx, point, case, A0=1.0, seeds=None, **extra):
-    """Sideband growth rates sigma(q) from linear-stage fits, mean and std over seeds."""
+def measured_gain(ctx, point, case, A0=1.0, seeds=None, t_end=None, quick_N=None, **extra):
+    """Sideband growth rates sigma(q) from linear-stage fits, mean and std over seeds.
+
+    Defaults: t_end = 3000 / A0^2 (blue) or 5000 / A0^2 (green); N = 500, or in quick
+    mode 200 (blue) / 250 (green). ``extra`` goes to the simulation (k, omega_model...).
+    """
     seeds = seeds if seeds is not None else (range(2) if ctx.quick else range(4))
-    quick_N = 200 if point == "blue" else 250
+    quick_N = quick_N or (200 if point == "blue" else 250)
     T = 3000.0 if point == "blue" else 5000.0
+    t_end = T / A0**2 if t_end is None else t_end
     rates, windows = [], []
     for s in seeds:
         params = _sim_params(ctx, point, quick_N, T, case=case, A0=A0, seed=ctx.seed + s,
-                             t_end=T / A0**2, save_every=5.0, store="spectrum", **extra)
+                             t_end=t_end, save_every=5.0, store="spectrum", **extra)
         run = ctx.simulate(**params)
         win = an.linear_stage(run.theta_hat, run.m, run.N)
         if win is None:
@@ -555,24 +560,16 @@ def gain_theories(ctx: Context):
     qf = np.linspace(0, np.pi, 3001)
     for ax, (label, point, case, A0, kk) in zip(axes, THEORY_POINTS):
         k0 = POINTS[point]["k"] if kk is None else kk
-        N = (250 if kk is not None else (200 if point == "blue" else 250)) if ctx.quick else 500
+        quick_N = 250 if kk is not None else (200 if point == "blue" else 250)
+        N = quick_N if ctx.quick else 500
         exact_peak = float(theory_gain("exact lattice", qf - k0, k0, point, case, A0).max())
         t_end = float(np.clip(round(9.0 / exact_peak, -2), 1000, 20000))
-        seeds = range(2) if ctx.quick else range(4)
         meas = {}
         for start in ("continuum", "travelling"):
-            rates = []
-            for sd in seeds:
-                run = ctx.simulate(**_sim_params(
-                    ctx, point, N, t_end, case=case, A0=A0, seed=ctx.seed + sd, k=k0, N=N,
-                    t_end=t_end, save_every=5.0, store="spectrum", omega_model=start))
-                win = an.linear_stage(run.theta_hat, run.m, run.N)
-                if win is not None:
-                    rates.append(an.growth_rates(run.t, run.theta_hat, win))
-            if rates:
-                r = np.array(rates)
-                meas[start] = (run.wavenumbers, r.mean(axis=0), r.std(axis=0, ddof=1)
-                               if len(r) > 1 else np.zeros(r.shape[1]), run.k)
+            m = measured_gain(ctx, point, case, A0, t_end=t_end, quick_N=quick_N, k=k0,
+                              omega_model=start)
+            if m is not None:
+                meas[start] = (m["q"], m["sigma"], m["sigma_std"], m["k"])
         for start, (q, sig, err, kr) in meas.items():
             ax.errorbar(q, sig, yerr=err, fmt="." if start == "travelling" else "x", ms=3,
                         lw=0.5, label="measured, " + ("travelling wave" if start == "travelling"
