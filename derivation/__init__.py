@@ -4,18 +4,48 @@ Public API
 ----------
 derive()                 all closed forms (a :class:`Derivation`), cached per process
 derive_continuum()       Taylor expansion of the lattice to eqs. `eqnorm1`-`eqnorm2`
-solve_case(case)         the multiple-scales hierarchy for "rotation" or "coupled"
+solve_case(case, model)  the multiple-scales hierarchy for "rotation" or "coupled",
+                         on the continuum ("continuum") or on the lattice ("lattice")
 analyse_mi()             MI analysis of the normalised NLS
+paper                    the paper's numbers (test points, eps, noise, N, T) - no SymPy
 paper_forms              the paper's closed forms typed by hand (for comparison)
 ERRATA                   errata of the paper
+atomic_write             write-then-rename, used by every layer that writes files
+
+Importing the package is cheap: the SymPy modules load on first use of a name that
+needs them (PEP 562), so ``from derivation import paper`` costs nothing.
 """
 
-from . import paper_forms
-from ._continuum import derive_continuum
-from ._mi import analyse as analyse_mi
-from ._multiscale import solve_case
-from ._pipeline import ClosedForm, Derivation, derive
-from .errata import ERRATA
+from importlib import import_module
 
-__all__ = ["derive", "derive_continuum", "solve_case", "analyse_mi", "paper_forms",
-           "ERRATA", "Derivation", "ClosedForm"]
+from . import paper
+from .errata import ERRATA
+from .files import atomic_write
+
+_LAZY = {
+    "derive": ("._pipeline", "derive"),
+    "Derivation": ("._pipeline", "Derivation"),
+    "ClosedForm": ("._pipeline", "ClosedForm"),
+    "derive_continuum": ("._continuum", "derive_continuum"),
+    "solve_case": ("._multiscale", "solve_case"),
+    "analyse_mi": ("._mi", "analyse"),
+    "paper_forms": (".paper_forms", None),
+}
+
+__all__ = ["derive", "derive_continuum", "solve_case", "analyse_mi", "paper", "paper_forms",
+           "ERRATA", "Derivation", "ClosedForm", "atomic_write"]
+
+
+def __getattr__(name):
+    try:
+        module, attr = _LAZY[name]
+    except KeyError:
+        raise AttributeError(f"module 'derivation' has no attribute {name!r}") from None
+    mod = import_module(module, __name__)
+    value = mod if attr is None else getattr(mod, attr)
+    globals()[name] = value
+    return value
+
+
+def __dir__():
+    return sorted(__all__)

@@ -1,8 +1,8 @@
 """The discrete equations (eq. `norm`) and their long-wave, weakly nonlinear limit.
 
-The continuum equations (eqs. `eqnorm1`, `eqnorm2`) are written once here as SymPy
-expressions, and also *derived* from the lattice by Taylor expansion so that the
-constants C1..C4 are a result, not an input.
+Eq. `norm` is written once here (``lattice_accelerations``), and the continuum equations
+(eqs. `eqnorm1`, `eqnorm2`) are *derived* from it by Taylor expansion, so the constants
+C1..C4 are a result, not an input; the paper's typed C1..C4 live in ``paper_forms``.
 """
 
 from __future__ import annotations
@@ -15,13 +15,6 @@ import sympy as sp
 alpha, K_s, K_theta = sp.symbols("alpha K_s K_theta", positive=True)
 k = sp.Symbol("k", real=True)
 X, T = sp.symbols("X T", real=True)
-
-#: Paper's constants below eq. `eqnorm2`.
-C1 = alpha**2 * (K_s - K_theta)
-C2 = 6 * K_theta * alpha**2
-C3 = 2 * alpha**2
-C4 = 4 * alpha**2
-PAPER_C = {"C1": C1, "C2": C2, "C3": C3, "C4": C4}
 
 
 def lattice_accelerations(Um, U0, Up, tm, t0, tp, *, cos=sp.cos, sin=sp.sin):
@@ -63,19 +56,6 @@ class ContinuumLimit:
 def fields():
     """The continuum fields U(X, T) and theta(X, T)."""
     return sp.Function("U")(X, T), sp.Function("theta")(X, T)
-
-
-def continuum_equations(case: str = "coupled"):
-    """Eqs. `eqnorm1`-`eqnorm2` as typed in the paper: ``(rhs_U, rhs_theta)``.
-
-    For ``case="rotation"`` U is absent (rhs_U is None and U := 0).
-    """
-    U, th = fields()
-    rhs_th = C1 * th.diff(X, 2) - C2 * th - C3 * th**3 - C4 * th * U.diff(X)
-    rhs_U = U.diff(X, 2) + th * th.diff(X)
-    if case == "rotation":
-        return None, rhs_th.subs(U, 0).doit()
-    return rhs_U, rhs_th
 
 
 def derive_continuum(order_h: int = 3) -> ContinuumLimit:

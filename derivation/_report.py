@@ -6,16 +6,14 @@ import re
 
 import sympy as sp
 
-from . import paper_forms
+from . import paper, paper_forms
 from ._continuum import K_s, K_theta, alpha, k, lattice_accelerations
-from ._multiscale import FAST_SLOW, SLOW, tau1, tau2, xi1, xi2
+from ._scales import FAST_SLOW, SLOW, tau1, tau2, xi1, xi2
 from .errata import ERRATA
 
-#: The paper's two test points (alpha = 2.5, K_s = 0.01851).
-TEST_POINTS = {
-    "blue": {"k": 0.81681, "alpha": 2.5, "K_s": 0.01851, "K_theta": 0.01551},
-    "green": {"k": 0.92991, "alpha": 2.5, "K_s": 0.01851, "K_theta": 0.02151},
-}
+#: The paper's two test points, as the arguments of the generated functions.
+TEST_POINTS = {name: paper.parameters(name) for name in paper.POINTS}
+
 
 def _arglist(args):
     """The LaTeX SymPy prints for an argument list, e.g. {\\left(X_{0},T_{0} \\right)}."""
@@ -65,24 +63,21 @@ def _at_point(forms, point, names):
     return [forms[n].expr.subs(sub) for n in names]
 
 
-def render(derivation) -> str:
-    d = derivation
+def _section_discrete_equations(d):
     L = []
     add = L.append
-    add("<!-- GENERATED FILE - DO NOT EDIT BY HAND. Written by `make derive` "
-        f"(SymPy {sp.__version__}). -->")
-    add("# Derivation report: NLS for rotational waves in a flexible mechanical metamaterial")
-    add("")
-    add("Every expression below is computed by `derivation/` from the equations of motion; "
-        "nothing is copied from the paper except in the last section, where the paper's "
-        "typed forms are compared with the derived ones.")
-    add("")
     add("## 1. Discrete equations (eq. `norm`)")
     U, th = sp.symbols("U_{n-1} U_n U_{n+1}"), sp.symbols(r"\theta_{n-1} \theta_n \theta_{n+1}")
     aU, at = lattice_accelerations(*U, *th)
     add(_eq(r"\ddot U_n", tex(aU)))
     add(_eq(r"\ddot \theta_n", tex(at)))
     add("")
+    return L
+
+
+def _section_continuum_limit(d):
+    L = []
+    add = L.append
     add("## 2. Continuum limit (eqs. `eqnorm1`, `eqnorm2`), derived by Taylor expansion")
     add("Linear terms are kept to second order in the lattice spacing, nonlinear terms at "
         "their lowest order (weak nonlinearity, long waves), theta to cubic order, U counted "
@@ -100,6 +95,12 @@ def render(derivation) -> str:
     add(f"Terms discarded by the long-wave ordering ({len(c.dropped)}): "
         + ", ".join(f"${tex(t)}$" for t in c.dropped))
     add("")
+    return L
+
+
+def _section_multiple_scales(d):
+    L = []
+    add = L.append
     add("## 3. Multiple scales (eq. `msm`)")
     add("Fields: $U = \\sum_i \\epsilon^i u_i$, $\\theta = \\sum_i \\epsilon^i \\theta_i$, "
         "functions of $X_0, T_0, X_1, T_1, X_2, T_2$ with $X_i = \\epsilon^i X$, "
@@ -142,11 +143,23 @@ def render(derivation) -> str:
     add("The zeroth harmonic of $u_2$ (the induced mean flow) satisfies the homogeneous "
         "equation at $O(\\epsilon^2)$ and is set to zero, as in the paper.")
     add("")
+    return L
+
+
+def _section_closed_forms(d):
+    L = []
+    add = L.append
     add("## 4. Closed forms (generated into `generated/coefficients.py`)")
     for f in d.forms:
         add(f"- `{f.name}{tuple(str(a) for a in f.args)}` (eq. `{f.label}`): "
             f"${tex(f.expr)}$")
     add("")
+    return L
+
+
+def _section_mi_analysis(d):
+    L = []
+    add = L.append
     add("## 5. Modulation instability of the NLS (eqs. `perturbed` .. `K_m`)")
     mi = d.mi
     add(f"Plane wave: $\\omega_0 = {tex(mi.omega0)}$. Linearised perturbation equations:")
@@ -157,7 +170,13 @@ def render(derivation) -> str:
     add(f"Cutoff $K_c = {tex(mi.cutoff)}$, fastest $K_m = {tex(mi.fastest)}$, growth "
         f"$\\Omega_I = {tex(mi.growth_rate)}$, peak $\\Omega_I(K_m) = {tex(mi.peak_growth)}$.")
     add("")
-    add("## 6. The paper's test points (alpha = 2.5, K_s = 0.01851)")
+    return L
+
+
+def _section_test_points(d):
+    L = []
+    add = L.append
+    add(f"## 6. The paper's test points (alpha = {paper.ALPHA}, K_s = {paper.K_S})")
     add("| point | k | delta | omega | v_g | g1 | g (I) | g (II) | abs(u2 coefficient) |")
     add("|---|---|---|---|---|---|---|---|---|")
     continuum = {f.name: f for f in d.forms}
@@ -167,12 +186,24 @@ def render(derivation) -> str:
         cells = " | ".join(f"{float(v):.6g}" for v in (*vals, cu))
         add(f"| {name} | {p['k']} | {p['K_s'] - p['K_theta']:.3g} | {cells} |")
     add("")
+    return L
+
+
+def _section_paper_comparison(d):
+    L = []
+    add = L.append
     add("## 7. Comparison with the paper's typed forms (`derivation/paper_forms.py`)")
     add("| quantity | paper eq. | derived - paper simplifies to 0 |")
     add("|---|---|---|")
     for name, (_, _, label, ok) in compare_with_paper(d).items():
         add(f"| `{name}` | `{label}` | {'yes' if ok else '**NO**'} |")
     add("")
+    return L
+
+
+def _section_semi_discrete(d):
+    L = []
+    add = L.append
     add("## 8. Semi-discrete NLS: the same derivation on the lattice (`generated/lattice_coefficients.py`)")
     add("The hierarchy is rebuilt from eq. `norm` itself: a neighbour is the exact shift "
         "$e^{i m k j}$ of each carrier harmonic times the Taylor shift of the slow scales, "
@@ -203,6 +234,7 @@ def render(derivation) -> str:
         add("")
     add("| quantity | continuum (paper) | lattice |")
     add("|---|---|---|")
+    continuum = {f.name: f for f in d.forms}
     lat = {f.name: f for f in d.lattice_forms}
     for f in d.forms:
         if f.name in lat and not f.name.startswith("mi_"):
@@ -211,7 +243,7 @@ def render(derivation) -> str:
     add(f"| mean-flow part of `g2_coupled` | 0 | "
         f"${tex(sp.simplify(d.lattice['coupled'].g2_mean_flow))}$ |")
     add("")
-    add("At the test points (alpha = 2.5, K_s = 0.01851):")
+    add(f"At the test points (alpha = {paper.ALPHA}, K_s = {paper.K_S}):")
     add("")
     add("| point | model | omega | v_g | g1 | g (I) | g (II) | mean flow mu |")
     add("|---|---|---|---|---|---|---|---|")
@@ -222,9 +254,34 @@ def render(derivation) -> str:
                   if model == "lattice" else 0.0)
             add(f"| {name} | {model} | " + " | ".join(f"{v:.6g}" for v in vals) + f" | {mu:.4g} |")
     add("")
+    return L
+
+
+def _section_errata(d):
+    L = []
+    add = L.append
     add("## 9. Errata")
     for i, e in enumerate(ERRATA, 1):
         add(f"{i}. **{e['where']}.** Says: {e['says']}. Right: {e['right']}. "
             f"How we know: {e['how']}.")
-    return "\n".join(L).rstrip() + "\n"
+    return L
 
+#: The report's sections, in order; each returns its Markdown lines.
+SECTIONS = (_section_discrete_equations, _section_continuum_limit, _section_multiple_scales,
+            _section_closed_forms, _section_mi_analysis, _section_test_points,
+            _section_paper_comparison, _section_semi_discrete, _section_errata)
+
+
+def render(derivation) -> str:
+    """The whole of generated/derivation.md."""
+    L = [f"<!-- GENERATED FILE - DO NOT EDIT BY HAND. Written by `make derive` "
+         f"(SymPy {sp.__version__}). -->",
+         "# Derivation report: NLS for rotational waves in a flexible mechanical metamaterial",
+         "",
+         "Every expression below is computed by `derivation/` from the equations of motion; "
+         "nothing is copied from the paper except in the last section, where the paper's "
+         "typed forms are compared with the derived ones.",
+         ""]
+    for section in SECTIONS:
+        L += section(derivation)
+    return "\n".join(L).rstrip() + "\n"
