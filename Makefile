@@ -3,7 +3,7 @@ PY ?= python3
 VENV := .venv
 VPY := $(VENV)/bin/python
 STAMP := $(VENV)/.setup-stamp
-GENERATED := generated/coefficients.py generated/lattice_coefficients.py generated/derivation.md
+GENERATED := generated/coefficients.py generated/lattice_coefficients.py generated/lattice_model.py generated/derivation.md
 
 .PHONY: setup derive test test-all run figures bench bench-quick stress stress-quick clean
 

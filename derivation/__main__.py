@@ -1,11 +1,9 @@
-"""`python -m derivation --out DIR`: derive and write coefficients.py and derivation.md."""
+"""`python -m derivation --out DIR`: derive and write every file of generated/."""
 
 from __future__ import annotations
 
 import argparse
-import os
 import sys
-import tempfile
 import time
 from pathlib import Path
 
@@ -30,27 +28,22 @@ Each tends to the paper's form as k -> 0 (the mean-flow part of g2_coupled excep
 
 
 def write_outputs(out_dir: Path) -> list[Path]:
-    """Derive and write both files atomically into ``out_dir``; returns their paths."""
-    from . import _codegen, _report
-    from ._pipeline import derive
+    """Derive and write every generated file atomically into ``out_dir``; returns paths."""
+    from . import _codegen, _lattice_model, _report
+    from ._pipeline import ClosedForm, derive
+    from .files import write_text
 
     d = derive()
     files = {
         "coefficients.py": _codegen.module_source(d, MODULE_DOC),
         "lattice_coefficients.py": _codegen.module_source(d, LATTICE_DOC, d.lattice_forms),
+        "lattice_model.py": _codegen.module_source(d, _lattice_model.MODULE_DOC,
+                                                   _lattice_model.forms(ClosedForm)),
         "derivation.md": _report.render(d),
     }
     out_dir.mkdir(parents=True, exist_ok=True)
-    written = []
-    for name, text in files.items():
-        target = out_dir / name
-        # write-then-rename: an interrupted derive never leaves a half-written file
-        fd, tmp = tempfile.mkstemp(dir=out_dir, prefix=f".{name}.", suffix=".tmp")
-        with os.fdopen(fd, "w", encoding="utf-8", newline="\n") as fh:
-            fh.write(text)
-        os.replace(tmp, target)
-        written.append(target)
-    return written
+    # write-then-rename: an interrupted derive never leaves a half-written file
+    return [write_text(out_dir / name, text) for name, text in files.items()]
 
 
 def main(argv=None) -> int:

@@ -38,8 +38,10 @@ class _Printer(NumPyPrinter):
 
 def _function_source(form, printer):
     args = [str(a) for a in form.args]
-    subs, (body,) = sp.cse([form.expr], symbols=sp.numbered_symbols("x"),
-                           optimizations=None, order="canonical")
+    matrix = isinstance(form.expr, sp.MatrixBase)
+    exprs = list(form.expr) if matrix else [form.expr]
+    subs, body = sp.cse(exprs, symbols=sp.numbered_symbols("x"), optimizations=None,
+                        order="canonical")
     lines = [f"def {form.name}({', '.join(args)}):"]
     latex = sp.latex(form.expr)
     lines.append(f'    r"""{form.doc}')
@@ -55,7 +57,15 @@ def _function_source(form, printer):
         lines.append(f"    {a} = numpy.asarray({a}, dtype=float)")
     for sym, val in subs:
         lines.append(f"    {sym} = {printer.doprint(val)}")
-    lines.append(f"    return {printer.doprint(body)}")
+    if not matrix:
+        lines.append(f"    return {printer.doprint(body[0])}")
+        return "\n".join(lines)
+    # constant entries (0, 1, ...) broadcast against the arguments to one common shape
+    entries = ", ".join(printer.doprint(e) for e in body)
+    lines.append(f"    entries = numpy.broadcast_arrays({', '.join(args)}, {entries})"
+                 f"[{len(args)}:]")
+    lines.append(f"    return numpy.stack(entries).reshape({form.expr.shape!r} + "
+                 "entries[0].shape)")
     return "\n".join(lines)
 
 

@@ -4,22 +4,22 @@ from __future__ import annotations
 
 import numpy as np
 
+from generated import lattice_model
+
 from ._model import LatticeState, Material
 
 
 def numpy_accel(theta, U, material: Material, coupled: bool):
-    """Eq. `norm` written directly with np.roll (cos/sin recomputed per use, as typed)."""
+    """Eq. `norm` with np.roll neighbours and the generated right-hand sides
+    (``generated.lattice_model``; sin/cos recomputed per use, as typed)."""
     tp, tm = np.roll(theta, -1), np.roll(theta, 1)
-    bracket = 4 - 2 * np.cos(theta) - np.cos(tp) - np.cos(tm)
-    aU = None
     if coupled:
-        Up, Um = np.roll(U, -1), np.roll(U, 1)
-        bracket = bracket + 2 * (Up - Um)
-        aU = Up - 2 * U + Um - (np.cos(tp) - np.cos(tm)) / 2
-    ath = material.alpha**2 * (
-        -material.K_theta * (tp + 4 * theta + tm)
-        + material.K_s * np.cos(theta) * (np.sin(tp) + np.sin(tm) - 2 * np.sin(theta))
-        - np.sin(theta) * bracket)
+        Um, Up = np.roll(U, 1), np.roll(U, -1)
+    else:
+        U = Um = Up = 0.0
+    args = (Um, U, Up, tm, theta, tp, material.alpha, material.K_s, material.K_theta)
+    ath = lattice_model.acceleration_theta(*args)
+    aU = lattice_model.acceleration_U(*args) if coupled else None
     return ath, aU
 
 

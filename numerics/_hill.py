@@ -32,17 +32,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from generated import lattice_model as model
+
 from ._model import Material, check_case
 
 #: default truncation: theta harmonics |p| <= HARMONICS (odd), U harmonics |p| < HARMONICS.
 HARMONICS = 4
-
-
-def _rhs(tm, t0, tp, dU, al2, Ks, Kt):
-    """theta acceleration of eq. `norm` (with alpha^2); dU = U_{n+1} - U_{n-1}."""
-    s0, c0 = np.sin(t0), np.cos(t0)
-    return al2 * (-Kt * (tp + 4 * t0 + tm) + Ks * c0 * (np.sin(tp) + np.sin(tm) - 2 * s0)
-                  - s0 * (2 * dU + 4 - 2 * c0 - np.cos(tp) - np.cos(tm)))
 
 
 def _shift(coef, harm, k, phi, kind):
@@ -92,7 +87,7 @@ class PlaneWave:
         return th, thd, U, Ud
 
 
-def _residual(x, k, amp, al2, Ks, Kt, H, coupled, phi):
+def _residual(x, k, amp, al, Ks, Kt, H, coupled, phi):
     """Harmonic-balance residuals, batched: x = (a_1..a_H, b_1..b_H, Omega), shape (B, 2H+1)."""
     mo = 2.0 * np.arange(H) + 1
     me = mo + 1
@@ -101,29 +96,22 @@ def _residual(x, k, amp, al2, Ks, Kt, H, coupled, phi):
     th0 = _shift(a, mo, zero, phi, "cos")
     thp, thm = _shift(a, mo, k, phi, "cos"), _shift(a, mo, -k, phi, "cos")
     d2th = _shift(-a * mo**2, mo, zero, phi, "cos")
+    Um = U0 = Up = 0.0
     if coupled:
-        Up, Um = _shift(b, me, k, phi, "sin"), _shift(b, me, -k, phi, "sin")
-        dU = Up - Um
-    else:
-        dU = 0.0
-    rt = W[:, None] ** 2 * d2th - _rhs(thm, th0, thp, dU, al2[:, None], Ks[:, None],
-                                       Kt[:, None])
+        Um, U0, Up = (_shift(b, me, s, phi, "sin") for s in (-k, zero, k))
+    al, Ks, Kt = al[:, None], Ks[:, None], Kt[:, None]
+    rt = W[:, None] ** 2 * d2th - model.acceleration_theta(Um, U0, Up, thm, th0, thp, al, Ks, Kt)
     M = phi.size
     proj_c = np.cos(np.outer(phi, mo)) * (2.0 / M)  # (M, H)
     R = [rt @ proj_c]
     if coupled:
         d2U = _shift(-b * me**2, me, zero, phi, "sin")
-        Fu = Up - 2 * _shift(b, me, zero, phi, "sin") + Um - (np.cos(thp) - np.cos(thm)) / 2
-        ru = W[:, None] ** 2 * d2U - Fu
+        ru = W[:, None] ** 2 * d2U - model.acceleration_U(Um, U0, Up, thm, th0, thp, al, Ks, Kt)
         R.append(ru @ (np.sin(np.outer(phi, me)) * (2.0 / M)))
     else:
         R.append(b)  # b = 0 in case (I)
     R.append((a.sum(axis=1) - amp)[:, None])
     return np.concatenate(R, axis=1)
-
-
-def _omega_linear(k, al, Ks, Kt):
-    return al * np.sqrt(4 * (Ks - Kt) * np.sin(k / 2) ** 2 + 6 * Kt)
 
 
 def _solve_plane_waves(k, amp, al, Ks, Kt, coupled, H, tol=1e-13, max_iter=30, x0=None):
@@ -136,12 +124,12 @@ def _solve_plane_waves(k, amp, al, Ks, Kt, coupled, H, tol=1e-13, max_iter=30, x
     if x0 is None:
         x = np.zeros((B, n))
         x[:, 0] = amp
-        x[:, -1] = _omega_linear(k, al, Ks, Kt)
+        x[:, -1] = model.omega_rotation(k, al, Ks, Kt)
     else:
         x = x0.copy()
     scale = np.maximum(amp, 1e-300)
     for _ in range(max_iter):
-        R = _residual(x, k, amp, al2, Ks, Kt, H, coupled, phi)
+        R = _residual(x, k, amp, al, Ks, Kt, H, coupled, phi)
         res = np.max(np.abs(R), axis=1) / np.maximum(scale * al2, 1e-300)
         if np.all(res < tol):
             break
@@ -150,14 +138,14 @@ def _solve_plane_waves(k, amp, al, Ks, Kt, coupled, H, tol=1e-13, max_iter=30, x
             h = 1e-7 * (scale if j < 2 * H else x[:, -1])
             xp = x.copy()
             xp[:, j] += h
-            J[:, :, j] = (_residual(xp, k, amp, al2, Ks, Kt, H, coupled, phi) - R) / h[:, None]
+            J[:, :, j] = (_residual(xp, k, amp, al, Ks, Kt, H, coupled, phi) - R) / h[:, None]
         try:
             dx = np.linalg.solve(J, R[:, :, None])[:, :, 0]
         except np.linalg.LinAlgError:
             raise ArithmeticError("harmonic balance: singular Jacobian (a harmonic of the "
                                   "wave is resonant with a lattice mode)") from None
         x = x - dx
-    R = _residual(x, k, amp, al2, Ks, Kt, H, coupled, phi)
+    R = _residual(x, k, amp, al, Ks, Kt, H, coupled, phi)
     res = np.max(np.abs(R), axis=1) / np.maximum(scale * al2, 1e-300)
     return x, res
 
@@ -244,19 +232,20 @@ def _wave_from(x, res, material, case, k, amplitude, H):
             "wave); near a resonance of a harmonic with a "
             "lattice mode (e.g. sin^2 k = omega^2 for the U second harmonic) no small-"
             "amplitude plane wave exists")
-    w_lin = float(_omega_linear(k, material.alpha, material.K_s, material.K_theta))
+    w_lin = float(model.omega_rotation(k, material.alpha, material.K_s, material.K_theta))
     return PlaneWave(case, k, amplitude, float(x[-1]), w_lin, x[:H].copy(),
                      x[H:2 * H].copy(), float(res))
 
 
 # --- Hill's method ------------------------------------------------------------------------
 
-def _coefficients(a, b, k, a2, Ks, Kt, M):
+def _coefficients(a, b, k, al, Ks, Kt, M):
     """Fourier coefficients c_l (index l mod M) of the linearised lattice's couplings.
 
-    Batched over waves: a, b (B, H) harmonics, k, a2, Ks, Kt (B,). Returns a dict name ->
+    Batched over waves: a, b (B, H) harmonics, k, al, Ks, Kt (B,). Returns a dict name ->
     (B, 3, M) complex array over neighbour offsets j = -1, 0, +1 of
-    d(acceleration)/d(field_{n+j}) at the wave, as functions of phi_n.
+    d(acceleration)/d(field_{n+j}) at the wave, as functions of phi_n: the generated
+    Jacobian of eq. `norm` (``generated.lattice_model.jacobian``) evaluated on the wave.
     """
     phi = 2 * np.pi * np.arange(M) / M
     H = a.shape[1]
@@ -264,17 +253,13 @@ def _coefficients(a, b, k, a2, Ks, Kt, M):
     me = mo + 1
     zero = np.zeros_like(k)
     tm, t0, tp = (_shift(a, mo, s, phi, "cos") for s in (-k, zero, k))
-    s0, c0, sp_, cp, sm, cm = np.sin(t0), np.cos(t0), np.sin(tp), np.cos(tp), np.sin(tm), np.cos(tm)
-    a2, Ks, Kt = a2[:, None], Ks[:, None], Kt[:, None]
-    dU = _shift(b, me, k, phi, "sin") - _shift(b, me, -k, phi, "sin")
-    tt = np.stack([a2 * (-Kt + Ks * c0 * cm - s0 * sm),
-                   a2 * (-4 * Kt - Ks * s0 * (sp_ + sm - 2 * s0) - 2 * Ks * c0**2
-                         - c0 * (2 * dU + 4 - 2 * c0 - cp - cm) - 2 * s0**2),
-                   a2 * (-Kt + Ks * c0 * cp - s0 * sp_)], axis=1)
-    tU = np.stack([2 * a2 * s0, 0 * s0, -2 * a2 * s0], axis=1)
-    Ut = np.stack([-sm / 2, 0 * s0, sp_ / 2], axis=1)
-    f = lambda z: np.fft.fft(z, axis=-1) / M  # noqa: E731
-    return {"tt": f(tt), "tU": f(tU), "Ut": f(Ut)}
+    Um, U0, Up = (_shift(b, me, s, phi, "sin") for s in (-k, zero, k))
+    J = model.jacobian(Um, U0, Up, tm, t0, tp, al[:, None], Ks[:, None], Kt[:, None])
+    # J[row, col]: rows (U, theta), cols (U_{n-1}, U_n, U_{n+1}, theta_{n-1}, theta_n,
+    # theta_{n+1}) -> (B, 3, M) blocks over the offsets j = -1, 0, +1
+    blocks = {"tt": J[1, 3:], "tU": J[1, :3], "Ut": J[0, 3:]}
+    return {name: np.fft.fft(np.moveaxis(blk, 0, 1), axis=-1) / M
+            for name, blk in blocks.items()}
 
 
 def _labels(P, coupled):
@@ -283,11 +268,11 @@ def _labels(P, coupled):
     return px, py
 
 
-def _hill_batch(a, b, k, W, a2, Ks, Kt, q, P, coupled):
+def _hill_batch(a, b, k, W, al, Ks, Kt, q, P, coupled):
     """First-order Hill matrices, shape (B, nq, 2n, 2n), and the harmonic labels."""
     px, py = _labels(P, coupled)
     M = max(64, 4 * (2 * P + 2))
-    C = _coefficients(a, b, k, a2, Ks, Kt, M)
+    C = _coefficients(a, b, k, al, Ks, Kt, M)
     j = np.array([-1.0, 0.0, 1.0])
     labels = np.concatenate([px, py])
     nx, n = px.size, px.size + py.size
@@ -306,7 +291,7 @@ def _hill_batch(a, b, k, W, a2, Ks, Kt, q, P, coupled):
     if coupled:
         L[:, :, :nx, nx:] = block(C["tU"], px, py)
         L[:, :, nx:, :nx] = block(C["Ut"], py, px)
-        lap = -4 * np.sin((q[None, :, None] + py[None, None, :] * k[:, None, None]) / 2) ** 2
+        lap = -model.omega_longitudinal(q[None, :, None] + py[None, None, :] * k[:, None, None]) ** 2
         L[:, :, nx:, nx:] = lap[..., None] * np.eye(py.size)
     D = 1j * W[:, None, None] * labels[None, :].astype(float)  # (B, 1, n) diagonal
     A = np.zeros((B, nq, 2 * n, 2 * n), complex)
@@ -336,7 +321,7 @@ def _hill_matrices(wave, material, q, P):
     """Hill matrices of one wave, shape (nq, 2n, 2n), and the harmonic labels."""
     A, labels = _hill_batch(wave.theta_harmonics[None], wave.U_harmonics[None],
                             np.array([wave.k]), np.array([wave.omega]),
-                            np.array([material.alpha**2]), np.array([material.K_s]),
+                            np.array([material.alpha]), np.array([material.K_s]),
                             np.array([material.K_theta]), np.asarray(q, float).ravel(), P,
                             wave.case == "coupled")
     return A[0], labels
@@ -460,7 +445,7 @@ def stability_map(k, delta, case: str, alpha: float, K_s: float, amplitude: floa
         al, Ks = np.full(B, float(alpha)), np.full(B, float(K_s))
         x, res = _solve_plane_waves(kk, np.full(B, float(amplitude)), al, Ks, Kt, coupled, H)
         ok = _on_branch(x, res, amplitude)
-        A, labels = _hill_batch(x[:, :H], x[:, H:2 * H], kk, x[:, -1], al**2, Ks, Kt, q,
+        A, labels = _hill_batch(x[:, :H], x[:, H:2 * H], kk, x[:, -1], al, Ks, Kt, q,
                                 2 * H - 1, coupled)
         # eigenvalues everywhere, eigenvectors (to tell sideband modes) only where needed
         lam = np.linalg.eigvals(A)

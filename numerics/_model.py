@@ -7,6 +7,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from generated import lattice_model
+
 CASES = ("rotation", "coupled")
 
 
@@ -70,20 +72,21 @@ class Material:
     def omega_max(self, case: str) -> float:
         """Highest linear frequency of the lattice (max of `discrete1`, `discrete2`)."""
         check_case(case)
-        w_rot = self.alpha * math.sqrt(max(6 * self.K_theta, 6 * self.K_theta + 4 * self.delta))
-        return max(w_rot, 2.0) if case == "coupled" else w_rot
+        # both branches are monotone in sin^2(q/2): their maxima sit at q = 0 or q = pi
+        ends = np.array([0.0, math.pi])
+        w_rot = float(np.max(discrete_omega_rotation(ends, self)))
+        return max(w_rot, float(discrete_omega_longitudinal(math.pi))) if case == "coupled" \
+            else w_rot
 
 
 def discrete_omega_rotation(q, material: Material):
-    """Rotational branch of the lattice, eq. `discrete2` (positive root)."""
-    q = np.asarray(q, dtype=float)
-    return material.alpha * np.sqrt(4 * material.delta * np.sin(q / 2) ** 2
-                                    + 6 * material.K_theta)
+    """Rotational branch of the lattice, eq. `discrete2` (positive root; generated)."""
+    return lattice_model.omega_rotation(q, material.alpha, material.K_s, material.K_theta)
 
 
 def discrete_omega_longitudinal(q):
-    """Longitudinal branch of the lattice, eq. `discrete1`."""
-    return 2 * np.abs(np.sin(np.asarray(q, dtype=float) / 2))
+    """Longitudinal branch of the lattice, eq. `discrete1` (generated)."""
+    return lattice_model.omega_longitudinal(q)
 
 
 def _as_field(name, x, n=None):
