@@ -30,7 +30,7 @@ test-all: $(STAMP)
 
 # The main job: coefficients at the test points, then every scene (quick) and out/report.md.
 run: $(STAMP) $(GENERATED)
-	$(VPY) -m derivation.table
+	$(VENV)/bin/flexmm table
 	$(VENV)/bin/flexmm run --quick
 
 # Full-size figures (about a minute), copied small into docs/figures/ for the README.

@@ -10,8 +10,17 @@ BlowUpError, SimulationInterrupted      errors that keep what was computed
 plane_wave, mi_gain, PlaneWave          exact lattice plane wave and its sideband growth
                                         rate (harmonic balance + Hill's method)
 stability_map, hill_spectrum            batched verdicts over (k, delta); raw Hill spectrum
+THEORIES, theory_gain, nls_summary      sigma(q) of the paper NLS, semi-discrete NLS, exact
+measure_gain, relative_errors           sigma(q) measured from runs; theory vs measurement
+spectrum, stability_verdict, ...        spectral diagnostics of runs (``_analysis``)
+
+Nothing here imports matplotlib: figures live in the ``scenes`` package.
 """
 
+from ._analysis import (GROWTH_THRESHOLD, band_summary, carrier_amplitude, carrier_frequency,
+                        forced_second_harmonic, growth_rates, harmonic_bins, linear_stage, mode,
+                        sideband_to_carrier, spectrum, stability_verdict)
+from ._gain import THEORIES, measure_gain, nls_summary, relative_errors, theory_gain
 from ._hill import PlaneWave, hill_spectrum, mi_gain, plane_wave, stability_map
 from ._integrators import METHODS, Method, get_method
 from ._model import (CASES, LatticeState, Material, discrete_omega_longitudinal,
@@ -24,4 +33,8 @@ __all__ = [
     "get_method", "CASES", "BlowUpError", "SimulationInterrupted", "initial_condition",
     "snap_wavenumber", "discrete_omega_rotation", "discrete_omega_longitudinal",
     "SIMULATOR_VERSION", "plane_wave", "mi_gain", "PlaneWave", "hill_spectrum", "stability_map",
+    "THEORIES", "theory_gain", "nls_summary", "measure_gain", "relative_errors",
+    "GROWTH_THRESHOLD", "band_summary", "carrier_amplitude", "carrier_frequency",
+    "forced_second_harmonic", "growth_rates", "harmonic_bins", "linear_stage", "mode",
+    "sideband_to_carrier", "spectrum", "stability_verdict",
 ]

@@ -4,12 +4,11 @@ from __future__ import annotations
 
 import hashlib
 import json
-import os
-import tempfile
 from pathlib import Path
 
 import h5py
-import numpy as np
+
+from derivation.files import atomic_write
 
 from ._model import Material
 from ._simulate import SIMULATOR_VERSION, Run, simulate
@@ -27,22 +26,16 @@ def cache_key(params: dict) -> str:
 
 
 def _save(path: Path, run: Run, params: dict):
-    fd, tmp = tempfile.mkstemp(dir=path.parent, suffix=".tmp")
-    os.close(fd)
-    try:
-        with h5py.File(tmp, "w") as f:
-            for name in _ARRAYS:
-                arr = getattr(run, name)
-                if arr is not None:
-                    f.create_dataset(name, data=arr, compression="gzip", compression_opts=1)
-            for name in _SCALARS:
-                f.attrs[name] = getattr(run, name)
-            f.attrs["params"] = json.dumps(params, sort_keys=True)
-            f.attrs["simulator_version"] = SIMULATOR_VERSION
-        os.replace(tmp, path)  # atomic: an interrupted write leaves no cache entry
-    finally:
-        if os.path.exists(tmp):
-            os.remove(tmp)
+    # atomic: an interrupted write leaves no cache entry
+    with atomic_write(path, mode=None) as tmp, h5py.File(tmp, "w") as f:
+        for name in _ARRAYS:
+            arr = getattr(run, name)
+            if arr is not None:
+                f.create_dataset(name, data=arr, compression="gzip", compression_opts=1)
+        for name in _SCALARS:
+            f.attrs[name] = getattr(run, name)
+        f.attrs["params"] = json.dumps(params, sort_keys=True)
+        f.attrs["simulator_version"] = SIMULATOR_VERSION
 
 
 def _load(path: Path, material: Material) -> Run:
@@ -75,22 +68,3 @@ def cached_simulate(cache_dir: Path | None, force: bool = False, **params) -> Ru
     if cache_dir is not None:
         _save(path, run, key_params)
     return run
-
-
-def write_h5(path: Path, datasets: dict, attrs: dict):
-    """Write a scene's data file atomically; attrs hold every parameter."""
-    path = Path(path)
-    fd, tmp = tempfile.mkstemp(dir=path.parent, suffix=".tmp")
-    os.close(fd)
-    try:
-        with h5py.File(tmp, "w") as f:
-            for name, arr in datasets.items():
-                if arr is not None:
-                    f.create_dataset(name, data=np.asarray(arr))
-            for name, val in attrs.items():
-                f.attrs[name] = val if isinstance(val, (int, float, str, bool)) else json.dumps(
-                    val, sort_keys=True, default=float)
-        os.replace(tmp, path)
-    finally:
-        if os.path.exists(tmp):
-            os.remove(tmp)

@@ -2,19 +2,39 @@
 
 from __future__ import annotations
 
+import hashlib
 import math
 from dataclasses import dataclass, field
+from pathlib import Path
 
 import numpy as np
 
-from . import _kernels as K
+from generated import coefficients as coefficients_module
+
+from . import _kernels as kernels
 from ._analysis import spectrum
 from ._integrators import Method, get_method
 from ._model import (LatticeState, Material, _positive_finite, check_case,
                      discrete_omega_rotation, energy)
 
-#: Bumped whenever a change alters simulated numbers (keys the scene cache).
-SIMULATOR_VERSION = "1"
+
+
+def _source_hash() -> str:
+    """Hash of every source file whose change can alter a simulated number."""
+    here = Path(__file__).parent
+    gen = Path(coefficients_module.__file__).parent
+    files = [here / f"_{n}.py" for n in ("kernels", "integrators", "simulate", "model", "hill",
+                                          "analysis")]
+    files += [gen / "coefficients.py", gen / "lattice_model.py"]
+    h = hashlib.sha256()
+    for f in files:
+        h.update(f.name.encode() + b"\0" + f.read_bytes())
+    return h.hexdigest()[:16]
+
+
+#: Identifies the simulator's code (keys the scene cache): a hash of its sources, so any
+#: change that may alter simulated numbers invalidates cached runs by itself.
+SIMULATOR_VERSION = _source_hash()
 STORE_CHOICES = ("snapshots", "spectrum", "energy")
 OMEGA_MODELS = ("continuum", "discrete", "travelling")
 
@@ -70,8 +90,8 @@ class _Stepper:
         n = state.N
         self.th = state.theta.copy()
         self.w = state.theta_dot.copy()
-        self.U = state.U.copy() if self.coupled else K.empty_u()
-        self.V = state.U_dot.copy() if self.coupled else K.empty_u()
+        self.U = state.U.copy() if self.coupled else kernels.empty_u()
+        self.V = state.U_dot.copy() if self.coupled else kernels.empty_u()
         self.s, self.c, self.v = np.empty(n), np.empty(n), np.empty(n)
         self.ath = np.empty(n)
         self.aU = np.empty(n if self.coupled else 0)
@@ -85,7 +105,7 @@ class _Stepper:
             self.work = np.empty((10, n))
 
     def _accel(self):
-        K.accel(self.th, self.U, self.coupled, *self.params, self.s, self.c, self.v,
+        kernels.accel(self.th, self.U, self.coupled, *self.params, self.s, self.c, self.v,
                 self.ath, self.aU)
         self.evaluations += 1
 
@@ -98,12 +118,12 @@ class _Stepper:
         """Advance ``nsteps`` steps; returns the number completed while finite."""
         m = self.method
         if m.kind == "srkn":
-            done = K.srkn_steps(self.th, self.w, self.U, self.V, self.ath, self.aU,
+            done = kernels.srkn_steps(self.th, self.w, self.U, self.V, self.ath, self.aU,
                                 self.coupled, *self.params, self.acoef, self.bcoef,
                                 self.dt, nsteps, self.s, self.c, self.v)
             self.evaluations += done * m.evaluations
         elif m.kind == "rk4":
-            done = K.rk4_steps(self.th, self.w, self.U, self.V, self.coupled, *self.params,
+            done = kernels.rk4_steps(self.th, self.w, self.U, self.V, self.coupled, *self.params,
                                self.dt, nsteps, self.s, self.c, self.v, self.work)
             self.evaluations += done * m.evaluations
         else:
@@ -122,8 +142,8 @@ class _Stepper:
 
         def rhs(_t, y):
             th = y[:n]
-            U = y[2 * n:3 * n] if coupled else K.empty_u()
-            K.accel(np.ascontiguousarray(th), np.ascontiguousarray(U), coupled, *self.params,
+            U = y[2 * n:3 * n] if coupled else kernels.empty_u()
+            kernels.accel(np.ascontiguousarray(th), np.ascontiguousarray(U), coupled, *self.params,
                     self.s, self.c, self.v, ath, aU)
             out = np.empty(nf)
             out[:n] = y[n:2 * n]
@@ -271,8 +291,6 @@ def initial_condition(material: Material, case: str, N: int, k: float, eps: floa
     odd theta harmonics, the forced U harmonics and their velocities), every field
     multiplied by the same (1 + b0): no free U waves beat against the forced ones.
     """
-    from generated.coefficients import omega as omega_continuum
-
     check_case(case)
     if omega_model not in OMEGA_MODELS:
         raise ValueError(f"omega_model must be one of {OMEGA_MODELS}, got {omega_model!r}")
@@ -294,7 +312,7 @@ def initial_condition(material: Material, case: str, N: int, k: float, eps: floa
             return LatticeState(U * f, Ud * f, th * f, thd * f)
         return LatticeState(None, None, th * f, thd * f)
     if omega_model == "continuum":
-        w = float(omega_continuum(k, material.alpha, material.K_s, material.K_theta))
+        w = float(coefficients_module.omega(k, material.alpha, material.K_s, material.K_theta))
     else:
         w = float(discrete_omega_rotation(k, material))
     amp = 2 * eps * A0 * (1 + b0)

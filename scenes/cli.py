@@ -1,4 +1,4 @@
-"""`flexmm`: list and run the scenes (figures of the paper and checks beyond it)."""
+"""`flexmm`: the NLS table at the test points; list, run and redraw the scenes."""
 
 from __future__ import annotations
 
@@ -10,9 +10,13 @@ import time
 def _parser():
     p = argparse.ArgumentParser(prog="flexmm", description=__doc__)
     sub = p.add_subparsers(dest="cmd", required=True)
+    tab = sub.add_parser("table", help="NLS coefficients at the paper's two test points")
+    tab.add_argument("--A0", type=float, default=1.0, help="envelope amplitude (default 1)")
     sub.add_parser("scenes", help="list the scenes with a description and run time")
     one = sub.add_parser("scene", help="run one scene")
     one.add_argument("name")
+    one.add_argument("--replot", action="store_true",
+                     help="redraw the figure from OUT/NAME/data.h5 without computing")
     for sp_ in (one, sub.add_parser("run", help="run every scene and write out/report.md")):
         sp_.add_argument("--quick", action="store_true",
                          help="reduced N / t_end / grids: seconds per scene")
@@ -22,24 +26,34 @@ def _parser():
     return p
 
 
+def _print_checks(summary):
+    for c in summary.get("checks", []):
+        print(f"[{c['outcome']}] {c['check']}: theory {c['theory']}; numerics {c['numerics']}")
+
+
 def main(argv=None) -> int:
     args = _parser().parse_args(argv)
-    from . import scenes
+    import scenes
 
     try:
+        if args.cmd == "table":
+            from .table import format_table
+
+            print(format_table(args.A0))
+            return 0
         if args.cmd == "scenes":
             width = max(len(n) for n in scenes.REGISTRY)
             for sc in scenes.REGISTRY.values():
                 print(f"{sc.name:<{width}}  {sc.runtime:<18}  {sc.description}")
             return 0
-        if args.seed < 0:
-            raise ValueError(f"--seed must be >= 0, got {args.seed}")
         t0 = time.perf_counter()
-        if args.cmd == "scene":
-            s = scenes.run_scene(args.name, args.out, args.quick, args.seed, args.force)
-            for c in s.get("checks", []):
-                print(f"[{'pass' if c['pass'] else 'FAIL'}] {c['check']}: theory "
-                      f"{c['theory']}; numerics {c['numerics']}")
+        if args.cmd == "scene" and args.replot:
+            folder = scenes.replot_scene(args.name, args.out)
+            print(f"{args.name}: redrew {folder}/figure.png and figure.pdf from data.h5 in "
+                  f"{time.perf_counter() - t0:.1f} s")
+        elif args.cmd == "scene":
+            _print_checks(scenes.run_scene(args.name, args.out, args.quick, args.seed,
+                                           args.force))
             print(f"{args.name}: wrote {args.out}/{args.name}/ in "
                   f"{time.perf_counter() - t0:.1f} s")
         else:

@@ -1,0 +1,104 @@
+"""Sideband gain sigma(q): measured from runs, and predicted by the three theories.
+
+The three theories, for any material and carrier:
+
+- ``"paper NLS"``: the continuum multiple-scales result (``generated.coefficients``),
+  sigma(q) = eps^2 |g1| Omega_I((q - k) / eps) (eqs. `NLS`, `Omega_I`);
+- ``"semi-discrete NLS"``: the same on the lattice (``generated.lattice_coefficients``);
+- ``"exact lattice"``: Hill's method about the exact travelling wave (:func:`mi_gain`).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from generated import coefficients as continuum_nls
+from generated import lattice_coefficients as lattice_nls
+
+from . import _analysis as an
+from ._hill import mi_gain
+from ._model import Material, check_case
+
+THEORIES = ("paper NLS", "semi-discrete NLS", "exact lattice")
+_NLS = {"paper NLS": continuum_nls, "semi-discrete NLS": lattice_nls}
+
+
+def nls_summary(material: Material, case: str, k: float, eps: float, A0: float = 1.0,
+                nls=continuum_nls) -> dict:
+    """The NLS at one carrier: omega, v_g, g1, g2, g, verdict, and for g > 0 the band
+    K_c, K_m (NLS units) and the peak lattice growth rate eps^2 |g1| Omega_I(K_m)."""
+    check_case(case)
+    p = (k, material.alpha, material.K_s, material.K_theta)
+    g = float(getattr(nls, f"g_{case}")(*p))
+    g1 = float(nls.g1(*p))
+    out = {"g": g, "g1": g1, "g2": float(getattr(nls, f"g2_{case}")(*p)),
+           "stable": bool(g < 0), "omega": float(nls.omega(*p)),
+           "v_g": float(nls.group_velocity(*p))}
+    if g > 0:
+        K_m = nls.mi_fastest(g, A0)
+        out.update(K_c=float(nls.mi_cutoff(g, A0)), K_m=float(K_m),
+                   peak_gain=float(eps**2 * abs(g1) * nls.mi_growth_rate(K_m, g, A0)))
+    return out
+
+
+def theory_gain(theory: str, material: Material, case: str, k: float, q_offset, eps: float,
+                A0: float = 1.0) -> np.ndarray:
+    """sigma(q) of one theory at offsets ``q_offset`` from the carrier (lattice units).
+
+    The plane wave has peak rotation 2 eps A0 (eq. `IC`).
+    """
+    if theory == "exact lattice":
+        return mi_gain(material, case, k, 2 * eps * A0, q_offset)
+    try:
+        nls = _NLS[theory]
+    except KeyError:
+        raise ValueError(f"theory must be one of {THEORIES}, got {theory!r}") from None
+    p = (k, material.alpha, material.K_s, material.K_theta)
+    g = getattr(nls, f"g_{case}")(*p)
+    return eps**2 * abs(nls.g1(*p)) * nls.mi_growth_rate(np.asarray(q_offset) / eps, g, A0)
+
+
+def measure_gain(simulate, seeds, **params) -> dict | None:
+    """Sideband growth rates sigma(q) from linear-stage fits, mean and spread over seeds.
+
+    Parameters
+    ----------
+    simulate : callable
+        ``simulate(**params)`` returning a :class:`Run` with ``store="spectrum"``
+        (:func:`numerics.simulate`, or a cached version of it).
+    seeds : iterable of int
+        Noise seeds, one run each.
+    **params
+        Everything else the run needs (material, case, N, k, A0, t_end, ...).
+
+    Returns
+    -------
+    dict or None
+        ``q`` (N//2 + 1,), ``k`` (snapped), ``N``, ``sigma`` and ``sigma_std`` (N//2 + 1,),
+        the fit ``windows`` (T0, T1) per seed and the number of ``seeds`` that reached a
+        linear stage; None when no run did (a stable run).
+    """
+    rates, windows, run = [], [], None
+    for seed in seeds:
+        run = simulate(**dict(params, seed=seed, store="spectrum"))
+        win = an.linear_stage(run.theta_hat, run.m, run.N)
+        if win is None:
+            continue
+        rates.append(an.growth_rates(run.t, run.theta_hat, win))
+        windows.append((float(run.t[win[0]]), float(run.t[win[1]])))
+    if not rates:
+        return None
+    rates = np.array(rates)
+    spread = rates.std(axis=0, ddof=1) if len(rates) > 1 else np.zeros(rates.shape[1])
+    return {"q": run.wavenumbers, "k": run.k, "N": run.N, "sigma": rates.mean(axis=0),
+            "sigma_std": spread, "windows": windows, "seeds": len(rates)}
+
+
+def relative_errors(measured: dict, predicted: dict) -> dict:
+    """measured / predicted - 1 of the peak gain and the half-gain band edge (None where
+    the theory predicts no gain, or has no edge); inputs from :func:`band_summary`."""
+    if not predicted["peak_gain"]:
+        return {"peak_error": None, "edge_error": None}
+    edge = predicted["band_edge"]
+    return {"peak_error": measured["peak_gain"] / predicted["peak_gain"] - 1,
+            "edge_error": measured["band_edge"] / edge - 1 if np.isfinite(edge) else None}

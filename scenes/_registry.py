@@ -1,0 +1,71 @@
+"""The scene registry and the checks a scene reports.
+
+A scene registers itself with :func:`register`; ``flexmm scenes`` lists the registry and
+the tests run every registered scene. A check says what it compares and what is expected:
+agreement, or a known disagreement with the paper (an erratum or a README finding), so
+the report calls "FAIL" only what nobody expected.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Callable
+
+#: expectation of a check: theory and numerics agree
+AGREE = "agree"
+
+
+@dataclass(frozen=True)
+class Scene:
+    """One figure: ``compute(ctx) -> (data, summary)``, ``plot(data) -> Figure``.
+
+    ``data`` holds everything ``plot`` needs (arrays and plain values); it is stored in
+    ``data.h5``, so ``plot`` can redraw the figure without computing. ``summary`` holds
+    the ``checks`` and any numbers the report shows; ``report(summaries)`` (optional)
+    returns the scene's own Markdown section of ``report.md``.
+    """
+
+    name: str
+    description: str
+    figure: str  # the paper's figure it reproduces, or "beyond the paper"
+    runtime: str  # expected run time, full (quick)
+    simulates: bool
+    compute: Callable = field(repr=False)
+    plot: Callable = field(repr=False)
+    report: Callable | None = field(default=None, repr=False)
+
+
+REGISTRY: dict[str, Scene] = {}
+
+
+def register(scene: Scene) -> Scene:
+    if scene.name in REGISTRY:
+        raise ValueError(f"scene {scene.name!r} registered twice")
+    REGISTRY[scene.name] = scene
+    return scene
+
+
+def get_scene(name: str) -> Scene:
+    if name not in REGISTRY:
+        raise ValueError(f"unknown scene {name!r}; `flexmm scenes` lists: "
+                         f"{', '.join(REGISTRY)}")
+    return REGISTRY[name]
+
+
+def known(reason: str) -> str:
+    """Expectation of a check that records a known disagreement with the paper;
+    ``reason`` names it: "erratum 6" or "finding: <README section>"."""
+    return f"paper disagrees ({reason})"
+
+
+def check(name: str, theory: str, numerics: str, agrees: bool, expect: str = AGREE) -> dict:
+    """One row of the report: what is compared, the two sides, whether they agree, and
+    whether agreement was expected (``AGREE``) or a known disagreement (:func:`known`)."""
+    agrees = bool(agrees)
+    expected = (expect == AGREE) == agrees
+    if expected:
+        outcome = "agrees" if agrees else expect
+    else:
+        outcome = "FAIL" if expect == AGREE else "FAIL (expected: " + expect + ")"
+    return {"check": name, "theory": theory, "numerics": numerics, "agrees": agrees,
+            "expect": expect, "outcome": outcome, "pass": expected}

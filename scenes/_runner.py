@@ -1,0 +1,197 @@
+"""Running scenes: the context a scene computes in, its files, the report.
+
+``run_scene`` writes ``OUT/NAME/{data.h5, figure.png, figure.pdf, summary.json}``, each
+atomically (complete or absent); ``replot_scene`` redraws the figure from ``data.h5``
+alone; ``run_all`` runs every scene and writes ``OUT/report.md``.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import dataclass
+from pathlib import Path
+
+import h5py
+import numpy as np
+
+from derivation.files import atomic_write, write_text
+from numerics._cache import cached_simulate
+
+from ._plotting import plt
+from ._registry import REGISTRY, get_scene
+
+
+def package_version() -> str:
+    from importlib.metadata import PackageNotFoundError, version
+
+    try:
+        return version("flexmm-mi")
+    except PackageNotFoundError:  # pragma: no cover
+        return "unknown"
+
+
+@dataclass
+class Context:
+    """What a scene may use: quick or not, the seed, and simulations through the cache."""
+
+    quick: bool = False
+    seed: int = 0
+    force: bool = False
+    cache_dir: Path | None = None
+
+    def simulate(self, **params):
+        """``numerics.simulate(**params)`` through the on-disk cache."""
+        params.setdefault("progress", None)
+        return cached_simulate(self.cache_dir, self.force, **params)
+
+
+# --- data.h5: arrays as datasets, everything else as attributes -------------------------
+
+def _is_array(v):
+    return isinstance(v, np.ndarray) and v.dtype.kind in "fcib"
+
+
+def write_data(path: Path, data: dict):
+    """Arrays become datasets (a "/" in a name makes groups); other values attributes,
+    native when int/float/str/bool, JSON otherwise (their names listed in ``_json``)."""
+    encoded = []
+    with atomic_write(path, mode=None) as tmp, h5py.File(tmp, "w") as f:
+        for name, val in data.items():
+            if val is None:
+                continue
+            if _is_array(val):
+                f.create_dataset(name, data=val)
+            elif isinstance(val, (bool, int, float, str, np.bool_, np.integer, np.floating)):
+                f.attrs[name] = val
+            else:
+                f.attrs[name] = json.dumps(val, sort_keys=True, default=_jsonable)
+                encoded.append(name)
+        f.attrs["_json"] = json.dumps(sorted(encoded))
+
+
+def read_data(path: Path) -> dict:
+    """The ``data`` dict a scene's ``compute`` returned, from its ``data.h5``."""
+    out = {}
+    with h5py.File(path, "r") as f:
+        encoded = set(json.loads(f.attrs.get("_json", "[]")))
+        f.visititems(lambda name, obj: out.__setitem__(name, obj[()])
+                     if isinstance(obj, h5py.Dataset) else None)
+        for name, val in f.attrs.items():
+            if name == "_json":
+                continue
+            val = val.item() if hasattr(val, "item") else val
+            out[name] = json.loads(val) if name in encoded else val
+    return out
+
+
+def _jsonable(x):
+    if isinstance(x, (np.floating, np.integer)):
+        return x.item()
+    if isinstance(x, np.bool_):
+        return bool(x)
+    if isinstance(x, np.ndarray):
+        return x.tolist()
+    if isinstance(x, tuple):
+        return list(x)
+    raise TypeError(type(x))
+
+
+def _strict(x):
+    """JSON-safe copy: NaN and inf become null (strict parsers reject bare NaN)."""
+    if isinstance(x, dict):
+        return {str(k): _strict(v) for k, v in x.items()}
+    if isinstance(x, (list, tuple)):
+        return [_strict(v) for v in x]
+    if isinstance(x, np.ndarray):
+        return _strict(x.tolist())
+    if isinstance(x, (np.floating, np.integer, np.bool_)):
+        x = x.item()
+    if isinstance(x, float) and not math.isfinite(x):
+        return None
+    return x
+
+
+def _save_figure(fig, folder: Path, quick: bool):
+    if quick:
+        fig.text(0.99, 0.005, "QUICK MODE (reduced N / t_end / grid)", ha="right",
+                 va="bottom", fontsize=7, color="red")
+    for ext, kw in (("png", {"dpi": 110}), ("pdf", {})):
+        with atomic_write(folder / f"figure.{ext}", mode=None) as tmp:
+            fig.savefig(tmp, format=ext, **kw)
+    plt.close(fig)
+
+
+def run_scene(name: str, out: Path | str = "out", quick: bool = False, seed: int = 0,
+              force: bool = False) -> dict:
+    """Run one scene; writes OUT/NAME/{data.h5, figure.png, figure.pdf, summary.json}."""
+    sc = get_scene(name)
+    if not isinstance(seed, int) or isinstance(seed, bool) or not 0 <= seed < 2**63:
+        raise ValueError(f"seed must be an integer in [0, 2^63), got {seed!r}")
+    out = Path(out)
+    ctx = Context(quick=quick, seed=seed, force=force, cache_dir=out / ".cache")
+    data, summary = sc.compute(ctx)
+    data = dict(data, scene=name, seed=seed, quick=quick, package_version=package_version())
+    folder = out / name
+    folder.mkdir(parents=True, exist_ok=True)
+    write_data(folder / "data.h5", data)
+    _save_figure(sc.plot(data), folder, quick)
+    summary = {"scene": name, **summary, "seed": seed, "quick": quick,
+               "package_version": package_version()}
+    write_text(folder / "summary.json",
+               json.dumps(_strict(summary), indent=2, allow_nan=False) + "\n")
+    return summary
+
+
+def replot_scene(name: str, out: Path | str = "out") -> Path:
+    """Redraw OUT/NAME/figure.{png,pdf} from OUT/NAME/data.h5, computing nothing."""
+    sc = get_scene(name)
+    folder = Path(out) / name
+    path = folder / "data.h5"
+    if not path.is_file():
+        raise ValueError(f"{path} does not exist: run `flexmm scene {name}` first")
+    data = read_data(path)
+    _save_figure(sc.plot(data), folder, bool(data.get("quick")))
+    return folder
+
+
+def _pct(x):
+    return "n/a" if x is None or not np.isfinite(x) else f"{100 * x:+.1f}%"
+
+
+def write_report(summaries: dict, out: Path, quick: bool) -> Path:
+    """OUT/report.md: one row per check (theory, numerics, outcome), then the findings
+    that were expected, anything unexpected, and each scene's own section."""
+    lines = ["# Theory versus numerics", "",
+             f"Mode: {'quick (reduced N / t_end / grids; see each figure)' if quick else 'full'}."
+             f" Package {package_version()}.", "",
+             "Outcome: *agrees*; *paper disagrees (...)*: a known disagreement with the paper "
+             "(erratum or README finding), as expected; **FAIL**: something unexpected.", "",
+             "| scene | check | theory | numerics | outcome |", "|---|---|---|---|---|"]
+    failed = []
+    for name, s in summaries.items():
+        for c in s.get("checks", []):
+            shown = c["outcome"] if c["pass"] else f"**{c['outcome']}**"
+            if not c["pass"]:
+                failed.append((name, c))
+            lines.append(f"| {name} | {c['check']} | {c['theory']} | {c['numerics']} | {shown} |")
+    lines.append("")
+    if failed:
+        lines.append("## Unexpected results")
+        for name, c in failed:
+            lines.append(f"- **{name}** - {c['check']}: theory {c['theory']}, numerics "
+                         f"{c['numerics']} ({c['outcome']}).")
+    else:
+        lines.append("Every check came out as expected: agreement, or a known disagreement "
+                     "with the paper.")
+    for name, s in summaries.items():
+        sc = REGISTRY.get(name)
+        if sc is not None and sc.report is not None:
+            lines += [""] + sc.report(s)
+    return write_text(Path(out) / "report.md", "\n".join(lines) + "\n")
+
+
+def run_all(out="out", quick=False, seed=0, force=False, names=None) -> Path:
+    """Run every scene (or ``names``) and write OUT/report.md."""
+    summaries = {name: run_scene(name, out, quick, seed, force) for name in names or REGISTRY}
+    return write_report(summaries, Path(out), quick)

@@ -1,0 +1,110 @@
+"""Fig. 3 (Panels_delta_map): sign of g over (k, delta), and the verdicts beyond the NLS.
+
+Top row, the paper's (white: g > 0, MI; black: g < 0), eqs. `g1`, `g2`: (a) case (I),
+alpha = 2.5; (b-d) case (II), alpha = 1.5, 2.5, 3.5; K_theta = K_s - delta. Bottom row,
+beyond the paper, alpha = 2.5: (e, f) sign of the semi-discrete NLS's g
+(generated/lattice_coefficients.py, mean flow included), (g, h) the exact lattice verdict
+at the paper's amplitude 2 eps A0 = 0.02: white where some sideband grows (Hill's method,
+``numerics.stability_map``, 200 x 200 full). Checks that case (I) has
+sign(g) = -sign(delta) everywhere. About 40 s (quick about 2 s).
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+from derivation import paper
+from generated import coefficients as co
+from generated import lattice_coefficients as la
+from numerics import stability_map
+
+from ._plotting import case_label, image, mark_points, plt
+from ._registry import Scene, check, register
+
+#: the paper's panels (a-d): (case, alpha)
+PANELS = (("rotation", 2.5), ("coupled", 1.5), ("coupled", 2.5), ("coupled", 3.5))
+#: delta range of Figs. 3-4
+DELTA_MAX = 0.015
+
+
+def sign_grid(quick):
+    """The (k, delta) grid of Figs. 3-4, without delta = 0 (where g1 = 0)."""
+    n = 80 if quick else 400
+    k = np.linspace(0.005, np.pi, n)
+    delta = np.linspace(-DELTA_MAX, DELTA_MAX, n)
+    return k, delta[np.abs(delta) > 1e-9]
+
+
+def compute(ctx):
+    k, delta = sign_grid(ctx.quick)
+    K, D = np.meshgrid(k, delta, indexing="xy")
+    Ks = paper.K_S
+    data = {"k": k, "delta": delta, "K_s": Ks, "alpha": [a for _, a in PANELS],
+            "amplitude_exact": 2 * paper.EPS * paper.A0}
+    for (case, al), lab in zip(PANELS, "abcd"):
+        with np.errstate(all="ignore"):
+            data[f"sign_{lab}"] = np.sign(getattr(co, f"g_{case}")(K, al, Ks, Ks - D))
+    n_exact = 40 if ctx.quick else 200
+    ke = np.linspace(0.01, np.pi - 0.01, n_exact)
+    de = np.linspace(-DELTA_MAX, DELTA_MAX, n_exact)
+    KE, DE = np.meshgrid(ke, de, indexing="xy")
+    data["k_exact"], data["delta_exact"] = ke, de
+    timing, agree = {}, {}
+    for case, lab_s, lab_x in (("rotation", "e", "g"), ("coupled", "f", "h")):
+        t0 = time.perf_counter()
+        with np.errstate(all="ignore"):
+            data[f"sign_{lab_s}"] = np.sign(getattr(la, f"g_{case}")(K, paper.ALPHA, Ks, Ks - D))
+        timing[f"semi_discrete_{case}_s"] = time.perf_counter() - t0
+        t0 = time.perf_counter()
+        gain = stability_map(KE, DE, case, paper.ALPHA, Ks, data["amplitude_exact"])
+        timing[f"exact_{case}_s"] = time.perf_counter() - t0
+        data[f"gain_{lab_x}"] = gain
+        # how often each NLS verdict agrees with the exact one, on the exact grid
+        with np.errstate(all="ignore"):
+            paper_mi = getattr(co, f"g_{case}")(KE, paper.ALPHA, Ks, Ks - DE) > 0
+            semi_mi = getattr(la, f"g_{case}")(KE, paper.ALPHA, Ks, Ks - DE) > 0
+        agree[case] = {"paper_nls": float(np.mean(paper_mi == (gain > 0))),
+                       "semi_discrete_nls": float(np.mean(semi_mi == (gain > 0)))}
+    ok_I = bool(np.all(data["sign_a"] == -np.sign(D)))
+    frac = {lab: float(np.mean(data[f"sign_{lab}"] > 0)) for lab in "abcdef"}
+    frac.update({lab: float(np.mean(data[f"gain_{lab}"] > 0)) for lab in "gh"})
+    checks = [check("case I: sign(g) = -sign(delta) on the whole (k, delta) grid",
+                    "paper, Sec. 'Parametric study'", str(ok_I), ok_I)]
+    return data, {"focusing_fraction": frac, "verdict_agreement_with_exact": agree,
+                  "timing_s": timing, "exact_grid": [n_exact, n_exact], "checks": checks}
+
+
+def plot(data):
+    k, delta, ke, de = data["k"], data["delta"], data["k_exact"], data["delta_exact"]
+    fig, axes = plt.subplots(2, 4, figsize=(13, 7), sharey=True)
+    gray = {"cmap": "gray", "vmin": -1, "vmax": 1}
+    for ax, (case, al), lab in zip(axes[0], PANELS, "abcd"):
+        image(ax, k, delta, data[f"sign_{lab}"], **gray)
+        ax.set_title(f"({lab}) case {case_label(case)}, alpha = {al}", fontsize=9)
+        if al == paper.ALPHA:
+            mark_points(ax)
+    for ax, case, lab in zip(axes[1, :2], ("rotation", "coupled"), "ef"):
+        image(ax, k, delta, data[f"sign_{lab}"], **gray)
+        ax.set_title(f"({lab}) semi-discrete NLS, case {case_label(case)}", fontsize=9)
+        mark_points(ax)
+    for ax, case, lab in zip(axes[1, 2:], ("rotation", "coupled"), "gh"):
+        gain = data[f"gain_{lab}"]
+        verdict = np.where(np.isnan(gain), 0.0, np.where(gain > 0, 1.0, -1.0))
+        image(ax, ke, de, verdict, **gray)
+        ax.set_title(f"({lab}) exact lattice, case {case_label(case)}, "
+                     f"a = {data['amplitude_exact']:g}", fontsize=9)
+        mark_points(ax)
+    for ax in axes[1]:
+        ax.set_xlabel("k")
+    for row in axes:
+        row[0].set_ylabel("delta")
+    fig.tight_layout()
+    return fig
+
+
+SCENE = register(Scene(
+    "fig3-g-sign", "sign of g over (k, delta): case I and case II for alpha = 1.5, 2.5, 3.5; "
+    "plus semi-discrete NLS and exact lattice maps", "Fig. 3 (Panels_delta_map)",
+    "~40 s (quick ~2 s)", False, compute, plot))

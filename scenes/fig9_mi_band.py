@@ -1,0 +1,81 @@
+"""Fig. 9 (Spectrumline): the MI band Omega_I(K) for A0 = 0.8, 1.4 and early spectra.
+
+(a, b) Omega_I (eq. `Omega_I`) for the blue point case II and the green point case I;
+(c, d) |theta_hat| at the caption's times (blue: 2500, 1100; green: 5000, 1700 - the
+caption says case II twice, erratum 2), with k + eps K_m (dotted) and k + eps K_c
+(dashed). Checks that the spectral peak lies inside the predicted band. About 6 s
+(quick about 2 s).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from derivation import paper
+from generated import coefficients as co
+from numerics import harmonic_bins, nls_summary
+
+from ._plotting import case_label, plt
+from ._registry import Scene, check, register
+from ._runs import run_parameters
+
+AMPLITUDES = ((0.8, "C0"), (1.4, "C3"))
+
+
+def compute(ctx):
+    data, checks = {}, []
+    for point, case in paper.MI_RUNS:
+        kk = paper.k(point)
+        for A0, _ in AMPLITUDES:
+            th = nls_summary(paper.material(point), case, kk, paper.EPS, A0)
+            K = np.linspace(0, 1.05 * th["K_c"], 400)
+            t_at = paper.FIG9_TIMES[(point, A0)]
+            params = run_parameters(ctx, point, t_at, case=case, A0=A0, t_end=t_at,
+                                    save_every=t_at, store="spectrum")
+            run = ctx.simulate(**params)
+            spec = run.theta_hat[-1]
+            mask = np.ones(spec.size, bool)
+            mask[harmonic_bins(run.m, run.N)] = False
+            upper = mask & (run.wavenumbers > run.k) & (run.wavenumbers < 2 * run.k)
+            q_peak = float(run.wavenumbers[np.flatnonzero(upper)[np.argmax(spec[upper])]])
+            lo, hi = kk + paper.EPS * th["K_m"], kk + paper.EPS * th["K_c"]
+            checks.append(check(f"Fig. 9 {point} case {case} A0 = {A0}: spectral peak at "
+                                f"T = {t_at:g} inside the band",
+                                f"k + eps K_m = {lo:.3f}, k + eps K_c = {hi:.3f}",
+                                f"peak at q = {q_peak:.3f}", run.k < q_peak < hi))
+            key = f"{point}_A0_{A0}"
+            data.update({f"{key}_spectrum": spec, f"{key}_q": run.wavenumbers,
+                         f"{key}_K": K, f"{key}_Omega_I": co.mi_growth_rate(K, th["g"], A0),
+                         f"{key}_k_plus_eps_K_m": lo, f"{key}_k_plus_eps_K_c": hi,
+                         f"{key}_T": t_at})
+    data.update(alpha=paper.ALPHA, K_s=paper.K_S, eps=paper.EPS, noise=paper.NOISE)
+    return data, {"checks": checks}
+
+
+def plot(data):
+    fig, axes = plt.subplots(2, 2, figsize=(10, 7))
+    for col, (point, case) in enumerate(paper.MI_RUNS):
+        kk = paper.k(point)
+        for A0, color in AMPLITUDES:
+            key = f"{point}_A0_{A0}"
+            axes[0, col].plot(kk + data["eps"] * data[f"{key}_K"], data[f"{key}_Omega_I"],
+                              color, label=f"A0 = {A0}")
+            axes[1, col].semilogy(data[f"{key}_q"], data[f"{key}_spectrum"], color, lw=0.8,
+                                  label=f"A0 = {A0}, T = {data[f'{key}_T']:g}")
+            for ax in axes[:, col]:
+                ax.axvline(data[f"{key}_k_plus_eps_K_m"], color=color, ls=":")
+                ax.axvline(data[f"{key}_k_plus_eps_K_c"], color=color, ls="--")
+        axes[0, col].set_title(f"{point} point, case {case_label(case)}")
+        axes[0, col].set_xlabel("k + eps K")
+        axes[0, col].set_ylabel("Omega_I (NLS time)")
+        axes[1, col].set_xlabel("q (rad per site)")
+        axes[1, col].set_xlim(0, np.pi)
+        axes[0, col].legend(fontsize=8)
+        axes[1, col].legend(fontsize=8)
+    fig.tight_layout()
+    return fig
+
+
+SCENE = register(Scene("fig9-mi-band", "MI band Omega_I(K) for A0 = 0.8, 1.4 and early-time "
+                       "spectra", "Fig. 9 (Spectrumline)", "~6 s (quick ~2 s)", True,
+                       compute, plot))

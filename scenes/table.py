@@ -1,0 +1,37 @@
+"""`flexmm table`: the NLS coefficients at the paper's two test points (instant: the
+generated module only, no SymPy work)."""
+
+from __future__ import annotations
+
+from derivation import paper
+from numerics import nls_summary
+
+COLUMNS = ("point", "case", "k", "delta", "omega", "v_g", "g1", "g2", "g", "K_c", "K_m",
+           "verdict")
+
+
+def rows(A0: float = paper.A0):
+    """One dict per (point, case) with omega, v_g, g1, g2, g, K_c, K_m, verdict."""
+    out = []
+    for point in paper.POINTS:
+        for case in ("rotation", "coupled"):
+            s = nls_summary(paper.material(point), case, paper.k(point), paper.EPS, A0)
+            out.append({"point": point, "case": case, "k": paper.k(point),
+                        "delta": paper.delta(point), **s,
+                        "K_c": s.get("K_c", float("nan")), "K_m": s.get("K_m", float("nan")),
+                        "verdict": "stable (defocusing)" if s["stable"] else "MI (focusing)"})
+    return out
+
+
+def format_table(A0: float = paper.A0) -> str:
+    lines = [f"NLS coefficients at the paper's test points (alpha = {paper.ALPHA}, K_s = "
+             f"{paper.K_S}, A0 = {A0}; K in NLS units, sideband offset eps*K)", ""]
+    table = [list(COLUMNS)]
+    for r in rows(A0):
+        table.append([r[c] if isinstance(r[c], str) else f"{r[c]:.5g}" for c in COLUMNS])
+    widths = [max(len(row[i]) for row in table) for i in range(len(COLUMNS))]
+    for j, row in enumerate(table):
+        lines.append("  ".join(cell.rjust(w) for cell, w in zip(row, widths)))
+        if j == 0:
+            lines.append("  ".join("-" * w for w in widths))
+    return "\n".join(lines)
