@@ -18,11 +18,13 @@ from pathlib import Path
 
 import numpy as np
 
-from numerics import Material, integrate, simulate
+from derivation import paper
+from numerics import integrate, simulate
 from numerics._baseline import numpy_accel, numpy_rk4
 from numerics._kernels import accel
 
-BLUE = Material(2.5, 0.01851, 0.01551)
+BLUE = paper.material("blue")
+PARAMS = (BLUE.alpha**2, BLUE.K_s, BLUE.K_theta)
 
 
 def best_of(fn, repeat):
@@ -52,11 +54,11 @@ def main(quick=False):
     th, U = rng.normal(0, 0.02, N), rng.normal(0, 1e-4, N)
     s, c, v, a1, a2 = (np.empty(N) for _ in range(5))
     reps = 2000 if quick else 20000
-    accel(th, U, True, 6.25, 0.01851, 0.01551, s, c, v, a1, a2)  # compile
+    accel(th, U, True, *PARAMS, s, c, v, a1, a2)  # compile
 
     def kernel():
         for _ in range(reps):
-            accel(th, U, True, 6.25, 0.01851, 0.01551, s, c, v, a1, a2)
+            accel(th, U, True, *PARAMS, s, c, v, a1, a2)
 
     def sincos():
         for _ in range(reps):
@@ -71,7 +73,7 @@ def main(quick=False):
     t_sincos = best_of(sincos, 3) / reps / N * 1e9
     t_np = best_of(npforce, 3) / (reps // 10) / N * 1e9
 
-    state = simulate(BLUE, "coupled", N, 0.81681, t_end=1.0, dt=0.05).final_state
+    state = simulate(BLUE, "coupled", N, paper.k("blue"), t_end=1.0, dt=paper.DT).final_state
     T = 20.0 if quick else 100.0
     integrate(state, BLUE, "coupled", 1.0, 0.05)  # compile
     t_rk4 = best_of(lambda: integrate(state, BLUE, "coupled", T, 0.05), 3)
@@ -79,7 +81,7 @@ def main(quick=False):
 
     t_end = 500.0 if quick else 5000.0
     t0 = time.perf_counter()
-    run = simulate(BLUE, "coupled", N, 0.81681, t_end=t_end, dt=0.05, store="spectrum",
+    run = simulate(BLUE, "coupled", N, paper.k("blue"), t_end=t_end, dt=paper.DT, store="spectrum",
                    save_every=5.0, progress=False)
     t_paper = time.perf_counter() - t0
     res = {

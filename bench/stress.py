@@ -20,14 +20,14 @@ from pathlib import Path
 
 import numpy as np
 
-from numerics import (BlowUpError, LatticeState, Material, energy, initial_condition,
+from derivation import paper
+from numerics import (BlowUpError, LatticeState, Material, energy,
                       integrate, simulate)
 from numerics._integrators import get_method
 
 HERE = Path(__file__).parent
 ROOT = HERE.parent
-BLUE = Material(2.5, 0.01851, 0.01551)
-GREEN = Material(2.5, 0.01851, 0.02151)
+BLUE, GREEN = paper.material("blue"), paper.material("green")
 
 
 def random_state(N, case, amp=1e-3, seed=0):
@@ -105,7 +105,7 @@ def amplitude_checks(quick):
     epss = [0.01, 0.05, 0.2, 0.5] if quick else [0.01, 0.03, 0.1, 0.2, 0.35, 0.5]
     for eps in epss:
         amp = 2 * eps
-        for case, mat, k in (("coupled", BLUE, 0.81681), ("rotation", GREEN, 0.92991)):
+        for case, mat, k in (("coupled", BLUE, paper.k("blue")), ("rotation", GREEN, paper.k("green"))):
             dt = 0.05 if amp < 0.5 else 0.02  # frequencies grow with amplitude
             try:
                 run = simulate(mat, case, 128, 2 * np.pi * round(k * 128 / 2 / np.pi) / 128,
@@ -128,7 +128,7 @@ def singular_checks():
 
     out = []
     # k at the continuum resonance k^2 = omega^2: u2 diverges, with a RuntimeWarning
-    al, Ks, Kt = 2.5, 0.01851, 0.01551
+    al, Ks, Kt = BLUE.alpha, BLUE.K_s, BLUE.K_theta
     ks = np.linspace(0.5, 1.2, 200001)
     kres = ks[np.argmin(np.abs(ks**2 - co.omega(ks, al, Ks, Kt) ** 2))]
     with warnings.catch_warnings(record=True):
@@ -143,8 +143,8 @@ def singular_checks():
     out.append(check("delta = 0: g = g2/g1 is inf/nan with a RuntimeWarning, no exception",
                      (not np.isfinite(g)) and len(w) > 0, g=str(g), warnings=len(w)))
     # K_theta -> 0 and large alpha: the simulator runs (dt scaled by omega_max)
-    for mat, label in ((Material(2.5, 0.01851, 1e-8), "K_theta = 1e-8"),
-                       (Material(50.0, 0.01851, 0.01551), "alpha = 50")):
+    for mat, label in ((Material(paper.ALPHA, paper.K_S, 1e-8), "K_theta = 1e-8"),
+                       (Material(50.0, paper.K_S, BLUE.K_theta), "alpha = 50")):
         dt = 0.1 / mat.omega_max("coupled")  # omega_max dt = 0.1: RK4 error ~ 1e-7
         st = random_state(64, "coupled", 1e-3)
         E0 = energy(st, mat, "coupled")

@@ -62,13 +62,13 @@ def derive_continuum(order_h: int = 3) -> ContinuumLimit:
     r"""Taylor-expand eq. `norm` for long waves and weak nonlinearity.
 
     Book-keeping: lattice spacing ``h`` (theta_{n+-1} = theta(X +- h)), amplitude
-    ``eta`` for theta and ``mu`` for U. Every monomial eta^a mu^b h^c is classified:
+    ``eta`` for theta and ``eta_U`` for U. Every monomial eta^a eta_U^b h^c is classified:
     linear terms (a + b = 1) are kept up to h^2 (the lowest order that carries
     dispersion), nonlinear terms only at the lowest power of h at which their
     amplitude class appears (long waves: a derivative on a nonlinear term is a
-    higher-order correction). Then h = eta = mu = 1 (X is measured in lattice units).
+    higher-order correction). Then h = eta = eta_U = 1 (X is measured in lattice units).
     """
-    h, eta, mu = sp.symbols("h eta mu", positive=True)
+    h, eta, eta_U = sp.symbols("h eta eta_U", positive=True)
     # Derivatives of the fields as plain symbols: d[j] = d^j/dX^j.
     th_d = sp.symbols("th0:%d" % (order_h + 1))
     U_d = sp.symbols("U0:%d" % (order_h + 1))
@@ -84,7 +84,7 @@ def derive_continuum(order_h: int = 3) -> ContinuumLimit:
         return x - x**3 / 6
 
     tm, t0, tp = (eta * shifted(th_d, s) for s in (-1, 0, 1))
-    Um, U0, Up = (mu * shifted(U_d, s) for s in (-1, 0, 1))
+    Um, U0, Up = (eta_U * shifted(U_d, s) for s in (-1, 0, 1))
     accs = lattice_accelerations(Um, U0, Up, tm, t0, tp, cos=cos_s, sin=sin_s)
 
     U, th = fields()
@@ -93,7 +93,7 @@ def derive_continuum(order_h: int = 3) -> ContinuumLimit:
 
     kept_all, dropped = [], []
     for acc in accs:
-        poly = sp.Poly(sp.expand(acc), eta, mu, h)
+        poly = sp.Poly(sp.expand(acc), eta, eta_U, h)
         classes: dict[tuple[int, int], list] = {}
         for (a, b, c), coeff in poly.terms():
             if a + 2 * b > 3 or c > order_h:

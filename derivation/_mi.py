@@ -45,12 +45,12 @@ class MIResult:
 
 
 def analyse() -> MIResult:
-    delta = sp.Symbol("delta", positive=True)  # small-perturbation book-keeping
+    small = sp.Symbol("small", positive=True)  # perturbation book-keeping (not K_s - K_theta)
     w0 = sp.Symbol("omega0", real=True)
     b = sp.Function("b", real=True)(xi, tau)
     ph = sp.Function("phi", real=True)(xi, tau)
-    phase = k0 * xi - w0 * tau + delta * ph
-    amp = A0 + delta * b
+    phase = k0 * xi - w0 * tau + small * ph
+    amp = A0 + small * b
     # B = amp e^{i phase}; divide the NLS residual by e^{i phase} analytically:
     # B_tau/e = amp_tau + i amp phase_tau, B_xixi/e = amp'' + 2 i amp' phase' + i amp phase''
     #           - amp phase'^2
@@ -60,9 +60,9 @@ def analyse() -> MIResult:
                                   - amp * phase.diff(xi) ** 2)
            + g * amp**3)
     res = sp.expand(res)
-    zeroth = res.coeff(delta, 0)
+    zeroth = res.coeff(small, 0)
     omega0 = sp.solve(zeroth, w0)[0]
-    first = sp.expand(res.coeff(delta, 1).subs(w0, omega0))
+    first = sp.expand(res.coeff(small, 1).subs(w0, omega0))
     # b, phi and their derivatives are real: swap them for real symbols to split parts
     atoms = sorted(first.atoms(sp.Derivative) | {b, ph}, key=sp.default_sort_key)
     real = {a: sp.Dummy(real=True) for a in atoms}

@@ -38,6 +38,20 @@ from ._model import Material, check_case
 
 #: default truncation: theta harmonics |p| <= HARMONICS (odd), U harmonics |p| < HARMONICS.
 HARMONICS = 4
+#: Newton on the harmonic balance: relative residual to reach, iterations allowed, and
+#: the residual below which a solution counts as converged (the branch test)
+NEWTON_TOL, NEWTON_ITERATIONS, BRANCH_RESIDUAL = 1e-13, 30, 1e-8
+#: continuation in the amplitude when Newton from the linear wave fails: number of steps
+CONTINUATION_STEPS = 8
+#: a solution on the branch of the linear wave keeps its first harmonic within this
+#: fraction of the peak rotation (else Newton found another orbit)
+BRANCH_FIRST_HARMONIC = 0.5
+#: a Hill mode is a sideband (MI) mode when the two sidebands p = +-1 hold more than
+#: SIDEBAND_SHARE of its kinetic energy, each of them at least SIDEBAND_PRESENT
+SIDEBAND_SHARE, SIDEBAND_PRESENT = 0.75, 0.05
+#: offsets searched by stability_map: at amplitude 0.02 every band of the paper's
+#: parameter range lies inside (0, 1.5]
+MAP_OFFSETS = np.linspace(0.075, 1.5, 20)
 
 
 def _shift(coef, harm, k, phi, kind):
@@ -114,7 +128,8 @@ def _residual(x, k, amp, al, Ks, Kt, H, coupled, phi):
     return np.concatenate(R, axis=1)
 
 
-def _solve_plane_waves(k, amp, al, Ks, Kt, coupled, H, tol=1e-13, max_iter=30, x0=None):
+def _solve_plane_waves(k, amp, al, Ks, Kt, coupled, H, tol=NEWTON_TOL,
+                       max_iter=NEWTON_ITERATIONS, x0=None):
     """Newton on the batch; returns x (B, 2H+1) and the final residual norm (B,)."""
     B = k.size
     M = max(32, 8 * H)
@@ -203,7 +218,7 @@ def plane_wave(material: Material, case: str, k: float, amplitude: float,
     if not _on_branch(x[0], res[0], amplitude):
         # continuation in the amplitude from the linear wave (large amplitudes)
         x = None
-        for a in np.linspace(0, amplitude, 9)[1:]:
+        for a in np.linspace(0, amplitude, CONTINUATION_STEPS + 1)[1:]:
             x, res = solve(a, x)
             if not _on_branch(x[0], res[0], a):
                 break
@@ -214,8 +229,8 @@ def _on_branch(x, res, amplitude):
     """Converged, and still the continuation of the linear wave: Omega > 0 and the first
     harmonic carrying most of the peak (else Newton found another orbit). Batched over
     leading axes: x (..., 2H+1), res (...)."""
-    return (np.all(np.isfinite(x), axis=-1) & (res < 1e-8)
-            & (np.abs(x[..., 0] / amplitude - 1) < 0.5) & (x[..., -1] > 0))
+    return (np.all(np.isfinite(x), axis=-1) & (res < BRANCH_RESIDUAL)
+            & (np.abs(x[..., 0] / amplitude - 1) < BRANCH_FIRST_HARMONIC) & (x[..., -1] > 0))
 
 
 def _check_harmonics(h):
@@ -346,7 +361,7 @@ def hill_spectrum(wave: PlaneWave, material: Material, q, P: int):
 def _is_mi(share):
     # MI modes hold nearly all their energy in the two sidebands, both present; the
     # relabelled copy of a mode at q - 2k holds about half, in p = -1 and p = -3 only.
-    return (share.sum(axis=-1) > 0.75) & (share.min(axis=-1) > 0.05)
+    return (share.sum(axis=-1) > SIDEBAND_SHARE) & (share.min(axis=-1) > SIDEBAND_PRESENT)
 
 
 #: growth rates below this fraction of Omega are round-off (the q = 0 Jordan block).
@@ -432,7 +447,7 @@ def stability_map(k, delta, case: str, alpha: float, K_s: float, amplitude: floa
     check_case(case)
     k = np.asarray(k, float)
     delta = np.broadcast_to(np.asarray(delta, float), k.shape)
-    q = np.linspace(0.075, 1.5, 20) if q is None else np.asarray(q, float).ravel()
+    q = MAP_OFFSETS if q is None else np.asarray(q, float).ravel()
     H = _check_harmonics(harmonics)
     if np.any(K_s - delta <= 0) or np.any((k <= 0) | (k >= np.pi)):
         raise ValueError("need K_theta = K_s - delta > 0 and 0 < k < pi on the whole grid")

@@ -10,14 +10,16 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from derivation import derive, derive_continuum, paper_forms
-from derivation._continuum import PAPER_C, K_s, K_theta, alpha, k
+from derivation import derive, derive_continuum, paper, paper_forms
+from derivation._continuum import K_s, K_theta, alpha, k
 from derivation._mi import A0, K, g
 from derivation._report import TEST_POINTS
 from generated import coefficients as co
 
 ROOT = Path(__file__).resolve().parents[1]
 GENERATED = ROOT / "generated"
+GENERATED_FILES = ("coefficients.py", "lattice_coefficients.py", "lattice_model.py",
+                   "derivation.md")
 
 
 @pytest.fixture(scope="module")
@@ -27,8 +29,8 @@ def d():
 
 def test_continuum_constants_from_lattice_taylor_expansion():
     cont = derive_continuum()
-    for name, paper in PAPER_C.items():
-        assert sp.simplify(cont.C[name] - paper) == 0, name
+    for name in ("C1", "C2", "C3", "C4"):
+        assert sp.simplify(cont.C[name] - getattr(paper_forms, name)) == 0, name
 
 
 @pytest.mark.parametrize("name", list(paper_forms.FORMS))
@@ -112,8 +114,12 @@ def test_growth_rate_band_structure():
 def test_broadcasting():
     kk = np.linspace(0.1, 1.0, 7)[:, None]
     kt = np.linspace(0.01, 0.03, 5)[None, :]
-    out = co.g_coupled(kk, 2.5, 0.01851 + 0.0013, kt)
+    out = co.g_coupled(kk, paper.ALPHA, paper.K_S + 0.0013, kt)
     assert out.shape == (7, 5)
+    # every entry is the scalar evaluation at its own (k, K_theta), bit for bit
+    each = [[co.g_coupled(float(a), paper.ALPHA, paper.K_S + 0.0013, float(b))
+             for b in kt.ravel()] for a in kk.ravel()]
+    assert np.array_equal(out, np.array(each))
 
 
 @pytest.mark.parametrize("point", list(TEST_POINTS))
@@ -190,19 +196,20 @@ def test_derive_is_deterministic_across_hash_seeds(tmp_path):
     env = dict(os.environ, PYTHONHASHSEED="4242")
     subprocess.run([sys.executable, "-m", "derivation", "--out", str(tmp_path)], check=True,
                    cwd=ROOT, env=env, capture_output=True)
-    for name in ("coefficients.py", "lattice_coefficients.py", "derivation.md"):
+    for name in GENERATED_FILES:
         assert (tmp_path / name).read_bytes() == (GENERATED / name).read_bytes(), name
 
 
 def test_importing_coefficients_does_not_import_sympy():
-    code = ("import sys, generated.coefficients as c; "
+    code = ("import sys, generated.coefficients as c, generated.lattice_model, "
+            "derivation.paper; "
             "assert 'sympy' not in sys.modules, 'sympy imported'; "
             "assert c.omega(0.5, 2.5, 0.02, 0.01) > 0")
     subprocess.run([sys.executable, "-c", code], check=True, cwd=ROOT)
 
 
 def test_generated_files_carry_the_banner():
-    for name in ("coefficients.py", "lattice_coefficients.py", "derivation.md"):
+    for name in GENERATED_FILES:
         head = (GENERATED / name).read_text().splitlines()[:5]
         assert any("DO NOT EDIT BY HAND" in line for line in head), name
         text = (GENERATED / name).read_text()

@@ -9,10 +9,11 @@ from numerics._hill import hill_spectrum
 from numerics._model import discrete_omega_longitudinal, discrete_omega_rotation
 from numerics._simulate import LatticeState
 
-ALPHA, K_S = 2.5, 0.01851
-BLUE = Material(ALPHA, K_S, 0.01551)
-GREEN = Material(ALPHA, K_S, 0.02151)
-K_BLUE, K_GREEN = 0.81681, 0.92991
+from derivation import paper  # noqa: E402
+
+ALPHA, K_S = paper.ALPHA, paper.K_S
+BLUE, GREEN = paper.material("blue"), paper.material("green")
+K_BLUE, K_GREEN = paper.k("blue"), paper.k("green")
 AMP = 0.02  # 2 eps A0 of the paper's runs
 
 

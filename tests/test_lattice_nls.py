@@ -9,8 +9,10 @@ from generated import coefficients as co
 from generated import lattice_coefficients as la
 from numerics import Material, mi_gain, plane_wave
 
-ALPHA, K_S = 2.5, 0.01851
-POINTS = {"blue": (0.81681, 0.01551), "green": (0.92991, 0.02151)}
+from derivation import paper  # noqa: E402
+
+ALPHA, K_S = paper.ALPHA, paper.K_S
+POINTS = {name: (p["k"], p["K_theta"]) for name, p in paper.POINTS.items()}
 LIMIT_FUNCS = ("omega", "group_velocity", "g1", "g2_rotation", "g_rotation")
 
 

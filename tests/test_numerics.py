@@ -5,14 +5,14 @@ import math
 import numpy as np
 import pytest
 
+from derivation import paper
 from generated import coefficients as co
 from numerics import (METHODS, BlowUpError, LatticeState, Material, SimulationInterrupted,
                       discrete_omega_longitudinal, discrete_omega_rotation, energy,
-                      get_method, integrate, simulate)
+                      get_method, initial_condition, integrate, simulate)
 from numerics._kernels import accel
 
-BLUE = Material(2.5, 0.01851, 0.01551)
-GREEN = Material(2.5, 0.01851, 0.02151)
+BLUE, GREEN = paper.material("blue"), paper.material("green")
 FIXED = [m for m in METHODS if get_method(m).fixed_step]
 
 
@@ -184,7 +184,7 @@ def test_energy_is_conserved_by_dop853_on_a_strongly_nonlinear_state():
 # --- simulate ------------------------------------------------------------------------
 
 def test_simulate_paper_initial_condition_and_snapping():
-    run = simulate(BLUE, "coupled", 500, 0.81681, t_end=1.0, dt=0.05, save_every=0.5)
+    run = simulate(BLUE, "coupled", paper.N, paper.k("blue"), t_end=1.0, dt=0.05, save_every=0.5)
     assert run.m == 65 and run.k == pytest.approx(2 * np.pi * 65 / 500)
     assert run.theta.shape == (3, 500) and run.U.shape == (3, 500)
     assert np.array_equal(run.t, [0.0, 0.5, 1.0])
@@ -196,7 +196,7 @@ def test_simulate_paper_initial_condition_and_snapping():
 
 
 def test_simulate_rotation_has_no_U_and_spectrum_storage():
-    run = simulate(GREEN, "rotation", 500, 0.92991, t_end=2.0, dt=0.05, store="spectrum")
+    run = simulate(GREEN, "rotation", paper.N, paper.k("green"), t_end=2.0, dt=0.05, store="spectrum")
     assert run.U is None and run.U_hat is None and run.theta is None
     assert run.theta_hat.shape[1] == 251
     # the carrier dominates the spectrum, with amplitude 2 eps A0
@@ -205,14 +205,22 @@ def test_simulate_rotation_has_no_U_and_spectrum_storage():
 
 
 def test_simulate_discrete_omega_option():
-    a = simulate(BLUE, "rotation", 100, 2 * np.pi * 13 / 100, t_end=0.1, dt=0.05)
-    b = simulate(BLUE, "rotation", 100, 2 * np.pi * 13 / 100, t_end=0.1, dt=0.05,
-                 omega_model="discrete")
-    ratio = b.theta[0] / a.theta[0]
-    assert np.allclose(ratio, 1)  # same positions...
-    wd = discrete_omega_rotation(a.k, BLUE)
-    wc = co.omega(a.k, BLUE.alpha, BLUE.K_s, BLUE.K_theta)
-    assert not np.isclose(wd, wc)
+    k = 2 * np.pi * 13 / 100
+    a = initial_condition(BLUE, "rotation", 100, k)
+    b = initial_condition(BLUE, "rotation", 100, k, omega_model="discrete")
+    assert np.array_equal(b.theta, a.theta)  # same positions, same noise...
+    wd = discrete_omega_rotation(k, BLUE)
+    wc = co.omega(k, BLUE.alpha, BLUE.K_s, BLUE.K_theta)
+    assert abs(wd / wc - 1) > 1e-4  # (the two models differ here, else the test is void)
+    # ...velocities theta_dot = amp omega sin(k n): their ratio is exactly wd / wc
+    moving = np.abs(a.theta_dot) > 1e-6
+    np.testing.assert_allclose(b.theta_dot[moving] / a.theta_dot[moving], wd / wc, rtol=1e-12)
+    # and simulate passes the option through: the first records differ the same way
+    ra = simulate(BLUE, "rotation", 100, k, t_end=0.1, dt=0.05, save_every=0.05)
+    rb = simulate(BLUE, "rotation", 100, k, t_end=0.1, dt=0.05, save_every=0.05,
+                  omega_model="discrete")
+    assert np.array_equal(ra.theta[0], rb.theta[0]) and not np.allclose(ra.theta[1], rb.theta[1],
+                                                                         rtol=1e-9, atol=0)
 
 
 @pytest.mark.parametrize("kwargs, match", [

@@ -1,44 +1,100 @@
-"""Every registered scene runs in quick mode and writes its files; the cache works."""
+"""Every registered scene runs in quick mode, writes complete files, redraws from its data,
+and its checks come out as recorded in tests/golden/quick_outcomes.json."""
 
+import dataclasses
 import json
+import os
+from pathlib import Path
 
 import h5py
+import numpy as np
 import pytest
 
-from numerics import _cache, scenes
-from numerics.cli import main as cli
+import scenes
+from numerics import _cache
+from scenes.cli import main as cli
 
+GOLDEN = Path(__file__).with_name("golden") / "quick_outcomes.json"
 SIM_SCENES = ["fig5-blue-rotation", "fig6-blue-coupled", "fig7-green-rotation",
               "fig8-green-coupled"]
 
 
-@pytest.fixture(scope="module")
-def out(tmp_path_factory):
-    return tmp_path_factory.mktemp("out")
-
-
 @pytest.mark.parametrize("name", list(scenes.REGISTRY))
-def test_scene_runs_quick_and_writes_its_files(name, out):
-    summary = scenes.run_scene(name, out, quick=True)
+def test_scene_runs_quick_and_writes_its_files(name, quick_scenes):
+    out, summaries = quick_scenes
     folder = out / name
     for f in ("figure.png", "figure.pdf", "data.h5", "summary.json"):
-        assert (folder / f).stat().st_size > 0, f
-    assert json.loads((folder / "summary.json").read_text())["scene"] == name
+        path = folder / f
+        assert path.stat().st_size > 0, f
+        assert oct(path.stat().st_mode & 0o777) == oct(0o666 & ~_umask()), f"{f} permissions"
+    assert not list(folder.glob("*.tmp")), "temporary files left behind"
+    summary = json.loads((folder / "summary.json").read_text())  # strict JSON: no NaN
+    assert summary["scene"] == name
     with h5py.File(folder / "data.h5") as h:
         assert h.attrs["package_version"] and h.attrs["quick"]
-    assert summary["checks"], "every scene asserts something"
+    assert summaries[name]["checks"], "every scene checks something"
+
+
+def _umask():
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask
+
+
+def test_check_outcomes_match_the_golden_record(quick_scenes, request):
+    """Each check's outcome (agrees / paper disagrees (...) / FAIL) is what was recorded;
+    ``pytest --update-golden`` rewrites the record after a deliberate change."""
+    _, summaries = quick_scenes
+    got = {name: {c["check"]: c["outcome"] for c in s["checks"]} for name, s in summaries.items()}
+    if request.config.getoption("--update-golden"):
+        GOLDEN.write_text(json.dumps(got, indent=2, sort_keys=True) + "\n")
+        pytest.skip(f"rewrote {GOLDEN}")
+    want = json.loads(GOLDEN.read_text())
+    assert got == want, ("check outcomes changed; if deliberate, run "
+                         "`.venv/bin/python -m pytest tests/test_scenes.py --update-golden`")
+    fails = [c for s in summaries.values() for c in s["checks"] if c["outcome"].startswith("FAIL")]
+    assert not fails, fails
 
 
 @pytest.mark.parametrize("name", SIM_SCENES)
-def test_quick_simulation_verdicts_match_the_theory(name, out):
-    s = json.loads((out / name / "summary.json").read_text())
+def test_quick_simulation_verdicts_match_the_theory(name, quick_scenes):
+    s = json.loads((quick_scenes[0] / name / "summary.json").read_text())
     for key in ("scene", "case", "alpha", "K_s", "K_theta", "k", "N", "eps", "A0", "seed",
                 "t_end", "dt", "method"):
         assert key in s, key
-    assert set(s["theory"]) >= {"g", "stable"}
-    assert set(s["numerics"]) >= {"stable", "sideband_to_carrier_start",
-                                  "sideband_to_carrier_end"}
     assert s["numerics"]["stable"] == s["theory"]["stable"]
+    # the verdict is the growth factor against the stated threshold, both reported
+    assert (s["numerics"]["growth_factor"] < s["numerics"]["threshold"]) == s["numerics"]["stable"]
+
+
+@pytest.mark.parametrize("name", ["fig2-dispersion", "fig6-blue-coupled", "gain-theories"])
+def test_replot_redraws_from_data_alone(name, quick_scenes, tmp_path, monkeypatch):
+    out = tmp_path / "copy"
+    (out / name).mkdir(parents=True)
+    (out / name / "data.h5").write_bytes((quick_scenes[0] / name / "data.h5").read_bytes())
+    # nothing may compute: the scene's compute and the simulator raise if called
+    sc = scenes.get_scene(name)
+    monkeypatch.setitem(scenes.REGISTRY, name, dataclasses.replace(sc, compute=_forbidden))
+    monkeypatch.setattr(_cache, "simulate", _forbidden)
+    assert cli(["scene", name, "--replot", "--out", str(out)]) == 0
+    assert (out / name / "figure.png").stat().st_size > 0
+    assert (out / name / "figure.pdf").stat().st_size > 0
+
+
+def _forbidden(*_, **__):
+    raise AssertionError("replot computed")
+
+
+def test_data_h5_round_trip(tmp_path):
+    from scenes._runner import read_data, write_data
+
+    data = {"a": np.arange(3.0), "g/b": np.ones((2, 2)), "x": 1.5, "n": 3, "s": "text",
+            "flag": True, "lst": [1.0, 2.0], "d": {"k": [1, 2]}, "none": None}
+    write_data(tmp_path / "d.h5", data)
+    back = read_data(tmp_path / "d.h5")
+    assert np.array_equal(back["a"], data["a"]) and np.array_equal(back["g/b"], data["g/b"])
+    assert back["x"] == 1.5 and back["n"] == 3 and back["s"] == "text" and back["flag"]
+    assert back["lst"] == [1.0, 2.0] and back["d"] == {"k": [1, 2]} and "none" not in back
 
 
 def test_theory_only_scenes_never_start_the_simulator(tmp_path):
@@ -60,8 +116,8 @@ def test_cache_hits_do_not_resimulate(tmp_path):
     assert _cache.STATS["simulations"] == n + 2
 
 
-def test_rotation_runs_store_no_U(out):
-    with h5py.File(out / "fig5-blue-rotation" / "data.h5") as h:
+def test_rotation_runs_store_no_U(quick_scenes):
+    with h5py.File(quick_scenes[0] / "fig5-blue-rotation" / "data.h5") as h:
         assert "U" not in h and "theta" in h
 
 
@@ -72,17 +128,28 @@ def test_bad_scene_name_and_parameters(tmp_path, capsys):
     err = capsys.readouterr().err
     assert err.startswith("flexmm: error: unknown scene") and "Traceback" not in err
     assert cli(["scene", "fig2-dispersion", "--seed", "-1", "--out", str(tmp_path)]) == 2
+    assert cli(["scene", "fig2-dispersion", "--replot", "--out", str(tmp_path / "none")]) == 2
 
 
-def test_cli_lists_every_scene(capsys):
+def test_cli_lists_every_scene_and_prints_the_table(capsys):
     assert cli(["scenes"]) == 0
     listing = capsys.readouterr().out
     for name in scenes.REGISTRY:
         assert name in listing
+    assert cli(["table"]) == 0
+    table = capsys.readouterr().out
+    assert "2088.6" in table and "-2820.5" in table  # g at blue II, green II (README table)
 
 
-def test_report_states_disagreements(tmp_path):
-    summaries = {"x": {"checks": [{"check": "c1", "theory": "1", "numerics": "2",
-                                   "pass": False}]}}
+def test_report_separates_findings_from_failures(tmp_path):
+    c = scenes.check
+    summaries = {"x": {"checks": [
+        c("expected agreement", "1", "1", True),
+        c("known finding", "1", "2", False, scenes.known("erratum 6")),
+        c("unexpected", "1", "2", False),
+        c("finding that vanished", "1", "1", True, scenes.known("finding: X"))]}}
     text = scenes.write_report(summaries, tmp_path, quick=True).read_text()
-    assert "**FAIL**" in text and "disagree" in text
+    assert "| agrees |" in text and "| paper disagrees (erratum 6) |" in text
+    assert "| **FAIL** |" in text and "**FAIL (expected: paper disagrees (finding: X))**" in text
+    assert "## Unexpected results" in text and "unexpected" in text.split("## Unexpected")[1]
+    assert "known finding" not in text.split("## Unexpected")[1]

@@ -1,0 +1,41 @@
+"""Fixtures shared by the test files: the paper's points and materials, random states, and
+one quick run of every scene (module-independent: each test file passes alone)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from derivation import paper
+
+
+def pytest_addoption(parser):
+    parser.addoption("--update-golden", action="store_true",
+                     help="rewrite tests/golden/*.json from this run instead of comparing")
+
+
+@pytest.fixture(scope="session")
+def blue():
+    """Material of the paper's blue point (delta = +0.003)."""
+    return paper.material("blue")
+
+
+@pytest.fixture(scope="session")
+def green():
+    """Material of the paper's green point (delta = -0.003)."""
+    return paper.material("green")
+
+
+@pytest.fixture
+def rng():
+    """A fresh, seeded generator per test (tests never share random state)."""
+    return np.random.default_rng(20261122)
+
+
+@pytest.fixture(scope="session")
+def quick_scenes(tmp_path_factory):
+    """Every registered scene run once in quick mode: (out folder, {name: summary})."""
+    import scenes
+
+    out = tmp_path_factory.mktemp("quick_scenes")
+    return out, {name: scenes.run_scene(name, out, quick=True) for name in scenes.REGISTRY}
