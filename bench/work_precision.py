@@ -25,7 +25,7 @@ from derivation import paper  # noqa: E402
 from numerics import energy, initial_condition, integrate  # noqa: E402
 from numerics._baseline import numpy_rk4  # noqa: E402
 from numerics._integrators import get_method  # noqa: E402
-from numerics._simulate import _Stepper  # noqa: E402
+from numerics._integrate import _Stepper  # noqa: E402
 from simulator import machine  # noqa: E402  (bench/ is on sys.path as the script's folder)
 
 HERE = Path(__file__).parent

@@ -21,12 +21,13 @@ from ._analysis import (GROWTH_THRESHOLD, band_summary, carrier_amplitude, carri
                         forced_second_harmonic, growth_rates, harmonic_bins, linear_stage, mode,
                         sideband_to_carrier, spectrum, stability_verdict)
 from ._gain import THEORIES, measure_gain, nls_summary, relative_errors, theory_gain
-from ._hill import PlaneWave, hill_spectrum, mi_gain, plane_wave, stability_map
+from ._hill import hill_spectrum, mi_gain, stability_map
+from ._integrate import BlowUpError, SimulationInterrupted, integrate
 from ._integrators import METHODS, Method, get_method
 from ._model import (CASES, LatticeState, Material, discrete_omega_longitudinal,
                      discrete_omega_rotation, energy)
-from ._simulate import (SIMULATOR_VERSION, BlowUpError, Run, SimulationInterrupted,
-                        initial_condition, integrate, simulate, snap_wavenumber)
+from ._plane_wave import PlaneWave, plane_wave
+from ._simulate import SIMULATOR_VERSION, Run, initial_condition, simulate, snap_wavenumber
 
 __all__ = [
     "Material", "LatticeState", "energy", "integrate", "simulate", "Run", "METHODS", "Method",

@@ -1,23 +1,14 @@
-"""Exact lattice plane waves and their linear stability (harmonic balance + Hill's method).
+"""Linear stability of the exact plane waves: Hill's method.
 
-A nonlinear plane wave of eq. `norm` is a travelling wave theta_n(T) = Theta(phi_n),
-U_n(T) = V(phi_n), phi_n = k n - Omega T, with Theta 2 pi-periodic. The equations are odd
-in theta, so Theta carries odd harmonics and V even ones; the reflection (n, T) -> (-n, -T),
-U -> -U lets us take Theta even and V odd in phi:
-
-    Theta = sum_{m odd} a_m cos(m phi),   V = sum_{m even >= 2} b_m sin(m phi).
-
-Harmonic balance solves Omega^2 Theta'' = F_theta, Omega^2 V'' = F_U on a phase grid
-(neighbours are exact phase shifts by +-k) with Newton's method, the peak rotation
-Theta(0) = amplitude fixing the branch.
-
-Linearising about the wave, a perturbation x_n = e^{lambda T} sum_p X_p e^{i (q n + p phi_n)}
-turns the lattice into (lambda - i p Omega)^2 X_p = sum_m L_pm(q) X_m: constant coefficients
-in the harmonic index p (Hill's method). The sidebands k + q (p = 1) and k - q (p = -1, as
-its conjugate q - k) sit in the family x: p odd, y: p even, which also holds the induced
-mean flow (y_0 at wavenumber q) and the second harmonic of U. The growth rate is the
-largest real part of the eigenvalues of the 2n x 2n first-order form. The only
-approximation is the truncation |p| <= P, whose convergence tests/test_hill.py shows.
+Linearising about a wave of ``_plane_wave``, a perturbation
+x_n = e^{lambda T} sum_p X_p e^{i (q n + p phi_n)} turns the lattice into
+(lambda - i p Omega)^2 X_p = sum_m L_pm(q) X_m: constant coefficients in the harmonic
+index p (Hill's method; the couplings L come from the generated Jacobian of eq. `norm`).
+The sidebands k + q (p = 1) and k - q (p = -1, as its conjugate q - k) sit in the family
+x: p odd, y: p even, which also holds the induced mean flow (y_0 at wavenumber q) and the
+second harmonic of U. The growth rate is the largest real part of the eigenvalues of the
+2n x 2n first-order form. The only approximation is the truncation |p| <= P, whose
+convergence tests/test_hill.py shows.
 
 References
 ----------
@@ -27,25 +18,14 @@ G. W. Hill, Acta Math. 8 (1886); B. Deconinck & J. N. Kutz, J. Comput. Phys. 219
 
 from __future__ import annotations
 
-import math
-from dataclasses import dataclass
-
 import numpy as np
 
 from generated import lattice_model as model
 
 from ._model import Material, check_case
+from ._plane_wave import (HARMONICS, PlaneWave, _check, _check_harmonics, _on_branch,
+                          _shift, _solve_plane_waves, plane_wave)
 
-#: default truncation: theta harmonics |p| <= HARMONICS (odd), U harmonics |p| < HARMONICS.
-HARMONICS = 4
-#: Newton on the harmonic balance: relative residual to reach, iterations allowed, and
-#: the residual below which a solution counts as converged (the branch test)
-NEWTON_TOL, NEWTON_ITERATIONS, BRANCH_RESIDUAL = 1e-13, 30, 1e-8
-#: continuation in the amplitude when Newton from the linear wave fails: number of steps
-CONTINUATION_STEPS = 8
-#: a solution on the branch of the linear wave keeps its first harmonic within this
-#: fraction of the peak rotation (else Newton found another orbit)
-BRANCH_FIRST_HARMONIC = 0.5
 #: a Hill mode is a sideband (MI) mode when the two sidebands p = +-1 hold more than
 #: SIDEBAND_SHARE of its kinetic energy, each of them at least SIDEBAND_PRESENT
 SIDEBAND_SHARE, SIDEBAND_PRESENT = 0.75, 0.05
@@ -53,206 +33,6 @@ SIDEBAND_SHARE, SIDEBAND_PRESENT = 0.75, 0.05
 #: parameter range lies inside (0, 1.5]
 MAP_OFFSETS = np.linspace(0.075, 1.5, 20)
 
-
-def _shift(coef, harm, k, phi, kind):
-    """Evaluate sum_m coef_m f(m (phi + k)) on the grid, f = cos or sin; k shape (B,)."""
-    arg = harm[None, :, None] * (phi[None, None, :] + k[:, None, None])
-    f = np.cos(arg) if kind == "cos" else np.sin(arg)
-    return np.einsum("bm,bmj->bj", coef, f)
-
-
-@dataclass(frozen=True)
-class PlaneWave:
-    """A travelling wave of the lattice (see module docstring).
-
-    Attributes
-    ----------
-    k, amplitude, omega : float
-        Wavenumber (rad per site), peak rotation Theta(0), frequency Omega (1/T).
-    omega_linear : float
-        Frequency of eq. `discrete2` (the amplitude -> 0 limit).
-    theta_harmonics : ndarray, shape (H,)
-        a_m, m = 1, 3, 5, ...: Theta(phi) = sum a_m cos(m phi).
-    U_harmonics : ndarray, shape (H,)
-        b_m, m = 2, 4, ...: V(phi) = sum b_m sin(m phi); zeros in case "rotation".
-    residual : float
-        Max abs residual of the harmonic-balance equations on the phase grid.
-    """
-
-    case: str
-    k: float
-    amplitude: float
-    omega: float
-    omega_linear: float
-    theta_harmonics: np.ndarray
-    U_harmonics: np.ndarray
-    residual: float
-
-    def fields(self, n, t=0.0):
-        """theta_n, theta_dot_n, U_n, U_dot_n at time t (arrays over the sites n)."""
-        phi = self.k * np.asarray(n, dtype=float) - self.omega * t
-        mo = 2 * np.arange(self.theta_harmonics.size) + 1
-        me = mo + 1
-        a, b = self.theta_harmonics, self.U_harmonics
-        th = np.cos(np.outer(phi, mo)) @ a
-        thd = self.omega * (np.sin(np.outer(phi, mo)) @ (mo * a))
-        U = np.sin(np.outer(phi, me)) @ b
-        Ud = -self.omega * (np.cos(np.outer(phi, me)) @ (me * b))
-        return th, thd, U, Ud
-
-
-def _residual(x, k, amp, al, Ks, Kt, H, coupled, phi):
-    """Harmonic-balance residuals, batched: x = (a_1..a_H, b_1..b_H, Omega), shape (B, 2H+1)."""
-    mo = 2.0 * np.arange(H) + 1
-    me = mo + 1
-    a, b, W = x[:, :H], x[:, H:2 * H], x[:, -1]
-    zero = np.zeros_like(k)
-    th0 = _shift(a, mo, zero, phi, "cos")
-    thp, thm = _shift(a, mo, k, phi, "cos"), _shift(a, mo, -k, phi, "cos")
-    d2th = _shift(-a * mo**2, mo, zero, phi, "cos")
-    Um = U0 = Up = 0.0
-    if coupled:
-        Um, U0, Up = (_shift(b, me, s, phi, "sin") for s in (-k, zero, k))
-    al, Ks, Kt = al[:, None], Ks[:, None], Kt[:, None]
-    rt = W[:, None] ** 2 * d2th - model.acceleration_theta(Um, U0, Up, thm, th0, thp, al, Ks, Kt)
-    M = phi.size
-    proj_c = np.cos(np.outer(phi, mo)) * (2.0 / M)  # (M, H)
-    R = [rt @ proj_c]
-    if coupled:
-        d2U = _shift(-b * me**2, me, zero, phi, "sin")
-        ru = W[:, None] ** 2 * d2U - model.acceleration_U(Um, U0, Up, thm, th0, thp, al, Ks, Kt)
-        R.append(ru @ (np.sin(np.outer(phi, me)) * (2.0 / M)))
-    else:
-        R.append(b)  # b = 0 in case (I)
-    R.append((a.sum(axis=1) - amp)[:, None])
-    return np.concatenate(R, axis=1)
-
-
-def _solve_plane_waves(k, amp, al, Ks, Kt, coupled, H, tol=NEWTON_TOL,
-                       max_iter=NEWTON_ITERATIONS, x0=None):
-    """Newton on the batch; returns x (B, 2H+1) and the final residual norm (B,)."""
-    B = k.size
-    M = max(32, 8 * H)
-    phi = 2 * np.pi * np.arange(M) / M
-    al2 = al**2
-    n = 2 * H + 1
-    if x0 is None:
-        x = np.zeros((B, n))
-        x[:, 0] = amp
-        x[:, -1] = model.omega_rotation(k, al, Ks, Kt)
-    else:
-        x = x0.copy()
-    scale = np.maximum(amp, 1e-300)
-    for _ in range(max_iter):
-        R = _residual(x, k, amp, al, Ks, Kt, H, coupled, phi)
-        res = np.max(np.abs(R), axis=1) / np.maximum(scale * al2, 1e-300)
-        if np.all(res < tol):
-            break
-        J = np.empty((B, n, n))
-        for j in range(n):
-            h = 1e-7 * (scale if j < 2 * H else x[:, -1])
-            xp = x.copy()
-            xp[:, j] += h
-            J[:, :, j] = (_residual(xp, k, amp, al, Ks, Kt, H, coupled, phi) - R) / h[:, None]
-        try:
-            dx = np.linalg.solve(J, R[:, :, None])[:, :, 0]
-        except np.linalg.LinAlgError:
-            raise ArithmeticError("harmonic balance: singular Jacobian (a harmonic of the "
-                                  "wave is resonant with a lattice mode)") from None
-        x = x - dx
-    R = _residual(x, k, amp, al, Ks, Kt, H, coupled, phi)
-    res = np.max(np.abs(R), axis=1) / np.maximum(scale * al2, 1e-300)
-    return x, res
-
-
-def _check(material, case, k, amplitude):
-    if not isinstance(material, Material):
-        raise TypeError(f"material must be a Material, got {type(material).__name__}")
-    check_case(case)
-    k = float(k)
-    if not (math.isfinite(k) and 0 < k < math.pi):
-        raise ValueError(f"k must be in (0, pi) rad per site, got {k!r}")
-    amplitude = float(amplitude)
-    if not (math.isfinite(amplitude) and 0 < amplitude < 1.5):
-        raise ValueError(f"amplitude (peak rotation, rad) must be in (0, 1.5), got {amplitude!r}")
-    return k, amplitude
-
-
-def plane_wave(material: Material, case: str, k: float, amplitude: float,
-               harmonics: int = HARMONICS) -> PlaneWave:
-    """Nonlinear plane wave of the lattice by harmonic balance (Newton).
-
-    Parameters
-    ----------
-    material : Material
-    case : {"rotation", "coupled"}
-    k : float
-        Carrier wavenumber, rad per site, in (0, pi).
-    amplitude : float
-        Peak rotation Theta(0) in rad (2 eps A0 for the paper's initial condition).
-    harmonics : int
-        Number H of odd theta harmonics (1, 3, ..., 2H - 1) and even U harmonics.
-
-    Returns
-    -------
-    PlaneWave
-        Its frequency ``omega`` includes the amplitude-dependent shift.
-
-    Raises
-    ------
-    ArithmeticError
-        If Newton (with continuation in the amplitude) does not converge to the branch
-        of the linear wave. At the second-harmonic resonance sin^2 k = omega^2, where the
-        NLS's u2 diverges, the exact wave still exists: its frequency shift detunes the
-        resonance and the U harmonic grows like the amplitude instead of its square.
-    """
-    k, amplitude = _check(material, case, k, amplitude)
-    H = _check_harmonics(harmonics)
-    params = (np.array([material.alpha]), np.array([material.K_s]),
-              np.array([material.K_theta]), case == "coupled", H)
-
-    def solve(a, x0=None):
-        return _solve_plane_waves(np.array([k]), np.array([a]), *params, x0=x0)
-
-    x, res = solve(amplitude)
-    if not _on_branch(x[0], res[0], amplitude):
-        # continuation in the amplitude from the linear wave (large amplitudes)
-        x = None
-        for a in np.linspace(0, amplitude, CONTINUATION_STEPS + 1)[1:]:
-            x, res = solve(a, x)
-            if not _on_branch(x[0], res[0], a):
-                break
-    return _wave_from(x[0], res[0], material, case, k, amplitude, H)
-
-
-def _on_branch(x, res, amplitude):
-    """Converged, and still the continuation of the linear wave: Omega > 0 and the first
-    harmonic carrying most of the peak (else Newton found another orbit). Batched over
-    leading axes: x (..., 2H+1), res (...)."""
-    return (np.all(np.isfinite(x), axis=-1) & (res < BRANCH_RESIDUAL)
-            & (np.abs(x[..., 0] / amplitude - 1) < BRANCH_FIRST_HARMONIC) & (x[..., -1] > 0))
-
-
-def _check_harmonics(h):
-    if not (isinstance(h, (int, np.integer)) and 1 <= h <= 64):
-        raise ValueError(f"harmonics must be an integer in [1, 64], got {h!r}")
-    return int(h)
-
-
-def _wave_from(x, res, material, case, k, amplitude, H):
-    if not _on_branch(x, res, amplitude):
-        raise ArithmeticError(
-            f"harmonic balance did not converge for case {case!r}, k = {k}, amplitude = "
-            f"{amplitude} (residual {res:.2e}, or Newton left the branch of the linear "
-            "wave); near a resonance of a harmonic with a "
-            "lattice mode (e.g. sin^2 k = omega^2 for the U second harmonic) no small-"
-            "amplitude plane wave exists")
-    w_lin = float(model.omega_rotation(k, material.alpha, material.K_s, material.K_theta))
-    return PlaneWave(case, k, amplitude, float(x[-1]), w_lin, x[:H].copy(),
-                     x[H:2 * H].copy(), float(res))
-
-
-# --- Hill's method ------------------------------------------------------------------------
 
 def _coefficients(a, b, k, al, Ks, Kt, M):
     """Fourier coefficients c_l (index l mod M) of the linearised lattice's couplings.

@@ -1,4 +1,9 @@
-"""Driving the integrators: ``integrate`` (state -> state) and ``simulate`` (the paper's run)."""
+"""The paper's numerical experiment: ``simulate`` a noisy plane wave on a periodic chain.
+
+Builds the initial condition (eq. `IC`, or the exact travelling wave), snaps k to the
+chain, advances it with ``_integrate._Stepper`` record by record, keeps only what is asked
+for, and stops with ``BlowUpError`` or ``SimulationInterrupted`` keeping what was computed.
+"""
 
 from __future__ import annotations
 
@@ -11,20 +16,20 @@ import numpy as np
 
 from generated import coefficients as coefficients_module
 
-from . import _kernels as kernels
 from ._analysis import spectrum
-from ._integrators import Method, get_method
-from ._model import (LatticeState, Material, _positive_finite, check_case,
+from ._integrate import (BlowUpError, SimulationInterrupted, _blowup_message, _check_time,
+                         _Stepper)
+from ._integrators import get_method
+from ._model import (LatticeState, Material, check_case,
                      discrete_omega_rotation, energy)
-
 
 
 def _source_hash() -> str:
     """Hash of every source file whose change can alter a simulated number."""
     here = Path(__file__).parent
     gen = Path(coefficients_module.__file__).parent
-    files = [here / f"_{n}.py" for n in ("kernels", "integrators", "simulate", "model", "hill",
-                                          "analysis")]
+    files = [here / f"_{n}.py" for n in ("kernels", "integrators", "integrate", "simulate",
+                                          "model", "plane_wave", "hill", "analysis")]
     files += [gen / "coefficients.py", gen / "lattice_model.py"]
     h = hashlib.sha256()
     for f in files:
@@ -39,175 +44,12 @@ STORE_CHOICES = ("snapshots", "spectrum", "energy")
 OMEGA_MODELS = ("continuum", "discrete", "travelling")
 
 
-class BlowUpError(FloatingPointError):
-    """The solution stopped being finite; ``run`` holds what was saved before."""
-
-    def __init__(self, message, run=None, time=None):
-        super().__init__(message)
-        self.run = run
-        self.time = time
-
-
-class SimulationInterrupted(KeyboardInterrupt):
-    """Ctrl-C during a run; ``run`` holds the saved part, ``state`` the last state."""
-
-    def __init__(self, message, run=None, state=None):
-        super().__init__(message)
-        self.run = run
-        self.state = state
-
-
-def _check_time(t_end, dt):
-    t_end = _positive_finite("t_end", t_end)
-    dt = _positive_finite("dt", dt)
-    if dt > t_end:
-        raise ValueError(f"dt = {dt} is larger than t_end = {t_end}")
-    nsteps = math.ceil(t_end / dt - 1e-9)
-    if nsteps > 10**10:
-        raise ValueError(f"t_end/dt = {nsteps:.3g} steps is absurd; use a larger dt")
-    return nsteps, t_end / nsteps
-
-
 def _check_sites(N):
     if not (isinstance(N, (int, np.integer)) and N >= 3):
         raise ValueError(f"N must be an integer >= 3, got {N!r}")
     if N > 10**8:
         raise ValueError(f"N = {N} sites is absurd (> 1e8)")
     return int(N)
-
-
-class _Stepper:
-    """Holds the work arrays of one run and advances it by whole chunks of steps."""
-
-    def __init__(self, state: LatticeState, material: Material, case: str, method: Method,
-                 dt: float, rtol: float = 1e-10, atol: float = 1e-12):
-        self.case = case
-        self.coupled = case == "coupled"
-        self.material = material
-        self.method = method
-        self.dt = dt
-        self.rtol, self.atol = rtol, atol
-        n = state.N
-        self.th = state.theta.copy()
-        self.w = state.theta_dot.copy()
-        self.U = state.U.copy() if self.coupled else kernels.empty_u()
-        self.V = state.U_dot.copy() if self.coupled else kernels.empty_u()
-        self.s, self.c, self.v = np.empty(n), np.empty(n), np.empty(n)
-        self.ath = np.empty(n)
-        self.aU = np.empty(n if self.coupled else 0)
-        self.params = (material.alpha**2, material.K_s, material.K_theta)
-        self.evaluations = 0
-        if method.kind == "srkn":
-            self.acoef = np.array(method.a)
-            self.bcoef = np.array(method.b)
-            self._accel()
-        elif method.kind == "rk4":
-            self.work = np.empty((10, n))
-
-    def _accel(self):
-        kernels.accel(self.th, self.U, self.coupled, *self.params, self.s, self.c, self.v,
-                self.ath, self.aU)
-        self.evaluations += 1
-
-    def state(self) -> LatticeState:
-        if self.coupled:
-            return LatticeState(self.U.copy(), self.V.copy(), self.th.copy(), self.w.copy())
-        return LatticeState(None, None, self.th.copy(), self.w.copy())
-
-    def advance(self, nsteps: int) -> int:
-        """Advance ``nsteps`` steps; returns the number completed while finite."""
-        m = self.method
-        if m.kind == "srkn":
-            done = kernels.srkn_steps(self.th, self.w, self.U, self.V, self.ath, self.aU,
-                                self.coupled, *self.params, self.acoef, self.bcoef,
-                                self.dt, nsteps, self.s, self.c, self.v)
-            self.evaluations += done * m.evaluations
-        elif m.kind == "rk4":
-            done = kernels.rk4_steps(self.th, self.w, self.U, self.V, self.coupled, *self.params,
-                               self.dt, nsteps, self.s, self.c, self.v, self.work)
-            self.evaluations += done * m.evaluations
-        else:
-            done = self._scipy(nsteps * self.dt)
-        return done
-
-    def _scipy(self, span):
-        from scipy.integrate import solve_ivp
-
-        n = self.th.size
-        nf = 4 * n if self.coupled else 2 * n
-        y0 = (np.concatenate([self.th, self.w, self.U, self.V]) if self.coupled
-              else np.concatenate([self.th, self.w]))
-        ath, aU = self.ath, self.aU
-        coupled = self.coupled
-
-        def rhs(_t, y):
-            th = y[:n]
-            U = y[2 * n:3 * n] if coupled else kernels.empty_u()
-            kernels.accel(np.ascontiguousarray(th), np.ascontiguousarray(U), coupled, *self.params,
-                    self.s, self.c, self.v, ath, aU)
-            out = np.empty(nf)
-            out[:n] = y[n:2 * n]
-            out[n:2 * n] = ath
-            if coupled:
-                out[2 * n:3 * n] = y[3 * n:]
-                out[3 * n:] = aU
-            return out
-
-        sol = solve_ivp(rhs, (0.0, span), y0, method=self.method.name.upper(),
-                        rtol=self.rtol, atol=self.atol)
-        self.evaluations += sol.nfev
-        if not sol.success or not np.all(np.isfinite(sol.y[:, -1])):
-            return 0
-        y = sol.y[:, -1]
-        self.th[:], self.w[:] = y[:n], y[n:2 * n]
-        if coupled:
-            self.U[:], self.V[:] = y[2 * n:3 * n], y[3 * n:]
-        return int(round(span / self.dt))
-
-
-def _blowup_message(t, dt, material, case, method):
-    limit = method.stability_limit() / material.omega_max(case)
-    return (f"solution blew up (non-finite theta) near T = {t:.6g} with dt = {dt:g} and "
-            f"method {method.name!r}; its linear stability limit is dt < {limit:.4g} "
-            f"here: try dt <= {0.5 * limit:.3g}")
-
-
-def integrate(state: LatticeState, material: Material, case: str, t_end: float, dt: float,
-              method: str = "rk4", *, rtol: float = 1e-10, atol: float = 1e-12
-              ) -> LatticeState:
-    """Integrate eq. `norm` from ``state`` to ``t_end``; the input is not modified.
-
-    Parameters
-    ----------
-    state : LatticeState
-        Initial condition (U, U_dot None for case "rotation").
-    material : Material
-    case : {"rotation", "coupled"}
-    t_end, dt : float
-        Final time and step; the step used is t_end / ceil(t_end / dt) <= dt so that
-        the run lands exactly on t_end.
-    method : str
-        One of ``numerics.METHODS``; rtol/atol apply to the scipy methods only.
-
-    Returns
-    -------
-    LatticeState at t_end.
-
-    Raises
-    ------
-    BlowUpError
-        When the solution stops being finite (the message names the time and a safe dt).
-    """
-    check_case(case)
-    m = get_method(method)
-    state = state.for_case(case)
-    nsteps, dt_eff = _check_time(t_end, dt)
-    st = _Stepper(state, material, case, m, dt_eff, rtol, atol)
-    done = st.advance(nsteps)
-    if done < nsteps:
-        raise BlowUpError(_blowup_message(done * dt_eff, dt_eff, material, case, m),
-                          time=done * dt_eff)
-    return st.state()
 
 
 @dataclass

@@ -7,7 +7,7 @@ from numerics import Material, integrate, mi_gain, plane_wave, simulate
 from numerics import _analysis as an
 from numerics._hill import hill_spectrum
 from numerics._model import discrete_omega_longitudinal, discrete_omega_rotation
-from numerics._simulate import LatticeState
+from numerics import LatticeState
 
 from derivation import paper  # noqa: E402
 

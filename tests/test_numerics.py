@@ -282,7 +282,7 @@ def test_stability_limits_from_coefficients():
 
 
 def test_interrupted_run_keeps_data_and_resumes(monkeypatch):
-    from numerics import _simulate
+    from numerics import _integrate as _simulate
 
     full = simulate(BLUE, "coupled", 64, 2 * np.pi * 8 / 64, t_end=10.0, dt=0.05,
                     save_every=1.0)
