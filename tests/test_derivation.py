@@ -179,6 +179,12 @@ def test_generated_is_what_make_derive_writes(tmp_path):
     from derivation.__main__ import write_outputs
 
     written = write_outputs(tmp_path)
+    assert sorted(p.name for p in written) == sorted(GENERATED_FILES)
+    mask = os.umask(0)
+    os.umask(mask)
+    for p in written:  # plain files (0644 under the usual umask), not mkstemp's 0600
+        assert p.stat().st_mode & 0o777 == 0o666 & ~mask, p
+    assert not list(tmp_path.glob(".*.tmp")), "temporary files left behind"
     problems = []
     for fresh in written:
         committed = GENERATED / fresh.name
