@@ -65,16 +65,18 @@ class _Stepper:
         self.aU = np.empty(n if self.coupled else 0)
         self.params = (material.alpha**2, material.K_s, material.K_theta)
         self.evaluations = 0
+        nU = n if self.coupled else 0  # case "rotation" allocates nothing for U
         if method.kind == "srkn":
             self.acoef = np.array(method.a)
             self.bcoef = np.array(method.b)
+            self.work, self.work_U = np.empty((8, n)), np.empty((2, nU))
             self._accel()
         elif method.kind == "rk4":
-            self.work = np.empty((10, n))
+            self.work, self.work_U = np.empty((11, n)), np.empty((5, nU))
 
     def _accel(self):
         kernels.accel(self.th, self.U, self.coupled, *self.params, self.s, self.c, self.v,
-                self.ath, self.aU)
+                      self.ath, self.aU)
         self.evaluations += 1
 
     def state(self) -> LatticeState:
@@ -85,18 +87,32 @@ class _Stepper:
     def advance(self, nsteps: int) -> int:
         """Advance ``nsteps`` steps; returns the number completed while finite."""
         m = self.method
-        if m.kind == "srkn":
-            done = kernels.srkn_steps(self.th, self.w, self.U, self.V, self.ath, self.aU,
-                                self.coupled, *self.params, self.acoef, self.bcoef,
-                                self.dt, nsteps, self.s, self.c, self.v)
-            self.evaluations += done * m.evaluations
-        elif m.kind == "rk4":
-            done = kernels.rk4_steps(self.th, self.w, self.U, self.V, self.coupled, *self.params,
-                               self.dt, nsteps, self.s, self.c, self.v, self.work)
-            self.evaluations += done * m.evaluations
-        else:
-            done = self._scipy(nsteps * self.dt)
+        if m.kind == "scipy":
+            return self._scipy(nsteps * self.dt)
+        done = self._fast(nsteps)
+        if done < nsteps:
+            # |theta| beyond the polynomial's range, or not finite: the libm loops go on
+            # (and stop at once on a non-finite state, reporting the blow-up)
+            done += self._libm(nsteps - done)
+        self.evaluations += done * m.evaluations
         return done
+
+    def _fast(self, nsteps):
+        if self.method.kind == "srkn":
+            return kernels.srkn_steps(self.th, self.w, self.U, self.V, self.ath, self.aU,
+                                      self.coupled, *self.params, self.acoef, self.bcoef,
+                                      self.dt, nsteps, self.work, self.work_U)
+        return kernels.rk4_steps(self.th, self.w, self.U, self.V, self.coupled, *self.params,
+                                 self.dt, nsteps, self.work, self.work_U)
+
+    def _libm(self, nsteps):
+        if self.method.kind == "srkn":
+            return kernels.srkn_steps_libm(self.th, self.w, self.U, self.V, self.ath, self.aU,
+                                           self.coupled, *self.params, self.acoef,
+                                           self.bcoef, self.dt, nsteps, self.s, self.c, self.v)
+        return kernels.rk4_steps_libm(self.th, self.w, self.U, self.V, self.coupled,
+                                      *self.params, self.dt, nsteps, self.s, self.c, self.v,
+                                      np.empty((10, self.th.size)))
 
     def _scipy(self, span):
         from scipy.integrate import solve_ivp
