@@ -7,6 +7,7 @@ integrate(state, material, case, t_end, dt, method="rk4") -> LatticeState
 simulate(material, case, N, k, ...) -> Run     the paper's noisy-plane-wave experiment
 METHODS, get_method                     integrators: rk4, verlet, srkn6b, srkn11b, dop853, rk45
 BlowUpError, SimulationInterrupted      errors that keep what was computed
+AccuracyWarning, choose_step            runs that check their energy; dt for a tol=
 plane_wave, mi_gain, PlaneWave          exact lattice plane wave and its sideband growth
                                         rate (harmonic balance + Hill's method)
 stability_map, hill_spectrum            batched verdicts over (k, delta); raw Hill spectrum
@@ -17,6 +18,7 @@ spectrum, stability_verdict, ...        spectral diagnostics of runs (``_analysi
 Nothing here imports matplotlib: figures live in the ``scenes`` package.
 """
 
+from ._accuracy import AccuracyWarning, choose_step
 from ._analysis import (GROWTH_THRESHOLD, band_summary, carrier_amplitude, carrier_frequency,
                         forced_second_harmonic, growth_rates, harmonic_bins, linear_stage, mode,
                         sideband_to_carrier, spectrum, stability_verdict)
@@ -37,5 +39,5 @@ __all__ = [
     "THEORIES", "theory_gain", "nls_summary", "measure_gain", "relative_errors",
     "GROWTH_THRESHOLD", "band_summary", "carrier_amplitude", "carrier_frequency",
     "forced_second_harmonic", "growth_rates", "harmonic_bins", "linear_stage", "mode",
-    "sideband_to_carrier", "spectrum", "stability_verdict",
+    "sideband_to_carrier", "spectrum", "stability_verdict", "AccuracyWarning", "choose_step",
 ]

@@ -12,7 +12,11 @@ import numpy as np
 
 from . import _kernels as kernels
 from ._integrators import Method, get_method
-from ._model import LatticeState, Material, _positive_finite, check_case
+from ._accuracy import check_energy_tolerance, choose_step, energy_check
+from ._model import LatticeState, Material, _positive_finite, check_case, energy
+
+#: the paper's RK4 step, the default when neither dt nor tol is given
+DEFAULT_DT = 0.05
 
 
 class BlowUpError(FloatingPointError):
@@ -156,8 +160,22 @@ def _blowup_message(t, dt, material, case, method):
             f"here: try dt <= {0.5 * limit:.3g}")
 
 
-def integrate(state: LatticeState, material: Material, case: str, t_end: float, dt: float,
-              method: str = "rk4", *, rtol: float = 1e-10, atol: float = 1e-12
+def resolve_step(state, material, case, t_end, dt, method, tol):
+    """(method name, dt) of a run: as given, or chosen for ``tol`` (``_accuracy``)."""
+    if tol is None:
+        return (method or "rk4"), (DEFAULT_DT if dt is None else dt)
+    if dt is not None:
+        raise ValueError("give dt or tol, not both (tol chooses the step)")
+    if method is not None and not get_method(method).fixed_step:
+        raise ValueError(f"tol chooses a fixed-step method; {method!r} is adaptive: "
+                         "use rtol/atol for it")
+    t_end = _positive_finite("t_end", t_end)
+    return choose_step(state, material, case, t_end, tol, None if method is None else [method])
+
+
+def integrate(state: LatticeState, material: Material, case: str, t_end: float,
+              dt: float | None = None, method: str | None = None, *, tol: float | None = None,
+              rtol: float = 1e-10, atol: float = 1e-12, energy_tolerance: float = 1e-3
               ) -> LatticeState:
     """Integrate eq. `norm` from ``state`` to ``t_end``; the input is not modified.
 
@@ -168,10 +186,16 @@ def integrate(state: LatticeState, material: Material, case: str, t_end: float, 
     material : Material
     case : {"rotation", "coupled"}
     t_end, dt : float
-        Final time and step; the step used is t_end / ceil(t_end / dt) <= dt so that
-        the run lands exactly on t_end.
-    method : str
-        One of ``numerics.METHODS``; rtol/atol apply to the scipy methods only.
+        Final time and step (default 0.05); the step used is t_end / ceil(t_end / dt)
+        <= dt so that the run lands exactly on t_end.
+    method : str, optional
+        One of ``numerics.METHODS`` (default "rk4"); rtol/atol apply to the scipy methods.
+    tol : float, optional
+        Ask for a relative state error instead of a step: method (unless given) and dt
+        are chosen by the error model of ``numerics._accuracy`` (no dt then).
+    energy_tolerance : float
+        A fixed-step run whose relative energy error at t_end exceeds this ends with an
+        :class:`AccuracyWarning` naming a step that meets it.
 
     Returns
     -------
@@ -183,12 +207,19 @@ def integrate(state: LatticeState, material: Material, case: str, t_end: float, 
         When the solution stops being finite (the message names the time and a safe dt).
     """
     check_case(case)
-    m = get_method(method)
     state = state.for_case(case)
+    energy_tolerance = check_energy_tolerance(energy_tolerance)
+    method, dt = resolve_step(state, material, case, t_end, dt, method, tol)
+    m = get_method(method)
     nsteps, dt_eff = _check_time(t_end, dt)
     st = _Stepper(state, material, case, m, dt_eff, rtol, atol)
     done = st.advance(nsteps)
     if done < nsteps:
         raise BlowUpError(_blowup_message(done * dt_eff, dt_eff, material, case, m),
                           time=done * dt_eff)
-    return st.state()
+    final = st.state()
+    if m.fixed_step:
+        e0 = energy(state, material, case)
+        energy_check(abs(energy(final, material, case) - e0) / abs(e0) if e0 else 0.0,
+                     energy_tolerance, m.name, dt_eff)
+    return final

@@ -48,8 +48,13 @@ class Method:
         """Largest omega*dt for which the method is stable on x'' = -omega^2 x.
 
         Computed from the coefficients (one-step matrix of the harmonic oscillator,
-        stable while |trace|/2 <= 1); RK4 gives 2 sqrt(2).
+        stable while |trace|/2 <= 1), once per method; RK4 gives 2 sqrt(2).
         """
+        if self.name not in _LIMITS:
+            _LIMITS[self.name] = self._stability_limit()
+        return _LIMITS[self.name]
+
+    def _stability_limit(self) -> float:
         if not self.fixed_step:
             return float("inf")
 
@@ -85,6 +90,7 @@ class Method:
 
 
 _REGISTRY: dict[str, Method] = {}
+_LIMITS: dict[str, float] = {}  # stability limits, computed on first use
 
 
 def register(method: Method) -> Method:

@@ -3,7 +3,7 @@
 Speed comes from two things.
 
 1. **Branch-free sin, cos and 1 - cos** (``_sincosvers``): Cody-Waite reduction by pi/2
-   (three-part split of pi/2, exact products for |n| < 2^20) and fdlibm's minimax
+   (four-part split of pi/2, exact products for |n| < 2^20) and fdlibm's minimax
    polynomials on |r| <= pi/4, the quadrant chosen by arithmetic, not branches. The
    versine 1 - cos comes from its own polynomial (no cancellation, no division), so the
    cubic nonlinearity 4 - 2 cos th_n - cos th_{n+1} - cos th_{n-1} = O(theta^2) is exact to
@@ -38,10 +38,12 @@ from numba import njit
 TRIG_LIMIT = 1.0e4
 _FAST = {"contract"}
 
-# Cody-Waite three-part split of pi/2 (fdlibm e_rem_pio2.c): PIO2_1 has 33 bits.
+# Cody-Waite split of pi/2 (fdlibm e_rem_pio2.c): three 33-bit parts (n * part exact for
+# |n| < 2^20) and the rest, so that r keeps full relative accuracy next to multiples of pi/2
 _PIO2_1 = 1.57079632673412561417e+00
 _PIO2_2 = 6.07710050630396597660e-11
 _PIO2_3 = 2.02226624871116645580e-21
+_PIO2_3T = 8.47842766036889956997e-32
 _TWO_OVER_PI = 6.36619772367581382433e-01
 # fdlibm k_sin.c / k_cos.c minimax coefficients on |r| <= pi/4
 _S1, _S2, _S3 = -1.66666666666666324348e-01, 8.33333333332248946124e-03, \
@@ -58,7 +60,7 @@ _C4, _C5, _C6 = -2.75573143513906633035e-07, 2.08757232129817482790e-09, \
 def _sincosvers(x):
     """(sin x, cos x, 1 - cos x) without branches (see the module docstring)."""
     n = math.floor(x * _TWO_OVER_PI + 0.5)
-    r = ((x - n * _PIO2_1) - n * _PIO2_2) - n * _PIO2_3
+    r = (((x - n * _PIO2_1) - n * _PIO2_2) - n * _PIO2_3) - n * _PIO2_3T
     z = r * r
     sr = r + r * z * (_S1 + z * (_S2 + z * (_S3 + z * (_S4 + z * (_S5 + z * _S6)))))
     vr = 0.5 * z - z * z * (_C1 + z * (_C2 + z * (_C3 + z * (_C4 + z * (_C5 + z * _C6)))))
@@ -483,17 +485,24 @@ def empty_u():
     return np.zeros(0)
 
 
-def vectorised(fn) -> bool:
-    """Whether a compiled kernel's LLVM IR holds SIMD double operations (<N x double>).
-
-    Compiles an uncached copy (the IR of cached code cannot be inspected) for the
-    signatures ``fn`` was called with. How the loops were checked: call them once, then
-    ``vectorised(_rk4_pass)``; on this machine the IR shows ``<8 x double>`` (AVX-512).
+def vectorised_loops(coupled: bool = True) -> dict:
+    """Which fused passes compile to SIMD code: {name: True if their LLVM IR holds
+    ``<N x double>`` operations}. How the loops were checked (and are, in the tests):
+    an uncached copy of each pass is compiled for representative arguments and its IR
+    searched; on this machine it shows ``<8 x double>`` (AVX-512), ``<4 x ...>`` on AVX2.
     """
     import re
 
-    from numba import njit as _njit
-
-    copy = _njit(fastmath=_FAST, boundscheck=False)(fn.py_func)
-    return any(re.search(r"<\d+ x double>", copy.inspect_llvm(sig))
-               for sig in fn.signatures if copy.compile(sig) or True)
+    n = 16
+    arr = [np.zeros(n) for _ in range(20)]
+    par = (coupled, 1.0, 0.02, 0.01)
+    calls = {"_rk4_pass": (_rk4_pass, (*arr, *par, 1.0, 2.0, 0.05)),
+             "_rk4_last_pass": (_rk4_last_pass, (*arr, *par, 0.01)),
+             "_srkn_pass": (_srkn_pass, (*arr[:14], *par, 0.1, 0.1)),
+             "accel": (accel, (arr[0], arr[1], coupled, 1.0, 0.02, 0.01, *arr[2:7]))}
+    out = {}
+    for name, (fn, args) in calls.items():
+        copy = njit(fastmath=_FAST, boundscheck=False)(fn.py_func)
+        copy(*args)
+        out[name] = bool(re.search(r"<\d+ x double>", copy.inspect_llvm(copy.signatures[0])))
+    return out

@@ -17,8 +17,9 @@ import numpy as np
 from generated import coefficients as coefficients_module
 
 from ._analysis import spectrum
+from ._accuracy import check_energy_tolerance, energy_check
 from ._integrate import (BlowUpError, SimulationInterrupted, _blowup_message, _check_time,
-                         _Stepper)
+                         _Stepper, resolve_step)
 from ._integrators import get_method
 from ._model import (LatticeState, Material, check_case,
                      discrete_omega_rotation, energy)
@@ -101,7 +102,13 @@ class Run:
 
     @property
     def relative_energy_error(self) -> np.ndarray:
+        """|E(t) - E(0)| / |E(0)| at every record."""
         return np.abs(self.energy - self.energy[0]) / abs(self.energy[0])
+
+    @property
+    def energy_error(self) -> float:
+        """The largest relative energy error over the records (the run's accuracy check)."""
+        return float(self.relative_energy_error.max())
 
 
 def snap_wavenumber(k: float, N: int, rel_tol: float = 1e-3):
@@ -177,10 +184,12 @@ def _progress(total, enabled):
 
 def simulate(material: Material, case: str, N: int, k: float, eps: float = 0.01,
              A0: float = 1.0, noise: float = 1e-3, seed: int = 0, t_end: float = 5000.0,
-             dt: float = 0.05, method: str = "rk4", save_every: float | None = None, *,
+             dt: float | None = None, method: str | None = None,
+             save_every: float | None = None, *, tol: float | None = None,
              store: str = "snapshots", omega_model: str = "continuum",
              initial: LatticeState | None = None, progress: bool | None = None,
-             rtol: float = 1e-10, atol: float = 1e-12, max_energy_error: float = 0.5) -> Run:
+             rtol: float = 1e-10, atol: float = 1e-12, max_energy_error: float = 0.5,
+             energy_tolerance: float = 1e-3) -> Run:
     """Run the paper's numerical experiment: a noisy plane wave on a periodic chain.
 
     Parameters
@@ -193,8 +202,13 @@ def simulate(material: Material, case: str, N: int, k: float, eps: float = 0.01,
     eps, A0, noise, seed : initial condition, see :func:`initial_condition`.
     t_end, dt : float
         Duration and time step (defaults: the paper's run, T = 5000 with dt = 0.05).
-    method : str
+    method : str, optional
         One of ``numerics.METHODS`` (default "rk4", the paper's).
+    tol : float, optional
+        Ask for accuracy instead of a step: the relative state error wanted at t_end;
+        the method (unless given) and dt come from the error model of
+        ``numerics._accuracy`` (then give no dt). ``run.method`` and ``run.dt`` say
+        what was chosen.
     save_every : float, optional
         Time between saved records (rounded to whole steps); default about 1000 records.
     store : {"snapshots", "spectrum", "energy"}
@@ -211,6 +225,10 @@ def simulate(material: Material, case: str, N: int, k: float, eps: float = 0.01,
         A record whose energy is off by more than this fraction of the initial energy
         (or not finite) counts as a blow-up: the run is conservative, so this only
         happens when the step is unstable.
+    energy_tolerance : float
+        A run that completes with a relative energy error above this (default 1e-3)
+        ends with an :class:`AccuracyWarning` naming a dt that meets it;
+        ``run.energy_error`` holds the error of every run.
 
     Returns
     -------
@@ -226,18 +244,22 @@ def simulate(material: Material, case: str, N: int, k: float, eps: float = 0.01,
         which ``simulate(..., initial=exc.state, t_end=remaining)`` resumes.
     """
     check_case(case)
-    m_ = get_method(method)
+    if method is not None:
+        get_method(method)
     if store not in STORE_CHOICES:
         raise ValueError(f"store must be one of {STORE_CHOICES}, got {store!r}")
+    energy_tolerance = check_energy_tolerance(energy_tolerance)
     N = _check_sites(N)
     ks, mode = snap_wavenumber(k, N)
-    nsteps, dt_eff = _check_time(t_end, dt)
     if initial is None:
         state = initial_condition(material, case, N, ks, eps, A0, noise, seed, omega_model)
     else:
         state = initial.for_case(case)
         if state.N != N:
             raise ValueError(f"initial state has {state.N} sites, N = {N}")
+    method, dt = resolve_step(state, material, case, t_end, dt, method, tol)
+    m_ = get_method(method)
+    nsteps, dt_eff = _check_time(t_end, dt)
     if save_every is None:
         per_save = max(1, round(nsteps / 1000))
     else:
@@ -318,4 +340,6 @@ def simulate(material: Material, case: str, N: int, k: float, eps: float = 0.01,
             bar.close()
     run.final_state = st.state()
     run.force_evaluations = st.evaluations
+    if m_.fixed_step:
+        energy_check(run.energy_error, energy_tolerance, m_.name, dt_eff)
     return run
