@@ -41,6 +41,7 @@ DT = {"rk4": [0.4, 0.2, 0.1, 0.05], "verlet": [0.1, 0.05, 0.025, 0.0125],
       "srkn6b": [0.4, 0.2, 0.1, 0.05], "srkn11b": [0.4, 0.2, 0.1, 0.05]}
 
 
+@pytest.mark.filterwarnings("ignore::numerics.AccuracyWarning")  # coarse steps on purpose
 @pytest.mark.parametrize("method", FIXED)
 def test_convergence_order(method, reference):
     s0, ref = reference
@@ -87,8 +88,9 @@ def test_symplectic_methods_are_reversible(method):
 
 
 def _energy_errors(method, dt, t_end=2000.0):
+    # these tests measure the energy error itself, at steps chosen large: no warning
     run = simulate(BLUE, "coupled", 64, 2 * np.pi * 8 / 64, eps=0.05, t_end=t_end, dt=dt,
-                   method=method, save_every=10.0, store="energy")
+                   method=method, save_every=10.0, store="energy", energy_tolerance=1.0)
     return run.t, run.relative_energy_error
 
 
