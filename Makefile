@@ -41,14 +41,17 @@ figures: $(STAMP) $(GENERATED)
 	  [ -f $$d/figure.png ] && cp $$d/figure.png docs/figures/$$n.png; done; true
 	cp out/full/report.md docs/figures/report.md
 
-# Work-precision, long-time energy, scaling, derive/import cost -> bench/results.json, PNGs
+# Work-precision, long-time energy, scaling, derive/import cost, kernel speed and time to
+# 1e-6 against scipy (bench/speed.py) -> bench/results.json, PNGs
 bench: $(STAMP)
 	$(VPY) bench/simulator.py
 	$(VPY) bench/work_precision.py
+	$(VPY) bench/speed.py
 
 bench-quick: $(STAMP)
 	$(VPY) bench/simulator.py --quick
 	$(VPY) bench/work_precision.py --quick
+	$(VPY) bench/speed.py --quick
 
 # Where numerical stability ends -> bench/stress.json, bench/stress.md
 stress: $(STAMP)

@@ -9,23 +9,19 @@ import numpy as np
 
 from generated import lattice_model
 
+from ._checks import positive, real_array
+
 CASES = ("rotation", "coupled")
 
 
 def check_case(case: str) -> str:
-    if case not in CASES:
+    if not isinstance(case, str) or case not in CASES:
         raise ValueError(f"case must be 'rotation' (case I) or 'coupled' (case II), got {case!r}")
     return case
 
 
-def _positive_finite(name, value):
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a real number, got {value!r}") from None
-    if not math.isfinite(v) or v <= 0:
-        raise ValueError(f"{name} must be finite and > 0, got {value!r}")
-    return v
+#: finite and > 0 (TypeError for a non-real, ValueError for a bad value)
+_positive_finite = positive
 
 
 @dataclass(frozen=True)
@@ -90,7 +86,9 @@ def discrete_omega_longitudinal(q):
 
 
 def _as_field(name, x, n=None):
-    a = np.array(x, dtype=float, copy=True)
+    if x is None:
+        raise TypeError(f"{name} must be an array of N >= 3 real numbers, got None")
+    a = real_array(name, x).copy()
     if a.ndim != 1:
         raise ValueError(f"{name} must be a 1-D array, got shape {a.shape}")
     if a.size < 3:

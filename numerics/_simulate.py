@@ -7,8 +7,11 @@ for, and stops with ``BlowUpError`` or ``SimulationInterrupted`` keeping what wa
 
 from __future__ import annotations
 
+import contextlib
 import hashlib
 import math
+import signal
+import threading
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -17,9 +20,10 @@ import numpy as np
 from generated import coefficients as coefficients_module
 
 from ._analysis import spectrum
+from . import _checks as checks
 from ._accuracy import check_energy_tolerance, energy_check
 from ._integrate import (BlowUpError, SimulationInterrupted, _blowup_message, _check_time,
-                         _Stepper, resolve_step)
+                         _Stepper, check_tolerances, resolve_step)
 from ._integrators import get_method
 from ._model import (LatticeState, Material, check_case,
                      discrete_omega_rotation, energy)
@@ -46,11 +50,8 @@ OMEGA_MODELS = ("continuum", "discrete", "travelling")
 
 
 def _check_sites(N):
-    if not (isinstance(N, (int, np.integer)) and N >= 3):
-        raise ValueError(f"N must be an integer >= 3, got {N!r}")
-    if N > 10**8:
-        raise ValueError(f"N = {N} sites is absurd (> 1e8)")
-    return int(N)
+    """N: an integer in [3, 1e8] (more sites than that does not fit a 24 GiB machine)."""
+    return checks.integer("N", N, 3, 10**8 + 1)
 
 
 @dataclass
@@ -140,15 +141,13 @@ def initial_condition(material: Material, case: str, N: int, k: float, eps: floa
     odd theta harmonics, the forced U harmonics and their velocities), every field
     multiplied by the same (1 + b0): no free U waves beat against the forced ones.
     """
+    checks.instance("material", material, Material)
     check_case(case)
-    if omega_model not in OMEGA_MODELS:
-        raise ValueError(f"omega_model must be one of {OMEGA_MODELS}, got {omega_model!r}")
+    checks.choice("omega_model", omega_model, OMEGA_MODELS)
     N = _check_sites(N)
-    for name, val in (("eps", eps), ("A0", A0)):
-        if not (math.isfinite(val) and val > 0):
-            raise ValueError(f"{name} must be finite and > 0, got {val!r}")
-    if not (math.isfinite(noise) and noise >= 0):
-        raise ValueError(f"noise must be finite and >= 0, got {noise!r}")
+    eps, A0 = checks.positive("eps", eps), checks.positive("A0", A0)
+    noise = checks.real("noise", noise, 0.0, 1.0, low_open=False, high_open=True)
+    seed = checks.seed(seed)
     rng = np.random.default_rng(seed)
     b0 = rng.uniform(-noise, noise, N)
     n = np.arange(N)
@@ -170,6 +169,44 @@ def initial_condition(material: Material, case: str, N: int, k: float, eps: floa
     if case == "coupled":
         return LatticeState(np.zeros(N), np.zeros(N), theta, theta_dot)
     return LatticeState(None, None, theta, theta_dot)
+
+
+class _Interrupt(Exception):
+    """Ctrl-C noticed between two calls into compiled code (state and time consistent)."""
+
+
+@contextlib.contextmanager
+def _deferred_interrupt():
+    """Turn SIGINT into a flag checked between calls into compiled code, so an interrupted
+    run stops on a state whose time is known exactly. Only in the main thread and when
+    Python's default handler is installed (else nothing changes); a second Ctrl-C raises
+    at once. Yields a function returning whether Ctrl-C was pressed."""
+    flag = []
+    if (threading.current_thread() is not threading.main_thread()
+            or signal.getsignal(signal.SIGINT) is not signal.default_int_handler):
+        yield lambda: False
+        return
+
+    def handler(signum, frame):
+        if flag:
+            raise KeyboardInterrupt
+        flag.append(signum)
+
+    signal.signal(signal.SIGINT, handler)
+    try:
+        yield lambda: bool(flag)
+    finally:
+        signal.signal(signal.SIGINT, signal.default_int_handler)
+
+
+#: site-evaluations per call into compiled code: ~0.1 s, so Ctrl-C answers promptly
+_WORK_PER_CALL = 3e7
+
+
+def _steps_per_call(N, method, per_save):
+    if not method.fixed_step:  # scipy: one solve_ivp per record, as before
+        return per_save
+    return max(1, min(per_save, int(_WORK_PER_CALL / (N * method.evaluations))))
 
 
 def _progress(total, enabled):
@@ -243,12 +280,17 @@ def simulate(material: Material, case: str, N: int, k: float, eps: float = 0.01,
         Ctrl-C: ``.run`` keeps the records saved so far, ``.state`` the last state, from
         which ``simulate(..., initial=exc.state, t_end=remaining)`` resumes.
     """
+    checks.instance("material", material, Material)
     check_case(case)
     if method is not None:
         get_method(method)
-    if store not in STORE_CHOICES:
-        raise ValueError(f"store must be one of {STORE_CHOICES}, got {store!r}")
+    checks.choice("store", store, STORE_CHOICES)
     energy_tolerance = check_energy_tolerance(energy_tolerance)
+    max_energy_error = checks.positive("max_energy_error", max_energy_error)
+    seed = checks.seed(seed)
+    rtol, atol = check_tolerances(rtol, atol)
+    if initial is not None:
+        checks.instance("initial", initial, LatticeState)
     N = _check_sites(N)
     ks, mode = snap_wavenumber(k, N)
     if initial is None:
@@ -304,37 +346,53 @@ def simulate(material: Material, case: str, N: int, k: float, eps: float = 0.01,
         run.completed = False
 
     record(0, 0.0)
-    done_steps = 0
-    state_time = 0.0  # time of the stepper's state (may run ahead of the last record)
+    steps = 0  # steps the stepper's state has done: its time is steps * dt_eff
     j = 1
+    sub = _steps_per_call(N, m_, per_save)
     bar = _progress(float(t_end), progress)
+    shown = [0]
+
+    def per_save_done(target):  # steps since the progress bar last moved
+        new, shown[0] = target - shown[0], target
+        return new
+
+    def blow_up(reason, drift=None):
+        truncate(j)
+        run.force_evaluations = st.evaluations
+        raise BlowUpError(_blowup_message(steps * dt_eff, dt_eff, material, case, m_, reason,
+                                          drift, max_energy_error), run, steps * dt_eff)
+
     try:
-        while done_steps < nsteps:
-            chunk = min(per_save, nsteps - done_steps)
-            got = st.advance(chunk)
-            state_time = (done_steps + got) * dt_eff
-            if got == chunk:
-                done_steps += chunk
-                record(j, done_steps * dt_eff)
-            drift = abs(en[j] - en[0]) if got == chunk else math.inf
-            if not drift <= max_energy_error * abs(en[0]):  # also catches NaN
-                truncate(j)
-                run.force_evaluations = st.evaluations
-                raise BlowUpError(_blowup_message(state_time, dt_eff, material, case, m_),
-                                  run, state_time)
-            j += 1
-            if bar is not None:
-                bar.update(chunk * dt_eff)
-    except KeyboardInterrupt as exc:
+        with _deferred_interrupt() as interrupted:
+            while steps < nsteps:
+                target = min(steps + per_save, nsteps)  # the next record
+                while steps < target:
+                    n = min(sub, target - steps)
+                    got = st.advance(n)
+                    steps += got
+                    if got < n:
+                        blow_up("non-finite")
+                    if interrupted():
+                        raise _Interrupt
+                record(j, steps * dt_eff)
+                drift = abs(en[j] - en[0]) / abs(en[0])
+                if not drift <= max_energy_error:  # also catches NaN
+                    blow_up("energy", drift)
+                j += 1
+                if bar is not None:
+                    bar.update(per_save_done(target) * dt_eff)
+    except (_Interrupt, KeyboardInterrupt) as exc:
         if isinstance(exc, SimulationInterrupted):
             raise
         truncate(j)
         run.force_evaluations = st.evaluations
+        left = nsteps - steps
         raise SimulationInterrupted(
-            f"interrupted at T = {state_time:g} of {t_end:g}; exc.run keeps {len(run.t)} "
-            f"records. Resume with simulate(..., initial=exc.state, "
-            f"t_end={t_end - state_time:g}) (times then count from 0)",
-            run=run, state=st.state()) from None
+            f"interrupted at T = {steps * dt_eff:.10g} of {t_end:g}; exc.run keeps "
+            f"{len(run.t)} records (to T = {run.t[-1]:g}). Resume with simulate(..., "
+            f"initial=exc.state, t_end={left * dt_eff!r}, dt={dt_eff!r}) (times then count "
+            "from 0)", run=run, state=st.state(), time=steps * dt_eff,
+            remaining=left * dt_eff) from None
     finally:
         if bar is not None:
             bar.close()
