@@ -29,7 +29,8 @@ from ._integrators import METHODS, Method, get_method
 from ._model import (CASES, LatticeState, Material, discrete_omega_longitudinal,
                      discrete_omega_rotation, energy)
 from ._plane_wave import PlaneWave, plane_wave
-from ._simulate import SIMULATOR_VERSION, Run, initial_condition, simulate, snap_wavenumber
+from ._simulate import (SIMULATOR_VERSION, Run, initial_condition, resume, simulate,
+                        snap_wavenumber)
 
 __all__ = [
     "Material", "LatticeState", "energy", "integrate", "simulate", "Run", "METHODS", "Method",
@@ -40,4 +41,5 @@ __all__ = [
     "GROWTH_THRESHOLD", "band_summary", "carrier_amplitude", "carrier_frequency",
     "forced_second_harmonic", "growth_rates", "harmonic_bins", "linear_stage", "mode",
     "sideband_to_carrier", "spectrum", "stability_verdict", "AccuracyWarning", "choose_step",
+    "resume",
 ]

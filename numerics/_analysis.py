@@ -65,6 +65,10 @@ def stability_verdict(spec: np.ndarray, m: int, N: int) -> dict:
     """Numerical stability of a noisy plane wave from its spectrum over time."""
     r = sideband_to_carrier(spec, m, N)
     growth = float(r.max() / r[0])
+    if not np.isfinite(growth):  # a NaN must not read as "MI" (nor as "stable")
+        raise ValueError(f"no stability verdict: the sideband-to-carrier ratio is not finite "
+                         f"(growth factor {growth}); the spectrum holds NaN/inf or a zero "
+                         "carrier")
     return {"stable": bool(growth < GROWTH_THRESHOLD),
             "sideband_to_carrier_start": float(r[0]),
             "sideband_to_carrier_end": float(r[-1]),

@@ -2,19 +2,22 @@
 
 from __future__ import annotations
 
+import dataclasses
 import hashlib
 import json
 from pathlib import Path
 
 import h5py
+import numpy as np
 
 from derivation.files import atomic_write
 
-from ._model import Material
-from ._simulate import SIMULATOR_VERSION, Run, simulate
+from ._integrate import SimulationInterrupted
+from ._model import LatticeState, Material
+from ._simulate import SIMULATOR_VERSION, Run, resume, simulate
 
 #: How many simulations actually ran in this process (cache misses); tests read it.
-STATS = {"simulations": 0, "hits": 0}
+STATS = {"simulations": 0, "hits": 0, "checkpoints": 0}
 _ARRAYS = ("t", "theta", "U", "theta_hat", "U_hat", "energy")
 _SCALARS = ("N", "k", "m", "k_requested", "eps", "A0", "noise", "seed", "method", "dt",
             "t_end", "save_every", "store", "omega_model", "force_evaluations", "case")
@@ -25,46 +28,149 @@ def cache_key(params: dict) -> str:
     return hashlib.sha256(blob.encode()).hexdigest()[:24]
 
 
+def _checksum(arrays: dict) -> str:
+    h = hashlib.sha256()
+    for name in sorted(arrays):
+        a = np.ascontiguousarray(arrays[name])
+        h.update(f"{name}{a.dtype.str}{a.shape}".encode() + a.tobytes())
+    return h.hexdigest()
+
+
 def _save(path: Path, run: Run, params: dict):
+    arrays = {n: getattr(run, n) for n in _ARRAYS if getattr(run, n) is not None}
     # atomic: an interrupted write leaves no cache entry
     with atomic_write(path, mode=None) as tmp, h5py.File(tmp, "w") as f:
-        for name in _ARRAYS:
-            arr = getattr(run, name)
-            if arr is not None:
-                f.create_dataset(name, data=arr, compression="gzip", compression_opts=1)
+        for name, arr in arrays.items():
+            f.create_dataset(name, data=arr, compression="gzip", compression_opts=1)
         for name in _SCALARS:
             f.attrs[name] = getattr(run, name)
         f.attrs["params"] = json.dumps(params, sort_keys=True)
         f.attrs["simulator_version"] = SIMULATOR_VERSION
+        f.attrs["checksum"] = _checksum(arrays)
+
+
+class CorruptEntry(Exception):
+    """A cache entry that is unreadable, altered or inconsistent: it is recomputed."""
 
 
 def _load(path: Path, material: Material) -> Run:
     with h5py.File(path, "r") as f:
         arrays = {n: (f[n][()] if n in f else None) for n in _ARRAYS}
         s = {n: f.attrs[n] for n in _SCALARS}
+        checksum = f.attrs.get("checksum")
     s = {n: (v.item() if hasattr(v, "item") else v) for n, v in s.items()}
     s = {n: (v.decode() if isinstance(v, bytes) else v) for n, v in s.items()}
-    return Run(material=material, **arrays, **s)
+    if checksum != _checksum({n: a for n, a in arrays.items() if a is not None}):
+        raise CorruptEntry("checksum mismatch")
+    run = Run(material=material, **arrays, **s)
+    _check_shapes(run)
+    return run
+
+
+def _check_shapes(run: Run):
+    nt = run.t.shape[0]
+    expect = {"energy": (nt,), "theta": (nt, run.N), "U": (nt, run.N),
+              "theta_hat": (nt, run.N // 2 + 1), "U_hat": (nt, run.N // 2 + 1)}
+    for name, shape in expect.items():
+        arr = getattr(run, name)
+        if arr is not None and arr.shape != shape:
+            raise CorruptEntry(f"{name} has shape {arr.shape}, expected {shape}")
+    if not (nt >= 2 and abs(run.t[-1] - run.t_end) <= 1e-9 * run.t_end):
+        raise CorruptEntry("records do not reach t_end")
 
 
 def cached_simulate(cache_dir: Path | None, force: bool = False, **params) -> Run:
-    """``simulate(**params)`` through the cache in ``cache_dir`` (None: no cache)."""
+    """``simulate(**params)`` through the cache in ``cache_dir`` (None: no cache).
+
+    An interrupted run (Ctrl-C) is checkpointed as ``KEY.partial.h5`` (its records and the
+    state it stopped at) before the interrupt propagates; the next call with the same
+    parameters resumes from it (``numerics.resume``) instead of starting over.
+    """
     mat = params["material"]
     key_params = dict(params, material=[mat.alpha, mat.K_s, mat.K_theta])
     key_params.pop("progress", None)
-    if cache_dir is not None:
-        cache_dir = Path(cache_dir)
-        cache_dir.mkdir(parents=True, exist_ok=True)
-        path = cache_dir / f"{cache_key(key_params)}.h5"
-        if path.exists() and not force:
-            try:
-                run = _load(path, mat)
-                STATS["hits"] += 1
-                return run
-            except (OSError, KeyError):
-                path.unlink(missing_ok=True)  # corrupt entry: recompute
+    if cache_dir is None:
+        STATS["simulations"] += 1
+        return simulate(**params)
+    cache_dir = Path(cache_dir)
+    cache_dir.mkdir(parents=True, exist_ok=True)
+    key = cache_key(key_params)
+    path, partial = cache_dir / f"{key}.h5", cache_dir / f"{key}.partial.h5"
+    if path.exists() and not force:
+        try:
+            run = _load(path, mat)
+            STATS["hits"] += 1
+            return run
+        except (OSError, KeyError, ValueError, TypeError, CorruptEntry):
+            path.unlink(missing_ok=True)  # corrupt or altered entry: recompute
     STATS["simulations"] += 1
-    run = simulate(**params)
-    if cache_dir is not None:
-        _save(path, run, key_params)
+    checkpoint = None if force else _load_checkpoint(partial, mat)
+    try:
+        run = resume(checkpoint, **params) if checkpoint else simulate(**params)
+    except SimulationInterrupted as exc:
+        if checkpoint:  # the resumed part was interrupted in turn: merge the two parts
+            exc = _merged(checkpoint, exc)
+        _save_checkpoint(partial, exc, key_params)
+        STATS["checkpoints"] += 1
+        raise exc from None
+    _save(path, run, key_params)
+    partial.unlink(missing_ok=True)
     return run
+
+
+def _save_checkpoint(path: Path, exc: SimulationInterrupted, params: dict):
+    s = exc.state
+    fields = {"state_theta": s.theta, "state_theta_dot": s.theta_dot}
+    if s.U is not None:
+        fields.update(state_U=s.U, state_U_dot=s.U_dot)
+    run = exc.run
+    arrays = {n: getattr(run, n) for n in _ARRAYS if getattr(run, n) is not None}
+    with atomic_write(path, mode=None) as tmp, h5py.File(tmp, "w") as f:
+        for name, arr in {**arrays, **fields}.items():
+            f.create_dataset(name, data=arr)
+        for name in _SCALARS:
+            f.attrs[name] = getattr(run, name)
+        for name in ("time", "remaining", "dt", "record_phase"):
+            f.attrs[f"interrupt_{name}"] = getattr(exc, name)
+        f.attrs["force_evaluations"] = run.force_evaluations
+        f.attrs["params"] = json.dumps(params, sort_keys=True)
+        f.attrs["checksum"] = _checksum({**arrays, **fields})
+
+
+def _load_checkpoint(path: Path, material: Material):
+    """The SimulationInterrupted saved in ``path``, or None (absent or unusable)."""
+    if not path.exists():
+        return None
+    try:
+        with h5py.File(path, "r") as f:
+            data = {n: f[n][()] for n in f}
+            attrs = {n: f.attrs[n] for n in f.attrs}
+        if attrs.pop("checksum") != _checksum(data):
+            raise CorruptEntry("checksum mismatch")
+        attrs = {n: (v.item() if hasattr(v, "item") else v) for n, v in attrs.items()}
+        attrs = {n: (v.decode() if isinstance(v, bytes) else v) for n, v in attrs.items()}
+        state = LatticeState(data.get("state_U"), data.get("state_U_dot"),
+                             data["state_theta"], data["state_theta_dot"])
+        run = Run(material=material, **{n: data.get(n) for n in _ARRAYS},
+                  **{n: attrs[n] for n in _SCALARS}, completed=False)
+        return SimulationInterrupted("checkpoint", run=run, state=state,
+                                     **{n: attrs[f"interrupt_{n}"] for n in
+                                        ("time", "remaining", "dt", "record_phase")})
+    except (OSError, KeyError, ValueError, TypeError, CorruptEntry):
+        path.unlink(missing_ok=True)
+        return None
+
+
+def _merged(first: SimulationInterrupted, second: SimulationInterrupted):
+    """One interruption from two: the first's records, then the resumed part's."""
+    a, b = first.run, second.run
+    merged = {}
+    for name in _ARRAYS:
+        x, y = getattr(a, name), getattr(b, name)
+        if x is not None:
+            merged[name] = np.concatenate([x, y[1:] + first.time if name == "t" else y[1:]])
+    run = dataclasses.replace(a, **merged, completed=False,
+                              force_evaluations=a.force_evaluations + b.force_evaluations)
+    return SimulationInterrupted("interrupted", run=run, state=second.state,
+                                 time=first.time + second.time, remaining=second.remaining,
+                                 dt=second.dt, record_phase=second.record_phase)

@@ -22,9 +22,10 @@ import numpy as np
 
 from generated import lattice_model as model
 
+from . import _checks as checks
 from ._model import Material, check_case
-from ._plane_wave import (HARMONICS, PlaneWave, _check, _check_harmonics, _on_branch,
-                          _shift, _solve_plane_waves, plane_wave)
+from ._plane_wave import (HARMONICS, MAX_AMPLITUDE, PlaneWave, _check, _check_harmonics,
+                          _on_branch, _shift, _solve_plane_waves, plane_wave)
 
 #: a Hill mode is a sideband (MI) mode when the two sidebands p = +-1 hold more than
 #: SIDEBAND_SHARE of its kinetic energy, each of them at least SIDEBAND_PRESENT
@@ -138,6 +139,21 @@ def hill_spectrum(wave: PlaneWave, material: Material, q, P: int):
     return lam, _sideband_share(vec, labels, np.array(material.alpha**2))
 
 
+def _check_wave(wave, material, case, k, amplitude, H):
+    """A wave passed to mi_gain must be the one it is asked about."""
+    checks.instance("wave", wave, PlaneWave)
+    problems = [f"{name} {got!r} != {want!r}" for name, got, want in (
+        ("case", wave.case, case), ("k", wave.k, k), ("amplitude", wave.amplitude, amplitude),
+        ("harmonics", wave.theta_harmonics.size, H)) if got != want]
+    w_lin = float(model.omega_rotation(k, material.alpha, material.K_s, material.K_theta))
+    if not np.isclose(wave.omega_linear, w_lin, rtol=1e-12):
+        problems.append("material (its linear frequency differs)")
+    if problems:
+        raise ValueError("wave does not match the arguments of mi_gain: " + "; ".join(problems)
+                         + "; compute it with plane_wave(material, case, k, amplitude, "
+                         "harmonics)")
+
+
 def _is_mi(share):
     # MI modes hold nearly all their energy in the two sidebands, both present; the
     # relabelled copy of a mode at q - 2k holds about half, in p = -1 and p = -3 only.
@@ -189,6 +205,8 @@ def mi_gain(material: Material, case: str, k: float, amplitude: float, q,
         raise ValueError("q must be finite")
     if wave is None:
         wave = plane_wave(material, case, k, amplitude, H)
+    else:
+        _check_wave(wave, material, case, k, amplitude, H)
     if modes not in ("sidebands", "all"):
         raise ValueError(f"modes must be 'sidebands' or 'all', got {modes!r}")
     lam, share = hill_spectrum(wave, material, q_arr.ravel(), 2 * H - 1)
@@ -225,10 +243,20 @@ def stability_map(k, delta, case: str, alpha: float, K_s: float, amplitude: floa
         Peak growth rate; 0 where the plane wave is stable (to the q grid).
     """
     check_case(case)
-    k = np.asarray(k, float)
-    delta = np.broadcast_to(np.asarray(delta, float), k.shape)
-    q = MAP_OFFSETS if q is None else np.asarray(q, float).ravel()
+    alpha = checks.positive("alpha", alpha)
+    K_s = checks.positive("K_s", K_s)
+    amplitude = checks.real("amplitude (peak rotation, rad)", amplitude, 0.0, MAX_AMPLITUDE)
+    chunk = checks.integer("chunk", chunk, 1)
+    k, delta = checks.real_array("k", k), checks.real_array("delta", delta)
+    try:
+        k, delta = np.broadcast_arrays(k, delta)
+    except ValueError:
+        raise ValueError(f"k and delta must have the same (or broadcastable) shapes, got "
+                         f"{k.shape} and {delta.shape}") from None
+    q = MAP_OFFSETS if q is None else checks.real_array("q", q).ravel()
     H = _check_harmonics(harmonics)
+    if not (np.all(np.isfinite(k)) and np.all(np.isfinite(delta)) and np.all(np.isfinite(q))):
+        raise ValueError("k, delta and q must be finite")
     if np.any(K_s - delta <= 0) or np.any((k <= 0) | (k >= np.pi)):
         raise ValueError("need K_theta = K_s - delta > 0 and 0 < k < pi on the whole grid")
     kf, df = k.ravel(), delta.ravel()

@@ -33,12 +33,15 @@ class SimulationInterrupted(KeyboardInterrupt):
     """Ctrl-C during a run; ``run`` holds the saved part, ``state`` the state at ``time``
     (exactly), ``remaining`` the time left to t_end."""
 
-    def __init__(self, message, run=None, state=None, time=None, remaining=None):
+    def __init__(self, message, run=None, state=None, time=None, remaining=None, dt=None,
+                 record_phase=0):
         super().__init__(message)
         self.run = run
         self.state = state
         self.time = time
         self.remaining = remaining
+        self.dt = dt
+        self.record_phase = record_phase
 
 
 def check_tolerances(rtol, atol):

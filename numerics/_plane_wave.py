@@ -22,10 +22,14 @@ import numpy as np
 
 from generated import lattice_model as model
 
+from . import _checks as checks
 from ._model import Material, check_case
 
 #: default truncation: theta harmonics |p| <= HARMONICS (odd), U harmonics |p| < HARMONICS.
 HARMONICS = 4
+#: largest peak rotation (rad) a plane wave may have here: the harmonic balance is tested
+#: to 1 rad; beyond 1.5 its truncation is no longer converged
+MAX_AMPLITUDE = 1.5
 #: Newton on the harmonic balance: relative residual to reach, iterations allowed, and
 #: the residual below which a solution counts as converged (the branch test)
 NEWTON_TOL, NEWTON_ITERATIONS, BRANCH_RESIDUAL = 1e-13, 30, 1e-8
@@ -151,12 +155,8 @@ def _check(material, case, k, amplitude):
     if not isinstance(material, Material):
         raise TypeError(f"material must be a Material, got {type(material).__name__}")
     check_case(case)
-    k = float(k)
-    if not (math.isfinite(k) and 0 < k < math.pi):
-        raise ValueError(f"k must be in (0, pi) rad per site, got {k!r}")
-    amplitude = float(amplitude)
-    if not (math.isfinite(amplitude) and 0 < amplitude < 1.5):
-        raise ValueError(f"amplitude (peak rotation, rad) must be in (0, 1.5), got {amplitude!r}")
+    k = checks.real("k (rad per site)", k, 0.0, math.pi)
+    amplitude = checks.real("amplitude (peak rotation, rad)", amplitude, 0.0, MAX_AMPLITUDE)
     return k, amplitude
 
 

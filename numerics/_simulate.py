@@ -8,6 +8,7 @@ for, and stops with ``BlowUpError`` or ``SimulationInterrupted`` keeping what wa
 from __future__ import annotations
 
 import contextlib
+import dataclasses
 import hashlib
 import math
 import signal
@@ -226,7 +227,7 @@ def simulate(material: Material, case: str, N: int, k: float, eps: float = 0.01,
              store: str = "snapshots", omega_model: str = "continuum",
              initial: LatticeState | None = None, progress: bool | None = None,
              rtol: float = 1e-10, atol: float = 1e-12, max_energy_error: float = 0.5,
-             energy_tolerance: float = 1e-3) -> Run:
+             energy_tolerance: float = 1e-3, record_phase: int = 0) -> Run:
     """Run the paper's numerical experiment: a noisy plane wave on a periodic chain.
 
     Parameters
@@ -266,6 +267,9 @@ def simulate(material: Material, case: str, N: int, k: float, eps: float = 0.01,
         A run that completes with a relative energy error above this (default 1e-3)
         ends with an :class:`AccuracyWarning` naming a dt that meets it;
         ``run.energy_error`` holds the error of every run.
+    record_phase : int
+        Steps done since the last record, when ``initial`` is the state of an interrupted
+        run (``SimulationInterrupted.record_phase``): the records keep that run's grid.
 
     Returns
     -------
@@ -308,7 +312,12 @@ def simulate(material: Material, case: str, N: int, k: float, eps: float = 0.01,
         if not (math.isfinite(save_every) and save_every > 0):
             raise ValueError(f"save_every must be finite and > 0, got {save_every!r}")
         per_save = max(1, round(save_every / dt_eff))
-    nrec = -(-nsteps // per_save) + 1
+    # records at 0, at first_record, every per_save steps after it, and at the end;
+    # record_phase > 0 continues the record grid of an interrupted run (steps already done
+    # since its last record)
+    phase = checks.integer("record_phase", record_phase, 0, per_save)
+    first_record = per_save - phase
+    nrec = 2 + (0 if first_record >= nsteps else -(-(nsteps - first_record) // per_save))
     coupled = case == "coupled"
     nq = N // 2 + 1
     t = np.empty(nrec)
@@ -365,14 +374,14 @@ def simulate(material: Material, case: str, N: int, k: float, eps: float = 0.01,
     try:
         with _deferred_interrupt() as interrupted:
             while steps < nsteps:
-                target = min(steps + per_save, nsteps)  # the next record
+                target = min(first_record + (j - 1) * per_save, nsteps)  # the next record
                 while steps < target:
                     n = min(sub, target - steps)
                     got = st.advance(n)
                     steps += got
                     if got < n:
                         blow_up("non-finite")
-                    if interrupted():
+                    if interrupted() and steps < target:
                         raise _Interrupt
                 record(j, steps * dt_eff)
                 drift = abs(en[j] - en[0]) / abs(en[0])
@@ -381,18 +390,22 @@ def simulate(material: Material, case: str, N: int, k: float, eps: float = 0.01,
                 j += 1
                 if bar is not None:
                     bar.update(per_save_done(target) * dt_eff)
+                if interrupted() and steps < nsteps:
+                    raise _Interrupt
     except (_Interrupt, KeyboardInterrupt) as exc:
         if isinstance(exc, SimulationInterrupted):
             raise
         truncate(j)
         run.force_evaluations = st.evaluations
         left = nsteps - steps
+        since = steps - (first_record + (j - 2) * per_save if j > 1 else -phase)
         raise SimulationInterrupted(
             f"interrupted at T = {steps * dt_eff:.10g} of {t_end:g}; exc.run keeps "
             f"{len(run.t)} records (to T = {run.t[-1]:g}). Resume with simulate(..., "
-            f"initial=exc.state, t_end={left * dt_eff!r}, dt={dt_eff!r}) (times then count "
-            "from 0)", run=run, state=st.state(), time=steps * dt_eff,
-            remaining=left * dt_eff) from None
+            f"initial=exc.state, t_end={left * dt_eff!r}, dt={dt_eff!r}, "
+            f"record_phase={since}) (times then count from 0), or numerics.resume(exc, **the same arguments)",
+            run=run, state=st.state(), time=steps * dt_eff, remaining=left * dt_eff,
+            dt=dt_eff, record_phase=since) from None
     finally:
         if bar is not None:
             bar.close()
@@ -400,4 +413,27 @@ def simulate(material: Material, case: str, N: int, k: float, eps: float = 0.01,
     run.force_evaluations = st.evaluations
     if m_.fixed_step:
         energy_check(run.energy_error, energy_tolerance, m_.name, dt_eff)
+    return run
+
+
+def resume(interrupted: SimulationInterrupted, **params) -> Run:
+    """Finish the run that ``interrupted`` stopped: ``params`` are the keyword arguments
+    of the original :func:`simulate` call. Returns the whole run, its records on the
+    original time grid, equal to an uninterrupted run to round-off (tested: 1e-14)."""
+    checks.instance("interrupted", interrupted, SimulationInterrupted)
+    part = interrupted.run
+    params = dict(params, initial=interrupted.state, t_end=interrupted.remaining,
+                  dt=interrupted.dt, save_every=part.save_every, tol=None,
+                  record_phase=interrupted.record_phase,
+                  method=part.method)
+    rest = simulate(**params)
+    merged = {}
+    for name in ("t", "energy", "theta", "U", "theta_hat", "U_hat"):
+        a, b = getattr(part, name), getattr(rest, name)
+        if a is not None:
+            tail = b[1:] + interrupted.time if name == "t" else b[1:]  # b[0]: not a record
+            merged[name] = np.concatenate([a, tail])
+    run = dataclasses.replace(part, **merged, completed=True, final_state=rest.final_state,
+                              force_evaluations=part.force_evaluations
+                              + rest.force_evaluations)
     return run

@@ -7,8 +7,12 @@ alone; ``run_all`` runs every scene and writes ``OUT/report.md``.
 
 from __future__ import annotations
 
+import hashlib
 import json
 import math
+import os
+import shutil
+import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -16,6 +20,8 @@ import h5py
 import numpy as np
 
 from derivation.files import atomic_write, write_text
+from numerics import _checks as checks
+from numerics import SIMULATOR_VERSION
 from numerics._cache import cached_simulate
 
 from ._plotting import plt
@@ -44,6 +50,32 @@ class Context:
         """``numerics.simulate(**params)`` through the on-disk cache."""
         params.setdefault("progress", None)
         return cached_simulate(self.cache_dir, self.force, **params)
+
+    def memo(self, tag: str, params: dict, compute):
+        """``compute()`` (an array, or JSON-able data) cached under ``tag`` and ``params``
+        (plain values) and the simulator's source hash: theory work is not redone."""
+        if self.cache_dir is None:
+            return compute()
+        blob = json.dumps({"tag": tag, "params": params, "code": SIMULATOR_VERSION},
+                          sort_keys=True, default=_jsonable)
+        key = hashlib.sha256(blob.encode()).hexdigest()[:24]
+        npy, js = self.cache_dir / f"{tag}-{key}.npy", self.cache_dir / f"{tag}-{key}.json"
+        if not self.force:
+            try:
+                if npy.exists():
+                    return np.load(npy)
+                if js.exists():
+                    return json.loads(js.read_text())
+            except (OSError, ValueError):
+                pass  # unreadable: recompute
+        value = compute()
+        self.cache_dir.mkdir(parents=True, exist_ok=True)
+        if isinstance(value, np.ndarray):
+            with atomic_write(npy, "wb") as fh:
+                np.save(fh, value)
+        else:
+            write_text(js, json.dumps(value, default=_jsonable))
+        return value
 
 
 # --- data.h5: arrays as datasets, everything else as attributes -------------------------
@@ -122,25 +154,73 @@ def _save_figure(fig, folder: Path, quick: bool):
     plt.close(fig)
 
 
+def prepare_output(out: Path | str) -> Path:
+    """Create OUT and OUT/.cache and prove both writable, before any computation.
+
+    Raises ValueError naming the path and the cause (a file where a folder must be, a
+    read-only or full file system, ...), so the CLI answers in one line.
+    """
+    out = Path(out) if str(out) else Path(".")
+    for folder in (out, out / ".cache"):
+        if folder.exists() and not folder.is_dir():
+            raise ValueError(f"{folder} is a file, not a folder")
+        try:
+            folder.mkdir(parents=True, exist_ok=True)
+            probe = folder / f".write-test-{os.getpid()}"
+            write_text(probe, "ok")
+            probe.unlink()
+        except OSError as exc:
+            raise ValueError(f"cannot write to {folder}: {exc.strerror or exc}") from None
+    return out
+
+
+def _publish(tmp: Path, folder: Path):
+    """Replace ``folder`` by the complete ``tmp`` folder: the scene's files change together
+    (never a mix of two runs); a crash in between leaves the old or the new folder."""
+    if folder.exists() and not folder.is_dir():
+        raise ValueError(f"{folder} is a file, not a folder")
+    old = folder.with_name(f".{folder.name}.old-{os.getpid()}")
+    if folder.exists():
+        os.replace(folder, old)
+    os.replace(tmp, folder)
+    shutil.rmtree(old, ignore_errors=True)
+
+
 def run_scene(name: str, out: Path | str = "out", quick: bool = False, seed: int = 0,
               force: bool = False) -> dict:
-    """Run one scene; writes OUT/NAME/{data.h5, figure.png, figure.pdf, summary.json}."""
+    """Run one scene; writes OUT/NAME/{data.h5, figure.png, figure.pdf, summary.json}.
+
+    The files are written into a hidden folder beside OUT/NAME and published together
+    when all four are complete (an interrupted run leaves the previous ones untouched).
+    """
     sc = get_scene(name)
-    if not isinstance(seed, int) or isinstance(seed, bool) or not 0 <= seed < 2**63:
-        raise ValueError(f"seed must be an integer in [0, 2^63), got {seed!r}")
-    out = Path(out)
+    seed = checks.seed(seed)
+    out = prepare_output(out)
+    folder = out / name
+    if folder.exists() and not folder.is_dir():
+        raise ValueError(f"{folder} is a file, not a folder")
     ctx = Context(quick=quick, seed=seed, force=force, cache_dir=out / ".cache")
     data, summary = sc.compute(ctx)
     data = dict(data, scene=name, seed=seed, quick=quick, package_version=package_version())
-    folder = out / name
-    folder.mkdir(parents=True, exist_ok=True)
-    write_data(folder / "data.h5", data)
-    _save_figure(sc.plot(data), folder, quick)
     summary = {"scene": name, **summary, "seed": seed, "quick": quick,
                "package_version": package_version()}
-    write_text(folder / "summary.json",
-               json.dumps(_strict(summary), indent=2, allow_nan=False) + "\n")
+    tmp = Path(tempfile.mkdtemp(prefix=f".{name}.partial-", dir=out))
+    try:
+        write_data(tmp / "data.h5", data)
+        _save_figure(sc.plot(data), tmp, quick)
+        write_text(tmp / "summary.json",
+                   json.dumps(_strict(summary), indent=2, allow_nan=False) + "\n")
+        os.chmod(tmp, 0o777 & ~_umask())
+        _publish(tmp, folder)
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
     return summary
+
+
+def _umask():
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask
 
 
 def replot_scene(name: str, out: Path | str = "out") -> Path:
@@ -193,5 +273,6 @@ def write_report(summaries: dict, out: Path, quick: bool) -> Path:
 
 def run_all(out="out", quick=False, seed=0, force=False, names=None) -> Path:
     """Run every scene (or ``names``) and write OUT/report.md."""
+    out = prepare_output(out)
     summaries = {name: run_scene(name, out, quick, seed, force) for name in names or REGISTRY}
     return write_report(summaries, Path(out), quick)

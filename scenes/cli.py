@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import sys
 import time
+from pathlib import Path
 
 
 def _parser():
@@ -32,39 +33,71 @@ def _print_checks(summary):
 
 
 def main(argv=None) -> int:
+    """Run the CLI; returns the exit code (0 ok, 2 bad input or file system, 130 Ctrl-C)."""
     args = _parser().parse_args(argv)
-    import scenes
-
+    if hasattr(args, "out"):
+        args.out = args.out or "."  # --out '' is the current folder, and says so
     try:
-        if args.cmd == "table":
-            from .table import format_table
-
-            print(format_table(args.A0))
-            return 0
-        if args.cmd == "scenes":
-            width = max(len(n) for n in scenes.REGISTRY)
-            for sc in scenes.REGISTRY.values():
-                print(f"{sc.name:<{width}}  {sc.runtime:<18}  {sc.description}")
-            return 0
-        t0 = time.perf_counter()
-        if args.cmd == "scene" and args.replot:
-            folder = scenes.replot_scene(args.name, args.out)
-            print(f"{args.name}: redrew {folder}/figure.png and figure.pdf from data.h5 in "
-                  f"{time.perf_counter() - t0:.1f} s")
-        elif args.cmd == "scene":
-            _print_checks(scenes.run_scene(args.name, args.out, args.quick, args.seed,
-                                           args.force))
-            print(f"{args.name}: wrote {args.out}/{args.name}/ in "
-                  f"{time.perf_counter() - t0:.1f} s")
-        else:
-            report = scenes.run_all(args.out, args.quick, args.seed, args.force)
-            print(report.read_text())
-            print(f"wrote {report} and {len(scenes.REGISTRY)} scene folders in "
-                  f"{time.perf_counter() - t0:.1f} s")
-        return 0
-    except (ValueError, FloatingPointError) as exc:
+        return _run(args)
+    except KeyboardInterrupt:
+        cache = f"{args.out}/.cache" if hasattr(args, "out") else "the cache"
+        print(f"flexmm: interrupted; finished simulations are kept in {cache} and the one "
+              "running was checkpointed there: run the same command again to continue",
+              file=sys.stderr)
+        return 130
+    except (ValueError, TypeError, FloatingPointError) as exc:
         print(f"flexmm: error: {exc}", file=sys.stderr)
         return 2
+    except OSError as exc:
+        where = f" {exc.filename}" if exc.filename else ""
+        print(f"flexmm: error: cannot write{where}: {exc.strerror or exc}", file=sys.stderr)
+        return 2
+
+
+def _run(args) -> int:
+    import warnings
+
+    import scenes
+    from numerics import AccuracyWarning
+
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", AccuracyWarning)
+        code = _dispatch(args, scenes)
+    for w in caught:
+        if issubclass(w.category, AccuracyWarning):
+            print(f"flexmm: warning: {w.message}", file=sys.stderr)
+        else:
+            warnings.showwarning(w.message, w.category, w.filename, w.lineno)
+    return code
+
+
+def _dispatch(args, scenes) -> int:
+    if args.cmd == "table":
+        from .table import format_table
+
+        print(format_table(args.A0))
+        return 0
+    if args.cmd == "scenes":
+        width = max(len(n) for n in scenes.REGISTRY)
+        for sc in scenes.REGISTRY.values():
+            print(f"{sc.name:<{width}}  {sc.runtime:<18}  {sc.description}")
+        return 0
+    t0 = time.perf_counter()
+    if args.cmd == "scene" and args.replot:
+        folder = scenes.replot_scene(args.name, args.out)
+        print(f"{args.name}: redrew {folder}/figure.png and figure.pdf from data.h5 in "
+              f"{time.perf_counter() - t0:.1f} s")
+    elif args.cmd == "scene":
+        _print_checks(scenes.run_scene(args.name, args.out, args.quick, args.seed,
+                                       args.force))
+        print(f"{args.name}: wrote {Path(args.out) / args.name}/ in "
+              f"{time.perf_counter() - t0:.1f} s")
+    else:
+        report = scenes.run_all(args.out, args.quick, args.seed, args.force)
+        print(report.read_text())
+        print(f"wrote {report} and {len(scenes.REGISTRY)} scene folders in "
+              f"{time.perf_counter() - t0:.1f} s")
+    return 0
 
 
 if __name__ == "__main__":

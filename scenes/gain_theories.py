@@ -68,8 +68,11 @@ def compute(ctx):
         k0 = paper.k(point) if kk is None else kk
         quick_N = 250 if kk is not None else QUICK_N[point]
         N = quick_N if ctx.quick else paper.N
-        exact_peak = float(theory_gain("exact lattice", mat, case, k0, qf - k0, paper.EPS,
-                                       A0).max())
+        key = {"material": [mat.alpha, mat.K_s, mat.K_theta], "case": case, "eps": paper.EPS,
+               "A0": A0, "q": [qf[0], qf[-1], qf.size]}
+        exact_peak = float(ctx.memo("gain", dict(key, theory="exact lattice", k=k0),
+                                    lambda: theory_gain("exact lattice", mat, case, k0, qf - k0,
+                                                        paper.EPS, A0)).max())
         t_end = _run_length(exact_peak)
         meas = {}
         for start in STARTS:
@@ -80,7 +83,10 @@ def compute(ctx):
                 data.update({f"{label}/{start}/q": m["q"], f"{label}/{start}/sigma": m["sigma"],
                              f"{label}/{start}/sigma_std": m["sigma_std"]})
         kr = meas["travelling"]["k"] if "travelling" in meas else k0
-        curves = {th: theory_gain(th, mat, case, kr, qf - kr, paper.EPS, A0) for th in THEORIES}
+        curves = {th: ctx.memo("gain", dict(key, theory=th, k=kr),
+                               lambda th=th: theory_gain(th, mat, case, kr, qf - kr, paper.EPS,
+                                                         A0))
+                  for th in THEORIES}
         data.update({f"{label}/{th}": c for th, c in curves.items()})
         predicted = {th: band_summary(qf, c, kr) for th, c in curves.items()}
         for start, m in meas.items():
@@ -101,7 +107,11 @@ def compute(ctx):
                                     f"errors {_pct(ex['peak_error'])}, "
                                     f"{_pct(ex['edge_error'])}", ok))
     data.update(alpha=paper.ALPHA, K_s=paper.K_S, eps=paper.EPS, noise=paper.NOISE)
-    return data, {"rows": rows, "verdicts": _verdicts(), "checks": checks}
+    verdicts = ctx.memo("verdicts", {"points": {p: dict(v) for p, v in paper.POINTS.items()},
+                                     "alpha": paper.ALPHA, "K_s": paper.K_S, "eps": paper.EPS},
+                        _verdicts)
+    return data, {"rows": rows, "verdicts": verdicts,
+                  "checks": checks}
 
 
 def _pct(x):
