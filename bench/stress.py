@@ -231,12 +231,22 @@ def sigint_check():
                   ok, stdout=out.strip()[:300], stderr=err.strip()[-300:])]
 
 
+def fault_counts():
+    """The fault catalogue (bench/faults.py): tried / clear error / worked / problems."""
+    import faults
+
+    rows = faults.run_catalogue()
+    counts = {k: sum(r[1] == k for r in rows) for k in ("clear error", "worked", "problem")}
+    return {"tried": len(rows), **counts, "rows": rows}
+
+
 def main(quick=False):
     t0 = time.perf_counter()
     checks = (step_size_checks(quick) + amplitude_checks(quick) + singular_checks()
               + long_run_check(quick) + bad_input_checks() + sigint_check())
+    fc = fault_counts()
     res = {"quick": quick, "wall_s": time.perf_counter() - t0, "checks": checks,
-           "passed": sum(c["pass"] for c in checks), "total": len(checks)}
+           "passed": sum(c["pass"] for c in checks), "total": len(checks), "faults": fc}
     name = "stress_quick" if quick else "stress"
     (HERE / f"{name}.json").write_text(json.dumps(res, indent=1) + "\n")
     lines = [f"# Stress tests ({'quick' if quick else 'full'}): {res['passed']}/{res['total']} "
@@ -246,6 +256,13 @@ def main(quick=False):
                          for k, v in c.items() if k not in ("check", "pass"))
         lines.append(f"| {c['check']} | {'pass' if c['pass'] else '**FAIL**'} | "
                      f"{meas.replace('|', '/')[:300]} |")
+    lines += ["", f"## Fault catalogue (bench/faults.py; tests/test_faults.py adds the signal, "
+              f"file and CLI faults): {fc['tried']} tried, {fc['clear error']} clear errors, "
+              f"{fc['worked']} worked, {fc['problem']} problems", "",
+              "| fault | outcome | what happened |", "|---|---|---|"]
+    for n, outcome, detail in fc["rows"]:
+        shown = outcome if outcome != "problem" else "**problem**"
+        lines.append(f"| {n} | {shown} | {detail.replace('|', '/')[:200]} |")
     (HERE / f"{name}.md").write_text("\n".join(lines) + "\n")
     print("\n".join(lines))
     return res
