@@ -155,7 +155,7 @@ def _check(material, case, k, amplitude):
     if not isinstance(material, Material):
         raise TypeError(f"material must be a Material, got {type(material).__name__}")
     check_case(case)
-    k = checks.real("k (rad per site)", k, 0.0, math.pi)
+    k = checks.real("k", k, 0.0, math.pi)
     amplitude = checks.real("amplitude (peak rotation, rad)", amplitude, 0.0, MAX_AMPLITUDE)
     return k, amplitude
 
