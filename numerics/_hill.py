@@ -222,7 +222,7 @@ def mi_gain(material: Material, case: str, k: float, amplitude: float, q,
 
 
 def stability_map(k, delta, case: str, alpha: float, K_s: float, amplitude: float,
-                  q=None, harmonics: int = 1, chunk: int = 2000):
+                  q=None, harmonics: int = 1, chunk: int = 2000, modes: str = "sidebands"):
     """Peak sideband growth rate max_q sigma(q) over a grid of (k, delta), batched.
 
     Parameters
@@ -236,6 +236,8 @@ def stability_map(k, delta, case: str, alpha: float, K_s: float, amplitude: floa
     harmonics : int
         Truncation H (default 1: theta at k +- q, U at 0 and +-2: the mean flow and the
         second harmonic; the peak gain is converged to ~a^2 relative, see the tests).
+    modes : {"sidebands", "all"}
+        As in :func:`mi_gain`: MI modes only, or every growing Hill mode.
 
     Returns
     -------
@@ -255,6 +257,7 @@ def stability_map(k, delta, case: str, alpha: float, K_s: float, amplitude: floa
                          f"{k.shape} and {delta.shape}") from None
     q = MAP_OFFSETS if q is None else checks.real_array("q", q).ravel()
     H = _check_harmonics(harmonics)
+    checks.choice("modes", modes, ("sidebands", "all"))
     if not (np.all(np.isfinite(k)) and np.all(np.isfinite(delta)) and np.all(np.isfinite(q))):
         raise ValueError("k, delta and q must be finite")
     if np.any(K_s - delta <= 0) or np.any((k <= 0) | (k >= np.pi)):
@@ -274,7 +277,9 @@ def stability_map(k, delta, case: str, alpha: float, K_s: float, amplitude: floa
         lam = np.linalg.eigvals(A)
         grow = lam.real.max(axis=-1) > ROUNDOFF * x[:, -1:]
         gq = np.zeros(grow.shape)
-        if np.any(grow):
+        if modes == "all":
+            gq = np.where(grow, lam.real.max(axis=-1), 0.0)
+        elif np.any(grow):
             lam_u, vec = np.linalg.eig(A[grow])
             share = _sideband_share(vec, labels, np.broadcast_to(al[:, None] ** 2,
                                                                  grow.shape)[grow])

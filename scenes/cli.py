@@ -24,7 +24,56 @@ def _parser():
         sp_.add_argument("--out", default="out", help="output folder (default: out)")
         sp_.add_argument("--seed", type=int, default=0, help="noise seed (default 0)")
         sp_.add_argument("--force", action="store_true", help="recompute cached simulations")
+    _point_parser(sub)
+    _map_parser(sub)
     return p
+
+
+def _material_args(p):
+    p.add_argument("--alpha", type=float, help="inertia parameter alpha")
+    p.add_argument("--K-s", dest="K_s", type=float, help="shear stiffness K_s = k_s / k_l")
+    p.add_argument("--case", required=True, choices=("rotation", "coupled"))
+    p.add_argument("--amplitude", type=float, default=0.02,
+                   help="peak rotation of the plane wave, rad (2 eps A0; default 0.02)")
+    p.add_argument("--start", choices=("paper", "travelling"), default="paper",
+                   help="eq. IC (U at rest) or the exact travelling wave (default paper)")
+    p.add_argument("--N", type=int, default=500, help="sites of the periodic chain (500)")
+
+
+def _point_parser(sub):
+    p = sub.add_parser("point", help="the three theories of MI at one point (and a "
+                       "simulation with --simulate)")
+    _material_args(p)
+    p.add_argument("--K-theta", dest="K_theta", type=float,
+                   help="bending stiffness K_theta = 4 k_theta / (k_l a^2)")
+    p.add_argument("--physical", metavar="m,J,a,k_l,k_s,k_theta",
+                   help="physical units instead: mass, moment of inertia, cell length and "
+                        "the three spring stiffnesses (Material.from_physical)")
+    p.add_argument("--k", type=float, required=True, help="carrier wavenumber, rad per site")
+    p.add_argument("--simulate", action="store_true", help="measure sigma(q) too")
+    p.add_argument("--t-end", dest="t_end", type=float,
+                   help="run length (default: 9 e-foldings of the exact peak gain)")
+    p.add_argument("--seeds", type=int, default=4, help="noise seeds (default 4)")
+    p.add_argument("--out", help="folder for point.json (and point.png with --simulate)")
+
+
+def _map_parser(sub):
+    p = sub.add_parser("map", help="an MI map over (delta, k), simulated on Dask")
+    _material_args(p)
+    g = p.add_mutually_exclusive_group(required=True)
+    g.add_argument("--delta", help="SPEC of delta = K_s - K_theta: v1,v2,... or start:stop:num")
+    g.add_argument("--K-theta", dest="K_theta", help="SPEC of K_theta instead of delta")
+    p.add_argument("--k", required=True, help="SPEC of k (rad per site); each k is snapped "
+                   "to 2 pi m / N for the simulation (k_simulated in the dataset)")
+    p.add_argument("--t-end", dest="t_end", type=float, default=5000.0, help="run length")
+    p.add_argument("--seeds", type=int, default=1, help="noise seeds per cell (default 1)")
+    p.add_argument("--out", default="out/map", help="folder of map.zarr (default out/map)")
+    p.add_argument("--scheduler", help="address of a running Dask scheduler "
+                   "(tcp://host:8786); default: a LocalCluster on this machine")
+    p.add_argument("--workers", type=int, help="LocalCluster workers (default: the cores)")
+    p.add_argument("--theory-only", action="store_true",
+                   help="the theories' verdicts only: no simulation")
+    p.add_argument("--block", type=int, default=4, help="cells per task (default 4)")
 
 
 def _print_checks(summary):
@@ -35,7 +84,7 @@ def _print_checks(summary):
 def main(argv=None) -> int:
     """Run the CLI; returns the exit code (0 ok, 2 bad input or file system, 130 Ctrl-C)."""
     args = _parser().parse_args(argv)
-    if hasattr(args, "out"):
+    if getattr(args, "out", None) is not None:
         args.out = args.out or "."  # --out '' is the current folder, and says so
     try:
         return _run(args)
@@ -72,6 +121,16 @@ def _run(args) -> int:
 
 
 def _dispatch(args, scenes) -> int:
+    if args.cmd == "point":
+        from .point import run_point
+
+        run_point(args)
+        return 0
+    if args.cmd == "map":
+        from .maps import run_map_command
+
+        run_map_command(args)
+        return 0
     if args.cmd == "table":
         from .table import format_table
 

@@ -1,0 +1,426 @@
+"""MI maps by simulation: cells on a Dask cluster, results in a Zarr store, resumable.
+
+A map is a grid of (delta, k) at fixed alpha, K_s, case and amplitude. Every cell gets the
+verdicts of the three theories (paper NLS, semi-discrete NLS, exact lattice; computed in
+one batch, in the client, in seconds) and, unless ``theory_only``, a simulated verdict
+(``numerics._cells.simulate_cell``: the scenes' 20x growth criterion, with early stop).
+
+Simulations are tasks on ``dask.distributed``: a ``LocalCluster`` of this machine's cores
+by default, or an existing scheduler by address. A task is a block of cells (one delta, up
+to ``block`` values of k: seconds of work, so scheduling costs little); a dying worker's
+task is retried. The client writes each finished block into ``map.zarr`` at once (a Zarr
+region write; one writer, no locks), with a ``done`` flag per cell: an interrupted map
+loses at most the blocks in flight, and the same command resumes with the missing cells.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import time
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from numerics import Material
+from numerics import _checks as checks
+from numerics._analysis import GROWTH_THRESHOLD
+
+FIELD_CODES = {"theta": 0, "U": 1}
+#: k values per task (one delta row is split into blocks of this many cells)
+DEFAULT_BLOCK = 4
+CRITERION = (f"MI when the largest non-carrier, non-harmonic component (theta; U: its "
+             f"non-forced components, from its level at 5% of the run) grows more than "
+             f"{GROWTH_THRESHOLD:g}x over the run, relative to the carrier (the scenes' "
+             "criterion); a run stops as soon as that happens (the verdict is then certain)."
+             " With several seeds: the verdict of the majority, the median growth.")
+
+
+def parse_spec(text: str, name: str) -> np.ndarray:
+    """``v1,v2,...`` or ``start:stop:num`` (inclusive) -> sorted values; ValueError else."""
+    if not isinstance(text, str) or not text.strip():
+        raise ValueError(f"{name}: empty SPEC; give v1,v2,... or start:stop:num")
+    try:
+        if ":" in text:
+            parts = text.split(":")
+            if len(parts) != 3:
+                raise ValueError
+            start, stop, num = float(parts[0]), float(parts[1]), int(parts[2])
+            if num < 1 or (num > 1 and start == stop):
+                raise ValueError
+            values = np.linspace(start, stop, num)
+        else:
+            values = np.array([float(v) for v in text.split(",")])
+    except ValueError:
+        raise ValueError(f"{name}: cannot read SPEC {text!r}; give v1,v2,... or "
+                         "start:stop:num (num >= 1, inclusive)") from None
+    if not np.all(np.isfinite(values)):
+        raise ValueError(f"{name}: SPEC {text!r} holds a non-finite value")
+    if len(np.unique(values)) != len(values):
+        raise ValueError(f"{name}: SPEC {text!r} repeats a value")
+    return np.sort(values)
+
+
+@dataclass(frozen=True)
+class MapParameters:
+    """Everything that defines a map (stored in the dataset's attributes)."""
+
+    case: str
+    alpha: float
+    K_s: float
+    delta: tuple
+    k: tuple
+    amplitude: float  # peak rotation 2 eps A0
+    eps: float = 0.01
+    N: int = 500
+    t_end: float = 5000.0
+    seeds: int = 1
+    start: str = "paper"
+    dt: float = 0.05
+    method: str = "rk4"
+    noise: float = 1e-3
+    theory_only: bool = False
+    block: int = DEFAULT_BLOCK
+    extra: dict = field(default_factory=dict, compare=False)
+
+    def __post_init__(self):
+        checks.choice("case", self.case, ("rotation", "coupled"))
+        checks.choice("start", self.start, ("paper", "travelling"))
+        checks.positive("alpha", self.alpha)
+        checks.positive("K_s", self.K_s)
+        checks.real("amplitude", self.amplitude, 0.0, 1.5)
+        checks.positive("eps", self.eps)
+        checks.integer("N", self.N, 3, 10**6)
+        checks.positive("t_end", self.t_end)
+        checks.integer("seeds", self.seeds, 1, 1000)
+        checks.integer("block", self.block, 1, 10**6)
+        k, d = np.asarray(self.k), np.asarray(self.delta)
+        if np.any((k <= 0) | (k >= math.pi)):
+            raise ValueError(f"k must lie in (0, pi), got {self.k}")
+        if np.any(self.K_s - d <= 0):
+            raise ValueError(f"K_theta = K_s - delta must be > 0: delta < K_s = {self.K_s}")
+
+    @property
+    def A0(self) -> float:
+        return self.amplitude / (2 * self.eps)
+
+    def attrs(self) -> dict:
+        out = {n: v for n, v in asdict(self).items() if n not in ("delta", "k", "extra")}
+        out.update(A0=self.A0, criterion=CRITERION, growth_threshold=GROWTH_THRESHOLD,
+                   verdicts=f"True = MI: grows more than {GROWTH_THRESHOLD:g}x within t_end "
+                            "(simulated: measured; theories: peak gain > ln(threshold) / "
+                            "t_end, their raw peak gains beside)", **self.extra)
+        return out
+
+
+# --- one task: a block of cells --------------------------------------------------------------
+
+def simulate_block(params: MapParameters, i: int, js: list) -> dict:
+    """Simulate the cells (i, j) for j in ``js`` (runs on a worker)."""
+    from numerics._cells import simulate_cell
+
+    mat = Material(params.alpha, params.K_s, params.K_s - params.delta[i])
+    rows = []
+    for j in js:
+        runs = [simulate_cell(mat, params.case, params.k[j], params.N, params.t_end,
+                              params.eps, params.A0, params.noise, seed, params.start,
+                              params.dt, params.method) for seed in range(params.seeds)]
+        verdict = sum(r["verdict_simulated"] for r in runs) * 2 > len(runs)
+        growths = [r["growth"] for r in runs]
+        top = runs[int(np.argmax(growths))]
+        rows.append({"verdict_simulated": bool(verdict), "growth": float(np.median(growths)),
+                     "growth_field": FIELD_CODES[top["growth_field"]],
+                     "growth_q": float(top["growth_q"]),
+                     "t_simulated": float(max(r["t_simulated"] for r in runs)),
+                     "peak_gain": float(np.nanmedian([r["peak_gain"] for r in runs]))
+                     if any(np.isfinite(r["peak_gain"]) for r in runs) else float("nan"),
+                     "k_simulated": float(top["k"])})
+    return {"i": i, "js": list(js), "rows": rows}
+
+
+# --- the store -------------------------------------------------------------------------------
+
+def _empty_dataset(params: MapParameters, theory: dict):
+    import xarray as xr
+
+    shape = (len(params.delta), len(params.k))
+    dims = ("delta", "k")
+    fl = lambda: np.full(shape, np.nan)  # noqa: E731
+    data = {
+        "verdict_simulated": (dims, np.zeros(shape, bool)),
+        "growth": (dims, fl(), {"long_name": "largest growth factor over the run",
+                                "units": "1"}),
+        "growth_field": (dims, np.full(shape, -1, np.int8),
+                         {"flag_values": [-1, 0, 1], "flag_meanings": "none theta U"}),
+        "growth_q": (dims, fl(), {"long_name": "wavenumber of the largest growth",
+                                  "units": "rad per site"}),
+        "peak_gain": (dims, fl(), {"long_name": "measured peak growth rate (linear-stage "
+                                   "fit) where the simulation says MI",
+                                   "units": "1/T (lattice time)"}),
+        "t_simulated": (dims, fl(), {"units": "T (lattice time)"}),
+        "k_simulated": (dims, fl(), {"long_name": "k snapped to 2 pi m / N",
+                                     "units": "rad per site"}),
+        "done": (dims, np.zeros(shape, bool), {"long_name": "cell simulated"}),
+    }
+    for name, values in theory.items():
+        attrs = ({"long_name": f"{name.removeprefix('peak_gain_')} theory: peak growth rate",
+                  "units": "1/T (lattice time)"} if name.startswith("peak_gain") else
+                 {"long_name": f"{name.removeprefix('verdict_')} theory: grows more than "
+                               f"{GROWTH_THRESHOLD:g}x within t_end"})
+        data[name] = (dims, values, attrs)
+    coords = {"delta": ("delta", np.asarray(params.delta), {"long_name": "K_s - K_theta"}),
+              "k": ("k", np.asarray(params.k), {"units": "rad per site"})}
+    return xr.Dataset(data, coords=coords, attrs=params.attrs())
+
+
+def theory_columns(params: MapParameters) -> dict:
+    """The theories on the whole grid, batched (seconds): their raw peak gains, and their
+    verdicts on the simulation's question: does the plane wave grow more than
+    GROWTH_THRESHOLD-fold within t_end (peak gain > ln(threshold) / t_end)?"""
+    from generated import coefficients as continuum_nls
+    from generated import lattice_coefficients as lattice_nls
+    from numerics import stability_map
+
+    K, D = np.meshgrid(params.k, params.delta, indexing="xy")
+    Kt = params.K_s - D
+    gains = {}
+    for name, nls in (("paper", continuum_nls), ("semidiscrete", lattice_nls)):
+        with np.errstate(all="ignore"):
+            g = getattr(nls, f"g_{params.case}")(K, params.alpha, params.K_s, Kt)
+            g1 = nls.g1(K, params.alpha, params.K_s, Kt)
+            gpos = np.where(g > 0, g, np.nan)
+            peak = params.eps**2 * np.abs(g1) * nls.mi_growth_rate(
+                nls.mi_fastest(gpos, params.A0), gpos, params.A0)
+        gains[name] = np.where(np.isfinite(peak), peak, 0.0)
+    args = (K, D, params.case, params.alpha, params.K_s, params.amplitude)
+    gains["exact"] = np.nan_to_num(stability_map(*args))
+    gains["exact_all"] = (np.nan_to_num(stability_map(*args, modes="all"))
+                          if params.case == "coupled" else gains["exact"])
+    rate = math.log(GROWTH_THRESHOLD) / params.t_end
+    out = {}
+    for name, gain in gains.items():
+        out[f"verdict_{name}"] = gain > rate
+        out[f"peak_gain_{name}"] = gain
+    return out
+
+
+def open_or_create(path: Path, params: MapParameters):
+    """The store's dataset: an existing one with the same parameters (to resume), or a
+    new one with the theory columns filled in."""
+    import xarray as xr
+
+    if path.exists():
+        try:
+            ds = xr.open_zarr(path, consolidated=False)
+        except Exception as exc:  # noqa: BLE001 - any unreadable store
+            raise ValueError(f"{path} exists but is not a readable map ({exc}); remove it "
+                             "or choose another --out") from None
+        same = (ds.attrs.get("case") == params.case
+                and np.array_equal(ds["delta"].values, params.delta)
+                and np.array_equal(ds["k"].values, params.k)
+                and all(ds.attrs.get(n) == v for n, v in params.attrs().items()
+                        if n not in ("theory_only",)))
+        if not same:
+            raise ValueError(f"{path} holds a map with other parameters; remove it or "
+                             "choose another --out")
+        return ds
+    ds = _empty_dataset(params, theory_columns(params))
+    # one chunk per task block: every region write covers whole chunks
+    chunks = (1, min(params.block, len(params.k)))
+    ds.to_zarr(path, mode="w", consolidated=False,
+              encoding={n: {"chunks": chunks} for n in ds.data_vars})
+    return xr.open_zarr(path, consolidated=False)
+
+
+def _write_block(path: Path, params: MapParameters, result: dict):
+    import xarray as xr
+
+    i, js = result["i"], result["js"]
+    j0, j1 = min(js), max(js) + 1
+    arrays = {}
+    for name in ("verdict_simulated", "growth", "growth_field", "growth_q", "t_simulated",
+                 "k_simulated", "peak_gain"):
+        arrays[name] = (("delta", "k"), np.array([[r[name] for r in result["rows"]]]))
+    arrays["done"] = (("delta", "k"), np.ones((1, j1 - j0), bool))
+    xr.Dataset(arrays).to_zarr(path, consolidated=False, region={"delta": slice(i, i + 1), "k": slice(j0, j1)})
+
+
+# --- running ---------------------------------------------------------------------------------
+
+def blocks(params: MapParameters, done: np.ndarray) -> list:
+    """(i, [j, ...]) blocks of the cells not done, aligned with the store's chunks."""
+    out = []
+    for i in range(len(params.delta)):
+        for j0 in range(0, len(params.k), params.block):
+            js = [j for j in range(j0, min(j0 + params.block, len(params.k)))]
+            if not np.all(done[i, js]):
+                out.append((i, js))
+    return out
+
+
+def run_map(params: MapParameters, out: Path, scheduler: str | None = None,
+            workers: int | None = None, progress: bool | None = None, log=print):
+    """Compute (or resume) ``OUT/map.zarr``; returns the dataset (loaded)."""
+    import xarray as xr
+
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    path = out / "map.zarr"
+    ds = open_or_create(path, params)
+    if params.theory_only:
+        log(f"theory only: {ds.sizes['delta'] * ds.sizes['k']} cells, no simulation")
+        return xr.open_zarr(path, consolidated=False).load()
+    done = ds["done"].values
+    todo = blocks(params, done)
+    n_cells, n_done = done.size, int(done.sum())
+    if n_done:
+        log(f"resuming {path}: {n_done} of {n_cells} cells already done, "
+            f"{n_cells - n_done} to simulate")
+    if todo:
+        _run_tasks(params, path, todo, n_cells - n_done, scheduler, workers, progress, log)
+    return xr.open_zarr(path, consolidated=False).load()
+
+
+def _run_tasks(params, path, todo, n_todo, scheduler, workers, progress, log):
+    from dask.distributed import Client, LocalCluster, as_completed
+    from tqdm.auto import tqdm
+
+    cluster = None
+    if scheduler:
+        client = Client(scheduler, timeout="20s")
+    else:
+        n = workers or _cores()
+        cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
+                               dashboard_address=None, silence_logs=40)
+        client = Client(cluster)
+    bar = tqdm(total=n_todo, unit="cell", disable=None if progress is None else not progress,
+               desc="map")
+    t0 = time.perf_counter()
+    try:
+        futures = [client.submit(simulate_block, params, i, js, retries=2, pure=False)
+                   for i, js in todo]
+        for fut in as_completed(futures):
+            result = fut.result()
+            _write_block(path, params, result)
+            bar.update(len(result["js"]))
+    finally:
+        bar.close()
+        client.close()
+        if cluster is not None:
+            cluster.close()
+    log(f"simulated {n_todo} cells in {time.perf_counter() - t0:.1f} s")
+
+
+def _cores() -> int:
+    import os
+
+    return max(1, len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity")
+               else os.cpu_count() or 1)
+
+
+#: a theory's verdict is "marginal" at a cell when its predicted growth exp(sigma t_end) is
+#: within this factor of the threshold: the noise's share in the unstable mode and the time
+#: the linear stage takes to set in change the measured factor by about that much
+MARGIN = 3.0
+
+
+def agreement(ds, margin: float = MARGIN) -> dict:
+    """Percent of the simulated cells where each theory's verdict equals the simulation's:
+    over all of them, and over the cells where the theory is not marginal (its predicted
+    growth over t_end not within ``margin`` of the threshold)."""
+    done = ds["done"].values
+    sim = ds["verdict_simulated"].values
+    t_end, thr = float(ds.attrs["t_end"]), float(ds.attrs["growth_threshold"])
+    out = {}
+    for name in ("paper", "semidiscrete", "exact", "exact_all"):
+        v = ds[f"verdict_{name}"].values
+        gain = ds[f"peak_gain_{name}"].values
+        decided = done & (np.abs(gain * t_end - math.log(thr)) > math.log(margin))
+        pct = lambda m: float(100 * np.mean(v[m] == sim[m])) if m.any() else float("nan")  # noqa: E731
+        out[name] = pct(done)
+        out[f"{name}_decided"] = pct(decided)
+        out[f"{name}_decided_cells"] = int(decided.sum())
+    return out
+
+
+def plot_map(ds, ax=None):
+    """Simulated verdict (white: MI) with the theories' boundaries drawn over it."""
+    from ._plotting import image, plt
+
+    if ax is None:
+        fig, ax = plt.subplots(figsize=(6, 4.5))
+    else:
+        fig = ax.figure
+    k, d = ds["k"].values, ds["delta"].values
+    done = ds["done"].values
+    sim = np.where(done, np.where(ds["verdict_simulated"].values, 1.0, -1.0), 0.0)
+    if len(k) > 1 and len(d) > 1:
+        image(ax, k, d, sim, cmap="gray", vmin=-1, vmax=1)
+        for name, color in (("verdict_paper", "C1"), ("verdict_semidiscrete", "C2"),
+                            ("verdict_exact", "C3")):
+            v = ds[name].values.astype(float)
+            if 0 < v.mean() < 1:
+                ax.contour(k, d, v, levels=[0.5], colors=color, linewidths=1.2)
+            ax.plot([], [], color=color, label=name.removeprefix("verdict_"))
+        ax.legend(fontsize=7, loc="upper right")
+    else:
+        ax.scatter(np.repeat(k[None], len(d), 0), np.repeat(d[:, None], len(k), 1), c=sim,
+                   cmap="gray", vmin=-1, vmax=1, edgecolors="k")
+    ax.set_xlabel("k (rad per site)")
+    ax.set_ylabel("delta")
+    ax.set_title(f"case {ds.attrs['case']}, alpha = {ds.attrs['alpha']}, a = "
+                 f"{ds.attrs['amplitude']:g}: simulated (white = MI)", fontsize=9)
+    return fig
+
+
+def run_map_command(args, log=print):
+    """`flexmm map`: parse, check everything (nothing is written on bad input), run."""
+    from derivation.files import write_text
+
+    from ._runner import _strict
+
+    k = parse_spec(args.k, "--k")
+    if args.delta is not None:
+        delta = parse_spec(args.delta, "--delta")
+    else:
+        delta = np.sort(args.K_s - parse_spec(args.K_theta, "--K-theta")) \
+            if args.K_s is not None else None
+    if args.alpha is None or args.K_s is None:
+        raise ValueError("--alpha and --K-s are required")
+    if args.workers is not None and args.scheduler:
+        raise ValueError("give --scheduler or --workers, not both")
+    if args.workers is not None:
+        checks.integer("--workers", args.workers, 1, 10**4)
+    params = MapParameters(case=args.case, alpha=args.alpha, K_s=args.K_s,
+                           delta=tuple(float(d) for d in delta),
+                           k=tuple(float(x) for x in k), amplitude=args.amplitude,
+                           N=args.N, t_end=args.t_end, seeds=args.seeds, start=args.start,
+                           theory_only=args.theory_only, block=args.block)
+    if not params.theory_only:  # every k must have a periodic chain of N sites near it
+        from numerics import snap_wavenumber
+
+        for x in params.k:
+            snap_wavenumber(x, params.N, rel_tol=0.05)
+    from ._runner import prepare_output
+
+    out = prepare_output(args.out)
+    ds = run_map(params, out, args.scheduler, args.workers, log=log)
+    summary = {"cells": int(ds["done"].size), "simulated": int(ds["done"].values.sum()),
+               "agreement_with_simulation_percent": agreement(ds),
+               "mi_fraction": {n.removeprefix("verdict_"): float(ds[n].values.mean())
+                               for n in ds.data_vars if n.startswith("verdict_")}}
+    write_text(out / "summary.json", json.dumps(_strict(summary), indent=2) + "\n")
+    fig = plot_map(ds)
+    from derivation.files import atomic_write
+
+    from ._plotting import plt
+
+    with atomic_write(out / "map.png", mode=None) as tmp:
+        fig.savefig(tmp, format="png", dpi=110)
+    plt.close(fig)
+    log(f"wrote {out / 'map.zarr'}, {out / 'map.png'}, {out / 'summary.json'}")
+    if summary["simulated"]:
+        log("agreement with the simulation, % of cells: " + ", ".join(
+            f"{n} {v:.0f}" for n, v in summary["agreement_with_simulation_percent"].items()))
+    return ds
