@@ -47,11 +47,13 @@ bench: $(STAMP)
 	$(VPY) bench/simulator.py
 	$(VPY) bench/work_precision.py
 	$(VPY) bench/speed.py
+	$(VPY) bench/maps.py
 
 bench-quick: $(STAMP)
 	$(VPY) bench/simulator.py --quick
 	$(VPY) bench/work_precision.py --quick
 	$(VPY) bench/speed.py --quick
+	$(VPY) bench/maps.py --quick
 
 # Where numerical stability ends -> bench/stress.json, bench/stress.md
 stress: $(STAMP)

@@ -292,7 +292,7 @@ def _run_tasks(params, path, todo, n_todo, scheduler, workers, progress, log):
     else:
         n = workers or _cores()
         cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
-                               dashboard_address=None, silence_logs=40)
+                               dashboard_address=":0", silence_logs=40)
         client = Client(cluster)
     bar = tqdm(total=n_todo, unit="cell", disable=None if progress is None else not progress,
                desc="map")

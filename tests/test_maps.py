@@ -1,0 +1,130 @@
+"""MI maps: SPEC parsing, a 2 x 2 map on a LocalCluster of 2 workers, resume after an
+interrupted map (only the missing cells run), bad input (one line, nothing written), and
+the point command."""
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from derivation import paper
+from scenes import maps
+from scenes.cli import main as cli
+
+N = 100
+K2 = tuple(2 * np.pi * np.array([13, 15]) / N)
+
+
+def _params(**kw):
+    args = dict(case="coupled", alpha=paper.ALPHA, K_s=paper.K_S, delta=(-0.003, 0.003),
+                k=K2, amplitude=0.02, N=N, t_end=2000.0, block=1)
+    args.update(kw)
+    return maps.MapParameters(**args)
+
+
+@pytest.mark.parametrize("text, values", [
+    ("0.1,0.3,0.2", [0.1, 0.2, 0.3]), ("0:1:3", [0.0, 0.5, 1.0]), ("-0.003", [-0.003]),
+    ("1:1:1", [1.0])])
+def test_spec_parsing(text, values):
+    np.testing.assert_allclose(maps.parse_spec(text, "--k"), values)
+
+
+@pytest.mark.parametrize("text", ["", "a,b", "0:1", "0:1:0", "1:1:3", "0.1,nan", "0.1,0.1",
+                                  "0:1:2:3"])
+def test_bad_spec_is_a_clear_error(text):
+    with pytest.raises(ValueError, match="--k"):
+        maps.parse_spec(text, "--k")
+
+
+def test_two_by_two_map_on_two_workers(tmp_path):
+    ds = maps.run_map(_params(), tmp_path, workers=2, progress=False, log=lambda *_: None)
+    assert ds["done"].values.all() and ds.sizes == {"delta": 2, "k": 2}
+    for name in ("verdict_simulated", "verdict_paper", "verdict_semidiscrete", "verdict_exact",
+                 "verdict_exact_all"):
+        assert ds[name].dtype == bool, name
+    assert np.all(ds["growth"].values > 0) and set(np.unique(ds["growth_field"])) <= {0, 1}
+    # every parameter is in the attributes; the store opens with plain xarray
+    back = xr.open_zarr(tmp_path / "map.zarr", consolidated=False)
+    for key in ("case", "alpha", "K_s", "amplitude", "N", "t_end", "seeds", "criterion"):
+        assert key in back.attrs, key
+    # the simulated verdict is the growth criterion, cell by cell
+    assert np.array_equal(ds["verdict_simulated"].values,
+                          ds["growth"].values > ds.attrs["growth_threshold"])
+    # the blue-point cell (delta = +0.003, k = 0.817) is unstable in every theory but the
+    # semi-discrete NLS, as the scenes found at N = 500
+    cell = ds.sel(delta=0.003, k=K2[0], method="nearest")
+    assert bool(cell["verdict_exact"]) and bool(cell["verdict_simulated"])
+    assert not bool(cell["verdict_semidiscrete"])
+
+
+def test_an_interrupted_map_resumes_with_only_the_missing_cells(tmp_path, monkeypatch):
+    params = _params(k=K2 + (2 * np.pi * 17 / N,))
+    ds = maps.open_or_create(tmp_path / "map.zarr", params)
+    todo = maps.blocks(params, ds["done"].values)
+    # "interrupted" after two blocks: write them as the client would, then stop
+    for i, js in todo[:2]:
+        maps._write_block(tmp_path / "map.zarr", params, maps.simulate_block(params, i, js))
+    seen = []
+    original = maps._run_tasks
+
+    def spy(params_, path, todo_, n_todo, *a, **k):
+        seen.append((list(todo_), n_todo))
+        return original(params_, path, todo_, n_todo, *a, **k)
+
+    monkeypatch.setattr(maps, "_run_tasks", spy)
+    messages = []
+    ds = maps.run_map(params, tmp_path, workers=1, progress=False, log=messages.append)
+    assert seen[0][1] == 6 - 2 and seen[0][0] == todo[2:]  # only the 4 missing cells ran
+    assert any("2 of 6 cells already done" in m for m in messages)
+    assert ds["done"].values.all()
+
+
+def test_a_map_with_other_parameters_is_not_mixed_in(tmp_path):
+    maps.open_or_create(tmp_path / "map.zarr", _params())
+    with pytest.raises(ValueError, match="other parameters"):
+        maps.open_or_create(tmp_path / "map.zarr", _params(t_end=3000.0))
+
+
+@pytest.mark.parametrize("extra, match", [
+    (["--delta", "a:b:c"], "--delta"), (["--delta", "0.03"], "K_theta"),
+    (["--delta", "0.001", "--k", "4"], "pi"), (["--delta", "0.001", "--seeds", "0"], "seeds"),
+    (["--delta", "0.001", "--workers", "0"], "workers"),
+    (["--delta", "0.001", "--amplitude", "3"], "amplitude"),
+])
+def test_map_bad_input_is_one_line_and_writes_nothing(extra, match, tmp_path, capsys):
+    args = ["map", "--case", "coupled", "--alpha", "2.5", "--K-s", "0.01851", "--k", "0.8168",
+            "--N", "100", "--out", str(tmp_path / "out")] + extra
+    assert cli(args) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and match in err and "Traceback" not in err
+    assert not (tmp_path / "out").exists()
+
+
+def test_theory_only_map_never_starts_the_simulator(tmp_path, monkeypatch):
+    monkeypatch.setattr(maps, "_run_tasks", lambda *a, **k: pytest.fail("simulated"))
+    assert cli(["map", "--case", "rotation", "--alpha", "2.5", "--K-s", "0.01851",
+                "--delta=-0.01:0.01:4", "--k", "0.2:3:5", "--theory-only",
+                "--out", str(tmp_path)]) == 0
+    ds = xr.open_zarr(tmp_path / "map.zarr", consolidated=False)
+    assert ds.sizes == {"delta": 4, "k": 5} and not ds["done"].values.any()
+    # case I: the paper's NLS says MI exactly where delta < 0 (sign(g) = -sign(delta)),
+    # given the finite-time question is decided by a nonzero gain
+    gains = ds["peak_gain_paper"].values
+    assert np.all((gains > 0) == (ds["delta"].values[:, None] < 0))
+
+
+def test_point_prints_three_theories(capsys):
+    assert cli(["point", "--alpha", "2.5", "--K-s", "0.01851", "--K-theta", "0.01551",
+                "--k", "0.81681", "--case", "coupled"]) == 0
+    out = capsys.readouterr().out
+    for name in ("paper NLS", "semi-discrete NLS", "exact lattice"):
+        assert name in out
+    # the blue point, case II: the exact peak gain of gain-theories (0.00324)
+    assert "0.00324" in out
+
+
+def test_point_physical_units_and_bad_input(capsys):
+    assert cli(["point", "--physical", "1,0.1,1,1,0.03,0.005", "--k", "0.9",
+                "--case", "coupled"]) == 0
+    assert cli(["point", "--physical", "1,2,3", "--k", "0.9", "--case", "coupled"]) == 2
+    assert "six numbers" in capsys.readouterr().err
+    assert cli(["point", "--alpha", "2.5", "--k", "0.9", "--case", "coupled"]) == 2
