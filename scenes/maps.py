@@ -28,6 +28,10 @@ from numerics import _checks as checks
 from numerics._analysis import GROWTH_THRESHOLD
 
 FIELD_CODES = {"theta": 0, "U": 1}
+#: Bloch offsets the exact theory searches per cell: the whole zone, densely. stability_map's
+#: default (20 offsets in (0, 1.5], enough for the paper's sidebands) misses the narrow
+#: resonances of case II and offsets beyond 1.5, where simulations found growth
+EXACT_OFFSETS = np.linspace(0.005, math.pi, 400)
 #: k values per task (one delta row is split into blocks of this many cells)
 DEFAULT_BLOCK = 4
 CRITERION = (f"MI when the largest non-carrier, non-harmonic component (theta; U: its "
@@ -193,7 +197,7 @@ def theory_columns(params: MapParameters) -> dict:
             peak = params.eps**2 * np.abs(g1) * nls.mi_growth_rate(
                 nls.mi_fastest(gpos, params.A0), gpos, params.A0)
         gains[name] = np.where(np.isfinite(peak), peak, 0.0)
-    args = (K, D, params.case, params.alpha, params.K_s, params.amplitude)
+    args = (K, D, params.case, params.alpha, params.K_s, params.amplitude, EXACT_OFFSETS)
     gains["exact"] = np.nan_to_num(stability_map(*args))
     gains["exact_all"] = (np.nan_to_num(stability_map(*args, modes="all"))
                           if params.case == "coupled" else gains["exact"])
