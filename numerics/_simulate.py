@@ -7,12 +7,9 @@ for, and stops with ``BlowUpError`` or ``SimulationInterrupted`` keeping what wa
 
 from __future__ import annotations
 
-import contextlib
 import dataclasses
 import hashlib
 import math
-import signal
-import threading
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -26,6 +23,7 @@ from ._accuracy import check_energy_tolerance, energy_check
 from ._integrate import (BlowUpError, SimulationInterrupted, _blowup_message, _check_time,
                          _Stepper, check_tolerances, resolve_step)
 from ._integrators import get_method
+from ._runcontrol import _deferred_interrupt, _Interrupt, _progress, _steps_per_call
 from ._model import (LatticeState, Material, check_case,
                      discrete_omega_rotation, energy)
 
@@ -34,8 +32,9 @@ def _source_hash() -> str:
     """Hash of every source file whose change can alter a simulated number."""
     here = Path(__file__).parent
     gen = Path(coefficients_module.__file__).parent
-    files = [here / f"_{n}.py" for n in ("kernels", "integrators", "integrate", "simulate",
-                                          "model", "plane_wave", "hill", "analysis")]
+    files = [here / f"_{n}.py" for n in ("kernels", "kernels_libm", "integrators", "integrate",
+                                          "simulate", "model", "plane_wave", "hill", "analysis",
+                                          "checks")]
     files += [gen / "coefficients.py", gen / "lattice_model.py"]
     h = hashlib.sha256()
     for f in files:
@@ -170,54 +169,6 @@ def initial_condition(material: Material, case: str, N: int, k: float, eps: floa
     if case == "coupled":
         return LatticeState(np.zeros(N), np.zeros(N), theta, theta_dot)
     return LatticeState(None, None, theta, theta_dot)
-
-
-class _Interrupt(Exception):
-    """Ctrl-C noticed between two calls into compiled code (state and time consistent)."""
-
-
-@contextlib.contextmanager
-def _deferred_interrupt():
-    """Turn SIGINT into a flag checked between calls into compiled code, so an interrupted
-    run stops on a state whose time is known exactly. Only in the main thread and when
-    Python's default handler is installed (else nothing changes); a second Ctrl-C raises
-    at once. Yields a function returning whether Ctrl-C was pressed."""
-    flag = []
-    if (threading.current_thread() is not threading.main_thread()
-            or signal.getsignal(signal.SIGINT) is not signal.default_int_handler):
-        yield lambda: False
-        return
-
-    def handler(signum, frame):
-        if flag:
-            raise KeyboardInterrupt
-        flag.append(signum)
-
-    signal.signal(signal.SIGINT, handler)
-    try:
-        yield lambda: bool(flag)
-    finally:
-        signal.signal(signal.SIGINT, signal.default_int_handler)
-
-
-#: site-evaluations per call into compiled code: ~0.1 s, so Ctrl-C answers promptly
-_WORK_PER_CALL = 3e7
-
-
-def _steps_per_call(N, method, per_save):
-    if not method.fixed_step:  # scipy: one solve_ivp per record, as before
-        return per_save
-    return max(1, min(per_save, int(_WORK_PER_CALL / (N * method.evaluations))))
-
-
-def _progress(total, enabled):
-    try:
-        from tqdm.auto import tqdm
-    except ImportError:  # pragma: no cover - tqdm is a dependency
-        return None
-    # disable=None: silent when stderr is not a terminal
-    return tqdm(total=total, unit="T", disable=None if enabled is None else not enabled,
-                leave=False, desc="lattice")
 
 
 def simulate(material: Material, case: str, N: int, k: float, eps: float = 0.01,

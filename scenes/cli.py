@@ -127,7 +127,7 @@ def _dispatch(args, scenes) -> int:
         run_point(args)
         return 0
     if args.cmd == "map":
-        from .maps import run_map_command
+        from ._map_command import run_map_command
 
         run_map_command(args)
         return 0

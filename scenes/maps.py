@@ -15,7 +15,6 @@ loses at most the blocks in flight, and the same command resumes with the missin
 
 from __future__ import annotations
 
-import json
 import math
 import time
 from dataclasses import asdict, dataclass, field
@@ -346,85 +345,3 @@ def agreement(ds, margin: float = MARGIN) -> dict:
         out[f"{name}_decided"] = pct(decided)
         out[f"{name}_decided_cells"] = int(decided.sum())
     return out
-
-
-def plot_map(ds, ax=None):
-    """Simulated verdict (white: MI) with the theories' boundaries drawn over it."""
-    from ._plotting import image, plt
-
-    if ax is None:
-        fig, ax = plt.subplots(figsize=(6, 4.5))
-    else:
-        fig = ax.figure
-    k, d = ds["k"].values, ds["delta"].values
-    done = ds["done"].values
-    sim = np.where(done, np.where(ds["verdict_simulated"].values, 1.0, -1.0), 0.0)
-    if len(k) > 1 and len(d) > 1:
-        image(ax, k, d, sim, cmap="gray", vmin=-1, vmax=1)
-        for name, color in (("verdict_paper", "C1"), ("verdict_semidiscrete", "C2"),
-                            ("verdict_exact", "C3")):
-            v = ds[name].values.astype(float)
-            if 0 < v.mean() < 1:
-                ax.contour(k, d, v, levels=[0.5], colors=color, linewidths=1.2)
-            ax.plot([], [], color=color, label=name.removeprefix("verdict_"))
-        ax.legend(fontsize=7, loc="upper right")
-    else:
-        ax.scatter(np.repeat(k[None], len(d), 0), np.repeat(d[:, None], len(k), 1), c=sim,
-                   cmap="gray", vmin=-1, vmax=1, edgecolors="k")
-    ax.set_xlabel("k (rad per site)")
-    ax.set_ylabel("delta")
-    ax.set_title(f"case {ds.attrs['case']}, alpha = {ds.attrs['alpha']}, a = "
-                 f"{ds.attrs['amplitude']:g}: simulated (white = MI)", fontsize=9)
-    return fig
-
-
-def run_map_command(args, log=print):
-    """`flexmm map`: parse, check everything (nothing is written on bad input), run."""
-    from derivation.files import write_text
-
-    from ._runner import _strict
-
-    k = parse_spec(args.k, "--k")
-    if args.delta is not None:
-        delta = parse_spec(args.delta, "--delta")
-    else:
-        delta = np.sort(args.K_s - parse_spec(args.K_theta, "--K-theta")) \
-            if args.K_s is not None else None
-    if args.alpha is None or args.K_s is None:
-        raise ValueError("--alpha and --K-s are required")
-    if args.workers is not None and args.scheduler:
-        raise ValueError("give --scheduler or --workers, not both")
-    if args.workers is not None:
-        checks.integer("--workers", args.workers, 1, 10**4)
-    params = MapParameters(case=args.case, alpha=args.alpha, K_s=args.K_s,
-                           delta=tuple(float(d) for d in delta),
-                           k=tuple(float(x) for x in k), amplitude=args.amplitude,
-                           N=args.N, t_end=args.t_end, seeds=args.seeds, start=args.start,
-                           theory_only=args.theory_only, block=args.block)
-    if not params.theory_only:  # every k must have a periodic chain of N sites near it
-        from numerics import snap_wavenumber
-
-        for x in params.k:
-            snap_wavenumber(x, params.N, rel_tol=0.05)
-    from ._runner import prepare_output
-
-    out = prepare_output(args.out)
-    ds = run_map(params, out, args.scheduler, args.workers, log=log)
-    summary = {"cells": int(ds["done"].size), "simulated": int(ds["done"].values.sum()),
-               "agreement_with_simulation_percent": agreement(ds),
-               "mi_fraction": {n.removeprefix("verdict_"): float(ds[n].values.mean())
-                               for n in ds.data_vars if n.startswith("verdict_")}}
-    write_text(out / "summary.json", json.dumps(_strict(summary), indent=2) + "\n")
-    fig = plot_map(ds)
-    from derivation.files import atomic_write
-
-    from ._plotting import plt
-
-    with atomic_write(out / "map.png", mode=None) as tmp:
-        fig.savefig(tmp, format="png", dpi=110)
-    plt.close(fig)
-    log(f"wrote {out / 'map.zarr'}, {out / 'map.png'}, {out / 'summary.json'}")
-    if summary["simulated"]:
-        log("agreement with the simulation, % of cells: " + ", ".join(
-            f"{n} {v:.0f}" for n, v in summary["agreement_with_simulation_percent"].items()))
-    return ds

@@ -62,9 +62,9 @@ def test_real_sigint_stops_on_a_consistent_state_and_resume_is_exact(blue):
 
 def test_interrupt_between_records_keeps_the_record_grid(blue, monkeypatch):
     # interrupt inside a record interval (sub-chunks of 1 step): resume fills the grid
-    from numerics import _simulate
+    from numerics import _runcontrol, _simulate
 
-    monkeypatch.setattr(_simulate, "_WORK_PER_CALL", 1.0)  # one step per compiled call
+    monkeypatch.setattr(_runcontrol, "_WORK_PER_CALL", 1.0)  # one step per compiled call
     kw = dict(material=blue, case="rotation", N=64, k=2 * np.pi * 8 / 64, t_end=20.0,
               dt=0.05, save_every=1.0)
     full = simulate(**kw)

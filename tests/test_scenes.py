@@ -153,3 +153,13 @@ def test_report_separates_findings_from_failures(tmp_path):
     assert "| **FAIL** |" in text and "**FAIL (expected: paper disagrees (finding: X))**" in text
     assert "## Unexpected results" in text and "unexpected" in text.split("## Unexpected")[1]
     assert "known finding" not in text.split("## Unexpected")[1]
+
+
+def test_numerics_does_not_import_matplotlib():
+    # the simulator layer never draws: figures live in scenes/
+    import subprocess
+    import sys
+
+    code = ("import sys, numerics, numerics._cells, numerics._gain; "
+            "assert 'matplotlib' not in sys.modules, 'matplotlib imported'")
+    subprocess.run([sys.executable, "-c", code], check=True)
