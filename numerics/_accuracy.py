@@ -37,6 +37,7 @@ import warnings
 
 import numpy as np
 
+from . import _checks as checks
 from ._integrators import get_method
 
 
@@ -65,14 +66,8 @@ def dominant_frequency(state) -> float:
 
 
 def check_tol(tol) -> float:
-    try:
-        tol = float(tol)
-    except (TypeError, ValueError):
-        raise TypeError(f"tol must be a real number, got {type(tol).__name__}") from None
-    lo, hi = TOL_RANGE
-    if not (lo <= tol <= hi):  # also rejects NaN
-        raise ValueError(f"tol must be in [{lo:g}, {hi:g}] (relative state error), got {tol!r}")
-    return tol
+    """A relative state error in TOL_RANGE (closed)."""
+    return checks.real("tol", tol, *TOL_RANGE, low_open=False, high_open=False)
 
 
 def choose_step(state, material, case: str, t_end: float, tol: float,
@@ -130,11 +125,4 @@ def energy_check(error: float, energy_tolerance: float, method: str, dt: float) 
 
 
 def check_energy_tolerance(value) -> float:
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise TypeError(f"energy_tolerance must be a real number, got "
-                        f"{type(value).__name__}") from None
-    if not (v > 0 and math.isfinite(v)):
-        raise ValueError(f"energy_tolerance must be finite and > 0, got {value!r}")
-    return v
+    return checks.positive("energy_tolerance", value)

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import dataclasses
 import hashlib
 import json
 from pathlib import Path
@@ -14,11 +13,11 @@ from derivation.files import atomic_write
 
 from ._integrate import SimulationInterrupted
 from ._model import LatticeState, Material
-from ._simulate import SIMULATOR_VERSION, Run, resume, simulate
+from ._simulate import RECORDS as _ARRAYS
+from ._simulate import SIMULATOR_VERSION, Run, joined, resume, simulate
 
 #: How many simulations actually ran in this process (cache misses); tests read it.
 STATS = {"simulations": 0, "hits": 0, "checkpoints": 0}
-_ARRAYS = ("t", "theta", "U", "theta_hat", "U_hat", "energy")
 _SCALARS = ("N", "k", "m", "k_requested", "eps", "A0", "noise", "seed", "method", "dt",
             "t_end", "save_every", "store", "omega_model", "force_evaluations", "case")
 
@@ -36,17 +35,34 @@ def _checksum(arrays: dict) -> str:
     return h.hexdigest()
 
 
-def _save(path: Path, run: Run, params: dict):
+def _write_run(path: Path, run: Run, params: dict, extra_arrays=None, extra_attrs=None):
+    """One HDF5 file for a run (a cache entry or a checkpoint), written atomically: its
+    records, its scalars, the key parameters and a checksum of every array."""
     arrays = {n: getattr(run, n) for n in _ARRAYS if getattr(run, n) is not None}
-    # atomic: an interrupted write leaves no cache entry
+    arrays.update(extra_arrays or {})
+    # atomic: an interrupted write leaves no entry
     with atomic_write(path, mode=None) as tmp, h5py.File(tmp, "w") as f:
         for name, arr in arrays.items():
             f.create_dataset(name, data=arr, compression="gzip", compression_opts=1)
         for name in _SCALARS:
             f.attrs[name] = getattr(run, name)
+        for name, value in (extra_attrs or {}).items():
+            f.attrs[name] = value
         f.attrs["params"] = json.dumps(params, sort_keys=True)
         f.attrs["simulator_version"] = SIMULATOR_VERSION
         f.attrs["checksum"] = _checksum(arrays)
+
+
+def _read(path: Path) -> tuple[dict, dict]:
+    """(arrays, plain attributes) of a file written by ``_write_run``; CorruptEntry when
+    its arrays do not match their checksum."""
+    with h5py.File(path, "r") as f:
+        arrays = {n: f[n][()] for n in f}
+        attrs = {n: f.attrs[n] for n in f.attrs}
+    if attrs.pop("checksum", None) != _checksum(arrays):
+        raise CorruptEntry("checksum mismatch")
+    attrs = {n: (v.item() if hasattr(v, "item") else v) for n, v in attrs.items()}
+    return arrays, {n: (v.decode() if isinstance(v, bytes) else v) for n, v in attrs.items()}
 
 
 class CorruptEntry(Exception):
@@ -54,15 +70,9 @@ class CorruptEntry(Exception):
 
 
 def _load(path: Path, material: Material) -> Run:
-    with h5py.File(path, "r") as f:
-        arrays = {n: (f[n][()] if n in f else None) for n in _ARRAYS}
-        s = {n: f.attrs[n] for n in _SCALARS}
-        checksum = f.attrs.get("checksum")
-    s = {n: (v.item() if hasattr(v, "item") else v) for n, v in s.items()}
-    s = {n: (v.decode() if isinstance(v, bytes) else v) for n, v in s.items()}
-    if checksum != _checksum({n: a for n, a in arrays.items() if a is not None}):
-        raise CorruptEntry("checksum mismatch")
-    run = Run(material=material, **arrays, **s)
+    arrays, attrs = _read(path)
+    run = Run(material=material, **{n: arrays.get(n) for n in _ARRAYS},
+              **{n: attrs[n] for n in _SCALARS})
     _check_shapes(run)
     return run
 
@@ -113,7 +123,7 @@ def cached_simulate(cache_dir: Path | None, force: bool = False, **params) -> Ru
         _save_checkpoint(partial, exc, key_params)
         STATS["checkpoints"] += 1
         raise exc from None
-    _save(path, run, key_params)
+    _write_run(path, run, key_params)
     partial.unlink(missing_ok=True)
     return run
 
@@ -123,18 +133,11 @@ def _save_checkpoint(path: Path, exc: SimulationInterrupted, params: dict):
     fields = {"state_theta": s.theta, "state_theta_dot": s.theta_dot}
     if s.U is not None:
         fields.update(state_U=s.U, state_U_dot=s.U_dot)
-    run = exc.run
-    arrays = {n: getattr(run, n) for n in _ARRAYS if getattr(run, n) is not None}
-    with atomic_write(path, mode=None) as tmp, h5py.File(tmp, "w") as f:
-        for name, arr in {**arrays, **fields}.items():
-            f.create_dataset(name, data=arr)
-        for name in _SCALARS:
-            f.attrs[name] = getattr(run, name)
-        for name in ("time", "remaining", "dt", "record_phase"):
-            f.attrs[f"interrupt_{name}"] = getattr(exc, name)
-        f.attrs["force_evaluations"] = run.force_evaluations
-        f.attrs["params"] = json.dumps(params, sort_keys=True)
-        f.attrs["checksum"] = _checksum({**arrays, **fields})
+    _write_run(path, exc.run, params, fields,
+               {f"interrupt_{n}": getattr(exc, n) for n in _INTERRUPT})
+
+
+_INTERRUPT = ("time", "remaining", "dt", "record_phase")
 
 
 def _load_checkpoint(path: Path, material: Material):
@@ -142,20 +145,13 @@ def _load_checkpoint(path: Path, material: Material):
     if not path.exists():
         return None
     try:
-        with h5py.File(path, "r") as f:
-            data = {n: f[n][()] for n in f}
-            attrs = {n: f.attrs[n] for n in f.attrs}
-        if attrs.pop("checksum") != _checksum(data):
-            raise CorruptEntry("checksum mismatch")
-        attrs = {n: (v.item() if hasattr(v, "item") else v) for n, v in attrs.items()}
-        attrs = {n: (v.decode() if isinstance(v, bytes) else v) for n, v in attrs.items()}
+        data, attrs = _read(path)
         state = LatticeState(data.get("state_U"), data.get("state_U_dot"),
                              data["state_theta"], data["state_theta_dot"])
         run = Run(material=material, **{n: data.get(n) for n in _ARRAYS},
                   **{n: attrs[n] for n in _SCALARS}, completed=False)
         return SimulationInterrupted("checkpoint", run=run, state=state,
-                                     **{n: attrs[f"interrupt_{n}"] for n in
-                                        ("time", "remaining", "dt", "record_phase")})
+                                     **{n: attrs[f"interrupt_{n}"] for n in _INTERRUPT})
     except (OSError, KeyError, ValueError, TypeError, CorruptEntry):
         path.unlink(missing_ok=True)
         return None
@@ -163,14 +159,7 @@ def _load_checkpoint(path: Path, material: Material):
 
 def _merged(first: SimulationInterrupted, second: SimulationInterrupted):
     """One interruption from two: the first's records, then the resumed part's."""
-    a, b = first.run, second.run
-    merged = {}
-    for name in _ARRAYS:
-        x, y = getattr(a, name), getattr(b, name)
-        if x is not None:
-            merged[name] = np.concatenate([x, y[1:] + first.time if name == "t" else y[1:]])
-    run = dataclasses.replace(a, **merged, completed=False,
-                              force_evaluations=a.force_evaluations + b.force_evaluations)
+    run = joined(first.run, second.run, first.time, completed=False)
     return SimulationInterrupted("interrupted", run=run, state=second.state,
                                  time=first.time + second.time, remaining=second.remaining,
                                  dt=second.dt, record_phase=second.record_phase)

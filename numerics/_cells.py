@@ -28,7 +28,7 @@ SEGMENTS = 20
 U_REFERENCE = 0.05
 
 
-def _ratios(run_t, theta_hat, U_hat, m, N):
+def _ratios(theta_hat, U_hat, m, N):
     """Largest non-carrier, non-harmonic component over the carrier, per record and
     field, and where it sits."""
     carrier = theta_hat[:, m]
@@ -49,7 +49,7 @@ def _ratios(run_t, theta_hat, U_hat, m, N):
 
 def growth_of(t, theta_hat, U_hat, m, N) -> dict:
     """Largest growth factor over the records, which field and wavenumber carries it."""
-    ratios, bins = _ratios(t, theta_hat, U_hat, m, N)
+    ratios, bins = _ratios(theta_hat, U_hat, m, N)
     best = {"growth": 0.0, "growth_field": "theta", "growth_q": float("nan")}
     for field, r in ratios.items():
         i0 = 0 if field == "theta" else int(np.searchsorted(t, U_REFERENCE * t[-1]))

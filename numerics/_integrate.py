@@ -14,7 +14,7 @@ from . import _kernels as kernels
 from ._integrators import Method, get_method
 from . import _checks as checks
 from ._accuracy import check_energy_tolerance, choose_step, energy_check
-from ._model import LatticeState, Material, _positive_finite, check_case, energy
+from ._model import LatticeState, Material, check_case, energy
 
 #: the paper's RK4 step, the default when neither dt nor tol is given
 DEFAULT_DT = 0.05
@@ -51,8 +51,8 @@ def check_tolerances(rtol, atol):
 
 
 def _check_time(t_end, dt):
-    t_end = _positive_finite("t_end", t_end)
-    dt = _positive_finite("dt", dt)
+    t_end = checks.positive("t_end", t_end)
+    dt = checks.positive("dt", dt)
     if dt > t_end:
         raise ValueError(f"dt = {dt} is larger than t_end = {t_end}")
     nsteps = math.ceil(t_end / dt - 1e-9)
@@ -198,7 +198,7 @@ def resolve_step(state, material, case, t_end, dt, method, tol):
     if method is not None and not get_method(method).fixed_step:
         raise ValueError(f"tol chooses a fixed-step method; {method!r} is adaptive: "
                          "use rtol/atol for it")
-    t_end = _positive_finite("t_end", t_end)
+    t_end = checks.positive("t_end", t_end)
     return choose_step(state, material, case, t_end, tol, None if method is None else [method])
 
 

@@ -20,10 +20,6 @@ def check_case(case: str) -> str:
     return case
 
 
-#: finite and > 0 (TypeError for a non-real, ValueError for a bad value)
-_positive_finite = positive
-
-
 @dataclass(frozen=True)
 class Material:
     """Normalised parameters of the chain (below eq. `norm` of the paper).
@@ -44,7 +40,7 @@ class Material:
 
     def __post_init__(self):
         for name in ("alpha", "K_s", "K_theta"):
-            object.__setattr__(self, name, _positive_finite(name, getattr(self, name)))
+            object.__setattr__(self, name, positive(name, getattr(self, name)))
 
     @property
     def delta(self) -> float:
@@ -60,7 +56,7 @@ class Material:
         in the README); this is the dimensionless form consistent with T = t sqrt(k_l/m).
         """
         m, J, a, k_l, k_s, k_theta = (
-            _positive_finite(n, v) for n, v in
+            positive(n, v) for n, v in
             zip(("m", "J", "a", "k_l", "k_s", "k_theta"), (m, J, a, k_l, k_s, k_theta)))
         return cls(alpha=a * math.sqrt(m / (4 * J)), K_s=k_s / k_l,
                    K_theta=4 * k_theta / (k_l * a**2))

@@ -299,7 +299,7 @@ def simulate(material: Material, case: str, N: int, k: float, eps: float = 0.01,
                 Uh[j] = spectrum(st.U)
 
     def truncate(j):
-        for name in ("t", "energy", "theta", "U", "theta_hat", "U_hat"):
+        for name in RECORDS:
             arr = getattr(run, name)
             if arr is not None:
                 setattr(run, name, arr[:j])
@@ -310,11 +310,6 @@ def simulate(material: Material, case: str, N: int, k: float, eps: float = 0.01,
     j = 1
     sub = _steps_per_call(N, m_, per_save)
     bar = _progress(float(t_end), progress)
-    shown = [0]
-
-    def per_save_done(target):  # steps since the progress bar last moved
-        new, shown[0] = target - shown[0], target
-        return new
 
     def blow_up(reason, drift=None):
         truncate(j)
@@ -338,9 +333,9 @@ def simulate(material: Material, case: str, N: int, k: float, eps: float = 0.01,
                 drift = abs(en[j] - en[0]) / abs(en[0])
                 if not drift <= max_energy_error:  # also catches NaN
                     blow_up("energy", drift)
-                j += 1
                 if bar is not None:
-                    bar.update(per_save_done(target) * dt_eff)
+                    bar.update(t[j] - t[j - 1])
+                j += 1
                 if interrupted() and steps < nsteps:
                     raise _Interrupt
     except (_Interrupt, KeyboardInterrupt) as exc:
@@ -378,13 +373,20 @@ def resume(interrupted: SimulationInterrupted, **params) -> Run:
                   record_phase=interrupted.record_phase,
                   method=part.method)
     rest = simulate(**params)
+    return joined(part, rest, interrupted.time, completed=True, final_state=rest.final_state)
+
+
+#: the record arrays of a Run
+RECORDS = ("t", "energy", "theta", "U", "theta_hat", "U_hat")
+
+
+def joined(part: Run, rest: Run, time: float, **changes) -> Run:
+    """``part`` followed by ``rest``, a run started from ``part``'s state at ``time``:
+    rest's record 0 (that state, not a record of the grid) dropped, its times shifted."""
     merged = {}
-    for name in ("t", "energy", "theta", "U", "theta_hat", "U_hat"):
+    for name in RECORDS:
         a, b = getattr(part, name), getattr(rest, name)
         if a is not None:
-            tail = b[1:] + interrupted.time if name == "t" else b[1:]  # b[0]: not a record
-            merged[name] = np.concatenate([a, tail])
-    run = dataclasses.replace(part, **merged, completed=True, final_state=rest.final_state,
-                              force_evaluations=part.force_evaluations
-                              + rest.force_evaluations)
-    return run
+            merged[name] = np.concatenate([a, b[1:] + time if name == "t" else b[1:]])
+    return dataclasses.replace(part, **merged, force_evaluations=part.force_evaluations
+                               + rest.force_evaluations, **changes)

@@ -19,7 +19,7 @@ from pathlib import Path
 import h5py
 import numpy as np
 
-from derivation.files import atomic_write, write_text
+from derivation.files import _umask, atomic_write, write_text
 from numerics import _checks as checks
 from numerics import SIMULATOR_VERSION
 from numerics._cache import cached_simulate
@@ -215,12 +215,6 @@ def run_scene(name: str, out: Path | str = "out", quick: bool = False, seed: int
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
     return summary
-
-
-def _umask():
-    mask = os.umask(0)
-    os.umask(mask)
-    return mask
 
 
 def replot_scene(name: str, out: Path | str = "out") -> Path:
