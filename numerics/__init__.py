@@ -10,6 +10,10 @@ BlowUpError, SimulationInterrupted      errors that keep what was computed
 AccuracyWarning, choose_step            runs that check their energy; dt for a tol=
 plane_wave, mi_gain, PlaneWave          exact lattice plane wave and its sideband growth
                                         rate (harmonic balance + Hill's method)
+launched_state, LaunchedState, FreeWave what eq. `IC` (or any state) launches: travelling
+                                        wave + free waves, as a measured torus
+gain_spectrum, GainSpectrum             growth per q with the growing field and wavenumber,
+                                        from the travelling wave or a launched state
 stability_map, hill_spectrum            batched verdicts over (k, delta); raw Hill spectrum
 THEORIES, theory_gain, nls_summary      sigma(q) of the paper NLS, semi-discrete NLS, exact
 measure_gain, relative_errors           sigma(q) measured from runs; theory vs measurement
@@ -23,7 +27,9 @@ from ._analysis import (GROWTH_THRESHOLD, band_summary, carrier_amplitude, carri
                         forced_second_harmonic, growth_rates, harmonic_bins, linear_stage, mode,
                         sideband_to_carrier, spectrum, stability_verdict)
 from ._gain import THEORIES, measure_gain, nls_summary, relative_errors, theory_gain
-from ._hill import hill_spectrum, mi_gain, stability_map
+from ._hill import gain_spectrum, hill_spectrum, mi_gain, stability_map
+from ._launched import FreeWave, LaunchedState, launched_state
+from ._quasiperiodic import GainSpectrum
 from ._integrate import BlowUpError, SimulationInterrupted, integrate
 from ._integrators import METHODS, Method, get_method
 from ._model import (CASES, LatticeState, Material, discrete_omega_longitudinal,
@@ -41,5 +47,5 @@ __all__ = [
     "GROWTH_THRESHOLD", "band_summary", "carrier_amplitude", "carrier_frequency",
     "forced_second_harmonic", "growth_rates", "harmonic_bins", "linear_stage", "mode",
     "sideband_to_carrier", "spectrum", "stability_verdict", "AccuracyWarning", "choose_step",
-    "resume",
+    "resume", "launched_state", "LaunchedState", "FreeWave", "gain_spectrum", "GainSpectrum",
 ]
