@@ -337,7 +337,7 @@ def launched_state(material: Material, case: str, k: float, amplitude: float | N
     Examples
     --------
     >>> s = launched_state(paper.material("blue"), "coupled", 0.81681, 0.02)
-    >>> s.U_mode(2, t)          # U at 2k over time: forced harmonic beating free waves
+    >>> s.mode("U", 2, t)       # U at 2k over time: forced harmonic beating free waves
     """
     checks.instance("material", material, Material)
     M = FREE_HARMONICS
@@ -355,8 +355,6 @@ def launched_state(material: Material, case: str, k: float, amplitude: float | N
         raise TypeError("amplitude is required unless an initial state is given")
     k, amplitude = _check(material, case, k, amplitude)
     checks.choice("start", start, STARTS)
-    if amplitude == 0:
-        raise ValueError("amplitude must be > 0: a chain at rest launches no carrier")
     if start == "travelling":
         return LaunchedState(start, plane_wave(material, case, k, amplitude, harmonics), 0.0, ())
     return _decompose(material, case, k, _paper_harmonics(material, k, amplitude, start, M),

@@ -157,10 +157,13 @@ def gain_spectrum_torus(torus, material, case, q, P, R, modes="sidebands", start
     kin[:, :nx] /= 2 * material.alpha**2  # energy weights of eq. `norm`
     kin[:, nx:] *= 2
     total = kin.sum(axis=1)
-    centre = np.all(labels[:, 1:] == 0, axis=1)
+    # a component (p, m) lives at wavenumber q + p k whatever m (the free phases are
+    # uniform in the carrier's frame): theta at p = +1 and -1, any m, are the sidebands
+    # k + q and k - q; a free wave pumping them shifts only their frequencies
+    theta = np.arange(n) < nx
     with np.errstate(invalid="ignore", divide="ignore"):
-        plus = kin[:, (labels[:, 0] == 1) & centre & (np.arange(n) < nx)][:, 0] / total
-        minus = kin[:, (labels[:, 0] == -1) & centre & (np.arange(n) < nx)][:, 0] / total
+        plus = kin[:, (labels[:, 0] == 1) & theta].sum(axis=1) / total
+        minus = kin[:, (labels[:, 0] == -1) & theta].sum(axis=1) / total
     plus, minus = np.nan_to_num(plus), np.nan_to_num(minus)
     is_mi = ((plus + minus) > SIDEBAND_SHARE) & (np.minimum(plus, minus) > SIDEBAND_PRESENT)
     growth = lam.real if modes == "all" else np.where(is_mi, lam.real, 0.0)
