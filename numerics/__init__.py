@@ -26,7 +26,7 @@ from ._accuracy import AccuracyWarning, choose_step
 from ._analysis import (GROWTH_THRESHOLD, band_summary, carrier_amplitude, carrier_frequency,
                         forced_second_harmonic, growth_rates, harmonic_bins, linear_stage, mode,
                         sideband_to_carrier, spectrum, stability_verdict)
-from ._gain import THEORIES, measure_gain, nls_summary, relative_errors, theory_gain
+from ._gain import PAPER_START, THEORIES, measure_gain, nls_summary, relative_errors, theory_gain
 from ._hill import gain_spectrum, hill_spectrum, mi_gain, stability_map
 from ._launched import FreeWave, LaunchedState, launched_state
 from ._quasiperiodic import GainSpectrum
@@ -43,7 +43,7 @@ __all__ = [
     "get_method", "CASES", "BlowUpError", "SimulationInterrupted", "initial_condition",
     "snap_wavenumber", "discrete_omega_rotation", "discrete_omega_longitudinal",
     "SIMULATOR_VERSION", "plane_wave", "mi_gain", "PlaneWave", "hill_spectrum", "stability_map",
-    "THEORIES", "theory_gain", "nls_summary", "measure_gain", "relative_errors",
+    "THEORIES", "PAPER_START", "theory_gain", "nls_summary", "measure_gain", "relative_errors",
     "GROWTH_THRESHOLD", "band_summary", "carrier_amplitude", "carrier_frequency",
     "forced_second_harmonic", "growth_rates", "harmonic_bins", "linear_stage", "mode",
     "sideband_to_carrier", "spectrum", "stability_verdict", "AccuracyWarning", "choose_step",

@@ -5,7 +5,11 @@ The three theories, for any material and carrier:
 - ``"paper NLS"``: the continuum multiple-scales result (``generated.coefficients``),
   sigma(q) = eps^2 |g1| Omega_I((q - k) / eps) (eqs. `NLS`, `Omega_I`);
 - ``"semi-discrete NLS"``: the same on the lattice (``generated.lattice_coefficients``);
-- ``"exact lattice"``: Hill's method about the exact travelling wave (:func:`mi_gain`).
+- ``"exact lattice"``: Hill's method about the exact travelling wave (:func:`mi_gain`);
+- ``"exact lattice, paper start"`` (``PAPER_START``): Hill's method about the state eq.
+  `IC` launches (travelling wave + free waves, a torus: :func:`mi_gain` with
+  ``start="paper"``), harmonics H = 1 (converged to 1e-4 relative at amplitude 0.02,
+  tests/test_launched.py), about 0.2 s per offset.
 """
 
 from __future__ import annotations
@@ -20,6 +24,8 @@ from ._hill import mi_gain
 from ._model import Material, check_case
 
 THEORIES = ("paper NLS", "semi-discrete NLS", "exact lattice")
+#: the exact theory for the state eq. `IC` launches (not in THEORIES: it costs seconds)
+PAPER_START = "exact lattice, paper start"
 _NLS = {"paper NLS": continuum_nls, "semi-discrete NLS": lattice_nls}
 
 
@@ -49,10 +55,13 @@ def theory_gain(theory: str, material: Material, case: str, k: float, q_offset, 
     """
     if theory == "exact lattice":
         return mi_gain(material, case, k, 2 * eps * A0, q_offset)
+    if theory == PAPER_START:
+        return mi_gain(material, case, k, 2 * eps * A0, q_offset, harmonics=1, start="paper")
     try:
         nls = _NLS[theory]
     except KeyError:
-        raise ValueError(f"theory must be one of {THEORIES}, got {theory!r}") from None
+        raise ValueError(f"theory must be one of {THEORIES + (PAPER_START,)}, got "
+                         f"{theory!r}") from None
     p = (k, material.alpha, material.K_s, material.K_theta)
     g = getattr(nls, f"g_{case}")(*p)
     return eps**2 * abs(nls.g1(*p)) * nls.mi_growth_rate(np.asarray(q_offset) / eps, g, A0)

@@ -1,12 +1,16 @@
 """Beyond the paper: which theory of MI do the simulations obey?
 
-At the two unstable test points (A0 = 0.8, 1, 1.4) and at case II with k = 0.704, the
-measured growth rate of every sideband (linear-stage fits, mean and spread over seeds)
-from the paper's initial condition (eq. `IC`) and from the exact travelling wave, against
-the paper's NLS (eqs. `NLS`, `Omega_I`), the semi-discrete NLS
-(generated/lattice_coefficients.py) and the exact lattice gain (``numerics.mi_gain``).
-Reports each theory's relative error of the peak gain and of the half-gain band edge, and
-each theory's verdict on the four paper runs. About 2 min (quick about 25 s).
+At the two unstable test points (A0 = 0.8, 1, 1.4), at case II with k = 0.704, and at three
+case II points where the paper's start and the travelling wave disagree (free U waves
+launched by eq. `IC` pump rotational pairs the travelling wave leaves alone), the measured
+growth rate of every sideband (linear-stage fits, mean and spread over seeds) from the
+paper's initial condition (eq. `IC`) and from the exact travelling wave, against the
+paper's NLS (eqs. `NLS`, `Omega_I`), the semi-discrete NLS
+(generated/lattice_coefficients.py), the exact lattice gain of the travelling wave
+(``numerics.mi_gain``) and of the state eq. `IC` launches (``mi_gain(start="paper")``).
+Reports each theory's relative error of the peak gain and of the half-gain band edge, each
+start's verdict (grows > 20x within the run) predicted and simulated, and each theory's
+verdict on the four paper runs. About 4 min (quick about 1 min).
 """
 
 from __future__ import annotations
@@ -14,26 +18,38 @@ from __future__ import annotations
 import numpy as np
 
 from derivation import paper
-from numerics import THEORIES, band_summary, mi_gain, relative_errors, theory_gain
+from numerics import (PAPER_START, THEORIES, Material, band_summary, gain_spectrum, mi_gain,
+                      relative_errors, theory_gain)
 
 from ._plotting import plt
 from ._registry import Scene, check, register
 from ._runs import QUICK_N, measured_gain
 
-#: (label, point, case, A0, k or None for the point's own)
+#: (label, point, case, A0, k or None for the point's own, delta or None for the point's)
 POINTS = (
-    ("blue II A0=1", "blue", "coupled", 1.0, None),
-    ("green I A0=1", "green", "rotation", 1.0, None),
-    ("blue II A0=0.8", "blue", "coupled", 0.8, None),
-    ("blue II A0=1.4", "blue", "coupled", 1.4, None),
-    ("green I A0=0.8", "green", "rotation", 0.8, None),
-    ("green I A0=1.4", "green", "rotation", 1.4, None),
-    ("blue II k=0.704", "blue", "coupled", 1.0, 2 * np.pi * 28 / 250),
+    ("blue II A0=1", "blue", "coupled", 1.0, None, None),
+    ("green I A0=1", "green", "rotation", 1.0, None, None),
+    ("blue II A0=0.8", "blue", "coupled", 0.8, None, None),
+    ("blue II A0=1.4", "blue", "coupled", 1.4, None, None),
+    ("green I A0=0.8", "green", "rotation", 0.8, None, None),
+    ("green I A0=1.4", "green", "rotation", 1.4, None, None),
+    ("blue II k=0.704", "blue", "coupled", 1.0, 2 * np.pi * 28 / 250, None),
+    # the starts disagree: eq. `IC` is unstable, the travelling wave is not (found by
+    # scanning delta < 0 near k ~ 1.1-1.2, where omega_U(2k) = omega(k1) + omega(k2) with
+    # k1 + k2 = 2k has solutions)
+    ("II d=-0.0051 k=1.131", "green", "coupled", 1.0, 2 * np.pi * 90 / 500, -0.0051),
+    ("II d=-0.006 k=1.169", "green", "coupled", 1.0, 2 * np.pi * 93 / 500, -0.006),
+    ("II d=-0.007 k=1.194", "green", "coupled", 1.0, 2 * np.pi * 95 / 500, -0.007),
 )
 #: the two starts: eq. `IC` (omega_model "continuum") and the exact travelling wave
 STARTS = ("continuum", "travelling")
 #: the exact gain must match the measurement from the travelling wave within this
 EXACT_TOLERANCE = 0.05
+#: the paper-start theory against the measurement from eq. `IC`: peak, band edge (the
+#: issue's goals, full runs); quick runs (N <= 250, 2 seeds) are held to EXACT_TOLERANCE
+PAPER_START_TOLERANCE = (0.02, 0.03)
+#: the simulations' question: grows more than GROWTH_FACTOR within the run
+GROWTH_FACTOR = 20.0
 #: run length: this many e-foldings of the exact peak gain, rounded, within these bounds
 E_FOLDINGS, T_BOUNDS = 9.0, (1000.0, 20000.0)
 
@@ -59,59 +75,113 @@ def _verdicts():
     return out
 
 
+def _quick_N(k):
+    """Smallest chain of the quick runs on which k is a lattice wavenumber."""
+    for n in (100, 200, 250, 500):
+        if abs(k * n / (2 * np.pi) - round(k * n / (2 * np.pi))) < 1e-9:
+            return n
+    return 500
+
+
+def _curve(ctx, key, theory, mat, case, k, q):
+    return ctx.memo("gain", dict(key, theory=theory, k=k, q=[q[0], q[-1], q.size]),
+                    lambda: theory_gain(theory, mat, case, k, q - k, paper.EPS, key["A0"]))
+
+
+def _verdict(peak, t_end):
+    return "MI" if peak * t_end > np.log(GROWTH_FACTOR) else "stable"
+
+
 def compute(ctx):
-    data, rows, checks = {"labels": [p[0] for p in POINTS]}, [], []
+    data, rows, checks, starts = {"labels": [p[0] for p in POINTS]}, [], [], []
     qf = np.linspace(0, np.pi, 3001)
-    data["q_theory"] = qf
-    for label, point, case, A0, kk in POINTS:
-        mat = paper.material(point)
+    qs = np.linspace(0, np.pi, 301 if ctx.quick else 1201)  # paper-start theory: 0.2 s each
+    data["q_theory"], data["q_start"] = qf, qs
+    for label, point, case, A0, kk, delta in POINTS:
+        mat = paper.material(point) if delta is None else Material(paper.ALPHA, paper.K_S,
+                                                                   paper.K_S - delta)
         k0 = paper.k(point) if kk is None else kk
-        quick_N = 250 if kk is not None else QUICK_N[point]
+        quick_N = _quick_N(k0) if kk is not None else QUICK_N[point]
         N = quick_N if ctx.quick else paper.N
         key = {"material": [mat.alpha, mat.K_s, mat.K_theta], "case": case, "eps": paper.EPS,
-               "A0": A0, "q": [qf[0], qf[-1], qf.size]}
-        exact_peak = float(ctx.memo("gain", dict(key, theory="exact lattice", k=k0),
-                                    lambda: theory_gain("exact lattice", mat, case, k0, qf - k0,
-                                                        paper.EPS, A0)).max())
-        t_end = _run_length(exact_peak)
+               "A0": A0}
+        exact_peak = float(_curve(ctx, key, "exact lattice", mat, case, k0, qf).max())
+        start_curve = _curve(ctx, key, PAPER_START, mat, case, k0, qs)
+        t_end = _run_length(max(exact_peak, float(start_curve.max())))
         meas = {}
         for start in STARTS:
             m = measured_gain(ctx, point, case, A0, t_end=t_end, quick_N=quick_N, k=k0,
-                              omega_model=start)
+                              omega_model=start, material=mat)
             if m is not None:
                 meas[start] = m
                 data.update({f"{label}/{start}/q": m["q"], f"{label}/{start}/sigma": m["sigma"],
                              f"{label}/{start}/sigma_std": m["sigma_std"]})
         kr = meas["travelling"]["k"] if "travelling" in meas else k0
-        curves = {th: ctx.memo("gain", dict(key, theory=th, k=kr),
-                               lambda th=th: theory_gain(th, mat, case, kr, qf - kr, paper.EPS,
-                                                         A0))
-                  for th in THEORIES}
+        curves = {th: _curve(ctx, key, th, mat, case, kr, qf) for th in THEORIES}
         data.update({f"{label}/{th}": c for th, c in curves.items()})
+        data[f"{label}/{PAPER_START}"] = start_curve
         predicted = {th: band_summary(qf, c, kr) for th, c in curves.items()}
+        predicted[PAPER_START] = band_summary(qs, start_curve, kr)
+        theory_of = {"travelling": "exact lattice", "continuum": PAPER_START}
+        spec = _labels(mat, case, k0, A0, qs, start_curve)
+        for start in STARTS:
+            th = theory_of[start]
+            starts.append({"point": label, "start": "paper" if start == "continuum"
+                           else "travelling", "t_end": t_end,
+                           "predicted_peak": predicted[th]["peak_gain"],
+                           "predicted": _verdict(predicted[th]["peak_gain"], t_end),
+                           "simulated": "MI" if start in meas else "stable",
+                           "measured_peak": (band_summary(meas[start]["q"],
+                                                          meas[start]["sigma"], kr)["peak_gain"]
+                                             if start in meas else None),
+                           **(spec if start == "continuum" else {})})
         for start, m in meas.items():
             m_sum = band_summary(m["q"], m["sigma"], kr)
             row = {"point": label, "start": start, "t_end": t_end, "N": N, "measured": m_sum}
-            for th in THEORIES:
+            for th in THEORIES + (PAPER_START,):
                 row[th] = {"peak_gain": predicted[th]["peak_gain"],
                            "band_edge": predicted[th]["band_edge"],
                            **relative_errors(m_sum, predicted[th])}
             rows.append(row)
-            if start == "travelling":
-                ex = row["exact lattice"]
-                ok = all(ex[e] is not None and abs(ex[e]) < EXACT_TOLERANCE
-                         for e in ("peak_error", "edge_error"))
-                checks.append(check(f"gain-theories {label}: exact lattice gain vs measured "
-                                    "(travelling-wave start), peak and band edge within 5%",
-                                    f"peak {ex['peak_gain']:.4g}, edge {ex['band_edge']:.4g}",
-                                    f"errors {_pct(ex['peak_error'])}, "
-                                    f"{_pct(ex['edge_error'])}", ok))
+            th = theory_of[start]
+            tol = ((EXACT_TOLERANCE, EXACT_TOLERANCE) if start == "travelling" or ctx.quick
+                   else PAPER_START_TOLERANCE)
+            ex = row[th]
+            # a band that reaches the zone edge (pi) has no half-gain edge to compare
+            judged = ("peak_error", "edge_error") if np.isfinite(ex["band_edge"]) \
+                else ("peak_error",)
+            ok = all(ex[e] is not None and abs(ex[e]) < t
+                     for e, t in zip(judged, tol))
+            name = ("exact lattice gain vs measured (travelling-wave start)"
+                    if start == "travelling" else "paper-start exact gain vs measured (eq. IC)")
+            edge = (f"band edge within {100 * tol[1]:g}%" if len(judged) == 2
+                    else "no band edge (the band reaches pi)")
+            checks.append(check(f"gain-theories {label}: {name}, peak within "
+                                f"{100 * tol[0]:g}% and {edge}",
+                                f"peak {ex['peak_gain']:.4g}, edge {ex['band_edge']:.4g}",
+                                f"errors {_pct(ex['peak_error'])}, "
+                                f"{_pct(ex['edge_error'])}", ok))
+        for st in starts[-2:]:
+            checks.append(check(f"gain-theories {label}: verdict from the {st['start']} start "
+                                f"(grows > {GROWTH_FACTOR:g}x within T = {t_end:g})",
+                                f"{st['predicted']} (peak {st['predicted_peak']:.3g})",
+                                st["simulated"], st["predicted"] == st["simulated"]))
     data.update(alpha=paper.ALPHA, K_s=paper.K_S, eps=paper.EPS, noise=paper.NOISE)
     verdicts = ctx.memo("verdicts", {"points": {p: dict(v) for p, v in paper.POINTS.items()},
                                      "alpha": paper.ALPHA, "K_s": paper.K_S, "eps": paper.EPS},
                         _verdicts)
-    return data, {"rows": rows, "verdicts": verdicts,
-                  "checks": checks}
+    return data, {"rows": rows, "starts": starts, "verdicts": verdicts, "checks": checks}
+
+
+def _labels(mat, case, k, A0, q, curve):
+    """What grows at the paper-start theory's peak: field, wavenumbers, frequency."""
+    if not curve.max() > 0:
+        return {"field": "", "wavenumbers": [], "frequency": None}
+    q0 = q[int(np.argmax(curve))] - k
+    g = gain_spectrum(mat, case, k, 2 * paper.EPS * A0, [q0], start="paper", harmonics=1)
+    pair = sorted({round(abs(np.mod(k + s * q0 + np.pi, 2 * np.pi) - np.pi), 4)
+                   for s in (1, -1)})
+    return {"field": str(g.field[0]), "wavenumbers": pair, "frequency": float(g.frequency[0])}
 
 
 def _pct(x):
@@ -119,9 +189,9 @@ def _pct(x):
 
 
 def plot(data):
-    fig, axes = plt.subplots(2, 4, figsize=(15, 7))
+    fig, axes = plt.subplots(2, 5, figsize=(18, 7))
     axes = axes.ravel()
-    qf = data["q_theory"]
+    qf, qs = data["q_theory"], data["q_start"]
     for ax, label in zip(axes, data["labels"]):
         for start in STARTS:
             if f"{label}/{start}/q" not in data:
@@ -131,14 +201,16 @@ def plot(data):
                         fmt="." if start == "travelling" else "x", ms=3, lw=0.5,
                         label="measured, " + ("travelling wave" if start == "travelling"
                                               else "paper IC"))
-        top = max(data[f"{label}/{th}"].max() for th in THEORIES)
+        top = max([data[f"{label}/{th}"].max() for th in THEORIES + (PAPER_START,)]
+                  + [1e-6])
         for th, style in zip(THEORIES, ("k--", "C2-", "C3-")):
             ax.plot(qf, data[f"{label}/{th}"], style, lw=1, label=th)
+        ax.plot(qs, data[f"{label}/{PAPER_START}"], "C1:", lw=1.5, label=PAPER_START)
         ax.set_ylim(-0.1 * top, 1.3 * top)
         ax.set_title(label, fontsize=9)
-        ax.set_xlabel("q (rad per site)")
+        ax.set_xlabel("wavenumber (rad per site)")
     axes[0].set_ylabel("growth rate sigma (1/T)")
-    axes[0].legend(fontsize=7)
+    axes[0].legend(fontsize=6)
     for ax in axes[len(data["labels"]):]:
         ax.axis("off")
     fig.tight_layout()
@@ -148,17 +220,34 @@ def plot(data):
 def report(summary):
     if not summary.get("rows"):
         return []
+    cols = THEORIES + (PAPER_START,)
     lines = ["## Which theory the simulations obey (scene gain-theories)", "",
              "Relative error of each theory's peak gain and half-gain band edge against "
              "the measured sigma(q) (measured / theory - 1). Start: `paper` = eq. `IC` "
              "(U at rest), `travelling` = the lattice's exact plane wave; n/a: the "
-             "theory predicts no gain there.", "",
-             "| point | start | " + " | ".join(f"{t}: peak, edge" for t in THEORIES) + " |",
-             "|---|---|" + "---|" * len(THEORIES)]
+             "theory predicts no gain there. The last column is the theory of the state "
+             "eq. `IC` launches (travelling wave + free waves, `mi_gain(start=\"paper\")`): "
+             "it answers the paper-start rows.", "",
+             "| point | start | " + " | ".join(f"{t}: peak, edge" for t in cols) + " |",
+             "|---|---|" + "---|" * len(cols)]
     for r in summary["rows"]:
-        cells = [f"{_pct(r[t]['peak_error'])}, {_pct(r[t]['edge_error'])}" for t in THEORIES]
+        cells = [f"{_pct(r[t]['peak_error'])}, {_pct(r[t]['edge_error'])}" for t in cols]
         start = "travelling" if r["start"] == "travelling" else "paper"
         lines.append(f"| {r['point']} | {start} | " + " | ".join(cells) + " |")
+    if summary.get("starts"):
+        lines += ["", f"Verdicts by start (grows more than {GROWTH_FACTOR:g}x within the run): "
+                  "predicted by the exact theory of that start (peak gain x T > ln "
+                  f"{GROWTH_FACTOR:g}) and simulated (a linear stage of theta growth "
+                  "found); for the paper start, what the theory says grows at its peak.", "",
+                  "| point | start | T | predicted peak | predicted | measured peak | "
+                  "simulated | grows (theory) |", "|---|---|---|---|---|---|---|---|"]
+        for st in summary["starts"]:
+            mp = "-" if st["measured_peak"] is None else f"{st['measured_peak']:.4g}"
+            what = (f"{st['field']} at {', '.join(f'{w:.3f}' for w in st['wavenumbers'])} "
+                    f"(freq {st['frequency']:.3f})" if st.get("field") else "-")
+            lines.append(f"| {st['point']} | {st['start']} | {st['t_end']:g} | "
+                         f"{st['predicted_peak']:.4g} | {st['predicted']} | {mp} | "
+                         f"{st['simulated']} | {what} |")
     verdicts = summary["verdicts"]
     lines += ["", "Stability verdicts of the four paper runs (A0 = 1):", "",
               "| run | " + " | ".join(next(iter(verdicts.values()))) + " |",
@@ -168,6 +257,7 @@ def report(summary):
     return lines
 
 
-SCENE = register(Scene("gain-theories", "measured sigma(q) vs paper NLS, semi-discrete NLS and "
-                       "exact lattice gain (Hill), 7 points, both starts", "beyond the paper",
-                       "~2 min (quick ~25 s)", True, compute, plot, report))
+SCENE = register(Scene("gain-theories", "measured sigma(q) vs paper NLS, semi-discrete NLS, "
+                       "exact lattice gain of the travelling wave and of the state eq. IC "
+                       "launches, 10 points, both starts", "beyond the paper",
+                       "~4 min (quick ~1 min)", True, compute, plot, report))
