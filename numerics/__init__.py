@@ -15,6 +15,8 @@ launched_state, LaunchedState, FreeWave what eq. `IC` (or any state) launches: t
 gain_spectrum, GainSpectrum             growth per q with the growing field and wavenumber,
                                         from the travelling wave or a launched state
 stability_map, hill_spectrum            batched verdicts over (k, delta); raw Hill spectrum
+resonance_map                           exact MI maps from the bands' resonance conditions
+                                        (sampling-independent), either start
 THEORIES, theory_gain, nls_summary      sigma(q) of the paper NLS, semi-discrete NLS, exact
 measure_gain, relative_errors           sigma(q) measured from runs; theory vs measurement
 spectrum, stability_verdict, ...        spectral diagnostics of runs (``_analysis``)
@@ -30,6 +32,7 @@ from ._gain import PAPER_START, THEORIES, measure_gain, nls_summary, relative_er
 from ._hill import gain_spectrum, hill_spectrum, mi_gain, stability_map
 from ._launched import FreeWave, LaunchedState, launched_state
 from ._quasiperiodic import GainSpectrum
+from ._resonance import resonance_map
 from ._integrate import BlowUpError, SimulationInterrupted, integrate
 from ._integrators import METHODS, Method, get_method
 from ._model import (CASES, LatticeState, Material, discrete_omega_longitudinal,
@@ -47,5 +50,5 @@ __all__ = [
     "GROWTH_THRESHOLD", "band_summary", "carrier_amplitude", "carrier_frequency",
     "forced_second_harmonic", "growth_rates", "harmonic_bins", "linear_stage", "mode",
     "sideband_to_carrier", "spectrum", "stability_verdict", "AccuracyWarning", "choose_step",
-    "resume", "launched_state", "LaunchedState", "FreeWave", "gain_spectrum", "GainSpectrum",
+    "resume", "launched_state", "LaunchedState", "FreeWave", "gain_spectrum", "GainSpectrum", "resonance_map",
 ]

@@ -115,10 +115,11 @@ def _residual(x, k, amp, al, Ks, Kt, H, coupled, phi):
 
 
 def _solve_plane_waves(k, amp, al, Ks, Kt, coupled, H, tol=NEWTON_TOL,
-                       max_iter=NEWTON_ITERATIONS, x0=None):
-    """Newton on the batch; returns x (B, 2H+1) and the final residual norm (B,)."""
+                       max_iter=NEWTON_ITERATIONS, x0=None, points=None):
+    """Newton on the batch; returns x (B, 2H+1) and the final residual norm (B,).
+    ``points``: phase points of the harmonic balance (default max(32, 8 H))."""
     B = k.size
-    M = max(32, 8 * H)
+    M = max(32, 8 * H) if points is None else points
     phi = 2 * np.pi * np.arange(M) / M
     al2 = al**2
     n = 2 * H + 1
@@ -129,23 +130,28 @@ def _solve_plane_waves(k, amp, al, Ks, Kt, coupled, H, tol=NEWTON_TOL,
     else:
         x = x0.copy()
     scale = np.maximum(amp, 1e-300)
+    active = np.arange(B)  # waves still iterating (converged ones are left alone)
     for _ in range(max_iter):
-        R = _residual(x, k, amp, al, Ks, Kt, H, coupled, phi)
-        res = np.max(np.abs(R), axis=1) / np.maximum(scale * al2, 1e-300)
-        if np.all(res < tol):
+        xa, ka, ampa, ala, Ksa, Kta = (v[active] for v in (x, k, amp, al, Ks, Kt))
+        R = _residual(xa, ka, ampa, ala, Ksa, Kta, H, coupled, phi)
+        res = np.max(np.abs(R), axis=1) / np.maximum(scale[active] * al2[active], 1e-300)
+        keep = res >= tol
+        if not np.any(keep):
             break
-        J = np.empty((B, n, n))
+        active, xa, R = active[keep], xa[keep], R[keep]
+        ka, ampa, ala, Ksa, Kta = (v[keep] for v in (ka, ampa, ala, Ksa, Kta))
+        J = np.empty((active.size, n, n))
         for j in range(n):
-            h = 1e-7 * (scale if j < 2 * H else x[:, -1])
-            xp = x.copy()
+            h = 1e-7 * (scale[active] if j < 2 * H else xa[:, -1])
+            xp = xa.copy()
             xp[:, j] += h
-            J[:, :, j] = (_residual(xp, k, amp, al, Ks, Kt, H, coupled, phi) - R) / h[:, None]
+            J[:, :, j] = (_residual(xp, ka, ampa, ala, Ksa, Kta, H, coupled, phi) - R) / h[:, None]
         try:
             dx = np.linalg.solve(J, R[:, :, None])[:, :, 0]
         except np.linalg.LinAlgError:
             raise ArithmeticError("harmonic balance: singular Jacobian (a harmonic of the "
                                   "wave is resonant with a lattice mode)") from None
-        x = x - dx
+        x[active] = xa - dx
     R = _residual(x, k, amp, al, Ks, Kt, H, coupled, phi)
     res = np.max(np.abs(R), axis=1) / np.maximum(scale * al2, 1e-300)
     return x, res

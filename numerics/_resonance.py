@@ -1,0 +1,307 @@
+"""Exact MI maps from resonance conditions: where the bands are, then Hill's method there.
+
+A sideband pair k + q, k - q grows when the two sidebands, dressed by the carrier, are in
+resonance with it: omega_+(q) + omega_-(q) = 2 Omega (the lab frequencies of theta at
+k + q and k - q, shifted by the carrier through the couplings of the Hill matrix, the U
+modes folded in by a Schur complement). Near a resonance the 2 x 2 sideband problem gives,
+in closed form (rotating-wave reduction of the Hill matrix at harmonics H = 1),
+
+    sigma_red(q)^2 = L_+- L_-+ / (4 omega_+ omega_-) - (omega_+ + omega_- - 2 Omega)^2 / 4.
+
+``resonance_map`` evaluates sigma_red on a fine offset grid for every cell at once (cheap:
+closed form), takes each cell's peak, and there computes the exact growth rate with the
+Hill matrix of ``_hill`` (eigenvalues of a 10 x 10 matrix in case II). A band is found
+wherever the reduced problem has one, however narrow, so the verdict does not depend on a
+sampling of q (tests/test_resonance.py refines the grid 4x and no cell changes); sampling
+the exact Hill spectrum instead misses bands narrower than the sampling (the 20-offset
+``stability_map`` misses 6% of the case II cells at amplitude 0.02).
+
+From the paper's start (eq. `IC`, case II) the free U waves at 2k (frequency
+omega_U(2k), amplitudes from ``_launched``) also pump rotational pairs with wavenumbers
+summing to 2k: omega_+ + omega_- = omega_U(2k), at the rate
+sigma_f = alpha^2 |c| |sin 2k| / sqrt(omega_+ omega_-) on resonance (leading order in the
+free wave's amplitude c; the quasi-periodic Hill method of ``_quasiperiodic`` gives the
+exact rate at a point, 10% lower at the gain-theories points). The map adds these bands;
+on the MI band it keeps the travelling wave's rate (eq. `IC` lowers it by 2-8% at the
+paper's amplitude, which ``mi_gain(start="paper")`` computes point by point).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from generated import lattice_model as model
+
+from . import _checks as checks
+from ._hill import _coefficients, _hill_batch, _is_mi, _sideband_share
+from ._model import check_case
+from ._plane_wave import MAX_AMPLITUDE, _on_branch, _solve_plane_waves
+from ._quasiperiodic import ROUNDOFF
+
+#: offsets of the reduced problem's grid, (0, pi]: fine enough that a band of the paper's
+#: parameter range spans several points (the narrowest at amplitude 0.02 ~ 0.01 wide)
+RESONANCE_GRID = 256
+#: the exact rate is evaluated at up to this many resonances per cell (near a U resonance
+#: the reduced detuning also changes sign through a pole; the exact matrix sorts it out)
+CANDIDATES = 4
+#: probes per root: WINDOW_POINTS offsets WINDOW apart (at amplitude 0.02; ~ a^2)
+WINDOW_POINTS, WINDOW = 3, 0.005
+#: sign changes examined per cell, and the detuning (relative to Omega) a true root
+#: reaches after the secant steps
+ROOTS_SEARCHED, ROOT_TOLERANCE = 8, 1e-6
+#: U resonances (poles of the reduction) probed per U mode, when the pair's detuning there
+#: is below POLE_WINDOW Omega
+POLE_ROOTS, POLE_WINDOW = 2, 0.05
+#: a root of the pair's detuning this close to a pole (|omega_U^2 - (nu - u Omega)^2| below
+#: POLE_GUARD Omega^2) is probed as a pole, not as a root
+POLE_GUARD = 0.05
+#: ... and roots closer than POLE_NEAR Omega^2 get the window of probes
+POLE_NEAR = 0.3
+#: ... and at this many local maxima of the reduced rate
+MAXIMA = 3
+#: phase points of the plane waves' harmonic balance and of the couplings' Fourier
+#: coefficients (H = 1 needs harmonics <= 4; aliasing from 16 - 4 is ~ a^12)
+PHASES = 16
+
+
+def _reduced(C, k, W, q, coupled, poles=False):
+    """Dressed sideband frequencies omega_+-, (B, Q), and L_+- L_-+ (U folded in); with
+    ``poles``, also the U resonances' detunings omega_U(q + u k)^2 - (nu - u Omega)^2,
+    u = -2, 0, 2 (zero where a U mode meets the pair: the reduction's poles), (3, B, Q).
+
+    L[a, b] = sum_j c_{j, a - b} e^{i (q + b k) j} (j = -1, 0, 1) as in ``_hill``."""
+    M = C["tt"].shape[-1]
+    eq = np.exp(1j * np.asarray(q))  # (Q,) common offsets, or (B, Q) per cell
+    if eq.ndim == 1:
+        eq = eq[None, :]
+    # e^{i (q + p k)} for the column harmonics p = -2 .. 2 (j = -1 is its conjugate)
+    E = {p: eq * np.exp(1j * p * k)[:, None] for p in (-2, -1, 0, 1, 2)}
+
+    def entry(name, l, p_col):
+        c = C[name][:, :, l % M]
+        e = E[p_col]
+        return c[:, 0, None] * e.conj() + c[:, 1, None] + c[:, 2, None] * e
+
+    L = {(a, b): entry("tt", a - b, b) for a in (1, -1) for b in (1, -1)}
+    dens = []
+    if coupled:
+        diag = {a: np.sqrt(-L[a, a]) for a in (1, -1)}
+        lam0 = 0.5j * (diag[-1] - diag[1])  # the pair's common Hill exponent at resonance
+        for u in (-2, 0, 2):
+            Luu = -model.omega_longitudinal(q + u * k[:, None]) ** 2
+            den = (lam0 - 1j * u * W[:, None]) ** 2 - Luu
+            dens.append(den.real)
+            to_u = {b: entry("Ut", u - b, b) for b in (1, -1)}
+            with np.errstate(divide="ignore", invalid="ignore"):
+                for a in (1, -1):
+                    from_u = entry("tU", a - u, u) / den
+                    for b in (1, -1):
+                        L[a, b] = L[a, b] + from_u * to_u[b]
+    wp, wm = np.sqrt(-L[1, 1]), np.sqrt(-L[-1, -1])
+    if poles:
+        return wp, wm, L[1, -1] * L[-1, 1], np.array(dens)
+    return wp, wm, L[1, -1] * L[-1, 1]
+
+
+def _growth(coupling2, wp, wm, pump):
+    """Rotating-wave growth rate of a pair pumped at frequency ``pump`` (B, Q)."""
+    s2 = coupling2 / (4 * wp * wm) - (wp + wm - pump) ** 2 / 4
+    return np.maximum(np.sqrt(s2 + 0j).real, 0.0)
+
+
+def _roots(q, detuning, n):
+    """Offsets where each row of ``detuning`` (B, Q) changes sign (linear interpolation),
+    at most n per row, (B, n), NaN where there are fewer."""
+    d = detuning
+    sgn = np.sign(d)
+    change = (sgn[:, :-1] * sgn[:, 1:] < 0)
+    B = d.shape[0]
+    out = np.full((B, n), np.nan)
+    rows, cols = np.nonzero(change)
+    slot = np.zeros(B, int)
+    for r, c in zip(rows, cols):
+        if slot[r] < n:
+            t = d[r, c] / (d[r, c] - d[r, c + 1])
+            out[r, slot[r]] = q[c] + t * (q[c + 1] - q[c])
+            slot[r] += 1
+    return out
+
+
+def _refine(C, k, W, roots, coupled, pump, steps=6):
+    """Secant steps on the detuning omega_+ + omega_- - pump from the interpolated roots;
+    returns the roots and the reduced growth rate there, (B, n)."""
+    h = 1e-6
+    x = np.where(np.isfinite(roots), roots, 1.0)
+    for _ in range(steps):
+        wp, wm, _ = _reduced(C, k, W, x, coupled)
+        f0 = (wp + wm).real - pump
+        wp, wm, _ = _reduced(C, k, W, x + h, coupled)
+        f1 = (wp + wm).real - pump
+        with np.errstate(divide="ignore", invalid="ignore"):
+            step = np.where(f1 != f0, f0 * h / (f1 - f0), 0.0)
+        x = np.clip(x - np.clip(step, -0.02, 0.02), 1e-9, np.pi)
+    wp, wm, c2, dens = _reduced(C, k, W, x, coupled, poles=True)
+    pole = np.min(np.abs(dens), axis=0) if len(dens) else np.full(x.shape, np.inf)
+    return np.where(np.isfinite(roots), x, np.nan), wp, wm, c2, pole
+
+
+def _candidates(q, sigma, n):
+    """The n largest local maxima of each row of sigma (B, Q), refined by a parabola
+    through their three points: offsets and values, (B, n) (value 0: no maximum)."""
+    B, Q = sigma.shape
+    pad = np.pad(sigma, ((0, 0), (1, 1)), constant_values=-1.0)
+    is_max = (sigma > pad[:, :-2]) & (sigma >= pad[:, 2:]) & (sigma > 0)
+    score = np.where(is_max, sigma, -1.0)
+    j = np.argsort(-score, axis=1)[:, :n]
+    r = np.arange(B)[:, None]
+    val = np.maximum(score[r, j], 0.0)
+    jc = np.clip(j, 1, Q - 2)
+    y0, y1, y2 = sigma[r, jc - 1], sigma[r, jc], sigma[r, jc + 1]
+    den = y0 - 2 * y1 + y2
+    with np.errstate(divide="ignore", invalid="ignore"):
+        shift = np.where(den < 0, 0.5 * (y0 - y2) / den, 0.0)
+    return q[jc] + np.clip(shift, -1, 1) * (q[1] - q[0]), val
+
+
+def resonance_map(k, delta, case: str, alpha: float, K_s: float, amplitude: float,
+                  start: str = "travelling", grid: int = RESONANCE_GRID, chunk: int = 2000):
+    """Peak sideband growth rate over a grid of (k, delta), from the resonance conditions.
+
+    Parameters
+    ----------
+    k, delta : array_like, same (or broadcastable) shapes
+        Carrier wavenumbers in (0, pi) and delta = K_s - K_theta (K_theta > 0).
+    case, alpha, K_s : as in :func:`numerics.stability_map`.
+    amplitude : float
+        Peak rotation of the travelling wave, or the initial rotation of eq. `IC`.
+    start : {"travelling", "paper"}
+        The travelling wave, or the state eq. `IC` launches (case II: plus the bands its
+        free U waves pump; case I: the same as "travelling", no U).
+    grid : int
+        Points of the reduced problem's offset grid in (0, pi].
+
+    Returns
+    -------
+    dict of ndarray, shape of k
+        ``peak_gain`` (1/T; 0 where stable, NaN where no plane wave exists), ``q_peak``
+        (its offset) and ``pumped`` (bool: the peak is a band pumped by the free U waves).
+    """
+    check_case(case)
+    alpha = checks.positive("alpha", alpha)
+    K_s = checks.positive("K_s", K_s)
+    amplitude = checks.real("amplitude (peak rotation, rad)", amplitude, 0.0, MAX_AMPLITUDE)
+    checks.choice("start", start, ("travelling", "paper"))
+    grid = checks.integer("grid", grid, 16)
+    chunk = checks.integer("chunk", chunk, 1)
+    k, delta = checks.real_array("k", k), checks.real_array("delta", delta)
+    try:
+        k, delta = np.broadcast_arrays(k, delta)
+    except ValueError:
+        raise ValueError(f"k and delta must have the same (or broadcastable) shapes, got "
+                         f"{k.shape} and {delta.shape}") from None
+    if not (np.all(np.isfinite(k)) and np.all(np.isfinite(delta))):
+        raise ValueError("k and delta must be finite")
+    if np.any(K_s - delta <= 0) or np.any((k <= 0) | (k >= np.pi)):
+        raise ValueError("need K_theta = K_s - delta > 0 and 0 < k < pi on the whole grid")
+    q = np.linspace(np.pi / grid, np.pi, grid)
+    coupled = case == "coupled"
+    kf, df = k.ravel().astype(float), delta.ravel().astype(float)
+    out = {"peak_gain": np.zeros(kf.size), "q_peak": np.full(kf.size, np.nan),
+           "pumped": np.zeros(kf.size, bool)}
+    for s in range(0, kf.size, chunk):
+        sl = slice(s, s + chunk)
+        res = _chunk(kf[sl], K_s - df[sl], float(alpha), float(K_s), float(amplitude), q,
+                     coupled, start == "paper" and coupled)
+        for name in out:
+            out[name][sl] = res[name]
+    return {name: v.reshape(k.shape) for name, v in out.items()}
+
+
+def _chunk(kk, Kt, alpha, K_s, amplitude, q, coupled, pumped):
+    B = kk.size
+    al, Ks = np.full(B, alpha), np.full(B, K_s)
+    x, res = _solve_plane_waves(kk, np.full(B, amplitude), al, Ks, Kt, coupled, 1,
+                                points=PHASES)
+    ok = _on_branch(x, res, amplitude)
+    a, b, W = x[:, :1], x[:, 1:2], x[:, -1]
+    C = _coefficients(a, b, kk, al, Ks, Kt, PHASES)
+    wp, wm, c2, dens = _reduced(C, kk, W, q, coupled, poles=True)
+    detuning = (wp + wm).real - 2 * W[:, None]
+    # band centres: roots of the detuning omega_+ + omega_- - 2 Omega (a sign change on the
+    # grid; a band whose two edges fall within one grid step is a tangency, marginal). A
+    # sign change through a pole of the reduction is no root: the secant steps do not
+    # converge there, and it is dropped.
+    roots = _roots(q, detuning, ROOTS_SEARCHED)
+    x, wp_r, wm_r, c2_r, pole = _refine(C, kk, W, roots, coupled, 2 * W[:, None])
+    # roots next to a pole are left to the pole probes below (there the reduction's rate
+    # is meaningless and would crowd out the real bands)
+    true_root = ((np.abs((wp_r + wm_r).real - 2 * W[:, None]) < ROOT_TOLERANCE * W[:, None])
+                 & (pole > POLE_GUARD * W[:, None] ** 2))
+    s_root = np.where(true_root, np.nan_to_num(_growth(c2_r, wp_r, wm_r, 2 * W[:, None])), 0.0)
+    top = np.argsort(-s_root, axis=1)[:, :CANDIDATES]
+    r = np.arange(B)[:, None]
+    # the reduction places a narrow band next to a U resonance up to about its own width
+    # off: probe a small window around each root (h ~ half the narrowest band, ~ a^2)
+    h = np.clip(WINDOW * (amplitude / 0.02) ** 2, 1e-5, 0.05)
+    probes, s_red = [], []
+    near_pole = pole[r, top] < POLE_NEAR * W[:, None] ** 2
+    for off in np.arange(-(WINDOW_POINTS // 2), WINDOW_POINTS // 2 + 1) * h:
+        probes.append(np.clip(np.nan_to_num(x[r, top], nan=1.0) + off, 1e-9, np.pi))
+        # away from the poles the reduction is accurate: the root itself suffices
+        s_red.append(s_root[r, top] * (near_pole | (off == 0)))
+    # where a U mode meets the pair near its resonance (a pole of the reduction), a hybrid
+    # band may open: its resonance condition is a root of that pole's detuning
+    near = np.zeros(detuning.shape, bool)
+    for den in dens:
+        pr = _roots(q, den, POLE_ROOTS)
+        j = np.clip(np.searchsorted(q, np.nan_to_num(pr, nan=0.0)), 0, q.size - 1)
+        close = np.isfinite(pr) & (np.abs(detuning[r, j]) < POLE_WINDOW * W[:, None])
+        probes.append(np.nan_to_num(pr, nan=1.0))
+        s_red.append(close.astype(float))
+        for d in (-2, -1, 0, 1, 2):  # the reduced rate is no guide next to a pole
+            near[r, np.clip(j + d, 0, q.size - 1)] |= np.isfinite(pr)
+    # ... and the peaks of the reduced rate away from the poles: bands whose detuning
+    # only dips towards zero (no root, the coupling bridges it: wide bands)
+    sig = np.where(near, 0.0, np.nan_to_num(_growth(c2, wp, wm, 2 * W[:, None])))
+    q_max, s_max = _candidates(q, sig, MAXIMA)
+    probes = np.concatenate(probes + [q_max], axis=1)
+    s_red = np.concatenate(s_red + [s_max], axis=1)
+    # the exact rate (Hill, H = 1, sideband modes) at each candidate the reduction finds
+    gq = np.zeros(probes.shape)
+    rows, cols = np.nonzero(s_red > 0)  # only the (cell, offset) pairs that are candidates
+    if rows.size:
+        A, labels = _hill_batch(a[rows], b[rows], kk[rows], W[rows], al[rows], Ks[rows],
+                                Kt[rows], probes[rows, cols][:, None], 1, coupled)
+        A = A[:, 0]
+        lam = np.linalg.eigvals(A)
+        grow = lam.real.max(axis=-1) > ROUNDOFF * W[rows]
+        if np.any(grow):
+            lam_u, vec = np.linalg.eig(A[grow])
+            share = _sideband_share(vec, labels, al[rows][grow] ** 2)
+            gq[rows[grow], cols[grow]] = np.where(_is_mi(share), lam_u.real, 0.0).max(axis=-1)
+    best = np.argmax(gq, axis=1)
+    gain = gq[np.arange(B), best]
+    gain[gain < ROUNDOFF * W] = 0.0
+    q_peak = np.where(gain > 0, probes[np.arange(B), best], np.nan)
+    is_pumped = np.zeros(B, bool)
+    if pumped:
+        # free U waves of eq. `IC` at 2k: forward and backward amplitudes cancelling the
+        # forced harmonic b_2 at T = 0 (``_launched``), each pumping rotational pairs at
+        # omega_U(2k), on resonance at rate G / (4 sqrt(omega_+ omega_-))
+        w2 = model.omega_longitudinal(2 * kk)
+        r = 2 * W / w2
+        roots = _roots(q, (wp + wm).real - w2[:, None], ROOTS_SEARCHED)
+        q_r, wp_r, wm_r, _, pole = _refine(C, kk, W, roots, coupled, w2[:, None])
+        true_root = ((np.abs((wp_r + wm_r).real - w2[:, None]) < ROOT_TOLERANCE * W[:, None])
+                     & (pole > POLE_GUARD * W[:, None] ** 2))
+        inv = np.where(true_root, np.nan_to_num(1 / np.sqrt(wp_r * wm_r).real), 0.0)
+        c_max = np.abs(b[:, 0]) * np.maximum(1 + r, np.abs(r - 1)) / 2
+        G = 4 * alpha**2 * c_max * np.abs(np.sin(2 * kk))
+        j = np.argmax(inv, axis=1)
+        s_f = G / 4 * inv[np.arange(B), j]
+        q_f = q_r[np.arange(B), j]
+        is_pumped = s_f > gain
+        gain = np.maximum(gain, s_f)
+        q_peak = np.where(is_pumped, q_f, q_peak)
+    gain = np.where(ok, gain, np.nan)
+    return {"peak_gain": gain, "q_peak": q_peak, "pumped": is_pumped & ok}
