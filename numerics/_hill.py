@@ -66,12 +66,13 @@ def _labels(P, coupled):
     return px, py
 
 
-def _hill_batch(a, b, k, W, al, Ks, Kt, q, P, coupled):
+def _hill_batch(a, b, k, W, al, Ks, Kt, q, P, coupled, C=None):
     """First-order Hill matrices, shape (B, nq, 2n, 2n), and the harmonic labels; q has
     shape (nq,) (the same offsets for every wave) or (B, nq)."""
     px, py = _labels(P, coupled)
-    M = max(64, 4 * (2 * P + 2))
-    C = _coefficients(a, b, k, al, Ks, Kt, M)
+    if C is None:  # else: the couplings' coefficients, already computed (M > 4 P + 2)
+        C = _coefficients(a, b, k, al, Ks, Kt, max(64, 4 * (2 * P + 2)))
+    M = C["tt"].shape[-1]
     j = np.array([-1.0, 0.0, 1.0])
     labels = np.concatenate([px, py])
     nx, n = px.size, px.size + py.size
