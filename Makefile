@@ -48,12 +48,14 @@ bench: $(STAMP)
 	$(VPY) bench/work_precision.py
 	$(VPY) bench/speed.py
 	$(VPY) bench/maps.py
+	$(VPY) bench/exact_maps.py
 
 bench-quick: $(STAMP)
 	$(VPY) bench/simulator.py --quick
 	$(VPY) bench/work_precision.py --quick
 	$(VPY) bench/speed.py --quick
 	$(VPY) bench/maps.py --quick
+	$(VPY) bench/exact_maps.py --quick
 
 # Where numerical stability ends -> bench/stress.json, bench/stress.md
 stress: $(STAMP)

@@ -21,7 +21,7 @@ omega_U(2k), amplitudes from ``_launched``) also pump rotational pairs with wave
 summing to 2k: omega_+ + omega_- = omega_U(2k), at the rate
 sigma_f = alpha^2 |c| |sin 2k| / sqrt(omega_+ omega_-) on resonance (leading order in the
 free wave's amplitude c; the quasi-periodic Hill method of ``_quasiperiodic`` gives the
-exact rate at a point, 10% lower at the gain-theories points). The map adds these bands;
+exact rate at a point, 8-14% lower at the three gain-theories points). The map adds these bands;
 on the MI band it keeps the travelling wave's rate (eq. `IC` lowers it by 2-8% at the
 paper's amplitude, which ``mi_gain(start="paper")`` computes point by point).
 """

@@ -34,7 +34,8 @@ def _source_hash() -> str:
     gen = Path(coefficients_module.__file__).parent
     files = [here / f"_{n}.py" for n in ("kernels", "kernels_libm", "integrators", "integrate",
                                           "simulate", "model", "plane_wave", "hill", "analysis",
-                                          "checks")]
+                                          "checks", "launched", "torus", "quasiperiodic",
+                                          "resonance", "gain")]
     files += [gen / "coefficients.py", gen / "lattice_model.py"]
     h = hashlib.sha256()
     for f in files:
