@@ -120,6 +120,7 @@ def compute(ctx):
         curves = {th: _curve(ctx, key, th, mat, case, kr, qf) for th in THEORIES}
         data.update({f"{label}/{th}": c for th, c in curves.items()})
         data[f"{label}/{PAPER_START}"] = start_curve
+        data[f"{label}/k"] = kr
         predicted = {th: band_summary(qf, c, kr) for th, c in curves.items()}
         predicted[PAPER_START] = band_summary(qs, start_curve, kr)
         theory_of = {"travelling": "exact lattice", "continuum": PAPER_START}
@@ -229,6 +230,9 @@ def plot(data):
         for th, style in zip(THEORIES, ("k--", "C2-", "C3-")):
             ax.plot(qf, data[f"{label}/{th}"], style, lw=1, label=th)
         ax.plot(qs, data[f"{label}/{PAPER_START}"], "C1:", lw=1.5, label=PAPER_START)
+        if f"{label}/k" in data:  # the pair's other member, k - q (eq. IC is not symmetric)
+            ax.plot(np.abs(2 * data[f"{label}/k"] - qs), data[f"{label}/{PAPER_START}"],
+                    "C1:", lw=1.5)
         ax.set_ylim(-0.1 * top, 1.3 * top)
         ax.set_title(label, fontsize=9)
         ax.set_xlabel("wavenumber (rad per site)")

@@ -163,3 +163,21 @@ def test_numerics_does_not_import_matplotlib():
     code = ("import sys, numerics, numerics._cells, numerics._gain; "
             "assert 'matplotlib' not in sys.modules, 'matplotlib imported'")
     subprocess.run([sys.executable, "-c", code], check=True)
+
+
+def test_paper_start_unstable_where_the_travelling_wave_is_not(quick_scenes):
+    """The issue's quick-mode point: at delta = -0.0051, k = 2 pi 90/500 (case II) eq. `IC`
+    grows and the travelling wave does not, as their theories predict; what grows is a
+    theta pair pumped by the free U waves (wavenumbers summing to 2k)."""
+    _, summaries = quick_scenes
+    starts = {st["start"]: st for st in summaries["gain-theories"]["starts"]
+              if st["point"] == "II d=-0.0051 k=1.131"}
+    assert starts["paper"]["predicted"] == starts["paper"]["simulated"] == "MI"
+    assert starts["travelling"]["predicted"] == starts["travelling"]["simulated"] == "stable"
+    assert starts["paper"]["field"] == "theta"
+    k = 2 * np.pi * 90 / 500
+    w1, w2 = starts["paper"]["wavenumbers"]
+    # the pair: k + q and k - q, i.e. wavenumbers summing to 2k (mod 2 pi, folded)
+    assert min(abs(w1 + w2 - 2 * k), abs(w2 - w1 - 2 * k), abs(2 * np.pi - w1 - w2 - 2 * k),
+               abs(w1 - w2 - 2 * k)) < 1e-3
+    assert abs(starts["paper"]["measured_peak"] / starts["paper"]["predicted_peak"] - 1) < 0.05
