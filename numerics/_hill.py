@@ -238,6 +238,27 @@ def mi_gain(material: Material, case: str, k: float, amplitude: float, q,
     return sigma.reshape(q_arr.shape)
 
 
+def check_map_grid(case, alpha, K_s, amplitude, k, delta, q=None):
+    """The arguments every (k, delta) map shares, checked: returns alpha, K_s, amplitude
+    and k, delta broadcast together (``q``, the offsets a map samples, checked finite)."""
+    check_case(case)
+    alpha = checks.positive("alpha", alpha)
+    K_s = checks.positive("K_s", K_s)
+    amplitude = checks.real("amplitude (peak rotation, rad)", amplitude, 0.0, MAX_AMPLITUDE)
+    k, delta = checks.real_array("k", k), checks.real_array("delta", delta)
+    try:
+        k, delta = np.broadcast_arrays(k, delta)
+    except ValueError:
+        raise ValueError(f"k and delta must have the same (or broadcastable) shapes, got "
+                         f"{k.shape} and {delta.shape}") from None
+    arrays = (k, delta) if q is None else (k, delta, q)
+    if not all(np.all(np.isfinite(a)) for a in arrays):
+        raise ValueError(("k and delta" if q is None else "k, delta and q") + " must be finite")
+    if np.any(K_s - delta <= 0) or np.any((k <= 0) | (k >= np.pi)):
+        raise ValueError("need K_theta = K_s - delta > 0 and 0 < k < pi on the whole grid")
+    return alpha, K_s, amplitude, k, delta
+
+
 def stability_map(k, delta, case: str, alpha: float, K_s: float, amplitude: float,
                   q=None, harmonics: int = 1, chunk: int = 2000, modes: str = "sidebands"):
     """Peak sideband growth rate max_q sigma(q) over a grid of (k, delta), batched.
@@ -261,24 +282,11 @@ def stability_map(k, delta, case: str, alpha: float, K_s: float, amplitude: floa
     ndarray, shape of k
         Peak growth rate; 0 where the plane wave is stable (to the q grid).
     """
-    check_case(case)
-    alpha = checks.positive("alpha", alpha)
-    K_s = checks.positive("K_s", K_s)
-    amplitude = checks.real("amplitude (peak rotation, rad)", amplitude, 0.0, MAX_AMPLITUDE)
     chunk = checks.integer("chunk", chunk, 1)
-    k, delta = checks.real_array("k", k), checks.real_array("delta", delta)
-    try:
-        k, delta = np.broadcast_arrays(k, delta)
-    except ValueError:
-        raise ValueError(f"k and delta must have the same (or broadcastable) shapes, got "
-                         f"{k.shape} and {delta.shape}") from None
     q = MAP_OFFSETS if q is None else checks.real_array("q", q).ravel()
     H = _check_harmonics(harmonics)
     checks.choice("modes", modes, ("sidebands", "all"))
-    if not (np.all(np.isfinite(k)) and np.all(np.isfinite(delta)) and np.all(np.isfinite(q))):
-        raise ValueError("k, delta and q must be finite")
-    if np.any(K_s - delta <= 0) or np.any((k <= 0) | (k >= np.pi)):
-        raise ValueError("need K_theta = K_s - delta > 0 and 0 < k < pi on the whole grid")
+    alpha, K_s, amplitude, k, delta = check_map_grid(case, alpha, K_s, amplitude, k, delta, q)
     kf, df = k.ravel(), delta.ravel()
     out = np.zeros(kf.size)
     coupled = case == "coupled"

@@ -34,9 +34,8 @@ import numpy as np
 from generated import lattice_model as model
 
 from . import _checks as checks
-from ._hill import _coefficients, _hill_batch, _is_mi, _sideband_share
-from ._model import check_case
-from ._plane_wave import MAX_AMPLITUDE, _on_branch, _solve_plane_waves
+from ._hill import _coefficients, _hill_batch, _is_mi, _sideband_share, check_map_grid
+from ._plane_wave import _on_branch, _solve_plane_waves
 from ._quasiperiodic import ROUNDOFF
 
 #: offsets of the reduced problem's grid, (0, pi]: fine enough that a band of the paper's
@@ -187,23 +186,10 @@ def resonance_map(k, delta, case: str, alpha: float, K_s: float, amplitude: floa
         ``peak_gain`` (1/T; 0 where stable, NaN where no plane wave exists), ``q_peak``
         (its offset) and ``pumped`` (bool: the peak is a band pumped by the free U waves).
     """
-    check_case(case)
-    alpha = checks.positive("alpha", alpha)
-    K_s = checks.positive("K_s", K_s)
-    amplitude = checks.real("amplitude (peak rotation, rad)", amplitude, 0.0, MAX_AMPLITUDE)
     checks.choice("start", start, ("travelling", "paper"))
     grid = checks.integer("grid", grid, 16)
     chunk = checks.integer("chunk", chunk, 1)
-    k, delta = checks.real_array("k", k), checks.real_array("delta", delta)
-    try:
-        k, delta = np.broadcast_arrays(k, delta)
-    except ValueError:
-        raise ValueError(f"k and delta must have the same (or broadcastable) shapes, got "
-                         f"{k.shape} and {delta.shape}") from None
-    if not (np.all(np.isfinite(k)) and np.all(np.isfinite(delta))):
-        raise ValueError("k and delta must be finite")
-    if np.any(K_s - delta <= 0) or np.any((k <= 0) | (k >= np.pi)):
-        raise ValueError("need K_theta = K_s - delta > 0 and 0 < k < pi on the whole grid")
+    alpha, K_s, amplitude, k, delta = check_map_grid(case, alpha, K_s, amplitude, k, delta)
     q = np.linspace(np.pi / grid, np.pi, grid)
     coupled = case == "coupled"
     kf, df = k.ravel().astype(float), delta.ravel().astype(float)
