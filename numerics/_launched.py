@@ -154,25 +154,13 @@ class LaunchedState:
         return self._linear_mode(field, m, t)
 
     def _linear_mode(self, field, m, t):
+        """The linear superposition's amplitude at m k: the carrier's harmonic turning at
+        m Omega, plus the free waves at their linear frequencies."""
         t = np.asarray(t, float)
-        if field == "theta":
-            c = np.zeros(t.shape, complex)
-            a = self.carrier.theta_harmonics
-            if m % 2 == 1 and m // 2 < a.size:
-                c = c + a[m // 2] * np.exp(1j * m * (self.carrier_phase
-                                                      - self.carrier.omega * t))
-            for w in self.free_waves:
-                if w.field == "theta" and w.harmonic == m:
-                    c = c + w.amplitude * np.exp(1j * (w.phase - w.frequency * t))
-            return c
-        c = np.zeros(t.shape, complex)
-        b = self.carrier.U_harmonics
-        if m % 2 == 0 and 0 < m // 2 <= b.size:
-            # b sin(m phi) = Re[-i b e^{i m phi}], phi = k n - Omega T + phi_0
-            c = c - 1j * b[m // 2 - 1] * np.exp(1j * m * (self.carrier_phase
-                                                          - self.carrier.omega * t))
+        z = self.carrier.complex_harmonics(m)[field][m - 1]
+        c = z * np.exp(1j * m * (self.carrier_phase - self.carrier.omega * t))
         for w in self.free_waves:
-            if w.field == "U" and w.harmonic == m:
+            if w.field == field and w.harmonic == m:
                 c = c + w.amplitude * np.exp(1j * (w.phase - w.frequency * t))
         return c
 
@@ -195,19 +183,13 @@ def _branch(field, material, wavenumber):
 
 
 def _carrier_harmonics(wave: PlaneWave, phase: float, M: int):
-    """Complex amplitudes (value, velocity) of the carrier's theta and U at m k, m = 1..M."""
-    out = {f: np.zeros((2, M), complex) for f in ("theta", "U")}
-    W = wave.omega
-    for i, a in enumerate(wave.theta_harmonics):
-        m = 2 * i + 1
-        if m <= M:  # a cos(m phi), phi = k n - W T + phi0: velocity amplitude -i m W z
-            z = a * np.exp(1j * m * phase)
-            out["theta"][:, m - 1] = z, -1j * m * W * z
-    for i, b in enumerate(wave.U_harmonics):
-        m = 2 * i + 2
-        if m <= M:  # b sin(m phi) = Re[-i b e^{i m phi}]
-            z = -1j * b * np.exp(1j * m * phase)
-            out["U"][:, m - 1] = z, -1j * m * W * z
+    """Complex amplitudes (value, velocity) of the carrier's theta and U at m k, m = 1..M:
+    the harmonic m of Theta(k n - W T + phi0) has velocity amplitude -i m W z."""
+    m = np.arange(1, M + 1)
+    out = {}
+    for field, c in wave.complex_harmonics(M).items():
+        z = c * np.exp(1j * m * phase)
+        out[field] = np.stack([z, -1j * m * wave.omega * z])
     return out
 
 

@@ -87,6 +87,19 @@ class PlaneWave:
         return th, thd, U, Ud
 
 
+    def complex_harmonics(self, M: int) -> dict:
+        """Complex amplitudes c_m, m = 1 .. M, of theta and U at phi = 0 (Theta(phi) =
+        Re sum_m c_m e^{i m phi}): theta a_m at odd m, U -i b_m at even m (b sin = Re[-i b
+        e^{i m phi}]). ``{"theta": (M,), "U": (M,)}``, complex."""
+        out = {f: np.zeros(M, complex) for f in ("theta", "U")}
+        for start, field, coef in ((1, "theta", self.theta_harmonics),
+                                   (2, "U", -1j * self.U_harmonics)):
+            m = start + 2 * np.arange(coef.size)
+            keep = m <= M
+            out[field][m[keep] - 1] = coef[keep]
+        return out
+
+
 def _residual(x, k, amp, al, Ks, Kt, H, coupled, phi):
     """Harmonic-balance residuals, batched: x = (a_1..a_H, b_1..b_H, Omega), shape (B, 2H+1)."""
     mo = 2.0 * np.arange(H) + 1

@@ -183,15 +183,13 @@ def gain_spectrum_torus(torus, material, case, q, P, R, modes="sidebands", start
 
 
 def torus_of_wave(wave) -> Torus:
-    """A travelling wave as a torus with no free phase (d = 0)."""
-    H = wave.theta_harmonics.size
-    P = 2 * H
-    th = np.zeros((2 * P + 1, 1), complex)
-    U = np.zeros((2 * P + 1, 1), complex)
-    for i, a in enumerate(wave.theta_harmonics):  # a cos(m phi)
-        m = 2 * i + 1
-        th[P + m, 0] = th[P - m, 0] = a / 2
-    for i, b in enumerate(wave.U_harmonics):  # b sin(m phi)
-        m = 2 * i + 2
-        U[P + m, 0], U[P - m, 0] = b / 2j, -b / 2j
-    return Torus(wave.k, wave.omega, np.zeros(0), np.zeros((1, 0), int), th, U, 0.0, 0.0)
+    """A travelling wave as a torus with no free phase (d = 0): F[+-m] = c_m / 2 and its
+    conjugate, c_m its complex harmonics."""
+    P = 2 * wave.theta_harmonics.size
+    F = {}
+    for field, c in wave.complex_harmonics(P).items():
+        F[field] = np.zeros((2 * P + 1, 1), complex)
+        F[field][P + 1:, 0] = c / 2
+        F[field][:P, 0] = np.conj(c[::-1]) / 2
+    return Torus(wave.k, wave.omega, np.zeros(0), np.zeros((1, 0), int), F["theta"],
+                 F["U"], 0.0, 0.0)
