@@ -178,8 +178,11 @@ def trajectory(material, case, k, fields0, t_end, samples, M=PHASE_POINTS):
         y0[2:] = 0.0
     if np.max(np.abs(y0[0])) > 1e3:
         raise ValueError("the reduced chain needs |theta| < 1e3")
-    w_max = max(2.0, float(model.omega_rotation(np.pi, material.alpha, material.K_s,
-                                                material.K_theta)))
+    # fastest linear wave: the U branch peaks at 2 (q = pi); the rotation branch may peak
+    # anywhere in the zone (at q = 0 when K_theta > K_s), so take its maximum
+    w_max = max(2.0, float(np.max(model.omega_rotation(np.linspace(0.0, np.pi, 65),
+                                                       material.alpha, material.K_s,
+                                                       material.K_theta))))
     interval = t_end / (samples - 1)
     per = max(1, int(np.ceil(interval * w_max / OMEGA_DT)))
     meth = get_method("srkn11b")
