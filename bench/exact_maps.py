@@ -15,7 +15,6 @@ Writes the "exact_maps" section of bench/results.json (results_quick.json with -
 from __future__ import annotations
 
 import argparse
-import json
 import sys
 import time
 from pathlib import Path
@@ -26,9 +25,8 @@ HERE = Path(__file__).parent
 sys.path.insert(0, str(HERE))
 
 from derivation import paper  # noqa: E402
-from derivation.files import write_text  # noqa: E402
 from numerics import resonance_map, stability_map  # noqa: E402
-from simulator import machine  # noqa: E402
+from simulator import machine, write_section  # noqa: E402
 
 THRESHOLD = np.log(20.0) / paper.T_END
 
@@ -73,10 +71,7 @@ def main(quick=False):
            "wall_s": walls, "check_grid": [n_check, n_check],
            "verdicts_changed_by_4x_offset_refinement": changed,
            "cells_where_20_and_160_offset_scans_disagree": sampled}
-    path = HERE / ("results_quick.json" if quick else "results.json")
-    data = json.loads(path.read_text()) if path.exists() else {}
-    data["exact_maps"] = res
-    write_text(path, json.dumps(data, indent=2) + "\n")
+    write_section("exact_maps", res, quick)
     for name, t in walls.items():
         print(f"{n} x {n} {name}: {t:.2f}")
     print(f"{n_check} x {n_check}, verdicts changed by a 4x finer offset grid: {changed}")

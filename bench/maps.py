@@ -15,7 +15,6 @@ Writes the "maps" section of bench/results.json (results_quick.json with --quick
 from __future__ import annotations
 
 import argparse
-import json
 import shutil
 import statistics
 import sys
@@ -29,9 +28,8 @@ HERE = Path(__file__).parent
 sys.path.insert(0, str(HERE))
 
 from derivation import paper  # noqa: E402
-from derivation.files import write_text  # noqa: E402
 from scenes import maps  # noqa: E402
-from simulator import machine  # noqa: E402
+from simulator import machine, write_section  # noqa: E402
 
 
 def _noop(x):
@@ -94,10 +92,7 @@ def main(quick=False):
            "overhead_fraction_of_a_task": overhead / task,
            "map_64x64_here_s": cells * per_cell / 2,
            "map_64x64_on_100_cores_s": cells * per_cell / 100}
-    path = HERE / ("results_quick.json" if quick else "results.json")
-    data = json.loads(path.read_text()) if path.exists() else {}
-    data["maps"] = res
-    write_text(path, json.dumps(data, indent=2) + "\n")
+    write_section("maps", res, quick)
     print(f"per cell (N = {N}, T = {T:g}): {per_cell:.2f} s in the map on one worker "
           f"({serial:.2f} s serially, one row) = {1 / per_cell:.2f} cells/s/core")
     print(f"16-cell map: 1 worker {walls[1]:.1f} s, 2 workers {walls[2]:.1f} s -> "

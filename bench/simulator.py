@@ -19,10 +19,12 @@ from pathlib import Path
 import numpy as np
 
 from derivation import paper
+from derivation.files import write_text
 from numerics import integrate, simulate
 from numerics._baseline import numpy_accel, numpy_rk4
 from numerics._kernels import accel
 
+HERE = Path(__file__).parent
 BLUE = paper.material("blue")
 PARAMS = (BLUE.alpha**2, BLUE.K_s, BLUE.K_theta)
 
@@ -46,6 +48,16 @@ def machine():
             "processor": platform.processor() or platform.machine(), "cpus": os.cpu_count(),
             "numpy": np.__version__, "scipy": scipy.__version__, "sympy": sympy.__version__,
             "numba": numba.__version__}
+
+
+def write_section(name: str, res: dict, quick: bool) -> Path:
+    """Put ``res`` under ``name`` in bench/results.json (results_quick.json when quick),
+    keeping the other scripts' sections (shared by the bench scripts)."""
+    path = HERE / ("results_quick.json" if quick else "results.json")
+    data = json.loads(path.read_text()) if path.exists() else {}
+    data[name] = res
+    write_text(path, json.dumps(data, indent=2) + "\n")
+    return path
 
 
 def main(quick=False):

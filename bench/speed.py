@@ -24,7 +24,6 @@ section of bench/results.json (bench/results_quick.json with --quick) and prints
 from __future__ import annotations
 
 import argparse
-import json
 import statistics
 import sys
 import time
@@ -36,13 +35,12 @@ HERE = Path(__file__).parent
 sys.path.insert(0, str(HERE))
 
 from derivation import paper  # noqa: E402
-from derivation.files import write_text  # noqa: E402
 from numerics import initial_condition  # noqa: E402
 from numerics import _kernels as kernels  # noqa: E402
 from numerics._baseline import numpy_accel  # noqa: E402
 from numerics._integrate import _Stepper  # noqa: E402
 from numerics._integrators import get_method  # noqa: E402
-from simulator import machine  # noqa: E402
+from simulator import machine, write_section  # noqa: E402
 
 MAT, CASE, K = paper.material("blue"), "coupled", paper.k("blue")
 N = paper.N
@@ -219,10 +217,7 @@ def paper_run(quick):
 def main(quick=False):
     res = {"machine": machine(), "quick": quick, "force": force_costs(quick),
            "time_to_1e-6": time_to_error(quick), "paper_run": paper_run(quick)}
-    path = HERE / ("results_quick.json" if quick else "results.json")
-    data = json.loads(path.read_text()) if path.exists() else {}
-    data["speed"] = res
-    write_text(path, json.dumps(data, indent=2) + "\n")
+    write_section("speed", res, quick)
     f, t, p = res["force"], res["time_to_1e-6"], res["paper_run"]
     print("ns per site per force evaluation (N = 500):")
     for name, ns in f["ns_per_site"].items():
