@@ -16,7 +16,7 @@ $(STAMP): pyproject.toml
 	@touch $(STAMP)
 
 # Regenerate only when the derivation sources changed (make's own staleness check).
-$(GENERATED) &: $(wildcard derivation/*.py) pyproject.toml | $(STAMP)
+$(GENERATED) &: $(wildcard derivation/*.py) $(wildcard common/*.py) pyproject.toml | $(STAMP)
 	$(VPY) -m derivation --out generated
 
 derive: $(STAMP)

@@ -12,13 +12,13 @@ from __future__ import annotations
 
 import numpy as np
 
-from derivation import paper
+from common import paper
 from numerics import Material, get_method, initial_condition, integrate
-from numerics._accuracy import ERROR_CONSTANTS, dominant_frequency
+from numerics.lattice._accuracy import ERROR_CONSTANTS, dominant_frequency
 
-POINTS = {"blue II": (paper.material("blue"), "coupled", paper.k("blue"), 1.0, True),
-          "green I": (paper.material("green"), "rotation", paper.k("green"), 1.0, True),
-          "blue II, A0 = 10 (strong MI)": (paper.material("blue"), "coupled", paper.k("blue"),
+POINTS = {"blue II": (Material.paper("blue"), "coupled", paper.k("blue"), 1.0, True),
+          "green I": (Material.paper("green"), "rotation", paper.k("green"), 1.0, True),
+          "blue II, A0 = 10 (strong MI)": (Material.paper("blue"), "coupled", paper.k("blue"),
                                            10.0, False),
           "alpha 1.5, coupled": (Material(1.5, 0.05, 0.02), "coupled", 2 * np.pi * 100 / 500,
                                  5.0, True),
@@ -50,7 +50,7 @@ def main():
             if used:
                 worst[name] = max(worst[name], max(cs))
     print("largest C_m of the non-MI points:", {m: float(f"{c:.2g}") for m, c in worst.items()})
-    print("numerics._accuracy.ERROR_CONSTANTS:", ERROR_CONSTANTS)
+    print("numerics.lattice._accuracy.ERROR_CONSTANTS:", ERROR_CONSTANTS)
 
 
 if __name__ == "__main__":

@@ -24,7 +24,7 @@ import numpy as np
 HERE = Path(__file__).parent
 sys.path.insert(0, str(HERE))
 
-from derivation import paper  # noqa: E402
+from common import paper  # noqa: E402
 from numerics import resonance_map, stability_map  # noqa: E402
 from simulator import machine, write_section  # noqa: E402
 

@@ -17,11 +17,11 @@ import re
 
 import numpy as np
 
-from derivation import paper
+from common import paper
 from numerics import (LatticeState, Material, initial_condition, integrate, mi_gain, plane_wave,
                       simulate, stability_map, stability_verdict)
 
-BLUE = paper.material("blue")
+BLUE = Material.paper("blue")
 K13 = 2 * np.pi * 13 / 100  # commensurate with N = 100
 
 

@@ -18,14 +18,15 @@ from pathlib import Path
 
 import numpy as np
 
-from derivation import paper
-from derivation.files import write_text
+from common import paper
+from numerics import Material
+from common.files import write_text
 from numerics import integrate, simulate
-from numerics._baseline import numpy_accel, numpy_rk4
-from numerics._kernels import accel
+from numerics.lattice._baseline import numpy_accel, numpy_rk4
+from numerics.lattice._kernels import accel
 
 HERE = Path(__file__).parent
-BLUE = paper.material("blue")
+BLUE = Material.paper("blue")
 PARAMS = (BLUE.alpha**2, BLUE.K_s, BLUE.K_theta)
 
 

@@ -34,15 +34,16 @@ import numpy as np
 HERE = Path(__file__).parent
 sys.path.insert(0, str(HERE))
 
-from derivation import paper  # noqa: E402
+from common import paper  # noqa: E402
+from numerics import Material
 from numerics import initial_condition  # noqa: E402
-from numerics import _kernels as kernels  # noqa: E402
-from numerics._baseline import numpy_accel  # noqa: E402
-from numerics._integrate import _Stepper  # noqa: E402
-from numerics._integrators import get_method  # noqa: E402
+from numerics.lattice import _kernels as kernels  # noqa: E402
+from numerics.lattice._baseline import numpy_accel  # noqa: E402
+from numerics.lattice._integrate import _Stepper  # noqa: E402
+from numerics.lattice._integrators import get_method  # noqa: E402
 from simulator import machine, write_section  # noqa: E402
 
-MAT, CASE, K = paper.material("blue"), "coupled", paper.k("blue")
+MAT, CASE, K = Material.paper("blue"), "coupled", paper.k("blue")
 N = paper.N
 TARGET = 1e-6
 FIXED = ("rk4", "verlet", "srkn6b", "srkn11b")

@@ -20,14 +20,14 @@ from pathlib import Path
 
 import numpy as np
 
-from derivation import paper
+from common import paper
 from numerics import (AccuracyWarning, BlowUpError, LatticeState, Material, energy,
                       integrate, simulate)
-from numerics._integrators import get_method
+from numerics.lattice._integrators import get_method
 
 HERE = Path(__file__).parent
 ROOT = HERE.parent
-BLUE, GREEN = paper.material("blue"), paper.material("green")
+BLUE, GREEN = Material.paper("blue"), Material.paper("green")
 
 
 def random_state(N, case, amp=1e-3, seed=0):

@@ -21,17 +21,18 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from derivation import paper  # noqa: E402
+from common import paper  # noqa: E402
+from numerics import Material
 from numerics import energy, initial_condition, integrate  # noqa: E402
-from numerics._baseline import numpy_rk4  # noqa: E402
-from numerics._integrators import get_method  # noqa: E402
-from numerics._integrate import _Stepper  # noqa: E402
+from numerics.lattice._baseline import numpy_rk4  # noqa: E402
+from numerics.lattice._integrators import get_method  # noqa: E402
+from numerics.lattice._integrate import _Stepper  # noqa: E402
 from simulator import machine  # noqa: E402  (bench/ is on sys.path as the script's folder)
 
 HERE = Path(__file__).parent
 ROOT = HERE.parent
-CASES = {"blue-II": (paper.material("blue"), "coupled", paper.k("blue")),
-         "green-I": (paper.material("green"), "rotation", paper.k("green"))}
+CASES = {"blue-II": (Material.paper("blue"), "coupled", paper.k("blue")),
+         "green-I": (Material.paper("green"), "rotation", paper.k("green"))}
 SWEEP = {"rk4": [0.4, 0.2, 0.1, 0.05, 0.025], "verlet": [0.2, 0.1, 0.05, 0.025, 0.0125],
          "srkn6b": [0.8, 0.4, 0.2, 0.1, 0.05], "srkn11b": [0.8, 0.4, 0.2, 0.1],
          "dop853": [1e-5, 1e-7, 1e-9, 1e-11], "rk45": [1e-5, 1e-7, 1e-9],

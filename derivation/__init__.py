@@ -13,14 +13,14 @@ ERRATA                   errata of the paper
 atomic_write             write-then-rename, used by every layer that writes files
 
 Importing the package is cheap: the SymPy modules load on first use of a name that
-needs them (PEP 562), so ``from derivation import paper`` costs nothing.
+needs them (PEP 562), so ``from derivation import ERRATA`` costs nothing.
 """
 
 from importlib import import_module
 
-from . import paper
+from common import paper
 from .errata import ERRATA
-from .files import atomic_write
+from common.files import atomic_write
 
 _LAZY = {
     "derive": ("._pipeline", "derive"),

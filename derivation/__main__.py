@@ -31,7 +31,7 @@ def write_outputs(out_dir: Path) -> list[Path]:
     """Derive and write every generated file atomically into ``out_dir``; returns paths."""
     from . import _codegen, _lattice_model, _report
     from ._pipeline import ClosedForm, derive
-    from .files import write_text
+    from common.files import write_text
 
     d = derive()
     files = {

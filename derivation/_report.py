@@ -5,7 +5,9 @@ from __future__ import annotations
 
 import sympy as sp
 
-from . import paper, paper_forms
+from common import paper
+
+from . import paper_forms
 from ._continuum import K_s, K_theta, alpha, k, lattice_accelerations
 from ._scales import FAST_SLOW, SLOW, tau1, tau2, xi1, xi2
 from .errata import ERRATA

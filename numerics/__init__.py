@@ -1,54 +1,54 @@
-"""Lattice simulator of the discrete equations of motion (eq. `norm`), periodic chain.
+"""Numerics of the flexible metamaterial chain, in three rooms that import one way only::
 
-Public API
-----------
-Material, LatticeState, energy          model, state, conserved energy
-integrate(state, material, case, t_end, dt, method="rk4") -> LatticeState
-simulate(material, case, N, k, ...) -> Run     the paper's noisy-plane-wave experiment
-METHODS, get_method                     integrators: rk4, verlet, srkn6b, srkn11b, dop853, rk45
-BlowUpError, SimulationInterrupted      errors that keep what was computed
-AccuracyWarning, choose_step            runs that check their energy; dt for a tol=
-plane_wave, mi_gain, PlaneWave          exact lattice plane wave and its sideband growth
-                                        rate (harmonic balance + Hill's method)
-launched_state, LaunchedState, FreeWave what eq. `IC` (or any state) launches: travelling
-                                        wave + free waves, as a measured torus
-gain_spectrum, GainSpectrum             growth per q with the growing field and wavenumber,
-                                        from the travelling wave or a launched state
-stability_map, hill_spectrum            batched verdicts over (k, delta); raw Hill spectrum
-resonance_map                           exact MI maps from the bands' resonance conditions
-                                        (sampling-independent), either start
-THEORIES, theory_gain, nls_summary      sigma(q) of the paper NLS, semi-discrete NLS, exact
-measure_gain, relative_errors           sigma(q) measured from runs; theory vs measurement
-spectrum, stability_verdict, ...        spectral diagnostics of runs (``_analysis``)
+    numerics.lattice   the simulator of eq. `norm` (eqs. (6)-(7)) and the analysis of a run
+    numerics.theory    exact plane waves, what eq. `IC` launches, Hill's method, the NLS gains
+    numerics.maps      MI maps over (delta, k): exact, and by simulation on a Dask cluster
 
-Nothing here imports matplotlib: figures live in the ``scenes`` package.
+lattice imports neither theory nor maps; theory imports lattice; maps imports both. All of
+them read ``generated/`` (the closed forms written by ``make derive``) and never
+``derivation/``. This facade re-exports what most users need; everything else is public in
+its subpackage (``from numerics.lattice import spectrum``).
+
+Material, LatticeState, energy      the model (parameters below eq. `norm`)
+simulate -> Run, resume             the paper's experiment (noisy plane wave, periodic chain)
+initial_condition, STARTS           the named starts: "paper" (eq. `IC`), "discrete",
+                                    "travelling" (the exact plane wave)
+snap_wavenumber                     k -> the nearest 2 pi m / N a periodic chain carries
+integrate, METHODS, get_method      integrators: rk4, verlet, srkn6b, srkn11b, dop853, rk45
+BlowUpError, SimulationInterrupted, AccuracyWarning
+GROWTH_THRESHOLD                    the MI criterion: grows more than 20x within t_end
+plane_wave, PlaneWave               the exact travelling wave
+launched_state                      what a start launches (wave + free waves, as a torus)
+mi_gain, gain_spectrum              sideband growth rate sigma(q) by Hill's method
+nls_summary, theory_gain, THEORIES  the NLS coefficients and gain curves (paper, semi-discrete)
+resonance_map                       exact MI map over (k, delta)
+MapParameters, run_map              simulated MI maps (Dask + Zarr)
 """
 
-from ._accuracy import AccuracyWarning, choose_step
-from ._analysis import (GROWTH_THRESHOLD, band_summary, carrier_amplitude, carrier_frequency,
-                        forced_second_harmonic, growth_rates, harmonic_bins, linear_stage, mode,
-                        sideband_to_carrier, spectrum, stability_verdict)
-from ._gain import PAPER_START, THEORIES, measure_gain, nls_summary, relative_errors, theory_gain
-from ._hill import gain_spectrum, hill_spectrum, mi_gain, stability_map
-from ._launched import FreeWave, LaunchedState, launched_state
-from ._quasiperiodic import GainSpectrum
-from ._resonance import resonance_map
-from ._integrate import BlowUpError, SimulationInterrupted, integrate
-from ._integrators import METHODS, Method, get_method
-from ._model import (CASES, LatticeState, Material, discrete_omega_longitudinal,
-                     discrete_omega_rotation, energy)
-from ._plane_wave import PlaneWave, plane_wave
-from ._simulate import (SIMULATOR_VERSION, Run, initial_condition, resume, simulate,
-                        snap_wavenumber)
+from importlib import import_module as _import_module
+
+from . import lattice, theory, maps  # noqa: I001 - theory registers its start with lattice
+from .lattice import (GROWTH_THRESHOLD, METHODS, STARTS, AccuracyWarning, BlowUpError,
+                      LatticeState, Material, Run, SimulationInterrupted, energy, get_method,
+                      initial_condition, integrate, resume, simulate, snap_wavenumber)
+from .maps import MapParameters, resonance_map, run_map
+from .theory import (THEORIES, PlaneWave, gain_spectrum, launched_state, mi_gain,
+                     nls_summary, plane_wave, theory_gain)
 
 __all__ = [
-    "Material", "LatticeState", "energy", "integrate", "simulate", "Run", "METHODS", "Method",
-    "get_method", "CASES", "BlowUpError", "SimulationInterrupted", "initial_condition",
-    "snap_wavenumber", "discrete_omega_rotation", "discrete_omega_longitudinal",
-    "SIMULATOR_VERSION", "plane_wave", "mi_gain", "PlaneWave", "hill_spectrum", "stability_map",
-    "THEORIES", "PAPER_START", "theory_gain", "nls_summary", "measure_gain", "relative_errors",
-    "GROWTH_THRESHOLD", "band_summary", "carrier_amplitude", "carrier_frequency",
-    "forced_second_harmonic", "growth_rates", "harmonic_bins", "linear_stage", "mode",
-    "sideband_to_carrier", "spectrum", "stability_verdict", "AccuracyWarning", "choose_step",
-    "resume", "launched_state", "LaunchedState", "FreeWave", "gain_spectrum", "GainSpectrum", "resonance_map",
+    "lattice", "theory", "maps",
+    "Material", "LatticeState", "energy", "simulate", "Run", "resume", "initial_condition",
+    "STARTS", "snap_wavenumber", "integrate", "METHODS", "get_method", "BlowUpError",
+    "SimulationInterrupted", "AccuracyWarning", "GROWTH_THRESHOLD",
+    "plane_wave", "PlaneWave", "launched_state", "mi_gain", "gain_spectrum", "nls_summary",
+    "theory_gain", "THEORIES", "resonance_map", "MapParameters", "run_map",
 ]
+
+
+def __getattr__(name):
+    # every other public name of a subpackage stays reachable as numerics.<name>
+    for sub in ("lattice", "theory", "maps"):
+        mod = _import_module(f".{sub}", __name__)
+        if name in mod.__all__:
+            return getattr(mod, name)
+    raise AttributeError(f"module 'numerics' has no attribute {name!r}")

@@ -1,5 +1,5 @@
 """`flexmm map`: read the command line, check all of it (nothing is written on bad
-input), run the map (``scenes.maps``), write its figure and summary."""
+input), run the map (``numerics.maps.run_map``), write its figure and summary."""
 
 from __future__ import annotations
 
@@ -7,9 +7,9 @@ import json
 
 import numpy as np
 
-from numerics import _checks as checks
+from numerics.lattice import checks
 
-from .maps import MapParameters, agreement, parse_spec, run_map
+from numerics.maps import MapParameters, agreement, parse_spec, run_map
 
 
 def plot_map(ds, ax=None):
@@ -44,7 +44,7 @@ def plot_map(ds, ax=None):
 
 def run_map_command(args, log=print):
     """`flexmm map`: parse, check everything (nothing is written on bad input), run."""
-    from derivation.files import write_text
+    from common.files import write_text
 
     from ._runner import _strict
 
@@ -80,7 +80,7 @@ def run_map_command(args, log=print):
                                for n in ds.data_vars if n.startswith("verdict_")}}
     write_text(out / "summary.json", json.dumps(_strict(summary), indent=2) + "\n")
     fig = plot_map(ds)
-    from derivation.files import atomic_write
+    from common.files import atomic_write
 
     from ._plotting import plt
 

@@ -7,7 +7,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402,F401  (re-exported for the figure modules)
 
-from derivation import paper  # noqa: E402
+from common import paper  # noqa: E402
 
 
 def image(ax, x, y, Z, **kw):

@@ -19,10 +19,10 @@ from pathlib import Path
 import h5py
 import numpy as np
 
-from derivation.files import _umask, atomic_write, write_text
-from numerics import _checks as checks
+from common.files import _umask, atomic_write, write_text
+from numerics.lattice import checks
 from numerics import SIMULATOR_VERSION
-from numerics._cache import cached_simulate
+from numerics.lattice import cached_simulate
 
 from ._plotting import plt
 from ._registry import REGISTRY, get_scene

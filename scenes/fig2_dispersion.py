@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from derivation import paper
+from common import paper
 from generated import coefficients as co
 from numerics import Material, discrete_omega_longitudinal, discrete_omega_rotation
 

@@ -1,5 +1,5 @@
 """Fig. 3 by simulation: the MI map over (k, delta) of both cases at alpha = 2.5, simulated
-cell by cell on Dask (``scenes.maps``), with the three theories' boundaries drawn over it.
+cell by cell on Dask (``numerics.maps.run_map``), with the three theories' boundaries drawn over it.
 
 Every cell runs the paper's experiment (eq. `IC`, amplitude 0.02) and the scenes' verdict
 (growth > 20x within t_end); each theory answers the same question (peak gain >
@@ -15,7 +15,7 @@ import json
 
 import numpy as np
 
-from derivation import paper
+from common import paper
 
 from ._plotting import case_label, image, mark_points, plt
 from ._registry import Scene, check, known, register
@@ -39,17 +39,17 @@ def grid(quick):
 
 
 def compute(ctx):
-    from .maps import MapParameters, agreement, run_map
+    from numerics.maps import MapParameters, agreement, run_map
 
     k, delta, g = grid(ctx.quick)
     data = {"k": k, "delta": delta, "N": g["N"], "t_end": g["t_end"], "alpha": paper.ALPHA,
-            "K_s": paper.K_S, "amplitude": 2 * paper.EPS * paper.A0}
+            "K_s": paper.K_S, "amplitude": paper.AMPLITUDE}
     summary, checks = {}, []
     for case in ("rotation", "coupled"):
         params = MapParameters(case=case, alpha=paper.ALPHA, K_s=paper.K_S,
                                delta=tuple(float(d) for d in delta),
                                k=tuple(float(x) for x in k),
-                               amplitude=2 * paper.EPS * paper.A0, N=g["N"],
+                               amplitude=paper.AMPLITUDE, N=g["N"],
                                t_end=g["t_end"], block=2)
         key = hashlib.sha256(json.dumps(params.attrs() | {"k": params.k, "delta": params.delta},
                                         sort_keys=True).encode()).hexdigest()[:16]

@@ -9,7 +9,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from derivation import paper
+from common import paper
+from numerics import Material
 from generated import coefficients as co
 from numerics import nls_summary
 
@@ -30,7 +31,7 @@ def compute(ctx):
     checks = []
     for point, case in paper.MI_RUNS:
         kk = paper.k(point)
-        th = nls_summary(paper.material(point), case, kk, paper.EPS, paper.A0)
+        th = nls_summary(Material.paper(point), case, kk, paper.EPS, paper.A0)
         reach = kk + paper.EPS * th["K_m"]
         checks.append(check(f"{point} point, case {case}: k + eps K_m < 3k (paper's choice)",
                             f"k + eps K_m = {reach:.3f}", f"3k = {3 * kk:.3f}", reach < 3 * kk))

@@ -12,7 +12,7 @@ import functools
 
 import numpy as np
 
-from derivation import paper
+from common import paper
 from numerics import nls_summary, spectrum, stability_verdict
 
 from ._plotting import case_label, image, plt

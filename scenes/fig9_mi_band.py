@@ -11,9 +11,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from derivation import paper
+from common import paper
+from numerics import Material
 from generated import coefficients as co
-from numerics import harmonic_bins, nls_summary
+from numerics.lattice import non_carrier_bins
+from numerics.theory import nls_summary
 
 from ._plotting import case_label, plt
 from ._registry import Scene, check, register
@@ -27,15 +29,14 @@ def compute(ctx):
     for point, case in paper.MI_RUNS:
         kk = paper.k(point)
         for A0, _ in AMPLITUDES:
-            th = nls_summary(paper.material(point), case, kk, paper.EPS, A0)
+            th = nls_summary(Material.paper(point), case, kk, paper.EPS, A0)
             K = np.linspace(0, 1.05 * th["K_c"], 400)
             t_at = paper.FIG9_TIMES[(point, A0)]
             params = run_parameters(ctx, point, t_at, case=case, A0=A0, t_end=t_at,
                                     save_every=t_at, store="spectrum")
             run = ctx.simulate(**params)
             spec = run.theta_hat[-1]
-            mask = np.ones(spec.size, bool)
-            mask[harmonic_bins(run.m, run.N)] = False
+            mask = non_carrier_bins(run.m, run.N)
             upper = mask & (run.wavenumbers > run.k) & (run.wavenumbers < 2 * run.k)
             q_peak = float(run.wavenumbers[np.flatnonzero(upper)[np.argmax(spec[upper])]])
             lo, hi = kk + paper.EPS * th["K_m"], kk + paper.EPS * th["K_c"]

@@ -12,8 +12,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from derivation import paper
-from numerics import band_summary, nls_summary, theory_gain
+from common import paper
+from numerics import Material
+from numerics.lattice import band_summary
+from numerics.theory import nls_summary, theory_gain
 
 from ._plotting import case_label, plt
 from ._registry import Scene, check, known, register
@@ -35,9 +37,9 @@ def compute(ctx):
             checks.append(check(f"gain {point}/{case}", "MI", "no linear stage found", False))
             continue
         q, k = meas["q"], meas["k"]
-        curve = theory_gain("paper NLS", paper.material(point), case, k, qf - k, paper.EPS)
+        curve = theory_gain("paper NLS", Material.paper(point), case, k, qf - k, paper.EPS)
         m_sum, t_sum = band_summary(q, meas["sigma"], k), band_summary(qf, curve, k)
-        th = nls_summary(paper.material(point), case, paper.k(point), paper.EPS)
+        th = nls_summary(Material.paper(point), case, paper.k(point), paper.EPS)
         r = {"theory": dict(t_sum, eps_K_c=paper.EPS * th["K_c"],
                             eps_K_m=paper.EPS * th["K_m"]),
              "measured": m_sum, "seeds": meas["seeds"], "windows": meas["windows"],

@@ -17,9 +17,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from derivation import paper
-from numerics import (PAPER_START, THEORIES, Material, band_summary, gain_spectrum, mi_gain,
-                      relative_errors, theory_gain)
+from common import paper
+from numerics import Material
+from numerics.lattice import GROWTH_THRESHOLD, band_summary, grows_beyond_threshold
+from numerics.theory import (PAPER_START, THEORIES, gain_spectrum, measurement_length, mi_gain,
+                             relative_errors, theory_gain)
 
 from ._plotting import plt
 from ._registry import Scene, check, register
@@ -41,21 +43,13 @@ POINTS = (
     ("II d=-0.006 k=1.169", "green", "coupled", 1.0, 2 * np.pi * 93 / 500, -0.006),
     ("II d=-0.007 k=1.194", "green", "coupled", 1.0, 2 * np.pi * 95 / 500, -0.007),
 )
-#: the two starts: eq. `IC` (omega_model "continuum") and the exact travelling wave
-STARTS = ("continuum", "travelling")
+#: the two starts compared: eq. `IC` ("paper") and the exact travelling wave
+STARTS = ("paper", "travelling")
 #: the exact gain must match the measurement from the travelling wave within this
 EXACT_TOLERANCE = 0.05
 #: the paper-start theory against the measurement from eq. `IC`: peak, band edge (the
 #: issue's goals, full runs); quick runs (N <= 250, 2 seeds) are held to EXACT_TOLERANCE
 PAPER_START_TOLERANCE = (0.02, 0.03)
-#: the simulations' question: grows more than GROWTH_FACTOR within the run
-GROWTH_FACTOR = 20.0
-#: run length: this many e-foldings of the exact peak gain, rounded, within these bounds
-E_FOLDINGS, T_BOUNDS = 9.0, (1000.0, 20000.0)
-
-
-def _run_length(exact_peak):
-    return float(np.clip(round(E_FOLDINGS / exact_peak, -2), *T_BOUNDS))
 
 
 def _verdicts():
@@ -63,7 +57,7 @@ def _verdicts():
     q = np.linspace(0, np.pi, 2001)
     out = {}
     for point in paper.POINTS:
-        mat, kk = paper.material(point), paper.k(point)
+        mat, kk = Material.paper(point), paper.k(point)
         for case in ("rotation", "coupled"):
             v = {th: "MI" if theory_gain(th, mat, case, kk, q - kk, paper.EPS).max() > 0
                  else "stable" for th in THEORIES}
@@ -89,7 +83,7 @@ def _curve(ctx, key, theory, mat, case, k, q):
 
 
 def _verdict(peak, t_end):
-    return "MI" if peak * t_end > np.log(GROWTH_FACTOR) else "stable"
+    return "MI" if grows_beyond_threshold(peak, t_end) else "stable"
 
 
 def compute(ctx):
@@ -98,7 +92,7 @@ def compute(ctx):
     qs = np.linspace(0, np.pi, 301 if ctx.quick else 1201)  # paper-start theory: 0.2 s each
     data["q_theory"], data["q_start"] = qf, qs
     for label, point, case, A0, kk, delta in POINTS:
-        mat = paper.material(point) if delta is None else Material(paper.ALPHA, paper.K_S,
+        mat = Material.paper(point) if delta is None else Material(paper.ALPHA, paper.K_S,
                                                                    paper.K_S - delta)
         k0 = paper.k(point) if kk is None else kk
         quick_N = _quick_N(k0) if kk is not None else QUICK_N[point]
@@ -107,11 +101,11 @@ def compute(ctx):
                "A0": A0}
         exact_peak = float(_curve(ctx, key, "exact lattice", mat, case, k0, qf).max())
         start_curve = _curve(ctx, key, PAPER_START, mat, case, k0, qs)
-        t_end = _run_length(max(exact_peak, float(start_curve.max())))
+        t_end = measurement_length(max(exact_peak, float(start_curve.max())))
         meas = {}
         for start in STARTS:
             m = measured_gain(ctx, point, case, A0, t_end=t_end, quick_N=quick_N, k=k0,
-                              omega_model=start, material=mat)
+                              start=start, material=mat)
             if m is not None:
                 meas[start] = m
                 data.update({f"{label}/{start}/q": m["q"], f"{label}/{start}/sigma": m["sigma"],
@@ -123,19 +117,18 @@ def compute(ctx):
         data[f"{label}/k"] = kr
         predicted = {th: band_summary(qf, c, kr) for th, c in curves.items()}
         predicted[PAPER_START] = band_summary(qs, start_curve, kr)
-        theory_of = {"travelling": "exact lattice", "continuum": PAPER_START}
+        theory_of = {"travelling": "exact lattice", "paper": PAPER_START}
         spec = _labels(mat, case, k0, A0, qs, start_curve)
         for start in STARTS:
             th = theory_of[start]
-            starts.append({"point": label, "start": "paper" if start == "continuum"
-                           else "travelling", "t_end": t_end,
+            starts.append({"point": label, "start": start, "t_end": t_end,
                            "predicted_peak": predicted[th]["peak_gain"],
                            "predicted": _verdict(predicted[th]["peak_gain"], t_end),
                            "simulated": "MI" if start in meas else "stable",
                            "measured_peak": (band_summary(meas[start]["q"],
                                                           meas[start]["sigma"], kr)["peak_gain"]
                                              if start in meas else None),
-                           **(spec if start == "continuum" else {})})
+                           **(spec if start == "paper" else {})})
         for start, m in meas.items():
             m_sum = band_summary(m["q"], m["sigma"], kr)
             row = {"point": label, "start": start, "t_end": t_end, "N": N, "measured": m_sum}
@@ -179,7 +172,7 @@ def _verdict_check(label, st, mat, case, k, A0, q):
     whose theta part grows with it): when the sideband theory says stable and the run
     grows, the all-modes theory must predict that growth, rate within 5%."""
     name = (f"gain-theories {label}: verdict from the {st['start']} start (grows > "
-            f"{GROWTH_FACTOR:g}x within T = {st['t_end']:g})")
+            f"{GROWTH_THRESHOLD:g}x within T = {st['t_end']:g})")
     if st["predicted"] == st["simulated"] or st["simulated"] == "stable":
         return check(name, f"{st['predicted']} (sideband peak {st['predicted_peak']:.3g})",
                      st["simulated"], st["predicted"] == st["simulated"])
@@ -259,12 +252,11 @@ def report(summary):
              "|---|---|" + "---|" * len(cols)]
     for r in summary["rows"]:
         cells = [f"{_pct(r[t]['peak_error'])}, {_pct(r[t]['edge_error'])}" for t in cols]
-        start = "travelling" if r["start"] == "travelling" else "paper"
-        lines.append(f"| {r['point']} | {start} | " + " | ".join(cells) + " |")
+        lines.append(f"| {r['point']} | {r['start']} | " + " | ".join(cells) + " |")
     if summary.get("starts"):
-        lines += ["", f"Verdicts by start (grows more than {GROWTH_FACTOR:g}x within the run): "
+        lines += ["", f"Verdicts by start (grows more than {GROWTH_THRESHOLD:g}x within the run): "
                   "predicted by the exact theory of that start (peak gain x T > ln "
-                  f"{GROWTH_FACTOR:g}) and simulated (a linear stage of theta growth "
+                  f"{GROWTH_THRESHOLD:g}) and simulated (a linear stage of theta growth "
                   "found); for the paper start, what the theory says grows at its peak.", "",
                   "| point | start | T | predicted peak | predicted | measured peak | "
                   "simulated | grows (theory) |", "|---|---|---|---|---|---|---|---|"]

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from derivation import paper
+from common import paper
 from generated import coefficients as co
 from numerics import (carrier_amplitude, carrier_frequency, discrete_omega_longitudinal,
                       discrete_omega_rotation, forced_second_harmonic, mode)
@@ -36,7 +36,7 @@ LATTICE_TOLERANCE, U2_TOLERANCE = 0.05, 0.2
 def compute(ctx):
     T = 400.0 if ctx.quick else 1000.0
     params = run_parameters(ctx, POINT, T, case=CASE, t_end=T, save_every=0.5, noise=0.0,
-                            omega_model="discrete")
+                            start="discrete")
     run = ctx.simulate(**params)
     m = run.material
     k = run.k

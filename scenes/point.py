@@ -9,17 +9,17 @@ from pathlib import Path
 
 import numpy as np
 
-from derivation.files import write_text
-from numerics import (THEORIES, Material, band_summary, measure_gain, simulate, snap_wavenumber,
-                      theory_gain)
-from numerics._analysis import GROWTH_THRESHOLD
-from numerics._cells import growth_of
+from common.files import write_text
+from common import paper
+from numerics import Material, simulate, snap_wavenumber
+from numerics.lattice import GROWTH_THRESHOLD, band_summary
+from numerics.maps import growth_of
+from numerics.theory import THEORIES, measure_gain, measurement_length, theory_gain
 
 #: offsets searched for the theories' bands (lattice units)
 Q_GRID = np.linspace(0, math.pi, 3001)
-#: the simulation runs this many e-foldings of the exact peak gain (as gain-theories)
-E_FOLDINGS, T_BOUNDS = 9.0, (1000.0, 20000.0)
-EPS = 0.01
+#: the NLS theories' small parameter (their formulas take the paper's eps, A0)
+EPS = paper.EPS
 
 
 def material_from(args) -> Material:
@@ -86,9 +86,7 @@ def run_point(args, log=print) -> dict:
             for n, t in th.items()]
     if args.simulate:
         exact = th["exact lattice"]["peak_gain"]
-        t_end = args.t_end or (float(np.clip(round(E_FOLDINGS / exact, -2), *T_BOUNDS))
-                               if exact > 0 else 5000.0)
-        omega_model = {"paper": "continuum", "travelling": "travelling"}[args.start]
+        t_end = args.t_end or measurement_length(exact)
         runs = []
 
         def sim(**kw):
@@ -97,8 +95,8 @@ def run_point(args, log=print) -> dict:
             return run
 
         meas = measure_gain(sim, range(args.seeds), material=mat, case=args.case, N=N, k=k,
-                            eps=EPS, A0=args.amplitude / (2 * EPS), t_end=t_end,
-                            save_every=5.0, omega_model=omega_model, progress=None,
+                            amplitude=args.amplitude, t_end=t_end,
+                            save_every=5.0, start=args.start, progress=None,
                             energy_tolerance=1.0)
         growths = [growth_of(r.t, r.theta_hat, r.U_hat, r.m, r.N) for r in runs]
         verdict = sum(g["growth"] > GROWTH_THRESHOLD for g in growths) * 2 > len(growths)
@@ -136,7 +134,7 @@ def _table(rows) -> str:
 
 
 def _figure(out, th, meas, k, args):
-    from derivation.files import atomic_write
+    from common.files import atomic_write
 
     from ._plotting import plt
 

@@ -3,7 +3,8 @@ generated module only, no SymPy work)."""
 
 from __future__ import annotations
 
-from derivation import paper
+from common import paper
+from numerics import Material
 from numerics import nls_summary
 
 COLUMNS = ("point", "case", "k", "delta", "omega", "v_g", "g1", "g2", "g", "K_c", "K_m",
@@ -15,7 +16,7 @@ def rows(A0: float = paper.A0):
     out = []
     for point in paper.POINTS:
         for case in ("rotation", "coupled"):
-            s = nls_summary(paper.material(point), case, paper.k(point), paper.EPS, A0)
+            s = nls_summary(Material.paper(point), case, paper.k(point), paper.EPS, A0)
             out.append({"point": point, "case": case, "k": paper.k(point),
                         "delta": paper.delta(point), **s,
                         "K_c": s.get("K_c", float("nan")), "K_m": s.get("K_m", float("nan")),

@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from derivation import paper
+from numerics import Material
 
 
 def pytest_addoption(parser):
@@ -17,13 +17,13 @@ def pytest_addoption(parser):
 @pytest.fixture(scope="session")
 def blue():
     """Material of the paper's blue point (delta = +0.003)."""
-    return paper.material("blue")
+    return Material.paper("blue")
 
 
 @pytest.fixture(scope="session")
 def green():
     """Material of the paper's green point (delta = -0.003)."""
-    return paper.material("green")
+    return Material.paper("green")
 
 
 @pytest.fixture

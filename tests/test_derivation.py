@@ -208,7 +208,7 @@ def test_derive_is_deterministic_across_hash_seeds(tmp_path):
 
 def test_importing_coefficients_does_not_import_sympy():
     code = ("import sys, generated.coefficients as c, generated.lattice_model, "
-            "derivation.paper; "
+            "common.paper; "
             "assert 'sympy' not in sys.modules, 'sympy imported'; "
             "assert c.omega(0.5, 2.5, 0.02, 0.01) > 0")
     subprocess.run([sys.executable, "-c", code], check=True, cwd=ROOT)

@@ -4,10 +4,9 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from derivation import paper
 from derivation._continuum import K_s, K_theta, alpha, lattice_accelerations
 from numerics import LatticeState, Material, energy
-from numerics._kernels import accel
+from numerics.lattice._kernels import accel
 
 NS = 5  # periodic chain long enough that no site is its own second neighbour
 
@@ -43,7 +42,7 @@ def test_energy_code_matches_symbolic_energy(case):
     coupled = case == "coupled"
     th, U, V = _symbolic_energy(coupled)
     rng = np.random.default_rng(3)
-    mat = paper.material("blue")
+    mat = Material.paper("blue")
     vals = {alpha: mat.alpha, K_s: mat.K_s, K_theta: mat.K_theta}
     tv, wv = rng.normal(0, 0.5, NS), rng.normal(0, 0.5, NS)
     vals.update(dict(zip(th, tv)))

@@ -20,9 +20,9 @@ sys.path.insert(0, str(ROOT / "bench"))
 import faults  # noqa: E402
 
 import scenes  # noqa: E402
-from derivation import paper  # noqa: E402
+from common import paper  # noqa: E402
 from numerics import BlowUpError, SimulationInterrupted, resume, simulate  # noqa: E402
-from numerics import _cache  # noqa: E402
+from numerics.lattice import _cache  # noqa: E402
 from scenes.cli import main as cli  # noqa: E402
 
 
@@ -62,7 +62,7 @@ def test_real_sigint_stops_on_a_consistent_state_and_resume_is_exact(blue):
 
 def test_interrupt_between_records_keeps_the_record_grid(blue, monkeypatch):
     # interrupt inside a record interval (sub-chunks of 1 step): resume fills the grid
-    from numerics import _runcontrol, _simulate
+    from numerics.lattice import _runcontrol, _simulate
 
     monkeypatch.setattr(_runcontrol, "_WORK_PER_CALL", 1.0)  # one step per compiled call
     kw = dict(material=blue, case="rotation", N=64, k=2 * np.pi * 8 / 64, t_end=20.0,

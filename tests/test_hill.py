@@ -4,15 +4,15 @@ import numpy as np
 import pytest
 
 from numerics import Material, integrate, mi_gain, plane_wave, simulate
-from numerics import _analysis as an
-from numerics._hill import hill_spectrum
-from numerics._model import discrete_omega_longitudinal, discrete_omega_rotation
+from numerics.lattice import _analysis as an
+from numerics.theory._hill import hill_spectrum
+from numerics.lattice._model import discrete_omega_longitudinal, discrete_omega_rotation
 from numerics import LatticeState
 
-from derivation import paper  # noqa: E402
+from common import paper  # noqa: E402
 
 ALPHA, K_S = paper.ALPHA, paper.K_S
-BLUE, GREEN = paper.material("blue"), paper.material("green")
+BLUE, GREEN = Material.paper("blue"), Material.paper("green")
 K_BLUE, K_GREEN = paper.k("blue"), paper.k("green")
 AMP = 0.02  # 2 eps A0 of the paper's runs
 
@@ -112,7 +112,7 @@ def test_quick_simulation_obeys_the_exact_gain():
     rates = []
     for seed in (0, 1):
         run = simulate(GREEN, "rotation", 250, K_GREEN, t_end=4000.0, save_every=5.0,
-                       store="spectrum", omega_model="travelling", seed=seed)
+                       store="spectrum", start="travelling", seed=seed)
         win = an.linear_stage(run.theta_hat, run.m, run.N)
         assert win is not None
         rates.append(an.growth_rates(run.t, run.theta_hat, win))

@@ -6,9 +6,10 @@ import warnings
 import numpy as np
 import pytest
 
-from derivation import paper
+from common import paper
+from numerics import Material
 from numerics import AccuracyWarning, choose_step, initial_condition, integrate, simulate
-from numerics import _kernels as kernels
+from numerics.lattice import _kernels as kernels
 
 ULP = np.spacing
 
@@ -66,7 +67,7 @@ def test_kernel_equals_the_libm_kernel(coupled, scale, rng, blue):
 def _loops(state, mat, coupled, method, nsteps, dt, expect_done=None):
     """(fused, libm) final (theta, U, accelerations) after nsteps from the same state;
     each loop must report ``expect_done`` steps done (default all)."""
-    from numerics._integrators import get_method
+    from numerics.lattice._integrators import get_method
 
     m = get_method(method)
     res = []
@@ -153,7 +154,7 @@ def test_tol_reaches_about_tol_against_a_tight_reference(point, case):
     # T = 200 (before MI amplifies errors); the reference is srkn11b at dt = 0.005
     # (error ~1e-13). The model's constants are the largest of its calibration points, so
     # the error lands at or below tol: measured 0.37 tol (blue) and 0.07 tol (green)
-    mat = paper.material(point)
+    mat = Material.paper(point)
     s0 = initial_condition(mat, case, 500, paper.k(point))
     ref = integrate(s0, mat, case, 200.0, 0.005, "srkn11b")
     for tol in (1e-5, 1e-7):

@@ -6,8 +6,8 @@ import pytest
 
 from generated import lattice_model as lm
 from numerics import Material, discrete_omega_rotation
-from numerics._baseline import numpy_accel
-from numerics._kernels import accel
+from numerics.lattice._baseline import numpy_accel
+from numerics.lattice._kernels import accel
 
 
 def _kernel(th, U, mat, coupled):

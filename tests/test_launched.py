@@ -1,4 +1,4 @@
-"""The launched state of eq. `IC` and the quasi-periodic Hill spectrum (numerics._launched,
+"""The launched state of eq. `IC` and the quasi-periodic Hill spectrum (numerics.theory._launched,
 _torus, _quasiperiodic)."""
 
 from __future__ import annotations
@@ -6,11 +6,11 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from derivation import paper
+from common import paper
 from numerics import (LatticeState, gain_spectrum, initial_condition, launched_state, mi_gain,
                       simulate, snap_wavenumber)
-from numerics._quasiperiodic import gain_spectrum_torus, torus_of_wave
-from numerics._torus import Torus
+from numerics.theory._quasiperiodic import gain_spectrum_torus, torus_of_wave
+from numerics.theory._torus import Torus
 
 N = 500
 

@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from derivation import paper
-from scenes import maps
+from common import paper
+from numerics.maps import _store as maps  # blocks, _write_block, _run_tasks: internals under test
 from scenes.cli import main as cli
 
 N = 100

@@ -5,14 +5,14 @@ import math
 import numpy as np
 import pytest
 
-from derivation import paper
+from common import paper
 from generated import coefficients as co
 from numerics import (METHODS, BlowUpError, LatticeState, Material, SimulationInterrupted,
                       discrete_omega_longitudinal, discrete_omega_rotation, energy,
                       get_method, initial_condition, integrate, simulate)
-from numerics._kernels import accel
+from numerics.lattice._kernels import accel
 
-BLUE, GREEN = paper.material("blue"), paper.material("green")
+BLUE, GREEN = Material.paper("blue"), Material.paper("green")
 FIXED = [m for m in METHODS if get_method(m).fixed_step]
 
 
@@ -209,7 +209,7 @@ def test_simulate_rotation_has_no_U_and_spectrum_storage():
 def test_simulate_discrete_omega_option():
     k = 2 * np.pi * 13 / 100
     a = initial_condition(BLUE, "rotation", 100, k)
-    b = initial_condition(BLUE, "rotation", 100, k, omega_model="discrete")
+    b = initial_condition(BLUE, "rotation", 100, k, start="discrete")
     assert np.array_equal(b.theta, a.theta)  # same positions, same noise...
     wd = discrete_omega_rotation(k, BLUE)
     wc = co.omega(k, BLUE.alpha, BLUE.K_s, BLUE.K_theta)
@@ -220,7 +220,7 @@ def test_simulate_discrete_omega_option():
     # and simulate passes the option through: the first records differ the same way
     ra = simulate(BLUE, "rotation", 100, k, t_end=0.1, dt=0.05, save_every=0.05)
     rb = simulate(BLUE, "rotation", 100, k, t_end=0.1, dt=0.05, save_every=0.05,
-                  omega_model="discrete")
+                  start="discrete")
     assert np.array_equal(ra.theta[0], rb.theta[0]) and not np.allclose(ra.theta[1], rb.theta[1],
                                                                          rtol=1e-9, atol=0)
 
@@ -284,7 +284,7 @@ def test_stability_limits_from_coefficients():
 
 
 def test_interrupted_run_keeps_data_and_resumes(monkeypatch):
-    from numerics import _integrate as _simulate
+    from numerics.lattice import _integrate as _simulate
 
     full = simulate(BLUE, "coupled", 64, 2 * np.pi * 8 / 64, t_end=10.0, dt=0.05,
                     save_every=1.0)

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from derivation import paper
+from common import paper
 from numerics import Material, mi_gain, resonance_map, stability_map
 
 #: the scenes' question: grows more than 20x within the paper's T = 5000

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 import scenes
-from numerics import _cache
+from numerics.lattice import _cache
 from scenes.cli import main as cli
 
 GOLDEN = Path(__file__).with_name("golden") / "quick_outcomes.json"
@@ -160,7 +160,7 @@ def test_numerics_does_not_import_matplotlib():
     import subprocess
     import sys
 
-    code = ("import sys, numerics, numerics._cells, numerics._gain; "
+    code = ("import sys, numerics, numerics.maps._cells, numerics.theory._gain; "
             "assert 'matplotlib' not in sys.modules, 'matplotlib imported'")
     subprocess.run([sys.executable, "-c", code], check=True)
 

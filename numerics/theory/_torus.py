@@ -30,8 +30,8 @@ from numba import njit
 
 from generated import lattice_model as model
 
-from ._integrators import get_method
-from ._kernels import _acc, _sincosvers
+from ..lattice._integrators import get_method
+from ..lattice._kernels import _acc, _sincosvers
 
 #: phase points of the reduced chain (harmonics up to M/2 - 1 are kept exactly)
 PHASE_POINTS = 32

@@ -22,8 +22,9 @@ import numpy as np
 
 from generated import lattice_model as model
 
-from . import _checks as checks
-from ._model import Material, check_case
+from ..lattice import checks
+from ..lattice._model import LatticeState, Material, check_case
+from ..lattice._starts import register_start
 
 #: default truncation: theta harmonics |p| <= HARMONICS (odd), U harmonics |p| < HARMONICS.
 HARMONICS = 4
@@ -251,3 +252,17 @@ def _wave_from(x, res, material, case, k, amplitude, H):
     w_lin = float(model.omega_rotation(k, material.alpha, material.K_s, material.K_theta))
     return PlaneWave(case, k, amplitude, float(x[-1]), w_lin, x[:H].copy(),
                      x[H:2 * H].copy(), float(res))
+
+
+def _travelling_start(material, case, k, amplitude, b0):
+    """The "travelling" start: the exact plane wave of peak rotation ``amplitude`` (odd
+    theta harmonics, the forced U harmonics and their velocities), every field multiplied
+    by the same (1 + b0), so no free U waves beat against the forced ones."""
+    th, thd, U, Ud = plane_wave(material, case, k, amplitude).fields(np.arange(b0.size))
+    f = 1 + b0
+    if case == "coupled":
+        return LatticeState(U * f, Ud * f, th * f, thd * f)
+    return LatticeState(None, None, th * f, thd * f)
+
+
+register_start("travelling", _travelling_start)

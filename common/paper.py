@@ -27,6 +27,9 @@ POINTS = MappingProxyType({
 EPS = 0.01
 #: Envelope amplitude of the plane wave in eq. `IC` (Figs. 5-8; Fig. 9 also 0.8, 1.4).
 A0 = 1.0
+#: Peak rotation of the carrier in eq. `IC`: 2 eps A0 (the one conversion from the paper's
+#: (eps, A0) to the amplitude every public function takes).
+AMPLITUDE = 2 * EPS * A0
 #: Relative amplitude of the uniform noise b0 in eq. `IC` (b0 in [-NOISE, NOISE]).
 NOISE = 1e-3
 #: Number of sites of the periodic chain.
@@ -54,6 +57,11 @@ def k(point: str) -> float:
     return _point(point)["k"]
 
 
+def K_theta(point: str) -> float:
+    """Bending stiffness K_theta of a test point."""
+    return _point(point)["K_theta"]
+
+
 def delta(point: str) -> float:
     """delta = K_s - K_theta of a test point."""
     return K_S - _point(point)["K_theta"]
@@ -64,14 +72,3 @@ def parameters(point: str) -> dict:
     generated coefficient function (``co.g1(**parameters("blue"))``)."""
     p = _point(point)
     return {"k": p["k"], "alpha": ALPHA, "K_s": K_S, "K_theta": p["K_theta"]}
-
-
-def material(point: str):
-    """The :class:`numerics.Material` of a test point.
-
-    The one place this module reaches downstream: numerics is imported on call only,
-    so the derivation (which needs the numbers, not the simulator) never loads it.
-    """
-    from numerics import Material
-
-    return Material(ALPHA, K_S, _point(point)["K_theta"])

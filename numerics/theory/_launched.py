@@ -28,14 +28,12 @@ import numpy as np
 from generated import coefficients as continuum
 from generated import lattice_model as model
 
-from . import _checks as checks
-from ._model import LatticeState, Material
+from ..lattice import checks
+from ..lattice._model import LatticeState, Material
+from ..lattice._starts import STARTS
 from ._plane_wave import HARMONICS, PlaneWave, _check, plane_wave
 from ._torus import PHASE_POINTS, Torus, torus
 
-#: the starts launched_state knows: eq. `IC` with the continuum frequency (the paper's),
-#: eq. `IC` with the lattice's linear frequency, the exact travelling wave
-STARTS = ("paper", "discrete", "travelling")
 #: harmonics m k of the carrier searched for free waves (theta odd and U even beyond these
 #: are below 1e-10 of the carrier at the amplitudes plane_wave allows)
 FREE_HARMONICS = 8
@@ -318,7 +316,7 @@ def launched_state(material: Material, case: str, k: float, amplitude: float | N
 
     Examples
     --------
-    >>> s = launched_state(paper.material("blue"), "coupled", 0.81681, 0.02)
+    >>> s = launched_state(Material.paper("blue"), "coupled", 0.81681, 0.02)
     >>> s.mode("U", 2, t)       # U at 2k over time: forced harmonic beating free waves
     """
     checks.instance("material", material, Material)

@@ -12,7 +12,7 @@ import numpy as np
 
 from . import _kernels as kernels
 from ._integrators import Method, get_method
-from . import _checks as checks
+from . import checks
 from ._accuracy import check_energy_tolerance, choose_step, energy_check
 from ._model import LatticeState, Material, check_case, energy
 

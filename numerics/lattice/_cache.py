@@ -9,7 +9,7 @@ from pathlib import Path
 import h5py
 import numpy as np
 
-from derivation.files import atomic_write
+from common.files import atomic_write
 
 from ._integrate import SimulationInterrupted
 from ._model import LatticeState, Material
@@ -18,8 +18,8 @@ from ._simulate import SIMULATOR_VERSION, Run, joined, resume, simulate
 
 #: How many simulations actually ran in this process (cache misses); tests read it.
 STATS = {"simulations": 0, "hits": 0, "checkpoints": 0}
-_SCALARS = ("N", "k", "m", "k_requested", "eps", "A0", "noise", "seed", "method", "dt",
-            "t_end", "save_every", "store", "omega_model", "force_evaluations", "case")
+_SCALARS = ("N", "k", "m", "k_requested", "amplitude", "noise", "seed", "method", "dt",
+            "t_end", "save_every", "store", "start", "force_evaluations", "case")
 
 
 def cache_key(params: dict) -> str:

@@ -22,9 +22,9 @@ from pathlib import Path
 
 import numpy as np
 
-from numerics import Material
-from numerics import _checks as checks
-from numerics._analysis import GROWTH_THRESHOLD
+from ..lattice import Material
+from ..lattice import checks
+from ..lattice._analysis import GROWTH_THRESHOLD, grows_beyond_threshold
 
 FIELD_CODES = {"theta": 0, "U": 1}
 #: Bloch offsets the exact theory searches per cell: the whole zone, densely. stability_map's
@@ -121,13 +121,13 @@ class MapParameters:
 
 def simulate_block(params: MapParameters, i: int, js: list) -> dict:
     """Simulate the cells (i, j) for j in ``js`` (runs on a worker)."""
-    from numerics._cells import simulate_cell
+    from ._cells import simulate_cell
 
     mat = Material(params.alpha, params.K_s, params.K_s - params.delta[i])
     rows = []
     for j in js:
         runs = [simulate_cell(mat, params.case, params.k[j], params.N, params.t_end,
-                              params.eps, params.A0, params.noise, seed, params.start,
+                              params.amplitude, params.noise, seed, params.start,
                               params.dt, params.method) for seed in range(params.seeds)]
         verdict = sum(r["verdict_simulated"] for r in runs) * 2 > len(runs)
         growths = [r["growth"] for r in runs]
@@ -183,7 +183,7 @@ def theory_columns(params: MapParameters) -> dict:
     GROWTH_THRESHOLD-fold within t_end (peak gain > ln(threshold) / t_end)?"""
     from generated import coefficients as continuum_nls
     from generated import lattice_coefficients as lattice_nls
-    from numerics import stability_map
+    from ..theory import stability_map
 
     K, D = np.meshgrid(params.k, params.delta, indexing="xy")
     Kt = params.K_s - D
@@ -200,10 +200,9 @@ def theory_columns(params: MapParameters) -> dict:
     gains["exact"] = np.nan_to_num(stability_map(*args))
     gains["exact_all"] = (np.nan_to_num(stability_map(*args, modes="all"))
                           if params.case == "coupled" else gains["exact"])
-    rate = math.log(GROWTH_THRESHOLD) / params.t_end
     out = {}
     for name, gain in gains.items():
-        out[f"verdict_{name}"] = gain > rate
+        out[f"verdict_{name}"] = grows_beyond_threshold(gain, params.t_end)
         out[f"peak_gain_{name}"] = gain
     return out
 

@@ -7,9 +7,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from common import paper
 from generated import lattice_model
 
-from ._checks import positive, real_array
+from .checks import positive, real_array
 
 CASES = ("rotation", "coupled")
 
@@ -46,6 +47,12 @@ class Material:
     def delta(self) -> float:
         """delta = K_s - K_theta: its sign sets the curvature of the rotational branch."""
         return self.K_s - self.K_theta
+
+    @classmethod
+    def paper(cls, point: str) -> "Material":
+        """The material of one of the paper's test points, ``"blue"`` or ``"green"``
+        (Figs. 4-9; numbers in :mod:`common.paper`)."""
+        return cls(paper.ALPHA, paper.K_S, paper.K_theta(point))
 
     @classmethod
     def from_physical(cls, m, J, a, k_l, k_s, k_theta) -> "Material":

@@ -43,6 +43,33 @@ def harmonic_bins(m: int, N: int, hmax: int = 9) -> list[int]:
     return sorted(out)
 
 
+def non_carrier_bins(m: int, N: int, field: str = "theta") -> np.ndarray:
+    """Boolean mask over the rfft bins [0, N/2]: True where a component counts as growth.
+
+    Excluded: the mean (bin 0) and, for theta, the carrier and its odd harmonics (driven by
+    the cubic nonlinearity without any instability); for U also the even harmonics 2k, 4k,
+    6k, 8k (forced by the carrier through the coupling, eq. `u2`). The one definition the
+    simulated verdicts, the measured gains and the maps use.
+    """
+    if field not in ("theta", "U"):
+        raise ValueError(f"field must be 'theta' or 'U', got {field!r}")
+    mask = np.ones(N // 2 + 1, dtype=bool)
+    mask[harmonic_bins(m, N)] = False
+    if field == "U":
+        for h in range(2, 10, 2):
+            j = (h * m) % N
+            mask[min(j, N - j)] = False
+    mask[0] = False
+    return mask
+
+
+def grows_beyond_threshold(peak_gain, t_end: float):
+    """A theory's verdict on the simulation's question: does a mode growing at
+    ``peak_gain`` (1/T) grow more than GROWTH_THRESHOLD-fold within ``t_end``?
+    (peak_gain t_end > ln GROWTH_THRESHOLD; works on arrays.)"""
+    return np.asarray(peak_gain) * t_end > np.log(GROWTH_THRESHOLD)
+
+
 def sideband_to_carrier(spec: np.ndarray, m: int, N: int) -> np.ndarray:
     """Largest non-carrier, non-harmonic theta component over the carrier, per record.
 
@@ -55,9 +82,7 @@ def sideband_to_carrier(spec: np.ndarray, m: int, N: int) -> np.ndarray:
     -------
     ndarray, shape (nt,)
     """
-    mask = np.ones(spec.shape[1], dtype=bool)
-    mask[harmonic_bins(m, N)] = False
-    mask[0] = False
+    mask = non_carrier_bins(m, N)
     return spec[:, mask].max(axis=1) / spec[:, m]
 
 

@@ -1,7 +1,7 @@
 """One cell of an MI map, simulated: the verdict, the growth and where it sits.
 
 A cell is a material, a case, a carrier k and the plane wave's amplitude (eq. `IC`,
-2 eps A0). :func:`simulate_cell` runs the paper's experiment and applies the scenes'
+its peak rotation ``amplitude``). :func:`simulate_cell` runs the paper's experiment and applies the scenes'
 criterion: MI when the largest non-carrier, non-harmonic component grows more than
 GROWTH_THRESHOLD (20x) over the run (the theories' verdicts on the same question are in
 ``scenes.maps.theory_columns``).
@@ -17,9 +17,9 @@ import math
 
 import numpy as np
 
-from ._analysis import GROWTH_THRESHOLD, growth_rates, harmonic_bins, linear_stage
-from ._model import Material
-from ._simulate import simulate
+from ..lattice._analysis import GROWTH_THRESHOLD, growth_rates, linear_stage, non_carrier_bins
+from ..lattice._model import Material
+from ..lattice._simulate import simulate
 
 #: a run is cut into this many segments for the early-stop check
 SEGMENTS = 20
@@ -32,16 +32,10 @@ def _ratios(theta_hat, U_hat, m, N):
     """Largest non-carrier, non-harmonic component over the carrier, per record and
     field, and where it sits."""
     carrier = theta_hat[:, m]
-    mask = np.ones(theta_hat.shape[1], bool)
-    mask[harmonic_bins(m, N)] = False
-    mask[0] = False
+    mask = non_carrier_bins(m, N, "theta")
     out = {"theta": theta_hat[:, mask] / carrier[:, None]}
     if U_hat is not None:
-        mask_U = mask.copy()
-        for h in range(2, 10, 2):  # the forced even harmonics of U
-            j = (h * m) % N
-            mask_U[min(j, N - j)] = False
-        mask_U[0] = False
+        mask_U = non_carrier_bins(m, N, "U")
         out["U"] = U_hat[:, mask_U] / carrier[:, None]
         return out, {"theta": np.flatnonzero(mask), "U": np.flatnonzero(mask_U)}
     return out, {"theta": np.flatnonzero(mask)}
@@ -68,7 +62,7 @@ def growth_of(t, theta_hat, U_hat, m, N) -> dict:
 
 
 def simulate_cell(material: Material, case: str, k: float, N: int, t_end: float,
-                  eps: float = 0.01, A0: float = 1.0, noise: float = 1e-3, seed: int = 0,
+                  amplitude: float = 0.02, noise: float = 1e-3, seed: int = 0,
                   start: str = "paper", dt: float = 0.05, method: str = "rk4",
                   early_stop: bool = True) -> dict:
     """The simulated verdict at one cell (the scenes' criterion), with early stop.
@@ -76,10 +70,9 @@ def simulate_cell(material: Material, case: str, k: float, N: int, t_end: float,
     Returns the verdict (True = MI), the largest growth factor and the field ("theta" or
     "U") and wavenumber carrying it, the time simulated and whether it stopped early.
     """
-    omega_model = {"paper": "continuum", "travelling": "travelling"}[start]
     seg = t_end / SEGMENTS
-    kw = dict(material=material, case=case, N=N, eps=eps, A0=A0, noise=noise, seed=seed,
-              dt=dt, method=method, store="spectrum", omega_model=omega_model, progress=False,
+    kw = dict(material=material, case=case, N=N, amplitude=amplitude, noise=noise, seed=seed,
+              dt=dt, method=method, store="spectrum", start=start, progress=False,
               energy_tolerance=1.0)
     ts, th, U = [], [], []
     state, t0, k_used, m = None, 0.0, k, None
@@ -109,10 +102,7 @@ def measured_peak_gain(t, theta_hat, m, N) -> float:
     if win is None:
         return float("nan")
     rates = growth_rates(t, theta_hat, win)
-    mask = np.ones(rates.size, bool)
-    mask[harmonic_bins(m, N)] = False
-    mask[0] = False
-    return float(rates[mask].max())
+    return float(rates[non_carrier_bins(m, N)].max())
 
 
 __all__ = ["simulate_cell", "growth_of", "measured_peak_gain"]

@@ -19,9 +19,9 @@ import numpy as np
 from generated import coefficients as continuum_nls
 from generated import lattice_coefficients as lattice_nls
 
-from . import _analysis as an
+from ..lattice import _analysis as an
 from ._hill import mi_gain
-from ._model import Material, check_case
+from ..lattice._model import Material, check_case
 
 THEORIES = ("paper NLS", "semi-discrete NLS", "exact lattice")
 #: the exact theory for the state eq. `IC` launches (not in THEORIES: it costs seconds)
@@ -65,6 +65,19 @@ def theory_gain(theory: str, material: Material, case: str, k: float, q_offset, 
     p = (k, material.alpha, material.K_s, material.K_theta)
     g = getattr(nls, f"g_{case}")(*p)
     return eps**2 * abs(nls.g1(*p)) * nls.mi_growth_rate(np.asarray(q_offset) / eps, g, A0)
+
+
+#: run length of a gain measurement: this many e-foldings of the predicted peak gain
+#: (rounded to 100 T), within these bounds (the linear stage must be over, the run finite)
+E_FOLDINGS, T_BOUNDS = 9.0, (1000.0, 20000.0)
+
+
+def measurement_length(peak_gain: float, default: float = 5000.0) -> float:
+    """How long to simulate to measure sigma(q) growing at ``peak_gain`` (1/T): E_FOLDINGS
+    e-foldings, rounded to 100 T, clipped to T_BOUNDS; ``default`` where nothing grows."""
+    if not peak_gain > 0:
+        return float(default)
+    return float(np.clip(round(E_FOLDINGS / peak_gain, -2), *T_BOUNDS))
 
 
 def measure_gain(simulate, seeds, **params) -> dict | None:

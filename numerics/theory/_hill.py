@@ -24,8 +24,8 @@ import numpy as np
 
 from generated import lattice_model as model
 
-from . import _checks as checks
-from ._model import Material, check_case
+from ..lattice import checks
+from ..lattice._model import Material, check_case
 from ._launched import STARTS, launched_state
 from ._plane_wave import (HARMONICS, MAX_AMPLITUDE, PlaneWave, _check, _check_harmonics,
                           _on_branch, _shift, _solve_plane_waves, plane_wave)

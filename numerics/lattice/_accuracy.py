@@ -37,7 +37,7 @@ import warnings
 
 import numpy as np
 
-from . import _checks as checks
+from . import checks
 from ._integrators import get_method
 
 

@@ -10,44 +10,52 @@ from __future__ import annotations
 import dataclasses
 import hashlib
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
-from generated import coefficients as coefficients_module
+from common.paper import A0 as PAPER_A0
+from common.paper import EPS as PAPER_EPS
 
 from ._analysis import spectrum
-from . import _checks as checks
+from . import checks
 from ._accuracy import check_energy_tolerance, energy_check
 from ._integrate import (BlowUpError, SimulationInterrupted, _blowup_message, _check_time,
                          _Stepper, check_tolerances, resolve_step)
 from ._integrators import get_method
+from ._starts import LEGACY_OMEGA_MODELS, build_start, check_start
 from ._runcontrol import _deferred_interrupt, _Interrupt, _progress, _steps_per_call
-from ._model import (LatticeState, Material, check_case,
-                     discrete_omega_rotation, energy)
+from ._model import LatticeState, Material, check_case, energy
 
 
-def _source_hash() -> str:
-    """Hash of every source file whose change can alter a simulated number."""
-    here = Path(__file__).parent
-    gen = Path(coefficients_module.__file__).parent
-    files = [here / f"_{n}.py" for n in ("kernels", "kernels_libm", "integrators", "integrate",
-                                          "simulate", "model", "plane_wave", "hill", "analysis",
-                                          "checks", "launched", "torus", "quasiperiodic",
-                                          "resonance", "gain")]
-    files += [gen / "coefficients.py", gen / "lattice_model.py"]
+def source_hash(*roots) -> str:
+    """Hash of every ``.py`` file under the folders ``roots`` (package roots), found by
+    walking them: computed, never listed, so a new or changed module cannot be missed."""
     h = hashlib.sha256()
-    for f in files:
-        h.update(f.name.encode() + b"\0" + f.read_bytes())
+    for root in roots:
+        root = Path(root)
+        for f in sorted(root.rglob("*.py")):
+            h.update(f"{root.name}/{f.relative_to(root).as_posix()}".encode() + b"\0"
+                     + f.read_bytes())
     return h.hexdigest()[:16]
+
+
+def _code_version() -> str:
+    """The code a simulated or theoretical number depends on: all of numerics, the
+    generated closed forms and the paper's numbers."""
+    import common
+    import generated
+
+    numerics_root = Path(__file__).resolve().parents[1]
+    return source_hash(numerics_root, Path(generated.__file__).parent,
+                       Path(common.__file__).parent)
 
 
 #: Identifies the simulator's code (keys the scene cache): a hash of its sources, so any
 #: change that may alter simulated numbers invalidates cached runs by itself.
-SIMULATOR_VERSION = _source_hash()
+SIMULATOR_VERSION = _code_version()
 STORE_CHOICES = ("snapshots", "spectrum", "energy")
-OMEGA_MODELS = ("continuum", "discrete", "travelling")
 
 
 def _check_sites(N):
@@ -80,8 +88,7 @@ class Run:
     k: float  # snapped carrier wavenumber 2 pi m / N
     m: int
     k_requested: float
-    eps: float
-    A0: float
+    amplitude: float  # peak rotation of the carrier at T = 0 (the paper's 2 eps A0)
     noise: float
     seed: int
     method: str
@@ -89,13 +96,22 @@ class Run:
     t_end: float
     save_every: float
     store: str
-    omega_model: str
+    start: str
     theta_hat: np.ndarray | None = None
     U_hat: np.ndarray | None = None
     final_state: LatticeState | None = None
     force_evaluations: int = 0
     completed: bool = True
-    extra: dict = field(default_factory=dict)
+
+    def __repr__(self) -> str:
+        m = self.material
+        return (f"Run(case={self.case!r}, alpha={m.alpha:g}, K_s={m.K_s:g}, "
+                f"K_theta={m.K_theta:g}, N={self.N}, k={self.k:.6g}, "
+                f"amplitude={self.amplitude:g}, start={self.start!r}, seed={self.seed}, "
+                f"method={self.method!r}, dt={self.dt:g}, t=[0, {self.t[-1]:g}] in "
+                f"{len(self.t)} records, store={self.store!r}, "
+                f"energy_error={self.energy_error:.1e}"
+                f"{'' if self.completed else ', completed=False'})")
 
     @property
     def wavenumbers(self) -> np.ndarray:
@@ -128,55 +144,66 @@ def snap_wavenumber(k: float, N: int, rel_tol: float = 1e-3):
     return ks, m
 
 
-def initial_condition(material: Material, case: str, N: int, k: float, eps: float = 0.01,
-                      A0: float = 1.0, noise: float = 1e-3, seed: int = 0,
-                      omega_model: str = "continuum") -> LatticeState:
-    """The paper's noisy plane wave (eq. `IC`), with amplitude 2 eps A0.
+def _amplitude(amplitude, eps, A0) -> float:
+    """The peak rotation: ``amplitude``, or the paper's 2 eps A0 when given as (eps, A0)."""
+    if amplitude is not None:
+        if eps is not None or A0 is not None:
+            raise TypeError("give the amplitude either as amplitude= (peak rotation) or as "
+                            "the paper's eps= and A0= (amplitude = 2 eps A0), not both")
+        return checks.positive("amplitude", amplitude)
+    eps = checks.positive("eps", PAPER_EPS if eps is None else eps)
+    A0 = checks.positive("A0", PAPER_A0 if A0 is None else A0)
+    return 2 * eps * A0
 
-    theta = 2 eps A0 (1 + b0) cos(k n), theta_dot = 2 eps A0 omega(k) (1 + b0) sin(k n),
-    b0 ~ U[-noise, noise] per site from ``numpy.random.default_rng(seed)``, U = U_dot = 0.
-    ``omega_model="continuum"`` (the paper's) uses eq. `continuum2`; "discrete" uses
-    eq. `discrete2`, the frequency the lattice actually has (less initial mismatch).
-    ``"travelling"`` starts from the lattice's own nonlinear plane wave
-    (:func:`numerics.plane_wave`, peak rotation 2 eps A0: amplitude-dependent frequency,
-    odd theta harmonics, the forced U harmonics and their velocities), every field
-    multiplied by the same (1 + b0): no free U waves beat against the forced ones.
+
+def _start(start, omega_model) -> str:
+    if omega_model is not None:  # the earlier name of the same choice
+        checks.choice("omega_model", omega_model, tuple(LEGACY_OMEGA_MODELS))
+        if start not in (None, LEGACY_OMEGA_MODELS[omega_model]):
+            raise TypeError(f"start={start!r} and omega_model={omega_model!r} disagree; "
+                            "give start= only")
+        return LEGACY_OMEGA_MODELS[omega_model]
+    return check_start("paper" if start is None else start)
+
+
+def initial_condition(material: Material, case: str, N: int, k: float,
+                      amplitude: float | None = None, noise: float = 1e-3, seed: int = 0,
+                      start: str | None = None, *, eps: float | None = None,
+                      A0: float | None = None, omega_model: str | None = None) -> LatticeState:
+    """The paper's noisy plane wave (eq. `IC`, eq. (14) of the paper), or another start.
+
+    Parameters
+    ----------
+    amplitude : float
+        Peak rotation of the carrier (the paper's 2 eps A0; default 0.02, the paper's).
+        ``eps=`` and ``A0=`` are accepted instead, as the paper's symbols.
+    noise, seed : float, int
+        b0 ~ U[-noise, noise] per site from ``numpy.random.default_rng(seed)``; every
+        field is multiplied by (1 + b0).
+    start : {"paper", "discrete", "travelling"}
+        See ``numerics.lattice.STARTS`` (module ``_starts``): eq. `IC` with the continuum
+        frequency (the paper's), with the lattice's, or the exact travelling wave.
+        ``omega_model=`` ("continuum", "discrete", "travelling") is its earlier name.
     """
     checks.instance("material", material, Material)
     check_case(case)
-    checks.choice("omega_model", omega_model, OMEGA_MODELS)
+    start = _start(start, omega_model)
     N = _check_sites(N)
-    eps, A0 = checks.positive("eps", eps), checks.positive("A0", A0)
+    amplitude = _amplitude(amplitude, eps, A0)
     noise = checks.real("noise", noise, 0.0, 1.0, low_open=False, high_open=True)
     seed = checks.seed(seed)
     rng = np.random.default_rng(seed)
     b0 = rng.uniform(-noise, noise, N)
-    n = np.arange(N)
-    if omega_model == "travelling":
-        from ._hill import plane_wave
-
-        th, thd, U, Ud = plane_wave(material, case, k, 2 * eps * A0).fields(n)
-        f = 1 + b0
-        if case == "coupled":
-            return LatticeState(U * f, Ud * f, th * f, thd * f)
-        return LatticeState(None, None, th * f, thd * f)
-    if omega_model == "continuum":
-        w = float(coefficients_module.omega(k, material.alpha, material.K_s, material.K_theta))
-    else:
-        w = float(discrete_omega_rotation(k, material))
-    amp = 2 * eps * A0 * (1 + b0)
-    theta = amp * np.cos(k * n)
-    theta_dot = amp * w * np.sin(k * n)
-    if case == "coupled":
-        return LatticeState(np.zeros(N), np.zeros(N), theta, theta_dot)
-    return LatticeState(None, None, theta, theta_dot)
+    return build_start(start, material, case, k, amplitude, b0)
 
 
-def simulate(material: Material, case: str, N: int, k: float, eps: float = 0.01,
-             A0: float = 1.0, noise: float = 1e-3, seed: int = 0, t_end: float = 5000.0,
-             dt: float | None = None, method: str | None = None,
-             save_every: float | None = None, *, tol: float | None = None,
-             store: str = "snapshots", omega_model: str = "continuum",
+def simulate(material: Material, case: str, N: int, k: float,
+             amplitude: float | None = None, noise: float = 1e-3, seed: int = 0,
+             t_end: float = 5000.0, dt: float | None = None, method: str | None = None,
+             save_every: float | None = None, *, start: str | None = None,
+             eps: float | None = None, A0: float | None = None,
+             omega_model: str | None = None, tol: float | None = None,
+             store: str = "snapshots",
              initial: LatticeState | None = None, progress: bool | None = None,
              rtol: float = 1e-10, atol: float = 1e-12, max_energy_error: float = 0.5,
              energy_tolerance: float = 1e-3, record_phase: int = 0) -> Run:
@@ -189,7 +216,9 @@ def simulate(material: Material, case: str, N: int, k: float, eps: float = 0.01,
         Number of sites (periodic).
     k : float
         Carrier wavenumber; snapped to 2 pi m / N when within 1e-3 relative.
-    eps, A0, noise, seed : initial condition, see :func:`initial_condition`.
+    amplitude, noise, seed, start : the initial state, see :func:`initial_condition`
+        (amplitude: peak rotation, default the paper's 0.02; or the paper's ``eps=``,
+        ``A0=``; start: "paper" (eq. `IC`), "discrete" or "travelling").
     t_end, dt : float
         Duration and time step (defaults: the paper's run, T = 5000 with dt = 0.05).
     method : str, optional
@@ -204,9 +233,6 @@ def simulate(material: Material, case: str, N: int, k: float, eps: float = 0.01,
     store : {"snapshots", "spectrum", "energy"}
         What is kept at each record: full fields, only |theta_hat| (and |U_hat|), or only
         the energy (always kept). Memory grows with the records, never with the steps.
-    omega_model : {"continuum", "discrete", "travelling"}
-        Frequency used for the initial theta_dot (default: the paper's continuum one), or
-        "travelling": start from the lattice's exact plane wave (see `initial_condition`).
     initial : LatticeState, optional
         Start from this state instead of eq. `IC` (e.g. to resume an interrupted run).
     progress : bool or None
@@ -248,9 +274,11 @@ def simulate(material: Material, case: str, N: int, k: float, eps: float = 0.01,
     if initial is not None:
         checks.instance("initial", initial, LatticeState)
     N = _check_sites(N)
+    start = _start(start, omega_model)
+    amplitude = _amplitude(amplitude, eps, A0)
     ks, mode = snap_wavenumber(k, N)
     if initial is None:
-        state = initial_condition(material, case, N, ks, eps, A0, noise, seed, omega_model)
+        state = initial_condition(material, case, N, ks, amplitude, noise, seed, start)
     else:
         state = initial.for_case(case)
         if state.N != N:
@@ -281,9 +309,9 @@ def simulate(material: Material, case: str, N: int, k: float, eps: float = 0.01,
 
     st = _Stepper(state, material, case, m_, dt_eff, rtol, atol)
     run = Run(t=t, theta=th_rec, U=U_rec, energy=en, material=material, case=case, N=N, k=ks,
-              m=mode, k_requested=float(k), eps=eps, A0=A0, noise=noise, seed=seed,
+              m=mode, k_requested=float(k), amplitude=amplitude, noise=noise, seed=seed,
               method=m_.name, dt=dt_eff, t_end=float(t_end), save_every=per_save * dt_eff,
-              store=store, omega_model=omega_model, theta_hat=thh, U_hat=Uh)
+              store=store, start=start, theta_hat=thh, U_hat=Uh)
 
     def record(j, time):
         t[j] = time

@@ -33,10 +33,10 @@ import numpy as np
 
 from generated import lattice_model as model
 
-from . import _checks as checks
-from ._hill import _coefficients, _hill_batch, _is_mi, _sideband_share, check_map_grid
-from ._plane_wave import _on_branch, _solve_plane_waves
-from ._quasiperiodic import ROUNDOFF
+from ..lattice import checks
+from ..theory._hill import _coefficients, _hill_batch, _is_mi, _sideband_share, check_map_grid
+from ..theory._plane_wave import _on_branch, _solve_plane_waves
+from ..theory._quasiperiodic import ROUNDOFF
 
 #: offsets of the reduced problem's grid, (0, pi]: fine enough that a band of the paper's
 #: parameter range spans several points (the narrowest at amplitude 0.02 ~ 0.01 wide)

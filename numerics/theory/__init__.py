@@ -1,0 +1,29 @@
+"""Theory of the lattice's plane waves: exact states and their stability.
+
+Imports ``numerics.lattice`` (the model, the integrators for the torus, the checks), never
+``numerics.maps``. Importing it registers the ``"travelling"`` start with the simulator.
+
+Exact states    plane_wave -> PlaneWave (harmonic balance), launched_state ->
+                LaunchedState, FreeWave (what eq. `IC` launches: travelling wave + free
+                waves, measured as a torus)
+Stability       mi_gain (Hill's method about the state a start launches),
+                gain_spectrum -> GainSpectrum (per offset: rate, growing field and
+                wavenumber), hill_spectrum, stability_map (batched over (k, delta))
+NLS theories    THEORIES, PAPER_START, theory_gain, nls_summary (paper NLS and
+                semi-discrete NLS from ``generated/``, and the exact lattice)
+Measurement     measure_gain, relative_errors (sigma(q) measured from runs)
+"""
+
+from ._gain import (PAPER_START, THEORIES, measure_gain, measurement_length, nls_summary,
+                    relative_errors, theory_gain)
+from ._hill import gain_spectrum, hill_spectrum, mi_gain, stability_map
+from ._launched import FreeWave, LaunchedState, launched_state
+from ._plane_wave import PlaneWave, plane_wave
+from ._quasiperiodic import GainSpectrum
+
+__all__ = [
+    "PlaneWave", "plane_wave", "LaunchedState", "FreeWave", "launched_state", "mi_gain",
+    "gain_spectrum", "GainSpectrum", "hill_spectrum", "stability_map", "THEORIES",
+    "PAPER_START", "theory_gain", "nls_summary", "measure_gain", "measurement_length",
+    "relative_errors",
+]
