@@ -1,40 +1,67 @@
 # flexmm-mi: every target that needs Python depends on `setup`, so each works on a fresh machine.
+#
+#   setup                    venv + `pip install -e '.[dev]'` (again when pyproject.toml changes)
+#   derive                   always re-derive generated/ and update its source stamp
+#   run, figures             re-derive first only when the derivation's sources changed
+#   test / test-all          fast tests / every test, slow ones included
+#   bench, bench-quick       results + PNGs into out/bench/ (gitignored): the git tree stays clean
+#   bench-update             the same as bench, rewriting the committed bench/results.json + PNGs
+#   stress, stress-quick     bench/stress.py into out/bench/
+#   stress-update            the same as stress, rewriting the committed bench/stress.json/.md
 PY ?= python3
 VENV := .venv
 VPY := $(VENV)/bin/python
 STAMP := $(VENV)/.setup-stamp
 GENERATED := generated/coefficients.py generated/lattice_coefficients.py generated/lattice_model.py generated/derivation.md
 
-.PHONY: setup derive test test-all run figures bench bench-quick stress stress-quick clean
+# The derivation's inputs by content, not by mtime (a fresh clone gives every file a new
+# mtime): sha256 of derivation/*.py and common/*.py and the SymPy pin (generated/ is SymPy's
+# printed output). `make derive` records them in the committed generated/SOURCES.sha256;
+# run/figures re-derive only when they differ from it (or a generated file is missing).
+SOURCES_STAMP := generated/SOURCES.sha256
+SOURCES = LC_ALL=C sha256sum derivation/*.py common/*.py && sed -n 's/^[[:space:]]*"\(sympy[^"]*\)".*/\1/p' pyproject.toml
+STALE := $(shell { $(SOURCES); } | cmp -s - $(SOURCES_STAMP) || echo sources-changed)$(filter-out $(wildcard $(GENERATED)),$(GENERATED))
+
+# Bench output: out/bench/ unless BENCH_ARGS=--update (or --out DIR); see bench/README.md.
+BENCH_ARGS ?=
+
+.PHONY: setup derive generated test test-all run figures bench bench-quick bench-update \
+	stress stress-quick stress-update clean
 
 setup: $(STAMP)
 
 $(STAMP): pyproject.toml
 	@test -x $(VPY) || $(PY) -m venv $(VENV)
 	$(VPY) -m pip install -q --upgrade pip
-	$(VPY) -m pip install -q -e '.[dev]'
+	@# the message filter hides only setuptools' "Editable installation." notice (not a problem)
+	PYTHONWARNINGS='ignore:Editable installation' $(VPY) -m pip install -q -e '.[dev]'
 	@touch $(STAMP)
-
-# Regenerate only when the derivation sources changed (make's own staleness check).
-$(GENERATED) &: $(wildcard derivation/*.py) $(wildcard common/*.py) pyproject.toml | $(STAMP)
-	$(VPY) -m derivation --out generated
 
 derive: $(STAMP)
 	$(VPY) -m derivation --out generated
+	{ $(SOURCES); } > $(SOURCES_STAMP).tmp && mv $(SOURCES_STAMP).tmp $(SOURCES_STAMP)
+
+# generated/ up to date: derive only when its sources changed since the stamp.
+ifneq ($(strip $(STALE)),)
+generated: derive
+else
+generated: ;
+endif
 
 test: $(STAMP)
 	$(VPY) -m pytest -q
 
+# -m '' replaces pyproject's addopts -m 'not slow' (the last -m wins): every test runs.
 test-all: $(STAMP)
 	$(VPY) -m pytest -q -m ''
 
 # The main job: coefficients at the test points, then every scene (quick) and out/report.md.
-run: $(STAMP) $(GENERATED)
+run: $(STAMP) generated
 	$(VENV)/bin/flexmm table
 	$(VENV)/bin/flexmm run --quick
 
 # Full-size figures (about a minute), copied small into docs/figures/ for the README.
-figures: $(STAMP) $(GENERATED)
+figures: $(STAMP) generated
 	$(VENV)/bin/flexmm run --out out/full
 	mkdir -p docs/figures
 	for d in out/full/*/; do n=$$(basename $$d); \
@@ -42,27 +69,35 @@ figures: $(STAMP) $(GENERATED)
 	cp out/full/report.md docs/figures/report.md
 
 # Work-precision, long-time energy, scaling, derive/import cost, kernel speed and time to
-# 1e-6 against scipy (bench/speed.py) -> bench/results.json, PNGs
+# 1e-6 against scipy (bench/speed.py), maps -> out/bench/results.json, PNGs
 bench: $(STAMP)
-	$(VPY) bench/simulator.py
-	$(VPY) bench/work_precision.py
-	$(VPY) bench/speed.py
-	$(VPY) bench/maps.py
-	$(VPY) bench/exact_maps.py
+	$(VPY) -m bench.simulator $(BENCH_ARGS)
+	$(VPY) -m bench.work_precision $(BENCH_ARGS)
+	$(VPY) -m bench.speed $(BENCH_ARGS)
+	$(VPY) -m bench.maps $(BENCH_ARGS)
+	$(VPY) -m bench.exact_maps $(BENCH_ARGS)
 
 bench-quick: $(STAMP)
-	$(VPY) bench/simulator.py --quick
-	$(VPY) bench/work_precision.py --quick
-	$(VPY) bench/speed.py --quick
-	$(VPY) bench/maps.py --quick
-	$(VPY) bench/exact_maps.py --quick
+	$(VPY) -m bench.simulator --quick $(BENCH_ARGS)
+	$(VPY) -m bench.work_precision --quick $(BENCH_ARGS)
+	$(VPY) -m bench.speed --quick $(BENCH_ARGS)
+	$(VPY) -m bench.maps --quick $(BENCH_ARGS)
+	$(VPY) -m bench.exact_maps --quick $(BENCH_ARGS)
 
-# Where numerical stability ends -> bench/stress.json, bench/stress.md
+# The committed numbers: bench/results.json, bench/simulator.json, bench/*.png
+bench-update:
+	$(MAKE) --no-print-directory bench BENCH_ARGS=--update
+
+# Where numerical stability ends -> out/bench/stress.json, stress.md
 stress: $(STAMP)
-	$(VPY) bench/stress.py
+	$(VPY) -m bench.stress $(BENCH_ARGS)
 
 stress-quick: $(STAMP)
-	$(VPY) bench/stress.py --quick
+	$(VPY) -m bench.stress --quick $(BENCH_ARGS)
+
+# The committed bench/stress.json, bench/stress.md
+stress-update:
+	$(MAKE) --no-print-directory stress BENCH_ARGS=--update
 
 clean:
 	rm -rf $(VENV) out .pytest_cache

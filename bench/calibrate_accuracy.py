@@ -5,7 +5,7 @@ dt = 0.005, w the starting state's dominant frequency; at the paper's two points
 larger amplitude (strong MI: errors amplified, reported but not used) and two other
 materials. ERROR_CONSTANTS keeps per method the largest C_m of the non-MI points.
 
-    python bench/calibrate_accuracy.py
+    python -m bench.calibrate_accuracy
 """
 
 from __future__ import annotations

@@ -7,26 +7,21 @@
 - Sampling independence: the resonance map's verdict (grows > 20x within T = 5000) with
   its offset grid refined 4x (256 -> 1024), on a 64 x 64 map: cells that change.
 - What sampling misses: cells where a 20-offset and a 160-offset Hill scan disagree.
-Writes the "exact_maps" section of bench/results.json (results_quick.json with --quick).
+Writes the "exact_maps" section of results.json (results_quick.json with --quick; in
+out/bench/, or bench/ with --update).
 
-    python bench/exact_maps.py [--quick]
+    python -m bench.exact_maps [--quick] [--update | --out DIR]
 """
 
 from __future__ import annotations
 
-import argparse
-import sys
 import time
-from pathlib import Path
 
 import numpy as np
 
-HERE = Path(__file__).parent
-sys.path.insert(0, str(HERE))
-
-from common import paper  # noqa: E402
-from numerics import resonance_map, stability_map  # noqa: E402
-from simulator import machine, write_section  # noqa: E402
+from bench.simulator import arguments, machine, write_section
+from common import paper
+from numerics import resonance_map, stability_map
 
 THRESHOLD = np.log(20.0) / paper.T_END
 
@@ -43,7 +38,7 @@ def _timed(f, *args, **kw):
     return out, time.perf_counter() - t0
 
 
-def main(quick=False):
+def main(quick=False, out=None):
     n, n_check = (60, 24) if quick else (200, 64)
     K, D = _grid(n)
     args = (paper.ALPHA, paper.K_S, 0.02)
@@ -71,7 +66,7 @@ def main(quick=False):
            "wall_s": walls, "check_grid": [n_check, n_check],
            "verdicts_changed_by_4x_offset_refinement": changed,
            "cells_where_20_and_160_offset_scans_disagree": sampled}
-    write_section("exact_maps", res, quick)
+    write_section("exact_maps", res, quick, out)
     for name, t in walls.items():
         print(f"{n} x {n} {name}: {t:.2f}")
     print(f"{n_check} x {n_check}, verdicts changed by a 4x finer offset grid: {changed}")
@@ -80,6 +75,4 @@ def main(quick=False):
 
 
 if __name__ == "__main__":
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--quick", action="store_true")
-    main(ap.parse_args().quick)
+    main(*arguments(__doc__))

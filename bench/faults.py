@@ -5,7 +5,7 @@ Each entry is (name, action, expected): ``action()`` is called; ``expected`` is 
 parameter; or ``("ok", check)``: ``check(result)`` is true. ``run_catalogue()`` classifies
 every entry as "clear error" (the expected error), "worked" (the expected result) or
 "problem" (anything else, with what happened); ``tests/test_faults.py`` asserts each one
-and ``make stress`` (bench/stress.py) counts them into bench/stress.md. Faults that need a
+and ``make stress`` (bench/stress.py) counts them into stress.md. Faults that need a
 process, a signal or a file system (resume after Ctrl-C, checkpoints, tampered cache
 entries, partial files, the CLI) are tested in ``tests/test_faults.py`` itself.
 """

@@ -7,36 +7,32 @@
 - Scheduling overhead: no-op tasks through the same cluster (time per task round trip)
   against the cost of a task (a block of 4 cells).
 - From the per-cell cost: a 64 x 64 map here (2 cores) and on 100 cores.
-Writes the "maps" section of bench/results.json (results_quick.json with --quick).
+Writes the "maps" section of results.json (results_quick.json with --quick; in out/bench/,
+or bench/ with --update).
 
-    python bench/maps.py [--quick]
+    python -m bench.maps [--quick] [--update | --out DIR]
 """
 
 from __future__ import annotations
 
-import argparse
 import shutil
 import statistics
-import sys
 import tempfile
 import time
 from pathlib import Path
 
 import numpy as np
 
-HERE = Path(__file__).parent
-sys.path.insert(0, str(HERE))
-
-from common import paper  # noqa: E402
-from scenes import maps  # noqa: E402
-from simulator import machine, write_section  # noqa: E402
+from bench.simulator import arguments, machine, write_section
+from common import paper
+from numerics import maps
 
 
 def _noop(x):
     return x
 
 
-def main(quick=False):
+def main(quick=False, out=None):
     N, T = (100, 1000.0) if quick else (paper.N, paper.T_END)
     kk = 2 * np.pi * np.round(np.linspace(0.7, 1.0, 4) * N / (2 * np.pi)) / N
     params = maps.MapParameters(case="coupled", alpha=paper.ALPHA, K_s=paper.K_S,
@@ -92,7 +88,7 @@ def main(quick=False):
            "overhead_fraction_of_a_task": overhead / task,
            "map_64x64_here_s": cells * per_cell / 2,
            "map_64x64_on_100_cores_s": cells * per_cell / 100}
-    write_section("maps", res, quick)
+    write_section("maps", res, quick, out)
     print(f"per cell (N = {N}, T = {T:g}): {per_cell:.2f} s in the map on one worker "
           f"({serial:.2f} s serially, one row) = {1 / per_cell:.2f} cells/s/core")
     print(f"16-cell map: 1 worker {walls[1]:.1f} s, 2 workers {walls[2]:.1f} s -> "
@@ -105,6 +101,4 @@ def main(quick=False):
 
 
 if __name__ == "__main__":
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--quick", action="store_true")
-    main(ap.parse_args().quick)
+    main(*arguments(__doc__))

@@ -2,9 +2,14 @@
 
 Reports: ns per site per force evaluation of the compiled kernel and of the plain NumPy
 force; compiled RK4 vs the plain NumPy RK4 (np.roll stencil) at the same dt; the paper's
-run (N = 500, t_end = 5000, dt = 0.05, case II) wall time. Writes bench/simulator.json.
+run (N = 500, t_end = 5000, dt = 0.05, case II) wall time. Writes simulator.json.
 
-    python bench/simulator.py [--quick]
+Also the helpers every bench script shares: where results go (:func:`output_dir`: out/bench/
+by default, the committed bench/ only with ``--update``), the command line
+(:func:`arguments`), the machine (:func:`machine`) and the one writer of results.json
+sections (:func:`write_sections`).
+
+    python -m bench.simulator [--quick] [--update | --out DIR]
 """
 
 from __future__ import annotations
@@ -25,7 +30,10 @@ from numerics import integrate, simulate
 from numerics.lattice._baseline import numpy_accel, numpy_rk4
 from numerics.lattice._kernels import accel
 
-HERE = Path(__file__).parent
+HERE = Path(__file__).resolve().parent
+ROOT = HERE.parent
+#: Where a bench run writes unless told otherwise: gitignored, so the git tree stays clean.
+DEFAULT_OUT = ROOT / "out" / "bench"
 BLUE = Material.paper("blue")
 PARAMS = (BLUE.alpha**2, BLUE.K_s, BLUE.K_theta)
 
@@ -51,17 +59,53 @@ def machine():
             "numba": numba.__version__}
 
 
-def write_section(name: str, res: dict, quick: bool) -> Path:
-    """Put ``res`` under ``name`` in bench/results.json (results_quick.json when quick),
-    keeping the other scripts' sections (shared by the bench scripts)."""
-    path = HERE / ("results_quick.json" if quick else "results.json")
+def output_dir(update: bool = False, out=None) -> Path:
+    """The folder results go to (created): bench/ itself with ``update`` (the committed
+    numbers, `make bench-update` / `make stress-update`), else ``out``, else out/bench/."""
+    if update and out is not None:
+        raise ValueError("update writes into bench/; give either update or out, not both")
+    d = HERE if update else Path(out) if out is not None else DEFAULT_OUT
+    d.mkdir(parents=True, exist_ok=True)
+    return d
+
+
+def arguments(description: str | None = None, argv=None) -> tuple[bool, Path]:
+    """The command line every bench script takes: ``--quick`` and where to write
+    (``--update`` or ``--out DIR``; default out/bench/). Returns (quick, output folder)."""
+    ap = argparse.ArgumentParser(description=description,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--quick", action="store_true",
+                    help="small sizes (seconds); writes *_quick files")
+    where = ap.add_mutually_exclusive_group()
+    where.add_argument("--update", action="store_true",
+                       help="rewrite the committed results in bench/ (default: out/bench/)")
+    where.add_argument("--out", type=Path, metavar="DIR",
+                       help="write the results into DIR (default: out/bench/)")
+    args = ap.parse_args(argv)
+    return args.quick, output_dir(args.update, args.out)
+
+
+def results_path(quick: bool, out=None) -> Path:
+    """results.json (results_quick.json when quick) in ``out`` (default out/bench/)."""
+    return output_dir(out=out) / ("results_quick.json" if quick else "results.json")
+
+
+def write_sections(sections: dict, quick: bool, out=None) -> Path:
+    """Put each ``{name: res}`` of ``sections`` into results.json (results_quick.json when
+    quick) in ``out``, keeping the other scripts' sections: the one writer of that file."""
+    path = results_path(quick, out)
     data = json.loads(path.read_text()) if path.exists() else {}
-    data[name] = res
+    data.update(sections)
     write_text(path, json.dumps(data, indent=2) + "\n")
     return path
 
 
-def main(quick=False):
+def write_section(name: str, res: dict, quick: bool, out=None) -> Path:
+    """Put ``res`` under ``name`` in results.json (see :func:`write_sections`)."""
+    return write_sections({name: res}, quick, out)
+
+
+def main(quick=False, out=None):
     rng = np.random.default_rng(0)
     N = 500
     th, U = rng.normal(0, 0.02, N), rng.normal(0, 1e-4, N)
@@ -109,8 +153,8 @@ def main(quick=False):
         "paper_run_energy_error": float(run.relative_energy_error.max()),
         "quick": quick,
     }
-    out = Path(__file__).with_name("simulator_quick.json" if quick else "simulator.json")
-    out.write_text(json.dumps(res, indent=2) + "\n")
+    path = output_dir(out=out) / ("simulator_quick.json" if quick else "simulator.json")
+    write_text(path, json.dumps(res, indent=2) + "\n")
     print(f"force kernel: {t_kernel:.1f} ns/site (NumPy force {t_np:.1f}, NumPy sin+cos alone "
           f"{t_sincos:.1f}; kernel/sincos = {t_kernel / t_sincos:.2f})")
     print(f"RK4 over T = {T:g}, N = {N}: compiled {t_rk4 * 1e3:.1f} ms, NumPy "
@@ -121,6 +165,4 @@ def main(quick=False):
 
 
 if __name__ == "__main__":
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--quick", action="store_true")
-    main(ap.parse_args().quick)
+    main(*arguments(__doc__))

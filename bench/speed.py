@@ -2,7 +2,8 @@
 
 Measured in one run, interleaved (every configuration once per round, median over rounds),
 so that a noisy machine slows all of them alike; read the ratios. Writes the "speed"
-section of bench/results.json (bench/results_quick.json with --quick) and prints a table.
+section of results.json (results_quick.json with --quick; in out/bench/, or bench/ with
+--update) and prints a table.
 
 1. Cost of one force evaluation per site (N = 500): our kernel (polynomial sin/cos,
    vectorised), the libm kernel it replaced, NumPy's sin + cos alone, the plain NumPy
@@ -18,30 +19,23 @@ section of bench/results.json (bench/results_quick.json with --quick) and prints
    and with the fused loops, and srkn11b at the dt whose error over T = 200 equals RK4's
    at dt = 0.05 (the paper's accuracy).
 
-    python bench/speed.py [--quick]
+    python -m bench.speed [--quick] [--update | --out DIR]
 """
 
 from __future__ import annotations
 
-import argparse
 import statistics
-import sys
 import time
-from pathlib import Path
 
 import numpy as np
 
-HERE = Path(__file__).parent
-sys.path.insert(0, str(HERE))
-
-from common import paper  # noqa: E402
-from numerics import Material
-from numerics import initial_condition  # noqa: E402
-from numerics.lattice import _kernels as kernels  # noqa: E402
-from numerics.lattice._baseline import numpy_accel  # noqa: E402
-from numerics.lattice._integrate import _Stepper  # noqa: E402
-from numerics.lattice._integrators import get_method  # noqa: E402
-from simulator import machine, write_section  # noqa: E402
+from bench.simulator import arguments, machine, write_section
+from common import paper
+from numerics import Material, initial_condition
+from numerics.lattice import _kernels as kernels
+from numerics.lattice._baseline import numpy_accel
+from numerics.lattice._integrate import _Stepper
+from numerics.lattice._integrators import get_method
 
 MAT, CASE, K = Material.paper("blue"), "coupled", paper.k("blue")
 N = paper.N
@@ -215,10 +209,10 @@ def paper_run(quick):
             "srkn11b_dt_same_accuracy": dt_same, "wall_s": med}
 
 
-def main(quick=False):
+def main(quick=False, out=None):
     res = {"machine": machine(), "quick": quick, "force": force_costs(quick),
            "time_to_1e-6": time_to_error(quick), "paper_run": paper_run(quick)}
-    write_section("speed", res, quick)
+    write_section("speed", res, quick, out)
     f, t, p = res["force"], res["time_to_1e-6"], res["paper_run"]
     print("ns per site per force evaluation (N = 500):")
     for name, ns in f["ns_per_site"].items():
@@ -242,6 +236,4 @@ def main(quick=False):
 
 
 if __name__ == "__main__":
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--quick", action="store_true")
-    main(ap.parse_args().quick)
+    main(*arguments(__doc__))

@@ -1,14 +1,14 @@
 """Where numerical stability ends, and what the code does there. `make stress`.
 
-Each check records what was measured and pass/fail; writes bench/stress.json and
-bench/stress.md. The fast checks are also assertions in tests/test_stress.py.
+Each check records what was measured and pass/fail; writes stress.json and stress.md (in
+out/bench/, or the committed bench/ with --update; stress_quick.* with --quick). The fast
+checks are also assertions in tests/test_bench.py.
 
-    python bench/stress.py [--quick]
+    python -m bench.stress [--quick] [--update | --out DIR]
 """
 
 from __future__ import annotations
 
-import argparse
 import json
 import math
 import signal
@@ -20,13 +20,14 @@ from pathlib import Path
 
 import numpy as np
 
+from bench.simulator import arguments, output_dir
 from common import paper
+from common.files import write_text
 from numerics import (AccuracyWarning, BlowUpError, LatticeState, Material, energy,
                       integrate, simulate)
 from numerics.lattice._integrators import get_method
 
-HERE = Path(__file__).parent
-ROOT = HERE.parent
+ROOT = Path(__file__).resolve().parents[1]
 BLUE, GREEN = Material.paper("blue"), Material.paper("green")
 
 
@@ -233,14 +234,14 @@ def sigint_check():
 
 def fault_counts():
     """The fault catalogue (bench/faults.py): tried / clear error / worked / problems."""
-    import faults
+    from bench import faults
 
     rows = faults.run_catalogue()
     counts = {k: sum(r[1] == k for r in rows) for k in ("clear error", "worked", "problem")}
     return {"tried": len(rows), **counts, "rows": rows}
 
 
-def main(quick=False):
+def main(quick=False, out=None):
     t0 = time.perf_counter()
     checks = (step_size_checks(quick) + amplitude_checks(quick) + singular_checks()
               + long_run_check(quick) + bad_input_checks() + sigint_check())
@@ -248,7 +249,8 @@ def main(quick=False):
     res = {"quick": quick, "wall_s": time.perf_counter() - t0, "checks": checks,
            "passed": sum(c["pass"] for c in checks), "total": len(checks), "faults": fc}
     name = "stress_quick" if quick else "stress"
-    (HERE / f"{name}.json").write_text(json.dumps(res, indent=1) + "\n")
+    out = output_dir(out=out)
+    write_text(out / f"{name}.json", json.dumps(res, indent=1) + "\n")
     lines = [f"# Stress tests ({'quick' if quick else 'full'}): {res['passed']}/{res['total']} "
              f"pass, {res['wall_s']:.0f} s", "", "| check | result | measured |", "|---|---|---|"]
     for c in checks:
@@ -263,12 +265,10 @@ def main(quick=False):
     for n, outcome, detail in fc["rows"]:
         shown = outcome if outcome != "problem" else "**problem**"
         lines.append(f"| {n} | {shown} | {detail.replace('|', '/')[:200]} |")
-    (HERE / f"{name}.md").write_text("\n".join(lines) + "\n")
+    write_text(out / f"{name}.md", "\n".join(lines) + "\n")
     print("\n".join(lines))
     return res
 
 
 if __name__ == "__main__":
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--quick", action="store_true")
-    main(ap.parse_args().quick)
+    main(*arguments(__doc__))

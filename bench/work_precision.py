@@ -1,17 +1,18 @@
 """Work-precision of every integrator, scaling with N, derivation and import cost.
 
-Measured in one run; ratios are what to read. Writes bench/results.json and PNGs
-(bench/work_precision.png, bench/scaling.png); bench/README.md says how to read them.
+Measured in one run; ratios are what to read. Writes its sections of results.json and
+work_precision.png, long_time.png (in out/bench/, or the committed bench/ with --update);
+bench/README.md says how to read them.
 
-    python bench/work_precision.py [--quick]
+    python -m bench.work_precision [--quick] [--update | --out DIR]
 """
 
 from __future__ import annotations
 
-import argparse
 import json
 import subprocess
 import sys
+import tempfile
 import time
 from pathlib import Path
 
@@ -27,10 +28,9 @@ from numerics import energy, initial_condition, integrate  # noqa: E402
 from numerics.lattice._baseline import numpy_rk4  # noqa: E402
 from numerics.lattice._integrators import get_method  # noqa: E402
 from numerics.lattice._integrate import _Stepper  # noqa: E402
-from simulator import machine  # noqa: E402  (bench/ is on sys.path as the script's folder)
+from bench.simulator import arguments, machine, output_dir, write_sections  # noqa: E402
 
-HERE = Path(__file__).parent
-ROOT = HERE.parent
+ROOT = Path(__file__).resolve().parents[1]
 CASES = {"blue-II": (Material.paper("blue"), "coupled", paper.k("blue")),
          "green-I": (Material.paper("green"), "rotation", paper.k("green"))}
 SWEEP = {"rk4": [0.4, 0.2, 0.1, 0.05, 0.025], "verlet": [0.2, 0.1, 0.05, 0.025, 0.0125],
@@ -172,8 +172,9 @@ def long_time(quick):
 def derivation_cost(quick):
     t0 = time.perf_counter()
     if not quick:
-        subprocess.run([sys.executable, "-m", "derivation", "--out",
-                        str(HERE / ".derive_tmp")], check=True, cwd=ROOT, capture_output=True)
+        with tempfile.TemporaryDirectory() as tmp:
+            subprocess.run([sys.executable, "-m", "derivation", "--out", tmp], check=True,
+                           cwd=ROOT, capture_output=True)
     derive = time.perf_counter() - t0 if not quick else None
     code = ("import time, numpy; t = time.perf_counter(); import generated.coefficients, "
             "generated.lattice_coefficients; print(time.perf_counter() - t)")
@@ -201,7 +202,8 @@ def plot(wp, path):
     plt.close(fig)
 
 
-def main(quick=False):
+def main(quick=False, out=None):
+    out = output_dir(out=out)
     t_all = time.perf_counter()
     wp = work_precision(quick)
     head = {}
@@ -221,14 +223,13 @@ def main(quick=False):
            "units": {"wall_s": "s", "state_error": "max |x - x_ref| / max |theta_ref|",
                      "energy_error_end": "|E(t_end)/E(0) - 1|", "separation_rate": "1/T",
                      "s_per_step": "s", "ns_per_site_per_step": "ns"}}
-    sim = HERE / "simulator.json"
+    sim = out / ("simulator_quick.json" if quick else "simulator.json")  # this run's
     if sim.exists():
         res["simulator"] = json.loads(sim.read_text())
     res["bench_wall_s"] = time.perf_counter() - t_all
-    name = "results_quick.json" if quick else "results.json"
-    (HERE / name).write_text(json.dumps(res, indent=1) + "\n")
+    write_sections(res, quick, out)  # top-level sections, beside speed/maps/exact_maps
     if not quick:
-        plot(wp, HERE / "work_precision.png")
+        plot(wp, out / "work_precision.png")
         fig, ax = plt.subplots(figsize=(6, 4))
         for m, d in res["long_time"]["methods"].items():
             ax.plot(d["t"], np.abs(d["relative_energy_error"]), label=m)
@@ -238,7 +239,7 @@ def main(quick=False):
         ax.set_title("long run, green case I, N = 500, dt = 0.05", fontsize=9)
         ax.legend()
         fig.tight_layout()
-        fig.savefig(HERE / "long_time.png", dpi=100)
+        fig.savefig(out / "long_time.png", dpi=100)
         plt.close(fig)
     for label, h in head.items():
         print(f"{label}: time to state error 1e-6: {h['best_ours']} {h['t_ours_s']:.3g} s, "
@@ -257,6 +258,4 @@ def main(quick=False):
 
 
 if __name__ == "__main__":
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--quick", action="store_true")
-    main(ap.parse_args().quick)
+    main(*arguments(__doc__))

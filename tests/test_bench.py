@@ -1,4 +1,7 @@
-"""Fast parts of `make stress` as assertions, and a smoke run of `make bench-quick`."""
+"""Fast parts of `make stress` as assertions, and a smoke run of `make bench-quick`.
+
+bench/ is a package (imported from the repository root, pyproject's pytest pythonpath);
+its scripts run as ``python -m bench.<script>``."""
 
 import json
 import subprocess
@@ -7,10 +10,9 @@ from pathlib import Path
 
 import pytest
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "bench"))
+from bench import simulator, stress
 
-import stress  # noqa: E402
+ROOT = Path(__file__).resolve().parents[1]
 
 
 @pytest.mark.parametrize("case,mat", [("coupled", stress.BLUE), ("rotation", stress.GREEN)])
@@ -31,11 +33,30 @@ def test_blow_up_and_bad_input_are_reported():
     assert all(c["pass"] for c in checks), [c for c in checks if not c["pass"]]
 
 
+def test_bench_writes_outside_the_git_tree_unless_asked(tmp_path):
+    # default: out/bench/ (gitignored); the committed bench/ only with --update
+    assert simulator.output_dir() == ROOT / "out" / "bench"
+    assert simulator.output_dir(update=True) == ROOT / "bench"
+    assert simulator.output_dir(out=tmp_path) == tmp_path
+    assert simulator.arguments(argv=["--quick"]) == (True, ROOT / "out" / "bench")
+    assert simulator.arguments(argv=["--update"]) == (False, ROOT / "bench")
+    with pytest.raises(SystemExit):
+        simulator.arguments(argv=["--update", "--out", str(tmp_path)])
+
+
+def test_results_sections_are_merged(tmp_path):
+    simulator.write_section("a", {"x": 1}, True, tmp_path)
+    simulator.write_sections({"b": 2, "c": 3}, True, tmp_path)
+    simulator.write_section("a", {"x": 4}, True, tmp_path)
+    assert json.loads((tmp_path / "results_quick.json").read_text()) == {
+        "a": {"x": 4}, "b": 2, "c": 3}
+
+
 def test_bench_quick_smoke(tmp_path):
-    # make bench-quick's work-precision part (< 1 min): it runs and writes its json
-    subprocess.run([sys.executable, str(ROOT / "bench" / "work_precision.py"), "--quick"],
-                   check=True, cwd=ROOT, capture_output=True, timeout=120)
-    res = json.loads((ROOT / "bench" / "results_quick.json").read_text())
+    # make bench-quick's work-precision part (< 1 min), as `make` runs it, into tmp_path
+    subprocess.run([sys.executable, "-m", "bench.work_precision", "--quick", "--out",
+                    str(tmp_path)], check=True, cwd=ROOT, capture_output=True, timeout=120)
+    res = json.loads((tmp_path / "results_quick.json").read_text())
     rows = res["work_precision"]["blue-II"]["rows"]
     assert {r["method"] for r in rows} >= {"rk4", "srkn11b", "dop853", "numpy-rk4"}
     assert res["work_precision"]["blue-II"]["reference_difference"] < 1e-8
