@@ -30,10 +30,10 @@ BENCH_ARGS ?=
 
 setup: $(STAMP)
 
+# PYTHONWARNINGS hides only setuptools' informational "Editable installation." banner.
 $(STAMP): pyproject.toml
 	@test -x $(VPY) || $(PY) -m venv $(VENV)
 	$(VPY) -m pip install -q --upgrade pip
-	@# the message filter hides only setuptools' "Editable installation." notice (not a problem)
 	PYTHONWARNINGS='ignore:Editable installation' $(VPY) -m pip install -q -e '.[dev]'
 	@touch $(STAMP)
 
