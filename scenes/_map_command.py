@@ -12,6 +12,27 @@ from numerics.lattice import checks
 from numerics.maps import MapParameters, agreement, parse_spec, run_map
 
 
+#: a map of more cells than this is refused (its theory columns alone fill memory)
+MAX_CELLS = 250_000
+#: a simulated map estimated to take longer than this needs --yes
+CONFIRM_SECONDS = 3600.0
+
+
+def _cores() -> int:
+    import os
+
+    return max(1, len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity")
+               else os.cpu_count() or 1)
+
+
+def _duration(seconds: float) -> str:
+    if seconds < 90:
+        return f"{seconds:.0f} s"
+    if seconds < 5400:
+        return f"{seconds / 60:.0f} min"
+    return f"{seconds / 3600:.1f} h"
+
+
 def plot_map(ds, ax=None):
     """Simulated verdict (white: MI) with the theories' boundaries drawn over it."""
     from ._plotting import image, plt
@@ -48,32 +69,51 @@ def run_map_command(args, log=print):
 
     from ._runner import _strict
 
+    if args.alpha is None or args.K_s is None:
+        raise ValueError("--alpha and --K-s are required (the material's inertia and shear "
+                         "stiffness)")
+    for name, v in (("--alpha", args.alpha), ("--K-s", args.K_s)):
+        checks.positive(name, v)
     k = parse_spec(args.k, "--k")
     if args.delta is not None:
         delta = parse_spec(args.delta, "--delta")
+    elif args.K_theta is not None:
+        delta = np.sort(args.K_s - parse_spec(args.K_theta, "--K-theta"))
     else:
-        delta = np.sort(args.K_s - parse_spec(args.K_theta, "--K-theta")) \
-            if args.K_s is not None else None
-    if args.alpha is None or args.K_s is None:
-        raise ValueError("--alpha and --K-s are required")
+        raise ValueError("give --K-theta SPEC or --delta SPEC (the map's second axis)")
     if args.workers is not None and args.scheduler:
         raise ValueError("give --scheduler or --workers, not both")
     if args.workers is not None:
         checks.integer("--workers", args.workers, 1, 10**4)
+    cells = len(k) * len(delta)
+    if cells > MAX_CELLS:
+        raise ValueError(f"--k and --delta ask for {cells} cells; at most {MAX_CELLS} "
+                         "(split the map into several --out folders)")
     params = MapParameters(case=args.case, alpha=args.alpha, K_s=args.K_s,
                            delta=tuple(float(d) for d in delta),
                            k=tuple(float(x) for x in k), amplitude=args.amplitude,
                            N=args.N, t_end=args.t_end, seeds=args.seeds, start=args.start,
                            theory_only=args.theory_only, block=args.block)
-    if not params.theory_only:  # every k must have a periodic chain of N sites near it
-        from numerics import snap_wavenumber
-
-        for x in params.k:
-            snap_wavenumber(x, params.N, rel_tol=0.05)
+    moved = [(a, b) for a, b in zip(params.k, params.k_simulated) if abs(a - b) > 1e-9 * a]
+    if moved:
+        log(f"note: {len(moved)} of {len(k)} k values snapped to 2 pi m / N (N = {params.N}),"
+            f" e.g. {moved[0][0]:g} -> {moved[0][1]:.6g}; simulation and theories use the "
+            "snapped k (coordinate k_simulated)")
+    if not params.theory_only:
+        n_workers = args.workers or (1 if args.scheduler else _cores())
+        est = params.estimated_seconds(n_workers)
+        log(f"map: {cells} cells x {params.seeds} seed(s), N = {params.N}, T = "
+            f"{params.t_end:g}: about {_duration(est)} on {n_workers} worker(s) "
+            "(less where MI stops a run early)")
+        if est > CONFIRM_SECONDS and not args.yes:
+            raise ValueError(f"the map would take about {_duration(est)} (> "
+                             f"{_duration(CONFIRM_SECONDS)}); add --yes to run it, or use "
+                             "fewer cells, seeds, a shorter --t-end or --theory-only")
     from ._runner import prepare_output
 
     out = prepare_output(args.out)
-    ds = run_map(params, out, args.scheduler, args.workers, log=log)
+    ds = run_map(params, out, args.scheduler, args.workers, log=log,
+                 overwrite=args.overwrite)
     summary = {"cells": int(ds["done"].size), "simulated": int(ds["done"].values.sum()),
                "agreement_with_simulation_percent": agreement(ds),
                "mi_fraction": {n.removeprefix("verdict_"): float(ds[n].values.mean())
@@ -89,6 +129,9 @@ def run_map_command(args, log=print):
     plt.close(fig)
     log(f"wrote {out / 'map.zarr'}, {out / 'map.png'}, {out / 'summary.json'}")
     if summary["simulated"]:
-        log("agreement with the simulation, % of cells: " + ", ".join(
-            f"{n} {v:.0f}" for n, v in summary["agreement_with_simulation_percent"].items()))
+        ag = summary["agreement_with_simulation_percent"]
+        log("theory verdicts that agree with the simulation: " + "; ".join(
+            f"{n} {ag[n]:.0f}% of cells ({ag[n + '_decided']:.0f}% of the "
+            f"{ag[n + '_decided_cells']} clear ones)" for n in
+            ("paper", "semidiscrete", "exact", "exact_all")))
     return ds

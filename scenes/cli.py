@@ -8,72 +8,152 @@ import time
 from pathlib import Path
 
 
+EPILOG = {
+    "coefficients": "example:\n  flexmm coefficients --alpha 2.5 --K-s 0.01851 --K-theta 0.01551 "
+                    "--k 0.81681",
+    "table": "example:\n  flexmm table --A0 1.4",
+    "scenes": "example:\n  flexmm scenes",
+    "scene": "example:\n  flexmm scene fig2 --quick --out out",
+    "run": "example:\n  flexmm run --quick --out out",
+    "point": "examples:\n  flexmm point --alpha 2.5 --K-s 0.01851 --K-theta 0.01551 --k 0.81681 "
+             "--case coupled\n  flexmm point --physical 0.01,2e-6,0.02,1e4,185,1 --k 1.0 "
+             "--case rotation --simulate --seeds 2 --out out/point",
+    "map": "example:\n  flexmm map --alpha 2.5 --K-s 0.01851 --delta -0.01:0.01:5 --k 0.3:2.9:6 "
+           "--case rotation --theory-only --out out/map",
+}
+
+
+class _Help(argparse.ArgumentDefaultsHelpFormatter, argparse.RawDescriptionHelpFormatter):
+    """Defaults shown after every option's help; the example epilog kept as written."""
+
+    def _get_help_string(self, action):
+        if action.default in (None, False) or "default" in (action.help or ""):
+            return action.help
+        return super()._get_help_string(action)
+
+
+def _sub(sub, name, help_):
+    return sub.add_parser(name, help=help_, description=help_[0].upper() + help_[1:] + ".",
+                          epilog=EPILOG[name], formatter_class=_Help)
+
+
 def _parser():
-    p = argparse.ArgumentParser(prog="flexmm", description=__doc__)
-    sub = p.add_subparsers(dest="cmd", required=True)
-    tab = sub.add_parser("table", help="NLS coefficients at the paper's two test points")
-    tab.add_argument("--A0", type=float, default=1.0, help="envelope amplitude (default 1)")
-    sub.add_parser("scenes", help="list the scenes with a description and run time")
-    one = sub.add_parser("scene", help="run one scene")
-    one.add_argument("name")
+    p = argparse.ArgumentParser(
+        prog="flexmm", description="Modulation instability in flexible mechanical "
+        "metamaterials: coefficients, MI verdicts, simulations, maps and the paper's figures.",
+        epilog="run `flexmm COMMAND --help` for a command's options and an example")
+    sub = p.add_subparsers(dest="cmd", required=True, metavar="COMMAND")
+    co = _sub(sub, "coefficients", "NLS coefficients and MI band of any material at any k")
+    _material_args(co, map_=False)
+    co.add_argument("--k", type=float, required=True, help="carrier wavenumber, rad per site "
+                    "(required)")
+    co.add_argument("--amplitude", type=float, default=0.02,
+                    help="peak rotation of the plane wave, rad (the paper's 2 eps A0)")
+    tab = _sub(sub, "table", "NLS coefficients at the paper's two test points")
+    tab.add_argument("--A0", type=float, default=1.0, help="the paper's envelope amplitude "
+                     "A0 (peak rotation 2 eps A0 with eps = 0.01)")
+    _sub(sub, "scenes", "list the scenes with a description and run time")
+    one = _sub(sub, "scene", "run one scene (one figure of the paper)")
+    import scenes
+
+    one.add_argument("name", choices=sorted(scenes.REGISTRY), metavar="NAME",
+                     help="one of: " + ", ".join(sorted(scenes.REGISTRY)))
     one.add_argument("--replot", action="store_true",
                      help="redraw the figure from OUT/NAME/data.h5 without computing")
-    for sp_ in (one, sub.add_parser("run", help="run every scene and write out/report.md")):
+    for sp_ in (one, _sub(sub, "run", "run every scene and write OUT/report.md")):
         sp_.add_argument("--quick", action="store_true",
                          help="reduced N / t_end / grids: seconds per scene")
-        sp_.add_argument("--out", default="out", help="output folder (default: out)")
-        sp_.add_argument("--seed", type=int, default=0, help="noise seed (default 0)")
+        sp_.add_argument("--out", default="out", help="output folder")
+        sp_.add_argument("--seed", type=int, default=0, help="noise seed")
         sp_.add_argument("--force", action="store_true", help="recompute cached simulations")
     _point_parser(sub)
     _map_parser(sub)
     return p
 
 
-def _material_args(p):
-    p.add_argument("--alpha", type=float, help="inertia parameter alpha")
-    p.add_argument("--K-s", dest="K_s", type=float, help="shear stiffness K_s = k_s / k_l")
-    p.add_argument("--case", required=True, choices=("rotation", "coupled"))
+def _material_args(p, map_=False):
+    g = p.add_argument_group("material (required: --alpha, --K-s and --K-theta"
+                             + (" or --delta" if map_ else "") + "; or --physical)")
+    g.add_argument("--alpha", type=float, help="inertia parameter alpha = a sqrt(m / (4 J))")
+    g.add_argument("--K-s", dest="K_s", type=float, help="shear stiffness K_s = k_s / k_l")
+    if map_:
+        g.add_argument("--K-theta", dest="K_theta", help="SPEC of the bending stiffness "
+                       "K_theta = 4 k_theta / (k_l a^2): v1,v2,... or start:stop:num")
+        g.add_argument("--delta", help="SPEC of delta = K_s - K_theta instead of --K-theta")
+    else:
+        g.add_argument("--K-theta", dest="K_theta", type=float,
+                       help="bending stiffness K_theta = 4 k_theta / (k_l a^2)")
+        g.add_argument("--physical", metavar="m,J,a,k_l,k_s,k_theta",
+                       help="physical units instead: mass (kg), moment of inertia (kg m^2), "
+                            "cell length (m), and the three spring stiffnesses (N/m, N/m, "
+                            "N m/rad); answers then also in seconds and metres")
+
+
+def _experiment_args(p):
+    p.add_argument("--case", required=True, choices=("rotation", "coupled"),
+                   help="(required) rotation: case I, U = 0; coupled: case II, U and theta")
     p.add_argument("--amplitude", type=float, default=0.02,
-                   help="peak rotation of the plane wave, rad (2 eps A0; default 0.02)")
+                   help="peak rotation of the plane wave, rad (the paper's 2 eps A0)")
     p.add_argument("--start", choices=("paper", "travelling"), default="paper",
-                   help="eq. IC (U at rest) or the exact travelling wave (default paper)")
-    p.add_argument("--N", type=int, default=500, help="sites of the periodic chain (500)")
+                   help="initial state: eq. IC of the paper (U at rest), or the exact "
+                        "travelling wave")
+    p.add_argument("--N", type=int, default=500, help="sites of the periodic chain; k is "
+                   "snapped to the nearest 2 pi m / N")
 
 
 def _point_parser(sub):
-    p = sub.add_parser("point", help="the three theories of MI at one point (and a "
-                       "simulation with --simulate)")
+    p = _sub(sub, "point", "MI at one point of any material: the theories' verdicts and "
+             "gain curves (and a simulation that checks them, with --simulate)")
     _material_args(p)
-    p.add_argument("--K-theta", dest="K_theta", type=float,
-                   help="bending stiffness K_theta = 4 k_theta / (k_l a^2)")
-    p.add_argument("--physical", metavar="m,J,a,k_l,k_s,k_theta",
-                   help="physical units instead: mass, moment of inertia, cell length and "
-                        "the three spring stiffnesses (Material.from_physical)")
-    p.add_argument("--k", type=float, required=True, help="carrier wavenumber, rad per site")
+    _experiment_args(p)
+    p.add_argument("--k", type=float, required=True,
+                   help="(required) carrier wavenumber, rad per site, in (0, pi)")
     p.add_argument("--simulate", action="store_true", help="measure sigma(q) too")
     p.add_argument("--t-end", dest="t_end", type=float,
-                   help="run length (default: 9 e-foldings of the exact peak gain)")
-    p.add_argument("--seeds", type=int, default=4, help="noise seeds (default 4)")
-    p.add_argument("--out", help="folder for point.json (and point.png with --simulate)")
+                   help="run length in T (default: 9 e-foldings of the exact peak gain)")
+    p.add_argument("--seeds", type=int, default=4, help="noise seeds of the simulation")
+    p.add_argument("--out", help="folder for point.json and point.png (default: none, "
+                   "print only)")
 
 
 def _map_parser(sub):
-    p = sub.add_parser("map", help="an MI map over (delta, k), simulated on Dask")
-    _material_args(p)
-    g = p.add_mutually_exclusive_group(required=True)
-    g.add_argument("--delta", help="SPEC of delta = K_s - K_theta: v1,v2,... or start:stop:num")
-    g.add_argument("--K-theta", dest="K_theta", help="SPEC of K_theta instead of delta")
-    p.add_argument("--k", required=True, help="SPEC of k (rad per site); each k is snapped "
-                   "to 2 pi m / N for the simulation (k_simulated in the dataset)")
-    p.add_argument("--t-end", dest="t_end", type=float, default=5000.0, help="run length")
-    p.add_argument("--seeds", type=int, default=1, help="noise seeds per cell (default 1)")
-    p.add_argument("--out", default="out/map", help="folder of map.zarr (default out/map)")
+    p = _sub(sub, "map", "an MI map over (delta, k): the theories' verdicts and, unless "
+             "--theory-only, simulations on a Dask cluster")
+    _material_args(p, map_=True)
+    _experiment_args(p)
+    p.add_argument("--k", required=True, help="(required) SPEC of k (rad per site): "
+                   "v1,v2,... or start:stop:num; each k is snapped to 2 pi m / N "
+                   "(k_simulated in the dataset; the theories use it too)")
+    p.add_argument("--t-end", dest="t_end", type=float, default=5000.0, help="run length, T")
+    p.add_argument("--seeds", type=int, default=1, help="noise seeds per cell")
+    p.add_argument("--out", default="out/map", help="folder of map.zarr")
+    p.add_argument("--overwrite", action="store_true",
+                   help="replace a map.zarr in OUT that holds a map with other parameters")
+    p.add_argument("--yes", action="store_true",
+                   help="run even when the estimated run time exceeds one hour")
     p.add_argument("--scheduler", help="address of a running Dask scheduler "
                    "(tcp://host:8786); default: a LocalCluster on this machine")
     p.add_argument("--workers", type=int, help="LocalCluster workers (default: the cores)")
     p.add_argument("--theory-only", action="store_true",
                    help="the theories' verdicts only: no simulation")
-    p.add_argument("--block", type=int, default=4, help="cells per task (default 4)")
+    p.add_argument("--block", type=int, default=4, help="cells per task")
+
+
+def _join_negative_values(argv: list) -> list:
+    """``--delta -0.01:0.01:5`` as ``--delta=-0.01:0.01:5``: argparse would read a value that
+    starts with '-' and holds ':' or ',' as an option."""
+    out, i = [], 0
+    while i < len(argv):
+        a = argv[i]
+        if (a.startswith("--") and "=" not in a and i + 1 < len(argv)
+                and argv[i + 1][:1] == "-" and argv[i + 1][1:2] in "0123456789."
+                and argv[i + 1][1:2] != ""):
+            out.append(f"{a}={argv[i + 1]}")
+            i += 2
+            continue
+        out.append(a)
+        i += 1
+    return out
 
 
 def _print_checks(summary):
@@ -83,16 +163,22 @@ def _print_checks(summary):
 
 def main(argv=None) -> int:
     """Run the CLI; returns the exit code (0 ok, 2 bad input or file system, 130 Ctrl-C)."""
-    args = _parser().parse_args(argv)
+    args = _parser().parse_args(_join_negative_values(sys.argv[1:] if argv is None
+                                                      else list(argv)))
     if getattr(args, "out", None) is not None:
         args.out = args.out or "."  # --out '' is the current folder, and says so
     try:
         return _run(args)
     except KeyboardInterrupt:
-        cache = f"{args.out}/.cache" if hasattr(args, "out") else "the cache"
-        print(f"flexmm: interrupted; finished simulations are kept in {cache} and the one "
-              "running was checkpointed there: run the same command again to continue",
-              file=sys.stderr)
+        if args.cmd in ("scene", "run"):
+            print(f"flexmm: interrupted; finished simulations are kept in {args.out}/.cache "
+                  "and the one running was checkpointed there: run the same command again "
+                  "to continue", file=sys.stderr)
+        elif args.cmd == "map":
+            print(f"flexmm: interrupted; finished cells are kept in {args.out}/map.zarr: run "
+                  "the same command again to continue", file=sys.stderr)
+        else:
+            print("flexmm: interrupted", file=sys.stderr)
         return 130
     except (ValueError, TypeError, FloatingPointError) as exc:
         print(f"flexmm: error: {exc}", file=sys.stderr)
@@ -135,6 +221,13 @@ def _dispatch(args, scenes) -> int:
         from .table import format_table
 
         print(format_table(args.A0))
+        return 0
+    if args.cmd == "coefficients":
+        from .coefficients import format_coefficients
+        from .point import material_from
+
+        mat, units = material_from(args)
+        print(format_coefficients(mat, args.k, args.amplitude, units))
         return 0
     if args.cmd == "scenes":
         width = max(len(n) for n in scenes.REGISTRY)

@@ -14,7 +14,11 @@ from common import paper
 from numerics import Material, simulate, snap_wavenumber
 from numerics.lattice import GROWTH_THRESHOLD, band_summary
 from numerics.maps import growth_of
-from numerics.theory import THEORIES, measure_gain, measurement_length, theory_gain
+from numerics.lattice import checks
+from numerics.theory import (PAPER_START, THEORIES, measure_gain, measurement_length,
+                             theory_gain)
+
+from .coefficients import coefficients
 
 #: offsets searched for the theories' bands (lattice units)
 Q_GRID = np.linspace(0, math.pi, 3001)
@@ -22,9 +26,12 @@ Q_GRID = np.linspace(0, math.pi, 3001)
 EPS = paper.EPS
 
 
-def material_from(args) -> Material:
-    """From --alpha/--K-s/--K-theta, or --physical m,J,a,k_l,k_s,k_theta."""
-    if args.physical:
+def material_from(args):
+    """(Material, Units) from --alpha/--K-s/--K-theta, or --physical m,J,a,k_l,k_s,k_theta
+    (then answers are also given in seconds and metres)."""
+    from .coefficients import Units
+
+    if getattr(args, "physical", None):
         try:
             values = [float(v) for v in args.physical.split(",")]
         except ValueError:
@@ -35,58 +42,120 @@ def material_from(args) -> Material:
                              f"{len(values)}")
         if any(v is not None for v in (args.alpha, args.K_s, args.K_theta)):
             raise ValueError("give --physical or --alpha/--K-s/--K-theta, not both")
-        return Material.from_physical(*values)
+        mat = Material.from_physical(*values)
+        m, _, a, k_l = values[:4]
+        return mat, Units.physical(m, k_l, a)
     missing = [n for n, v in (("--alpha", args.alpha), ("--K-s", args.K_s),
                               ("--K-theta", args.K_theta)) if v is None]
     if missing:
         raise ValueError(f"missing {', '.join(missing)} (or give --physical m,J,a,k_l,k_s,"
                          "k_theta)")
-    return Material(args.alpha, args.K_s, args.K_theta)
+    for name, v in (("--alpha", args.alpha), ("--K-s", args.K_s), ("--K-theta", args.K_theta)):
+        if not (math.isfinite(v) and v > 0):
+            raise ValueError(f"{name} must be a finite number > 0, got {v}")
+    return Material(args.alpha, args.K_s, args.K_theta), Units()
 
 
-def theories(material, case, k, amplitude) -> dict:
-    """{theory: curve, band summary, verdict} at offsets Q_GRID - k."""
+#: points of the paper-start exact curve (Hill's method on the torus: ~0.13 s per offset):
+#: this many over the zone, and as many again around the peak resonance_map locates
+START_CURVE_POINTS = 24
+
+
+def _start_grid(material, case, k, amplitude):
+    """q of the paper-start curve: a coarse zone grid plus a dense window around the peak
+    that ``resonance_map`` finds from the bands' resonance conditions (a coarse grid alone
+    misses bands narrower than its spacing)."""
+    from numerics.maps import resonance_map
+
+    res = resonance_map(k, material.delta, case, material.alpha, material.K_s, amplitude,
+                        start="paper")
+    qp = float(res["q_peak"])
+    q = [np.linspace(0.02, math.pi - 0.02, START_CURVE_POINTS)]
+    if math.isfinite(qp) and qp != 0:
+        w = 1.5 * abs(qp)
+        q.append(k + np.linspace(-w, w, 2 * START_CURVE_POINTS + 1))
+        q.append([k + qp, k - qp])
+    q = np.unique(np.concatenate(q))
+    return q[(q > 0) & (q < math.pi) & (np.abs(q - k) > 1e-6)]
+
+
+def theories(material, case, k, amplitude, start="travelling") -> dict:
+    """{theory: curve over Q_GRID, band summary, verdict}: the paper NLS, the semi-discrete
+    NLS, and the exact lattice theory for ``start`` (the travelling wave; with "paper" the
+    state eq. `IC` launches, on START_CURVE_POINTS offsets)."""
     A0 = amplitude / (2 * EPS)
+    names = THEORIES if start == "travelling" else THEORIES[:2] + (PAPER_START,)
     out = {}
-    for th in THEORIES:
+    for th in names:
         try:
+            q = Q_GRID if th != PAPER_START else _start_grid(material, case, k, amplitude)
             with np.errstate(all="ignore"):
-                curve = theory_gain(th, material, case, k, Q_GRID - k, EPS, A0)
-        except ArithmeticError as exc:  # no plane wave (a resonance): say so
-            curve = np.full(Q_GRID.shape, np.nan)
-            out[th] = {"curve": curve, "verdict": f"no plane wave ({exc})"[:60],
+                curve = theory_gain(th, material, case, k, q - k, EPS, A0)
+        except ArithmeticError as exc:  # no plane wave (a resonance): say so, no verdict
+            out[th] = {"q": q, "curve": np.full(q.shape, np.nan),
+                       "verdict": "undefined", "reason": f"no plane wave: {exc}",
                        "peak_gain": float("nan"), "peak_offset": float("nan"),
                        "band_edge": float("nan")}
             continue
         if not np.all(np.isfinite(curve)):  # delta = 0 (g1 = 0) or k^2 = omega^2
-            out[th] = {"curve": np.nan_to_num(curve), "verdict": "undefined (singular g)",
+            out[th] = {"q": q, "curve": curve, "verdict": "undefined",
+                       "reason": "singular NLS coefficient (g1 = 0 or a resonance)",
                        "peak_gain": float("nan"), "peak_offset": float("nan"),
                        "band_edge": float("nan")}
             continue
-        s = band_summary(Q_GRID, curve, k)
-        out[th] = {"curve": curve, "verdict": "MI" if s["peak_gain"] > 0 else "stable", **s}
+        s = band_summary(q, curve, k)
+        out[th] = {"q": q, "curve": curve, "verdict": "MI" if s["peak_gain"] > 0 else "stable",
+                   **s}
     return out
 
 
+def snapped(k_requested: float, N: int):
+    """k on a periodic chain of N sites: the nearest 2 pi m / N, whatever k was typed."""
+    k_requested = checks.real("--k", k_requested, 0.0, math.pi)
+    N = checks.integer("--N", N, 3, 10**8 + 1)
+    return snap_wavenumber(k_requested, N, rel_tol=math.inf)
+
+
 def run_point(args, log=print) -> dict:
-    mat = material_from(args)
-    k_req = args.k
-    N = args.N
-    k, m = snap_wavenumber(k_req, N) if args.simulate else (float(k_req), None)
-    if args.simulate and abs(k - k_req) > 1e-12:
-        log(f"note: k = {k_req:g} snapped to 2 pi m / N = {k:.6g} (m = {m}, N = {N}), the "
-            "nearest wavenumber a periodic chain of N sites carries; every row below uses it")
-    th = theories(mat, args.case, k, args.amplitude)
+    mat, units = material_from(args)
+    amplitude = checks.real("--amplitude", args.amplitude, 0.0, 1.5)
+    N, k_req = args.N, args.k
+    k, m = snapped(k_req, N)
+    if args.simulate:
+        checks.integer("--seeds", args.seeds, 1, 1000)
+        if args.t_end is not None:
+            checks.real("--t-end", args.t_end, 0.0, 1e7)
+    A0 = amplitude / (2 * EPS)
+    co = coefficients(mat, k, amplitude)["semi-discrete"]
+    log(f"material: alpha = {mat.alpha:g}, K_s = {mat.K_s:g}, K_theta = {mat.K_theta:g} "
+        f"(delta = {mat.delta:.4g}); case {args.case}")
+    log(f"carrier:  k = {units.wavenumber(k)} = 2 pi {m}/{N}"
+        + (f" (asked {k_req:g}: the nearest a chain of N = {N} sites carries)"
+           if abs(k - k_req) > 1e-9 * k_req else "")
+        + f"; amplitude {amplitude:g} rad (peak rotation; eps = {EPS:g}, A0 = {A0:.4g}); "
+        f"start {args.start}")
+    log(f"NLS (semi-discrete): omega = {co['omega']:.6g} 1/T, v_g = {co['v_g']:.4g} site/T, "
+        f"g1 = {co['g1']:.4g}, g2 = {co[args.case]['g2']:.4g}, g = {co[args.case]['g']:.4g}")
+    log(f"units:    {units.describe()}")
+    th = theories(mat, args.case, k, amplitude, args.start)
     result = {"material": {"alpha": mat.alpha, "K_s": mat.K_s, "K_theta": mat.K_theta,
                            "delta": mat.delta},
-              "case": args.case, "k": k, "k_requested": k_req, "amplitude": args.amplitude,
-              "theories": {n: {key: v for key, v in t.items() if key != "curve"}
-                           for n, t in th.items()}}
+              "case": args.case, "N": N, "m": m, "k": k, "k_requested": k_req,
+              "amplitude": amplitude, "eps": EPS, "A0": A0, "start": args.start,
+              "units": {"time": "T = t sqrt(k_l/m)", "gain": "1/T", "wavenumber": "rad/site",
+                        "seconds_per_T": units.seconds_per_T,
+                        "metres_per_site": units.metres_per_site},
+              "semidiscrete_nls": {"omega": co["omega"], "v_g": co["v_g"], "g1": co["g1"],
+                                   "g2": co[args.case]["g2"], "g": co[args.case]["g"]},
+              "theories": {n: {key: (v.tolist() if isinstance(v, np.ndarray) else v)
+                               for key, v in t.items()} for n, t in th.items()}}
     rows = [(n, t["verdict"], t["peak_gain"], t["peak_offset"], t["band_edge"])
             for n, t in th.items()]
+    meas = None
     if args.simulate:
-        exact = th["exact lattice"]["peak_gain"]
-        t_end = args.t_end or measurement_length(exact)
+        exact_name = "exact lattice" if args.start == "travelling" else PAPER_START
+        exact = th[exact_name]["peak_gain"]
+        t_end = args.t_end or measurement_length(exact if math.isfinite(exact) else 0.0)
         runs = []
 
         def sim(**kw):
@@ -95,7 +164,7 @@ def run_point(args, log=print) -> dict:
             return run
 
         meas = measure_gain(sim, range(args.seeds), material=mat, case=args.case, N=N, k=k,
-                            amplitude=args.amplitude, t_end=t_end,
+                            amplitude=amplitude, t_end=t_end,
                             save_every=5.0, start=args.start, progress=None,
                             energy_tolerance=1.0)
         growths = [growth_of(r.t, r.theta_hat, r.U_hat, r.m, r.N) for r in runs]
@@ -106,52 +175,76 @@ def run_point(args, log=print) -> dict:
                      "MI" if verdict else "stable", s["peak_gain"], s["peak_offset"],
                      s["band_edge"]))
         result["simulated"] = {"verdict": "MI" if verdict else "stable", **s, "t_end": t_end,
-                               "N": N, "seeds": args.seeds, "start": args.start,
+                               "seeds": args.seeds,
                                "growth": [g["growth"] for g in growths],
                                "growth_field": [g["growth_field"] for g in growths],
-                               "criterion": f"growth > {GROWTH_THRESHOLD:g}x (the scenes')"}
-        if args.out:
-            _figure(Path(args.out), th, meas, k, args)
-    log(_table(rows))
+                               "criterion": f"MI when the largest non-carrier theta or U "
+                                            f"component grows more than "
+                                            f"{GROWTH_THRESHOLD:g}x within t_end",
+                               **({"q": meas["q"].tolist(), "sigma": meas["sigma"].tolist(),
+                                   "sigma_std": meas["sigma_std"].tolist()} if meas else {})}
+    log("")
+    log(_table(rows, units))
+    for n, t in th.items():
+        if "reason" in t:
+            log(f"{n}: {t['reason']}")
+    best = max((r for r in rows if math.isfinite(r[2]) and r[2] > 0), key=lambda r: r[2],
+               default=None)
+    if best is not None:
+        q = best[3]
+        log(f"fastest growth ({best[0]}): sidebands at k + q = {k + q:.4g} and k - q = "
+            f"{k - q:.4g} rad/site, e-folding time {units.time(1 / best[2])}")
     if args.out:
         out = Path(args.out)
         out.mkdir(parents=True, exist_ok=True)
         from ._runner import _strict
 
+        _figure(out, th, meas, k, args, amplitude)
         write_text(out / "point.json", json.dumps(_strict(result), indent=2) + "\n")
-        log(f"wrote {out / 'point.json'}" + (f" and {out / 'point.png'}" if args.simulate
-                                             else ""))
+        log(f"wrote {out / 'point.json'} and {out / 'point.png'}")
     return result
 
 
-def _table(rows) -> str:
-    head = ("theory", "verdict", "peak gain", "at q - k", "half-gain edge q - k")
-    cells = [head] + [(r[0], r[1], f"{r[2]:.4g}", f"{r[3]:.4g}", f"{r[4]:.4g}") for r in rows]
+def _table(rows, units=None) -> str:
+    head = ("theory", "verdict", "peak gain (1/T)", "e-folding (T)", "at q - k (rad/site)",
+            "half-gain edge q - k")
+    cells = [head] + [(r[0], r[1], f"{r[2]:.4g}",
+                       f"{1 / r[2]:.4g}" if math.isfinite(r[2]) and r[2] > 0 else "-",
+                       f"{r[3]:.4g}", f"{r[4]:.4g}") for r in rows]
     widths = [max(len(c[i]) for c in cells) for i in range(len(head))]
     lines = ["  ".join(c.ljust(w) for c, w in zip(row, widths)) for row in cells]
     lines.insert(1, "  ".join("-" * w for w in widths))
     return "\n".join(lines)
 
 
-def _figure(out, th, meas, k, args):
+def _figure(out, th, meas, k, args, amplitude):
     from common.files import atomic_write
 
     from ._plotting import plt
 
-    fig, ax = plt.subplots(figsize=(7, 4))
+    fig, ax = plt.subplots(figsize=(7, 4), layout="constrained")
     if meas:
         ax.errorbar(meas["q"], meas["sigma"], yerr=meas["sigma_std"], fmt=".", ms=3, lw=0.5,
-                    label=f"measured ({meas['seeds']} seeds)")
+                    label=f"simulated ({meas['seeds']} seeds)")
     for (name, t), style in zip(th.items(), ("k--", "C2-", "C3-")):
-        ax.plot(Q_GRID, t["curve"], style, lw=1, label=name)
-    top = max(max(t["curve"].max() for t in th.values()), 1e-12)
-    ax.set_ylim(-0.1 * top, 1.4 * top)
-    ax.set_xlabel("q (rad per site)")
-    ax.set_ylabel("growth rate sigma (1/T)")
-    ax.set_title(f"case {args.case}, k = {k:.4g}, amplitude {args.amplitude:g}", fontsize=9)
+        ax.plot(t["q"], t["curve"], style, lw=1, label=f"{name} (theory)")
+    tops = [np.nanmax(t["curve"]) for t in th.values() if np.any(np.isfinite(t["curve"]))]
+    if meas:
+        tops.append(float(np.max(meas["sigma"])))
+    top = max([v for v in tops if np.isfinite(v)], default=0.0)
+    ax.axvline(k, color="0.6", lw=0.8, ls=":", label=f"carrier $k$ = {k:.4g}")
+    if top <= 0:  # nothing grows: say so instead of an empty plot on a 1e-12 axis
+        ax.set_ylim(-1, 1)
+        ax.text(0.5, 0.6, "stable: no growing sideband in any theory" +
+                (" or the simulation" if meas else ""), transform=ax.transAxes,
+                ha="center", fontsize=10)
+    else:
+        ax.set_ylim(-0.1 * top, 1.4 * top)
+    ax.set_xlabel(r"sideband wavenumber $q$ (rad/site)")
+    ax.set_ylabel(r"growth rate $\sigma$ (1/T)")
+    ax.set_title(f"case {args.case}, $k$ = {k:.4g}, amplitude {amplitude:g} rad, "
+                 f"start {args.start}", fontsize=9)
     ax.legend(fontsize=7)
-    fig.tight_layout()
-    out.mkdir(parents=True, exist_ok=True)
     with atomic_write(out / "point.png", mode=None) as tmp:
         fig.savefig(tmp, format="png", dpi=110)
     plt.close(fig)

@@ -113,13 +113,59 @@ def test_theory_only_map_never_starts_the_simulator(tmp_path, monkeypatch):
 
 
 def test_point_prints_three_theories(capsys):
-    assert cli(["point", "--alpha", "2.5", "--K-s", "0.01851", "--K-theta", "0.01551",
-                "--k", "0.81681", "--case", "coupled"]) == 0
+    blue = ["point", "--alpha", "2.5", "--K-s", "0.01851", "--K-theta", "0.01551",
+            "--k", "0.81681", "--case", "coupled"]
+    assert cli(blue + ["--start", "travelling"]) == 0
     out = capsys.readouterr().out
     for name in ("paper NLS", "semi-discrete NLS", "exact lattice"):
         assert name in out
     # the blue point, case II: the exact peak gain of gain-theories (0.00324)
     assert "0.00324" in out
+    # the default start is eq. IC: its own exact theory (gain-theories' paper-start peak
+    # 0.00307, measured to 0.1%), not the travelling wave's
+    assert cli(blue) == 0
+    out = capsys.readouterr().out
+    row = next(ln for ln in out.splitlines() if ln.startswith("exact lattice, paper start"))
+    assert abs(float(row.split()[5]) - 0.00307) < 0.5e-5  # the report's 3 digits
+    assert "K_theta = 0.01551" in out and "amplitude 0.02 rad" in out  # inputs echoed
+
+
+def test_any_k_is_snapped_and_carried(tmp_path, capsys):
+    """k = 1.0 is no 2 pi m / 500: point and map snap it and say so, and both k's are kept."""
+    import json
+
+    assert cli(["point", "--alpha", "2.5", "--K-s", "0.01851", "--K-theta", "0.02151",
+                "--k", "1.0", "--case", "rotation", "--out", str(tmp_path / "p")]) == 0
+    res = json.loads((tmp_path / "p" / "point.json").read_text())
+    assert res["k_requested"] == 1.0 and res["m"] == 80
+    assert abs(res["k"] - 2 * np.pi * 80 / 500) < 1e-15
+    assert (tmp_path / "p" / "point.png").stat().st_size > 0  # always drawn
+    assert len(res["theories"]["paper NLS"]["curve"]) == len(res["theories"]["paper NLS"]["q"])
+    assert cli(["map", "--alpha", "2.5", "--K-s", "0.01851", "--delta", "-0.003,0.003",
+                "--k", "0.25:2.9:10", "--case", "rotation", "--theory-only",
+                "--out", str(tmp_path / "m")]) == 0
+    import xarray as xr
+
+    ds = xr.open_zarr(tmp_path / "m" / "map.zarr")
+    m = np.round(ds["k_simulated"].values * 500 / (2 * np.pi))
+    np.testing.assert_allclose(ds["k_simulated"].values, 2 * np.pi * m / 500, rtol=1e-15)
+    np.testing.assert_allclose(ds["k"].values, np.linspace(0.25, 2.9, 10))
+    # two k's on one lattice wavenumber are refused before anything is written
+    assert cli(["map", "--alpha", "2.5", "--K-s", "0.01851", "--delta", "0.003",
+                "--k", "0.25,0.2501", "--case", "rotation", "--out", str(tmp_path / "d")]) == 2
+    assert "both snap" in capsys.readouterr().err and not (tmp_path / "d").exists()
+
+
+def test_map_refuses_a_long_run_without_yes_and_names_overwrite(tmp_path, capsys):
+    base = ["map", "--alpha", "2.5", "--K-s", "0.01851", "--delta", "0.003",
+            "--k", "0.5,1.0", "--case", "rotation", "--out", str(tmp_path)]
+    assert cli(base + ["--t-end", "1e7"]) == 2
+    assert "--yes" in capsys.readouterr().err
+    assert not (tmp_path / "map.zarr").exists()
+    assert cli(base + ["--theory-only"]) == 0
+    assert cli(base + ["--theory-only", "--amplitude", "0.03"]) == 2
+    assert "--overwrite" in capsys.readouterr().err
+    assert cli(base + ["--theory-only", "--amplitude", "0.03", "--overwrite"]) == 0
 
 
 def test_point_physical_units_and_bad_input(capsys):

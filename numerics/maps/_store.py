@@ -22,7 +22,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..lattice import Material
+from ..lattice import Material, snap_wavenumber
 from ..lattice import checks
 from ..lattice._analysis import GROWTH_THRESHOLD, grows_beyond_threshold
 
@@ -33,11 +33,18 @@ FIELD_CODES = {"theta": 0, "U": 1}
 EXACT_OFFSETS = np.linspace(0.005, math.pi, 400)
 #: k values per task (one delta row is split into blocks of this many cells)
 DEFAULT_BLOCK = 4
+#: seconds one simulated cell takes on one core of a 2-core laptop-class machine at
+#: N = 500, T = 5000 (bench/results.json "maps": 0.86 s), for the run-time estimate
+CELL_SECONDS = 0.9
 CRITERION = (f"MI when the largest non-carrier, non-harmonic component (theta; U: its "
              f"non-forced components, from its level at 5% of the run) grows more than "
              f"{GROWTH_THRESHOLD:g}x over the run, relative to the carrier (the scenes' "
              "criterion); a run stops as soon as that happens (the verdict is then certain)."
              " With several seeds: the verdict of the majority, the median growth.")
+
+
+#: values per map axis at most (a SPEC's num)
+MAX_AXIS = 100_000
 
 
 def parse_spec(text: str, name: str) -> np.ndarray:
@@ -50,6 +57,9 @@ def parse_spec(text: str, name: str) -> np.ndarray:
             if len(parts) != 3:
                 raise ValueError
             start, stop, num = float(parts[0]), float(parts[1]), int(parts[2])
+            if num > MAX_AXIS:
+                raise ValueError(f"{name}: SPEC {text!r} asks for {num} values; at most "
+                                 f"{MAX_AXIS} per axis")
             if num < 1 or (num > 1 and start == stop):
                 raise ValueError
             values = np.linspace(start, stop, num)
@@ -103,6 +113,28 @@ class MapParameters:
             raise ValueError(f"k must lie in (0, pi), got {self.k}")
         if np.any(self.K_s - d <= 0):
             raise ValueError(f"K_theta = K_s - delta must be > 0: delta < K_s = {self.K_s}")
+        snapped = self.k_simulated
+        for j in range(1, len(snapped)):
+            if snapped[j] == snapped[j - 1]:
+                m = round(snapped[j] * self.N / (2 * math.pi))
+                raise ValueError(
+                    f"--k: {self.k[j - 1]:g} and {self.k[j]:g} both snap to 2 pi {m}/{self.N}"
+                    f" = {snapped[j]:.6g}, the nearest wavenumber of a chain of N = {self.N}"
+                    " sites; give fewer k values or a larger --N")
+
+    @property
+    def k_simulated(self) -> tuple:
+        """Each k snapped to the nearest 2 pi m / N: the wavenumber a periodic chain of N
+        sites carries, which the simulation runs and the theories are evaluated at."""
+        return tuple(snap_wavenumber(x, self.N, rel_tol=math.inf)[0] for x in self.k)
+
+    def estimated_seconds(self, workers: int = 1) -> float:
+        """Rough run time of the simulations (CELL_SECONDS per cell at N = 500, T = 5000,
+        scaled by N t_end and the seeds; the early stop of MI cells makes it shorter)."""
+        if self.theory_only:
+            return 0.0
+        cells = len(self.k) * len(self.delta) * self.seeds
+        return cells * CELL_SECONDS * (self.N / 500) * (self.t_end / 5000) / max(workers, 1)
 
     @property
     def A0(self) -> float:
@@ -126,7 +158,7 @@ def simulate_block(params: MapParameters, i: int, js: list) -> dict:
     mat = Material(params.alpha, params.K_s, params.K_s - params.delta[i])
     rows = []
     for j in js:
-        runs = [simulate_cell(mat, params.case, params.k[j], params.N, params.t_end,
+        runs = [simulate_cell(mat, params.case, params.k_simulated[j], params.N, params.t_end,
                               params.amplitude, params.noise, seed, params.start,
                               params.dt, params.method) for seed in range(params.seeds)]
         verdict = sum(r["verdict_simulated"] for r in runs) * 2 > len(runs)
@@ -137,8 +169,7 @@ def simulate_block(params: MapParameters, i: int, js: list) -> dict:
                      "growth_q": float(top["growth_q"]),
                      "t_simulated": float(max(r["t_simulated"] for r in runs)),
                      "peak_gain": float(np.nanmedian([r["peak_gain"] for r in runs]))
-                     if any(np.isfinite(r["peak_gain"]) for r in runs) else float("nan"),
-                     "k_simulated": float(top["k"])})
+                     if any(np.isfinite(r["peak_gain"]) for r in runs) else float("nan")})
     return {"i": i, "js": list(js), "rows": rows}
 
 
@@ -162,8 +193,6 @@ def _empty_dataset(params: MapParameters, theory: dict):
                                    "fit) where the simulation says MI",
                                    "units": "1/T (lattice time)"}),
         "t_simulated": (dims, fl(), {"units": "T (lattice time)"}),
-        "k_simulated": (dims, fl(), {"long_name": "k snapped to 2 pi m / N",
-                                     "units": "rad per site"}),
         "done": (dims, np.zeros(shape, bool), {"long_name": "cell simulated"}),
     }
     for name, values in theory.items():
@@ -173,7 +202,12 @@ def _empty_dataset(params: MapParameters, theory: dict):
                                f"{GROWTH_THRESHOLD:g}x within t_end"})
         data[name] = (dims, values, attrs)
     coords = {"delta": ("delta", np.asarray(params.delta), {"long_name": "K_s - K_theta"}),
-              "k": ("k", np.asarray(params.k), {"units": "rad per site"})}
+              "k": ("k", np.asarray(params.k), {"long_name": "k as requested",
+                                                "units": "rad per site"}),
+              "k_simulated": ("k", np.asarray(params.k_simulated),
+                              {"long_name": "k snapped to 2 pi m / N: the wavenumber simulated "
+                                            "and at which the theories are evaluated",
+                               "units": "rad per site"})}
     return xr.Dataset(data, coords=coords, attrs=params.attrs())
 
 
@@ -185,7 +219,7 @@ def theory_columns(params: MapParameters) -> dict:
     from generated import lattice_coefficients as lattice_nls
     from ..theory import stability_map
 
-    K, D = np.meshgrid(params.k, params.delta, indexing="xy")
+    K, D = np.meshgrid(params.k_simulated, params.delta, indexing="xy")
     Kt = params.K_s - D
     gains = {}
     for name, nls in (("paper", continuum_nls), ("semidiscrete", lattice_nls)):
@@ -207,11 +241,29 @@ def theory_columns(params: MapParameters) -> dict:
     return out
 
 
-def open_or_create(path: Path, params: MapParameters):
-    """The store's dataset: an existing one with the same parameters (to resume), or a
-    new one with the theory columns filled in."""
+def _same_map(path: Path, params: MapParameters) -> bool:
     import xarray as xr
 
+    try:
+        ds = xr.open_zarr(path, consolidated=False)
+    except Exception:  # noqa: BLE001 - unreadable: not the same map
+        return False
+    return (np.array_equal(ds["delta"].values, params.delta)
+            and np.array_equal(ds["k"].values, params.k)
+            and all(ds.attrs.get(n) == v for n, v in params.attrs().items()
+                    if n not in ("theory_only",)))
+
+
+def open_or_create(path: Path, params: MapParameters, overwrite: bool = False):
+    """The store's dataset: an existing one with the same parameters (to resume), or a
+    new one with the theory columns filled in (``overwrite``: replace a store that holds
+    another map)."""
+    import shutil
+
+    import xarray as xr
+
+    if path.exists() and overwrite and not _same_map(path, params):
+        shutil.rmtree(path)
     if path.exists():
         try:
             ds = xr.open_zarr(path, consolidated=False)
@@ -224,14 +276,25 @@ def open_or_create(path: Path, params: MapParameters):
                 and all(ds.attrs.get(n) == v for n, v in params.attrs().items()
                         if n not in ("theory_only",)))
         if not same:
-            raise ValueError(f"{path} holds a map with other parameters; remove it or "
-                             "choose another --out")
+            raise ValueError(f"{path} holds a map with other parameters; replace it with "
+                             "--overwrite, or choose another --out")
         return ds
     ds = _empty_dataset(params, theory_columns(params))
     # one chunk per task block: every region write covers whole chunks
     chunks = (1, min(params.block, len(params.k)))
-    ds.to_zarr(path, mode="w", consolidated=False,
-              encoding={n: {"chunks": chunks} for n in ds.data_vars})
+    # written beside and renamed into place: a failed write (disk full, Ctrl-C) leaves no
+    # half store that would block the same command; consolidated metadata, so that a
+    # user's xr.open_zarr(path) opens it without a warning (region writes keep it valid)
+    tmp = path.with_name(f".{path.name}.partial")
+    if tmp.exists():
+        shutil.rmtree(tmp)
+    try:
+        ds.to_zarr(tmp, mode="w", consolidated=True, zarr_format=2,
+                   encoding={n: {"chunks": chunks} for n in ds.data_vars})
+        tmp.rename(path)
+    finally:
+        if tmp.exists():
+            shutil.rmtree(tmp, ignore_errors=True)
     return xr.open_zarr(path, consolidated=False)
 
 
@@ -242,7 +305,7 @@ def _write_block(path: Path, params: MapParameters, result: dict):
     j0, j1 = min(js), max(js) + 1
     arrays = {}
     for name in ("verdict_simulated", "growth", "growth_field", "growth_q", "t_simulated",
-                 "k_simulated", "peak_gain"):
+                 "peak_gain"):
         arrays[name] = (("delta", "k"), np.array([[r[name] for r in result["rows"]]]))
     arrays["done"] = (("delta", "k"), np.ones((1, j1 - j0), bool))
     xr.Dataset(arrays).to_zarr(path, consolidated=False, region={"delta": slice(i, i + 1), "k": slice(j0, j1)})
@@ -262,14 +325,15 @@ def blocks(params: MapParameters, done: np.ndarray) -> list:
 
 
 def run_map(params: MapParameters, out: Path, scheduler: str | None = None,
-            workers: int | None = None, progress: bool | None = None, log=print):
+            workers: int | None = None, progress: bool | None = None, log=print,
+            overwrite: bool = False):
     """Compute (or resume) ``OUT/map.zarr``; returns the dataset (loaded)."""
     import xarray as xr
 
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     path = out / "map.zarr"
-    ds = open_or_create(path, params)
+    ds = open_or_create(path, params, overwrite)
     if params.theory_only:
         log(f"theory only: {ds.sizes['delta'] * ds.sizes['k']} cells, no simulation")
         return xr.open_zarr(path, consolidated=False).load()
@@ -284,8 +348,18 @@ def run_map(params: MapParameters, out: Path, scheduler: str | None = None,
     return xr.open_zarr(path, consolidated=False).load()
 
 
+class MapCellError(ValueError):
+    """A cell's simulation failed on a worker: the message names the cell, in one line."""
+
+
 def _run_tasks(params, path, todo, n_todo, scheduler, workers, progress, log):
+    import logging
+
     from dask.distributed import Client, LocalCluster, as_completed
+
+    for name in ("distributed", "distributed.worker", "distributed.scheduler",
+                 "distributed.nanny", "distributed.core"):
+        logging.getLogger(name).setLevel(logging.CRITICAL)  # worker tracebacks stay off
     from tqdm.auto import tqdm
 
     cluster = None
@@ -294,7 +368,7 @@ def _run_tasks(params, path, todo, n_todo, scheduler, workers, progress, log):
     else:
         n = workers or _cores()
         cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
-                               dashboard_address=":0", silence_logs=40)
+                               dashboard_address=":0", silence_logs=logging.CRITICAL)
         client = Client(cluster)
     bar = tqdm(total=n_todo, unit="cell", disable=None if progress is None else not progress,
                desc="map")
@@ -302,8 +376,19 @@ def _run_tasks(params, path, todo, n_todo, scheduler, workers, progress, log):
     try:
         futures = [client.submit(simulate_block, params, i, js, retries=2, pure=False)
                    for i, js in todo]
+        cells = dict(zip(futures, todo))
         for fut in as_completed(futures):
-            result = fut.result()
+            try:
+                result = fut.result()
+            except Exception as exc:  # noqa: BLE001 - one line naming the cell, no traceback
+                i, js = cells[fut]
+                for f in futures:
+                    f.cancel()
+                raise MapCellError(
+                    f"cells delta = {params.delta[i]:g}, k = "
+                    f"{', '.join(f'{params.k[j]:g}' for j in js)}: "
+                    f"{type(exc).__name__}: {str(exc).splitlines()[0] if str(exc) else ''}; "
+                    f"the finished cells are kept in {path}") from None
             _write_block(path, params, result)
             bar.update(len(result["js"]))
     finally:
