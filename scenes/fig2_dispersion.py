@@ -13,7 +13,7 @@ from common import paper
 from generated import coefficients as co
 from numerics import Material, discrete_omega_longitudinal, discrete_omega_rotation
 
-from ._plotting import plt
+from ._plotting import Q_LABEL, figure, reserve_quick_stamp
 from ._registry import Scene, check, register
 
 #: K_theta of the four panels (the paper's Fig. 2 and the two test points)
@@ -42,22 +42,23 @@ def compute(ctx):
 
 def plot(data):
     q = data["q"]
-    fig, axes = plt.subplots(2, 2, figsize=(8, 6), sharex=True)
+    fig, axes = figure(2, 2, figsize=(8, 6), sharex=True, sharey=True)
     for ax, kt, lab in zip(axes.flat, data["K_theta"], "abcd"):
-        ax.plot(q, data["discrete1"], "C0-", label="U, discrete1")
-        ax.plot(q, q, "C0--", label="U, continuum1")
-        ax.plot(q, data[f"discrete2_{lab}"], "C3-", label="theta, discrete2")
-        ax.plot(q, data[f"continuum2_{lab}"], "C3--", label="theta, continuum2")
-        ax.set_title(f"({lab}) K_theta = {kt:g}, delta = {data['K_s'] - kt:+.4g}", fontsize=9)
+        ax.plot(q, data["discrete1"], "C0-", label=r"$U$, lattice (discrete1)")
+        ax.plot(q, q, "C0--", label=r"$U$, continuum (continuum1)")
+        ax.plot(q, data[f"discrete2_{lab}"], "C3-", label=r"$\theta$, lattice (discrete2)")
+        ax.plot(q, data[f"continuum2_{lab}"], "C3--", label=r"$\theta$, continuum (continuum2)")
+        point = next((f" ({p} point)" for p in paper.POINTS if paper.K_theta(p) == kt), "")
+        ax.set_title(fr"({lab}) $K_\theta = {kt:g}$, $\delta = {data['K_s'] - kt:+.4g}${point}",
+                     fontsize=10)
         ax.set_ylim(0, 3.2)
+        ax.set_xlabel(Q_LABEL)
+        ax.set_ylabel(r"$\omega$ (rad/T)")
+        ax.label_outer()
     axes[0, 0].legend(fontsize=7)
-    for ax in axes[1]:
-        ax.set_xlabel("q (rad per site)")
-    for ax in axes[:, 0]:
-        ax.set_ylabel("omega")
-    fig.suptitle(f"Dispersion, alpha = {data['alpha']}, K_s = {data['K_s']}")
-    fig.tight_layout()
-    return fig
+    fig.suptitle(fr"Dispersion relations (theory), $\alpha = {data['alpha']}$, "
+                 fr"$K_s = {data['K_s']}$; lattice units")
+    return reserve_quick_stamp(fig, data)
 
 
 SCENE = register(Scene("fig2-dispersion", "discrete vs continuum dispersion, four K_theta "

@@ -24,7 +24,9 @@ from generated import lattice_coefficients as la
 from numerics.lattice import GROWTH_THRESHOLD
 from numerics.maps import resonance_map
 
-from ._plotting import case_label, image, mark_points, plt
+from ._plotting import (DELTA_LABEL, K_LABEL, case_label, case_title, figure, has_undefined,
+                        mark_points, point_handles, reserve_quick_stamp, verdict_colorbar,
+                        verdict_image, verdict_patches)
 from ._registry import Scene, check, register
 
 #: the paper's panels (a-d): (case, alpha)
@@ -89,33 +91,48 @@ def compute(ctx):
 
 def plot(data):
     k, delta, ke, de = data["k"], data["delta"], data["k_exact"], data["delta_exact"]
-    fig, axes = plt.subplots(2, 5, figsize=(16, 7), sharey=True)
-    gray = {"cmap": "gray", "vmin": -1, "vmax": 1}
+    fig, axes = figure(2, 5, figsize=(16, 7.5), sharex=True, sharey=True)
     for ax, (case, al), lab in zip(axes[0], PANELS, "abcd"):
-        image(ax, k, delta, data[f"sign_{lab}"], **gray)
-        ax.set_title(f"({lab}) case {case_label(case)}, alpha = {al}", fontsize=9)
+        im = verdict_image(ax, k, delta, data[f"sign_{lab}"])
+        ax.set_title(f"({lab}) paper's NLS, {case_title(case)},\n"
+                     fr"$\alpha = {al}$: sign of $g$ (theory)", fontsize=9)
         if al == paper.ALPHA:
             mark_points(ax)
     for ax, case, lab in zip(axes[1, :2], ("rotation", "coupled"), "ef"):
-        image(ax, k, delta, data[f"sign_{lab}"], **gray)
-        ax.set_title(f"({lab}) semi-discrete NLS, case {case_label(case)}", fontsize=9)
+        verdict_image(ax, k, delta, data[f"sign_{lab}"])
+        ax.set_title(f"({lab}) semi-discrete NLS, {case_title(case)}:\n"
+                     r"sign of $g$ (theory)", fontsize=9)
         mark_points(ax)
     thr = float(data.get("threshold", 0.0))
+    verdicts = []
     for ax, case, lab in zip(axes[1, 2:], ("rotation", "coupled", "coupled"), "ghi"):
         gain = data[f"gain_{lab}"]
-        verdict = np.where(np.isnan(gain), 0.0, np.where(gain > thr, 1.0, -1.0))
-        image(ax, ke, de, verdict, **gray)
-        start = ", eq. IC" if lab == "i" else ""
-        ax.set_title(f"({lab}) exact, case {case_label(case)}{start}, "
-                     f"a = {data['amplitude_exact']:g}", fontsize=9)
+        verdict = np.where(np.isnan(gain), np.nan, np.where(gain > thr, 1.0, -1.0))
+        verdicts.append(verdict)
+        verdict_image(ax, ke, de, verdict)
+        start = "eq. IC start" if lab == "i" else "travelling wave"
+        ax.set_title(f"({lab}) exact lattice (theory), case {case_label(case)},\n"
+                     f"{start}, amplitude {data['amplitude_exact']:g} rad", fontsize=9)
         mark_points(ax)
-    axes[0, 4].axis("off")
-    for ax in axes[1]:
-        ax.set_xlabel("k")
-    for row in axes:
-        row[0].set_ylabel("delta")
-    fig.tight_layout()
-    return fig
+    for ax in axes.flat:
+        ax.set_xlabel(K_LABEL)
+        ax.set_ylabel(DELTA_LABEL)
+        ax.label_outer()
+    undefined = has_undefined(*(data[f"sign_{lab}"] for lab in "abcdef"), *verdicts)
+    verdict_colorbar(fig, im, axes.ravel().tolist(), mi="MI", stable="stable",
+                     undefined="g = 0 or not computed" if undefined else None, shrink=0.6)
+    key = axes[0, 4]
+    key.axis("off")
+    times = fr"{GROWTH_THRESHOLD:g}\times"
+    key.legend(handles=verdict_patches(fr"MI: $g > 0$ (a-f); grows $> {times}$ within"
+                                       "\n" fr"$T = {paper.T_END:g}$ (g-i)",
+                                       r"stable: $g < 0$ (a-f);" "\n"
+                                       fr"grows $< {times}$ (g-i)") + point_handles(),
+               loc="center", fontsize=8, title="key (all panels theory)", title_fontsize=9,
+               frameon=False)
+    fig.suptitle(r"Modulational instability over $(k, \delta)$: NLS theories (a-f) and the "
+                 "exact lattice theory (g-i)")
+    return reserve_quick_stamp(fig, data)
 
 
 SCENE = register(Scene(

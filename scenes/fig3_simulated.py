@@ -17,7 +17,9 @@ import numpy as np
 
 from common import paper
 
-from ._plotting import case_label, image, mark_points, plt
+from ._plotting import (DELTA_LABEL, K_LABEL, case_label, case_title, figure, mark_points,
+                        point_handles, reserve_quick_stamp, verdict_colorbar, verdict_image,
+                        verdict_patches)
 from ._registry import Scene, check, known, register
 
 GRID = {False: {"N": 500, "t_end": 5000.0, "n_delta": 8, "n_k": 10},
@@ -27,6 +29,9 @@ EXACT_AGREEMENT = 0.85
 PAPER_FINDING = known("finding: the paper's NLS verdict fails on parts of the map, README "
                       "'Maps by simulation'")
 THEORY_NAMES = ("paper", "semidiscrete", "exact", "exact_all")
+#: how the figure names them
+THEORY_LABELS = {"paper": "paper's NLS", "semidiscrete": "semi-discrete NLS",
+                 "exact": "exact lattice, sidebands", "exact_all": "exact lattice, all modes"}
 
 
 def grid(quick):
@@ -80,27 +85,36 @@ def compute(ctx):
 
 
 def plot(data):
+    from numerics.lattice import GROWTH_THRESHOLD
+
     k, d = data["k"], data["delta"]
-    fig, axes = plt.subplots(1, 2, figsize=(11, 4.3), sharey=True)
+    fig, axes = figure(1, 2, figsize=(13, 4.8), sharey=True)
+    times = fr"{GROWTH_THRESHOLD:g}\times"
     for ax, case in zip(axes, ("rotation", "coupled")):
-        sim = np.where(data[f"{case}/verdict_simulated"], 1.0, -1.0)
-        image(ax, k, d, sim, cmap="gray", vmin=-1, vmax=1)
+        im = verdict_image(ax, k, d, np.where(data[f"{case}/verdict_simulated"], 1.0, -1.0))
+        handles = verdict_patches(fr"MI (simulated: grows $> {times}$)",
+                                  fr"stable (simulated: grows $< {times}$)")
         for name, color in (("paper", "C1"), ("semidiscrete", "C2"), ("exact", "C3"),
                             ("exact_all", "C4")):
             v = np.asarray(data[f"{case}/verdict_{name}"], float)
             if 0 < v.mean() < 1 and len(k) > 1 and len(d) > 1:
                 ax.contour(k, d, v, levels=[0.5], colors=color, linewidths=1.2,
                            linestyles="--" if name == "exact_all" else "-")
-            ax.plot([], [], color=color, ls="--" if name == "exact_all" else "-",
-                    label=f"{name} theory")
+            handles += ax.plot([], [], color=color, ls="--" if name == "exact_all" else "-",
+                               label=f"{THEORY_LABELS[name]}: MI boundary (theory)")
         mark_points(ax)
-        ax.set_title(f"case {case_label(case)}: simulated (white = MI within T = "
-                     f"{data['t_end']:g}, N = {data['N']})", fontsize=9)
-        ax.set_xlabel("k (rad per site)")
-        ax.legend(fontsize=7, loc="lower right")
-    axes[0].set_ylabel("delta")
-    fig.tight_layout()
-    return fig
+        ax.set_title(f"{case_title(case)}: simulated verdict per cell,\n"
+                     fr"$N = {data['N']}$, $T = {data['t_end']:g}$; lines: theories",
+                     fontsize=9)
+        ax.set_xlabel(K_LABEL)
+        ax.set_ylabel(DELTA_LABEL)
+        ax.label_outer()
+    verdict_colorbar(fig, im, axes.tolist(), mi="MI", stable="stable", shrink=0.8)
+    fig.legend(handles=handles + point_handles(), loc="outside right center",
+               fontsize=8)
+    fig.suptitle(fr"MI map by simulation (eq. IC, amplitude {data['amplitude']:g} rad, "
+                 fr"$\alpha = {data['alpha']}$) with the theories' boundaries")
+    return reserve_quick_stamp(fig, data)
 
 
 def report(summary):

@@ -14,7 +14,10 @@ from numerics import Material
 from generated import coefficients as co
 from numerics import nls_summary
 
-from ._plotting import case_label, image, mark_points, plt
+from matplotlib.patches import Patch
+
+from ._plotting import (DELTA_LABEL, K_LABEL, case_title, figure, image, mark_points,
+                        reserve_quick_stamp)
 from ._registry import Scene, check, register
 from .fig3_g_sign import sign_grid
 
@@ -40,17 +43,23 @@ def compute(ctx):
 
 def plot(data):
     k, delta = data["k"], data["delta"]
-    fig, axes = plt.subplots(1, 2, figsize=(10, 4), sharey=True)
+    fig, axes = figure(1, 2, figsize=(11, 4.6), sharey=True)
     for ax, case in zip(axes, ("rotation", "coupled")):
         km = data[f"K_m_{case}"]
         im = image(ax, k, delta, km, cmap="viridis", vmax=np.nanpercentile(km, 95))
-        fig.colorbar(im, ax=ax, label=f"K_m (A0 = {data['A0']:g})")
-        mark_points(ax, ms=8)
-        ax.set_title(f"case {case_label(case)}, alpha = {data['alpha']}")
-        ax.set_xlabel("k")
-    axes[0].set_ylabel("delta")
-    fig.tight_layout()
-    return fig
+        fig.colorbar(im, ax=ax, extend="max",
+                     label=fr"$K_m$ at $A_0 = {data['A0']:g}$ (NLS units;" "\n"
+                     r"sideband offset $\epsilon K_m$ in rad/site)")
+        mark_points(ax, label=True, ms=8)
+        ax.set_title(fr"{case_title(case)}, $\alpha = {data['alpha']}$: paper's NLS (theory)",
+                     fontsize=10)
+        ax.set_xlabel(K_LABEL)
+        ax.set_ylabel(DELTA_LABEL)
+        ax.label_outer()
+        ax.legend(handles=[Patch(facecolor="white", edgecolor="k", label=r"stable ($g < 0$)")]
+                  + ax.get_legend_handles_labels()[0], fontsize=8, loc="upper right")
+    fig.suptitle(r"Most unstable sideband $K_m$ over $(k, \delta)$ where $g > 0$ (MI)")
+    return reserve_quick_stamp(fig, data)
 
 
 SCENE = register(Scene("fig4-km-map", "K_m over (delta, k), alpha = 2.5, both cases, test "

@@ -15,7 +15,8 @@ import numpy as np
 from common import paper
 from numerics import nls_summary, spectrum, stability_verdict
 
-from ._plotting import case_label, image, plt
+from ._plotting import (Q_LABEL, SITE_LABEL, TIME_LABEL, case_label, case_title, figure, image,
+                        reserve_quick_stamp)
 from ._registry import Scene, check, register
 from ._runs import plain_parameters, run_parameters
 
@@ -55,30 +56,37 @@ def compute(ctx, point, case, figure):
 def plot(data):
     coupled = data["case"] == "coupled"
     nrow = 2 if coupled else 1
-    fig, axes = plt.subplots(nrow, 2, figsize=(10, 3.8 * nrow), squeeze=False)
+    fig, axes = figure(nrow, 2, figsize=(11, 4.2 * nrow + 0.4), squeeze=False)
     N = data["theta"].shape[1]
     n, q = np.arange(N), 2 * np.pi * np.arange(N // 2 + 1) / N
-    fields = [("theta", data["theta"], data["theta_hat"])]
+    fields = [(r"\theta", "rad", data["theta"], data["theta_hat"])]
     if coupled:
-        fields.append(("U", data["U"], data["U_hat"]))
-    for row, (name, f, spec) in enumerate(fields):
+        fields.append(("U", "lattice units", data["U"], data["U_hat"]))
+    for row, (name, unit, f, spec) in enumerate(fields):
         a0, a1 = axes[row]
-        fig.colorbar(image(a0, n, data["t"], np.abs(f), cmap="magma"), ax=a0, label=f"|{name}|")
-        a0.set_xlabel("n")
-        a0.set_ylabel("T")
+        fig.colorbar(image(a0, n, data["t"], np.abs(f), cmap="magma"), ax=a0,
+                     label=fr"$|{name}_n|$ ({unit})")
+        a0.set_xlabel(SITE_LABEL)
+        a0.set_ylabel(TIME_LABEL)
+        a0.set_title(fr"$|{name}_n(T)|$ (simulation)", fontsize=10)
         im = image(a1, q, data["t"], np.log10(np.maximum(spec, 1e-12)), cmap="viridis",
                    vmin=np.log10(spec.max()) - 6)
-        fig.colorbar(im, ax=a1, label=f"log10 |{name}_hat|")
-        a1.axvline(data["k_snapped"], color="w", lw=0.6, ls=":")
-        a1.set_xlabel("q (rad per site)")
+        fig.colorbar(im, ax=a1, extend="min",
+                     label=fr"$\log_{{10}} |\hat {name}(q)|$ ({unit})")
+        a1.axvline(data["k_snapped"], color="w", lw=0.6, ls=":", label=r"carrier $k$")
+        a1.set_xlabel(Q_LABEL)
+        a1.set_ylabel(TIME_LABEL)
+        a1.set_title(fr"spectrum $|\hat {name}(q, T)|$ (simulation); dotted: carrier $k$",
+                     fontsize=10)
     word = {True: "stable", False: "MI"}
-    fig.suptitle(f"{data['figure']}: {data['point']} point, case {case_label(data['case'])} "
-                 f"(k = {data['k_snapped']:.5f}, delta = {data['K_s'] - data['K_theta']:+.3f});"
-                 f" theory g = {data['g']:.4g} ({word[bool(data['theory_stable'])]}), numerics:"
-                 f" {word[bool(data['numerics_stable'])]} (x{data['growth_factor']:.3g})",
-                 fontsize=9)
-    fig.tight_layout()
-    return fig
+    fig.suptitle(f"{data['figure']}: {data['point']} point, {case_title(data['case'])}, "
+                 fr"$k = {data['k_snapped']:.5f}$ rad/site, "
+                 fr"$\delta = {data['K_s'] - data['K_theta']:+.3f}$" "\n"
+                 fr"theory (paper's NLS): $g = {data['g']:.4g}$ "
+                 f"({word[bool(data['theory_stable'])]}); simulation: "
+                 f"{word[bool(data['numerics_stable'])]} (sidebands "
+                 fr"$\times{data['growth_factor']:.3g}$)", fontsize=10)
+    return reserve_quick_stamp(fig, data)
 
 
 for _name, _point, _case, _fig in (

@@ -10,6 +10,7 @@ caption says case II twice, erratum 2), with k + eps K_m (dotted) and k + eps K_
 from __future__ import annotations
 
 import numpy as np
+from matplotlib.lines import Line2D
 
 from common import paper
 from numerics import Material
@@ -17,11 +18,14 @@ from generated import coefficients as co
 from numerics.lattice import non_carrier_bins
 from numerics.theory import nls_summary
 
-from ._plotting import case_label, plt
+from ._plotting import Q_LABEL, case_title, figure, reserve_quick_stamp
 from ._registry import Scene, check, register
 from ._runs import run_parameters
 
 AMPLITUDES = ((0.8, "C0"), (1.4, "C3"))
+#: legend entries of the vertical lines (coloured by A0)
+BAND_HANDLES = [Line2D([], [], color="0.4", ls=":", label=r"$k + \epsilon K_m$ (fastest)"),
+                Line2D([], [], color="0.4", ls="--", label=r"$k + \epsilon K_c$ (band edge)")]
 
 
 def compute(ctx):
@@ -54,27 +58,32 @@ def compute(ctx):
 
 
 def plot(data):
-    fig, axes = plt.subplots(2, 2, figsize=(10, 7))
+    fig, axes = figure(2, 2, figsize=(11, 7.5))
     for col, (point, case) in enumerate(paper.MI_RUNS):
         kk = paper.k(point)
         for A0, color in AMPLITUDES:
             key = f"{point}_A0_{A0}"
             axes[0, col].plot(kk + data["eps"] * data[f"{key}_K"], data[f"{key}_Omega_I"],
-                              color, label=f"A0 = {A0}")
+                              color, label=fr"$A_0 = {A0}$")
             axes[1, col].semilogy(data[f"{key}_q"], data[f"{key}_spectrum"], color, lw=0.8,
-                                  label=f"A0 = {A0}, T = {data[f'{key}_T']:g}")
+                                  label=fr"$A_0 = {A0}$ at $T = {data[f'{key}_T']:g}$")
             for ax in axes[:, col]:
                 ax.axvline(data[f"{key}_k_plus_eps_K_m"], color=color, ls=":")
                 ax.axvline(data[f"{key}_k_plus_eps_K_c"], color=color, ls="--")
-        axes[0, col].set_title(f"{point} point, case {case_label(case)}")
-        axes[0, col].set_xlabel("k + eps K")
-        axes[0, col].set_ylabel("Omega_I (NLS time)")
-        axes[1, col].set_xlabel("q (rad per site)")
+        axes[0, col].set_title(f"({'ab'[col]}) {point} point, {case_title(case)}: "
+                               "MI band (theory, paper's NLS)", fontsize=10)
+        axes[1, col].set_title(f"({'cd'[col]}) {point} point, {case_title(case)}: "
+                               "spectrum (simulation)", fontsize=10)
+        axes[0, col].set_xlabel(r"$k + \epsilon K$ (rad/site)")
+        axes[0, col].set_ylabel(r"$\Omega_I$ (1/$\tilde\tau$, $\tilde\tau = "
+                                r"\epsilon^2 |g_1| T$)")
+        axes[1, col].set_xlabel(Q_LABEL)
+        axes[1, col].set_ylabel(r"$|\hat\theta(q)|$ (rad)")
         axes[1, col].set_xlim(0, np.pi)
-        axes[0, col].legend(fontsize=8)
-        axes[1, col].legend(fontsize=8)
-    fig.tight_layout()
-    return fig
+        for ax in axes[:, col]:
+            ax.legend(handles=ax.get_legend_handles_labels()[0] + BAND_HANDLES, fontsize=8)
+    fig.suptitle(r"MI band: theory (top) and early spectra of $\theta$ by simulation (bottom)")
+    return reserve_quick_stamp(fig, data)
 
 
 SCENE = register(Scene("fig9-mi-band", "MI band Omega_I(K) for A0 = 0.8, 1.4 and early-time "

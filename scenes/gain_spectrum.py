@@ -17,7 +17,7 @@ from numerics import Material
 from numerics.lattice import band_summary
 from numerics.theory import nls_summary, theory_gain
 
-from ._plotting import case_label, plt
+from ._plotting import Q_LABEL, SIGMA_LABEL, case_title, figure, reserve_quick_stamp
 from ._registry import Scene, check, known, register
 from ._runs import measured_gain
 
@@ -62,24 +62,28 @@ def compute(ctx):
 
 
 def plot(data):
-    fig, axes = plt.subplots(1, 2, figsize=(11, 4))
+    fig, axes = figure(1, 2, figsize=(11, 4.4))
     qf = data["q_theory"]
     for ax, (point, case) in zip(axes, paper.MI_RUNS):
+        ax.set_xlabel(Q_LABEL)
+        ax.set_ylabel(SIGMA_LABEL)
+        ax.set_title(f"{point} point, {case_title(case)}", fontsize=10)
         if f"{point}_q" not in data:
+            ax.text(0.5, 0.5, "no linear stage found", ha="center", transform=ax.transAxes)
             continue
         k, top = data[f"{point}_k"], data[f"{point}_theory_peak"]
         ax.errorbar(data[f"{point}_q"], data[f"{point}_sigma"], yerr=data[f"{point}_sigma_std"],
-                    fmt=".", ms=3, lw=0.6, label=f"measured ({data[f'{point}_seeds']} seeds)")
-        ax.plot(qf, data[f"{point}_theory"], "k-", label="paper NLS: eps^2 |g1| Omega_I")
+                    fmt=".", ms=3, lw=0.6,
+                    label=f"simulation: measured ({data[f'{point}_seeds']} seeds, mean and spread)")
+        ax.plot(qf, data[f"{point}_theory"], "k-",
+                label=r"theory, paper's NLS: $\epsilon^2 |g_1| \Omega_I$")
         reach = 1.2 * data[f"{point}_eps_K_c"]
         ax.set_xlim(max(0, k - reach), min(np.pi, k + reach))
         ax.set_ylim(-0.2 * top, 1.6 * max(top, data[f"{point}_measured_peak"]))
-        ax.set_xlabel("q (rad per site)")
-        ax.set_ylabel("growth rate sigma (1/T)")
-        ax.set_title(f"{point} point, case {case_label(case)}")
         ax.legend(fontsize=8)
-    fig.tight_layout()
-    return fig
+    fig.suptitle(r"Sideband growth rate $\sigma(q)$: simulation against the paper's NLS "
+                 "(lattice units)")
+    return reserve_quick_stamp(fig, data)
 
 
 def report(summary):

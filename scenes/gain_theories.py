@@ -23,7 +23,7 @@ from numerics.lattice import GROWTH_THRESHOLD, band_summary, grows_beyond_thresh
 from numerics.theory import (PAPER_START, THEORIES, gain_spectrum, measurement_length, mi_gain,
                              relative_errors, theory_gain)
 
-from ._plotting import plt
+from ._plotting import Q_LABEL, SIGMA_LABEL, figure, reserve_quick_stamp
 from ._registry import Scene, check, register
 from ._runs import QUICK_N, measured_gain
 
@@ -205,8 +205,24 @@ def _pct(x):
     return "n/a" if x is None or not np.isfinite(x) else f"{100 * x:+.1f}%"
 
 
+#: how the parameters in a point's label read in a title
+_SYMBOLS = {"A0": "A_0", "d": r"\delta", "k": "k"}
+
+
+def _title(label: str) -> str:
+    """A point's label as a title: "II d=-0.006 k=1.169" -> case II, delta = ..., k = ..."""
+    words = []
+    for w in label.split():
+        name, _, value = w.partition("=")
+        if value:
+            words.append(f"${_SYMBOLS[name]} = {value}$")
+        else:
+            words.append({"I": "case I", "II": "case II"}.get(w, f"{w} point"))
+    return ", ".join(words)
+
+
 def plot(data):
-    fig, axes = plt.subplots(2, 5, figsize=(18, 7))
+    fig, axes = figure(2, 5, figsize=(18, 7.5))
     axes = axes.ravel()
     qf, qs = data["q_theory"], data["q_start"]
     for ax, label in zip(axes, data["labels"]):
@@ -216,25 +232,29 @@ def plot(data):
             ax.errorbar(data[f"{label}/{start}/q"], data[f"{label}/{start}/sigma"],
                         yerr=data[f"{label}/{start}/sigma_std"],
                         fmt="." if start == "travelling" else "x", ms=3, lw=0.5,
-                        label="measured, " + ("travelling wave" if start == "travelling"
-                                              else "paper IC"))
+                        color="C0" if start == "travelling" else "C4",
+                        label="simulation, " + ("travelling-wave start" if start == "travelling"
+                                                else "eq. IC start"))
         top = max([data[f"{label}/{th}"].max() for th in THEORIES + (PAPER_START,)]
                   + [1e-6])
         for th, style in zip(THEORIES, ("k--", "C2-", "C3-")):
-            ax.plot(qf, data[f"{label}/{th}"], style, lw=1, label=th)
-        ax.plot(qs, data[f"{label}/{PAPER_START}"], "C1:", lw=1.5, label=PAPER_START)
+            ax.plot(qf, data[f"{label}/{th}"], style, lw=1, label=f"theory: {th}")
+        ax.plot(qs, data[f"{label}/{PAPER_START}"], "C1:", lw=1.5, label=f"theory: {PAPER_START}")
         if f"{label}/k" in data:  # the pair's other member, k - q (eq. IC is not symmetric)
             ax.plot(np.abs(2 * data[f"{label}/k"] - qs), data[f"{label}/{PAPER_START}"],
                     "C1:", lw=1.5)
         ax.set_ylim(-0.1 * top, 1.3 * top)
-        ax.set_title(label, fontsize=9)
-        ax.set_xlabel("wavenumber (rad per site)")
-    axes[0].set_ylabel("growth rate sigma (1/T)")
-    axes[0].legend(fontsize=6)
+        ax.set_title(_title(label), fontsize=10, pad=14)  # above the y offset text
+        ax.set_xlabel(Q_LABEL)
+        ax.set_ylabel(SIGMA_LABEL)
+        ax.ticklabel_format(axis="y", style="sci", scilimits=(-2, 2), useMathText=True)
     for ax in axes[len(data["labels"]):]:
         ax.axis("off")
-    fig.tight_layout()
-    return fig
+    handles, labels = axes[0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="outside lower center", ncols=3, fontsize=9)
+    fig.suptitle(r"Sideband growth rate $\sigma(q)$: simulations (points, mean and spread over "
+                 "seeds) against four theories (lines), lattice units")
+    return reserve_quick_stamp(fig, data)
 
 
 def report(summary):

@@ -19,7 +19,7 @@ from generated import coefficients as co
 from numerics import (carrier_amplitude, carrier_frequency, discrete_omega_longitudinal,
                       discrete_omega_rotation, forced_second_harmonic, mode)
 
-from ._plotting import plt
+from ._plotting import TIME_LABEL, case_title, figure, reserve_quick_stamp
 from ._registry import Scene, check, known, register
 from ._runs import plain_parameters, run_parameters
 
@@ -72,23 +72,34 @@ def compute(ctx):
 
 
 def plot(data):
-    fig, axes = plt.subplots(1, 2, figsize=(10, 3.8))
-    axes[0].plot(data["t"], data["U_hat_2k"], lw=0.7, label="|U_hat(2k, t)|")
-    axes[0].axhline(data["forced"], color="k", label="fitted forced part")
-    axes[0].axhline(data["F_continuum"], color="C1", ls="--",
-                    label="2 eps^2 |c| (continuum, eq. u1)")
-    axes[0].axhline(data["F_lattice"], color="C2", ls=":", label="|c_L| a^2/2 (lattice)")
-    axes[0].set_xlabel("T")
-    axes[0].legend(fontsize=7)
-    labels = ["measured", "continuum2", "discrete2", "discrete2 - eps^2 g2 A0^2"]
+    fig, axes = figure(1, 2, figsize=(11, 4.6), width_ratios=(1.2, 1))
+    ax = axes[0]
+    ax.plot(data["t"], data["U_hat_2k"], lw=0.7, label=r"$|\hat U(2k, T)|$ (simulation)")
+    ax.axhline(data["forced"], color="k", label="forced part, fitted to the simulation")
+    ax.axhline(data["F_continuum"], color="C1", ls="--",
+               label=r"theory, continuum: $2 \epsilon^2 |c| A_0^2$ (eq. u1)")
+    ax.axhline(data["F_lattice"], color="C2", ls=":",
+               label=r"theory, lattice: $|c_L|\, a^2 / 2$")
+    top = max(data["U_hat_2k"].max(), data["F_continuum"], data["F_lattice"])
+    ax.set_ylim(0, 1.6 * top)  # room for the legend above the curves
+    ax.set_xlabel(TIME_LABEL)
+    ax.set_ylabel(r"$|\hat U(2k)|$ (lattice units)")
+    ax.set_title(r"second harmonic of $U$ at $2k$", fontsize=10)
+    ax.legend(fontsize=8, loc="upper center", ncols=2)
+    ax = axes[1]
+    labels = ["measured\n(simulation)", "continuum2\n(theory)", "discrete2\n(theory)",
+              "discrete2\n" r"$- \epsilon^2 g_2 A_0^2$" "\n(theory)"]
     vals = [data[n] for n in ("omega_measured", "omega_continuum", "omega_discrete",
                               "omega_discrete_nonlinear")]
-    axes[1].bar(labels, vals, color=["k", "C1", "C2", "C3"])
-    axes[1].set_ylim(min(vals) - 0.01, max(vals) + 0.01)
-    axes[1].set_ylabel("carrier frequency")
-    axes[1].tick_params(axis="x", labelsize=7)
-    fig.tight_layout()
-    return fig
+    bars = ax.bar(labels, vals, color=["k", "C1", "C2", "C3"])
+    ax.bar_label(bars, fmt="%.4f", fontsize=8, padding=2)
+    ax.set_ylim(min(vals) - 0.01, max(vals) + 0.01)
+    ax.set_ylabel(r"carrier frequency $\omega$ (rad/T)")
+    ax.set_xlabel(r"source of $\omega$")
+    ax.set_title(r"carrier frequency at $k$", fontsize=10)
+    fig.suptitle(f"Green point, {case_title(CASE)}: second harmonic and carrier frequency, "
+                 "simulation against theory (lattice units)")
+    return reserve_quick_stamp(fig, data)
 
 
 SCENE = register(Scene("harmonics", "stable case II: U at 2k vs |u2|, carrier frequency vs "
