@@ -265,8 +265,21 @@ def write_report(summaries: dict, out: Path, quick: bool) -> Path:
     return write_text(Path(out) / "report.md", "\n".join(lines) + "\n")
 
 
-def run_all(out="out", quick=False, seed=0, force=False, names=None) -> Path:
-    """Run every scene (or ``names``) and write OUT/report.md."""
+def run_all(out="out", quick=False, seed=0, force=False, names=None, log=None) -> Path:
+    """Run every scene (or ``names``) and write OUT/report.md; ``log(line)`` hears of each
+    scene as it finishes (its time and check outcomes), so a long run shows progress also
+    when its output goes to a file."""
+    import time
+
     out = prepare_output(out)
-    summaries = {name: run_scene(name, out, quick, seed, force) for name in names or REGISTRY}
+    names = list(names or REGISTRY)
+    summaries = {}
+    for i, name in enumerate(names, 1):
+        t0 = time.perf_counter()
+        summaries[name] = run_scene(name, out, quick, seed, force)
+        if log is not None:
+            outcomes = [c["outcome"] for c in summaries[name].get("checks", [])]
+            counts = ", ".join(f"{outcomes.count(o)} {o}" for o in sorted(set(outcomes)))
+            log(f"[{i}/{len(names)}] {name}: {time.perf_counter() - t0:.1f} s"
+                + (f" ({counts})" if counts else ""))
     return write_report(summaries, Path(out), quick)

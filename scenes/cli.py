@@ -245,7 +245,8 @@ def _dispatch(args, scenes) -> int:
         print(f"{args.name}: wrote {Path(args.out) / args.name}/ in "
               f"{time.perf_counter() - t0:.1f} s")
     else:
-        report = scenes.run_all(args.out, args.quick, args.seed, args.force)
+        report = scenes.run_all(args.out, args.quick, args.seed, args.force,
+                                log=lambda line: print(line, flush=True))
         print(report.read_text())
         print(f"wrote {report} and {len(scenes.REGISTRY)} scene folders in "
               f"{time.perf_counter() - t0:.1f} s")

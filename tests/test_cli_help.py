@@ -48,3 +48,13 @@ def test_bad_input_is_one_line(argv, needle, capsys):
     assert cli(argv) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and needle in err and "Traceback" not in err
+
+
+def test_run_reports_each_scene_as_it_finishes(tmp_path):
+    import scenes
+
+    lines = []
+    report = scenes.run_all(tmp_path, quick=True, names=["fig2-dispersion", "fig4-km-map"],
+                            log=lines.append)
+    assert report.exists()
+    assert [ln.split(":")[0] for ln in lines] == ["[1/2] fig2-dispersion", "[2/2] fig4-km-map"]
