@@ -159,7 +159,7 @@ def test_any_k_is_snapped_and_carried(tmp_path, capsys):
 def test_map_refuses_a_long_run_without_yes_and_names_overwrite(tmp_path, capsys):
     base = ["map", "--alpha", "2.5", "--K-s", "0.01851", "--delta", "0.003",
             "--k", "0.5,1.0", "--case", "rotation", "--out", str(tmp_path)]
-    assert cli(base + ["--t-end", "1e7"]) == 2
+    assert cli(base + ["--t-end", "1e8"]) == 2  # estimated at ~10 h: refused without --yes
     assert "--yes" in capsys.readouterr().err
     assert not (tmp_path / "map.zarr").exists()
     assert cli(base + ["--theory-only"]) == 0
