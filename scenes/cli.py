@@ -72,8 +72,8 @@ def _parser():
 
 
 def _material_args(p, map_=False):
-    g = p.add_argument_group("material (required: --alpha, --K-s and --K-theta"
-                             + (" or --delta" if map_ else "") + "; or --physical)")
+    g = p.add_argument_group("material (required: --alpha, --K-s and "
+                             + ("--K-theta or --delta)" if map_ else "--K-theta; or --physical)"))
     g.add_argument("--alpha", type=float, help="inertia parameter alpha = a sqrt(m / (4 J))")
     g.add_argument("--K-s", dest="K_s", type=float, help="shear stiffness K_s = k_s / k_l")
     if map_:
