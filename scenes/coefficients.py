@@ -17,6 +17,7 @@ from generated import coefficients as continuum
 from generated import lattice_coefficients as semidiscrete
 from numerics import Material
 from numerics.lattice import checks
+from numerics.theory import nls_summary
 
 MODELS = {"continuum (paper)": continuum, "semi-discrete": semidiscrete}
 
@@ -77,26 +78,20 @@ def coefficients(material: Material, k: float, amplitude: float = paper.AMPLITUD
     out = {}
     for name, nls in MODELS.items():
         with np.errstate(all="ignore"):
-            row = {"omega": float(nls.omega(*p)), "v_g": float(nls.group_velocity(*p)),
-                   "g1": float(nls.g1(*p))}
+            # omega, v_g, g1, g2, g, the band and the peak gain: nls_summary, their one home
+            per_case = {case: nls_summary(material, case, k, eps, A0, nls=nls)
+                        for case in ("rotation", "coupled")}
             c = complex(nls.u2_coefficient(*p))
-            row["u2 |c|"] = abs(c)
-            row["U at 2k"] = abs(c) * amplitude**2 / 2
-            for case in ("rotation", "coupled"):
-                g2 = float(getattr(nls, f"g2_{case}")(*p))
-                g = float(getattr(nls, f"g_{case}")(*p))
-                r = {"g2": g2, "g": g}
-                if g > 0:
-                    K_m = float(nls.mi_fastest(g, A0))
-                    r.update(verdict="MI", K_c=float(nls.mi_cutoff(g, A0)), K_m=K_m,
-                             peak_gain=float(eps**2 * abs(row["g1"])
-                                             * nls.mi_growth_rate(K_m, g, A0)))
-                else:
-                    r.update(verdict="stable" if g < 0 else "undefined (g = 0 or singular)",
-                             K_c=float("nan"), K_m=float("nan"), peak_gain=0.0)
-                if not math.isfinite(g):
-                    r["verdict"] = "undefined (singular g)"
-                row[case] = r
+        first = per_case["rotation"]
+        row = {"omega": first["omega"], "v_g": first["v_g"], "g1": first["g1"],
+               "u2 |c|": abs(c), "U at 2k": abs(c) * amplitude**2 / 2}
+        for case, s in per_case.items():
+            g = s["g"]
+            verdict = ("undefined (singular g)" if not math.isfinite(g) else "MI" if g > 0
+                       else "stable" if g < 0 else "undefined (g = 0 or singular)")
+            row[case] = {"g2": s["g2"], "g": g, "verdict": verdict,
+                         "K_c": s.get("K_c", float("nan")), "K_m": s.get("K_m", float("nan")),
+                         "peak_gain": s.get("peak_gain", 0.0)}
         out[name] = row
     return out
 
