@@ -9,20 +9,13 @@ import numpy as np
 
 from numerics.lattice import checks
 
-from numerics.maps import MapParameters, agreement, parse_spec, run_map
+from numerics.maps import MapParameters, agreement, local_cores, parse_spec, run_map
 
 
 #: a map of more cells than this is refused (its theory columns alone fill memory)
 MAX_CELLS = 250_000
 #: a simulated map estimated to take longer than this needs --yes
 CONFIRM_SECONDS = 3600.0
-
-
-def _cores() -> int:
-    import os
-
-    return max(1, len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity")
-               else os.cpu_count() or 1)
 
 
 def _duration(seconds: float) -> str:
@@ -100,7 +93,7 @@ def run_map_command(args, log=print):
             f" e.g. {moved[0][0]:g} -> {moved[0][1]:.6g}; simulation and theories use the "
             "snapped k (coordinate k_simulated)")
     if not params.theory_only:
-        n_workers = args.workers or (1 if args.scheduler else _cores())
+        n_workers = args.workers or (1 if args.scheduler else local_cores())
         est = params.estimated_seconds(n_workers)
         log(f"map: {cells} cells x {params.seeds} seed(s), N = {params.N}, T = "
             f"{params.t_end:g}: about {_duration(est)} on {n_workers} worker(s) "

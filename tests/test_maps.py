@@ -7,6 +7,7 @@ import pytest
 import xarray as xr
 
 from common import paper
+from numerics.maps import MapParameters, parse_spec
 from numerics.maps import _store as maps  # blocks, _write_block, _run_tasks: internals under test
 from scenes.cli import main as cli
 
@@ -18,21 +19,21 @@ def _params(**kw):
     args = dict(case="coupled", alpha=paper.ALPHA, K_s=paper.K_S, delta=(-0.003, 0.003),
                 k=K2, amplitude=0.02, N=N, t_end=2000.0, block=1)
     args.update(kw)
-    return maps.MapParameters(**args)
+    return MapParameters(**args)
 
 
 @pytest.mark.parametrize("text, values", [
     ("0.1,0.3,0.2", [0.1, 0.2, 0.3]), ("0:1:3", [0.0, 0.5, 1.0]), ("-0.003", [-0.003]),
     ("1:1:1", [1.0])])
 def test_spec_parsing(text, values):
-    np.testing.assert_allclose(maps.parse_spec(text, "--k"), values)
+    np.testing.assert_allclose(parse_spec(text, "--k"), values)
 
 
 @pytest.mark.parametrize("text", ["", "a,b", "0:1", "0:1:0", "1:1:3", "0.1,nan", "0.1,0.1",
                                   "0:1:2:3"])
 def test_bad_spec_is_a_clear_error(text):
     with pytest.raises(ValueError, match="--k"):
-        maps.parse_spec(text, "--k")
+        parse_spec(text, "--k")
 
 
 def test_two_by_two_map_on_two_workers(tmp_path):

@@ -28,9 +28,9 @@ from ._integrate import BlowUpError, SimulationInterrupted, integrate
 from ._integrators import METHODS, Method, get_method
 from ._model import (CASES, LatticeState, Material, discrete_omega_longitudinal,
                      discrete_omega_rotation, energy)
-from ._simulate import (SIMULATOR_VERSION, Run, initial_condition, resume, simulate,
-                        snap_wavenumber, source_hash)
+from ._simulate import Run, initial_condition, resume, simulate, snap_wavenumber
 from ._starts import STARTS, register_start
+from ._version import SIMULATOR_VERSION, source_hash
 
 __all__ = [
     "Material", "LatticeState", "energy", "CASES", "discrete_omega_rotation",

@@ -14,7 +14,8 @@ from common.files import atomic_write
 from ._integrate import SimulationInterrupted
 from ._model import LatticeState, Material
 from ._simulate import RECORDS as _ARRAYS
-from ._simulate import SIMULATOR_VERSION, Run, joined, resume, simulate
+from ._simulate import Run, joined, resume, simulate
+from ._version import SIMULATOR_VERSION
 
 #: How many simulations actually ran in this process (cache misses); tests read it.
 STATS = {"simulations": 0, "hits": 0, "checkpoints": 0}

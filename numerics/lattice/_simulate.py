@@ -8,10 +8,8 @@ for, and stops with ``BlowUpError`` or ``SimulationInterrupted`` keeping what wa
 from __future__ import annotations
 
 import dataclasses
-import hashlib
 import math
 from dataclasses import dataclass
-from pathlib import Path
 
 import numpy as np
 
@@ -29,32 +27,6 @@ from ._runcontrol import _deferred_interrupt, _Interrupt, _progress, _steps_per_
 from ._model import LatticeState, Material, check_case, energy
 
 
-def source_hash(*roots) -> str:
-    """Hash of every ``.py`` file under the folders ``roots`` (package roots), found by
-    walking them: computed, never listed, so a new or changed module cannot be missed."""
-    h = hashlib.sha256()
-    for root in roots:
-        root = Path(root)
-        for f in sorted(root.rglob("*.py")):
-            h.update(f"{root.name}/{f.relative_to(root).as_posix()}".encode() + b"\0"
-                     + f.read_bytes())
-    return h.hexdigest()[:16]
-
-
-def _code_version() -> str:
-    """The code a simulated or theoretical number depends on: all of numerics, the
-    generated closed forms and the paper's numbers."""
-    import common
-    import generated
-
-    numerics_root = Path(__file__).resolve().parents[1]
-    return source_hash(numerics_root, Path(generated.__file__).parent,
-                       Path(common.__file__).parent)
-
-
-#: Identifies the simulator's code (keys the scene cache): a hash of its sources, so any
-#: change that may alter simulated numbers invalidates cached runs by itself.
-SIMULATOR_VERSION = _code_version()
 STORE_CHOICES = ("snapshots", "spectrum", "energy")
 
 

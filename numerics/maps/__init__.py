@@ -12,11 +12,12 @@ Maps by sim.     MapParameters (what defines a map), parse_spec (``v1,v2`` or
 
 from ._cells import growth_of, measured_peak_gain, simulate_cell
 from ._resonance import resonance_map
-from ._store import (CRITERION, MapCellError, MapParameters, agreement, open_or_create,
-                     parse_spec, run_map, simulate_block, theory_columns)
+from ._params import CRITERION, MapParameters, local_cores, parse_spec
+from ._store import (MapCellError, agreement, open_or_create, run_map, simulate_block,
+                     theory_columns)
 
 __all__ = [
     "resonance_map", "simulate_cell", "growth_of", "measured_peak_gain", "MapParameters",
     "parse_spec", "run_map", "theory_columns", "agreement", "open_or_create",
-    "simulate_block", "CRITERION", "MapCellError",
+    "simulate_block", "CRITERION", "MapCellError", "local_cores",
 ]

@@ -1,0 +1,136 @@
+"""What defines an MI map: its grid SPECs, its parameters (validated whole, before any
+work), the run-time estimate, the criterion stored with it, and the cores of this machine."""
+
+from __future__ import annotations
+
+import math
+import os
+from dataclasses import asdict, dataclass, field
+
+import numpy as np
+
+from ..lattice import checks, snap_wavenumber
+from ..lattice._analysis import GROWTH_THRESHOLD
+
+#: k values per task (one delta row is split into blocks of this many cells)
+DEFAULT_BLOCK = 4
+#: seconds one simulated cell takes on one core of a 2-core laptop-class machine at
+#: N = 500, T = 5000 (bench/results.json "maps": 0.86 s), for the run-time estimate
+CELL_SECONDS = 0.9
+CRITERION = (f"MI when the largest non-carrier, non-harmonic component (theta; U: its "
+             f"non-forced components, from its level at 5% of the run) grows more than "
+             f"{GROWTH_THRESHOLD:g}x over the run, relative to the carrier (the scenes' "
+             "criterion); a run stops as soon as that happens (the verdict is then certain)."
+             " With several seeds: the verdict of the majority, the median growth.")
+
+
+#: values per map axis at most (a SPEC's num)
+MAX_AXIS = 100_000
+
+
+def parse_spec(text: str, name: str) -> np.ndarray:
+    """``v1,v2,...`` or ``start:stop:num`` (inclusive) -> sorted values; ValueError else."""
+    if not isinstance(text, str) or not text.strip():
+        raise ValueError(f"{name}: empty SPEC; give v1,v2,... or start:stop:num")
+    try:
+        if ":" in text:
+            parts = text.split(":")
+            if len(parts) != 3:
+                raise ValueError
+            start, stop, num = float(parts[0]), float(parts[1]), int(parts[2])
+            if num > MAX_AXIS:
+                raise ValueError(f"{name}: SPEC {text!r} asks for {num} values; at most "
+                                 f"{MAX_AXIS} per axis")
+            if num < 1 or (num > 1 and start == stop):
+                raise ValueError
+            values = np.linspace(start, stop, num)
+        else:
+            values = np.array([float(v) for v in text.split(",")])
+    except ValueError:
+        raise ValueError(f"{name}: cannot read SPEC {text!r}; give v1,v2,... or "
+                         "start:stop:num (num >= 1, inclusive)") from None
+    if not np.all(np.isfinite(values)):
+        raise ValueError(f"{name}: SPEC {text!r} holds a non-finite value")
+    if len(np.unique(values)) != len(values):
+        raise ValueError(f"{name}: SPEC {text!r} repeats a value")
+    return np.sort(values)
+
+
+@dataclass(frozen=True)
+class MapParameters:
+    """Everything that defines a map (stored in the dataset's attributes)."""
+
+    case: str
+    alpha: float
+    K_s: float
+    delta: tuple
+    k: tuple
+    amplitude: float  # peak rotation 2 eps A0
+    eps: float = 0.01
+    N: int = 500
+    t_end: float = 5000.0
+    seeds: int = 1
+    start: str = "paper"
+    dt: float = 0.05
+    method: str = "rk4"
+    noise: float = 1e-3
+    theory_only: bool = False
+    block: int = DEFAULT_BLOCK
+    extra: dict = field(default_factory=dict, compare=False)
+
+    def __post_init__(self):
+        checks.choice("case", self.case, ("rotation", "coupled"))
+        checks.choice("start", self.start, ("paper", "travelling"))
+        checks.positive("alpha", self.alpha)
+        checks.positive("K_s", self.K_s)
+        checks.real("amplitude", self.amplitude, 0.0, 1.5)
+        checks.positive("eps", self.eps)
+        checks.integer("N", self.N, 3, 10**6)
+        checks.positive("t_end", self.t_end)
+        checks.integer("seeds", self.seeds, 1, 1000)
+        checks.integer("block", self.block, 1, 10**6)
+        k, d = np.asarray(self.k), np.asarray(self.delta)
+        if np.any((k <= 0) | (k >= math.pi)):
+            raise ValueError(f"k must lie in (0, pi), got {self.k}")
+        if np.any(self.K_s - d <= 0):
+            raise ValueError(f"K_theta = K_s - delta must be > 0: delta < K_s = {self.K_s}")
+        snapped = self.k_simulated
+        for j in range(1, len(snapped)):
+            if snapped[j] == snapped[j - 1]:
+                m = round(snapped[j] * self.N / (2 * math.pi))
+                raise ValueError(
+                    f"--k: {self.k[j - 1]:g} and {self.k[j]:g} both snap to 2 pi {m}/{self.N}"
+                    f" = {snapped[j]:.6g}, the nearest wavenumber of a chain of N = {self.N}"
+                    " sites; give fewer k values or a larger --N")
+
+    @property
+    def k_simulated(self) -> tuple:
+        """Each k snapped to the nearest 2 pi m / N: the wavenumber a periodic chain of N
+        sites carries, which the simulation runs and the theories are evaluated at."""
+        return tuple(snap_wavenumber(x, self.N, rel_tol=math.inf)[0] for x in self.k)
+
+    def estimated_seconds(self, workers: int = 1) -> float:
+        """Rough run time of the simulations (CELL_SECONDS per cell at N = 500, T = 5000,
+        scaled by N t_end and the seeds; the early stop of MI cells makes it shorter)."""
+        if self.theory_only:
+            return 0.0
+        cells = len(self.k) * len(self.delta) * self.seeds
+        return cells * CELL_SECONDS * (self.N / 500) * (self.t_end / 5000) / max(workers, 1)
+
+    @property
+    def A0(self) -> float:
+        return self.amplitude / (2 * self.eps)
+
+    def attrs(self) -> dict:
+        out = {n: v for n, v in asdict(self).items() if n not in ("delta", "k", "extra")}
+        out.update(A0=self.A0, criterion=CRITERION, growth_threshold=GROWTH_THRESHOLD,
+                   verdicts=f"True = MI: grows more than {GROWTH_THRESHOLD:g}x within t_end "
+                            "(simulated: measured; theories: peak gain > ln(threshold) / "
+                            "t_end, their raw peak gains beside)", **self.extra)
+        return out
+
+
+def local_cores() -> int:
+    """Cores this process may use: the default number of LocalCluster workers."""
+    return max(1, len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity")
+               else os.cpu_count() or 1)
