@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import numbers
 from dataclasses import dataclass
 
 import numpy as np
@@ -103,6 +104,8 @@ class Run:
 
 def snap_wavenumber(k: float, N: int, rel_tol: float = 1e-3):
     """Nearest periodic wavenumber 2 pi m / N to k; ValueError if further than rel_tol."""
+    if isinstance(k, (bool, np.bool_)) or not isinstance(k, numbers.Real):
+        raise TypeError(f"k must be a real number, got {type(k).__name__} {k!r}")
     k = float(k)
     if not math.isfinite(k) or k <= 0 or k >= math.pi:
         raise ValueError(f"k must be in (0, pi), got {k!r}")
@@ -261,8 +264,7 @@ def simulate(material: Material, case: str, N: int, k: float,
     if save_every is None:
         per_save = max(1, round(nsteps / 1000))
     else:
-        if not (math.isfinite(save_every) and save_every > 0):
-            raise ValueError(f"save_every must be finite and > 0, got {save_every!r}")
+        save_every = checks.positive("save_every", save_every)
         per_save = max(1, round(save_every / dt_eff))
     # records at 0, at first_record, every per_save steps after it, and at the end;
     # record_phase > 0 continues the record grid of an interrupted run (steps already done
