@@ -24,6 +24,8 @@ from ._integrate import (BlowUpError, SimulationInterrupted, _blowup_message, _c
                          _Stepper, check_tolerances, resolve_step)
 from ._integrators import get_method
 from ._starts import LEGACY_OMEGA_MODELS, build_start, check_start
+from common.signals import signal_number
+
 from ._runcontrol import _deferred_interrupt, _Interrupt, _progress, _steps_per_call
 from ._model import LatticeState, Material, check_case, energy
 
@@ -331,7 +333,7 @@ def simulate(material: Material, case: str, N: int, k: float,
                     if got < n:
                         blow_up("non-finite")
                     if interrupted() and steps < target:
-                        raise _Interrupt
+                        raise _Interrupt(interrupted())
                 record(j, steps * dt_eff)
                 drift = abs(en[j] - en[0]) / abs(en[0])
                 if not drift <= max_energy_error:  # also catches NaN
@@ -340,10 +342,11 @@ def simulate(material: Material, case: str, N: int, k: float,
                     bar.update(t[j] - t[j - 1])
                 j += 1
                 if interrupted() and steps < nsteps:
-                    raise _Interrupt
+                    raise _Interrupt(interrupted())
     except (_Interrupt, KeyboardInterrupt) as exc:
         if isinstance(exc, SimulationInterrupted):
             raise
+        signum = exc.args[0] if isinstance(exc, _Interrupt) else signal_number(exc)
         truncate(j)
         run.force_evaluations = st.evaluations
         left = nsteps - steps
@@ -354,7 +357,7 @@ def simulate(material: Material, case: str, N: int, k: float,
             f"initial=exc.state, t_end={left * dt_eff!r}, dt={dt_eff!r}, "
             f"record_phase={since}) (times then count from 0), or numerics.resume(exc, **the same arguments)",
             run=run, state=st.state(), time=steps * dt_eff, remaining=left * dt_eff,
-            dt=dt_eff, record_phase=since) from None
+            dt=dt_eff, record_phase=since, signum=signum) from None
     finally:
         if bar is not None:
             bar.close()
