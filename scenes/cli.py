@@ -134,6 +134,8 @@ def _map_parser(sub):
     p.add_argument("--scheduler", help="address of a running Dask scheduler "
                    "(tcp://host:8786); default: a LocalCluster on this machine")
     p.add_argument("--workers", type=int, help="LocalCluster workers (default: the cores)")
+    p.add_argument("--timeout", type=float, default=20.0,
+                   help="seconds to reach --scheduler and see it answer as a Dask scheduler")
     p.add_argument("--theory-only", action="store_true",
                    help="the theories' verdicts only: no simulation")
     p.add_argument("--block", type=int, default=4, help="cells per task")

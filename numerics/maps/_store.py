@@ -320,6 +320,10 @@ def run_map(params: MapParameters, out: Path, scheduler: str | None = None,
 
     from ._integrity import store_lock
 
+    if scheduler and not params.theory_only:
+        from ._cluster import probe
+
+        probe(scheduler, timeout)  # before any work: a wrong address fails in seconds
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     path = out / "map.zarr"
