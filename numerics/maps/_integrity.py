@@ -82,7 +82,7 @@ def read_raw(path: Path, names, shape) -> tuple[dict, np.ndarray]:
     unreadable = np.zeros(shape, bool)
     out = {}
     try:
-        group = zarr.open_group(str(path), mode="r")
+        group = zarr.open_group(str(path), mode="r", use_consolidated=False)
     except Exception:  # noqa: BLE001 - no readable group: nothing can be trusted
         return {}, np.ones(shape, bool)
     for name in names:

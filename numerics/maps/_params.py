@@ -41,17 +41,17 @@ def parse_spec(text: str, name: str) -> np.ndarray:
             if len(parts) != 3:
                 raise ValueError
             start, stop, num = float(parts[0]), float(parts[1]), int(parts[2])
-            if num > MAX_AXIS:
-                raise ValueError(f"{name}: SPEC {text!r} asks for {num} values; at most "
-                                 f"{MAX_AXIS} per axis")
             if num < 1 or (num > 1 and start == stop):
                 raise ValueError
-            values = np.linspace(start, stop, num)
+            values = np.linspace(start, stop, min(num, MAX_AXIS + 1))  # > MAX_AXIS: refused
         else:
             values = np.array([float(v) for v in text.split(",")])
     except ValueError:
         raise ValueError(f"{name}: cannot read SPEC {text!r}; give v1,v2,... or "
                          "start:stop:num (num >= 1, inclusive)") from None
+    if values.size > MAX_AXIS:
+        raise ValueError(f"{name}: SPEC {text!r} asks for {values.size} values; at most "
+                         f"{MAX_AXIS} per axis")
     if not np.all(np.isfinite(values)):
         raise ValueError(f"{name}: SPEC {text!r} holds a non-finite value")
     if len(np.unique(values)) != len(values):
@@ -109,7 +109,8 @@ class MapParameters:
         if np.any((k <= 0) | (k >= math.pi)):
             raise ValueError(f"k must lie in (0, pi), got {self.k}")
         if np.any(self.K_s - d <= 0):
-            raise ValueError(f"K_theta = K_s - delta must be > 0: delta < K_s = {self.K_s}")
+            raise ValueError(f"delta must be < K_s = {self.K_s:g} (K_theta = K_s - delta > 0), "
+                             f"got {float(d.max()):g}")
         snapped = self.k_simulated
         for x, ks in zip(self.k, snapped):
             m = round(ks * self.N / (2 * math.pi))
