@@ -21,6 +21,7 @@ import logging
 import signal
 import socket
 import struct
+import sys
 import threading
 from urllib.parse import urlparse
 
@@ -107,6 +108,11 @@ def connect(scheduler: str | None, workers: int | None, timeout: float = 20.0):
             raise SchedulerError(f"--scheduler {scheduler}: {type(exc).__name__}: "
                                  f"{str(exc).splitlines()[0] if str(exc) else ''}") from None
     n = workers or local_cores()
+    # multiprocessing's resource tracker (started with this interpreter's -W options) warns
+    # of "leaked semaphores" of workers stopped by a signal: nothing leaks past its clean-up
+    flag = "ignore:resource_tracker:UserWarning"
+    if flag not in sys.warnoptions:
+        sys.warnoptions.append(flag)
     with _signals_deferred():
         cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
                                dashboard_address=":0", silence_logs=logging.CRITICAL,
