@@ -56,6 +56,15 @@ def test_two_by_two_map_on_two_workers(tmp_path):
     cell = ds.sel(delta=0.003, k=K2[0], method="nearest")
     assert int(cell["verdict_exact"]) == 1 and int(cell["verdict_simulated"]) == 1
     assert int(cell["verdict_semidiscrete"]) == 0
+    # every cell predicted from its own initial state; where the run stays linear the
+    # predicted growth over the simulated span is within 2x of the measured one (the
+    # goal of issue 21; tests/test_response.py checks the linear response itself)
+    assert ds["done_predicted"].values.all()
+    linear = ds["predicted_status"].values == 0
+    assert linear.any()
+    assert np.all(np.abs(ds["growth_log_ratio"].values[linear]) < np.log10(2))
+    ag = maps.agreement(ds)
+    assert ag["predicted"] == 100.0 and ag["predicted_undetermined_cells"] == 0
 
 
 def test_an_interrupted_map_resumes_with_only_the_missing_cells(tmp_path, monkeypatch):
