@@ -228,15 +228,16 @@ def _convergence_compute(ctx):
         for th, tag in (("semi-discrete NLS", "sd"), ("paper NLS", "paper")):
             for q in errs[th]:
                 data[f"{key}_{tag}_{q}"] = np.asarray(errs[th][q], float)
-        # order of the semi-discrete width error where the envelope theory holds
-        sd = data[f"{key}_sd_width"]
-        ok = (np.asarray(widths) >= 8) & (sd > 0)
-        if ok.sum() >= 2:
-            slope = float(np.polyfit(np.log(np.asarray(amps)[ok]), np.log(sd[ok]), 1)[0])
-        else:
-            slope = float("nan")
-        data[f"{key}_slope"] = slope
-        rows.append((label, slope))
+        # orders of the semi-discrete errors where the envelope theory holds (>= 8 sites)
+        ok = np.asarray(widths) >= 8
+        slopes = {}
+        for q in ("velocity", "width"):
+            e = data[f"{key}_sd_{q}"]
+            sel = ok & (e > 0)
+            slopes[q] = (float(np.polyfit(np.log(np.asarray(amps)[sel]), np.log(e[sel]), 1)[0])
+                         if sel.sum() >= 2 else float("nan"))
+            data[f"{key}_slope_{q}"] = slopes[q]
+        rows.append((label, slopes))
         big = int(np.argmax(widths))  # the widest soliton: where the NLS should hold best
         checks.append(check(f"{label}: semi-discrete NLS width closer to the lattice than the "
                             "paper's at the smallest amplitude",
@@ -244,9 +245,14 @@ def _convergence_compute(ctx):
                             f"paper NLS error {data[f'{key}_paper_width'][big]:.2e}",
                             data[f"{key}_sd_width"][big] < data[f"{key}_paper_width"][big]))
         if not ctx.quick:
-            checks.append(check(f"{label}: semi-discrete width error falls as amplitude^p, "
-                                "p in [1.5, 2.5] (widths >= 8 sites)", "p = 2 (eps^2)",
-                                f"p = {slope:.2f}", 1.5 <= slope <= 2.5))
+            # the velocity error is the O(eps^2) correction; the width error after a fixed
+            # travel of 5 widths also depends on how far the width relaxed (its time scale,
+            # the dispersion time w^2/|g1|, grows as 1/eps^2): reported, not checked
+            checks.append(check(f"{label}: semi-discrete velocity error falls as "
+                                "amplitude^p, p in [1.5, 2.5] (widths >= 8 sites)",
+                                "p = 2 (eps^2)", f"p = {slopes['velocity']:.2f} (width "
+                                f"error: p = {slopes['width']:.2f})",
+                                1.5 <= slopes["velocity"] <= 2.5))
     return data, {"checks": checks, "slopes": dict(rows)}
 
 
