@@ -95,7 +95,7 @@ def _goal_checks(name, run):
 def _launch_compute(spec, kind):
     def compute(ctx):
         mat = _material(spec["material"])
-        travel, snaps = (3.0, 7) if ctx.quick else (20.0, 41)
+        travel, snaps = (2.0, 5) if ctx.quick else (20.0, 41)
         run = simulate_soliton(mat, spec["case"], spec["k"], spec["amplitude"], kind,
                                travel=travel, snapshots=snaps)
         sol = run.predicted
@@ -190,7 +190,7 @@ SERIES = (("green, case I, k = 0.93", ("green",), "rotation", paper.k("green")),
 AMPLITUDES = {"green, case I, k = 0.93": np.geomspace(0.001, 0.02, 9),
               "alpha = 1.5, K_s = 0.02, K_theta = 0.05, case II, k = 0.5":
                   np.geomspace(0.006, 0.06, 7)}
-QUICK_PICK = ((4, 8), (1, 4))  # quick mode: these amplitudes of each series
+QUICK_PICK = ((5, 7), (3, 4))  # quick mode: these amplitudes of each series (fast ones)
 
 
 def _convergence_compute(ctx):
