@@ -23,8 +23,6 @@ mi_gain, gain_spectrum              sideband growth rate sigma(q) by Hill's meth
 nls_summary, theory_gain, THEORIES  the NLS coefficients and gain curves (paper, semi-discrete)
 resonance_map                       exact MI map over (k, delta)
 MapParameters, run_map              simulated MI maps (Dask + Zarr)
-soliton                             the envelope soliton at one k (numerics.theory has the
-                                    launch and the tracking: simulate_soliton)
 """
 
 from importlib import import_module as _import_module
@@ -35,7 +33,7 @@ from .lattice import (GROWTH_THRESHOLD, METHODS, STARTS, AccuracyWarning, BlowUp
                       initial_condition, integrate, resume, simulate, snap_wavenumber)
 from .maps import MapParameters, resonance_map, run_map
 from .theory import (THEORIES, PlaneWave, gain_spectrum, launched_state, mi_gain,
-                     nls_summary, plane_wave, soliton, theory_gain)
+                     nls_summary, plane_wave, theory_gain)
 
 __all__ = [
     "lattice", "theory", "maps",
@@ -43,7 +41,7 @@ __all__ = [
     "STARTS", "snap_wavenumber", "integrate", "METHODS", "get_method", "BlowUpError",
     "SimulationInterrupted", "AccuracyWarning", "GROWTH_THRESHOLD",
     "plane_wave", "PlaneWave", "launched_state", "mi_gain", "gain_spectrum", "nls_summary",
-    "theory_gain", "THEORIES", "resonance_map", "MapParameters", "run_map", "soliton",
+    "theory_gain", "THEORIES", "resonance_map", "MapParameters", "run_map",
 ]
 
 

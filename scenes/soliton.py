@@ -51,7 +51,7 @@ def run_soliton(args, log=print) -> dict:
         f"(delta = {mat.delta:.4g}); case {args.case}")
     log(f"carrier:  k = {k:g} rad/site; amplitude {amplitude:g} rad (peak rotation of the "
         + ("soliton)" if sol.kind == "bright" else "background)"))
-    log(f"NLS ({theory}): omega = {sol.omega:.6g} 1/T, v_g = {sol.v_g:.5g} sites/T, "
+    log(f"NLS ({args.theory}): omega = {sol.omega:.6g} 1/T, v_g = {sol.v_g:.5g} sites/T, "
         f"g1 = {sol.g1:.4g}, g2 = {sol.g2:.4g}, g = g2/g1 = {sol.g:.4g} -> "
         f"{'focusing' if sol.g > 0 else 'defocusing'}: {sol.kind} soliton")
     for w in caught:

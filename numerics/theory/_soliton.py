@@ -393,16 +393,23 @@ class SolitonRun:
 
     def measured(self) -> dict:
         """The measured counterparts of :meth:`Soliton.summary` (at the end of the run),
-        plus the drifts (end / start - 1), the radiation at the end and the distance
-        travelled in widths."""
+        plus the drifts (end / start - 1; velocity: second half of the run / first half
+        - 1; radiation: end - start), the radiation at the end and the distance travelled
+        in widths."""
         first, last = self.snapshots[0], self.snapshots[-1]
         rel = (lambda a, b: (b / a - 1) if a else float("nan"))
+        t, c = self.t, self.series("centre")
+        half = len(t) // 2
+        v_early, v_late = ((float(np.polyfit(t[:half + 1], c[:half + 1], 1)[0]),
+                            float(np.polyfit(t[half:], c[half:], 1)[0])) if len(t) >= 4
+                           else (self.velocity, self.velocity))
         out = {"velocity": self.velocity, "width": last.width, "amplitude": last.amplitude,
                "frequency": self.frequency,
                "kink_height": last.kink_height if self.predicted.case == "coupled" else 0.0,
                "radiation": last.radiation,
                "travelled_widths": abs(last.centre - first.centre) / self.predicted.width,
-               "drift": {"width": rel(first.width, last.width),
+               "drift": {"velocity": rel(v_early, v_late),
+                         "width": rel(first.width, last.width),
                          "amplitude": rel(first.amplitude, last.amplitude),
                          "kink_height": rel(first.kink_height, last.kink_height)
                          if self.predicted.case == "coupled" else 0.0,
