@@ -21,6 +21,7 @@ from __future__ import annotations
 import warnings
 
 import numpy as np
+from matplotlib.ticker import MaxNLocator, NullFormatter
 
 from common import paper
 from generated import coefficients as co
@@ -160,6 +161,7 @@ def _launch_plot(data):
             label=f"lattice, T = {t[-1]:.4g}")
     ax.plot(data["xi_start"], data["profile_theory"], "k:", label="closed form")
     ax.set_xlim(-8 * data["width"], 8 * data["width"])
+    ax.xaxis.set_major_locator(MaxNLocator(5))
     ax.set(xlabel="sites from the fitted centre", ylabel=r"$2|E|$ (rad)",
            title=f"(c) profile, width {data['width']:.3g} sites")
     ax.legend(fontsize=8)
@@ -171,6 +173,7 @@ def _launch_plot(data):
         ax.plot(data["xi_start"], data["U_theory"], "k:",
                 label=f"predicted, height {data['kink_predicted']:.4g}")
         ax.set_xlim(-8 * data["width"], 8 * data["width"])
+        ax.xaxis.set_major_locator(MaxNLocator(5))
         ax.set(xlabel="sites from the fitted centre", ylabel="U (lattice units)",
                title="(d) kink of U under the envelope")
         ax.legend(fontsize=8)
@@ -276,13 +279,15 @@ def _convergence_plot(data):
                 i = int(np.nanargmax(a))
                 ax.loglog(a, ref[i] * (a / a[i]) ** 2, "0.6", lw=0.8, ls=":",
                           label=r"$\propto$ amplitude$^2$")
-            ax.set(xlabel="amplitude (peak rotation, rad)", ylabel=f"|relative error| of {q}")
+            ax.set_ylabel(f"|relative error| of {q}")
             ax.set_title(f"{data[f'{key}_label']}", fontsize=8)
-            top = ax.secondary_xaxis("top", functions=(lambda x: x, lambda x: x))
-            top.set_xticks(a[:: max(1, len(a) // 4)])
-            top.set_xticklabels([f"{w:.0f}" for w in data[f"{key}_width"][:: max(1, len(a) // 4)]],
-                                fontsize=7)
-            top.set_xlabel("width (sites)", fontsize=7)
+            # ticks: amplitude and, below it, the width in sites (no minor labels)
+            step = max(1, len(a) // 3)
+            ax.set_xticks(a[::step])
+            ax.set_xticklabels([f"{x:.2g}\n({w:.0f})" for x, w in
+                                zip(a[::step], data[f"{key}_width"][::step])], fontsize=7)
+            ax.xaxis.set_minor_formatter(NullFormatter())
+            ax.set_xlabel("amplitude (rad) and (width, sites)")
             ax.legend(fontsize=7)
     fig.suptitle("Soliton width, velocity and kink: lattice against the two NLS theories")
     return reserve_quick_stamp(fig, data)
