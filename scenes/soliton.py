@@ -76,9 +76,9 @@ def run_soliton(args, log=print) -> dict:
                else None, other))
     if run is not None:
         m = run.measured()
-        log(f"radiation (intensity off the fitted profile / soliton's): {m['radiation']:.3g}; "
-            f"drift over the run: width {m['drift']['width']:+.2%}, amplitude "
-            f"{m['drift']['amplitude']:+.2%}")
+        log(f"radiation (intensity shed beyond 6 widths / soliton's): {m['radiation']:.2g}; "
+            f"shape off sech^2 inside: {m['shape_misfit']:.2g}; drift over the run: width "
+            f"{m['drift']['width']:+.2%}, amplitude {m['drift']['amplitude']:+.2%}")
     result = soliton_report(sol, run)
     if args.out:
         out = Path(args.out)

@@ -13,7 +13,8 @@ lattice and measured (docs/solitons.md; closed forms in generated/soliton.py).
 
 Each simulated scene checks the issue's goals: velocity within 1% of the prediction,
 width and amplitude within 3% of their start and of the prediction, the kink within 5%,
-radiation (intensity off the fitted profile, relative to the soliton's) below 1%.
+radiation (intensity shed beyond 6 widths, relative to the soliton's) below 1%; the
+profile's misfit to sech^2 inside is reported beside it.
 """
 
 from __future__ import annotations
@@ -88,7 +89,8 @@ def _goal_checks(name, run):
                          f"{first.kink_height:.5g})",
                          abs(err["kink_height"]) < GOALS["kink_height"]))
     out.append(check(f"{name}: radiation below {GOALS['radiation']:.0%} of the soliton",
-                     f"< {GOALS['radiation']:g}", f"{m['radiation']:.3g}",
+                     f"< {GOALS['radiation']:g}", f"{m['radiation']:.2g} (shape off sech^2 "
+                     f"inside 6 widths: {m['shape_misfit']:.2g})",
                      m["radiation"] < GOALS["radiation"]))
     return out
 

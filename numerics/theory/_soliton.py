@@ -276,7 +276,10 @@ def soliton_state(sol: Soliton, N: int, centre: float | None = None) -> LatticeS
 class Snapshot:
     """What one state shows of a soliton: fitted centre (site, unwrapped), peak rotation
     (bright) or background peak rotation (dark), width, depth (dark: min/background),
-    kink height (case II), radiation fraction and the demodulated carrier phasor."""
+    kink height (case II); radiation: the intensity off the fitted profile farther than
+    RADIATION_WINDOW widths from the centre, scaled to the whole ring (the window hides
+    its share of radiation spread evenly), relative to the soliton's own intensity;
+    shape_misfit: the same inside the window (how far the profile is from sech^2)."""
 
     t: float
     centre: float
@@ -285,6 +288,11 @@ class Snapshot:
     depth: float
     kink_height: float
     radiation: float
+    shape_misfit: float
+
+
+#: half-width (in soliton widths) of the window that counts as the soliton
+RADIATION_WINDOW = 6.0
 
 
 def _ring_distance(n, c, N):
@@ -322,9 +330,14 @@ def _fit_profile(amp2, kind, c0, w0, N):
     else:
         fit_full = p[1] ** 2 * (1 - p[3] / np.cosh(dd / p[2]) ** 2)
         soliton_part = p[1] ** 2 - fit_full
-    radiation = float(np.sum(np.abs(amp2 - fit_full)) / np.sum(np.abs(soliton_part)))
+    off = np.abs(amp2 - fit_full)
+    core = np.abs(dd) <= RADIATION_WINDOW * abs(p[2])
+    content = np.sum(np.abs(soliton_part))
+    share = max(1 - core.mean(), 1e-12)  # the part of the ring outside the window
+    radiation = float(np.sum(off[~core]) / content / share) if (~core).any() else float("nan")
+    misfit = float(np.sum(off[core]) / content)
     depth = 0.0 if kind == "bright" else float(1 - p[3])
-    return centre, abs(float(p[1])), abs(float(p[2])), depth, radiation
+    return centre, abs(float(p[1])), abs(float(p[2])), depth, radiation, misfit
 
 
 def _kink(state, sol, centre, width):
@@ -345,11 +358,12 @@ def _kink(state, sol, centre, width):
 def measure_state(state: LatticeState, sol: Soliton, t: float, centre_guess: float) -> Snapshot:
     """Fit the soliton in one state (intensity |2E|^2 = theta^2 + (theta_dot/omega_s)^2)."""
     amp2 = state.theta**2 + (state.theta_dot / sol.frequency) ** 2
-    c, a, w, depth, rad = _fit_profile(amp2, sol.kind, centre_guess, sol.width, state.N)
+    c, a, w, depth, rad, misfit = _fit_profile(amp2, sol.kind, centre_guess, sol.width,
+                                               state.N)
     # unwrap: the ring distance keeps the centre continuous across the seam
     kink = _kink(state, sol, c, w) if sol.case == "coupled" else 0.0
     return Snapshot(t=t, centre=c, amplitude=a, width=w, depth=depth, kink_height=kink,
-                    radiation=rad)
+                    radiation=rad, shape_misfit=misfit)
 
 
 @dataclass(frozen=True)
@@ -394,8 +408,8 @@ class SolitonRun:
     def measured(self) -> dict:
         """The measured counterparts of :meth:`Soliton.summary` (at the end of the run),
         plus the drifts (end / start - 1; velocity: second half of the run / first half
-        - 1; radiation: end - start), the radiation at the end and the distance travelled
-        in widths."""
+        - 1; radiation and shape misfit: end - start), the radiation and the shape misfit
+        at the end (see :class:`Snapshot`) and the distance travelled in widths."""
         first, last = self.snapshots[0], self.snapshots[-1]
         rel = (lambda a, b: (b / a - 1) if a else float("nan"))
         t, c = self.t, self.series("centre")
@@ -406,14 +420,15 @@ class SolitonRun:
         out = {"velocity": self.velocity, "width": last.width, "amplitude": last.amplitude,
                "frequency": self.frequency,
                "kink_height": last.kink_height if self.predicted.case == "coupled" else 0.0,
-               "radiation": last.radiation,
+               "radiation": last.radiation, "shape_misfit": last.shape_misfit,
                "travelled_widths": abs(last.centre - first.centre) / self.predicted.width,
                "drift": {"velocity": rel(v_early, v_late),
                          "width": rel(first.width, last.width),
                          "amplitude": rel(first.amplitude, last.amplitude),
                          "kink_height": rel(first.kink_height, last.kink_height)
                          if self.predicted.case == "coupled" else 0.0,
-                         "radiation": last.radiation - first.radiation}}
+                         "radiation": last.radiation - first.radiation,
+                         "shape_misfit": last.shape_misfit - first.shape_misfit}}
         if self.predicted.kind == "dark":
             out["depth"] = last.depth
         return out
