@@ -41,6 +41,8 @@ SOLITON_THEORIES = {"semi-discrete NLS": lattice_nls, "paper NLS": continuum_nls
 #: below this width (sites) the envelope is too narrow for the weak-modulation ordering
 #: (the convergence scene shows the error reaching tens of percent near 5 sites)
 MIN_WIDTH = 8.0
+#: longest run simulate_soliton picks by itself (about 2 min for a ring of 1000 sites)
+MAX_T_END = 5e5
 
 
 class SolitonWarning(UserWarning):
@@ -220,6 +222,8 @@ def ring_wavenumber(k: float, N: int, kind: str = "bright", phi: float = 0.0) ->
     """
     N = checks.integer("N", N, 3)
     k = checks.real("k", k, 0.0, math.pi)
+    if kind not in KINDS:
+        raise ValueError(f"kind must be one of {KINDS}, got {kind!r}")
     offset = 0.0 if kind == "bright" else math.pi - 2 * phi
     m = round((k * N - offset) / (2 * math.pi))
     out = (2 * math.pi * m + offset) / N
@@ -473,11 +477,16 @@ def simulate_soliton(material: Material, case: str, k: float, amplitude: float,
     sol0 = soliton(material, case, k, amplitude, kind, theory=theory, phi=phi)
     N = default_ring(sol0.width) if N is None else checks.integer("N", N, 16)
     kr = ring_wavenumber(k, N, sol0.kind, phi)
-    sol = soliton(material, case, kr, amplitude, sol0.kind, theory=theory, phi=phi)
+    with warnings.catch_warnings():  # said once, for the k asked
+        warnings.simplefilter("ignore", SolitonWarning)
+        sol = soliton(material, case, kr, amplitude, sol0.kind, theory=theory, phi=phi)
     snapshots = checks.integer("snapshots", snapshots, 2)
     if t_end is None:
         travel = checks.positive("travel", travel)
-        t_end = travel * sol.width / max(abs(sol.velocity), 1e-6)
+        t_end = travel * sol.width / max(abs(sol.velocity), 1e-12)
+        if t_end > MAX_T_END:
+            raise ValueError(f"the soliton moves at {sol.velocity:.3g} sites/T: {travel:g} "
+                             f"widths take T = {t_end:.3g} (> {MAX_T_END:g}); give t_end")
     t_end = checks.positive("t_end", t_end)
     state = soliton_state(sol, N)
     times = np.linspace(0.0, t_end, snapshots)
