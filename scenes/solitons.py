@@ -2,14 +2,16 @@
 lattice and measured (docs/solitons.md; closed forms in generated/soliton.py).
 
 - ``soliton-bright``: the paper's green material, case II (semi-discrete NLS focusing),
-  amplitude 0.0015 (41 sites wide); full: 20 widths of travel (~10 s), quick: 3 (~2 s).
+  amplitude 0.0015 (42 sites wide); full: 20 widths of travel (~13 s), quick: 2 (~6 s).
 - ``soliton-dark``: alpha = 3, K_s = 0.05, K_theta = 0.03, k = 0.7, case II (defocusing),
-  a black soliton on a background of 0.009 rad (31 sites); full: 20 widths (~3 s).
+  a black soliton on a background of 0.009 rad (31 sites); full: 20 widths (~5 s), quick
+  2 (~4 s).
 - ``soliton-convergence``: width and velocity errors (and the kink in case II) against the
   amplitude, semi-discrete vs the paper's continuum NLS, green case I (large k = 0.93) and
-  a case II material at k = 0.5 where both NLS agree on the kind; full ~40 s, quick ~3 s.
+  a case II material at k = 0.5 where both NLS agree on the kind, 5 widths of travel each;
+  full ~15 s, quick ~9 s (times on 2 shared cores, numba compilation included).
 - ``soliton-existence``: which soliton the NLS allows over (k, delta), alpha = 2.5,
-  K_s = 0.01851, both cases, both NLS; instant.
+  K_s = 0.01851, both cases, both NLS; ~2 s.
 
 Each simulated scene checks the issue's goals: velocity within 1% of the prediction,
 width and amplitude within 3% of their start and of the prediction, the kink within 5%,
@@ -354,15 +356,15 @@ def _existence_plot(data):
 SCENES = (
     register(Scene("soliton-bright", "bright envelope soliton with the kink of U, launched "
                    "in the lattice (green material, case II)", "beyond the paper",
-                   "~10 s (quick ~2 s)", True, _launch_compute(BRIGHT, "bright"),
+                   "~13 s (quick ~6 s)", True, _launch_compute(BRIGHT, "bright"),
                    _launch_plot)),
     register(Scene("soliton-dark", "black envelope soliton with the kink of U, launched in "
-                   "the lattice (case II)", "beyond the paper", "~3 s (quick ~1 s)", True,
+                   "the lattice (case II)", "beyond the paper", "~5 s (quick ~4 s)", True,
                    _launch_compute(DARK, "dark"), _launch_plot)),
     register(Scene("soliton-convergence", "soliton width, velocity and kink errors against "
                    "the amplitude, semi-discrete vs paper NLS", "beyond the paper",
-                   "~40 s (quick ~4 s)", True, _convergence_compute, _convergence_plot)),
+                   "~15 s (quick ~9 s)", True, _convergence_compute, _convergence_plot)),
     register(Scene("soliton-existence", "which soliton (bright/dark) the NLS allows over "
-                   "(k, delta), both cases, both NLS", "beyond the paper", "~1 s (quick <1 s)",
+                   "(k, delta), both cases, both NLS", "beyond the paper", "~2 s (quick ~2 s)",
                    False, _existence_compute, _existence_plot)),
 )
