@@ -26,6 +26,28 @@ def _duration(seconds: float) -> str:
     return f"{seconds / 3600:.1f} h"
 
 
+#: MapParameters' field names -> the map command's options, for its error messages
+_OPTIONS = {"N": "--N", "t_end": "--t-end", "seeds": "--seeds", "amplitude": "--amplitude",
+            "block": "--block", "k": "--k", "delta": "--delta", "case": "--case",
+            "start": "--start", "alpha": "--alpha", "K_s": "--K-s", "K_theta": "--K-theta"}
+
+
+def _as_option(message: str) -> str:
+    """A MapParameters message with its leading field name as the option's."""
+    import re
+
+    m = re.match(r"([A-Za-z_]+)(\[\d+\])?", message)
+    if m and m.group(1) in _OPTIONS:
+        return _OPTIONS[m.group(1)] + message[len(m.group(1)):]
+    return message
+
+
+def _mi_fraction(v: np.ndarray) -> float:
+    """Share of MI among the cells a verdict decides (undetermined cells left out)."""
+    decided = v >= 0
+    return float((v[decided] == 1).mean()) if decided.any() else float("nan")
+
+
 def plot_map(ds, ax=None):
     """Simulated verdict (white: MI) with the theories' boundaries drawn over it."""
     from ._plotting import image, plt
@@ -36,13 +58,14 @@ def plot_map(ds, ax=None):
         fig = ax.figure
     k, d = ds["k"].values, ds["delta"].values
     done = ds["done"].values
-    sim = np.where(done, np.where(ds["verdict_simulated"].values, 1.0, -1.0), 0.0)
+    sim = np.where(done, np.where(ds["verdict_simulated"].values == 1, 1.0, -1.0), 0.0)
     if len(k) > 1 and len(d) > 1:
         image(ax, k, d, sim, cmap="gray", vmin=-1, vmax=1)
         for name, color in (("verdict_paper", "C1"), ("verdict_semidiscrete", "C2"),
                             ("verdict_exact", "C3")):
             v = ds[name].values.astype(float)
-            if 0 < v.mean() < 1:
+            v[v < 0] = np.nan  # undetermined: no boundary drawn through it
+            if np.isfinite(v).any() and 0 < np.nanmean(v) < 1:
                 ax.contour(k, d, v, levels=[0.5], colors=color, linewidths=1.2)
             ax.plot([], [], color=color, label=name.removeprefix("verdict_"))
         ax.legend(fontsize=7, loc="upper right")
@@ -82,35 +105,46 @@ def run_map_command(args, log=print):
     if cells > MAX_CELLS:
         raise ValueError(f"--k and --delta ask for {cells} cells; at most {MAX_CELLS} "
                          "(split the map into several --out folders)")
-    params = MapParameters(case=args.case, alpha=args.alpha, K_s=args.K_s,
-                           delta=tuple(float(d) for d in delta),
-                           k=tuple(float(x) for x in k), amplitude=args.amplitude,
-                           N=args.N, t_end=args.t_end, seeds=args.seeds, start=args.start,
-                           theory_only=args.theory_only, block=args.block)
+    checks.positive("--timeout", args.timeout)
+    try:
+        params = MapParameters(case=args.case, alpha=args.alpha, K_s=args.K_s,
+                               delta=tuple(float(d) for d in delta),
+                               k=tuple(float(x) for x in k), amplitude=args.amplitude,
+                               N=args.N, t_end=args.t_end, seeds=args.seeds,
+                               start=args.start, theory_only=args.theory_only,
+                               block=args.block)
+    except (ValueError, TypeError) as exc:  # name the option, not the field
+        raise type(exc)(_as_option(str(exc))) from None
     moved = [(a, b) for a, b in zip(params.k, params.k_simulated) if abs(a - b) > 1e-9 * a]
     if moved:
         log(f"note: {len(moved)} of {len(k)} k values snapped to 2 pi m / N (N = {params.N}),"
             f" e.g. {moved[0][0]:g} -> {moved[0][1]:.6g}; simulation and theories use the "
             "snapped k (coordinate k_simulated)")
-    if not params.theory_only:
-        n_workers = args.workers or (1 if args.scheduler else local_cores())
-        est = params.estimated_seconds(n_workers)
+    n_workers = args.workers or (1 if args.scheduler else local_cores())
+    est = params.estimated_seconds(n_workers)
+    if params.theory_only:
+        log(f"map (theory only): {cells} cells, N = {params.N}, T = {params.t_end:g}: "
+            f"predictions about {_duration(est)} on {n_workers} worker(s)")
+    else:
         log(f"map: {cells} cells x {params.seeds} seed(s), N = {params.N}, T = "
             f"{params.t_end:g}: about {_duration(est)} on {n_workers} worker(s) "
             "(less where MI stops a run early)")
-        if est > CONFIRM_SECONDS and not args.yes:
-            raise ValueError(f"the map would take about {_duration(est)} (> "
-                             f"{_duration(CONFIRM_SECONDS)}); add --yes to run it, or use "
-                             "fewer cells, seeds, a shorter --t-end or --theory-only")
+    if est > CONFIRM_SECONDS and not args.yes:
+        raise ValueError(f"the map would take about {_duration(est)} (> "
+                         f"{_duration(CONFIRM_SECONDS)}); add --yes to run it, or use "
+                         "fewer cells, seeds, a shorter --t-end or --theory-only")
     from ._runner import prepare_output
 
     out = prepare_output(args.out)
     ds = run_map(params, out, args.scheduler, args.workers, log=log,
-                 overwrite=args.overwrite)
+                 overwrite=args.overwrite, timeout=args.timeout)
+    verdicts = [n for n in ds.data_vars if n.startswith("verdict_")]
     summary = {"cells": int(ds["done"].size), "simulated": int(ds["done"].values.sum()),
                "agreement_with_simulation_percent": agreement(ds),
-               "mi_fraction": {n.removeprefix("verdict_"): float(ds[n].values.mean())
-                               for n in ds.data_vars if n.startswith("verdict_")}}
+               "mi_fraction": {n.removeprefix("verdict_"): _mi_fraction(ds[n].values)
+                               for n in verdicts},
+               "undetermined_cells": {n.removeprefix("verdict_"): int((ds[n].values < 0).sum())
+                                      for n in verdicts}}
     write_text(out / "summary.json", json.dumps(_strict(summary), indent=2) + "\n")
     fig = plot_map(ds)
     from common.files import atomic_write
@@ -125,6 +159,13 @@ def run_map_command(args, log=print):
         ag = summary["agreement_with_simulation_percent"]
         log("theory verdicts that agree with the simulation: " + "; ".join(
             f"{n} {ag[n]:.0f}% of cells ({ag[n + '_decided']:.0f}% of the "
-            f"{ag[n + '_decided_cells']} clear ones)" for n in
-            ("paper", "semidiscrete", "exact", "exact_all")))
+            f"{ag[n + '_decided_cells']} clear ones"
+            + (f"; {ag[n + '_undetermined_cells']} undetermined, left out"
+               if ag[n + '_undetermined_cells'] else "") + ")"
+            for n in ("paper", "semidiscrete", "exact", "exact_all", "predicted")))
+        if ag["predicted_growth_cells"]:
+            log(f"predicted growth within 2x of the measured one in "
+                f"{ag['predicted_growth_within_2x']:.0f}% of the "
+                f"{ag['predicted_growth_cells']} cells that grew 2x to 1000x")
     return ds
+

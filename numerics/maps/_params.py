@@ -9,14 +9,21 @@ from dataclasses import asdict, dataclass, field
 
 import numpy as np
 
-from ..lattice import checks, snap_wavenumber
-from ..lattice._analysis import GROWTH_THRESHOLD
+from ..lattice import checks
+from ..lattice._analysis import GROWTH_THRESHOLD, non_carrier_bins
+from ..lattice._integrate import _check_time
+from ..lattice._integrators import get_method
+from ._cells import SEGMENTS
 
 #: k values per task (one delta row is split into blocks of this many cells)
 DEFAULT_BLOCK = 4
 #: seconds one simulated cell takes on one core of a 2-core laptop-class machine at
 #: N = 500, T = 5000 (bench/results.json "maps": 0.86 s), for the run-time estimate
 CELL_SECONDS = 0.9
+#: seconds one cell's growth prediction takes on one core (numerics.theory.predict_growth,
+#: N = 500, draws = 0; measured on this machine): the exact travelling wave's Hill
+#: families, or, for eq. `IC`, first the torus of the state it launches (~0.5 s)
+PREDICT_SECONDS = {"travelling": 0.15, "paper": 0.7}
 CRITERION = (f"MI when the largest non-carrier, non-harmonic component (theta; U: its "
              f"non-forced components, from its level at 5% of the run) grows more than "
              f"{GROWTH_THRESHOLD:g}x over the run, relative to the carrier (the scenes' "
@@ -38,17 +45,17 @@ def parse_spec(text: str, name: str) -> np.ndarray:
             if len(parts) != 3:
                 raise ValueError
             start, stop, num = float(parts[0]), float(parts[1]), int(parts[2])
-            if num > MAX_AXIS:
-                raise ValueError(f"{name}: SPEC {text!r} asks for {num} values; at most "
-                                 f"{MAX_AXIS} per axis")
             if num < 1 or (num > 1 and start == stop):
                 raise ValueError
-            values = np.linspace(start, stop, num)
+            values = np.linspace(start, stop, min(num, MAX_AXIS + 1))  # > MAX_AXIS: refused
         else:
             values = np.array([float(v) for v in text.split(",")])
     except ValueError:
         raise ValueError(f"{name}: cannot read SPEC {text!r}; give v1,v2,... or "
                          "start:stop:num (num >= 1, inclusive)") from None
+    if values.size > MAX_AXIS:
+        raise ValueError(f"{name}: SPEC {text!r} asks for {values.size} values; at most "
+                         f"{MAX_AXIS} per axis")
     if not np.all(np.isfinite(values)):
         raise ValueError(f"{name}: SPEC {text!r} holds a non-finite value")
     if len(np.unique(values)) != len(values):
@@ -89,12 +96,32 @@ class MapParameters:
         checks.positive("t_end", self.t_end)
         checks.integer("seeds", self.seeds, 1, 1000)
         checks.integer("block", self.block, 1, 10**6)
-        k, d = np.asarray(self.k), np.asarray(self.delta)
+        checks.positive("dt", self.dt)
+        checks.real("noise", self.noise, 0.0, 1.0, low_open=False)
+        get_method(self.method)
+        if not isinstance(self.theory_only, (bool, np.bool_)):
+            raise TypeError(f"theory_only must be True or False, got {self.theory_only!r}")
+        # a cell runs in SEGMENTS pieces of t_end / SEGMENTS: each must be a valid run
+        # (dt below it, not an absurd number of steps), checked here, not on a worker
+        try:
+            _check_time(self.t_end / SEGMENTS, self.dt)
+        except ValueError as exc:
+            raise ValueError(f"t_end = {self.t_end:g} with dt = {self.dt:g}: a cell runs in "
+                             f"{SEGMENTS} segments of t_end / {SEGMENTS}, and {exc}") from None
+        k = np.asarray(checks.real_values("k", self.k))
+        d = np.asarray(checks.real_values("delta", self.delta))
         if np.any((k <= 0) | (k >= math.pi)):
             raise ValueError(f"k must lie in (0, pi), got {self.k}")
         if np.any(self.K_s - d <= 0):
-            raise ValueError(f"K_theta = K_s - delta must be > 0: delta < K_s = {self.K_s}")
+            raise ValueError(f"delta must be < K_s = {self.K_s:g} (K_theta = K_s - delta > 0), "
+                             f"got {float(d.max()):g}")
         snapped = self.k_simulated
+        for x, ks in zip(self.k, snapped):
+            m = round(ks * self.N / (2 * math.pi))
+            if m < 1 or 2 * m >= self.N or not non_carrier_bins(m, self.N).any():
+                raise ValueError(f"N = {self.N} sites carry no wavenumber near k = {x:g} with "
+                                 "sidebands to grow (k snaps to 2 pi m / N with 0 < m < N/2 "
+                                 "and needs bins besides its harmonics); give a larger N")
         for j in range(1, len(snapped)):
             if snapped[j] == snapped[j - 1]:
                 m = round(snapped[j] * self.N / (2 * math.pi))
@@ -107,15 +134,22 @@ class MapParameters:
     def k_simulated(self) -> tuple:
         """Each k snapped to the nearest 2 pi m / N: the wavenumber a periodic chain of N
         sites carries, which the simulation runs and the theories are evaluated at."""
-        return tuple(snap_wavenumber(x, self.N, rel_tol=math.inf)[0] for x in self.k)
+        out = []
+        for x in self.k:
+            m = round(x * self.N / (2 * math.pi))
+            out.append(2 * math.pi * m / self.N)  # m < 1: refused on construction
+        return tuple(out)
 
     def estimated_seconds(self, workers: int = 1) -> float:
-        """Rough run time of the simulations (CELL_SECONDS per cell at N = 500, T = 5000,
-        scaled by N t_end and the seeds; the early stop of MI cells makes it shorter)."""
+        """Rough run time: the predictions (PREDICT_SECONDS per cell) and, unless
+        theory_only, the simulations (CELL_SECONDS per cell at N = 500, T = 5000, scaled
+        by N t_end and the seeds; the early stop of MI cells makes it shorter)."""
+        cells = len(self.k) * len(self.delta)
+        predict = cells * PREDICT_SECONDS.get(self.start, 0.7) * max(self.N / 500, 1.0)
         if self.theory_only:
-            return 0.0
-        cells = len(self.k) * len(self.delta) * self.seeds
-        return cells * CELL_SECONDS * (self.N / 500) * (self.t_end / 5000) / max(workers, 1)
+            return predict / max(workers, 1)
+        simulate = cells * self.seeds * CELL_SECONDS * (self.N / 500) * (self.t_end / 5000)
+        return (predict + simulate) / max(workers, 1)
 
     @property
     def A0(self) -> float:

@@ -11,6 +11,9 @@ Stability       mi_gain (Hill's method about the state a start launches),
                 wavenumber), hill_spectrum, stability_map (batched over (k, delta))
 NLS theories    THEORIES, PAPER_START, theory_gain, nls_summary (paper NLS and
                 semi-discrete NLS from ``generated/``, and the exact lattice)
+Prediction      predict_growth -> GrowthPrediction: the growth factor a run measures,
+                from the linear response of its own initial state (Hill modes of the
+                launched state, the noise projected on them)
 Measurement     measure_gain, relative_errors (sigma(q) measured from runs)
 Solitons        soliton -> Soliton (bright or dark, width, velocity, frequency, kink of U),
                 ring_wavenumber, soliton_state (the lattice launch), simulate_soliton ->
@@ -24,6 +27,7 @@ from ._hill import gain_spectrum, hill_spectrum, mi_gain, stability_map
 from ._launched import FreeWave, LaunchedState, launched_state
 from ._plane_wave import PlaneWave, plane_wave
 from ._quasiperiodic import GainSpectrum
+from ._response import GrowthPrediction, predict_growth
 from ._soliton import (KINDS, MIN_WIDTH, SOLITON_THEORIES, Snapshot, Soliton, SolitonRun,
                        SolitonWarning, default_ring, measure_state, ring_wavenumber,
                        simulate_soliton, soliton, soliton_report, soliton_state)
@@ -32,7 +36,8 @@ __all__ = [
     "PlaneWave", "plane_wave", "LaunchedState", "FreeWave", "launched_state", "mi_gain",
     "gain_spectrum", "GainSpectrum", "hill_spectrum", "stability_map", "THEORIES",
     "PAPER_START", "theory_gain", "nls_summary", "measure_gain", "measurement_length",
-    "relative_errors", "KINDS", "MIN_WIDTH", "SOLITON_THEORIES", "Snapshot", "Soliton",
-    "SolitonRun", "SolitonWarning", "default_ring", "measure_state", "ring_wavenumber",
-    "simulate_soliton", "soliton", "soliton_report", "soliton_state",
+    "relative_errors", "predict_growth", "GrowthPrediction", "KINDS", "MIN_WIDTH",
+    "SOLITON_THEORIES", "Snapshot", "Soliton", "SolitonRun", "SolitonWarning", "default_ring",
+    "measure_state", "ring_wavenumber", "simulate_soliton", "soliton", "soliton_report",
+    "soliton_state",
 ]

@@ -28,6 +28,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..lattice import checks
+
 from generated import lattice_model as model
 
 from ._torus import Torus
@@ -129,6 +131,10 @@ def hill_matrix(torus, material, case, q, P, R):
 
     labels = np.concatenate([px, py])
     nx, n = len(px), len(labels)
+    # A (nq, 2n, 2n) complex and eig's work arrays (about as large again)
+    checks.memory("q, free_order", 2 * q.size * (2 * n) ** 2 * 16,
+                  f"the quasi-periodic Hill matrices ({q.size} offsets of {2 * n} x {2 * n}, "
+                  f"{d} free phases)")
     L = np.zeros((q.size, n, n), complex)
     L[:, :nx, :nx] = block(C["tt"], px, px)
     if coupled and len(py):
