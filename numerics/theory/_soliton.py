@@ -113,7 +113,8 @@ def _kind_that_exists(g):
 
 
 def soliton(material: Material, case: str, k: float, amplitude: float, kind: str | None = None,
-            *, theory: str = "semi-discrete NLS", phi: float = 0.0) -> Soliton:
+            *, theory: str = "semi-discrete NLS", phi: float = 0.0,
+            N: int | None = None) -> Soliton:
     """The envelope soliton the NLS predicts at carrier ``k`` and peak rotation ``amplitude``.
 
     Parameters
@@ -129,6 +130,11 @@ def soliton(material: Material, case: str, k: float, amplitude: float, kind: str
     theory : {"semi-discrete NLS", "paper NLS"}
     phi : float
         Greyness angle of a dark soliton, |phi| < pi/2 (0: black); 0 for bright ones.
+    N : int, optional
+        On a ring of N sites (case II, semi-discrete NLS): a periodic U has no net strain,
+        so the mean strain under the soliton is compensated by a uniform one over the ring,
+        which the carrier feels through the mean-flow part of g2 (a frequency shift of
+        order width / N). Default: an infinite chain with no strain far away.
 
     Returns
     -------
@@ -188,20 +194,26 @@ def soliton(material: Material, case: str, k: float, amplitude: float, kind: str
     if coupled:
         mu = float(lattice_nls.mean_flow_coefficient(*p) if nls is lattice_nls
                    else closed.continuum_mean_flow_coefficient(*p))
+    if N is not None:
+        N = checks.integer("N", N, 3)
+    # the mean-flow term of the semi-discrete NLS is g2_mf (F_X / mu) E with F_X = mu |E|^2
+    # + c; a uniform strain c (no strain far away; on a ring, minus the soliton's mean)
+    # turns E at g2_mf c / mu: the frequency moves by -g2_mf c / mu
+    g2_mf = float(closed.lattice_g2_mean_flow(*p)) if coupled and nls is lattice_nls else 0.0
     if kind == "bright":
         width = float(closed.bright_width(amplitude, g1, g2))
         velocity = v_g
-        frequency = omega - float(closed.bright_frequency_shift(amplitude, g1, g2))
+        c_over_mu = 0.0 if N is None else -2 * (amplitude / 2) ** 2 * width / N
+        frequency = (omega - float(closed.bright_frequency_shift(amplitude, g1, g2))
+                     - g2_mf * c_over_mu)
         kink = float(closed.bright_kink(amplitude, g1, g2, mu))
     else:
         width = float(closed.dark_width(amplitude, phi, g1, g2))
         velocity = v_g + float(closed.dark_velocity(amplitude, phi, g1, g2))
-        shift = float(closed.dark_frequency_shift(amplitude, g2))
-        if coupled and nls is lattice_nls:
-            # zero mean strain on a ring: the background does not feel the mean-flow part
-            shift -= float(closed.dark_frequency_shift(amplitude,
-                                                       closed.lattice_g2_mean_flow(*p)))
-        frequency = omega - shift
+        dip = 0.0 if N is None else 2 * width * math.cos(phi) ** 2 / N
+        c_over_mu = -(amplitude / 2) ** 2 * (1 - dip)
+        frequency = (omega - float(closed.dark_frequency_shift(amplitude, g2))
+                     - g2_mf * c_over_mu)
         kink = float(closed.dark_kink(amplitude, phi, g1, g2, mu))
     if width < MIN_WIDTH:
         warnings.warn(f"the {kind} soliton is {width:.3g} sites wide (< {MIN_WIDTH:g}): the "
@@ -255,8 +267,12 @@ def soliton_state(sol: Soliton, N: int, centre: float | None = None) -> LatticeS
     E = sol.envelope(xi)
     E_xi = (sol.envelope(xi + h) - sol.envelope(xi - h)) / (2 * h)
     E_t = (sol.envelope(xi, ht) - sol.envelope(xi, -ht)) / (2 * ht)
-    # d/dt of E(n - v_g t, t) e^{i(k n - omega t)}; the NLS frame moves with v_g
-    dE = E_t - sol.v_g * E_xi - 1j * sol.omega * E
+    # d/dt of E(n - v_g t, t) e^{i(k n - w t)}; the NLS frame moves with v_g. E turns at
+    # its own shift s (e^{i s t}), so w = frequency + s: omega, except in case II where a
+    # uniform strain (a ring's, a dark soliton's background) moves it (see soliton())
+    s_E = (closed.bright_frequency_shift(sol.amplitude, sol.g1, sol.g2) if sol.kind == "bright"
+           else closed.dark_frequency_shift(sol.amplitude, sol.g2))
+    dE = E_t - sol.v_g * E_xi - 1j * (sol.frequency + float(s_E)) * E
     theta = 2 * np.real(E * carrier)
     theta_dot = 2 * np.real(dE * carrier)
     if sol.case == "rotation":
@@ -479,7 +495,7 @@ def simulate_soliton(material: Material, case: str, k: float, amplitude: float,
     kr = ring_wavenumber(k, N, sol0.kind, phi)
     with warnings.catch_warnings():  # said once, for the k asked
         warnings.simplefilter("ignore", SolitonWarning)
-        sol = soliton(material, case, kr, amplitude, sol0.kind, theory=theory, phi=phi)
+        sol = soliton(material, case, kr, amplitude, sol0.kind, theory=theory, phi=phi, N=N)
     snapshots = checks.integer("snapshots", snapshots, 2)
     if t_end is None:
         travel = checks.positive("travel", travel)
