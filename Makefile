@@ -12,7 +12,7 @@ PY ?= python3
 VENV := .venv
 VPY := $(VENV)/bin/python
 STAMP := $(VENV)/.setup-stamp
-GENERATED := generated/coefficients.py generated/lattice_coefficients.py generated/lattice_model.py generated/derivation.md
+GENERATED := generated/coefficients.py generated/lattice_coefficients.py generated/lattice_model.py generated/soliton.py generated/derivation.md
 
 # The derivation's inputs by content, not by mtime (a fresh clone gives every file a new
 # mtime): sha256 of derivation/*.py and common/*.py and the SymPy pin (generated/ is SymPy's

@@ -29,7 +29,7 @@ Each tends to the paper's form as k -> 0 (the mean-flow part of g2_coupled excep
 
 def write_outputs(out_dir: Path) -> list[Path]:
     """Derive and write every generated file atomically into ``out_dir``; returns paths."""
-    from . import _codegen, _lattice_model, _report
+    from . import _codegen, _lattice_model, _report, _soliton
     from ._pipeline import ClosedForm, derive
     from common.files import write_text
 
@@ -39,6 +39,8 @@ def write_outputs(out_dir: Path) -> list[Path]:
         "lattice_coefficients.py": _codegen.module_source(d, LATTICE_DOC, d.lattice_forms),
         "lattice_model.py": _codegen.module_source(d, _lattice_model.MODULE_DOC,
                                                    _lattice_model.forms(ClosedForm)),
+        "soliton.py": _codegen.module_source(d, _soliton.MODULE_DOC,
+                                             _soliton.forms(ClosedForm, d)),
         "derivation.md": _report.render(d),
     }
     out_dir.mkdir(parents=True, exist_ok=True)

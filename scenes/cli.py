@@ -18,6 +18,10 @@ EPILOG = {
     "point": "examples:\n  flexmm point --alpha 2.5 --K-s 0.01851 --K-theta 0.01551 --k 0.81681 "
              "--case coupled\n  flexmm point --physical 0.01,2e-6,0.02,1e4,185,1 --k 1.0 "
              "--case rotation --simulate --seeds 2 --out out/point",
+    "soliton": "examples:\n  flexmm soliton --alpha 2.5 --K-s 0.01851 --K-theta 0.02151 --k 0.92991 "
+               "--amplitude 0.002 --case rotation\n  flexmm soliton --alpha 3 --K-s 0.05 "
+               "--K-theta 0.03 --k 0.7 --amplitude 0.009 --kind dark --simulate --travel 5 "
+               "--out out/soliton",
     "map": "example:\n  flexmm map --alpha 2.5 --K-s 0.01851 --delta -0.01:0.01:5 --k 0.3:2.9:6 "
            "--case rotation --theory-only --out out/map",
 }
@@ -68,6 +72,7 @@ def _parser():
         sp_.add_argument("--force", action="store_true", help="recompute cached simulations")
     _point_parser(sub)
     _map_parser(sub)
+    _soliton_parser(sub)
     return p
 
 
@@ -114,6 +119,33 @@ def _point_parser(sub):
     p.add_argument("--seeds", type=int, default=4, help="noise seeds of the simulation")
     p.add_argument("--out", help="folder for point.json and point.png (default: none, "
                    "print only)")
+
+
+def _soliton_parser(sub):
+    p = _sub(sub, "soliton", "the envelope soliton (bright or dark) a material carries at one "
+             "k: width, velocity, frequency and kink of U, and with --simulate the same "
+             "measured in the lattice")
+    _material_args(p)
+    p.add_argument("--k", type=float, required=True,
+                   help="(required) carrier wavenumber, rad per site, in (0, pi)")
+    p.add_argument("--amplitude", type=float, default=0.002,
+                   help="peak rotation of the soliton (bright) or of its background (dark), "
+                        "rad; the width is about 2 / (amplitude sqrt|g|) sites")
+    p.add_argument("--case", choices=("rotation", "coupled"), default="coupled",
+                   help="rotation: case I, U = 0; coupled: case II, with the kink of U")
+    p.add_argument("--kind", choices=("bright", "dark"),
+                   help="the soliton asked for (default: the one that exists here; asking "
+                        "for the other is an error that names it)")
+    p.add_argument("--theory", choices=("semi-discrete", "paper"), default="semi-discrete",
+                   help="the NLS that predicts it: the semi-discrete one (derived on the "
+                        "lattice) or the paper's continuum one")
+    p.add_argument("--simulate", action="store_true",
+                   help="launch it in the lattice (srkn11b, dt = 0.25) and measure it")
+    p.add_argument("--travel", type=float, default=20.0,
+                   help="with --simulate: run until it has moved this many widths")
+    p.add_argument("--N", type=int, help="with --simulate: ring size (default: 20 widths, at "
+                   "least 256 sites); k moves to the nearest wavenumber the ring carries")
+    p.add_argument("--out", help="folder for soliton.json (default: none, print only)")
 
 
 def _map_parser(sub):
@@ -252,6 +284,11 @@ def _dispatch(args, scenes) -> int:
         from .point import run_point
 
         run_point(args)
+        return 0
+    if args.cmd == "soliton":
+        from .soliton import run_soliton
+
+        run_soliton(args)
         return 0
     if args.cmd == "map":
         from ._map_command import run_map_command

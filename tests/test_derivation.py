@@ -19,7 +19,7 @@ from generated import coefficients as co
 ROOT = Path(__file__).resolve().parents[1]
 GENERATED = ROOT / "generated"
 GENERATED_FILES = ("coefficients.py", "lattice_coefficients.py", "lattice_model.py",
-                   "derivation.md")
+                   "soliton.py", "derivation.md")
 
 
 @pytest.fixture(scope="module")

@@ -15,6 +15,10 @@ Prediction      predict_growth -> GrowthPrediction: the growth factor a run meas
                 from the linear response of its own initial state (Hill modes of the
                 launched state, the noise projected on them)
 Measurement     measure_gain, relative_errors (sigma(q) measured from runs)
+Solitons        soliton -> Soliton (bright or dark, width, velocity, frequency, kink of U),
+                ring_wavenumber, soliton_state (the lattice launch), simulate_soliton ->
+                SolitonRun (tracked: centre, width, amplitude, kink, radiation),
+                measure_state, soliton_report (the JSON of `flexmm soliton`)
 """
 
 from ._gain import (PAPER_START, THEORIES, measure_gain, measurement_length, nls_summary,
@@ -24,10 +28,16 @@ from ._launched import FreeWave, LaunchedState, launched_state
 from ._plane_wave import PlaneWave, plane_wave
 from ._quasiperiodic import GainSpectrum
 from ._response import GrowthPrediction, predict_growth
+from ._soliton import (KINDS, MIN_WIDTH, SOLITON_THEORIES, Snapshot, Soliton, SolitonRun,
+                       SolitonWarning, default_ring, measure_state, ring_wavenumber,
+                       simulate_soliton, soliton, soliton_report, soliton_state)
 
 __all__ = [
     "PlaneWave", "plane_wave", "LaunchedState", "FreeWave", "launched_state", "mi_gain",
     "gain_spectrum", "GainSpectrum", "hill_spectrum", "stability_map", "THEORIES",
     "PAPER_START", "theory_gain", "nls_summary", "measure_gain", "measurement_length",
-    "relative_errors", "predict_growth", "GrowthPrediction",
+    "relative_errors", "predict_growth", "GrowthPrediction", "KINDS", "MIN_WIDTH",
+    "SOLITON_THEORIES", "Snapshot", "Soliton", "SolitonRun", "SolitonWarning", "default_ring",
+    "measure_state", "ring_wavenumber", "simulate_soliton", "soliton", "soliton_report",
+    "soliton_state",
 ]

@@ -1,0 +1,122 @@
+"""`flexmm soliton`: the envelope soliton a material carries at one k (bright or dark, width,
+velocity, frequency, kink of U), and with --simulate the same measured in the lattice."""
+
+from __future__ import annotations
+
+import json
+import math
+import warnings
+from pathlib import Path
+
+from common.files import write_text
+from numerics.lattice import checks
+from numerics.theory import SolitonWarning, simulate_soliton, soliton, soliton_report
+
+THEORY = {"semi-discrete": "semi-discrete NLS", "paper": "paper NLS"}
+ROWS = (("velocity", "sites/T"), ("width", "sites"), ("amplitude", "rad (peak rotation)"),
+        ("frequency", "1/T"), ("kink_height", "U, lattice units"))
+
+
+def _other_theory(mat, case, k, amplitude, theory):
+    """The other NLS's kind at this point, or a sentence saying where it disagrees."""
+    other = [t for t in THEORY.values() if t != theory][0]
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", SolitonWarning)
+            s = soliton(mat, case, k, amplitude, theory=other)
+    except ValueError as exc:
+        return other, None, str(exc)
+    return other, s, None
+
+
+def run_soliton(args, log=print) -> dict:
+    from .point import material_from
+
+    mat, _ = material_from(args)
+    amplitude = checks.real("--amplitude", args.amplitude, 0.0, 1.0)
+    k = checks.real("--k", args.k, 0.0, math.pi)
+    theory = THEORY[args.theory]
+    if args.simulate:
+        checks.real("--travel", args.travel, 0.0, 1000.0)
+        if args.N is not None:
+            checks.integer("--N", args.N, 16, 10**6)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", SolitonWarning)
+        try:
+            sol = soliton(mat, args.case, k, amplitude, args.kind, theory=theory)
+        except ValueError as exc:
+            raise ValueError(f"--kind: {exc}" if args.kind and "kind=" in str(exc)
+                             else str(exc)) from None
+    log(f"material: alpha = {mat.alpha:g}, K_s = {mat.K_s:g}, K_theta = {mat.K_theta:g} "
+        f"(delta = {mat.delta:.4g}); case {args.case}")
+    log(f"carrier:  k = {k:g} rad/site; amplitude {amplitude:g} rad (peak rotation of the "
+        + ("soliton)" if sol.kind == "bright" else "background)"))
+    log(f"NLS ({args.theory}): omega = {sol.omega:.6g} 1/T, v_g = {sol.v_g:.5g} sites/T, "
+        f"g1 = {sol.g1:.4g}, g2 = {sol.g2:.4g}, g = g2/g1 = {sol.g:.4g} -> "
+        f"{'focusing' if sol.g > 0 else 'defocusing'}: {sol.kind} soliton")
+    for w in caught:
+        log(f"warning: {w.message}")
+    other, other_sol, why = _other_theory(mat, args.case, k, amplitude, theory)
+    if other_sol is None:
+        log(f"{other}: no soliton here ({why})")
+    elif other_sol.kind != sol.kind:
+        log(f"{other}: predicts a {other_sol.kind} soliton instead (g = {other_sol.g:.4g}); "
+            "the lattice follows the semi-discrete NLS (docs/solitons.md)")
+    run = None
+    if args.simulate:
+        with warnings.catch_warnings():  # a narrow soliton was reported above
+            warnings.simplefilter("ignore", SolitonWarning)
+            run = simulate_soliton(mat, args.case, k, amplitude, sol.kind, theory=theory,
+                                   N=args.N, travel=args.travel)
+        sol_ring = run.predicted
+        log(f"simulated: N = {run.N} sites, k = {sol_ring.k:.6g} rad/site (the nearest a ring "
+            f"carries a {sol.kind} soliton), T = {run.t_end:.6g}, {run.method} dt = "
+            f"{run.dt:g}; travelled {run.measured()['travelled_widths']:.3g} widths")
+        sol = sol_ring
+        if other_sol is not None:  # the other theory at the ring's k too
+            other, other_sol, _ = _other_theory(mat, args.case, sol.k, amplitude, theory)
+    log("")
+    log(_table(sol, run, other_sol if other_sol is not None and other_sol.kind == sol.kind
+               else None, other))
+    if run is not None:
+        m = run.measured()
+        log(f"radiation (intensity shed beyond 6 widths / soliton's): {m['radiation']:.2g}; "
+            f"shape off sech^2 inside: {m['shape_misfit']:.2g}; drift over the run: width "
+            f"{m['drift']['width']:+.2%}, amplitude {m['drift']['amplitude']:+.2%}")
+    result = soliton_report(sol, run)
+    if args.out:
+        out = Path(args.out)
+        out.mkdir(parents=True, exist_ok=True)
+        from ._runner import _strict
+
+        write_text(out / "soliton.json", json.dumps(_strict(result), indent=2) + "\n")
+        log(f"wrote {out / 'soliton.json'}")
+    return result
+
+
+def _table(sol, run, other_sol, other_name) -> str:
+    head = ["quantity", f"predicted ({sol.theory})"]
+    if other_sol is not None:
+        head.append(other_name)
+    if run is not None:
+        head += ["measured", "error"]
+    head.append("unit")
+    pred = sol.summary()
+    meas = run.measured() if run is not None else {}
+    alt = other_sol.summary() if other_sol is not None else {}
+    rows = [head]
+    for key, unit in ROWS:
+        if key == "kink_height" and sol.case == "rotation":
+            continue
+        row = [key.replace("_", " "), f"{pred[key]:.6g}"]
+        if other_sol is not None:
+            row.append(f"{alt[key]:.6g}")
+        if run is not None:
+            err = meas[key] / pred[key] - 1 if pred[key] else float("nan")
+            row += [f"{meas[key]:.6g}", f"{err:+.2%}"]
+        row.append(unit)
+        rows.append(row)
+    widths = [max(len(r[i]) for r in rows) for i in range(len(head))]
+    lines = ["  ".join(c.ljust(w) for c, w in zip(r, widths)).rstrip() for r in rows]
+    lines.insert(1, "  ".join("-" * w for w in widths))
+    return "\n".join([f"kind: {sol.kind}"] + lines)
