@@ -6,11 +6,13 @@ from __future__ import annotations
 import math
 import os
 from dataclasses import asdict, dataclass, field
+from functools import cached_property
 
 import numpy as np
 
 from ..lattice import checks, snap_wavenumber
 from ..lattice._analysis import GROWTH_THRESHOLD
+from ._cells import GROWTH_TOL
 
 #: k values per task (one delta row is split into blocks of this many cells)
 DEFAULT_BLOCK = 4
@@ -71,8 +73,9 @@ class MapParameters:
     t_end: float = 5000.0
     seeds: int = 1
     start: str = "paper"
-    dt: float = 0.05
-    method: str = "rk4"
+    dt: float | None = None  # None: chosen with the method for growth_tol (cell_step)
+    method: str | None = None
+    growth_tol: float = GROWTH_TOL  # relative accuracy of the growth factor the cells ask for
     noise: float = 1e-3
     theory_only: bool = False
     block: int = DEFAULT_BLOCK
@@ -89,6 +92,14 @@ class MapParameters:
         checks.positive("t_end", self.t_end)
         checks.integer("seeds", self.seeds, 1, 1000)
         checks.integer("block", self.block, 1, 10**6)
+        checks.real("growth_tol", self.growth_tol, 1e-8, 0.5)
+        if self.method is not None:
+            from ..lattice import get_method
+            if not get_method(self.method).fixed_step:
+                raise ValueError(f"method: map cells need a fixed-step method, got "
+                                 f"{self.method!r}")
+        if self.dt is not None:
+            checks.positive("dt", self.dt)
         k, d = np.asarray(self.k), np.asarray(self.delta)
         if np.any((k <= 0) | (k >= math.pi)):
             raise ValueError(f"k must lie in (0, pi), got {self.k}")
@@ -117,12 +128,35 @@ class MapParameters:
         cells = len(self.k) * len(self.delta) * self.seeds
         return cells * CELL_SECONDS * (self.N / 500) * (self.t_end / 5000) / max(workers, 1)
 
+    @cached_property
+    def cell_step(self) -> tuple:
+        """(method, dt) every cell runs: as given, or chosen for ``growth_tol`` at the
+        grid's fastest carrier (``numerics.maps._cells.map_step``)."""
+        if self.dt is not None and self.method is not None:
+            return self.method, float(self.dt)
+        from ..lattice import Material
+        from ._cells import map_step
+
+        # a carrier's frequency is monotone in K_theta (linear in it under the root of
+        # eqs. `discrete1`, `discrete2`): the grid's fastest carriers sit at its extreme deltas
+        mats = [Material(self.alpha, self.K_s, self.K_s - d)
+                for d in sorted({min(self.delta), max(self.delta)})]
+        method, dt = map_step(mats, self.case, self.k_simulated, self.N, self.t_end,
+                              self.amplitude, self.start, self.growth_tol)
+        return self.method or method, float(dt if self.dt is None else self.dt)
+
     @property
     def A0(self) -> float:
         return self.amplitude / (2 * self.eps)
 
     def attrs(self) -> dict:
         out = {n: v for n, v in asdict(self).items() if n not in ("delta", "k", "extra")}
+        chosen = self.dt is None or self.method is None
+        out["method"], out["dt"] = self.cell_step
+        out["step"] = (f"chosen for a relative growth-factor error of {self.growth_tol:g} "
+                       "(numerics.maps._cells.map_step: the error model with the growth "
+                       "factor's constants, at the grid's fastest carrier)" if chosen
+                       else "given")
         out.update(A0=self.A0, criterion=CRITERION, growth_threshold=GROWTH_THRESHOLD,
                    verdicts=f"True = MI: grows more than {GROWTH_THRESHOLD:g}x within t_end "
                             "(simulated: measured; theories: peak gain > ln(threshold) / "

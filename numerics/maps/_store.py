@@ -37,11 +37,12 @@ def simulate_block(params: MapParameters, i: int, js: list) -> dict:
     from ._cells import simulate_cell
 
     mat = Material(params.alpha, params.K_s, params.K_s - params.delta[i])
+    method, dt = params.cell_step
     rows = []
     for j in js:
         runs = [simulate_cell(mat, params.case, params.k_simulated[j], params.N, params.t_end,
                               params.amplitude, params.noise, seed, params.start,
-                              params.dt, params.method) for seed in range(params.seeds)]
+                              dt, method) for seed in range(params.seeds)]
         verdict = sum(r["verdict_simulated"] for r in runs) * 2 > len(runs)
         growths = [r["growth"] for r in runs]
         top = runs[int(np.argmax(growths))]
