@@ -12,8 +12,8 @@ dominates the state error, does not change the spectrum's magnitudes.
   method against the tight reference (srkn11b, dt = REFERENCE_DT); C_m = the largest
   relative curve error over (w dt)^p (w T). GROWTH_ERROR_CONSTANTS keeps these maxima.
 - ``check_grid``: the full fig3-simulated grid (both cases, N = 500, T = 5000): every cell
-  at ``simulate_cell``'s default (method and step from GROWTH_TOL) against the tight
-  reference: verdict changes, the largest relative growth-curve error (to compare with
+  at the map's step (``MapParameters.cell_step``, what ``run_map`` runs: method and step
+  from GROWTH_TOL at the grid's fastest carrier) against the tight reference: verdict changes, the largest relative growth-curve error (to compare with
   GROWTH_TOL), and the cost per cell of both.
 
     python -m bench.calibrate_growth            # the constants (a few minutes)
@@ -85,11 +85,11 @@ def _calibrate_cell(cell):
 
 
 def _check_cell(cell):
-    case, delta, k, t_end = cell
+    case, delta, k, t_end, method, dt = cell
     mat = _material(delta)
     ref, t_ref = _reference(case, delta, k, t_end)
     t0 = time.perf_counter()
-    rec = cell_records(mat, case, k, paper.N, t_end, paper.AMPLITUDE)
+    rec = cell_records(mat, case, k, paper.N, t_end, paper.AMPLITUDE, dt=dt, method=method)
     t_cell = time.perf_counter() - t0
     n = min(len(ref["t"]), len(rec["t"]))
     g_ref, g = _curve(ref, len(ref["t"]), t_end), _curve(rec, len(rec["t"]), t_end)
@@ -116,16 +116,22 @@ def calibrate(workers=2):
 
 
 def check_grid(quick=False, workers=2):
-    """Every cell of the fig3-simulated grid (full unless ``quick``) at the default step
-    against the tight reference."""
+    """Every cell of the fig3-simulated grid (full unless ``quick``) at the map's step (what
+    ``run_map`` runs: ``MapParameters.cell_step``) against the tight reference."""
+    from numerics.maps import MapParameters
     from scenes.fig3_simulated import grid
 
     ks, deltas, g = grid(quick)
     if quick:  # the quick grid's N = 100 is not the cells' calibrated setting: keep N 500
         ks = 2 * np.pi * np.round(ks * paper.N / (2 * np.pi)) / paper.N
     t_end = g["t_end"]
-    cells = [(case, float(d), float(k), t_end) for case in ("rotation", "coupled")
-             for d in deltas for k in ks]
+    steps = {case: MapParameters(case=case, alpha=paper.ALPHA, K_s=paper.K_S,
+                                 delta=tuple(float(d) for d in deltas),
+                                 k=tuple(float(k) for k in ks), amplitude=paper.AMPLITUDE,
+                                 N=paper.N, t_end=t_end).cell_step
+             for case in ("rotation", "coupled")}
+    cells = [(case, float(d), float(k), t_end, *steps[case])
+             for case in ("rotation", "coupled") for d in deltas for k in ks]
     rows = _pool_map(_check_cell, cells, workers)
     out = {"cells": len(rows), "t_end": t_end, "N": paper.N, "growth_tol": GROWTH_TOL,
            "reference": f"srkn11b dt = {REFERENCE_DT}"}

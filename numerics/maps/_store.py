@@ -182,8 +182,13 @@ def _write_block(path: Path, params: MapParameters, result: dict):
     for name in ("verdict_simulated", "growth", "growth_field", "growth_q", "t_simulated",
                  "peak_gain"):
         arrays[name] = (("delta", "k"), np.array([[r[name] for r in result["rows"]]]))
-    arrays["done"] = (("delta", "k"), np.ones((1, j1 - j0), bool))
-    xr.Dataset(arrays).to_zarr(path, consolidated=False, region={"delta": slice(i, i + 1), "k": slice(j0, j1)})
+    region = {"delta": slice(i, i + 1), "k": slice(j0, j1)}
+    xr.Dataset(arrays).to_zarr(path, consolidated=False, region=region)
+    # the done flags only after every value is on disk: a client killed between the two
+    # writes leaves the cells not done (simulated again on resume), never done with a
+    # value missing (tests/test_cluster_faults.py found one when both went in one write)
+    done = {"done": (("delta", "k"), np.ones((1, j1 - j0), bool))}
+    xr.Dataset(done).to_zarr(path, consolidated=False, region=region)
 
 
 # --- running ---------------------------------------------------------------------------------
