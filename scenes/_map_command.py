@@ -92,16 +92,19 @@ def run_map_command(args, log=print):
         log(f"note: {len(moved)} of {len(k)} k values snapped to 2 pi m / N (N = {params.N}),"
             f" e.g. {moved[0][0]:g} -> {moved[0][1]:.6g}; simulation and theories use the "
             "snapped k (coordinate k_simulated)")
-    if not params.theory_only:
-        n_workers = args.workers or (1 if args.scheduler else local_cores())
-        est = params.estimated_seconds(n_workers)
+    n_workers = args.workers or (1 if args.scheduler else local_cores())
+    est = params.estimated_seconds(n_workers)
+    if params.theory_only:
+        log(f"map (theory only): {cells} cells, N = {params.N}, T = {params.t_end:g}: "
+            f"predictions about {_duration(est)} on {n_workers} worker(s)")
+    else:
         log(f"map: {cells} cells x {params.seeds} seed(s), N = {params.N}, T = "
             f"{params.t_end:g}: about {_duration(est)} on {n_workers} worker(s) "
             "(less where MI stops a run early)")
-        if est > CONFIRM_SECONDS and not args.yes:
-            raise ValueError(f"the map would take about {_duration(est)} (> "
-                             f"{_duration(CONFIRM_SECONDS)}); add --yes to run it, or use "
-                             "fewer cells, seeds, a shorter --t-end or --theory-only")
+    if est > CONFIRM_SECONDS and not args.yes:
+        raise ValueError(f"the map would take about {_duration(est)} (> "
+                         f"{_duration(CONFIRM_SECONDS)}); add --yes to run it, or use "
+                         "fewer cells, seeds, a shorter --t-end or --theory-only")
     from ._runner import prepare_output
 
     out = prepare_output(args.out)
@@ -109,7 +112,7 @@ def run_map_command(args, log=print):
                  overwrite=args.overwrite)
     summary = {"cells": int(ds["done"].size), "simulated": int(ds["done"].values.sum()),
                "agreement_with_simulation_percent": agreement(ds),
-               "mi_fraction": {n.removeprefix("verdict_"): float(ds[n].values.mean())
+               "mi_fraction": {n.removeprefix("verdict_"): _mi_fraction(ds[n].values)
                                for n in ds.data_vars if n.startswith("verdict_")}}
     write_text(out / "summary.json", json.dumps(_strict(summary), indent=2) + "\n")
     fig = plot_map(ds)
@@ -126,5 +129,15 @@ def run_map_command(args, log=print):
         log("theory verdicts that agree with the simulation: " + "; ".join(
             f"{n} {ag[n]:.0f}% of cells ({ag[n + '_decided']:.0f}% of the "
             f"{ag[n + '_decided_cells']} clear ones)" for n in
-            ("paper", "semidiscrete", "exact", "exact_all")))
+            ("paper", "semidiscrete", "exact", "exact_all", "predicted")))
+        log(f"predicted growth within 2x of the measured one in "
+            f"{ag['predicted_growth_within_2x']:.0f}% of the {ag['predicted_growth_cells']} "
+            "cells that grew 2x to 1000x")
     return ds
+
+
+def _mi_fraction(v):
+    """Share of MI among the cells with a verdict (the predicted column's -1 is none)."""
+    v = np.asarray(v).astype(int)
+    known = v >= 0
+    return float(np.mean(v[known] == 1)) if known.any() else float("nan")

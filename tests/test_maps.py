@@ -100,13 +100,17 @@ def test_map_bad_input_is_one_line_and_writes_nothing(extra, match, tmp_path, ca
     assert not (tmp_path / "out").exists()
 
 
-def test_theory_only_map_never_starts_the_simulator(tmp_path, monkeypatch):
-    monkeypatch.setattr(maps, "_run_tasks", lambda *a, **k: pytest.fail("simulated"))
+def test_theory_only_map_never_starts_the_simulator(tmp_path):
+    # a theory-only map predicts every cell's growth (tasks on the cluster) and simulates
+    # none: no cell is done, none has a simulated time
     assert cli(["map", "--case", "rotation", "--alpha", "2.5", "--K-s", "0.01851",
                 "--delta=-0.01:0.01:4", "--k", "0.2:3:5", "--theory-only",
-                "--out", str(tmp_path)]) == 0
+                "--out", str(tmp_path), "--workers", "1"]) == 0
     ds = xr.open_zarr(tmp_path / "map.zarr", consolidated=False)
     assert ds.sizes == {"delta": 4, "k": 5} and not ds["done"].values.any()
+    assert np.isnan(ds["t_simulated"].values).all()
+    assert ds["done_predicted"].values.all()
+    assert np.isin(ds["verdict_predicted"].values, (0, 1)).all()
     # case I: the paper's NLS says MI exactly where delta < 0 (sign(g) = -sign(delta)),
     # given the finite-time question is decided by a nonzero gain
     gains = ds["peak_gain_paper"].values

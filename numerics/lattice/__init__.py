@@ -6,12 +6,12 @@ it only through the registry of named starts (:data:`STARTS`), which theory fill
 
 Model         Material, LatticeState, energy, CASES, discrete_omega_rotation,
               discrete_omega_longitudinal
-Runs          simulate -> Run, resume, initial_condition, snap_wavenumber, STARTS,
+Runs          simulate -> Run, resume, initial_condition, noise_field, snap_wavenumber, STARTS,
               register_start, cached_simulate, SIMULATOR_VERSION, source_hash
 Stepping      integrate, METHODS, Method, get_method, choose_step
 Errors        BlowUpError, SimulationInterrupted, AccuracyWarning
 Analysis      spectrum, mode, harmonic_bins, sideband_to_carrier, stability_verdict,
-              linear_stage, growth_rates, band_summary, forced_second_harmonic,
+              linear_stage, growth_rates, band_summary, spectrum_growth, forced_second_harmonic,
               carrier_amplitude, carrier_frequency; the growth criterion GROWTH_THRESHOLD
               and :func:`grows_beyond_threshold`
 Input checks  ``numerics.lattice.checks`` (the limits every layer imports)
@@ -22,13 +22,14 @@ from ._accuracy import AccuracyWarning, choose_step
 from ._analysis import (GROWTH_THRESHOLD, band_summary, carrier_amplitude, carrier_frequency,
                         forced_second_harmonic, growth_rates, grows_beyond_threshold,
                         harmonic_bins, linear_stage, mode, non_carrier_bins,
-                        sideband_to_carrier, spectrum, stability_verdict)
+                        sideband_to_carrier, spectrum, spectrum_growth, stability_verdict)
 from ._cache import cached_simulate
 from ._integrate import BlowUpError, SimulationInterrupted, integrate
 from ._integrators import METHODS, Method, get_method
 from ._model import (CASES, LatticeState, Material, discrete_omega_longitudinal,
                      discrete_omega_rotation, energy)
-from ._simulate import Run, initial_condition, resume, simulate, snap_wavenumber
+from ._simulate import (Run, initial_condition, noise_field, resume, simulate,
+                        snap_wavenumber)
 from ._starts import STARTS, register_start
 from ._version import SIMULATOR_VERSION, source_hash
 
@@ -41,5 +42,5 @@ __all__ = [
     "harmonic_bins", "non_carrier_bins", "sideband_to_carrier", "stability_verdict",
     "linear_stage", "growth_rates", "band_summary", "forced_second_harmonic",
     "carrier_amplitude", "carrier_frequency", "GROWTH_THRESHOLD", "grows_beyond_threshold",
-    "checks",
+    "checks", "noise_field", "spectrum_growth",
 ]

@@ -63,6 +63,59 @@ def non_carrier_bins(m: int, N: int, field: str = "theta") -> np.ndarray:
     return mask
 
 
+#: U's growth is measured from its level at this fraction of the run (U starts at rest in
+#: the paper's initial condition, so its level at T = 0 is no reference)
+U_REFERENCE = 0.05
+
+
+def spectrum_growth(t, ratios: dict, bins: dict, N: int, t_end: float | None = None):
+    """The simulated verdicts' reading of a run: the largest growth factor of the largest
+    non-carrier, non-harmonic component relative to the carrier, and where it sits.
+
+    Parameters
+    ----------
+    t : ndarray, shape (nt,)
+        Record times.
+    ratios : dict field -> ndarray, shape (draws, nt, nbins)
+        Per field ("theta", "U"): the components on ``bins[field]`` (rfft bins, the mask
+        :func:`non_carrier_bins`) over the carrier's amplitude, per record.
+    bins : dict field -> ndarray of int, shape (nbins,)
+    t_end : float, optional
+        The run's planned length (default: the last record's time): U's reference record
+        sits at U_REFERENCE t_end, also in a run stopped early.
+
+    Returns
+    -------
+    growth : ndarray, shape (draws,)
+        max over records of the largest ratio, over its value at the reference record
+        (theta: T = 0; U: U_REFERENCE t_end), the larger of the fields.
+    field : ndarray of str, shape (draws,)
+    q : ndarray, shape (draws,)
+        Wavenumber (rad per site) of the largest component at the record of the peak
+        (NaN where nothing was measured).
+    """
+    draws = next(iter(ratios.values())).shape[0]
+    growth = np.zeros(draws)
+    field = np.full(draws, "theta", dtype=object)
+    q = np.full(draws, np.nan)
+    for name, r in ratios.items():
+        i0 = 0 if name == "theta" else int(np.searchsorted(
+            t, U_REFERENCE * (t[-1] if t_end is None else t_end)))
+        if i0 >= len(t) - 1:
+            continue
+        top = r[:, i0:].max(axis=2)  # (draws, nt)
+        ref = top[:, 0]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            g = np.where(ref > 0, top.max(axis=1) / np.where(ref > 0, ref, 1.0), 0.0)
+        better = g > growth
+        i = i0 + np.argmax(top, axis=1)
+        j = np.asarray(bins[name])[np.argmax(r[np.arange(draws), i], axis=1)]
+        growth = np.where(better, g, growth)
+        field = np.where(better, name, field)
+        q = np.where(better, 2 * np.pi * j / N, q)
+    return growth, field.astype(str), q
+
+
 def grows_beyond_threshold(peak_gain, t_end: float):
     """A theory's verdict on the simulation's question: does a mode growing at
     ``peak_gain`` (1/T) grow more than GROWTH_THRESHOLD-fold within ``t_end``?

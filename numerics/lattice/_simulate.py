@@ -164,9 +164,13 @@ def initial_condition(material: Material, case: str, N: int, k: float,
     amplitude = _amplitude(amplitude, eps, A0)
     noise = checks.real("noise", noise, 0.0, 1.0, low_open=False, high_open=True)
     seed = checks.seed(seed)
-    rng = np.random.default_rng(seed)
-    b0 = rng.uniform(-noise, noise, N)
-    return build_start(start, material, case, k, amplitude, b0)
+    return build_start(start, material, case, k, amplitude, noise_field(N, noise, seed))
+
+
+def noise_field(N: int, noise: float, seed: int) -> np.ndarray:
+    """The noise law of every start: b0 ~ U[-noise, noise] per site, shape (N,), from
+    ``numpy.random.default_rng(seed)``; a start multiplies its fields by (1 + b0)."""
+    return np.random.default_rng(seed).uniform(-noise, noise, N)
 
 
 def simulate(material: Material, case: str, N: int, k: float,

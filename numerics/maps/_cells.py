@@ -27,8 +27,8 @@ import math
 import numpy as np
 
 from ..lattice._accuracy import choose_step, dominant_frequency
-from ..lattice._analysis import (GROWTH_THRESHOLD, growth_rates, linear_stage,
-                                 non_carrier_bins, spectrum)
+from ..lattice._analysis import (GROWTH_THRESHOLD, U_REFERENCE, growth_rates, linear_stage,
+                                 non_carrier_bins, spectrum, spectrum_growth)
 from ..lattice._integrate import BlowUpError, _blowup_message, _Stepper
 from ..lattice._integrators import get_method
 from ..lattice._model import Material
@@ -36,9 +36,6 @@ from ..lattice._simulate import initial_condition, snap_wavenumber
 
 #: spectrum records over a run (every t_end / RECORDS): the growth factor's time resolution
 RECORDS = 200
-#: U's growth is measured from its level at this fraction of the run (U starts at rest in
-#: the paper's initial condition, so its level at T = 0 is no reference)
-U_REFERENCE = 0.05
 #: relative accuracy of the growth factor a map cell asks for (see GROWTH_ERROR_CONSTANTS)
 GROWTH_TOL = 0.01
 #: C_m of the growth factor's error model, e = C_m (w dt)^p (w T) as in ``_accuracy``
@@ -64,27 +61,15 @@ def _ratios(theta_hat, U_hat, m, N):
 
 
 def growth_of(t, theta_hat, U_hat, m, N, t_end: float | None = None) -> dict:
-    """Largest growth factor over the records, which field and wavenumber carries it.
-
-    U's growth counts from its level at U_REFERENCE t_end (default t_end: the last record's
-    time; a run stopped early passes its planned t_end, so the reference does not move)."""
+    """Largest growth factor over the records, which field and wavenumber carries it
+    (the reading :func:`numerics.lattice.spectrum_growth` defines). U's growth counts from
+    its level at U_REFERENCE t_end (default t_end: the last record's time; a run stopped
+    early passes its planned t_end, so the reference does not move)."""
     ratios, bins = _ratios(theta_hat, U_hat, m, N)
-    best = {"growth": 0.0, "growth_field": "theta", "growth_q": float("nan")}
-    for field, r in ratios.items():
-        i0 = 0 if field == "theta" else int(np.searchsorted(
-            t, U_REFERENCE * (t[-1] if t_end is None else t_end)))
-        if i0 >= len(t) - 1:
-            continue
-        top = r[i0:].max(axis=1)
-        ref = top[0]
-        if not ref > 0:
-            continue
-        g = float(top.max() / ref)
-        if g > best["growth"]:
-            i = i0 + int(np.argmax(top))
-            j = bins[field][int(np.argmax(r[i]))]
-            best = {"growth": g, "growth_field": field, "growth_q": 2 * math.pi * j / N}
-    return best
+    growth, field, q = spectrum_growth(np.asarray(t), {f: r[None] for f, r in ratios.items()},
+                                       bins, N, t_end)
+    return {"growth": float(growth[0]), "growth_field": str(field[0]),
+            "growth_q": float(q[0])}
 
 
 def cell_step(state, material: Material, case: str, t_end: float,
@@ -207,4 +192,41 @@ def measured_peak_gain(t, theta_hat, m, N) -> float:
     return float(rates[non_carrier_bins(m, N)].max())
 
 
-__all__ = ["simulate_cell", "cell_records", "map_step", "growth_of", "measured_peak_gain", "cell_step"]
+#: why a cell's prediction is what it is (the store's ``predicted_status`` flag)
+PREDICTED_STATUS = {"linear": 0, "saturates": 1, "no plane wave": 2, "not quasi-periodic": 3}
+
+
+def predict_cell(material: Material, case: str, k: float, N: int, t_end: float,
+                 amplitude: float = 0.02, noise: float = 1e-3, seeds: int = 1,
+                 start: str = "paper"):
+    """The growth factor the simulation of this cell will measure, predicted
+    (:func:`numerics.theory.predict_growth`), as the map stores it.
+
+    The map's seeds are 0 .. seeds - 1; with several, the median growth factor over them
+    (as the simulated column). Returns (row, prediction): ``row`` holds
+    ``growth_predicted`` (NaN where no linear theory applies), ``verdict_predicted``
+    (1 MI, 0 stable, -1 undetermined),
+    ``rate_predicted`` and ``predicted_status`` (PREDICTED_STATUS); ``prediction`` is the
+    GrowthPrediction, or None.
+    """
+    from ..theory import predict_growth
+
+    try:
+        p = predict_growth(material, case, k, amplitude, start=start, N=N, t_end=t_end,
+                           seed=0, noise=noise, draws=seeds - 1)
+    except ArithmeticError as exc:  # the state has no linear theory (said in the status)
+        status = "no plane wave" if "harmonic balance" in str(exc) else "not quasi-periodic"
+        p = None
+    if p is None:
+        return {"growth_predicted": float("nan"), "verdict_predicted": -1,
+                "rate_predicted": float("nan"),
+                "predicted_status": PREDICTED_STATUS[status]}, None
+    growth = float(np.median(np.concatenate([[p.growth], p.growth_draws])))
+    return {"growth_predicted": growth,
+            "verdict_predicted": int(growth > GROWTH_THRESHOLD),
+            "rate_predicted": p.rate,
+            "predicted_status": PREDICTED_STATUS["linear" if p.linear else "saturates"]}, p
+
+
+__all__ = ["simulate_cell", "cell_records", "cell_step", "map_step", "growth_of",
+           "measured_peak_gain", "predict_cell", "PREDICTED_STATUS"]

@@ -19,6 +19,10 @@ DEFAULT_BLOCK = 4
 #: seconds one simulated cell takes on one core of a 2-core laptop-class machine at
 #: N = 500, T = 5000 (bench/results.json "maps": 0.86 s), for the run-time estimate
 CELL_SECONDS = 0.9
+#: seconds one cell's growth prediction takes on one core (numerics.theory.predict_growth,
+#: N = 500, draws = 0; measured on this machine): the exact travelling wave's Hill
+#: families, or, for eq. `IC`, first the torus of the state it launches (~0.5 s)
+PREDICT_SECONDS = {"travelling": 0.15, "paper": 0.7}
 CRITERION = (f"MI when the largest non-carrier, non-harmonic component (theta; U: its "
              f"non-forced components, from its level at 5% of the run) grows more than "
              f"{GROWTH_THRESHOLD:g}x over the run, relative to the carrier (the scenes' "
@@ -121,12 +125,15 @@ class MapParameters:
         return tuple(snap_wavenumber(x, self.N, rel_tol=math.inf)[0] for x in self.k)
 
     def estimated_seconds(self, workers: int = 1) -> float:
-        """Rough run time of the simulations (CELL_SECONDS per cell at N = 500, T = 5000,
-        scaled by N t_end and the seeds; the early stop of MI cells makes it shorter)."""
+        """Rough run time: the predictions (PREDICT_SECONDS per cell) and, unless
+        theory_only, the simulations (CELL_SECONDS per cell at N = 500, T = 5000, scaled
+        by N t_end and the seeds; the early stop of MI cells makes it shorter)."""
+        cells = len(self.k) * len(self.delta)
+        predict = cells * PREDICT_SECONDS.get(self.start, 0.7) * max(self.N / 500, 1.0)
         if self.theory_only:
-            return 0.0
-        cells = len(self.k) * len(self.delta) * self.seeds
-        return cells * CELL_SECONDS * (self.N / 500) * (self.t_end / 5000) / max(workers, 1)
+            return predict / max(workers, 1)
+        simulate = cells * self.seeds * CELL_SECONDS * (self.N / 500) * (self.t_end / 5000)
+        return (predict + simulate) / max(workers, 1)
 
     @cached_property
     def cell_step(self) -> tuple:

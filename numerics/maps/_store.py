@@ -23,6 +23,7 @@ import numpy as np
 
 from ..lattice import Material
 from ..lattice._analysis import GROWTH_THRESHOLD, grows_beyond_threshold
+from ._cells import PREDICTED_STATUS
 from ._params import MapParameters, local_cores
 
 FIELD_CODES = {"theta": 0, "U": 1}
@@ -32,27 +33,41 @@ FIELD_CODES = {"theta": 0, "U": 1}
 EXACT_OFFSETS = np.linspace(0.005, math.pi, 400)
 # --- one task: a block of cells --------------------------------------------------------------
 
-def simulate_block(params: MapParameters, i: int, js: list) -> dict:
-    """Simulate the cells (i, j) for j in ``js`` (runs on a worker)."""
-    from ._cells import simulate_cell
+def simulate_block(params: MapParameters, i: int, js: list, simulate: bool = True) -> dict:
+    """Predict, and unless ``simulate`` is False simulate, the cells (i, j) for j in
+    ``js`` (runs on a worker)."""
+    from ._cells import predict_cell, simulate_cell
 
     mat = Material(params.alpha, params.K_s, params.K_s - params.delta[i])
     method, dt = params.cell_step
     rows = []
     for j in js:
-        runs = [simulate_cell(mat, params.case, params.k_simulated[j], params.N, params.t_end,
-                              params.amplitude, params.noise, seed, params.start,
-                              dt, method) for seed in range(params.seeds)]
-        verdict = sum(r["verdict_simulated"] for r in runs) * 2 > len(runs)
-        growths = [r["growth"] for r in runs]
-        top = runs[int(np.argmax(growths))]
-        rows.append({"verdict_simulated": bool(verdict), "growth": float(np.median(growths)),
-                     "growth_field": FIELD_CODES[top["growth_field"]],
-                     "growth_q": float(top["growth_q"]),
-                     "t_simulated": float(max(r["t_simulated"] for r in runs)),
-                     "peak_gain": float(np.nanmedian([r["peak_gain"] for r in runs]))
-                     if any(np.isfinite(r["peak_gain"]) for r in runs) else float("nan")})
-    return {"i": i, "js": list(js), "rows": rows}
+        k = params.k_simulated[j]
+        row, pred = predict_cell(mat, params.case, k, params.N, params.t_end,
+                                 params.amplitude, params.noise, params.seeds, params.start)
+        if simulate:
+            runs = [simulate_cell(mat, params.case, k, params.N, params.t_end,
+                                  params.amplitude, params.noise, seed, params.start,
+                                  dt, method) for seed in range(params.seeds)]
+            verdict = sum(r["verdict_simulated"] for r in runs) * 2 > len(runs)
+            growths = [r["growth"] for r in runs]
+            top = runs[int(np.argmax(growths))]
+            row.update({
+                "verdict_simulated": bool(verdict), "growth": float(np.median(growths)),
+                "growth_field": FIELD_CODES[top["growth_field"]],
+                "growth_q": float(top["growth_q"]),
+                "t_simulated": float(max(r["t_simulated"] for r in runs)),
+                "peak_gain": float(np.nanmedian([r["peak_gain"] for r in runs]))
+                if any(np.isfinite(r["peak_gain"]) for r in runs) else float("nan")})
+            # predicted and measured growth over the same span (a run stops early once
+            # its verdict is certain): log10 of their ratio, first seed
+            if pred is not None and runs[0]["growth"] > 0:
+                row["growth_log_ratio"] = math.log10(
+                    pred.growth_at(runs[0]["t_simulated"]) / runs[0]["growth"])
+            else:
+                row["growth_log_ratio"] = float("nan")
+        rows.append(row)
+    return {"i": i, "js": list(js), "rows": rows, "simulated": simulate}
 
 
 # --- the store -------------------------------------------------------------------------------
@@ -76,6 +91,23 @@ def _empty_dataset(params: MapParameters, theory: dict):
                                    "units": "1/T (lattice time)"}),
         "t_simulated": (dims, fl(), {"units": "T (lattice time)"}),
         "done": (dims, np.zeros(shape, bool), {"long_name": "cell simulated"}),
+        "growth_predicted": (dims, fl(), {
+            "long_name": "growth factor the simulation measures, predicted: linear response "
+                         "of the cell's own initial state (numerics.theory.predict_growth; "
+                         "median over the seeds)", "units": "1"}),
+        "verdict_predicted": (dims, np.full(shape, -1, np.int8), {
+            "long_name": f"predicted growth_predicted > {GROWTH_THRESHOLD:g}",
+            "flag_values": [-1, 0, 1], "flag_meanings": "undetermined stable MI"}),
+        "rate_predicted": (dims, fl(), {"long_name": "largest growth rate of the state's "
+                                        "Hill modes", "units": "1/T (lattice time)"}),
+        "predicted_status": (dims, np.full(shape, -1, np.int8), {
+            "flag_values": [-1] + list(PREDICTED_STATUS.values()),
+            "flag_meanings": " ".join(["not_computed"] + [n.replace(" ", "_")
+                                                          for n in PREDICTED_STATUS])}),
+        "growth_log_ratio": (dims, fl(), {
+            "long_name": "log10(predicted / measured growth) over the span simulated "
+                         "(first seed)", "units": "1"}),
+        "done_predicted": (dims, np.zeros(shape, bool), {"long_name": "cell predicted"}),
     }
     for name, values in theory.items():
         attrs = ({"long_name": f"{name.removeprefix('peak_gain_')} theory: peak growth rate",
@@ -179,16 +211,17 @@ def _write_block(path: Path, params: MapParameters, result: dict):
     i, js = result["i"], result["js"]
     j0, j1 = min(js), max(js) + 1
     arrays = {}
-    for name in ("verdict_simulated", "growth", "growth_field", "growth_q", "t_simulated",
-                 "peak_gain"):
+    for name in result["rows"][0]:
         arrays[name] = (("delta", "k"), np.array([[r[name] for r in result["rows"]]]))
+    flags = {"done_predicted": (("delta", "k"), np.ones((1, j1 - j0), bool))}
+    if result["simulated"]:
+        flags["done"] = (("delta", "k"), np.ones((1, j1 - j0), bool))
     region = {"delta": slice(i, i + 1), "k": slice(j0, j1)}
     xr.Dataset(arrays).to_zarr(path, consolidated=False, region=region)
     # the done flags only after every value is on disk: a client killed between the two
-    # writes leaves the cells not done (simulated again on resume), never done with a
+    # writes leaves the cells not done (computed again on resume), never done with a
     # value missing (tests/test_cluster_faults.py found one when both went in one write)
-    done = {"done": (("delta", "k"), np.ones((1, j1 - j0), bool))}
-    xr.Dataset(done).to_zarr(path, consolidated=False, region=region)
+    xr.Dataset(flags).to_zarr(path, consolidated=False, region=region)
 
 
 # --- running ---------------------------------------------------------------------------------
@@ -214,15 +247,15 @@ def run_map(params: MapParameters, out: Path, scheduler: str | None = None,
     out.mkdir(parents=True, exist_ok=True)
     path = out / "map.zarr"
     ds = open_or_create(path, params, overwrite)
-    if params.theory_only:
-        log(f"theory only: {ds.sizes['delta'] * ds.sizes['k']} cells, no simulation")
-        return xr.open_zarr(path, consolidated=False).load()
-    done = ds["done"].values
+    # a theory-only map predicts its cells; a simulated one simulates (and predicts) them
+    flag = "done_predicted" if params.theory_only else "done"
+    what = "predict" if params.theory_only else "simulate"
+    done = ds[flag].values
     todo = blocks(params, done)
     n_cells, n_done = done.size, int(done.sum())
     if n_done:
         log(f"resuming {path}: {n_done} of {n_cells} cells already done, "
-            f"{n_cells - n_done} to simulate")
+            f"{n_cells - n_done} to {what}")
     if todo:
         _run_tasks(params, path, todo, n_cells - n_done, scheduler, workers, progress, log)
     return xr.open_zarr(path, consolidated=False).load()
@@ -254,8 +287,8 @@ def _run_tasks(params, path, todo, n_todo, scheduler, workers, progress, log):
                desc="map")
     t0 = time.perf_counter()
     try:
-        futures = [client.submit(simulate_block, params, i, js, retries=2, pure=False)
-                   for i, js in todo]
+        futures = [client.submit(simulate_block, params, i, js, not params.theory_only,
+                                 retries=2, pure=False) for i, js in todo]
         cells = dict(zip(futures, todo))
         for fut in as_completed(futures):
             try:
@@ -276,7 +309,8 @@ def _run_tasks(params, path, todo, n_todo, scheduler, workers, progress, log):
         client.close()
         if cluster is not None:
             cluster.close()
-    log(f"simulated {n_todo} cells in {time.perf_counter() - t0:.1f} s")
+    log(f"{'predicted' if params.theory_only else 'simulated'} {n_todo} cells in "
+        f"{time.perf_counter() - t0:.1f} s")
 
 
 #: a theory's verdict is "marginal" at a cell when its predicted growth exp(sigma t_end) is
@@ -288,17 +322,45 @@ MARGIN = 3.0
 def agreement(ds, margin: float = MARGIN) -> dict:
     """Percent of the simulated cells where each theory's verdict equals the simulation's:
     over all of them, and over the cells where the theory is not marginal (its predicted
-    growth over t_end not within ``margin`` of the threshold)."""
+    growth over t_end not within ``margin`` of the threshold).
+
+    "predicted" (the growth factor predicted from each cell's initial state) is marginal
+    where ``growth_predicted`` is within ``margin`` of the threshold; its undetermined cells
+    (no linear theory: ``predicted_status``) are left out and counted
+    (``predicted_undetermined_cells``). ``predicted_growth_within_2x``: percent of the
+    cells whose measured growth lies in [2, 1000] where the predicted one is within 2x of
+    it (over the same span; ``growth_log_ratio``), out of ``predicted_growth_cells``.
+    """
     done = ds["done"].values
     sim = ds["verdict_simulated"].values
     t_end, thr = float(ds.attrs["t_end"]), float(ds.attrs["growth_threshold"])
     out = {}
+
+    def pct(v, m):
+        return float(100 * np.mean(v[m] == sim[m])) if m.any() else float("nan")
+
     for name in ("paper", "semidiscrete", "exact", "exact_all"):
         v = ds[f"verdict_{name}"].values
         gain = ds[f"peak_gain_{name}"].values
         decided = done & (np.abs(gain * t_end - math.log(thr)) > math.log(margin))
-        pct = lambda m: float(100 * np.mean(v[m] == sim[m])) if m.any() else float("nan")  # noqa: E731
-        out[name] = pct(done)
-        out[f"{name}_decided"] = pct(decided)
+        out[name] = pct(v, done)
+        out[f"{name}_decided"] = pct(v, decided)
         out[f"{name}_decided_cells"] = int(decided.sum())
+    if "verdict_predicted" in ds:
+        v = ds["verdict_predicted"].values.astype(int)
+        growth = ds["growth_predicted"].values
+        known = done & (v >= 0)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            decided = known & (np.abs(np.log(growth) - math.log(thr)) > math.log(margin))
+        out["predicted"] = pct(v == 1, known)
+        out["predicted_decided"] = pct(v == 1, decided)
+        out["predicted_decided_cells"] = int(decided.sum())
+        out["predicted_undetermined_cells"] = int((done & (v < 0)).sum())
+        measured = ds["growth"].values
+        ratio = ds["growth_log_ratio"].values
+        mid = known & (measured >= 2) & (measured <= 1000) & np.isfinite(ratio)
+        out["predicted_growth_cells"] = int(mid.sum())
+        out["predicted_growth_within_2x"] = (
+            float(100 * np.mean(np.abs(ratio[mid]) <= math.log10(2))) if mid.any()
+            else float("nan"))
     return out

@@ -11,6 +11,9 @@ Stability       mi_gain (Hill's method about the state a start launches),
                 wavenumber), hill_spectrum, stability_map (batched over (k, delta))
 NLS theories    THEORIES, PAPER_START, theory_gain, nls_summary (paper NLS and
                 semi-discrete NLS from ``generated/``, and the exact lattice)
+Prediction      predict_growth -> GrowthPrediction: the growth factor a run measures,
+                from the linear response of its own initial state (Hill modes of the
+                launched state, the noise projected on them)
 Measurement     measure_gain, relative_errors (sigma(q) measured from runs)
 """
 
@@ -20,10 +23,11 @@ from ._hill import gain_spectrum, hill_spectrum, mi_gain, stability_map
 from ._launched import FreeWave, LaunchedState, launched_state
 from ._plane_wave import PlaneWave, plane_wave
 from ._quasiperiodic import GainSpectrum
+from ._response import GrowthPrediction, predict_growth
 
 __all__ = [
     "PlaneWave", "plane_wave", "LaunchedState", "FreeWave", "launched_state", "mi_gain",
     "gain_spectrum", "GainSpectrum", "hill_spectrum", "stability_map", "THEORIES",
     "PAPER_START", "theory_gain", "nls_summary", "measure_gain", "measurement_length",
-    "relative_errors",
+    "relative_errors", "predict_growth", "GrowthPrediction",
 ]

@@ -1,0 +1,337 @@
+"""What a run measures, predicted: the linear response of its actual initial state.
+
+The simulated verdict of a map cell (``numerics.maps.simulate_cell``) reads the Fourier
+spectrum of the run: the largest non-carrier, non-harmonic component relative to the
+carrier, and how much it grows (theta from T = 0, U from its level at 5% of the run). A
+growth *rate* answers another question. This module answers the simulation's:
+
+1. The run starts in ``initial_condition(seed)`` = the noise-free start + delta. The
+   noise-free start is the launched state (``launched_state``: the exact travelling
+   wave, or, for eq. `IC`, the quasi-periodic torus of carrier plus free waves).
+2. delta is linear data on that state. Split by Bloch offset: the components of delta at
+   the wavenumbers q + p k (theta at odd p, U at even p) form one family, which Hill's
+   matrices about the state (``_quasiperiodic.hill_matrix``; the travelling wave is its
+   d = 0 case) evolve exactly, up to the truncation |p| <= P, |m| <= R.
+3. Each family's data are projected on its Hill modes (the rows of V^-1 are the left
+   eigenvectors, biorthogonal to the right ones V), every mode is advanced by its
+   exponent e^{lambda T}, and the components are reassembled at the lattice's Fourier
+   bins, e^{-i (p Omega + m . nu) T} restoring the lab frame.
+4. Bins no family reaches (far from the carrier when k is small: |p| > P) hold free
+   linear waves; their forward and backward parts beat at the linear frequency.
+5. The spectrum is read as the simulation reads it: same bins, same masks
+   (``non_carrier_bins``), same ratio to the carrier (whose amplitude the launched state
+   gives over time), same records (t_end / records apart), same reference levels.
+
+A family's response is linear in the noise, so the Hill work is done once per cell and
+each seed (or draw of the noise law for the expectation) costs one projection.
+
+The prediction is the linear response. Where a predicted component reaches the carrier's
+amplitude the run has left the linear stage: the verdict is MI either way, the predicted
+growth factor is then an upper bound of what a saturating run shows (``linear`` False).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from generated import lattice_model as model
+
+from ..lattice import checks
+from ..lattice._analysis import GROWTH_THRESHOLD, non_carrier_bins, spectrum_growth
+from ..lattice._model import Material, check_case
+from ..lattice._simulate import initial_condition, noise_field, snap_wavenumber
+from ..lattice._starts import check_start
+from ._plane_wave import HARMONICS, _check_harmonics, plane_wave
+from ._quasiperiodic import hill_matrix, torus_of_wave
+
+#: draws of the noise law for the expected growth factor (its Monte-Carlo error on the
+#: mean is std / sqrt(DRAWS), ~ 10% of the spread between seeds)
+DRAWS = 32
+#: the linear stage ends where a predicted component reaches this fraction of the carrier
+LINEAR_LIMIT = 1.0
+#: free-phase truncation of the eq. `IC` torus' Hill matrices (|m_j| <= FREE_ORDER);
+#: 0 keeps the free waves' mean effect (frequency shifts), 1 their pumping
+FREE_ORDER = 0
+
+
+@dataclass(frozen=True)
+class GrowthPrediction:
+    """The predicted spectrum growth of one run, read as the simulation reads it.
+
+    Attributes
+    ----------
+    t : ndarray, shape (nt,)
+        Record times (lattice time units), 0 .. t_end.
+    ratio : dict of str -> ndarray, shape (nt,)
+        Per field ("theta"; "U" in case II): the largest non-carrier, non-harmonic
+        component over the carrier, per record.
+    growth : float
+        The simulation's measure: the largest growth factor of ``ratio`` over the run
+        (theta from T = 0, U from its level at 5% of t_end: ``spectrum_growth``), over the fields.
+    growth_field : str
+        The field carrying it.
+    growth_q : float
+        The wavenumber (rad per site) of the component at the record where it peaks.
+    verdict : bool
+        growth > GROWTH_THRESHOLD (20x within t_end): the simulation's question.
+    rate : float
+        The largest growth rate Re lambda over every family (1/T), for reference.
+    linear : bool
+        False where a predicted component reaches the carrier's amplitude within t_end
+        (the run saturates: verdict MI either way, growth an upper bound).
+    expected_growth : float
+        The mean growth factor over DRAWS draws of the noise law (same parameters, seeds
+        seed + 1 .. seed + draws); ``growth_quantiles`` its 10%, 50% and 90% quantiles,
+        ``growth_draws`` every draw's growth factor.
+    k, start, N, seed, t_end : the experiment
+    """
+
+    t: np.ndarray
+    ratio: dict
+    growth: float
+    growth_field: str
+    growth_q: float
+    verdict: bool
+    rate: float
+    linear: bool
+    expected_growth: float
+    growth_quantiles: tuple
+    growth_draws: np.ndarray
+    k: float
+    start: str
+    N: int
+    seed: int
+    t_end: float
+
+    def growth_at(self, t: float) -> float:
+        """The growth factor the simulation reads when it stops at time ``t`` (the
+        records up to t; the map cells stop early once the verdict is certain)."""
+        n = int(np.searchsorted(self.t, t * (1 + 1e-12), side="right"))
+        if n < 2:
+            return 1.0
+        bins = {f: np.arange(r.shape[1]) for f, r in self.ratio.items()}
+        g, _, _ = spectrum_growth(self.t[:n], {f: r[None, :n] for f, r in self.ratio.items()},
+                                  bins, self.N)
+        return float(g[0])
+
+    def threshold_time(self) -> float:
+        """The first record time at which the growth factor exceeds GROWTH_THRESHOLD
+        (NaN if it never does within t_end)."""
+        for i in range(2, self.t.size + 1):
+            if self.growth_at(self.t[i - 1]) > GROWTH_THRESHOLD:
+                return float(self.t[i - 1])
+        return float("nan")
+
+
+class _Families:
+    """The Hill problem of every Bloch family of a chain of N sites about one state."""
+
+    def __init__(self, torus, material, case, m0, N, P, R):
+        self.N, self.m0 = N, m0
+        # offsets j = 1 .. m0 (q = 2 pi j / N); j and -j are complex conjugates (the
+        # fields are real), j = 0 is the carrier's own family (phase, amplitude: neutral)
+        self.j = np.arange(1, m0 + 1)
+        q = 2 * np.pi * self.j / N
+        A, labels, nx, freq = hill_matrix(torus, material, case, q, P, R)
+        self.labels, self.nx, self.freq = labels, nx, freq
+        self.n = labels.shape[0]
+        self.lam, self.V = np.linalg.eig(A)
+        # a family's data sit on its m = 0 rows (the lift of the physical perturbation
+        # onto the torus' Fourier basis: any lift with the same sum over m is exact)
+        self.m_zero = np.all(labels[:, 1:] == 0, axis=1) if labels.shape[1] > 1 \
+            else np.ones(self.n, bool)
+        p = labels[:, 0]
+        self.field = np.where(np.arange(self.n) < nx, 0, 1)  # 0 theta, 1 U
+        # signed bins b = j + p m0 of every (family, row), and their rfft indices
+        self.b = self.j[:, None] + p[None, :] * m0  # (nf, n)
+        # family m0 holds its own conjugate (bin (p + 1) m0 <-> label -p - 2)
+        self.conj = self.j != m0
+        self.rate = float(max(self.lam.real.max(), 0.0))
+        self._own()
+
+    def _own(self):
+        """Which row deposits each lattice bin. On a ring of N sites the Fourier bins
+        j + p m0 of different families can coincide mod N (aliasing: p k wraps past
+        2 pi); each bin r is owned by one (family, row) - the one of smallest |p|, its
+        direct bin before a conjugate one - which alone carries its data and deposits
+        its value."""
+        nf, n = self.b.shape
+        direct = np.zeros((nf, n), bool)
+        conj = np.zeros((nf, n), bool)
+        owned = [set(), set()]
+        order = np.argsort(np.abs(self.labels[:, 0]), kind="stable")
+        for row in order:
+            if not self.m_zero[row]:
+                continue
+            f = self.field[row]
+            for i in range(nf):
+                r = int(self.b[i, row] % self.N)
+                if r not in owned[f]:
+                    owned[f].add(r)
+                    direct[i, row] = True
+            for i in np.flatnonzero(self.conj):
+                r = int(-self.b[i, row] % self.N)
+                if r not in owned[f]:
+                    owned[f].add(r)
+                    conj[i, row] = True
+        self.direct, self.conj_owner, self.covered = direct, conj, owned
+
+    def initial(self, delta):
+        """Family data (nf, 2n, draws) from delta = (theta, theta_dot, U, U_dot) FFTs
+        (each (draws, N), normalised 1/N), on the rows that own a bin."""
+        nf, n = self.b.shape
+        X0 = np.zeros((nf, 2 * n, delta[0].shape[0]), complex)
+        rows = self.direct | self.conj_owner
+        for i, row in zip(*np.nonzero(rows)):
+            f, r = self.field[row], int(self.b[i, row] % self.N)
+            X0[i, row] = delta[2 * f][:, r]
+            X0[i, n + row] = delta[2 * f + 1][:, r]
+        return X0
+
+    def evolve(self, X0, t):
+        """Complex amplitudes e^{i b n} of every (family, row) at times t: (nt, nf, n, draws)
+        before the sum over m (rows of one p at the same bin add in the lab frame)."""
+        coef = np.linalg.solve(self.V, X0)  # biorthogonal projection on the modes
+        n = self.n
+        Vx = self.V[:, :n, :]  # (nf, n, 2n): values (the first n rows)
+        grow = np.exp(self.lam[None, :, :] * t[:, None, None])  # (nt, nf, 2n)
+        lab = np.exp(-1j * self.freq[None, :] * t[:, None])  # (nt, n)
+        out = np.einsum("frm,tfm,fmd->tfrd", Vx, grow, coef, optimize=True)
+        return out * lab[:, None, :, None]
+
+
+def _free_waves(material, N, delta, field, covered, t):
+    """Bins no family reaches: free linear waves of the branch, |f e^{-iwt} + b e^{iwt}|."""
+    rest = np.array(sorted(set(range(N)) - covered), int)
+    if rest.size == 0:
+        return rest, np.zeros((t.size, delta[0].shape[0], 0), complex)
+    qq = 2 * np.pi * rest / N
+    w = (model.omega_rotation(qq, material.alpha, material.K_s, material.K_theta)
+         if field == 0 else model.omega_longitudinal(qq))
+    w = np.where(w > 0, w, 1.0)  # the uniform U mode is a rigid shift: no beating
+    z, zd = delta[2 * field][:, rest], delta[2 * field + 1][:, rest]
+    f = (w * z + 1j * zd) / (2 * w)
+    b = z - f
+    ph = np.exp(-1j * np.outer(t, w))  # (nt, nb)
+    return rest, f[None] * ph[:, None] + b[None] * np.conj(ph)[:, None]
+
+
+def predict_growth(material: Material, case: str, k: float, amplitude: float = 0.02, *,
+                   start: str = "paper", N: int = 500, t_end: float = 5000.0,
+                   seed: int = 0, noise: float = 1e-3, records: int = 200,
+                   draws: int = DRAWS, harmonics: int = HARMONICS,
+                   free_order: int = FREE_ORDER) -> GrowthPrediction:
+    """The growth factor a simulation of this experiment measures, from linear response.
+
+    Parameters
+    ----------
+    material, case, k, amplitude, start, N, noise, seed :
+        The experiment, as :func:`numerics.simulate` takes it (k is snapped to the
+        nearest 2 pi m / N, as the simulation does).
+    t_end : float
+        Length of the run (lattice time).
+    records : int
+        Spectra recorded over the run (t_end / records apart: the map cells record 200).
+    draws : int
+        Draws of the noise law (seeds seed + 1 ..) for ``expected_growth``; 0 skips it.
+    harmonics : int
+        Truncation H of the state (as :func:`plane_wave`); the Hill matrices keep
+        |p| <= 2H - 1 (theta) and 2H (U).
+    free_order : int
+        |m_j| <= free_order for the free phases of eq. `IC`'s torus.
+
+    Returns
+    -------
+    GrowthPrediction
+
+    Raises
+    ------
+    ValueError
+        For bad input, or where no plane wave of that amplitude exists.
+    ArithmeticError
+        Where the launched state is not quasi-periodic (no linear theory applies).
+
+    Examples
+    --------
+    >>> p = predict_growth(Material.paper("blue"), "coupled", 0.8168, 0.02, t_end=2000)
+    >>> p.growth, p.verdict                                 # doctest: +SKIP
+    """
+    checks.instance("material", material, Material)
+    case = check_case(case)
+    start = check_start(start)
+    N = checks.integer("N", N, 8, 10**6)
+    noise = checks.real("noise", noise, 0.0, 1.0, low_open=False, high_open=True)
+    seed = checks.seed(seed)
+    t_end = checks.positive("t_end", t_end)
+    records = checks.integer("records", records, 2, 10**5)
+    draws = checks.integer("draws", draws, 0, 10**4)
+    free_order = checks.integer("free_order", free_order, 0, 3)
+    H = _check_harmonics(harmonics)
+    k_run, m0 = snap_wavenumber(k, N, rel_tol=math.inf)
+    if 2 * m0 >= N:
+        raise ValueError(f"k = {k:g} snaps to pi on N = {N} sites: no sidebands")
+    # the state the run starts in (imported here: _launched imports _hill's torus cache)
+    from ._hill import TORUS_TOLERANCE, _launched
+    if start == "travelling":
+        wave = plane_wave(material, case, k_run, amplitude, H)
+        tor, R, launched = torus_of_wave(wave), 0, None
+    else:
+        launched = _launched(material, case, k_run, amplitude, start, H)
+        tor, R = launched.torus, free_order
+        if tor.residual > TORUS_TOLERANCE:
+            raise ArithmeticError(
+                f"the state eq. `IC` launches at k = {k_run:.6g}, amplitude {amplitude:g} is "
+                f"not quasi-periodic (torus misfit {tor.residual:.2g}): no linear response "
+                "applies; simulate it")
+    fam = _Families(tor, material, case, m0, N, 2 * H - 1, R)
+    t = np.linspace(0.0, t_end, records + 1)
+
+    # every start multiplies its fields by (1 + b0) (``numerics.lattice.noise_field``):
+    # delta = b0 x the noise-free start, per seed
+    seeds = [seed] + [seed + 1 + i for i in range(draws)]
+    clean = initial_condition(material, case, N, k_run, amplitude, 0.0, 0, start)
+    b0 = np.array([noise_field(N, noise, s) for s in seeds])  # (draws + 1, N)
+    delta = [np.fft.fft(b0 * x, axis=1) / N if x is not None else np.zeros((len(seeds), N))
+             for x in (clean.theta, clean.theta_dot, clean.U, clean.U_dot)]
+    X0 = fam.initial(delta)
+    amp = fam.evolve(X0, t)  # (nt, nf, n, draws)
+
+    # the carrier's amplitude per record, as the simulation reads bin m0
+    if launched is None:
+        carrier = np.full(t.size, abs(wave.theta_harmonics[0]))
+    else:
+        carrier = np.abs(launched.mode("theta", 1, t))
+    fields = ("theta", "U") if case == "coupled" else ("theta",)
+    ratio, bins_of = {}, {}
+    linear = True
+    for f, name in enumerate(fields):
+        full = np.zeros((t.size, len(seeds), N), complex)
+        for i, row in zip(*np.nonzero(fam.direct & (fam.field == f)[None, :])):
+            full[:, :, fam.b[i, row] % N] += amp[:, i, row, :]
+        for i, row in zip(*np.nonzero(fam.conj_owner & (fam.field == f)[None, :])):
+            full[:, :, -fam.b[i, row] % N] += np.conj(amp[:, i, row, :])
+        rest, free = _free_waves(material, N, delta, f, fam.covered[f], t)
+        full[:, :, rest] += free
+        mask = non_carrier_bins(m0, N, name)
+        spec = 2 * np.abs(full[:, :, : N // 2 + 1][:, :, mask])  # (nt, draws, nbins)
+        linear &= bool(np.all(spec[:, 0].max(axis=1) < LINEAR_LIMIT * carrier))
+        ratio[name] = np.transpose(spec / carrier[:, None, None], (1, 0, 2))
+        bins_of[name] = np.flatnonzero(mask)
+    growth, field, where = spectrum_growth(t, ratio, bins_of, N)
+    g = float(growth[0])
+    expected = float(np.mean(growth[1:])) if draws else float("nan")
+    quant = tuple(float(x) for x in np.quantile(growth[1:], (0.1, 0.5, 0.9))) if draws \
+        else (float("nan"),) * 3
+    return GrowthPrediction(
+        t=t, ratio={n: r[0] for n, r in ratio.items()}, growth=g,
+        growth_field=str(field[0]), growth_q=float(where[0]),
+        verdict=bool(g > GROWTH_THRESHOLD), rate=fam.rate, linear=linear,
+        expected_growth=expected, growth_quantiles=quant, growth_draws=growth[1:].copy(),
+        k=float(k_run), start=start, N=N,
+        seed=seed, t_end=float(t_end))
+
+
+__all__ = ["GrowthPrediction", "predict_growth"]
