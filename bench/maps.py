@@ -4,14 +4,16 @@ scheduling overhead, the 64 x 64 map's wall time, and the cells' accuracy.
 - A cell is the paper's run (N = 500, T = 5000, paper IC, one seed) with the map's early
   stop, at the map's default step (``numerics.maps._cells.map_step``: method and dt for a
   1% growth-factor error) and, for the ratio, at the paper's RK4 dt = 0.05; measured
-  serially (no Dask) on a row of stable and unstable cells of case II.
+  serially (no Dask) on a row of stable and unstable cells of case II; beside it the cost
+  of the cell's prediction (``predict_cell``), which ``run_map`` adds.
 - The same 16-cell map (4 x 4 around the blue point, case II, block = 1) on a LocalCluster
   of 1 and of 2 worker processes, and of 1 worker with 2 threads (the compiled loops
   release the GIL): the speed-up of each layout, clusters warmed up first.
 - Scheduling overhead: no-op tasks through the same cluster against the cost of a task.
 - The 64 x 64 map (fig3 plane: alpha = 2.5, delta in [-0.012, 0.012], k in [0.08, 0.92] pi,
-  case II) through ``run_map`` on this machine's default cluster: measured wall time
-  (full run only; --quick estimates it from the per-cell cost).
+  case II): its cells simulated in blocks of 4 on this machine's default cluster, measured
+  wall time (full run only; --quick estimates it from the per-cell cost). ``run_map`` also
+  predicts every cell (``predict_cell``, timed apart per cell).
 - The cells' accuracy (``bench.calibrate_growth.check_grid``): the full fig3-simulated
   grid, both cases, at the default step against a tight reference (srkn11b, dt = 0.1):
   verdict changes and the largest growth-factor error (full run only).
@@ -34,7 +36,7 @@ import numpy as np
 
 from bench.simulator import arguments, machine, write_section
 from common import paper
-from numerics import maps
+from numerics import Material, maps
 
 
 def _noop(x):
@@ -48,20 +50,38 @@ def _params(N, T, **kw):
                               amplitude=paper.AMPLITUDE, N=N, t_end=T, block=1, **kw)
 
 
+def _simulate_cells(params, i, js):
+    """The simulation part of ``simulate_block`` alone (its prediction is timed apart)."""
+    from numerics.maps._cells import simulate_cell
+
+    mat = Material(params.alpha, params.K_s, params.K_s - params.delta[i])
+    method, dt = params.cell_step
+    return [simulate_cell(mat, params.case, params.k_simulated[j], params.N, params.t_end,
+                          params.amplitude, params.noise, 0, params.start, dt, method)
+            for j in js]
+
+
 def cell_costs(params, paper_params):
-    """Serial cost of the first row's cells at the default step and at RK4 dt = 0.05."""
+    """Serial cost of the first row's cells: simulated at the default step and at RK4
+    dt = 0.05, and the prediction ``simulate_block`` adds to each cell."""
     import dataclasses
 
+    from numerics.maps._cells import predict_cell
+
     for p in (params, paper_params):  # compile (or load) the kernels outside the timing
-        maps.simulate_block(dataclasses.replace(p, t_end=10.0, k=p.k[:1]), 0, [0])
+        _simulate_cells(dataclasses.replace(p, t_end=10.0, k=p.k[:1]), 0, [0])
+    mat = Material(params.alpha, params.K_s, params.K_s - params.delta[0])
     rows = []
     for j, k in enumerate(params.k_simulated):
         row = {"k": float(k), "delta": params.delta[0]}
         for label, p in (("default", params), ("rk4 dt = 0.05", paper_params)):
             t0 = time.perf_counter()
-            r = maps.simulate_block(p, 0, [j])["rows"][0]
+            r = _simulate_cells(p, 0, [j])[0]
             row[label] = {"s": time.perf_counter() - t0, "mi": r["verdict_simulated"],
                           "growth": r["growth"], "t_simulated": r["t_simulated"]}
+        t0 = time.perf_counter()
+        predict_cell(mat, params.case, k, params.N, params.t_end, params.amplitude)
+        row["prediction_s"] = time.perf_counter() - t0
         rows.append(row)
     return rows
 
@@ -108,23 +128,32 @@ def scheduling_overhead():
 
 
 def map_64(N, T):
-    """The 64 x 64 map of the fig3 plane, case II, through run_map: wall time."""
+    """The 64 x 64 map of the fig3 plane, case II: its cells simulated (one task per
+    block of 4, as run_map) on this machine's default cluster, wall time. The predictions
+    ``run_map`` adds per cell are timed apart (``cell_costs``)."""
+    from dask.distributed import Client, LocalCluster
+
     m = np.unique(np.round(np.linspace(0.08, 0.92, 64) * N / 2).astype(int))
     params = maps.MapParameters(case="coupled", alpha=paper.ALPHA, K_s=paper.K_S,
                                 delta=tuple(np.linspace(-0.012, 0.012, 64)),
                                 k=tuple(2 * np.pi * m / N), amplitude=paper.AMPLITUDE,
                                 N=N, t_end=T)
-    d = Path(tempfile.mkdtemp())
-    try:
+    params.cell_step  # noqa: B018 - chosen once, in the client (as run_map does)
+    todo = maps._store.blocks(params, np.zeros((len(params.delta), len(params.k)), bool))
+    with LocalCluster(n_workers=maps.local_cores(), threads_per_worker=1,
+                      dashboard_address=":0", silence_logs=40) as cluster, \
+            Client(cluster) as client:
+        client.gather([client.submit(_simulate_cells, params, 0, [0], pure=False)
+                       for _ in range(2)])  # load the compiled kernels
         t0 = time.perf_counter()
-        ds = maps.run_map(params, d, progress=False, log=lambda *_: None)
+        rows = [r for rs in client.gather([client.submit(_simulate_cells, params, i, js,
+                                                         retries=2, pure=False)
+                                           for i, js in todo]) for r in rs]
         wall = time.perf_counter() - t0
-        return {"cells": int(ds["done"].values.sum()), "wall_s": wall,
-                "workers": maps.local_cores(), "method": ds.attrs["method"],
-                "dt": ds.attrs["dt"], "mi_cells": int(ds["verdict_simulated"].values.sum()),
-                "stopped_early_cells": int((ds["t_simulated"].values < T).sum())}
-    finally:
-        shutil.rmtree(d, ignore_errors=True)
+    return {"cells": len(rows), "wall_s": wall, "workers": maps.local_cores(),
+            "method": params.cell_step[0], "dt": params.cell_step[1],
+            "mi_cells": int(sum(r["verdict_simulated"] for r in rows)),
+            "stopped_early_cells": int(sum(r["stopped_early"] for r in rows))}
 
 
 def main(quick=False, out=None):
@@ -137,30 +166,32 @@ def main(quick=False, out=None):
     costs = cell_costs(params, paper_params)
     serial = statistics.mean(c["default"]["s"] for c in costs)
     serial_rk4 = statistics.mean(c["rk4 dt = 0.05"]["s"] for c in costs)
+    predict = statistics.mean(c["prediction_s"] for c in costs)
     walls = layout_walls(params)
     overhead = scheduling_overhead()
     n_cells = len(params.delta) * len(params.k)
-    per_cell = walls["1 process"] / n_cells  # one worker, everything included
+    per_cell = walls["1 process"] / n_cells  # run_map on one worker: prediction included
     res = {"machine": machine(), "quick": quick, "N": N, "t_end": T,
            "method": params.cell_step[0], "dt": params.cell_step[1],
            "per_cell_s": per_cell, "per_cell_serial_s": serial,
+           "prediction_per_cell_serial_s": predict,
            "per_cell_serial_rk4_s": serial_rk4, "default_over_rk4": serial_rk4 / serial,
-           "cells": costs, "cells_per_second_per_core": 1 / per_cell,
+           "cells": costs, "cells_per_second_per_core": 1 / serial,
            "map_16_cells_wall_s": walls,
            "speedup_2_workers": walls["1 process"] / walls["2 processes"],
            "speedup_2_threads": walls["1 process"] / walls["1 process, 2 threads"],
            "scheduling_overhead_per_task_s": overhead,
            "overhead_fraction_of_a_task": overhead / (per_cell * params.block),
-           "map_64x64_estimated_here_s": 64 * 64 * per_cell / 2}
+           "map_64x64_estimated_here_s": 64 * 64 * serial / 2}
     if not quick:
         res["map_64x64"] = map_64(N, T)
         res["cell_accuracy"] = check_grid()
     res["load_average_before_after"] = [load_before, os.getloadavg()]
     write_section("maps", res, quick, out)
-    print(f"per cell (N = {N}, T = {T:g}, {res['method']} dt = {res['dt']:.3g}): "
-          f"{per_cell:.3f} s in the map on one worker ({serial:.3f} s serially; RK4 at "
-          f"dt = 0.05 {serial_rk4:.3f} s: {serial_rk4 / serial:.1f}x) = "
-          f"{1 / per_cell:.1f} cells/s/core")
+    print(f"per cell (N = {N}, T = {T:g}, {res['method']} dt = {res['dt']:.3g}): simulated "
+          f"in {serial:.3f} s serially = {1 / serial:.1f} cells/s/core (RK4 at dt = 0.05 "
+          f"{serial_rk4:.3f} s: {serial_rk4 / serial:.1f}x); its prediction {predict:.3f} s; "
+          f"both in run_map on one worker {per_cell:.3f} s")
     print("16-cell map: " + ", ".join(f"{k} {v:.2f} s" for k, v in walls.items())
           + f" -> 2 processes {res['speedup_2_workers']:.2f}x, 2 threads "
           f"{res['speedup_2_threads']:.2f}x")
@@ -168,8 +199,9 @@ def main(quick=False, out=None):
           f"{100 * res['overhead_fraction_of_a_task']:.2f}% of a {params.block}-cell task")
     if "map_64x64" in res:
         m = res["map_64x64"]
-        print(f"64 x 64 map ({m['cells']} cells, {m['workers']} workers): "
-              f"{m['wall_s'] / 60:.1f} min measured")
+        print(f"64 x 64 map ({m['cells']} cells simulated, {m['workers']} workers): "
+              f"{m['wall_s'] / 60:.1f} min measured (predictions not included: "
+              f"~{64 * 64 * predict / m['workers'] / 60:.0f} min more in run_map)")
         acc = res["cell_accuracy"]
         for case in ("rotation", "coupled"):
             a = acc[case]
