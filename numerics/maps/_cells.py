@@ -10,9 +10,8 @@ Accuracy (what the verdict needs): the run's method and step come from the accur
 quantity measured, the growth factor, not from the paper's RK4 step: :func:`cell_step`
 solves the error model of ``numerics.lattice._accuracy`` with the growth factor's own
 constants (GROWTH_ERROR_CONSTANTS, measured by ``bench/calibrate_growth.py``) for a
-relative growth error GROWTH_TOL. The spectrum's magnitudes do not see the carrier's phase
-error, which dominates the state error, so the growth factor tolerates a much larger step
-than the state would.
+relative growth error GROWTH_TOL (1%); a map takes one step for all its cells
+(:func:`map_step`, at its fastest carrier) and records it in the store's attrs.
 
 Early stop (the rule): the spectrum is recorded RECORDS times over the run; as soon as the
 growth factor exceeds the threshold the verdict "MI" is certain (the factor is a running
@@ -42,8 +41,10 @@ GROWTH_TOL = 0.01
 #: (w the starting state's dominant frequency; e the largest relative error of the growth
 #: factor over the records), per method: the largest constant measured by
 #: ``bench/calibrate_growth.py`` on 32 cells between those of the fig3-simulated grid (both
-#: cases, N = 500, T = 5000; spread 2e-9 .. 1.6e-6 for srkn11b, the largest near resonant
-#: case II cells). 1/10 .. 1/100 of the state's constants (``ERROR_CONSTANTS``).
+#: cases, N = 500, T = 5000; spread 2e-9 .. 1.6e-6 for srkn11b, the largest at near-resonant
+#: case II cells). The largest are about the state's (``ERROR_CONSTANTS``), most cells' far
+#: below (the spectrum's magnitudes do not see the carrier's phase error, which dominates
+#: the state error); the big step comes from asking 1% of the growth factor.
 GROWTH_ERROR_CONSTANTS = {"srkn11b": 1.6e-6, "srkn6b": 6.4e-5, "kahanli8": 8.9e-5}
 
 

@@ -17,8 +17,11 @@ from ._cells import GROWTH_TOL
 #: k values per task (one delta row is split into blocks of this many cells)
 DEFAULT_BLOCK = 4
 #: seconds one simulated cell takes on one core of a 2-core laptop-class machine at
-#: N = 500, T = 5000 (bench/results.json "maps": 0.86 s), for the run-time estimate
-CELL_SECONDS = 0.9
+#: N = 500, T = 5000 with 11 force evaluations per unit time (srkn11b at dt = 1, about the
+#: map's chosen step): bench/results.json "maps", 0.27 s at load average ~6 on the two
+#: cores, ~0.12 s idle (RK4 at dt = 0.05, 80 evaluations per unit time: 0.86 s idle);
+#: for the run-time estimate, scaled by the evaluations per unit time of the map's step
+CELL_SECONDS = 0.15
 #: seconds one cell's growth prediction takes on one core (numerics.theory.predict_growth,
 #: N = 500, draws = 0; measured on this machine): the exact travelling wave's Hill
 #: families, or, for eq. `IC`, first the torus of the state it launches (~0.5 s)
@@ -132,7 +135,12 @@ class MapParameters:
         predict = cells * PREDICT_SECONDS.get(self.start, 0.7) * max(self.N / 500, 1.0)
         if self.theory_only:
             return predict / max(workers, 1)
-        simulate = cells * self.seeds * CELL_SECONDS * (self.N / 500) * (self.t_end / 5000)
+        from ..lattice import get_method
+
+        method, dt = self.cell_step
+        per_time = get_method(method).evaluations / dt / 11  # relative to CELL_SECONDS'
+        simulate = (cells * self.seeds * CELL_SECONDS * per_time * (self.N / 500)
+                    * (self.t_end / 5000))
         return (predict + simulate) / max(workers, 1)
 
     @cached_property

@@ -280,6 +280,8 @@ def _run_tasks(params, path, todo, n_todo, scheduler, workers, progress, log):
         client = Client(scheduler, timeout="20s")
     else:
         n = workers or local_cores()
+        # one single-threaded process per core: measured against one process with a
+        # thread per core (bench/maps.py, "map_16_cells_wall_s"), which gains less
         cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
                                dashboard_address=":0", silence_logs=logging.CRITICAL)
         client = Client(cluster)
