@@ -26,6 +26,28 @@ def _duration(seconds: float) -> str:
     return f"{seconds / 3600:.1f} h"
 
 
+#: MapParameters' field names -> the map command's options, for its error messages
+_OPTIONS = {"N": "--N", "t_end": "--t-end", "seeds": "--seeds", "amplitude": "--amplitude",
+            "block": "--block", "k": "--k", "delta": "--delta", "case": "--case",
+            "start": "--start", "alpha": "--alpha", "K_s": "--K-s", "K_theta": "--K-theta"}
+
+
+def _as_option(message: str) -> str:
+    """A MapParameters message with its leading field name as the option's."""
+    import re
+
+    m = re.match(r"([A-Za-z_]+)(\[\d+\])?", message)
+    if m and m.group(1) in _OPTIONS:
+        return _OPTIONS[m.group(1)] + message[len(m.group(1)):]
+    return message
+
+
+def _mi_fraction(v: np.ndarray) -> float:
+    """Share of MI among the cells a verdict decides (undetermined cells left out)."""
+    decided = v >= 0
+    return float((v[decided] == 1).mean()) if decided.any() else float("nan")
+
+
 def plot_map(ds, ax=None):
     """Simulated verdict (white: MI) with the theories' boundaries drawn over it."""
     from ._plotting import image, plt
@@ -36,13 +58,14 @@ def plot_map(ds, ax=None):
         fig = ax.figure
     k, d = ds["k"].values, ds["delta"].values
     done = ds["done"].values
-    sim = np.where(done, np.where(ds["verdict_simulated"].values, 1.0, -1.0), 0.0)
+    sim = np.where(done, np.where(ds["verdict_simulated"].values == 1, 1.0, -1.0), 0.0)
     if len(k) > 1 and len(d) > 1:
         image(ax, k, d, sim, cmap="gray", vmin=-1, vmax=1)
         for name, color in (("verdict_paper", "C1"), ("verdict_semidiscrete", "C2"),
                             ("verdict_exact", "C3")):
             v = ds[name].values.astype(float)
-            if 0 < v.mean() < 1:
+            v[v < 0] = np.nan  # undetermined: no boundary drawn through it
+            if np.isfinite(v).any() and 0 < np.nanmean(v) < 1:
                 ax.contour(k, d, v, levels=[0.5], colors=color, linewidths=1.2)
             ax.plot([], [], color=color, label=name.removeprefix("verdict_"))
         ax.legend(fontsize=7, loc="upper right")
@@ -82,11 +105,16 @@ def run_map_command(args, log=print):
     if cells > MAX_CELLS:
         raise ValueError(f"--k and --delta ask for {cells} cells; at most {MAX_CELLS} "
                          "(split the map into several --out folders)")
-    params = MapParameters(case=args.case, alpha=args.alpha, K_s=args.K_s,
-                           delta=tuple(float(d) for d in delta),
-                           k=tuple(float(x) for x in k), amplitude=args.amplitude,
-                           N=args.N, t_end=args.t_end, seeds=args.seeds, start=args.start,
-                           theory_only=args.theory_only, block=args.block)
+    checks.positive("--timeout", args.timeout)
+    try:
+        params = MapParameters(case=args.case, alpha=args.alpha, K_s=args.K_s,
+                               delta=tuple(float(d) for d in delta),
+                               k=tuple(float(x) for x in k), amplitude=args.amplitude,
+                               N=args.N, t_end=args.t_end, seeds=args.seeds,
+                               start=args.start, theory_only=args.theory_only,
+                               block=args.block)
+    except (ValueError, TypeError) as exc:  # name the option, not the field
+        raise type(exc)(_as_option(str(exc))) from None
     moved = [(a, b) for a, b in zip(params.k, params.k_simulated) if abs(a - b) > 1e-9 * a]
     if moved:
         log(f"note: {len(moved)} of {len(k)} k values snapped to 2 pi m / N (N = {params.N}),"
@@ -109,11 +137,14 @@ def run_map_command(args, log=print):
 
     out = prepare_output(args.out)
     ds = run_map(params, out, args.scheduler, args.workers, log=log,
-                 overwrite=args.overwrite)
+                 overwrite=args.overwrite, timeout=args.timeout)
+    verdicts = [n for n in ds.data_vars if n.startswith("verdict_")]
     summary = {"cells": int(ds["done"].size), "simulated": int(ds["done"].values.sum()),
                "agreement_with_simulation_percent": agreement(ds),
                "mi_fraction": {n.removeprefix("verdict_"): _mi_fraction(ds[n].values)
-                               for n in ds.data_vars if n.startswith("verdict_")}}
+                               for n in verdicts},
+               "undetermined_cells": {n.removeprefix("verdict_"): int((ds[n].values < 0).sum())
+                                      for n in verdicts}}
     write_text(out / "summary.json", json.dumps(_strict(summary), indent=2) + "\n")
     fig = plot_map(ds)
     from common.files import atomic_write
@@ -128,16 +159,13 @@ def run_map_command(args, log=print):
         ag = summary["agreement_with_simulation_percent"]
         log("theory verdicts that agree with the simulation: " + "; ".join(
             f"{n} {ag[n]:.0f}% of cells ({ag[n + '_decided']:.0f}% of the "
-            f"{ag[n + '_decided_cells']} clear ones)" for n in
-            ("paper", "semidiscrete", "exact", "exact_all", "predicted")))
-        log(f"predicted growth within 2x of the measured one in "
-            f"{ag['predicted_growth_within_2x']:.0f}% of the {ag['predicted_growth_cells']} "
-            "cells that grew 2x to 1000x")
+            f"{ag[n + '_decided_cells']} clear ones"
+            + (f"; {ag[n + '_undetermined_cells']} undetermined, left out"
+               if ag[n + '_undetermined_cells'] else "") + ")"
+            for n in ("paper", "semidiscrete", "exact", "exact_all", "predicted")))
+        if ag["predicted_growth_cells"]:
+            log(f"predicted growth within 2x of the measured one in "
+                f"{ag['predicted_growth_within_2x']:.0f}% of the "
+                f"{ag['predicted_growth_cells']} cells that grew 2x to 1000x")
     return ds
 
-
-def _mi_fraction(v):
-    """Share of MI among the cells with a verdict (the predicted column's -1 is none)."""
-    v = np.asarray(v).astype(int)
-    known = v >= 0
-    return float(np.mean(v[known] == 1)) if known.any() else float("nan")

@@ -224,9 +224,23 @@ def replot_scene(name: str, out: Path | str = "out") -> Path:
     path = folder / "data.h5"
     if not path.is_file():
         raise ValueError(f"{path} does not exist: run `flexmm scene {name}` first")
-    data = read_data(path)
-    _save_figure(sc.plot(data), folder, bool(data.get("quick")))
+    redo = f"run `flexmm scene {name} --out {out}` to compute it again"
+    try:
+        data = read_data(path)
+    except (OSError, KeyError, ValueError) as exc:  # not HDF5, truncated, torn
+        raise ValueError(f"{path} cannot be read ({_first_line(exc)}): {redo}") from None
+    try:
+        fig = sc.plot(data)
+    except KeyError as exc:  # a dataset the figure needs is missing
+        raise ValueError(f"{path} lacks the dataset {exc.args[0]!r} the figure needs: "
+                         f"{redo}") from None
+    _save_figure(fig, folder, bool(data.get("quick")))
     return folder
+
+
+def _first_line(exc) -> str:
+    text = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+    return text[:160]
 
 
 def _pct(x):

@@ -134,6 +134,8 @@ def _map_parser(sub):
     p.add_argument("--scheduler", help="address of a running Dask scheduler "
                    "(tcp://host:8786); default: a LocalCluster on this machine")
     p.add_argument("--workers", type=int, help="LocalCluster workers (default: the cores)")
+    p.add_argument("--timeout", type=float, default=20.0,
+                   help="seconds to reach --scheduler and see it answer as a Dask scheduler")
     p.add_argument("--theory-only", action="store_true",
                    help="the theories' verdicts only: no simulation")
     p.add_argument("--block", type=int, default=4, help="cells per task")
@@ -162,31 +164,70 @@ def _print_checks(summary):
 
 
 def main(argv=None) -> int:
-    """Run the CLI; returns the exit code (0 ok, 2 bad input or file system, 130 Ctrl-C)."""
-    args = _parser().parse_args(_join_negative_values(sys.argv[1:] if argv is None
-                                                      else list(argv)))
-    if getattr(args, "out", None) is not None:
-        args.out = args.out or "."  # --out '' is the current folder, and says so
+    """Run the CLI; returns the exit code (0 ok, 2 bad input or file system, 130 SIGINT,
+    143 SIGTERM: both handled alike, one line saying what was kept where)."""
+    from common.signals import exit_code, interrupts
+
+    with interrupts():
+        try:
+            args = _parser().parse_args(_join_negative_values(sys.argv[1:] if argv is None
+                                                              else list(argv)))
+            if getattr(args, "out", None) is not None:
+                args.out = args.out or "."  # --out '' is the current folder, and says so
+            return _run(args)
+        except KeyboardInterrupt as exc:  # SIGINT or SIGTERM, at any moment
+            try:
+                print(f"flexmm: {_interrupted(locals().get('args'), exc)}", file=sys.stderr)
+            except KeyboardInterrupt:
+                pass
+            return exit_code(exc)
+        except (ValueError, TypeError, FloatingPointError, MemoryError) as exc:
+            text = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+            print(f"flexmm: error: {text}", file=sys.stderr)
+            return 2
+        except OSError as exc:
+            where = f" {exc.filename}" if exc.filename else ""
+            print(f"flexmm: error:{where}: {exc.strerror or exc}", file=sys.stderr)
+            return 2
+
+
+def _interrupted(args, exc) -> str:
+    """What an interrupt kept, and where (one line)."""
+    import signal as _signal
+
+    from common.signals import signal_number
+
+    name = _signal.Signals(signal_number(exc)).name
+    cmd = getattr(args, "cmd", None)
+    if cmd in ("scene", "run"):
+        where = Path(args.out) / ".cache"
+        running = getattr(exc, "checkpoint", None)
+        return (f"interrupted ({name}); finished simulations are kept in {where}"
+                + (f", the running one was checkpointed in {running}" if running else
+                   ", no simulation was running")
+                + ": run the same command again to continue")
+    if cmd == "map":
+        store = Path(args.out) / "map.zarr"
+        done = _done_cells(store)
+        kept = (f"{done[0]} of {done[1]} cells are kept in {store} (checksummed)"
+                if done else f"nothing was written to {store}")
+        return (f"interrupted ({name}); {kept}; the cells that were running were not kept: "
+                "run the same command again to continue")
+    if cmd == "point":
+        return (f"interrupted ({name}); nothing was written"
+                + (f" to {args.out}" if getattr(args, "out", None) else ""))
+    return f"interrupted ({name})"
+
+
+def _done_cells(store: Path):
+    """(cells done, cells) of a map store, or None when it holds none."""
     try:
-        return _run(args)
-    except KeyboardInterrupt:
-        if args.cmd in ("scene", "run"):
-            print(f"flexmm: interrupted; finished simulations are kept in {args.out}/.cache "
-                  "and the one running was checkpointed there: run the same command again "
-                  "to continue", file=sys.stderr)
-        elif args.cmd == "map":
-            print(f"flexmm: interrupted; finished cells are kept in {args.out}/map.zarr: run "
-                  "the same command again to continue", file=sys.stderr)
-        else:
-            print("flexmm: interrupted", file=sys.stderr)
-        return 130
-    except (ValueError, TypeError, FloatingPointError) as exc:
-        print(f"flexmm: error: {exc}", file=sys.stderr)
-        return 2
-    except OSError as exc:
-        where = f" {exc.filename}" if exc.filename else ""
-        print(f"flexmm: error: cannot write{where}: {exc.strerror or exc}", file=sys.stderr)
-        return 2
+        import zarr
+
+        done = zarr.open_group(str(store), mode="r")["done"][...]
+        return int(done.sum()), int(done.size)
+    except Exception:  # noqa: BLE001 - no store, or not readable: nothing to report
+        return None
 
 
 def _run(args) -> int:

@@ -66,7 +66,8 @@ def compute(ctx):
             data[f"{case}/{name}"] = ds[name].values
         agree = agreement(ds)
         summary[case] = {"agreement_percent": agree,
-                         "mi_fraction_simulated": float(ds["verdict_simulated"].values.mean())}
+                         "mi_fraction_simulated":
+                             float((ds["verdict_simulated"].values == 1).mean())}
         # the simulated criterion is theta's growth: the sideband theory answers it (the
         # all-modes theory also counts U-pair modes, which theta does not see within t_end)
         exact_name = "exact"
@@ -91,13 +92,16 @@ def plot(data):
     fig, axes = figure(1, 2, figsize=(13, 4.8), sharey=True)
     times = fr"{GROWTH_THRESHOLD:g}\times"
     for ax, case in zip(axes, ("rotation", "coupled")):
-        im = verdict_image(ax, k, d, np.where(data[f"{case}/verdict_simulated"], 1.0, -1.0))
+        # verdicts are tri-state (1 MI, 0 stable, -1 undetermined)
+        im = verdict_image(ax, k, d, np.where(data[f"{case}/verdict_simulated"] == 1, 1.0,
+                                              -1.0))
         handles = verdict_patches(fr"MI (simulated: grows $> {times}$)",
                                   fr"stable (simulated: grows $< {times}$)")
         for name, color in (("paper", "C1"), ("semidiscrete", "C2"), ("exact", "C3"),
                             ("exact_all", "C4")):
             v = np.asarray(data[f"{case}/verdict_{name}"], float)
-            if 0 < v.mean() < 1 and len(k) > 1 and len(d) > 1:
+            v[v < 0] = np.nan  # undetermined
+            if np.isfinite(v).any() and 0 < np.nanmean(v) < 1 and len(k) > 1 and len(d) > 1:
                 ax.contour(k, d, v, levels=[0.5], colors=color, linewidths=1.2,
                            linestyles="--" if name == "exact_all" else "-")
             handles += ax.plot([], [], color=color, ls="--" if name == "exact_all" else "-",

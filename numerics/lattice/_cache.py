@@ -123,6 +123,7 @@ def cached_simulate(cache_dir: Path | None, force: bool = False, **params) -> Ru
             exc = _merged(checkpoint, exc)
         _save_checkpoint(partial, exc, key_params)
         STATS["checkpoints"] += 1
+        exc.checkpoint = partial  # where it was kept (the CLI's message says so)
         raise exc from None
     _write_run(path, run, key_params)
     partial.unlink(missing_ok=True)
@@ -163,4 +164,5 @@ def _merged(first: SimulationInterrupted, second: SimulationInterrupted):
     run = joined(first.run, second.run, first.time, completed=False)
     return SimulationInterrupted("interrupted", run=run, state=second.state,
                                  time=first.time + second.time, remaining=second.remaining,
-                                 dt=second.dt, record_phase=second.record_phase)
+                                 dt=second.dt, record_phase=second.record_phase,
+                                 signum=second.signum)

@@ -34,8 +34,9 @@ class SimulationInterrupted(KeyboardInterrupt):
     (exactly), ``remaining`` the time left to t_end."""
 
     def __init__(self, message, run=None, state=None, time=None, remaining=None, dt=None,
-                 record_phase=0):
+                 record_phase=0, signum=2):
         super().__init__(message)
+        self.signum = signum  # SIGINT (2) or SIGTERM (15): the exit code is 128 + signum
         self.run = run
         self.state = state
         self.time = time

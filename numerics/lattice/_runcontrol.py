@@ -7,33 +7,43 @@ import contextlib
 import signal
 import threading
 
+from common.signals import SIGNALS, Interrupted, is_interrupt_handler
+
 
 class _Interrupt(Exception):
-    """Ctrl-C noticed between two calls into compiled code (state and time consistent)."""
+    """Ctrl-C (or SIGTERM) noticed between two calls into compiled code (state and time
+    consistent); ``args[0]``: the signal."""
 
 
 @contextlib.contextmanager
 def _deferred_interrupt():
-    """Turn SIGINT into a flag checked between calls into compiled code, so an interrupted
-    run stops on a state whose time is known exactly. Only in the main thread and when
-    Python's default handler is installed (else nothing changes); a second Ctrl-C raises
-    at once. Yields a function returning whether Ctrl-C was pressed."""
+    """Turn SIGINT (and SIGTERM where it is handled as an interrupt, e.g. by the CLI) into
+    a flag checked between calls into compiled code, so an interrupted run stops on a
+    state whose time is known exactly. Only in the main thread and for signals whose
+    handler raises KeyboardInterrupt (else nothing changes); a second signal raises at
+    once. Yields a function returning the signal number that came (0: none)."""
     flag = []
-    if (threading.current_thread() is not threading.main_thread()
-            or signal.getsignal(signal.SIGINT) is not signal.default_int_handler):
-        yield lambda: False
+    if threading.current_thread() is not threading.main_thread():
+        yield lambda: 0
+        return
+    old = {s: signal.getsignal(s) for s in SIGNALS}
+    ours = [s for s, h in old.items() if is_interrupt_handler(h)]
+    if not ours:
+        yield lambda: 0
         return
 
     def handler(signum, frame):
         if flag:
-            raise KeyboardInterrupt
+            raise Interrupted(signum)
         flag.append(signum)
 
-    signal.signal(signal.SIGINT, handler)
+    for s in ours:
+        signal.signal(s, handler)
     try:
-        yield lambda: bool(flag)
+        yield lambda: flag[0] if flag else 0
     finally:
-        signal.signal(signal.SIGINT, signal.default_int_handler)
+        for s in ours:
+            signal.signal(s, old[s])
 
 
 #: site-evaluations per call into compiled code: ~0.1 s, so Ctrl-C answers promptly

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import numbers
 from dataclasses import dataclass
 
 import numpy as np
@@ -23,6 +24,8 @@ from ._integrate import (BlowUpError, SimulationInterrupted, _blowup_message, _c
                          _Stepper, check_tolerances, resolve_step)
 from ._integrators import get_method
 from ._starts import LEGACY_OMEGA_MODELS, build_start, check_start
+from common.signals import signal_number
+
 from ._runcontrol import _deferred_interrupt, _Interrupt, _progress, _steps_per_call
 from ._model import LatticeState, Material, check_case, energy
 
@@ -103,6 +106,8 @@ class Run:
 
 def snap_wavenumber(k: float, N: int, rel_tol: float = 1e-3):
     """Nearest periodic wavenumber 2 pi m / N to k; ValueError if further than rel_tol."""
+    if isinstance(k, (bool, np.bool_)) or not isinstance(k, numbers.Real):
+        raise TypeError(f"k must be a real number, got {type(k).__name__} {k!r}")
     k = float(k)
     if not math.isfinite(k) or k <= 0 or k >= math.pi:
         raise ValueError(f"k must be in (0, pi), got {k!r}")
@@ -265,8 +270,7 @@ def simulate(material: Material, case: str, N: int, k: float,
     if save_every is None:
         per_save = max(1, round(nsteps / 1000))
     else:
-        if not (math.isfinite(save_every) and save_every > 0):
-            raise ValueError(f"save_every must be finite and > 0, got {save_every!r}")
+        save_every = checks.positive("save_every", save_every)
         per_save = max(1, round(save_every / dt_eff))
     # records at 0, at first_record, every per_save steps after it, and at the end;
     # record_phase > 0 continues the record grid of an interrupted run (steps already done
@@ -333,7 +337,7 @@ def simulate(material: Material, case: str, N: int, k: float,
                     if got < n:
                         blow_up("non-finite")
                     if interrupted() and steps < target:
-                        raise _Interrupt
+                        raise _Interrupt(interrupted())
                 record(j, steps * dt_eff)
                 drift = abs(en[j] - en[0]) / abs(en[0])
                 if not drift <= max_energy_error:  # also catches NaN
@@ -342,10 +346,11 @@ def simulate(material: Material, case: str, N: int, k: float,
                     bar.update(t[j] - t[j - 1])
                 j += 1
                 if interrupted() and steps < nsteps:
-                    raise _Interrupt
+                    raise _Interrupt(interrupted())
     except (_Interrupt, KeyboardInterrupt) as exc:
         if isinstance(exc, SimulationInterrupted):
             raise
+        signum = exc.args[0] if isinstance(exc, _Interrupt) else signal_number(exc)
         truncate(j)
         run.force_evaluations = st.evaluations
         left = nsteps - steps
@@ -356,7 +361,7 @@ def simulate(material: Material, case: str, N: int, k: float,
             f"initial=exc.state, t_end={left * dt_eff!r}, dt={dt_eff!r}, "
             f"record_phase={since}) (times then count from 0), or numerics.resume(exc, **the same arguments)",
             run=run, state=st.state(), time=steps * dt_eff, remaining=left * dt_eff,
-            dt=dt_eff, record_phase=since) from None
+            dt=dt_eff, record_phase=since, signum=signum) from None
     finally:
         if bar is not None:
             bar.close()

@@ -84,3 +84,42 @@ def real_array(name: str, value) -> np.ndarray:
     if arr.dtype.kind not in "fiu" or arr.dtype == bool:
         raise TypeError(f"{name} must hold real numbers, got dtype {arr.dtype}")
     return arr.astype(float)
+
+
+def real_values(name: str, values) -> tuple:
+    """A non-empty sequence of finite real numbers (each checked as :func:`real`: a bool or a
+    complex number is refused, not cast)."""
+    if isinstance(values, (str, bytes)) or not hasattr(values, "__len__"):
+        raise TypeError(f"{name} must be a sequence of real numbers, got "
+                        f"{type(values).__name__} {values!r}")
+    if len(values) == 0:
+        raise ValueError(f"{name} must hold at least one value, got none")
+    return tuple(real(f"{name}[{i}]", v) for i, v in enumerate(values))
+
+
+def available_memory() -> int:
+    """Bytes this process can still allocate: MemAvailable of /proc/meminfo, else the
+    physical memory (the limit a request is checked against before it allocates)."""
+    try:
+        with open("/proc/meminfo") as f:
+            for line in f:
+                if line.startswith("MemAvailable:"):
+                    return int(line.split()[1]) * 1024
+    except OSError:
+        pass
+    try:
+        import os
+
+        return os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
+    except (ValueError, OSError, AttributeError):
+        return 8 * 2**30
+
+
+def memory(name: str, nbytes: float, what: str) -> None:
+    """ValueError naming ``name`` when ``what`` needs more than half the available memory
+    (half: the request's temporaries and the rest of the process need the other half)."""
+    limit = available_memory() / 2
+    if nbytes > limit:
+        raise ValueError(f"{name}: {what} would need {nbytes / 2**30:.3g} GiB, more than half "
+                         f"of the {2 * limit / 2**30:.3g} GiB this machine has available; "
+                         "ask for less")

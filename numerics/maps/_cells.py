@@ -74,15 +74,17 @@ def growth_of(t, theta_hat, U_hat, m, N, t_end: float | None = None) -> dict:
 
 
 def cell_step(state, material: Material, case: str, t_end: float,
-              growth_tol: float = GROWTH_TOL) -> tuple[str, float]:
+              growth_tol: float = GROWTH_TOL, methods=None) -> tuple[str, float]:
     """(method, dt) whose predicted relative error of the growth factor over ``t_end`` is
-    ``growth_tol`` (the error model of ``_accuracy`` with GROWTH_ERROR_CONSTANTS)."""
-    return choose_step(state, material, case, t_end, growth_tol,
+    ``growth_tol`` (the error model of ``_accuracy`` with GROWTH_ERROR_CONSTANTS), the
+    cheapest of ``methods`` (default: every method with a constant)."""
+    return choose_step(state, material, case, t_end, growth_tol, methods,
                        constants=GROWTH_ERROR_CONSTANTS)
 
 
 def map_step(material_of, case: str, ks, N: int, t_end: float, amplitude: float,
-             start: str = "paper", growth_tol: float = GROWTH_TOL) -> tuple[str, float]:
+             start: str = "paper", growth_tol: float = GROWTH_TOL,
+             methods=None) -> tuple[str, float]:
     """One (method, dt) for every cell of a map: :func:`cell_step` at the grid's largest
     dominant frequency (the smallest step any of its cells needs). ``material_of`` is the
     list of the map's materials (one per delta), ``ks`` its carriers (snapped)."""
@@ -93,7 +95,7 @@ def map_step(material_of, case: str, ks, N: int, t_end: float, amplitude: float,
             w = dominant_frequency(state)
             if best is None or w > best[0]:
                 best = (w, mat, state)
-    return cell_step(best[2], best[1], case, t_end, growth_tol)
+    return cell_step(best[2], best[1], case, t_end, growth_tol, methods)
 
 
 def simulate_cell(material: Material, case: str, k: float, N: int, t_end: float,
@@ -131,10 +133,11 @@ def cell_records(material: Material, case: str, k: float, N: int, t_end: float,
     ``stop_at``), the carrier bin m and k, the method and step used."""
     ks, m = snap_wavenumber(k, N)
     state = initial_condition(material, case, N, ks, amplitude, noise, seed, start)
-    if dt is None or method is None:
-        chosen, dt_chosen = cell_step(state, material, case, t_end, growth_tol)
-        method = method or chosen
-        dt = dt_chosen if dt is None else dt
+    if dt is None:
+        method, dt = cell_step(state, material, case, t_end, growth_tol,
+                               None if method is None else [method])
+    elif method is None:
+        raise ValueError("give method with dt (or neither: both are chosen for growth_tol)")
     meth = get_method(method)
     record = t_end / RECORDS
     per_record = max(1, math.ceil(record / dt - 1e-9))

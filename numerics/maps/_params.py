@@ -10,9 +10,11 @@ from functools import cached_property
 
 import numpy as np
 
-from ..lattice import checks, snap_wavenumber
-from ..lattice._analysis import GROWTH_THRESHOLD
-from ._cells import GROWTH_TOL
+from ..lattice import checks
+from ..lattice._analysis import GROWTH_THRESHOLD, non_carrier_bins
+from ..lattice._integrate import _check_time
+from ..lattice._integrators import get_method
+from ._cells import GROWTH_ERROR_CONSTANTS, GROWTH_TOL, RECORDS
 
 #: k values per task (one delta row is split into blocks of this many cells)
 DEFAULT_BLOCK = 4
@@ -47,17 +49,17 @@ def parse_spec(text: str, name: str) -> np.ndarray:
             if len(parts) != 3:
                 raise ValueError
             start, stop, num = float(parts[0]), float(parts[1]), int(parts[2])
-            if num > MAX_AXIS:
-                raise ValueError(f"{name}: SPEC {text!r} asks for {num} values; at most "
-                                 f"{MAX_AXIS} per axis")
             if num < 1 or (num > 1 and start == stop):
                 raise ValueError
-            values = np.linspace(start, stop, num)
+            values = np.linspace(start, stop, min(num, MAX_AXIS + 1))  # > MAX_AXIS: refused
         else:
             values = np.array([float(v) for v in text.split(",")])
     except ValueError:
         raise ValueError(f"{name}: cannot read SPEC {text!r}; give v1,v2,... or "
                          "start:stop:num (num >= 1, inclusive)") from None
+    if values.size > MAX_AXIS:
+        raise ValueError(f"{name}: SPEC {text!r} asks for {values.size} values; at most "
+                         f"{MAX_AXIS} per axis")
     if not np.all(np.isfinite(values)):
         raise ValueError(f"{name}: SPEC {text!r} holds a non-finite value")
     if len(np.unique(values)) != len(values):
@@ -100,19 +102,44 @@ class MapParameters:
         checks.integer("seeds", self.seeds, 1, 1000)
         checks.integer("block", self.block, 1, 10**6)
         checks.real("growth_tol", self.growth_tol, 1e-8, 0.5)
-        if self.method is not None:
-            from ..lattice import get_method
-            if not get_method(self.method).fixed_step:
-                raise ValueError(f"method: map cells need a fixed-step method, got "
-                                 f"{self.method!r}")
+        checks.real("noise", self.noise, 0.0, 1.0, low_open=False)
+        if self.method is not None and not get_method(self.method).fixed_step:
+            raise ValueError(f"method: map cells need a fixed-step method, got "
+                             f"{self.method!r}")
+        if not isinstance(self.theory_only, (bool, np.bool_)):
+            raise TypeError(f"theory_only must be True or False, got {self.theory_only!r}")
         if self.dt is not None:
             checks.positive("dt", self.dt)
-        k, d = np.asarray(self.k), np.asarray(self.delta)
+        elif self.method is not None and self.method not in GROWTH_ERROR_CONSTANTS:
+            raise ValueError(f"method: {self.method!r} has no growth-error constant to choose "
+                             f"its step; give dt with it, or one of "
+                             f"{', '.join(GROWTH_ERROR_CONSTANTS)}")
+        k = np.asarray(checks.real_values("k", self.k))
+        d = np.asarray(checks.real_values("delta", self.delta))
         if np.any((k <= 0) | (k >= math.pi)):
             raise ValueError(f"k must lie in (0, pi), got {self.k}")
         if np.any(self.K_s - d <= 0):
-            raise ValueError(f"K_theta = K_s - delta must be > 0: delta < K_s = {self.K_s}")
+            raise ValueError(f"delta must be < K_s = {self.K_s:g} (K_theta = K_s - delta > 0), "
+                             f"got {float(d.max()):g}")
+        # a cell advances in RECORDS pieces of t_end / RECORDS: a given step must fit in
+        # one, and the run must not take an absurd number of steps (checked here, not on a
+        # worker); a step still to be chosen is at most the largest stable one
+        record = self.t_end / RECORDS
+        dt = self.dt if self.dt is not None else min(record, _largest_stable_step(
+            self.alpha, self.K_s, d, self.case))
+        try:
+            _check_time(record, dt)
+            _check_time(self.t_end, dt)
+        except ValueError as exc:
+            raise ValueError(f"t_end = {self.t_end:g} with dt = {dt:g}: a cell records its "
+                             f"spectrum every t_end / {RECORDS}, and {exc}") from None
         snapped = self.k_simulated
+        for x, ks in zip(self.k, snapped):
+            m = round(ks * self.N / (2 * math.pi))
+            if m < 1 or 2 * m >= self.N or not non_carrier_bins(m, self.N).any():
+                raise ValueError(f"N = {self.N} sites carry no wavenumber near k = {x:g} with "
+                                 "sidebands to grow (k snaps to 2 pi m / N with 0 < m < N/2 "
+                                 "and needs bins besides its harmonics); give a larger N")
         for j in range(1, len(snapped)):
             if snapped[j] == snapped[j - 1]:
                 m = round(snapped[j] * self.N / (2 * math.pi))
@@ -125,7 +152,11 @@ class MapParameters:
     def k_simulated(self) -> tuple:
         """Each k snapped to the nearest 2 pi m / N: the wavenumber a periodic chain of N
         sites carries, which the simulation runs and the theories are evaluated at."""
-        return tuple(snap_wavenumber(x, self.N, rel_tol=math.inf)[0] for x in self.k)
+        out = []
+        for x in self.k:
+            m = round(x * self.N / (2 * math.pi))
+            out.append(2 * math.pi * m / self.N)  # m < 1: refused on construction
+        return tuple(out)
 
     def estimated_seconds(self, workers: int = 1) -> float:
         """Rough run time: the predictions (PREDICT_SECONDS per cell) and, unless
@@ -135,7 +166,6 @@ class MapParameters:
         predict = cells * PREDICT_SECONDS.get(self.start, 0.7) * max(self.N / 500, 1.0)
         if self.theory_only:
             return predict / max(workers, 1)
-        from ..lattice import get_method
 
         method, dt = self.cell_step
         per_time = get_method(method).evaluations / dt / 11  # relative to CELL_SECONDS'
@@ -157,7 +187,8 @@ class MapParameters:
         mats = [Material(self.alpha, self.K_s, self.K_s - d)
                 for d in sorted({min(self.delta), max(self.delta)})]
         method, dt = map_step(mats, self.case, self.k_simulated, self.N, self.t_end,
-                              self.amplitude, self.start, self.growth_tol)
+                              self.amplitude, self.start, self.growth_tol,
+                              None if self.method is None else [self.method])
         return self.method or method, float(dt if self.dt is None else self.dt)
 
     @property
@@ -177,6 +208,18 @@ class MapParameters:
                             "(simulated: measured; theories: peak gain > ln(threshold) / "
                             "t_end, their raw peak gains beside)", **self.extra)
         return out
+
+
+def _largest_stable_step(alpha, K_s, delta, case) -> float:
+    """The largest step any map method may take on this grid: 0.8 of the most stable
+    method's limit over the grid's highest frequency (``_accuracy.STABILITY_MARGIN``)."""
+    from ..lattice import Material
+    from ..lattice._accuracy import ERROR_CONSTANTS, STABILITY_MARGIN
+
+    w = max(Material(alpha, K_s, K_s - d).omega_max(case) for d in (min(delta), max(delta)))
+    limit = max(get_method(m).stability_limit() for m in {*ERROR_CONSTANTS,
+                                                          *GROWTH_ERROR_CONSTANTS})
+    return STABILITY_MARGIN * limit / w
 
 
 def local_cores() -> int:

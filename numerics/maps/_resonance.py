@@ -187,7 +187,9 @@ def resonance_map(k, delta, case: str, alpha: float, K_s: float, amplitude: floa
         (its offset) and ``pumped`` (bool: the peak is a band pumped by the free U waves).
     """
     checks.choice("start", start, ("travelling", "paper"))
-    grid = checks.integer("grid", grid, 16)
+    # grid x chunk offsets are evaluated at once (8 bytes each, a few arrays): 1e6 points
+    # resolve a band 3e-6 wide and stay within a few hundred MB at the default chunk
+    grid = checks.integer("grid", grid, 16, 10**6 + 1)
     chunk = checks.integer("chunk", chunk, 1)
     alpha, K_s, amplitude, k, delta = check_map_grid(case, alpha, K_s, amplitude, k, delta)
     q = np.linspace(np.pi / grid, np.pi, grid)

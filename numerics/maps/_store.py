@@ -2,8 +2,10 @@
 
 A map is a grid of (delta, k) at fixed alpha, K_s, case and amplitude. Every cell gets the
 verdicts of the three theories (paper NLS, semi-discrete NLS, exact lattice; computed in
-one batch, in the client, in seconds) and, unless ``theory_only``, a simulated verdict
-(``numerics.maps.simulate_cell``: the scenes' 20x growth criterion, with early stop).
+one batch, in the client, in seconds), the growth factor its simulation will measure,
+predicted from its own initial state (``numerics.maps.predict_cell``, a task per block of
+cells), and, unless ``theory_only``, a simulated verdict (``numerics.maps.simulate_cell``:
+the scenes' 20x growth criterion, with early stop).
 
 Simulations are tasks on ``dask.distributed``: a ``LocalCluster`` of this machine's cores
 by default, or an existing scheduler by address. A task is a block of cells (one delta, up
@@ -61,60 +63,93 @@ def simulate_block(params: MapParameters, i: int, js: list, simulate: bool = Tru
                 if any(np.isfinite(r["peak_gain"]) for r in runs) else float("nan")})
             # predicted and measured growth over the same span (a run stops early once
             # its verdict is certain): log10 of their ratio, first seed
-            if pred is not None and runs[0]["growth"] > 0:
-                row["growth_log_ratio"] = math.log10(
-                    pred.growth_at(runs[0]["t_simulated"]) / runs[0]["growth"])
-            else:
-                row["growth_log_ratio"] = float("nan")
+            row["growth_log_ratio"] = (
+                math.log10(pred.growth_at(runs[0]["t_simulated"]) / runs[0]["growth"])
+                if pred is not None and runs[0]["growth"] > 0 else float("nan"))
         rows.append(row)
     return {"i": i, "js": list(js), "rows": rows, "simulated": simulate}
 
 
 # --- the store -------------------------------------------------------------------------------
 
-def _empty_dataset(params: MapParameters, theory: dict):
-    import xarray as xr
+#: the verdict columns are tri-state (int8): these codes, and no _FillValue (xarray would
+#: decode an integer variable with one to float)
+MI, STABLE, UNDETERMINED = 1, 0, -1
+VERDICT_ATTRS = {"flag_values": [UNDETERMINED, STABLE, MI],
+                 "flag_meanings": "undetermined stable MI"}
+#: the variables a simulated block writes (with ``done`` and the checksum); every other
+#: data variable is written once, when the store is made (the theories)
+SIMULATED = ("verdict_simulated", "growth", "growth_field", "growth_q", "t_simulated",
+             "peak_gain", "growth_log_ratio")
+#: the variables every block writes (with ``done_predicted``), theory-only maps included
+PREDICTED = ("growth_predicted", "verdict_predicted", "rate_predicted", "predicted_status")
+#: version of the store's layout (tri-state verdicts, checksums), in its attributes
+STORE_FORMAT = 2
 
-    shape = (len(params.delta), len(params.k))
-    dims = ("delta", "k")
+
+def _simulated_columns(shape) -> dict:
+    """The simulated variables and ``done`` of cells not simulated yet."""
     fl = lambda: np.full(shape, np.nan)  # noqa: E731
-    data = {
-        "verdict_simulated": (dims, np.zeros(shape, bool)),
-        "growth": (dims, fl(), {"long_name": "largest growth factor over the run",
-                                "units": "1"}),
-        "growth_field": (dims, np.full(shape, -1, np.int8),
+    return {
+        "verdict_simulated": (np.full(shape, UNDETERMINED, np.int8),
+                              {"long_name": f"simulation: grows more than {GROWTH_THRESHOLD:g}x "
+                                            "within t_end", **VERDICT_ATTRS,
+                               "undetermined": "not simulated yet (done = False)"}),
+        "growth": (fl(), {"long_name": "largest growth factor over the run", "units": "1"}),
+        "growth_field": (np.full(shape, -1, np.int8),
                          {"flag_values": [-1, 0, 1], "flag_meanings": "none theta U"}),
-        "growth_q": (dims, fl(), {"long_name": "wavenumber of the largest growth",
-                                  "units": "rad per site"}),
-        "peak_gain": (dims, fl(), {"long_name": "measured peak growth rate (linear-stage "
-                                   "fit) where the simulation says MI",
-                                   "units": "1/T (lattice time)"}),
-        "t_simulated": (dims, fl(), {"units": "T (lattice time)"}),
-        "done": (dims, np.zeros(shape, bool), {"long_name": "cell simulated"}),
-        "growth_predicted": (dims, fl(), {
+        "growth_q": (fl(), {"long_name": "wavenumber of the largest growth",
+                            "units": "rad per site"}),
+        "peak_gain": (fl(), {"long_name": "measured peak growth rate (linear-stage fit) where "
+                                          "the simulation says MI",
+                             "units": "1/T (lattice time)"}),
+        "t_simulated": (fl(), {"units": "T (lattice time)"}),
+        "done": (np.zeros(shape, bool), {"long_name": "cell simulated (the record of complete "
+                                                      "cells; covered by checksum)"}),
+        "growth_log_ratio": (fl(), {
+            "long_name": "log10(predicted / measured growth) over the span simulated "
+                         "(first seed)", "units": "1"}),
+        "growth_predicted": (fl(), {
             "long_name": "growth factor the simulation measures, predicted: linear response "
                          "of the cell's own initial state (numerics.theory.predict_growth; "
-                         "median over the seeds)", "units": "1"}),
-        "verdict_predicted": (dims, np.full(shape, -1, np.int8), {
-            "long_name": f"predicted growth_predicted > {GROWTH_THRESHOLD:g}",
-            "flag_values": [-1, 0, 1], "flag_meanings": "undetermined stable MI"}),
-        "rate_predicted": (dims, fl(), {"long_name": "largest growth rate of the state's "
-                                        "Hill modes", "units": "1/T (lattice time)"}),
-        "predicted_status": (dims, np.full(shape, -1, np.int8), {
+                         "median over the seeds; NaN: undetermined, see predicted_status)",
+            "units": "1"}),
+        "verdict_predicted": (np.full(shape, UNDETERMINED, np.int8), {
+            "long_name": f"predicted: grows more than {GROWTH_THRESHOLD:g}x within t_end",
+            **VERDICT_ATTRS,
+            "undetermined": "not predicted yet (done_predicted = False), or no linear theory "
+                            "(predicted_status)"}),
+        "rate_predicted": (fl(), {"long_name": "largest growth rate of the launched state's "
+                                               "Hill modes", "units": "1/T (lattice time)"}),
+        "predicted_status": (np.full(shape, -1, np.int8), {
             "flag_values": [-1] + list(PREDICTED_STATUS.values()),
             "flag_meanings": " ".join(["not_computed"] + [n.replace(" ", "_")
                                                           for n in PREDICTED_STATUS])}),
-        "growth_log_ratio": (dims, fl(), {
-            "long_name": "log10(predicted / measured growth) over the span simulated "
-                         "(first seed)", "units": "1"}),
-        "done_predicted": (dims, np.zeros(shape, bool), {"long_name": "cell predicted"}),
+        "done_predicted": (np.zeros(shape, bool), {"long_name": "cell predicted"}),
     }
+
+
+def _empty_dataset(params: MapParameters, theory: dict):
+    import xarray as xr
+
+    from ._integrity import CHECKSUM, CHECKSUM_ATTRS, cell_checksums
+
+    shape = (len(params.delta), len(params.k))
+    dims = ("delta", "k")
+    data = {name: (dims, values, attrs)
+            for name, (values, attrs) in _simulated_columns(shape).items()}
     for name, values in theory.items():
-        attrs = ({"long_name": f"{name.removeprefix('peak_gain_')} theory: peak growth rate",
-                  "units": "1/T (lattice time)"} if name.startswith("peak_gain") else
-                 {"long_name": f"{name.removeprefix('verdict_')} theory: grows more than "
-                               f"{GROWTH_THRESHOLD:g}x within t_end"})
+        theory_name = name.removeprefix("peak_gain_").removeprefix("verdict_")
+        if name.startswith("peak_gain"):
+            attrs = {"long_name": f"{theory_name} theory: peak growth rate (NaN: "
+                                  "undetermined)", "units": "1/T (lattice time)"}
+        else:
+            attrs = {"long_name": f"{theory_name} theory: grows more than "
+                                  f"{GROWTH_THRESHOLD:g}x within t_end", **VERDICT_ATTRS}
+        if name in UNDETERMINED_REASONS:
+            attrs["undetermined"] = UNDETERMINED_REASONS[name]
         data[name] = (dims, values, attrs)
+    data[CHECKSUM] = (dims, cell_checksums({n: v[1] for n, v in data.items()}), CHECKSUM_ATTRS)
     coords = {"delta": ("delta", np.asarray(params.delta), {"long_name": "K_s - K_theta"}),
               "k": ("k", np.asarray(params.k), {"long_name": "k as requested",
                                                 "units": "rad per site"}),
@@ -122,13 +157,33 @@ def _empty_dataset(params: MapParameters, theory: dict):
                               {"long_name": "k snapped to 2 pi m / N: the wavenumber simulated "
                                             "and at which the theories are evaluated",
                                "units": "rad per site"})}
-    return xr.Dataset(data, coords=coords, attrs=params.attrs())
+    return xr.Dataset(data, coords=coords, attrs={**params.attrs(), "store_format": STORE_FORMAT})
+
+
+_NLS_REASON = ("the NLS coefficients are not finite there (delta = 0: g1 = 0, or a resonance "
+               "k^2 = omega^2)")
+_EXACT_REASON = ("no plane wave of this amplitude (harmonic balance finds no travelling wave "
+                 "near a resonance of a harmonic with a lattice mode)")
+#: why a theory column can be undetermined (NaN gain, verdict UNDETERMINED) at a cell
+UNDETERMINED_REASONS = {f"{kind}_{name}": reason for kind in ("verdict", "peak_gain")
+                        for name, reason in (("paper", _NLS_REASON),
+                                             ("semidiscrete", _NLS_REASON),
+                                             ("exact", _EXACT_REASON),
+                                             ("exact_all", _EXACT_REASON))}
+
+
+def tri_state(gain: np.ndarray, t_end: float) -> np.ndarray:
+    """int8 verdicts from peak gains: MI, STABLE, or UNDETERMINED where the gain is NaN."""
+    return np.where(np.isfinite(gain), np.where(grows_beyond_threshold(
+        np.nan_to_num(gain), t_end), MI, STABLE), UNDETERMINED).astype(np.int8)
 
 
 def theory_columns(params: MapParameters) -> dict:
     """The theories on the whole grid, batched (seconds): their raw peak gains, and their
     verdicts on the simulation's question: does the plane wave grow more than
-    GROWTH_THRESHOLD-fold within t_end (peak gain > ln(threshold) / t_end)?"""
+    GROWTH_THRESHOLD-fold within t_end (peak gain > ln(threshold) / t_end)? Where a theory
+    cannot be evaluated its gain is NaN and its verdict UNDETERMINED (the reason is the
+    variable's ``undetermined`` attribute), never "stable"."""
     from generated import coefficients as continuum_nls
     from generated import lattice_coefficients as lattice_nls
     from ..theory import stability_map
@@ -143,14 +198,17 @@ def theory_columns(params: MapParameters) -> dict:
             gpos = np.where(g > 0, g, np.nan)
             peak = params.eps**2 * np.abs(g1) * nls.mi_growth_rate(
                 nls.mi_fastest(gpos, params.A0), gpos, params.A0)
-        gains[name] = np.where(np.isfinite(peak), peak, 0.0)
+        # g <= 0: stable, no gain; g or g1 not finite: undetermined (NaN), never "stable"
+        defined = np.isfinite(g) & np.isfinite(g1)
+        gains[name] = np.where(defined, np.where(g > 0, peak, 0.0), np.nan)
+    # stability_map: NaN where there is no plane wave of this amplitude (undetermined)
     args = (K, D, params.case, params.alpha, params.K_s, params.amplitude, EXACT_OFFSETS)
-    gains["exact"] = np.nan_to_num(stability_map(*args))
-    gains["exact_all"] = (np.nan_to_num(stability_map(*args, modes="all"))
+    gains["exact"] = stability_map(*args)
+    gains["exact_all"] = (stability_map(*args, modes="all")
                           if params.case == "coupled" else gains["exact"])
     out = {}
     for name, gain in gains.items():
-        out[f"verdict_{name}"] = grows_beyond_threshold(gain, params.t_end)
+        out[f"verdict_{name}"] = tri_state(gain, params.t_end)
         out[f"peak_gain_{name}"] = gain
     return out
 
@@ -160,68 +218,126 @@ def _holds(ds, params: MapParameters) -> bool:
     parameters; theory_only aside, so a theory-only map is resumed by simulations)?"""
     return (np.array_equal(ds["delta"].values, params.delta)
             and np.array_equal(ds["k"].values, params.k)
+            and ds.attrs.get("store_format") == STORE_FORMAT
             and all(ds.attrs.get(n) == v for n, v in params.attrs().items()
                     if n not in ("theory_only",)))
 
 
-def open_or_create(path: Path, params: MapParameters, overwrite: bool = False):
-    """The store's dataset: an existing one with the same parameters (to resume), or a
-    new one with the theory columns filled in (``overwrite``: replace a store that holds
-    another map, or an unreadable one)."""
+def _write_new(path: Path, ds, params: MapParameters):
+    """Write ``ds`` as the store at ``path``, beside and renamed into place: a failed
+    write (disk full, Ctrl-C) leaves the previous store or none, never half of one."""
     import shutil
 
+    chunks = (1, min(params.block, len(params.k)))  # one chunk per task block
+    tmp = path.with_name(f".{path.name}.partial")
+    old = path.with_name(f".{path.name}.old")
+    for p in (tmp, old):
+        if p.exists():
+            shutil.rmtree(p)
+    try:
+        # consolidated metadata, so that a user's xr.open_zarr(path) opens it without a
+        # warning (region writes touch chunks only, so it stays valid)
+        ds.to_zarr(tmp, mode="w", consolidated=True, zarr_format=2,
+                   encoding={n: {"chunks": chunks} for n in ds.data_vars})
+        if path.exists():
+            path.rename(old)
+        tmp.rename(path)
+    finally:
+        for p in (tmp, old):
+            if p.exists():
+                shutil.rmtree(p, ignore_errors=True)
+
+
+def open_or_create(path: Path, params: MapParameters, overwrite: bool = False, log=print):
+    """The store's dataset: an existing one with the same parameters (to resume; its
+    checksums verified and what is damaged repaired or marked for simulation again), or a
+    new one with the theory columns filled in (``overwrite``: replace a store that holds
+    another map, or an unreadable one)."""
     import xarray as xr
 
     if path.exists():
         try:
             ds = xr.open_zarr(path, consolidated=False)
+            ds.attrs  # noqa: B018 - metadata read
         except Exception as exc:  # noqa: BLE001 - any unreadable store
             if not overwrite:
-                raise ValueError(f"{path} exists but is not a readable map ({exc}); replace "
-                                 "it with --overwrite, or choose another --out") from None
+                first = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+                raise ValueError(f"{path} exists but its metadata is not readable ({first[:120]}"
+                                 "); replace it with --overwrite, or choose another --out") \
+                    from None
             ds = None
         if ds is not None and _holds(ds, params):
-            return ds
-        if not overwrite:
-            raise ValueError(f"{path} holds a map with other parameters; replace it with "
-                             "--overwrite, or choose another --out")
-        shutil.rmtree(path)
+            return _verified(path, ds, params, log)
+        if ds is not None and not overwrite:
+            raise ValueError(f"{path} holds a map with other parameters (or of an older "
+                             "format); replace it with --overwrite, or choose another --out")
     ds = _empty_dataset(params, theory_columns(params))
-    # one chunk per task block: every region write covers whole chunks
-    chunks = (1, min(params.block, len(params.k)))
-    # written beside and renamed into place: a failed write (disk full, Ctrl-C) leaves no
-    # half store that would block the same command; consolidated metadata, so that a
-    # user's xr.open_zarr(path) opens it without a warning (region writes keep it valid)
-    tmp = path.with_name(f".{path.name}.partial")
-    if tmp.exists():
-        shutil.rmtree(tmp)
-    try:
-        ds.to_zarr(tmp, mode="w", consolidated=True, zarr_format=2,
-                   encoding={n: {"chunks": chunks} for n in ds.data_vars})
-        tmp.rename(path)
-    finally:
-        if tmp.exists():
-            shutil.rmtree(tmp, ignore_errors=True)
+    _write_new(path, ds, params)
     return xr.open_zarr(path, consolidated=False)
 
 
-def _write_block(path: Path, params: MapParameters, result: dict):
+def _verified(path: Path, ds, params: MapParameters, log):
+    """``ds`` if every cell matches its checksum; else the store rewritten with the
+    damaged cells' theory recomputed and their simulations marked not done (named)."""
     import xarray as xr
 
+    from ._integrity import CHECKSUM, describe_cells, verify
+
+    names = [n for n in ds.data_vars if n != CHECKSUM]
+    for n in SIMULATED + PREDICTED + ("done", "done_predicted"):
+        if n not in names:
+            names.append(n)
+    shape = (len(params.delta), len(params.k))
+    bad, raw = verify(path, names, shape)
+    if not bad.any():
+        return ds
+    log(f"{path}: {int(bad.sum())} of {bad.size} cells fail their checksum or cannot be "
+        f"read ({describe_cells(bad, params.delta, params.k)}): their theories are "
+        "recomputed and their simulations run again")
+    fresh = _empty_dataset(params, theory_columns(params))
+    for flag, columns in (("done", SIMULATED), ("done_predicted", PREDICTED)):
+        done = np.asarray(raw.get(flag, np.zeros(shape, bool)), bool) & ~bad
+        for name in columns + (flag,):
+            if name in raw:
+                kept = np.where(done, raw[name].astype(fresh[name].dtype), fresh[name].values)
+                fresh[name] = (fresh[name].dims, kept, fresh[name].attrs)
+    from ._integrity import cell_checksums
+
+    fresh[CHECKSUM] = (fresh[CHECKSUM].dims,
+                       cell_checksums({n: fresh[n].values for n in fresh.data_vars}),
+                       fresh[CHECKSUM].attrs)
+    _write_new(path, fresh, params)
+    return xr.open_zarr(path, consolidated=False)
+
+
+def _write_block(path: Path, params: MapParameters, result: dict, arrays: dict | None = None):
+    """Write a finished block into the store (a region write of whole chunks): its
+    predicted and simulated variables, their flags and the cells' checksums. ``arrays``: the store's values
+    in memory (name -> array), updated here; read from the store when not given."""
+    import xarray as xr
+
+    from ._integrity import CHECKSUM, cell_checksums
+
+    if arrays is None:
+        with xr.open_zarr(path, consolidated=False) as ds:
+            arrays = {n: ds[n].values for n in ds.data_vars}
     i, js = result["i"], result["js"]
     j0, j1 = min(js), max(js) + 1
-    arrays = {}
+    cells = (slice(i, i + 1), slice(j0, j1))
+    region = {}
     for name in result["rows"][0]:
-        arrays[name] = (("delta", "k"), np.array([[r[name] for r in result["rows"]]]))
-    flags = {"done_predicted": (("delta", "k"), np.ones((1, j1 - j0), bool))}
-    if result["simulated"]:
-        flags["done"] = (("delta", "k"), np.ones((1, j1 - j0), bool))
-    region = {"delta": slice(i, i + 1), "k": slice(j0, j1)}
-    xr.Dataset(arrays).to_zarr(path, consolidated=False, region=region)
-    # the done flags only after every value is on disk: a client killed between the two
-    # writes leaves the cells not done (computed again on resume), never done with a
-    # value missing (tests/test_cluster_faults.py found one when both went in one write)
-    xr.Dataset(flags).to_zarr(path, consolidated=False, region=region)
+        arrays[name][cells] = np.array([[r[name] for r in result["rows"]]],
+                                       dtype=arrays[name].dtype)
+        region[name] = (("delta", "k"), arrays[name][cells])
+    for flag in ("done_predicted",) + (("done",) if result["simulated"] else ()):
+        arrays[flag][cells] = True
+        region[flag] = (("delta", "k"), arrays[flag][cells])
+    arrays[CHECKSUM][cells] = cell_checksums(arrays, cells)
+    region[CHECKSUM] = (("delta", "k"), arrays[CHECKSUM][cells])
+    # one write; a client killed in the middle of it leaves cells whose checksum does not
+    # match, recomputed on resume (tests/test_cluster_faults.py kills it mid-map)
+    xr.Dataset(region).to_zarr(path, consolidated=False,
+                               region={"delta": slice(i, i + 1), "k": slice(j0, j1)})
 
 
 # --- running ---------------------------------------------------------------------------------
@@ -239,52 +355,49 @@ def blocks(params: MapParameters, done: np.ndarray) -> list:
 
 def run_map(params: MapParameters, out: Path, scheduler: str | None = None,
             workers: int | None = None, progress: bool | None = None, log=print,
-            overwrite: bool = False):
-    """Compute (or resume) ``OUT/map.zarr``; returns the dataset (loaded)."""
+            overwrite: bool = False, timeout: float = 20.0):
+    """Compute (or resume) ``OUT/map.zarr``; returns the dataset (loaded). One writer at a
+    time (``OUT/map.zarr.lock``); ``timeout``: seconds to reach ``scheduler``."""
     import xarray as xr
 
+    from ._integrity import store_lock
+
+    if scheduler:
+        from ._cluster import probe
+
+        probe(scheduler, timeout)  # before any work: a wrong address fails in seconds
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     path = out / "map.zarr"
-    ds = open_or_create(path, params, overwrite)
-    # a theory-only map predicts its cells; a simulated one simulates (and predicts) them
-    flag = "done_predicted" if params.theory_only else "done"
-    what = "predict" if params.theory_only else "simulate"
-    done = ds[flag].values
-    todo = blocks(params, done)
-    n_cells, n_done = done.size, int(done.sum())
-    if n_done:
-        log(f"resuming {path}: {n_done} of {n_cells} cells already done, "
-            f"{n_cells - n_done} to {what}")
-    if todo:
-        _run_tasks(params, path, todo, n_cells - n_done, scheduler, workers, progress, log)
-    return xr.open_zarr(path, consolidated=False).load()
+    with store_lock(path, log):
+        ds = open_or_create(path, params, overwrite, log)
+        arrays = {n: ds[n].values for n in ds.data_vars}
+        # a theory-only map predicts its cells; a simulated one simulates (and predicts)
+        done = arrays["done_predicted" if params.theory_only else "done"]
+        what = "predict" if params.theory_only else "simulate"
+        todo = blocks(params, done)
+        n_cells, n_done = done.size, int(done.sum())
+        if n_done:
+            log(f"resuming {path}: {n_done} of {n_cells} cells already done (checksums "
+                f"verified), {n_cells - n_done} to {what}")
+        if todo:
+            _run_tasks(params, path, todo, n_cells - n_done, scheduler, workers, progress,
+                       log, arrays, timeout)
+        return xr.open_zarr(path, consolidated=False).load()
 
 
 class MapCellError(ValueError):
     """A cell's simulation failed on a worker: the message names the cell, in one line."""
 
 
-def _run_tasks(params, path, todo, n_todo, scheduler, workers, progress, log):
-    import logging
-
-    from dask.distributed import Client, LocalCluster, as_completed
-
-    for name in ("distributed", "distributed.worker", "distributed.scheduler",
-                 "distributed.nanny", "distributed.core"):
-        logging.getLogger(name).setLevel(logging.CRITICAL)  # worker tracebacks stay off
+def _run_tasks(params, path, todo, n_todo, scheduler, workers, progress, log, arrays=None,
+               timeout=20.0):
+    from dask.distributed import as_completed
     from tqdm.auto import tqdm
 
-    cluster = None
-    if scheduler:
-        client = Client(scheduler, timeout="20s")
-    else:
-        n = workers or local_cores()
-        # one single-threaded process per core: measured against one process with a
-        # thread per core (bench/maps.py, "map_16_cells_wall_s"), which gains less
-        cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
-                               dashboard_address=":0", silence_logs=logging.CRITICAL)
-        client = Client(cluster)
+    from ._cluster import connect
+
+    client, cluster = connect(scheduler, workers, timeout)
     bar = tqdm(total=n_todo, unit="cell", disable=None if progress is None else not progress,
                desc="map")
     t0 = time.perf_counter()
@@ -304,13 +417,13 @@ def _run_tasks(params, path, todo, n_todo, scheduler, workers, progress, log):
                     f"{', '.join(f'{params.k[j]:g}' for j in js)}: "
                     f"{type(exc).__name__}: {str(exc).splitlines()[0] if str(exc) else ''}; "
                     f"the finished cells are kept in {path}") from None
-            _write_block(path, params, result)
+            _write_block(path, params, result, arrays)
             bar.update(len(result["js"]))
     finally:
         bar.close()
-        client.close()
-        if cluster is not None:
-            cluster.close()
+        from ._cluster import close
+
+        close(client, cluster)
     log(f"{'predicted' if params.theory_only else 'simulated'} {n_todo} cells in "
         f"{time.perf_counter() - t0:.1f} s")
 
@@ -323,44 +436,49 @@ MARGIN = 3.0
 
 def agreement(ds, margin: float = MARGIN) -> dict:
     """Percent of the simulated cells where each theory's verdict equals the simulation's:
-    over all of them, and over the cells where the theory is not marginal (its predicted
-    growth over t_end not within ``margin`` of the threshold).
+    over the cells where the theory is determined (``<name>_undetermined_cells`` says how
+    many simulated cells it could not evaluate), and over those where it is not marginal
+    either (its predicted growth over t_end not within ``margin`` of the threshold).
 
-    "predicted" (the growth factor predicted from each cell's initial state) is marginal
-    where ``growth_predicted`` is within ``margin`` of the threshold; its undetermined cells
-    (no linear theory: ``predicted_status``) are left out and counted
-    (``predicted_undetermined_cells``). ``predicted_growth_within_2x``: percent of the
-    cells whose measured growth lies in [2, 1000] where the predicted one is within 2x of
-    it (over the same span; ``growth_log_ratio``), out of ``predicted_growth_cells``.
-    """
+    "predicted" (the growth factor predicted from each cell's own initial state) is
+    marginal where ``growth_predicted`` is within ``margin`` of the threshold.
+    ``predicted_growth_within_2x``: percent of the cells whose measured growth lies in
+    [2, 1000] where the predicted one is within 2x of it (over the same span:
+    ``growth_log_ratio``), out of ``predicted_growth_cells``."""
     done = ds["done"].values
-    sim = ds["verdict_simulated"].values
+    sim = ds["verdict_simulated"].values.astype(np.int8)
     t_end, thr = float(ds.attrs["t_end"]), float(ds.attrs["growth_threshold"])
+    names = [n.removeprefix("verdict_") for n in ds.data_vars
+             if n.startswith("verdict_") and n != "verdict_simulated"
+             and f"peak_gain_{n.removeprefix('verdict_')}" in ds.data_vars]
     out = {}
 
     def pct(v, m):
         return float(100 * np.mean(v[m] == sim[m])) if m.any() else float("nan")
 
-    for name in ("paper", "semidiscrete", "exact", "exact_all"):
-        v = ds[f"verdict_{name}"].values
+    for name in names:
+        v = ds[f"verdict_{name}"].values.astype(np.int8)
         gain = ds[f"peak_gain_{name}"].values
-        decided = done & (np.abs(gain * t_end - math.log(thr)) > math.log(margin))
-        out[name] = pct(v, done)
+        determined = done & (v != UNDETERMINED)
+        with np.errstate(invalid="ignore"):
+            decided = determined & (np.abs(gain * t_end - math.log(thr)) > math.log(margin))
+        out[name] = pct(v, determined)
+        out[f"{name}_undetermined_cells"] = int((done & (v == UNDETERMINED)).sum())
         out[f"{name}_decided"] = pct(v, decided)
         out[f"{name}_decided_cells"] = int(decided.sum())
     if "verdict_predicted" in ds:
-        v = ds["verdict_predicted"].values.astype(int)
+        v = ds["verdict_predicted"].values.astype(np.int8)
         growth = ds["growth_predicted"].values
-        known = done & (v >= 0)
+        determined = done & (v != UNDETERMINED)
         with np.errstate(invalid="ignore", divide="ignore"):
-            decided = known & (np.abs(np.log(growth) - math.log(thr)) > math.log(margin))
-        out["predicted"] = pct(v == 1, known)
-        out["predicted_decided"] = pct(v == 1, decided)
+            decided = determined & (np.abs(np.log(growth) - math.log(thr)) > math.log(margin))
+        out["predicted"] = pct(v, determined)
+        out["predicted_undetermined_cells"] = int((done & (v == UNDETERMINED)).sum())
+        out["predicted_decided"] = pct(v, decided)
         out["predicted_decided_cells"] = int(decided.sum())
-        out["predicted_undetermined_cells"] = int((done & (v < 0)).sum())
-        measured = ds["growth"].values
-        ratio = ds["growth_log_ratio"].values
-        mid = known & (measured >= 2) & (measured <= 1000) & np.isfinite(ratio)
+        measured, ratio = ds["growth"].values, ds["growth_log_ratio"].values
+        with np.errstate(invalid="ignore"):
+            mid = determined & (measured >= 2) & (measured <= 1000) & np.isfinite(ratio)
         out["predicted_growth_cells"] = int(mid.sum())
         out["predicted_growth_within_2x"] = (
             float(100 * np.mean(np.abs(ratio[mid]) <= math.log10(2))) if mid.any()

@@ -20,7 +20,9 @@ from generated import coefficients as continuum_nls
 from generated import lattice_coefficients as lattice_nls
 
 from ..lattice import _analysis as an
+from ..lattice import checks
 from ._hill import mi_gain
+from ._plane_wave import MAX_AMPLITUDE
 from ..lattice._model import Material, check_case
 
 THEORIES = ("paper NLS", "semi-discrete NLS", "exact lattice")
@@ -33,7 +35,12 @@ def nls_summary(material: Material, case: str, k: float, eps: float, A0: float =
                 nls=continuum_nls) -> dict:
     """The NLS at one carrier: omega, v_g, g1, g2, g, verdict, and for g > 0 the band
     K_c, K_m (NLS units) and the peak lattice growth rate eps^2 |g1| Omega_I(K_m)."""
+    checks.instance("material", material, Material)
     check_case(case)
+    k = checks.real("k", k, 0.0, np.pi)
+    eps = checks.positive("eps", eps)
+    # the plane wave's peak rotation 2 eps A0 within the range the theories accept
+    A0 = checks.real("A0", A0, 0.0, MAX_AMPLITUDE / (2 * eps), high_open=False)
     p = (k, material.alpha, material.K_s, material.K_theta)
     g = float(getattr(nls, f"g_{case}")(*p))
     g1 = float(nls.g1(*p))

@@ -280,6 +280,10 @@ def _state_harmonics(state: LatticeState, k, M):
     return given, unexplained
 
 
+#: largest rms share of an initial state's rotation outside k and its harmonics
+MAX_UNEXPLAINED = 0.5
+
+
 def launched_state(material: Material, case: str, k: float, amplitude: float | None = None,
                    start: str = "paper", initial: LatticeState | None = None,
                    harmonics: int = HARMONICS) -> LaunchedState:
@@ -330,6 +334,13 @@ def launched_state(material: Material, case: str, k: float, amplitude: float | N
         given, unexplained = _state_harmonics(initial, k, M)
         if abs(given["theta"][0, 0]) == 0:
             raise ValueError("the initial state has no rotation at wavenumber k")
+        # the decomposition describes a carrier with small free waves; a state whose
+        # rotation lies mostly elsewhere (noise, another wavenumber) would need a torus
+        # with a free phase per component: no carrier, no launched state
+        if unexplained > MAX_UNEXPLAINED:
+            raise ValueError(f"initial: {100 * unexplained:.0f}% of its rotation (rms) lies "
+                             f"outside k = {k:.6g} and its harmonics (at most "
+                             f"{100 * MAX_UNEXPLAINED:.0f}%): it is not a carrier at k")
         return _decompose(material, case, k, given, harmonics, "initial", unexplained)
     if amplitude is None:
         raise TypeError("amplitude is required unless an initial state is given")

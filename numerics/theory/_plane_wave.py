@@ -236,9 +236,7 @@ def _on_branch(x, res, amplitude):
 
 
 def _check_harmonics(h):
-    if not (isinstance(h, (int, np.integer)) and 1 <= h <= 64):
-        raise ValueError(f"harmonics must be an integer in [1, 64], got {h!r}")
-    return int(h)
+    return checks.integer("harmonics", h, 1, 65)
 
 
 def _wave_from(x, res, material, case, k, amplitude, H):

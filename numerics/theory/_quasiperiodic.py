@@ -28,6 +28,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..lattice import checks
+
 from generated import lattice_model as model
 
 from ._torus import Torus
@@ -231,11 +233,16 @@ def hill_matrix(torus, material, case, q, P, R):
     (n, 1 + d): columns p, m_1 .. m_d; the first ``nx`` labels are theta."""
     d = torus.nu.size
     px, py = _labels(P, R, d)
+    q = np.asarray(q, float).ravel()
+    n = len(px) + (len(py) if case == "coupled" else 0)
+    # A (nq, 2n, 2n) complex and eig's work arrays (about as large again)
+    checks.memory("q, free_order", 2 * q.size * (2 * n) ** 2 * 16,
+                  f"the quasi-periodic Hill matrices ({q.size} offsets of {2 * n} x {2 * n}, "
+                  f"{d} free phases)")
     C = _coefficients(torus, material, max(64, 4 * (2 * P + 2)))
     A, labels, freq = hill_matrices({n: c[None] for n, c in C.items()}, np.array([torus.k]),
                                     np.array([torus.omega]), np.asarray(torus.nu)[None],
-                                    np.asarray(q, float).ravel(), px, py,
-                                    case == "coupled")
+                                    q, px, py, case == "coupled")
     return A[0], labels, len(px), freq[0]
 
 

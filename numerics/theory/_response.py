@@ -68,6 +68,9 @@ class GrowthPrediction:
     ratio : dict of str -> ndarray, shape (nt,)
         Per field ("theta"; "U" in case II): the largest non-carrier, non-harmonic
         component over the carrier, per record.
+    spectrum : dict of str -> ndarray, shape (nt, N // 2 + 1)
+        Per field: the predicted perturbation's Fourier amplitudes |rfft| 2 / N (the
+        simulation's ``theta_hat``/``U_hat`` less the noise-free state), every bin.
     growth : float
         The simulation's measure: the largest growth factor of ``ratio`` over the run
         (theta from T = 0, U from its level at 5% of t_end: ``spectrum_growth``), over the fields.
@@ -91,6 +94,7 @@ class GrowthPrediction:
 
     t: np.ndarray
     ratio: dict
+    spectrum: dict
     growth: float
     growth_field: str
     growth_q: float
@@ -112,9 +116,9 @@ class GrowthPrediction:
         n = int(np.searchsorted(self.t, t * (1 + 1e-12), side="right"))
         if n < 2:
             return 1.0
-        bins = {f: np.arange(r.shape[1]) for f, r in self.ratio.items()}
-        g, _, _ = spectrum_growth(self.t[:n], {f: r[None, :n] for f, r in self.ratio.items()},
-                                  bins, self.N)
+        bins = {f: np.zeros(1, int) for f in self.ratio}
+        g, _, _ = spectrum_growth(self.t[:n], {f: r[None, :n, None]
+                                               for f, r in self.ratio.items()}, bins, self.N)
         return float(g[0])
 
     def threshold_time(self) -> float:
@@ -181,14 +185,16 @@ class _Families:
 
     def initial(self, delta):
         """Family data (nf, 2n, draws) from delta = (theta, theta_dot, U, U_dot) FFTs
-        (each (draws, N), normalised 1/N), on the rows that own a bin."""
+        (each (draws, N), normalised 1/N). Every m = 0 row gets the data of its bin, owner
+        or not: a row a bin is aliased to still couples to its family's other rows (only
+        the owner deposits the bin's value)."""
         nf, n = self.b.shape
         X0 = np.zeros((nf, 2 * n, delta[0].shape[0]), complex)
-        rows = self.direct | self.conj_owner
-        for i, row in zip(*np.nonzero(rows)):
-            f, r = self.field[row], int(self.b[i, row] % self.N)
-            X0[i, row] = delta[2 * f][:, r]
-            X0[i, n + row] = delta[2 * f + 1][:, r]
+        r = np.mod(self.b, self.N)
+        for row in np.flatnonzero(self.m_zero):
+            f = self.field[row]
+            X0[:, row] = delta[2 * f][:, r[:, row]].T
+            X0[:, n + row] = delta[2 * f + 1][:, r[:, row]].T
         return X0
 
     def evolve(self, X0, t):
@@ -305,7 +311,7 @@ def predict_growth(material: Material, case: str, k: float, amplitude: float = 0
     else:
         carrier = np.abs(launched.mode("theta", 1, t))
     fields = ("theta", "U") if case == "coupled" else ("theta",)
-    ratio, bins_of = {}, {}
+    ratio, bins_of, perturbation = {}, {}, {}
     linear = True
     for f, name in enumerate(fields):
         full = np.zeros((t.size, len(seeds), N), complex)
@@ -316,6 +322,7 @@ def predict_growth(material: Material, case: str, k: float, amplitude: float = 0
         rest, free = _free_waves(material, N, delta, f, fam.covered[f], t)
         full[:, :, rest] += free
         mask = non_carrier_bins(m0, N, name)
+        perturbation[name] = 2 * np.abs(full[:, 0, : N // 2 + 1])
         spec = 2 * np.abs(full[:, :, : N // 2 + 1][:, :, mask])  # (nt, draws, nbins)
         linear &= bool(np.all(spec[:, 0].max(axis=1) < LINEAR_LIMIT * carrier))
         ratio[name] = np.transpose(spec / carrier[:, None, None], (1, 0, 2))
@@ -326,7 +333,8 @@ def predict_growth(material: Material, case: str, k: float, amplitude: float = 0
     quant = tuple(float(x) for x in np.quantile(growth[1:], (0.1, 0.5, 0.9))) if draws \
         else (float("nan"),) * 3
     return GrowthPrediction(
-        t=t, ratio={n: r[0] for n, r in ratio.items()}, growth=g,
+        t=t, ratio={n: r[0].max(axis=1) for n, r in ratio.items()}, spectrum=perturbation,
+        growth=g,
         growth_field=str(field[0]), growth_q=float(where[0]),
         verdict=bool(g > GROWTH_THRESHOLD), rate=fam.rate, linear=linear,
         expected_growth=expected, growth_quantiles=quant, growth_draws=growth[1:].copy(),

@@ -26,6 +26,8 @@ import itertools
 from dataclasses import dataclass
 
 import numpy as np
+
+from ..lattice import checks
 from numba import njit
 
 from generated import lattice_model as model
@@ -237,6 +239,10 @@ def torus(material, case, k, fields0, free, omega_guess, P=TORUS_HARMONICS, M=PH
     fastest = max([abs(n) + P * omega_guess for n in nu0] + [P * omega_guess])
     samples = int(np.ceil(duration * max(SAMPLES_PER_PERIOD * omega_guess / (2 * np.pi),
                                          2.5 * fastest / (2 * np.pi)))) + 1
+    # the fit's basis: samples x (2 order + 1)^d complex values (a state with many free
+    # waves, e.g. no carrier, would ask for terabytes)
+    checks.memory("initial", 16.0 * samples * (2 * order + 1) ** d,
+                  f"the torus of a state with {d} free waves ({samples} samples)")
     t, y = trajectory(material, case, k, fields0, duration, samples, M)
     c = _harmonics(y, P)
     window = np.sin(np.pi * t / duration) ** 2

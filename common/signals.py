@@ -1,0 +1,57 @@
+"""SIGINT and SIGTERM, handled alike: both raise :class:`Interrupted` (a KeyboardInterrupt
+that knows its signal), so every ``except KeyboardInterrupt`` (checkpoints, Dask clean-up,
+the CLI's one-line message) serves ``kill PID`` as it serves Ctrl-C, and the exit code is
+128 + the signal's number (130, 143)."""
+
+from __future__ import annotations
+
+import contextlib
+import signal
+import threading
+
+#: the signals handled alike
+SIGNALS = (signal.SIGINT, signal.SIGTERM)
+
+
+class Interrupted(KeyboardInterrupt):
+    """SIGINT or SIGTERM arrived (``signum``)."""
+
+    def __init__(self, signum: int = signal.SIGINT):
+        super().__init__(signal.Signals(signum).name)
+        self.signum = int(signum)
+
+
+def raise_interrupted(signum, frame):  # noqa: ARG001 - a signal handler
+    raise Interrupted(signum)
+
+
+def is_interrupt_handler(handler) -> bool:
+    """Does ``handler`` turn its signal into a KeyboardInterrupt (Python's default SIGINT
+    handler, or :func:`raise_interrupted`)? Code that defers interrupts replaces only these."""
+    return handler is signal.default_int_handler or handler is raise_interrupted
+
+
+def signal_number(exc: BaseException) -> int:
+    """The signal behind a KeyboardInterrupt (SIGINT unless it says otherwise)."""
+    return int(getattr(exc, "signum", signal.SIGINT))
+
+
+def exit_code(exc: BaseException) -> int:
+    """128 + the signal number: 130 for SIGINT, 143 for SIGTERM (the shell's convention)."""
+    return 128 + signal_number(exc)
+
+
+@contextlib.contextmanager
+def interrupts():
+    """SIGINT and SIGTERM raise :class:`Interrupted` meanwhile (main thread only)."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    old = {s: signal.getsignal(s) for s in SIGNALS}
+    for s in SIGNALS:
+        signal.signal(s, raise_interrupted)
+    try:
+        yield
+    finally:
+        for s, h in old.items():
+            signal.signal(s, h if h is not None else signal.SIG_DFL)

@@ -1,0 +1,132 @@
+"""The Dask cluster of a map: a LocalCluster, or an existing scheduler checked first.
+
+An address is probed before ``Client`` touches it: a Dask scheduler speaks first (its
+comm handshake: an 8-byte little-endian frame count, then the frames), so within
+``timeout`` seconds we know whether something answers, and whether it speaks Dask. An
+HTTP server, a port that accepts and never answers, or a closed port fail in one line
+naming the address, within the timeout (``Client`` itself would hang on a silent port and
+try to allocate exabytes from an HTTP reply).
+
+Signals: local workers ignore SIGINT (a Ctrl-C to the terminal's process group reaches
+them too; the client stops them in order instead of each printing a traceback), and the
+client blocks SIGINT/SIGTERM while the cluster starts, so an interrupt during start-up is
+handled once the cluster can be closed cleanly (a second or two later), not in the middle
+of Dask's start-up.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import logging
+import signal
+import socket
+import struct
+import sys
+import threading
+from urllib.parse import urlparse
+
+_QUIET = ("distributed", "distributed.worker", "distributed.scheduler", "distributed.nanny",
+          "distributed.core", "distributed.comm", "distributed.client", "tornado",
+          "asyncio")
+
+
+class SchedulerError(ValueError):
+    """--scheduler does not lead to a Dask scheduler (one line naming the address)."""
+
+
+def probe(address: str, timeout: float) -> None:
+    """SchedulerError unless ``address`` (tcp://host:port or host:port) answers like a
+    Dask scheduler within ``timeout`` seconds. Other schemes (tls, inproc, ucx) are left to
+    ``Client``."""
+    url = urlparse(address if "://" in address else f"tcp://{address}")
+    if url.scheme != "tcp":
+        return
+    try:
+        host, port = url.hostname, url.port
+    except ValueError:
+        host = port = None
+    if not host or not port:
+        raise SchedulerError(f"--scheduler {address!r}: give an address tcp://HOST:PORT")
+    try:
+        conn = socket.create_connection((host, port), timeout=timeout)
+    except socket.timeout:
+        raise SchedulerError(f"--scheduler {address}: no connection within {timeout:g} s") \
+            from None
+    except OSError as exc:
+        raise SchedulerError(f"--scheduler {address}: cannot connect "
+                             f"({exc.strerror or exc}); is a Dask scheduler running there?") \
+            from None
+    with conn:
+        conn.settimeout(timeout)
+        try:
+            head = conn.recv(8)
+        except socket.timeout:
+            raise SchedulerError(f"--scheduler {address}: connected, but it sent nothing "
+                                 f"within {timeout:g} s; a Dask scheduler greets at once, so "
+                                 "this is not one (or it hangs)") from None
+        except OSError as exc:
+            raise SchedulerError(f"--scheduler {address}: the connection failed "
+                                 f"({exc.strerror or exc})") from None
+    if len(head) < 8 or not 1 <= struct.unpack("<Q", head)[0] <= 64:
+        shown = head.decode("ascii", "replace").strip() or "nothing; it closed the connection"
+        raise SchedulerError(f"--scheduler {address}: this is not a Dask scheduler (it "
+                             f"answered {shown[:40]!r})")
+
+
+def _quiet():
+    for name in _QUIET:
+        logging.getLogger(name).setLevel(logging.CRITICAL)  # worker tracebacks stay off
+
+
+@contextlib.contextmanager
+def _signals_deferred():
+    """Block SIGINT and SIGTERM in this thread (and the threads it starts) meanwhile; a
+    signal that came is delivered, and handled, on exit."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    old = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT, signal.SIGTERM})
+    try:
+        yield
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, old)
+
+
+def connect(scheduler: str | None, workers: int | None, timeout: float = 20.0):
+    """(client, cluster or None): a Client of ``scheduler`` (probed first) or of a new
+    LocalCluster of ``workers`` processes."""
+    from dask.distributed import Client, LocalCluster
+
+    from ._params import local_cores
+
+    _quiet()
+    if scheduler:
+        probe(scheduler, timeout)
+        try:
+            return Client(scheduler, timeout=f"{timeout}s"), None
+        except (OSError, TimeoutError) as exc:
+            raise SchedulerError(f"--scheduler {scheduler}: {type(exc).__name__}: "
+                                 f"{str(exc).splitlines()[0] if str(exc) else ''}") from None
+    n = workers or local_cores()
+    # multiprocessing's resource tracker (started with this interpreter's -W options) warns
+    # of "leaked semaphores" of workers stopped by a signal: nothing leaks past its clean-up
+    flag = "ignore:resource_tracker:UserWarning"
+    if flag not in sys.warnoptions:
+        sys.warnoptions.append(flag)
+    with _signals_deferred():
+        cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
+                               dashboard_address=":0", silence_logs=logging.CRITICAL,
+                               preload=["numerics.maps._worker_preload"])
+        client = Client(cluster)
+    return client, cluster
+
+
+def close(client, cluster) -> None:
+    """Close the client and the cluster, quietly, with SIGINT/SIGTERM deferred meanwhile
+    (a second Ctrl-C does not leave worker processes behind)."""
+    with _signals_deferred():
+        with contextlib.suppress(Exception):
+            client.close(timeout=10)
+        if cluster is not None:
+            with contextlib.suppress(Exception):
+                cluster.close(timeout=10)

@@ -1,0 +1,208 @@
+"""A map store you can trust: a checksum per cell over every variable the store holds,
+verified on resume; one writer at a time (a lock file naming its holder).
+
+Checksums. ``checksum`` (uint64, dims delta x k, chunked like every variable, so one per
+cell of each block) is a BLAKE2b digest of the cell's values in *all* the store's data
+variables but itself, in name order. It is generic: a variable added to the store (a new
+theory column) is covered without a change here. The ``done`` variable is the record of
+complete cells; it is covered too. A deleted chunk reads as its fill value, an overwritten
+or truncated one as other values or an error: either way the cell's digest differs, and
+:func:`verify` names it.
+
+Lock. ``OUT/map.zarr.lock`` holds host, pid, start time and command of the writer; the
+holder touches it every HEARTBEAT seconds. Another command refuses to write while it is
+held, naming the holder; a lock whose process is gone (same host) or that was not touched
+for STALE_SECONDS (another host) is stale and taken over, with a note.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import hashlib
+import json
+import os
+import socket
+import sys
+import threading
+import time
+from pathlib import Path
+
+import numpy as np
+
+CHECKSUM = "checksum"
+CHECKSUM_ATTRS = {
+    "long_name": "BLAKE2b-64 digest of the cell's values in every other data variable "
+                 "(name order; bool as uint8, integers as int64, floats as float64 with "
+                 "one NaN); verified on resume",
+}
+#: seconds between two touches of the lock by its holder
+HEARTBEAT = 10.0
+#: a lock of another host not touched for this long is stale (12 missed heartbeats)
+STALE_SECONDS = 120.0
+
+
+def _canonical(a: np.ndarray) -> np.ndarray:
+    a = np.asarray(a)
+    if a.dtype == bool:
+        return a.astype(np.uint8)
+    if a.dtype.kind in "iu":
+        return a.astype("<i8")
+    if a.dtype.kind == "f":
+        out = a.astype("<f8")
+        out[np.isnan(out)] = np.nan  # one NaN bit pattern
+        return out
+    raise TypeError(f"cannot checksum a variable of dtype {a.dtype}")
+
+
+def cell_checksums(arrays: dict, cells=None) -> np.ndarray:
+    """uint64 digest per cell over ``arrays`` (name -> (n_delta, n_k) values), all names
+    but CHECKSUM; ``cells``: an index (tuple of slices) to digest a part only."""
+    names = sorted(n for n in arrays if n != CHECKSUM)
+    parts = []
+    for n in names:
+        a = np.asarray(arrays[n])
+        a = a if cells is None else a[cells]
+        c = _canonical(a)
+        parts.append(np.ascontiguousarray(c).view(np.uint8).reshape(c.shape + (-1,)))
+    shape = parts[0].shape[:-1]
+    rows = np.concatenate(parts, axis=-1).reshape(-1, sum(p.shape[-1] for p in parts))
+    salt = ",".join(names).encode()
+    out = np.fromiter((int.from_bytes(hashlib.blake2b(salt + r.tobytes(), digest_size=8)
+                                      .digest(), "little") for r in rows),
+                      dtype=np.uint64, count=len(rows))
+    return out.reshape(shape)
+
+
+def read_raw(path: Path, names, shape) -> tuple[dict, np.ndarray]:
+    """The store's variables ``names`` as stored, and a mask of the cells that could not
+    be read (a missing variable, a chunk that does not decode): those get a value no
+    digest matches."""
+    import zarr
+
+    unreadable = np.zeros(shape, bool)
+    out = {}
+    try:
+        group = zarr.open_group(str(path), mode="r", use_consolidated=False)
+    except Exception:  # noqa: BLE001 - no readable group: nothing can be trusted
+        return {}, np.ones(shape, bool)
+    for name in names:
+        try:
+            arr = group[name]
+            if tuple(arr.shape) != tuple(shape):
+                raise ValueError("shape")
+        except Exception:  # noqa: BLE001 - a missing or malformed variable
+            unreadable[:] = True
+            continue
+        try:
+            out[name] = np.asarray(arr[...])
+            continue
+        except Exception:  # noqa: BLE001 - some chunk is damaged: read them one by one
+            pass
+        values = np.zeros(shape, arr.dtype)
+        ci, cj = arr.chunks
+        for i0 in range(0, shape[0], ci):
+            for j0 in range(0, shape[1], cj):
+                idx = (slice(i0, i0 + ci), slice(j0, j0 + cj))
+                try:
+                    values[idx] = arr[idx]
+                except Exception:  # noqa: BLE001 - this chunk only
+                    unreadable[idx] = True
+        out[name] = values
+    return out, unreadable
+
+
+def verify(path: Path, names, shape) -> tuple[np.ndarray, dict]:
+    """(bad, raw): a mask of the cells whose values do not match their stored checksum or
+    could not be read, and the raw values read (``names``: the data variables expected)."""
+    raw, unreadable = read_raw(path, list(names) + [CHECKSUM], shape)
+    if CHECKSUM not in raw or any(n not in raw for n in names):
+        return np.ones(shape, bool), raw
+    digest = cell_checksums({n: raw[n] for n in names})
+    bad = unreadable | (digest != raw[CHECKSUM].astype(np.uint64))
+    return bad, raw
+
+
+def describe_cells(mask: np.ndarray, delta, k, most: int = 4) -> str:
+    """'delta = .., k = ..; ...' for the first ``most`` cells of ``mask`` (and how many more)."""
+    ii, jj = np.nonzero(mask)
+    shown = "; ".join(f"delta = {delta[i]:g}, k = {k[j]:g}" for i, j in zip(ii[:most], jj[:most]))
+    return shown + (f"; and {len(ii) - most} more" if len(ii) > most else "")
+
+
+# --- the lock ------------------------------------------------------------------------------
+
+class StoreLocked(ValueError):
+    """Another process writes this store (one line naming it and the lock file)."""
+
+
+def _alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    return True
+
+
+def lock_holder(lock: Path) -> dict | None:
+    """The lock's record, with ``stale`` (True when its holder is gone), or None."""
+    try:
+        text = lock.read_text()
+        age = time.time() - lock.stat().st_mtime
+    except FileNotFoundError:
+        return None
+    try:
+        info = json.loads(text)
+        host, pid = str(info["host"]), int(info["pid"])
+    except (ValueError, KeyError, TypeError):  # a torn write: its writer died mid-way
+        return {"host": "?", "pid": -1, "since": "?", "stale": True, "age": age}
+    same_host = host == socket.gethostname()
+    stale = (not _alive(pid)) if same_host else age > STALE_SECONDS
+    return {**info, "stale": stale, "age": age}
+
+
+@contextlib.contextmanager
+def store_lock(store: Path, log=print):
+    """Hold ``STORE.lock`` while writing ``store``; StoreLocked if a live process holds it."""
+    lock = store.with_name(store.name + ".lock")
+    record = json.dumps({"host": socket.gethostname(), "pid": os.getpid(),
+                         "since": time.strftime("%Y-%m-%d %H:%M:%S %Z"),
+                         "command": " ".join(sys.argv)[:300]})
+    for _ in range(3):
+        try:
+            fd = os.open(lock, os.O_CREAT | os.O_EXCL | os.O_WRONLY, 0o644)
+        except FileExistsError:
+            holder = lock_holder(lock)
+            if holder is None:
+                continue  # released meanwhile
+            if not holder["stale"]:
+                raise StoreLocked(
+                    f"{store} is being written by pid {holder['pid']} on {holder['host']} "
+                    f"since {holder['since']} (lock {lock}); wait for it to finish, or stop "
+                    "it: the same command then continues its map") from None
+            log(f"note: took over the stale lock {lock} of pid {holder['pid']} on "
+                f"{holder['host']} (since {holder['since']}; that process is gone)")
+            with contextlib.suppress(FileNotFoundError):
+                lock.unlink()
+            continue
+        with os.fdopen(fd, "w") as f:
+            f.write(record)
+        break
+    else:
+        raise StoreLocked(f"cannot take the lock {lock} of {store}: it keeps changing hands")
+    stop = threading.Event()
+
+    def beat():
+        while not stop.wait(HEARTBEAT):
+            with contextlib.suppress(OSError):
+                os.utime(lock)
+
+    thread = threading.Thread(target=beat, name="map-store-lock", daemon=True)
+    thread.start()
+    try:
+        yield lock
+    finally:
+        stop.set()
+        with contextlib.suppress(FileNotFoundError):
+            lock.unlink()
