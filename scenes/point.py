@@ -14,6 +14,7 @@ from common import paper
 from numerics import Material, simulate, snap_wavenumber
 from numerics.lattice import GROWTH_THRESHOLD, band_summary, grows_beyond_threshold
 from numerics.maps import growth_of
+from numerics.theory import predict_growth
 from numerics.lattice import checks
 from numerics.theory import (PAPER_START, THEORIES, measure_gain, measurement_length,
                              theory_gain)
@@ -121,10 +122,9 @@ def run_point(args, log=print) -> dict:
     amplitude = checks.real("--amplitude", args.amplitude, 0.0, 1.5)
     N, k_req = args.N, args.k
     k, m = snapped(k_req, N)
-    if args.simulate:
-        checks.integer("--seeds", args.seeds, 1, 1000)
-        if args.t_end is not None:
-            checks.real("--t-end", args.t_end, 0.0, 1e7)
+    checks.integer("--seeds", args.seeds, 1, 1000)
+    if args.t_end is not None:
+        checks.real("--t-end", args.t_end, 0.0, 1e7)
     A0 = amplitude / (2 * EPS)
     co = coefficients(mat, k, amplitude)["semi-discrete"]
     log(f"material: alpha = {mat.alpha:g}, K_s = {mat.K_s:g}, K_theta = {mat.K_theta:g} "
@@ -152,10 +152,28 @@ def run_point(args, log=print) -> dict:
     rows = [(n, t["verdict"], t["peak_gain"], t["peak_offset"], t["band_edge"])
             for n, t in th.items()]
     meas = None
+    exact_name = "exact lattice" if args.start == "travelling" else PAPER_START
+    exact = th[exact_name]["peak_gain"]
+    t_end = args.t_end or measurement_length(exact if math.isfinite(exact) else 0.0)
+    seeds = checks.integer("--seeds", args.seeds, 1, 1000)
+    # the growth factor the simulation measures, predicted from each seed's initial state
+    # (records every 5 T, as the simulation below saves them)
+    try:
+        pred = predict_growth(mat, args.case, k, amplitude, start=args.start, N=N,
+                              t_end=t_end, seed=0, draws=seeds - 1,
+                              records=max(2, min(4000, int(round(t_end / 5.0)))))
+        predicted = [pred.growth, *pred.growth_draws.tolist()]
+        result["predicted"] = {
+            "growth": predicted, "verdict": "MI" if np.median(predicted) > GROWTH_THRESHOLD
+            else "stable", "t_end": t_end, "seeds": seeds, "rate": pred.rate,
+            "linear": pred.linear, "approximate": pred.approximate,
+            "method": "linear response of each seed's initial state (numerics.theory."
+                      "predict_growth)"}
+    except ArithmeticError as exc:
+        predicted = None
+        result["predicted"] = {"growth": None, "verdict": "undefined",
+                               "reason": str(exc).splitlines()[0]}
     if args.simulate:
-        exact_name = "exact lattice" if args.start == "travelling" else PAPER_START
-        exact = th[exact_name]["peak_gain"]
-        t_end = args.t_end or measurement_length(exact if math.isfinite(exact) else 0.0)
         runs = []
 
         def sim(**kw):
@@ -189,6 +207,16 @@ def run_point(args, log=print) -> dict:
                                **({"q": meas["q"].tolist(), "sigma": meas["sigma"].tolist(),
                                    "sigma_std": meas["sigma_std"].tolist()} if meas else {})}
     log("")
+    if predicted is not None:
+        log(f"growth factor within T = {t_end:g} (the largest non-carrier component over the "
+            f"carrier, per seed): predicted "
+            + ", ".join(f"{g:.3g}x" for g in predicted)
+            + ("; measured " + ", ".join(f"{g['growth']:.3g}x" for g in growths)
+               if args.simulate else "")
+            + ("" if pred.linear else " (the prediction leaves the linear stage: MI, the "
+               "factor an upper bound)"))
+    else:
+        log(f"growth factor within T = {t_end:g}: no prediction ({result['predicted']['reason']})")
     if args.simulate:
         log(f"verdicts: MI = grows more than {GROWTH_THRESHOLD:g}x within T = {t_end:g} "
             f"(theories: exp(peak gain x T); simulated: measured growth "

@@ -197,7 +197,8 @@ def measured_peak_gain(t, theta_hat, m, N) -> float:
 
 
 #: why a cell's prediction is what it is (the store's ``predicted_status`` flag)
-PREDICTED_STATUS = {"linear": 0, "saturates": 1, "no plane wave": 2, "not quasi-periodic": 3}
+PREDICTED_STATUS = {"linear": 0, "saturates": 1, "no plane wave": 2, "not quasi-periodic": 3,
+                    "approximate torus": 4}
 
 
 def predict_cell(material: Material, case: str, k: float, N: int, t_end: float,
@@ -229,7 +230,9 @@ def predict_cell(material: Material, case: str, k: float, N: int, t_end: float,
     return {"growth_predicted": growth,
             "verdict_predicted": int(growth > GROWTH_THRESHOLD),
             "rate_predicted": p.rate,
-            "predicted_status": PREDICTED_STATUS["linear" if p.linear else "saturates"]}, p
+            "predicted_status": PREDICTED_STATUS[
+                "saturates" if not p.linear else "approximate torus"
+                if p.approximate else "linear"]}, p
 
 
 __all__ = ["simulate_cell", "cell_records", "cell_step", "map_step", "growth_of",

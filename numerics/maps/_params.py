@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import math
 import os
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass
 from functools import cached_property
 
 import numpy as np
@@ -88,7 +88,6 @@ class MapParameters:
     noise: float = 1e-3
     theory_only: bool = False
     block: int = DEFAULT_BLOCK
-    extra: dict = field(default_factory=dict, compare=False)
 
     def __post_init__(self):
         checks.choice("case", self.case, ("rotation", "coupled"))
@@ -196,7 +195,7 @@ class MapParameters:
         return self.amplitude / (2 * self.eps)
 
     def attrs(self) -> dict:
-        out = {n: v for n, v in asdict(self).items() if n not in ("delta", "k", "extra")}
+        out = {n: v for n, v in asdict(self).items() if n not in ("delta", "k")}
         chosen = self.dt is None or self.method is None
         out["method"], out["dt"] = self.cell_step
         out["step"] = (f"chosen for a relative growth-factor error of {self.growth_tol:g} "
@@ -206,7 +205,7 @@ class MapParameters:
         out.update(A0=self.A0, criterion=CRITERION, growth_threshold=GROWTH_THRESHOLD,
                    verdicts=f"True = MI: grows more than {GROWTH_THRESHOLD:g}x within t_end "
                             "(simulated: measured; theories: peak gain > ln(threshold) / "
-                            "t_end, their raw peak gains beside)", **self.extra)
+                            "t_end, their raw peak gains beside)")
         return out
 
 

@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from common.paper import EPS
 from generated import coefficients as continuum_nls
 from generated import lattice_coefficients as lattice_nls
 
@@ -31,13 +32,34 @@ PAPER_START = "exact lattice, paper start"
 _NLS = {"paper NLS": continuum_nls, "semi-discrete NLS": lattice_nls}
 
 
-def nls_summary(material: Material, case: str, k: float, eps: float, A0: float = 1.0,
-                nls=continuum_nls) -> dict:
+def _eps_A0(eps, A0, amplitude):
+    """The paper's (eps, A0) from the public amplitude (peak rotation 2 eps A0, at the
+    paper's eps), or as given (A0 defaults to 1)."""
+    if amplitude is not None:
+        if eps is not None or A0 is not None:
+            raise ValueError("give amplitude (the peak rotation) or the paper's eps and A0, "
+                             "not both")
+        eps = EPS
+        amplitude = checks.real("amplitude", amplitude, 0.0, MAX_AMPLITUDE, high_open=False)
+        return eps, amplitude / (2 * eps)
+    if eps is None:
+        raise TypeError("give amplitude= (the peak rotation, rad) or eps (and A0)")
+    return eps, 1.0 if A0 is None else A0
+
+
+def nls_summary(material: Material, case: str, k: float, eps: float | None = None,
+                A0: float | None = None, nls=continuum_nls, *,
+                amplitude: float | None = None) -> dict:
     """The NLS at one carrier: omega, v_g, g1, g2, g, verdict, and for g > 0 the band
-    K_c, K_m (NLS units) and the peak lattice growth rate eps^2 |g1| Omega_I(K_m)."""
+    K_c, K_m (NLS units) and the peak lattice growth rate eps^2 |g1| Omega_I(K_m).
+
+    The plane wave is given by ``amplitude`` (its peak rotation, rad: the project's one
+    convention, converted here to the paper's A0 at eps = 0.01), or by the paper's
+    ``eps`` and ``A0`` (default 1)."""
     checks.instance("material", material, Material)
     check_case(case)
     k = checks.real("k", k, 0.0, np.pi)
+    eps, A0 = _eps_A0(eps, A0, amplitude)
     eps = checks.positive("eps", eps)
     # the plane wave's peak rotation 2 eps A0 within the range the theories accept
     A0 = checks.real("A0", A0, 0.0, MAX_AMPLITUDE / (2 * eps), high_open=False)
@@ -54,12 +76,14 @@ def nls_summary(material: Material, case: str, k: float, eps: float, A0: float =
     return out
 
 
-def theory_gain(theory: str, material: Material, case: str, k: float, q_offset, eps: float,
-                A0: float = 1.0) -> np.ndarray:
+def theory_gain(theory: str, material: Material, case: str, k: float, q_offset,
+                eps: float | None = None, A0: float | None = None, *,
+                amplitude: float | None = None) -> np.ndarray:
     """sigma(q) of one theory at offsets ``q_offset`` from the carrier (lattice units).
 
-    The plane wave has peak rotation 2 eps A0 (eq. `IC`).
+    The plane wave has peak rotation ``amplitude`` = 2 eps A0 (eq. `IC`): give either.
     """
+    eps, A0 = _eps_A0(eps, A0, amplitude)
     if theory == "exact lattice":
         return mi_gain(material, case, k, 2 * eps * A0, q_offset)
     if theory == PAPER_START:
