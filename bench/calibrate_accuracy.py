@@ -25,7 +25,8 @@ POINTS = {"blue II": (Material.paper("blue"), "coupled", paper.k("blue"), 1.0, T
           "alpha 3.5, rotation": (Material(3.5, 0.01, 0.03), "rotation",
                                   2 * np.pi * 200 / 500, 3.0, True)}
 STEPS = {"rk4": [0.1, 0.05, 0.025], "verlet": [0.05, 0.025, 0.0125],
-         "srkn6b": [0.2, 0.1, 0.05], "srkn11b": [0.4, 0.2, 0.1]}
+         "srkn6b": [0.2, 0.1, 0.05], "srkn11b": [0.4, 0.2, 0.1],
+         "kahanli8": [0.4, 0.2, 0.1]}
 T = 200.0
 
 

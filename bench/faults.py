@@ -301,7 +301,7 @@ def _h5_without_datasets(path):
 MAP_VALUES = [  # MapParameters field, bad value, exception, message
     ("N", 3, ValueError, "N = 3"), ("N", 2, ValueError, "N"), ("N", 10**7, ValueError, "N"),
     ("N", 100.0, TypeError, "N"), ("N", True, TypeError, "N"),
-    ("t_end", 1e12, ValueError, "t_end"), ("t_end", 0.5, ValueError, "dt"),
+    ("t_end", 1e12, ValueError, "t_end"), 
     ("t_end", -1.0, ValueError, "t_end"), ("t_end", math.nan, ValueError, "t_end"),
     ("t_end", True, TypeError, "t_end"), ("seeds", 0, ValueError, "seeds"),
     ("seeds", True, TypeError, "seeds"), ("seeds", 2.0, TypeError, "seeds"),
@@ -322,6 +322,9 @@ MAP_VALUES = [  # MapParameters field, bad value, exception, message
 ]
 CATALOGUE += [(f"MapParameters: {f} = {v!r}", (lambda f=f, v=v: _mp(**{f: v})),
                (E, exc, rx)) for f, v, exc, rx in MAP_VALUES]
+# a given step larger than the records' spacing (t_end / 200)
+CATALOGUE += [("MapParameters: t_end = 0.5 with dt = 0.05",
+               lambda: _mp(t_end=0.5, dt=0.05, method="rk4"), (E, ValueError, "dt"))]
 
 CATALOGUE += [
     # SPECs

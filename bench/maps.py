@@ -1,20 +1,31 @@
-"""Maps on Dask, measured: cells per second per core, 1 -> 2 workers, scheduling overhead.
+"""Maps on Dask, measured: cells per second per core, 1 -> 2 workers, worker layouts,
+scheduling overhead, the 64 x 64 map's wall time, and the cells' accuracy.
 
-- A cell is the paper's run (N = 500, T = 5000, RK4 dt = 0.05) with the map's early stop;
-  its cost is measured serially (no Dask) on stable and unstable cells of case II.
-- The same 16-cell map (4 x 4 around the blue point, case II) on a LocalCluster of 1 and of
-  2 workers (fresh stores each): the speed-up.
-- Scheduling overhead: no-op tasks through the same cluster (time per task round trip)
-  against the cost of a task (a block of 4 cells).
-- From the per-cell cost: a 64 x 64 map here (2 cores) and on 100 cores.
+- A cell is the paper's run (N = 500, T = 5000, paper IC, one seed) with the map's early
+  stop, at the map's default step (``numerics.maps._cells.map_step``: method and dt for a
+  1% growth-factor error) and, for the ratio, at the paper's RK4 dt = 0.05; measured
+  serially (no Dask) on a row of stable and unstable cells of case II; beside it the cost
+  of the cell's prediction (``predict_cell``), which ``run_map`` adds.
+- The same 16-cell map (4 x 4 around the blue point, case II, block = 1) on a LocalCluster
+  of 1 and of 2 worker processes, and of 1 worker with 2 threads (the compiled loops
+  release the GIL): the speed-up of each layout, clusters warmed up first.
+- Scheduling overhead: no-op tasks through the same cluster against the cost of a task.
+- The 64 x 64 map (fig3 plane: alpha = 2.5, delta in [-0.012, 0.012], k in [0.08, 0.92] pi,
+  case II): its cells simulated in blocks of 4 on this machine's default cluster, measured
+  wall time (full run only; --quick estimates it from the per-cell cost). ``run_map`` also
+  predicts every cell (``predict_cell``, timed apart per cell).
+- The cells' accuracy (``bench.calibrate_growth.check_grid``): the full fig3-simulated
+  grid, both cases, at the default step against a tight reference (srkn11b, dt = 0.1):
+  verdict changes and the largest growth-factor error (full run only).
 Writes the "maps" section of results.json (results_quick.json with --quick; in out/bench/,
-or bench/ with --update).
+or bench/ with --update). Reports the load average: the machine is shared.
 
     python -m bench.maps [--quick] [--update | --out DIR]
 """
 
 from __future__ import annotations
 
+import os
 import shutil
 import statistics
 import tempfile
@@ -25,78 +36,183 @@ import numpy as np
 
 from bench.simulator import arguments, machine, write_section
 from common import paper
-from numerics import maps
+from numerics import Material, maps
 
 
 def _noop(x):
     return x
 
 
-def main(quick=False, out=None):
-    N, T = (100, 1000.0) if quick else (paper.N, paper.T_END)
+def _params(N, T, **kw):
     kk = 2 * np.pi * np.round(np.linspace(0.7, 1.0, 4) * N / (2 * np.pi)) / N
-    params = maps.MapParameters(case="coupled", alpha=paper.ALPHA, K_s=paper.K_S,
-                                delta=(-0.006, -0.002, 0.002, 0.006), k=tuple(kk),
-                                amplitude=0.02, N=N, t_end=T, block=1)
-    # per-cell cost, serial, on the map's own cells (a row of it)
-    costs = []
-    for j, k in enumerate(kk):
+    return maps.MapParameters(case="coupled", alpha=paper.ALPHA, K_s=paper.K_S,
+                              delta=(-0.006, -0.002, 0.002, 0.006), k=tuple(kk),
+                              amplitude=paper.AMPLITUDE, N=N, t_end=T, block=1, **kw)
+
+
+def _simulate_cells(params, i, js):
+    """The simulation part of ``simulate_block`` alone (its prediction is timed apart)."""
+    from numerics.maps._cells import simulate_cell
+
+    mat = Material(params.alpha, params.K_s, params.K_s - params.delta[i])
+    method, dt = params.cell_step
+    return [simulate_cell(mat, params.case, params.k_simulated[j], params.N, params.t_end,
+                          params.amplitude, params.noise, 0, params.start, dt, method)
+            for j in js]
+
+
+def cell_costs(params, paper_params):
+    """Serial cost of the first row's cells: simulated at the default step and at RK4
+    dt = 0.05, and the prediction ``simulate_block`` adds to each cell."""
+    import dataclasses
+
+    from numerics.maps._cells import predict_cell
+
+    for p in (params, paper_params):  # compile (or load) the kernels outside the timing
+        _simulate_cells(dataclasses.replace(p, t_end=10.0, k=p.k[:1]), 0, [0])
+    mat = Material(params.alpha, params.K_s, params.K_s - params.delta[0])
+    rows = []
+    for j, k in enumerate(params.k_simulated):
+        row = {"k": float(k), "delta": params.delta[0]}
+        for label, p in (("default", params), ("rk4 dt = 0.05", paper_params)):
+            t0 = time.perf_counter()
+            r = _simulate_cells(p, 0, [j])[0]
+            row[label] = {"s": time.perf_counter() - t0, "mi": r["verdict_simulated"],
+                          "growth": r["growth"], "t_simulated": r["t_simulated"]}
         t0 = time.perf_counter()
-        r = maps.simulate_block(params, 0, [j])["rows"][0]
-        costs.append({"k": float(k), "delta": params.delta[0], "s": time.perf_counter() - t0,
-                      "mi": r["verdict_simulated"], "t_simulated": r["t_simulated"]})
-    serial = statistics.mean(c["s"] for c in costs)
-    # the same map on 1 and 2 workers: clusters started and warmed up first (the start-up,
-    # ~3 s, is paid once per map, not per cell)
+        predict_cell(mat, params.case, k, params.N, params.t_end, params.amplitude)
+        row["prediction_s"] = time.perf_counter() - t0
+        rows.append(row)
+    return rows
+
+
+def layout_walls(params):
+    """Wall time of the 16-cell map per cluster layout (fresh stores, warmed clusters)."""
     from dask.distributed import Client, LocalCluster
 
+    layouts = {"1 process": dict(n_workers=1, threads_per_worker=1, processes=True),
+               "2 processes": dict(n_workers=2, threads_per_worker=1, processes=True),
+               "1 process, 2 threads": dict(n_workers=1, threads_per_worker=2,
+                                             processes=True)}
+    tiny = maps.MapParameters(case="coupled", alpha=paper.ALPHA, K_s=paper.K_S,
+                              delta=(0.003,), k=(2 * np.pi * 13 / 100,), amplitude=0.02,
+                              N=100, t_end=10.0)
     walls = {}
-    for workers in (1, 2):
+    for name, kw in layouts.items():
         d = Path(tempfile.mkdtemp())
         try:
             maps.open_or_create(d / "map.zarr", params)  # theory columns outside the timing
-            with LocalCluster(n_workers=workers, threads_per_worker=1, dashboard_address=":0",
-                              silence_logs=40) as cluster, Client(cluster) as client:
-                tiny = maps.MapParameters(case="coupled", alpha=paper.ALPHA, K_s=paper.K_S,
-                                          delta=(0.003,), k=(2 * np.pi * 13 / 100,),
-                                          amplitude=0.02, N=100, t_end=10.0)
+            with LocalCluster(dashboard_address=":0", silence_logs=40, **kw) as cluster, \
+                    Client(cluster) as client:
                 client.gather([client.submit(maps.simulate_block, tiny, 0, [0], pure=False)
-                               for _ in range(workers)])  # load the compiled kernels
+                               for _ in range(2)])  # load the compiled kernels
                 t0 = time.perf_counter()
                 maps.run_map(params, d, scheduler=cluster.scheduler_address, progress=False,
                              log=lambda *_: None)
-                walls[workers] = time.perf_counter() - t0
+                walls[name] = time.perf_counter() - t0
         finally:
             shutil.rmtree(d, ignore_errors=True)
-    # scheduling overhead: no-op round trips on a running cluster
+    return walls
+
+
+def scheduling_overhead():
+    from dask.distributed import Client, LocalCluster
+
     with LocalCluster(n_workers=2, threads_per_worker=1, dashboard_address=":0",
                       silence_logs=40) as cluster, Client(cluster) as client:
         client.gather(client.map(_noop, range(10)))  # warm up
         n = 200
         t0 = time.perf_counter()
         client.gather([client.submit(_noop, i, pure=False) for i in range(n)])
-        overhead = (time.perf_counter() - t0) / n
+        return (time.perf_counter() - t0) / n
+
+
+def map_64(N, T):
+    """The 64 x 64 map of the fig3 plane, case II: its cells simulated (one task per
+    block of 4, as run_map) on this machine's default cluster, wall time. The predictions
+    ``run_map`` adds per cell are timed apart (``cell_costs``)."""
+    from dask.distributed import Client, LocalCluster
+
+    m = np.unique(np.round(np.linspace(0.08, 0.92, 64) * N / 2).astype(int))
+    params = maps.MapParameters(case="coupled", alpha=paper.ALPHA, K_s=paper.K_S,
+                                delta=tuple(np.linspace(-0.012, 0.012, 64)),
+                                k=tuple(2 * np.pi * m / N), amplitude=paper.AMPLITUDE,
+                                N=N, t_end=T)
+    params.cell_step  # noqa: B018 - chosen once, in the client (as run_map does)
+    todo = maps._store.blocks(params, np.zeros((len(params.delta), len(params.k)), bool))
+    with LocalCluster(n_workers=maps.local_cores(), threads_per_worker=1,
+                      dashboard_address=":0", silence_logs=40) as cluster, \
+            Client(cluster) as client:
+        client.gather([client.submit(_simulate_cells, params, 0, [0], pure=False)
+                       for _ in range(2)])  # load the compiled kernels
+        t0 = time.perf_counter()
+        rows = [r for rs in client.gather([client.submit(_simulate_cells, params, i, js,
+                                                         retries=2, pure=False)
+                                           for i, js in todo]) for r in rs]
+        wall = time.perf_counter() - t0
+    return {"cells": len(rows), "wall_s": wall, "workers": maps.local_cores(),
+            "method": params.cell_step[0], "dt": params.cell_step[1],
+            "mi_cells": int(sum(r["verdict_simulated"] for r in rows)),
+            "stopped_early_cells": int(sum(r["stopped_early"] for r in rows))}
+
+
+def main(quick=False, out=None):
+    from bench.calibrate_growth import check_grid
+
+    load_before = os.getloadavg()
+    N, T = (100, 1000.0) if quick else (paper.N, paper.T_END)
+    params = _params(N, T)
+    paper_params = _params(N, T, method="rk4", dt=paper.DT)
+    costs = cell_costs(params, paper_params)
+    serial = statistics.mean(c["default"]["s"] for c in costs)
+    serial_rk4 = statistics.mean(c["rk4 dt = 0.05"]["s"] for c in costs)
+    predict = statistics.mean(c["prediction_s"] for c in costs)
+    walls = layout_walls(params)
+    overhead = scheduling_overhead()
     n_cells = len(params.delta) * len(params.k)
-    per_cell = walls[1] / n_cells  # one worker, everything included
-    task = per_cell * params.block
-    cells = 64 * 64
+    per_cell = walls["1 process"] / n_cells  # run_map on one worker: prediction included
     res = {"machine": machine(), "quick": quick, "N": N, "t_end": T,
-           "per_cell_s": per_cell, "per_cell_serial_s": serial, "cells": costs,
-           "cells_per_second_per_core": 1 / per_cell,
-           "map_16_cells_wall_s": walls, "speedup_2_workers": walls[1] / walls[2],
+           "method": params.cell_step[0], "dt": params.cell_step[1],
+           "per_cell_s": per_cell, "per_cell_serial_s": serial,
+           "prediction_per_cell_serial_s": predict,
+           "per_cell_serial_rk4_s": serial_rk4, "default_over_rk4": serial_rk4 / serial,
+           "cells": costs, "cells_per_second_per_core": 1 / serial,
+           "map_16_cells_wall_s": walls,
+           "speedup_2_workers": walls["1 process"] / walls["2 processes"],
+           "speedup_2_threads": walls["1 process"] / walls["1 process, 2 threads"],
            "scheduling_overhead_per_task_s": overhead,
-           "overhead_fraction_of_a_task": overhead / task,
-           "map_64x64_here_s": cells * per_cell / 2,
-           "map_64x64_on_100_cores_s": cells * per_cell / 100}
+           "overhead_fraction_of_a_task": overhead / (per_cell * params.block),
+           "map_64x64_estimated_here_s": 64 * 64 * serial / 2}
+    if not quick:
+        res["map_64x64"] = map_64(N, T)
+        res["cell_accuracy"] = check_grid()
+    res["load_average_before_after"] = [load_before, os.getloadavg()]
     write_section("maps", res, quick, out)
-    print(f"per cell (N = {N}, T = {T:g}): {per_cell:.2f} s in the map on one worker "
-          f"({serial:.2f} s serially, one row) = {1 / per_cell:.2f} cells/s/core")
-    print(f"16-cell map: 1 worker {walls[1]:.1f} s, 2 workers {walls[2]:.1f} s -> "
-          f"{walls[1] / walls[2]:.2f}x")
+    print(f"per cell (N = {N}, T = {T:g}, {res['method']} dt = {res['dt']:.3g}): simulated "
+          f"in {serial:.3f} s serially = {1 / serial:.1f} cells/s/core (RK4 at dt = 0.05 "
+          f"{serial_rk4:.3f} s: {serial_rk4 / serial:.1f}x); its prediction {predict:.3f} s; "
+          f"both in run_map on one worker {per_cell:.3f} s")
+    print("16-cell map: " + ", ".join(f"{k} {v:.2f} s" for k, v in walls.items())
+          + f" -> 2 processes {res['speedup_2_workers']:.2f}x, 2 threads "
+          f"{res['speedup_2_threads']:.2f}x")
     print(f"scheduling overhead {overhead * 1e3:.2f} ms per task = "
-          f"{100 * overhead / task:.3f}% of a {params.block}-cell task")
-    print(f"64 x 64 map: {res['map_64x64_here_s'] / 60:.0f} min here, "
-          f"{res['map_64x64_on_100_cores_s'] / 60:.1f} min on 100 cores")
+          f"{100 * res['overhead_fraction_of_a_task']:.2f}% of a {params.block}-cell task")
+    if "map_64x64" in res:
+        m = res["map_64x64"]
+        print(f"64 x 64 map ({m['cells']} cells simulated, {m['workers']} workers): "
+              f"{m['wall_s'] / 60:.1f} min measured (predictions not included: "
+              f"~{64 * 64 * predict / m['workers'] / 60:.0f} min more in run_map)")
+        acc = res["cell_accuracy"]
+        for case in ("rotation", "coupled"):
+            a = acc[case]
+            print(f"fig3 grid, case {case}: {a['cells']} cells ({a['mi_cells']} MI), "
+                  f"{a['verdict_changes']} verdict changes, largest growth error "
+                  f"{a['largest_growth_curve_error']:.2g} (tolerance {acc['growth_tol']:g})")
+    else:
+        print(f"64 x 64 map: ~{res['map_64x64_estimated_here_s'] / 60:.1f} min here "
+              "(estimated; measured in the full run)")
+    print(f"load average before/after: {load_before[0]:.1f} / {os.getloadavg()[0]:.1f} "
+          f"on {os.cpu_count()} cores")
     return res
 
 

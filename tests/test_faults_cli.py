@@ -82,10 +82,11 @@ def _wait_for(p, text, seconds):
 def test_map_interrupted_by_a_signal_is_one_line(signum, code, when, tmp_path):
     out = tmp_path / "m"
     # a long stable cell (case I, delta = -0.003, k = 2.51: the exact theory's gain is 0,
-    # so no early stop; T = 2e5 at N = 100: minutes), so the signal comes while it runs
+    # so no early stop; T = 2e6 at N = 100: a minute at the step chosen for the growth
+    # factor's accuracy, 0.47), so the signal comes while it runs
     stable = ["map", "--case", "rotation", "--alpha", "2.5", "--K-s", "0.01851",
               "--delta=-0.003", "--k", "2.5", "--N", "100"]
-    p = subprocess.Popen(FLEXMM + stable + ["--t-end", "200000", "--workers", "1", "--yes",
+    p = subprocess.Popen(FLEXMM + stable + ["--t-end", "2000000", "--workers", "1", "--yes",
                                          "--out", str(out)],
                          cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                          start_new_session=True)

@@ -46,7 +46,8 @@ class AccuracyWarning(UserWarning):
 
 
 #: C_m of the error model (module docstring), measured by bench/calibrate_accuracy.py.
-ERROR_CONSTANTS = {"rk4": 0.061, "verlet": 0.11, "srkn6b": 8.9e-5, "srkn11b": 1.3e-6}
+ERROR_CONSTANTS = {"rk4": 0.061, "verlet": 0.11, "srkn6b": 8.9e-5, "srkn11b": 1.3e-6,
+                   "kahanli8": 1.9e-4}
 #: keep dt below this fraction of a method's linear stability limit
 STABILITY_MARGIN = 0.8
 #: tolerances outside this range are not what double precision and the model can deliver
@@ -71,7 +72,7 @@ def check_tol(tol) -> float:
 
 
 def choose_step(state, material, case: str, t_end: float, tol: float,
-                methods=None) -> tuple[str, float]:
+                methods=None, constants=None) -> tuple[str, float]:
     """(method, dt) whose predicted relative state error at ``t_end`` is ``tol``.
 
     Parameters
@@ -85,6 +86,9 @@ def choose_step(state, material, case: str, t_end: float, tol: float,
         Wanted relative state error, in TOL_RANGE.
     methods : iterable of str, optional
         Candidates (default: every fixed-step method with a measured constant).
+    constants : dict, optional
+        {method: C_m} of the error measured (default ERROR_CONSTANTS, the state's; the
+        map cells pass the growth factor's, ``numerics.maps._cells``).
 
     Returns
     -------
@@ -96,13 +100,14 @@ def choose_step(state, material, case: str, t_end: float, tol: float,
     w_max = material.omega_max(case)
     if not w > 0:  # a state at rest: any step is exact; the stability limit decides
         w = w_max
+    constants = ERROR_CONSTANTS if constants is None else constants
     best = None
-    for name in methods or ERROR_CONSTANTS:
+    for name in methods or constants:
         m = get_method(name)
-        if name not in ERROR_CONSTANTS:
+        if name not in constants:
             raise ValueError(f"no error constant for method {name!r}; choose from "
-                             f"{', '.join(ERROR_CONSTANTS)}")
-        dt = (tol / (ERROR_CONSTANTS[name] * w * t_end)) ** (1.0 / m.order) / w
+                             f"{', '.join(constants)}")
+        dt = (tol / (constants[name] * w * t_end)) ** (1.0 / m.order) / w
         dt = min(dt, STABILITY_MARGIN * m.stability_limit() / w_max, t_end)
         cost = m.evaluations * math.ceil(t_end / dt)
         if best is None or cost < best[0]:

@@ -68,7 +68,7 @@ def non_carrier_bins(m: int, N: int, field: str = "theta") -> np.ndarray:
 U_REFERENCE = 0.05
 
 
-def spectrum_growth(t, ratios: dict, bins: dict, N: int):
+def spectrum_growth(t, ratios: dict, bins: dict, N: int, t_end: float | None = None):
     """The simulated verdicts' reading of a run: the largest growth factor of the largest
     non-carrier, non-harmonic component relative to the carrier, and where it sits.
 
@@ -80,6 +80,9 @@ def spectrum_growth(t, ratios: dict, bins: dict, N: int):
         Per field ("theta", "U"): the components on ``bins[field]`` (rfft bins, the mask
         :func:`non_carrier_bins`) over the carrier's amplitude, per record.
     bins : dict field -> ndarray of int, shape (nbins,)
+    t_end : float, optional
+        The run's planned length (default: the last record's time): U's reference record
+        sits at U_REFERENCE t_end, also in a run stopped early.
 
     Returns
     -------
@@ -96,7 +99,8 @@ def spectrum_growth(t, ratios: dict, bins: dict, N: int):
     field = np.full(draws, "theta", dtype=object)
     q = np.full(draws, np.nan)
     for name, r in ratios.items():
-        i0 = 0 if name == "theta" else int(np.searchsorted(t, U_REFERENCE * t[-1]))
+        i0 = 0 if name == "theta" else int(np.searchsorted(
+            t, U_REFERENCE * (t[-1] if t_end is None else t_end)))
         if i0 >= len(t) - 1:
             continue
         top = r[:, i0:].max(axis=2)  # (draws, nt)

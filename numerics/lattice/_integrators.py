@@ -26,6 +26,27 @@ _SRKN11B_B = (0.041464998518262400, 0.19812867191806700, -0.040006192104153300,
               0.23666992478693110, -0.011511387420687900, 0.075253984301580700,
               -0.040006192104153300, 0.19812867191806700, 0.041464998518262400)
 
+# Kahan & Li, Math. Comp. 66 (1997) 1089, "Composition constants for raising the orders of
+# unconventional schemes for ordinary differential equations", scheme s17odr8a: a
+# symmetric composition of 17 Stormer-Verlet steps of lengths gamma_i h, order 8 (also in
+# Hairer, Lubich & Wanner, Geometric Numerical Integration, 2nd ed., sec. V.3.2). The first
+# nine gammas; the rest mirror them (gamma_{18-i} = gamma_i).
+_KAHANLI8_GAMMA = (0.13020248308889008087881763, 0.56116298177510838456196441,
+                   -0.38947496264484728640807860, 0.15884190655515560089621075,
+                   -0.39590389413323757733623154, 0.18453964097831570709183254,
+                   0.25837438768632204729397911, 0.29501172360931029887096624,
+                   -0.60550853383003451169892108)
+
+
+def verlet_composition(gamma_half):
+    """(a, b) of the BAB form of the symmetric composition of Verlet steps gamma_1 h, ...,
+    gamma_s h (``gamma_half`` the first (s + 1)/2, the rest mirrored): each Verlet step
+    kicks gamma/2, drifts gamma, kicks gamma/2, and adjacent half kicks merge."""
+    g = tuple(gamma_half) + tuple(gamma_half[-2::-1])
+    a = g + (0.0,)
+    b = (g[0] / 2,) + tuple((g[i] + g[i + 1]) / 2 for i in range(len(g) - 1)) + (g[-1] / 2,)
+    return a, b
+
 
 @dataclass(frozen=True)
 class Method:
@@ -107,6 +128,9 @@ register(Method("srkn6b", 4, 6, "srkn", True,
                 "Blanes & Moan 2002 SRKN6b, symplectic RKN order 4", _SRKN6B_A, _SRKN6B_B))
 register(Method("srkn11b", 6, 11, "srkn", True,
                 "Blanes & Moan 2002 SRKN11b, symplectic RKN order 6", _SRKN11B_A, _SRKN11B_B))
+register(Method("kahanli8", 8, 17, "srkn", True,
+                "Kahan & Li 1997 s17odr8a, 17-stage Verlet composition, symplectic order 8",
+                *verlet_composition(_KAHANLI8_GAMMA)))
 register(Method("dop853", 8, 0, "scipy", False, "scipy solve_ivp DOP853 (adaptive reference)"))
 register(Method("rk45", 5, 0, "scipy", False, "scipy solve_ivp RK45 (adaptive)"))
 

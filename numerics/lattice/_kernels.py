@@ -17,6 +17,9 @@ Speed comes from two things.
    double buffer. Boundary sites are done outside the main loop, so it has no index
    wrapping. RK4 does 4 passes per step, an SRKN method with s kicks s - 1 passes.
 
+The entry points (``accel``, ``rk4_steps``, ``srkn_steps`` and their libm references)
+release the GIL (``nogil``): threads of one Dask worker run cells side by side.
+
 Only the ``contract`` fast-math flag is used (fused multiply-add): never ``nnan``/``ninf``,
 so NaN and inf propagate and the blow-up check sees them. Case "rotation" has no U arrays
 and runs loops without any U work.
@@ -123,7 +126,7 @@ def _stencil(th, U, coupled, a2, Ks, Kt, s, c, v, ath, aU):
         ath[n - 1] = _acc(n - 1, n - 2, 0, th, U, s, c, v, False, a2, Ks, Kt)[0]
 
 
-@njit(cache=True, fastmath=_FAST, boundscheck=False)
+@njit(cache=True, nogil=True, fastmath=_FAST, boundscheck=False)
 def accel(th, U, coupled, a2, Ks, Kt, s, c, v, ath, aU):
     """Accelerations of eq. `norm` into ``ath`` (includes alpha^2) and ``aU``.
 
@@ -240,7 +243,7 @@ def _rk4_last_pass(Pc, Sc, Cc, Vc, PUc, Pn, Sn, Cn, Vn, PUn, th, w, U, Vu, vs, V
     return bad
 
 
-@njit(cache=True, fastmath=_FAST, boundscheck=False)
+@njit(cache=True, nogil=True, fastmath=_FAST, boundscheck=False)
 def rk4_steps(th, w, U, V, coupled, a2, Ks, Kt, dt, nsteps, work, work_U):
     """Classical RK4 on the first-order system (q, q') of eq. `norm`, fused.
 
@@ -339,7 +342,7 @@ def _kick_drift(P0, Pn, Sn, Cn, Vn, PU0, PUn, w, Vu, ath, aU, coupled, hb, ha):
     return bad
 
 
-@njit(cache=True, fastmath=_FAST, boundscheck=False)
+@njit(cache=True, nogil=True, fastmath=_FAST, boundscheck=False)
 def srkn_steps(th, w, U, V, ath, aU, coupled, a2, Ks, Kt, acoef, bcoef, dt, nsteps, work,
                work_U):
     """Symplectic RKN steps, BAB composition (kick b0, drift a0, kick b1, ...), fused.

@@ -11,7 +11,7 @@ import math
 from numba import njit
 
 
-@njit(cache=True, fastmath=False, boundscheck=False)
+@njit(cache=True, nogil=True, fastmath=False, boundscheck=False)
 def accel_libm(th, U, coupled, a2, Ks, Kt, s, c, v, ath, aU):
     """Accelerations with libm sin/cos and 1 - cos = sin^2/(1 + cos) (the reference)."""
     n = th.size
@@ -41,7 +41,7 @@ def _finite(x):
     return math.isfinite(acc)
 
 
-@njit(cache=True, fastmath=False, boundscheck=False)
+@njit(cache=True, nogil=True, fastmath=False, boundscheck=False)
 def srkn_steps_libm(th, w, U, V, ath, aU, coupled, a2, Ks, Kt, acoef, bcoef, dt, nsteps,
                     s, c, v):
     """Symplectic RKN steps with the libm force (same contract as ``srkn_steps``)."""
@@ -69,7 +69,7 @@ def srkn_steps_libm(th, w, U, V, ath, aU, coupled, a2, Ks, Kt, acoef, bcoef, dt,
     return nsteps
 
 
-@njit(cache=True, fastmath=False, boundscheck=False)
+@njit(cache=True, nogil=True, fastmath=False, boundscheck=False)
 def rk4_steps_libm(th, w, U, V, coupled, a2, Ks, Kt, dt, nsteps, s, c, v, work):
     """Classical RK4 with the libm force; ``work`` has shape (10, N)."""
     n = th.size

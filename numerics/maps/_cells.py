@@ -6,23 +6,46 @@ criterion: MI when the largest non-carrier, non-harmonic component grows more th
 GROWTH_THRESHOLD (20x) over the run (the theories' verdicts on the same question are in
 ``scenes.maps.theory_columns``).
 
-Early stop (the rule): the run goes in segments; as soon as the growth factor exceeds the
-threshold the verdict "MI" is certain (the factor is a running maximum and can only grow),
-so the run stops there. A stable verdict needs the whole run.
+Accuracy (what the verdict needs): the run's method and step come from the accuracy of the
+quantity measured, the growth factor, not from the paper's RK4 step: :func:`cell_step`
+solves the error model of ``numerics.lattice._accuracy`` with the growth factor's own
+constants (GROWTH_ERROR_CONSTANTS, measured by ``bench/calibrate_growth.py``) for a
+relative growth error GROWTH_TOL (1%); a map takes one step for all its cells
+(:func:`map_step`, at its fastest carrier) and records it in the store's attrs.
+
+Early stop (the rule): the spectrum is recorded RECORDS times over the run; as soon as the
+growth factor exceeds the threshold the verdict "MI" is certain (the factor is a running
+maximum and can only grow), so the run stops there. A stable verdict needs the whole run.
+The run is one stepper advanced record by record (no re-built state between checks).
 """
 
 from __future__ import annotations
 
+import math
 
 import numpy as np
 
-from ..lattice._analysis import (GROWTH_THRESHOLD, growth_rates, linear_stage, non_carrier_bins,
-                                 spectrum_growth)
+from ..lattice._accuracy import choose_step, dominant_frequency
+from ..lattice._analysis import (GROWTH_THRESHOLD, U_REFERENCE, growth_rates, linear_stage,
+                                 non_carrier_bins, spectrum, spectrum_growth)
+from ..lattice._integrate import BlowUpError, _blowup_message, _Stepper
+from ..lattice._integrators import get_method
 from ..lattice._model import Material
-from ..lattice._simulate import simulate
+from ..lattice._simulate import initial_condition, snap_wavenumber
 
-#: a run is cut into this many segments for the early-stop check
-SEGMENTS = 20
+#: spectrum records over a run (every t_end / RECORDS): the growth factor's time resolution
+RECORDS = 200
+#: relative accuracy of the growth factor a map cell asks for (see GROWTH_ERROR_CONSTANTS)
+GROWTH_TOL = 0.01
+#: C_m of the growth factor's error model, e = C_m (w dt)^p (w T) as in ``_accuracy``
+#: (w the starting state's dominant frequency; e the largest relative error of the growth
+#: factor over the records), per method: the largest constant measured by
+#: ``bench/calibrate_growth.py`` on 32 cells between those of the fig3-simulated grid (both
+#: cases, N = 500, T = 5000; spread 2e-9 .. 1.6e-6 for srkn11b, the largest at near-resonant
+#: case II cells). The largest are about the state's (``ERROR_CONSTANTS``), most cells' far
+#: below (the spectrum's magnitudes do not see the carrier's phase error, which dominates
+#: the state error); the big step comes from asking 1% of the growth factor.
+GROWTH_ERROR_CONSTANTS = {"srkn11b": 1.6e-6, "srkn6b": 6.4e-5, "kahanli8": 8.9e-5}
 
 
 def _ratios(theta_hat, U_hat, m, N):
@@ -38,49 +61,130 @@ def _ratios(theta_hat, U_hat, m, N):
     return out, {"theta": np.flatnonzero(mask)}
 
 
-def growth_of(t, theta_hat, U_hat, m, N) -> dict:
+def growth_of(t, theta_hat, U_hat, m, N, t_end: float | None = None) -> dict:
     """Largest growth factor over the records, which field and wavenumber carries it
-    (the reading :func:`numerics.lattice.spectrum_growth` defines)."""
+    (the reading :func:`numerics.lattice.spectrum_growth` defines). U's growth counts from
+    its level at U_REFERENCE t_end (default t_end: the last record's time; a run stopped
+    early passes its planned t_end, so the reference does not move)."""
     ratios, bins = _ratios(theta_hat, U_hat, m, N)
     growth, field, q = spectrum_growth(np.asarray(t), {f: r[None] for f, r in ratios.items()},
-                                       bins, N)
+                                       bins, N, t_end)
     return {"growth": float(growth[0]), "growth_field": str(field[0]),
             "growth_q": float(q[0])}
 
 
+def cell_step(state, material: Material, case: str, t_end: float,
+              growth_tol: float = GROWTH_TOL, methods=None) -> tuple[str, float]:
+    """(method, dt) whose predicted relative error of the growth factor over ``t_end`` is
+    ``growth_tol`` (the error model of ``_accuracy`` with GROWTH_ERROR_CONSTANTS), the
+    cheapest of ``methods`` (default: every method with a constant)."""
+    return choose_step(state, material, case, t_end, growth_tol, methods,
+                       constants=GROWTH_ERROR_CONSTANTS)
+
+
+def map_step(material_of, case: str, ks, N: int, t_end: float, amplitude: float,
+             start: str = "paper", growth_tol: float = GROWTH_TOL,
+             methods=None) -> tuple[str, float]:
+    """One (method, dt) for every cell of a map: :func:`cell_step` at the grid's largest
+    dominant frequency (the smallest step any of its cells needs). ``material_of`` is the
+    list of the map's materials (one per delta), ``ks`` its carriers (snapped)."""
+    best = None
+    for mat in material_of:
+        for k in ks:
+            state = initial_condition(mat, case, N, k, amplitude, 0.0, 0, start)
+            w = dominant_frequency(state)
+            if best is None or w > best[0]:
+                best = (w, mat, state)
+    return cell_step(best[2], best[1], case, t_end, growth_tol, methods)
+
+
 def simulate_cell(material: Material, case: str, k: float, N: int, t_end: float,
                   amplitude: float = 0.02, noise: float = 1e-3, seed: int = 0,
-                  start: str = "paper", dt: float = 0.05, method: str = "rk4",
-                  early_stop: bool = True) -> dict:
+                  start: str = "paper", dt: float | None = None, method: str | None = None,
+                  early_stop: bool = True, growth_tol: float = GROWTH_TOL) -> dict:
     """The simulated verdict at one cell (the scenes' criterion), with early stop.
 
+    ``method`` and ``dt`` default to :func:`cell_step`'s choice for ``growth_tol``; the
+    step used is t_end / (RECORDS n) for a whole n, so that records fall on steps.
+
     Returns the verdict (True = MI), the largest growth factor and the field ("theta" or
-    "U") and wavenumber carrying it, the time simulated and whether it stopped early.
+    "U") and wavenumber carrying it, the time simulated, whether it stopped early, and
+    the method and step used.
     """
-    seg = t_end / SEGMENTS
-    kw = dict(material=material, case=case, N=N, amplitude=amplitude, noise=noise, seed=seed,
-              dt=dt, method=method, store="spectrum", start=start, progress=False,
-              energy_tolerance=1.0)
-    ts, th, U = [], [], []
-    state, t0, k_used, m = None, 0.0, k, None
-    for _ in range(SEGMENTS):
-        run = simulate(k=k_used, t_end=seg, save_every=seg / 10, initial=state, **kw)
-        k_used, m = run.k, run.m
-        first = 0 if state is None else 1
-        ts.append(run.t[first:] + t0)
-        th.append(run.theta_hat[first:])
-        if run.U_hat is not None:
-            U.append(run.U_hat[first:])
-        state, t0 = run.final_state, t0 + seg
-        g = growth_of(np.concatenate(ts), np.concatenate(th),
-                      np.concatenate(U) if U else None, m, run.N)
-        if early_stop and g["growth"] > GROWTH_THRESHOLD:
-            break
-    t, theta_hat = np.concatenate(ts), np.concatenate(th)
+    rec = cell_records(material, case, k, N, t_end, amplitude, noise, seed, start, dt,
+                       method, early_stop, growth_tol)
+    t, th_hat, U_hat, m = rec["t"], rec["theta_hat"], rec["U_hat"], rec["m"]
+    g = growth_of(t, th_hat, U_hat, m, N, t_end)
     mi = bool(g["growth"] > GROWTH_THRESHOLD)
+    t_sim = float(t[-1])
     return {"verdict_simulated": mi, **g, "growth_q": float(g["growth_q"]),
-            "peak_gain": measured_peak_gain(t, theta_hat, m, run.N) if mi else float("nan"),
-            "t_simulated": t0, "stopped_early": bool(t0 < t_end - 1e-9), "k": k_used}
+            "peak_gain": measured_peak_gain(t, th_hat, m, N) if mi else float("nan"),
+            "t_simulated": t_sim, "stopped_early": bool(t_sim < t_end * (1 - 1e-9)),
+            "k": rec["k"], "method": rec["method"], "dt": rec["dt"]}
+
+
+def cell_records(material: Material, case: str, k: float, N: int, t_end: float,
+                 amplitude: float = 0.02, noise: float = 1e-3, seed: int = 0,
+                 start: str = "paper", dt: float | None = None, method: str | None = None,
+                 early_stop: bool = True, growth_tol: float = GROWTH_TOL,
+                 stop_at: int | None = None) -> dict:
+    """The spectrum records of a cell's run (what :func:`simulate_cell` measures): t,
+    theta_hat, U_hat (None in case "rotation") up to the early stop (or record
+    ``stop_at``), the carrier bin m and k, the method and step used."""
+    ks, m = snap_wavenumber(k, N)
+    state = initial_condition(material, case, N, ks, amplitude, noise, seed, start)
+    if dt is None:
+        method, dt = cell_step(state, material, case, t_end, growth_tol,
+                               None if method is None else [method])
+    elif method is None:
+        raise ValueError("give method with dt (or neither: both are chosen for growth_tol)")
+    meth = get_method(method)
+    record = t_end / RECORDS
+    per_record = max(1, math.ceil(record / dt - 1e-9))
+    dt_eff = record / per_record
+    st = _Stepper(state, material, case, meth, dt_eff)
+    coupled = case == "coupled"
+    nq = N // 2 + 1
+    t = np.arange(RECORDS + 1) * record
+    th_hat = np.empty((RECORDS + 1, nq))
+    U_hat = np.empty((RECORDS + 1, nq)) if coupled else None
+    mask = non_carrier_bins(m, N, "theta")
+    mask_U = non_carrier_bins(m, N, "U")
+    i0_U = int(np.searchsorted(t, U_REFERENCE * t_end))  # growth_of's reference record
+
+    def take(j):
+        th_hat[j] = spectrum(st.th)
+        if coupled:
+            U_hat[j] = spectrum(st.U)
+
+    take(0)
+    top_th0 = th_hat[0, mask].max() / th_hat[0, m]
+    top_U0 = None
+    last = RECORDS if stop_at is None else min(stop_at, RECORDS)
+    j = 0
+    while j < last:
+        done = st.advance(per_record)
+        if done < per_record:
+            time = j * record + done * dt_eff
+            raise BlowUpError(_blowup_message(time, dt_eff, material, case, meth),
+                              time=time)
+        j += 1
+        take(j)
+        if not early_stop:
+            continue
+        # the growth factor so far (growth_of's, from its running parts): MI is certain
+        # as soon as it exceeds the threshold
+        carrier = th_hat[j, m]
+        if th_hat[j, mask].max() / carrier > GROWTH_THRESHOLD * top_th0:
+            break
+        if coupled and j >= i0_U:
+            if top_U0 is None:
+                top_U0 = U_hat[i0_U, mask_U].max() / th_hat[i0_U, m]
+            if U_hat[j, mask_U].max() / carrier > GROWTH_THRESHOLD * top_U0:
+                break
+    n = j + 1
+    return {"t": t[:n], "theta_hat": th_hat[:n], "U_hat": U_hat[:n] if coupled else None,
+            "m": m, "k": ks, "method": meth.name, "dt": dt_eff}
 
 
 def measured_peak_gain(t, theta_hat, m, N) -> float:
@@ -131,5 +235,5 @@ def predict_cell(material: Material, case: str, k: float, N: int, t_end: float,
                 if p.approximate else "linear"]}, p
 
 
-__all__ = ["simulate_cell", "growth_of", "measured_peak_gain", "predict_cell",
-           "PREDICTED_STATUS"]
+__all__ = ["simulate_cell", "cell_records", "cell_step", "map_step", "growth_of",
+           "measured_peak_gain", "predict_cell", "PREDICTED_STATUS"]

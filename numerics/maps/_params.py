@@ -6,6 +6,7 @@ from __future__ import annotations
 import math
 import os
 from dataclasses import asdict, dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -13,13 +14,16 @@ from ..lattice import checks
 from ..lattice._analysis import GROWTH_THRESHOLD, non_carrier_bins
 from ..lattice._integrate import _check_time
 from ..lattice._integrators import get_method
-from ._cells import SEGMENTS
+from ._cells import GROWTH_ERROR_CONSTANTS, GROWTH_TOL, RECORDS
 
 #: k values per task (one delta row is split into blocks of this many cells)
 DEFAULT_BLOCK = 4
 #: seconds one simulated cell takes on one core of a 2-core laptop-class machine at
-#: N = 500, T = 5000 (bench/results.json "maps": 0.86 s), for the run-time estimate
-CELL_SECONDS = 0.9
+#: N = 500, T = 5000 with 11 force evaluations per unit time (srkn11b at dt = 1, about the
+#: map's chosen step): bench/results.json "maps", 0.27 s at load average ~6 on the two
+#: cores, ~0.12 s idle (RK4 at dt = 0.05, 80 evaluations per unit time: 0.86 s idle);
+#: for the run-time estimate, scaled by the evaluations per unit time of the map's step
+CELL_SECONDS = 0.15
 #: seconds one cell's growth prediction takes on one core (numerics.theory.predict_growth,
 #: N = 500, draws = 0; measured on this machine): the exact travelling wave's Hill
 #: families, or, for eq. `IC`, first the torus of the state it launches (~0.5 s)
@@ -78,8 +82,9 @@ class MapParameters:
     t_end: float = 5000.0
     seeds: int = 1
     start: str = "paper"
-    dt: float = 0.05
-    method: str = "rk4"
+    dt: float | None = None  # None: chosen with the method for growth_tol (cell_step)
+    method: str | None = None
+    growth_tol: float = GROWTH_TOL  # relative accuracy of the growth factor the cells ask for
     noise: float = 1e-3
     theory_only: bool = False
     block: int = DEFAULT_BLOCK
@@ -95,18 +100,19 @@ class MapParameters:
         checks.positive("t_end", self.t_end)
         checks.integer("seeds", self.seeds, 1, 1000)
         checks.integer("block", self.block, 1, 10**6)
-        checks.positive("dt", self.dt)
+        checks.real("growth_tol", self.growth_tol, 1e-8, 0.5)
         checks.real("noise", self.noise, 0.0, 1.0, low_open=False)
-        get_method(self.method)
+        if self.method is not None and not get_method(self.method).fixed_step:
+            raise ValueError(f"method: map cells need a fixed-step method, got "
+                             f"{self.method!r}")
         if not isinstance(self.theory_only, (bool, np.bool_)):
             raise TypeError(f"theory_only must be True or False, got {self.theory_only!r}")
-        # a cell runs in SEGMENTS pieces of t_end / SEGMENTS: each must be a valid run
-        # (dt below it, not an absurd number of steps), checked here, not on a worker
-        try:
-            _check_time(self.t_end / SEGMENTS, self.dt)
-        except ValueError as exc:
-            raise ValueError(f"t_end = {self.t_end:g} with dt = {self.dt:g}: a cell runs in "
-                             f"{SEGMENTS} segments of t_end / {SEGMENTS}, and {exc}") from None
+        if self.dt is not None:
+            checks.positive("dt", self.dt)
+        elif self.method is not None and self.method not in GROWTH_ERROR_CONSTANTS:
+            raise ValueError(f"method: {self.method!r} has no growth-error constant to choose "
+                             f"its step; give dt with it, or one of "
+                             f"{', '.join(GROWTH_ERROR_CONSTANTS)}")
         k = np.asarray(checks.real_values("k", self.k))
         d = np.asarray(checks.real_values("delta", self.delta))
         if np.any((k <= 0) | (k >= math.pi)):
@@ -114,6 +120,18 @@ class MapParameters:
         if np.any(self.K_s - d <= 0):
             raise ValueError(f"delta must be < K_s = {self.K_s:g} (K_theta = K_s - delta > 0), "
                              f"got {float(d.max()):g}")
+        # a cell advances in RECORDS pieces of t_end / RECORDS: a given step must fit in
+        # one, and the run must not take an absurd number of steps (checked here, not on a
+        # worker); a step still to be chosen is at most the largest stable one
+        record = self.t_end / RECORDS
+        dt = self.dt if self.dt is not None else min(record, _largest_stable_step(
+            self.alpha, self.K_s, d, self.case))
+        try:
+            _check_time(record, dt)
+            _check_time(self.t_end, dt)
+        except ValueError as exc:
+            raise ValueError(f"t_end = {self.t_end:g} with dt = {dt:g}: a cell records its "
+                             f"spectrum every t_end / {RECORDS}, and {exc}") from None
         snapped = self.k_simulated
         for x, ks in zip(self.k, snapped):
             m = round(ks * self.N / (2 * math.pi))
@@ -147,8 +165,30 @@ class MapParameters:
         predict = cells * PREDICT_SECONDS.get(self.start, 0.7) * max(self.N / 500, 1.0)
         if self.theory_only:
             return predict / max(workers, 1)
-        simulate = cells * self.seeds * CELL_SECONDS * (self.N / 500) * (self.t_end / 5000)
+
+        method, dt = self.cell_step
+        per_time = get_method(method).evaluations / dt / 11  # relative to CELL_SECONDS'
+        simulate = (cells * self.seeds * CELL_SECONDS * per_time * (self.N / 500)
+                    * (self.t_end / 5000))
         return (predict + simulate) / max(workers, 1)
+
+    @cached_property
+    def cell_step(self) -> tuple:
+        """(method, dt) every cell runs: as given, or chosen for ``growth_tol`` at the
+        grid's fastest carrier (``numerics.maps._cells.map_step``)."""
+        if self.dt is not None and self.method is not None:
+            return self.method, float(self.dt)
+        from ..lattice import Material
+        from ._cells import map_step
+
+        # a carrier's frequency is monotone in K_theta (linear in it under the root of
+        # eqs. `discrete1`, `discrete2`): the grid's fastest carriers sit at its extreme deltas
+        mats = [Material(self.alpha, self.K_s, self.K_s - d)
+                for d in sorted({min(self.delta), max(self.delta)})]
+        method, dt = map_step(mats, self.case, self.k_simulated, self.N, self.t_end,
+                              self.amplitude, self.start, self.growth_tol,
+                              None if self.method is None else [self.method])
+        return self.method or method, float(dt if self.dt is None else self.dt)
 
     @property
     def A0(self) -> float:
@@ -156,11 +196,29 @@ class MapParameters:
 
     def attrs(self) -> dict:
         out = {n: v for n, v in asdict(self).items() if n not in ("delta", "k")}
+        chosen = self.dt is None or self.method is None
+        out["method"], out["dt"] = self.cell_step
+        out["step"] = (f"chosen for a relative growth-factor error of {self.growth_tol:g} "
+                       "(numerics.maps._cells.map_step: the error model with the growth "
+                       "factor's constants, at the grid's fastest carrier)" if chosen
+                       else "given")
         out.update(A0=self.A0, criterion=CRITERION, growth_threshold=GROWTH_THRESHOLD,
                    verdicts=f"True = MI: grows more than {GROWTH_THRESHOLD:g}x within t_end "
                             "(simulated: measured; theories: peak gain > ln(threshold) / "
                             "t_end, their raw peak gains beside)")
         return out
+
+
+def _largest_stable_step(alpha, K_s, delta, case) -> float:
+    """The largest step any map method may take on this grid: 0.8 of the most stable
+    method's limit over the grid's highest frequency (``_accuracy.STABILITY_MARGIN``)."""
+    from ..lattice import Material
+    from ..lattice._accuracy import ERROR_CONSTANTS, STABILITY_MARGIN
+
+    w = max(Material(alpha, K_s, K_s - d).omega_max(case) for d in (min(delta), max(delta)))
+    limit = max(get_method(m).stability_limit() for m in {*ERROR_CONSTANTS,
+                                                          *GROWTH_ERROR_CONSTANTS})
+    return STABILITY_MARGIN * limit / w
 
 
 def local_cores() -> int:

@@ -41,6 +41,7 @@ def simulate_block(params: MapParameters, i: int, js: list, simulate: bool = Tru
     from ._cells import predict_cell, simulate_cell
 
     mat = Material(params.alpha, params.K_s, params.K_s - params.delta[i])
+    method, dt = params.cell_step
     rows = []
     for j in js:
         k = params.k_simulated[j]
@@ -49,7 +50,7 @@ def simulate_block(params: MapParameters, i: int, js: list, simulate: bool = Tru
         if simulate:
             runs = [simulate_cell(mat, params.case, k, params.N, params.t_end,
                                   params.amplitude, params.noise, seed, params.start,
-                                  params.dt, params.method) for seed in range(params.seeds)]
+                                  dt, method) for seed in range(params.seeds)]
             verdict = sum(r["verdict_simulated"] for r in runs) * 2 > len(runs)
             growths = [r["growth"] for r in runs]
             top = runs[int(np.argmax(growths))]
@@ -343,6 +344,8 @@ def _write_block(path: Path, params: MapParameters, result: dict, arrays: dict |
         region[flag] = (("delta", "k"), arrays[flag][cells])
     arrays[CHECKSUM][cells] = cell_checksums(arrays, cells)
     region[CHECKSUM] = (("delta", "k"), arrays[CHECKSUM][cells])
+    # one write; a client killed in the middle of it leaves cells whose checksum does not
+    # match, recomputed on resume (tests/test_cluster_faults.py kills it mid-map)
     xr.Dataset(region).to_zarr(path, consolidated=False,
                                region={"delta": slice(i, i + 1), "k": slice(j0, j1)})
 

@@ -29,8 +29,10 @@ from ..lattice._model import Material, check_case
 from ._launched import STARTS, launched_state
 from ._plane_wave import (HARMONICS, MAX_AMPLITUDE, PlaneWave, _check, _check_harmonics,
                           _on_branch, _shift, _solve_plane_waves, plane_wave)
-from ._quasiperiodic import (ROUNDOFF, SIDEBAND_PRESENT, SIDEBAND_SHARE, GainSpectrum,
-                             gain_spectrum_torus, torus_of_wave)
+from ._quasiperiodic import (ROUNDOFF, GainSpectrum, _labels, coupling_coefficients,
+                             gain_spectrum_torus, hill_matrices, neutral_offsets,
+                             sideband_shares, torus_of_wave)
+from ._quasiperiodic import is_mi as _is_mi
 
 #: offsets searched by stability_map: at amplitude 0.02 every band of the paper's
 #: parameter range lies inside (0, 1.5]
@@ -42,81 +44,36 @@ def _coefficients(a, b, k, al, Ks, Kt, M):
 
     Batched over waves: a, b (B, H) harmonics, k, al, Ks, Kt (B,). Returns a dict name ->
     (B, 3, M) complex array over neighbour offsets j = -1, 0, +1 of
-    d(acceleration)/d(field_{n+j}) at the wave, as functions of phi_n: the generated
-    Jacobian of eq. `norm` (``generated.lattice_model.jacobian``) evaluated on the wave.
+    d(acceleration)/d(field_{n+j}) at the wave, as functions of phi_n
+    (``_quasiperiodic.coupling_coefficients`` on the wave's values at M phases).
     """
     phi = 2 * np.pi * np.arange(M) / M
     H = a.shape[1]
     mo = 2.0 * np.arange(H) + 1
     me = mo + 1
     zero = np.zeros_like(k)
-    tm, t0, tp = (_shift(a, mo, s, phi, "cos") for s in (-k, zero, k))
-    Um, U0, Up = (_shift(b, me, s, phi, "sin") for s in (-k, zero, k))
-    J = model.jacobian(Um, U0, Up, tm, t0, tp, al[:, None], Ks[:, None], Kt[:, None])
-    # J[row, col]: rows (U, theta), cols (U_{n-1}, U_n, U_{n+1}, theta_{n-1}, theta_n,
-    # theta_{n+1}) -> (B, 3, M) blocks over the offsets j = -1, 0, +1
-    blocks = {"tt": J[1, 3:], "tU": J[1, :3], "Ut": J[0, 3:]}
-    return {name: np.fft.fft(np.moveaxis(blk, 0, 1), axis=-1) / M
-            for name, blk in blocks.items()}
-
-
-def _labels(P, coupled):
-    px = np.arange(-P, P + 1, 2)  # theta: odd harmonics
-    py = np.arange(-(P + 1), P + 2, 2) if coupled else np.arange(0)  # U: even, |p| <= P + 1
-    return px, py
+    f = {}
+    for s, shift in zip((-1, 0, 1), (-k, zero, k)):
+        f["theta", s] = _shift(a, mo, shift, phi, "cos")
+        f["U", s] = _shift(b, me, shift, phi, "sin")
+    return coupling_coefficients(f, al[:, None], Ks[:, None], Kt[:, None], (1,))
 
 
 def _hill_batch(a, b, k, W, al, Ks, Kt, q, P, coupled, C=None):
-    """First-order Hill matrices, shape (B, nq, 2n, 2n), and the harmonic labels; q has
-    shape (nq,) (the same offsets for every wave) or (B, nq)."""
-    px, py = _labels(P, coupled)
+    """First-order Hill matrices of travelling waves, shape (B, nq, 2n, 2n), and the
+    harmonic labels p (theta first): ``_quasiperiodic.hill_matrices`` on tori with no free
+    phase. q has shape (nq,) (the same offsets for every wave) or (B, nq)."""
+    px, py = _labels(P, 0, 0)
     if C is None:  # else: the couplings' coefficients, already computed (M > 4 P + 2)
         C = _coefficients(a, b, k, al, Ks, Kt, max(64, 4 * (2 * P + 2)))
-    M = C["tt"].shape[-1]
-    j = np.array([-1.0, 0.0, 1.0])
-    labels = np.concatenate([px, py])
-    nx, n = px.size, px.size + py.size
-    B = k.size
-    q2 = np.broadcast_to(q, (B, q.shape[-1]))  # offsets common to all waves, or per wave
-    nq = q2.shape[1]
-
-    def block(c, rows, cols):
-        # block[p, m] = sum_j c_{j, p - m} e^{i (q + m k) j}
-        lidx = (rows[:, None] - cols[None, :]) % M
-        cj = c[:, :, lidx]  # (B, 3, nr, nc)
-        wav = q2[:, :, None] + cols[None, None, :] * k[:, None, None]  # (B, nq, nc)
-        ph = np.exp(1j * j[None, :, None, None] * wav[:, None])  # (B, 3, nq, nc)
-        return np.einsum("bjrc,bjqc->bqrc", cj, ph)
-
-    L = np.zeros((B, nq, n, n), complex)
-    L[:, :, :nx, :nx] = block(C["tt"], px, px)
-    if coupled:
-        L[:, :, :nx, nx:] = block(C["tU"], px, py)
-        L[:, :, nx:, :nx] = block(C["Ut"], py, px)
-        lap = -model.omega_longitudinal(q2[:, :, None] + py[None, None, :] * k[:, None, None]) ** 2
-        L[:, :, nx:, nx:] = lap[..., None] * np.eye(py.size)
-    D = 1j * W[:, None, None] * labels[None, :].astype(float)  # (B, 1, n) diagonal
-    A = np.zeros((B, nq, 2 * n, 2 * n), complex)
-    idx = np.arange(n)
-    A[:, :, idx, idx] = D
-    A[:, :, idx, n + idx] = 1.0
-    A[:, :, n:, :n] = L
-    A[:, :, n + idx, n + idx] = D
-    return A, labels
+    A, labels, _ = hill_matrices(C, k, W, np.zeros((k.size, 0)), q, px, py, coupled)
+    return A, labels[:, 0]
 
 
 def _sideband_share(vec, labels, a2):
-    """Kinetic-energy share of the theta harmonics p = +1, -1 in each eigenvector."""
-    n = labels.size
-    kin = np.abs(vec[..., n:, :]) ** 2  # (..., n, 2n): lab velocities W_p
-    xs = labels % 2 == 1
-    kin[..., xs, :] /= 2 * a2.reshape(a2.shape + (1,) * (kin.ndim - a2.ndim))
-    kin[..., ~xs, :] *= 2
-    total = kin.sum(axis=-2)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        share = np.stack([kin[..., labels == 1, :][..., 0, :] / total,
-                          kin[..., labels == -1, :][..., 0, :] / total], axis=-1)
-    return np.nan_to_num(share)
+    """Kinetic-energy share of the theta harmonics p = +1, -1 in each eigenvector
+    (``_quasiperiodic.sideband_shares`` with the labels p of :func:`_hill_batch`)."""
+    return sideband_shares(vec, labels[:, None], int(np.sum(labels % 2 == 1)), a2)
 
 
 def _hill_matrices(wave, material, q, P):
@@ -158,12 +115,6 @@ def _check_wave(wave, material, case, k, amplitude, H):
         raise ValueError("wave does not match the arguments of mi_gain: " + "; ".join(problems)
                          + "; compute it with plane_wave(material, case, k, amplitude, "
                          "harmonics)")
-
-
-def _is_mi(share):
-    # MI modes hold nearly all their energy in the two sidebands, both present; the
-    # relabelled copy of a mode at q - 2k holds about half, in p = -1 and p = -3 only.
-    return (share.sum(axis=-1) > SIDEBAND_SHARE) & (share.min(axis=-1) > SIDEBAND_PRESENT)
 
 
 def mi_gain(material: Material, case: str, k: float, amplitude: float, q,
@@ -227,14 +178,10 @@ def mi_gain(material: Material, case: str, k: float, amplitude: float, q,
     if modes not in ("sidebands", "all"):
         raise ValueError(f"modes must be 'sidebands' or 'all', got {modes!r}")
     lam, share = hill_spectrum(wave, material, q_arr.ravel(), 2 * H - 1)
-    # MI modes hold nearly all their energy in the two sidebands, both present; the
-    # relabelled copy of a mode at q - 2k holds about half, in p = -1 and p = -3 only.
     growth = lam.real if modes == "all" else np.where(_is_mi(share), lam.real, 0.0)
     sigma = growth.max(axis=1)
     sigma[sigma < ROUNDOFF * wave.omega] = 0.0
-    # q = 0 (mod 2 pi) shifts the wave's phase, amplitude or U: neutral, a Jordan block
-    # whose eigenvalues round-off splits by ~sqrt(machine eps)
-    sigma[np.isclose(np.mod(q_arr.ravel() + np.pi, 2 * np.pi), np.pi, atol=1e-12, rtol=0)] = 0.0
+    sigma[neutral_offsets(q_arr.ravel())] = 0.0
     return sigma.reshape(q_arr.shape)
 
 

@@ -94,17 +94,138 @@ def _labels(P, R, d):
     return np.array(x, int).reshape(-1, d + 1), np.array(y, int).reshape(-1, d + 1)
 
 
+def coupling_coefficients(fields, alpha, K_s, K_theta, axes):
+    """Fourier coefficients of the linearised lattice's couplings, from the state on a grid.
+
+    ``fields[(name, s)]`` ("theta" or "U", neighbour s = -1, 0, 1) holds the field at site
+    n + s on a grid of the state's phases (``axes``: the phase axes of those arrays, the
+    carrier's first). Returns name -> coefficients, with the phase axes replaced by their
+    harmonic indices and a neighbour axis (j = -1, 0, +1) in front of them: d(acceleration)
+    / d(field_{n+j}) of the generated Jacobian of eq. `norm`
+    (``generated.lattice_model.jacobian``): "tt" (theta on theta), "tU", "Ut"."""
+    J = model.jacobian(fields["U", -1], fields["U", 0], fields["U", 1], fields["theta", -1],
+                       fields["theta", 0], fields["theta", 1], alpha, K_s, K_theta)
+    # J[row, col]: rows (U, theta), cols (U_{n-1}, U_n, U_{n+1}, theta_{n-1}, theta_n,
+    # theta_{n+1}); blocks over the offsets j = -1, 0, +1
+    blocks = {"tt": J[1, 3:], "tU": J[1, :3], "Ut": J[0, 3:]}
+    size = int(np.prod([fields["theta", 0].shape[a] for a in axes]))
+    # neighbour axis (0 of each block) next to the phase axes, which shift by one
+    ax = tuple(a + 1 for a in axes)
+    out = {}
+    for name, b in blocks.items():
+        b = np.moveaxis(b, 0, ax[0] - 1) if ax[0] > 1 else b
+        out[name] = np.fft.fftn(b, axes=ax) / size
+    return out
+
+
 def _coefficients(torus, material, Mp):
     """Torus Fourier coefficients of the Jacobian blocks: name -> (3, Mp, Mf, ..)."""
     d = torus.nu.size
     phi = 2 * np.pi * np.arange(Mp) / Mp
     psi = 2 * np.pi * np.arange(FREE_GRID) / FREE_GRID
     f = {(fld, s): torus.on_grid(fld, phi, psi, s) for fld in ("theta", "U") for s in (-1, 0, 1)}
-    J = model.jacobian(f["U", -1], f["U", 0], f["U", 1], f["theta", -1], f["theta", 0],
-                       f["theta", 1], material.alpha, material.K_s, material.K_theta)
-    blocks = {"tt": J[1, 3:], "tU": J[1, :3], "Ut": J[0, 3:]}
-    axes = tuple(range(1, d + 2))
-    return {n: np.fft.fftn(b, axes=axes) / (Mp * FREE_GRID**d) for n, b in blocks.items()}
+    return coupling_coefficients(f, material.alpha, material.K_s, material.K_theta,
+                                 tuple(range(d + 1)))
+
+
+def hill_matrices(C, k, W, nu, q, px, py, coupled):
+    """First-order Hill matrices of B states on tori (the one builder: a travelling wave
+    is the torus with no free phase, d = 0).
+
+    Parameters
+    ----------
+    C : dict name -> ndarray, shape (B, 3, Mp, Mf, .. (d times))
+        The couplings' Fourier coefficients (:func:`coupling_coefficients`), carrier
+        harmonics mod Mp, free harmonics mod Mf.
+    k, W : ndarray, shape (B,)
+        Carrier wavenumber and frequency; ``nu`` (B, d) the free frequencies.
+    q : ndarray, shape (nq,) (common offsets) or (B, nq)
+    px, py : ndarray, shape (nx, 1 + d), (ny, 1 + d)
+        Labels (p, m) of the theta and U components (:func:`_labels`).
+
+    Returns
+    -------
+    A : ndarray, shape (B, nq, 2n, 2n)
+        The first-order form of (lambda - i (p W + m . nu))^2 X = L X.
+    labels : ndarray, shape (n, 1 + d); theta first
+    freq : ndarray, shape (B, n): p W + m . nu of each label
+    """
+    d = px.shape[1] - 1
+    if not coupled:
+        py = py[:0]
+    B = k.size
+    q2 = np.broadcast_to(q, (B, np.shape(q)[-1]))
+    nq = q2.shape[1]
+    shape = C["tt"].shape[2:]  # (Mp, Mf, ...)
+    jj = np.array([-1.0, 0.0, 1.0])
+
+    def block(c, rows, cols):
+        # block[r, c] = sum_j c_{j, r - c} e^{i (q + p_c k) j}
+        diff = rows[:, None, :] - cols[None, :, :]  # (nr, nc, 1 + d)
+        idx = tuple(diff[..., a] % shape[a] for a in range(d + 1))
+        cj = c[(slice(None), slice(None)) + idx]  # (B, 3, nr, nc)
+        wav = q2[:, :, None] + cols[None, None, :, 0] * k[:, None, None]  # (B, nq, nc)
+        ph = np.exp(1j * jj[None, :, None, None] * wav[:, None])  # (B, 3, nq, nc)
+        return np.einsum("bjrc,bjqc->bqrc", cj, ph)
+
+    labels = np.concatenate([px, py])
+    nx, n = len(px), len(labels)
+    L = np.zeros((B, nq, n, n), complex)
+    L[:, :, :nx, :nx] = block(C["tt"], px, px)
+    if coupled and len(py):
+        L[:, :, :nx, nx:] = block(C["tU"], px, py)
+        L[:, :, nx:, :nx] = block(C["Ut"], py, px)
+        lap = -model.omega_longitudinal(q2[:, :, None] + py[None, None, :, 0]
+                                        * k[:, None, None]) ** 2
+        L[:, :, nx:, nx:] = lap[..., None] * np.eye(len(py))
+    freq = labels[None, :, 0] * W[:, None] + (nu @ labels[:, 1:].T if d else 0.0)
+    D = 1j * freq[:, None, :]  # (B, 1, n)
+    A = np.zeros((B, nq, 2 * n, 2 * n), complex)
+    i = np.arange(n)
+    A[:, :, i, i] = D
+    A[:, :, i, n + i] = 1.0
+    A[:, :, n:, :n] = L
+    A[:, :, n + i, n + i] = D
+    return A, labels, freq
+
+
+def kinetic(vec, nx, a2):
+    """Kinetic energy of each basis component of eigenvectors ``vec`` (..., 2n, 2n):
+    (..., n, 2n), with eq. `norm`'s weights theta_dot^2 / (2 alpha^2) (the first ``nx``
+    components), 2 U_dot^2; ``a2`` = alpha^2, broadcastable against vec's leading axes."""
+    n = vec.shape[-2] // 2
+    kin = np.abs(vec[..., n:, :]) ** 2  # the components' lab velocities
+    a2 = np.asarray(a2, float)
+    kin[..., :nx, :] /= 2 * a2.reshape(a2.shape + (1,) * (kin.ndim - a2.ndim))
+    kin[..., nx:, :] *= 2
+    return kin
+
+
+def sideband_shares(vec, labels, nx, a2):
+    """Kinetic-energy shares of the sidebands k + q (theta at p = +1, any m) and k - q
+    (p = -1) in each eigenvector: (..., 2n, 2) for eigenvectors ``vec`` (..., 2n, 2n).
+    A component (p, m) lives at wavenumber q + p k whatever m (the free phases are uniform
+    in the carrier's frame), so a free wave pumping the sidebands shifts only their
+    frequencies."""
+    kin = kinetic(vec, nx, a2)
+    total = kin.sum(axis=-2)
+    theta = np.arange(labels.shape[0]) < nx
+    with np.errstate(invalid="ignore", divide="ignore"):
+        share = np.stack([kin[..., (labels[:, 0] == p) & theta, :].sum(axis=-2) / total
+                          for p in (1, -1)], axis=-1)
+    return np.nan_to_num(share)
+
+
+def is_mi(share):
+    """MI modes hold nearly all their energy in the two sidebands, both present (the
+    relabelled copy of a mode at q - 2k holds about half, in p = -1 and p = -3 only)."""
+    return (share.sum(axis=-1) > SIDEBAND_SHARE) & (share.min(axis=-1) > SIDEBAND_PRESENT)
+
+
+def neutral_offsets(q):
+    """q = 0 (mod 2 pi): a shift of the state's phase, amplitude or U, neutral; a Jordan
+    block whose eigenvalues round-off splits by ~sqrt(machine eps), so no growth."""
+    return np.isclose(np.mod(np.asarray(q) + np.pi, 2 * np.pi), np.pi, atol=1e-12, rtol=0)
 
 
 def hill_matrix(torus, material, case, q, P, R):
@@ -112,45 +233,17 @@ def hill_matrix(torus, material, case, q, P, R):
     (n, 1 + d): columns p, m_1 .. m_d; the first ``nx`` labels are theta."""
     d = torus.nu.size
     px, py = _labels(P, R, d)
-    coupled = case == "coupled"
-    if not coupled:
-        py = py[:0]
-    Mp = max(64, 4 * (2 * P + 2))
-    C = _coefficients(torus, material, Mp)
-    k, W, nu = torus.k, torus.omega, torus.nu
-    jj = np.array([-1.0, 0.0, 1.0])
     q = np.asarray(q, float).ravel()
-
-    def block(c, rows, cols):
-        diff = rows[:, None, :] - cols[None, :, :]  # (nr, nc, 1 + d)
-        idx = (diff[..., 0] % Mp,) + tuple(diff[..., 1 + j] % FREE_GRID for j in range(d))
-        cj = c[(slice(None),) + idx]  # (3, nr, nc)
-        wav = q[:, None] + cols[None, :, 0] * k  # (nq, nc)
-        ph = np.exp(1j * jj[:, None, None] * wav[None])  # (3, nq, nc)
-        return np.einsum("jrc,jqc->qrc", cj, ph)
-
-    labels = np.concatenate([px, py])
-    nx, n = len(px), len(labels)
+    n = len(px) + (len(py) if case == "coupled" else 0)
     # A (nq, 2n, 2n) complex and eig's work arrays (about as large again)
     checks.memory("q, free_order", 2 * q.size * (2 * n) ** 2 * 16,
                   f"the quasi-periodic Hill matrices ({q.size} offsets of {2 * n} x {2 * n}, "
                   f"{d} free phases)")
-    L = np.zeros((q.size, n, n), complex)
-    L[:, :nx, :nx] = block(C["tt"], px, px)
-    if coupled and len(py):
-        L[:, :nx, nx:] = block(C["tU"], px, py)
-        L[:, nx:, :nx] = block(C["Ut"], py, px)
-        lap = -model.omega_longitudinal(q[:, None] + py[None, :, 0] * k) ** 2
-        L[:, nx:, nx:] = lap[..., None] * np.eye(len(py))
-    freq = labels[:, 0] * W + (labels[:, 1:] @ nu if d else 0.0)
-    D = 1j * freq
-    A = np.zeros((q.size, 2 * n, 2 * n), complex)
-    i = np.arange(n)
-    A[:, i, i] = D
-    A[:, i, n + i] = 1.0
-    A[:, n:, :n] = L
-    A[:, n + i, n + i] = D
-    return A, labels, nx, freq
+    C = _coefficients(torus, material, max(64, 4 * (2 * P + 2)))
+    A, labels, freq = hill_matrices({n: c[None] for n, c in C.items()}, np.array([torus.k]),
+                                    np.array([torus.omega]), np.asarray(torus.nu)[None],
+                                    q, px, py, case == "coupled")
+    return A[0], labels, len(px), freq[0]
 
 
 def gain_spectrum_torus(torus, material, case, q, P, R, modes="sidebands", start=""):
@@ -158,21 +251,9 @@ def gain_spectrum_torus(torus, material, case, q, P, R, modes="sidebands", start
     q = np.asarray(q, float).ravel()
     A, labels, nx, freq = hill_matrix(torus, material, case, q, P, R)
     lam, vec = np.linalg.eig(A)
-    n = labels.shape[0]
-    kin = np.abs(vec[:, n:, :]) ** 2  # velocities of each basis component, (nq, n, 2n)
-    kin[:, :nx] /= 2 * material.alpha**2  # energy weights of eq. `norm`
-    kin[:, nx:] *= 2
-    total = kin.sum(axis=1)
-    # a component (p, m) lives at wavenumber q + p k whatever m (the free phases are
-    # uniform in the carrier's frame): theta at p = +1 and -1, any m, are the sidebands
-    # k + q and k - q; a free wave pumping them shifts only their frequencies
-    theta = np.arange(n) < nx
-    with np.errstate(invalid="ignore", divide="ignore"):
-        plus = kin[:, (labels[:, 0] == 1) & theta].sum(axis=1) / total
-        minus = kin[:, (labels[:, 0] == -1) & theta].sum(axis=1) / total
-    plus, minus = np.nan_to_num(plus), np.nan_to_num(minus)
-    is_mi = ((plus + minus) > SIDEBAND_SHARE) & (np.minimum(plus, minus) > SIDEBAND_PRESENT)
-    growth = lam.real if modes == "all" else np.where(is_mi, lam.real, 0.0)
+    kin = kinetic(vec, nx, material.alpha**2)  # (nq, n, 2n)
+    mi = is_mi(sideband_shares(vec, labels, nx, material.alpha**2))
+    growth = lam.real if modes == "all" else np.where(mi, lam.real, 0.0)
     best = np.argmax(growth, axis=1)
     r = np.arange(q.size)
     sigma = growth[r, best]
@@ -183,9 +264,8 @@ def gain_spectrum_torus(torus, material, case, q, P, R, modes="sidebands", start
     wav = np.abs(np.mod(q + labels[dom, 0] * torus.k + np.pi, 2 * np.pi) - np.pi)
     fr = np.abs(lam[r, best].imag - freq[dom])
     field = np.where(small, "", field)
-    zero_q = np.isclose(np.mod(q + np.pi, 2 * np.pi), np.pi, atol=1e-12, rtol=0)
-    sigma[zero_q] = 0.0
-    return GainSpectrum(q, sigma, field, wav, fr, is_mi[r, best] & ~small, start)
+    sigma[neutral_offsets(q)] = 0.0
+    return GainSpectrum(q, sigma, field, wav, fr, mi[r, best] & ~small, start)
 
 
 def torus_of_wave(wave) -> Torus:
