@@ -112,3 +112,12 @@ def test_no_linear_theory_is_an_arithmetic_error_not_a_verdict():
     mat = Material(2.5, 0.01851, 0.01851 - 0.01)
     with pytest.raises(ArithmeticError, match="quasi-periodic"):
         predict_growth(mat, "rotation", 3.0, 0.02, start="paper", draws=0)
+
+
+def test_a_very_long_run_stays_finite(blue):
+    # e^{sigma t} at t = 1e8 overflows a double: the factor is capped far past saturation,
+    # finite, the verdict MI and the linear stage said to be over
+    p = predict_growth(blue, "coupled", 0.81681, 0.02, start="travelling", t_end=1e8,
+                       draws=2)
+    assert np.isfinite(p.growth) and np.isfinite(p.expected_growth)
+    assert np.all(np.isfinite(p.ratio["theta"])) and p.verdict and not p.linear

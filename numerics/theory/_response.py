@@ -51,6 +51,9 @@ from ._quasiperiodic import hill_matrix, torus_of_wave
 #: draws of the noise law for the expected growth factor (its Monte-Carlo error on the
 #: mean is std / sqrt(DRAWS), ~ 10% of the spread between seeds)
 DRAWS = 32
+#: largest exponent Re(lambda) t evaluated (e^600 ~ 1e260: the factor of a mode long
+#: past saturation; keeps every product finite)
+MAX_EXPONENT = 600.0
 #: the linear stage ends where a predicted component reaches this fraction of the carrier
 LINEAR_LIMIT = 1.0
 #: free-phase truncation of the eq. `IC` torus' Hill matrices (|m_j| <= free_order):
@@ -229,7 +232,10 @@ class _Families:
         coef = np.linalg.solve(self.V, X0)  # biorthogonal projection on the modes
         n = self.n
         Vx = self.V[:, :n, :]  # (nf, n, 2n): values (the first n rows)
-        grow = np.exp(self.lam[None, :, :] * t[:, None, None])  # (nt, nf, 2n)
+        z = self.lam[None, :, :] * t[:, None, None]  # (nt, nf, 2n)
+        # a growing mode's factor beyond e^600 is far past saturation (linear is False
+        # there anyway): capped so that long runs give huge, finite factors, never inf/NaN
+        grow = np.exp(np.minimum(z.real, MAX_EXPONENT)) * np.exp(1j * z.imag)
         lab = np.exp(-1j * self.freq[None, :] * t[:, None])  # (nt, n)
         out = np.einsum("frm,tfm,fmd->tfrd", Vx, grow, coef, optimize=True)
         return out * lab[:, None, :, None]
