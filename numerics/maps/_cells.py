@@ -214,14 +214,15 @@ def predict_cell(material: Material, case: str, k: float, N: int, t_end: float,
     ``rate_predicted`` and ``predicted_status`` (PREDICTED_STATUS); ``prediction`` is the
     GrowthPrediction, or None.
     """
-    from ..theory import predict_growth
+    from ..theory import NoPlaneWaveError, predict_growth
 
     try:
         p = predict_growth(material, case, k, amplitude, start=start, N=N, t_end=t_end,
                            seed=0, noise=noise, draws=seeds - 1)
-    except ArithmeticError as exc:  # the state has no linear theory (said in the status)
-        status = "no plane wave" if "harmonic balance" in str(exc) else "not quasi-periodic"
-        p = None
+    except NoPlaneWaveError:
+        status, p = "no plane wave", None
+    except ArithmeticError:  # the launched state is not a torus: no linear theory
+        status, p = "not quasi-periodic", None
     if p is None:
         return {"growth_predicted": float("nan"), "verdict_predicted": -1,
                 "rate_predicted": float("nan"),

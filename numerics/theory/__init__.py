@@ -25,7 +25,7 @@ from ._gain import (PAPER_START, THEORIES, measure_gain, measurement_length, nls
                     relative_errors, theory_gain)
 from ._hill import gain_spectrum, hill_spectrum, mi_gain, stability_map
 from ._launched import FreeWave, LaunchedState, launched_state
-from ._plane_wave import PlaneWave, plane_wave
+from ._plane_wave import NoPlaneWaveError, PlaneWave, plane_wave
 from ._quasiperiodic import GainSpectrum
 from ._response import GrowthPrediction, predict_growth
 from ._soliton import (KINDS, MIN_WIDTH, SOLITON_THEORIES, Snapshot, Soliton, SolitonRun,
@@ -36,7 +36,8 @@ __all__ = [
     "PlaneWave", "plane_wave", "LaunchedState", "FreeWave", "launched_state", "mi_gain",
     "gain_spectrum", "GainSpectrum", "hill_spectrum", "stability_map", "THEORIES",
     "PAPER_START", "theory_gain", "nls_summary", "measure_gain", "measurement_length",
-    "relative_errors", "predict_growth", "GrowthPrediction", "KINDS", "MIN_WIDTH",
+    "relative_errors", "predict_growth", "GrowthPrediction", "NoPlaneWaveError",
+    "KINDS", "MIN_WIDTH",
     "SOLITON_THEORIES", "Snapshot", "Soliton", "SolitonRun", "SolitonWarning", "default_ring",
     "measure_state", "ring_wavenumber", "simulate_soliton", "soliton", "soliton_report",
     "soliton_state",

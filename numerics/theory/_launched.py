@@ -191,6 +191,13 @@ def _carrier_harmonics(wave: PlaneWave, phase: float, M: int):
     return out
 
 
+def forward_backward(z, zd, w):
+    """A linear wave's value z and velocity zd at one wavenumber, split into its forward
+    part f e^{-i w T} and backward part b e^{+i w T}: z = f + b, zd = -i w f + i w b."""
+    f = (w * z + 1j * zd) / (2 * w)
+    return f, z - f
+
+
 def _decompose(material, case, k, given, harmonics, start, unexplained=0.0):
     """Fit the carrier to the theta amplitude at k, then free waves from the residuals.
 
@@ -225,9 +232,8 @@ def _decompose(material, case, k, given, harmonics, start, unexplained=0.0):
             w = _branch(field, material, kk)
             if w <= 0:
                 continue  # a uniform mode (m k = 0 mod 2 pi): a rigid shift, not a wave
-            # z = f + b, zd = -i w f + i w b (forward f e^{i(mkn - w T)}, backward e^{+i w T})
-            f = (w * z + 1j * zd) / (2 * w)
-            for amp, nu in ((f, w), (z - f, -w)):
+            f, b = forward_backward(z, zd, w)
+            for amp, nu in ((f, w), (b, -w)):
                 if abs(amp) > 0:
                     free.append(FreeWave(field, m, m * k, nu, float(abs(amp)),
                                          float(np.angle(amp))))

@@ -41,6 +41,11 @@ CONTINUATION_STEPS = 8
 BRANCH_FIRST_HARMONIC = 0.5
 
 
+class NoPlaneWaveError(ArithmeticError):
+    """Harmonic balance finds no travelling wave of this amplitude on the branch of the
+    linear wave (near a resonance of a harmonic with a lattice mode)."""
+
+
 def _shift(coef, harm, k, phi, kind):
     """Evaluate sum_m coef_m f(m (phi + k)) on the grid, f = cos or sin; k shape (B,)."""
     arg = harm[None, :, None] * (phi[None, None, :] + k[:, None, None])
@@ -163,7 +168,7 @@ def _solve_plane_waves(k, amp, al, Ks, Kt, coupled, H, tol=NEWTON_TOL,
         try:
             dx = np.linalg.solve(J, R[:, :, None])[:, :, 0]
         except np.linalg.LinAlgError:
-            raise ArithmeticError("harmonic balance: singular Jacobian (a harmonic of the "
+            raise NoPlaneWaveError("harmonic balance: singular Jacobian (a harmonic of the "
                                   "wave is resonant with a lattice mode)") from None
         x[active] = xa - dx
     R = _residual(x, k, amp, al, Ks, Kt, H, coupled, phi)
@@ -241,7 +246,7 @@ def _check_harmonics(h):
 
 def _wave_from(x, res, material, case, k, amplitude, H):
     if not _on_branch(x, res, amplitude):
-        raise ArithmeticError(
+        raise NoPlaneWaveError(
             f"harmonic balance did not converge for case {case!r}, k = {k}, amplitude = "
             f"{amplitude} (residual {res:.2e}, or Newton left the branch of the linear "
             "wave); near a resonance of a harmonic with a "

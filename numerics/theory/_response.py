@@ -45,6 +45,7 @@ from ..lattice._analysis import GROWTH_THRESHOLD, non_carrier_bins, spectrum_gro
 from ..lattice._model import Material, check_case
 from ..lattice._simulate import initial_condition, noise_field, snap_wavenumber
 from ..lattice._starts import check_start
+from ._launched import forward_backward
 from ._plane_wave import HARMONICS, _check_harmonics, plane_wave
 from ._quasiperiodic import hill_matrix, torus_of_wave
 
@@ -147,16 +148,9 @@ class GrowthPrediction:
             return 1.0
         bins = {f: np.zeros(1, int) for f in self.ratio}
         g, _, _ = spectrum_growth(self.t[:n], {f: r[None, :n, None]
-                                               for f, r in self.ratio.items()}, bins, self.N)
+                                               for f, r in self.ratio.items()}, bins, self.N,
+                                  t_end=self.t_end)
         return float(g[0])
-
-    def threshold_time(self) -> float:
-        """The first record time at which the growth factor exceeds GROWTH_THRESHOLD
-        (NaN if it never does within t_end)."""
-        for i in range(2, self.t.size + 1):
-            if self.growth_at(self.t[i - 1]) > GROWTH_THRESHOLD:
-                return float(self.t[i - 1])
-        return float("nan")
 
 
 class _Families:
@@ -189,8 +183,8 @@ class _Families:
         """Which row deposits each lattice bin. On a ring of N sites the Fourier bins
         j + p m0 of different families can coincide mod N (aliasing: p k wraps past
         2 pi); each bin r is owned by one (family, row) - the one of smallest |p|, its
-        direct bin before a conjugate one - which alone carries its data and deposits
-        its value."""
+        direct bin before a conjugate one - which alone deposits its value (every row
+        carries its bin's data: ``initial``)."""
         nf, n = self.b.shape
         direct = np.zeros((nf, n), bool)
         conj = np.zeros((nf, n), bool)
@@ -267,9 +261,7 @@ def _free_waves(material, N, delta, field, covered, t):
     w = (model.omega_rotation(qq, material.alpha, material.K_s, material.K_theta)
          if field == 0 else model.omega_longitudinal(qq))
     w = np.where(w > 0, w, 1.0)  # the uniform U mode is a rigid shift: no beating
-    z, zd = delta[2 * field][:, rest], delta[2 * field + 1][:, rest]
-    f = (w * z + 1j * zd) / (2 * w)
-    b = z - f
+    f, b = forward_backward(delta[2 * field][:, rest], delta[2 * field + 1][:, rest], w)
     ph = np.exp(-1j * np.outer(t, w))  # (nt, nb)
     return rest, f[None] * ph[:, None] + b[None] * np.conj(ph)[:, None]
 
