@@ -162,7 +162,7 @@ class MapParameters:
         theory_only, the simulations (CELL_SECONDS per cell at N = 500, T = 5000, scaled
         by N t_end and the seeds; the early stop of MI cells makes it shorter)."""
         cells = len(self.k) * len(self.delta)
-        predict = cells * PREDICT_SECONDS.get(self.start, 0.7) * max(self.N / 500, 1.0)
+        predict = cells * PREDICT_SECONDS[self.start] * max(self.N / 500, 1.0)
         if self.theory_only:
             return predict / max(workers, 1)
 
