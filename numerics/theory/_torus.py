@@ -33,7 +33,7 @@ from numba import njit
 from generated import lattice_model as model
 
 from ..lattice._integrators import get_method
-from ..lattice._kernels import _acc, _sincosvers
+from ..lattice._kernels import _FAST, _acc, _sincosvers
 
 #: phase points of the reduced chain (harmonics up to M/2 - 1 are kept exactly)
 PHASE_POINTS = 32
@@ -45,8 +45,9 @@ BEATS, MIN_CARRIER_PERIODS, MAX_DURATION = 25, 200, 20000.0
 #: FIT_ORDER - 1 (more); harmonics of the carrier kept, |p| <= TORUS_HARMONICS
 FIT_ORDER, TORUS_HARMONICS = 3, 8
 #: the reduced chain is integrated by SRKN11b (order 6) with omega_max dt below this: its
-#: error model (``_accuracy.ERROR_CONSTANTS``) gives ~1e-7 relative over 20 000 T
-OMEGA_DT = 0.4
+#: error model (``_accuracy.ERROR_CONSTANTS``) gives ~6e-6 relative over 20 000 T (the
+#: tori last ~2000 T); halving it changes predicted growth factors by < 3e-6 (60 fig3 cells)
+OMEGA_DT = 0.8
 
 
 @dataclass(frozen=True)
@@ -122,38 +123,46 @@ def _shift_matrices(k, M):
     return out
 
 
-@njit(cache=True)
-def _reduced_accel(th, U, Sp, Sm, coupled, a2, Ks, Kt, X, XU, s, c, v, ath, aU):
-    """Accelerations of the reduced chain: neighbours by the shift matrices, the site
-    formula of the lattice kernel (``_kernels._acc``) on blocks [x - k | x | x + k]."""
+@njit(cache=True, fastmath=_FAST, boundscheck=False)
+def _reduced_accel(th, U, SpT, SmT, coupled, a2, Ks, Kt, X, XU, s, c, v, ath, aU):
+    """Accelerations of the reduced chain: neighbours by the shift matrices (stored
+    transposed, so the inner loop runs over contiguous rows and vectorises while every
+    sum keeps its order), the site formula of the lattice kernel (``_kernels._acc``) on
+    blocks [x - k | x | x + k]."""
     M = th.size
+    X[:M] = 0.0
+    X[2 * M:] = 0.0
+    XU[:M] = 0.0
+    XU[2 * M:] = 0.0
+    for j in range(M):
+        tj, uj = th[j], U[j]
+        for i in range(M):
+            X[i] += SmT[j, i] * tj
+            X[2 * M + i] += SpT[j, i] * tj
+            XU[i] += SmT[j, i] * uj
+            XU[2 * M + i] += SpT[j, i] * uj
     for i in range(M):
-        tp = tm = up = um = 0.0
-        for j in range(M):
-            tp += Sp[i, j] * th[j]
-            tm += Sm[i, j] * th[j]
-            up += Sp[i, j] * U[j]
-            um += Sm[i, j] * U[j]
-        X[i], X[M + i], X[2 * M + i] = tm, th[i], tp
-        XU[i], XU[M + i], XU[2 * M + i] = um, U[i], up
+        X[M + i] = th[i]
+        XU[M + i] = U[i]
     for i in range(3 * M):
         s[i], c[i], v[i] = _sincosvers(X[i])
     for i in range(M):
         ath[i], aU[i] = _acc(M + i, i, 2 * M + i, X, XU, s, c, v, coupled, a2, Ks, Kt)
 
 
-@njit(cache=True)
+@njit(cache=True, fastmath=_FAST, boundscheck=False)
 def _reduced_run(y0, Sp, Sm, coupled, a2, Ks, Kt, acoef, bcoef, dt, steps_per_sample,
                  samples):
     """SRKN (kick b_j, drift a_j) of the reduced chain, sampled every steps_per_sample."""
     M = Sp.shape[0]
+    SpT, SmT = np.ascontiguousarray(Sp.T), np.ascontiguousarray(Sm.T)
     th, w, U, V = y0[0].copy(), y0[1].copy(), y0[2].copy(), y0[3].copy()
     X, XU = np.empty(3 * M), np.empty(3 * M)
     s, c, v = np.empty(3 * M), np.empty(3 * M), np.empty(3 * M)
     ath, aU = np.empty(M), np.empty(M)
     out = np.empty((samples, 4, M))
     nst = acoef.size
-    _reduced_accel(th, U, Sp, Sm, coupled, a2, Ks, Kt, X, XU, s, c, v, ath, aU)
+    _reduced_accel(th, U, SpT, SmT, coupled, a2, Ks, Kt, X, XU, s, c, v, ath, aU)
     for n in range(samples):
         out[n, 0], out[n, 1], out[n, 2], out[n, 3] = th, w, U, V
         for _ in range(steps_per_sample):
@@ -165,7 +174,7 @@ def _reduced_run(y0, Sp, Sm, coupled, a2, Ks, Kt, acoef, bcoef, dt, steps_per_sa
                     for i in range(M):
                         th[i] += acoef[j] * dt * w[i]
                         U[i] += acoef[j] * dt * V[i]
-                    _reduced_accel(th, U, Sp, Sm, coupled, a2, Ks, Kt, X, XU, s, c, v, ath,
+                    _reduced_accel(th, U, SpT, SmT, coupled, a2, Ks, Kt, X, XU, s, c, v, ath,
                                    aU)
     return out
 
@@ -236,9 +245,14 @@ def torus(material, case, k, fields0, free, omega_guess, P=TORUS_HARMONICS, M=PH
     slow = min([abs(n) for n in nu0] + [omega_guess])
     duration = min(MAX_DURATION, max(BEATS * 2 * np.pi / slow,
                                      MIN_CARRIER_PERIODS * 2 * np.pi / omega_guess))
-    fastest = max([abs(n) + P * omega_guess for n in nu0] + [P * omega_guess])
-    samples = int(np.ceil(duration * max(SAMPLES_PER_PERIOD * omega_guess / (2 * np.pi),
-                                         2.5 * fastest / (2 * np.pi)))) + 1
+    # sampling: the frequency searches need the carrier and each free wave's harmonic
+    # (with the sidebands of the fit around it) unaliased; the fit of harmonic p does not:
+    # it is demodulated by e^{i p Omega t} exactly, and a torus's harmonic p holds only
+    # p Omega + m . nu, so its samples may alias without harm
+    searched = [omega_guess + order * sum(abs(nu0))] + [
+        abs(f) + order * sum(abs(nu0)) for _, _, f in free]
+    samples = int(np.ceil(duration * max(SAMPLES_PER_PERIOD * omega_guess,
+                                         2.5 * max(searched)) / (2 * np.pi))) + 1
     # the fit's basis: samples x (2 order + 1)^d complex values (a state with many free
     # waves, e.g. no carrier, would ask for terabytes)
     checks.memory("initial", 16.0 * samples * (2 * order + 1) ** d,
