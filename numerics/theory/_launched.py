@@ -32,7 +32,7 @@ from ..lattice import checks
 from ..lattice._model import LatticeState, Material
 from ..lattice._starts import STARTS
 from ._plane_wave import HARMONICS, PlaneWave, _check, plane_wave
-from ._torus import PHASE_POINTS, Torus, torus
+from ._torus import PHASE_POINTS_TRIED, SPECTRAL_TAIL, Torus, torus
 
 #: harmonics m k of the carrier searched for free waves (theta odd and U even beyond these
 #: are below 1e-10 of the carrier at the amplitudes plane_wave allows)
@@ -239,11 +239,14 @@ def _decompose(material, case, k, given, harmonics, start, unexplained=0.0):
                                          float(np.angle(amp))))
     free.sort(key=lambda w: -w.amplitude)
     state = LaunchedState(start, wave, phase, tuple(free), unexplained)
-    x = 2 * np.pi * np.arange(PHASE_POINTS) / PHASE_POINTS
-    e = np.exp(1j * np.outer(np.arange(1, M + 1), x))  # (M, points)
-    fields0 = [(given[f][i] @ e).real for f in ("theta", "U") for i in (0, 1)]
     free_phases = [(w.field, w.harmonic, w.frequency) for w in state.significant()]
-    tor = torus(material, case, k, fields0, free_phases, wave.omega)
+    for points in PHASE_POINTS_TRIED:  # the fewest phase points that resolve the state
+        x = 2 * np.pi * np.arange(points) / points
+        e = np.exp(1j * np.outer(np.arange(1, M + 1), x))  # (M, points)
+        fields0 = [(given[f][i] @ e).real for f in ("theta", "U") for i in (0, 1)]
+        tor = torus(material, case, k, fields0, free_phases, wave.omega, M=points)
+        if tor.tail < SPECTRAL_TAIL:
+            break
     return LaunchedState(start, wave, phase, tuple(free), unexplained, tor)
 
 

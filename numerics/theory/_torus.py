@@ -35,8 +35,13 @@ from generated import lattice_model as model
 from ..lattice._integrators import get_method
 from ..lattice._kernels import _FAST, _acc, _sincosvers
 
-#: phase points of the reduced chain (harmonics up to M/2 - 1 are kept exactly)
-PHASE_POINTS = 32
+#: phase points of the reduced chain (harmonics up to M/2 - 1 are kept exactly): the
+#: launched state is integrated on the first that resolves it (its top harmonic below
+#: SPECTRAL_TAIL of the carrier along the whole trajectory; at the paper's amplitude 16
+#: points leave ~1e-14), else on the last
+PHASE_POINTS_TRIED = (16, 32)
+PHASE_POINTS = PHASE_POINTS_TRIED[-1]
+SPECTRAL_TAIL = 1e-5
 #: the trajectory is sampled this many times per carrier period
 SAMPLES_PER_PERIOD = 8
 #: it lasts this many periods of the slowest beat (and at least MIN_CARRIER_PERIODS)
@@ -71,6 +76,9 @@ class Torus:
         Relative misfit of the quasi-periodic representation on the trajectory.
     duration : float
         Length of the trajectory the torus was measured on.
+    tail : float
+        Largest amplitude of the reduced chain's top harmonic (M/2 - 1) over the carrier's,
+        along the trajectory: the phase points resolve the state where it is tiny.
     """
 
     k: float
@@ -81,6 +89,7 @@ class Torus:
     U: np.ndarray
     residual: float
     duration: float
+    tail: float = 0.0
 
     @property
     def P(self):
@@ -258,7 +267,10 @@ def torus(material, case, k, fields0, free, omega_guess, P=TORUS_HARMONICS, M=PH
     checks.memory("initial", 16.0 * samples * (2 * order + 1) ** d,
                   f"the torus of a state with {d} free waves ({samples} samples)")
     t, y = trajectory(material, case, k, fields0, duration, samples, M)
-    c = _harmonics(y, P)
+    P = min(P, M // 2 - 1)
+    c = _harmonics(y, M // 2 - 1)
+    tail = float(np.max(np.abs(c[:, :, -1])) / max(np.max(np.abs(c[:, 0, 1])), 1e-300))
+    c = c[..., :P + 1]
     window = np.sin(np.pi * t / duration) ** 2
     span = 3 * 2 * np.pi / duration
     # carrier: theta at k; free waves: their own field and harmonic
@@ -288,4 +300,4 @@ def torus(material, case, k, fields0, free, omega_guess, P=TORUS_HARMONICS, M=PH
         for p in range(1, P + 1):
             F[f, P - p] = np.conj(F[f, P + p, mirror])
     return Torus(k, float(omega), np.asarray(nu, float), modes, F[0], F[1],
-                 float(np.sqrt(num / max(den, 1e-300))), float(duration))
+                 float(np.sqrt(num / max(den, 1e-300))), float(duration), tail)
