@@ -38,6 +38,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from common.threads import one_blas_thread
 from generated import lattice_model as model
 
 from ..lattice import checks
@@ -266,6 +267,7 @@ def _free_waves(material, N, delta, field, covered, t):
     return rest, f[None] * ph[:, None] + b[None] * np.conj(ph)[:, None]
 
 
+@one_blas_thread
 def predict_growth(material: Material, case: str, k: float, amplitude: float = 0.02, *,
                    start: str = "paper", N: int = 500, t_end: float = 5000.0,
                    seed: int = 0, noise: float = 1e-3, records: int = 200,
