@@ -6,7 +6,7 @@ scheduling overhead, the 64 x 64 map's wall time, and the cells' accuracy.
   1% growth-factor error) and, for the ratio, at the paper's RK4 dt = 0.05; measured
   serially (no Dask) on a row of stable and unstable cells of case II; beside it the cost
   of the cell's prediction (``predict_cell``), which ``run_map`` adds.
-- The same 16-cell map (4 x 4 around the blue point, case II, block = 1) on a LocalCluster
+- The same 32-cell map (4 x 8 around the blue point, case II, block = 1) on a LocalCluster
   of 1 and of 2 worker processes, and of 1 worker with 2 threads (the compiled loops
   release the GIL): the speed-up of each layout, clusters warmed up first.
 - Scheduling overhead: no-op tasks through the same cluster against the cost of a task.
@@ -43,8 +43,8 @@ def _noop(x):
     return x
 
 
-def _params(N, T, **kw):
-    kk = 2 * np.pi * np.round(np.linspace(0.7, 1.0, 4) * N / (2 * np.pi)) / N
+def _params(N, T, n_k=4, **kw):
+    kk = 2 * np.pi * np.round(np.linspace(0.7, 1.0, n_k) * N / (2 * np.pi)) / N
     return maps.MapParameters(case="coupled", alpha=paper.ALPHA, K_s=paper.K_S,
                               delta=(-0.006, -0.002, 0.002, 0.006), k=tuple(kk),
                               amplitude=paper.AMPLITUDE, N=N, t_end=T, block=1, **kw)
@@ -87,7 +87,7 @@ def cell_costs(params, paper_params):
 
 
 def layout_walls(params):
-    """Wall time of the 16-cell map per cluster layout (fresh stores, warmed clusters)."""
+    """Wall time of the 32-cell map per cluster layout (fresh stores, warmed clusters)."""
     from dask.distributed import Client, LocalCluster
 
     layouts = {"1 process": dict(n_workers=1, threads_per_worker=1, processes=True),
@@ -189,9 +189,9 @@ def main(quick=False, out=None):
     serial = statistics.mean(c["default"]["s"] for c in costs)
     serial_rk4 = statistics.mean(c["rk4 dt = 0.05"]["s"] for c in costs)
     predict = statistics.mean(c["prediction_s"] for c in costs)
-    walls = layout_walls(params)
+    walls = layout_walls(_params(N, T, n_k=8))
     overhead = scheduling_overhead()
-    n_cells = len(params.delta) * len(params.k)
+    n_cells = 32
     per_cell = walls["1 process"] / n_cells  # run_map on one worker: prediction included
     res = {"machine": machine(), "quick": quick, "N": N, "t_end": T,
            "method": params.cell_step[0], "dt": params.cell_step[1],
@@ -199,7 +199,7 @@ def main(quick=False, out=None):
            "prediction_per_cell_serial_s": predict,
            "per_cell_serial_rk4_s": serial_rk4, "default_over_rk4": serial_rk4 / serial,
            "cells": costs, "cells_per_second_per_core": 1 / serial,
-           "map_16_cells_wall_s": walls,
+           "map_32_cells_wall_s": walls,
            "speedup_2_workers": walls["1 process"] / walls["2 processes"],
            "speedup_2_threads": walls["1 process"] / walls["1 process, 2 threads"],
            "scheduling_overhead_per_task_s": overhead,
@@ -215,7 +215,7 @@ def main(quick=False, out=None):
           f"in {serial:.3f} s serially = {1 / serial:.1f} cells/s/core (RK4 at dt = 0.05 "
           f"{serial_rk4:.3f} s: {serial_rk4 / serial:.1f}x); its prediction {predict:.3f} s; "
           f"both in run_map on one worker {per_cell:.3f} s")
-    print("16-cell map: " + ", ".join(f"{k} {v:.2f} s" for k, v in walls.items())
+    print("32-cell map: " + ", ".join(f"{k} {v:.2f} s" for k, v in walls.items())
           + f" -> 2 processes {res['speedup_2_workers']:.2f}x, 2 threads "
           f"{res['speedup_2_threads']:.2f}x")
     print(f"scheduling overhead {overhead * 1e3:.2f} ms per task = "
