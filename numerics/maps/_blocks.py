@@ -8,7 +8,6 @@ import math
 
 import numpy as np
 
-from ..lattice import Material
 from ._params import MapParameters
 
 FIELD_CODES = {"theta": 0, "U": 1}
@@ -19,7 +18,7 @@ def simulate_block(params: MapParameters, i: int, js: list, simulate: bool = Tru
     ``js`` (runs on a worker)."""
     from ._cells import predict_cell, simulate_cell
 
-    mat = Material(params.alpha, params.K_s, params.K_s - params.delta[i])
+    mat = params.material_at(i)
     method, dt = params.cell_step
     rows = []
     for j in js:

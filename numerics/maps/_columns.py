@@ -96,6 +96,9 @@ def empty_dataset(params: MapParameters, theory: dict):
         data[name] = (dims, values, attrs)
     data[CHECKSUM] = (dims, cell_checksums({n: v[1] for n, v in data.items()}), CHECKSUM_ATTRS)
     coords = {"delta": ("delta", np.asarray(params.delta), {"long_name": "K_s - K_theta"}),
+              "K_theta": ("delta", np.asarray(params.K_theta),
+                          {"long_name": "K_theta of the row: its cells are simulated, and the "
+                                        "theories evaluated, at it"}),
               "k": ("k", np.asarray(params.k), {"long_name": "k as requested",
                                                 "units": "rad per site"}),
               "k_simulated": ("k", np.asarray(params.k_simulated),
@@ -133,8 +136,8 @@ def theory_columns(params: MapParameters) -> dict:
     from generated import lattice_coefficients as lattice_nls
     from ..theory import stability_map
 
-    K, D = np.meshgrid(params.k_simulated, params.delta, indexing="xy")
-    Kt = params.K_s - D
+    # each row at its own K_theta (params.K_theta: as given, or K_s - delta)
+    K, Kt = np.meshgrid(params.k_simulated, params.K_theta, indexing="xy")
     gains = {}
     for name, nls in (("paper", continuum_nls), ("semidiscrete", lattice_nls)):
         with np.errstate(all="ignore"):
@@ -147,18 +150,18 @@ def theory_columns(params: MapParameters) -> dict:
         defined = np.isfinite(g) & np.isfinite(g1)
         gains[name] = np.where(defined, np.where(g > 0, peak, 0.0), np.nan)
     # stability_map: NaN where there is no plane wave of this amplitude (undetermined)
-    args = (K, D, params.case, params.alpha, params.K_s, params.amplitude, EXACT_OFFSETS)
-    gains["exact_all"] = stability_map(*args, modes="all") if params.case == "coupled" \
-        else None
+    grid = dict(case=params.case, alpha=params.alpha, K_s=params.K_s,
+                amplitude=params.amplitude, K_theta=Kt)
+    gains["exact_all"] = stability_map(K, q=EXACT_OFFSETS, modes="all", **grid) \
+        if params.case == "coupled" else None
     if params.start == "paper":
         # the exact theory of the state the map's runs start in: eq. `IC`'s launched state
         # (its free U waves pump bands of their own in case II), sampling-independent
         from ._resonance import resonance_map
 
-        gains["exact"] = resonance_map(K, D, params.case, params.alpha, params.K_s,
-                                       params.amplitude, start="paper")["peak_gain"]
+        gains["exact"] = resonance_map(K, start="paper", **grid)["peak_gain"]
     else:
-        gains["exact"] = stability_map(*args)
+        gains["exact"] = stability_map(K, q=EXACT_OFFSETS, **grid)
     if gains["exact_all"] is None:
         gains["exact_all"] = gains["exact"]
     out = {}

@@ -36,6 +36,8 @@ def _holds(ds, params: MapParameters) -> bool:
     """Does the stored dataset ``ds`` hold the map ``params`` defines (same grid, same
     parameters; theory_only aside, so a theory-only map is resumed by simulations)?"""
     return (np.array_equal(ds["delta"].values, params.delta)
+            and ("K_theta" not in ds.coords  # stores written before it was a coordinate
+                 or np.array_equal(ds["K_theta"].values, params.K_theta))
             and np.array_equal(ds["k"].values, params.k)
             and ds.attrs.get("store_format") == STORE_FORMAT
             and all(ds.attrs.get(n) == v for n, v in params.attrs().items()
