@@ -91,24 +91,25 @@ def run_map_command(args, log=print):
     for name, v in (("--alpha", args.alpha), ("--K-s", args.K_s)):
         checks.positive(name, v)
     k = parse_spec(args.k, "--k")
+    # the rows as given: --delta, or --K-theta (its values reach the cells and the theories
+    # unchanged; largest first, so that delta = K_s - K_theta ascends)
     if args.delta is not None:
-        delta = parse_spec(args.delta, "--delta")
+        rows = {"delta": tuple(float(d) for d in parse_spec(args.delta, "--delta"))}
     elif args.K_theta is not None:
-        delta = np.sort(args.K_s - parse_spec(args.K_theta, "--K-theta"))
+        rows = {"K_theta": tuple(float(x) for x in parse_spec(args.K_theta, "--K-theta")[::-1])}
     else:
         raise ValueError("give --K-theta SPEC or --delta SPEC (the map's second axis)")
     if args.workers is not None and args.scheduler:
         raise ValueError("give --scheduler or --workers, not both")
     if args.workers is not None:
         checks.integer("--workers", args.workers, 1, 10**4)
-    cells = len(k) * len(delta)
+    cells = len(k) * len(next(iter(rows.values())))
     if cells > MAX_CELLS:
         raise ValueError(f"--k and --delta ask for {cells} cells; at most {MAX_CELLS} "
                          "(split the map into several --out folders)")
     checks.positive("--timeout", args.timeout)
     try:
-        params = MapParameters(case=args.case, alpha=args.alpha, K_s=args.K_s,
-                               delta=tuple(float(d) for d in delta),
+        params = MapParameters(case=args.case, alpha=args.alpha, K_s=args.K_s, **rows,
                                k=tuple(float(x) for x in k), amplitude=args.amplitude,
                                N=args.N, t_end=args.t_end, seeds=args.seeds,
                                start=args.start, theory_only=args.theory_only,

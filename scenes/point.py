@@ -68,8 +68,8 @@ def _start_grid(material, case, k, amplitude):
     misses bands narrower than its spacing)."""
     from numerics.maps import resonance_map
 
-    res = resonance_map(k, material.delta, case, material.alpha, material.K_s, amplitude,
-                        start="paper")
+    res = resonance_map(k, case=case, material=material, K_theta=material.K_theta,
+                        amplitude=amplitude, start="paper")
     qp = float(res["q_peak"])
     q = [np.linspace(0.02, math.pi - 0.02, START_CURVE_POINTS)]
     if math.isfinite(qp) and qp != 0:

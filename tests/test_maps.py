@@ -193,3 +193,63 @@ def test_point_physical_units_and_bad_input(capsys):
     assert cli(["point", "--physical", "1,2,3", "--k", "0.9", "--case", "coupled"]) == 2
     assert "six numbers" in capsys.readouterr().err
     assert cli(["point", "--alpha", "2.5", "--k", "0.9", "--case", "coupled"]) == 2
+
+
+def test_map_parameters_take_a_material_and_carry_K_theta_unchanged(tmp_path):
+    # material= and K_theta= as given: each row's cells and theories use the typed K_theta
+    # (0.003 is one whose K_s - (K_s - K_theta) round trip is off by an ulp); the stored
+    # attributes are those of the (alpha, K_s, delta) form, and positional arguments work
+    from numerics import Material
+
+    blue = Material.paper("blue")
+    rows = (0.02151, 0.003)
+    assert paper.K_S - (paper.K_S - 0.003) != 0.003
+    p = MapParameters(case="coupled", material=blue, K_theta=rows, k=K2, amplitude=0.02,
+                      N=N, t_end=2000.0)
+    assert (p.alpha, p.K_s) == (blue.alpha, blue.K_s) and p.K_theta == rows
+    assert [p.material_at(i).K_theta for i in range(2)] == list(rows)
+    assert p.delta == tuple(paper.K_S - x for x in rows)
+    q = MapParameters("coupled", paper.ALPHA, paper.K_S, p.delta, K2, 0.02, N=N, t_end=2000.0)
+    assert q.attrs() == p.attrs() and q.delta == p.delta
+    assert q.K_theta == tuple(paper.K_S - d for d in p.delta)
+    import dataclasses
+
+    assert dataclasses.replace(p, seeds=2).K_theta == rows  # both given, consistent
+    with pytest.raises(ValueError, match="not both"):
+        MapParameters(case="coupled", alpha=2.5, K_s=paper.K_S, delta=(0.0,), K_theta=(0.01,),
+                      k=K2, amplitude=0.02)
+    with pytest.raises(TypeError, match="not both"):
+        MapParameters(case="coupled", material=blue, alpha=2.5, delta=(0.0,), k=K2,
+                      amplitude=0.02)
+    with pytest.raises(TypeError, match="delta= or K_theta="):
+        MapParameters(case="coupled", material=blue, k=K2, amplitude=0.02)
+    with pytest.raises(ValueError, match="K_theta must be > 0"):
+        MapParameters(case="coupled", material=blue, K_theta=(-0.01,), k=K2, amplitude=0.02)
+    # the store holds K_theta as a coordinate of its rows; the theories are evaluated there
+    ds = maps.open_or_create(tmp_path / "map.zarr", p)
+    assert tuple(ds["K_theta"].values) == rows
+    from numerics.maps import theory_columns
+
+    for name, v in theory_columns(p).items():
+        np.testing.assert_array_equal(ds[name].values, v)
+
+
+def test_map_command_passes_K_theta_through_unchanged(tmp_path, monkeypatch):
+    # `flexmm map --K-theta`: the MapParameters it builds hold the typed values (largest
+    # first, so that delta ascends), no K_s - delta conversion on the way
+    from scenes import _map_command
+
+    seen = []
+
+    def stop(params, *a, **k):
+        seen.append(params)
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(_map_command, "run_map", stop)
+    assert cli(["map", "--case", "rotation", "--alpha", "2.5", "--K-s", "0.01851",
+                "--K-theta", "0.003,0.0155,0.2", "--k", "0.8168", "--theory-only",
+                "--out", str(tmp_path)]) != 0
+    p = seen[0]
+    assert p.K_theta == (0.2, 0.0155, 0.003)
+    assert list(p.delta) == sorted(p.delta)
+    assert p.material_at(2).K_theta == 0.003

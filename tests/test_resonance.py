@@ -139,3 +139,39 @@ def test_compiled_reduced_problem_matches_its_numpy_form(case):
     assert len(got[3]) == len(want[3]) == (3 if coupled else 0)
     if coupled:
         np.testing.assert_allclose(got[3], want[3], rtol=1e-11, atol=1e-15)
+
+
+# --- a material, as every other public function takes it ---------------------------------------
+
+@pytest.mark.parametrize("case,start", [("rotation", "travelling"), ("coupled", "paper")])
+def test_material_form_gives_the_positional_forms_arrays(case, start):
+    # material= (its alpha and K_s; its own K_theta unused: the grid's is K_s - delta) is
+    # the same map as (alpha, K_s), bit for bit; K_theta= instead of delta too
+    K, D = _grid(6)
+    mat = Material(paper.ALPHA, paper.K_S, 0.5)  # K_theta 0.5: not the grid's, not used
+    old = resonance_map(K, D, case, paper.ALPHA, paper.K_S, 0.02, start=start)
+    new = resonance_map(K, D, case, material=mat, amplitude=0.02, start=start)
+    by_K_theta = resonance_map(K, case=case, material=mat, amplitude=0.02, start=start,
+                               K_theta=paper.K_S - D)
+    for name in ("peak_gain", "q_peak", "pumped"):
+        assert new[name].tobytes() == old[name].tobytes() == by_K_theta[name].tobytes(), name
+    old = stability_map(K, D, case, paper.ALPHA, paper.K_S, 0.02)
+    assert stability_map(K, D, case, material=mat, amplitude=0.02).tobytes() == old.tobytes()
+    assert stability_map(K, case=case, material=mat, amplitude=0.02,
+                         K_theta=paper.K_S - D).tobytes() == old.tobytes()
+
+
+def test_map_material_and_axis_are_given_once():
+    mat = Material.paper("blue")
+    with pytest.raises(TypeError, match="not both"):
+        resonance_map(1.0, 0.0, "coupled", 2.5, paper.K_S, 0.02, material=mat)
+    with pytest.raises(TypeError, match="delta or as K_theta"):
+        resonance_map(1.0, 0.0, "coupled", material=mat, amplitude=0.02, K_theta=0.01)
+    with pytest.raises(TypeError, match="delta or as K_theta"):
+        stability_map(1.0, case="coupled", material=mat, amplitude=0.02)
+    with pytest.raises(TypeError, match="missing amplitude"):
+        resonance_map(1.0, 0.0, "coupled", material=mat)
+    with pytest.raises(TypeError, match="material"):
+        stability_map(1.0, 0.0, "coupled", material={"alpha": 2.5}, amplitude=0.02)
+    with pytest.raises(ValueError, match="need K_theta > 0"):
+        resonance_map(1.0, case="coupled", material=mat, amplitude=0.02, K_theta=-0.01)

@@ -1,7 +1,9 @@
 """Advancing a lattice state: ``integrate`` (state -> state) and the stepper behind it.
 
-``_Stepper`` holds the work arrays of one run and advances it by whole chunks of steps in
-compiled code (``_kernels``), or through scipy's ``solve_ivp`` for the adaptive methods.
+``_Stepper`` holds the work arrays of one run and advances it by whole chunks of steps: one
+class per method family (``Method.kind``), registered in :data:`STEPPERS` (as ``METHODS``
+registers the integrators): compiled loops (``_kernels``, RK4 and the symplectic RKN
+methods, handing over to the libm loops), or scipy's ``solve_ivp`` for the adaptive ones.
 """
 
 from __future__ import annotations
@@ -62,8 +64,39 @@ def _check_time(t_end, dt):
     return nsteps, t_end / nsteps
 
 
+#: the stepper class of each ``Method.kind`` (:func:`register_stepper`), as METHODS holds the
+#: integrators: ``_Stepper(state, material, case, method, dt)`` builds the one of method.kind
+STEPPERS: dict[str, type] = {}
+
+
+def register_stepper(kind: str):
+    """Class decorator: the stepper of every method of this ``Method.kind``."""
+    def add(cls):
+        if kind in STEPPERS:
+            raise ValueError(f"a stepper for methods of kind {kind!r} registered twice")
+        STEPPERS[kind] = cls
+        return cls
+    return add
+
+
 class _Stepper:
-    """Holds the work arrays of one run and advances it by whole chunks of steps."""
+    """Holds the work arrays of one run and advances it by whole chunks of steps.
+
+    ``_Stepper(state, material, case, method, dt, rtol, atol)`` returns the stepper
+    registered for ``method.kind`` (:data:`STEPPERS`); each family implements ``_advance``.
+    ``advance`` is defined here only, so that wrapping ``_Stepper.advance`` (the tests'
+    interrupts) wraps every family.
+    """
+
+    def __new__(cls, state: LatticeState, material: Material, case: str, method: Method,
+                dt: float, rtol: float = 1e-10, atol: float = 1e-12):
+        if cls is _Stepper:
+            try:
+                cls = STEPPERS[method.kind]
+            except KeyError:
+                raise ValueError(f"no stepper for methods of kind {method.kind!r}; "
+                                 f"registered: {', '.join(STEPPERS)}") from None
+        return super().__new__(cls)
 
     def __init__(self, state: LatticeState, material: Material, case: str, method: Method,
                  dt: float, rtol: float = 1e-10, atol: float = 1e-12):
@@ -83,56 +116,111 @@ class _Stepper:
         self.aU = np.empty(n if self.coupled else 0)
         self.params = (material.alpha**2, material.K_s, material.K_theta)
         self.evaluations = 0
-        nU = n if self.coupled else 0  # case "rotation" allocates nothing for U
-        if method.kind == "srkn":
-            self.acoef = np.array(method.a)
-            self.bcoef = np.array(method.b)
-            self.work, self.work_U = np.empty((8, n)), np.empty((2, nU))
-            self._accel()
-        elif method.kind == "rk4":
-            self.work, self.work_U = np.empty((11, n)), np.empty((5, nU))
-
-    def _accel(self):
-        kernels.accel(self.th, self.U, self.coupled, *self.params, self.s, self.c, self.v,
-                      self.ath, self.aU)
-        self.evaluations += 1
 
     def state(self) -> LatticeState:
+        """A copy of the current state."""
         if self.coupled:
             return LatticeState(self.U.copy(), self.V.copy(), self.th.copy(), self.w.copy())
         return LatticeState(None, None, self.th.copy(), self.w.copy())
 
     def advance(self, nsteps: int) -> int:
         """Advance ``nsteps`` steps; returns the number completed while finite."""
-        m = self.method
-        if m.kind == "scipy":
-            return self._scipy(nsteps * self.dt)
+        return self._advance(nsteps)
+
+    def _advance(self, nsteps: int) -> int:
+        """The family's advance (see :meth:`advance`)."""
+        raise NotImplementedError
+
+
+class _CompiledStepper(_Stepper):
+    """Fixed-step methods: compiled fast loops (``_kernels``), continued by the libm loops
+    (``_kernels_libm``) where |theta| leaves the polynomial's range or the state blows up."""
+
+    def _advance(self, nsteps):
+        """Fast loops, then libm loops for the rest; counts the force evaluations."""
         done = self._fast(nsteps)
         if done < nsteps:
             # |theta| beyond the polynomial's range, or not finite: the libm loops go on
             # (and stop at once on a non-finite state, reporting the blow-up)
             done += self._libm(nsteps - done)
-        self.evaluations += done * m.evaluations
+        self.evaluations += done * self.method.evaluations
         return done
 
     def _fast(self, nsteps):
-        if self.method.kind == "srkn":
-            return kernels.srkn_steps(self.th, self.w, self.U, self.V, self.ath, self.aU,
-                                      self.coupled, *self.params, self.acoef, self.bcoef,
-                                      self.dt, nsteps, self.work, self.work_U)
+        """Up to ``nsteps`` steps in the fast loop; returns the steps done."""
+        raise NotImplementedError
+
+    def _libm(self, nsteps):
+        """Up to ``nsteps`` steps in the libm loop; returns the steps done."""
+        raise NotImplementedError
+
+
+@register_stepper("rk4")
+class _RK4Stepper(_CompiledStepper):
+    """Classical RK4 on (q, q'), four fused passes per step."""
+
+    def __init__(self, state, material, case, method, dt, rtol=1e-10, atol=1e-12):
+        super().__init__(state, material, case, method, dt, rtol, atol)
+        n = state.N
+        nU = n if self.coupled else 0  # case "rotation" allocates nothing for U
+        self.work, self.work_U = np.empty((11, n)), np.empty((5, nU))
+
+    def _fast(self, nsteps):
+        """``kernels.rk4_steps``."""
         return kernels.rk4_steps(self.th, self.w, self.U, self.V, self.coupled, *self.params,
                                  self.dt, nsteps, self.work, self.work_U)
 
     def _libm(self, nsteps):
-        if self.method.kind == "srkn":
-            return kernels.srkn_steps_libm(self.th, self.w, self.U, self.V, self.ath, self.aU,
-                                           self.coupled, *self.params, self.acoef,
-                                           self.bcoef, self.dt, nsteps, self.s, self.c, self.v)
+        """``kernels.rk4_steps_libm``."""
         return kernels.rk4_steps_libm(self.th, self.w, self.U, self.V, self.coupled,
                                       *self.params, self.dt, nsteps, self.s, self.c, self.v,
                                       np.empty((10, self.th.size)))
 
-    def _scipy(self, span):
+
+@register_stepper("srkn")
+class _SRKNStepper(_CompiledStepper):
+    """Symplectic RKN (BAB, coefficients ``method.a``, ``method.b``): the acceleration of
+    the current state is kept between calls (one force evaluation on construction)."""
+
+    def __init__(self, state, material, case, method, dt, rtol=1e-10, atol=1e-12):
+        super().__init__(state, material, case, method, dt, rtol, atol)
+        n = state.N
+        nU = n if self.coupled else 0  # case "rotation" allocates nothing for U
+        self.acoef = np.array(method.a)
+        self.bcoef = np.array(method.b)
+        self.work, self.work_U = np.empty((8, n)), np.empty((2, nU))
+        self._accel()
+
+    def _accel(self):
+        """The acceleration of the current state into ``ath``, ``aU``."""
+        kernels.accel(self.th, self.U, self.coupled, *self.params, self.s, self.c, self.v,
+                      self.ath, self.aU)
+        self.evaluations += 1
+
+    def _fast(self, nsteps):
+        """``kernels.srkn_steps``."""
+        return kernels.srkn_steps(self.th, self.w, self.U, self.V, self.ath, self.aU,
+                                  self.coupled, *self.params, self.acoef, self.bcoef,
+                                  self.dt, nsteps, self.work, self.work_U)
+
+    def _libm(self, nsteps):
+        """``kernels.srkn_steps_libm``."""
+        return kernels.srkn_steps_libm(self.th, self.w, self.U, self.V, self.ath, self.aU,
+                                       self.coupled, *self.params, self.acoef,
+                                       self.bcoef, self.dt, nsteps, self.s, self.c, self.v)
+
+
+@register_stepper("scipy")
+class _ScipyStepper(_Stepper):
+    """Adaptive reference methods: one scipy ``solve_ivp`` over each chunk's span (rtol,
+    atol), the state landing on its end."""
+
+    def _advance(self, nsteps):
+        """One solve_ivp over ``nsteps * dt``; all the steps, or 0 when it failed."""
+        return self._solve(nsteps * self.dt)
+
+    def _solve(self, span):
+        """Integrate over ``span``; returns its steps of dt (0: failed or not finite)."""
         from scipy.integrate import solve_ivp
 
         n = self.th.size
@@ -145,8 +233,8 @@ class _Stepper:
         def rhs(_t, y):
             th = y[:n]
             U = y[2 * n:3 * n] if coupled else kernels.empty_u()
-            kernels.accel(np.ascontiguousarray(th), np.ascontiguousarray(U), coupled, *self.params,
-                    self.s, self.c, self.v, ath, aU)
+            kernels.accel(np.ascontiguousarray(th), np.ascontiguousarray(U), coupled,
+                          *self.params, self.s, self.c, self.v, ath, aU)
             out = np.empty(nf)
             out[:n] = y[n:2 * n]
             out[n:2 * n] = ath

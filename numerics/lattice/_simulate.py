@@ -1,8 +1,10 @@
 """The paper's numerical experiment: ``simulate`` a noisy plane wave on a periodic chain.
 
 Builds the initial condition (eq. `IC`, or the exact travelling wave), snaps k to the
-chain, advances it with ``_integrate._Stepper`` record by record, keeps only what is asked
-for, and stops with ``BlowUpError`` or ``SimulationInterrupted`` keeping what was computed.
+chain, and runs it in named steps: the record grid (``_record_grid`` -> ``_RecordGrid``), a
+Run with room for its records (``_empty_run``), and the stepping loop (``_RunLoop``:
+``_integrate._Stepper`` advanced record by record, keeping only what is asked for), which
+stops with ``BlowUpError`` or ``SimulationInterrupted`` keeping what was computed.
 """
 
 from __future__ import annotations
@@ -267,109 +269,192 @@ def simulate(material: Material, case: str, N: int, k: float,
     method, dt = resolve_step(state, material, case, t_end, dt, method, tol)
     m_ = get_method(method)
     nsteps, dt_eff = _check_time(t_end, dt)
+    grid = _record_grid(nsteps, dt_eff, save_every, record_phase)
+    run = _empty_run(grid, N, case, store, material=material, k=ks, m=mode,
+                     k_requested=float(k), amplitude=amplitude, noise=noise, seed=seed,
+                     method=m_.name, dt=dt_eff, t_end=float(t_end),
+                     save_every=grid.per_save * dt_eff, start=start)
+    loop = _RunLoop(_Stepper(state, material, case, m_, dt_eff, rtol, atol), run, grid,
+                    max_energy_error)
+    loop.run_to_end(progress)
+    return loop.finish(energy_tolerance)
+
+
+@dataclass(frozen=True)
+class _RecordGrid:
+    """The steps of a run and its records: at step 0, at ``first``, every ``per_save``
+    steps after it, and at the last step ``nsteps``."""
+
+    nsteps: int
+    per_save: int
+    #: steps done since the last record, when resuming an interrupted run: the records
+    #: keep that run's grid
+    phase: int = 0
+
+    @property
+    def first(self) -> int:
+        """The step of record 1."""
+        return self.per_save - self.phase
+
+    @property
+    def count(self) -> int:
+        """The number of records, those at step 0 and at the last step included."""
+        return 2 + (0 if self.first >= self.nsteps
+                    else -(-(self.nsteps - self.first) // self.per_save))
+
+    def step_of(self, j: int) -> int:
+        """The step of record j >= 1."""
+        return min(self.first + (j - 1) * self.per_save, self.nsteps)
+
+    def since_record(self, steps: int, j: int) -> int:
+        """Steps done since the last record when record j is the next (a resume's phase)."""
+        return steps - (self.first + (j - 2) * self.per_save if j > 1 else -self.phase)
+
+
+def _record_grid(nsteps: int, dt: float, save_every, record_phase) -> _RecordGrid:
+    """The record grid of ``nsteps`` steps of ``dt``: a record every ``save_every``
+    (rounded to whole steps; default about 1000 records), continued at ``record_phase``."""
     if save_every is None:
         per_save = max(1, round(nsteps / 1000))
     else:
         save_every = checks.positive("save_every", save_every)
-        per_save = max(1, round(save_every / dt_eff))
-    # records at 0, at first_record, every per_save steps after it, and at the end;
-    # record_phase > 0 continues the record grid of an interrupted run (steps already done
-    # since its last record)
+        per_save = max(1, round(save_every / dt))
     phase = checks.integer("record_phase", record_phase, 0, per_save)
-    first_record = per_save - phase
-    nrec = 2 + (0 if first_record >= nsteps else -(-(nsteps - first_record) // per_save))
+    return _RecordGrid(nsteps, per_save, phase)
+
+
+def _empty_run(grid: _RecordGrid, N: int, case: str, store: str, **fields) -> Run:
+    """A Run with room for the grid's records of what ``store`` keeps (energy always)."""
+    nrec, nq = grid.count, N // 2 + 1
     coupled = case == "coupled"
-    nq = N // 2 + 1
-    t = np.empty(nrec)
-    en = np.empty(nrec)
-    th_rec = np.empty((nrec, N)) if store == "snapshots" else None
-    U_rec = np.empty((nrec, N)) if store == "snapshots" and coupled else None
-    thh = np.empty((nrec, nq)) if store == "spectrum" else None
-    Uh = np.empty((nrec, nq)) if store == "spectrum" and coupled else None
+    snapshots, spectra = store == "snapshots", store == "spectrum"
+    return Run(t=np.empty(nrec), energy=np.empty(nrec),
+               theta=np.empty((nrec, N)) if snapshots else None,
+               U=np.empty((nrec, N)) if snapshots and coupled else None,
+               theta_hat=np.empty((nrec, nq)) if spectra else None,
+               U_hat=np.empty((nrec, nq)) if spectra and coupled else None,
+               case=case, N=N, store=store, **fields)
 
-    st = _Stepper(state, material, case, m_, dt_eff, rtol, atol)
-    run = Run(t=t, theta=th_rec, U=U_rec, energy=en, material=material, case=case, N=N, k=ks,
-              m=mode, k_requested=float(k), amplitude=amplitude, noise=noise, seed=seed,
-              method=m_.name, dt=dt_eff, t_end=float(t_end), save_every=per_save * dt_eff,
-              store=store, start=start, theta_hat=thh, U_hat=Uh)
 
-    def record(j, time):
-        t[j] = time
-        cur = LatticeState(st.U, st.V, st.th, st.w) if coupled else \
+class _RunLoop:
+    """Advances a run's stepper from record to record, filling ``run``; stops with a
+    BlowUpError or a SimulationInterrupted that keep the records taken."""
+
+    def __init__(self, stepper, run: Run, grid: _RecordGrid, max_energy_error: float):
+        self.st, self.run, self.grid = stepper, run, grid
+        self.max_energy_error = max_energy_error
+        self.steps = 0  # steps the stepper's state has done: its time is steps * dt
+        self.j = 0  # the next record
+
+    def time(self) -> float:
+        """The stepper's time."""
+        return self.steps * self.st.dt
+
+    def record(self):
+        """Take record j of the stepper's state (what ``run.store`` keeps)."""
+        st, run, j = self.st, self.run, self.j
+        run.t[j] = self.time()
+        cur = LatticeState(st.U, st.V, st.th, st.w) if st.coupled else \
             LatticeState(None, None, st.th, st.w)
-        en[j] = energy(cur, material, case)
-        if th_rec is not None:
-            th_rec[j] = st.th
-            if U_rec is not None:
-                U_rec[j] = st.U
-        if thh is not None:
-            thh[j] = spectrum(st.th)
-            if Uh is not None:
-                Uh[j] = spectrum(st.U)
+        run.energy[j] = energy(cur, run.material, run.case)
+        if run.theta is not None:
+            run.theta[j] = st.th
+            if run.U is not None:
+                run.U[j] = st.U
+        if run.theta_hat is not None:
+            run.theta_hat[j] = spectrum(st.th)
+            if run.U_hat is not None:
+                run.U_hat[j] = spectrum(st.U)
 
-    def truncate(j):
+    def run_to_end(self, progress):
+        """Record the initial state, then step and record to the end, Ctrl-C deferred to
+        the end of a compiled call (then SimulationInterrupted)."""
+        self.record()
+        self.j += 1
+        bar = _progress(self.run.t_end, progress)
+        try:
+            with _deferred_interrupt() as interrupted:
+                self._step_and_record(interrupted, bar)
+        except (_Interrupt, KeyboardInterrupt) as exc:
+            if isinstance(exc, SimulationInterrupted):
+                raise
+            signum = exc.args[0] if isinstance(exc, _Interrupt) else signal_number(exc)
+            raise self.interruption(signum) from None
+        finally:
+            if bar is not None:
+                bar.close()
+
+    def _step_and_record(self, interrupted, bar):
+        """The stepping loop: chunks of at most one compiled call, a record at each grid
+        point, the energy checked there; ``interrupted()`` is the signal that came (or 0)."""
+        grid, st, run = self.grid, self.st, self.run
+        sub = _steps_per_call(run.N, st.method, grid.per_save)
+        while self.steps < grid.nsteps:
+            target = grid.step_of(self.j)  # the next record
+            while self.steps < target:
+                n = min(sub, target - self.steps)
+                got = st.advance(n)
+                self.steps += got
+                if got < n:
+                    raise self.blow_up("non-finite")
+                if interrupted() and self.steps < target:
+                    raise _Interrupt(interrupted())
+            self.record()
+            j = self.j
+            drift = abs(run.energy[j] - run.energy[0]) / abs(run.energy[0])
+            if not drift <= self.max_energy_error:  # also catches NaN
+                raise self.blow_up("energy", drift)
+            if bar is not None:
+                bar.update(run.t[j] - run.t[j - 1])
+            self.j += 1
+            if interrupted() and self.steps < grid.nsteps:
+                raise _Interrupt(interrupted())
+
+    def keep_records(self):
+        """Cut the run to the records before record j (taken or not), not completed."""
+        run = self.run
         for name in RECORDS:
             arr = getattr(run, name)
             if arr is not None:
-                setattr(run, name, arr[:j])
+                setattr(run, name, arr[:self.j])
         run.completed = False
+        run.force_evaluations = self.st.evaluations
 
-    record(0, 0.0)
-    steps = 0  # steps the stepper's state has done: its time is steps * dt_eff
-    j = 1
-    sub = _steps_per_call(N, m_, per_save)
-    bar = _progress(float(t_end), progress)
+    def blow_up(self, reason: str, drift: float | None = None) -> BlowUpError:
+        """The BlowUpError of a failure now (``reason``: "non-finite", or "energy" in the
+        record j just taken), with the records before it."""
+        self.keep_records()
+        st, run = self.st, self.run
+        return BlowUpError(_blowup_message(self.time(), st.dt, run.material, run.case,
+                                           st.method, reason, drift, self.max_energy_error),
+                           run, self.time())
 
-    def blow_up(reason, drift=None):
-        truncate(j)
-        run.force_evaluations = st.evaluations
-        raise BlowUpError(_blowup_message(steps * dt_eff, dt_eff, material, case, m_, reason,
-                                          drift, max_energy_error), run, steps * dt_eff)
-
-    try:
-        with _deferred_interrupt() as interrupted:
-            while steps < nsteps:
-                target = min(first_record + (j - 1) * per_save, nsteps)  # the next record
-                while steps < target:
-                    n = min(sub, target - steps)
-                    got = st.advance(n)
-                    steps += got
-                    if got < n:
-                        blow_up("non-finite")
-                    if interrupted() and steps < target:
-                        raise _Interrupt(interrupted())
-                record(j, steps * dt_eff)
-                drift = abs(en[j] - en[0]) / abs(en[0])
-                if not drift <= max_energy_error:  # also catches NaN
-                    blow_up("energy", drift)
-                if bar is not None:
-                    bar.update(t[j] - t[j - 1])
-                j += 1
-                if interrupted() and steps < nsteps:
-                    raise _Interrupt(interrupted())
-    except (_Interrupt, KeyboardInterrupt) as exc:
-        if isinstance(exc, SimulationInterrupted):
-            raise
-        signum = exc.args[0] if isinstance(exc, _Interrupt) else signal_number(exc)
-        truncate(j)
-        run.force_evaluations = st.evaluations
-        left = nsteps - steps
-        since = steps - (first_record + (j - 2) * per_save if j > 1 else -phase)
-        raise SimulationInterrupted(
-            f"interrupted at T = {steps * dt_eff:.10g} of {t_end:g}; exc.run keeps "
+    def interruption(self, signum: int) -> SimulationInterrupted:
+        """The SimulationInterrupted of a stop now: the records taken, the state, and the
+        call that resumes the run on its record grid."""
+        self.keep_records()
+        st, run = self.st, self.run
+        dt = st.dt
+        left = self.grid.nsteps - self.steps
+        since = self.grid.since_record(self.steps, self.j)
+        return SimulationInterrupted(
+            f"interrupted at T = {self.time():.10g} of {run.t_end:g}; exc.run keeps "
             f"{len(run.t)} records (to T = {run.t[-1]:g}). Resume with simulate(..., "
-            f"initial=exc.state, t_end={left * dt_eff!r}, dt={dt_eff!r}, "
-            f"record_phase={since}) (times then count from 0), or numerics.resume(exc, **the same arguments)",
-            run=run, state=st.state(), time=steps * dt_eff, remaining=left * dt_eff,
-            dt=dt_eff, record_phase=since, signum=signum) from None
-    finally:
-        if bar is not None:
-            bar.close()
-    run.final_state = st.state()
-    run.force_evaluations = st.evaluations
-    if m_.fixed_step:
-        energy_check(run.energy_error, energy_tolerance, m_.name, dt_eff)
-    return run
+            f"initial=exc.state, t_end={left * dt!r}, dt={dt!r}, "
+            f"record_phase={since}) (times then count from 0), or numerics.resume(exc, "
+            "**the same arguments)",
+            run=run, state=st.state(), time=self.time(), remaining=left * dt,
+            dt=dt, record_phase=since, signum=signum)
+
+    def finish(self, energy_tolerance: float) -> Run:
+        """The completed run: its final state, its force evaluations, and the accuracy
+        check (fixed-step methods)."""
+        st, run = self.st, self.run
+        run.final_state = st.state()
+        run.force_evaluations = st.evaluations
+        if st.method.fixed_step:
+            energy_check(run.energy_error, energy_tolerance, st.method.name, st.dt)
+        return run
 
 
 def resume(interrupted: SimulationInterrupted, **params) -> Run:

@@ -13,8 +13,10 @@ Maps by sim.     MapParameters (what defines a map), parse_spec (``v1,v2`` or
 from ._cells import growth_of, measured_peak_gain, simulate_cell
 from ._resonance import resonance_map
 from ._params import CRITERION, MapParameters, local_cores, parse_spec
-from ._store import (MapCellError, agreement, open_or_create, run_map, simulate_block,
-                     theory_columns)
+from ._agreement import agreement
+from ._blocks import simulate_block
+from ._columns import theory_columns
+from ._store import MapCellError, open_or_create, run_map
 
 __all__ = [
     "resonance_map", "simulate_cell", "growth_of", "measured_peak_gain", "MapParameters",

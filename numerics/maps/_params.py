@@ -5,12 +5,12 @@ from __future__ import annotations
 
 import math
 import os
-from dataclasses import asdict, dataclass
+from dataclasses import InitVar, asdict, dataclass
 from functools import cached_property
 
 import numpy as np
 
-from ..lattice import checks
+from ..lattice import Material, checks
 from ..lattice._analysis import GROWTH_THRESHOLD, non_carrier_bins
 from ..lattice._integrate import _check_time
 from ..lattice._integrators import get_method
@@ -69,14 +69,29 @@ def parse_spec(text: str, name: str) -> np.ndarray:
 
 @dataclass(frozen=True)
 class MapParameters:
-    """Everything that defines a map (stored in the dataset's attributes)."""
+    """Everything that defines a map (stored in the dataset's attributes; its rows' K_theta
+    and delta, and its k, as coordinates).
+
+    The material is ``material=`` (a Material: its alpha and K_s; the rows give K_theta), or
+    ``alpha=`` and ``K_s=``. The rows are ``delta=`` (K_theta = K_s - delta) or ``K_theta=``,
+    kept as given (``delta`` is then K_s - K_theta, the map's coordinate): a row's cells
+    simulate, and its theories are evaluated at, ``K_theta[i]``, never K_s - (K_s - K_theta).
+
+    Examples
+    --------
+    >>> from numerics import Material
+    >>> p = MapParameters(case="coupled", material=Material.paper("blue"),
+    ...                   K_theta=(0.01551, 0.02151), k=(0.8168,), amplitude=0.02)
+    >>> p.alpha, p.K_s, p.K_theta[0], round(p.delta[0], 6)
+    (2.5, 0.01851, 0.01551, 0.003)
+    """
 
     case: str
-    alpha: float
-    K_s: float
-    delta: tuple
-    k: tuple
-    amplitude: float  # peak rotation 2 eps A0
+    alpha: float | None = None  # given, or material.alpha
+    K_s: float | None = None  # given, or material.K_s
+    delta: tuple | None = None  # the rows: K_s - K_theta
+    k: tuple | None = None
+    amplitude: float | None = None  # peak rotation 2 eps A0
     eps: float = 0.01
     N: int = 500
     t_end: float = 5000.0
@@ -88,8 +103,20 @@ class MapParameters:
     noise: float = 1e-3
     theory_only: bool = False
     block: int = DEFAULT_BLOCK
+    K_theta: tuple | None = None  # each row's K_theta: given, or K_s - delta[i]
+    material: InitVar[Material | None] = None  # alpha and K_s (its K_theta is not used)
 
-    def __post_init__(self):
+    def __post_init__(self, material):
+        if material is not None:
+            checks.instance("material", material, Material)
+            if self.alpha is not None or self.K_s is not None:
+                raise TypeError("give the material as material= or as alpha and K_s, not both")
+            object.__setattr__(self, "alpha", material.alpha)
+            object.__setattr__(self, "K_s", material.K_s)
+        for name in ("alpha", "K_s", "k", "amplitude"):
+            if getattr(self, name) is None:
+                raise TypeError(f"MapParameters needs {name}" + (
+                    " (or material=, a Material)" if name in ("alpha", "K_s") else ""))
         checks.choice("case", self.case, ("rotation", "coupled"))
         checks.choice("start", self.start, ("paper", "travelling"))
         checks.positive("alpha", self.alpha)
@@ -114,18 +141,15 @@ class MapParameters:
                              f"its step; give dt with it, or one of "
                              f"{', '.join(GROWTH_ERROR_CONSTANTS)}")
         k = np.asarray(checks.real_values("k", self.k))
-        d = np.asarray(checks.real_values("delta", self.delta))
         if np.any((k <= 0) | (k >= math.pi)):
             raise ValueError(f"k must lie in (0, pi), got {self.k}")
-        if np.any(self.K_s - d <= 0):
-            raise ValueError(f"delta must be < K_s = {self.K_s:g} (K_theta = K_s - delta > 0), "
-                             f"got {float(d.max()):g}")
+        self._rows()
         # a cell advances in RECORDS pieces of t_end / RECORDS: a given step must fit in
         # one, and the run must not take an absurd number of steps (checked here, not on a
         # worker); a step still to be chosen is at most the largest stable one
         record = self.t_end / RECORDS
         dt = self.dt if self.dt is not None else min(record, _largest_stable_step(
-            self.alpha, self.K_s, d, self.case))
+            self.alpha, self.K_s, self.extreme_K_theta(), self.case))
         try:
             _check_time(record, dt)
             _check_time(self.t_end, dt)
@@ -146,6 +170,44 @@ class MapParameters:
                     f"--k: {self.k[j - 1]:g} and {self.k[j]:g} both snap to 2 pi {m}/{self.N}"
                     f" = {snapped[j]:.6g}, the nearest wavenumber of a chain of N = {self.N}"
                     " sites; give fewer k values or a larger --N")
+
+    def _rows(self):
+        """Check the rows, given as delta or as K_theta, and fill in the other one."""
+        if self.K_theta is None and self.delta is None:
+            raise TypeError("MapParameters needs its rows: delta= or K_theta=")
+        if self.K_theta is None:
+            d = checks.real_values("delta", self.delta)
+            if any(self.K_s - x <= 0 for x in d):
+                raise ValueError(f"delta must be < K_s = {self.K_s:g} (K_theta = K_s - delta > "
+                                 f"0), got {max(d):g}")
+            object.__setattr__(self, "K_theta", tuple(self.K_s - x for x in d))
+            return
+        Kt = checks.real_values("K_theta", self.K_theta)
+        if any(x <= 0 for x in Kt):
+            raise ValueError(f"K_theta must be > 0, got {min(Kt):g}")
+        object.__setattr__(self, "K_theta", Kt)
+        if self.delta is None:
+            object.__setattr__(self, "delta", tuple(self.K_s - x for x in Kt))
+            return
+        # both (dataclasses.replace passes both): either must be K_s minus the other
+        d = checks.real_values("delta", self.delta)
+        if tuple(self.K_s - x for x in Kt) != d and tuple(self.K_s - x for x in d) != Kt:
+            raise ValueError("give the rows as delta= or as K_theta=, not both (these "
+                             "disagree: delta = K_s - K_theta)")
+
+    def material_at(self, i: int) -> Material:
+        """The material of row i: alpha, K_s and the row's K_theta."""
+        return Material(self.alpha, self.K_s, self.K_theta[i])
+
+    def extreme_K_theta(self) -> list:
+        """K_theta of the rows with the smallest and the largest delta (one if they are
+        the same), in order of delta: a carrier's frequency is monotone in K_theta (linear
+        in it under the root of eqs. `discrete1`, `discrete2`), so the grid's fastest
+        carriers sit there."""
+        rows = {}
+        for i, d in enumerate(self.delta):
+            rows.setdefault(d, i)
+        return [self.K_theta[rows[d]] for d in sorted({min(self.delta), max(self.delta)})]
 
     @property
     def k_simulated(self) -> tuple:
@@ -178,13 +240,9 @@ class MapParameters:
         grid's fastest carrier (``numerics.maps._cells.map_step``)."""
         if self.dt is not None and self.method is not None:
             return self.method, float(self.dt)
-        from ..lattice import Material
         from ._cells import map_step
 
-        # a carrier's frequency is monotone in K_theta (linear in it under the root of
-        # eqs. `discrete1`, `discrete2`): the grid's fastest carriers sit at its extreme deltas
-        mats = [Material(self.alpha, self.K_s, self.K_s - d)
-                for d in sorted({min(self.delta), max(self.delta)})]
+        mats = [Material(self.alpha, self.K_s, Kt) for Kt in self.extreme_K_theta()]
         method, dt = map_step(mats, self.case, self.k_simulated, self.N, self.t_end,
                               self.amplitude, self.start, self.growth_tol,
                               None if self.method is None else [self.method])
@@ -195,7 +253,7 @@ class MapParameters:
         return self.amplitude / (2 * self.eps)
 
     def attrs(self) -> dict:
-        out = {n: v for n, v in asdict(self).items() if n not in ("delta", "k")}
+        out = {n: v for n, v in asdict(self).items() if n not in ("delta", "k", "K_theta")}
         chosen = self.dt is None or self.method is None
         out["method"], out["dt"] = self.cell_step
         out["step"] = (f"chosen for a relative growth-factor error of {self.growth_tol:g} "
@@ -209,13 +267,13 @@ class MapParameters:
         return out
 
 
-def _largest_stable_step(alpha, K_s, delta, case) -> float:
-    """The largest step any map method may take on this grid: 0.8 of the most stable
-    method's limit over the grid's highest frequency (``_accuracy.STABILITY_MARGIN``)."""
-    from ..lattice import Material
+def _largest_stable_step(alpha, K_s, K_theta, case) -> float:
+    """The largest step any map method may take on this grid (its extreme K_theta): 0.8 of
+    the most stable method's limit over the grid's highest frequency
+    (``_accuracy.STABILITY_MARGIN``)."""
     from ..lattice._accuracy import ERROR_CONSTANTS, STABILITY_MARGIN
 
-    w = max(Material(alpha, K_s, K_s - d).omega_max(case) for d in (min(delta), max(delta)))
+    w = max(Material(alpha, K_s, Kt).omega_max(case) for Kt in K_theta)
     limit = max(get_method(m).stability_limit() for m in {*ERROR_CONSTANTS,
                                                           *GROWTH_ERROR_CONSTANTS})
     return STABILITY_MARGIN * limit / w

@@ -37,7 +37,7 @@ from numba import njit
 from generated import lattice_model as model
 
 from ..lattice import checks
-from ..theory._hill import _coefficients, _hill_batch, _is_mi, _sideband_share, check_map_grid
+from ..theory._hill import _coefficients, _hill_batch, _is_mi, _sideband_share, map_grid
 from ..theory._plane_wave import _on_branch, _solve_plane_waves
 from ..theory._quasiperiodic import ROUNDOFF
 
@@ -210,15 +210,21 @@ def _candidates(q, sigma, n):
     return q[jc] + np.clip(shift, -1, 1) * (q[1] - q[0]), val
 
 
-def resonance_map(k, delta, case: str, alpha: float, K_s: float, amplitude: float,
-                  start: str = "travelling", grid: int = RESONANCE_GRID, chunk: int = 1000):
+def resonance_map(k, delta=None, case: str | None = None, alpha: float | None = None,
+                  K_s: float | None = None, amplitude: float | None = None,
+                  start: str = "travelling", grid: int = RESONANCE_GRID, chunk: int = 1000, *,
+                  material=None, K_theta=None):
     """Peak sideband growth rate over a grid of (k, delta), from the resonance conditions.
 
     Parameters
     ----------
     k, delta : array_like, same (or broadcastable) shapes
         Carrier wavenumbers in (0, pi) and delta = K_s - K_theta (K_theta > 0).
-    case, alpha, K_s : as in :func:`numerics.stability_map`.
+    case : {"rotation", "coupled"}
+    material : Material
+        The material (keyword): its alpha and K_s; the grid's K_theta is K_s - delta (the
+        material's own K_theta is not used). ``alpha, K_s`` (floats) instead are the
+        earlier form: ``resonance_map(k, delta, case, alpha, K_s, amplitude)``.
     amplitude : float
         Peak rotation of the travelling wave, or the initial rotation of eq. `IC`.
     start : {"travelling", "paper"}
@@ -226,6 +232,9 @@ def resonance_map(k, delta, case: str, alpha: float, K_s: float, amplitude: floa
         free U waves pump; case I: the same as "travelling", no U).
     grid : int
         Points of the reduced problem's offset grid in (0, pi].
+    K_theta : array_like, optional
+        The grid's second axis as K_theta itself instead of delta (keyword; no K_s - delta
+        round trip): give delta or K_theta.
 
     Returns
     -------
@@ -238,14 +247,15 @@ def resonance_map(k, delta, case: str, alpha: float, K_s: float, amplitude: floa
     # resolve a band 3e-6 wide and stay within a few hundred MB at the default chunk
     grid = checks.integer("grid", grid, 16, 10**6 + 1)
     chunk = checks.integer("chunk", chunk, 1)
-    alpha, K_s, amplitude, k, delta = check_map_grid(case, alpha, K_s, amplitude, k, delta)
+    alpha, K_s, amplitude, k, K_theta = map_grid(k, delta, case, alpha, K_s, amplitude,
+                                                 material, K_theta)
     q = np.linspace(np.pi / grid, np.pi, grid)
     coupled = case == "coupled"
-    kf, df = k.ravel().astype(float), delta.ravel().astype(float)
+    kf, Ktf = k.ravel().astype(float), K_theta.ravel().astype(float)
     out = {"peak_gain": np.zeros(kf.size), "q_peak": np.full(kf.size, np.nan),
            "pumped": np.zeros(kf.size, bool)}
     slices = [slice(s, s + chunk) for s in range(0, kf.size, chunk)]
-    tasks = [dask.delayed(_chunk)(kf[sl], K_s - df[sl], float(alpha), float(K_s),
+    tasks = [dask.delayed(_chunk)(kf[sl], Ktf[sl], float(alpha), float(K_s),
                                   float(amplitude), q, coupled, start == "paper" and coupled)
              for sl in slices]
     # chunks on the machine's cores: NumPy and LAPACK release the GIL (1.7x on 2 cores)

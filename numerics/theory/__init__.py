@@ -28,9 +28,10 @@ from ._launched import FreeWave, LaunchedState, launched_state
 from ._plane_wave import NoPlaneWaveError, PlaneWave, plane_wave
 from ._quasiperiodic import GainSpectrum
 from ._response import GrowthPrediction, predict_growth
-from ._soliton import (KINDS, MIN_WIDTH, SOLITON_THEORIES, Snapshot, Soliton, SolitonRun,
-                       SolitonWarning, default_ring, measure_state, ring_wavenumber,
-                       simulate_soliton, soliton, soliton_report, soliton_state)
+from ._soliton import (KINDS, MIN_WIDTH, SOLITON_THEORIES, Soliton, SolitonWarning,
+                       ring_wavenumber, soliton)
+from ._soliton_launch import default_ring, simulate_soliton, soliton_state
+from ._soliton_measure import Snapshot, SolitonRun, measure_state, soliton_report
 
 __all__ = [
     "PlaneWave", "plane_wave", "LaunchedState", "FreeWave", "launched_state", "mi_gain",

@@ -185,36 +185,72 @@ def mi_gain(material: Material, case: str, k: float, amplitude: float, q,
     return sigma.reshape(q_arr.shape)
 
 
-def check_map_grid(case, alpha, K_s, amplitude, k, delta, q=None):
+def check_map_grid(case, alpha, K_s, amplitude, k, delta, q=None, axis="delta"):
     """The arguments every (k, delta) map shares, checked: returns alpha, K_s, amplitude
-    and k, delta broadcast together (``q``, the offsets a map samples, checked finite)."""
+    and k, delta broadcast together (``q``, the offsets a map samples, checked finite).
+    ``axis="K_theta"``: the second coordinate is K_theta itself, not K_s - K_theta."""
     check_case(case)
     alpha = checks.positive("alpha", alpha)
     K_s = checks.positive("K_s", K_s)
     amplitude = checks.real("amplitude (peak rotation, rad)", amplitude, 0.0, MAX_AMPLITUDE)
-    k, delta = checks.real_array("k", k), checks.real_array("delta", delta)
+    k, delta = checks.real_array("k", k), checks.real_array(axis, delta)
     try:
         k, delta = np.broadcast_arrays(k, delta)
     except ValueError:
-        raise ValueError(f"k and delta must have the same (or broadcastable) shapes, got "
+        raise ValueError(f"k and {axis} must have the same (or broadcastable) shapes, got "
                          f"{k.shape} and {delta.shape}") from None
     arrays = (k, delta) if q is None else (k, delta, q)
     if not all(np.all(np.isfinite(a)) for a in arrays):
-        raise ValueError(("k and delta" if q is None else "k, delta and q") + " must be finite")
-    if np.any(K_s - delta <= 0) or np.any((k <= 0) | (k >= np.pi)):
-        raise ValueError("need K_theta = K_s - delta > 0 and 0 < k < pi on the whole grid")
+        raise ValueError((f"k and {axis}" if q is None else f"k, {axis} and q") + " must be finite")
+    K_theta = K_s - delta if axis == "delta" else delta
+    if np.any(K_theta <= 0) or np.any((k <= 0) | (k >= np.pi)):
+        raise ValueError(("need K_theta = K_s - delta > 0" if axis == "delta" else
+                          "need K_theta > 0") + " and 0 < k < pi on the whole grid")
     return alpha, K_s, amplitude, k, delta
 
 
-def stability_map(k, delta, case: str, alpha: float, K_s: float, amplitude: float,
-                  q=None, harmonics: int = 1, chunk: int = 2000, modes: str = "sidebands"):
+def map_grid(k, delta, case, alpha, K_s, amplitude, material=None, K_theta=None, q=None):
+    """The inputs of a (k, delta) map in either form, checked: the material as ``material``
+    (a Material: its alpha and K_s; the grid gives K_theta) or as ``alpha, K_s``; the grid's
+    second axis as ``delta`` or as ``K_theta`` itself. Returns alpha, K_s, amplitude, and k
+    and the grid's K_theta broadcast together (K_s - delta, or K_theta as given)."""
+    if material is not None:
+        checks.instance("material", material, Material)
+        if alpha is not None or K_s is not None:
+            raise TypeError("give the material as material= or as alpha and K_s, not both")
+        alpha, K_s = material.alpha, material.K_s
+    for name, value in (("case", case), ("alpha", alpha), ("K_s", K_s),
+                        ("amplitude", amplitude)):
+        if value is None:
+            raise TypeError(f"missing {name}" + (" (or material=, a Material)"
+                                                 if name in ("alpha", "K_s") else ""))
+    if (delta is None) == (K_theta is None):
+        raise TypeError("give the grid's second axis as delta or as K_theta=, one of them")
+    if K_theta is None:
+        alpha, K_s, amplitude, k, delta = check_map_grid(case, alpha, K_s, amplitude, k, delta,
+                                                         q)
+        return alpha, K_s, amplitude, k, K_s - delta
+    return check_map_grid(case, alpha, K_s, amplitude, k, K_theta, q, axis="K_theta")
+
+
+def stability_map(k, delta=None, case: str | None = None, alpha: float | None = None,
+                  K_s: float | None = None, amplitude: float | None = None, q=None,
+                  harmonics: int = 1, chunk: int = 2000, modes: str = "sidebands", *,
+                  material: Material | None = None, K_theta=None):
     """Peak sideband growth rate max_q sigma(q) over a grid of (k, delta), batched.
 
     Parameters
     ----------
-    k, delta : array_like, same shape
+    k, delta : array_like, same (or broadcastable) shapes
         Carrier wavenumbers and delta = K_s - K_theta (K_theta must stay > 0).
-    case, alpha, K_s, amplitude : as in :func:`mi_gain`.
+    case, amplitude : as in :func:`mi_gain`.
+    material : Material
+        The material (keyword): its alpha and K_s; the grid's K_theta is K_s - delta (the
+        material's own K_theta is not used). ``alpha, K_s`` (floats) instead are the
+        earlier form: ``stability_map(k, delta, case, alpha, K_s, amplitude)``.
+    K_theta : array_like, optional
+        The grid's second axis as K_theta itself instead of delta (keyword; no K_s - delta
+        round trip): give delta or K_theta.
     q : array_like, optional
         Offsets searched (default 20 values in (0, 1.5]: at amplitude 0.02 every
         sideband band of the paper's parameter range lies inside).
@@ -236,12 +272,13 @@ def stability_map(k, delta, case: str, alpha: float, K_s: float, amplitude: floa
                          + ("" if q.size == 0 else " with a non-finite one"))
     H = _check_harmonics(harmonics)
     checks.choice("modes", modes, ("sidebands", "all"))
-    alpha, K_s, amplitude, k, delta = check_map_grid(case, alpha, K_s, amplitude, k, delta, q)
-    kf, df = k.ravel(), delta.ravel()
+    alpha, K_s, amplitude, k, K_theta = map_grid(k, delta, case, alpha, K_s, amplitude,
+                                                 material, K_theta, q)
+    kf, Ktf = k.ravel(), K_theta.ravel()
     out = np.zeros(kf.size)
     coupled = case == "coupled"
     for s in range(0, kf.size, chunk):
-        kk, Kt = kf[s:s + chunk], K_s - df[s:s + chunk]
+        kk, Kt = kf[s:s + chunk], Ktf[s:s + chunk]
         B = kk.size
         al, Ks = np.full(B, float(alpha)), np.full(B, float(K_s))
         x, res = _solve_plane_waves(kk, np.full(B, float(amplitude)), al, Ks, Kt, coupled, H)

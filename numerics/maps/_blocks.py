@@ -1,0 +1,62 @@
+"""One task of a map: a block of cells (one delta, up to ``block`` values of k), predicted
+and, unless the map is theory-only, simulated, on a worker; and the blocks of the cells a
+store has not done yet."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ._params import MapParameters
+
+FIELD_CODES = {"theta": 0, "U": 1}
+
+
+def simulate_block(params: MapParameters, i: int, js: list, simulate: bool = True) -> dict:
+    """Predict, and unless ``simulate`` is False simulate, the cells (i, j) for j in
+    ``js`` (runs on a worker)."""
+    from ._cells import predict_cell, simulate_cell
+
+    mat = params.material_at(i)
+    method, dt = params.cell_step
+    rows = []
+    for j in js:
+        k = params.k_simulated[j]
+        row, pred = predict_cell(mat, params.case, k, params.N, params.t_end,
+                                 params.amplitude, params.noise, params.seeds, params.start)
+        if simulate:
+            runs = [simulate_cell(mat, params.case, k, params.N, params.t_end,
+                                  params.amplitude, params.noise, seed, params.start,
+                                  dt, method) for seed in range(params.seeds)]
+            verdict = sum(r["verdict_simulated"] for r in runs) * 2 > len(runs)
+            growths = [r["growth"] for r in runs]
+            top = runs[int(np.argmax(growths))]
+            row.update({
+                "verdict_simulated": bool(verdict), "growth": float(np.median(growths)),
+                "growth_field": FIELD_CODES[top["growth_field"]],
+                "growth_q": float(top["growth_q"]),
+                "t_simulated": float(max(r["t_simulated"] for r in runs)),
+                "peak_gain": float(np.nanmedian([r["peak_gain"] for r in runs]))
+                if any(np.isfinite(r["peak_gain"]) for r in runs) else float("nan")})
+            # predicted and measured growth over the same span (a run stops early once
+            # its verdict is certain): log10 of their ratio, first seed
+            row["growth_log_ratio"] = (
+                math.log10(pred.growth_at(runs[0]["t_simulated"]) / runs[0]["growth"])
+                if pred is not None and runs[0]["growth"] > 0 else float("nan"))
+        rows.append(row)
+    return {"i": i, "js": list(js), "rows": rows, "simulated": simulate}
+
+
+def blocks(params: MapParameters, done: np.ndarray) -> list:
+    """(i, [j, ...]) blocks of the cells not done, aligned with the store's chunks."""
+    out = []
+    for i in range(len(params.delta)):
+        for j0 in range(0, len(params.k), params.block):
+            js = [j for j in range(j0, min(j0 + params.block, len(params.k)))]
+            if not np.all(done[i, js]):
+                out.append((i, js))
+    return out
+
+
+__all__ = ["simulate_block", "blocks", "FIELD_CODES"]
