@@ -34,6 +34,7 @@ import dask
 import numpy as np
 from numba import njit
 
+from common.threads import one_blas_thread
 from generated import lattice_model as model
 
 from ..lattice import checks
@@ -210,6 +211,7 @@ def _candidates(q, sigma, n):
     return q[jc] + np.clip(shift, -1, 1) * (q[1] - q[0]), val
 
 
+@one_blas_thread
 def resonance_map(k, delta=None, case: str | None = None, alpha: float | None = None,
                   K_s: float | None = None, amplitude: float | None = None,
                   start: str = "travelling", grid: int = RESONANCE_GRID, chunk: int = 1000, *,

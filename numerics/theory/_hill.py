@@ -22,6 +22,7 @@ import functools
 
 import numpy as np
 
+from common.threads import one_blas_thread
 from generated import lattice_model as model
 
 from ..lattice import checks
@@ -117,6 +118,7 @@ def _check_wave(wave, material, case, k, amplitude, H):
                          "harmonics)")
 
 
+@one_blas_thread
 def mi_gain(material: Material, case: str, k: float, amplitude: float, q,
             harmonics: int = HARMONICS, wave: PlaneWave | None = None,
             modes: str = "sidebands", start: str = "travelling") -> np.ndarray:
@@ -233,6 +235,7 @@ def map_grid(k, delta, case, alpha, K_s, amplitude, material=None, K_theta=None,
     return check_map_grid(case, alpha, K_s, amplitude, k, K_theta, q, axis="K_theta")
 
 
+@one_blas_thread
 def stability_map(k, delta=None, case: str | None = None, alpha: float | None = None,
                   K_s: float | None = None, amplitude: float | None = None, q=None,
                   harmonics: int = 1, chunk: int = 2000, modes: str = "sidebands", *,
@@ -311,6 +314,7 @@ TORUS_TOLERANCE = 2e-2
 FREE_ORDER = 1
 
 
+@one_blas_thread
 def gain_spectrum(material: Material, case: str, k: float, amplitude: float, q,
                   start: str = "travelling", modes: str = "sidebands",
                   harmonics: int = HARMONICS, free_order: int = FREE_ORDER) -> GainSpectrum:
