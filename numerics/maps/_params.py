@@ -25,9 +25,10 @@ DEFAULT_BLOCK = 4
 #: for the run-time estimate, scaled by the evaluations per unit time of the map's step
 CELL_SECONDS = 0.15
 #: seconds one cell's growth prediction takes on one core (numerics.theory.predict_growth,
-#: N = 500, draws = 0; measured on this machine): the exact travelling wave's Hill
-#: families, or, for eq. `IC`, first the torus of the state it launches (~0.5 s)
-PREDICT_SECONDS = {"travelling": 0.15, "paper": 0.7}
+#: N = 500, draws = 0, case II, the larger; measured on this machine under load ~1.5):
+#: the exact travelling wave's Hill families, or, for eq. `IC`, first the torus of the
+#: state it launches (~0.1 s of the 0.35 s)
+PREDICT_SECONDS = {"travelling": 0.15, "paper": 0.35}
 CRITERION = (f"MI when the largest non-carrier, non-harmonic component (theta; U: its "
              f"non-forced components, from its level at 5% of the run) grows more than "
              f"{GROWTH_THRESHOLD:g}x over the run, relative to the carrier (the scenes' "
