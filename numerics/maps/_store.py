@@ -133,8 +133,9 @@ def _verified(path: Path, ds, params: MapParameters, log):
 
 def _write_block(path: Path, params: MapParameters, result: dict, arrays: dict | None = None):
     """Write a finished block into the store (a region write of whole chunks): its
-    predicted and simulated variables, their flags and the cells' checksums. ``arrays``: the store's values
-    in memory (name -> array), updated here; read from the store when not given."""
+    predicted and simulated variables, their flags and the cells' checksums. ``arrays``:
+    the store's values in memory (name -> array), updated here; read from the store when
+    not given."""
     import xarray as xr
 
     from ._integrity import CHECKSUM, cell_checksums
