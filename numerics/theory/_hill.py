@@ -203,7 +203,8 @@ def check_map_grid(case, alpha, K_s, amplitude, k, delta, q=None, axis="delta"):
                          f"{k.shape} and {delta.shape}") from None
     arrays = (k, delta) if q is None else (k, delta, q)
     if not all(np.all(np.isfinite(a)) for a in arrays):
-        raise ValueError((f"k and {axis}" if q is None else f"k, {axis} and q") + " must be finite")
+        raise ValueError((f"k and {axis}" if q is None else f"k, {axis} and q")
+                         + " must be finite")
     K_theta = K_s - delta if axis == "delta" else delta
     if np.any(K_theta <= 0) or np.any((k <= 0) | (k >= np.pi)):
         raise ValueError(("need K_theta = K_s - delta > 0" if axis == "delta" else
