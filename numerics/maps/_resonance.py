@@ -108,7 +108,7 @@ def _reduced(C, k, W, q, coupled, poles=False):
     return wp, wm, c2
 
 
-@njit(cache=True, error_model="numpy", boundscheck=False)
+@njit(cache=True, nogil=True, error_model="numpy", boundscheck=False)
 def _entry(c, l, e):
     """sum_j c_{j, l} e^{i j (q + p k)} for one cell: c (3, M), e = e^{i (q + p k)}."""
     M = c.shape[1]
@@ -116,7 +116,7 @@ def _entry(c, l, e):
     return c[0, m] * e.conjugate() + c[1, m] + c[2, m] * e
 
 
-@njit(cache=True, error_model="numpy", boundscheck=False)
+@njit(cache=True, nogil=True, error_model="numpy", boundscheck=False)
 def _reduced_points(tt, tU, Ut, k, W, q, coupled, wp, wm, c2, dens):
     B, Q = q.shape
     for b in range(B):

@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import functools
 
+import dask
 import numpy as np
 
 from common.threads import one_blas_thread
@@ -280,30 +281,38 @@ def stability_map(k, delta=None, case: str | None = None, alpha: float | None = 
                                                  material, K_theta, q)
     kf, Ktf = k.ravel(), K_theta.ravel()
     out = np.zeros(kf.size)
-    coupled = case == "coupled"
-    for s in range(0, kf.size, chunk):
-        kk, Kt = kf[s:s + chunk], Ktf[s:s + chunk]
-        B = kk.size
-        al, Ks = np.full(B, float(alpha)), np.full(B, float(K_s))
-        x, res = _solve_plane_waves(kk, np.full(B, float(amplitude)), al, Ks, Kt, coupled, H)
-        ok = _on_branch(x, res, amplitude)
-        A, labels = _hill_batch(x[:, :H], x[:, H:2 * H], kk, x[:, -1], al, Ks, Kt, q,
-                                2 * H - 1, coupled)
-        # eigenvalues everywhere, eigenvectors (to tell sideband modes) only where needed
-        lam = np.linalg.eigvals(A)
-        grow = lam.real.max(axis=-1) > ROUNDOFF * x[:, -1:]
-        gq = np.zeros(grow.shape)
-        if modes == "all":
-            gq = np.where(grow, lam.real.max(axis=-1), 0.0)
-        elif np.any(grow):
-            lam_u, vec = np.linalg.eig(A[grow])
-            share = _sideband_share(vec, labels, np.broadcast_to(al[:, None] ** 2,
-                                                                 grow.shape)[grow])
-            gq[grow] = np.where(_is_mi(share), lam_u.real, 0.0).max(axis=-1)
-        g = gq.max(axis=1)
-        g[g < ROUNDOFF * x[:, -1]] = 0.0
-        out[s:s + chunk] = np.where(ok, g, np.nan)  # nan: no plane wave (resonance)
+    starts = range(0, kf.size, chunk)
+    tasks = [dask.delayed(_stability_chunk)(kf[s:s + chunk], Ktf[s:s + chunk], float(alpha),
+                                            float(K_s), float(amplitude), q, H,
+                                            case == "coupled", modes) for s in starts]
+    # chunks on the machine's cores (LAPACK on one BLAS thread releases the GIL)
+    for s, g in zip(starts, dask.compute(*tasks, scheduler="threads")):
+        out[s:s + chunk] = g
     return out.reshape(k.shape)
+
+
+def _stability_chunk(kk, Kt, alpha, K_s, amplitude, q, H, coupled, modes):
+    """Peak rate of one chunk of cells (``stability_map``); NaN where no plane wave."""
+    B = kk.size
+    al, Ks = np.full(B, alpha), np.full(B, K_s)
+    x, res = _solve_plane_waves(kk, np.full(B, amplitude), al, Ks, Kt, coupled, H)
+    ok = _on_branch(x, res, amplitude)
+    A, labels = _hill_batch(x[:, :H], x[:, H:2 * H], kk, x[:, -1], al, Ks, Kt, q,
+                            2 * H - 1, coupled)
+    # eigenvalues everywhere, eigenvectors (to tell sideband modes) only where needed
+    lam = np.linalg.eigvals(A)
+    grow = lam.real.max(axis=-1) > ROUNDOFF * x[:, -1:]
+    gq = np.zeros(grow.shape)
+    if modes == "all":
+        gq = np.where(grow, lam.real.max(axis=-1), 0.0)
+    elif np.any(grow):
+        lam_u, vec = np.linalg.eig(A[grow])
+        share = _sideband_share(vec, labels, np.broadcast_to(al[:, None] ** 2,
+                                                             grow.shape)[grow])
+        gq[grow] = np.where(_is_mi(share), lam_u.real, 0.0).max(axis=-1)
+    g = gq.max(axis=1)
+    g[g < ROUNDOFF * x[:, -1]] = 0.0
+    return np.where(ok, g, np.nan)  # nan: no plane wave (resonance)
 
 
 #: a launched state is quasi-periodic when its torus describes the reduced trajectory to
