@@ -10,7 +10,7 @@ from numerics.lattice import LatticeState
 from numerics.lattice import _integrate
 from numerics.lattice import _kernels as kernels
 from numerics.lattice._integrate import STEPPERS, _Stepper
-from numerics.lattice._simulate import _record_grid
+from numerics.lattice._run import record_grid as _record_grid
 
 
 class _Reference:

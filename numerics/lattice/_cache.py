@@ -13,8 +13,9 @@ from common.files import atomic_write
 
 from ._integrate import SimulationInterrupted
 from ._model import LatticeState, Material
-from ._simulate import RECORDS as _ARRAYS
-from ._simulate import Run, joined, resume, simulate
+from ._run import RECORDS as _ARRAYS
+from ._run import Run, joined
+from ._simulate import resume, simulate
 from ._version import SIMULATOR_VERSION
 
 #: How many simulations actually ran in this process (cache misses); tests read it.
