@@ -78,7 +78,7 @@ def open_or_create(path: Path, params: MapParameters, overwrite: bool = False, l
 
     if path.exists():
         try:
-            ds = xr.open_zarr(path, consolidated=False)
+            ds = xr.open_zarr(path, consolidated=False, chunks=None)
             ds.attrs  # noqa: B018 - metadata read
         except Exception as exc:  # noqa: BLE001 - any unreadable store
             if not overwrite:
@@ -94,7 +94,7 @@ def open_or_create(path: Path, params: MapParameters, overwrite: bool = False, l
                              "format); replace it with --overwrite, or choose another --out")
     ds = empty_dataset(params, theory_columns(params))
     _write_new(path, ds, params)
-    return xr.open_zarr(path, consolidated=False)
+    return xr.open_zarr(path, consolidated=False, chunks=None)
 
 
 def _verified(path: Path, ds, params: MapParameters, log):
@@ -128,7 +128,7 @@ def _verified(path: Path, ds, params: MapParameters, log):
                        cell_checksums({n: fresh[n].values for n in fresh.data_vars}),
                        fresh[CHECKSUM].attrs)
     _write_new(path, fresh, params)
-    return xr.open_zarr(path, consolidated=False)
+    return xr.open_zarr(path, consolidated=False, chunks=None)
 
 
 class _CellWriter:
@@ -169,7 +169,7 @@ def _write_block(path: Path, params: MapParameters, result: dict, arrays: dict |
     from ._integrity import CHECKSUM, cell_checksums
 
     if arrays is None:
-        with xr.open_zarr(path, consolidated=False) as ds:
+        with xr.open_zarr(path, consolidated=False, chunks=None) as ds:
             arrays = {n: ds[n].values for n in ds.data_vars}
     i, js = result["i"], result["js"]
     j0, j1 = min(js), max(js) + 1
@@ -220,7 +220,7 @@ def run_map(params: MapParameters, out: Path, scheduler: str | None = None,
         if todo:
             _run_tasks(params, path, todo, n_cells - n_done, scheduler, workers, progress,
                        log, arrays, timeout)
-        return xr.open_zarr(path, consolidated=False).load()
+        return xr.open_zarr(path, consolidated=False, chunks=None).load()
 
 
 class MapCellError(ValueError):
