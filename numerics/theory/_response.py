@@ -49,6 +49,7 @@ from ..lattice._starts import check_start
 from ._launched import forward_backward
 from ._plane_wave import HARMONICS, _check_harmonics, plane_wave
 from ._quasiperiodic import hill_matrix, torus_of_wave
+from ._torus import uniform_phases
 
 #: draws of the noise law for the expected growth factor (its Monte-Carlo error on the
 #: mean is std / sqrt(DRAWS), ~ 10% of the spread between seeds)
@@ -225,15 +226,23 @@ class _Families:
         """Complex amplitudes e^{i b n} of every (family, row) at times t: (nt, nf, n, draws)
         before the sum over m (rows of one p at the same bin add in the lab frame)."""
         coef = np.linalg.solve(self.V, X0)  # biorthogonal projection on the modes
-        n = self.n
-        Vx = self.V[:, :n, :]  # (nf, n, 2n): values (the first n rows)
-        z = self.lam[None, :, :] * t[:, None, None]  # (nt, nf, 2n)
+        n, nf, draws = self.n, X0.shape[0], X0.shape[2]
+        # W[f, m, r, d]: mode m's share of row r's value (the first n rows are values)
+        W = (np.transpose(self.V[:, :n, :], (0, 2, 1))[..., None] * coef[:, :, None, :])
         # a growing mode's factor beyond e^600 is far past saturation (linear is False
         # there anyway): capped so that long runs give huge, finite factors, never inf/NaN
-        grow = np.exp(np.minimum(z.real, MAX_EXPONENT)) * np.exp(1j * z.imag)
+        grow = np.exp(np.minimum(self.lam.real[:, None, :] * t[None, :, None], MAX_EXPONENT))
+        grow = grow * _rotations(self.lam.imag, t)  # (nf, nt, 2n)
+        out = np.matmul(grow, W.reshape(nf, 2 * n, n * draws)).reshape(nf, t.size, n, draws)
         lab = np.exp(-1j * self.freq[None, :] * t[:, None])  # (nt, n)
-        out = np.einsum("frm,tfm,fmd->tfrd", Vx, grow, coef, optimize=True)
-        return out * lab[:, None, :, None]
+        return np.transpose(out, (1, 0, 2, 3)) * lab[:, None, :, None]
+
+
+def _rotations(w, t):
+    """e^{i w t} for every w (nf, m) and t (nt,) -> (nf, nt, m) (``uniform_phases``: two
+    small tables of exponentials and a product, instead of nf nt m exponentials)."""
+    nf, m = w.shape
+    return np.transpose(uniform_phases(t, w.ravel()).reshape(t.size, nf, m), (1, 0, 2))
 
 
 def _strongest_phases(torus, keep: int):

@@ -53,6 +53,9 @@ FIT_ORDER, TORUS_HARMONICS = 3, 8
 #: error model (``_accuracy.ERROR_CONSTANTS``) gives ~6e-6 relative over 20 000 T (the
 #: tori last ~2000 T); halving it changes predicted growth factors by < 3e-6 (60 fig3 cells)
 OMEGA_DT = 0.8
+#: frequency analysis: coarse grid points over +- 3 resolution bins (10 per bin: the peak's
+#: main lobe spans 4), Newton steps, and the tolerance relative to the grid's half-width
+PEAK_GRID, PEAK_NEWTON, PEAK_TOL = 61, 8, 1e-9
 
 
 @dataclass(frozen=True)
@@ -110,13 +113,13 @@ class Torus:
         p = np.arange(-self.P, self.P + 1)
         out = np.einsum("pm,pa->am", F * np.exp(1j * p * self.k * shift)[:, None],
                         np.exp(1j * np.outer(p, phi)))
-        grids = np.meshgrid(*([psi] * self.nu.size), indexing="ij") if self.nu.size else []
-        shape = (phi.size,) + (psi.size,) * self.nu.size
-        res = np.zeros(shape, complex)
-        for j, m in enumerate(self.modes):
-            ph = np.exp(1j * sum(mi * g for mi, g in zip(m, grids))) if grids else 1.0
-            res += out[:, j].reshape((-1,) + (1,) * self.nu.size) * ph
-        return res.real
+        d = self.nu.size
+        shape = (phi.size,) + (psi.size,) * d
+        if not d:
+            return out.sum(axis=1).real.reshape(shape)
+        grids = np.stack([g.ravel() for g in np.meshgrid(*([psi] * d), indexing="ij")])
+        # every mode's free phase factor on the grid at once: (nm, Mq^d)
+        return (out @ np.exp(1j * (self.modes @ grids))).real.reshape(shape)
 
 
 def _shift_matrices(k, M):
@@ -223,22 +226,66 @@ def _harmonics(y, P):
 
 
 def _peak(t, c, guess, window, span):
-    """Frequency near ``guess`` maximising |sum w c e^{i nu t}| (a NAFF step): a coarse
-    grid finds the peak, a bounded scalar search refines it to 1e-9 of the span."""
+    """Frequency near ``guess`` maximising |S(nu)| = |sum w c e^{i nu t}| (a NAFF step): a
+    coarse grid finds the peak, Newton steps on |S|^2 refine it to PEAK_TOL of the span.
+
+    The grid's values come from one exponential and a running product (t is uniform:
+    e^{i (nu + h) t} = e^{i nu t} e^{i h t}); Newton uses S' and S'' in closed form. Where
+    Newton does not settle inside the grid cell, a bounded scalar search does it."""
+    wc = window * c
+    grid = guess + np.linspace(-span, span, PEAK_GRID)
+    step = grid[1] - grid[0]
+    term = np.exp(1j * grid[0] * t) * wc
+    turn = np.exp(1j * step * t)
+    power = np.empty(PEAK_GRID)
+    for i in range(PEAK_GRID):
+        power[i] = abs(term.sum())
+        term *= turn
+    best = float(grid[np.argmax(power)])
+    lo, hi = best - step, best + step
+    twc, t2wc = t * wc, t * t * wc
+    nu = best
+    for _ in range(PEAK_NEWTON):
+        e = np.exp(1j * nu * t)
+        S, S1, S2 = e @ wc, e @ twc, e @ t2wc
+        # f = |S|^2: f' = 2 Re(conj(S) i S1), f'' = 2 (|S1|^2 - Re(conj(S) S2))
+        d1 = -2.0 * (np.conj(S) * S1).imag
+        d2 = 2.0 * (abs(S1) ** 2 - (np.conj(S) * S2).real)
+        if not d2 < 0.0:  # not concave here: no Newton step
+            break
+        move = -d1 / d2
+        nu += move
+        if not lo <= nu <= hi:
+            break
+        if abs(move) < PEAK_TOL * span:
+            return float(nu)
     from scipy.optimize import minimize_scalar
 
-    wc = window * c
-    power = lambda nu: -abs(np.exp(1j * nu * t) @ wc)  # noqa: E731
-    grid = guess + np.linspace(-span, span, 61)
-    best = grid[np.argmin([power(nu) for nu in grid])]
-    step = grid[1] - grid[0]
-    res = minimize_scalar(power, bounds=(best - step, best + step), method="bounded",
-                          options={"xatol": 1e-9 * span})
-    return float(res.x) if -res.fun >= -power(best) else float(best)
+    neg = lambda x: -abs(np.exp(1j * x * t) @ wc)  # noqa: E731
+    res = minimize_scalar(neg, bounds=(lo, hi), method="bounded",
+                          options={"xatol": PEAK_TOL * span})
+    return float(res.x) if -res.fun >= -neg(best) else best
+
+
+def uniform_phases(t, w):
+    """e^{i w t} for t (nt,) and w (nw,) -> (nt, nw), the same as np.exp(1j * np.outer(t,
+    w)) to a few eps. On a uniform t (t_j = t_0 + j h) as the product of two tables,
+    e^{i w (t_0 + B a h)} e^{i w b h} with j = B a + b: ~2 sqrt(nt) exponentials per w
+    instead of nt (the trajectories' sample grids and the records are uniform)."""
+    t, w = np.asarray(t, float), np.asarray(w, float)
+    nt = t.size
+    h = (t[-1] - t[0]) / (nt - 1) if nt > 1 else 0.0
+    if nt < 64 or not np.allclose(t, t[0] + h * np.arange(nt), rtol=0.0,
+                                  atol=1e-12 * max(abs(t[-1]), abs(t[0]), 1.0)):
+        return np.exp(1j * np.outer(t, w))
+    B = int(np.ceil(np.sqrt(nt)))
+    coarse = np.exp(1j * np.outer(t[0] + B * h * np.arange(-(-nt // B)), w))  # (na, nw)
+    fine = np.exp(1j * np.outer(h * np.arange(B), w))  # (B, nw)
+    return (coarse[:, None, :] * fine[None, :, :]).reshape(-1, w.size)[:nt]
 
 
 def _basis(t, base, nu, modes):
-    return np.exp(-1j * (base + modes @ nu)[None, :] * t[:, None])
+    return uniform_phases(t, -(base + modes @ nu))
 
 
 def torus(material, case, k, fields0, free, omega_guess, P=TORUS_HARMONICS, M=PHASE_POINTS,
@@ -280,19 +327,21 @@ def torus(material, case, k, fields0, free, omega_guess, P=TORUS_HARMONICS, M=PH
     combos = list(itertools.product(range(-order, order + 1), repeat=d))
     modes = np.array(combos, int).reshape(len(combos), d)
     F = np.zeros((2, 2 * P + 1, modes.shape[0]), complex)
-    num = den = 0.0
     # the basis of harmonic p is that of p = 0 times the unit-modulus e^{-i p Omega t}, so
     # every fit shares one Gram matrix (normal equations; the windowed quasi-periodic basis
     # is nearly orthogonal over many beats, cond(G) ~ 1)
     B = _basis(t, 0.0, nu, modes) * window[:, None]
-    G = B.conj().T @ B
-    for f in (0, 1):
-        for p in range(P + 1):
-            rhs = c[:, f, p] * window * np.exp(1j * p * omega * t)
-            coef = np.linalg.solve(G, B.conj().T @ rhs)
-            num += np.sum(np.abs(B @ coef - rhs) ** 2)
-            den += np.sum(np.abs(rhs) ** 2)
-            F[f, P + p] = coef if p == 0 else coef / 2
+    Bh = np.ascontiguousarray(B.conj().T)
+    G = Bh @ B
+    # every (field, p) at once: the demodulated harmonics are the right-hand sides
+    demod = np.exp(1j * omega * np.outer(t, np.arange(P + 1)))  # (nt, P + 1)
+    rhs = (c * (window[:, None] * demod)[:, None, :]).reshape(t.size, 2 * (P + 1))
+    coef = np.linalg.solve(G, Bh @ rhs)  # (nm, 2 (P + 1))
+    num = np.sum(np.abs(B @ coef - rhs) ** 2)
+    den = np.sum(np.abs(rhs) ** 2)
+    coef = coef.T.reshape(2, P + 1, -1)
+    F[:, P] = coef[:, 0]
+    F[:, P + 1:] = coef[:, 1:] / 2
     # p = 0: c_0 is real, so its coefficients pair as F[0, m] = conj F[0, -m]; average them
     mirror = [int(np.flatnonzero(np.all(modes == -m, axis=1))[0]) for m in modes]
     for f in (0, 1):
