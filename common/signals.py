@@ -21,8 +21,20 @@ class Interrupted(KeyboardInterrupt):
         self.signum = int(signum)
 
 
+#: signals :func:`raise_interrupted` received inside :func:`interrupts`: an interrupt that a
+#: library turned into another error on its way up (a pipe closed mid-read: EBADF) is still
+#: reported as the interrupt
+_received: list = []
+
+
 def raise_interrupted(signum, frame):  # noqa: ARG001 - a signal handler
+    _received.append(int(signum))
     raise Interrupted(signum)
+
+
+def received() -> Interrupted | None:
+    """The interrupt that arrived inside the current :func:`interrupts` block, if any."""
+    return Interrupted(_received[-1]) if _received else None
 
 
 def is_interrupt_handler(handler) -> bool:
@@ -48,6 +60,7 @@ def interrupts():
         yield
         return
     old = {s: signal.getsignal(s) for s in SIGNALS}
+    _received.clear()
     for s in SIGNALS:
         signal.signal(s, raise_interrupted)
     try:

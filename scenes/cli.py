@@ -198,7 +198,7 @@ def _print_checks(summary):
 def main(argv=None) -> int:
     """Run the CLI; returns the exit code (0 ok, 2 bad input or file system, 130 SIGINT,
     143 SIGTERM: both handled alike, one line saying what was kept where)."""
-    from common.signals import exit_code, interrupts
+    from common.signals import exit_code, interrupts, received
 
     with interrupts():
         try:
@@ -213,13 +213,17 @@ def main(argv=None) -> int:
             except KeyboardInterrupt:
                 pass
             return exit_code(exc)
-        except (ValueError, TypeError, FloatingPointError, MemoryError) as exc:
-            text = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
-            print(f"flexmm: error: {text}", file=sys.stderr)
-            return 2
-        except OSError as exc:
-            where = f" {exc.filename}" if exc.filename else ""
-            print(f"flexmm: error:{where}: {exc.strerror or exc}", file=sys.stderr)
+        except (ValueError, TypeError, FloatingPointError, MemoryError, OSError) as exc:
+            if (interrupt := received()) is not None:  # an interrupt, in another form
+                print(f"flexmm: {_interrupted(locals().get('args'), interrupt)}",
+                      file=sys.stderr)
+                return exit_code(interrupt)
+            if isinstance(exc, OSError):
+                where = f" {exc.filename}" if exc.filename else ""
+                print(f"flexmm: error:{where}: {exc.strerror or exc}", file=sys.stderr)
+            else:
+                text = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+                print(f"flexmm: error: {text}", file=sys.stderr)
             return 2
 
 

@@ -143,3 +143,33 @@ print(run.completed, os.environ["NUMBA_CACHE_DIR"])
     assert p.stdout.split() == ["True", str(cache)]
     assert list(cache.rglob("*.nbi"))  # the kernels were cached there
     assert not list((tmp_path / "numerics").rglob("*.nbi"))  # and not in the package
+
+
+def test_an_interrupt_a_library_turned_into_another_error_is_still_the_interrupt(
+        monkeypatch, capsys):
+    """A SIGINT that reaches a library mid-I/O may surface as another error (seen once in
+    CI: a map's start-up gave "Bad file descriptor", exit 2): it is still reported as the
+    interrupt (exit 130, one line); an error without an interrupt stays an error."""
+    import errno
+
+    import scenes.cli as cli
+
+    def swallowed(args):
+        try:
+            os.kill(os.getpid(), signal.SIGINT)
+            time.sleep(1.0)  # the handler runs here
+        except KeyboardInterrupt:
+            raise OSError(errno.EBADF, os.strerror(errno.EBADF)) from None
+        raise AssertionError("no interrupt arrived")
+
+    monkeypatch.setattr(cli, "_run", swallowed)
+    assert cli.main(["scenes"]) == 130
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "interrupted (SIGINT)" in err[0]
+
+    def plain(args):
+        raise OSError(errno.EBADF, os.strerror(errno.EBADF))
+
+    monkeypatch.setattr(cli, "_run", plain)
+    assert cli.main(["scenes"]) == 2
+    assert "Bad file descriptor" in capsys.readouterr().err
