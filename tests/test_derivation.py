@@ -231,3 +231,38 @@ def test_every_erratum_is_in_the_readme():
     errata = (ROOT / "docs" / "reliability.md").read_text()
     for e in ERRATA:
         assert e["where"] in errata, e["where"]
+
+
+def test_the_derivation_stamp_lists_what_derivation_imports_and_is_current():
+    """`make run` re-derives when generated/SOURCES.sha256 differs from the sources' hashes:
+    it must list every common/ module derivation imports (else a change there is missed),
+    only those (else a change elsewhere re-derives a fresh clone for nothing), and be the
+    committed hashes of those files (else a fresh clone re-derives and dirties the tree)."""
+    import ast
+    import hashlib
+
+    root = Path(__file__).resolve().parents[1]
+    imported = {"common/__init__.py"}
+    for f in (root / "derivation").glob("*.py"):
+        for node in ast.walk(ast.parse(f.read_text())):
+            if isinstance(node, ast.ImportFrom) and node.module and (
+                    node.module == "common" or node.module.startswith("common.")):
+                parts = node.module.split(".")[1:]
+                if parts:
+                    imported.add(f"common/{parts[0]}.py")
+                else:  # from common import paper
+                    imported.update(f"common/{a.name}.py" for a in node.names)
+    makefile = (root / "Makefile").read_text()
+    listed = set(next(line for line in makefile.splitlines()
+                      if line.startswith("DERIVATION_COMMON :=")).split(":=")[1].split())
+    assert listed == imported
+    stamp = {}
+    for line in (root / "generated" / "SOURCES.sha256").read_text().splitlines():
+        if "  " in line:
+            digest, name = line.split("  ", 1)
+            stamp[name] = digest
+    expected = sorted(str(p.relative_to(root)) for p in (root / "derivation").glob("*.py"))
+    assert set(stamp) == set(expected) | listed
+    for name, digest in stamp.items():
+        assert hashlib.sha256((root / name).read_bytes()).hexdigest() == digest, (
+            f"{name} changed since generated/SOURCES.sha256: run `make derive`")
