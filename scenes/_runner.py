@@ -154,14 +154,14 @@ def _save_figure(fig, folder: Path, quick: bool):
     plt.close(fig)
 
 
-def prepare_output(out: Path | str) -> Path:
-    """Create OUT and OUT/.cache and prove both writable, before any computation.
+def prepare_output(out: Path | str, cache: bool = True) -> Path:
+    """Create OUT and (``cache``) OUT/.cache and prove them writable, before any computation.
 
     Raises ValueError naming the path and the cause (a file where a folder must be, a
     read-only or full file system, ...), so the CLI answers in one line.
     """
     out = Path(out) if str(out) else Path(".")
-    for folder in (out, out / ".cache"):
+    for folder in (out, out / ".cache") if cache else (out,):
         if folder.exists() and not folder.is_dir():
             raise ValueError(f"{folder} is a file, not a folder")
         try:

@@ -119,6 +119,10 @@ def snapped(k_requested: float, N: int):
 
 def run_point(args, log=print) -> dict:
     mat, units = material_from(args)
+    if args.out:  # before any computation (a simulation may take minutes)
+        from ._runner import prepare_output
+
+        prepare_output(args.out, cache=False)
     amplitude = checks.real("--amplitude", args.amplitude, 0.0, 1.5)
     N, k_req = args.N, args.k
     k, m = snapped(k_req, N)

@@ -33,6 +33,10 @@ def run_soliton(args, log=print) -> dict:
     from .point import material_from
 
     mat, _ = material_from(args)
+    if args.out:  # before any computation (a simulation may take minutes)
+        from ._runner import prepare_output
+
+        prepare_output(args.out, cache=False)
     amplitude = checks.real("--amplitude", args.amplitude, 0.0, 1.0)
     k = checks.real("--k", args.k, 0.0, math.pi)
     theory = THEORY[args.theory]

@@ -165,6 +165,29 @@ def test_cli_file_system_errors(setup, match, tmp_path, capsys):
     assert err.startswith("flexmm: error:") and __import__("re").search(match, err)
 
 
+@pytest.mark.parametrize("command", [
+    ["point", "--case", "coupled", "--alpha", "2.5", "--K-s", "0.01851", "--K-theta", "0.02",
+     "--k", "0.9", "--simulate"],
+    ["soliton", "--alpha", "2.5", "--K-s", "0.01851", "--K-theta", "0.02", "--k", "0.9",
+     "--simulate"]])
+def test_point_and_soliton_check_their_output_before_simulating(command, tmp_path, capsys,
+                                                                monkeypatch):
+    """--out under a file fails at once (no simulation runs first), in one line."""
+    import scenes.point
+    import scenes.soliton
+
+    def never(*_a, **_k):
+        raise AssertionError("simulated before checking --out")
+
+    monkeypatch.setattr(scenes.point, "simulate", never)
+    monkeypatch.setattr(scenes.soliton, "simulate_soliton", never)
+    out = _file_as_out(tmp_path) / "x"
+    assert cli(command + ["--out", str(out)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and "Traceback" not in err
+    assert err.startswith("flexmm: error:") and str(out) in err
+
+
 # --- 5. Ctrl-C in the CLI: one line, 130, checkpoint, the rerun continues -----------------
 
 def test_cli_ctrl_c_is_one_line_and_exit_130(tmp_path, capsys, monkeypatch):
@@ -260,3 +283,11 @@ def test_cached_rerun_of_gain_theories_redoes_no_theory(tmp_path, monkeypatch):
     first = calls["n"]
     scenes.run_scene("gain-theories", tmp_path, quick=True)
     assert first > 0 and calls["n"] == first
+
+
+def test_a_wavenumber_below_the_longest_wave_names_the_limit():
+    from numerics import snap_wavenumber
+
+    with pytest.raises(ValueError, match=r"2 pi / N = 0\.01257: choose k >= 0\.01257, or "
+                                         r"more sites \(N >= 1257\)"):
+        snap_wavenumber(0.005, 500)

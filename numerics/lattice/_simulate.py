@@ -45,7 +45,12 @@ def snap_wavenumber(k: float, N: int, rel_tol: float = 1e-3):
         raise ValueError(f"k must be in (0, pi), got {k!r}")
     m = int(round(k * N / (2 * math.pi)))
     ks = 2 * math.pi * m / N
-    if m == 0 or abs(ks - k) > rel_tol * k:
+    if m == 0:
+        raise ValueError(
+            f"k = {k:g} is below the longest wave N = {N} periodic sites carry, 2 pi / N = "
+            f"{2 * math.pi / N:.4g}: choose k >= {2 * math.pi / N:.4g}, or more sites (N >= "
+            f"{math.ceil(2 * math.pi / k)})")
+    if abs(ks - k) > rel_tol * k:
         raise ValueError(
             f"k = {k} is not commensurate with N = {N} periodic sites: the nearest "
             f"2 pi m / N is {ks:.6g} (m = {m}), {abs(ks - k) / k:.2e} away (> {rel_tol:g} "
