@@ -64,8 +64,8 @@ def fine_theories(case, g, quick):
     gains["exact"] = resonance_map(K, D, case, paper.ALPHA, paper.K_S, paper.AMPLITUDE,
                                    start="paper")["peak_gain"]
     return kf, df, gains
-PAPER_FINDING = known("finding: the paper's NLS verdict fails on parts of the map, README "
-                      "'Maps by simulation'")
+PAPER_FINDING = known("finding: the paper's NLS verdict fails on parts of the map, "
+                      "docs/maps.md 'Maps by simulation'")
 THEORY_NAMES = ("paper", "semidiscrete", "exact", "exact_all")
 #: how the figure names them
 THEORY_LABELS = {"paper": "paper's NLS", "semidiscrete": "semi-discrete NLS",

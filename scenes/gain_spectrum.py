@@ -23,8 +23,8 @@ from ._runs import measured_gain
 
 #: agreement of a measured peak gain or band edge with the NLS within this fraction
 NLS_TOLERANCE = 0.25
-#: the peak-gain disagreement is a finding about the paper (README 'Beyond the paper')
-PEAK_FINDING = known("finding: the paper's NLS overestimates the peak gain, README "
+#: the peak-gain disagreement is a finding about the paper (docs/theory.md 'Beyond the paper')
+PEAK_FINDING = known("finding: the paper's NLS overestimates the peak gain, docs/theory.md "
                      "'Beyond the paper'")
 
 
