@@ -53,12 +53,17 @@ def plot_map(ds, ax=None):
     from ._plotting import image, plt
 
     if ax is None:
-        fig, ax = plt.subplots(figsize=(6, 4.5))
+        fig, ax = plt.subplots(figsize=(6, 4.5), layout="constrained")
     else:
         fig = ax.figure
     k, d = ds["k"].values, ds["delta"].values
     done = ds["done"].values
-    sim = np.where(done, np.where(ds["verdict_simulated"].values == 1, 1.0, -1.0), 0.0)
+    # a theory-only map has no simulated cell: its background is the predicted verdict
+    shown, what = "verdict_simulated", "simulated"
+    if not done.any() and "verdict_predicted" in ds and "done_predicted" in ds:
+        shown, what = "verdict_predicted", "predicted growth > 20x"
+        done = ds["done_predicted"].values & (ds["verdict_predicted"].values >= 0)
+    sim = np.where(done, np.where(ds[shown].values == 1, 1.0, -1.0), 0.0)
     if len(k) > 1 and len(d) > 1:
         image(ax, k, d, sim, cmap="gray", vmin=-1, vmax=1)
         for name, color in (("verdict_paper", "C1"), ("verdict_semidiscrete", "C2"),
@@ -74,8 +79,9 @@ def plot_map(ds, ax=None):
                    cmap="gray", vmin=-1, vmax=1, edgecolors="k")
     ax.set_xlabel("k (rad per site)")
     ax.set_ylabel("delta")
-    ax.set_title(f"case {ds.attrs['case']}, alpha = {ds.attrs['alpha']}, a = "
-                 f"{ds.attrs['amplitude']:g}: simulated (white = MI)", fontsize=9)
+    ax.set_title(f"case {ds.attrs['case']}, alpha = {ds.attrs['alpha']}, amplitude "
+                 f"{ds.attrs['amplitude']:g} rad\n{what}: white MI, black stable, grey "
+                 "not done or undetermined", fontsize=9)
     return fig
 
 

@@ -233,8 +233,8 @@ def run_point(args, log=print) -> dict:
                default=None)
     if best is not None:
         q = best[3]
-        log(f"fastest growth ({best[0]}): sidebands at k + q = {k + q:.4g} and k - q = "
-            f"{k - q:.4g} rad/site, e-folding time {units.time(1 / best[2])}")
+        log(f"fastest growth ({best[0]}): offset q - k = {q:.4g}, sidebands q at "
+            f"{k + q:.4g} and {k - q:.4g} rad/site, e-folding time {units.time(1 / best[2])}")
     if args.out:
         out = Path(args.out)
         out.mkdir(parents=True, exist_ok=True)
