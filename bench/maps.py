@@ -6,9 +6,11 @@ scheduling overhead, the 64 x 64 map's wall time, and the cells' accuracy.
   1% growth-factor error) and, for the ratio, at the paper's RK4 dt = 0.05; measured
   serially (no Dask) on a row of stable and unstable cells of case II; beside it the cost
   of the cell's prediction (``predict_cell``), which ``run_map`` adds.
-- The same 32-cell map (4 x 8 around the blue point, case II, block = 1) on a LocalCluster
-  of 1 and of 2 worker processes, and of 1 worker with 2 threads (the compiled loops
-  release the GIL): the speed-up of each layout, clusters warmed up first.
+- The same 64-cell map (4 x 16 around the blue point, case II, block = 1, predictions
+  included; 4 x 8 with --quick) on a LocalCluster of 1 and of 2 worker processes, and of 1
+  worker with 2 threads (the compiled loops release the GIL): the speed-up of each layout,
+  clusters warmed up first; over ``run_map``'s whole call and over its task phase (the
+  store's opening, checksums and final load, ~1 s, do not use the workers).
 - Scheduling overhead: no-op tasks through the same cluster against the cost of a task.
 - The 64 x 64 map (fig3 plane: alpha = 2.5, delta in [-0.012, 0.012], k in [0.08, 0.92] pi,
   case II): its cells simulated in blocks of 4 on this machine's default cluster, measured
@@ -44,7 +46,8 @@ def _noop(x):
 
 
 def _params(N, T, n_k=4, **kw):
-    kk = 2 * np.pi * np.round(np.linspace(0.7, 1.0, n_k) * N / (2 * np.pi)) / N
+    # distinct carriers of the ring (at the quick N = 100 fewer than n_k exist)
+    kk = 2 * np.pi * np.unique(np.round(np.linspace(0.7, 1.0, n_k) * N / (2 * np.pi))) / N
     return maps.MapParameters(case="coupled", alpha=paper.ALPHA, K_s=paper.K_S,
                               delta=(-0.006, -0.002, 0.002, 0.006), k=tuple(kk),
                               amplitude=paper.AMPLITUDE, N=N, t_end=T, block=1, **kw)
@@ -87,7 +90,8 @@ def cell_costs(params, paper_params):
 
 
 def layout_walls(params):
-    """Wall time of the 32-cell map per cluster layout (fresh stores, warmed clusters)."""
+    """Wall time of the layouts' map per cluster layout (fresh stores, warmed clusters), and
+    of its task phase."""
     from dask.distributed import Client, LocalCluster
 
     layouts = {"1 process": dict(n_workers=1, threads_per_worker=1, processes=True),
@@ -97,7 +101,7 @@ def layout_walls(params):
     tiny = maps.MapParameters(case="coupled", alpha=paper.ALPHA, K_s=paper.K_S,
                               delta=(0.003,), k=(2 * np.pi * 13 / 100,), amplitude=0.02,
                               N=100, t_end=10.0)
-    walls = {}
+    walls, tasks = {}, {}
     for name, kw in layouts.items():
         d = Path(tempfile.mkdtemp())
         try:
@@ -106,13 +110,17 @@ def layout_walls(params):
                     Client(cluster) as client:
                 client.gather([client.submit(maps.simulate_block, tiny, 0, [0], pure=False)
                                for _ in range(2)])  # load the compiled kernels
+                said = []
                 t0 = time.perf_counter()
                 maps.run_map(params, d, scheduler=cluster.scheduler_address, progress=False,
-                             log=lambda *_: None)
+                             log=said.append)
                 walls[name] = time.perf_counter() - t0
+                # the task phase alone (run_map's own log: "simulated n cells in x s"): the
+                # store's opening, checksums and final load (~1 s) do not use the workers
+                tasks[name] = float(said[-1].rsplit(" in ", 1)[1].split()[0])
         finally:
             shutil.rmtree(d, ignore_errors=True)
-    return walls
+    return walls, tasks
 
 
 def scheduling_overhead():
@@ -189,9 +197,10 @@ def main(quick=False, out=None):
     serial = statistics.mean(c["default"]["s"] for c in costs)
     serial_rk4 = statistics.mean(c["rk4 dt = 0.05"]["s"] for c in costs)
     predict = statistics.mean(c["prediction_s"] for c in costs)
-    walls = layout_walls(_params(N, T, n_k=8))
+    n_k = 8 if quick else 16  # the layouts' map: 4 x n_k cells, one task each
+    walls, tasks = layout_walls(_params(N, T, n_k=n_k))
     overhead = scheduling_overhead()
-    n_cells = 32
+    n_cells = 4 * len(_params(N, T, n_k=n_k).k)
     per_cell = walls["1 process"] / n_cells  # run_map on one worker: prediction included
     res = {"machine": machine(), "quick": quick, "N": N, "t_end": T,
            "method": params.cell_step[0], "dt": params.cell_step[1],
@@ -199,9 +208,12 @@ def main(quick=False, out=None):
            "prediction_per_cell_serial_s": predict,
            "per_cell_serial_rk4_s": serial_rk4, "default_over_rk4": serial_rk4 / serial,
            "cells": costs, "cells_per_second_per_core": 1 / serial,
-           "map_32_cells_wall_s": walls,
+           "layout_map_cells": n_cells, "layout_map_wall_s": walls,
+           "layout_map_task_phase_s": tasks,
            "speedup_2_workers": walls["1 process"] / walls["2 processes"],
            "speedup_2_threads": walls["1 process"] / walls["1 process, 2 threads"],
+           "speedup_2_workers_task_phase": tasks["1 process"] / tasks["2 processes"],
+           "speedup_2_threads_task_phase": tasks["1 process"] / tasks["1 process, 2 threads"],
            "scheduling_overhead_per_task_s": overhead,
            "overhead_fraction_of_a_task": overhead / (per_cell * params.block),
            "map_64x64_estimated_here_s": 64 * 64 * serial / 2}
@@ -215,9 +227,12 @@ def main(quick=False, out=None):
           f"in {serial:.3f} s serially = {1 / serial:.1f} cells/s/core (RK4 at dt = 0.05 "
           f"{serial_rk4:.3f} s: {serial_rk4 / serial:.1f}x); its prediction {predict:.3f} s; "
           f"both in run_map on one worker {per_cell:.3f} s")
-    print("32-cell map: " + ", ".join(f"{k} {v:.2f} s" for k, v in walls.items())
+    print(f"{n_cells}-cell map: " + ", ".join(f"{k} {v:.2f} s" for k, v in walls.items())
           + f" -> 2 processes {res['speedup_2_workers']:.2f}x, 2 threads "
-          f"{res['speedup_2_threads']:.2f}x")
+          f"{res['speedup_2_threads']:.2f}x; its task phase: "
+          + ", ".join(f"{k} {v:.2f} s" for k, v in tasks.items())
+          + f" -> 2 processes {res['speedup_2_workers_task_phase']:.2f}x, 2 threads "
+          f"{res['speedup_2_threads_task_phase']:.2f}x")
     print(f"scheduling overhead {overhead * 1e3:.2f} ms per task = "
           f"{100 * res['overhead_fraction_of_a_task']:.2f}% of a {params.block}-cell task")
     if "map_64x64" in res:

@@ -4,6 +4,7 @@ store has not done yet."""
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -12,12 +13,45 @@ from ._params import MapParameters
 
 FIELD_CODES = {"theta": 0, "U": 1}
 
+#: glibc's mallopt parameters, and the values a map worker runs with: arrays up to 32 MB
+#: (the largest glibc allows) from the heap, which keeps up to 128 MB of freed memory
+M_TRIM_THRESHOLD, M_MMAP_THRESHOLD = -1, -3
+MMAP_THRESHOLD, TRIM_THRESHOLD = 1 << 25, 1 << 27
+
+
+@functools.cache
+def keep_freed_memory() -> bool:
+    """Let this process reuse freed memory instead of returning it to the OS (glibc only;
+    elsewhere a no-op, False).
+
+    Dask's workers start with MALLOC_TRIM_THRESHOLD_=65536 (``distributed.nanny.
+    pre-spawn-environ``), which also freezes glibc's adaptive mmap threshold at 128 kB: every
+    array above it (a prediction's Hill matrices and responses, 1-15 MB) is then a fresh
+    mmap whose pages the kernel faults in and zeroes. Measured on 16 cells of a map on one
+    worker: 0.75 s system time against 0.2 s serially, the cells' wall time 10-20% longer;
+    with these values 0.2 s. Called by every task (once per process), so that workers a
+    user starts with ``dask worker`` get it too."""
+    import ctypes
+    import ctypes.util
+
+    name = ctypes.util.find_library("c")
+    try:
+        libc = ctypes.CDLL(name) if name else None
+        mallopt = libc.mallopt if libc is not None else None
+    except (OSError, AttributeError):
+        return False
+    if mallopt is None:
+        return False
+    return bool(mallopt(M_MMAP_THRESHOLD, MMAP_THRESHOLD)
+                and mallopt(M_TRIM_THRESHOLD, TRIM_THRESHOLD))
+
 
 def simulate_block(params: MapParameters, i: int, js: list, simulate: bool = True) -> dict:
     """Predict, and unless ``simulate`` is False simulate, the cells (i, j) for j in
     ``js`` (runs on a worker)."""
     from ._cells import predict_cell, simulate_cell
 
+    keep_freed_memory()
     mat = params.material_at(i)
     method, dt = params.cell_step
     rows = []
