@@ -67,7 +67,8 @@ def coefficients(material: Material, k: float, amplitude: float = paper.AMPLITUD
     Quantities: omega (eq. `continuum2` / `discrete2`), v_g = d omega / dk, g1 (eq. `g_i`),
     and per case g2, g = g2 / g1, the band K_c, K_m (NLS units, eq. `kc`; offsets
     eps K in rad per site) and the peak lattice gain eps^2 |g1| Omega_I(K_m); and |c| of
-    u2 = c B^2 e^{2 i sigma} + c.c. (eq. `u1`) with the forced U amplitude at 2k, |c| a^2/2.
+    u2 = c B^2 e^{2 i sigma} + c.c. (eq. `u1`) with the forced U amplitude at 2k, |c| amp^2/2
+    (amp the peak rotation).
     The plane wave's peak rotation ``amplitude`` is the paper's 2 eps A0.
     """
     checks.instance("material", material, Material)
@@ -136,7 +137,7 @@ def format_coefficients(material: Material, k: float, amplitude: float, units: U
                     cells.append(f"{r[key]:.6g}")
             table.append([label] + cells)
     table.append(["u2: |c| (eq. u1)"] + [f"{co[n]['u2 |c|']:.6g}" for n in names])
-    table.append(["U at 2k = |c| a^2/2"] + [f"{co[n]['U at 2k']:.4g}" for n in names])
+    table.append(["U at 2k = |c| amp^2/2"] + [f"{co[n]['U at 2k']:.4g}" for n in names])
     widths = [max(len(r[i]) for r in table) for i in range(len(table[0]))]
     for j, r in enumerate(table):
         lines.append("  ".join(c.ljust(w) if i == 0 else c.rjust(w)
