@@ -25,9 +25,9 @@ from ._runs import plain_parameters, run_parameters
 
 POINT, CASE = "green", "coupled"
 #: the continuum u2 is off by 4x, and of the wrong sign, at the green point
-U2_FINDING = known("finding: continuum u2 has the wrong resonance, README 'Second harmonic'")
+U2_FINDING = known("finding: continuum u2 has the wrong resonance, docs/simulator.md 'Second harmonic'")
 #: the same sign flip makes the measured frequency shift positive
-SHIFT_FINDING = known("finding: frequency shift of the wrong sign, README 'Second harmonic'")
+SHIFT_FINDING = known("finding: frequency shift of the wrong sign, docs/simulator.md 'Second harmonic'")
 #: the lattice second harmonic must match the measurement this closely; the continuum one
 #: counts as agreeing within the looser U2_TOLERANCE
 LATTICE_TOLERANCE, U2_TOLERANCE = 0.05, 0.2
