@@ -198,9 +198,10 @@ def main(quick=False, out=None):
     serial_rk4 = statistics.mean(c["rk4 dt = 0.05"]["s"] for c in costs)
     predict = statistics.mean(c["prediction_s"] for c in costs)
     n_k = 8 if quick else 16  # the layouts' map: 4 x n_k cells, one task each
-    walls, tasks = layout_walls(_params(N, T, n_k=n_k))
+    layout = _params(N, T, n_k=n_k)
+    walls, tasks = layout_walls(layout)
     overhead = scheduling_overhead()
-    n_cells = 4 * len(_params(N, T, n_k=n_k).k)
+    n_cells = len(layout.delta) * len(layout.k)
     per_cell = walls["1 process"] / n_cells  # run_map on one worker: prediction included
     res = {"machine": machine(), "quick": quick, "N": N, "t_end": T,
            "method": params.cell_step[0], "dt": params.cell_step[1],

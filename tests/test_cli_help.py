@@ -58,3 +58,20 @@ def test_run_reports_each_scene_as_it_finishes(tmp_path):
                             log=lines.append)
     assert report.exists()
     assert [ln.split(":")[0] for ln in lines] == ["[1/2] fig2-dispersion", "[2/2] fig4-km-map"]
+
+
+def test_point_t_end_help_states_the_bounds_the_default_uses():
+    """The help's numbers are typed in the parser (importing the theory there would slow
+    every `--help`): they must be those of ``measurement_length``."""
+    import inspect
+
+    from numerics.theory import _gain
+    from scenes.cli import _parser
+
+    sub = next(a for a in _parser()._actions if a.dest == "cmd")
+    help_text = " ".join(next(a for a in sub.choices["point"]._actions
+                              if a.dest == "t_end").help.split())
+    lo, hi = _gain.T_BOUNDS
+    default = inspect.signature(_gain.measurement_length).parameters["default"].default
+    assert f"{_gain.E_FOLDINGS:g} e-foldings" in help_text
+    assert f"within [{lo:g}, {hi:g}]; {default:g} where nothing grows" in help_text

@@ -232,17 +232,11 @@ class _Families:
         # a growing mode's factor beyond e^600 is far past saturation (linear is False
         # there anyway): capped so that long runs give huge, finite factors, never inf/NaN
         grow = np.exp(np.minimum(self.lam.real[:, None, :] * t[None, :, None], MAX_EXPONENT))
-        grow = grow * _rotations(self.lam.imag, t)  # (nf, nt, 2n)
+        turns = uniform_phases(t, self.lam.imag.ravel()).reshape(t.size, nf, 2 * n)
+        grow = grow * np.transpose(turns, (1, 0, 2))  # (nf, nt, 2n)
         out = np.matmul(grow, W.reshape(nf, 2 * n, n * draws)).reshape(nf, t.size, n, draws)
-        lab = np.exp(-1j * self.freq[None, :] * t[:, None])  # (nt, n)
+        lab = uniform_phases(t, -self.freq)  # (nt, n)
         return np.transpose(out, (1, 0, 2, 3)) * lab[:, None, :, None]
-
-
-def _rotations(w, t):
-    """e^{i w t} for every w (nf, m) and t (nt,) -> (nf, nt, m) (``uniform_phases``: two
-    small tables of exponentials and a product, instead of nf nt m exponentials)."""
-    nf, m = w.shape
-    return np.transpose(uniform_phases(t, w.ravel()).reshape(t.size, nf, m), (1, 0, 2))
 
 
 def _strongest_phases(torus, keep: int):
@@ -272,7 +266,7 @@ def _free_waves(material, N, delta, field, covered, t):
          if field == 0 else model.omega_longitudinal(qq))
     w = np.where(w > 0, w, 1.0)  # the uniform U mode is a rigid shift: no beating
     f, b = forward_backward(delta[2 * field][:, rest], delta[2 * field + 1][:, rest], w)
-    ph = np.exp(-1j * np.outer(t, w))  # (nt, nb)
+    ph = uniform_phases(t, -w)  # (nt, nb)
     return rest, f[None] * ph[:, None] + b[None] * np.conj(ph)[:, None]
 
 

@@ -334,7 +334,7 @@ def torus(material, case, k, fields0, free, omega_guess, P=TORUS_HARMONICS, M=PH
     Bh = np.ascontiguousarray(B.conj().T)
     G = Bh @ B
     # every (field, p) at once: the demodulated harmonics are the right-hand sides
-    demod = np.exp(1j * omega * np.outer(t, np.arange(P + 1)))  # (nt, P + 1)
+    demod = uniform_phases(t, omega * np.arange(P + 1))  # (nt, P + 1)
     rhs = (c * (window[:, None] * demod)[:, None, :]).reshape(t.size, 2 * (P + 1))
     coef = np.linalg.solve(G, Bh @ rhs)  # (nm, 2 (P + 1))
     num = np.sum(np.abs(B @ coef - rhs) ** 2)
