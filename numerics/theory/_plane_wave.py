@@ -46,11 +46,29 @@ class NoPlaneWaveError(ArithmeticError):
     linear wave (near a resonance of a harmonic with a lattice mode)."""
 
 
-def _shift(coef, harm, k, phi, kind):
-    """Evaluate sum_m coef_m f(m (phi + k)) on the grid, f = cos or sin; k shape (B,)."""
-    arg = harm[None, :, None] * (phi[None, None, :] + k[:, None, None])
-    f = np.cos(arg) if kind == "cos" else np.sin(arg)
+def _shift(coef, harm, k, phi, kind, table=None):
+    """Evaluate sum_m coef_m f(m (phi + k)) on the grid, f = cos or sin; k shape (B,).
+    ``table``: f(m (phi + k)) itself, (B, H, M), where the caller has it (``_tables``)."""
+    f = _table(harm, k, phi, kind) if table is None else table
     return np.einsum("bm,bmj->bj", coef, f)
+
+
+def _table(harm, k, phi, kind):
+    arg = harm[None, :, None] * (phi[None, None, :] + k[:, None, None])
+    return np.cos(arg) if kind == "cos" else np.sin(arg)
+
+
+def _tables(k, H, phi, coupled):
+    """The phase tables of ``_residual`` for carriers k (B,): (kind, shift) -> (B, H, M),
+    shift -1, 0, 1 in units of k. They depend on k only, so Newton computes them once."""
+    mo = 2.0 * np.arange(H) + 1
+    zero = np.zeros_like(k)
+    t = {}
+    for s, shift in ((-1, -k), (0, zero), (1, k)):
+        t["cos", s] = _table(mo, shift, phi, "cos")
+        if coupled:
+            t["sin", s] = _table(mo + 1, shift, phi, "sin")
+    return t
 
 
 @dataclass(frozen=True)
@@ -106,25 +124,25 @@ class PlaneWave:
         return out
 
 
-def _residual(x, k, amp, al, Ks, Kt, H, coupled, phi):
-    """Harmonic-balance residuals, batched: x = (a_1..a_H, b_1..b_H, Omega), shape (B, 2H+1)."""
+def _residual(x, k, amp, al, Ks, Kt, H, coupled, phi, tables=None):
+    """Harmonic-balance residuals, batched: x = (a_1..a_H, b_1..b_H, Omega), shape (B, 2H+1).
+    ``tables``: ``_tables(k, H, phi, coupled)``, if the caller keeps them."""
     mo = 2.0 * np.arange(H) + 1
     me = mo + 1
     a, b, W = x[:, :H], x[:, H:2 * H], x[:, -1]
-    zero = np.zeros_like(k)
-    th0 = _shift(a, mo, zero, phi, "cos")
-    thp, thm = _shift(a, mo, k, phi, "cos"), _shift(a, mo, -k, phi, "cos")
-    d2th = _shift(-a * mo**2, mo, zero, phi, "cos")
+    t = _tables(k, H, phi, coupled) if tables is None else tables
+    thm, th0, thp = (_shift(a, mo, None, phi, "cos", t["cos", s]) for s in (-1, 0, 1))
+    d2th = _shift(-a * mo**2, mo, None, phi, "cos", t["cos", 0])
     Um = U0 = Up = 0.0
     if coupled:
-        Um, U0, Up = (_shift(b, me, s, phi, "sin") for s in (-k, zero, k))
+        Um, U0, Up = (_shift(b, me, None, phi, "sin", t["sin", s]) for s in (-1, 0, 1))
     al, Ks, Kt = al[:, None], Ks[:, None], Kt[:, None]
     rt = W[:, None] ** 2 * d2th - model.acceleration_theta(Um, U0, Up, thm, th0, thp, al, Ks, Kt)
     M = phi.size
     proj_c = np.cos(np.outer(phi, mo)) * (2.0 / M)  # (M, H)
     R = [rt @ proj_c]
     if coupled:
-        d2U = _shift(-b * me**2, me, zero, phi, "sin")
+        d2U = _shift(-b * me**2, me, None, phi, "sin", t["sin", 0])
         ru = W[:, None] ** 2 * d2U - model.acceleration_U(Um, U0, Up, thm, th0, thp, al, Ks, Kt)
         R.append(ru @ (np.sin(np.outer(phi, me)) * (2.0 / M)))
     else:
@@ -150,28 +168,32 @@ def _solve_plane_waves(k, amp, al, Ks, Kt, coupled, H, tol=NEWTON_TOL,
         x = x0.copy()
     scale = np.maximum(amp, 1e-300)
     active = np.arange(B)  # waves still iterating (converged ones are left alone)
+    tables = _tables(k, H, phi, coupled)
     for _ in range(max_iter):
         xa, ka, ampa, ala, Ksa, Kta = (v[active] for v in (x, k, amp, al, Ks, Kt))
-        R = _residual(xa, ka, ampa, ala, Ksa, Kta, H, coupled, phi)
+        ta = {key: v[active] for key, v in tables.items()}
+        R = _residual(xa, ka, ampa, ala, Ksa, Kta, H, coupled, phi, ta)
         res = np.max(np.abs(R), axis=1) / np.maximum(scale[active] * al2[active], 1e-300)
         keep = res >= tol
         if not np.any(keep):
             break
         active, xa, R = active[keep], xa[keep], R[keep]
         ka, ampa, ala, Ksa, Kta = (v[keep] for v in (ka, ampa, ala, Ksa, Kta))
+        ta = {key: v[keep] for key, v in ta.items()}
         J = np.empty((active.size, n, n))
         for j in range(n):
             h = 1e-7 * (scale[active] if j < 2 * H else xa[:, -1])
             xp = xa.copy()
             xp[:, j] += h
-            J[:, :, j] = (_residual(xp, ka, ampa, ala, Ksa, Kta, H, coupled, phi) - R) / h[:, None]
+            J[:, :, j] = (_residual(xp, ka, ampa, ala, Ksa, Kta, H, coupled, phi, ta)
+                          - R) / h[:, None]
         try:
             dx = np.linalg.solve(J, R[:, :, None])[:, :, 0]
         except np.linalg.LinAlgError:
             raise NoPlaneWaveError("harmonic balance: singular Jacobian (a harmonic of the "
                                   "wave is resonant with a lattice mode)") from None
         x[active] = xa - dx
-    R = _residual(x, k, amp, al, Ks, Kt, H, coupled, phi)
+    R = _residual(x, k, amp, al, Ks, Kt, H, coupled, phi, tables)
     res = np.max(np.abs(R), axis=1) / np.maximum(scale * al2, 1e-300)
     return x, res
 
