@@ -30,6 +30,7 @@ from __future__ import annotations
 
 import dask
 import numpy as np
+from numba import njit
 
 from common.threads import one_blas_thread
 from generated import lattice_model as model
@@ -92,19 +93,25 @@ PHASES = 16
 def _roots(q, detuning, n):
     """Offsets where each row of ``detuning`` (B, Q) changes sign (linear interpolation),
     at most n per row, (B, n), NaN where there are fewer."""
-    d = detuning
-    sgn = np.sign(d)
-    change = (sgn[:, :-1] * sgn[:, 1:] < 0)
-    B = d.shape[0]
-    out = np.full((B, n), np.nan)
-    rows, cols = np.nonzero(change)
-    slot = np.zeros(B, int)
-    for r, c in zip(rows, cols):
-        if slot[r] < n:
-            t = d[r, c] / (d[r, c] - d[r, c + 1])
-            out[r, slot[r]] = q[c] + t * (q[c + 1] - q[c])
-            slot[r] += 1
+    out = np.full((detuning.shape[0], n), np.nan)
+    _sign_changes(np.asarray(q, float), np.ascontiguousarray(detuning, dtype=float), out)
     return out
+
+
+@njit(cache=True, nogil=True, error_model="numpy", boundscheck=False)
+def _sign_changes(q, d, out):
+    B, Q = d.shape
+    n = out.shape[1]
+    for r in range(B):
+        slot = 0
+        for c in range(Q - 1):
+            if slot == n:
+                break
+            s0, s1 = np.sign(d[r, c]), np.sign(d[r, c + 1])
+            if s0 * s1 < 0:
+                t = d[r, c] / (d[r, c] - d[r, c + 1])
+                out[r, slot] = q[c] + t * (q[c + 1] - q[c])
+                slot += 1
 
 
 def _refine(C, k, W, roots, coupled, pump, steps=SECANT_STEPS):
