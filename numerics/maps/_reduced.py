@@ -112,8 +112,17 @@ def _refine_points(tt, tU, Ut, k, W, pump, coupled, steps, h, move, floor, x):
     d = np.zeros(3)
     eps = np.finfo(np.float64).eps
     for b in range(B):
+        start = x[b].copy()
         for j in range(n):
             xx = x[b, j]
+            seen = -1  # the same start in this row (missing roots' placeholders): same root
+            for jj in range(j):
+                if start[jj] == xx:
+                    seen = jj
+                    break
+            if seen >= 0:
+                x[b, j] = x[b, seen]
+                continue
             ek = np.exp(1j * k[b])
             for _ in range(steps):
                 wp, wm, _c = _point(tt[b], tU[b], Ut[b], k[b], W[b], xx, coupled, d, ek,
