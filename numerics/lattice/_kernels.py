@@ -1,6 +1,4 @@
-"""Compiled force evaluation and time loops (Numba), vectorised.
-
-Speed comes from two things.
+"""Compiled force evaluation and time loops (Numba), vectorised; fast for two reasons.
 
 1. **Branch-free sin, cos and 1 - cos** (``_sincosvers``): Cody-Waite reduction by pi/2
    (four-part split of pi/2, exact products for |n| < 2^20) and fdlibm's minimax
@@ -17,16 +15,16 @@ Speed comes from two things.
    double buffer. Boundary sites are done outside the main loop, so it has no index
    wrapping. RK4 does 4 passes per step, an SRKN method with s kicks s - 1 passes.
 
-The entry points (``accel``, ``rk4_steps``, ``srkn_steps`` and their libm references)
-release the GIL (``nogil``): threads of one Dask worker run cells side by side.
+The entry points (``accel``, ``rk4_steps``, ``srkn_steps``, their libm references) release
+the GIL (``nogil``).
 
 Only the ``contract`` fast-math flag is used (fused multiply-add): never ``nnan``/``ninf``,
 so NaN and inf propagate and the blow-up check sees them. Case "rotation" has no U arrays
 and runs loops without any U work.
 
-Every loop returns the number of steps it completed; it stops after the first step whose
-state is not finite or leaves |theta| <= TRIG_LIMIT (the caller then continues, or reports
-the blow-up, with the libm reference loops of ``_kernels_libm``).
+Every loop returns the steps it completed; it stops after the first step whose state is not
+finite or leaves |theta| <= TRIG_LIMIT (the caller then continues, or reports the blow-up,
+with the libm reference loops of ``_kernels_libm``).
 """
 
 from __future__ import annotations
