@@ -19,8 +19,7 @@ The entry points (``accel``, ``rk4_steps``, ``srkn_steps``, their libm reference
 the GIL (``nogil``).
 
 Only the ``contract`` fast-math flag is used (fused multiply-add): never ``nnan``/``ninf``,
-so NaN and inf propagate and the blow-up check sees them. Case "rotation" has no U arrays
-and runs loops without any U work.
+so NaN and inf propagate and the blow-up check sees them. Case "rotation" runs no U work.
 
 Every loop returns the steps it completed; it stops after the first step whose state is not
 finite or leaves |theta| <= TRIG_LIMIT (the caller then continues, or reports the blow-up,
