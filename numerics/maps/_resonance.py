@@ -9,8 +9,9 @@ in closed form (rotating-wave reduction of the Hill matrix at harmonics H = 1),
     sigma_red(q)^2 = L_+- L_-+ / (4 omega_+ omega_-) - (omega_+ + omega_- - 2 Omega)^2 / 4.
 
 ``resonance_map`` evaluates sigma_red on a fine offset grid for every cell at once (cheap:
-closed form), takes each cell's peak, and there computes the exact growth rate with the
-Hill matrix of ``_hill`` (eigenvalues of a 10 x 10 matrix in case II). A band is found
+closed form), takes each cell's peak, and there computes the exact growth rate of the
+Hill matrix of ``_hill`` (10 x 10 in case II): Newton on its quadratic pencil from the
+reduced pair (``_pencil``), the full eigenproblem where that has no start. A band is found
 wherever the reduced problem has one, however narrow, so the verdict does not depend on a
 sampling of q (tests/test_resonance.py refines the grid 4x and no cell changes); sampling
 the exact Hill spectrum instead misses bands narrower than the sampling (the 20-offset
