@@ -39,6 +39,9 @@ def test_bad_spec_is_a_clear_error(text):
 def test_two_by_two_map_on_two_workers(tmp_path):
     ds = maps.run_map(_params(), tmp_path, workers=2, progress=False, log=lambda *_: None)
     assert ds["done"].values.all() and ds.sizes == {"delta": 2, "k": 2}
+    # what run_map returns (its values kept in memory, not read back) is the store
+    xr.testing.assert_identical(ds, xr.open_zarr(tmp_path / "map.zarr", consolidated=False,
+                                                 chunks=None).load())
     for name in ("verdict_simulated", "verdict_paper", "verdict_semidiscrete", "verdict_exact",
                  "verdict_exact_all"):
         # tri-state: 1 MI, 0 stable, -1 undetermined (none here: every theory evaluates)
@@ -87,6 +90,9 @@ def test_an_interrupted_map_resumes_with_only_the_missing_cells(tmp_path, monkey
     assert seen[0][1] == 6 - 2 and seen[0][0] == todo[2:]  # only the 4 missing cells ran
     assert any("2 of 6 cells already done" in m for m in messages)
     assert ds["done"].values.all()
+    # resumed from the values its checksums were verified on, and still the store
+    xr.testing.assert_identical(ds, xr.open_zarr(tmp_path / "map.zarr", consolidated=False,
+                                                 chunks=None).load())
 
 
 def test_a_map_with_other_parameters_is_not_mixed_in(tmp_path):
