@@ -191,8 +191,12 @@ def run_point(args, log=print) -> dict:
                             energy_tolerance=1.0)
         growths = [growth_of(r.t, r.theta_hat, r.U_hat, r.m, r.N) for r in runs]
         verdict = sum(g["growth"] > GROWTH_THRESHOLD for g in growths) * 2 > len(growths)
+        # no seed with a linear stage (its largest sideband never grew e-fold after
+        # passing 5x its start): no rate to fit, shown as "-", not as a gain of 0
         s = band_summary(meas["q"], meas["sigma"], k) if meas else \
-            {"peak_gain": 0.0, "peak_offset": float("nan"), "band_edge": float("nan")}
+            {"peak_gain": float("nan"), "peak_offset": float("nan"), "band_edge": float("nan"),
+             "no_rate": "no linear stage to fit a rate in any seed (the largest sideband "
+                        "never grew e-fold after passing 5x its start)"}
         # the theories answer the simulation's question: grows > threshold within t_end
         rows = [(r[0], ("MI" if grows_beyond_threshold(r[2], t_end) else "stable")
                  if math.isfinite(r[2]) else r[1], *r[2:]) for r in rows]
@@ -229,6 +233,8 @@ def run_point(args, log=print) -> dict:
     for n, t in th.items():
         if "reason" in t:
             log(f"{n}: {t['reason']}")
+    if args.simulate and "no_rate" in result["simulated"]:
+        log(f"simulated: {result['simulated']['no_rate']}")
     best = max((r for r in rows if math.isfinite(r[2]) and r[2] > 0), key=lambda r: r[2],
                default=None)
     if best is not None:
@@ -249,7 +255,7 @@ def run_point(args, log=print) -> dict:
 def _table(rows, units=None) -> str:
     head = ("theory", "verdict", "peak gain (1/T)", "e-folding (T)", "at q - k (rad/site)",
             "half-gain edge q - k")
-    cells = [head] + [(r[0], r[1], f"{r[2]:.4g}",
+    cells = [head] + [(r[0], r[1], f"{r[2]:.4g}" if math.isfinite(r[2]) else "-",
                        f"{1 / r[2]:.4g}" if math.isfinite(r[2]) and r[2] > 0 else "-",
                        f"{r[3]:.4g}", f"{r[4]:.4g}") for r in rows]
     widths = [max(len(c[i]) for c in cells) for i in range(len(head))]
@@ -266,7 +272,9 @@ def _figure(out, th, meas, k, args, amplitude):
     fig, ax = plt.subplots(figsize=(7, 4), layout="constrained")
     if meas:
         ax.errorbar(meas["q"], meas["sigma"], yerr=meas["sigma_std"], fmt=".", ms=3, lw=0.5,
-                    label=f"simulated ({meas['seeds']} seeds)")
+                    label=f"simulated ({meas['seeds']} of {args.seeds} seeds with a linear "
+                          "stage)" if meas["seeds"] < args.seeds
+                    else f"simulated ({meas['seeds']} seeds)")
     for (name, t), style in zip(th.items(), ("k--", "C2-", "C3-")):
         ax.plot(t["q"], t["curve"], style, lw=1, label=f"{name} (theory)")
     tops = [np.nanmax(t["curve"]) for t in th.values() if np.any(np.isfinite(t["curve"]))]

@@ -95,3 +95,23 @@ def test_early_stop_keeps_the_verdict_and_stops_at_the_crossing():
     assert g[-1] > GROWTH_THRESHOLD and g[-2] <= GROWTH_THRESHOLD
     assert early["growth"] == pytest.approx(g[-1], rel=1e-12)
     assert (early["method"], early["dt"]) == (rec["method"], rec["dt"])
+
+
+def test_linear_stage_needs_one_e_folding_of_growth():
+    """A rate is fitted only over a window in which the largest sideband grows e-fold: a run
+    that passes 5x its start in its last samples gets no linear stage (its slope there is
+    noise), a clean exponential gets the window from 5x to 1% of the carrier."""
+    from numerics.lattice._analysis import growth_rates, linear_stage
+
+    N, m = 64, 8
+    t = np.arange(0.0, 2000.0, 5.0)
+    spec = np.full((t.size, N // 2 + 1), 1e-6)
+    spec[:, m] = 1.0
+    spec[:, m + 3] = 1e-4 * np.exp(2e-3 * t)  # 5x at T = 805, 1% of the carrier at 2303
+    win = linear_stage(spec, m, N)
+    assert win is not None and t[win[0]] == pytest.approx(805.0, abs=5.0)
+    np.testing.assert_allclose(growth_rates(t, spec, win)[m + 3], 2e-3, rtol=1e-9)
+    # the same growth stopped at 5.9x: 5x is passed, e-fold after it never is
+    late = spec.copy()
+    late[:, m + 3] = 1e-4 * np.minimum(np.exp(2e-3 * t), 5.9)
+    assert linear_stage(late, m, N) is None
