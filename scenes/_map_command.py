@@ -7,7 +7,7 @@ import json
 
 import numpy as np
 
-from numerics.lattice import checks
+from numerics.lattice import GROWTH_THRESHOLD, checks
 
 from numerics.maps import MapParameters, agreement, local_cores, parse_spec, run_map
 
@@ -122,6 +122,9 @@ def run_map_command(args, log=print):
                                block=args.block)
     except (ValueError, TypeError) as exc:  # name the option, not the field
         raise type(exc)(_as_option(str(exc))) from None
+    from ._runner import check_output, prepare_output
+
+    check_output(args.out)  # a bad --out fails before the map is announced
     moved = [(a, b) for a, b in zip(params.k, params.k_simulated) if abs(a - b) > 1e-9 * a]
     if moved:
         log(f"note: {len(moved)} of {len(k)} k values snapped to 2 pi m / N (N = {params.N}),"
@@ -140,8 +143,6 @@ def run_map_command(args, log=print):
         raise ValueError(f"the map would take about {_duration(est)} (> "
                          f"{_duration(CONFIRM_SECONDS)}); add --yes to run it, or use "
                          "fewer cells, seeds, a shorter --t-end or --theory-only")
-    from ._runner import prepare_output
-
     out = prepare_output(args.out)
     ds = run_map(params, out, args.scheduler, args.workers, log=log,
                  overwrite=args.overwrite, timeout=args.timeout)
@@ -162,6 +163,12 @@ def run_map_command(args, log=print):
         fig.savefig(tmp, format="png", dpi=110)
     plt.close(fig)
     log(f"wrote {out / 'map.zarr'}, {out / 'map.png'}, {out / 'summary.json'}")
+    if not summary["simulated"]:
+        und = summary["undetermined_cells"]
+        log(f"MI (grows more than {GROWTH_THRESHOLD:g}x within T = {params.t_end:g}) in: "
+            + "; ".join(f"{n} {100 * f:.0f}% of cells" + (f" ({und[n]} undetermined, left "
+                                                          "out)" if und[n] else "")
+                        for n, f in summary["mi_fraction"].items()))
     if summary["simulated"]:
         ag = summary["agreement_with_simulation_percent"]
         log("theory verdicts that agree with the simulation: " + "; ".join(

@@ -154,16 +154,24 @@ def _save_figure(fig, folder: Path, quick: bool):
     plt.close(fig)
 
 
+def check_output(out: Path | str, cache: bool = True) -> Path:
+    """OUT as a Path, after the checks that write nothing (a file where a folder must be):
+    for commands that announce their work before ``prepare_output`` creates the folder."""
+    out = Path(out) if str(out) else Path(".")
+    for folder in (out, out / ".cache") if cache else (out,):
+        if folder.exists() and not folder.is_dir():
+            raise ValueError(f"{folder} is a file, not a folder")
+    return out
+
+
 def prepare_output(out: Path | str, cache: bool = True) -> Path:
     """Create OUT and (``cache``) OUT/.cache and prove them writable, before any computation.
 
     Raises ValueError naming the path and the cause (a file where a folder must be, a
     read-only or full file system, ...), so the CLI answers in one line.
     """
-    out = Path(out) if str(out) else Path(".")
+    out = check_output(out, cache)
     for folder in (out, out / ".cache") if cache else (out,):
-        if folder.exists() and not folder.is_dir():
-            raise ValueError(f"{folder} is a file, not a folder")
         try:
             folder.mkdir(parents=True, exist_ok=True)
             probe = folder / f".write-test-{os.getpid()}"

@@ -52,8 +52,7 @@ def material_from(args):
         raise ValueError(f"missing {', '.join(missing)} (or give --physical m,J,a,k_l,k_s,"
                          "k_theta)")
     for name, v in (("--alpha", args.alpha), ("--K-s", args.K_s), ("--K-theta", args.K_theta)):
-        if not (math.isfinite(v) and v > 0):
-            raise ValueError(f"{name} must be a finite number > 0, got {v}")
+        checks.positive(name, v)  # the wording every command uses
     return Material(args.alpha, args.K_s, args.K_theta), Units()
 
 
@@ -229,6 +228,10 @@ def run_point(args, log=print) -> dict:
         log(f"verdicts: MI = grows more than {GROWTH_THRESHOLD:g}x within T = {t_end:g} "
             f"(theories: exp(peak gain x T); simulated: measured growth "
             + ", ".join(f"{g['growth']:.3g}x" for g in growths) + ")")
+    else:
+        log("verdicts: MI = the plane wave is unstable (peak gain > 0, however slow); with "
+            f"--simulate they answer the run's question instead: grows more than "
+            f"{GROWTH_THRESHOLD:g}x within T = {t_end:g}")
     log(_table(rows, units))
     for n, t in th.items():
         if "reason" in t:

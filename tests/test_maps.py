@@ -103,7 +103,7 @@ def test_a_map_with_other_parameters_is_not_mixed_in(tmp_path):
 
 @pytest.mark.parametrize("extra, match", [
     (["--delta", "a:b:c"], "--delta"), (["--delta", "0.03"], "K_theta"),
-    (["--delta", "0.001", "--k", "4"], "pi"), (["--delta", "0.001", "--seeds", "0"], "seeds"),
+    (["--delta", "0.001", "--k", "4"], "--k must be in (0, 3.14159)"), (["--delta", "0.001", "--seeds", "0"], "seeds"),
     (["--delta", "0.001", "--workers", "0"], "workers"),
     (["--delta", "0.001", "--amplitude", "3"], "amplitude"),
 ])
@@ -229,7 +229,7 @@ def test_map_parameters_take_a_material_and_carry_K_theta_unchanged(tmp_path):
                       amplitude=0.02)
     with pytest.raises(TypeError, match="delta= or K_theta="):
         MapParameters(case="coupled", material=blue, k=K2, amplitude=0.02)
-    with pytest.raises(ValueError, match="K_theta must be > 0"):
+    with pytest.raises(ValueError, match="K_theta must be finite and > 0"):
         MapParameters(case="coupled", material=blue, K_theta=(-0.01,), k=K2, amplitude=0.02)
     # the store holds K_theta as a coordinate of its rows; the theories are evaluated there
     ds = maps.open_or_create(tmp_path / "map.zarr", p)

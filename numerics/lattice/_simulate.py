@@ -42,7 +42,7 @@ def snap_wavenumber(k: float, N: int, rel_tol: float = 1e-3):
         raise TypeError(f"k must be a real number, got {type(k).__name__} {k!r}")
     k = float(k)
     if not math.isfinite(k) or k <= 0 or k >= math.pi:
-        raise ValueError(f"k must be in (0, pi), got {k!r}")
+        raise ValueError(f"k must be in (0, {math.pi:g}), got {k!r}")
     m = int(round(k * N / (2 * math.pi)))
     ks = 2 * math.pi * m / N
     if m == 0:

@@ -143,7 +143,7 @@ class MapParameters:
                              f"{', '.join(GROWTH_ERROR_CONSTANTS)}")
         k = np.asarray(checks.real_values("k", self.k))
         if np.any((k <= 0) | (k >= math.pi)):
-            raise ValueError(f"k must lie in (0, pi), got {self.k}")
+            raise ValueError(f"k must be in (0, {math.pi:g}), got {self.k}")
         self._rows()
         # a cell advances in RECORDS pieces of t_end / RECORDS: a given step must fit in
         # one, and the run must not take an absurd number of steps (checked here, not on a
@@ -185,7 +185,7 @@ class MapParameters:
             return
         Kt = checks.real_values("K_theta", self.K_theta)
         if any(x <= 0 for x in Kt):
-            raise ValueError(f"K_theta must be > 0, got {min(Kt):g}")
+            raise ValueError(f"K_theta must be finite and > 0, got {min(Kt):g}")
         object.__setattr__(self, "K_theta", Kt)
         if self.delta is None:
             object.__setattr__(self, "delta", tuple(self.K_s - x for x in Kt))
