@@ -258,8 +258,8 @@ def main(quick=False, out=None):
                          for k, v in c.items() if k not in ("check", "pass"))
         lines.append(f"| {c['check']} | {'pass' if c['pass'] else '**FAIL**'} | "
                      f"{meas.replace('|', '/')[:300]} |")
-    lines += ["", f"## Fault catalogue (bench/faults.py; tests/test_faults.py adds the signal, "
-              f"file and CLI faults): {fc['tried']} tried, {fc['clear error']} clear errors, "
+    lines += ["", "## Fault catalogue (bench/faults.py, bench/faults_maps.py; "
+              f"tests/test_faults.py adds the signal, file and CLI faults): {fc['tried']} tried, {fc['clear error']} clear errors, "
               f"{fc['worked']} worked, {fc['problem']} problems", "",
               "| fault | outcome | what happened |", "|---|---|---|"]
     for n, outcome, detail in fc["rows"]:
