@@ -168,7 +168,7 @@ def run_map_command(args, log=print):
         log(f"MI (grows more than {GROWTH_THRESHOLD:g}x within T = {params.t_end:g}) in: "
             + "; ".join(f"{n} {100 * f:.0f}% of cells" + (f" ({und[n]} undetermined, left "
                                                           "out)" if und[n] else "")
-                        for n, f in summary["mi_fraction"].items()))
+                        for n, f in summary["mi_fraction"].items() if n != "simulated"))
     if summary["simulated"]:
         ag = summary["agreement_with_simulation_percent"]
         log("theory verdicts that agree with the simulation: " + "; ".join(

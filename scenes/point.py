@@ -194,8 +194,9 @@ def run_point(args, log=print) -> dict:
         # passing 5x its start): no rate to fit, shown as "-", not as a gain of 0
         s = band_summary(meas["q"], meas["sigma"], k) if meas else \
             {"peak_gain": float("nan"), "peak_offset": float("nan"), "band_edge": float("nan"),
-             "no_rate": "no linear stage to fit a rate in any seed (the largest sideband "
-                        "never grew e-fold after passing 5x its start)"}
+             "no_rate": "no seed had a linear stage to fit a rate over (its largest "
+                        "sideband must pass 5x its start, then reach 1% of the carrier or "
+                        "grow e-fold before the run ends)"}
         # the theories answer the simulation's question: grows > threshold within t_end
         rows = [(r[0], ("MI" if grows_beyond_threshold(r[2], t_end) else "stable")
                  if math.isfinite(r[2]) else r[1], *r[2:]) for r in rows]

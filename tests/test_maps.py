@@ -103,7 +103,8 @@ def test_a_map_with_other_parameters_is_not_mixed_in(tmp_path):
 
 @pytest.mark.parametrize("extra, match", [
     (["--delta", "a:b:c"], "--delta"), (["--delta", "0.03"], "K_theta"),
-    (["--delta", "0.001", "--k", "4"], "--k must be in (0, 3.14159)"), (["--delta", "0.001", "--seeds", "0"], "seeds"),
+    (["--delta", "0.001", "--k", "4"], "--k must be in (0, 3.14159)"),
+    (["--delta", "0.001", "--seeds", "0"], "seeds"),
     (["--delta", "0.001", "--workers", "0"], "workers"),
     (["--delta", "0.001", "--amplitude", "3"], "amplitude"),
 ])
@@ -116,12 +117,16 @@ def test_map_bad_input_is_one_line_and_writes_nothing(extra, match, tmp_path, ca
     assert not (tmp_path / "out").exists()
 
 
-def test_theory_only_map_never_starts_the_simulator(tmp_path):
+def test_theory_only_map_never_starts_the_simulator(tmp_path, capsys):
     # a theory-only map predicts every cell's growth (tasks on the cluster) and simulates
     # none: no cell is done, none has a simulated time
     assert cli(["map", "--case", "rotation", "--alpha", "2.5", "--K-s", "0.01851",
                 "--delta=-0.01:0.01:4", "--k", "0.2:3:5", "--theory-only",
                 "--out", str(tmp_path), "--workers", "1"]) == 0
+    # its summary: each theory's MI share, no "simulated" (there is none), no NaN
+    share = [ln for ln in capsys.readouterr().out.splitlines() if ln.startswith("MI (grows")]
+    assert len(share) == 1 and "paper " in share[0] and "exact " in share[0]
+    assert "simulated" not in share[0] and "nan" not in share[0]
     ds = xr.open_zarr(tmp_path / "map.zarr", consolidated=False)
     assert ds.sizes == {"delta": 4, "k": 5} and not ds["done"].values.any()
     assert np.isnan(ds["t_simulated"].values).all()

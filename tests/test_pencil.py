@@ -81,3 +81,29 @@ def test_map_rates_equal_the_full_eigenproblem(start, monkeypatch):
 
 def resonance_map_peak(*args, start):
     return _resonance.resonance_map(*args, start=start)["peak_gain"]
+
+
+@pytest.mark.parametrize("amplitude, alpha", [(0.1, 2.5), (0.1, 5.0), (0.2, 2.5)])
+def test_map_equals_the_full_eigenproblem_at_large_amplitude(amplitude, alpha, monkeypatch):
+    """Up to NEWTON_AMPLITUDE (0.1) Newton serves the probes and the map equals the full
+    eigenproblem's (checked at the bound, at two alphas); above it, where the reduced
+    pair's start can sit nearer another root (0.2: 8 of 3 600 cells lost their band in a
+    review), every probe gets the full eigenproblem (atol as above)."""
+    k = np.linspace(0.05, np.pi - 0.05, 30)
+    d = np.linspace(-0.015, 0.015, 10)
+    K, D = np.meshgrid(k, d)
+    # and the review's cell where Newton from the reduced pair settles on a neutral root
+    # at 0.2 while the Hill spectrum holds an MI mode growing at 0.042
+    K, D = np.append(K, 1.5966), np.append(D, -0.00229)
+    args = (K, D, "coupled", alpha, paper.K_S, amplitude)
+    fast = resonance_map_peak(*args, start="travelling")
+    exact = _resonance._exact_rates
+
+    def eig_only(a, b, kk, W, al, Ks, Kt, C, probes, s_red, coupled, eig):
+        return exact(a, b, kk, W, al, Ks, Kt, C, probes, s_red, coupled,
+                     np.ones_like(eig))
+    monkeypatch.setattr(_resonance, "_exact_rates", eig_only)
+    slow = resonance_map_peak(*args, start="travelling")
+    assert np.array_equal(np.isnan(fast), np.isnan(slow))
+    assert np.sum(np.nan_to_num(fast) > 0) > 20
+    np.testing.assert_allclose(np.nan_to_num(fast), np.nan_to_num(slow), rtol=0, atol=1e-12)

@@ -164,11 +164,12 @@ def linear_stage(spec: np.ndarray, m: int, N: int, rise: float = 5.0, ceiling: f
     sigma_1 + sigma_2 from a level ~ r^2, so they stay below the noise floor r0 while
     r < sqrt(r0): the default 1% keeps them out of the fit at the paper's noise (r0 ~ 1e-4),
     where 3% let them fake "growth" outside the band (the green band edge came out 1.5x
-    too wide against the exact lattice gain; at 1% it agrees to 0.3%). The largest sideband
-    must grow at least ``span``-fold within the window (one e-folding): a run that only just
-    passes ``rise`` before it ends leaves a few samples over which a slope is noise (a
-    slowly unstable point gave 9.3e-4 at an offset of 1.6 over its last 20 T, where it grew
-    at 1.5e-4). Returns None when the run never gets there.
+    too wide against the exact lattice gain; at 1% it agrees to 0.3%). A window that ends
+    with the run, not at the ceiling, must see the largest sideband grow at least
+    ``span``-fold (one e-folding): a run that only just passes ``rise`` before it ends
+    leaves a few samples over which a slope is noise (a slowly unstable point gave 9.3e-4
+    at an offset of 1.6 over its last 20 T, where it grew at 1.5e-4). Returns None when the
+    run never gets there.
     """
     r = sideband_to_carrier(spec, m, N)
     above = np.flatnonzero(r > rise * r[0])
@@ -177,7 +178,7 @@ def linear_stage(spec: np.ndarray, m: int, N: int, rise: float = 5.0, ceiling: f
     i0 = int(above[0])
     top = np.flatnonzero(r[i0:] > ceiling)
     i1 = i0 + int(top[0]) if top.size else len(r) - 1
-    if i1 - i0 < 4 or not r[i0:i1 + 1].max() >= span * r[i0]:
+    if i1 - i0 < 4 or (not top.size and not r[i0:i1 + 1].max() >= span * r[i0]):
         return None
     return i0, i1
 

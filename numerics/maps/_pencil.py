@@ -14,8 +14,9 @@ growing sideband pair that the reduced problem (``_reduced``) places near
 Newton on det Q(lambda) = det S(lambda) prod_u den_u(lambda), with S the 2 x 2 theta block,
 the U modes folded in exactly (the Schur complement S = (lambda - i p Omega)^2 - L_tt - L_tU
 diag(1 / den_u) L_Ut, den_u = (lambda - i u Omega)^2 + omega_U^2), settles on it in a few
-steps of a few dozen flops: 0.4 s for the 240 000 probes of a 200 x 200 case II map, where the
-10 x 10 eigenvalues (``np.linalg.eigvals``, 27 us each here) took 6.8 s. The eigenvector
+steps of a few dozen flops: 0.4 s of CPU for the 240 000 probes of a 200 x 200 case II map,
+where the 10 x 10 eigenvalues (``np.linalg.eigvals``, 27 us each here) took 6.8 s of CPU
+(summed over the map's two threads; the map took 7.4 s wall then). The eigenvector
 (theta from S's null space, U by the Schur complement) gives the sideband test. Probes where
 Newton does not settle, or settles on the decaying mirror of a pair (the spectrum is
 symmetric under lambda -> -conj(lambda)), are left to the full eigenproblem by the caller.

@@ -97,8 +97,8 @@ def _reduced_points(tt, tU, Ut, k, W, q, coupled, wp, wm, c2, dens):
 
 def _refine_roots(C, k, W, x, coupled, pump, steps, h, move, floor):
     """Finite-difference Newton steps on the detuning omega_+ + omega_- - pump from x
-    (B, n), each root until its step is below round-off of x (further steps would not
-    move it) or ``steps`` are done; steps clipped to ``move``, x to [floor, pi]."""
+    (B, n), each root until its step is below round-off of x (further steps would move
+    it by an ulp or so) or ``steps`` are done; steps clipped to ``move``, x to [floor, pi]."""
     x = np.array(x, float)
     _refine_points(C["tt"], C["tU"], C["Ut"], np.asarray(k, float), np.asarray(W, float),
                    np.asarray(pump, float), bool(coupled), int(steps), float(h), float(move),

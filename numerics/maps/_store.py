@@ -209,8 +209,6 @@ def run_map(params: MapParameters, out: Path, scheduler: str | None = None,
             overwrite: bool = False, timeout: float = 20.0):
     """Compute (or resume) ``OUT/map.zarr``; returns the dataset (loaded). One writer at a
     time (``OUT/map.zarr.lock``); ``timeout``: seconds to reach ``scheduler``."""
-    import xarray as xr
-
     from ._integrity import store_lock
 
     if scheduler:
