@@ -42,6 +42,10 @@ def _as_option(message: str) -> str:
     return message
 
 
+#: the theories' verdict columns, in the order the summaries print them
+THEORIES = ("paper", "semidiscrete", "exact", "exact_all", "predicted")
+
+
 def _mi_fraction(v: np.ndarray) -> float:
     """Share of MI among the cells a verdict decides (undetermined cells left out)."""
     decided = v >= 0
@@ -162,13 +166,13 @@ def run_map_command(args, log=print):
     with atomic_write(out / "map.png", mode=None) as tmp:
         fig.savefig(tmp, format="png", dpi=110)
     plt.close(fig)
-    log(f"wrote {out / 'map.zarr'}, {out / 'map.png'}, {out / 'summary.json'}")
     if not summary["simulated"]:
         und = summary["undetermined_cells"]
         log(f"MI (grows more than {GROWTH_THRESHOLD:g}x within T = {params.t_end:g}) in: "
-            + "; ".join(f"{n} {100 * f:.0f}% of cells" + (f" ({und[n]} undetermined, left "
-                                                          "out)" if und[n] else "")
-                        for n, f in summary["mi_fraction"].items() if n != "simulated"))
+            + "; ".join(f"{n} {100 * summary['mi_fraction'][n]:.0f}% of cells"
+                        + (f" ({und[n]} undetermined, left out)" if und[n] else "")
+                        for n in THEORIES if n in summary["mi_fraction"]))
+    log(f"wrote {out / 'map.zarr'}, {out / 'map.png'}, {out / 'summary.json'}")
     if summary["simulated"]:
         ag = summary["agreement_with_simulation_percent"]
         log("theory verdicts that agree with the simulation: " + "; ".join(
@@ -176,7 +180,7 @@ def run_map_command(args, log=print):
             f"{ag[n + '_decided_cells']} clear ones"
             + (f"; {ag[n + '_undetermined_cells']} undetermined, left out"
                if ag[n + '_undetermined_cells'] else "") + ")"
-            for n in ("paper", "semidiscrete", "exact", "exact_all", "predicted")))
+            for n in THEORIES))
         if ag["predicted_growth_cells"]:
             log(f"predicted growth within 2x of the measured one in "
                 f"{ag['predicted_growth_within_2x']:.0f}% of the "
