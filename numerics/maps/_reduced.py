@@ -113,6 +113,7 @@ def _refine_points(tt, tU, Ut, k, W, pump, coupled, steps, h, move, floor, x):
     eps = np.finfo(np.float64).eps
     for b in range(B):
         start = x[b].copy()
+        ek = np.exp(1j * k[b])
         for j in range(n):
             xx = x[b, j]
             seen = -1  # the same start in this row (missing roots' placeholders): same root
@@ -123,7 +124,6 @@ def _refine_points(tt, tU, Ut, k, W, pump, coupled, steps, h, move, floor, x):
             if seen >= 0:
                 x[b, j] = x[b, seen]
                 continue
-            ek = np.exp(1j * k[b])
             for _ in range(steps):
                 wp, wm, _c = _point(tt[b], tU[b], Ut[b], k[b], W[b], xx, coupled, d, ek,
                                     np.exp(1j * xx))

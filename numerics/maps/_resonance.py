@@ -308,13 +308,15 @@ def _exact_rates(a, b, kk, W, al, Ks, Kt, C, probes, s_red, coupled, eig_only):
         return gq
     g = np.zeros(rows.size)
     full = eig_only[cols].copy()
-    nr, nc = rows[~full], cols[~full]
-    Wr = W[nr]
-    wp, wm, _ = _reduced(C, kk, W, probes, coupled)
-    lam0 = 0.5j * (wm - wp).real[nr, nc] + np.maximum(s_red[nr, nc], NEWTON_START * Wr)
-    lam, share, settled = pencil_eigenvalues(C, kk, W, al, probes[nr, nc], nr, lam0, coupled)
-    g[~full] = np.where(_is_mi(share) & (lam.real > ROUNDOFF * Wr), lam.real, 0.0)
-    full[~full] = ~settled | (lam.real < -ROUNDOFF * Wr)
+    if not full.all():  # (above NEWTON_AMPLITUDE every probe is eig_only)
+        nr, nc = rows[~full], cols[~full]
+        Wr = W[nr]
+        wp, wm, _ = _reduced(C, kk, W, probes, coupled)
+        lam0 = 0.5j * (wm - wp).real[nr, nc] + np.maximum(s_red[nr, nc], NEWTON_START * Wr)
+        lam, share, settled = pencil_eigenvalues(C, kk, W, al, probes[nr, nc], nr, lam0,
+                                                 coupled)
+        g[~full] = np.where(_is_mi(share) & (lam.real > ROUNDOFF * Wr), lam.real, 0.0)
+        full[~full] = ~settled | (lam.real < -ROUNDOFF * Wr)
     if np.any(full):
         g[full] = _eig_rates(a, b, kk, W, al, Ks, Kt, C, probes, rows[full], cols[full],
                              coupled)

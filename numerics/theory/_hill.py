@@ -30,7 +30,7 @@ from ..lattice import checks
 from ..lattice._model import Material, check_case
 from ._launched import STARTS, launched_state
 from ._plane_wave import (HARMONICS, MAX_AMPLITUDE, PlaneWave, _check, _check_harmonics,
-                          _on_branch, _shift, _solve_plane_waves, plane_wave)
+                          _combine, _on_branch, _solve_plane_waves, _tables, plane_wave)
 from ._quasiperiodic import (ROUNDOFF, GainSpectrum, _labels, coupling_coefficients,
                              gain_spectrum_torus, hill_matrices, neutral_offsets,
                              sideband_shares, torus_of_wave)
@@ -50,14 +50,11 @@ def _coefficients(a, b, k, al, Ks, Kt, M):
     (``_quasiperiodic.coupling_coefficients`` on the wave's values at M phases).
     """
     phi = 2 * np.pi * np.arange(M) / M
-    H = a.shape[1]
-    mo = 2.0 * np.arange(H) + 1
-    me = mo + 1
-    zero = np.zeros_like(k)
+    t = _tables(k, a.shape[1], phi, True)
     f = {}
-    for s, shift in zip((-1, 0, 1), (-k, zero, k)):
-        f["theta", s] = _shift(a, mo, shift, phi, "cos")
-        f["U", s] = _shift(b, me, shift, phi, "sin")
+    for s in (-1, 0, 1):
+        f["theta", s] = _combine(a, t["cos", s])
+        f["U", s] = _combine(b, t["sin", s])
     return coupling_coefficients(f, al[:, None], Ks[:, None], Kt[:, None], (1,))
 
 

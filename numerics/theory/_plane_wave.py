@@ -46,11 +46,10 @@ class NoPlaneWaveError(ArithmeticError):
     linear wave (near a resonance of a harmonic with a lattice mode)."""
 
 
-def _shift(coef, harm, k, phi, kind, table=None):
-    """Evaluate sum_m coef_m f(m (phi + k)) on the grid, f = cos or sin; k shape (B,).
-    ``table``: f(m (phi + k)) itself, (B, H, M), where the caller has it (``_tables``)."""
-    f = _table(harm, k, phi, kind) if table is None else table
-    return np.einsum("bm,bmj->bj", coef, f)
+def _combine(coef, table):
+    """sum_m coef_m f(m (phi + k)) on the grid, (B, M), from coef (B, H) and the table
+    f(m (phi + k)) (B, H, M) of ``_tables``."""
+    return np.einsum("bm,bmj->bj", coef, table)
 
 
 def _table(harm, k, phi, kind):
@@ -59,8 +58,10 @@ def _table(harm, k, phi, kind):
 
 
 def _tables(k, H, phi, coupled):
-    """The phase tables of ``_residual`` for carriers k (B,): (kind, shift) -> (B, H, M),
-    shift -1, 0, 1 in units of k. They depend on k only, so Newton computes them once."""
+    """The phase tables of a wave's fields at sites n - 1, n, n + 1 for carriers k (B,):
+    (kind, shift) -> (B, H, M), "cos" for theta's odd harmonics, "sin" for U's even ones
+    (only if ``coupled``), shift -1, 0, 1 in units of k. They depend on k only, so Newton
+    computes them once."""
     mo = 2.0 * np.arange(H) + 1
     zero = np.zeros_like(k)
     t = {}
@@ -131,18 +132,18 @@ def _residual(x, k, amp, al, Ks, Kt, H, coupled, phi, tables=None):
     me = mo + 1
     a, b, W = x[:, :H], x[:, H:2 * H], x[:, -1]
     t = _tables(k, H, phi, coupled) if tables is None else tables
-    thm, th0, thp = (_shift(a, mo, None, phi, "cos", t["cos", s]) for s in (-1, 0, 1))
-    d2th = _shift(-a * mo**2, mo, None, phi, "cos", t["cos", 0])
+    thm, th0, thp = (_combine(a, t["cos", s]) for s in (-1, 0, 1))
+    d2th = _combine(-a * mo**2, t["cos", 0])
     Um = U0 = Up = 0.0
     if coupled:
-        Um, U0, Up = (_shift(b, me, None, phi, "sin", t["sin", s]) for s in (-1, 0, 1))
+        Um, U0, Up = (_combine(b, t["sin", s]) for s in (-1, 0, 1))
     al, Ks, Kt = al[:, None], Ks[:, None], Kt[:, None]
     rt = W[:, None] ** 2 * d2th - model.acceleration_theta(Um, U0, Up, thm, th0, thp, al, Ks, Kt)
     M = phi.size
     proj_c = np.cos(np.outer(phi, mo)) * (2.0 / M)  # (M, H)
     R = [rt @ proj_c]
     if coupled:
-        d2U = _shift(-b * me**2, me, None, phi, "sin", t["sin", 0])
+        d2U = _combine(-b * me**2, t["sin", 0])
         ru = W[:, None] ** 2 * d2U - model.acceleration_U(Um, U0, Up, thm, th0, thp, al, Ks, Kt)
         R.append(ru @ (np.sin(np.outer(phi, me)) * (2.0 / M)))
     else:
