@@ -161,6 +161,18 @@ def check_output(out: Path | str, cache: bool = True) -> Path:
     for folder in (out, out / ".cache") if cache else (out,):
         if folder.exists() and not folder.is_dir():
             raise ValueError(f"{folder} is a file, not a folder")
+    # the folder, or the nearest existing one it would be created in, must take new entries
+    # (read-only file system, no permission, /proc): tried with an empty folder made and
+    # removed at once, so nothing is left and the error comes before the work is announced
+    base = out.absolute()
+    while not base.exists() and base != base.parent:
+        base = base.parent
+    if not base.is_dir():
+        raise ValueError(f"cannot create {out}: {base} is a file, not a folder")
+    try:
+        os.rmdir(tempfile.mkdtemp(prefix=".write-test-", dir=base))
+    except OSError as exc:
+        raise ValueError(f"cannot write to {out}: {exc.strerror or exc} ({base})") from None
     return out
 
 

@@ -12,7 +12,8 @@ import numpy as np
 from common.files import write_text
 from common import paper
 from numerics import Material, simulate, snap_wavenumber
-from numerics.lattice import GROWTH_THRESHOLD, band_summary, grows_beyond_threshold
+from numerics.lattice import (GROWTH_THRESHOLD, LINEAR_STAGE_RULE, band_summary,
+                              grows_beyond_threshold)
 from numerics.maps import growth_of
 from numerics.theory import predict_growth
 from numerics.lattice import checks
@@ -190,13 +191,11 @@ def run_point(args, log=print) -> dict:
                             energy_tolerance=1.0)
         growths = [growth_of(r.t, r.theta_hat, r.U_hat, r.m, r.N) for r in runs]
         verdict = sum(g["growth"] > GROWTH_THRESHOLD for g in growths) * 2 > len(growths)
-        # no seed with a linear stage (its largest sideband never grew e-fold after
-        # passing 5x its start): no rate to fit, shown as "-", not as a gain of 0
+        # no seed with a linear stage (linear_stage's rule): no rate to fit, shown as "-",
+        # not as a gain of 0
         s = band_summary(meas["q"], meas["sigma"], k) if meas else \
             {"peak_gain": float("nan"), "peak_offset": float("nan"), "band_edge": float("nan"),
-             "no_rate": "no seed had a linear stage to fit a rate over (its largest "
-                        "sideband must pass 5x its start, then reach 1% of the carrier or "
-                        "grow e-fold before the run ends)"}
+             "no_rate": f"no seed had a linear stage to fit a rate over ({LINEAR_STAGE_RULE})"}
         # the theories answer the simulation's question: grows > threshold within t_end
         rows = [(r[0], ("MI" if grows_beyond_threshold(r[2], t_end) else "stable")
                  if math.isfinite(r[2]) else r[1], *r[2:]) for r in rows]

@@ -79,7 +79,6 @@ def run_soliton(args, log=print) -> dict:
         sol = sol_ring
         if other_sol is not None:  # the other theory at the ring's k too
             other, other_sol, _ = _other_theory(mat, args.case, sol.k, amplitude, theory)
-    log("")
     log(_table(sol, run, other_sol if other_sol is not None and other_sol.kind == sol.kind
                else None, other))
     if run is not None:

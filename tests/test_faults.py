@@ -188,6 +188,28 @@ def test_point_and_soliton_check_their_output_before_simulating(command, tmp_pat
     assert err.startswith("flexmm: error:") and str(out) in err
 
 
+@pytest.mark.skipif(not Path("/proc/self").is_dir(), reason="needs Linux's /proc")
+@pytest.mark.parametrize("out", ["/proc/flexmm-test", "/proc/flexmm-test/deeper"])
+def test_map_refuses_an_unwritable_out_before_announcing_its_work(out, capsys, monkeypatch):
+    """An --out that cannot be created (here under /proc, which takes no new folders, also
+    for root, who ignores permission bits) is one line and exit 2, before the map says
+    what it will compute and before any theory runs."""
+    import scenes._map_command as map_command
+
+    def never(*_a, **_k):
+        raise AssertionError("the map started before checking --out")
+
+    monkeypatch.setattr(map_command, "run_map", never, raising=False)
+    code = cli(["map", "--case", "coupled", "--alpha", "2.5", "--K-s", "0.01851",
+                "--delta=-0.003,0.003", "--k", "0.5:1.2:4", "--out", out])
+    captured = capsys.readouterr()
+    assert code == 2
+    err = captured.err.strip()
+    assert len(err.splitlines()) == 1 and "Traceback" not in err
+    assert err.startswith("flexmm: error: cannot write to") and out in err
+    assert "map:" not in captured.out + captured.err
+
+
 # --- 5. Ctrl-C in the CLI: one line, 130, checkpoint, the rerun continues -----------------
 
 def test_cli_ctrl_c_is_one_line_and_exit_130(tmp_path, capsys, monkeypatch):

@@ -11,7 +11,8 @@ Runs          simulate -> Run, resume, initial_condition, noise_field, snap_wave
 Stepping      integrate, METHODS, Method, get_method, choose_step
 Errors        BlowUpError, SimulationInterrupted, AccuracyWarning
 Analysis      spectrum, mode, harmonic_bins, sideband_to_carrier, stability_verdict,
-              linear_stage, growth_rates, band_summary, spectrum_growth, forced_second_harmonic,
+              linear_stage (LINEAR_STAGE_RULE: its rule in words), growth_rates,
+              band_summary, spectrum_growth, forced_second_harmonic,
               carrier_amplitude, carrier_frequency; the growth criterion GROWTH_THRESHOLD
               and :func:`grows_beyond_threshold`
 Input checks  ``numerics.lattice.checks`` (the limits every layer imports)
@@ -22,7 +23,7 @@ from . import checks
 from ._accuracy import AccuracyWarning, choose_step
 from ._analysis import (GROWTH_THRESHOLD, band_summary, carrier_amplitude, carrier_frequency,
                         forced_second_harmonic, growth_rates, grows_beyond_threshold,
-                        harmonic_bins, linear_stage, mode, non_carrier_bins,
+                        LINEAR_STAGE_RULE, harmonic_bins, linear_stage, mode, non_carrier_bins,
                         sideband_to_carrier, spectrum, spectrum_growth, stability_verdict)
 from ._cache import cached_simulate
 from ._integrate import BlowUpError, SimulationInterrupted, integrate
@@ -41,7 +42,7 @@ __all__ = [
     "source_hash", "integrate", "METHODS", "Method", "get_method", "choose_step",
     "BlowUpError", "SimulationInterrupted", "AccuracyWarning", "spectrum", "mode",
     "harmonic_bins", "non_carrier_bins", "sideband_to_carrier", "stability_verdict",
-    "linear_stage", "growth_rates", "band_summary", "forced_second_harmonic",
+    "linear_stage", "LINEAR_STAGE_RULE", "growth_rates", "band_summary", "forced_second_harmonic",
     "carrier_amplitude", "carrier_frequency", "GROWTH_THRESHOLD", "grows_beyond_threshold",
     "checks", "noise_field", "spectrum_growth",
 ]

@@ -154,8 +154,17 @@ def stability_verdict(spec: np.ndarray, m: int, N: int) -> dict:
             "growth_factor": growth, "threshold": GROWTH_THRESHOLD}
 
 
-def linear_stage(spec: np.ndarray, m: int, N: int, rise: float = 5.0, ceiling: float = 0.01,
-                 span: float = np.e):
+#: linear_stage's defaults: the stage starts when the largest sideband has grown RISE-fold,
+#: ends at CEILING of the carrier, and a window that ends with the run must span SPAN-fold
+LINEAR_STAGE_RISE, LINEAR_STAGE_CEILING, LINEAR_STAGE_SPAN = 5.0, 0.01, np.e
+#: the same, in words (for messages that say why a run gave no rate)
+LINEAR_STAGE_RULE = (f"its largest sideband must pass {LINEAR_STAGE_RISE:g}x its start, then "
+                     f"reach {LINEAR_STAGE_CEILING:.0%} of the carrier or grow e-fold before "
+                     "the run ends")
+
+
+def linear_stage(spec: np.ndarray, m: int, N: int, rise: float = LINEAR_STAGE_RISE,
+                 ceiling: float = LINEAR_STAGE_CEILING, span: float = LINEAR_STAGE_SPAN):
     """Index window (i0, i1) of the linear stage of MI.
 
     Starts when the largest sideband has grown ``rise``-fold over its initial level (the
