@@ -8,6 +8,7 @@ import subprocess
 import sys
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from bench import simulator, stress
@@ -60,3 +61,20 @@ def test_bench_quick_smoke(tmp_path):
     rows = res["work_precision"]["blue-II"]["rows"]
     assert {r["method"] for r in rows} >= {"rk4", "srkn11b", "dop853", "numpy-rk4"}
     assert res["work_precision"]["blue-II"]["reference_difference"] < 1e-8
+
+
+def test_error_budget_quick(tmp_path):
+    # bench/error_budget.py (make bench's evaluation counts to 1e-6) at T = 50, into tmp_path
+    subprocess.run([sys.executable, "-m", "bench.error_budget", "--quick", "--out",
+                    str(tmp_path)], check=True, cwd=ROOT, capture_output=True, timeout=300)
+    res = json.loads((tmp_path / "results_quick.json").read_text())["error_budget"]
+    ev = res["evaluations_to_target"]
+    # the dt interpolated from the sweep lands on the target (within 30%: the sweep's
+    # log-log line is fitted over a factor 4 in dt, where the order-6 slope holds)
+    for name in ("srkn6b", "srkn11b", "kahanli8"):
+        assert abs(np.log(ev[name]["error"] / res["target"])) < np.log(1.3), name
+    # order 6 needs fewer evaluations than order 4 at 1e-6 on this problem
+    assert ev["srkn11b"]["evaluations"] < ev["srkn6b"]["evaluations"]
+    for b in res["budget"].values():
+        assert 0 <= b["share_at_theta_carrier"] + b["share_at_U_2k"] <= 1 + 1e-12
+    assert res["bound"] is None  # no speed section in tmp_path to bound against
