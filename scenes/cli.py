@@ -202,20 +202,24 @@ def main(argv=None) -> int:
     143 SIGTERM: both handled alike, one line saying what was kept where)."""
     from common.signals import exit_code, interrupts, received
 
+    created = []  # the --out folders this command would create (removed if left empty)
     with interrupts():
         try:
             args = _parser().parse_args(_join_negative_values(sys.argv[1:] if argv is None
                                                               else list(argv)))
             if getattr(args, "out", None) is not None:
                 args.out = args.out or "."  # --out '' is the current folder, and says so
+                created = _missing_folders(args.out)
             return _run(args)
         except KeyboardInterrupt as exc:  # SIGINT or SIGTERM, at any moment
+            _remove_if_empty(created)
             try:
                 print(f"flexmm: {_interrupted(locals().get('args'), exc)}", file=sys.stderr)
             except KeyboardInterrupt:
                 pass
             return exit_code(exc)
         except (ValueError, TypeError, FloatingPointError, MemoryError, OSError) as exc:
+            _remove_if_empty(created)
             if (interrupt := received()) is not None:  # an interrupt, in another form
                 print(f"flexmm: {_interrupted(locals().get('args'), interrupt)}",
                       file=sys.stderr)
@@ -227,6 +231,27 @@ def main(argv=None) -> int:
                 text = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
                 print(f"flexmm: error: {text}", file=sys.stderr)
             return 2
+
+
+def _missing_folders(out) -> list:
+    """The folders of ``out`` that do not exist yet, deepest first."""
+    path, missing = Path(out).absolute(), []
+    while not path.exists() and path != path.parent:
+        missing.append(path)
+        path = path.parent
+    return missing
+
+
+def _remove_if_empty(folders) -> None:
+    """A command that failed leaves no empty --out behind: each folder it created is
+    removed if it holds nothing (or only an empty ``.cache``); anything written stays."""
+    for folder in folders:
+        try:
+            if (folder / ".cache").is_dir():
+                (folder / ".cache").rmdir()
+            folder.rmdir()
+        except OSError:  # not empty (results, a map store), or already gone
+            return
 
 
 def _interrupted(args, exc) -> str:

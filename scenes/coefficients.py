@@ -84,15 +84,21 @@ def coefficients(material: Material, k: float, amplitude: float = paper.AMPLITUD
                         for case in ("rotation", "coupled")}
             c = complex(nls.u2_coefficient(*p))
         first = per_case["rotation"]
+        if not math.isfinite(first["omega"]):  # no real carrier: no harmonic either
+            c = complex("nan")
         row = {"omega": first["omega"], "v_g": first["v_g"], "g1": first["g1"],
                "u2 |c|": abs(c), "U at 2k": abs(c) * amplitude**2 / 2}
         for case, s in per_case.items():
             g = s["g"]
-            verdict = ("undefined (singular g)" if not math.isfinite(g) else "MI" if g > 0
-                       else "stable" if g < 0 else "undefined (g = 0 or singular)")
+            why = s.get("undefined") or (None if math.isfinite(g) and g != 0
+                                         else f"g = {g:.4g}")
+            verdict = "undefined" if why else "MI" if g > 0 else "stable"
             row[case] = {"g2": s["g2"], "g": g, "verdict": verdict,
                          "K_c": s.get("K_c", float("nan")), "K_m": s.get("K_m", float("nan")),
-                         "peak_gain": s.get("peak_gain", 0.0)}
+                         # no verdict, no gain: NaN (shown "-"), never a stable 0
+                         "peak_gain": float("nan") if why else s.get("peak_gain", 0.0)}
+            if why:
+                row[case]["undefined"] = why
         out[name] = row
     return out
 
@@ -133,6 +139,8 @@ def format_coefficients(material: Material, k: float, amplitude: float, units: U
                     cells.append(f"{1 / r['peak_gain']:.4g}" if r["peak_gain"] > 0 else "-")
                 elif key in ("K_c", "K_m") and r["verdict"] != "MI":
                     cells.append("-")
+                elif key == "peak_gain" and r["verdict"] == "undefined":
+                    cells.append("-")
                 else:
                     cells.append(f"{r[key]:.6g}")
             table.append([label] + cells)
@@ -144,6 +152,10 @@ def format_coefficients(material: Material, k: float, amplitude: float, units: U
                                for i, (c, w) in enumerate(zip(r, widths))).rstrip())
         if j == 0:
             lines.append("  ".join("-" * w for w in widths))
+    for n in names:
+        for case, roman in (("rotation", "I"), ("coupled", "II")):
+            if "undefined" in co[n][case]:
+                lines.append(f"{n}, case {roman}: undefined: {co[n][case]['undefined']}")
     if units.seconds_per_T:
         lines.append("")
         for case in ("rotation", "coupled"):

@@ -14,8 +14,9 @@ from common import paper
 from numerics import Material, simulate, snap_wavenumber
 from numerics.lattice import (GROWTH_THRESHOLD, LINEAR_STAGE_RULE, band_summary,
                               grows_beyond_threshold)
+from numerics.lattice._starts import paper_start_undefined
 from numerics.maps import growth_of
-from numerics.theory import predict_growth
+from numerics.theory import nls_undefined, predict_growth
 from numerics.lattice import checks
 from numerics.theory import (PAPER_START, THEORIES, measure_gain, measurement_length,
                              theory_gain)
@@ -98,9 +99,10 @@ def theories(material, case, k, amplitude, start="travelling") -> dict:
                        "peak_gain": float("nan"), "peak_offset": float("nan"),
                        "band_edge": float("nan")}
             continue
-        if not np.all(np.isfinite(curve)):  # delta = 0 (g1 = 0) or k^2 = omega^2
-            out[th] = {"q": q, "curve": curve, "verdict": "undefined",
-                       "reason": "singular NLS coefficient (g1 = 0 or a resonance)",
+        if not np.all(np.isfinite(curve)):  # no real omega, g1 = 0 or a resonance
+            why = (nls_undefined(th, material, case, k) if th in THEORIES[:2] else None) \
+                or "a singular gain curve"
+            out[th] = {"q": q, "curve": curve, "verdict": "undefined", "reason": why,
                        "peak_gain": float("nan"), "peak_offset": float("nan"),
                        "band_edge": float("nan")}
             continue
@@ -113,22 +115,24 @@ def theories(material, case, k, amplitude, start="travelling") -> dict:
 def snapped(k_requested: float, N: int):
     """k on a periodic chain of N sites: the nearest 2 pi m / N, whatever k was typed."""
     k_requested = checks.real("--k", k_requested, 0.0, math.pi)
-    N = checks.integer("--N", N, 3, 10**8 + 1)
+    N = checks.integer("--N", N, 8, 10**6)  # the bounds of simulate and predict_growth
     return snap_wavenumber(k_requested, N, rel_tol=math.inf)
 
 
 def run_point(args, log=print) -> dict:
     mat, units = material_from(args)
-    if args.out:  # before any computation (a simulation may take minutes)
-        from ._runner import prepare_output
-
-        prepare_output(args.out, cache=False)
     amplitude = checks.real("--amplitude", args.amplitude, 0.0, 1.5)
     N, k_req = args.N, args.k
     k, m = snapped(k_req, N)
     checks.integer("--seeds", args.seeds, 1, 1000)
     if args.t_end is not None:
         checks.real("--t-end", args.t_end, 0.0, 1e7)
+    if args.start == "paper" and (why := paper_start_undefined(mat, k, ("travelling",))):
+        raise ValueError(f"--start paper: {why}")
+    if args.out:  # before any computation (a simulation may take minutes)
+        from ._runner import prepare_output
+
+        prepare_output(args.out, cache=False)
     A0 = amplitude / (2 * EPS)
     co = coefficients(mat, k, amplitude)["semi-discrete"]
     log(f"material: alpha = {mat.alpha:g}, K_s = {mat.K_s:g}, K_theta = {mat.K_theta:g} "

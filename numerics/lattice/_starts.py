@@ -60,9 +60,13 @@ def build_start(start: str, material: Material, case: str, k: float, amplitude: 
     return build(material, case, k, amplitude, b0)
 
 
-def _ic(omega):
+def _ic(omega, name):
     def build(material, case, k, amplitude, b0):
-        w = float(omega(k, material))
+        with np.errstate(invalid="ignore"):
+            w = float(omega(k, material))
+        if not np.isfinite(w):
+            raise ValueError(paper_start_undefined(material, k) if name == "paper" else
+                             f"start {name!r}: no real carrier frequency at k = {k:.6g}")
         n = np.arange(b0.size)
         amp = amplitude * (1 + b0)
         theta, theta_dot = amp * np.cos(k * n), amp * w * np.sin(k * n)
@@ -72,5 +76,25 @@ def _ic(omega):
     return build
 
 
-register_start("paper", _ic(lambda k, m: _continuum.omega(k, m.alpha, m.K_s, m.K_theta)))
-register_start("discrete", _ic(discrete_omega_rotation))
+def paper_start_undefined(material: Material, k,
+                          others: tuple = ("discrete", "travelling")) -> str | None:
+    """Why eq. `IC` (start "paper") has no state at carrier k, or None where it has one:
+    it takes theta_dot from the continuum frequency omega = alpha sqrt(6 K_theta + delta
+    k^2) (eq. `continuum2`), which is not real where delta < 0 and k^2 > 6 K_theta / |delta|
+    (the long-wave model does not reach such k)."""
+    k = np.asarray(k, float)
+    bad = 6 * material.K_theta + material.delta * k**2 <= 0
+    if not np.any(bad):
+        return None
+    k_max = float(np.sqrt(6 * material.K_theta / -material.delta))
+    where = (f"at k = {float(k):.6g}" if k.ndim == 0 else
+             f"at {int(bad.sum())} of {bad.size} k values")
+    return (f"start 'paper' (eq. `IC`) takes theta_dot from the continuum frequency alpha "
+            f"sqrt(6 K_theta + delta k^2) (eq. `continuum2`), which is not real {where} for "
+            f"this material (delta = {material.delta:.4g}: only k < {k_max:.6g}); use start "
+            + " or ".join(repr(o) for o in others))
+
+
+register_start("paper", _ic(lambda k, m: _continuum.omega(k, m.alpha, m.K_s, m.K_theta),
+                            "paper"))
+register_start("discrete", _ic(discrete_omega_rotation, "discrete"))

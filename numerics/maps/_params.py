@@ -14,6 +14,7 @@ from ..lattice import Material, checks
 from ..lattice._analysis import GROWTH_THRESHOLD, non_carrier_bins
 from ..lattice._integrate import _check_time
 from ..lattice._integrators import get_method
+from ..lattice._starts import paper_start_undefined
 from ._cells import GROWTH_ERROR_CONSTANTS, GROWTH_TOL, RECORDS
 
 #: k values per task (one delta row is split into blocks of this many cells)
@@ -164,6 +165,14 @@ class MapParameters:
                 raise ValueError(f"N = {self.N} sites carry no wavenumber near k = {x:g} with "
                                  "sidebands to grow (k snaps to 2 pi m / N with 0 < m < N/2 "
                                  "and needs bins besides its harmonics); give a larger N")
+        if self.start == "paper":  # eq. `IC` needs a real continuum frequency at every cell
+            bad = [(i, why) for i in range(len(self.K_theta))
+                   if (why := paper_start_undefined(self.material_at(i), snapped,
+                                                    ("travelling",)))]
+            if bad:
+                more = f" and {len(bad) - 1} more rows" if len(bad) > 1 else ""
+                raise ValueError(f"--start paper: at K_theta = {self.K_theta[bad[0][0]]:g}{more}, "
+                                 f"{bad[0][1]}, or narrow --k")
         for j in range(1, len(snapped)):
             if snapped[j] == snapped[j - 1]:
                 m = round(snapped[j] * self.N / (2 * math.pi))

@@ -10,7 +10,8 @@ Stability       mi_gain (Hill's method about the state a start launches),
                 gain_spectrum -> GainSpectrum (per offset: rate, growing field and
                 wavenumber), hill_spectrum, stability_map (batched over (k, delta))
 NLS theories    THEORIES, PAPER_START, theory_gain, nls_summary (paper NLS and
-                semi-discrete NLS from ``generated/``, and the exact lattice)
+                semi-discrete NLS from ``generated/``, and the exact lattice),
+                nls_undefined (why an NLS has no verdict at k)
 Prediction      predict_growth -> GrowthPrediction: the growth factor a run measures,
                 from the linear response of its own initial state (Hill modes of the
                 launched state, the noise projected on them)
@@ -22,7 +23,7 @@ Solitons        soliton -> Soliton (bright or dark, width, velocity, frequency, 
 """
 
 from ._gain import (PAPER_START, THEORIES, measure_gain, measurement_length, nls_summary,
-                    relative_errors, theory_gain)
+                    nls_undefined, relative_errors, theory_gain)
 from ._hill import gain_spectrum, hill_spectrum, mi_gain, stability_map
 from ._launched import FreeWave, LaunchedState, launched_state
 from ._plane_wave import NoPlaneWaveError, PlaneWave, plane_wave
@@ -36,7 +37,7 @@ from ._soliton_measure import Snapshot, SolitonRun, measure_state, soliton_repor
 __all__ = [
     "PlaneWave", "plane_wave", "LaunchedState", "FreeWave", "launched_state", "mi_gain",
     "gain_spectrum", "GainSpectrum", "hill_spectrum", "stability_map", "THEORIES",
-    "PAPER_START", "theory_gain", "nls_summary", "measure_gain", "measurement_length",
+    "PAPER_START", "theory_gain", "nls_summary", "nls_undefined", "measure_gain", "measurement_length",
     "relative_errors", "predict_growth", "GrowthPrediction", "NoPlaneWaveError",
     "KINDS", "MIN_WIDTH",
     "SOLITON_THEORIES", "Snapshot", "Soliton", "SolitonRun", "SolitonWarning", "default_ring",

@@ -47,11 +47,47 @@ def _eps_A0(eps, A0, amplitude):
     return eps, 1.0 if A0 is None else A0
 
 
+def nls_undefined(nls, material: Material, case: str, k: float) -> str | None:
+    """Why an NLS model has no verdict at carrier k (None where it has one).
+
+    - The continuum model's frequency omega^2 = alpha^2 (6 K_theta + delta k^2) (eq.
+      `continuum2`) is negative for delta < 0 and k^2 > 6 K_theta / |delta|: no real carrier,
+      the long-wave model does not reach that k (its g2 / g1 stays finite there, as the
+      square roots cancel, but means nothing).
+    - g1 = 0 (delta = 0 in the continuum model: no dispersion at this order), or singular.
+    - g2 singular: the second harmonic resonates (case II: with U at 2k).
+
+    ``nls`` is a theory's name ("paper NLS", "semi-discrete NLS") or its generated module.
+    """
+    if isinstance(nls, str):
+        try:
+            nls = _NLS[nls]
+        except KeyError:
+            raise ValueError(f"nls must be one of {tuple(_NLS)}, got {nls!r}") from None
+    p = (k, material.alpha, material.K_s, material.K_theta)
+    with np.errstate(all="ignore"):
+        omega, g1 = float(nls.omega(*p)), float(nls.g1(*p))
+        g2 = float(getattr(nls, f"g2_{case}")(*p))
+    if not np.isfinite(omega):
+        if nls is continuum_nls:
+            return (f"no real carrier frequency: omega^2 = alpha^2 (6 K_theta + delta k^2) < 0 "
+                    f"at k = {k:.4g} (eq. `continuum2`; the long-wave model does not reach it)")
+        return f"no real carrier frequency at k = {k:.4g}"
+    if g1 == 0 or not np.isfinite(g1):
+        return ("g1 = 0: delta = 0, no dispersion at this order" if material.delta == 0
+                else f"g1 = {g1:.4g} at k = {k:.4g}: no dispersion at this order")
+    if g2 == 0 or not np.isfinite(g2):
+        return (f"g2 = {g2:.4g} at k = {k:.4g}: the second harmonic resonates"
+                + (" with U at 2k" if case == "coupled" else ""))
+    return None
+
+
 def nls_summary(material: Material, case: str, k: float, eps: float | None = None,
                 A0: float | None = None, nls=continuum_nls, *,
                 amplitude: float | None = None) -> dict:
     """The NLS at one carrier: omega, v_g, g1, g2, g, verdict, and for g > 0 the band
-    K_c, K_m (NLS units) and the peak lattice growth rate eps^2 |g1| Omega_I(K_m).
+    K_c, K_m (NLS units) and the peak lattice growth rate eps^2 |g1| Omega_I(K_m). Where
+    the model has no verdict (:func:`nls_undefined`) g is NaN and ``undefined`` says why.
 
     The plane wave is given by ``amplitude`` (its peak rotation, rad: the project's one
     convention, converted here to the paper's A0 at eps = 0.01), or by the paper's
@@ -64,11 +100,15 @@ def nls_summary(material: Material, case: str, k: float, eps: float | None = Non
     # the plane wave's peak rotation 2 eps A0 within the range the theories accept
     A0 = checks.real("A0", A0, 0.0, MAX_AMPLITUDE / (2 * eps), high_open=False)
     p = (k, material.alpha, material.K_s, material.K_theta)
-    g = float(getattr(nls, f"g_{case}")(*p))
-    g1 = float(nls.g1(*p))
-    out = {"g": g, "g1": g1, "g2": float(getattr(nls, f"g2_{case}")(*p)),
-           "stable": bool(g < 0), "omega": float(nls.omega(*p)),
-           "v_g": float(nls.group_velocity(*p))}
+    why = nls_undefined(nls, material, case, k)
+    with np.errstate(all="ignore"):
+        g = float(getattr(nls, f"g_{case}")(*p)) if why is None else float("nan")
+        g1 = float(nls.g1(*p))
+        out = {"g": g, "g1": g1, "g2": float(getattr(nls, f"g2_{case}")(*p)),
+               "stable": bool(g < 0), "omega": float(nls.omega(*p)),
+               "v_g": float(nls.group_velocity(*p))}
+    if why is not None:
+        out["undefined"] = why
     if g > 0:
         K_m = nls.mi_fastest(g, A0)
         out.update(K_c=float(nls.mi_cutoff(g, A0)), K_m=float(K_m),
@@ -94,6 +134,8 @@ def theory_gain(theory: str, material: Material, case: str, k: float, q_offset,
         raise ValueError(f"theory must be one of {THEORIES + (PAPER_START,)}, got "
                          f"{theory!r}") from None
     p = (k, material.alpha, material.K_s, material.K_theta)
+    if nls_undefined(nls, material, case, k) is not None:  # no verdict: NaN, not a rate
+        return np.full(np.shape(q_offset), np.nan)
     g = getattr(nls, f"g_{case}")(*p)
     return eps**2 * abs(nls.g1(*p)) * nls.mi_growth_rate(np.asarray(q_offset) / eps, g, A0)
 

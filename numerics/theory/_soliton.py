@@ -29,6 +29,7 @@ from generated import soliton as closed
 
 from ..lattice import checks
 from ..lattice._model import Material, check_case
+from ._gain import nls_undefined
 
 KINDS = ("bright", "dark")
 #: the NLS theories a soliton can be predicted from (names as in ``THEORIES``)
@@ -164,11 +165,11 @@ def soliton(material: Material, case: str, k: float, amplitude: float, kind: str
                          f"{theory!r}") from None
     phi = checks.real("phi", phi, -math.pi / 2, math.pi / 2)
     p = (k, material.alpha, material.K_s, material.K_theta)
+    why = nls_undefined(nls, material, case, k)
+    if why is not None:
+        raise ValueError(f"the {theory} has no soliton at k = {k:g}: {why}")
     omega, v_g, g1 = (float(f(*p)) for f in (nls.omega, nls.group_velocity, nls.g1))
     g2 = float(getattr(nls, f"g2_{case}")(*p))
-    if not (math.isfinite(g1) and math.isfinite(g2)) or g1 == 0 or g2 == 0:
-        raise ValueError(f"the {theory} has g1 = {g1:.4g}, g2 = {g2:.4g} at k = {k:g}: no "
-                         "soliton (delta = 0 or a resonance)")
     g = g2 / g1
     exists = _kind_that_exists(g)
     if kind is None:
