@@ -11,11 +11,11 @@ import numpy as np
 
 from common.files import write_text
 from common import paper
-from numerics import Material, simulate, snap_wavenumber
+from numerics import Material, initial_condition, simulate, snap_wavenumber
 from numerics.lattice import (GROWTH_THRESHOLD, LINEAR_STAGE_RULE, band_summary,
                               grows_beyond_threshold)
 from numerics.lattice._starts import paper_start_undefined
-from numerics.maps import growth_of
+from numerics.maps import cell_step, growth_of
 from numerics.theory import nls_undefined, predict_growth
 from numerics.lattice import checks
 from numerics.theory import (PAPER_START, THEORIES, measure_gain, measurement_length,
@@ -23,8 +23,12 @@ from numerics.theory import (PAPER_START, THEORIES, measure_gain, measurement_le
 
 from .coefficients import coefficients
 
-#: offsets searched for the theories' bands (lattice units)
+#: sideband offsets Q = |q - k| searched for the theories' bands (lattice units): the
+#: whole zone, as the map searches it (sidebands k + Q beyond pi fold back, k - Q below 0
+#: too: a band at any offset is found, whatever k)
 Q_GRID = np.linspace(0, math.pi, 3001)
+#: a simulated point records its spectrum every SAVE_EVERY T (and predicts those records)
+SAVE_EVERY = 5.0
 #: the NLS theories' small parameter (their formulas take the paper's eps, A0)
 EPS = paper.EPS
 
@@ -71,14 +75,23 @@ def _start_grid(material, case, k, amplitude):
 
     res = resonance_map(k, case=case, material=material, K_theta=material.K_theta,
                         amplitude=amplitude, start="paper")
-    qp = float(res["q_peak"])
-    q = [np.linspace(0.02, math.pi - 0.02, START_CURVE_POINTS)]
+    qp = abs(float(res["q_peak"]))
+    Q = [np.linspace(0.02, math.pi, START_CURVE_POINTS)]
     if math.isfinite(qp) and qp != 0:
-        w = 1.5 * abs(qp)
-        q.append(k + np.linspace(-w, w, 2 * START_CURVE_POINTS + 1))
-        q.append([k + qp, k - qp])
-    q = np.unique(np.concatenate(q))
-    return q[(q > 0) & (q < math.pi) & (np.abs(q - k) > 1e-6)]
+        Q.append(qp * np.linspace(0.0, 2.5, 2 * START_CURVE_POINTS + 1))
+        Q.append([qp])
+    Q = np.unique(np.concatenate(Q))
+    return Q[(Q > 1e-6) & (Q <= math.pi)]
+
+
+def offset_curve(q, sigma, k):
+    """A measured sigma over the rfft bins q (0 .. pi) as a curve over the offset
+    Q = q - k of the upper sidebands (q > k): offsets up to pi - k. Beyond, a pair's upper
+    sideband folds back onto a bin that another pair's sideband also occupies, so a bin
+    no longer tells its offset (the theories, which know their pairs, cover 0 .. pi)."""
+    q, sigma = np.asarray(q, float), np.asarray(sigma, float)
+    up = q > k
+    return q[up] - k, sigma[up]
 
 
 def theories(material, case, k, amplitude, start="travelling") -> dict:
@@ -90,9 +103,10 @@ def theories(material, case, k, amplitude, start="travelling") -> dict:
     out = {}
     for th in names:
         try:
-            q = Q_GRID if th != PAPER_START else _start_grid(material, case, k, amplitude)
+            Q = Q_GRID if th != PAPER_START else _start_grid(material, case, k, amplitude)
+            q = k + Q  # upper sidebands (beyond pi they fold back: see Q_GRID)
             with np.errstate(all="ignore"):
-                curve = theory_gain(th, material, case, k, q - k, EPS, A0)
+                curve = theory_gain(th, material, case, k, Q, EPS, A0)
         except ArithmeticError as exc:  # no plane wave (a resonance): say so, no verdict
             out[th] = {"q": q, "curve": np.full(q.shape, np.nan),
                        "verdict": "undefined", "reason": f"no plane wave: {exc}",
@@ -169,7 +183,7 @@ def run_point(args, log=print) -> dict:
     try:
         pred = predict_growth(mat, args.case, k, amplitude, start=args.start, N=N,
                               t_end=t_end, seed=0, draws=seeds - 1,
-                              records=max(2, min(4000, int(round(t_end / 5.0)))))
+                              records=max(2, min(4000, int(round(t_end / SAVE_EVERY)))))
         predicted = [pred.growth, *pred.growth_draws.tolist()]
         result["predicted"] = {
             "growth": predicted, "verdict": "MI" if np.median(predicted) > GROWTH_THRESHOLD
@@ -189,15 +203,22 @@ def run_point(args, log=print) -> dict:
             runs.append(run)
             return run
 
+        # method and step as a map cell picks them: from the accuracy the growth factor
+        # needs over t_end (not the paper's RK4 at dt = 0.05, too coarse for stiff
+        # materials), the step a whole fraction of the 5 T between records
+        method, dt = cell_step(initial_condition(mat, args.case, N, k, amplitude, 1e-3, 0,
+                                                 args.start), mat, args.case, t_end)
+        dt = SAVE_EVERY / math.ceil(SAVE_EVERY / dt - 1e-9)
         meas = measure_gain(sim, range(args.seeds), material=mat, case=args.case, N=N, k=k,
-                            amplitude=amplitude, t_end=t_end,
-                            save_every=5.0, start=args.start, progress=None,
+                            amplitude=amplitude, t_end=t_end, method=method, dt=dt,
+                            save_every=SAVE_EVERY, start=args.start, progress=None,
                             energy_tolerance=1.0)
         growths = [growth_of(r.t, r.theta_hat, r.U_hat, r.m, r.N) for r in runs]
         verdict = sum(g["growth"] > GROWTH_THRESHOLD for g in growths) * 2 > len(growths)
         # no seed with a linear stage (linear_stage's rule): no rate to fit, shown as "-",
         # not as a gain of 0
-        s = band_summary(meas["q"], meas["sigma"], k) if meas else \
+        s = band_summary(k + offset_curve(meas["q"], meas["sigma"], k)[0],
+                         offset_curve(meas["q"], meas["sigma"], k)[1], k) if meas else \
             {"peak_gain": float("nan"), "peak_offset": float("nan"), "band_edge": float("nan"),
              "no_rate": f"no seed had a linear stage to fit a rate over ({LINEAR_STAGE_RULE})"}
         # the theories answer the simulation's question: grows > threshold within t_end
@@ -205,11 +226,12 @@ def run_point(args, log=print) -> dict:
                  if math.isfinite(r[2]) else r[1], *r[2:]) for r in rows]
         for n, r in zip(th, rows):
             result["theories"][n]["verdict_within_t_end"] = r[1]
-        rows.append((f"simulated ({args.seeds} seeds, N = {N}, T = {t_end:g})",
+        rows.append((f"simulated ({args.seeds} seeds, N = {N}, T = {t_end:g}, {method} "
+                     f"dt = {dt:.3g})",
                      "MI" if verdict else "stable", s["peak_gain"], s["peak_offset"],
                      s["band_edge"]))
         result["simulated"] = {"verdict": "MI" if verdict else "stable", **s, "t_end": t_end,
-                               "seeds": args.seeds,
+                               "seeds": args.seeds, "method": method, "dt": dt,
                                "growth": [g["growth"] for g in growths],
                                "growth_field": [g["growth_field"] for g in growths],
                                "criterion": f"MI when the largest non-carrier theta or U "
@@ -245,9 +267,11 @@ def run_point(args, log=print) -> dict:
     best = max((r for r in rows if math.isfinite(r[2]) and r[2] > 0), key=lambda r: r[2],
                default=None)
     if best is not None:
-        q = best[3]
-        log(f"fastest growth ({best[0]}): offset q - k = {q:.4g}, sidebands q at "
-            f"{k + q:.4g} and {k - q:.4g} rad/site, e-folding time {units.time(1 / best[2])}")
+        Q = best[3]
+        fold = [abs((x + math.pi) % (2 * math.pi) - math.pi) for x in (k + Q, k - Q)]
+        log(f"fastest growth ({best[0]}): offset q - k = {Q:.4g}, sidebands q at "
+            f"{fold[0]:.4g} and {fold[1]:.4g} rad/site (folded into [0, pi]), e-folding "
+            f"time {units.time(1 / best[2])}")
     if args.out:
         out = Path(args.out)
         out.mkdir(parents=True, exist_ok=True)
@@ -278,17 +302,18 @@ def _figure(out, th, meas, k, args, amplitude):
 
     fig, ax = plt.subplots(figsize=(7, 4), layout="constrained")
     if meas:
-        ax.errorbar(meas["q"], meas["sigma"], yerr=meas["sigma_std"], fmt=".", ms=3, lw=0.5,
-                    label=f"simulated ({meas['seeds']} of {args.seeds} seeds with a linear "
-                          "stage)" if meas["seeds"] < args.seeds
-                    else f"simulated ({meas['seeds']} seeds)")
+        Q, sig = offset_curve(meas["q"], meas["sigma"], k)
+        _, err = offset_curve(meas["q"], meas["sigma_std"], k)
+        ax.errorbar(Q, sig, yerr=err, fmt=".", ms=3, lw=0.5,
+                    label=(f"simulated ({meas['seeds']} of {args.seeds} seeds with a linear "
+                           "stage" if meas["seeds"] < args.seeds
+                           else f"simulated ({meas['seeds']} seeds") + ", Q < pi - k)")
     for (name, t), style in zip(th.items(), ("k--", "C2-", "C3-")):
-        ax.plot(t["q"], t["curve"], style, lw=1, label=f"{name} (theory)")
+        ax.plot(np.asarray(t["q"]) - k, t["curve"], style, lw=1, label=f"{name} (theory)")
     tops = [np.nanmax(t["curve"]) for t in th.values() if np.any(np.isfinite(t["curve"]))]
     if meas:
         tops.append(float(np.max(meas["sigma"])))
     top = max([v for v in tops if np.isfinite(v)], default=0.0)
-    ax.axvline(k, color="0.6", lw=0.8, ls=":", label=f"carrier $k$ = {k:.4g}")
     if top <= 0:  # nothing grows: say so instead of an empty plot on a 1e-12 axis
         ax.set_ylim(-1, 1)
         ax.text(0.5, 0.6, "stable: no growing sideband in any theory" +
@@ -296,7 +321,7 @@ def _figure(out, th, meas, k, args, amplitude):
                 ha="center", fontsize=10)
     else:
         ax.set_ylim(-0.1 * top, 1.4 * top)
-    ax.set_xlabel(r"sideband wavenumber $q$ (rad/site)")
+    ax.set_xlabel(r"sideband offset $Q = |q - k|$ (rad/site): sidebands at $k \pm Q$")
     ax.set_ylabel(r"growth rate $\sigma$ (1/T)")
     ax.set_title(f"case {args.case}, $k$ = {k:.4g}, amplitude {amplitude:g} rad, "
                  f"start {args.start}", fontsize=9)

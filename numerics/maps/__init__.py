@@ -4,13 +4,13 @@ Imports ``numerics.lattice`` and ``numerics.theory``; nothing below imports it.
 
 Exact maps       resonance_map (bands from their resonance conditions, sampling-independent)
 One cell         simulate_cell (the simulated verdict, growth factor, early stop),
-                 growth_of, measured_peak_gain
+                 cell_step (its method and step), growth_of, measured_peak_gain
 Maps by sim.     MapParameters (what defines a map), parse_spec (``v1,v2`` or
                  ``start:stop:num``), run_map (cells as tasks on a Dask cluster, results in
                  a resumable Zarr store), theory_columns, agreement
 """
 
-from ._cells import growth_of, measured_peak_gain, simulate_cell
+from ._cells import cell_step, growth_of, measured_peak_gain, simulate_cell
 from ._resonance import resonance_map
 from ._params import CRITERION, MapParameters, local_cores, parse_spec
 from ._agreement import agreement
@@ -19,7 +19,7 @@ from ._columns import theory_columns
 from ._store import MapCellError, open_or_create, run_map
 
 __all__ = [
-    "resonance_map", "simulate_cell", "growth_of", "measured_peak_gain", "MapParameters",
+    "resonance_map", "simulate_cell", "cell_step", "growth_of", "measured_peak_gain", "MapParameters",
     "parse_spec", "run_map", "theory_columns", "agreement", "open_or_create",
     "simulate_block", "CRITERION", "MapCellError", "local_cores",
 ]
