@@ -103,6 +103,8 @@ def run_map_command(args, log=print):
     k = parse_spec(args.k, "--k")
     # the rows as given: --delta, or --K-theta (its values reach the cells and the theories
     # unchanged; largest first, so that delta = K_s - K_theta ascends)
+    if args.delta is not None and args.K_theta is not None:
+        raise ValueError("give --K-theta SPEC or --delta SPEC (delta = K_s - K_theta), not both")
     if args.delta is not None:
         rows = {"delta": tuple(float(d) for d in parse_spec(args.delta, "--delta"))}
     elif args.K_theta is not None:

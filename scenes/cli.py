@@ -205,8 +205,8 @@ def main(argv=None) -> int:
     created = []  # the --out folders this command would create (removed if left empty)
     with interrupts():
         try:
-            args = _parser().parse_args(_join_negative_values(sys.argv[1:] if argv is None
-                                                              else list(argv)))
+            args = _parse(_join_negative_values(sys.argv[1:] if argv is None
+                                                else list(argv)))
             if getattr(args, "out", None) is not None:
                 args.out = args.out or "."  # --out '' is the current folder, and says so
                 created = _missing_folders(args.out)
@@ -231,6 +231,24 @@ def main(argv=None) -> int:
                 text = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
                 print(f"flexmm: error: {text}", file=sys.stderr)
             return 2
+
+
+def _parse(argv):
+    """The parsed command line. An unknown option is the command's error (its usage, not
+    flexmm's), with the nearest option it has: ``--K-thetaa`` -> did you mean --K-theta?"""
+    import difflib
+
+    p = _parser()
+    args, extra = p.parse_known_args(argv)
+    if extra:
+        sub = next(a for a in p._actions
+                   if isinstance(a, argparse._SubParsersAction)).choices[args.cmd]
+        known = [o for o in sub._option_string_actions if o.startswith("--")]
+        close = [c for e in extra if e.startswith("-")
+                 for c in difflib.get_close_matches(e.split("=")[0], known, n=1)]
+        sub.error(f"unrecognized arguments: {' '.join(extra)}"
+                  + (f" (did you mean {close[0]}?)" if close else ""))
+    return args
 
 
 def _missing_folders(out) -> list:
@@ -336,6 +354,10 @@ def _dispatch(args, scenes) -> int:
         from .point import material_from
 
         mat, units = material_from(args)
+        from numerics.lattice import checks
+
+        checks.real("--k", args.k, 0.0, 3.141592653589793)  # the option's name, as in point
+        checks.real("--amplitude", args.amplitude, 0.0, 1.5)
         print(format_coefficients(mat, args.k, args.amplitude, units))
         return 0
     if args.cmd == "scenes":

@@ -222,17 +222,19 @@ class _Families:
             X0[:, n + row] = delta[2 * f + 1][:, r[:, row]].T
         return X0
 
-    def evolve(self, X0, t):
+    def evolve(self, X0, t, families=slice(None)):
         """Complex amplitudes e^{i b n} of every (family, row) at times t: (nt, nf, n, draws)
-        before the sum over m (rows of one p at the same bin add in the lab frame)."""
-        coef = np.linalg.solve(self.V, X0)  # biorthogonal projection on the modes
+        before the sum over m (rows of one p at the same bin add in the lab frame); only
+        the ``families`` (a slice of them, X0 their data) when given."""
+        V, lam = self.V[families], self.lam[families]
+        coef = np.linalg.solve(V, X0)  # biorthogonal projection on the modes
         n, nf, draws = self.n, X0.shape[0], X0.shape[2]
         # W[f, m, r, d]: mode m's share of row r's value (the first n rows are values)
-        W = (np.transpose(self.V[:, :n, :], (0, 2, 1))[..., None] * coef[:, :, None, :])
+        W = (np.transpose(V[:, :n, :], (0, 2, 1))[..., None] * coef[:, :, None, :])
         # a growing mode's factor beyond e^600 is far past saturation (linear is False
         # there anyway): capped so that long runs give huge, finite factors, never inf/NaN
-        grow = np.exp(np.minimum(self.lam.real[:, None, :] * t[None, :, None], MAX_EXPONENT))
-        turns = uniform_phases(t, self.lam.imag.ravel()).reshape(t.size, nf, 2 * n)
+        grow = np.exp(np.minimum(lam.real[:, None, :] * t[None, :, None], MAX_EXPONENT))
+        turns = uniform_phases(t, lam.imag.ravel()).reshape(t.size, nf, 2 * n)
         grow = grow * np.transpose(turns, (1, 0, 2))  # (nf, nt, 2n)
         out = np.matmul(grow, W.reshape(nf, 2 * n, n * draws)).reshape(nf, t.size, n, draws)
         lab = uniform_phases(t, -self.freq)  # (nt, n)
@@ -352,22 +354,34 @@ def predict_growth(material: Material, case: str, k: float, amplitude: float = 0
     delta = [np.fft.fft(b0 * x, axis=1) / N if x is not None else np.zeros((len(seeds), N))
              for x in (clean.theta, clean.theta_dot, clean.U, clean.U_dot)]
     X0 = fam.initial(delta)
-    amp = fam.evolve(X0, t)  # (nt, nf, n, draws)
+    fields = ("theta", "U") if case == "coupled" else ("theta",)
+    # the spectra of every field at every record (complex), kept while the families are
+    # evolved a chunk at a time: a chunk's amplitudes (nt, chunk, n, draws) are deposited at
+    # their bins and dropped (all at once they are ~ n / 2 x the spectra: 20 GB at N = 10^4)
+    checks.memory("N", 16.0 * t.size * len(seeds) * N * (len(fields) + 1),
+                  f"the predicted spectra of {N} sites at {t.size} records for "
+                  f"{len(seeds)} seed(s)")
+    fulls = [np.zeros((t.size, len(seeds), N), complex) for _ in fields]
+    chunk = max(1, int(2**27 // (16 * t.size * fam.n * len(seeds) * 4)))
+    for f0 in range(0, fam.j.size, chunk):
+        sl = slice(f0, min(f0 + chunk, fam.j.size))
+        amp = fam.evolve(X0[sl], t, sl)  # (nt, chunk, n, draws)
+        for f, full in enumerate(fulls):
+            for i, row in zip(*np.nonzero(fam.direct[sl] & (fam.field == f)[None, :])):
+                full[:, :, fam.b[f0 + i, row] % N] += amp[:, i, row, :]
+            for i, row in zip(*np.nonzero(fam.conj_owner[sl] & (fam.field == f)[None, :])):
+                full[:, :, -fam.b[f0 + i, row] % N] += np.conj(amp[:, i, row, :])
+        del amp
 
     # the carrier's amplitude per record, as the simulation reads bin m0
     if launched is None:
         carrier = np.full(t.size, abs(wave.theta_harmonics[0]))
     else:
         carrier = np.abs(launched.mode("theta", 1, t))
-    fields = ("theta", "U") if case == "coupled" else ("theta",)
     ratio, bins_of, perturbation = {}, {}, {}
     linear = True
     for f, name in enumerate(fields):
-        full = np.zeros((t.size, len(seeds), N), complex)
-        for i, row in zip(*np.nonzero(fam.direct & (fam.field == f)[None, :])):
-            full[:, :, fam.b[i, row] % N] += amp[:, i, row, :]
-        for i, row in zip(*np.nonzero(fam.conj_owner & (fam.field == f)[None, :])):
-            full[:, :, -fam.b[i, row] % N] += np.conj(amp[:, i, row, :])
+        full = fulls[f]
         rest, free = _free_waves(material, N, delta, f, fam.covered[f], t)
         full[:, :, rest] += free
         mask = non_carrier_bins(m0, N, name)
