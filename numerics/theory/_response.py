@@ -283,8 +283,9 @@ def predict_growth(material: Material, case: str, k: float, amplitude: float = 0
     Parameters
     ----------
     material, case, k, amplitude, start, N, noise, seed :
-        The experiment, as :func:`numerics.simulate` takes it (k is snapped to the
-        nearest 2 pi m / N, as the simulation does).
+        The experiment, as :func:`numerics.simulate` takes it; k is snapped to the
+        nearest 2 pi m / N, as ``flexmm map`` and ``point`` do before they simulate
+        (``simulate`` itself takes only such a k, and names the nearest one otherwise).
     t_end : float
         Length of the run (lattice time).
     records : int
