@@ -10,6 +10,7 @@ import numpy as np
 from numerics.lattice import GROWTH_THRESHOLD, checks
 
 from numerics.maps import MapParameters, agreement, local_cores, parse_spec, run_map
+from numerics.maps._store import _duration  # one wording of run times
 
 
 #: a map of more cells than this is refused (its theory columns alone fill memory)
@@ -18,12 +19,6 @@ MAX_CELLS = 250_000
 CONFIRM_SECONDS = 3600.0
 
 
-def _duration(seconds: float) -> str:
-    if seconds < 90:
-        return f"{seconds:.0f} s"
-    if seconds < 5400:
-        return f"{seconds / 60:.0f} min"
-    return f"{seconds / 3600:.1f} h"
 
 
 #: MapParameters' field names -> the map command's options, for its error messages
