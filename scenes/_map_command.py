@@ -10,6 +10,7 @@ import numpy as np
 from numerics.lattice import GROWTH_THRESHOLD, checks
 
 from numerics.maps import MapParameters, agreement, local_cores, parse_spec, run_map
+from numerics.maps._agreement import MARGIN
 from numerics.maps._store import _duration  # one wording of run times
 
 
@@ -172,9 +173,10 @@ def run_map_command(args, log=print):
     log(f"wrote {out / 'map.zarr'}, {out / 'map.png'}, {out / 'summary.json'}")
     if summary["simulated"]:
         ag = summary["agreement_with_simulation_percent"]
-        log("theory verdicts that agree with the simulation: " + "; ".join(
+        log(f"theory verdicts that agree with the simulation (marginal: the theory's growth "
+            f"within {MARGIN:g}x of {GROWTH_THRESHOLD:g}x): " + "; ".join(
             f"{n} {ag[n]:.0f}% of cells ({ag[n + '_decided']:.0f}% of the "
-            f"{ag[n + '_decided_cells']} clear ones"
+            f"{ag[n + '_decided_cells']} not marginal"
             + (f"; {ag[n + '_undetermined_cells']} undetermined, left out"
                if ag[n + '_undetermined_cells'] else "") + ")"
             for n in THEORIES))
