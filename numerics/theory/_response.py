@@ -57,6 +57,9 @@ DRAWS = 32
 #: largest exponent Re(lambda) t evaluated (e^600 ~ 1e260: the factor of a mode long
 #: past saturation; keeps every product finite)
 MAX_EXPONENT = 600.0
+#: bytes of one chunk of evolved families (and its temporaries): the spectra stay the
+#: largest arrays (the result does not depend on it, tests/test_response.py)
+CHUNK_BYTES = 2**27
 #: the linear stage ends where a predicted component reaches this fraction of the carrier
 LINEAR_LIMIT = 1.0
 #: free-phase truncation of the eq. `IC` torus' Hill matrices (|m_j| <= free_order):
@@ -363,7 +366,7 @@ def predict_growth(material: Material, case: str, k: float, amplitude: float = 0
                   f"the predicted spectra of {N} sites at {t.size} records for "
                   f"{len(seeds)} seed(s)")
     fulls = [np.zeros((t.size, len(seeds), N), complex) for _ in fields]
-    chunk = max(1, int(2**27 // (16 * t.size * fam.n * len(seeds) * 4)))
+    chunk = max(1, int(CHUNK_BYTES // (16 * t.size * fam.n * len(seeds) * 4)))
     for f0 in range(0, fam.j.size, chunk):
         sl = slice(f0, min(f0 + chunk, fam.j.size))
         amp = fam.evolve(X0[sl], t, sl)  # (nt, chunk, n, draws)
