@@ -9,9 +9,9 @@ import numpy as np
 
 from numerics.lattice import GROWTH_THRESHOLD, checks
 
-from numerics.maps import MapParameters, agreement, local_cores, parse_spec, run_map
-from numerics.maps._agreement import MARGIN
-from numerics.maps._store import _duration  # one wording of run times
+from numerics.maps import (AGREEMENT_MARGIN, MapParameters, agreement, local_cores,
+                           parse_spec, run_map)
+from common.text import duration as _duration
 
 
 #: a map of more cells than this is refused (its theory columns alone fill memory)
@@ -174,7 +174,7 @@ def run_map_command(args, log=print):
     if summary["simulated"]:
         ag = summary["agreement_with_simulation_percent"]
         log(f"theory verdicts that agree with the simulation (marginal: the theory's growth "
-            f"within {MARGIN:g}x of {GROWTH_THRESHOLD:g}x): " + "; ".join(
+            f"within {AGREEMENT_MARGIN:g}x of {GROWTH_THRESHOLD:g}x): " + "; ".join(
             f"{n} {ag[n]:.0f}% of cells ({ag[n + '_decided']:.0f}% of the "
             f"{ag[n + '_decided_cells']} not marginal"
             + (f"; {ag[n + '_undetermined_cells']} undetermined, left out"

@@ -13,8 +13,7 @@ from common.files import write_text
 from common import paper
 from numerics import Material, initial_condition, simulate, snap_wavenumber
 from numerics.lattice import (GROWTH_THRESHOLD, LINEAR_STAGE_RULE, band_summary,
-                              grows_beyond_threshold)
-from numerics.lattice._starts import paper_start_undefined
+                              grows_beyond_threshold, paper_start_undefined)
 from numerics.maps import cell_step, growth_of
 from numerics.theory import nls_undefined, predict_growth
 from numerics.lattice import checks

@@ -7,7 +7,8 @@ it only through the registry of named starts (:data:`STARTS`), which theory fill
 Model         Material, LatticeState, energy, CASES, discrete_omega_rotation,
               discrete_omega_longitudinal
 Runs          simulate -> Run, resume, initial_condition, noise_field, snap_wavenumber, STARTS,
-              register_start, cached_simulate, SIMULATOR_VERSION, source_hash
+              register_start, paper_start_undefined (where eq. `IC` has no state),
+              cached_simulate, SIMULATOR_VERSION, source_hash
 Stepping      integrate, METHODS, Method, get_method, choose_step
 Errors        BlowUpError, SimulationInterrupted, AccuracyWarning
 Analysis      spectrum, mode, harmonic_bins, sideband_to_carrier, stability_verdict,
@@ -32,13 +33,13 @@ from ._model import (CASES, LatticeState, Material, discrete_omega_longitudinal,
                      discrete_omega_rotation, energy)
 from ._simulate import (Run, initial_condition, noise_field, resume, simulate,
                         snap_wavenumber)
-from ._starts import STARTS, register_start
+from ._starts import STARTS, paper_start_undefined, register_start
 from ._version import SIMULATOR_VERSION, source_hash
 
 __all__ = [
     "Material", "LatticeState", "energy", "CASES", "discrete_omega_rotation",
     "discrete_omega_longitudinal", "simulate", "Run", "resume", "initial_condition",
-    "snap_wavenumber", "STARTS", "register_start", "cached_simulate", "SIMULATOR_VERSION",
+    "snap_wavenumber", "STARTS", "register_start", "paper_start_undefined", "cached_simulate", "SIMULATOR_VERSION",
     "source_hash", "integrate", "METHODS", "Method", "get_method", "choose_step",
     "BlowUpError", "SimulationInterrupted", "AccuracyWarning", "spectrum", "mode",
     "harmonic_bins", "non_carrier_bins", "sideband_to_carrier", "stability_verdict",

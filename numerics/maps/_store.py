@@ -226,28 +226,21 @@ def run_map(params: MapParameters, out: Path, scheduler: str | None = None,
         todo = blocks(params, done)
         n_cells, n_done = done.size, int(done.sum())
         if n_done:
+            from common.text import duration
+
             from ._params import local_cores
 
             n_workers = workers or (1 if scheduler else local_cores())
             left = params.estimated_seconds(n_workers) * (n_cells - n_done) / n_cells
             log(f"resuming {path}: {n_done} of {n_cells} cells already done (checksums "
                 f"verified), {n_cells - n_done} to {what}"
-                + (f" (about {_duration(left)})" if n_cells > n_done else ""))
+                + (f" (about {duration(left)})" if n_cells > n_done else ""))
         if todo:
             _run_tasks(params, path, todo, n_cells - n_done, scheduler, workers, progress,
                        log, arrays, timeout)
         # the store's metadata and coordinates read; its variables are ``arrays``, which
         # every block written has updated (tests/test_maps.py: identical to a fresh read)
         return ds.copy(data={n: arrays[n] for n in ds.data_vars}).load()
-
-
-def _duration(seconds: float) -> str:
-    """A run time as a person reads it: s, min or h."""
-    if seconds < 90:
-        return f"{seconds:.0f} s"
-    if seconds < 5400:
-        return f"{seconds / 60:.0f} min"
-    return f"{seconds / 3600:.1f} h"
 
 
 def _longest_first(params, todo, arrays=None) -> list:

@@ -1,0 +1,144 @@
+"""What a researcher meets in the first hour with a material of their own, beyond the
+paper's two points: verdicts that do not exist are said so (never a finite "stable"),
+starts that do not exist are refused before any work, every band is found whatever k,
+and mistakes get the command's own error. Found by a randomized sweep of the CLI
+(issue 23's review) at alpha 0.3-6, K_s and K_theta 0.001-1, amplitudes up to 0.5."""
+
+import json
+import math
+
+import numpy as np
+import pytest
+
+from numerics import Material, simulate
+from numerics.maps import MapParameters
+from numerics.theory import nls_summary, nls_undefined, soliton, theory_gain
+from scenes.cli import main as cli
+
+#: delta < 0 and k^2 > 6 K_theta / |delta|: the continuum frequency is imaginary at k = 3.01
+DEEP = Material(alpha=2.6206, K_s=0.005108, K_theta=0.1037)
+K_DEEP = 3.0096
+
+
+def test_an_nls_without_a_real_frequency_has_no_verdict():
+    """g2 / g1 of the continuum NLS stays finite where omega^2 < 0 (its square roots
+    cancel): it read "stable" there. Now NaN, with the reason; the semi-discrete NLS,
+    whose omega is real at every k, keeps its verdict."""
+    assert 6 * DEEP.K_theta + DEEP.delta * K_DEEP**2 < 0
+    s = nls_summary(DEEP, "coupled", K_DEEP, amplitude=0.002)
+    assert math.isnan(s["g"]) and not s["stable"] and "omega^2" in s["undefined"]
+    assert np.all(np.isnan(theory_gain("paper NLS", DEEP, "coupled", K_DEEP, [0.1, 0.2],
+                                       amplitude=0.002)))
+    assert nls_undefined("semi-discrete NLS", DEEP, "coupled", K_DEEP) is None
+    lattice = nls_summary(DEEP, "coupled", K_DEEP, amplitude=0.002,
+                          nls=__import__("generated.lattice_coefficients").lattice_coefficients)
+    assert np.isfinite(lattice["g"]) and "undefined" not in lattice
+    with pytest.raises(ValueError, match="no soliton at k = 3.0096: no real carrier"):
+        soliton(DEEP, "coupled", K_DEEP, 0.002, theory="paper NLS")
+
+
+def test_delta_zero_is_undefined_with_no_gain(capsys):
+    """delta = 0 (g1 = 0): every verdict undefined and no peak gain shown (a 0 read as
+    "stable" beside "undefined")."""
+    assert cli(["coefficients", "--alpha", "2", "--K-s", "0.03", "--K-theta", "0.03",
+                "--k", "1"]) == 0
+    out = capsys.readouterr().out
+    gains = next(ln for ln in out.splitlines() if ln.strip().startswith("peak gain"))
+    assert gains.split()[-2:] == ["-", "-"]
+    assert out.count("undefined: g1 = 0: delta = 0") == 4
+
+
+def test_the_paper_start_where_it_does_not_exist_is_refused_before_any_work(tmp_path,
+                                                                           capsys):
+    """eq. IC takes theta_dot from the continuum omega: NaN there. simulate, point and map
+    say why and what to use instead; no folder is left behind."""
+    k = 2 * np.pi * 15 / 32
+    with pytest.raises(ValueError, match="not real at k = 2.94524.*only k < 2.51214"):
+        simulate(DEEP, "coupled", 32, k, amplitude=0.00126, t_end=10.0)
+    simulate(DEEP, "coupled", 32, k, amplitude=0.00126, t_end=10.0, start="travelling")
+    material = ["--alpha", "2.6206", "--K-s", "0.005108", "--case", "coupled",
+                "--amplitude", "0.00126", "--N", "32"]
+    out = tmp_path / "a" / "b"
+    assert cli(["point", *material, "--K-theta", "0.1037", "--k", "3.0096",
+                "--out", str(out)]) == 2
+    cap = capsys.readouterr()
+    assert cap.out == "" and cap.err.startswith("flexmm: error: --start paper: ")
+    assert "'travelling'" in cap.err and not (tmp_path / "a").exists()
+    assert cli(["map", *material, "--K-theta", "0.1037,0.01", "--k", "2.9452,1.0",
+                "--theory-only", "--out", str(out)]) == 2
+    cap = capsys.readouterr()
+    assert "map" not in cap.out and "--start paper: at K_theta = 0.1037" in cap.err
+    assert not (tmp_path / "a").exists()
+    with pytest.raises(ValueError, match="start 'paper'"):
+        MapParameters(case="coupled", material=DEEP, K_theta=(0.1037,), k=(2.9452,),
+                      amplitude=0.00126, N=32)
+
+
+def test_a_k_that_snaps_to_pi_is_said_so(capsys):
+    assert cli(["point", "--alpha", "0.5325", "--K-s", "0.002879", "--K-theta", "0.005264",
+                "--k", "3.1", "--case", "coupled", "--N", "16"]) == 2
+    err = capsys.readouterr().err
+    assert "k = 3.1 snaps to pi on N = 16" in err and "N >= 76" in err
+    assert cli(["point", "--alpha", "0.5325", "--K-s", "0.002879", "--K-theta", "0.005264",
+                "--k", "3.1", "--case", "coupled", "--N", "76"]) == 0  # the remedy works
+
+
+def test_point_finds_a_band_at_any_offset(tmp_path):
+    """Offsets q - k up to pi, as the map searches them: at k = pi / 2 the semi-discrete
+    band peaks at offset 2.87, beyond pi - k (point's q in [0, pi] read the grid's edge)."""
+    material = Material(alpha=5.2407, K_s=0.04644, K_theta=0.07905)
+    assert cli(["point", "--alpha", "5.2407", "--K-s", "0.04644", "--K-theta", "0.07905",
+                "--k", "1.5708", "--case", "rotation", "--amplitude", "0.15", "--start",
+                "travelling", "--N", "128", "--out", str(tmp_path)]) == 0
+    res = json.loads((tmp_path / "point.json").read_text())
+    got = res["theories"]["semi-discrete NLS"]
+    Q = np.linspace(0, np.pi, 20001)[1:]
+    ref = theory_gain("semi-discrete NLS", material, "rotation", res["k"], Q, amplitude=0.15)
+    assert got["peak_offset"] > np.pi - res["k"]
+    # the point's 3001-offset grid reaches the peak of a 20 000-offset one to 1e-4
+    assert abs(got["peak_gain"] / ref.max() - 1) < 1e-4
+    assert abs(got["peak_offset"] - Q[ref.argmax()]) < 2 * np.pi / 3000
+
+
+def test_point_simulates_with_the_step_a_map_cell_takes(tmp_path):
+    """RK4 at the paper's dt = 0.05 blew up on a stiff material (alpha 5.84, K_theta 0.81)
+    that a map cell simulates; point now takes the map cell's method and step."""
+    from numerics import initial_condition
+    from numerics.maps import cell_step
+
+    args = ["point", "--alpha", "5.8406", "--K-s", "0.3968", "--K-theta", "0.8075", "--k",
+            "0.55926", "--amplitude", "0.0347", "--case", "coupled", "--start", "travelling",
+            "--N", "200", "--simulate", "--t-end", "300", "--seeds", "1",
+            "--out", str(tmp_path)]
+    assert cli(args) == 0
+    res = json.loads((tmp_path / "point.json").read_text())
+    mat = Material(alpha=5.8406, K_s=0.3968, K_theta=0.8075)
+    state = initial_condition(mat, "coupled", 200, res["k"], 0.0347, 1e-3, 0, "travelling")
+    method, dt = cell_step(state, mat, "coupled", 300.0)
+    assert res["simulated"]["method"] == method
+    assert res["simulated"]["dt"] <= dt and 5.0 / res["simulated"]["dt"] % 1 < 1e-9
+
+
+def test_an_unknown_option_is_the_commands_error_with_the_nearest(capsys):
+    with pytest.raises(SystemExit) as exc:
+        cli(["coefficients", "--alpha", "1.8", "--K-s", "0.05", "--K-thetaa", "0.03",
+             "--k", "1.2"])
+    assert exc.value.code == 2
+    err = capsys.readouterr().err
+    assert "usage: flexmm coefficients" in err and "did you mean --K-theta?" in err
+
+
+def test_map_refuses_two_row_axes(tmp_path, capsys):
+    assert cli(["map", "--alpha", "1.8", "--K-s", "0.05", "--K-theta", "0.03", "--delta",
+                "0.01", "--k", "1", "--case", "coupled", "--theory-only",
+                "--out", str(tmp_path / "m")]) == 2
+    assert "not both" in capsys.readouterr().err and not (tmp_path / "m").exists()
+
+
+def test_soliton_warns_where_the_kink_is_not_separable(capsys):
+    """k x width = 1.8: the kink's spectrum reaches the low-pass at k/2 (measured -69% to
+    +13% by ring size); the README's soliton (k x width = 31) gets no warning."""
+    base = ["soliton", "--case", "coupled", "--simulate", "--travel", "2"]
+    assert cli(base + ["--alpha", "3.8019", "--K-s", "0.002685", "--K-theta", "0.01722",
+                       "--k", "0.14296", "--amplitude", "0.02"]) == 0
+    assert "the kink height is not separable" in capsys.readouterr().out
