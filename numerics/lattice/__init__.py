@@ -39,7 +39,8 @@ from ._version import SIMULATOR_VERSION, source_hash
 __all__ = [
     "Material", "LatticeState", "energy", "CASES", "discrete_omega_rotation",
     "discrete_omega_longitudinal", "simulate", "Run", "resume", "initial_condition",
-    "snap_wavenumber", "STARTS", "register_start", "paper_start_undefined", "cached_simulate", "SIMULATOR_VERSION",
+    "snap_wavenumber", "STARTS", "register_start", "paper_start_undefined", "cached_simulate",
+    "SIMULATOR_VERSION",
     "source_hash", "integrate", "METHODS", "Method", "get_method", "choose_step",
     "BlowUpError", "SimulationInterrupted", "AccuracyWarning", "spectrum", "mode",
     "harmonic_bins", "non_carrier_bins", "sideband_to_carrier", "stability_verdict",

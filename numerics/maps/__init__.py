@@ -19,7 +19,8 @@ from ._columns import theory_columns
 from ._store import MapCellError, open_or_create, run_map
 
 __all__ = [
-    "resonance_map", "simulate_cell", "cell_step", "growth_of", "measured_peak_gain", "MapParameters",
+    "resonance_map", "simulate_cell", "cell_step", "growth_of", "measured_peak_gain",
+    "MapParameters",
     "parse_spec", "run_map", "theory_columns", "agreement", "AGREEMENT_MARGIN",
     "open_or_create",
     "simulate_block", "CRITERION", "MapCellError", "local_cores",
