@@ -247,6 +247,12 @@ def run_point(args, log=print) -> dict:
                if args.simulate else "")
             + ("" if pred.linear else " (the prediction leaves the linear stage: MI, the "
                "factor an upper bound)"))
+        if (np.median(predicted) > GROWTH_THRESHOLD
+                and not grows_beyond_threshold(pred.rate, t_end)):
+            log(f"note: no Hill mode grows fast enough for {GROWTH_THRESHOLD:g}x within T "
+                f"(fastest {pred.rate:.3g} /T): the predicted factor is the linear response "
+                "itself (modes that beat, a transient), as the run will show it, not an "
+                "exponential instability")
     else:
         log(f"growth factor within T = {t_end:g}: no prediction ({result['predicted']['reason']})")
     if args.simulate:

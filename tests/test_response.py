@@ -83,6 +83,20 @@ def test_expectation_is_the_mean_of_the_draws(blue):
     assert max(each) / min(each) > 1.05
 
 
+def test_the_families_chunking_does_not_change_the_prediction(blue, monkeypatch):
+    """The Hill families are evolved a chunk at a time (memory); each bin has one owner,
+    so the spectra are the same bit for bit whatever the chunk (here one family each)."""
+    from numerics.theory import _response
+
+    kw = dict(start="paper", N=N, t_end=1500.0, records=30, draws=2)
+    whole = predict_growth(blue, "coupled", 2 * math.pi * 34 / N, 0.02, **kw)
+    monkeypatch.setattr(_response, "CHUNK_BYTES", 1)
+    one = predict_growth(blue, "coupled", 2 * math.pi * 34 / N, 0.02, **kw)
+    for name in whole.spectrum:
+        assert np.array_equal(whole.spectrum[name], one.spectrum[name]), name
+    assert np.array_equal(whole.growth_draws, one.growth_draws) and whole.growth == one.growth
+
+
 def test_prediction_agrees_with_the_simulated_cell(blue):
     # the map cell's own measurement (noise 1e-3, early stop off) at the blue point
     from numerics.maps import simulate_cell
