@@ -49,8 +49,8 @@ def _parser():
     sub = p.add_subparsers(dest="cmd", required=True, metavar="COMMAND")
     co = _sub(sub, "coefficients", "NLS coefficients and MI band of any material at any k")
     _material_args(co, map_=False)
-    co.add_argument("--k", type=float, required=True, help="carrier wavenumber, rad per site "
-                    "(required)")
+    co.add_argument("--k", type=float, required=True,
+                    help="(required) carrier wavenumber, rad per site, in (0, pi)")
     co.add_argument("--amplitude", type=float, default=0.02,
                     help="peak rotation of the plane wave, rad (the paper's 2 eps A0)")
     tab = _sub(sub, "table", "NLS coefficients at the paper's two test points")
