@@ -283,6 +283,8 @@ def _interrupted(args, exc) -> str:
     if cmd in ("scene", "run"):
         where = Path(args.out) / ".cache"
         running = getattr(exc, "checkpoint", None)
+        if not where.exists():  # nothing had been computed (the empty folder is gone)
+            return f"interrupted ({name}); nothing was written"
         return (f"interrupted ({name}); finished simulations are kept in {where}"
                 + (f", the running one was checkpointed in {running}" if running else
                    ", no simulation was running")

@@ -83,14 +83,24 @@ def _start_grid(material, case, k, amplitude):
     return Q[(Q > 1e-6) & (Q <= math.pi)]
 
 
-def offset_curve(q, sigma, k):
-    """A measured sigma over the rfft bins q (0 .. pi) as a curve over the offset
-    Q = q - k of the upper sidebands (q > k): offsets up to pi - k. Beyond, a pair's upper
-    sideband folds back onto a bin that another pair's sideband also occupies, so a bin
-    no longer tells its offset (the theories, which know their pairs, cover 0 .. pi)."""
+def offset_curve(q, sigma, k, spread=None):
+    """A measured sigma over the rfft bins q (0 .. pi) as a curve over the sideband offset
+    Q = 1 .. N/2 bins: a pair grows only where both its sidebands do, so sigma(Q) is the
+    smaller of sigma at its two bins, fold(k + Q) and |k - Q|. A bin is shared by two
+    pairs (k + Q beyond pi folds back onto another pair's sideband); the minimum keeps
+    each band at its own offset, whatever k. Returns (Q, sigma(Q)) and, with ``spread``
+    (per bin), the spread of the bin that gave the minimum."""
     q, sigma = np.asarray(q, float), np.asarray(sigma, float)
-    up = q > k
-    return q[up] - k, sigma[up]
+    dq, top = q[1] - q[0], q.size - 1
+    m = int(round(k / dq))
+    d = np.arange(1, top + 1)
+    N = int(round(2 * math.pi / dq))
+    upper = np.where(m + d <= top, m + d, N - (m + d))  # fold(k + Q) into [0, pi]
+    lower = np.abs(m - d)
+    pick = np.where(sigma[upper] <= sigma[lower], upper, lower)
+    if spread is None:
+        return d * dq, sigma[pick]
+    return d * dq, sigma[pick], np.asarray(spread, float)[pick]
 
 
 def theories(material, case, k, amplitude, start="travelling") -> dict:
@@ -103,11 +113,12 @@ def theories(material, case, k, amplitude, start="travelling") -> dict:
     for th in names:
         try:
             Q = Q_GRID if th != PAPER_START else _start_grid(material, case, k, amplitude)
-            q = k + Q  # upper sidebands (beyond pi they fold back: see Q_GRID)
+            # the upper sideband's wavenumber, folded into [0, pi] (k + Q beyond pi folds)
+            q = np.abs((k + Q + np.pi) % (2 * np.pi) - np.pi)
             with np.errstate(all="ignore"):
                 curve = theory_gain(th, material, case, k, Q, EPS, A0)
         except ArithmeticError as exc:  # no plane wave (a resonance): say so, no verdict
-            out[th] = {"q": q, "curve": np.full(q.shape, np.nan),
+            out[th] = {"offset": Q, "q": q, "curve": np.full(q.shape, np.nan),
                        "verdict": "undefined", "reason": f"no plane wave: {exc}",
                        "peak_gain": float("nan"), "peak_offset": float("nan"),
                        "band_edge": float("nan")}
@@ -115,13 +126,14 @@ def theories(material, case, k, amplitude, start="travelling") -> dict:
         if not np.all(np.isfinite(curve)):  # no real omega, g1 = 0 or a resonance
             why = (nls_undefined(th, material, case, k) if th in THEORIES[:2] else None) \
                 or "a singular gain curve"
-            out[th] = {"q": q, "curve": curve, "verdict": "undefined", "reason": why,
+            out[th] = {"offset": Q, "q": q, "curve": curve, "verdict": "undefined",
+                       "reason": why,
                        "peak_gain": float("nan"), "peak_offset": float("nan"),
                        "band_edge": float("nan")}
             continue
-        s = band_summary(q, curve, k)
-        out[th] = {"q": q, "curve": curve, "verdict": "MI" if s["peak_gain"] > 0 else "stable",
-                   **s}
+        s = band_summary(k + Q, curve, k)  # over the offsets (band_summary: q - k)
+        out[th] = {"offset": Q, "q": q, "curve": curve,
+                   "verdict": "MI" if s["peak_gain"] > 0 else "stable", **s}
     return out
 
 
@@ -164,6 +176,10 @@ def run_point(args, log=print) -> dict:
               "case": args.case, "N": N, "m": m, "k": k, "k_requested": k_req,
               "amplitude": amplitude, "eps": EPS, "A0": A0, "start": args.start,
               "units": {"time": "T = t sqrt(k_l/m)", "gain": "1/T", "wavenumber": "rad/site",
+                        "curves": "theories: curve over offset Q = |q - k| (0 .. pi), q the "
+                                  "upper sideband folded into [0, pi]; simulated: sigma per "
+                                  "rfft bin q, and sigma_by_offset (the smaller of a pair's "
+                                  "two sidebands)",
                         "seconds_per_T": units.seconds_per_T,
                         "metres_per_site": units.metres_per_site},
               "semidiscrete_nls": {"omega": co["omega"], "v_g": co["v_g"], "g1": co["g1"],
@@ -237,7 +253,12 @@ def run_point(args, log=print) -> dict:
                                             f"component grows more than "
                                             f"{GROWTH_THRESHOLD:g}x within t_end",
                                **({"q": meas["q"].tolist(), "sigma": meas["sigma"].tolist(),
-                                   "sigma_std": meas["sigma_std"].tolist()} if meas else {})}
+                                   "sigma_std": meas["sigma_std"].tolist(),
+                                   "offset": offset_curve(meas["q"], meas["sigma"], k)[0]
+                                   .tolist(),
+                                   "sigma_by_offset": offset_curve(meas["q"], meas["sigma"],
+                                                                   k)[1].tolist()}
+                                  if meas else {})}
     log("")
     if predicted is not None:
         log(f"growth factor within T = {t_end:g} (the largest non-carrier component over the "
@@ -307,14 +328,13 @@ def _figure(out, th, meas, k, args, amplitude):
 
     fig, ax = plt.subplots(figsize=(7, 4), layout="constrained")
     if meas:
-        Q, sig = offset_curve(meas["q"], meas["sigma"], k)
-        _, err = offset_curve(meas["q"], meas["sigma_std"], k)
+        Q, sig, err = offset_curve(meas["q"], meas["sigma"], k, meas["sigma_std"])
         ax.errorbar(Q, sig, yerr=err, fmt=".", ms=3, lw=0.5,
                     label=(f"simulated ({meas['seeds']} of {args.seeds} seeds with a linear "
                            "stage" if meas["seeds"] < args.seeds
-                           else f"simulated ({meas['seeds']} seeds") + ", Q < pi - k)")
+                           else f"simulated ({meas['seeds']} seeds") + ")")
     for (name, t), style in zip(th.items(), ("k--", "C2-", "C3-")):
-        ax.plot(np.asarray(t["q"]) - k, t["curve"], style, lw=1, label=f"{name} (theory)")
+        ax.plot(t["offset"], t["curve"], style, lw=1, label=f"{name} (theory)")
     tops = [np.nanmax(t["curve"]) for t in th.values() if np.any(np.isfinite(t["curve"]))]
     if meas:
         tops.append(float(np.max(meas["sigma"])))

@@ -101,22 +101,38 @@ def test_point_finds_a_band_at_any_offset(tmp_path):
 
 
 def test_point_simulates_with_the_step_a_map_cell_takes(tmp_path):
-    """RK4 at the paper's dt = 0.05 blew up on a stiff material (alpha 5.84, K_theta 0.81)
-    that a map cell simulates; point now takes the map cell's method and step."""
-    from numerics import initial_condition
-    from numerics.maps import cell_step
+    """RK4 at the paper's dt = 0.05 blows up on a stiff material (alpha 5.84, K_theta 0.81:
+    energy drift 0.5 by T = 40) that a map cell simulates; point takes the map cell's step,
+    and its run conserves energy and measures the exact theory's band."""
+    from numerics import BlowUpError, snap_wavenumber
 
+    mat = Material(alpha=5.8406, K_s=0.3968, K_theta=0.8075)
+    k, _ = snap_wavenumber(0.55926, 200, rel_tol=1.0)
+    with pytest.raises(BlowUpError):
+        simulate(mat, "coupled", 200, k, amplitude=0.0347, t_end=100.0, start="travelling")
     args = ["point", "--alpha", "5.8406", "--K-s", "0.3968", "--K-theta", "0.8075", "--k",
             "0.55926", "--amplitude", "0.0347", "--case", "coupled", "--start", "travelling",
             "--N", "200", "--simulate", "--t-end", "300", "--seeds", "1",
             "--out", str(tmp_path)]
     assert cli(args) == 0
+    sim = json.loads((tmp_path / "point.json").read_text())["simulated"]
+    assert sim["method"] != "rk4" and (5.0 / sim["dt"]) % 1 < 1e-9  # records fall on steps
+    assert sim["verdict"] == "MI"
+
+
+def test_point_measures_a_band_beyond_pi_minus_k(tmp_path):
+    """At k = 2.9 the band peaks at offset 0.46 > pi - k = 0.24: its upper sideband folds
+    back onto another pair's bin. The measured offset must still be the band's (it read
+    0.025 when only bins above k were read), within a few bins of the exact theory's."""
+    assert cli(["point", "--alpha", "2", "--K-s", "0.03", "--K-theta", "0.02", "--k", "2.9",
+                "--amplitude", "0.04", "--case", "rotation", "--start", "travelling",
+                "--simulate", "--seeds", "2", "--out", str(tmp_path)]) == 0
     res = json.loads((tmp_path / "point.json").read_text())
-    mat = Material(alpha=5.8406, K_s=0.3968, K_theta=0.8075)
-    state = initial_condition(mat, "coupled", 200, res["k"], 0.0347, 1e-3, 0, "travelling")
-    method, dt = cell_step(state, mat, "coupled", 300.0)
-    assert res["simulated"]["method"] == method
-    assert res["simulated"]["dt"] <= dt and 5.0 / res["simulated"]["dt"] % 1 < 1e-9
+    exact, sim = res["theories"]["exact lattice"], res["simulated"]
+    assert exact["peak_offset"] > math.pi - res["k"]
+    # 4 bins of 2 pi / 500: the measured curve's peak is flat over a few bins at T = 1700
+    assert abs(sim["peak_offset"] - exact["peak_offset"]) < 4 * 2 * math.pi / 500
+    assert abs(sim["peak_gain"] / exact["peak_gain"] - 1) < 0.05
 
 
 def test_an_unknown_option_is_the_commands_error_with_the_nearest(capsys):

@@ -158,8 +158,9 @@ def stability_verdict(spec: np.ndarray, m: int, N: int) -> dict:
 #: ends at CEILING of the carrier, and a window that ends with the run must span SPAN-fold
 LINEAR_STAGE_RISE, LINEAR_STAGE_CEILING, LINEAR_STAGE_SPAN = 5.0, 0.01, np.e
 #: the same, in words (for messages that say why a run gave no rate)
-LINEAR_STAGE_RULE = (f"its largest sideband must pass {LINEAR_STAGE_RISE:g}x its start, then "
-                     f"reach {LINEAR_STAGE_CEILING:.0%} of the carrier or grow e-fold before "
+LINEAR_STAGE_RULE = (f"its largest sideband must pass {LINEAR_STAGE_RISE:g}x its start, then, "
+                     "over at least 5 records, reach "
+                     f"{LINEAR_STAGE_CEILING:.0%} of the carrier or grow e-fold more before "
                      "the run ends")
 
 

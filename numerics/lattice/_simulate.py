@@ -51,10 +51,13 @@ def snap_wavenumber(k: float, N: int, rel_tol: float = 1e-3):
             f"{2 * math.pi / N:.4g}: choose k >= {2 * math.pi / N:.4g}, or more sites (N >= "
             f"{math.ceil(2 * math.pi / k)})")
     if 2 * m >= N:  # the zone boundary: k = pi carries no sidebands (and k < pi)
+        need = math.floor(math.pi / (math.pi - k)) + 1
         raise ValueError(
             f"k = {k:g} snaps to pi on N = {N} periodic sites (2 pi m / N with m = N / 2), "
-            f"where no sidebands exist: choose k <= {2 * math.pi * ((N - 1) // 2) / N:.4g}, or "
-            f"more sites (N >= {math.floor(math.pi / (math.pi - k)) + 1})")
+            f"where no sidebands exist: choose k <= {2 * math.pi * ((N - 1) // 2) / N:.4g}"
+            + (f", or more sites (N >= {need})" if need <= 10**6 else
+               f" (k is within {math.pi - k:.2g} of pi: no chain of up to 10^6 sites "
+               "carries it)"))
     if abs(ks - k) > rel_tol * k:
         raise ValueError(
             f"k = {k} is not commensurate with N = {N} periodic sites: the nearest "

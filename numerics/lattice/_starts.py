@@ -65,8 +65,8 @@ def _ic(omega, name):
         with np.errstate(invalid="ignore"):
             w = float(omega(k, material))
         if not np.isfinite(w):
-            raise ValueError(paper_start_undefined(material, k) if name == "paper" else
-                             f"start {name!r}: no real carrier frequency at k = {k:.6g}")
+            raise ValueError((paper_start_undefined(material, k) if name == "paper" else None)
+                             or f"start {name!r}: no real carrier frequency at k = {k:.6g}")
         n = np.arange(b0.size)
         amp = amplitude * (1 + b0)
         theta, theta_dot = amp * np.cos(k * n), amp * w * np.sin(k * n)
@@ -83,7 +83,7 @@ def paper_start_undefined(material: Material, k,
     k^2) (eq. `continuum2`), which is not real where delta < 0 and k^2 > 6 K_theta / |delta|
     (the long-wave model does not reach such k)."""
     k = np.asarray(k, float)
-    bad = 6 * material.K_theta + material.delta * k**2 <= 0
+    bad = 6 * material.K_theta + material.delta * k**2 < 0  # omega = 0 still builds (at rest)
     if not np.any(bad):
         return None
     k_max = float(np.sqrt(6 * material.K_theta / -material.delta))

@@ -109,7 +109,8 @@ def empty_dataset(params: MapParameters, theory: dict):
 
 
 _NLS_REASON = ("the NLS coefficients are not finite there (delta = 0: g1 = 0, or a resonance "
-               "k^2 = omega^2)")
+               "k^2 = omega^2, or, for the paper NLS, no real continuum frequency: delta < 0 "
+               "and k^2 > 6 K_theta / |delta|)")
 _EXACT_REASON = ("no plane wave of this amplitude (harmonic balance finds no travelling wave "
                  "near a resonance of a harmonic with a lattice mode)")
 #: why a theory column can be undetermined (NaN gain, verdict UNDETERMINED) at a cell
@@ -152,8 +153,8 @@ def theory_columns(params: MapParameters) -> dict:
     # stability_map: NaN where there is no plane wave of this amplitude (undetermined)
     grid = dict(case=params.case, alpha=params.alpha, K_s=params.K_s,
                 amplitude=params.amplitude, K_theta=Kt)
-    # any growing mode, both cases: in case I too a non-sideband mode can grow where no
-    # sideband does (amplitude 0.15, alpha 5.24, K_s 0.046, K_theta 0.079, k 2.99: 0.013/T)
+    # any growing Hill mode of the travelling wave, in both cases, as the column is defined
+    # (case I copied `exact`, which for --start paper is another state's sideband theory)
     gains["exact_all"] = stability_map(K, q=EXACT_OFFSETS, modes="all", **grid)
     if params.start == "paper":
         # the exact theory of the state the map's runs start in: eq. `IC`'s launched state

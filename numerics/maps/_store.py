@@ -230,11 +230,12 @@ def run_map(params: MapParameters, out: Path, scheduler: str | None = None,
 
             from ._params import local_cores
 
-            n_workers = workers or (1 if scheduler else local_cores())
-            left = params.estimated_seconds(n_workers) * (n_cells - n_done) / n_cells
+            # the estimate on this machine's cores (a scheduler's workers are unknown here)
+            left = (params.estimated_seconds(workers or local_cores()) * (n_cells - n_done)
+                    / n_cells) if not scheduler and n_cells > n_done else None
             log(f"resuming {path}: {n_done} of {n_cells} cells already done (checksums "
                 f"verified), {n_cells - n_done} to {what}"
-                + (f" (about {duration(left)})" if n_cells > n_done else ""))
+                + (f" (about {duration(left)})" if left is not None else ""))
         if todo:
             _run_tasks(params, path, todo, n_cells - n_done, scheduler, workers, progress,
                        log, arrays, timeout)

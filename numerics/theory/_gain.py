@@ -55,7 +55,7 @@ def nls_undefined(nls, material: Material, case: str, k: float) -> str | None:
       the long-wave model does not reach that k (its g2 / g1 stays finite there, as the
       square roots cancel, but means nothing).
     - g1 = 0 (delta = 0 in the continuum model: no dispersion at this order), or singular.
-    - g2 singular: the second harmonic resonates (case II: with U at 2k).
+    - g2 singular (the second harmonic resonates; case II: with U at 2k), or g2 = 0.
 
     ``nls`` is a theory's name ("paper NLS", "semi-discrete NLS") or its generated module.
     """
@@ -73,12 +73,16 @@ def nls_undefined(nls, material: Material, case: str, k: float) -> str | None:
             return (f"no real carrier frequency: omega^2 = alpha^2 (6 K_theta + delta k^2) < 0 "
                     f"at k = {k:.4g} (eq. `continuum2`; the long-wave model does not reach it)")
         return f"no real carrier frequency at k = {k:.4g}"
-    if g1 == 0 or not np.isfinite(g1):
+    if g1 == 0:
         return ("g1 = 0: delta = 0, no dispersion at this order" if material.delta == 0
-                else f"g1 = {g1:.4g} at k = {k:.4g}: no dispersion at this order")
-    if g2 == 0 or not np.isfinite(g2):
-        return (f"g2 = {g2:.4g} at k = {k:.4g}: the second harmonic resonates"
+                else f"g1 = 0 at k = {k:.4g}: no dispersion at this order")
+    if not np.isfinite(g1):
+        return f"g1 is singular at k = {k:.4g} (omega = 0)"
+    if not np.isfinite(g2):
+        return (f"g2 is singular at k = {k:.4g}: the second harmonic resonates"
                 + (" with U at 2k" if case == "coupled" else ""))
+    if g2 == 0:
+        return f"g2 = 0 at k = {k:.4g}: no cubic nonlinearity at this order"
     return None
 
 
