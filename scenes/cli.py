@@ -284,7 +284,8 @@ def _interrupted(args, exc) -> str:
         where = Path(args.out) / ".cache"
         running = getattr(exc, "checkpoint", None)
         if not where.exists():  # nothing had been computed (the empty folder is gone)
-            return f"interrupted ({name}); nothing was written"
+            return (f"interrupted ({name}); no simulation had finished, nothing was "
+                    "written: run the same command again to start")
         return (f"interrupted ({name}); finished simulations are kept in {where}"
                 + (f", the running one was checkpointed in {running}" if running else
                    ", no simulation was running")
