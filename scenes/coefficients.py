@@ -84,9 +84,11 @@ def coefficients(material: Material, k: float, amplitude: float = paper.AMPLITUD
                         for case in ("rotation", "coupled")}
             c = complex(nls.u2_coefficient(*p))
         first = per_case["rotation"]
+        shift = max(abs(pc["frequency_shift"]) for pc in per_case.values())
         if not math.isfinite(first["omega"]):  # no real carrier: no harmonic either
             c = complex("nan")
         row = {"omega": first["omega"], "v_g": first["v_g"], "g1": first["g1"],
+               "shift_over_omega": shift / first["omega"] if first["omega"] else float("nan"),
                "u2 |c|": abs(c), "U at 2k": abs(c) * amplitude**2 / 2}
         for case, s in per_case.items():
             g = s["g"]
@@ -101,6 +103,21 @@ def coefficients(material: Material, k: float, amplitude: float = paper.AMPLITUD
                 row[case]["undefined"] = why
         out[name] = row
     return out
+
+
+#: the NLS is a weakly nonlinear expansion: past this ratio of the plane wave's own
+#: frequency shift eps^2 |g2| A0^2 to omega its verdicts and bands are not to be trusted
+WEAK_NONLINEARITY = 0.1
+
+
+def weak_nonlinearity_note(ratio: float, amplitude: float) -> str | None:
+    """A warning line where the NLS's own frequency shift exceeds WEAK_NONLINEARITY of
+    omega (None below)."""
+    if not ratio > WEAK_NONLINEARITY:
+        return None
+    return (f"warning: at amplitude {amplitude:g} the plane wave's own frequency shift "
+            f"(eps^2 |g2| A0^2) is {ratio:.0%} of omega: beyond the weakly nonlinear "
+            "expansion the NLS rests on; ask the exact lattice theory (flexmm point)")
 
 
 def format_coefficients(material: Material, k: float, amplitude: float, units: Units = Units(),
@@ -152,6 +169,11 @@ def format_coefficients(material: Material, k: float, amplitude: float, units: U
                                for i, (c, w) in enumerate(zip(r, widths))).rstrip())
         if j == 0:
             lines.append("  ".join("-" * w for w in widths))
+    note = weak_nonlinearity_note(max((co[n]["shift_over_omega"] for n in names
+                                       if math.isfinite(co[n]["shift_over_omega"])),
+                                      default=0.0), amplitude)
+    if note:
+        lines.append(note)
     for n in names:
         for case, roman in (("rotation", "I"), ("coupled", "II")):
             if "undefined" in co[n][case]:

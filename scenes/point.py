@@ -20,7 +20,7 @@ from numerics.lattice import checks
 from numerics.theory import (PAPER_START, THEORIES, measure_gain, measurement_length,
                              theory_gain)
 
-from .coefficients import coefficients
+from .coefficients import coefficients, weak_nonlinearity_note
 
 #: sideband offsets Q = |q - k| searched for the theories' bands (lattice units): the
 #: whole zone, as the map searches it (sidebands k + Q beyond pi fold back, k - Q below 0
@@ -159,7 +159,8 @@ def run_point(args, log=print) -> dict:
 
         prepare_output(args.out, cache=False)
     A0 = amplitude / (2 * EPS)
-    co = coefficients(mat, k, amplitude)["semi-discrete"]
+    co_all = coefficients(mat, k, amplitude)
+    co = co_all["semi-discrete"]
     log(f"material: alpha = {mat.alpha:g}, K_s = {mat.K_s:g}, K_theta = {mat.K_theta:g} "
         f"(delta = {mat.delta:.4g}); case {args.case}")
     log(f"carrier:  k = {units.wavenumber(k)} = 2 pi {m}/{N}"
@@ -170,6 +171,11 @@ def run_point(args, log=print) -> dict:
     log(f"NLS (semi-discrete): omega = {co['omega']:.6g} 1/T, v_g = {co['v_g']:.4g} site/T, "
         f"g1 = {co['g1']:.4g}, g2 = {co[args.case]['g2']:.4g}, g = {co[args.case]['g']:.4g}")
     log(f"units:    {units.describe()}")
+    note = weak_nonlinearity_note(max((c["shift_over_omega"] for c in co_all.values()
+                                       if math.isfinite(c["shift_over_omega"])), default=0.0),
+                                  amplitude)
+    if note:
+        log(note.replace(" (flexmm point)", " (the exact rows below)"))
     th = theories(mat, args.case, k, amplitude, args.start)
     result = {"material": {"alpha": mat.alpha, "K_s": mat.K_s, "K_theta": mat.K_theta,
                            "delta": mat.delta},

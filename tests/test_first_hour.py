@@ -175,3 +175,22 @@ def test_growth_without_an_unstable_mode_is_predicted_and_said_so(tmp_path, caps
     np.testing.assert_allclose(res["predicted"]["growth"], res["simulated"]["growth"],
                                rtol=0.1)
     assert min(res["simulated"]["growth"]) > 20
+
+
+def test_the_nls_warns_beyond_weak_nonlinearity(capsys):
+    """The NLS's own frequency shift eps^2 g2 A0^2 is the exact plane wave's (case I,
+    semi-discrete: to 0.1% at amplitude 0.005, where O(a^4) is 1e-3 of it); past 10% of
+    omega the commands say the expansion no longer holds (amplitude 0.5: 89%)."""
+    from generated import lattice_coefficients
+    from numerics.theory import plane_wave
+
+    mat = Material(alpha=2.0, K_s=0.03, K_theta=0.02)
+    s = nls_summary(mat, "rotation", 1.2, amplitude=0.005, nls=lattice_coefficients)
+    exact = plane_wave(mat, "rotation", 1.2, 0.005).omega - s["omega"]
+    assert exact == pytest.approx(-s["frequency_shift"], rel=1e-3)
+    base = ["coefficients", "--alpha", "1.8", "--K-s", "0.05", "--K-theta", "0.03",
+            "--k", "1.234"]
+    assert cli(base + ["--amplitude", "0.5"]) == 0
+    assert "beyond the weakly nonlinear expansion" in capsys.readouterr().out
+    assert cli(base + ["--amplitude", "0.02"]) == 0
+    assert "weakly nonlinear" not in capsys.readouterr().out
