@@ -4,6 +4,7 @@ input), run the map (``numerics.maps.run_map``), write its figure and summary.""
 from __future__ import annotations
 
 import json
+import math
 
 import numpy as np
 
@@ -83,6 +84,19 @@ def plot_map(ds, ax=None):
                  f"{ds.attrs['amplitude']:g} rad\n{what}: white MI, black stable, grey "
                  "not done or undetermined", fontsize=9)
     return fig
+
+
+def _agreement_text(name: str, ag: dict) -> str:
+    """One theory's agreement with the simulation, in words (no NaN where it could
+    evaluate no cell, or none is far from the threshold)."""
+    und = ag[name + "_undetermined_cells"]
+    left = f"{und} undetermined, left out" if und else ""
+    if not math.isfinite(ag[name]):
+        return f"{name}: no cell it could evaluate ({left or 'none simulated'})"
+    decided = ag[name + "_decided_cells"]
+    parts = [f"{ag[name + '_decided']:.0f}% of the {decided} not marginal" if decided
+             else "every cell marginal"] + ([left] if left else [])
+    return f"{name} {ag[name]:.0f}% of cells ({'; '.join(parts)})"
 
 
 def run_map_command(args, log=print):
@@ -175,11 +189,7 @@ def run_map_command(args, log=print):
         ag = summary["agreement_with_simulation_percent"]
         log(f"theory verdicts that agree with the simulation (marginal: the theory's growth "
             f"within {AGREEMENT_MARGIN:g}x of {GROWTH_THRESHOLD:g}x): " + "; ".join(
-            f"{n} {ag[n]:.0f}% of cells ({ag[n + '_decided']:.0f}% of the "
-            f"{ag[n + '_decided_cells']} not marginal"
-            + (f"; {ag[n + '_undetermined_cells']} undetermined, left out"
-               if ag[n + '_undetermined_cells'] else "") + ")"
-            for n in THEORIES))
+            _agreement_text(n, ag) for n in THEORIES))
         if ag["predicted_growth_cells"]:
             log(f"predicted growth within 2x of the measured one in "
                 f"{ag['predicted_growth_within_2x']:.0f}% of the "

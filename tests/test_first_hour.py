@@ -194,3 +194,30 @@ def test_the_nls_warns_beyond_weak_nonlinearity(capsys):
     assert "beyond the weakly nonlinear expansion" in capsys.readouterr().out
     assert cli(base + ["--amplitude", "0.02"]) == 0
     assert "weakly nonlinear" not in capsys.readouterr().out
+
+
+def test_a_round_off_field_does_not_set_the_step():
+    """A travelling wave whose 2k sits at the zone boundary (k = pi/2, N = 32) carries
+    U ~ 1e-31: its rms(U_dot) / rms(U) read 1e14 and asked for dt = 1e-16 (t_end / dt =
+    7.5e18 steps, refused). The step comes from theta there, within the stability limit."""
+    from numerics import initial_condition, snap_wavenumber
+    from numerics.lattice._accuracy import dominant_frequency
+    from numerics.maps import cell_step
+
+    mat = Material(alpha=0.3468, K_s=0.4775, K_theta=0.001388)
+    k, _ = snap_wavenumber(1.571, 32, rel_tol=1.0)
+    state = initial_condition(mat, "coupled", 32, k, 0.1602, 1e-3, 0, "travelling")
+    assert np.sqrt(np.mean(state.U**2)) < 1e-20
+    assert dominant_frequency(state) <= mat.omega_max("coupled")
+    assert cell_step(state, mat, "coupled", 1000.0)[1] > 0.1
+
+
+def test_the_map_summary_has_no_nan_where_a_theory_evaluated_nothing():
+    from scenes._map_command import _agreement_text
+
+    none = {"p": float("nan"), "p_decided": float("nan"), "p_decided_cells": 0,
+            "p_undetermined_cells": 4}
+    assert _agreement_text("p", none) == "p: no cell it could evaluate (4 undetermined, left out)"
+    some = {"p": 50.0, "p_decided": float("nan"), "p_decided_cells": 0,
+            "p_undetermined_cells": 0}
+    assert "nan" not in _agreement_text("p", some)

@@ -54,14 +54,24 @@ STABILITY_MARGIN = 0.8
 TOL_RANGE = (1e-12, 1e-1)
 
 
+#: a field counts for the dominant frequency only above this rms relative to theta's: U
+#: below it is round-off (a travelling wave whose 2k harmonic sits at the zone boundary has
+#: U ~ 1e-31, whose rms(U_dot) / rms(U) read 1e14 and asked for dt = 1e-16)
+NEGLIGIBLE_FIELD = 1e-9
+
+
 def dominant_frequency(state) -> float:
-    """w = rms(theta_dot) / rms(theta) (and the same for U in case II, the larger)."""
+    """w = rms(theta_dot) / rms(theta) (and the same for U in case II where U is not
+    negligible, NEGLIGIBLE_FIELD: the larger)."""
+    def rms(x):
+        return float(np.sqrt(np.mean(np.square(x))))
+
     def ratio(x, xdot):
-        rx = float(np.sqrt(np.mean(np.square(x))))
-        return float(np.sqrt(np.mean(np.square(xdot)))) / rx if rx > 0 else 0.0
+        rx = rms(x)
+        return rms(xdot) / rx if rx > 0 else 0.0
 
     w = ratio(state.theta, state.theta_dot)
-    if state.U is not None:
+    if state.U is not None and rms(state.U) > NEGLIGIBLE_FIELD * rms(state.theta):
         w = max(w, ratio(state.U, state.U_dot))
     return w
 

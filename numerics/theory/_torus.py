@@ -311,8 +311,9 @@ def torus(material, case, k, fields0, free, omega_guess, P=TORUS_HARMONICS, M=PH
                                          2.5 * max(searched)) / (2 * np.pi))) + 1
     # the fit's basis: samples x (2 order + 1)^d complex values (a state with many free
     # waves, e.g. no carrier, would ask for terabytes)
-    checks.memory("initial", 16.0 * samples * (2 * order + 1) ** d,
-                  f"the torus of a state with {d} free waves ({samples} samples)")
+    checks.memory("start 'paper'", 16.0 * samples * (2 * order + 1) ** d,
+                  f"the torus of the state eq. `IC` launches, with {d} free waves ({samples} "
+                  "samples; a smaller amplitude launches fewer, the travelling start none)")
     t, y = trajectory(material, case, k, fields0, duration, samples, M)
     P = min(P, M // 2 - 1)
     c = _harmonics(y, M // 2 - 1)
