@@ -58,18 +58,14 @@ def evaluations_to_target(state, ref, T):
     return out
 
 
-def budget(dt, T, amplitude=None, case=CASE):
-    """srkn11b's error at ``dt``: total, and the shares at the carrier and at U's 2k."""
-    import bench.speed as speed
-
-    kw = {} if amplitude is None else {"amplitude": amplitude}
-    state = initial_condition(MAT, case, N, K, **kw)
-    saved, speed.CASE = speed.CASE, case  # fixed_run reads the module's case
-    try:
-        ref = fixed_run("srkn11b", 0.0025, state, T).state()
-        st = fixed_run("srkn11b", dt, state, T)
-    finally:
-        speed.CASE = saved
+def budget(dt, T, amplitude=None, case=CASE, state=None, ref=None):
+    """srkn11b's error at ``dt``: total, and the shares at the carrier and at U's 2k
+    (``state`` and its reference ``ref`` when already run, else made here)."""
+    if state is None:
+        kw = {} if amplitude is None else {"amplitude": amplitude}
+        state = initial_condition(MAT, case, N, K, **kw)
+        ref = fixed_run("srkn11b", 0.0025, state, T, case).state()
+    st = fixed_run("srkn11b", dt, state, T, case)
     scale = np.max(np.abs(ref.theta))
     e_th = np.abs(np.fft.rfft(st.th - ref.theta)) * 2 / N / scale
     e_U = (np.abs(np.fft.rfft(st.U - ref.U)) * 2 / N / scale if case == "coupled"
@@ -112,7 +108,8 @@ def main(quick=False, out=None):
     dt = evals["srkn11b"]["dt"]
     res = {"machine": machine(), "quick": quick, "T": T, "target": TARGET,
            "evaluations_to_target": evals,
-           "budget": {"coupled": budget(dt, T), "rotation (no U)": budget(dt, T, case="rotation"),
+           "budget": {"coupled": budget(dt, T, state=state, ref=ref),
+                      "rotation (no U)": budget(dt, T, case="rotation"),
                       "coupled, amplitude / 10": budget(dt, T, amplitude=0.002)},
            "bound": bound(evals, quick, out)}
     write_section("error_budget", res, quick, out)

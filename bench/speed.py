@@ -114,9 +114,9 @@ def state_error(th, U, ref):
                  / np.max(np.abs(ref.theta)))
 
 
-def fixed_run(name, dt, state, T):
+def fixed_run(name, dt, state, T, case=CASE):
     nsteps = int(np.ceil(T / dt - 1e-9))
-    st = _Stepper(state, MAT, CASE, get_method(name), T / nsteps)
+    st = _Stepper(state, MAT, case, get_method(name), T / nsteps)
     st.advance(nsteps)
     return st
 
