@@ -110,14 +110,18 @@ def coefficients(material: Material, k: float, amplitude: float = paper.AMPLITUD
 WEAK_NONLINEARITY = 0.1
 
 
-def weak_nonlinearity_note(ratio: float, amplitude: float) -> str | None:
-    """A warning line where the NLS's own frequency shift exceeds WEAK_NONLINEARITY of
-    omega (None below)."""
+def weak_nonlinearity_note(co: dict, amplitude: float,
+                           remedy: str = "flexmm point") -> str | None:
+    """A warning line where either NLS's own frequency shift (``coefficients``' ``co``)
+    exceeds WEAK_NONLINEARITY of omega (None below); ``remedy`` says where the exact
+    lattice theory is."""
+    ratio = max((c["shift_over_omega"] for c in co.values()
+                 if math.isfinite(c["shift_over_omega"])), default=0.0)
     if not ratio > WEAK_NONLINEARITY:
         return None
     return (f"warning: at amplitude {amplitude:g} the plane wave's own frequency shift "
             f"(eps^2 |g2| A0^2) is {ratio:.0%} of omega: beyond the weakly nonlinear "
-            "expansion the NLS rests on; ask the exact lattice theory (flexmm point)")
+            f"expansion the NLS rests on; ask the exact lattice theory ({remedy})")
 
 
 def format_coefficients(material: Material, k: float, amplitude: float, units: Units = Units(),
@@ -169,9 +173,7 @@ def format_coefficients(material: Material, k: float, amplitude: float, units: U
                                for i, (c, w) in enumerate(zip(r, widths))).rstrip())
         if j == 0:
             lines.append("  ".join("-" * w for w in widths))
-    note = weak_nonlinearity_note(max((co[n]["shift_over_omega"] for n in names
-                                       if math.isfinite(co[n]["shift_over_omega"])),
-                                      default=0.0), amplitude)
+    note = weak_nonlinearity_note(co, amplitude)
     if note:
         lines.append(note)
     for n in names:

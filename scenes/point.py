@@ -83,13 +83,18 @@ def _start_grid(material, case, k, amplitude):
     return Q[(Q > 1e-6) & (Q <= math.pi)]
 
 
-def offset_curve(q, sigma, k, spread=None):
+def fold(q):
+    """Wavenumbers folded into [0, pi] (a real field's q and -q, q and q + 2 pi, are one)."""
+    return np.abs((np.asarray(q, float) + math.pi) % (2 * math.pi) - math.pi)
+
+
+def offset_curve(q, sigma, spread, k):
     """A measured sigma over the rfft bins q (0 .. pi) as a curve over the sideband offset
     Q = 1 .. N/2 bins: a pair grows only where both its sidebands do, so sigma(Q) is the
     smaller of sigma at its two bins, fold(k + Q) and |k - Q|. A bin is shared by two
     pairs (k + Q beyond pi folds back onto another pair's sideband); the minimum keeps
-    each band at its own offset, whatever k. Returns (Q, sigma(Q)) and, with ``spread``
-    (per bin), the spread of the bin that gave the minimum."""
+    each band at its own offset, whatever k. Returns Q, sigma(Q) and the ``spread`` (per
+    bin) of the bin that gave the minimum."""
     q, sigma = np.asarray(q, float), np.asarray(sigma, float)
     dq, top = q[1] - q[0], q.size - 1
     m = int(round(k / dq))
@@ -98,8 +103,6 @@ def offset_curve(q, sigma, k, spread=None):
     upper = np.where(m + d <= top, m + d, N - (m + d))  # fold(k + Q) into [0, pi]
     lower = np.abs(m - d)
     pick = np.where(sigma[upper] <= sigma[lower], upper, lower)
-    if spread is None:
-        return d * dq, sigma[pick]
     return d * dq, sigma[pick], np.asarray(spread, float)[pick]
 
 
@@ -113,8 +116,7 @@ def theories(material, case, k, amplitude, start="travelling") -> dict:
     for th in names:
         try:
             Q = Q_GRID if th != PAPER_START else _start_grid(material, case, k, amplitude)
-            # the upper sideband's wavenumber, folded into [0, pi] (k + Q beyond pi folds)
-            q = np.abs((k + Q + np.pi) % (2 * np.pi) - np.pi)
+            q = fold(k + Q)  # the upper sideband's wavenumber (k + Q beyond pi folds)
             with np.errstate(all="ignore"):
                 curve = theory_gain(th, material, case, k, Q, EPS, A0)
         except ArithmeticError as exc:  # no plane wave (a resonance): say so, no verdict
@@ -171,11 +173,9 @@ def run_point(args, log=print) -> dict:
     log(f"NLS (semi-discrete): omega = {co['omega']:.6g} 1/T, v_g = {co['v_g']:.4g} site/T, "
         f"g1 = {co['g1']:.4g}, g2 = {co[args.case]['g2']:.4g}, g = {co[args.case]['g']:.4g}")
     log(f"units:    {units.describe()}")
-    note = weak_nonlinearity_note(max((c["shift_over_omega"] for c in co_all.values()
-                                       if math.isfinite(c["shift_over_omega"])), default=0.0),
-                                  amplitude)
+    note = weak_nonlinearity_note(co_all, amplitude, remedy="the exact rows below")
     if note:
-        log(note.replace(" (flexmm point)", " (the exact rows below)"))
+        log(note)
     th = theories(mat, args.case, k, amplitude, args.start)
     result = {"material": {"alpha": mat.alpha, "K_s": mat.K_s, "K_theta": mat.K_theta,
                            "delta": mat.delta},
@@ -238,8 +238,10 @@ def run_point(args, log=print) -> dict:
         verdict = sum(g["growth"] > GROWTH_THRESHOLD for g in growths) * 2 > len(growths)
         # no seed with a linear stage (linear_stage's rule): no rate to fit, shown as "-",
         # not as a gain of 0
-        s = band_summary(k + offset_curve(meas["q"], meas["sigma"], k)[0],
-                         offset_curve(meas["q"], meas["sigma"], k)[1], k) if meas else \
+        if meas:  # sigma over the offset Q, once: the table, the JSON and the figure
+            meas["offset"], meas["sigma_by_offset"], meas["std_by_offset"] = offset_curve(
+                meas["q"], meas["sigma"], meas["sigma_std"], k)
+        s = band_summary(k + meas["offset"], meas["sigma_by_offset"], k) if meas else \
             {"peak_gain": float("nan"), "peak_offset": float("nan"), "band_edge": float("nan"),
              "no_rate": f"no seed had a linear stage to fit a rate over ({LINEAR_STAGE_RULE})"}
         # the theories answer the simulation's question: grows > threshold within t_end
@@ -260,10 +262,8 @@ def run_point(args, log=print) -> dict:
                                             f"{GROWTH_THRESHOLD:g}x within t_end",
                                **({"q": meas["q"].tolist(), "sigma": meas["sigma"].tolist(),
                                    "sigma_std": meas["sigma_std"].tolist(),
-                                   "offset": offset_curve(meas["q"], meas["sigma"], k)[0]
-                                   .tolist(),
-                                   "sigma_by_offset": offset_curve(meas["q"], meas["sigma"],
-                                                                   k)[1].tolist()}
+                                   "offset": meas["offset"].tolist(),
+                                   "sigma_by_offset": meas["sigma_by_offset"].tolist()}
                                   if meas else {})}
     log("")
     if predicted is not None:
@@ -304,16 +304,17 @@ def run_point(args, log=print) -> dict:
         log(f"simulated: {result['simulated']['no_rate']}")
     # the most faithful row that grows: the simulation, else the exact theory, else an NLS
     growing = [r for r in rows if math.isfinite(r[2]) and r[2] > 0]
-    rank = {n: i for i, n in enumerate(("simulated", "exact lattice", "semi-discrete NLS",
-                                        "paper NLS"))}
-    best = min(growing, key=lambda r: (min((i for n, i in rank.items()
-                                            if r[0].startswith(n)), default=len(rank)),
-                                       -r[2]), default=None)
+    best = None
+    for kind in ("simulated", "exact lattice", "semi-discrete NLS", "paper NLS"):
+        group = [r for r in growing if r[0].startswith(kind)]
+        if group:
+            best = max(group, key=lambda r: r[2])
+            break
     if best is not None:
         Q = best[3]
-        fold = [abs((x + math.pi) % (2 * math.pi) - math.pi) for x in (k + Q, k - Q)]
+        up, low = fold([k + Q, k - Q])
         log(f"fastest growth ({best[0]}): offset q - k = {Q:.4g}, sidebands q at "
-            f"{fold[0]:.4g} and {fold[1]:.4g} rad/site (folded into [0, pi]), e-folding "
+            f"{up:.4g} and {low:.4g} rad/site (folded into [0, pi]), e-folding "
             f"time {units.time(1 / best[2])}")
     if args.out:
         out = Path(args.out)
@@ -345,8 +346,8 @@ def _figure(out, th, meas, k, args, amplitude):
 
     fig, ax = plt.subplots(figsize=(7, 4), layout="constrained")
     if meas:
-        Q, sig, err = offset_curve(meas["q"], meas["sigma"], k, meas["sigma_std"])
-        ax.errorbar(Q, sig, yerr=err, fmt=".", ms=3, lw=0.5,
+        ax.errorbar(meas["offset"], meas["sigma_by_offset"], yerr=meas["std_by_offset"],
+                    fmt=".", ms=3, lw=0.5,
                     label=(f"simulated ({meas['seeds']} of {args.seeds} seeds with a linear "
                            "stage" if meas["seeds"] < args.seeds
                            else f"simulated ({meas['seeds']} seeds") + ")")

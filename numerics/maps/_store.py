@@ -26,11 +26,13 @@ from pathlib import Path
 
 import numpy as np
 
+from common.text import duration
+
 from ._agreement import agreement
 from ._blocks import blocks, simulate_block
 from ._columns import (PREDICTED, SIMULATED, STORE_FORMAT, empty_dataset, theory_columns,
                        tri_state)
-from ._params import MapParameters
+from ._params import MapParameters, local_cores
 
 def _holds(ds, params: MapParameters) -> bool:
     """Does the stored dataset ``ds`` hold the map ``params`` defines (same grid, same
@@ -226,10 +228,6 @@ def run_map(params: MapParameters, out: Path, scheduler: str | None = None,
         todo = blocks(params, done)
         n_cells, n_done = done.size, int(done.sum())
         if n_done:
-            from common.text import duration
-
-            from ._params import local_cores
-
             # the estimate on this machine's cores (a scheduler's workers are unknown here)
             left = (params.estimated_seconds(workers or local_cores()) * (n_cells - n_done)
                     / n_cells) if not scheduler and n_cells > n_done else None
