@@ -12,17 +12,19 @@ PY ?= python3
 VENV := .venv
 VPY := $(VENV)/bin/python
 STAMP := $(VENV)/.setup-stamp
-GENERATED := generated/coefficients.py generated/lattice_coefficients.py generated/lattice_model.py generated/soliton.py generated/derivation.md
+GENERATED := generated/coefficients.py generated/lattice_coefficients.py generated/lattice_model.py generated/soliton.py generated/derivation.md \
+	$(patsubst energy/models/%.toml,generated/models/%.py,$(subst -,_,$(wildcard energy/models/*.toml)))
 
 # The derivation's inputs by content, not by mtime (a fresh clone gives every file a new
-# mtime): sha256 of derivation/*.py, the common/ modules it imports (DERIVATION_COMMON;
+# mtime): sha256 of derivation/*.py, the model layer energy/ (its code and built-in
+# models/*.toml), the common/ modules it imports (DERIVATION_COMMON;
 # tests/test_derivation.py checks the list against derivation's imports) and the SymPy pin
 # (generated/ is SymPy's printed output). `make derive` records them in the committed
 # generated/SOURCES.sha256; run/figures re-derive only when they differ from it (or a
 # generated file is missing).
 SOURCES_STAMP := generated/SOURCES.sha256
 DERIVATION_COMMON := common/__init__.py common/files.py common/paper.py
-SOURCES = LC_ALL=C sha256sum derivation/*.py $(DERIVATION_COMMON) && sed -n 's/^[[:space:]]*"\(sympy[^"]*\)".*/\1/p' pyproject.toml
+SOURCES = LC_ALL=C sha256sum derivation/*.py energy/*.py energy/models/*.toml $(DERIVATION_COMMON) && sed -n 's/^[[:space:]]*"\(sympy[^"]*\)".*/\1/p' pyproject.toml
 STALE := $(shell { $(SOURCES); } | cmp -s - $(SOURCES_STAMP) || echo sources-changed)$(filter-out $(wildcard $(GENERATED)),$(GENERATED))
 
 # Bench output: out/bench/ unless BENCH_ARGS=--update (or --out DIR); see bench/README.md.

@@ -7,6 +7,9 @@ derive_continuum()       Taylor expansion of the lattice to eqs. `eqnorm1`-`eqno
 solve_case(case, model)  the multiple-scales hierarchy for "rotation" or "coupled",
                          on the continuum ("continuum") or on the lattice ("lattice")
 analyse_mi()             MI analysis of the normalised NLS
+model_energies(lattice)  any lattice model (energy.Lattice) read into SymPy, checked
+equations_of_motion(e)   its equations of motion, from the energy (Lagrange)
+compile_model(lat, path) its generated NumPy module (derivatives of the cell energy)
 paper                    the paper's numbers (test points, eps, noise, N, T) - no SymPy
 paper_forms              the paper's closed forms typed by hand (for comparison)
 ERRATA                   errata of the paper
@@ -30,10 +33,14 @@ _LAZY = {
     "solve_case": ("._multiscale", "solve_case"),
     "analyse_mi": ("._mi", "analyse"),
     "paper_forms": (".paper_forms", None),
+    "compile_model": ("._energy", "compile_model"),
+    "model_energies": ("._energy", "energies"),
+    "equations_of_motion": ("._energy", "equations_of_motion"),
 }
 
 __all__ = ["derive", "derive_continuum", "solve_case", "analyse_mi", "paper", "paper_forms",
-           "ERRATA", "Derivation", "ClosedForm", "atomic_write"]
+           "ERRATA", "Derivation", "ClosedForm", "atomic_write", "compile_model",
+           "model_energies", "equations_of_motion"]
 
 
 def __getattr__(name):

@@ -45,7 +45,10 @@ def write_outputs(out_dir: Path) -> list[Path]:
     }
     out_dir.mkdir(parents=True, exist_ok=True)
     # write-then-rename: an interrupted derive never leaves a half-written file
-    return [write_text(out_dir / name, text) for name, text in files.items()]
+    paths = [write_text(out_dir / name, text) for name, text in files.items()]
+    from ._energy import write_builtin_models
+
+    return paths + write_builtin_models(out_dir / "models")
 
 
 def main(argv=None) -> int:

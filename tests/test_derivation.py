@@ -19,7 +19,9 @@ from generated import coefficients as co
 ROOT = Path(__file__).resolve().parents[1]
 GENERATED = ROOT / "generated"
 GENERATED_FILES = ("coefficients.py", "lattice_coefficients.py", "lattice_model.py",
-                   "soliton.py", "derivation.md")
+                   "soliton.py", "derivation.md", "models/__init__.py") + tuple(
+    f"models/{p.stem.replace('-', '_')}.py"
+    for p in sorted((Path(__file__).resolve().parents[1] / "energy" / "models").glob("*.toml")))
 
 
 @pytest.fixture(scope="module")
@@ -179,7 +181,7 @@ def test_generated_is_what_make_derive_writes(tmp_path):
     from derivation.__main__ import write_outputs
 
     written = write_outputs(tmp_path)
-    assert sorted(p.name for p in written) == sorted(GENERATED_FILES)
+    assert sorted(str(p.relative_to(tmp_path)) for p in written) == sorted(GENERATED_FILES)
     mask = os.umask(0)
     os.umask(mask)
     for p in written:  # plain files (0644 under the usual umask), not mkstemp's 0600
@@ -187,7 +189,7 @@ def test_generated_is_what_make_derive_writes(tmp_path):
     assert not list(tmp_path.glob(".*.tmp")), "temporary files left behind"
     problems = []
     for fresh in written:
-        committed = GENERATED / fresh.name
+        committed = GENERATED / fresh.relative_to(tmp_path)
         if not committed.exists():
             problems.append(f"{committed} is missing")
         elif committed.read_bytes() != fresh.read_bytes():
@@ -262,6 +264,8 @@ def test_the_derivation_stamp_lists_what_derivation_imports_and_is_current():
             digest, name = line.split("  ", 1)
             stamp[name] = digest
     expected = sorted(str(p.relative_to(root)) for p in (root / "derivation").glob("*.py"))
+    expected += [str(p.relative_to(root)) for p in (root / "energy").glob("*.py")]
+    expected += [str(p.relative_to(root)) for p in (root / "energy" / "models").glob("*.toml")]
     assert set(stamp) == set(expected) | listed
     for name, digest in stamp.items():
         assert hashlib.sha256((root / name).read_bytes()).hexdigest() == digest, (

@@ -1,0 +1,294 @@
+"""Any lattice from its energy: equations of motion, Taylor tensors and generated code.
+
+Input: an :class:`energy.Lattice` (fields, parameters, kinetic/bond/site energies). With
+W(u_n, u_{n+1}) = bond + site(u_n) per cell and masses m_i from the kinetic energy,
+
+    m_i d^2 u_{i,n}/dt^2 = -d/du_{i,n} [W(u_{n-1}, u_n) + W(u_n, u_{n+1})]      (1)
+
+(Lagrange's equations of the periodic chain; ``equations_of_motion``). Everything else
+(dispersion, the multiple-scales NLS with its mean flow, the exact plane wave, the
+simulator's force) is computed from the derivatives of W, which are printed here as NumPy
+code into one module per model (``model_module_text``): the gradient and Hessian of W for
+the force and the Hill operator, and its Taylor tensors at rest (orders 2, 3, 4) for the
+NLS. SymPy only differentiates; nothing is solved symbolically, so a model derives in
+seconds (the n x n eigenproblems are numerical, in ``numerics.models``).
+"""
+
+from __future__ import annotations
+
+import ast
+import itertools
+from dataclasses import dataclass
+
+import sympy as sp
+
+from energy import Lattice, ModelError
+
+_FUNCS = {"sin": sp.sin, "cos": sp.cos, "tan": sp.tan, "exp": sp.exp, "log": sp.log,
+          "sqrt": sp.sqrt, "sinh": sp.sinh, "cosh": sp.cosh, "tanh": sp.tanh,
+          "atan": sp.atan, "Abs": sp.Abs}
+
+
+def to_sympy(tree: ast.Expression, names: dict) -> sp.Expr:
+    """SymPy expression of a checked energy tree (``energy._spec``): no ``eval``."""
+
+    def conv(node):
+        if isinstance(node, ast.Expression):
+            return conv(node.body)
+        if isinstance(node, ast.Constant):
+            v = node.value
+            return sp.Integer(v) if isinstance(v, int) else sp.Rational(repr(v))
+        if isinstance(node, ast.Name):
+            return sp.pi if node.id == "pi" else names[node.id]
+        if isinstance(node, ast.UnaryOp):
+            x = conv(node.operand)
+            return -x if isinstance(node.op, ast.USub) else x
+        if isinstance(node, ast.BinOp):
+            a, b = conv(node.left), conv(node.right)
+            op = type(node.op)
+            if op is ast.Add:
+                return a + b
+            if op is ast.Sub:
+                return a - b
+            if op is ast.Mult:
+                return a * b
+            if op is ast.Div:
+                return a / b
+            return a**b
+        if isinstance(node, ast.Call):
+            return _FUNCS[node.func.id](conv(node.args[0]))
+        raise ModelError(f"cannot read {ast.dump(node)}")  # the checks make this unreachable
+
+    return conv(tree)
+
+
+@dataclass(frozen=True)
+class Symbols:
+    """The symbols of one model: fields at n-1, n, n+1, velocities, parameters."""
+
+    prev: tuple
+    here: tuple
+    next: tuple
+    vel: tuple
+    params: tuple
+
+    @classmethod
+    def of(cls, lat: Lattice) -> "Symbols":
+        f = lat.fields
+        return cls(prev=tuple(sp.Symbol(f"{x}_prev", real=True) for x in f),
+                   here=tuple(sp.Symbol(x, real=True) for x in f),
+                   next=tuple(sp.Symbol(f"{x}_next", real=True) for x in f),
+                   vel=tuple(sp.Symbol(f"{x}_t", real=True) for x in f),
+                   params=tuple(sp.Symbol(p, real=True) for p in lat.parameters))
+
+
+@dataclass(frozen=True)
+class Energies:
+    """SymPy forms of one model's energy, with the masses read off the kinetic energy."""
+
+    lattice: Lattice
+    symbols: Symbols
+    kinetic: sp.Expr
+    bond: sp.Expr
+    site: sp.Expr
+    masses: tuple
+
+    @property
+    def cell(self) -> sp.Expr:
+        """W(u_n, u_{n+1}) = bond + site(u_n)."""
+        return self.bond + self.site
+
+
+def energies(lat: Lattice) -> Energies:
+    """Read the energies of ``lat`` into SymPy and check the kinetic energy's form."""
+    s = Symbols.of(lat)
+    names = {p.name: p for p in s.params}
+    names.update({f: x for f, x in zip(lat.fields, s.here)})
+    names.update({f + "_next": x for f, x in zip(lat.fields, s.next)})
+    names.update({f + "_t": x for f, x in zip(lat.fields, s.vel)})
+    kin = to_sympy(lat.tree("kinetic"), names)
+    bond = to_sympy(lat.tree("bond"), names)
+    site = to_sympy(lat.tree("site"), names)
+    where = f"model {lat.name!r}: energy.kinetic"
+    masses = []
+    for i, v in enumerate(s.vel):
+        m = sp.simplify(sp.diff(kin, v, 2))
+        if m.free_symbols & (set(s.vel) | set(s.here)):
+            raise ModelError(f"{where}: the mass of {lat.fields[i]} depends on the state "
+                             f"({m}); the kinetic energy must be sum_i m_i u_t**2/2, m_i "
+                             "constant")
+        masses.append(m)
+        for j in range(i + 1, len(s.vel)):
+            if sp.simplify(sp.diff(kin, v, s.vel[j])) != 0:
+                raise ModelError(f"{where}: couples the velocities of {lat.fields[i]} and "
+                                 f"{lat.fields[j]}; it must be diagonal")
+    rest = sp.expand(kin - sum(m * v**2 / 2 for m, v in zip(masses, s.vel)))
+    if sp.simplify(rest) != 0:
+        raise ModelError(f"{where}: is not a quadratic form in the velocities (the rest "
+                         f"{sp.simplify(rest)} remains)")
+    at_rest = {x: 0 for x in s.here + s.next}
+    for i, x in enumerate(s.here):
+        # net force on field i of a chain at rest: -(dW/du + dW/du_next) at u = 0
+        f0 = sp.simplify((sp.diff(bond + site, x) + sp.diff(bond, s.next[i])).subs(at_rest))
+        if f0 != 0:
+            raise ModelError(f"model {lat.name!r}: the rest state (every field 0) is not an "
+                             f"equilibrium: the force on {lat.fields[i]} there is {-f0}")
+    return Energies(lat, s, kin, bond, site, tuple(masses))
+
+
+def equations_of_motion(e: Energies) -> tuple:
+    """Accelerations d^2 u_{i,n}/dt^2 of eq. (1), in u_prev, u, u_next (one per field)."""
+    s = e.symbols
+    back = dict(zip(s.here, s.prev)) | dict(zip(s.next, s.here))
+    w_left = e.bond.subs(back, simultaneous=True)  # the bond (n-1, n)
+    return tuple(-(sp.diff(e.cell, x) + sp.diff(w_left, x)) / m
+                 for x, m in zip(s.here, e.masses))
+
+
+def taylor_tensors(e: Energies, order: int = 4) -> dict:
+    """Nonzero derivatives of W at rest over x = (u_n, u_{n+1}), as {index tuple: expr},
+    one sorted index tuple per symmetric class, for orders 2..``order``."""
+    s = e.symbols
+    x = s.here + s.next
+    at_rest = {v: 0 for v in x}
+    out = {}
+    W = e.cell
+    for n in range(2, order + 1):
+        for idx in itertools.combinations_with_replacement(range(len(x)), n):
+            d = W
+            for i in idx:
+                d = sp.diff(d, x[i])
+            val = sp.simplify(d.subs(at_rest))
+            if val != 0:
+                out[idx] = val
+    return out
+
+
+def _printer():
+    from sympy.printing.numpy import NumPyPrinter
+
+    return NumPyPrinter({"fully_qualified_modules": True, "inline": True,
+                         "allow_unknown_functions": False})
+
+
+def _body(e: Energies, exprs: list, targets: list, indent: str = "    ") -> list:
+    """Lines that unpack x and p, then assign ``targets[i] = exprs[i]`` after a CSE."""
+    s = e.symbols
+    pr = _printer()
+    lines = []
+    for i, v in enumerate(s.here + s.next):
+        lines.append(f"{indent}{v.name} = x[{i}]")
+    for i, v in enumerate(s.params):
+        lines.append(f"{indent}{v.name} = p[{i}]")
+    subexprs, reduced = sp.cse(exprs, symbols=sp.numbered_symbols("_c"), optimizations=None,
+                               order="canonical")
+    for sym, val in subexprs:
+        lines.append(f"{indent}{sym.name} = {pr.doprint(val)}")
+    for t, val in zip(targets, reduced):
+        lines.append(f"{indent}{t} = {pr.doprint(val)}")
+    return lines
+
+
+def model_module_text(lat: Lattice, e: Energies | None = None, command: str = "") -> str:
+    """The generated NumPy module of one model (deterministic: no time, no path)."""
+    e = e or energies(lat)
+    s = e.symbols
+    x = s.here + s.next
+    d = len(x)
+    pr = _printer()
+    grad = [sp.diff(e.cell, v) for v in x]
+    hess = [[sp.diff(g, v) for v in x] for g in grad]
+    tens = taylor_tensors(e)
+    head = [
+        "# " + "-" * 77,
+        "# GENERATED FILE - DO NOT EDIT BY HAND.",
+        f"# Written by {command or 'derivation.compile_model'} from the energy of model "
+        f"{lat.name!r}",
+        f"# (SymPy {sp.__version__}). Regenerate, never edit.",
+        "# " + "-" * 77,
+        "",
+        f'"""Derivatives of the cell energy W(u_n, u_{{n+1}}) of model {lat.name!r}.',
+        "",
+        f"{lat.description}",
+        "",
+        "x = (u_n fields..., u_{n+1} fields...) (first axis), p = parameters in PARAMETERS",
+        "order. Every function works on floats (Numba) and on arrays of shape (2 d, ...)",
+        "(NumPy); the ``*_into`` forms write into ``out`` of shape (2 d[, 2 d], ...).",
+        '"""',
+        "",
+        "import numpy",
+        "",
+        f"NAME = {lat.name!r}",
+        f"FIELDS = {tuple(lat.fields)!r}",
+        f"PARAMETERS = {tuple(lat.parameters)!r}",
+        f"MODEL_HASH = {lat.content_hash!r}",
+        "",
+        "",
+        "def masses(p):",
+        '    """Masses m_i of the fields (kinetic energy sum_i m_i u_t**2/2)."""',
+    ]
+    for i, v in enumerate(s.params):
+        head.append(f"    {v.name} = p[{i}]")
+    head.append("    return numpy.array([" + ", ".join(pr.doprint(m) for m in e.masses)
+                + "], dtype=float)")
+    head += ["", "", "def cell_energy(x, p):",
+             '    """W = bond + site of the cell (n, n + 1)."""']
+    head += _body(e, [e.cell], ["_w"])
+    head += ["    return _w + 0.0 * x[0]", "", "",
+             "def cell_gradient_into(x, p, out):",
+             '    """out[a] = dW/dx_a."""']
+    head += _body(e, grad, [f"out[{a}]" for a in range(d)])
+    head += ["", "", "def cell_hessian_into(x, p, out):",
+             '    """out[a, b] = d^2 W/dx_a dx_b."""']
+    flat = [hess[a][b] for a in range(d) for b in range(d)]
+    head += _body(e, flat, [f"out[{a}, {b}]" for a in range(d) for b in range(d)])
+    head += ["", "", "def taylor(p):",
+             '    """Derivatives of W at rest: H (order 2), T (3), Q (4), symmetric arrays."""']
+    for i, v in enumerate(s.params):
+        head.append(f"    {v.name} = p[{i}]")
+    head += [f"    H = numpy.zeros(({d}, {d}))", f"    T = numpy.zeros(({d}, {d}, {d}))",
+             f"    Q = numpy.zeros(({d}, {d}, {d}, {d}))",
+             "    vals = {"]
+    for idx, val in tens.items():
+        name = "HTQ"[len(idx) - 2]
+        head.append(f"        ({name!r}, {idx!r}): {pr.doprint(val)},")
+    head += ["    }", "    arrays = {'H': H, 'T': T, 'Q': Q}",
+             "    for (name, idx), v in vals.items():",
+             "        for perm in _permutations(idx):",
+             "            arrays[name][perm] = v",
+             "    return H, T, Q",
+             "", "",
+             "def _permutations(idx):",
+             "    import itertools",
+             "    return set(itertools.permutations(idx))", ""]
+    return "\n".join(head)
+
+
+def compile_model(lat: Lattice, path, command: str = "") -> "Path":
+    """Derive ``lat`` and write its generated module to ``path`` (atomically)."""
+    from pathlib import Path
+
+    from common.files import write_text
+
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    return write_text(path, model_module_text(lat, command=command))
+
+
+def write_builtin_models(out_dir) -> list:
+    """generated/models/: one module per built-in model (``make derive``)."""
+    from pathlib import Path
+
+    from energy import BUILTIN, builtin
+    from energy._model import module_name
+    from common.files import write_text
+
+    out_dir = Path(out_dir)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    paths = [write_text(out_dir / "__init__.py",
+                        '"""Generated code of the built-in lattice models (energy/models/*.toml),\n'
+                        'written by `make derive`; do not edit by hand."""\n')]
+    for name in BUILTIN:
+        paths.append(compile_model(builtin(name), out_dir / f"{module_name(name)}.py",
+                                   command="`make derive` (python -m derivation)"))
+    return paths

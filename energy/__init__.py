@@ -1,0 +1,23 @@
+"""Lattice models from their energy: the first room of the pipeline.
+
+    energy -> derivation -> generated -> numerics -> scenes, cli
+
+A model is one unit cell's energy (kinetic, bond to the next cell, on-site) over named
+fields, written as a TOML file (``docs/models.md``) or as a :class:`Lattice`. This package
+reads and checks models without SymPy (importing it costs milliseconds) and hands them to
+the rest:
+
+Lattice, ModelError          the model as data; the one error a bad model raises
+read_model, parse_model      a model file (path or text) -> Lattice
+BUILTIN, builtin             the built-in models (energy/models/*.toml) by name
+load_model -> Model          a model with parameter values and its generated code (derived
+                             on first use and cached by the content hash of its energy)
+"""
+
+from __future__ import annotations
+
+from ._model import BUILTIN, Model, builtin, load_model, resolve_model
+from ._spec import FUNCTIONS, Lattice, ModelError, check_value, parse_model, read_model
+
+__all__ = ["Lattice", "ModelError", "read_model", "parse_model", "BUILTIN", "builtin",
+           "load_model", "resolve_model", "Model", "FUNCTIONS", "check_value"]

@@ -1,0 +1,178 @@
+"""Built-in models, model lookup, and a model joined to its values and generated code."""
+
+from __future__ import annotations
+
+import hashlib
+import importlib
+import importlib.util
+import os
+import sys
+from dataclasses import dataclass
+from pathlib import Path
+from types import MappingProxyType, ModuleType
+
+from ._spec import Lattice, ModelError, read_model
+
+MODELS_DIR = Path(__file__).with_name("models")
+#: Names of the built-in models (energy/models/NAME.toml).
+BUILTIN = tuple(sorted(p.stem for p in MODELS_DIR.glob("*.toml")))
+
+
+def builtin(name: str) -> Lattice:
+    """The built-in model ``name`` (one of :data:`BUILTIN`)."""
+    if name not in BUILTIN:
+        raise ModelError(f"no built-in model {name!r}; built-in: {', '.join(BUILTIN)} "
+                         "(or give a path to a .toml model file)")
+    lat = read_model(MODELS_DIR / f"{name}.toml")
+    return lat.with_energy(source=f"builtin:{name}")
+
+
+def resolve_model(model) -> Lattice:
+    """A :class:`Lattice` from a Lattice, a built-in name or a path to a model file."""
+    if isinstance(model, Lattice):
+        return model
+    if isinstance(model, os.PathLike) or (isinstance(model, str) and (
+            model.endswith(".toml") or os.sep in model)):
+        return read_model(model)
+    if isinstance(model, str):
+        return builtin(model)
+    raise ModelError(f"model must be a built-in name, a .toml path or a Lattice, got "
+                     f"{type(model).__name__} {model!r}")
+
+
+def module_name(name: str) -> str:
+    """Python module name of a built-in model's generated code (generated/models/)."""
+    return name.replace("-", "_")
+
+
+def cache_dir() -> Path:
+    """Where derived code of models that are not built in is kept (FLEXMM_CACHE or
+    ~/.cache/flexmm-mi/models), one file per content hash."""
+    root = os.environ.get("FLEXMM_CACHE")
+    return Path(root) if root else Path.home() / ".cache" / "flexmm-mi" / "models"
+
+
+def _import_file(path: Path, name: str) -> ModuleType:
+    spec = importlib.util.spec_from_file_location(name, path)
+    mod = importlib.util.module_from_spec(spec)
+    sys.modules[name] = mod  # numba's cache locates a function's module through sys.modules
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def generated_code(lat: Lattice) -> ModuleType:
+    """The generated module of ``lat``: the committed one of a built-in model, else the
+    cached one, derived now if it is not cached (SymPy, seconds)."""
+    h = lat.content_hash
+    if lat.source.startswith("builtin:"):
+        try:
+            mod = importlib.import_module(f"generated.models.{module_name(lat.name)}")
+            if getattr(mod, "MODEL_HASH", None) == h:
+                return mod
+        except ImportError:
+            pass
+    path = cache_dir() / f"model_{h[:24]}.py"
+    name = f"_flexmm_model_{h[:24]}"
+    if name in sys.modules:
+        return sys.modules[name]
+    if not path.exists() or _hash_in(path) != h:
+        from derivation import compile_model  # the one step that needs SymPy
+
+        compile_model(lat, path)
+    return _import_file(path, name)
+
+
+def _hash_in(path: Path) -> str | None:
+    try:
+        for line in path.read_text(encoding="utf-8").splitlines():
+            if line.startswith("MODEL_HASH = "):
+                return line.split("=", 1)[1].strip().strip("'\"")
+    except OSError:
+        return None
+    return None
+
+
+@dataclass(frozen=True)
+class Model:
+    """A lattice model with parameter values and its generated code: what numerics takes.
+
+    Attributes
+    ----------
+    lattice : Lattice
+        The model (fields, energies).
+    params : mapping str -> float
+        Every parameter's value (defaults overridden).
+    code : module
+        The generated derivatives of the cell energy (``generated/models`` or the cache).
+    """
+
+    lattice: Lattice
+    params: MappingProxyType
+    code: ModuleType
+
+    @property
+    def name(self) -> str:
+        return self.lattice.name
+
+    @property
+    def fields(self) -> tuple:
+        return self.lattice.fields
+
+    @property
+    def n_fields(self) -> int:
+        return self.lattice.n_fields
+
+    @property
+    def p(self):
+        """Parameter values as a float array in the model's order."""
+        import numpy as np
+
+        return np.array([self.params[k] for k in self.lattice.parameters], dtype=float)
+
+    @property
+    def masses(self):
+        import numpy as np
+
+        m = np.asarray(self.code.masses(self.p), dtype=float)
+        bad = [f for f, v in zip(self.fields, m) if not (np.isfinite(v) and v > 0)]
+        if bad:
+            raise ModelError(f"model {self.name!r}: the mass of {', '.join(bad)} is not > 0 "
+                             f"at {self.describe()} (masses {m.tolist()})")
+        return m
+
+    def with_params(self, **params) -> "Model":
+        """The same model at other parameter values."""
+        vals = dict(self.params)
+        vals.update(self.lattice.values(params))
+        return Model(self.lattice, MappingProxyType(vals), self.code)
+
+    def describe(self) -> str:
+        """``name (p1 = v1, p2 = v2)``: the full model in one line (titles, tables)."""
+        vals = ", ".join(f"{k} = {v:g}" for k, v in self.params.items())
+        return f"{self.name} ({vals})" if vals else self.name
+
+    def key(self) -> str:
+        """Content hash of the energy and the values (store and cache keys)."""
+        text = self.lattice.content_hash + repr(sorted(self.params.items()))
+        return hashlib.sha256(text.encode()).hexdigest()
+
+
+def load_model(model, **params) -> Model:
+    """A :class:`Model` from a built-in name, a model file or a :class:`Lattice`.
+
+    Parameters
+    ----------
+    model : str, path or Lattice
+        ``"fput"``, ``"my_chain.toml"``, ...
+    **params : float
+        Parameter values; the others keep the model's defaults.
+
+    Examples
+    --------
+    >>> from energy import load_model
+    >>> load_model("fput", beta=2.0).describe()
+    'fput (alpha = 0, beta = 2)'
+    """
+    lat = resolve_model(model)
+    vals = lat.values(params)
+    return Model(lat, MappingProxyType(vals), generated_code(lat))

@@ -1,0 +1,150 @@
+# -----------------------------------------------------------------------------
+# GENERATED FILE - DO NOT EDIT BY HAND.
+# Written by `make derive` (python -m derivation) from the energy of model 'diatomic-fput'
+# (SymPy 1.14.0). Regenerate, never edit.
+# -----------------------------------------------------------------------------
+
+"""Derivatives of the cell energy W(u_n, u_{n+1}) of model 'diatomic-fput'.
+
+diatomic FPUT chain: masses 1 (u) and m (v), every spring V(r) = r^2/2 + alpha r^3/3 + beta r^4/4
+
+x = (u_n fields..., u_{n+1} fields...) (first axis), p = parameters in PARAMETERS
+order. Every function works on floats (Numba) and on arrays of shape (2 d, ...)
+(NumPy); the ``*_into`` forms write into ``out`` of shape (2 d[, 2 d], ...).
+"""
+
+import numpy
+
+NAME = 'diatomic-fput'
+FIELDS = ('u', 'v')
+PARAMETERS = ('m', 'alpha', 'beta')
+MODEL_HASH = '8b6daa83158d49fe5be4c3d4857eb800b2b5399b4776aded5f36b0b91665c09b'
+
+
+def masses(p):
+    """Masses m_i of the fields (kinetic energy sum_i m_i u_t**2/2)."""
+    m = p[0]
+    alpha = p[1]
+    beta = p[2]
+    return numpy.array([1, m], dtype=float)
+
+
+def cell_energy(x, p):
+    """W = bond + site of the cell (n, n + 1)."""
+    u = x[0]
+    v = x[1]
+    u_next = x[2]
+    v_next = x[3]
+    m = p[0]
+    alpha = p[1]
+    beta = p[2]
+    _c0 = -v
+    _c1 = -_c0 - u
+    _c2 = _c0 + u_next
+    _c3 = (1/3)*alpha
+    _c4 = (1/4)*beta
+    _w = _c1**4*_c4 + _c1**3*_c3 + (1/2)*_c1**2 + _c2**4*_c4 + _c2**3*_c3 + (1/2)*_c2**2
+    return _w + 0.0 * x[0]
+
+
+def cell_gradient_into(x, p, out):
+    """out[a] = dW/dx_a."""
+    u = x[0]
+    v = x[1]
+    u_next = x[2]
+    v_next = x[3]
+    m = p[0]
+    alpha = p[1]
+    beta = p[2]
+    _c0 = -v
+    _c1 = -_c0 - u
+    _c2 = _c1**2*alpha
+    _c3 = _c1**3*beta
+    _c4 = _c0 + u_next
+    _c5 = _c4**3*beta + _c4**2*alpha
+    out[0] = -_c2 - _c3 + u - v
+    out[1] = _c2 + _c3 - _c5 - u - u_next + 2*v
+    out[2] = _c4 + _c5
+    out[3] = 0
+
+
+def cell_hessian_into(x, p, out):
+    """out[a, b] = d^2 W/dx_a dx_b."""
+    u = x[0]
+    v = x[1]
+    u_next = x[2]
+    v_next = x[3]
+    m = p[0]
+    alpha = p[1]
+    beta = p[2]
+    _c0 = -2*v
+    _c1 = _c0 + 2*u
+    _c2 = -v
+    _c3 = 3*beta
+    _c4 = _c3*(-_c2 - u)**2
+    _c5 = _c4 + 1
+    _c6 = -_c1*alpha + _c5
+    _c7 = -_c1*alpha
+    _c8 = _c0 + 2*u_next
+    _c9 = _c8*alpha
+    _c10 = _c3*(_c2 + u_next)**2
+    _c11 = _c10 + 1
+    _c12 = _c11 + _c8*alpha
+    out[0, 0] = _c6
+    out[0, 1] = -_c5 - _c7
+    out[0, 2] = 0
+    out[0, 3] = 0
+    out[1, 0] = -_c6
+    out[1, 1] = _c10 + _c4 + _c7 + _c9 + 2
+    out[1, 2] = -_c12
+    out[1, 3] = 0
+    out[2, 0] = 0
+    out[2, 1] = -_c11 - _c9
+    out[2, 2] = _c12
+    out[2, 3] = 0
+    out[3, 0] = 0
+    out[3, 1] = 0
+    out[3, 2] = 0
+    out[3, 3] = 0
+
+
+def taylor(p):
+    """Derivatives of W at rest: H (order 2), T (3), Q (4), symmetric arrays."""
+    m = p[0]
+    alpha = p[1]
+    beta = p[2]
+    H = numpy.zeros((4, 4))
+    T = numpy.zeros((4, 4, 4))
+    Q = numpy.zeros((4, 4, 4, 4))
+    vals = {
+        ('H', (0, 0)): 1,
+        ('H', (0, 1)): -1,
+        ('H', (1, 1)): 2,
+        ('H', (1, 2)): -1,
+        ('H', (2, 2)): 1,
+        ('T', (0, 0, 0)): -2*alpha,
+        ('T', (0, 0, 1)): 2*alpha,
+        ('T', (0, 1, 1)): -2*alpha,
+        ('T', (1, 1, 2)): 2*alpha,
+        ('T', (1, 2, 2)): -2*alpha,
+        ('T', (2, 2, 2)): 2*alpha,
+        ('Q', (0, 0, 0, 0)): 6*beta,
+        ('Q', (0, 0, 0, 1)): -6*beta,
+        ('Q', (0, 0, 1, 1)): 6*beta,
+        ('Q', (0, 1, 1, 1)): -6*beta,
+        ('Q', (1, 1, 1, 1)): 12*beta,
+        ('Q', (1, 1, 1, 2)): -6*beta,
+        ('Q', (1, 1, 2, 2)): 6*beta,
+        ('Q', (1, 2, 2, 2)): -6*beta,
+        ('Q', (2, 2, 2, 2)): 6*beta,
+    }
+    arrays = {'H': H, 'T': T, 'Q': Q}
+    for (name, idx), v in vals.items():
+        for perm in _permutations(idx):
+            arrays[name][perm] = v
+    return H, T, Q
+
+
+def _permutations(idx):
+    import itertools
+    return set(itertools.permutations(idx))

@@ -1,0 +1,161 @@
+"""Linear waves of any lattice model: dispersion matrix, branches, group velocity, g1.
+
+For a model with Taylor tensor H of the cell energy W(u_n, u_{n+1}) at rest (blocks
+H11, H12, H21, H22 over (u_n, u_{n+1})), a wave u_n = e exp(i(kappa n - Omega t)) solves
+
+    D(kappa, Omega) e = 0,   D = K(kappa) - Omega^2 M,
+    K(kappa) = H11 + H22 + H12 e^{i kappa} + H21 e^{-i kappa}          (Hermitian)
+
+Branch b at kappa is the b-th eigenvalue (ascending) of M^{-1/2} K M^{-1/2}, omega_b^2.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from energy import Model, ModelError
+
+
+def blocks(H: np.ndarray, d: int):
+    return H[:d, :d], H[:d, d:], H[d:, :d], H[d:, d:]
+
+
+def dynamical_matrix(H: np.ndarray, kappa: float, order: int = 0) -> np.ndarray:
+    """K(kappa) (order 0) or its ``order``-th derivative in kappa."""
+    d = H.shape[0] // 2
+    H11, H12, H21, H22 = blocks(H, d)
+    z = np.exp(1j * kappa)
+    if order == 0:
+        return (H11 + H22).astype(complex) + H12 * z + H21 / z
+    return H12 * (1j) ** order * z + H21 * (-1j) ** order / z
+
+
+@dataclass(frozen=True)
+class Carrier:
+    """The linear carrier wave of one branch at one k.
+
+    Attributes
+    ----------
+    k, omega : float
+        Wavenumber (rad/site) and frequency (1/time, lattice units).
+    branch : int
+        Branch index at k (0 = lowest frequency).
+    field : int
+        Index of the field whose first-harmonic amplitude is the wave's amplitude.
+    e : ndarray, shape (d,), complex
+        Polarisation, e[field] = 1.
+    group_velocity, g1 : float
+        d omega/dk and d^2 omega/dk^2 of the branch.
+    gap : float
+        Distance in omega to the nearest other branch at k (0: degenerate carrier).
+    """
+
+    k: float
+    omega: float
+    branch: int
+    field: int
+    e: np.ndarray
+    group_velocity: float
+    g1: float
+    gap: float
+
+
+def branches(model: Model, kappa) -> np.ndarray:
+    """omega_b(kappa) of every branch, shape (..., d), ascending; NaN where omega^2 < 0."""
+    H = model.code.taylor(model.p)[0]
+    m = model.masses
+    s = 1 / np.sqrt(m)
+    kap = np.asarray(kappa, dtype=float)
+    out = np.empty(kap.shape + (len(m),))
+    for idx in np.ndindex(kap.shape):
+        A = s[:, None] * dynamical_matrix(H, float(kap[idx])) * s[None, :]
+        lam = np.linalg.eigvalsh(A)
+        out[idx] = np.where(lam >= 0, np.sqrt(np.abs(lam)), np.nan)
+    return out
+
+
+def check_rest_stable(model: Model, samples: int = 257):
+    """Refuse a rest state that is not a minimum: omega^2 < 0 on some branch."""
+    H = model.code.taylor(model.p)[0]
+    m = model.masses
+    s = 1 / np.sqrt(m)
+    scale = max(1.0, float(np.max(np.abs(H))) / float(np.min(m)))
+    for kap in np.linspace(0, math.pi, samples):
+        lam = np.linalg.eigvalsh(s[:, None] * dynamical_matrix(H, kap) * s[None, :])
+        if lam[0] < -1e-12 * scale:
+            raise ModelError(f"model {model.describe()}: the rest state is not a minimum: "
+                             f"branch 0 has omega^2 = {lam[0]:.3g} < 0 at k = {kap:.4g}")
+
+
+def branch_index(model: Model, k: float, branch=None) -> int:
+    """Branch index at k from an index, a field name (the branch that field dominates) or
+    None (the model's default: its ``branch`` field, else 0)."""
+    d = model.n_fields
+    if branch is None:
+        branch = model.lattice.branch if model.lattice.branch is not None else 0
+    if isinstance(branch, (int, np.integer)) and not isinstance(branch, bool):
+        if not 0 <= branch < d:
+            raise ModelError(f"branch must be in 0..{d - 1} for model {model.name!r} "
+                             f"({d} field(s)), got {branch}")
+        return int(branch)
+    if isinstance(branch, str):
+        if branch.isdigit():
+            return branch_index(model, k, int(branch))
+        if branch not in model.fields:
+            raise ModelError(f"branch {branch!r} is neither an index nor a field of model "
+                             f"{model.name!r} (fields: {', '.join(model.fields)})")
+        f = model.fields.index(branch)
+        vecs = _modes(model, k)[1]
+        weight = np.abs(vecs[f, :]) ** 2  # mass-weighted eigenvectors: columns normalised
+        return int(np.argmax(weight))
+    raise ModelError(f"branch must be an index or a field name, got {branch!r}")
+
+
+def _modes(model: Model, k: float):
+    H = model.code.taylor(model.p)[0]
+    m = model.masses
+    s = 1 / np.sqrt(m)
+    lam, vecs = np.linalg.eigh(s[:, None] * dynamical_matrix(H, k) * s[None, :])
+    return lam, vecs, H, s
+
+
+def carrier(model: Model, k: float, branch=None) -> Carrier:
+    """The carrier of ``branch`` at ``k`` with its group velocity and g1 (perturbation
+    theory of the Hermitian eigenproblem; checked against finite differences in tests)."""
+    b = branch_index(model, k, branch)
+    lam, vecs, H, s = _modes(model, k)
+    if lam[b] <= 0:
+        raise ModelError(f"model {model.describe()}: branch {b} has omega^2 = {lam[b]:.3g} "
+                         f"<= 0 at k = {k:.6g}: no carrier wave there")
+    omega = math.sqrt(lam[b])
+    phi = vecs[:, b]
+    A1 = s[:, None] * dynamical_matrix(H, k, 1) * s[None, :]
+    A2 = s[:, None] * dynamical_matrix(H, k, 2) * s[None, :]
+    lam1 = float(np.real(phi.conj() @ A1 @ phi))
+    lam2 = float(np.real(phi.conj() @ A2 @ phi))
+    others = [j for j in range(len(lam)) if j != b]
+    gap = min((abs(math.sqrt(max(lam[j], 0)) - omega) for j in others), default=math.inf)
+    for j in others:
+        if abs(lam[j] - lam[b]) > 1e-13 * max(1.0, abs(lam[b])):
+            lam2 += 2 * abs(vecs[:, j].conj() @ A1 @ phi) ** 2 / (lam[b] - lam[j])
+    vg = lam1 / (2 * omega)
+    g1 = (lam2 - 2 * vg**2) / (2 * omega)
+    e = s * phi  # back from mass-weighted coordinates
+    f = field_of(model, e, branch if isinstance(branch, str) and not branch.isdigit() else None)
+    e = e / e[f]
+    return Carrier(k=float(k), omega=omega, branch=b, field=f, e=e, group_velocity=vg, g1=g1,
+                   gap=gap)
+
+
+def field_of(model: Model, e: np.ndarray, name: str | None = None) -> int:
+    """The field that carries the wave's amplitude: the field that named the branch (or the
+    model's branch field) if it moves, else the largest component."""
+    name = name or model.lattice.branch
+    if name is not None:
+        f = model.fields.index(name)
+        if abs(e[f]) > 1e-8 * np.max(np.abs(e)):
+            return f
+    return int(np.argmax(np.abs(e)))

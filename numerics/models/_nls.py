@@ -1,0 +1,235 @@
+"""The semi-discrete NLS of any lattice model, with second harmonic and mean flow.
+
+Multiple scales on the lattice (carrier exact, envelope slow: X = eps n, tau = eps^2 t):
+
+    u_n = eps (A e e^{i theta} + c.c.) + eps^2 (A^2 v2 e^{2 i theta} + c.c. + |A|^2 w
+          + mean strain s |A|^2 of every acoustic field) + ...,   theta = k n - omega t,
+
+    i A_tau + (g1/2) A_XX + g2 |A|^2 A = 0   (in the frame moving at the group velocity),
+
+the paper's form (eq. `NLS`, g1 = d^2 omega/dk^2). With x = (u_n, u_{n+1}), z = e^{ik},
+X1 = (e, z e), T and Q the third and fourth derivatives of W at rest and
+P(h) = [I, z^{-h} I] (the force on u_n from the cells n and n - 1 at harmonic h):
+
+* second harmonic: D(2k, 2 omega) v2 = -P(2) T(X1, X1)/2 (resonant where D is singular);
+* mean of the optical fields: K(0) w = -P(0) T(X1, conj X1) - (H12 + H22) N s;
+* mean strain s of the acoustic directions N (null space of K(0), along which W is
+  invariant): the long-wave equation of the mean, m B_TT = d_X sigma with the mean stress
+  sigma = C s + tau |A|^2, travelling with the envelope: (v_g^2 M_N - C) s = tau. It is
+  singular where v_g equals a sound speed. This is the term an expansion that tracks the
+  mean of one field only misses (an FPUT chain's own mean flow: issue 33);
+* g2 = e^H F1 / (2 omega e^H M e), F1 = -P(1)[T(X0, X1) + T(X2, conj X1)
+  + Q(X1, X1, conj X1)/2], X0 = (w, w + N s), X2 = (v2, z^2 v2).
+
+Amplitudes: the carrier's first harmonic in its field is a cos(k n - omega t) with
+a = 2 eps |A| (for the paper's chain, the peak rotation 2 eps A0). MI where g = g2/g1 > 0,
+sideband gain sigma(q) = (|g1|/2) |q| sqrt(g a^2 - q^2) at offsets |q| < sqrt(g) a, peak
+|g2| a^2/4 at q = a sqrt(g/2) (lattice units).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from energy import Model, ModelError
+
+from ._linear import Carrier, blocks, carrier, dynamical_matrix
+
+#: Relative size under which a matrix is singular: a resonance, not a number.
+SINGULAR = 1e-9
+
+
+@dataclass(frozen=True)
+class ModelNLS:
+    """The semi-discrete NLS of one model at one carrier.
+
+    Attributes
+    ----------
+    model : Model
+    carrier : Carrier
+        k, omega, branch, polarisation, group velocity, g1.
+    g2 : float
+        Nonlinear coefficient (nan where ``undefined``).
+    second_harmonic : ndarray, shape (d,), complex
+        v2 per field: the 2k harmonic is eps^2 A^2 v2 (amplitude |v2| a^2 / 2).
+    mean : ndarray, shape (d,)
+        w per field: the optical mean displacement eps^2 |A|^2 w (amplitude w a^2 / 4).
+    strain : ndarray, shape (d,)
+        The acoustic mean strain u_{n+1} - u_n = eps^2 |A|^2 strain per field.
+    undefined : str
+        Why there is no NLS (empty when there is one).
+    parts : dict
+        g2's parts: "cubic", "second harmonic", "mean" (optical), "mean flow" (acoustic).
+    """
+
+    model: Model
+    carrier: Carrier
+    g2: float
+    second_harmonic: np.ndarray
+    mean: np.ndarray
+    strain: np.ndarray
+    undefined: str = ""
+    parts: dict = field(default_factory=dict)
+
+    @property
+    def g1(self) -> float:
+        return self.carrier.g1
+
+    @property
+    def g(self) -> float:
+        return self.g2 / self.g1 if not self.undefined and self.g1 != 0 else math.nan
+
+    @property
+    def verdict(self) -> str:
+        """'MI' (focusing, g > 0), 'stable' (defocusing) or 'undefined'."""
+        if self.undefined:
+            return "undefined"
+        return "MI" if self.g > 0 else "stable"
+
+    def peak_gain(self, amplitude: float) -> float:
+        """Fastest sideband growth rate |g2| a^2/4 (1/time) where MI, else 0; nan where
+        undefined."""
+        if self.undefined:
+            return math.nan
+        return abs(self.g2) * amplitude**2 / 4 if self.g > 0 else 0.0
+
+    def gain(self, offset, amplitude: float):
+        """sigma(q) at sideband offsets q (rad/site) for carrier amplitude a."""
+        q = np.abs(np.asarray(offset, dtype=float))
+        if self.undefined:
+            return np.full(q.shape, np.nan)
+        g = self.g
+        return np.where(g > 0, abs(self.g1) / 2 * q * np.sqrt(np.maximum(
+            0.0, g * amplitude**2 - q**2)), 0.0)
+
+    def fastest_offset(self, amplitude: float) -> float:
+        return amplitude * math.sqrt(self.g / 2) if self.verdict == "MI" else math.nan
+
+    def band_edge(self, amplitude: float) -> float:
+        return amplitude * math.sqrt(self.g) if self.verdict == "MI" else math.nan
+
+    def frequency_shift(self, amplitude: float) -> float:
+        """The NLS's nonlinear frequency shift -g2 a^2/4 of the plane wave."""
+        return -self.g2 * amplitude**2 / 4
+
+
+def _T(T, a, b):
+    return np.einsum("ibc,b,c->i", T, a, b)
+
+
+def _Q(Q, a, b, c):
+    return np.einsum("ibcd,b,c,d->i", Q, a, b, c)
+
+
+def acoustic_directions(model: Model, H=None, T=None, Q=None) -> np.ndarray:
+    """Null space N of K(0), shape (d, n_acoustic): the directions along which W is
+    invariant (uniform translations). A null direction W is not invariant along is refused
+    (a zero-frequency mode the expansion cannot treat)."""
+    if H is None:
+        H, T, Q = model.code.taylor(model.p)
+    d = model.n_fields
+    K0 = np.real(dynamical_matrix(H, 0.0))
+    lam, vecs = np.linalg.eigh(K0)
+    scale = max(1.0, float(np.max(np.abs(K0))))
+    N = vecs[:, np.abs(lam) < 1e-10 * scale]
+    for j in range(N.shape[1]):
+        nn = np.concatenate([N[:, j], N[:, j]])
+        bad = max(np.max(np.abs(H @ nn)), np.max(np.abs(np.einsum("ibc,c->ib", T, nn))),
+                  np.max(np.abs(np.einsum("ibcd,d->ibc", Q, nn))))
+        if bad > 1e-9 * scale:
+            raise ModelError(
+                f"model {model.describe()}: K(0) has a zero mode {np.round(N[:, j], 6)} "
+                "that is not a symmetry of the energy (a zero frequency at k = 0 without "
+                "translation invariance): not supported")
+    return N if d else N
+
+
+def nls(model: Model, k: float, branch=None) -> ModelNLS:
+    """The semi-discrete NLS of ``model`` on ``branch`` at carrier wavenumber ``k``.
+
+    Where no NLS exists, ``undefined`` says why (g2 is nan): a degenerate carrier, a
+    second harmonic resonant with a branch (omega_b(2k) = 2 omega), a group velocity equal
+    to a sound speed, or g1 = 0.
+    """
+    k = float(k)
+    if not (math.isfinite(k) and 0 < k < math.pi):
+        raise ModelError(f"k must be in (0, {math.pi:.6g}), got {k!r}")
+    c = carrier(model, k, branch)
+    H, T, Q = model.code.taylor(model.p)
+    d = model.n_fields
+    m = model.masses
+    M = np.diag(m)
+    z = np.exp(1j * k)
+    H11, H12, H21, H22 = blocks(H, d)
+    e, w0 = c.e, c.omega
+    scale = max(1.0, float(np.max(np.abs(H))))
+    nan_d = np.full(d, np.nan)
+
+    def undefined(why):
+        return ModelNLS(model, c, math.nan, nan_d.astype(complex), nan_d, nan_d, why)
+
+    if c.gap < 1e-7 * max(w0, 1e-300):
+        return undefined(f"degenerate carrier: another branch has the same frequency "
+                         f"{w0:.6g} at k = {k:.6g}")
+
+    def P(h):
+        return np.hstack([np.eye(d), np.eye(d) * z ** (-h)])
+
+    X1 = np.concatenate([e, z * e])
+    # second harmonic
+    D2 = dynamical_matrix(H, 2 * k) - (2 * w0) ** 2 * M
+    f2 = -P(2) @ _T(T, X1, X1) / 2
+    sv = np.linalg.svd(D2, compute_uv=False)
+    if sv[-1] < SINGULAR * max(sv[0], scale) and np.linalg.norm(f2) > SINGULAR * scale:
+        om2 = np.sqrt(np.clip(np.linalg.eigvalsh(
+            np.diag(m**-0.5) @ dynamical_matrix(H, 2 * k) @ np.diag(m**-0.5)), 0, None))
+        b = int(np.argmin(np.abs(om2 - 2 * w0)))
+        return undefined(f"second harmonic resonant: branch {b} has omega(2k) = "
+                         f"{om2[b]:.6g} = 2 omega at k = {k:.6g}")
+    v2 = np.linalg.lstsq(D2, f2, rcond=None)[0] if sv[-1] < SINGULAR * scale else \
+        np.linalg.solve(D2, f2)
+    X2 = np.concatenate([v2, z**2 * v2])
+    # mean: optical part and acoustic strain
+    N = acoustic_directions(model, H, T, Q)
+    K0 = np.real(dynamical_matrix(H, 0.0))
+    K0p = np.linalg.pinv(K0, rcond=1e-10, hermitian=True)
+    f0 = -np.real(P(0) @ _T(T, X1, X1.conj()))
+    w_wave = K0p @ f0
+    strain_dir = np.zeros(d)
+    if N.shape[1]:
+        B = (H12 + H22) @ N  # linear mean force per unit strain: -(H12 + H22) N s
+        w_strain = -K0p @ B  # optical mean per unit strain, shape (d, na)
+        T2 = T[d:]  # rows of dW/du_{n+1}
+        C = N.T @ H22 @ N + N.T @ (H21 + H22) @ w_strain
+        tau = N.T @ np.real(_T(T2, X1, X1.conj())) + N.T @ (H21 + H22) @ w_wave
+        A = c.group_velocity**2 * (N.T @ M @ N) - C
+        sa = np.linalg.svd(A, compute_uv=False)
+        if sa[-1] < SINGULAR * max(scale, float(np.max(m))):
+            return undefined(f"group velocity {c.group_velocity:.6g} equals a sound speed "
+                             f"at k = {k:.6g} (the mean flow resonates)")
+        s = np.linalg.solve(A, tau)
+        w = w_wave + w_strain @ s
+        strain_dir = N @ s
+    else:
+        w = w_wave
+    X0 = np.concatenate([w, w + strain_dir])
+    # the cubic order at the first harmonic, by origin
+    parts_force = {
+        "cubic": -P(1) @ _Q(Q, X1, X1, X1.conj()) / 2,
+        "second harmonic": -P(1) @ _T(T, X2, X1.conj()),
+        "mean": -P(1) @ _T(T, np.concatenate([w_wave, w_wave]), X1),
+        "mean flow": -P(1) @ _T(T, X0 - np.concatenate([w_wave, w_wave]), X1),
+    }
+    me = float(np.real(e.conj() @ M @ e))
+    parts = {key: float(np.real(e.conj() @ f)) / (2 * w0 * me)
+             for key, f in parts_force.items()}
+    g2 = sum(parts.values())
+    out = ModelNLS(model, c, g2, v2, w, strain_dir, "", parts)
+    if abs(c.g1) < 1e-12 * max(abs(w0), 1.0):
+        return ModelNLS(model, c, math.nan, v2, w, strain_dir,
+                        f"g1 = d^2 omega/dk^2 = 0 at k = {k:.6g} (no dispersion: the NLS "
+                        "needs higher-order terms)", parts)
+    return out
