@@ -285,9 +285,10 @@ def write_builtin_models(out_dir) -> list:
 
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
-    paths = [write_text(out_dir / "__init__.py",
-                        '"""Generated code of the built-in lattice models (energy/models/*.toml),\n'
-                        'written by `make derive`; do not edit by hand."""\n')]
+    banner = ("# " + "-" * 77 + "\n# GENERATED FILE - DO NOT EDIT BY HAND.\n"
+              "# Written by `make derive` (python -m derivation).\n# " + "-" * 77 + "\n")
+    paths = [write_text(out_dir / "__init__.py", banner +
+                        '"""Generated code of the built-in lattice models (energy/models/*.toml)."""\n')]
     for name in BUILTIN:
         paths.append(compile_model(builtin(name), out_dir / f"{module_name(name)}.py",
                                    command="`make derive` (python -m derivation)"))

@@ -1,2 +1,5 @@
-"""Generated code of the built-in lattice models (energy/models/*.toml),
-written by `make derive`; do not edit by hand."""
+# -----------------------------------------------------------------------------
+# GENERATED FILE - DO NOT EDIT BY HAND.
+# Written by `make derive` (python -m derivation).
+# -----------------------------------------------------------------------------
+"""Generated code of the built-in lattice models (energy/models/*.toml)."""
