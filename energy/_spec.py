@@ -184,9 +184,11 @@ def _checked_tree(where: str, text: str, allowed: set) -> ast.Expression:
     for node in ast.walk(tree):
         if isinstance(node, ast.BinOp) and isinstance(node.op, ast.BitXor):
             _fail(where, f"'^' is not a power in {text.strip()!r}: write '**'")
+    for node in ast.walk(tree):
         if not isinstance(node, _NODES):
             _fail(where, f"{type(node).__name__.lower()} is not allowed in {text.strip()!r} "
                          "(only numbers, names, + - * / ** and function calls)")
+    for node in ast.walk(tree):
         if isinstance(node, ast.Constant) and (isinstance(node.value, bool) or not isinstance(
                 node.value, (int, float))):
             _fail(where, f"constant {node.value!r} is not a real number")
