@@ -277,3 +277,23 @@ def test_python_lattice_equals_its_file():
                   kinetic="u_t**2/2", bond="C*(u_next - u)**2/2",
                   site="omega0**2*u**2/2 + alpha*u**3/3 + beta*u**4/4")
     assert lat.content_hash == builtin("klein-gordon").content_hash
+
+
+@pytest.mark.parametrize("K_theta,k,amplitude", [(0.02151, 0.92991, 0.002),
+                                                 (0.01551, 0.81681, 0.004), (0.03, 0.7, 0.009)])
+def test_flexmm_soliton_equals_the_paper_chains_prediction(K_theta, k, amplitude):
+    # generated/soliton.py (SymPy closed forms, bright/dark, kink of U) against the general
+    # soliton of the model's NLS; 1e-9: both are closed forms in double precision
+    from numerics import Material
+    from numerics.theory import soliton
+
+    mat = Material(2.5 if K_theta != 0.03 else 3.0, 0.01851 if K_theta != 0.03 else 0.05,
+                   K_theta)
+    want = soliton(mat, "coupled", k, amplitude)
+    got = nls(load_model("flexmm", alpha=mat.alpha, K_s=mat.K_s, K_theta=K_theta),
+              k).soliton(amplitude)
+    assert got.kind == want.kind
+    assert got.width == pytest.approx(want.width, rel=1e-9)
+    assert got.frequency == pytest.approx(want.frequency, rel=1e-12)
+    assert got.kink[1] == pytest.approx(want.kink_height, rel=1e-9)
+    assert got.kink[0] == 0  # theta is optical: no kink

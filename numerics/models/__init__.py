@@ -3,11 +3,11 @@ flow, simulation of the lattice and the exact plane-wave theory.
 
 carrier, branches, check_rest_stable   linear waves: k -> omega, v_g, g1 on a branch
 nls -> ModelNLS                         the semi-discrete NLS (g1, g2, second harmonic,
-                                        mean flow), MI verdict, gain curve
+                                        mean flow), MI verdict, gain curve, soliton
 """
 
 from ._linear import Carrier, branch_index, branches, carrier, check_rest_stable
-from ._nls import ModelNLS, acoustic_directions, nls
+from ._nls import ModelNLS, ModelSoliton, acoustic_directions, nls
 
 __all__ = ["Carrier", "carrier", "branches", "branch_index", "check_rest_stable", "ModelNLS",
-           "nls", "acoustic_directions"]
+           "ModelSoliton", "nls", "acoustic_directions"]

@@ -115,6 +115,60 @@ class ModelNLS:
         """The NLS's nonlinear frequency shift -g2 a^2/4 of the plane wave."""
         return -self.g2 * amplitude**2 / 4
 
+    def soliton(self, amplitude: float) -> "ModelSoliton":
+        """The envelope soliton of peak (bright) or background (dark) amplitude a."""
+        if self.undefined:
+            raise ModelError(f"no soliton: the NLS is undefined ({self.undefined})")
+        a = float(amplitude)
+        if not (math.isfinite(a) and a > 0):
+            raise ModelError(f"amplitude must be > 0, got {amplitude!r}")
+        g = self.g
+        kind = "bright" if g > 0 else "dark"
+        width = 2 / (a * math.sqrt(abs(g)))
+        # the mean strain eps^2 |A|^2 s integrated over the envelope |E|^2 = (a/2)^2 sech^2
+        # (bright) or (a/2)^2 (1 - tanh^2) (the dark soliton's hole): a kink of height
+        # 2 (a/2)^2 w s (a bright one raises the field, a dark one lowers it)
+        sign = 1.0 if kind == "bright" else -1.0
+        kink = sign * a**2 * width * self.strain / 2
+        return ModelSoliton(kind=kind, amplitude=a, width=width,
+                            velocity=self.carrier.group_velocity,
+                            frequency=self.carrier.omega - (
+                                self.g2 * a**2 / 8 if kind == "bright" else
+                                (self.g2 - self.parts["mean flow"]) * a**2 / 4),
+                            kink=kink)
+
+
+@dataclass(frozen=True)
+class ModelSoliton:
+    """An envelope soliton of the NLS, in lattice units.
+
+    Attributes
+    ----------
+    kind : {"bright", "dark"}
+        Bright where g = g2/g1 > 0, dark (black) where g < 0.
+    amplitude : float
+        First-harmonic amplitude a of the carrier's field at the peak (bright) or of the
+        background (dark).
+    width : float
+        Sites: envelope a sech(xi/w) (bright) or a tanh(xi/w) (black); w = 2/(a sqrt|g|).
+    velocity : float
+        Group velocity, sites per unit time.
+    frequency : float
+        Carrier frequency with the soliton's nonlinear shift: omega - g2 a^2/8 (bright);
+        omega - (g2 - g2_meanflow) a^2/4 (black: the background's shift, where the mean
+        strain is zero far from the soliton, so the mean flow's part does not act).
+    kink : ndarray, shape (d,)
+        Step of each field's mean displacement across the soliton (acoustic fields; 0 for
+        optical ones).
+    """
+
+    kind: str
+    amplitude: float
+    width: float
+    velocity: float
+    frequency: float
+    kink: np.ndarray
+
 
 def _T(T, a, b):
     return np.einsum("ibc,b,c->i", T, a, b)
