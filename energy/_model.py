@@ -142,8 +142,9 @@ class Model:
 
     def with_params(self, **params) -> "Model":
         """The same model at other parameter values."""
+        checked = self.lattice.values(params)
         vals = dict(self.params)
-        vals.update(self.lattice.values(params))
+        vals.update({p: checked[p] for p in params})
         return Model(self.lattice, MappingProxyType(vals), self.code)
 
     def describe(self) -> str:

@@ -297,3 +297,20 @@ def test_flexmm_soliton_equals_the_paper_chains_prediction(K_theta, k, amplitude
     assert got.frequency == pytest.approx(want.frequency, rel=1e-12)
     assert got.kink[1] == pytest.approx(want.kink_height, rel=1e-9)
     assert got.kink[0] == 0  # theta is optical: no kink
+
+
+def test_with_params_keeps_the_other_values():
+    m = load_model("fput", alpha=1.0).with_params(beta=3.0)
+    assert dict(m.params) == {"alpha": 1.0, "beta": 3.0}
+
+
+def test_fput_map_over_k_and_beta_has_the_zone_boundary_line():
+    from numerics.models import model_map
+
+    m = load_model("fput", alpha=1.0)
+    betas = np.array([1.2, 1.3, 1.37, 1.45])
+    ds = model_map(m, ("k", [3.1]), ("beta", betas), 0.1)
+    # near k = pi the verdict flips at beta = 4 alpha^2 / 3 (1.333; at k = 3.1, where
+    # s^2 = 0.9996, the edge moves by ~1e-3)
+    assert list(ds.verdict_semidiscrete.values[:, 0]) == ["stable", "stable", "MI", "MI"]
+    assert ds.attrs["param_alpha"] == 1.0

@@ -1,0 +1,102 @@
+"""MI maps of any model over two of its parameters, or one parameter and the carrier k."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from energy import Model, ModelError
+
+from ._nls import nls
+
+AXIS_K = "k"
+
+
+def _axis(model: Model, name: str, values) -> np.ndarray:
+    if name != AXIS_K and name not in model.lattice.parameters:
+        raise ModelError(f"map axis {name!r} is neither 'k' nor a parameter of model "
+                         f"{model.name!r} ({', '.join(model.lattice.parameters)})")
+    v = np.asarray(values, dtype=float)
+    if v.ndim != 1 or v.size == 0 or not np.all(np.isfinite(v)):
+        raise ModelError(f"map axis {name} needs finite values, got {values!r}")
+    if name == AXIS_K and (v.min() <= 0 or v.max() >= math.pi):
+        raise ModelError(f"k must be in (0, {math.pi:.6g}), got {v.min():g}..{v.max():g}")
+    return v
+
+
+def model_map(model: Model, x: tuple, y: tuple, amplitude: float, k: float | None = None,
+              branch=None, exact=None):
+    """Theory MI map of ``model`` over two axes.
+
+    Parameters
+    ----------
+    model : energy.Model
+    x, y : (str, array)
+        Axis name (``"k"`` or a parameter of the model) and its values.
+    amplitude : float
+        Carrier amplitude a (first harmonic of its field).
+    k : float, optional
+        The carrier wavenumber when neither axis is ``"k"``.
+    branch : int or str, optional
+    exact : callable, optional
+        ``exact(model, k, amplitude, branch) -> (verdict, peak_gain)``: adds the exact
+        lattice columns.
+
+    Returns
+    -------
+    xarray.Dataset
+        ``verdict_semidiscrete`` ("MI", "stable", "undefined"), ``peak_gain_semidiscrete``
+        (1/time), ``g1``, ``g2``, ``reason`` (why undefined), and the exact columns when
+        asked; dims (y, x) named after the axes; model, parameters and amplitude in attrs.
+    """
+    import xarray as xr
+
+    xn, xv = x[0], _axis(model, *x)
+    yn, yv = y[0], _axis(model, *y)
+    if xn == yn:
+        raise ModelError(f"the two map axes must differ, got {xn!r} twice")
+    if AXIS_K not in (xn, yn) and k is None:
+        raise ModelError("give k (the carrier) when neither map axis is 'k'")
+    shape = (yv.size, xv.size)
+    verdict = np.empty(shape, dtype=object)
+    reason = np.empty(shape, dtype=object)
+    peak, g1, g2 = (np.full(shape, np.nan) for _ in range(3))
+    ex_verdict = np.empty(shape, dtype=object)
+    ex_peak = np.full(shape, np.nan)
+    for i, yy in enumerate(yv):
+        for j, xx in enumerate(xv):
+            vals = {n: v for n, v in ((xn, xx), (yn, yy)) if n != AXIS_K}
+            kk = {xn: xx, yn: yy}.get(AXIS_K, k)
+            m = model.with_params(**vals)
+            try:
+                r = nls(m, kk, branch)
+            except ModelError as exc:  # e.g. no carrier on this branch at these values
+                verdict[i, j], reason[i, j] = "undefined", str(exc)
+                ex_verdict[i, j] = "undefined"
+                continue
+            verdict[i, j], reason[i, j] = r.verdict, r.undefined
+            peak[i, j], g1[i, j], g2[i, j] = r.peak_gain(amplitude), r.g1, r.g2
+            if exact is not None:
+                ex_verdict[i, j], ex_peak[i, j] = exact(m, kk, amplitude, branch)
+    dims = (yn, xn)
+    data = {
+        "verdict_semidiscrete": (dims, verdict.astype(str),
+                                 {"long_name": "semi-discrete NLS verdict"}),
+        "peak_gain_semidiscrete": (dims, peak, {"units": "1/time (lattice units)"}),
+        "g1": (dims, g1, {"long_name": "d^2 omega/dk^2"}),
+        "g2": (dims, g2, {"long_name": "NLS nonlinear coefficient (mean flow included)"}),
+        "reason": (dims, reason.astype(str), {"long_name": "why a verdict is undefined"}),
+    }
+    if exact is not None:
+        data["verdict_exact"] = (dims, ex_verdict.astype(str),
+                                 {"long_name": "exact lattice verdict"})
+        data["peak_gain_exact"] = (dims, ex_peak, {"units": "1/time (lattice units)"})
+    attrs = {"model": model.name, "model_hash": model.lattice.content_hash,
+             "amplitude": float(amplitude), "branch": "" if branch is None else str(branch)}
+    attrs.update({f"param_{p}": v for p, v in model.params.items() if p not in (xn, yn)})
+    if k is not None and AXIS_K not in (xn, yn):
+        attrs["k"] = float(k)
+    coords = {xn: (xn, xv, {"units": "rad/site"} if xn == AXIS_K else {}),
+              yn: (yn, yv, {"units": "rad/site"} if yn == AXIS_K else {})}
+    return xr.Dataset(data, coords=coords, attrs=attrs)
