@@ -1,0 +1,58 @@
+"""What ``flexmm coefficients --model`` reports: the NLS of a model at one carrier."""
+
+from __future__ import annotations
+
+import math
+
+from energy import Model, ModelError
+
+from ._nls import nls
+
+#: The NLS's own frequency shift beyond this share of omega is outside the weakly nonlinear
+#: expansion (the paper chain's coefficients command warns at the same 10%).
+WEAK_SHIFT = 0.10
+
+
+def _num(x):
+    return None if x is None or (isinstance(x, float) and not math.isfinite(x)) else x
+
+
+def model_coefficients(model: Model, k: float, amplitude: float, branch=None) -> dict:
+    """The semi-discrete NLS of ``model`` at carrier ``k`` and amplitude ``a``.
+
+    Returns a JSON-ready dict: ``model``, ``parameters``, ``k``, ``amplitude``, ``branch``
+    (index), ``field`` (the amplitude's field), ``omega``, ``group_velocity``, ``g1``,
+    ``g2``, ``g2_parts``, ``g``, ``verdict`` ("MI", "stable", "undefined"), ``reason``,
+    ``peak_gain`` (1/time), ``e_folding_time``, ``fastest_offset``, ``band_edge`` (rad/site),
+    ``second_harmonic`` / ``mean`` / ``mean_strain`` (amplitude per field at this a),
+    ``frequency_shift`` and ``warnings``. Non-finite numbers are None.
+    """
+    a = float(amplitude)
+    if not (math.isfinite(a) and a > 0):
+        raise ModelError(f"amplitude must be > 0 (first-harmonic amplitude of the carrier's "
+                         f"field), got {amplitude!r}")
+    r = nls(model, k, branch)
+    c = r.carrier
+    peak = r.peak_gain(a)
+    warn = []
+    if not r.undefined and abs(r.frequency_shift(a)) > WEAK_SHIFT * c.omega:
+        warn.append(f"the NLS's frequency shift |g2| a^2/4 = {abs(r.frequency_shift(a)):.3g} "
+                    f"is {abs(r.frequency_shift(a)) / c.omega:.0%} of omega: beyond the weakly "
+                    "nonlinear expansion; lower the amplitude or ask the exact theory")
+    fields = model.fields
+    return {
+        "model": model.name, "parameters": dict(model.params), "k": float(k),
+        "amplitude": a, "branch": c.branch, "field": fields[c.field],
+        "omega": c.omega, "group_velocity": c.group_velocity, "g1": c.g1,
+        "g2": _num(r.g2), "g2_parts": {p: _num(v) for p, v in r.parts.items()},
+        "g": _num(r.g), "verdict": r.verdict, "reason": r.undefined,
+        "peak_gain": _num(peak), "e_folding_time": _num(1 / peak) if peak and peak > 0
+        else None,
+        "fastest_offset": _num(r.fastest_offset(a)), "band_edge": _num(r.band_edge(a)),
+        "second_harmonic": {f: _num(abs(v) * a**2 / 2) for f, v in
+                            zip(fields, r.second_harmonic)},
+        "mean": {f: _num(float(v) * a**2 / 4) for f, v in zip(fields, r.mean)},
+        "mean_strain": {f: _num(float(v) * a**2 / 4) for f, v in zip(fields, r.strain)},
+        "frequency_shift": _num(r.frequency_shift(a)) if not r.undefined else None,
+        "warnings": warn,
+    }
