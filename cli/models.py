@@ -1,0 +1,293 @@
+"""The commands for any lattice model (``--model NAME|FILE.toml``): models, coefficients,
+point, map and soliton. They parse, call ``numerics.models`` and print; what they compute
+lives there."""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+#: The paper chain's flags, which mean nothing for another model.
+PAPER_FLAGS = ("alpha", "K_s", "K_theta", "physical", "case", "delta")
+
+
+def add_model_args(p, json_help="print one JSON object on stdout and nothing else there"):
+    """--model, --param, --branch, --json (shared by coefficients, point, map, soliton)."""
+    g = p.add_argument_group("any lattice model (instead of the paper chain's flags)")
+    g.add_argument("--model", metavar="NAME|FILE.toml",
+                   help="a built-in model (`flexmm models`) or a model file (docs/models.md)")
+    g.add_argument("--param", action="append", default=[], metavar="NAME=VALUE",
+                   help="a parameter of the model (repeatable); the others keep their "
+                        "defaults")
+    g.add_argument("--branch", default=None, metavar="INDEX|FIELD",
+                   help="dispersion branch: index (0 = lowest frequency at k) or the field "
+                        "that dominates it (default: the model's branch field, else 0; for "
+                        "flexmm the rotational branch theta)")
+    g.add_argument("--json", action="store_true", help=json_help)
+
+
+def wants_model(args) -> bool:
+    return getattr(args, "model", None) is not None
+
+
+def refuse_paper_flags(args):
+    given = [f for f in PAPER_FLAGS if getattr(args, f, None) not in (None, False)]
+    if given:
+        flags = ", ".join("--" + f.replace("_", "-") for f in given)
+        raise ValueError(f"{flags}: the paper chain's flags; with --model give the model's "
+                         "parameters as --param NAME=VALUE")
+
+
+def params_of(args, axes_ok=False) -> tuple:
+    """(fixed values, swept axes) from the --param options."""
+    fixed, axes = {}, {}
+    for item in args.param:
+        if "=" not in item:
+            raise ValueError(f"--param {item!r}: give NAME=VALUE")
+        name, text = (s.strip() for s in item.split("=", 1))
+        if not name:
+            raise ValueError(f"--param {item!r}: the NAME is empty")
+        if name in fixed or name in axes:
+            raise ValueError(f"--param {name} given twice")
+        if axes_ok and (":" in text or "," in text):
+            from numerics.maps import parse_spec
+
+            axes[name] = parse_spec(text, f"--param {name}")
+            continue
+        try:
+            fixed[name] = float(text)
+        except ValueError:
+            raise ValueError(f"--param {name}={text!r}: the value must be a number"
+                             + (" (a range start:stop:num is a map axis; only `map` sweeps)"
+                                if ":" in text or "," in text else "")) from None
+    return fixed, axes
+
+
+def load(args, axes_ok=False):
+    """The model with its --param values (and the swept axes for a map)."""
+    from energy import load_model
+
+    refuse_paper_flags(args)
+    fixed, axes = params_of(args, axes_ok)
+    model = load_model(args.model, **fixed)
+    for name in axes:
+        model.lattice.values({name: 0.0})  # an unknown axis name: the model's one-line error
+    from numerics.models import check_rest_stable
+
+    if not axes:
+        check_rest_stable(model)
+    return (model, axes) if axes_ok else model
+
+
+def branch_of(args):
+    b = getattr(args, "branch", None)
+    return int(b) if isinstance(b, str) and b.isdigit() else b
+
+
+def _emit(obj: dict):
+    print(json.dumps(obj, allow_nan=False, default=_plain))
+
+
+def _plain(x):
+    import numpy as np
+
+    if isinstance(x, np.generic):
+        return x.item()
+    raise TypeError(f"not JSON: {type(x).__name__}")
+
+
+# ------------------------------------------------------------------ flexmm models
+def run_models(args) -> int:
+    """List the built-in models: fields, parameters with defaults, one line each."""
+    from energy import BUILTIN, builtin
+
+    rows = [builtin(n) for n in BUILTIN]
+    if getattr(args, "json", False):
+        _emit({"models": [{"name": m.name, "fields": list(m.fields),
+                           "parameters": dict(m.parameters), "description": m.description,
+                           "branch": m.branch} for m in rows]})
+        return 0
+    width = max(len(m.name) for m in rows)
+    for m in rows:
+        params = ", ".join(f"{p}={v:g}" for p, v in m.parameters.items())
+        print(f"{m.name:<{width}}  fields {', '.join(m.fields):<9}  {params}")
+        print(f"{'':<{width}}  {m.description}")
+    print("give one with --model NAME (or --model FILE.toml for your own, docs/models.md); "
+          "parameters with --param NAME=VALUE")
+    return 0
+
+
+# ------------------------------------------------------------------ coefficients
+def _fmt(x, digits=6):
+    if x is None:
+        return "-"
+    return f"{x:.{digits}g}"
+
+
+def run_coefficients(args) -> int:
+    from numerics.lattice import checks
+    from numerics.models import model_coefficients
+
+    model = load(args)
+    checks.real("--k", args.k, 0.0, math.pi)
+    checks.real("--amplitude", args.amplitude, 0.0, None)
+    co = model_coefficients(model, args.k, args.amplitude, branch_of(args))
+    if args.json:
+        _emit(co)
+        return 0
+    print(f"model:    {model.describe()}")
+    print(f"carrier:  k = {_fmt(co['k'])} rad/site on branch {co['branch']} (field "
+          f"{co['field']}), amplitude a = {_fmt(co['amplitude'])} ({co['field']} = a cos(k n - "
+          "omega t) + harmonics + mean)")
+    parts = co["g2_parts"]
+    rows = [("omega", co["omega"]), ("group velocity", co["group_velocity"]),
+            ("g1 = d^2 omega/dk^2", co["g1"]), ("g2", co["g2"])]
+    rows += [(f"  of which {p}", v) for p, v in parts.items()]
+    rows += [("g = g2/g1", co["g"])]
+    for name, v in rows:
+        print(f"{name:<26} {_fmt(v):>14}")
+    verdict = co["verdict"]
+    if verdict != "undefined":
+        verdict += " (focusing)" if verdict == "MI" else " (defocusing)"
+    print(f"{'verdict (semi-discrete NLS)':<26} {verdict:>14}")
+    for name, key in (("peak gain (1/time)", "peak_gain"), ("e-folding time", "e_folding_time"),
+                      ("fastest offset (rad/site)", "fastest_offset"),
+                      ("band edge (rad/site)", "band_edge"),
+                      ("frequency shift", "frequency_shift")):
+        print(f"{name:<26} {_fmt(co[key]):>14}")
+    for f in model.fields:
+        print(f"{f + ': 2k harmonic, mean':<26} {_fmt(co['second_harmonic'][f]):>14} "
+              f"{_fmt(co['mean'][f]):>12}  (mean strain {_fmt(co['mean_strain'][f])})")
+    if co["reason"]:
+        print(f"undefined: {co['reason']}")
+    for w in co["warnings"]:
+        print(f"note: {w}")
+    return 0
+
+
+# ------------------------------------------------------------------ soliton
+def run_soliton(args) -> int:
+    from numerics.lattice import checks
+    from numerics.models import nls
+
+    model = load(args)
+    checks.real("--k", args.k, 0.0, math.pi)
+    checks.real("--amplitude", args.amplitude, 0.0, None)
+    if getattr(args, "simulate", False):
+        raise ValueError("--simulate: soliton runs are for the paper chain (no --model) for "
+                         "now; the prediction below is the model's NLS soliton")
+    r = nls(model, args.k, branch_of(args))
+    kind = getattr(args, "kind", None)
+    if r.undefined:
+        raise ValueError(f"no soliton at k = {args.k:g}: {r.undefined}")
+    s = r.soliton(args.amplitude)
+    if kind is not None and kind != s.kind:
+        raise ValueError(f"--kind {kind}: the NLS at k = {args.k:g} has g = {r.g:.4g} "
+                         f"({'> 0' if r.g > 0 else '< 0'}), so only {s.kind} solitons")
+    out = {"model": model.name, "parameters": dict(model.params), "k": float(args.k),
+           "branch": r.carrier.branch, "kind": s.kind, "amplitude": s.amplitude,
+           "width": s.width, "velocity": s.velocity, "frequency": s.frequency,
+           "kink": {f: float(v) for f, v in zip(model.fields, s.kink)},
+           "g1": r.g1, "g2": r.g2}
+    if args.json:
+        _emit(out)
+        return 0
+    print(f"model:    {model.describe()}")
+    print(f"carrier:  k = {args.k:g} rad/site on branch {r.carrier.branch}, omega = "
+          f"{r.carrier.omega:.6g}; g1 = {r.g1:.6g}, g2 = {r.g2:.6g}")
+    print(f"{s.kind} soliton, amplitude {s.amplitude:g}: width {s.width:.4g} sites, velocity "
+          f"{s.velocity:.4g} sites/time, frequency {s.frequency:.6g}")
+    for f, v in zip(model.fields, s.kink):
+        if v != 0:
+            print(f"kink of {f}: {v:.4g} (step of its mean displacement across the soliton)")
+    if s.width < 8:
+        print(f"note: {s.width:.3g} sites is too narrow for the envelope theory; lower the "
+              "amplitude")
+    return 0
+
+
+# ------------------------------------------------------------------ map
+def run_map(args) -> int:
+    import numpy as np
+
+    from numerics.maps import parse_spec
+    from numerics.models import model_map
+
+    model, axes = load(args, axes_ok=True)
+    k_axis = None
+    k_fixed = None
+    if args.k is not None:
+        vals = parse_spec(args.k, "--k")
+        if vals.size > 1:
+            k_axis = vals
+        else:
+            k_fixed = float(vals[0])
+    named = list(axes.items()) + ([("k", k_axis)] if k_axis is not None else [])
+    if len(named) != 2:
+        raise ValueError(f"a model map sweeps two axes: --k SPEC and/or --param NAME=SPEC "
+                         f"(SPEC v1,v2,... or start:stop:num); got {len(named)}: "
+                         f"{', '.join(n for n, _ in named) or 'none'}")
+    if k_axis is None and k_fixed is None:
+        raise ValueError("--k: give the carrier wavenumber (one value, or a SPEC to sweep)")
+    if not getattr(args, "theory_only", False):
+        raise ValueError("a model map is theory-only for now (the semi-discrete NLS and the "
+                         "exact lattice theory per cell): add --theory-only; simulated maps "
+                         "run for the paper chain (no --model)")
+    amp = args.amplitude
+    x, y = (named[1], named[0]) if named[0][0] == "k" else (named[0], named[1])
+    if y[0] == "k":
+        x, y = y, x
+    ds = model_map(model, x, y, amp, k=k_fixed, branch=branch_of(args))
+    mi = {v: float(np.mean(ds[v].values == "MI")) for v in ds.data_vars
+          if v.startswith("verdict_")}
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    nc = out / "map.nc"
+    ds.to_netcdf(nc)
+    png = out / "map.png"
+    _plot_map(ds, png, model)
+    if args.json:
+        _emit({"model": model.name, "parameters": dict(model.params), "amplitude": amp,
+               "axes": {x[0]: list(map(float, x[1])), y[0]: list(map(float, y[1]))},
+               "mi_share": mi, "files": [str(nc), str(png)]})
+        return 0
+    print(f"model: {model.describe()}; amplitude {amp:g}; {y[0]} x {x[0]} = "
+          f"{len(y[1])} x {len(x[1])} cells")
+    for v, share in mi.items():
+        print(f"MI share, {v.replace('verdict_', '')}: {share:.0%}")
+    print(f"wrote {nc} and {png}")
+    return 0
+
+
+def _plot_map(ds, path: Path, model):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import numpy as np
+    from matplotlib.colors import ListedColormap
+
+    ydim, xdim = ds["verdict_semidiscrete"].dims
+    x, y = ds[xdim].values, ds[ydim].values
+
+    def edges(v):
+        if v.size == 1:
+            return np.array([v[0] - 0.5, v[0] + 0.5])
+        mid = (v[1:] + v[:-1]) / 2
+        return np.concatenate([[2 * v[0] - mid[0]], mid, [2 * v[-1] - mid[-1]]])
+
+    code = {"stable": 0, "MI": 1, "undefined": 2}
+    V = np.vectorize(lambda s: code.get(s, 2))(ds["verdict_semidiscrete"].values)
+    fig, ax = plt.subplots(figsize=(6, 4.5))
+    ax.pcolormesh(edges(x), edges(y), V, cmap=ListedColormap(["#3b4cc0", "#f2a134", "#bbbbbb"]),
+                  vmin=-0.5, vmax=2.5, shading="flat")
+    ax.set_xlabel(xdim + (" (rad/site)" if xdim == "k" else ""))
+    ax.set_ylabel(ydim + (" (rad/site)" if ydim == "k" else ""))
+    fixed = ", ".join(f"{p} = {v:g}" for p, v in model.params.items() if p not in (xdim, ydim))
+    ax.set_title(f"{model.name} ({fixed}), a = {ds.attrs['amplitude']:g}: semi-discrete NLS\n"
+                 "orange MI, blue stable, grey undefined", fontsize=9)
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+
