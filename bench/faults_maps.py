@@ -21,7 +21,7 @@ def _cli(*argv):
     import contextlib
     import io
 
-    from scenes.cli import main
+    from cli.app import main
 
     err, out = io.StringIO(), io.StringIO()
     with contextlib.redirect_stderr(err), contextlib.redirect_stdout(out):

@@ -1,5 +1,5 @@
 """The layers import one way: derivation -> generated -> numerics (lattice <- theory <- maps)
--> scenes, with the leaf `common` below all of them; and one vocabulary for a start and an
+-> scenes -> cli, with the leaf `common` below all of them; and one vocabulary for a start and an
 amplitude across the public API."""
 
 from __future__ import annotations
@@ -15,7 +15,7 @@ from numerics import Material, initial_condition, simulate
 from numerics.lattice import source_hash
 
 ROOT = Path(__file__).resolve().parents[1]
-PROJECT = ("common", "derivation", "generated", "numerics", "scenes")
+PROJECT = ("cli", "common", "derivation", "generated", "numerics", "scenes")
 
 
 def _unit(path: Path) -> str:
@@ -75,6 +75,8 @@ ALLOWED = {
     "numerics": {"numerics.lattice", "numerics.theory", "numerics.maps"},
     "scenes": {"common", "derivation", "generated", "numerics", "numerics.lattice",
                "numerics.theory", "numerics.maps"},
+    "cli": {"common", "derivation", "generated", "numerics", "numerics.lattice",
+            "numerics.theory", "numerics.maps", "scenes"},
 }
 
 

@@ -6,7 +6,7 @@ import shlex
 
 import pytest
 
-from scenes.cli import EPILOG, main as cli
+from cli.app import EPILOG, main as cli
 
 #: examples too slow for the default suite (a full scene run, a simulation)
 SLOW = ("run", "point")
@@ -66,7 +66,7 @@ def test_point_t_end_help_states_the_bounds_the_default_uses():
     import inspect
 
     from numerics.theory import _gain
-    from scenes.cli import _parser
+    from cli.app import _parser
 
     sub = next(a for a in _parser()._actions if a.dest == "cmd")
     help_text = " ".join(next(a for a in sub.choices["point"]._actions

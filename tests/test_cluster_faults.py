@@ -66,7 +66,7 @@ def cluster(tmp_path_factory):
 
 
 def _map(address, out, **popen):
-    cmd = [sys.executable, "-m", "scenes.cli", *MAP, "--scheduler", address,
+    cmd = [sys.executable, "-m", "cli", *MAP, "--scheduler", address,
            "--out", str(out)]
     return subprocess.Popen(cmd, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                             text=True, start_new_session=True, **popen)

@@ -13,7 +13,7 @@ import pytest
 from numerics import Material, simulate
 from numerics.maps import MapParameters
 from numerics.theory import nls_summary, nls_undefined, soliton, theory_gain
-from scenes.cli import main as cli
+from cli.app import main as cli
 
 #: delta < 0 and k^2 > 6 K_theta / |delta|: the continuum frequency is imaginary at k = 3.01
 DEEP = Material(alpha=2.6206, K_s=0.005108, K_theta=0.1037)
@@ -213,7 +213,7 @@ def test_a_round_off_field_does_not_set_the_step():
 
 
 def test_the_map_summary_has_no_nan_where_a_theory_evaluated_nothing():
-    from scenes._map_command import _agreement_text
+    from cli.map import _agreement_text
 
     none = {"p": float("nan"), "p_decided": float("nan"), "p_decided_cells": 0,
             "p_undetermined_cells": 4}

@@ -12,7 +12,7 @@ import pytest
 
 import scenes
 from numerics.lattice import _cache
-from scenes.cli import main as cli
+from cli.app import main as cli
 
 GOLDEN = Path(__file__).with_name("golden") / "quick_outcomes.json"
 SIM_SCENES = ["fig5-blue-rotation", "fig6-blue-coupled", "fig7-green-rotation",

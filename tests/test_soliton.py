@@ -14,7 +14,7 @@ from generated import soliton as closed
 from numerics import Material
 from numerics.theory import (SolitonWarning, ring_wavenumber, simulate_soliton, soliton,
                              soliton_state)
-from scenes.cli import main as cli
+from cli.app import main as cli
 
 #: the issue's goals after 20 widths of travel (relative; radiation absolute)
 GOALS = {"velocity": 0.01, "width": 0.03, "amplitude": 0.03, "kink_height": 0.05}

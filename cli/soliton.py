@@ -9,6 +9,7 @@ import warnings
 from pathlib import Path
 
 from common.files import write_text
+from common.output import prepare_output, strict_json
 from numerics.lattice import checks
 from numerics.theory import SolitonWarning, simulate_soliton, soliton, soliton_report
 
@@ -34,8 +35,6 @@ def run_soliton(args, log=print) -> dict:
 
     mat, _ = material_from(args)
     if args.out:  # before any computation (a simulation may take minutes)
-        from ._runner import prepare_output
-
         prepare_output(args.out, cache=False)
     amplitude = checks.real("--amplitude", args.amplitude, 0.0, 1.0)
     k = checks.real("--k", args.k, 0.0, math.pi)
@@ -102,9 +101,7 @@ def run_soliton(args, log=print) -> dict:
     if args.out:
         out = Path(args.out)
         out.mkdir(parents=True, exist_ok=True)
-        from ._runner import _strict
-
-        write_text(out / "soliton.json", json.dumps(_strict(result), indent=2) + "\n")
+        write_text(out / "soliton.json", json.dumps(strict_json(result), indent=2) + "\n")
         log(f"wrote {out / 'soliton.json'}")
     return result
 

@@ -10,6 +10,7 @@ from pathlib import Path
 import numpy as np
 
 from common.files import write_text
+from common.output import prepare_output, strict_json
 from common import paper
 from numerics import Material, initial_condition, simulate, snap_wavenumber
 from numerics.lattice import (GROWTH_THRESHOLD, LINEAR_STAGE_RULE, band_summary,
@@ -157,8 +158,6 @@ def run_point(args, log=print) -> dict:
     if args.start == "paper" and (why := paper_start_undefined(mat, k, ("travelling",))):
         raise ValueError(f"--start paper: {why}")
     if args.out:  # before any computation (a simulation may take minutes)
-        from ._runner import prepare_output
-
         prepare_output(args.out, cache=False)
     A0 = amplitude / (2 * EPS)
     co_all = coefficients(mat, k, amplitude)
@@ -319,10 +318,8 @@ def run_point(args, log=print) -> dict:
     if args.out:
         out = Path(args.out)
         out.mkdir(parents=True, exist_ok=True)
-        from ._runner import _strict
-
         _figure(out, th, meas, k, args, amplitude)
-        write_text(out / "point.json", json.dumps(_strict(result), indent=2) + "\n")
+        write_text(out / "point.json", json.dumps(strict_json(result), indent=2) + "\n")
         log(f"wrote {out / 'point.json'} and {out / 'point.png'}")
     return result
 
@@ -342,7 +339,7 @@ def _table(rows, units=None) -> str:
 def _figure(out, th, meas, k, args, amplitude):
     from common.files import atomic_write
 
-    from ._plotting import plt
+    from scenes import plt
 
     fig, ax = plt.subplots(figsize=(7, 4), layout="constrained")
     if meas:

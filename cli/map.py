@@ -12,6 +12,7 @@ from numerics.lattice import GROWTH_THRESHOLD, checks
 
 from numerics.maps import (AGREEMENT_MARGIN, MapParameters, agreement, local_cores,
                            parse_spec, run_map)
+from common.output import check_output, prepare_output, strict_json
 from common.text import duration as _duration
 
 
@@ -51,7 +52,7 @@ def _mi_fraction(v: np.ndarray) -> float:
 
 def plot_map(ds, ax=None):
     """Simulated verdict (white: MI) with the theories' boundaries drawn over it."""
-    from ._plotting import image, plt
+    from scenes import image, plt
 
     if ax is None:
         fig, ax = plt.subplots(figsize=(6, 4.5), layout="constrained")
@@ -103,8 +104,6 @@ def run_map_command(args, log=print):
     """`flexmm map`: parse, check everything (nothing is written on bad input), run."""
     from common.files import write_text
 
-    from ._runner import _strict
-
     if args.alpha is None or args.K_s is None:
         raise ValueError("--alpha and --K-s are required (the material's inertia and shear "
                          "stiffness)")
@@ -138,8 +137,6 @@ def run_map_command(args, log=print):
                                block=args.block)
     except (ValueError, TypeError) as exc:  # name the option, not the field
         raise type(exc)(_as_option(str(exc))) from None
-    from ._runner import check_output, prepare_output
-
     check_output(args.out)  # a bad --out fails before the map is announced
     moved = [(a, b) for a, b in zip(params.k, params.k_simulated) if abs(a - b) > 1e-9 * a]
     if moved:
@@ -169,11 +166,10 @@ def run_map_command(args, log=print):
                                for n in verdicts},
                "undetermined_cells": {n.removeprefix("verdict_"): int((ds[n].values < 0).sum())
                                       for n in verdicts}}
-    write_text(out / "summary.json", json.dumps(_strict(summary), indent=2) + "\n")
+    write_text(out / "summary.json", json.dumps(strict_json(summary), indent=2) + "\n")
     fig = plot_map(ds)
     from common.files import atomic_write
-
-    from ._plotting import plt
+    from scenes import plt
 
     with atomic_write(out / "map.png", mode=None) as tmp:
         fig.savefig(tmp, format="png", dpi=110)

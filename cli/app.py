@@ -343,7 +343,7 @@ def _dispatch(args, scenes) -> int:
         run_soliton(args)
         return 0
     if args.cmd == "map":
-        from ._map_command import run_map_command
+        from .map import run_map_command
 
         run_map_command(args)
         return 0
