@@ -1,5 +1,6 @@
 """`flexmm point`: the three theories of MI at one point of any material, and optionally
-the simulation that checks them (measured sigma(q), verdict, figure)."""
+the simulation that checks them (measured sigma(q), verdict, figure). The numbers are
+``numerics.maps.measure_point``'s; this module checks the options, prints and writes."""
 
 from __future__ import annotations
 
@@ -11,26 +12,20 @@ import numpy as np
 
 from common.files import write_text
 from common.output import prepare_output, strict_json
-from common import paper
-from numerics import Material, initial_condition, simulate, snap_wavenumber
-from numerics.lattice import (GROWTH_THRESHOLD, LINEAR_STAGE_RULE, band_summary,
-                              grows_beyond_threshold, paper_start_undefined)
-from numerics.maps import cell_step, growth_of
-from numerics.theory import nls_undefined, predict_growth
-from numerics.lattice import checks
-from numerics.theory import (PAPER_START, THEORIES, measure_gain, measurement_length,
-                             theory_gain)
+from common.paper import EPS
+from numerics import Material
+from numerics.lattice import (GROWTH_THRESHOLD, checks, grows_beyond_threshold,
+                              paper_start_undefined)
+from numerics.maps import MAX_SEEDS, MAX_T_END, fold, measure_point, snap_carrier
+from numerics.theory import MAX_AMPLITUDE, nls_coefficients
 
-from .coefficients import coefficients, weak_nonlinearity_note
+from .coefficients import weak_nonlinearity_note
 
-#: sideband offsets Q = |q - k| searched for the theories' bands (lattice units): the
-#: whole zone, as the map searches it (sidebands k + Q beyond pi fold back, k - Q below 0
-#: too: a band at any offset is found, whatever k)
-Q_GRID = np.linspace(0, math.pi, 3001)
-#: a simulated point records its spectrum every SAVE_EVERY T (and predicts those records)
-SAVE_EVERY = 5.0
-#: the NLS theories' small parameter (their formulas take the paper's eps, A0)
-EPS = paper.EPS
+#: what point.json's numbers are in (the lattice units), beside the SI ones of --physical
+UNITS = {"time": "T = t sqrt(k_l/m)", "gain": "1/T", "wavenumber": "rad/site",
+         "curves": "theories: curve over offset Q = |q - k| (0 .. pi), q the upper sideband "
+                   "folded into [0, pi]; simulated: sigma per rfft bin q, and "
+                   "sigma_by_offset (the smaller of a pair's two sidebands)"}
 
 
 def material_from(args):
@@ -62,105 +57,25 @@ def material_from(args):
     return Material(args.alpha, args.K_s, args.K_theta), Units()
 
 
-#: points of the paper-start exact curve (Hill's method on the torus: ~0.13 s per offset):
-#: this many over the zone, and as many again around the peak resonance_map locates
-START_CURVE_POINTS = 24
-
-
-def _start_grid(material, case, k, amplitude):
-    """q of the paper-start curve: a coarse zone grid plus a dense window around the peak
-    that ``resonance_map`` finds from the bands' resonance conditions (a coarse grid alone
-    misses bands narrower than its spacing)."""
-    from numerics.maps import resonance_map
-
-    res = resonance_map(k, case=case, material=material, K_theta=material.K_theta,
-                        amplitude=amplitude, start="paper")
-    qp = abs(float(res["q_peak"]))
-    Q = [np.linspace(0.02, math.pi, START_CURVE_POINTS)]
-    if math.isfinite(qp) and qp != 0:
-        Q.append(qp * np.linspace(0.0, 2.5, 2 * START_CURVE_POINTS + 1))
-        Q.append([qp])
-    Q = np.unique(np.concatenate(Q))
-    return Q[(Q > 1e-6) & (Q <= math.pi)]
-
-
-def fold(q):
-    """Wavenumbers folded into [0, pi] (a real field's q and -q, q and q + 2 pi, are one)."""
-    return np.abs((np.asarray(q, float) + math.pi) % (2 * math.pi) - math.pi)
-
-
-def offset_curve(q, sigma, spread, k):
-    """A measured sigma over the rfft bins q (0 .. pi) as a curve over the sideband offset
-    Q = 1 .. N/2 bins: a pair grows only where both its sidebands do, so sigma(Q) is the
-    smaller of sigma at its two bins, fold(k + Q) and |k - Q|. A bin is shared by two
-    pairs (k + Q beyond pi folds back onto another pair's sideband); the minimum keeps
-    each band at its own offset, whatever k. Returns Q, sigma(Q) and the ``spread`` (per
-    bin) of the bin that gave the minimum."""
-    q, sigma = np.asarray(q, float), np.asarray(sigma, float)
-    dq, top = q[1] - q[0], q.size - 1
-    m = int(round(k / dq))
-    d = np.arange(1, top + 1)
-    N = int(round(2 * math.pi / dq))
-    upper = np.where(m + d <= top, m + d, N - (m + d))  # fold(k + Q) into [0, pi]
-    lower = np.abs(m - d)
-    pick = np.where(sigma[upper] <= sigma[lower], upper, lower)
-    return d * dq, sigma[pick], np.asarray(spread, float)[pick]
-
-
-def theories(material, case, k, amplitude, start="travelling") -> dict:
-    """{theory: curve over Q_GRID, band summary, verdict}: the paper NLS, the semi-discrete
-    NLS, and the exact lattice theory for ``start`` (the travelling wave; with "paper" the
-    state eq. `IC` launches, on START_CURVE_POINTS offsets)."""
-    A0 = amplitude / (2 * EPS)
-    names = THEORIES if start == "travelling" else THEORIES[:2] + (PAPER_START,)
-    out = {}
-    for th in names:
-        try:
-            Q = Q_GRID if th != PAPER_START else _start_grid(material, case, k, amplitude)
-            q = fold(k + Q)  # the upper sideband's wavenumber (k + Q beyond pi folds)
-            with np.errstate(all="ignore"):
-                curve = theory_gain(th, material, case, k, Q, EPS, A0)
-        except ArithmeticError as exc:  # no plane wave (a resonance): say so, no verdict
-            out[th] = {"offset": Q, "q": q, "curve": np.full(q.shape, np.nan),
-                       "verdict": "undefined", "reason": f"no plane wave: {exc}",
-                       "peak_gain": float("nan"), "peak_offset": float("nan"),
-                       "band_edge": float("nan")}
-            continue
-        if not np.all(np.isfinite(curve)):  # no real omega, g1 = 0 or a resonance
-            why = (nls_undefined(th, material, case, k) if th in THEORIES[:2] else None) \
-                or "a singular gain curve"
-            out[th] = {"offset": Q, "q": q, "curve": curve, "verdict": "undefined",
-                       "reason": why,
-                       "peak_gain": float("nan"), "peak_offset": float("nan"),
-                       "band_edge": float("nan")}
-            continue
-        s = band_summary(k + Q, curve, k)  # over the offsets (band_summary: q - k)
-        out[th] = {"offset": Q, "q": q, "curve": curve,
-                   "verdict": "MI" if s["peak_gain"] > 0 else "stable", **s}
-    return out
-
-
-def snapped(k_requested: float, N: int):
-    """k on a periodic chain of N sites: the nearest 2 pi m / N, whatever k was typed."""
-    k_requested = checks.real("--k", k_requested, 0.0, math.pi)
-    N = checks.integer("--N", N, 8, 10**6)  # the bounds of simulate and predict_growth
-    return snap_wavenumber(k_requested, N, rel_tol=math.inf)
-
-
-def run_point(args, log=print) -> dict:
-    mat, units = material_from(args)
-    amplitude = checks.real("--amplitude", args.amplitude, 0.0, 1.5)
-    N, k_req = args.N, args.k
-    k, m = snapped(k_req, N)
-    checks.integer("--seeds", args.seeds, 1, 1000)
+def _checked(args, mat):
+    """(amplitude, k, m) after every option's check, named as the option (nothing is
+    computed before the input is known good)."""
+    amplitude = checks.real("--amplitude", args.amplitude, 0.0, MAX_AMPLITUDE)
+    k, m = snap_carrier(args.k, args.N, names=("--k", "--N"))
+    checks.integer("--seeds", args.seeds, 1, MAX_SEEDS)
     if args.t_end is not None:
-        checks.real("--t-end", args.t_end, 0.0, 1e7)
+        checks.real("--t-end", args.t_end, 0.0, MAX_T_END)
     if args.start == "paper" and (why := paper_start_undefined(mat, k, ("travelling",))):
         raise ValueError(f"--start paper: {why}")
-    if args.out:  # before any computation (a simulation may take minutes)
-        prepare_output(args.out, cache=False)
+    return amplitude, k, m
+
+
+def _log_header(log, args, mat, units, k, m, amplitude):
+    """The inputs echoed (material, carrier, the semi-discrete NLS, units), before the
+    theories and the simulation run."""
+    N, k_req = args.N, args.k
     A0 = amplitude / (2 * EPS)
-    co_all = coefficients(mat, k, amplitude)
+    co_all = nls_coefficients(mat, k, amplitude)
     co = co_all["semi-discrete"]
     log(f"material: alpha = {mat.alpha:g}, K_s = {mat.K_s:g}, K_theta = {mat.K_theta:g} "
         f"(delta = {mat.delta:.4g}); case {args.case}")
@@ -175,133 +90,63 @@ def run_point(args, log=print) -> dict:
     note = weak_nonlinearity_note(co_all, amplitude, remedy="the exact rows below")
     if note:
         log(note)
-    th = theories(mat, args.case, k, amplitude, args.start)
-    result = {"material": {"alpha": mat.alpha, "K_s": mat.K_s, "K_theta": mat.K_theta,
-                           "delta": mat.delta},
-              "case": args.case, "N": N, "m": m, "k": k, "k_requested": k_req,
-              "amplitude": amplitude, "eps": EPS, "A0": A0, "start": args.start,
-              "units": {"time": "T = t sqrt(k_l/m)", "gain": "1/T", "wavenumber": "rad/site",
-                        "curves": "theories: curve over offset Q = |q - k| (0 .. pi), q the "
-                                  "upper sideband folded into [0, pi]; simulated: sigma per "
-                                  "rfft bin q, and sigma_by_offset (the smaller of a pair's "
-                                  "two sidebands)",
-                        "seconds_per_T": units.seconds_per_T,
-                        "metres_per_site": units.metres_per_site},
-              "semidiscrete_nls": {"omega": co["omega"], "v_g": co["v_g"], "g1": co["g1"],
-                                   "g2": co[args.case]["g2"], "g": co[args.case]["g"]},
-              "theories": {n: {key: (v.tolist() if isinstance(v, np.ndarray) else v)
-                               for key, v in t.items()} for n, t in th.items()}}
-    rows = [(n, t["verdict"], t["peak_gain"], t["peak_offset"], t["band_edge"])
-            for n, t in th.items()]
-    meas = None
-    exact_name = "exact lattice" if args.start == "travelling" else PAPER_START
-    exact = th[exact_name]["peak_gain"]
-    t_end = args.t_end or measurement_length(exact if math.isfinite(exact) else 0.0)
-    seeds = checks.integer("--seeds", args.seeds, 1, 1000)
-    # the growth factor the simulation measures, predicted from each seed's initial state
-    # (records every 5 T, as the simulation below saves them)
-    try:
-        pred = predict_growth(mat, args.case, k, amplitude, start=args.start, N=N,
-                              t_end=t_end, seed=0, draws=seeds - 1,
-                              records=max(2, min(4000, int(round(t_end / SAVE_EVERY)))))
-        predicted = [pred.growth, *pred.growth_draws.tolist()]
-        result["predicted"] = {
-            "growth": predicted, "verdict": "MI" if np.median(predicted) > GROWTH_THRESHOLD
-            else "stable", "t_end": t_end, "seeds": seeds, "rate": pred.rate,
-            "linear": pred.linear, "approximate": pred.approximate,
-            "method": "linear response of each seed's initial state (numerics.theory."
-                      "predict_growth)"}
-    except ArithmeticError as exc:
-        predicted = None
-        result["predicted"] = {"growth": None, "verdict": "undefined",
-                               "reason": str(exc).splitlines()[0]}
-    if args.simulate:
-        runs = []
 
-        def sim(**kw):
-            run = simulate(**kw)
-            runs.append(run)
-            return run
 
-        # method and step as a map cell picks them: from the accuracy the growth factor
-        # needs over t_end (not the paper's RK4 at dt = 0.05, too coarse for stiff
-        # materials), the step a whole fraction of the 5 T between records
-        method, dt = cell_step(initial_condition(mat, args.case, N, k, amplitude, 1e-3, 0,
-                                                 args.start), mat, args.case, t_end)
-        dt = SAVE_EVERY / math.ceil(SAVE_EVERY / dt - 1e-9)
-        meas = measure_gain(sim, range(args.seeds), material=mat, case=args.case, N=N, k=k,
-                            amplitude=amplitude, t_end=t_end, method=method, dt=dt,
-                            save_every=SAVE_EVERY, start=args.start, progress=None,
-                            energy_tolerance=1.0)
-        growths = [growth_of(r.t, r.theta_hat, r.U_hat, r.m, r.N) for r in runs]
-        verdict = sum(g["growth"] > GROWTH_THRESHOLD for g in growths) * 2 > len(growths)
-        # no seed with a linear stage (linear_stage's rule): no rate to fit, shown as "-",
-        # not as a gain of 0
-        if meas:  # sigma over the offset Q, once: the table, the JSON and the figure
-            meas["offset"], meas["sigma_by_offset"], meas["std_by_offset"] = offset_curve(
-                meas["q"], meas["sigma"], meas["sigma_std"], k)
-        s = band_summary(k + meas["offset"], meas["sigma_by_offset"], k) if meas else \
-            {"peak_gain": float("nan"), "peak_offset": float("nan"), "band_edge": float("nan"),
-             "no_rate": f"no seed had a linear stage to fit a rate over ({LINEAR_STAGE_RULE})"}
-        # the theories answer the simulation's question: grows > threshold within t_end
-        rows = [(r[0], ("MI" if grows_beyond_threshold(r[2], t_end) else "stable")
-                 if math.isfinite(r[2]) else r[1], *r[2:]) for r in rows]
-        for n, r in zip(th, rows):
-            result["theories"][n]["verdict_within_t_end"] = r[1]
-        rows.append((f"simulated ({args.seeds} seeds, N = {N}, T = {t_end:g}, {method} "
-                     f"dt = {dt:.3g})",
-                     "MI" if verdict else "stable", s["peak_gain"], s["peak_offset"],
-                     s["band_edge"]))
-        result["simulated"] = {"verdict": "MI" if verdict else "stable", **s, "t_end": t_end,
-                               "seeds": args.seeds, "method": method, "dt": dt,
-                               "growth": [g["growth"] for g in growths],
-                               "growth_field": [g["growth_field"] for g in growths],
-                               "criterion": f"MI when the largest non-carrier theta or U "
-                                            f"component grows more than "
-                                            f"{GROWTH_THRESHOLD:g}x within t_end",
-                               **({"q": meas["q"].tolist(), "sigma": meas["sigma"].tolist(),
-                                   "sigma_std": meas["sigma_std"].tolist(),
-                                   "offset": meas["offset"].tolist(),
-                                   "sigma_by_offset": meas["sigma_by_offset"].tolist()}
-                                  if meas else {})}
-    log("")
-    if predicted is not None:
-        log(f"growth factor within T = {t_end:g} (the largest non-carrier component over the "
-            f"carrier, per seed): predicted "
-            + ", ".join(f"{g:.3g}x" for g in predicted)
-            + ("; measured " + ", ".join(f"{g['growth']:.3g}x" for g in growths)
-               if args.simulate else "")
-            + ("" if pred.linear else " (the prediction leaves the linear stage: MI, the "
-               "factor an upper bound)"))
-        if (np.median(predicted) > GROWTH_THRESHOLD
-                and not grows_beyond_threshold(pred.rate, t_end)):
-            log(f"note: no Hill mode grows fast enough for {GROWTH_THRESHOLD:g}x within T "
-                f"(fastest {pred.rate:.3g} /T): the predicted factor is the linear response "
-                "itself (modes that beat, a transient), as the run will show it, not an "
-                "exponential instability")
-        side = th[exact_name]["peak_gain"]
-        if (grows_beyond_threshold(pred.rate, t_end) and math.isfinite(side)
-                and pred.rate > 1.1 * side):
-            log(f"note: the fastest growing Hill mode ({pred.rate:.4g} /T) is not a sideband "
-                f"pair, which the '{exact_name}' row shows ({side:.4g} /T): a map's exact_all "
-                "column counts every mode")
-    else:
-        log(f"growth factor within T = {t_end:g}: no prediction ({result['predicted']['reason']})")
-    if args.simulate:
-        log(f"verdicts: MI = grows more than {GROWTH_THRESHOLD:g}x within T = {t_end:g} "
+def _rows(res) -> list:
+    """The table's rows (theory, verdict, peak gain, its offset, half-gain edge); with a
+    simulation the theories' verdicts answer its question, and its own row comes last."""
+    rows = [(n, t.get("verdict_within_t_end", t["verdict"]), t["peak_gain"], t["peak_offset"],
+             t["band_edge"]) for n, t in res.theories.items()]
+    sim = res.simulated
+    if sim is not None:
+        rows.append((f"simulated ({sim['seeds']} seeds, N = {res.N}, T = {res.t_end:g}, "
+                     f"{sim['method']} dt = {sim['dt']:.3g})", sim["verdict"],
+                     sim["peak_gain"], sim["peak_offset"], sim["band_edge"]))
+    return rows
+
+
+def _log_growth(log, res):
+    """The predicted (and measured) growth factor per seed, and what it means."""
+    t_end, pred = res.t_end, res.prediction
+    if pred is None:
+        log(f"growth factor within T = {t_end:g}: no prediction ({res.predicted['reason']})")
+        return
+    predicted = res.predicted["growth"]
+    log(f"growth factor within T = {t_end:g} (the largest non-carrier component over the "
+        f"carrier, per seed): predicted "
+        + ", ".join(f"{g:.3g}x" for g in predicted)
+        + ("; measured " + ", ".join(f"{g['growth']:.3g}x" for g in res.growths)
+           if res.growths is not None else "")
+        + ("" if pred.linear else " (the prediction leaves the linear stage: MI, the "
+           "factor an upper bound)"))
+    if (np.median(predicted) > GROWTH_THRESHOLD
+            and not grows_beyond_threshold(pred.rate, t_end)):
+        log(f"note: no Hill mode grows fast enough for {GROWTH_THRESHOLD:g}x within T "
+            f"(fastest {pred.rate:.3g} /T): the predicted factor is the linear response "
+            "itself (modes that beat, a transient), as the run will show it, not an "
+            "exponential instability")
+    side = res.theories[res.exact_theory]["peak_gain"]
+    if (grows_beyond_threshold(pred.rate, t_end) and math.isfinite(side)
+            and pred.rate > 1.1 * side):
+        log(f"note: the fastest growing Hill mode ({pred.rate:.4g} /T) is not a sideband "
+            f"pair, which the '{res.exact_theory}' row shows ({side:.4g} /T): a map's "
+            "exact_all column counts every mode")
+
+
+def _log_verdicts(log, res):
+    if res.simulated is not None:
+        log(f"verdicts: MI = grows more than {GROWTH_THRESHOLD:g}x within T = {res.t_end:g} "
             f"(theories: exp(peak gain x T); simulated: measured growth "
-            + ", ".join(f"{g['growth']:.3g}x" for g in growths) + ")")
+            + ", ".join(f"{g['growth']:.3g}x" for g in res.growths) + ")")
     else:
         log("verdicts: MI = the plane wave is unstable (peak gain > 0, however slow); with "
             f"--simulate they answer the run's question instead: grows more than "
-            f"{GROWTH_THRESHOLD:g}x within T = {t_end:g}")
-    log(_table(rows, units))
-    for n, t in th.items():
-        if "reason" in t:
-            log(f"{n}: {t['reason']}")
-    if args.simulate and "no_rate" in result["simulated"]:
-        log(f"simulated: {result['simulated']['no_rate']}")
-    # the most faithful row that grows: the simulation, else the exact theory, else an NLS
+            f"{GROWTH_THRESHOLD:g}x within T = {res.t_end:g}")
+
+
+def _log_fastest(log, rows, k, units):
+    """The most faithful row that grows: the simulation, else the exact theory, else an
+    NLS; its sidebands and e-folding time."""
     growing = [r for r in rows if math.isfinite(r[2]) and r[2] > 0]
     best = None
     for kind in ("simulated", "exact lattice", "semi-discrete NLS", "paper NLS"):
@@ -315,10 +160,35 @@ def run_point(args, log=print) -> dict:
         log(f"fastest growth ({best[0]}): offset q - k = {Q:.4g}, sidebands q at "
             f"{up:.4g} and {low:.4g} rad/site (folded into [0, pi]), e-folding "
             f"time {units.time(1 / best[2])}")
+
+
+def run_point(args, log=print) -> dict:
+    """`flexmm point`: check the options, echo them, ``measure_point``, print the table
+    and (``--out``) write point.json and point.png. Returns point.json's dict."""
+    mat, units = material_from(args)
+    amplitude, k, m = _checked(args, mat)
+    if args.out:  # before any computation (a simulation may take minutes)
+        prepare_output(args.out, cache=False)
+    _log_header(log, args, mat, units, k, m, amplitude)
+    res = measure_point(mat, args.case, args.k, amplitude, N=args.N, start=args.start,
+                        simulate=args.simulate, t_end=args.t_end, seeds=args.seeds)
+    result = res.as_dict(units={**UNITS, "seconds_per_T": units.seconds_per_T,
+                                "metres_per_site": units.metres_per_site})
+    rows = _rows(res)
+    log("")
+    _log_growth(log, res)
+    _log_verdicts(log, res)
+    log(_table(rows, units))
+    for n, t in res.theories.items():
+        if "reason" in t:
+            log(f"{n}: {t['reason']}")
+    if res.simulated is not None and "no_rate" in res.simulated:
+        log(f"simulated: {res.simulated['no_rate']}")
+    _log_fastest(log, rows, k, units)
     if args.out:
         out = Path(args.out)
         out.mkdir(parents=True, exist_ok=True)
-        _figure(out, th, meas, k, args, amplitude)
+        _figure(out, res.theories, res.measured, k, args, amplitude)
         write_text(out / "point.json", json.dumps(strict_json(result), indent=2) + "\n")
         log(f"wrote {out / 'point.json'} and {out / 'point.png'}")
     return result

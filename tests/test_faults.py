@@ -173,14 +173,14 @@ def test_cli_file_system_errors(setup, match, tmp_path, capsys):
 def test_point_and_soliton_check_their_output_before_simulating(command, tmp_path, capsys,
                                                                 monkeypatch):
     """--out under a file fails at once (no simulation runs first), in one line."""
-    import cli.point
-    import cli.soliton
+    from cli import point as point_command
+    from cli import soliton as soliton_command
 
     def never(*_a, **_k):
         raise AssertionError("simulated before checking --out")
 
-    monkeypatch.setattr(cli.point, "simulate", never)
-    monkeypatch.setattr(cli.soliton, "simulate_soliton", never)
+    monkeypatch.setattr(point_command, "measure_point", never)
+    monkeypatch.setattr(soliton_command, "simulate_soliton", never)
     out = _file_as_out(tmp_path) / "x"
     assert cli(command + ["--out", str(out)]) == 2
     err = capsys.readouterr().err.strip()

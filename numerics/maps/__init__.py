@@ -4,13 +4,20 @@ Imports ``numerics.lattice`` and ``numerics.theory``; nothing below imports it.
 
 Exact maps       resonance_map (bands from their resonance conditions, sampling-independent)
 One cell         simulate_cell (the simulated verdict, growth factor, early stop),
-                 cell_step (its method and step), growth_of, measured_peak_gain
+                 cell_step (its method and step), seed_majority (the seeds' verdict),
+                 growth_of, measured_peak_gain
+One point        measure_point -> PointResult (`flexmm point`: the theories over the
+                 sideband offsets, the predicted growth, a simulation with a cell's step
+                 choice and seed majority), point_step, theory_curves, offset_curve, fold,
+                 snap_carrier (k -> 2 pi m / N, checked), MAX_SEEDS, MAX_T_END
 Maps by sim.     MapParameters (what defines a map), parse_spec (``v1,v2`` or
                  ``start:stop:num``), run_map (cells as tasks on a Dask cluster, results in
                  a resumable Zarr store), theory_columns, agreement (AGREEMENT_MARGIN)
 """
 
-from ._cells import cell_step, growth_of, measured_peak_gain, simulate_cell
+from ._cells import cell_step, growth_of, measured_peak_gain, seed_majority, simulate_cell
+from ._point import (MAX_SEEDS, MAX_T_END, PointResult, fold, measure_point, offset_curve,
+                     point_step, snap_carrier, theory_curves)
 from ._resonance import resonance_map
 from ._params import CRITERION, MapParameters, local_cores, parse_spec
 from ._agreement import MARGIN as AGREEMENT_MARGIN, agreement
@@ -24,4 +31,6 @@ __all__ = [
     "parse_spec", "run_map", "theory_columns", "agreement", "AGREEMENT_MARGIN",
     "open_or_create",
     "simulate_block", "CRITERION", "MapCellError", "local_cores",
+    "seed_majority", "PointResult", "measure_point", "point_step", "theory_curves",
+    "offset_curve", "fold", "snap_carrier", "MAX_SEEDS", "MAX_T_END",
 ]

@@ -73,6 +73,12 @@ def growth_of(t, theta_hat, U_hat, m, N, t_end: float | None = None) -> dict:
             "growth_q": float(q[0])}
 
 
+def seed_majority(growths) -> bool:
+    """The verdict of several seeds at one point (a map cell, ``measure_point``): MI when
+    more than half of the seeds' growth factors exceed GROWTH_THRESHOLD (a tie is stable)."""
+    return sum(g > GROWTH_THRESHOLD for g in growths) * 2 > len(growths)
+
+
 def cell_step(state, material: Material, case: str, t_end: float,
               growth_tol: float = GROWTH_TOL, methods=None) -> tuple[str, float]:
     """(method, dt) whose predicted relative error of the growth factor over ``t_end`` is
@@ -236,5 +242,5 @@ def predict_cell(material: Material, case: str, k: float, N: int, t_end: float,
                 if p.approximate else "linear"]}, p
 
 
-__all__ = ["simulate_cell", "cell_records", "cell_step", "map_step", "growth_of",
+__all__ = ["simulate_cell", "cell_records", "cell_step", "map_step", "growth_of", "seed_majority",
            "measured_peak_gain", "predict_cell", "PREDICTED_STATUS"]

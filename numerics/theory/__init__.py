@@ -11,7 +11,8 @@ Stability       mi_gain (Hill's method about the state a start launches),
                 wavenumber), hill_spectrum, stability_map (batched over (k, delta))
 NLS theories    THEORIES, PAPER_START, theory_gain, nls_summary (paper NLS and
                 semi-discrete NLS from ``generated/``, and the exact lattice),
-                nls_undefined (why an NLS has no verdict at k)
+                nls_undefined (why an NLS has no verdict at k), nls_coefficients (both
+                NLS theories' coefficients and bands at any k: `flexmm coefficients`)
 Prediction      predict_growth -> GrowthPrediction: the growth factor a run measures,
                 from the linear response of its own initial state (Hill modes of the
                 launched state, the noise projected on them)
@@ -22,11 +23,12 @@ Solitons        soliton -> Soliton (bright or dark, width, velocity, frequency, 
                 measure_state, soliton_report (the JSON of `flexmm soliton`)
 """
 
+from ._coefficients import nls_coefficients
 from ._gain import (PAPER_START, THEORIES, measure_gain, measurement_length, nls_summary,
                     nls_undefined, relative_errors, theory_gain)
 from ._hill import gain_spectrum, hill_spectrum, mi_gain, stability_map
 from ._launched import FreeWave, LaunchedState, launched_state
-from ._plane_wave import NoPlaneWaveError, PlaneWave, plane_wave
+from ._plane_wave import MAX_AMPLITUDE, NoPlaneWaveError, PlaneWave, plane_wave
 from ._quasiperiodic import GainSpectrum
 from ._response import GrowthPrediction, predict_growth
 from ._soliton import (KINDS, MIN_WIDTH, SOLITON_THEORIES, Soliton, SolitonWarning,
@@ -39,7 +41,7 @@ __all__ = [
     "gain_spectrum", "GainSpectrum", "hill_spectrum", "stability_map", "THEORIES",
     "PAPER_START", "theory_gain", "nls_summary", "nls_undefined", "measure_gain", "measurement_length",
     "relative_errors", "predict_growth", "GrowthPrediction", "NoPlaneWaveError",
-    "KINDS", "MIN_WIDTH",
+    "KINDS", "MIN_WIDTH", "MAX_AMPLITUDE", "nls_coefficients",
     "SOLITON_THEORIES", "Snapshot", "Soliton", "SolitonRun", "SolitonWarning", "default_ring",
     "measure_state", "ring_wavenumber", "simulate_soliton", "soliton", "soliton_report",
     "soliton_state",
