@@ -41,7 +41,7 @@ def _sub(sub, name, help_):
                           epilog=EPILOG[name], formatter_class=_Help)
 
 
-def _parser():
+def build_parser():
     p = argparse.ArgumentParser(
         prog="flexmm", description="Modulation instability in flexible mechanical "
         "metamaterials: coefficients, MI verdicts, simulations, maps and the paper's figures.",
@@ -138,7 +138,10 @@ def _soliton_parser(sub):
     p.add_argument("--kind", choices=("bright", "dark"),
                    help="the soliton asked for (default: the one that exists here; asking "
                         "for the other is an error that names it)")
-    p.add_argument("--theory", choices=("semi-discrete", "paper"), default="semi-discrete",
+    from numerics.theory import PAPER_NLS, SEMIDISCRETE_NLS
+
+    p.add_argument("--theory", choices=(SEMIDISCRETE_NLS.cli, PAPER_NLS.cli),
+                   default=SEMIDISCRETE_NLS.cli,
                    help="the NLS that predicts it: the semi-discrete one (derived on the "
                         "lattice) or the paper's continuum one")
     p.add_argument("--simulate", action="store_true",
@@ -238,7 +241,7 @@ def _parse(argv):
     flexmm's), with the nearest option it has: ``--K-thetaa`` -> did you mean --K-theta?"""
     import difflib
 
-    p = _parser()
+    p = build_parser()
     args, extra = p.parse_known_args(argv)
     if extra:
         sub = next(a for a in p._actions

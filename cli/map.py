@@ -10,6 +10,7 @@ import numpy as np
 
 from numerics.lattice import GROWTH_THRESHOLD, checks
 
+from numerics.theory import MAP_COLUMNS
 from numerics.maps import (AGREEMENT_MARGIN, MapParameters, agreement, local_cores,
                            parse_spec, run_map)
 from common.output import check_output, prepare_output, strict_json
@@ -40,8 +41,6 @@ def _as_option(message: str) -> str:
     return message
 
 
-#: the theories' verdict columns, in the order the summaries print them
-THEORIES = ("paper", "semidiscrete", "exact", "exact_all", "predicted")
 
 
 def _mi_fraction(v: np.ndarray) -> float:
@@ -100,10 +99,9 @@ def _agreement_text(name: str, ag: dict) -> str:
     return f"{name} {ag[name]:.0f}% of cells ({'; '.join(parts)})"
 
 
-def run_map_command(args, log=print):
-    """`flexmm map`: parse, check everything (nothing is written on bad input), run."""
-    from common.files import write_text
-
+def _map_parameters(args):
+    """(MapParameters, the k values, the cell count) from the options, every one checked
+    and named in its error (nothing is written on bad input)."""
     if args.alpha is None or args.K_s is None:
         raise ValueError("--alpha and --K-s are required (the material's inertia and shear "
                          "stiffness)")
@@ -137,6 +135,14 @@ def run_map_command(args, log=print):
                                block=args.block)
     except (ValueError, TypeError) as exc:  # name the option, not the field
         raise type(exc)(_as_option(str(exc))) from None
+    return params, k, cells
+
+
+def run_map_command(args, log=print):
+    """`flexmm map`: parse, check everything (nothing is written on bad input), run."""
+    from common.files import write_text
+
+    params, k, cells = _map_parameters(args)
     check_output(args.out)  # a bad --out fails before the map is announced
     moved = [(a, b) for a, b in zip(params.k, params.k_simulated) if abs(a - b) > 1e-9 * a]
     if moved:
@@ -179,13 +185,13 @@ def run_map_command(args, log=print):
         log(f"MI (grows more than {GROWTH_THRESHOLD:g}x within T = {params.t_end:g}) in: "
             + "; ".join(f"{n} {100 * summary['mi_fraction'][n]:.0f}% of cells"
                         + (f" ({und[n]} undetermined, left out)" if und[n] else "")
-                        for n in THEORIES if n in summary["mi_fraction"]))
+                        for n in MAP_COLUMNS if n in summary["mi_fraction"]))
     log(f"wrote {out / 'map.zarr'}, {out / 'map.png'}, {out / 'summary.json'}")
     if summary["simulated"]:
         ag = summary["agreement_with_simulation_percent"]
         log(f"theory verdicts that agree with the simulation (marginal: the theory's growth "
             f"within {AGREEMENT_MARGIN:g}x of {GROWTH_THRESHOLD:g}x): " + "; ".join(
-            _agreement_text(n, ag) for n in THEORIES))
+            _agreement_text(n, ag) for n in MAP_COLUMNS))
         if ag["predicted_growth_cells"]:
             log(f"predicted growth within 2x of the measured one in "
                 f"{ag['predicted_growth_within_2x']:.0f}% of the "

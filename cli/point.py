@@ -17,7 +17,8 @@ from numerics import Material
 from numerics.lattice import (GROWTH_THRESHOLD, checks, grows_beyond_threshold,
                               paper_start_undefined)
 from numerics.maps import MAX_SEEDS, MAX_T_END, fold, measure_point, snap_carrier
-from numerics.theory import MAX_AMPLITUDE, nls_coefficients
+from numerics.theory import (EXACT_LATTICE, MAX_AMPLITUDE, PAPER_NLS, SEMIDISCRETE_NLS,
+                             nls_coefficients)
 
 from .coefficients import weak_nonlinearity_note
 
@@ -149,7 +150,7 @@ def _log_fastest(log, rows, k, units):
     NLS; its sidebands and e-folding time."""
     growing = [r for r in rows if math.isfinite(r[2]) and r[2] > 0]
     best = None
-    for kind in ("simulated", "exact lattice", "semi-discrete NLS", "paper NLS"):
+    for kind in ("simulated", EXACT_LATTICE.label, SEMIDISCRETE_NLS.label, PAPER_NLS.label):
         group = [r for r in growing if r[0].startswith(kind)]
         if group:
             best = max(group, key=lambda r: r[2])

@@ -11,16 +11,16 @@ from pathlib import Path
 from common.files import write_text
 from common.output import prepare_output, strict_json
 from numerics.lattice import checks
-from numerics.theory import SolitonWarning, simulate_soliton, soliton, soliton_report
+from numerics.theory import (NLS_THEORIES, SolitonWarning, simulate_soliton, soliton,
+                             soliton_report)
 
-THEORY = {"semi-discrete": "semi-discrete NLS", "paper": "paper NLS"}
 ROWS = (("velocity", "sites/T"), ("width", "sites"), ("amplitude", "rad (peak rotation)"),
         ("frequency", "1/T"), ("kink_height", "U, lattice units"))
 
 
 def _other_theory(mat, case, k, amplitude, theory):
     """The other NLS's kind at this point, or a sentence saying where it disagrees."""
-    other = [t for t in THEORY.values() if t != theory][0]
+    other = [t.label for t in NLS_THEORIES if t.label != theory][0]
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", SolitonWarning)
@@ -38,7 +38,7 @@ def run_soliton(args, log=print) -> dict:
         prepare_output(args.out, cache=False)
     amplitude = checks.real("--amplitude", args.amplitude, 0.0, 1.0)
     k = checks.real("--k", args.k, 0.0, math.pi)
-    theory = THEORY[args.theory]
+    theory = next(t.label for t in NLS_THEORIES if t.cli == args.theory)
     if args.simulate:
         checks.real("--travel", args.travel, 0.0, 1000.0)
         if args.N is not None:

@@ -168,3 +168,41 @@ def test_amplitude_given_two_ways_is_refused():
         simulate(BLUE, "rotation", 64, K, amplitude=0.02, eps=0.01, t_end=1.0)
     with pytest.raises(ValueError, match="start"):
         simulate(BLUE, "rotation", 64, K, start="continuum", t_end=1.0)
+
+
+# --- one theory, one spelling per layer -----------------------------------------------------
+
+def test_each_theory_has_one_spelling_per_layer_from_its_record():
+    """The API's labels, the generated modules, the coefficients table's columns, the
+    soliton command's --theory values, a map store's variables and point.json's theory keys
+    all come from ``numerics.theory.THEORY_RECORDS``."""
+    from cli.app import build_parser
+    from numerics.maps import MapParameters, measure_point, theory_columns
+    from numerics.theory import (MAP_COLUMNS, NLS_THEORIES, PAPER_START, SOLITON_THEORIES,
+                                 THEORIES, THEORY_RECORDS, nls_coefficients)
+
+    labels = [t.label for t in THEORY_RECORDS]
+    assert len(set(labels)) == len(labels)
+    assert set(THEORIES) | {PAPER_START} <= set(labels)
+    # the generated modules and the NLS theories' API names
+    for t in NLS_THEORIES:
+        assert t.closed_forms().__name__ == f"generated.{t.module}"
+        assert SOLITON_THEORIES[t.label] is t.closed_forms()
+    assert set(nls_coefficients(BLUE, 0.8)) == {t.column for t in NLS_THEORIES}
+    # the CLI: the soliton command's --theory takes the records' cli names
+    sub = next(a for a in build_parser()._actions if a.dest == "cmd")  # argparse's own tree
+    theory = next(a for a in sub.choices["soliton"]._actions if a.dest == "theory")
+    assert set(theory.choices) == {t.cli for t in NLS_THEORIES}
+    # the store: verdict_<key> and peak_gain_<key> for every map column but the predicted one
+    params = MapParameters(case="coupled", alpha=2.5, K_s=0.01851, delta=(0.003,), k=(0.8,),
+                           amplitude=0.02, N=64, t_end=100.0, seeds=1, start="travelling",
+                           theory_only=True)
+    stored = set(theory_columns(params))
+    for key in MAP_COLUMNS:
+        if key != "predicted":  # filled per cell by predict_cell, not by theory_columns
+            assert {f"verdict_{key}", f"peak_gain_{key}"} <= stored, key
+    assert {n.removeprefix("verdict_") for n in stored if n.startswith("verdict_")} \
+        <= set(MAP_COLUMNS)
+    # point.json: the theories by their labels
+    point = measure_point(BLUE, "coupled", 0.81681, start="travelling", N=64).as_dict()
+    assert list(point["theories"]) == list(THEORIES)

@@ -66,9 +66,9 @@ def test_point_t_end_help_states_the_bounds_the_default_uses():
     import inspect
 
     from numerics.theory import _gain
-    from cli.app import _parser
+    from cli.app import build_parser
 
-    sub = next(a for a in _parser()._actions if a.dest == "cmd")
+    sub = next(a for a in build_parser()._actions if a.dest == "cmd")
     help_text = " ".join(next(a for a in sub.choices["point"]._actions
                               if a.dest == "t_end").help.split())
     lo, hi = _gain.T_BOUNDS

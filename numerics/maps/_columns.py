@@ -133,14 +133,12 @@ def theory_columns(params: MapParameters) -> dict:
     GROWTH_THRESHOLD-fold within t_end (peak gain > ln(threshold) / t_end)? Where a theory
     cannot be evaluated its gain is NaN and its verdict UNDETERMINED (the reason is the
     variable's ``undetermined`` attribute), never "stable"."""
-    from generated import coefficients as continuum_nls
-    from generated import lattice_coefficients as lattice_nls
-    from ..theory import stability_map
+    from ..theory import NLS_THEORIES, stability_map
 
     # each row at its own K_theta (params.K_theta: as given, or K_s - delta)
     K, Kt = np.meshgrid(params.k_simulated, params.K_theta, indexing="xy")
     gains = {}
-    for name, nls in (("paper", continuum_nls), ("semidiscrete", lattice_nls)):
+    for name, nls in ((t.key, t.closed_forms()) for t in NLS_THEORIES):
         with np.errstate(all="ignore"):
             g = getattr(nls, f"g_{params.case}")(K, params.alpha, params.K_s, Kt)
             g1 = nls.g1(K, params.alpha, params.K_s, Kt)

@@ -19,7 +19,7 @@ from ..lattice import (GROWTH_THRESHOLD, LINEAR_STAGE_RULE, Material, band_summa
                        grows_beyond_threshold, initial_condition, paper_start_undefined,
                        snap_wavenumber)
 from ..lattice import simulate as simulate_chain
-from ..theory import (MAX_AMPLITUDE, PAPER_START, THEORIES, measure_gain, measurement_length,
+from ..theory import (EXACT_LATTICE, MAX_AMPLITUDE, PAPER_START, THEORIES, measure_gain, measurement_length,
                       nls_coefficients, nls_undefined, predict_growth, theory_gain)
 from ._cells import cell_step, growth_of, seed_majority
 from ._resonance import resonance_map
@@ -87,7 +87,7 @@ class PointResult:
     predicted: dict
     simulated: dict | None = None
     t_end: float = field(default=math.nan, metadata={"json": False})
-    exact_theory: str = field(default="exact lattice", metadata={"json": False})
+    exact_theory: str = field(default=EXACT_LATTICE.label, metadata={"json": False})
     prediction: object = field(default=None, metadata={"json": False})
     measured: dict | None = field(default=None, metadata={"json": False})
     growths: list | None = field(default=None, metadata={"json": False})
@@ -303,7 +303,7 @@ def measure_point(material: Material, case: str, k: float,
         raise ValueError(f"start='paper': {why}")
     co = nls_coefficients(material, k, amplitude)["semi-discrete"]
     th = theory_curves(material, case, k, amplitude, start)
-    exact_name = "exact lattice" if start == "travelling" else PAPER_START
+    exact_name = EXACT_LATTICE.label if start == "travelling" else PAPER_START
     exact = th[exact_name]["peak_gain"]
     t_end = t_end or measurement_length(exact if math.isfinite(exact) else 0.0)
     prediction, predicted = _predicted(material, case, k, amplitude, start, N, t_end, seeds)

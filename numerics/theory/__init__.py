@@ -9,7 +9,9 @@ Exact states    plane_wave -> PlaneWave (harmonic balance), launched_state ->
 Stability       mi_gain (Hill's method about the state a start launches),
                 gain_spectrum -> GainSpectrum (per offset: rate, growing field and
                 wavenumber), hill_spectrum, stability_map (batched over (k, delta))
-NLS theories    THEORIES, PAPER_START, theory_gain, nls_summary (paper NLS and
+Theories        Theory, THEORY_RECORDS (one record per theory: its label, store key,
+                generated module, CLI name and table column), NLS_THEORIES, MAP_COLUMNS
+NLS theories    THEORIES, PAPER_START (their labels), theory_gain, nls_summary (paper NLS and
                 semi-discrete NLS from ``generated/``, and the exact lattice),
                 nls_undefined (why an NLS has no verdict at k), nls_coefficients (both
                 NLS theories' coefficients and bands at any k: `flexmm coefficients`)
@@ -24,6 +26,9 @@ Solitons        soliton -> Soliton (bright or dark, width, velocity, frequency, 
 """
 
 from ._coefficients import nls_coefficients
+from ._records import (EXACT_ALL_MODES, EXACT_LATTICE, EXACT_PAPER_START, MAP_COLUMNS,
+                       NLS_THEORIES, PAPER_NLS, PREDICTED, SEMIDISCRETE_NLS, THEORY_RECORDS,
+                       Theory)
 from ._gain import (PAPER_START, THEORIES, measure_gain, measurement_length, nls_summary,
                     nls_undefined, relative_errors, theory_gain)
 from ._hill import gain_spectrum, hill_spectrum, mi_gain, stability_map
@@ -42,6 +47,8 @@ __all__ = [
     "PAPER_START", "theory_gain", "nls_summary", "nls_undefined", "measure_gain", "measurement_length",
     "relative_errors", "predict_growth", "GrowthPrediction", "NoPlaneWaveError",
     "KINDS", "MIN_WIDTH", "MAX_AMPLITUDE", "nls_coefficients",
+    "Theory", "THEORY_RECORDS", "NLS_THEORIES", "MAP_COLUMNS", "PAPER_NLS", "SEMIDISCRETE_NLS",
+    "EXACT_LATTICE", "EXACT_PAPER_START", "EXACT_ALL_MODES", "PREDICTED",
     "SOLITON_THEORIES", "Snapshot", "Soliton", "SolitonRun", "SolitonWarning", "default_ring",
     "measure_state", "ring_wavenumber", "simulate_soliton", "soliton", "soliton_report",
     "soliton_state",

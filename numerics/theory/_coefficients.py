@@ -13,14 +13,13 @@ import math
 import numpy as np
 
 from common import paper
-from generated import coefficients as continuum
-from generated import lattice_coefficients as semidiscrete
-
 from ..lattice import Material, checks
 from ._plane_wave import MAX_AMPLITUDE
 from ._gain import nls_summary
+from ._records import NLS_THEORIES
 
-MODELS = {"continuum (paper)": continuum, "semi-discrete": semidiscrete}
+#: {the table's column: the generated module} of each NLS theory (``Theory.column``)
+MODELS = {t.column: t.closed_forms() for t in NLS_THEORIES}
 
 
 def nls_coefficients(material: Material, k: float, amplitude: float = paper.AMPLITUDE,
