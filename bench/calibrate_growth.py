@@ -29,8 +29,7 @@ import numpy as np
 from common import paper
 from numerics import Material, get_method, initial_condition
 from numerics.lattice._accuracy import dominant_frequency
-from numerics.maps._cells import (GROWTH_ERROR_CONSTANTS, GROWTH_TOL, cell_records,
-                                  growth_of)
+from numerics.maps._cells import GROWTH_ERROR_CONSTANTS, GROWTH_TOL, cell_records, growth_of
 
 #: the tight reference: srkn11b at this step (its own growth error ~1e-9: the constants
 #: below at dt = 0.1)

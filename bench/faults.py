@@ -95,7 +95,7 @@ CATALOGUE = [
 ]
 
 
-from bench.faults_maps import C, MAP_CATALOGUE  # noqa: E402 - the second half
+from bench.faults_maps import MAP_CATALOGUE, C  # noqa: E402 - the second half
 
 CATALOGUE += MAP_CATALOGUE
 

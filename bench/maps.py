@@ -146,7 +146,7 @@ def map_64(N, T):
                                 delta=tuple(np.linspace(-0.012, 0.012, 64)),
                                 k=tuple(2 * np.pi * m / N), amplitude=paper.AMPLITUDE,
                                 N=N, t_end=T)
-    params.cell_step  # noqa: B018 - chosen once, in the client (as run_map does)
+    params.cell_step  # chosen once, in the client (as run_map does)
     todo = maps._store.blocks(params, np.zeros((len(params.delta), len(params.k)), bool))
     with LocalCluster(n_workers=maps.local_cores(), threads_per_worker=1,
                       dashboard_address=":0", silence_logs=40) as cluster, \

@@ -23,8 +23,15 @@ import numpy as np
 from bench.simulator import arguments, output_dir
 from common import paper
 from common.files import write_text
-from numerics import (AccuracyWarning, BlowUpError, LatticeState, Material, energy,
-                      integrate, simulate)
+from numerics import (
+    AccuracyWarning,
+    BlowUpError,
+    LatticeState,
+    Material,
+    energy,
+    integrate,
+    simulate,
+)
 from numerics.lattice._integrators import get_method
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -20,16 +20,15 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
-from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter  # noqa: E402
 import numpy as np  # noqa: E402
+from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter  # noqa: E402
 
-from common import paper  # noqa: E402
-from numerics import Material
-from numerics import energy, initial_condition, integrate  # noqa: E402
-from numerics.lattice._baseline import numpy_rk4  # noqa: E402
-from numerics.lattice._integrators import get_method  # noqa: E402
-from numerics.lattice._integrate import _Stepper  # noqa: E402
 from bench.simulator import arguments, machine, output_dir, write_sections  # noqa: E402
+from common import paper  # noqa: E402
+from numerics import Material, energy, initial_condition, integrate  # noqa: E402
+from numerics.lattice._baseline import numpy_rk4  # noqa: E402
+from numerics.lattice._integrate import _Stepper  # noqa: E402
+from numerics.lattice._integrators import get_method  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 CASES = {"blue-II": (Material.paper("blue"), "coupled", paper.k("blue")),

@@ -7,7 +7,6 @@ import sys
 import time
 from pathlib import Path
 
-
 EPILOG = {
     "coefficients": "example:\n  flexmm coefficients --alpha 2.5 --K-s 0.01851 --K-theta 0.01551 "
                     "--k 0.81681",

@@ -6,8 +6,6 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-import numpy as np
-
 from common import paper
 from numerics import Material
 from numerics.theory import nls_coefficients as coefficients  # the table's numbers
@@ -21,7 +19,7 @@ class Units:
     metres_per_site: float | None = None  # a
 
     @classmethod
-    def physical(cls, m, k_l, a) -> "Units":
+    def physical(cls, m, k_l, a) -> Units:
         return cls(math.sqrt(m / k_l), a)
 
     def rate(self, sigma: float) -> str:

@@ -8,14 +8,18 @@ import math
 
 import numpy as np
 
-from numerics.lattice import GROWTH_THRESHOLD, checks
-
-from numerics.theory import MAP_COLUMNS
-from numerics.maps import (AGREEMENT_MARGIN, MapParameters, agreement, local_cores,
-                           parse_spec, run_map)
 from common.output import check_output, prepare_output, strict_json
 from common.text import duration as _duration
-
+from numerics.lattice import GROWTH_THRESHOLD, checks
+from numerics.maps import (
+    AGREEMENT_MARGIN,
+    MapParameters,
+    agreement,
+    local_cores,
+    parse_spec,
+    run_map,
+)
+from numerics.theory import MAP_COLUMNS
 
 #: a map of more cells than this is refused (its theory columns alone fill memory)
 MAX_CELLS = 250_000

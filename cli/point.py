@@ -14,11 +14,15 @@ from common.files import write_text
 from common.output import prepare_output, strict_json
 from common.paper import EPS
 from numerics import Material
-from numerics.lattice import (GROWTH_THRESHOLD, checks, grows_beyond_threshold,
-                              paper_start_undefined)
+from numerics.lattice import GROWTH_THRESHOLD, checks, grows_beyond_threshold, paper_start_undefined
 from numerics.maps import MAX_SEEDS, MAX_T_END, fold, measure_point, snap_carrier
-from numerics.theory import (EXACT_LATTICE, MAX_AMPLITUDE, PAPER_NLS, SEMIDISCRETE_NLS,
-                             nls_coefficients)
+from numerics.theory import (
+    EXACT_LATTICE,
+    MAX_AMPLITUDE,
+    PAPER_NLS,
+    SEMIDISCRETE_NLS,
+    nls_coefficients,
+)
 
 from .coefficients import weak_nonlinearity_note
 
@@ -209,7 +213,6 @@ def _table(rows, units=None) -> str:
 
 def _figure(out, th, meas, k, args, amplitude):
     from common.files import atomic_write
-
     from scenes import plt
 
     fig, ax = plt.subplots(figsize=(7, 4), layout="constrained")

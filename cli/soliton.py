@@ -11,8 +11,7 @@ from pathlib import Path
 from common.files import write_text
 from common.output import prepare_output, strict_json
 from numerics.lattice import checks
-from numerics.theory import (NLS_THEORIES, SolitonWarning, simulate_soliton, soliton,
-                             soliton_report)
+from numerics.theory import NLS_THEORIES, SolitonWarning, simulate_soliton, soliton, soliton_report
 
 ROWS = (("velocity", "sites/T"), ("width", "sites"), ("amplitude", "rad (peak rotation)"),
         ("frequency", "1/T"), ("kink_height", "U, lattice units"))

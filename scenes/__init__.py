@@ -15,9 +15,18 @@ read_data(path)                     a scene's data dict from its data.h5
 plt, image                          pyplot (Agg backend) and the raster image the figures use
 """
 
-from . import (fig2_dispersion, fig3_g_sign, fig3_simulated, fig4_km_map,  # noqa: F401
-               fig5_8_plane_waves, fig9_mi_band, gain_spectrum, gain_theories, harmonics,
-               solitons)
+from . import (
+               fig2_dispersion,
+               fig3_g_sign,
+               fig3_simulated,
+               fig4_km_map,
+               fig5_8_plane_waves,
+               fig9_mi_band,
+               gain_spectrum,
+               gain_theories,
+               harmonics,
+               solitons,
+)
 from ._plotting import image, plt
 from ._registry import AGREE, REGISTRY, Scene, check, get_scene, known
 from ._runner import Context, read_data, replot_scene, run_all, run_scene, write_report

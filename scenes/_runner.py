@@ -20,9 +20,8 @@ import numpy as np
 
 from common.files import _umask, atomic_write, write_text
 from common.output import prepare_output, strict_json
-from numerics.lattice import checks
 from numerics import SIMULATOR_VERSION
-from numerics.lattice import cached_simulate
+from numerics.lattice import cached_simulate, checks
 
 from ._plotting import plt
 from ._registry import REGISTRY, get_scene

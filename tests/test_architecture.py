@@ -124,7 +124,7 @@ def test_facade_is_small_and_every_name_resolves():
         for name in sub.__all__:
             assert getattr(sub, name) is getattr(numerics, name)
     with pytest.raises(AttributeError, match="no attribute 'nonsense'"):
-        numerics.nonsense  # noqa: B018
+        numerics.nonsense
 
 
 def test_source_hash_covers_new_and_changed_files(tmp_path):
@@ -178,8 +178,15 @@ def test_each_theory_has_one_spelling_per_layer_from_its_record():
     all come from ``numerics.theory.THEORY_RECORDS``."""
     from cli.app import build_parser
     from numerics.maps import MapParameters, measure_point, theory_columns
-    from numerics.theory import (MAP_COLUMNS, NLS_THEORIES, PAPER_START, SOLITON_THEORIES,
-                                 THEORIES, THEORY_RECORDS, nls_coefficients)
+    from numerics.theory import (
+        MAP_COLUMNS,
+        NLS_THEORIES,
+        PAPER_START,
+        SOLITON_THEORIES,
+        THEORIES,
+        THEORY_RECORDS,
+        nls_coefficients,
+    )
 
     labels = [t.label for t in THEORY_RECORDS]
     assert len(set(labels)) == len(labels)

@@ -6,7 +6,8 @@ import shlex
 
 import pytest
 
-from cli.app import EPILOG, main as cli
+from cli.app import EPILOG
+from cli.app import main as cli
 
 #: examples too slow for the default suite (a full scene run, a simulation)
 SLOW = ("run", "point")
@@ -65,8 +66,8 @@ def test_point_t_end_help_states_the_bounds_the_default_uses():
     every `--help`): they must be those of ``measurement_length``."""
     import inspect
 
-    from numerics.theory import _gain
     from cli.app import build_parser
+    from numerics.theory import _gain
 
     sub = next(a for a in build_parser()._actions if a.dest == "cmd")
     help_text = " ".join(next(a for a in sub.choices["point"]._actions

@@ -20,10 +20,10 @@ sys.path.insert(0, str(ROOT / "bench"))
 import faults  # noqa: E402
 
 import scenes  # noqa: E402
+from cli.app import main as cli  # noqa: E402
 from common import paper  # noqa: E402
 from numerics import BlowUpError, SimulationInterrupted, resume, simulate  # noqa: E402
 from numerics.lattice import _cache  # noqa: E402
-from cli.app import main as cli  # noqa: E402
 
 
 @pytest.mark.parametrize("name, action, expected", faults.CATALOGUE,

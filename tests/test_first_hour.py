@@ -10,10 +10,10 @@ import math
 import numpy as np
 import pytest
 
+from cli.app import main as cli
 from numerics import Material, simulate
 from numerics.maps import MapParameters
 from numerics.theory import nls_summary, nls_undefined, soliton, theory_gain
-from cli.app import main as cli
 
 #: delta < 0 and k^2 > 6 K_theta / |delta|: the continuum frequency is imaginary at k = 3.01
 DEEP = Material(alpha=2.6206, K_s=0.005108, K_theta=0.1037)

@@ -7,8 +7,7 @@ import numpy as np
 import pytest
 
 from common import paper
-from numerics import Material
-from numerics import AccuracyWarning, choose_step, initial_condition, integrate, simulate
+from numerics import AccuracyWarning, Material, choose_step, initial_condition, integrate, simulate
 from numerics.lattice import _kernels as kernels
 
 ULP = np.spacing

@@ -5,11 +5,10 @@ import numpy as np
 import pytest
 import sympy as sp
 
+from common import paper  # noqa: E402
 from generated import coefficients as co
 from generated import lattice_coefficients as la
 from numerics import Material, mi_gain, plane_wave
-
-from common import paper  # noqa: E402
 
 ALPHA, K_S = paper.ALPHA, paper.K_S
 POINTS = {name: (p["k"], p["K_theta"]) for name, p in paper.POINTS.items()}

@@ -9,8 +9,13 @@ from common import paper
 from numerics import Material, get_method
 from numerics.lattice._analysis import GROWTH_THRESHOLD
 from numerics.maps import MapParameters
-from numerics.maps._cells import (GROWTH_ERROR_CONSTANTS, GROWTH_TOL, cell_records,
-                                  growth_of, simulate_cell)
+from numerics.maps._cells import (
+    GROWTH_ERROR_CONSTANTS,
+    GROWTH_TOL,
+    cell_records,
+    growth_of,
+    simulate_cell,
+)
 
 N, T = 100, 2000.0
 # cells of the fig3 plane (alpha = 2.5) at N = 100: the blue point's k, one stable, one MI

@@ -6,10 +6,10 @@ import numpy as np
 import pytest
 import xarray as xr
 
+from cli.app import main as cli
 from common import paper
 from numerics.maps import MapParameters, parse_spec
 from numerics.maps import _store as maps  # blocks, _write_block, _run_tasks: internals under test
-from cli.app import main as cli
 
 N = 100
 K2 = tuple(2 * np.pi * np.array([13, 15]) / N)

@@ -7,9 +7,20 @@ import pytest
 
 from common import paper
 from generated import coefficients as co
-from numerics import (METHODS, BlowUpError, LatticeState, Material, SimulationInterrupted,
-                      discrete_omega_longitudinal, discrete_omega_rotation, energy,
-                      get_method, initial_condition, integrate, simulate)
+from numerics import (
+    METHODS,
+    BlowUpError,
+    LatticeState,
+    Material,
+    SimulationInterrupted,
+    discrete_omega_longitudinal,
+    discrete_omega_rotation,
+    energy,
+    get_method,
+    initial_condition,
+    integrate,
+    simulate,
+)
 from numerics.lattice._kernels import accel
 
 BLUE, GREEN = Material.paper("blue"), Material.paper("green")

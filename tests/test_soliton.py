@@ -9,12 +9,17 @@ import warnings
 import numpy as np
 import pytest
 
+from cli.app import main as cli
 from common import paper
 from generated import soliton as closed
 from numerics import Material
-from numerics.theory import (SolitonWarning, ring_wavenumber, simulate_soliton, soliton,
-                             soliton_state)
-from cli.app import main as cli
+from numerics.theory import (
+    SolitonWarning,
+    ring_wavenumber,
+    simulate_soliton,
+    soliton,
+    soliton_state,
+)
 
 #: the issue's goals after 20 widths of travel (relative; radiation absolute)
 GOALS = {"velocity": 0.01, "width": 0.03, "amplitude": 0.03, "kink_height": 0.05}

@@ -6,8 +6,7 @@ import numpy as np
 import pytest
 
 from numerics import METHODS, get_method, initial_condition, simulate
-from numerics.lattice import LatticeState
-from numerics.lattice import _integrate
+from numerics.lattice import LatticeState, _integrate
 from numerics.lattice import _kernels as kernels
 from numerics.lattice._integrate import STEPPERS, _Stepper
 from numerics.lattice._run import record_grid as _record_grid

@@ -19,7 +19,7 @@ Analysis      spectrum, mode, harmonic_bins, sideband_to_carrier, stability_verd
 Input checks  ``numerics.lattice.checks`` (the limits every layer imports)
 """
 
-from . import _numba_cache  # noqa: F401 - before any kernel: a read-only install works
+from . import _numba_cache  # before any kernel: a read-only install works
 from . import checks
 from ._accuracy import AccuracyWarning, choose_step
 from ._analysis import (GROWTH_THRESHOLD, band_summary, carrier_amplitude, carrier_frequency,

@@ -13,9 +13,9 @@ import math
 import numpy as np
 
 from . import _kernels as kernels
-from ._integrators import Method, get_method
 from . import checks
 from ._accuracy import check_energy_tolerance, choose_step, energy_check
+from ._integrators import Method, get_method
 from ._model import LatticeState, Material, check_case, energy
 
 #: the paper's RK4 step, the default when neither dt nor tol is given

@@ -33,7 +33,7 @@ import math
 import numpy as np
 from numba import njit
 
-from ._kernels_libm import _finite, accel_libm, rk4_steps_libm, srkn_steps_libm  # noqa: F401
+from ._kernels_libm import _finite, accel_libm, rk4_steps_libm, srkn_steps_libm
 
 #: |theta| up to which the polynomial sin/cos is used (accuracy tested up to here); beyond
 #: it the loops hand over to the libm reference loops.

@@ -20,13 +20,11 @@ from common.paper import EPS as PAPER_EPS
 
 from . import checks
 from ._accuracy import check_energy_tolerance
-from ._integrate import (SimulationInterrupted, _check_time, _Stepper, check_tolerances,
-                         resolve_step)
+from ._integrate import SimulationInterrupted, _check_time, _Stepper, check_tolerances, resolve_step
 from ._integrators import get_method
 from ._model import LatticeState, Material, check_case
 from ._run import RECORDS, Run, RunLoop, empty_run, joined, record_grid
 from ._starts import LEGACY_OMEGA_MODELS, build_start, check_start
-
 
 STORE_CHOICES = ("snapshots", "spectrum", "energy")
 

@@ -15,14 +15,24 @@ Maps by sim.     MapParameters (what defines a map), parse_spec (``v1,v2`` or
                  a resumable Zarr store), theory_columns, agreement (AGREEMENT_MARGIN)
 """
 
-from ._cells import cell_step, growth_of, measured_peak_gain, seed_majority, simulate_cell
-from ._point import (MAX_SEEDS, MAX_T_END, PointResult, fold, measure_point, offset_curve,
-                     point_step, snap_carrier, theory_curves)
-from ._resonance import resonance_map
-from ._params import CRITERION, MapParameters, local_cores, parse_spec
-from ._agreement import MARGIN as AGREEMENT_MARGIN, agreement
+from ._agreement import MARGIN as AGREEMENT_MARGIN
+from ._agreement import agreement
 from ._blocks import simulate_block
+from ._cells import cell_step, growth_of, measured_peak_gain, seed_majority, simulate_cell
 from ._columns import theory_columns
+from ._params import CRITERION, MapParameters, local_cores, parse_spec
+from ._point import (
+                     MAX_SEEDS,
+                     MAX_T_END,
+                     PointResult,
+                     fold,
+                     measure_point,
+                     offset_curve,
+                     point_step,
+                     snap_carrier,
+                     theory_curves,
+)
+from ._resonance import resonance_map
 from ._store import MapCellError, open_or_create, run_map
 
 __all__ = [

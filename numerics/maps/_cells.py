@@ -26,8 +26,15 @@ import math
 import numpy as np
 
 from ..lattice._accuracy import choose_step, dominant_frequency
-from ..lattice._analysis import (GROWTH_THRESHOLD, U_REFERENCE, growth_rates, linear_stage,
-                                 non_carrier_bins, spectrum, spectrum_growth)
+from ..lattice._analysis import (
+    GROWTH_THRESHOLD,
+    U_REFERENCE,
+    growth_rates,
+    linear_stage,
+    non_carrier_bins,
+    spectrum,
+    spectrum_growth,
+)
 from ..lattice._integrate import BlowUpError, _blowup_message, _Stepper
 from ..lattice._integrators import get_method
 from ..lattice._model import Material

@@ -15,12 +15,30 @@ import numpy as np
 
 from common import paper
 
-from ..lattice import (GROWTH_THRESHOLD, LINEAR_STAGE_RULE, Material, band_summary, checks,
-                       grows_beyond_threshold, initial_condition, paper_start_undefined,
-                       snap_wavenumber)
+from ..lattice import (
+    GROWTH_THRESHOLD,
+    LINEAR_STAGE_RULE,
+    Material,
+    band_summary,
+    checks,
+    grows_beyond_threshold,
+    initial_condition,
+    paper_start_undefined,
+    snap_wavenumber,
+)
 from ..lattice import simulate as simulate_chain
-from ..theory import (EXACT_LATTICE, MAX_AMPLITUDE, PAPER_START, THEORIES, measure_gain, measurement_length,
-                      nls_coefficients, nls_undefined, predict_growth, theory_gain)
+from ..theory import (
+    EXACT_LATTICE,
+    MAX_AMPLITUDE,
+    PAPER_START,
+    THEORIES,
+    measure_gain,
+    measurement_length,
+    nls_coefficients,
+    nls_undefined,
+    predict_growth,
+    theory_gain,
+)
 from ._cells import cell_step, growth_of, seed_majority
 from ._resonance import resonance_map
 

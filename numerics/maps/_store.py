@@ -30,9 +30,9 @@ from common.text import duration
 
 from ._agreement import agreement
 from ._blocks import blocks, simulate_block
-from ._columns import (PREDICTED, SIMULATED, STORE_FORMAT, empty_dataset, theory_columns,
-                       tri_state)
+from ._columns import PREDICTED, SIMULATED, STORE_FORMAT, empty_dataset, theory_columns, tri_state
 from ._params import MapParameters, local_cores
+
 
 def _holds(ds, params: MapParameters) -> bool:
     """Does the stored dataset ``ds`` hold the map ``params`` defines (same grid, same
@@ -92,7 +92,7 @@ def _open(path: Path, params: MapParameters, overwrite: bool = False, log=print)
     if path.exists():
         try:
             ds = xr.open_zarr(path, consolidated=False, chunks=None)
-            ds.attrs  # noqa: B018 - metadata read
+            ds.attrs  # metadata read (a damaged .zattrs raises here)
         except Exception as exc:  # noqa: BLE001 - any unreadable store
             if not overwrite:
                 first = str(exc).splitlines()[0] if str(exc) else type(exc).__name__

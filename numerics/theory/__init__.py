@@ -26,18 +26,42 @@ Solitons        soliton -> Soliton (bright or dark, width, velocity, frequency, 
 """
 
 from ._coefficients import nls_coefficients
-from ._records import (EXACT_ALL_MODES, EXACT_LATTICE, EXACT_PAPER_START, MAP_COLUMNS,
-                       NLS_THEORIES, PAPER_NLS, PREDICTED, SEMIDISCRETE_NLS, THEORY_RECORDS,
-                       Theory)
-from ._gain import (PAPER_START, THEORIES, measure_gain, measurement_length, nls_summary,
-                    nls_undefined, relative_errors, theory_gain)
+from ._gain import (
+                       PAPER_START,
+                       THEORIES,
+                       measure_gain,
+                       measurement_length,
+                       nls_summary,
+                       nls_undefined,
+                       relative_errors,
+                       theory_gain,
+)
 from ._hill import gain_spectrum, hill_spectrum, mi_gain, stability_map
 from ._launched import FreeWave, LaunchedState, launched_state
 from ._plane_wave import MAX_AMPLITUDE, NoPlaneWaveError, PlaneWave, plane_wave
 from ._quasiperiodic import GainSpectrum
+from ._records import (
+                       EXACT_ALL_MODES,
+                       EXACT_LATTICE,
+                       EXACT_PAPER_START,
+                       MAP_COLUMNS,
+                       NLS_THEORIES,
+                       PAPER_NLS,
+                       PREDICTED,
+                       SEMIDISCRETE_NLS,
+                       THEORY_RECORDS,
+                       Theory,
+)
 from ._response import GrowthPrediction, predict_growth
-from ._soliton import (KINDS, MIN_WIDTH, SOLITON_THEORIES, Soliton, SolitonWarning,
-                       ring_wavenumber, soliton)
+from ._soliton import (
+                       KINDS,
+                       MIN_WIDTH,
+                       SOLITON_THEORIES,
+                       Soliton,
+                       SolitonWarning,
+                       ring_wavenumber,
+                       soliton,
+)
 from ._soliton_launch import default_ring, simulate_soliton, soliton_state
 from ._soliton_measure import Snapshot, SolitonRun, measure_state, soliton_report
 

@@ -13,9 +13,10 @@ import math
 import numpy as np
 
 from common import paper
+
 from ..lattice import Material, checks
-from ._plane_wave import MAX_AMPLITUDE
 from ._gain import nls_summary
+from ._plane_wave import MAX_AMPLITUDE
 from ._records import NLS_THEORIES
 
 #: {the table's column: the generated module} of each NLS theory (``Theory.column``)

@@ -20,11 +20,10 @@ from common.paper import EPS
 
 from ..lattice import _analysis as an
 from ..lattice import checks
+from ..lattice._model import Material, check_case
 from ._hill import mi_gain
 from ._plane_wave import MAX_AMPLITUDE
-from ._records import (EXACT_LATTICE, EXACT_PAPER_START, NLS_THEORIES, PAPER_NLS,
-                       SEMIDISCRETE_NLS)
-from ..lattice._model import Material, check_case
+from ._records import EXACT_LATTICE, EXACT_PAPER_START, NLS_THEORIES, PAPER_NLS, SEMIDISCRETE_NLS
 
 #: the labels of the three theories of a travelling wave (the records: ``_records``)
 THEORIES = (PAPER_NLS.label, SEMIDISCRETE_NLS.label, EXACT_LATTICE.label)

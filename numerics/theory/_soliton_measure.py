@@ -13,6 +13,7 @@ import numpy as np
 from ..lattice._model import LatticeState
 from ._soliton import Soliton
 
+
 @dataclass(frozen=True)
 class Snapshot:
     """What one state shows of a soliton: fitted centre (site, unwrapped), peak rotation

@@ -26,12 +26,11 @@ import itertools
 from dataclasses import dataclass
 
 import numpy as np
-
-from ..lattice import checks
 from numba import njit
 
 from generated import lattice_model as model
 
+from ..lattice import checks
 from ..lattice._integrators import get_method
 from ..lattice._kernels import _FAST, _acc, _sincosvers
 
