@@ -17,8 +17,7 @@ import numpy as np
 from bench.speed import interleaved
 from common import paper
 from numerics import Material, initial_condition
-from numerics.lattice._integrate import _Stepper
-from numerics.lattice._integrators import get_method
+from numerics.lattice import Stepper, get_method
 
 
 def main(N=500, B=4, T=200.0, dt=0.96, rounds=7):
@@ -30,7 +29,7 @@ def main(N=500, B=4, T=200.0, dt=0.96, rounds=7):
               for n in (N, B * N)}
 
     def run(n):
-        return lambda: _Stepper(states[n], mat, "coupled", m, dt).advance(nsteps)
+        return lambda: Stepper(states[n], mat, "coupled", m, dt).advance(nsteps)
 
     configs = {f"{B} chains of {N} in turn": lambda: [run(N)() for _ in range(B)],
                f"one chain of {B * N}": run(B * N)}

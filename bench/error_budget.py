@@ -40,7 +40,7 @@ from bench.speed import (
     state_error,
 )
 from numerics import initial_condition
-from numerics.lattice._integrators import get_method
+from numerics.lattice import get_method
 
 GOALS = {"dop853 (numpy force)": 100.0, "dop853 (kernel force)": 15.0}
 

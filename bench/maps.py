@@ -55,7 +55,7 @@ def _params(N, T, n_k=4, **kw):
 
 def _simulate_cells(params, i, js):
     """The simulation part of ``simulate_block`` alone (its prediction is timed apart)."""
-    from numerics.maps._cells import simulate_cell
+    from numerics.maps import simulate_cell
 
     mat = Material(params.alpha, params.K_s, params.K_s - params.delta[i])
     method, dt = params.cell_step
@@ -69,7 +69,7 @@ def cell_costs(params, paper_params):
     dt = 0.05, and the prediction ``simulate_block`` adds to each cell."""
     import dataclasses
 
-    from numerics.maps._cells import predict_cell
+    from numerics.maps import predict_cell
 
     for p in (params, paper_params):  # compile (or load) the kernels outside the timing
         _simulate_cells(dataclasses.replace(p, t_end=10.0, k=p.k[:1]), 0, [0])

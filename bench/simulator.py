@@ -26,8 +26,7 @@ import numpy as np
 from common import paper
 from common.files import write_text
 from numerics import Material, integrate, simulate
-from numerics.lattice._baseline import numpy_accel, numpy_rk4
-from numerics.lattice._kernels import accel
+from numerics.lattice import accel, numpy_accel, numpy_rk4
 
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent

@@ -32,7 +32,7 @@ from numerics import (
     integrate,
     simulate,
 )
-from numerics.lattice._integrators import get_method
+from numerics.lattice import get_method
 
 ROOT = Path(__file__).resolve().parents[1]
 BLUE, GREEN = Material.paper("blue"), Material.paper("green")

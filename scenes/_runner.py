@@ -18,7 +18,7 @@ from pathlib import Path
 import h5py
 import numpy as np
 
-from common.files import _umask, atomic_write, write_text
+from common.files import atomic_write, umask, write_text
 from common.output import prepare_output, strict_json
 from numerics import SIMULATOR_VERSION
 from numerics.lattice import cached_simulate, checks
@@ -174,7 +174,7 @@ def run_scene(name: str, out: Path | str = "out", quick: bool = False, seed: int
         _save_figure(sc.plot(data), tmp, quick)
         write_text(tmp / "summary.json",
                    json.dumps(strict_json(summary), indent=2, allow_nan=False) + "\n")
-        os.chmod(tmp, 0o777 & ~_umask())
+        os.chmod(tmp, 0o777 & ~umask())
         _publish(tmp, folder)
     finally:
         shutil.rmtree(tmp, ignore_errors=True)

@@ -69,7 +69,7 @@ def test_interrupt_between_records_keeps_the_record_grid(blue, monkeypatch):
               dt=0.05, save_every=1.0)
     full = simulate(**kw)
     calls = {"n": 0}
-    original = _simulate._Stepper.advance
+    original = _simulate.Stepper.advance
 
     def counting(self, n):
         calls["n"] += 1
@@ -77,10 +77,10 @@ def test_interrupt_between_records_keeps_the_record_grid(blue, monkeypatch):
             os.kill(os.getpid(), signal.SIGINT)
         return original(self, n)
 
-    monkeypatch.setattr(_simulate._Stepper, "advance", counting)
+    monkeypatch.setattr(_simulate.Stepper, "advance", counting)
     with pytest.raises(SimulationInterrupted) as info:
         simulate(**kw)
-    monkeypatch.setattr(_simulate._Stepper, "advance", original)
+    monkeypatch.setattr(_simulate.Stepper, "advance", original)
     exc = info.value
     assert exc.run.t[-1] == pytest.approx(6.0) and exc.time == pytest.approx(6.85)
     whole = resume(exc, **kw)

@@ -201,7 +201,7 @@ def test_a_round_off_field_does_not_set_the_step():
     U ~ 1e-31: its rms(U_dot) / rms(U) read 1e14 and asked for dt = 1e-16 (t_end / dt =
     7.5e18 steps, refused). The step comes from theta there, within the stability limit."""
     from numerics import initial_condition, snap_wavenumber
-    from numerics.lattice._accuracy import dominant_frequency
+    from numerics.lattice import dominant_frequency
     from numerics.maps import cell_step
 
     mat = Material(alpha=0.3468, K_s=0.4775, K_theta=0.001388)

@@ -66,7 +66,7 @@ def test_kernel_equals_the_libm_kernel(coupled, scale, rng, blue):
 def _loops(state, mat, coupled, method, nsteps, dt, expect_done=None):
     """(fused, libm) final (theta, U, accelerations) after nsteps from the same state;
     each loop must report ``expect_done`` steps done (default all)."""
-    from numerics.lattice._integrators import get_method
+    from numerics.lattice import get_method
 
     m = get_method(method)
     res = []

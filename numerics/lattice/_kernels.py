@@ -108,6 +108,14 @@ def _acc(i, im, ip, th, U, s, c, v, coupled, a2, Ks, Kt):
     return at, aU
 
 
+#: the public names of the site formula, for the torus (numerics.theory) that evaluates
+#: the same force on a quasi-periodic state: the fastmath flags, sin/cos/versine of a
+#: rotation, and the acceleration of site i (``_acc``)
+FASTMATH = _FAST
+sincos_vers = _sincosvers
+site_acceleration = _acc
+
+
 @njit(cache=True, fastmath=_FAST, boundscheck=False)
 def _stencil(th, U, coupled, a2, Ks, Kt, s, c, v, ath, aU):
     n = th.size

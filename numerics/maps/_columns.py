@@ -8,7 +8,7 @@ import math
 
 import numpy as np
 
-from ..lattice._analysis import GROWTH_THRESHOLD, grows_beyond_threshold
+from ..lattice import GROWTH_THRESHOLD, grows_beyond_threshold
 from ._cells import PREDICTED_STATUS
 from ._params import MapParameters
 
@@ -157,7 +157,7 @@ def theory_columns(params: MapParameters) -> dict:
     if params.start == "paper":
         # the exact theory of the state the map's runs start in: eq. `IC`'s launched state
         # (its free U waves pump bands of their own in case II), sampling-independent
-        from ._resonance import resonance_map
+        from ..theory import resonance_map
 
         gains["exact"] = resonance_map(K, start="paper", **grid)["peak_gain"]
     else:

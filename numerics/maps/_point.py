@@ -37,10 +37,10 @@ from ..theory import (
     nls_coefficients,
     nls_undefined,
     predict_growth,
+    resonance_map,
     theory_gain,
 )
 from ._cells import cell_step, growth_of, seed_majority
-from ._resonance import resonance_map
 
 #: sideband offsets Q = |q - k| searched for the theories' bands (lattice units): the
 #: whole zone, as the map searches it (sidebands k + Q beyond pi fold back, k - Q below 0

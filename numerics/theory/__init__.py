@@ -6,6 +6,8 @@ Imports ``numerics.lattice`` (the model, the integrators for the torus, the chec
 Exact states    plane_wave -> PlaneWave (harmonic balance), launched_state ->
                 LaunchedState, FreeWave (what eq. `IC` launches: travelling wave + free
                 waves, measured as a torus)
+Exact maps      resonance_map (MI bands over (k, delta) from their resonance conditions,
+                sampling-independent; the engine: _resonance, _pencil, _reduced)
 Stability       mi_gain (Hill's method about the state a start launches),
                 gain_spectrum -> GainSpectrum (per offset: rate, growing field and
                 wavenumber), hill_spectrum, stability_map (batched over (k, delta))
@@ -52,6 +54,7 @@ from ._records import (
                        THEORY_RECORDS,
                        Theory,
 )
+from ._resonance import resonance_map
 from ._response import GrowthPrediction, predict_growth
 from ._soliton import (
                        KINDS,
@@ -70,7 +73,7 @@ __all__ = [
     "gain_spectrum", "GainSpectrum", "hill_spectrum", "stability_map", "THEORIES",
     "PAPER_START", "theory_gain", "nls_summary", "nls_undefined", "measure_gain", "measurement_length",
     "relative_errors", "predict_growth", "GrowthPrediction", "NoPlaneWaveError",
-    "KINDS", "MIN_WIDTH", "MAX_AMPLITUDE", "nls_coefficients",
+    "KINDS", "MIN_WIDTH", "MAX_AMPLITUDE", "nls_coefficients", "resonance_map",
     "Theory", "THEORY_RECORDS", "NLS_THEORIES", "MAP_COLUMNS", "PAPER_NLS", "SEMIDISCRETE_NLS",
     "EXACT_LATTICE", "EXACT_PAPER_START", "EXACT_ALL_MODES", "PREDICTED",
     "SOLITON_THEORIES", "Snapshot", "Soliton", "SolitonRun", "SolitonWarning", "default_ring",

@@ -18,9 +18,7 @@ import numpy as np
 
 from common.paper import EPS
 
-from ..lattice import _analysis as an
-from ..lattice import checks
-from ..lattice._model import Material, check_case
+from ..lattice import Material, check_case, checks, growth_rates, linear_stage
 from ._hill import mi_gain
 from ._plane_wave import MAX_AMPLITUDE
 from ._records import EXACT_LATTICE, EXACT_PAPER_START, NLS_THEORIES, PAPER_NLS, SEMIDISCRETE_NLS
@@ -185,10 +183,10 @@ def measure_gain(simulate, seeds, **params) -> dict | None:
     rates, windows, run = [], [], None
     for seed in seeds:
         run = simulate(**dict(params, seed=seed, store="spectrum"))
-        win = an.linear_stage(run.theta_hat, run.m, run.N)
+        win = linear_stage(run.theta_hat, run.m, run.N)
         if win is None:
             continue
-        rates.append(an.growth_rates(run.t, run.theta_hat, win))
+        rates.append(growth_rates(run.t, run.theta_hat, win))
         windows.append((float(run.t[win[0]]), float(run.t[win[1]])))
     if not rates:
         return None

@@ -26,8 +26,7 @@ import numpy as np
 from common.threads import one_blas_thread
 from generated import lattice_model as model
 
-from ..lattice import checks
-from ..lattice._model import Material, check_case
+from ..lattice import Material, check_case, checks
 from ._launched import STARTS, launched_state
 from ._plane_wave import (
     HARMONICS,

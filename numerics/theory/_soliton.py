@@ -25,8 +25,7 @@ from dataclasses import dataclass, field
 
 from generated import soliton as closed
 
-from ..lattice import checks
-from ..lattice._model import Material, check_case
+from ..lattice import Material, check_case, checks
 from ._gain import nls_undefined
 from ._records import PAPER_NLS, SEMIDISCRETE_NLS
 

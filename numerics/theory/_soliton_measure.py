@@ -10,7 +10,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..lattice._model import LatticeState
+from ..lattice import LatticeState
 from ._soliton import Soliton
 
 
