@@ -19,13 +19,13 @@ from pathlib import Path
 import matplotlib
 
 matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter  # noqa: E402
+import matplotlib.pyplot as plt
+import numpy as np
+from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
 
-from bench.simulator import arguments, machine, output_dir, write_sections  # noqa: E402
-from common import paper  # noqa: E402
-from numerics import Material, energy, initial_condition, integrate  # noqa: E402
+from bench.simulator import arguments, machine, output_dir, write_sections
+from common import paper
+from numerics import Material, energy, initial_condition, integrate
 from numerics.lattice import Stepper, get_method, numpy_rk4
 
 ROOT = Path(__file__).resolve().parents[1]

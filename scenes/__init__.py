@@ -1,7 +1,7 @@
 """Scenes: every figure of the paper (and checks beyond it), and the report.
 
 The fourth layer of the pipeline (paper eq. -> derivation -> generated -> numerics ->
-scenes -> report). One module per figure; each defines ``compute(ctx) -> (data,
+scenes -> report); the command line (``cli``) sits above it, and nothing here imports it. One module per figure; each defines ``compute(ctx) -> (data,
 summary)`` and ``plot(data) -> Figure`` and registers a :class:`Scene`, so a figure can
 be redrawn from its ``data.h5`` without simulating (``flexmm scene NAME --replot``).
 

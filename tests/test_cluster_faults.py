@@ -83,7 +83,7 @@ def _done(out):
     try:
         with xr.open_zarr(out / "map.zarr", consolidated=False) as ds:
             return int(ds["done"].values.sum()), int(ds["done"].size)
-    except Exception:  # noqa: BLE001 - not there yet, or a chunk half written
+    except Exception:  # not there yet, or a chunk half written
         return 0, -1
 
 

@@ -17,13 +17,13 @@ import pytest
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "bench"))
 
-import faults  # noqa: E402
+import faults
 
-import scenes  # noqa: E402
-from cli.app import main as cli  # noqa: E402
-from common import paper  # noqa: E402
-from numerics import BlowUpError, SimulationInterrupted, resume, simulate  # noqa: E402
-from numerics.lattice import _cache  # noqa: E402
+import scenes
+from cli.app import main as cli
+from common import paper
+from numerics import BlowUpError, SimulationInterrupted, resume, simulate
+from numerics.lattice import _cache
 
 
 @pytest.mark.parametrize("name, action, expected", faults.CATALOGUE,

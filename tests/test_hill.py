@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from common import paper  # noqa: E402
+from common import paper
 from numerics import LatticeState, Material, integrate, mi_gain, plane_wave, simulate
 from numerics.lattice import _analysis as an
 from numerics.lattice import discrete_omega_longitudinal, discrete_omega_rotation

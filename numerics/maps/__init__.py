@@ -14,7 +14,8 @@ Maps by sim.     MapParameters (what defines a map), parse_spec (``v1,v2`` or
                  ``start:stop:num``), run_map (cells as tasks on a Dask cluster, results in
                  a resumable Zarr store), theory_columns, agreement (AGREEMENT_MARGIN)
 Their parts      cell_records, predict_cell, GROWTH_TOL, GROWTH_ERROR_CONSTANTS (a cell's
-                 step accuracy), tri_state (gains -> verdicts), store_lock (one writer)
+                 step accuracy), tri_state (gains -> verdicts), store_lock (one writer),
+                 cells_done (what a store holds)
 """
 
 from ..theory import resonance_map  # the exact-map engine lives with the theory
@@ -46,7 +47,7 @@ from ._point import (
                      snap_carrier,
                      theory_curves,
 )
-from ._store import MapCellError, open_or_create, run_map
+from ._store import MapCellError, cells_done, open_or_create, run_map
 
 __all__ = [
     "resonance_map", "simulate_cell", "cell_step", "growth_of", "measured_peak_gain",
@@ -57,5 +58,5 @@ __all__ = [
     "seed_majority", "PointResult", "measure_point", "point_step", "theory_curves",
     "offset_curve", "fold", "snap_carrier", "MAX_SEEDS", "MAX_T_END",
     "cell_records", "predict_cell", "GROWTH_TOL", "GROWTH_ERROR_CONSTANTS", "tri_state",
-    "store_lock",
+    "store_lock", "cells_done",
 ]

@@ -34,7 +34,7 @@ STORE_FORMAT = 2
 
 def _simulated_columns(shape) -> dict:
     """The simulated variables and ``done`` of cells not simulated yet."""
-    fl = lambda: np.full(shape, np.nan)  # noqa: E731
+    fl = lambda: np.full(shape, np.nan)
     return {
         "verdict_simulated": (np.full(shape, UNDETERMINED, np.int8),
                               {"long_name": f"simulation: grows more than {GROWTH_THRESHOLD:g}x "

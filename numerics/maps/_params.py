@@ -19,6 +19,7 @@ from ..lattice import (
     non_carrier_bins,
     paper_start_undefined,
 )
+from ..theory import MAX_AMPLITUDE
 from ._cells import GROWTH_ERROR_CONSTANTS, GROWTH_TOL, RECORDS
 
 #: k values per task (one delta row is split into blocks of this many cells)
@@ -127,7 +128,7 @@ class MapParameters:
         checks.choice("start", self.start, ("paper", "travelling"))
         checks.positive("alpha", self.alpha)
         checks.positive("K_s", self.K_s)
-        checks.real("amplitude", self.amplitude, 0.0, 1.5)
+        checks.real("amplitude", self.amplitude, 0.0, MAX_AMPLITUDE)
         checks.positive("eps", self.eps)
         checks.integer("N", self.N, 3, 10**6)
         checks.positive("t_end", self.t_end)

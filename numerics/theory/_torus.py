@@ -258,7 +258,7 @@ def _peak(t, c, guess, window, span):
             return float(nu)
     from scipy.optimize import minimize_scalar
 
-    neg = lambda x: -abs(np.exp(1j * x * t) @ wc)  # noqa: E731
+    neg = lambda x: -abs(np.exp(1j * x * t) @ wc)
     res = minimize_scalar(neg, bounds=(lo, hi), method="bounded",
                           options={"xatol": PEAK_TOL * span})
     return float(res.x) if -res.fun >= -neg(best) else best
