@@ -3,6 +3,7 @@
 #   setup                    venv + `pip install -e '.[dev]'` (again when pyproject.toml changes)
 #   derive                   always re-derive generated/ and update its source stamp
 #   run, figures             re-derive first only when the derivation's sources changed
+#   lint                     ruff check . (ruff.toml: pyflakes, import order, pyupgrade, bugbear)
 #   test / test-all          fast tests / every test, slow ones included
 #   bench, bench-quick       results + PNGs into out/bench/ (gitignored): the git tree stays clean
 #   bench-update             the same as bench, rewriting the committed bench/results.json + PNGs
@@ -30,7 +31,7 @@ STALE := $(shell { $(SOURCES); } | cmp -s - $(SOURCES_STAMP) || echo sources-cha
 # Bench output: out/bench/ unless BENCH_ARGS=--update (or --out DIR); see bench/README.md.
 BENCH_ARGS ?=
 
-.PHONY: setup derive generated test test-all run figures bench bench-quick bench-update \
+.PHONY: setup derive generated lint test test-all run figures bench bench-quick bench-update \
 	stress stress-quick stress-update clean
 
 setup: $(STAMP)
@@ -52,6 +53,9 @@ generated: derive
 else
 generated: ;
 endif
+
+lint: $(STAMP)
+	$(VENV)/bin/ruff check .
 
 test: $(STAMP)
 	$(VPY) -m pytest -q

@@ -5,8 +5,14 @@ from __future__ import annotations
 import numpy as np
 
 from common import paper
-from numerics import Material, initial_condition, integrate, simulate, stability_map, \
-    stability_verdict
+from numerics import (
+    Material,
+    initial_condition,
+    integrate,
+    simulate,
+    stability_map,
+    stability_verdict,
+)
 
 E = "error"
 BLUE = Material.paper("blue")

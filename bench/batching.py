@@ -17,8 +17,7 @@ import numpy as np
 from bench.speed import interleaved
 from common import paper
 from numerics import Material, initial_condition
-from numerics.lattice._integrate import _Stepper
-from numerics.lattice._integrators import get_method
+from numerics.lattice import Stepper, get_method
 
 
 def main(N=500, B=4, T=200.0, dt=0.96, rounds=7):
@@ -30,7 +29,7 @@ def main(N=500, B=4, T=200.0, dt=0.96, rounds=7):
               for n in (N, B * N)}
 
     def run(n):
-        return lambda: _Stepper(states[n], mat, "coupled", m, dt).advance(nsteps)
+        return lambda: Stepper(states[n], mat, "coupled", m, dt).advance(nsteps)
 
     configs = {f"{B} chains of {N} in turn": lambda: [run(N)() for _ in range(B)],
                f"one chain of {B * N}": run(B * N)}
@@ -39,7 +38,7 @@ def main(N=500, B=4, T=200.0, dt=0.96, rounds=7):
     med = interleaved(configs, rounds)
     per_site = {k: t / (B * N * nsteps * m.evaluations) * 1e9 for k, t in med.items()}
     a, b = per_site.values()
-    print(f"srkn11b, case II, ns per site per force evaluation: " + ", ".join(
+    print("srkn11b, case II, ns per site per force evaluation: " + ", ".join(
         f"{k} {v:.2f}" for k, v in per_site.items()) + f"; one call would save at most "
         f"{100 * (1 - b / a):.0f}% of the stepping")
     return {"ns_per_site_per_evaluation": per_site, "largest_saving": 1 - b / a}

@@ -14,7 +14,7 @@ import numpy as np
 
 from common import paper
 from numerics import Material, get_method, initial_condition, integrate
-from numerics.lattice._accuracy import ERROR_CONSTANTS, dominant_frequency
+from numerics.lattice import ERROR_CONSTANTS, dominant_frequency
 
 POINTS = {"blue II": (Material.paper("blue"), "coupled", paper.k("blue"), 1.0, True),
           "green I": (Material.paper("green"), "rotation", paper.k("green"), 1.0, True),

@@ -28,9 +28,8 @@ import numpy as np
 
 from common import paper
 from numerics import Material, get_method, initial_condition
-from numerics.lattice._accuracy import dominant_frequency
-from numerics.maps._cells import (GROWTH_ERROR_CONSTANTS, GROWTH_TOL, cell_records,
-                                  growth_of)
+from numerics.lattice import dominant_frequency
+from numerics.maps import GROWTH_ERROR_CONSTANTS, GROWTH_TOL, cell_records, growth_of
 
 #: the tight reference: srkn11b at this step (its own growth error ~1e-9: the constants
 #: below at dt = 0.1)
@@ -93,7 +92,7 @@ def _check_cell(cell):
     t_cell = time.perf_counter() - t0
     n = min(len(ref["t"]), len(rec["t"]))
     g_ref, g = _curve(ref, len(ref["t"]), t_end), _curve(rec, len(rec["t"]), t_end)
-    from numerics.lattice._analysis import GROWTH_THRESHOLD
+    from numerics.lattice import GROWTH_THRESHOLD
     return {"case": case, "delta": delta, "k": k,
             "verdict_reference": bool(g_ref.max() > GROWTH_THRESHOLD),
             "verdict": bool(g.max() > GROWTH_THRESHOLD),

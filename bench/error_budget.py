@@ -27,10 +27,20 @@ import json
 import numpy as np
 
 from bench.simulator import arguments, machine, results_path, write_section
-from bench.speed import (CASE, MAT, SWEEPS, TARGET, K, N, _interpolate, fixed_run,
-                         scipy_run, state_error)
+from bench.speed import (
+    CASE,
+    MAT,
+    SWEEPS,
+    TARGET,
+    K,
+    N,
+    _interpolate,
+    fixed_run,
+    scipy_run,
+    state_error,
+)
 from numerics import initial_condition
-from numerics.lattice._integrators import get_method
+from numerics.lattice import get_method
 
 GOALS = {"dop853 (numpy force)": 100.0, "dop853 (kernel force)": 15.0}
 

@@ -95,7 +95,7 @@ CATALOGUE = [
 ]
 
 
-from bench.faults_maps import C, MAP_CATALOGUE  # noqa: E402 - the second half
+from bench.faults_maps import MAP_CATALOGUE, C  # the second half
 
 CATALOGUE += MAP_CATALOGUE
 
@@ -109,7 +109,7 @@ def run_one(action, expected):
     if expected[0] == C:
         try:
             code, err = action()
-        except BaseException as exc:  # noqa: BLE001 - a CLI must not raise
+        except BaseException as exc:  # a CLI must not raise
             return "problem", f"raised {type(exc).__name__}: {exc}"
         lines = err.strip().splitlines()
         if code == expected[1] and len(lines) == 1 and re.search(expected[2], lines[0]) \
@@ -118,7 +118,7 @@ def run_one(action, expected):
         return "problem", f"exit {code}, stderr: {err.strip()[:300]}"
     try:
         result = action()
-    except Exception as exc:  # noqa: BLE001 - classifying is the point
+    except Exception as exc:  # classifying is the point
         if expected[0] == E and isinstance(exc, expected[1]) and \
                 re.search(expected[2], str(exc)):
             return "clear error", f"{type(exc).__name__}: {exc}"

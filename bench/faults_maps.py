@@ -21,7 +21,7 @@ def _cli(*argv):
     import contextlib
     import io
 
-    from scenes.cli import main
+    from cli.app import main
 
     err, out = io.StringIO(), io.StringIO()
     with contextlib.redirect_stderr(err), contextlib.redirect_stdout(out):
@@ -62,7 +62,7 @@ def _launched_from_noise():
 
 
 def _tri_state():
-    from numerics.maps._store import tri_state
+    from numerics.maps import tri_state
 
     return tri_state(np.array([np.nan, 0.0, 1.0, 1e-5]), 5000.0)
 
@@ -127,7 +127,7 @@ def _lock_held():
     import tempfile
     from pathlib import Path
 
-    from numerics.maps._integrity import store_lock
+    from numerics.maps import store_lock
 
     d = Path(tempfile.mkdtemp())
     try:
@@ -145,7 +145,7 @@ def _stale_lock():
     import tempfile
     from pathlib import Path
 
-    from numerics.maps._integrity import store_lock
+    from numerics.maps import store_lock
 
     d = Path(tempfile.mkdtemp())
     try:

@@ -55,7 +55,7 @@ def _params(N, T, n_k=4, **kw):
 
 def _simulate_cells(params, i, js):
     """The simulation part of ``simulate_block`` alone (its prediction is timed apart)."""
-    from numerics.maps._cells import simulate_cell
+    from numerics.maps import simulate_cell
 
     mat = Material(params.alpha, params.K_s, params.K_s - params.delta[i])
     method, dt = params.cell_step
@@ -69,7 +69,7 @@ def cell_costs(params, paper_params):
     dt = 0.05, and the prediction ``simulate_block`` adds to each cell."""
     import dataclasses
 
-    from numerics.maps._cells import predict_cell
+    from numerics.maps import predict_cell
 
     for p in (params, paper_params):  # compile (or load) the kernels outside the timing
         _simulate_cells(dataclasses.replace(p, t_end=10.0, k=p.k[:1]), 0, [0])
@@ -146,7 +146,7 @@ def map_64(N, T):
                                 delta=tuple(np.linspace(-0.012, 0.012, 64)),
                                 k=tuple(2 * np.pi * m / N), amplitude=paper.AMPLITUDE,
                                 N=N, t_end=T)
-    params.cell_step  # noqa: B018 - chosen once, in the client (as run_map does)
+    params.cell_step  # chosen once, in the client (as run_map does)
     todo = maps._store.blocks(params, np.zeros((len(params.delta), len(params.k)), bool))
     with LocalCluster(n_workers=maps.local_cores(), threads_per_worker=1,
                       dashboard_address=":0", silence_logs=40) as cluster, \

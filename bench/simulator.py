@@ -24,11 +24,9 @@ from pathlib import Path
 import numpy as np
 
 from common import paper
-from numerics import Material
 from common.files import write_text
-from numerics import integrate, simulate
-from numerics.lattice._baseline import numpy_accel, numpy_rk4
-from numerics.lattice._kernels import accel
+from numerics import Material, integrate, simulate
+from numerics.lattice import accel, numpy_accel, numpy_rk4
 
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent

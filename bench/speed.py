@@ -32,10 +32,8 @@ import numpy as np
 from bench.simulator import arguments, machine, write_section
 from common import paper
 from numerics import Material, initial_condition
+from numerics.lattice import Stepper, get_method, numpy_accel
 from numerics.lattice import _kernels as kernels
-from numerics.lattice._baseline import numpy_accel
-from numerics.lattice._integrate import _Stepper
-from numerics.lattice._integrators import get_method
 
 MAT, CASE, K = Material.paper("blue"), "coupled", paper.k("blue")
 N = paper.N
@@ -95,7 +93,7 @@ def force_costs(quick):
         nsteps = int(round(T / 0.05))
 
         def run(m=m, nsteps=nsteps):
-            _Stepper(state, MAT, CASE, m, 0.05).advance(nsteps)
+            Stepper(state, MAT, CASE, m, 0.05).advance(nsteps)
         loops[name] = run
         run()
     med = interleaved(loops, 3 if quick else 5)
@@ -116,7 +114,7 @@ def state_error(th, U, ref):
 
 def fixed_run(name, dt, state, T, case=CASE):
     nsteps = int(np.ceil(T / dt - 1e-9))
-    st = _Stepper(state, MAT, case, get_method(name), T / nsteps)
+    st = Stepper(state, MAT, case, get_method(name), T / nsteps)
     st.advance(nsteps)
     return st
 
@@ -126,7 +124,7 @@ def scipy_run(state, T, rtol, force):
     from scipy.integrate import solve_ivp
 
     if force == "kernel":
-        st = _Stepper(state, MAT, CASE, get_method("dop853"), T, rtol, rtol * 1e-3)
+        st = Stepper(state, MAT, CASE, get_method("dop853"), T, rtol, rtol * 1e-3)
         st.advance(1)
         return st.th, st.U, st.evaluations
     n = state.N
@@ -199,7 +197,7 @@ def paper_run(quick):
     nsteps = int(round(T / paper.DT))
 
     def libm_rk4():
-        st = _Stepper(state, MAT, CASE, get_method("rk4"), paper.DT)
+        st = Stepper(state, MAT, CASE, get_method("rk4"), paper.DT)
         st._libm(nsteps)
 
     configs = {"rk4 dt = 0.05, libm loops (before)": libm_rk4,

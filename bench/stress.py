@@ -23,9 +23,16 @@ import numpy as np
 from bench.simulator import arguments, output_dir
 from common import paper
 from common.files import write_text
-from numerics import (AccuracyWarning, BlowUpError, LatticeState, Material, energy,
-                      integrate, simulate)
-from numerics.lattice._integrators import get_method
+from numerics import (
+    AccuracyWarning,
+    BlowUpError,
+    LatticeState,
+    Material,
+    energy,
+    integrate,
+    simulate,
+)
+from numerics.lattice import get_method
 
 ROOT = Path(__file__).resolve().parents[1]
 BLUE, GREEN = Material.paper("blue"), Material.paper("green")
@@ -49,7 +56,7 @@ def is_stable(method, dt, material, case, N=16, t_end=3000.0):
     "energy conserved" is the test; just above the limit the growth per step is
     ~(omega dt - limit), so a long run resolves the limit to ~1e-3.)"""
     st = random_state(N, case)
-    size = lambda s: max(np.max(np.abs(s.theta)), 0 if s.U is None  # noqa: E731
+    size = lambda s: max(np.max(np.abs(s.theta)), 0 if s.U is None
                          else np.max(np.abs(s.U)))
     try:
         with warnings.catch_warnings():  # near the limit a run is inaccurate by design

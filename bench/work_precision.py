@@ -19,17 +19,14 @@ from pathlib import Path
 import matplotlib
 
 matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter  # noqa: E402
-import numpy as np  # noqa: E402
+import matplotlib.pyplot as plt
+import numpy as np
+from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
 
-from common import paper  # noqa: E402
-from numerics import Material
-from numerics import energy, initial_condition, integrate  # noqa: E402
-from numerics.lattice._baseline import numpy_rk4  # noqa: E402
-from numerics.lattice._integrators import get_method  # noqa: E402
-from numerics.lattice._integrate import _Stepper  # noqa: E402
-from bench.simulator import arguments, machine, output_dir, write_sections  # noqa: E402
+from bench.simulator import arguments, machine, output_dir, write_sections
+from common import paper
+from numerics import Material, energy, initial_condition, integrate
+from numerics.lattice import Stepper, get_method, numpy_rk4
 
 ROOT = Path(__file__).resolve().parents[1]
 CASES = {"blue-II": (Material.paper("blue"), "coupled", paper.k("blue")),
@@ -51,10 +48,10 @@ def run_method(name, param, state, mat, case, t_end):
     m = get_method(name)
     if m.fixed_step:
         nsteps = int(np.ceil(t_end / param))
-        st = _Stepper(state, mat, case, m, t_end / nsteps, 1e-10, 1e-12)
+        st = Stepper(state, mat, case, m, t_end / nsteps, 1e-10, 1e-12)
     else:
         nsteps = 1
-        st = _Stepper(state, mat, case, m, t_end, param, param * 1e-3)
+        st = Stepper(state, mat, case, m, t_end, param, param * 1e-3)
     t0 = time.perf_counter()
     st.advance(nsteps)
     wall = time.perf_counter() - t0

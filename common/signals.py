@@ -27,7 +27,7 @@ class Interrupted(KeyboardInterrupt):
 _received: list = []
 
 
-def raise_interrupted(signum, frame):  # noqa: ARG001 - a signal handler
+def raise_interrupted(signum, frame):  # a signal handler
     _received.append(int(signum))
     raise Interrupted(signum)
 

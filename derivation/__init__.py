@@ -22,8 +22,9 @@ needs them (PEP 562), so ``from derivation import ERRATA`` costs nothing.
 from importlib import import_module
 
 from common import paper
-from .errata import ERRATA
 from common.files import atomic_write
+
+from .errata import ERRATA
 
 _LAZY = {
     "derive": ("._pipeline", "derive"),

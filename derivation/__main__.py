@@ -29,9 +29,10 @@ Each tends to the paper's form as k -> 0 (the mean-flow part of g2_coupled excep
 
 def write_outputs(out_dir: Path) -> list[Path]:
     """Derive and write every generated file atomically into ``out_dir``; returns paths."""
+    from common.files import write_text
+
     from . import _codegen, _lattice_model, _report, _soliton
     from ._pipeline import ClosedForm, derive
-    from common.files import write_text
 
     d = derive()
     files = {

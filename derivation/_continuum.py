@@ -70,8 +70,8 @@ def derive_continuum(order_h: int = 3) -> ContinuumLimit:
     """
     h, eta, eta_U = sp.symbols("h eta eta_U", positive=True)
     # Derivatives of the fields as plain symbols: d[j] = d^j/dX^j.
-    th_d = sp.symbols("th0:%d" % (order_h + 1))
-    U_d = sp.symbols("U0:%d" % (order_h + 1))
+    th_d = sp.symbols(f"th0:{order_h + 1}")
+    U_d = sp.symbols(f"U0:{order_h + 1}")
 
     def shifted(d, s):
         return sum((s * h) ** j / sp.factorial(j) * d[j] for j in range(order_h + 1))

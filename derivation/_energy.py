@@ -73,7 +73,7 @@ class Symbols:
     params: tuple
 
     @classmethod
-    def of(cls, lat: Lattice) -> "Symbols":
+    def of(cls, lat: Lattice) -> Symbols:
         f = lat.fields
         return cls(prev=tuple(sp.Symbol(f"{x}_prev", real=True) for x in f),
                    here=tuple(sp.Symbol(x, real=True) for x in f),
@@ -264,7 +264,7 @@ def model_module_text(lat: Lattice, e: Energies | None = None, command: str = ""
     return "\n".join(head)
 
 
-def compile_model(lat: Lattice, path, command: str = "") -> "Path":
+def compile_model(lat: Lattice, path, command: str = ""):
     """Derive ``lat`` and write its generated module to ``path`` (atomically)."""
     from pathlib import Path
 
@@ -279,9 +279,9 @@ def write_builtin_models(out_dir) -> list:
     """generated/models/: one module per built-in model (``make derive``)."""
     from pathlib import Path
 
+    from common.files import write_text
     from energy import BUILTIN, builtin
     from energy._model import module_name
-    from common.files import write_text
 
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)

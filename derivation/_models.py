@@ -16,7 +16,7 @@ from __future__ import annotations
 import sympy as sp
 
 from ._continuum import K_s, K_theta, alpha, k, lattice_accelerations
-from ._scales import E, PHASE, SLOW, X1, X2, d_T, d_X, eps, harmonics, w
+from ._scales import PHASE, SLOW, X1, X2, E, d_T, d_X, eps, harmonics, w
 
 
 class ContinuumModel:

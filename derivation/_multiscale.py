@@ -16,8 +16,24 @@ from functools import lru_cache
 import sympy as sp
 
 from ._models import ContinuumModel, LatticeModel
-from ._scales import (E, FAST_SLOW, ORDERS, PHASE, SLOW, T1, X1, by_order, eps, harmonics,
-                      tau1, tau2, v_g, w, xi1, xi2)
+from ._scales import (
+    FAST_SLOW,
+    ORDERS,
+    PHASE,
+    SLOW,
+    T1,
+    X1,
+    E,
+    by_order,
+    eps,
+    harmonics,
+    tau1,
+    tau2,
+    v_g,
+    w,
+    xi1,
+    xi2,
+)
 
 CASES = ("rotation", "coupled")
 MODELS = ("continuum", "lattice")

@@ -28,7 +28,7 @@ from __future__ import annotations
 
 import sympy as sp
 
-from ._continuum import K_s, K_theta, alpha, derive_continuum, fields, k, X, T
+from ._continuum import K_s, K_theta, X, alpha, derive_continuum, fields, k
 
 xi, t = sp.symbols("xi t", real=True)
 amplitude = sp.Symbol("amplitude", positive=True)  # peak rotation 2|E| (rad)

@@ -140,7 +140,7 @@ class Model:
                              f"at {self.describe()} (masses {m.tolist()})")
         return m
 
-    def with_params(self, **params) -> "Model":
+    def with_params(self, **params) -> Model:
         """The same model at other parameter values."""
         checked = self.lattice.values(params)
         vals = dict(self.params)

@@ -143,7 +143,7 @@ class Lattice:
         text = json.dumps(self.canonical(), sort_keys=True)
         return hashlib.sha256(text.encode()).hexdigest()
 
-    def with_energy(self, **changes) -> "Lattice":
+    def with_energy(self, **changes) -> Lattice:
         """A copy with some of name, fields, parameters, kinetic, bond, site replaced."""
         kw = {k: getattr(self, k) for k in ("name", "fields", "parameters", "kinetic", "bond",
                                            "site", "description", "branch", "references",

@@ -27,7 +27,7 @@ MapParameters, run_map              simulated MI maps (Dask + Zarr)
 
 from importlib import import_module as _import_module
 
-from . import lattice, theory, maps  # noqa: I001 - theory registers its start with lattice
+from . import lattice, theory, maps
 from .lattice import (GROWTH_THRESHOLD, METHODS, STARTS, AccuracyWarning, BlowUpError,
                       LatticeState, Material, Run, SimulationInterrupted, energy, get_method,
                       initial_condition, integrate, resume, simulate, snap_wavenumber)

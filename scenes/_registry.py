@@ -8,8 +8,8 @@ the report calls "FAIL" only what nobody expected.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Callable
 
 #: expectation of a check: theory and numerics agree
 AGREE = "agree"

@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import hashlib
 import json
-import math
 import os
 import shutil
 import tempfile
@@ -19,10 +18,10 @@ from pathlib import Path
 import h5py
 import numpy as np
 
-from common.files import _umask, atomic_write, write_text
-from numerics.lattice import checks
+from common.files import atomic_write, umask, write_text
+from common.output import prepare_output, strict_json
 from numerics import SIMULATOR_VERSION
-from numerics.lattice import cached_simulate
+from numerics.lattice import cached_simulate, checks
 
 from ._plotting import plt
 from ._registry import REGISTRY, get_scene
@@ -129,21 +128,6 @@ def _jsonable(x):
     raise TypeError(type(x))
 
 
-def _strict(x):
-    """JSON-safe copy: NaN and inf become null (strict parsers reject bare NaN)."""
-    if isinstance(x, dict):
-        return {str(k): _strict(v) for k, v in x.items()}
-    if isinstance(x, (list, tuple)):
-        return [_strict(v) for v in x]
-    if isinstance(x, np.ndarray):
-        return _strict(x.tolist())
-    if isinstance(x, (np.floating, np.integer, np.bool_)):
-        x = x.item()
-    if isinstance(x, float) and not math.isfinite(x):
-        return None
-    return x
-
-
 def _save_figure(fig, folder: Path, quick: bool):
     if quick:
         fig.text(0.99, 0.005, "QUICK MODE (reduced N / t_end / grid)", ha="right",
@@ -152,46 +136,6 @@ def _save_figure(fig, folder: Path, quick: bool):
         with atomic_write(folder / f"figure.{ext}", mode=None) as tmp:
             fig.savefig(tmp, format=ext, **kw)
     plt.close(fig)
-
-
-def check_output(out: Path | str, cache: bool = True) -> Path:
-    """OUT as a Path, after the checks that write nothing (a file where a folder must be):
-    for commands that announce their work before ``prepare_output`` creates the folder."""
-    out = Path(out) if str(out) else Path(".")
-    for folder in (out, out / ".cache") if cache else (out,):
-        if folder.exists() and not folder.is_dir():
-            raise ValueError(f"{folder} is a file, not a folder")
-    # the folder, or the nearest existing one it would be created in, must take new entries
-    # (read-only file system, no permission, /proc): tried with an empty folder made and
-    # removed at once, so nothing is left and the error comes before the work is announced
-    base = out.absolute()
-    while not base.exists() and base != base.parent:
-        base = base.parent
-    if not base.is_dir():
-        raise ValueError(f"cannot create {out}: {base} is a file, not a folder")
-    try:
-        os.rmdir(tempfile.mkdtemp(prefix=".write-test-", dir=base))
-    except OSError as exc:
-        raise ValueError(f"cannot write to {out}: {exc.strerror or exc} ({base})") from None
-    return out
-
-
-def prepare_output(out: Path | str, cache: bool = True) -> Path:
-    """Create OUT and (``cache``) OUT/.cache and prove them writable, before any computation.
-
-    Raises ValueError naming the path and the cause (a file where a folder must be, a
-    read-only or full file system, ...), so the CLI answers in one line.
-    """
-    out = check_output(out, cache)
-    for folder in (out, out / ".cache") if cache else (out,):
-        try:
-            folder.mkdir(parents=True, exist_ok=True)
-            probe = folder / f".write-test-{os.getpid()}"
-            write_text(probe, "ok")
-            probe.unlink()
-        except OSError as exc:
-            raise ValueError(f"cannot write to {folder}: {exc.strerror or exc}") from None
-    return out
 
 
 def _publish(tmp: Path, folder: Path):
@@ -229,8 +173,8 @@ def run_scene(name: str, out: Path | str = "out", quick: bool = False, seed: int
         write_data(tmp / "data.h5", data)
         _save_figure(sc.plot(data), tmp, quick)
         write_text(tmp / "summary.json",
-                   json.dumps(_strict(summary), indent=2, allow_nan=False) + "\n")
-        os.chmod(tmp, 0o777 & ~_umask())
+                   json.dumps(strict_json(summary), indent=2, allow_nan=False) + "\n")
+        os.chmod(tmp, 0o777 & ~umask())
         _publish(tmp, folder)
     finally:
         shutil.rmtree(tmp, ignore_errors=True)

@@ -24,9 +24,20 @@ from generated import lattice_coefficients as la
 from numerics.lattice import GROWTH_THRESHOLD
 from numerics.maps import resonance_map
 
-from ._plotting import (DELTA_LABEL, K_LABEL, case_label, case_title, figure, has_undefined,
-                        mark_points, point_handles, reserve_quick_stamp, verdict_colorbar,
-                        verdict_image, verdict_patches)
+from ._plotting import (
+    DELTA_LABEL,
+    K_LABEL,
+    case_label,
+    case_title,
+    figure,
+    has_undefined,
+    mark_points,
+    point_handles,
+    reserve_quick_stamp,
+    verdict_colorbar,
+    verdict_image,
+    verdict_patches,
+)
 from ._registry import Scene, check, register
 
 #: the paper's panels (a-d): (case, alpha)

@@ -21,9 +21,19 @@ import numpy as np
 
 from common import paper
 
-from ._plotting import (DELTA_LABEL, K_LABEL, case_label, case_title, figure, mark_points,
-                        point_handles, reserve_quick_stamp, verdict_colorbar, verdict_image,
-                        verdict_patches)
+from ._plotting import (
+    DELTA_LABEL,
+    K_LABEL,
+    case_label,
+    case_title,
+    figure,
+    mark_points,
+    point_handles,
+    reserve_quick_stamp,
+    verdict_colorbar,
+    verdict_image,
+    verdict_patches,
+)
 from ._registry import Scene, check, known, register
 
 GRID = {False: {"N": 500, "t_end": 5000.0, "n_delta": 8, "n_k": 10},

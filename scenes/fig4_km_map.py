@@ -8,16 +8,21 @@ sideband stays below the third harmonic): checked at the two unstable runs. Unde
 from __future__ import annotations
 
 import numpy as np
-
-from common import paper
-from numerics import Material
-from generated import coefficients as co
-from numerics import nls_summary
-
 from matplotlib.patches import Patch
 
-from ._plotting import (DELTA_LABEL, K_LABEL, case_title, figure, image, mark_points,
-                        reserve_quick_stamp)
+from common import paper
+from generated import coefficients as co
+from numerics import Material, nls_summary
+
+from ._plotting import (
+    DELTA_LABEL,
+    K_LABEL,
+    case_title,
+    figure,
+    image,
+    mark_points,
+    reserve_quick_stamp,
+)
 from ._registry import Scene, check, register
 from .fig3_g_sign import sign_grid
 

@@ -15,8 +15,16 @@ import numpy as np
 from common import paper
 from numerics import nls_summary, spectrum, stability_verdict
 
-from ._plotting import (Q_LABEL, SITE_LABEL, TIME_LABEL, case_label, case_title, figure, image,
-                        reserve_quick_stamp)
+from ._plotting import (
+    Q_LABEL,
+    SITE_LABEL,
+    TIME_LABEL,
+    case_label,
+    case_title,
+    figure,
+    image,
+    reserve_quick_stamp,
+)
 from ._registry import Scene, check, register
 from ._runs import plain_parameters, run_parameters
 

@@ -13,8 +13,8 @@ import numpy as np
 from matplotlib.lines import Line2D
 
 from common import paper
-from numerics import Material
 from generated import coefficients as co
+from numerics import Material
 from numerics.lattice import non_carrier_bins
 from numerics.theory import nls_summary
 

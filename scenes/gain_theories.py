@@ -20,8 +20,15 @@ import numpy as np
 from common import paper
 from numerics import Material
 from numerics.lattice import GROWTH_THRESHOLD, band_summary, grows_beyond_threshold
-from numerics.theory import (PAPER_START, THEORIES, gain_spectrum, measurement_length, mi_gain,
-                             relative_errors, theory_gain)
+from numerics.theory import (
+    PAPER_START,
+    THEORIES,
+    gain_spectrum,
+    measurement_length,
+    mi_gain,
+    relative_errors,
+    theory_gain,
+)
 
 from ._plotting import Q_LABEL, SIGMA_LABEL, figure, reserve_quick_stamp
 from ._registry import Scene, check, register

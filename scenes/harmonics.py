@@ -16,8 +16,14 @@ import numpy as np
 
 from common import paper
 from generated import coefficients as co
-from numerics import (carrier_amplitude, carrier_frequency, discrete_omega_longitudinal,
-                      discrete_omega_rotation, forced_second_harmonic, mode)
+from numerics import (
+    carrier_amplitude,
+    carrier_frequency,
+    discrete_omega_longitudinal,
+    discrete_omega_rotation,
+    forced_second_harmonic,
+    mode,
+)
 
 from ._plotting import TIME_LABEL, case_title, figure, reserve_quick_stamp
 from ._registry import Scene, check, known, register

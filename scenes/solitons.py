@@ -32,8 +32,16 @@ from generated import lattice_coefficients as la
 from numerics import Material
 from numerics.theory import SolitonWarning, simulate_soliton, soliton
 
-from ._plotting import (DELTA_LABEL, K_LABEL, case_title, figure, image, reserve_quick_stamp,
-                        verdict_colorbar, verdict_image)
+from ._plotting import (
+    DELTA_LABEL,
+    K_LABEL,
+    case_title,
+    figure,
+    image,
+    reserve_quick_stamp,
+    verdict_colorbar,
+    verdict_image,
+)
 from ._registry import Scene, check, register
 
 #: the issue's goals (relative): velocity, width/amplitude, kink; radiation (absolute)

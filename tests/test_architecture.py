@@ -1,5 +1,5 @@
 """The layers import one way: derivation -> generated -> numerics (lattice <- theory <- maps)
--> scenes, with the leaf `common` below all of them; and one vocabulary for a start and an
+-> scenes -> cli, with the leaf `common` below all of them; and one vocabulary for a start and an
 amplitude across the public API."""
 
 from __future__ import annotations
@@ -15,7 +15,7 @@ from numerics import Material, initial_condition, simulate
 from numerics.lattice import source_hash
 
 ROOT = Path(__file__).resolve().parents[1]
-PROJECT = ("common", "derivation", "generated", "numerics", "scenes")
+PROJECT = ("cli", "common", "derivation", "generated", "numerics", "scenes")
 
 
 def _unit(path: Path) -> str:
@@ -75,6 +75,8 @@ ALLOWED = {
     "numerics": {"numerics.lattice", "numerics.theory", "numerics.maps"},
     "scenes": {"common", "derivation", "generated", "numerics", "numerics.lattice",
                "numerics.theory", "numerics.maps"},
+    "cli": {"common", "derivation", "generated", "numerics", "numerics.lattice",
+            "numerics.theory", "numerics.maps", "scenes"},
 }
 
 
@@ -103,17 +105,95 @@ def test_no_import_cycles():
         visit(u, [])
 
 
-def test_scenes_use_public_names_only():
-    bad = []
-    for path in (ROOT / "scenes").rglob("*.py"):
-        for node in ast.walk(ast.parse(path.read_text())):
-            if isinstance(node, ast.ImportFrom) and node.module and \
-                    node.module.startswith("numerics"):
-                private = [p for p in node.module.split(".") if p.startswith("_")]
-                private += [a.name for a in node.names if a.name.startswith("_")]
-                if private:
-                    bad.append(f"{path.name}: from {node.module} import {private}")
-    assert not bad, bad
+def test_cli_above_scenes_above_numerics():
+    """cli imports scenes and numerics; scenes imports numerics, never cli; nothing below
+    scenes imports it or cli."""
+    assert "scenes" in GRAPH["cli"] and "numerics" in GRAPH["scenes"]
+    for unit, deps in GRAPH.items():
+        if unit != "cli":
+            assert "cli" not in deps, f"{unit} imports cli"
+        if unit not in ("cli", "scenes"):
+            assert "scenes" not in deps, f"{unit} imports scenes"
+
+
+# --- private names stay in their package ------------------------------------------------------
+
+#: a test that reaches into another package's private module or name, and why (what it
+#: tests is that private piece itself, or a fault it injects there)
+TEST_EXCEPTIONS = {
+    "cli.map._agreement_text": "the map summary's wording, a sentence at a time",
+    "derivation._continuum": "the continuum model's symbolic steps against the paper",
+    "derivation._mi": "the MI band's derivation step",
+    "derivation._pipeline": "the semi-discrete NLS derived afresh (the generated code's source)",
+    "derivation._report": "the derivation report's sections",
+    "derivation._soliton": "the soliton's symbolic solution against the generated one",
+    "numerics.lattice._analysis": "the spectrum bins' helpers, checked bin by bin",
+    "numerics.lattice._cache": "the simulation cache's files, damaged on purpose",
+    "numerics.lattice._integrate": "the stepper table (every method's stepper class)",
+    "numerics.lattice._kernels": "the compiled kernels against the NumPy reference",
+    "numerics.lattice._run": "the record grid of a run",
+    "numerics.lattice._runcontrol": "an interrupt injected into the run loop",
+    "numerics.lattice._simulate": "an interrupt injected into the run loop",
+    "numerics.maps._store": "the map store's format and damage handling",
+    "numerics.theory._gain": "the bounds measurement_length uses, against the --help text",
+    "numerics.theory._hill": "Hill's batched eigenproblems, the pencil's input",
+    "numerics.theory._pencil": "the pencil eigenvalue solver",
+    "numerics.theory._plane_wave": "the batched plane-wave solver the exact map uses",
+    "numerics.theory._quasiperiodic": "the torus gain spectrum of a launched state",
+    "numerics.theory._resonance": "the exact-map engine's reduced determinant",
+    "numerics.theory._response": "the linear response's internals",
+    "numerics.theory._torus": "the torus integrator and its peak finder",
+    "scenes._runner": "the scene runner's files, and a failure injected in a figure",
+}
+#: the bench reaches private code only to time its parts
+BENCH_EXCEPTIONS = {
+    "numerics.lattice._kernels": "bench/speed.py times the kernel's parts one by one "
+                                 "(stencil, the libm variant, the vectorised loops)",
+}
+
+
+def private_imports(folder: str) -> dict:
+    """{private target: [files]} for the imports in ``folder`` that reach another
+    package's private module or name (``numerics.lattice._kernels``, ``cli.map._x``)."""
+    out: dict[str, list] = {}
+    for path in sorted((ROOT / folder).rglob("*.py")):
+        me = _unit(path) if folder in PROJECT else folder
+        for node in ast.walk(ast.parse(path.read_text(), str(path))):
+            if isinstance(node, ast.ImportFrom):
+                if node.level:
+                    base = list(path.relative_to(ROOT).parent.parts)
+                    base = base[:len(base) - (node.level - 1)]
+                    module = ".".join(base + ([node.module] if node.module else []))
+                else:
+                    module = node.module
+                pairs = [(module, a.name) for a in node.names]
+            elif isinstance(node, ast.Import):
+                pairs = [(a.name, None) for a in node.names]
+            else:
+                continue
+            for module, name in pairs:
+                target = _target(module)
+                if target is None or target == me:
+                    continue
+                full = module.split(".") + ([name] if name else [])
+                for i, part in enumerate(full):
+                    if part.startswith("_") and not part.startswith("__"):
+                        out.setdefault(".".join(full[:i + 1]), []).append(path.name)
+                        break
+    return out
+
+
+@pytest.mark.parametrize("folder", PROJECT)
+def test_the_library_imports_no_private_name_across_packages(folder):
+    assert not private_imports(folder), private_imports(folder)
+
+
+@pytest.mark.parametrize("folder,exceptions", [("bench", BENCH_EXCEPTIONS),
+                                               ("tests", TEST_EXCEPTIONS)])
+def test_bench_and_tests_reach_private_names_only_where_listed(folder, exceptions):
+    found = private_imports(folder)
+    assert set(found) <= set(exceptions), sorted(set(found) - set(exceptions))
+    assert set(exceptions) <= set(found), f"no longer needed: {set(exceptions) - set(found)}"
 
 
 def test_facade_is_small_and_every_name_resolves():
@@ -122,7 +202,7 @@ def test_facade_is_small_and_every_name_resolves():
         for name in sub.__all__:
             assert getattr(sub, name) is getattr(numerics, name)
     with pytest.raises(AttributeError, match="no attribute 'nonsense'"):
-        numerics.nonsense  # noqa: B018
+        numerics.nonsense
 
 
 def test_source_hash_covers_new_and_changed_files(tmp_path):
@@ -166,3 +246,48 @@ def test_amplitude_given_two_ways_is_refused():
         simulate(BLUE, "rotation", 64, K, amplitude=0.02, eps=0.01, t_end=1.0)
     with pytest.raises(ValueError, match="start"):
         simulate(BLUE, "rotation", 64, K, start="continuum", t_end=1.0)
+
+
+# --- one theory, one spelling per layer -----------------------------------------------------
+
+def test_each_theory_has_one_spelling_per_layer_from_its_record():
+    """The API's labels, the generated modules, the coefficients table's columns, the
+    soliton command's --theory values, a map store's variables and point.json's theory keys
+    all come from ``numerics.theory.THEORY_RECORDS``."""
+    from cli.app import build_parser
+    from numerics.maps import MapParameters, measure_point, theory_columns
+    from numerics.theory import (
+        MAP_COLUMNS,
+        NLS_THEORIES,
+        PAPER_START,
+        SOLITON_THEORIES,
+        THEORIES,
+        THEORY_RECORDS,
+        nls_coefficients,
+    )
+
+    labels = [t.label for t in THEORY_RECORDS]
+    assert len(set(labels)) == len(labels)
+    assert set(THEORIES) | {PAPER_START} <= set(labels)
+    # the generated modules and the NLS theories' API names
+    for t in NLS_THEORIES:
+        assert t.closed_forms().__name__ == f"generated.{t.module}"
+        assert SOLITON_THEORIES[t.label] is t.closed_forms()
+    assert set(nls_coefficients(BLUE, 0.8)) == {t.column for t in NLS_THEORIES}
+    # the CLI: the soliton command's --theory takes the records' cli names
+    sub = next(a for a in build_parser()._actions if a.dest == "cmd")  # argparse's own tree
+    theory = next(a for a in sub.choices["soliton"]._actions if a.dest == "theory")
+    assert set(theory.choices) == {t.cli for t in NLS_THEORIES}
+    # the store: verdict_<key> and peak_gain_<key> for every map column but the predicted one
+    params = MapParameters(case="coupled", alpha=2.5, K_s=0.01851, delta=(0.003,), k=(0.8,),
+                           amplitude=0.02, N=64, t_end=100.0, seeds=1, start="travelling",
+                           theory_only=True)
+    stored = set(theory_columns(params))
+    for key in MAP_COLUMNS:
+        if key != "predicted":  # filled per cell by predict_cell, not by theory_columns
+            assert {f"verdict_{key}", f"peak_gain_{key}"} <= stored, key
+    assert {n.removeprefix("verdict_") for n in stored if n.startswith("verdict_")} \
+        <= set(MAP_COLUMNS)
+    # point.json: the theories by their labels
+    point = measure_point(BLUE, "coupled", 0.81681, start="travelling", N=64).as_dict()
+    assert list(point["theories"]) == list(THEORIES)

@@ -6,7 +6,8 @@ import shlex
 
 import pytest
 
-from scenes.cli import EPILOG, main as cli
+from cli.app import EPILOG
+from cli.app import main as cli
 
 #: examples too slow for the default suite (a full scene run, a simulation)
 SLOW = ("run", "point")
@@ -65,10 +66,10 @@ def test_point_t_end_help_states_the_bounds_the_default_uses():
     every `--help`): they must be those of ``measurement_length``."""
     import inspect
 
+    from cli.app import build_parser
     from numerics.theory import _gain
-    from scenes.cli import _parser
 
-    sub = next(a for a in _parser()._actions if a.dest == "cmd")
+    sub = next(a for a in build_parser()._actions if a.dest == "cmd")
     help_text = " ".join(next(a for a in sub.choices["point"]._actions
                               if a.dest == "t_end").help.split())
     lo, hi = _gain.T_BOUNDS

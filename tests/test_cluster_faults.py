@@ -66,7 +66,7 @@ def cluster(tmp_path_factory):
 
 
 def _map(address, out, **popen):
-    cmd = [sys.executable, "-m", "scenes.cli", *MAP, "--scheduler", address,
+    cmd = [sys.executable, "-m", "cli", *MAP, "--scheduler", address,
            "--out", str(out)]
     return subprocess.Popen(cmd, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                             text=True, start_new_session=True, **popen)
@@ -83,7 +83,7 @@ def _done(out):
     try:
         with xr.open_zarr(out / "map.zarr", consolidated=False) as ds:
             return int(ds["done"].values.sum()), int(ds["done"].size)
-    except Exception:  # noqa: BLE001 - not there yet, or a chunk half written
+    except Exception:  # not there yet, or a chunk half written
         return 0, -1
 
 

@@ -129,7 +129,7 @@ def test_group_velocity_and_g1_are_derivatives_of_omega(point):
     p = dict(TEST_POINTS[point])
     k0 = p.pop("k")
     h = 1e-4  # central differences: truncation h^2 |w'''| ~ 1e-10, rounding 1e-16/h^2 ~ 1e-8
-    w = lambda x: co.omega(x, **p)  # noqa: E731
+    w = lambda x: co.omega(x, **p)
     vg_fd = (w(k0 + h) - w(k0 - h)) / (2 * h)
     g1_fd = (w(k0 + h) - 2 * w(k0) + w(k0 - h)) / h**2
     assert co.group_velocity(k0, **p) == pytest.approx(vg_fd, rel=1e-7)

@@ -6,7 +6,7 @@ import sympy as sp
 
 from derivation._continuum import K_s, K_theta, alpha, lattice_accelerations
 from numerics import LatticeState, Material, energy
-from numerics.lattice._kernels import accel
+from numerics.lattice import accel
 
 NS = 5  # periodic chain long enough that no site is its own second neighbour
 

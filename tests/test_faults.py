@@ -17,13 +17,13 @@ import pytest
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "bench"))
 
-import faults  # noqa: E402
+import faults
 
-import scenes  # noqa: E402
-from common import paper  # noqa: E402
-from numerics import BlowUpError, SimulationInterrupted, resume, simulate  # noqa: E402
-from numerics.lattice import _cache  # noqa: E402
-from scenes.cli import main as cli  # noqa: E402
+import scenes
+from cli.app import main as cli
+from common import paper
+from numerics import BlowUpError, SimulationInterrupted, resume, simulate
+from numerics.lattice import _cache
 
 
 @pytest.mark.parametrize("name, action, expected", faults.CATALOGUE,
@@ -69,7 +69,7 @@ def test_interrupt_between_records_keeps_the_record_grid(blue, monkeypatch):
               dt=0.05, save_every=1.0)
     full = simulate(**kw)
     calls = {"n": 0}
-    original = _simulate._Stepper.advance
+    original = _simulate.Stepper.advance
 
     def counting(self, n):
         calls["n"] += 1
@@ -77,10 +77,10 @@ def test_interrupt_between_records_keeps_the_record_grid(blue, monkeypatch):
             os.kill(os.getpid(), signal.SIGINT)
         return original(self, n)
 
-    monkeypatch.setattr(_simulate._Stepper, "advance", counting)
+    monkeypatch.setattr(_simulate.Stepper, "advance", counting)
     with pytest.raises(SimulationInterrupted) as info:
         simulate(**kw)
-    monkeypatch.setattr(_simulate._Stepper, "advance", original)
+    monkeypatch.setattr(_simulate.Stepper, "advance", original)
     exc = info.value
     assert exc.run.t[-1] == pytest.approx(6.0) and exc.time == pytest.approx(6.85)
     whole = resume(exc, **kw)
@@ -173,14 +173,14 @@ def test_cli_file_system_errors(setup, match, tmp_path, capsys):
 def test_point_and_soliton_check_their_output_before_simulating(command, tmp_path, capsys,
                                                                 monkeypatch):
     """--out under a file fails at once (no simulation runs first), in one line."""
-    import scenes.point
-    import scenes.soliton
+    from cli import point as point_command
+    from cli import soliton as soliton_command
 
     def never(*_a, **_k):
         raise AssertionError("simulated before checking --out")
 
-    monkeypatch.setattr(scenes.point, "simulate", never)
-    monkeypatch.setattr(scenes.soliton, "simulate_soliton", never)
+    monkeypatch.setattr(point_command, "measure_point", never)
+    monkeypatch.setattr(soliton_command, "simulate_soliton", never)
     out = _file_as_out(tmp_path) / "x"
     assert cli(command + ["--out", str(out)]) == 2
     err = capsys.readouterr().err.strip()
@@ -194,7 +194,7 @@ def test_map_refuses_an_unwritable_out_before_announcing_its_work(out, capsys, m
     """An --out that cannot be created (here under /proc, which takes no new folders, also
     for root, who ignores permission bits) is one line and exit 2, before the map says
     what it will compute and before any theory runs."""
-    import scenes._map_command as map_command
+    import cli.map as map_command
 
     def never(*_a, **_k):
         raise AssertionError("the map started before checking --out")
@@ -241,7 +241,7 @@ def test_interrupted_cached_run_is_checkpointed_and_resumed(tmp_path, blue):
 # --- 6. strict JSON ------------------------------------------------------------------------
 
 def test_summary_json_has_no_bare_nan(tmp_path):
-    from scenes._runner import _strict
+    from common.output import strict_json as _strict
 
     text = json.dumps(_strict({"a": math.nan, "b": [1.0, math.inf], "c": np.float64("nan")}),
                       allow_nan=False)

@@ -14,7 +14,7 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
-FLEXMM = [sys.executable, "-m", "scenes.cli"]
+FLEXMM = [sys.executable, "-m", "cli"]
 MAP = ["map", "--case", "coupled", "--alpha", "2.5", "--K-s", "0.01851", "--delta",
        "0.003", "--k", "0.8", "--N", "100"]
 #: generous: the machine is shared by several engineers on 2 cores
@@ -152,7 +152,7 @@ def test_an_interrupt_a_library_turned_into_another_error_is_still_the_interrupt
     interrupt (exit 130, one line); an error without an interrupt stays an error."""
     import errno
 
-    import scenes.cli as cli
+    import cli.app as cli
 
     def swallowed(args):
         try:

@@ -19,7 +19,7 @@ from matplotlib.layout_engine import ConstrainedLayoutEngine
 from matplotlib.transforms import Bbox
 
 import scenes
-from scenes._plotting import plt
+from scenes import plt
 
 ROOT = Path(__file__).resolve().parents[1]
 #: a text may reach this far (pixels) past the canvas edge before it counts as cut off

@@ -10,10 +10,10 @@ import math
 import numpy as np
 import pytest
 
+from cli.app import main as cli
 from numerics import Material, simulate
 from numerics.maps import MapParameters
 from numerics.theory import nls_summary, nls_undefined, soliton, theory_gain
-from scenes.cli import main as cli
 
 #: delta < 0 and k^2 > 6 K_theta / |delta|: the continuum frequency is imaginary at k = 3.01
 DEEP = Material(alpha=2.6206, K_s=0.005108, K_theta=0.1037)
@@ -201,7 +201,7 @@ def test_a_round_off_field_does_not_set_the_step():
     U ~ 1e-31: its rms(U_dot) / rms(U) read 1e14 and asked for dt = 1e-16 (t_end / dt =
     7.5e18 steps, refused). The step comes from theta there, within the stability limit."""
     from numerics import initial_condition, snap_wavenumber
-    from numerics.lattice._accuracy import dominant_frequency
+    from numerics.lattice import dominant_frequency
     from numerics.maps import cell_step
 
     mat = Material(alpha=0.3468, K_s=0.4775, K_theta=0.001388)
@@ -213,7 +213,7 @@ def test_a_round_off_field_does_not_set_the_step():
 
 
 def test_the_map_summary_has_no_nan_where_a_theory_evaluated_nothing():
-    from scenes._map_command import _agreement_text
+    from cli.map import _agreement_text
 
     none = {"p": float("nan"), "p_decided": float("nan"), "p_decided_cells": 0,
             "p_undetermined_cells": 4}

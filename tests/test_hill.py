@@ -3,13 +3,11 @@
 import numpy as np
 import pytest
 
-from numerics import Material, integrate, mi_gain, plane_wave, simulate
+from common import paper
+from numerics import LatticeState, Material, integrate, mi_gain, plane_wave, simulate
 from numerics.lattice import _analysis as an
-from numerics.theory._hill import hill_spectrum
-from numerics.lattice._model import discrete_omega_longitudinal, discrete_omega_rotation
-from numerics import LatticeState
-
-from common import paper  # noqa: E402
+from numerics.lattice import discrete_omega_longitudinal, discrete_omega_rotation
+from numerics.theory import hill_spectrum
 
 ALPHA, K_S = paper.ALPHA, paper.K_S
 BLUE, GREEN = Material.paper("blue"), Material.paper("green")

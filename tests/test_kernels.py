@@ -7,8 +7,7 @@ import numpy as np
 import pytest
 
 from common import paper
-from numerics import Material
-from numerics import AccuracyWarning, choose_step, initial_condition, integrate, simulate
+from numerics import AccuracyWarning, Material, choose_step, initial_condition, integrate, simulate
 from numerics.lattice import _kernels as kernels
 
 ULP = np.spacing
@@ -67,7 +66,7 @@ def test_kernel_equals_the_libm_kernel(coupled, scale, rng, blue):
 def _loops(state, mat, coupled, method, nsteps, dt, expect_done=None):
     """(fused, libm) final (theta, U, accelerations) after nsteps from the same state;
     each loop must report ``expect_done`` steps done (default all)."""
-    from numerics.lattice._integrators import get_method
+    from numerics.lattice import get_method
 
     m = get_method(method)
     res = []

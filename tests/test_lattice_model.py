@@ -6,8 +6,7 @@ import pytest
 
 from generated import lattice_model as lm
 from numerics import Material, discrete_omega_rotation
-from numerics.lattice._baseline import numpy_accel
-from numerics.lattice._kernels import accel
+from numerics.lattice import accel, numpy_accel
 
 
 def _kernel(th, U, mat, coupled):

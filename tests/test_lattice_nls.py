@@ -5,11 +5,10 @@ import numpy as np
 import pytest
 import sympy as sp
 
+from common import paper
 from generated import coefficients as co
 from generated import lattice_coefficients as la
 from numerics import Material, mi_gain, plane_wave
-
-from common import paper  # noqa: E402
 
 ALPHA, K_S = paper.ALPHA, paper.K_S
 POINTS = {name: (p["k"], p["K_theta"]) for name, p in paper.POINTS.items()}
@@ -54,7 +53,7 @@ def test_g2_coupled_without_mean_flow_tends_to_the_papers():
 def test_lattice_identities(point):
     kk, Kt = POINTS[point]
     h = 1e-4
-    w = lambda x: la.omega(x, ALPHA, K_S, Kt)  # noqa: E731
+    w = lambda x: la.omega(x, ALPHA, K_S, Kt)
     a = (kk, ALPHA, K_S, Kt)
     # central differences: truncation h^2 ~ 1e-8, round-off 1e-16/h^2 ~ 1e-8 relative
     assert la.group_velocity(*a) == pytest.approx((w(kk + h) - w(kk - h)) / (2 * h), rel=1e-7)

@@ -7,8 +7,15 @@ import numpy as np
 import pytest
 
 from common import paper
-from numerics import (LatticeState, gain_spectrum, initial_condition, launched_state, mi_gain,
-                      simulate, snap_wavenumber)
+from numerics import (
+    LatticeState,
+    gain_spectrum,
+    initial_condition,
+    launched_state,
+    mi_gain,
+    simulate,
+    snap_wavenumber,
+)
 from numerics.theory._quasiperiodic import gain_spectrum_torus, torus_of_wave
 from numerics.theory._torus import Torus
 

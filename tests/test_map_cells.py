@@ -7,10 +7,15 @@ import pytest
 
 from common import paper
 from numerics import Material, get_method
-from numerics.lattice._analysis import GROWTH_THRESHOLD
-from numerics.maps import MapParameters
-from numerics.maps._cells import (GROWTH_ERROR_CONSTANTS, GROWTH_TOL, cell_records,
-                                  growth_of, simulate_cell)
+from numerics.lattice import GROWTH_THRESHOLD
+from numerics.maps import (
+    GROWTH_ERROR_CONSTANTS,
+    GROWTH_TOL,
+    MapParameters,
+    cell_records,
+    growth_of,
+    simulate_cell,
+)
 
 N, T = 100, 2000.0
 # cells of the fig3 plane (alpha = 2.5) at N = 100: the blue point's k, one stable, one MI
@@ -101,7 +106,7 @@ def test_linear_stage_needs_one_e_folding_of_growth():
     """A rate is fitted only over a window in which the largest sideband grows e-fold: a run
     that passes 5x its start in its last samples gets no linear stage (its slope there is
     noise), a clean exponential gets the window from 5x to 1% of the carrier."""
-    from numerics.lattice._analysis import growth_rates, linear_stage
+    from numerics.lattice import growth_rates, linear_stage
 
     N, m = 64, 8
     t = np.arange(0.0, 2000.0, 5.0)

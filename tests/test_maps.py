@@ -6,10 +6,10 @@ import numpy as np
 import pytest
 import xarray as xr
 
+from cli.app import main as cli
 from common import paper
 from numerics.maps import MapParameters, parse_spec
 from numerics.maps import _store as maps  # blocks, _write_block, _run_tasks: internals under test
-from scenes.cli import main as cli
 
 N = 100
 K2 = tuple(2 * np.pi * np.array([13, 15]) / N)
@@ -267,7 +267,7 @@ def test_map_parameters_take_a_material_and_carry_K_theta_unchanged(tmp_path):
 def test_map_command_passes_K_theta_through_unchanged(tmp_path, monkeypatch):
     # `flexmm map --K-theta`: the MapParameters it builds hold the typed values (largest
     # first, so that delta ascends), no K_s - delta conversion on the way
-    from scenes import _map_command
+    from cli import map as _map_command
 
     seen = []
 

@@ -7,10 +7,21 @@ import pytest
 
 from common import paper
 from generated import coefficients as co
-from numerics import (METHODS, BlowUpError, LatticeState, Material, SimulationInterrupted,
-                      discrete_omega_longitudinal, discrete_omega_rotation, energy,
-                      get_method, initial_condition, integrate, simulate)
-from numerics.lattice._kernels import accel
+from numerics import (
+    METHODS,
+    BlowUpError,
+    LatticeState,
+    Material,
+    SimulationInterrupted,
+    discrete_omega_longitudinal,
+    discrete_omega_rotation,
+    energy,
+    get_method,
+    initial_condition,
+    integrate,
+    simulate,
+)
+from numerics.lattice import accel
 
 BLUE, GREEN = Material.paper("blue"), Material.paper("green")
 FIXED = [m for m in METHODS if get_method(m).fixed_step]
@@ -291,7 +302,7 @@ def test_interrupted_run_keeps_data_and_resumes(monkeypatch):
     full = simulate(BLUE, "coupled", 64, 2 * np.pi * 8 / 64, t_end=10.0, dt=0.05,
                     save_every=1.0)
     calls = {"n": 0}
-    original = _simulate._Stepper.advance
+    original = _simulate.Stepper.advance
 
     def flaky(self, nsteps):
         calls["n"] += 1
@@ -299,10 +310,10 @@ def test_interrupted_run_keeps_data_and_resumes(monkeypatch):
             raise KeyboardInterrupt
         return original(self, nsteps)
 
-    monkeypatch.setattr(_simulate._Stepper, "advance", flaky)
+    monkeypatch.setattr(_simulate.Stepper, "advance", flaky)
     with pytest.raises(SimulationInterrupted, match="Resume") as info:
         simulate(BLUE, "coupled", 64, 2 * np.pi * 8 / 64, t_end=10.0, dt=0.05, save_every=1.0)
-    monkeypatch.setattr(_simulate._Stepper, "advance", original)
+    monkeypatch.setattr(_simulate.Stepper, "advance", original)
     part = info.value.run
     assert len(part.t) == 4 and not part.completed
     np.testing.assert_array_equal(part.theta, full.theta[:4])

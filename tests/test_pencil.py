@@ -1,4 +1,4 @@
-"""The sideband eigenvalue by Newton on the Hill pencil (numerics.maps._pencil) against the
+"""The sideband eigenvalue by Newton on the Hill pencil (numerics.theory._pencil) against the
 full eigenproblem of the same Hill matrices."""
 
 from __future__ import annotations
@@ -7,9 +7,9 @@ import numpy as np
 import pytest
 
 from common import paper
-from numerics.maps import _resonance
-from numerics.maps._pencil import pencil_eigenvalues
+from numerics.theory import _resonance
 from numerics.theory._hill import _coefficients, _hill_batch, _sideband_share
+from numerics.theory._pencil import pencil_eigenvalues
 from numerics.theory._plane_wave import _solve_plane_waves
 
 

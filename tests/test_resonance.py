@@ -117,9 +117,9 @@ def test_compiled_reduced_problem_matches_its_numpy_form(case):
     """The compiled reduced problem evaluates the documented formulas: equal to their
     NumPy form to rounding (1e-11 relative: ~20 complex operations in a different order,
     and the pole's 1 / den amplifies rounding near a U resonance by |L| / |den| <~ 1e3)."""
-    from numerics.maps._resonance import _reduced
     from numerics.theory._hill import _coefficients
     from numerics.theory._plane_wave import _solve_plane_waves
+    from numerics.theory._resonance import _reduced
 
     B = 40
     k = np.linspace(0.1, 3.0, B)

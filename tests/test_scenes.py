@@ -11,8 +11,8 @@ import numpy as np
 import pytest
 
 import scenes
+from cli.app import main as cli
 from numerics.lattice import _cache
-from scenes.cli import main as cli
 
 GOLDEN = Path(__file__).with_name("golden") / "quick_outcomes.json"
 SIM_SCENES = ["fig5-blue-rotation", "fig6-blue-coupled", "fig7-green-rotation",

@@ -9,12 +9,17 @@ import warnings
 import numpy as np
 import pytest
 
+from cli.app import main as cli
 from common import paper
 from generated import soliton as closed
 from numerics import Material
-from numerics.theory import (SolitonWarning, ring_wavenumber, simulate_soliton, soliton,
-                             soliton_state)
-from scenes.cli import main as cli
+from numerics.theory import (
+    SolitonWarning,
+    ring_wavenumber,
+    simulate_soliton,
+    soliton,
+    soliton_state,
+)
 
 #: the issue's goals after 20 widths of travel (relative; radiation absolute)
 GOALS = {"velocity": 0.01, "width": 0.03, "amplitude": 0.03, "kink_height": 0.05}
@@ -61,17 +66,17 @@ def test_closed_forms_solve_the_nls_by_finite_differences(kind, g1, g2, phi):
     xi = np.linspace(-150, 150, 601)
     t = 1234.5
     if kind == "bright":
-        E = lambda x, s: closed.bright_envelope(x, s, a, g1, g2)  # noqa: E731
+        E = lambda x, s: closed.bright_envelope(x, s, a, g1, g2)
         w = closed.bright_width(a, g1, g2)
     else:
-        E = lambda x, s: closed.dark_envelope(x, s, a, phi, g1, g2)  # noqa: E731
+        E = lambda x, s: closed.dark_envelope(x, s, a, phi, g1, g2)
         w = closed.dark_width(a, phi, g1, g2)
     r = np.max(np.abs(_nls_residual(E, xi, t, g1, g2, h=0.05, ht=0.5)))
     # each term is ~ g2 (a/2)^3; the finite-difference error is (h/w)^2 ~ 1e-5 of that
     scale = abs(g2) * (a / 2) ** 3
     assert r < 1e-4 * scale
     # and a 2% wrong width leaves a residual 100x larger: the test can fail
-    E_bad = lambda x, s: E(1.02 * x, s)  # noqa: E731
+    E_bad = lambda x, s: E(1.02 * x, s)
     assert np.max(np.abs(_nls_residual(E_bad, xi, t, g1, g2, 0.05, 0.5))) > 100 * r
     assert 10 < w < 100
 

@@ -6,10 +6,9 @@ import numpy as np
 import pytest
 
 from numerics import METHODS, get_method, initial_condition, simulate
-from numerics.lattice import LatticeState
-from numerics.lattice import _integrate
+from numerics.lattice import LatticeState, _integrate
 from numerics.lattice import _kernels as kernels
-from numerics.lattice._integrate import STEPPERS, _Stepper
+from numerics.lattice._integrate import STEPPERS, Stepper
 from numerics.lattice._run import record_grid as _record_grid
 
 
@@ -105,13 +104,13 @@ def test_every_method_kind_has_a_stepper_and_unknown_kinds_are_refused(blue, rng
     state = _state("coupled", 0.0, rng)
     for name in METHODS:
         m = get_method(name)
-        st = _Stepper(state, blue, "coupled", m, 0.05)
-        assert type(st) is STEPPERS[m.kind] and isinstance(st, _Stepper)
+        st = Stepper(state, blue, "coupled", m, 0.05)
+        assert type(st) is STEPPERS[m.kind] and isinstance(st, Stepper)
     with pytest.raises(ValueError, match="registered twice"):
-        _integrate.register_stepper("rk4")(type("Again", (_Stepper,), {}))
+        _integrate.register_stepper("rk4")(type("Again", (Stepper,), {}))
     odd = get_method("rk4").__class__("odd", 2, 1, "odd-kind", False, "not registered")
     with pytest.raises(ValueError, match="no stepper for methods of kind 'odd-kind'"):
-        _Stepper(state, blue, "coupled", odd, 0.05)
+        Stepper(state, blue, "coupled", odd, 0.05)
 
 
 #: (method, theta0): every method near 0 (the fast loops); the fixed-step ones also across
@@ -127,7 +126,7 @@ def test_each_stepper_family_repeats_the_single_class_bit_for_bit(method, case, 
     m = get_method(method)
     state = _state(case, theta0, rng)
     dt = 0.01 if m.fixed_step else 0.25
-    new, ref = _Stepper(state, blue, case, m, dt, 1e-9, 1e-11), \
+    new, ref = Stepper(state, blue, case, m, dt, 1e-9, 1e-11), \
         _Reference(state, blue, case, m, dt, 1e-9, 1e-11)
     for n in (7, 1, 30) if m.fixed_step else (2, 1):  # chunks: the state carries over
         assert new.advance(n) == ref.advance(n) == n
@@ -137,7 +136,7 @@ def test_each_stepper_family_repeats_the_single_class_bit_for_bit(method, case, 
                 (("U", ref.U), ("U_dot", ref.V)) if case == "coupled" else ()):
             assert getattr(got, field).tobytes() == want.tobytes(), field
     if m.fixed_step and theta0 > 1:  # the fast loop stops within the first chunk
-        assert _Stepper(state, blue, case, m, dt)._fast(7) < 7
+        assert Stepper(state, blue, case, m, dt)._fast(7) < 7
 
 
 @pytest.mark.parametrize("save_every, phase", [(None, 0), (0.7, 0), (0.7, 3), (1.0, 14),

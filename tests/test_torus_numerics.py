@@ -33,7 +33,7 @@ def test_peak_finds_the_windowed_maximum():
     window = np.sin(np.pi * t / T) ** 2
     span = 3 * 2 * np.pi / T
     nu = _peak(t, c, 0.93, window, span)
-    S = lambda x: abs(np.exp(1j * x * t) @ (window * c))  # noqa: E731
+    S = lambda x: abs(np.exp(1j * x * t) @ (window * c))
     h = 100 * PEAK_TOL * span
     assert S(nu) >= S(nu - h) and S(nu) >= S(nu + h)
     assert abs(nu - 0.9318) < 0.1 * 2 * np.pi / T

@@ -9,31 +9,41 @@ Model         Material, LatticeState, energy, CASES, discrete_omega_rotation,
 Runs          simulate -> Run, resume, initial_condition, noise_field, snap_wavenumber, STARTS,
               register_start, paper_start_undefined (where eq. `IC` has no state),
               cached_simulate, SIMULATOR_VERSION, source_hash
-Stepping      integrate, METHODS, Method, get_method, choose_step
+Stepping      integrate, METHODS, Method, get_method, choose_step (dominant_frequency,
+              ERROR_CONSTANTS, STABILITY_MARGIN), Stepper (a run's work arrays, advanced
+              chunk by chunk: map cells stop it early), check_time, blowup_message
+Kernel        FASTMATH, sincos_vers, site_acceleration: the site formula, for the torus;
+              accel (a whole chain's force), numpy_accel, numpy_rk4 (the NumPy baseline
+              the bench compares against)
 Errors        BlowUpError, SimulationInterrupted, AccuracyWarning
 Analysis      spectrum, mode, harmonic_bins, sideband_to_carrier, stability_verdict,
               linear_stage (LINEAR_STAGE_RULE: its rule in words), growth_rates,
               band_summary, spectrum_growth, forced_second_harmonic,
               carrier_amplitude, carrier_frequency; the growth criterion GROWTH_THRESHOLD
               and :func:`grows_beyond_threshold`
-Input checks  ``numerics.lattice.checks`` (the limits every layer imports)
+Input checks  ``numerics.lattice.checks`` (the limits every layer imports), check_case,
+              check_start
 """
 
-from . import _numba_cache  # noqa: F401 - before any kernel: a read-only install works
+from . import _numba_cache  # before any kernel: a read-only install works
 from . import checks
-from ._accuracy import AccuracyWarning, choose_step
-from ._analysis import (GROWTH_THRESHOLD, band_summary, carrier_amplitude, carrier_frequency,
+from ._accuracy import (ERROR_CONSTANTS, STABILITY_MARGIN, AccuracyWarning, choose_step,
+                        dominant_frequency)
+from ._analysis import (GROWTH_THRESHOLD, U_REFERENCE, band_summary, carrier_amplitude, carrier_frequency,
                         forced_second_harmonic, growth_rates, grows_beyond_threshold,
                         LINEAR_STAGE_RULE, harmonic_bins, linear_stage, mode, non_carrier_bins,
                         sideband_to_carrier, spectrum, spectrum_growth, stability_verdict)
 from ._cache import cached_simulate
-from ._integrate import BlowUpError, SimulationInterrupted, integrate
+from ._integrate import (BlowUpError, SimulationInterrupted, Stepper, blowup_message,
+                         check_time, integrate)
 from ._integrators import METHODS, Method, get_method
-from ._model import (CASES, LatticeState, Material, discrete_omega_longitudinal,
+from ._baseline import numpy_accel, numpy_rk4
+from ._kernels import FASTMATH, accel, sincos_vers, site_acceleration
+from ._model import (CASES, LatticeState, Material, check_case, discrete_omega_longitudinal,
                      discrete_omega_rotation, energy)
 from ._simulate import (Run, initial_condition, noise_field, resume, simulate,
                         snap_wavenumber)
-from ._starts import STARTS, paper_start_undefined, register_start
+from ._starts import STARTS, check_start, paper_start_undefined, register_start
 from ._version import SIMULATOR_VERSION, source_hash
 
 __all__ = [
@@ -47,4 +57,8 @@ __all__ = [
     "linear_stage", "LINEAR_STAGE_RULE", "growth_rates", "band_summary", "forced_second_harmonic",
     "carrier_amplitude", "carrier_frequency", "GROWTH_THRESHOLD", "grows_beyond_threshold",
     "checks", "noise_field", "spectrum_growth",
+    # for the other rooms of numerics (theory, maps) and the bench: no private name crosses
+    "Stepper", "blowup_message", "check_time", "check_case", "check_start",
+    "dominant_frequency", "ERROR_CONSTANTS", "STABILITY_MARGIN", "FASTMATH", "sincos_vers",
+    "site_acceleration", "accel", "numpy_accel", "numpy_rk4", "U_REFERENCE",
 ]

@@ -1,6 +1,6 @@
 """Advancing a lattice state: ``integrate`` (state -> state) and the stepper behind it.
 
-``_Stepper`` holds the work arrays of one run and advances it by whole chunks of steps: one
+``Stepper`` holds the work arrays of one run and advances it by whole chunks of steps: one
 class per method family (``Method.kind``), registered in :data:`STEPPERS` (as ``METHODS``
 registers the integrators): compiled loops (``_kernels``, RK4 and the symplectic RKN
 methods, handing over to the libm loops), or scipy's ``solve_ivp`` for the adaptive ones.
@@ -13,9 +13,9 @@ import math
 import numpy as np
 
 from . import _kernels as kernels
-from ._integrators import Method, get_method
 from . import checks
 from ._accuracy import check_energy_tolerance, choose_step, energy_check
+from ._integrators import Method, get_method
 from ._model import LatticeState, Material, check_case, energy
 
 #: the paper's RK4 step, the default when neither dt nor tol is given
@@ -53,7 +53,7 @@ def check_tolerances(rtol, atol):
             checks.real("atol", atol, 0.0, 1.0))
 
 
-def _check_time(t_end, dt):
+def check_time(t_end, dt):
     t_end = checks.positive("t_end", t_end)
     dt = checks.positive("dt", dt)
     if dt > t_end:
@@ -65,7 +65,7 @@ def _check_time(t_end, dt):
 
 
 #: the stepper class of each ``Method.kind`` (:func:`register_stepper`), as METHODS holds the
-#: integrators: ``_Stepper(state, material, case, method, dt)`` builds the one of method.kind
+#: integrators: ``Stepper(state, material, case, method, dt)`` builds the one of method.kind
 STEPPERS: dict[str, type] = {}
 
 
@@ -79,18 +79,18 @@ def register_stepper(kind: str):
     return add
 
 
-class _Stepper:
+class Stepper:
     """Holds the work arrays of one run and advances it by whole chunks of steps.
 
-    ``_Stepper(state, material, case, method, dt, rtol, atol)`` returns the stepper
+    ``Stepper(state, material, case, method, dt, rtol, atol)`` returns the stepper
     registered for ``method.kind`` (:data:`STEPPERS`); each family implements ``_advance``.
-    ``advance`` is defined here only, so that wrapping ``_Stepper.advance`` (the tests'
+    ``advance`` is defined here only, so that wrapping ``Stepper.advance`` (the tests'
     interrupts) wraps every family.
     """
 
     def __new__(cls, state: LatticeState, material: Material, case: str, method: Method,
                 dt: float, rtol: float = 1e-10, atol: float = 1e-12):
-        if cls is _Stepper:
+        if cls is Stepper:
             try:
                 cls = STEPPERS[method.kind]
             except KeyError:
@@ -132,7 +132,7 @@ class _Stepper:
         raise NotImplementedError
 
 
-class _CompiledStepper(_Stepper):
+class _CompiledStepper(Stepper):
     """Fixed-step methods: compiled fast loops (``_kernels``), continued by the libm loops
     (``_kernels_libm``) where |theta| leaves the polynomial's range or the state blows up."""
 
@@ -211,7 +211,7 @@ class _SRKNStepper(_CompiledStepper):
 
 
 @register_stepper("scipy")
-class _ScipyStepper(_Stepper):
+class _ScipyStepper(Stepper):
     """Adaptive reference methods: one scipy ``solve_ivp`` over each chunk's span (rtol,
     atol), the state landing on its end."""
 
@@ -263,7 +263,7 @@ def safe_step(dt, material, case, method):
     return min(0.5 * limit, dt / 4)
 
 
-def _blowup_message(t, dt, material, case, method, reason="non-finite", drift=None,
+def blowup_message(t, dt, material, case, method, reason="non-finite", drift=None,
                     max_drift=None):
     limit = method.stability_limit() / material.omega_max(case)
     what = ("theta stopped being finite" if reason == "non-finite" else
@@ -332,11 +332,11 @@ def integrate(state: LatticeState, material: Material, case: str, t_end: float,
     rtol, atol = check_tolerances(rtol, atol)
     method, dt = resolve_step(state, material, case, t_end, dt, method, tol)
     m = get_method(method)
-    nsteps, dt_eff = _check_time(t_end, dt)
-    st = _Stepper(state, material, case, m, dt_eff, rtol, atol)
+    nsteps, dt_eff = check_time(t_end, dt)
+    st = Stepper(state, material, case, m, dt_eff, rtol, atol)
     done = st.advance(nsteps)
     if done < nsteps:
-        raise BlowUpError(_blowup_message(done * dt_eff, dt_eff, material, case, m),
+        raise BlowUpError(blowup_message(done * dt_eff, dt_eff, material, case, m),
                           time=done * dt_eff)
     final = st.state()
     if m.fixed_step:

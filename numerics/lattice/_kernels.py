@@ -33,7 +33,7 @@ import math
 import numpy as np
 from numba import njit
 
-from ._kernels_libm import _finite, accel_libm, rk4_steps_libm, srkn_steps_libm  # noqa: F401
+from ._kernels_libm import _finite, accel_libm, rk4_steps_libm, srkn_steps_libm
 
 #: |theta| up to which the polynomial sin/cos is used (accuracy tested up to here); beyond
 #: it the loops hand over to the libm reference loops.
@@ -106,6 +106,14 @@ def _acc(i, im, ip, th, U, s, c, v, coupled, a2, Ks, Kt):
     at = a2 * (-Kt * (th[ip] + 4.0 * th[i] + th[im]) + Ks * c[i] * (s[ip] + s[im] - 2.0 * s[i])
                - s[i] * bracket)
     return at, aU
+
+
+#: the public names of the site formula, for the torus (numerics.theory) that evaluates
+#: the same force on a quasi-periodic state: the fastmath flags, sin/cos/versine of a
+#: rotation, and the acceleration of site i (``_acc``)
+FASTMATH = _FAST
+sincos_vers = _sincosvers
+site_acceleration = _acc
 
 
 @njit(cache=True, fastmath=_FAST, boundscheck=False)

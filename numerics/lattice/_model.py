@@ -49,13 +49,13 @@ class Material:
         return self.K_s - self.K_theta
 
     @classmethod
-    def paper(cls, point: str) -> "Material":
+    def paper(cls, point: str) -> Material:
         """The material of one of the paper's test points, ``"blue"`` or ``"green"``
         (Figs. 4-9; numbers in :mod:`common.paper`)."""
         return cls(paper.ALPHA, paper.K_S, paper.K_theta(point))
 
     @classmethod
-    def from_physical(cls, m, J, a, k_l, k_s, k_theta) -> "Material":
+    def from_physical(cls, m, J, a, k_l, k_s, k_theta) -> Material:
         """From mass m, moment of inertia J, cell length a and spring stiffnesses.
 
         alpha = a sqrt(m / (4 J)), K_s = k_s / k_l, K_theta = 4 k_theta / (k_l a^2).
@@ -135,7 +135,7 @@ class LatticeState:
     def N(self) -> int:
         return self.theta.size
 
-    def for_case(self, case: str) -> "LatticeState":
+    def for_case(self, case: str) -> LatticeState:
         """Check the state fits ``case``; returns the state a run of that case uses."""
         check_case(case)
         if case == "coupled":

@@ -16,7 +16,7 @@ from common.signals import signal_number
 from . import checks
 from ._accuracy import energy_check
 from ._analysis import spectrum
-from ._integrate import BlowUpError, SimulationInterrupted, _blowup_message
+from ._integrate import BlowUpError, SimulationInterrupted, blowup_message
 from ._model import LatticeState, Material, energy
 from ._runcontrol import _deferred_interrupt, _Interrupt, _progress, _steps_per_call
 
@@ -248,7 +248,7 @@ class RunLoop:
         record j just taken), with the records before it."""
         self.keep_records()
         st, run = self.st, self.run
-        return BlowUpError(_blowup_message(self.time(), st.dt, run.material, run.case,
+        return BlowUpError(blowup_message(self.time(), st.dt, run.material, run.case,
                                            st.method, reason, drift, self.max_energy_error),
                            run, self.time())
 

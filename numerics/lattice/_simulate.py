@@ -3,7 +3,7 @@
 Builds the initial condition (eq. `IC`, or the exact travelling wave), snaps k to the
 chain, chooses the step, and runs it in named steps (``_run``): the record grid
 (``record_grid`` -> ``RecordGrid``), a Run with room for its records (``empty_run``), and
-the stepping loop (``RunLoop``: ``_integrate._Stepper`` advanced record by record, keeping
+the stepping loop (``RunLoop``: ``_integrate.Stepper`` advanced record by record, keeping
 only what is asked for), which stops with ``BlowUpError`` or ``SimulationInterrupted``
 keeping what was computed.
 """
@@ -20,13 +20,11 @@ from common.paper import EPS as PAPER_EPS
 
 from . import checks
 from ._accuracy import check_energy_tolerance
-from ._integrate import (SimulationInterrupted, _check_time, _Stepper, check_tolerances,
-                         resolve_step)
+from ._integrate import SimulationInterrupted, Stepper, check_time, check_tolerances, resolve_step
 from ._integrators import get_method
 from ._model import LatticeState, Material, check_case
 from ._run import RECORDS, Run, RunLoop, empty_run, joined, record_grid
 from ._starts import LEGACY_OMEGA_MODELS, build_start, check_start
-
 
 STORE_CHOICES = ("snapshots", "spectrum", "energy")
 
@@ -211,13 +209,13 @@ def simulate(material: Material, case: str, N: int, k: float,
             raise ValueError(f"initial state has {state.N} sites, N = {N}")
     method, dt = resolve_step(state, material, case, t_end, dt, method, tol)
     m_ = get_method(method)
-    nsteps, dt_eff = _check_time(t_end, dt)
+    nsteps, dt_eff = check_time(t_end, dt)
     grid = record_grid(nsteps, dt_eff, save_every, record_phase)
     run = empty_run(grid, N, case, store, material=material, k=ks, m=mode,
                     k_requested=float(k), amplitude=amplitude, noise=noise, seed=seed,
                     method=m_.name, dt=dt_eff, t_end=float(t_end),
                     save_every=grid.per_save * dt_eff, start=start)
-    loop = RunLoop(_Stepper(state, material, case, m_, dt_eff, rtol, atol), run, grid,
+    loop = RunLoop(Stepper(state, material, case, m_, dt_eff, rtol, atol), run, grid,
                    max_energy_error)
     loop.run_to_end(progress)
     return loop.finish(energy_tolerance)

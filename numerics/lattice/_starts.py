@@ -20,7 +20,7 @@ never imports ``numerics.theory``.
 
 from __future__ import annotations
 
-from typing import Callable
+from collections.abc import Callable
 
 import numpy as np
 

@@ -2,21 +2,52 @@
 
 Imports ``numerics.lattice`` and ``numerics.theory``; nothing below imports it.
 
-Exact maps       resonance_map (bands from their resonance conditions, sampling-independent)
+Exact maps       resonance_map (re-exported from numerics.theory, where the engine lives)
 One cell         simulate_cell (the simulated verdict, growth factor, early stop),
-                 cell_step (its method and step), growth_of, measured_peak_gain
+                 cell_step (its method and step), seed_majority (the seeds' verdict),
+                 growth_of, measured_peak_gain
+One point        measure_point -> PointResult (`flexmm point`: the theories over the
+                 sideband offsets, the predicted growth, a simulation with a cell's step
+                 choice and seed majority), point_step, theory_curves, offset_curve, fold,
+                 snap_carrier (k -> 2 pi m / N, checked), MAX_SEEDS, MAX_T_END
 Maps by sim.     MapParameters (what defines a map), parse_spec (``v1,v2`` or
                  ``start:stop:num``), run_map (cells as tasks on a Dask cluster, results in
                  a resumable Zarr store), theory_columns, agreement (AGREEMENT_MARGIN)
+Their parts      cell_records, predict_cell, GROWTH_TOL, GROWTH_ERROR_CONSTANTS (a cell's
+                 step accuracy), tri_state (gains -> verdicts), store_lock (one writer),
+                 cells_done (what a store holds)
 """
 
-from ._cells import cell_step, growth_of, measured_peak_gain, simulate_cell
-from ._resonance import resonance_map
-from ._params import CRITERION, MapParameters, local_cores, parse_spec
-from ._agreement import MARGIN as AGREEMENT_MARGIN, agreement
+from ..theory import resonance_map  # the exact-map engine lives with the theory
+from ._agreement import MARGIN as AGREEMENT_MARGIN
+from ._agreement import agreement
 from ._blocks import simulate_block
-from ._columns import theory_columns
-from ._store import MapCellError, open_or_create, run_map
+from ._cells import (
+                     GROWTH_ERROR_CONSTANTS,
+                     GROWTH_TOL,
+                     cell_records,
+                     cell_step,
+                     growth_of,
+                     measured_peak_gain,
+                     predict_cell,
+                     seed_majority,
+                     simulate_cell,
+)
+from ._columns import theory_columns, tri_state
+from ._integrity import store_lock
+from ._params import CRITERION, MapParameters, local_cores, parse_spec
+from ._point import (
+                     MAX_SEEDS,
+                     MAX_T_END,
+                     PointResult,
+                     fold,
+                     measure_point,
+                     offset_curve,
+                     point_step,
+                     snap_carrier,
+                     theory_curves,
+)
+from ._store import MapCellError, cells_done, open_or_create, run_map
 
 __all__ = [
     "resonance_map", "simulate_cell", "cell_step", "growth_of", "measured_peak_gain",
@@ -24,4 +55,8 @@ __all__ = [
     "parse_spec", "run_map", "theory_columns", "agreement", "AGREEMENT_MARGIN",
     "open_or_create",
     "simulate_block", "CRITERION", "MapCellError", "local_cores",
+    "seed_majority", "PointResult", "measure_point", "point_step", "theory_curves",
+    "offset_curve", "fold", "snap_carrier", "MAX_SEEDS", "MAX_T_END",
+    "cell_records", "predict_cell", "GROWTH_TOL", "GROWTH_ERROR_CONSTANTS", "tri_state",
+    "store_lock", "cells_done",
 ]

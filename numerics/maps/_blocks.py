@@ -48,7 +48,7 @@ def keep_freed_memory() -> bool:
 def simulate_block(params: MapParameters, i: int, js: list, simulate: bool = True) -> dict:
     """Predict, and unless ``simulate`` is False simulate, the cells (i, j) for j in
     ``js`` (runs on a worker)."""
-    from ._cells import predict_cell, simulate_cell
+    from ._cells import predict_cell, seed_majority, simulate_cell
 
     keep_freed_memory()
     mat = params.material_at(i)
@@ -62,8 +62,8 @@ def simulate_block(params: MapParameters, i: int, js: list, simulate: bool = Tru
             runs = [simulate_cell(mat, params.case, k, params.N, params.t_end,
                                   params.amplitude, params.noise, seed, params.start,
                                   dt, method) for seed in range(params.seeds)]
-            verdict = sum(r["verdict_simulated"] for r in runs) * 2 > len(runs)
             growths = [r["growth"] for r in runs]
+            verdict = seed_majority(growths)  # as measure_point decides
             top = runs[int(np.argmax(growths))]
             row.update({
                 "verdict_simulated": bool(verdict), "growth": float(np.median(growths)),

@@ -25,13 +25,24 @@ import math
 
 import numpy as np
 
-from ..lattice._accuracy import choose_step, dominant_frequency
-from ..lattice._analysis import (GROWTH_THRESHOLD, U_REFERENCE, growth_rates, linear_stage,
-                                 non_carrier_bins, spectrum, spectrum_growth)
-from ..lattice._integrate import BlowUpError, _blowup_message, _Stepper
-from ..lattice._integrators import get_method
-from ..lattice._model import Material
-from ..lattice._simulate import initial_condition, snap_wavenumber
+from ..lattice import (
+    GROWTH_THRESHOLD,
+    U_REFERENCE,
+    BlowUpError,
+    Material,
+    Stepper,
+    blowup_message,
+    choose_step,
+    dominant_frequency,
+    get_method,
+    growth_rates,
+    initial_condition,
+    linear_stage,
+    non_carrier_bins,
+    snap_wavenumber,
+    spectrum,
+    spectrum_growth,
+)
 
 #: spectrum records over a run (every t_end / RECORDS): the growth factor's time resolution
 RECORDS = 200
@@ -71,6 +82,12 @@ def growth_of(t, theta_hat, U_hat, m, N, t_end: float | None = None) -> dict:
                                        bins, N, t_end)
     return {"growth": float(growth[0]), "growth_field": str(field[0]),
             "growth_q": float(q[0])}
+
+
+def seed_majority(growths) -> bool:
+    """The verdict of several seeds at one point (a map cell, ``measure_point``): MI when
+    more than half of the seeds' growth factors exceed GROWTH_THRESHOLD (a tie is stable)."""
+    return sum(g > GROWTH_THRESHOLD for g in growths) * 2 > len(growths)
 
 
 def cell_step(state, material: Material, case: str, t_end: float,
@@ -142,7 +159,7 @@ def cell_records(material: Material, case: str, k: float, N: int, t_end: float,
     record = t_end / RECORDS
     per_record = max(1, math.ceil(record / dt - 1e-9))
     dt_eff = record / per_record
-    st = _Stepper(state, material, case, meth, dt_eff)
+    st = Stepper(state, material, case, meth, dt_eff)
     coupled = case == "coupled"
     nq = N // 2 + 1
     t = np.arange(RECORDS + 1) * record
@@ -166,7 +183,7 @@ def cell_records(material: Material, case: str, k: float, N: int, t_end: float,
         done = st.advance(per_record)
         if done < per_record:
             time = j * record + done * dt_eff
-            raise BlowUpError(_blowup_message(time, dt_eff, material, case, meth),
+            raise BlowUpError(blowup_message(time, dt_eff, material, case, meth),
                               time=time)
         j += 1
         take(j)
@@ -236,5 +253,5 @@ def predict_cell(material: Material, case: str, k: float, N: int, t_end: float,
                 if p.approximate else "linear"]}, p
 
 
-__all__ = ["simulate_cell", "cell_records", "cell_step", "map_step", "growth_of",
+__all__ = ["simulate_cell", "cell_records", "cell_step", "map_step", "growth_of", "seed_majority",
            "measured_peak_gain", "predict_cell", "PREDICTED_STATUS"]

@@ -49,7 +49,7 @@ def probe(address: str, timeout: float) -> None:
         raise SchedulerError(f"--scheduler {address!r}: give an address tcp://HOST:PORT")
     try:
         conn = socket.create_connection((host, port), timeout=timeout)
-    except socket.timeout:
+    except TimeoutError:
         raise SchedulerError(f"--scheduler {address}: no connection within {timeout:g} s") \
             from None
     except OSError as exc:
@@ -60,7 +60,7 @@ def probe(address: str, timeout: float) -> None:
         conn.settimeout(timeout)
         try:
             head = conn.recv(8)
-        except socket.timeout:
+        except TimeoutError:
             raise SchedulerError(f"--scheduler {address}: connected, but it sent nothing "
                                  f"within {timeout:g} s; a Dask scheduler greets at once, so "
                                  "this is not one (or it hangs)") from None

@@ -8,7 +8,7 @@ import math
 
 import numpy as np
 
-from ..lattice._analysis import GROWTH_THRESHOLD, grows_beyond_threshold
+from ..lattice import GROWTH_THRESHOLD, grows_beyond_threshold
 from ._cells import PREDICTED_STATUS
 from ._params import MapParameters
 
@@ -34,7 +34,7 @@ STORE_FORMAT = 2
 
 def _simulated_columns(shape) -> dict:
     """The simulated variables and ``done`` of cells not simulated yet."""
-    fl = lambda: np.full(shape, np.nan)  # noqa: E731
+    fl = lambda: np.full(shape, np.nan)
     return {
         "verdict_simulated": (np.full(shape, UNDETERMINED, np.int8),
                               {"long_name": f"simulation: grows more than {GROWTH_THRESHOLD:g}x "
@@ -133,14 +133,12 @@ def theory_columns(params: MapParameters) -> dict:
     GROWTH_THRESHOLD-fold within t_end (peak gain > ln(threshold) / t_end)? Where a theory
     cannot be evaluated its gain is NaN and its verdict UNDETERMINED (the reason is the
     variable's ``undetermined`` attribute), never "stable"."""
-    from generated import coefficients as continuum_nls
-    from generated import lattice_coefficients as lattice_nls
-    from ..theory import stability_map
+    from ..theory import NLS_THEORIES, stability_map
 
     # each row at its own K_theta (params.K_theta: as given, or K_s - delta)
     K, Kt = np.meshgrid(params.k_simulated, params.K_theta, indexing="xy")
     gains = {}
-    for name, nls in (("paper", continuum_nls), ("semidiscrete", lattice_nls)):
+    for name, nls in ((t.key, t.closed_forms()) for t in NLS_THEORIES):
         with np.errstate(all="ignore"):
             g = getattr(nls, f"g_{params.case}")(K, params.alpha, params.K_s, Kt)
             g1 = nls.g1(K, params.alpha, params.K_s, Kt)
@@ -159,7 +157,7 @@ def theory_columns(params: MapParameters) -> dict:
     if params.start == "paper":
         # the exact theory of the state the map's runs start in: eq. `IC`'s launched state
         # (its free U waves pump bands of their own in case II), sampling-independent
-        from ._resonance import resonance_map
+        from ..theory import resonance_map
 
         gains["exact"] = resonance_map(K, start="paper", **grid)["peak_gain"]
     else:

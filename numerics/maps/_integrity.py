@@ -83,20 +83,20 @@ def read_raw(path: Path, names, shape) -> tuple[dict, np.ndarray]:
     out = {}
     try:
         group = zarr.open_group(str(path), mode="r", use_consolidated=False)
-    except Exception:  # noqa: BLE001 - no readable group: nothing can be trusted
+    except Exception:  # no readable group: nothing can be trusted
         return {}, np.ones(shape, bool)
     for name in names:
         try:
             arr = group[name]
             if tuple(arr.shape) != tuple(shape):
                 raise ValueError("shape")
-        except Exception:  # noqa: BLE001 - a missing or malformed variable
+        except Exception:  # a missing or malformed variable
             unreadable[:] = True
             continue
         try:
             out[name] = np.asarray(arr[...])
             continue
-        except Exception:  # noqa: BLE001 - some chunk is damaged: read them one by one
+        except Exception:  # some chunk is damaged: read them one by one
             pass
         values = np.zeros(shape, arr.dtype)
         ci, cj = arr.chunks
@@ -105,7 +105,7 @@ def read_raw(path: Path, names, shape) -> tuple[dict, np.ndarray]:
                 idx = (slice(i0, i0 + ci), slice(j0, j0 + cj))
                 try:
                     values[idx] = arr[idx]
-                except Exception:  # noqa: BLE001 - this chunk only
+                except Exception:  # this chunk only
                     unreadable[idx] = True
         out[name] = values
     return out, unreadable

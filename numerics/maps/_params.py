@@ -10,11 +10,16 @@ from functools import cached_property
 
 import numpy as np
 
-from ..lattice import Material, checks
-from ..lattice._analysis import GROWTH_THRESHOLD, non_carrier_bins
-from ..lattice._integrate import _check_time
-from ..lattice._integrators import get_method
-from ..lattice._starts import paper_start_undefined
+from ..lattice import (
+    GROWTH_THRESHOLD,
+    Material,
+    check_time,
+    checks,
+    get_method,
+    non_carrier_bins,
+    paper_start_undefined,
+)
+from ..theory import MAX_AMPLITUDE
 from ._cells import GROWTH_ERROR_CONSTANTS, GROWTH_TOL, RECORDS
 
 #: k values per task (one delta row is split into blocks of this many cells)
@@ -123,7 +128,7 @@ class MapParameters:
         checks.choice("start", self.start, ("paper", "travelling"))
         checks.positive("alpha", self.alpha)
         checks.positive("K_s", self.K_s)
-        checks.real("amplitude", self.amplitude, 0.0, 1.5)
+        checks.real("amplitude", self.amplitude, 0.0, MAX_AMPLITUDE)
         checks.positive("eps", self.eps)
         checks.integer("N", self.N, 3, 10**6)
         checks.positive("t_end", self.t_end)
@@ -153,8 +158,8 @@ class MapParameters:
         dt = self.dt if self.dt is not None else min(record, _largest_stable_step(
             self.alpha, self.K_s, self.extreme_K_theta(), self.case))
         try:
-            _check_time(record, dt)
-            _check_time(self.t_end, dt)
+            check_time(record, dt)
+            check_time(self.t_end, dt)
         except ValueError as exc:
             raise ValueError(f"t_end = {self.t_end:g} with dt = {dt:g}: a cell records its "
                              f"spectrum every t_end / {RECORDS}, and {exc}") from None
@@ -281,7 +286,7 @@ def _largest_stable_step(alpha, K_s, K_theta, case) -> float:
     """The largest step any map method may take on this grid (its extreme K_theta): 0.8 of
     the most stable method's limit over the grid's highest frequency
     (``_accuracy.STABILITY_MARGIN``)."""
-    from ..lattice._accuracy import ERROR_CONSTANTS, STABILITY_MARGIN
+    from ..lattice import ERROR_CONSTANTS, STABILITY_MARGIN
 
     w = max(Material(alpha, K_s, Kt).omega_max(case) for Kt in K_theta)
     limit = max(get_method(m).stability_limit() for m in {*ERROR_CONSTANTS,

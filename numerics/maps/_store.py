@@ -30,9 +30,9 @@ from common.text import duration
 
 from ._agreement import agreement
 from ._blocks import blocks, simulate_block
-from ._columns import (PREDICTED, SIMULATED, STORE_FORMAT, empty_dataset, theory_columns,
-                       tri_state)
+from ._columns import PREDICTED, SIMULATED, STORE_FORMAT, empty_dataset, theory_columns, tri_state
 from ._params import MapParameters, local_cores
+
 
 def _holds(ds, params: MapParameters) -> bool:
     """Does the stored dataset ``ds`` hold the map ``params`` defines (same grid, same
@@ -92,8 +92,8 @@ def _open(path: Path, params: MapParameters, overwrite: bool = False, log=print)
     if path.exists():
         try:
             ds = xr.open_zarr(path, consolidated=False, chunks=None)
-            ds.attrs  # noqa: B018 - metadata read
-        except Exception as exc:  # noqa: BLE001 - any unreadable store
+            ds.attrs  # metadata read (a damaged .zattrs raises here)
+        except Exception as exc:  # any unreadable store
             if not overwrite:
                 first = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
                 raise ValueError(f"{path} exists but its metadata is not readable ({first[:120]}"
@@ -285,7 +285,7 @@ def _run_tasks(params, path, todo, n_todo, scheduler, workers, progress, log, ar
         for fut in as_completed(futures):
             try:
                 result = fut.result()
-            except Exception as exc:  # noqa: BLE001 - one line naming the cell, no traceback
+            except Exception as exc:  # one line naming the cell, no traceback
                 i, js = cells[fut]
                 for f in futures:
                     f.cancel()
@@ -307,5 +307,17 @@ def _run_tasks(params, path, todo, n_todo, scheduler, workers, progress, log, ar
 
 #: the store's own names, and those it gathers (the map engine's internals under test:
 #: tests/test_maps.py, bench/)
+def cells_done(store) -> tuple[int, int] | None:
+    """(cells done, cells) of the map store at ``store`` (a path), or None when it holds
+    none or cannot be read (what an interrupted ``flexmm map`` reports it kept)."""
+    try:
+        import zarr
+
+        done = zarr.open_group(str(store), mode="r")["done"][...]
+        return int(done.sum()), int(done.size)
+    except Exception:  # no store, or not readable: nothing to report
+        return None
+
+
 __all__ = ["open_or_create", "run_map", "MapCellError", "blocks", "simulate_block",
-           "agreement", "tri_state", "theory_columns"]
+           "agreement", "tri_state", "theory_columns", "cells_done"]

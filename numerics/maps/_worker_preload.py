@@ -4,6 +4,6 @@ terminal reaches the whole process group; the client stops its workers in order)
 import signal
 
 
-def dask_setup(worker):  # noqa: ARG001 - the dask preload hook
+def dask_setup(worker):  # the dask preload hook
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGTERM})

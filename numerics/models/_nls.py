@@ -115,7 +115,7 @@ class ModelNLS:
         """The NLS's nonlinear frequency shift -g2 a^2/4 of the plane wave."""
         return -self.g2 * amplitude**2 / 4
 
-    def soliton(self, amplitude: float) -> "ModelSoliton":
+    def soliton(self, amplitude: float) -> ModelSoliton:
         """The envelope soliton of peak (bright) or background (dark) amplitude a."""
         if self.undefined:
             raise ModelError(f"no soliton: the NLS is undefined ({self.undefined})")

@@ -17,19 +17,17 @@ from __future__ import annotations
 import numpy as np
 
 from common.paper import EPS
-from generated import coefficients as continuum_nls
-from generated import lattice_coefficients as lattice_nls
 
-from ..lattice import _analysis as an
-from ..lattice import checks
+from ..lattice import Material, check_case, checks, growth_rates, linear_stage
 from ._hill import mi_gain
 from ._plane_wave import MAX_AMPLITUDE
-from ..lattice._model import Material, check_case
+from ._records import EXACT_LATTICE, EXACT_PAPER_START, NLS_THEORIES, PAPER_NLS, SEMIDISCRETE_NLS
 
-THEORIES = ("paper NLS", "semi-discrete NLS", "exact lattice")
+#: the labels of the three theories of a travelling wave (the records: ``_records``)
+THEORIES = (PAPER_NLS.label, SEMIDISCRETE_NLS.label, EXACT_LATTICE.label)
 #: the exact theory for the state eq. `IC` launches (not in THEORIES: it costs seconds)
-PAPER_START = "exact lattice, paper start"
-_NLS = {"paper NLS": continuum_nls, "semi-discrete NLS": lattice_nls}
+PAPER_START = EXACT_PAPER_START.label
+_NLS = {t.label: t.closed_forms() for t in NLS_THEORIES}
 
 
 def _eps_A0(eps, A0, amplitude):
@@ -69,7 +67,7 @@ def nls_undefined(nls, material: Material, case: str, k: float) -> str | None:
         omega, g1 = float(nls.omega(*p)), float(nls.g1(*p))
         g2 = float(getattr(nls, f"g2_{case}")(*p))
     if not np.isfinite(omega):
-        if nls is continuum_nls:
+        if nls is _NLS[PAPER_NLS.label]:
             return (f"no real carrier frequency: omega^2 = alpha^2 (6 K_theta + delta k^2) < 0 "
                     f"at k = {k:.4g} (eq. `continuum2`; the long-wave model does not reach it)")
         return f"no real carrier frequency at k = {k:.4g}"
@@ -87,7 +85,7 @@ def nls_undefined(nls, material: Material, case: str, k: float) -> str | None:
 
 
 def nls_summary(material: Material, case: str, k: float, eps: float | None = None,
-                A0: float | None = None, nls=continuum_nls, *,
+                A0: float | None = None, nls=_NLS[PAPER_NLS.label], *,
                 amplitude: float | None = None) -> dict:
     """The NLS at one carrier: omega, v_g, g1, g2, g, verdict, and for g > 0 the band
     K_c, K_m (NLS units) and the peak lattice growth rate eps^2 |g1| Omega_I(K_m); the
@@ -185,10 +183,10 @@ def measure_gain(simulate, seeds, **params) -> dict | None:
     rates, windows, run = [], [], None
     for seed in seeds:
         run = simulate(**dict(params, seed=seed, store="spectrum"))
-        win = an.linear_stage(run.theta_hat, run.m, run.N)
+        win = linear_stage(run.theta_hat, run.m, run.N)
         if win is None:
             continue
-        rates.append(an.growth_rates(run.t, run.theta_hat, win))
+        rates.append(growth_rates(run.t, run.theta_hat, win))
         windows.append((float(run.t[win[0]]), float(run.t[win[1]])))
     if not rates:
         return None

@@ -26,14 +26,31 @@ import numpy as np
 from common.threads import one_blas_thread
 from generated import lattice_model as model
 
-from ..lattice import checks
-from ..lattice._model import Material, check_case
+from ..lattice import Material, check_case, checks
 from ._launched import STARTS, launched_state
-from ._plane_wave import (HARMONICS, MAX_AMPLITUDE, PlaneWave, _check, _check_harmonics,
-                          _combine, _on_branch, _solve_plane_waves, _tables, plane_wave)
-from ._quasiperiodic import (ROUNDOFF, GainSpectrum, _labels, coupling_coefficients,
-                             gain_spectrum_torus, hill_matrices, neutral_offsets,
-                             sideband_shares, torus_of_wave)
+from ._plane_wave import (
+    HARMONICS,
+    MAX_AMPLITUDE,
+    PlaneWave,
+    _check,
+    _check_harmonics,
+    _combine,
+    _on_branch,
+    _solve_plane_waves,
+    _tables,
+    plane_wave,
+)
+from ._quasiperiodic import (
+    ROUNDOFF,
+    GainSpectrum,
+    _labels,
+    coupling_coefficients,
+    gain_spectrum_torus,
+    hill_matrices,
+    neutral_offsets,
+    sideband_shares,
+    torus_of_wave,
+)
 from ._quasiperiodic import is_mi as _is_mi
 
 #: offsets searched by stability_map: at amplitude 0.02 every band of the paper's

@@ -28,9 +28,7 @@ import numpy as np
 from generated import coefficients as continuum
 from generated import lattice_model as model
 
-from ..lattice import checks
-from ..lattice._model import LatticeState, Material
-from ..lattice._starts import STARTS
+from ..lattice import STARTS, LatticeState, Material, checks
 from ._plane_wave import HARMONICS, PlaneWave, _check, plane_wave
 from ._torus import PHASE_POINTS_TRIED, SPECTRAL_TAIL, Torus, torus
 

@@ -22,9 +22,7 @@ import numpy as np
 
 from generated import lattice_model as model
 
-from ..lattice import checks
-from ..lattice._model import LatticeState, Material, check_case
-from ..lattice._starts import register_start
+from ..lattice import LatticeState, Material, check_case, checks, register_start
 
 #: default truncation: theta harmonics |p| <= HARMONICS (odd), U harmonics |p| < HARMONICS.
 HARMONICS = 4

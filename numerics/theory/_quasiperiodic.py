@@ -28,10 +28,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..lattice import checks
-
 from generated import lattice_model as model
 
+from ..lattice import checks
 from ._torus import Torus
 
 #: a Hill mode is a sideband (MI) mode when the two sidebands p = +-1 hold more than

@@ -44,11 +44,18 @@ import numpy as np
 from common.threads import one_blas_thread
 from generated import lattice_model as model
 
-from ..lattice import checks
-from ..lattice._analysis import GROWTH_THRESHOLD, non_carrier_bins, spectrum_growth
-from ..lattice._model import Material, check_case
-from ..lattice._simulate import initial_condition, noise_field, snap_wavenumber
-from ..lattice._starts import check_start
+from ..lattice import (
+    GROWTH_THRESHOLD,
+    Material,
+    check_case,
+    check_start,
+    checks,
+    initial_condition,
+    noise_field,
+    non_carrier_bins,
+    snap_wavenumber,
+    spectrum_growth,
+)
 from ._families import Families
 from ._launched import forward_backward
 from ._plane_wave import HARMONICS, _check_harmonics, plane_wave

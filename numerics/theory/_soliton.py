@@ -23,17 +23,15 @@ import math
 import warnings
 from dataclasses import dataclass, field
 
-from generated import coefficients as continuum_nls
-from generated import lattice_coefficients as lattice_nls
 from generated import soliton as closed
 
-from ..lattice import checks
-from ..lattice._model import Material, check_case
+from ..lattice import Material, check_case, checks
 from ._gain import nls_undefined
+from ._records import PAPER_NLS, SEMIDISCRETE_NLS
 
 KINDS = ("bright", "dark")
 #: the NLS theories a soliton can be predicted from (names as in ``THEORIES``)
-SOLITON_THEORIES = {"semi-discrete NLS": lattice_nls, "paper NLS": continuum_nls}
+SOLITON_THEORIES = {t.label: t.closed_forms() for t in (SEMIDISCRETE_NLS, PAPER_NLS)}
 #: below this width (sites) the envelope is too narrow for the weak-modulation ordering
 #: (the convergence scene shows the error reaching tens of percent near 5 sites)
 MIN_WIDTH = 8.0
@@ -186,14 +184,15 @@ def soliton(material: Material, case: str, k: float, amplitude: float, kind: str
     coupled = case == "coupled"
     mu = 0.0
     if coupled:
-        mu = float(lattice_nls.mean_flow_coefficient(*p) if nls is lattice_nls
+        mu = float(nls.mean_flow_coefficient(*p) if theory == SEMIDISCRETE_NLS.label
                    else closed.continuum_mean_flow_coefficient(*p))
     if N is not None:
         N = checks.integer("N", N, 3)
     # the mean-flow term of the semi-discrete NLS is g2_mf (F_X / mu) E with F_X = mu |E|^2
     # + c; a uniform strain c (no strain far away; on a ring, minus the soliton's mean)
     # turns E at g2_mf c / mu: the frequency moves by -g2_mf c / mu
-    g2_mf = float(closed.lattice_g2_mean_flow(*p)) if coupled and nls is lattice_nls else 0.0
+    g2_mf = (float(closed.lattice_g2_mean_flow(*p))
+             if coupled and theory == SEMIDISCRETE_NLS.label else 0.0)
     if kind == "bright":
         width = float(closed.bright_width(amplitude, g1, g2))
         velocity = v_g

@@ -15,9 +15,7 @@ import numpy as np
 
 from generated import soliton as closed
 
-from ..lattice import checks
-from ..lattice._integrate import integrate
-from ..lattice._model import LatticeState, Material
+from ..lattice import LatticeState, Material, checks, integrate
 from ._soliton import Soliton, SolitonWarning, ring_wavenumber, soliton
 from ._soliton_measure import SolitonRun, carrier_phasor, measure_state, measured_frequency
 

@@ -10,8 +10,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..lattice._model import LatticeState
+from ..lattice import LatticeState
 from ._soliton import Soliton
+
 
 @dataclass(frozen=True)
 class Snapshot:

@@ -26,14 +26,11 @@ import itertools
 from dataclasses import dataclass
 
 import numpy as np
-
-from ..lattice import checks
 from numba import njit
 
 from generated import lattice_model as model
 
-from ..lattice._integrators import get_method
-from ..lattice._kernels import _FAST, _acc, _sincosvers
+from ..lattice import FASTMATH, checks, get_method, sincos_vers, site_acceleration
 
 #: phase points of the reduced chain (harmonics up to M/2 - 1 are kept exactly): the
 #: launched state is integrated on the first that resolves it (its top harmonic below
@@ -135,11 +132,11 @@ def _shift_matrices(k, M):
     return out
 
 
-@njit(cache=True, fastmath=_FAST, boundscheck=False)
+@njit(cache=True, fastmath=FASTMATH, boundscheck=False)
 def _reduced_accel(th, U, SpT, SmT, coupled, a2, Ks, Kt, X, XU, s, c, v, ath, aU):
     """Accelerations of the reduced chain: neighbours by the shift matrices (stored
     transposed, so the inner loop runs over contiguous rows and vectorises while every
-    sum keeps its order), the site formula of the lattice kernel (``_kernels._acc``) on
+    sum keeps its order), the site formula of the lattice kernel (``numerics.lattice.site_acceleration``) on
     blocks [x - k | x | x + k]."""
     M = th.size
     X[:M] = 0.0
@@ -157,12 +154,12 @@ def _reduced_accel(th, U, SpT, SmT, coupled, a2, Ks, Kt, X, XU, s, c, v, ath, aU
         X[M + i] = th[i]
         XU[M + i] = U[i]
     for i in range(3 * M):
-        s[i], c[i], v[i] = _sincosvers(X[i])
+        s[i], c[i], v[i] = sincos_vers(X[i])
     for i in range(M):
-        ath[i], aU[i] = _acc(M + i, i, 2 * M + i, X, XU, s, c, v, coupled, a2, Ks, Kt)
+        ath[i], aU[i] = site_acceleration(M + i, i, 2 * M + i, X, XU, s, c, v, coupled, a2, Ks, Kt)
 
 
-@njit(cache=True, fastmath=_FAST, boundscheck=False)
+@njit(cache=True, fastmath=FASTMATH, boundscheck=False)
 def _reduced_run(y0, Sp, Sm, coupled, a2, Ks, Kt, acoef, bcoef, dt, steps_per_sample,
                  samples):
     """SRKN (kick b_j, drift a_j) of the reduced chain, sampled every steps_per_sample."""
@@ -261,7 +258,7 @@ def _peak(t, c, guess, window, span):
             return float(nu)
     from scipy.optimize import minimize_scalar
 
-    neg = lambda x: -abs(np.exp(1j * x * t) @ wc)  # noqa: E731
+    neg = lambda x: -abs(np.exp(1j * x * t) @ wc)
     res = minimize_scalar(neg, bounds=(lo, hi), method="bounded",
                           options={"xatol": PEAK_TOL * span})
     return float(res.x) if -res.fun >= -neg(best) else best

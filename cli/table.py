@@ -4,8 +4,7 @@ generated module only, no SymPy work)."""
 from __future__ import annotations
 
 from common import paper
-from numerics import Material
-from numerics import nls_summary
+from numerics import Material, nls_summary
 
 COLUMNS = ("point", "case", "k", "delta", "omega", "v_g", "g1", "g2", "g", "K_c", "K_m",
            "verdict")

@@ -37,10 +37,10 @@ from common.threads import one_blas_thread
 from generated import lattice_model as model
 
 from ..lattice import checks
-from ..theory._hill import _coefficients, _hill_batch, _is_mi, _sideband_share, map_grid
-from ..theory._plane_wave import _on_branch, _solve_plane_waves
-from ..theory._quasiperiodic import ROUNDOFF
+from ._hill import _coefficients, _hill_batch, _is_mi, _sideband_share, map_grid
 from ._pencil import pencil_eigenvalues
+from ._plane_wave import _on_branch, _solve_plane_waves
+from ._quasiperiodic import ROUNDOFF
 from ._reduced import _growth, _reduced, _refine_roots
 
 #: offsets of the reduced problem's grid, (0, pi]: fine enough that a band of the paper's

@@ -8,12 +8,18 @@ import math
 
 import numpy as np
 
-from numerics.lattice import GROWTH_THRESHOLD, checks
-
-from numerics.maps import (AGREEMENT_MARGIN, MapParameters, agreement, local_cores,
-                           parse_spec, run_map)
+from common.output import check_output, prepare_output, strict_json
 from common.text import duration as _duration
-
+from numerics.lattice import GROWTH_THRESHOLD, checks
+from numerics.maps import (
+    AGREEMENT_MARGIN,
+    MapParameters,
+    agreement,
+    local_cores,
+    parse_spec,
+    run_map,
+)
+from numerics.theory import MAP_COLUMNS
 
 #: a map of more cells than this is refused (its theory columns alone fill memory)
 MAX_CELLS = 250_000
@@ -39,8 +45,6 @@ def _as_option(message: str) -> str:
     return message
 
 
-#: the theories' verdict columns, in the order the summaries print them
-THEORIES = ("paper", "semidiscrete", "exact", "exact_all", "predicted")
 
 
 def _mi_fraction(v: np.ndarray) -> float:
@@ -51,7 +55,7 @@ def _mi_fraction(v: np.ndarray) -> float:
 
 def plot_map(ds, ax=None):
     """Simulated verdict (white: MI) with the theories' boundaries drawn over it."""
-    from ._plotting import image, plt
+    from scenes import image, plt
 
     if ax is None:
         fig, ax = plt.subplots(figsize=(6, 4.5), layout="constrained")
@@ -99,12 +103,9 @@ def _agreement_text(name: str, ag: dict) -> str:
     return f"{name} {ag[name]:.0f}% of cells ({'; '.join(parts)})"
 
 
-def run_map_command(args, log=print):
-    """`flexmm map`: parse, check everything (nothing is written on bad input), run."""
-    from common.files import write_text
-
-    from ._runner import _strict
-
+def _map_parameters(args):
+    """(MapParameters, the k values, the cell count) from the options, every one checked
+    and named in its error (nothing is written on bad input)."""
     if args.alpha is None or args.K_s is None:
         raise ValueError("--alpha and --K-s are required (the material's inertia and shear "
                          "stiffness)")
@@ -138,8 +139,14 @@ def run_map_command(args, log=print):
                                block=args.block)
     except (ValueError, TypeError) as exc:  # name the option, not the field
         raise type(exc)(_as_option(str(exc))) from None
-    from ._runner import check_output, prepare_output
+    return params, k, cells
 
+
+def run_map_command(args, log=print):
+    """`flexmm map`: parse, check everything (nothing is written on bad input), run."""
+    from common.files import write_text
+
+    params, k, cells = _map_parameters(args)
     check_output(args.out)  # a bad --out fails before the map is announced
     moved = [(a, b) for a, b in zip(params.k, params.k_simulated) if abs(a - b) > 1e-9 * a]
     if moved:
@@ -169,11 +176,10 @@ def run_map_command(args, log=print):
                                for n in verdicts},
                "undetermined_cells": {n.removeprefix("verdict_"): int((ds[n].values < 0).sum())
                                       for n in verdicts}}
-    write_text(out / "summary.json", json.dumps(_strict(summary), indent=2) + "\n")
+    write_text(out / "summary.json", json.dumps(strict_json(summary), indent=2) + "\n")
     fig = plot_map(ds)
     from common.files import atomic_write
-
-    from ._plotting import plt
+    from scenes import plt
 
     with atomic_write(out / "map.png", mode=None) as tmp:
         fig.savefig(tmp, format="png", dpi=110)
@@ -183,13 +189,13 @@ def run_map_command(args, log=print):
         log(f"MI (grows more than {GROWTH_THRESHOLD:g}x within T = {params.t_end:g}) in: "
             + "; ".join(f"{n} {100 * summary['mi_fraction'][n]:.0f}% of cells"
                         + (f" ({und[n]} undetermined, left out)" if und[n] else "")
-                        for n in THEORIES if n in summary["mi_fraction"]))
+                        for n in MAP_COLUMNS if n in summary["mi_fraction"]))
     log(f"wrote {out / 'map.zarr'}, {out / 'map.png'}, {out / 'summary.json'}")
     if summary["simulated"]:
         ag = summary["agreement_with_simulation_percent"]
         log(f"theory verdicts that agree with the simulation (marginal: the theory's growth "
             f"within {AGREEMENT_MARGIN:g}x of {GROWTH_THRESHOLD:g}x): " + "; ".join(
-            _agreement_text(n, ag) for n in THEORIES))
+            _agreement_text(n, ag) for n in MAP_COLUMNS))
         if ag["predicted_growth_cells"]:
             log(f"predicted growth within 2x of the measured one in "
                 f"{ag['predicted_growth_within_2x']:.0f}% of the "

@@ -9,17 +9,17 @@ import warnings
 from pathlib import Path
 
 from common.files import write_text
+from common.output import prepare_output, strict_json
 from numerics.lattice import checks
-from numerics.theory import SolitonWarning, simulate_soliton, soliton, soliton_report
+from numerics.theory import NLS_THEORIES, SolitonWarning, simulate_soliton, soliton, soliton_report
 
-THEORY = {"semi-discrete": "semi-discrete NLS", "paper": "paper NLS"}
 ROWS = (("velocity", "sites/T"), ("width", "sites"), ("amplitude", "rad (peak rotation)"),
         ("frequency", "1/T"), ("kink_height", "U, lattice units"))
 
 
 def _other_theory(mat, case, k, amplitude, theory):
     """The other NLS's kind at this point, or a sentence saying where it disagrees."""
-    other = [t for t in THEORY.values() if t != theory][0]
+    other = [t.label for t in NLS_THEORIES if t.label != theory][0]
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", SolitonWarning)
@@ -34,12 +34,10 @@ def run_soliton(args, log=print) -> dict:
 
     mat, _ = material_from(args)
     if args.out:  # before any computation (a simulation may take minutes)
-        from ._runner import prepare_output
-
         prepare_output(args.out, cache=False)
     amplitude = checks.real("--amplitude", args.amplitude, 0.0, 1.0)
     k = checks.real("--k", args.k, 0.0, math.pi)
-    theory = THEORY[args.theory]
+    theory = next(t.label for t in NLS_THEORIES if t.cli == args.theory)
     if args.simulate:
         checks.real("--travel", args.travel, 0.0, 1000.0)
         if args.N is not None:
@@ -102,9 +100,7 @@ def run_soliton(args, log=print) -> dict:
     if args.out:
         out = Path(args.out)
         out.mkdir(parents=True, exist_ok=True)
-        from ._runner import _strict
-
-        write_text(out / "soliton.json", json.dumps(_strict(result), indent=2) + "\n")
+        write_text(out / "soliton.json", json.dumps(strict_json(result), indent=2) + "\n")
         log(f"wrote {out / 'soliton.json'}")
     return result
 

@@ -3,10 +3,12 @@
 from __future__ import annotations
 
 import argparse
+import math
 import sys
 import time
 from pathlib import Path
 
+from common import paper
 
 EPILOG = {
     "coefficients": "example:\n  flexmm coefficients --alpha 2.5 --K-s 0.01851 --K-theta 0.01551 "
@@ -41,17 +43,18 @@ def _sub(sub, name, help_):
                           epilog=EPILOG[name], formatter_class=_Help)
 
 
-def _parser():
+def build_parser():
     p = argparse.ArgumentParser(
         prog="flexmm", description="Modulation instability in flexible mechanical "
         "metamaterials: coefficients, MI verdicts, simulations, maps and the paper's figures.",
         epilog="run `flexmm COMMAND --help` for a command's options and an example")
     sub = p.add_subparsers(dest="cmd", required=True, metavar="COMMAND")
+    p.commands = sub.choices  # {name: its parser}, for the errors of _parse
     co = _sub(sub, "coefficients", "NLS coefficients and MI band of any material at any k")
     _material_args(co, map_=False)
     co.add_argument("--k", type=float, required=True,
                     help="(required) carrier wavenumber, rad per site, in (0, pi)")
-    co.add_argument("--amplitude", type=float, default=0.02,
+    co.add_argument("--amplitude", type=float, default=paper.AMPLITUDE,
                     help="peak rotation of the plane wave, rad (the paper's 2 eps A0)")
     tab = _sub(sub, "table", "NLS coefficients at the paper's two test points")
     tab.add_argument("--A0", type=float, default=1.0, help="the paper's envelope amplitude "
@@ -97,7 +100,7 @@ def _material_args(p, map_=False):
 def _experiment_args(p):
     p.add_argument("--case", required=True, choices=("rotation", "coupled"),
                    help="(required) rotation: case I, U = 0; coupled: case II, U and theta")
-    p.add_argument("--amplitude", type=float, default=0.02,
+    p.add_argument("--amplitude", type=float, default=paper.AMPLITUDE,
                    help="peak rotation of the plane wave, rad (the paper's 2 eps A0)")
     p.add_argument("--start", choices=("paper", "travelling"), default="paper",
                    help="initial state: eq. IC of the paper (U at rest), or the exact "
@@ -138,7 +141,10 @@ def _soliton_parser(sub):
     p.add_argument("--kind", choices=("bright", "dark"),
                    help="the soliton asked for (default: the one that exists here; asking "
                         "for the other is an error that names it)")
-    p.add_argument("--theory", choices=("semi-discrete", "paper"), default="semi-discrete",
+    from numerics.theory import PAPER_NLS, SEMIDISCRETE_NLS
+
+    p.add_argument("--theory", choices=(SEMIDISCRETE_NLS.cli, PAPER_NLS.cli),
+                   default=SEMIDISCRETE_NLS.cli,
                    help="the NLS that predicts it: the semi-discrete one (derived on the "
                         "lattice) or the paper's continuum one")
     p.add_argument("--simulate", action="store_true",
@@ -237,13 +243,14 @@ def _parse(argv):
     """The parsed command line. An unknown option is the command's error (its usage, not
     flexmm's), with the nearest option it has: ``--K-thetaa`` -> did you mean --K-theta?"""
     import difflib
+    import re
 
-    p = _parser()
+    p = build_parser()
     args, extra = p.parse_known_args(argv)
     if extra:
-        sub = next(a for a in p._actions
-                   if isinstance(a, argparse._SubParsersAction)).choices[args.cmd]
-        known = [o for o in sub._option_string_actions if o.startswith("--")]
+        sub = p.commands[args.cmd]
+        # the command's options, as its help lists them (argparse's public output)
+        known = sorted(set(re.findall(r"(?<![\w-])--[A-Za-z][\w-]*", sub.format_help())))
         close = [c for e in extra if e.startswith("-")
                  for c in difflib.get_close_matches(e.split("=")[0], known, n=1)]
         sub.error(f"unrecognized arguments: {' '.join(extra)}"
@@ -292,7 +299,9 @@ def _interrupted(args, exc) -> str:
                 + ": run the same command again to continue")
     if cmd == "map":
         store = Path(args.out) / "map.zarr"
-        done = _done_cells(store)
+        from numerics.maps import cells_done
+
+        done = cells_done(store)
         kept = (f"{done[0]} of {done[1]} cells are kept in {store} (checksummed)"
                 if done else f"nothing was written to {store}")
         return (f"interrupted ({name}); {kept}; the cells that were running were not kept: "
@@ -301,17 +310,6 @@ def _interrupted(args, exc) -> str:
         return (f"interrupted ({name}); nothing was written"
                 + (f" to {args.out}" if getattr(args, "out", None) else ""))
     return f"interrupted ({name})"
-
-
-def _done_cells(store: Path):
-    """(cells done, cells) of a map store, or None when it holds none."""
-    try:
-        import zarr
-
-        done = zarr.open_group(str(store), mode="r")["done"][...]
-        return int(done.sum()), int(done.size)
-    except Exception:  # noqa: BLE001 - no store, or not readable: nothing to report
-        return None
 
 
 def _run(args) -> int:
@@ -343,7 +341,7 @@ def _dispatch(args, scenes) -> int:
         run_soliton(args)
         return 0
     if args.cmd == "map":
-        from ._map_command import run_map_command
+        from .map import run_map_command
 
         run_map_command(args)
         return 0
@@ -358,9 +356,10 @@ def _dispatch(args, scenes) -> int:
 
         mat, units = material_from(args)
         from numerics.lattice import checks
+        from numerics.theory import MAX_AMPLITUDE
 
-        checks.real("--k", args.k, 0.0, 3.141592653589793)  # the option's name, as in point
-        checks.real("--amplitude", args.amplitude, 0.0, 1.5)
+        checks.real("--k", args.k, 0.0, math.pi)  # the option's name, as in point
+        checks.real("--amplitude", args.amplitude, 0.0, MAX_AMPLITUDE)
         print(format_coefficients(mat, args.k, args.amplitude, units))
         return 0
     if args.cmd == "scenes":

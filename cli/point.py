@@ -1,0 +1,245 @@
+"""`flexmm point`: the three theories of MI at one point of any material, and optionally
+the simulation that checks them (measured sigma(q), verdict, figure). The numbers are
+``numerics.maps.measure_point``'s; this module checks the options, prints and writes."""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+
+from common.files import write_text
+from common.output import prepare_output, strict_json
+from common.paper import EPS
+from numerics import Material
+from numerics.lattice import GROWTH_THRESHOLD, checks, grows_beyond_threshold, paper_start_undefined
+from numerics.maps import MAX_SEEDS, MAX_T_END, fold, measure_point, snap_carrier
+from numerics.theory import (
+    EXACT_LATTICE,
+    MAX_AMPLITUDE,
+    PAPER_NLS,
+    SEMIDISCRETE_NLS,
+    nls_coefficients,
+)
+
+from .coefficients import weak_nonlinearity_note
+
+#: what point.json's numbers are in (the lattice units), beside the SI ones of --physical
+UNITS = {"time": "T = t sqrt(k_l/m)", "gain": "1/T", "wavenumber": "rad/site",
+         "curves": "theories: curve over offset Q = |q - k| (0 .. pi), q the upper sideband "
+                   "folded into [0, pi]; simulated: sigma per rfft bin q, and "
+                   "sigma_by_offset (the smaller of a pair's two sidebands)"}
+
+
+def material_from(args):
+    """(Material, Units) from --alpha/--K-s/--K-theta, or --physical m,J,a,k_l,k_s,k_theta
+    (then answers are also given in seconds and metres)."""
+    from .coefficients import Units
+
+    if getattr(args, "physical", None):
+        try:
+            values = [float(v) for v in args.physical.split(",")]
+        except ValueError:
+            raise ValueError(f"--physical: cannot read {args.physical!r}; give six numbers "
+                             "m,J,a,k_l,k_s,k_theta") from None
+        if len(values) != 6:
+            raise ValueError(f"--physical needs six numbers m,J,a,k_l,k_s,k_theta, got "
+                             f"{len(values)}")
+        if any(v is not None for v in (args.alpha, args.K_s, args.K_theta)):
+            raise ValueError("give --physical or --alpha/--K-s/--K-theta, not both")
+        mat = Material.from_physical(*values)
+        m, _, a, k_l = values[:4]
+        return mat, Units.physical(m, k_l, a)
+    missing = [n for n, v in (("--alpha", args.alpha), ("--K-s", args.K_s),
+                              ("--K-theta", args.K_theta)) if v is None]
+    if missing:
+        raise ValueError(f"missing {', '.join(missing)} (or give --physical m,J,a,k_l,k_s,"
+                         "k_theta)")
+    for name, v in (("--alpha", args.alpha), ("--K-s", args.K_s), ("--K-theta", args.K_theta)):
+        checks.positive(name, v)  # the wording every command uses
+    return Material(args.alpha, args.K_s, args.K_theta), Units()
+
+
+def _checked(args, mat):
+    """(amplitude, k, m) after every option's check, named as the option (nothing is
+    computed before the input is known good)."""
+    amplitude = checks.real("--amplitude", args.amplitude, 0.0, MAX_AMPLITUDE)
+    k, m = snap_carrier(args.k, args.N, names=("--k", "--N"))
+    checks.integer("--seeds", args.seeds, 1, MAX_SEEDS)
+    if args.t_end is not None:
+        checks.real("--t-end", args.t_end, 0.0, MAX_T_END)
+    if args.start == "paper" and (why := paper_start_undefined(mat, k, ("travelling",))):
+        raise ValueError(f"--start paper: {why}")
+    return amplitude, k, m
+
+
+def _log_header(log, args, mat, units, k, m, amplitude):
+    """The inputs echoed (material, carrier, the semi-discrete NLS, units), before the
+    theories and the simulation run."""
+    N, k_req = args.N, args.k
+    A0 = amplitude / (2 * EPS)
+    co_all = nls_coefficients(mat, k, amplitude)
+    co = co_all["semi-discrete"]
+    log(f"material: alpha = {mat.alpha:g}, K_s = {mat.K_s:g}, K_theta = {mat.K_theta:g} "
+        f"(delta = {mat.delta:.4g}); case {args.case}")
+    log(f"carrier:  k = {units.wavenumber(k)} = 2 pi {m}/{N}"
+        + (f" (asked {k_req:g}: the nearest a chain of N = {N} sites carries)"
+           if abs(k - k_req) > 1e-9 * k_req else "")
+        + f"; amplitude {amplitude:g} rad (peak rotation; eps = {EPS:g}, A0 = {A0:.4g}); "
+        f"start {args.start}")
+    log(f"NLS (semi-discrete): omega = {co['omega']:.6g} 1/T, v_g = {co['v_g']:.4g} site/T, "
+        f"g1 = {co['g1']:.4g}, g2 = {co[args.case]['g2']:.4g}, g = {co[args.case]['g']:.4g}")
+    log(f"units:    {units.describe()}")
+    note = weak_nonlinearity_note(co_all, amplitude, remedy="the exact rows below")
+    if note:
+        log(note)
+
+
+def _rows(res) -> list:
+    """The table's rows (theory, verdict, peak gain, its offset, half-gain edge); with a
+    simulation the theories' verdicts answer its question, and its own row comes last."""
+    rows = [(n, t.get("verdict_within_t_end", t["verdict"]), t["peak_gain"], t["peak_offset"],
+             t["band_edge"]) for n, t in res.theories.items()]
+    sim = res.simulated
+    if sim is not None:
+        rows.append((f"simulated ({sim['seeds']} seeds, N = {res.N}, T = {res.t_end:g}, "
+                     f"{sim['method']} dt = {sim['dt']:.3g})", sim["verdict"],
+                     sim["peak_gain"], sim["peak_offset"], sim["band_edge"]))
+    return rows
+
+
+def _log_growth(log, res):
+    """The predicted (and measured) growth factor per seed, and what it means."""
+    t_end, pred = res.t_end, res.prediction
+    if pred is None:
+        log(f"growth factor within T = {t_end:g}: no prediction ({res.predicted['reason']})")
+        return
+    predicted = res.predicted["growth"]
+    log(f"growth factor within T = {t_end:g} (the largest non-carrier component over the "
+        f"carrier, per seed): predicted "
+        + ", ".join(f"{g:.3g}x" for g in predicted)
+        + ("; measured " + ", ".join(f"{g['growth']:.3g}x" for g in res.growths)
+           if res.growths is not None else "")
+        + ("" if pred.linear else " (the prediction leaves the linear stage: MI, the "
+           "factor an upper bound)"))
+    if (np.median(predicted) > GROWTH_THRESHOLD
+            and not grows_beyond_threshold(pred.rate, t_end)):
+        log(f"note: no Hill mode grows fast enough for {GROWTH_THRESHOLD:g}x within T "
+            f"(fastest {pred.rate:.3g} /T): the predicted factor is the linear response "
+            "itself (modes that beat, a transient), as the run will show it, not an "
+            "exponential instability")
+    side = res.theories[res.exact_theory]["peak_gain"]
+    if (grows_beyond_threshold(pred.rate, t_end) and math.isfinite(side)
+            and pred.rate > 1.1 * side):
+        log(f"note: the fastest growing Hill mode ({pred.rate:.4g} /T) is not a sideband "
+            f"pair, which the '{res.exact_theory}' row shows ({side:.4g} /T): a map's "
+            "exact_all column counts every mode")
+
+
+def _log_verdicts(log, res):
+    if res.simulated is not None:
+        log(f"verdicts: MI = grows more than {GROWTH_THRESHOLD:g}x within T = {res.t_end:g} "
+            f"(theories: exp(peak gain x T); simulated: measured growth "
+            + ", ".join(f"{g['growth']:.3g}x" for g in res.growths) + ")")
+    else:
+        log("verdicts: MI = the plane wave is unstable (peak gain > 0, however slow); with "
+            f"--simulate they answer the run's question instead: grows more than "
+            f"{GROWTH_THRESHOLD:g}x within T = {res.t_end:g}")
+
+
+def _log_fastest(log, rows, k, units):
+    """The most faithful row that grows: the simulation, else the exact theory, else an
+    NLS; its sidebands and e-folding time."""
+    growing = [r for r in rows if math.isfinite(r[2]) and r[2] > 0]
+    best = None
+    for kind in ("simulated", EXACT_LATTICE.label, SEMIDISCRETE_NLS.label, PAPER_NLS.label):
+        group = [r for r in growing if r[0].startswith(kind)]
+        if group:
+            best = max(group, key=lambda r: r[2])
+            break
+    if best is not None:
+        Q = best[3]
+        up, low = fold([k + Q, k - Q])
+        log(f"fastest growth ({best[0]}): offset q - k = {Q:.4g}, sidebands q at "
+            f"{up:.4g} and {low:.4g} rad/site (folded into [0, pi]), e-folding "
+            f"time {units.time(1 / best[2])}")
+
+
+def run_point(args, log=print) -> dict:
+    """`flexmm point`: check the options, echo them, ``measure_point``, print the table
+    and (``--out``) write point.json and point.png. Returns point.json's dict."""
+    mat, units = material_from(args)
+    amplitude, k, m = _checked(args, mat)
+    if args.out:  # before any computation (a simulation may take minutes)
+        prepare_output(args.out, cache=False)
+    _log_header(log, args, mat, units, k, m, amplitude)
+    res = measure_point(mat, args.case, args.k, amplitude, N=args.N, start=args.start,
+                        simulate=args.simulate, t_end=args.t_end, seeds=args.seeds)
+    result = res.as_dict(units={**UNITS, "seconds_per_T": units.seconds_per_T,
+                                "metres_per_site": units.metres_per_site})
+    rows = _rows(res)
+    log("")
+    _log_growth(log, res)
+    _log_verdicts(log, res)
+    log(_table(rows, units))
+    for n, t in res.theories.items():
+        if "reason" in t:
+            log(f"{n}: {t['reason']}")
+    if res.simulated is not None and "no_rate" in res.simulated:
+        log(f"simulated: {res.simulated['no_rate']}")
+    _log_fastest(log, rows, k, units)
+    if args.out:
+        out = Path(args.out)
+        out.mkdir(parents=True, exist_ok=True)
+        _figure(out, res.theories, res.measured, k, args, amplitude)
+        write_text(out / "point.json", json.dumps(strict_json(result), indent=2) + "\n")
+        log(f"wrote {out / 'point.json'} and {out / 'point.png'}")
+    return result
+
+
+def _table(rows, units=None) -> str:
+    head = ("theory", "verdict", "peak gain (1/T)", "e-folding (T)", "at q - k (rad/site)",
+            "half-gain edge q - k")
+    cells = [head] + [(r[0], r[1], f"{r[2]:.4g}" if math.isfinite(r[2]) else "-",
+                       f"{1 / r[2]:.4g}" if math.isfinite(r[2]) and r[2] > 0 else "-",
+                       f"{r[3]:.4g}", f"{r[4]:.4g}") for r in rows]
+    widths = [max(len(c[i]) for c in cells) for i in range(len(head))]
+    lines = ["  ".join(c.ljust(w) for c, w in zip(row, widths)) for row in cells]
+    lines.insert(1, "  ".join("-" * w for w in widths))
+    return "\n".join(lines)
+
+
+def _figure(out, th, meas, k, args, amplitude):
+    from common.files import atomic_write
+    from scenes import plt
+
+    fig, ax = plt.subplots(figsize=(7, 4), layout="constrained")
+    if meas:
+        ax.errorbar(meas["offset"], meas["sigma_by_offset"], yerr=meas["std_by_offset"],
+                    fmt=".", ms=3, lw=0.5,
+                    label=(f"simulated ({meas['seeds']} of {args.seeds} seeds with a linear "
+                           "stage" if meas["seeds"] < args.seeds
+                           else f"simulated ({meas['seeds']} seeds") + ")")
+    for (name, t), style in zip(th.items(), ("k--", "C2-", "C3-")):
+        ax.plot(t["offset"], t["curve"], style, lw=1, label=f"{name} (theory)")
+    tops = [np.nanmax(t["curve"]) for t in th.values() if np.any(np.isfinite(t["curve"]))]
+    if meas:
+        tops.append(float(np.max(meas["sigma"])))
+    top = max([v for v in tops if np.isfinite(v)], default=0.0)
+    if top <= 0:  # nothing grows: say so instead of an empty plot on a 1e-12 axis
+        ax.set_ylim(-1, 1)
+        ax.text(0.5, 0.6, "stable: no growing sideband in any theory" +
+                (" or the simulation" if meas else ""), transform=ax.transAxes,
+                ha="center", fontsize=10)
+    else:
+        ax.set_ylim(-0.1 * top, 1.4 * top)
+    ax.set_xlabel(r"sideband offset $Q = |q - k|$ (rad/site): sidebands at $k \pm Q$")
+    ax.set_ylabel(r"growth rate $\sigma$ (1/T)")
+    ax.set_title(f"case {args.case}, $k$ = {k:.4g}, amplitude {amplitude:g} rad, "
+                 f"start {args.start}", fontsize=9)
+    ax.legend(fontsize=7)
+    with atomic_write(out / "point.png", mode=None) as tmp:
+        fig.savefig(tmp, format="png", dpi=110)
+    plt.close(fig)
