@@ -41,6 +41,10 @@ CRITERION = (f"MI when the largest non-carrier, non-harmonic component (theta; U
 MAX_AXIS = 100_000
 
 
+class _DropsBound(ValueError):
+    """A range SPEC whose count cannot hold both of its ends."""
+
+
 def parse_spec(text: str, name: str) -> np.ndarray:
     """``v1,v2,...`` or ``start:stop:num`` (inclusive) -> sorted values; ValueError else."""
     if not isinstance(text, str) or not text.strip():
@@ -53,9 +57,15 @@ def parse_spec(text: str, name: str) -> np.ndarray:
             start, stop, num = float(parts[0]), float(parts[1]), int(parts[2])
             if num < 1 or (num > 1 and start == stop):
                 raise ValueError
+            if num == 1 and start != stop:  # linspace would keep start and drop stop
+                raise _DropsBound(f"{name}: SPEC {text!r} asks for 1 value between {start:g} "
+                                  f"and {stop:g}, so it would drop {stop:g}; give num >= 2 "
+                                  f"for both ends, or the single value {start:g}")
             values = np.linspace(start, stop, min(num, MAX_AXIS + 1))  # > MAX_AXIS: refused
         else:
             values = np.array([float(v) for v in text.split(",")])
+    except _DropsBound:
+        raise
     except ValueError:
         raise ValueError(f"{name}: cannot read SPEC {text!r}; give v1,v2,... or "
                          "start:stop:num (num >= 1, inclusive)") from None
