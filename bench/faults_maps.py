@@ -41,7 +41,7 @@ def _mp(**kw):
     from numerics.maps import MapParameters
 
     args = dict(case="coupled", alpha=2.5, K_s=paper.K_S, delta=(0.003,), k=(0.8,),
-                amplitude=0.02, N=100, t_end=100.0)
+                amplitude=0.02, N=100, t_end=500.0)
     args.update(kw)
     return MapParameters(**args)
 
@@ -320,8 +320,12 @@ MAP_CATALOGUE += [
      (C, 2, "lacks the dataset")),
     ("scene: unknown name", lambda: _cli("scene", "no-such-scene", "--replot"),
      (C, 2, "no-such-scene")),
-    ("map --scheduler: a closed port", lambda: _cli(*MAP, *MAP_GRID, "--t-end", "100",
+    ("map --scheduler: a closed port", lambda: _cli(*MAP, *MAP_GRID, "--t-end", "500",
                                                     "--N", "100", "--scheduler",
                                                     "tcp://127.0.0.1:1", "--timeout", "5"),
      (C, 2, "tcp://127.0.0.1:1: cannot connect")),
 ]
+
+from bench.faults_round3 import ROUND3  # noqa: E402 - the third round (issue 35)
+
+MAP_CATALOGUE += ROUND3

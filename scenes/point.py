@@ -16,7 +16,7 @@ from numerics.lattice import (GROWTH_THRESHOLD, LINEAR_STAGE_RULE, band_summary,
                               grows_beyond_threshold, paper_start_undefined)
 from numerics.maps import cell_step, growth_of
 from numerics.theory import nls_undefined, predict_growth
-from numerics.lattice import checks
+from numerics.lattice import checks, shortest_run_error
 from numerics.theory import (PAPER_START, THEORIES, measure_gain, measurement_length,
                              theory_gain)
 
@@ -198,6 +198,8 @@ def run_point(args, log=print) -> dict:
     exact_name = "exact lattice" if args.start == "travelling" else PAPER_START
     exact = th[exact_name]["peak_gain"]
     t_end = args.t_end or measurement_length(exact if math.isfinite(exact) else 0.0)
+    if short := shortest_run_error("--t-end", t_end, [(mat, k)], args.case):
+        raise ValueError(short)
     seeds = checks.integer("--seeds", args.seeds, 1, 1000)
     # the growth factor the simulation measures, predicted from each seed's initial state
     # (records every 5 T, as the simulation below saves them)

@@ -25,7 +25,8 @@ from ._accuracy import AccuracyWarning, choose_step
 from ._analysis import (GROWTH_THRESHOLD, band_summary, carrier_amplitude, carrier_frequency,
                         forced_second_harmonic, growth_rates, grows_beyond_threshold,
                         LINEAR_STAGE_RULE, harmonic_bins, linear_stage, mode, non_carrier_bins,
-                        sideband_to_carrier, spectrum, spectrum_growth, stability_verdict)
+                        shortest_run, shortest_run_error, sideband_to_carrier, spectrum, spectrum_growth,
+                        stability_verdict)
 from ._cache import cached_simulate
 from ._integrate import BlowUpError, SimulationInterrupted, integrate
 from ._integrators import METHODS, Method, get_method
@@ -46,5 +47,6 @@ __all__ = [
     "harmonic_bins", "non_carrier_bins", "sideband_to_carrier", "stability_verdict",
     "linear_stage", "LINEAR_STAGE_RULE", "growth_rates", "band_summary", "forced_second_harmonic",
     "carrier_amplitude", "carrier_frequency", "GROWTH_THRESHOLD", "grows_beyond_threshold",
-    "checks", "noise_field", "spectrum_growth",
+    "checks", "noise_field", "spectrum_growth", "shortest_run",
+    "shortest_run_error",
 ]

@@ -11,7 +11,7 @@ from functools import cached_property
 import numpy as np
 
 from ..lattice import Material, checks
-from ..lattice._analysis import GROWTH_THRESHOLD, non_carrier_bins
+from ..lattice._analysis import GROWTH_THRESHOLD, non_carrier_bins, shortest_run_error
 from ..lattice._integrate import _check_time
 from ..lattice._integrators import get_method
 from ..lattice._starts import paper_start_undefined
@@ -183,6 +183,11 @@ class MapParameters:
                 more = f" and {len(bad) - 1} more rows" if len(bad) > 1 else ""
                 raise ValueError(f"--start paper: at K_theta = {self.K_theta[bad[0][0]]:g}{more}, "
                                  f"{bad[0][1]}, or narrow --k")
+        short = shortest_run_error(
+            "t_end", self.t_end, [(self.material_at(i), snapped)
+                                  for i in range(len(self.K_theta))], self.case)
+        if short:
+            raise ValueError(short)
         for j in range(1, len(snapped)):
             if snapped[j] == snapped[j - 1]:
                 m = round(snapped[j] * self.N / (2 * math.pi))

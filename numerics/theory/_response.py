@@ -305,6 +305,8 @@ def predict_growth(material: Material, case: str, k: float, amplitude: float = 0
         full[:, :, rest] += free
         mask = non_carrier_bins(m0, N, name)
         perturbation[name] = 2 * np.abs(full[:, 0, : N // 2 + 1])
+        if not mask.any():  # every bin of this field is a harmonic (small N): nothing to read
+            continue
         spec = 2 * np.abs(full[:, :, : N // 2 + 1][:, :, mask])  # (nt, draws, nbins)
         linear &= bool(np.all(spec[:, 0].max(axis=1) < LINEAR_LIMIT * carrier))
         ratio[name] = np.transpose(spec / carrier[:, None, None], (1, 0, 2))

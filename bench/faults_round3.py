@@ -1,0 +1,96 @@
+"""The fault catalogue's third round (issue 35): each fault class of that round, tried with
+values of its own (none from the issue's report), with its exact outcome. ``bench/faults_maps.py``
+adds ``ROUND3`` to ``MAP_CATALOGUE``; the entries' form is described in ``bench/faults.py``."""
+
+from __future__ import annotations
+
+import math
+
+from bench._fault_helpers import E
+
+C = "cli"
+
+
+def _cli(*argv):
+    from bench.faults_maps import _cli as cli
+
+    return cli(*argv)
+
+
+MAT = ("--alpha", "3.1", "--K-s", "0.024")
+MAP = ("map", "--case", "coupled", *MAT, "--out", "/nonexistent-flexmm/map3")
+POINT = ("point", *MAT, "--K-theta", "0.0205", "--case", "coupled", "--k", "1.1")
+SOLITON = ("soliton", "--alpha", "2.5", "--K-s", "0.01851", "--K-theta", "0.02151", "--k",
+           "0.92991", "--case", "rotation")
+
+
+def _params(**kw):
+    from numerics.maps import MapParameters
+
+    args = dict(case="coupled", alpha=3.1, K_s=0.024, delta=(0.0035,), k=(1.1,),
+                amplitude=0.015, N=120, t_end=800.0)
+    args.update(kw)
+    return MapParameters(**args)
+
+
+def _dangling_out():
+    import shutil
+    import tempfile
+    from pathlib import Path
+
+    d = Path(tempfile.mkdtemp())
+    try:
+        (d / "out").symlink_to(d / "gone" / "away")
+        return _cli("map", "--case", "rotation", *MAT, "--delta", "0.0035", "--k", "1.1",
+                    "--theory-only", "--out", str(d / "out"))
+    finally:
+        shutil.rmtree(d, ignore_errors=True)
+
+
+def _spec(text):
+    from numerics.maps import parse_spec
+
+    return parse_spec(text, "--delta")
+
+
+ROUND3 = [
+    # class 2: a run too short to show growth is refused (U's build-up from rest read as MI)
+    ("map: --t-end 3e-5 (coupled) is too short to measure growth",
+     lambda: _cli(*MAP, "--delta", "0.0035", "--k", "1.1", "--t-end", "3e-5"),
+     (C, 2, r"--t-end = 3e-05 is too short to measure growth.*give at least \d+")),
+    ("map: --t-end 40 (coupled) is too short to measure growth",
+     lambda: _cli(*MAP, "--delta", "0.0035", "--k", "1.1", "--t-end", "40", "--theory-only"),
+     (C, 2, r"--t-end = 40 is too short")),
+    ("point: --t-end 2 --simulate is too short to measure growth",
+     lambda: _cli(*POINT, "--simulate", "--t-end", "2"), (C, 2, r"--t-end = 2 is too short")),
+    ("MapParameters: t_end 7 (coupled) is too short",
+     lambda: _params(t_end=7.0), (E, ValueError, r"t_end = 7 is too short")),
+    ("MapParameters: t_end 7 in case rotation (no U read) is accepted",
+     lambda: _params(case="rotation", t_end=7.0), ("ok", lambda p: p.t_end == 7.0)),
+    # class 2: a range whose count drops a bound
+    ("parse_spec: 0.002:0.004:1 drops its stop", lambda: _spec("0.002:0.004:1"),
+     (E, ValueError, r"--delta.*would drop 0.004")),
+    ("map: --k 0.7:2.1:1 drops its stop",
+     lambda: _cli(*MAP, "--delta", "0.0035", "--k", "0.7:2.1:1"), (C, 2, r"--k.*would drop 2.1")),
+    ("parse_spec: 0.003:0.003:1 is one value", lambda: _spec("0.003:0.003:1"),
+     ("ok", lambda v: v.tolist() == [0.003])),
+    # class 2: an option that acts only with another is refused alone
+    ("soliton: --travel 3 without --simulate", lambda: _cli(*SOLITON, "--travel", "3"),
+     (C, 2, r"--travel does nothing without --simulate")),
+    ("soliton: --N 400 without --simulate", lambda: _cli(*SOLITON, "--N", "400"),
+     (C, 2, r"--N does nothing without --simulate")),
+    ("point: --seeds 6 without --simulate", lambda: _cli(*POINT, "--seeds", "6"),
+     (C, 2, r"--seeds does nothing without --simulate")),
+    # class 5: a negative non-finite value reaches the check that names its option
+    ("map: --t-end -Infinity", lambda: _cli(*MAP, "--delta", "0.0035", "--k", "1.1",
+                                            "--t-end", "-Infinity"), (C, 2, r"--t-end must be")),
+    ("point: --amplitude -nan", lambda: _cli(*POINT, "--amplitude", "-nan"),
+     (C, 2, r"--amplitude must be")),
+    # class 5: a --out that is a link to nothing is named, with its target
+    ("map: --out a dangling symbolic link", _dangling_out,
+     (C, 2, r"out is a symbolic link to .*gone/away, which does not exist")),
+    # class 5: a chain so small that U has no bin besides the carrier's harmonics
+    ("point: --N 10 --simulate (U has no sideband bin) runs",
+     lambda: _cli(*POINT, "--N", "10", "--simulate", "--seeds", "1", "--t-end", "400"),
+     ("ok", lambda r: r == (0, ""))),
+]
