@@ -6,6 +6,8 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from bench._fault_helpers import E
 
 C = "cli"
@@ -53,7 +55,59 @@ def _spec(text):
     return parse_spec(text, "--delta")
 
 
+def _gain(k, q=(0.12,), theory="semi-discrete NLS", **kw):
+    from numerics import Material, theory_gain
+
+    kw = kw or {"amplitude": 0.015}
+    return theory_gain(theory, Material(3.1, 0.024, 0.0205), "coupled", k, list(q), **kw)
+
+
+def _snap(k=1.1, N=120, rel_tol=1e-3):
+    from numerics import snap_wavenumber
+
+    return snap_wavenumber(k, N, rel_tol)
+
+
+def _generated(name, *args):
+    import generated.lattice_coefficients as co
+
+    return getattr(co, name)(*args)
+
+
 ROUND3 = [
+    # class 2: every public numeric function refuses NaN, bool, complex, str and a bad sign
+    # with the one set of checks (numerics.lattice.checks; generated code prints its rule)
+    ("theory_gain: k NaN", lambda: _gain(math.nan), (E, ValueError, r"k must be in")),
+    ("theory_gain: k False", lambda: _gain(False), (E, TypeError, r"k must be a real")),
+    ("theory_gain: k 1.1+0j", lambda: _gain(1.1 + 0j), (E, TypeError, r"k must be a real")),
+    ("theory_gain: k '1.1'", lambda: _gain("1.1"), (E, TypeError, r"k must be a real")),
+    ("theory_gain: q_offset holds inf", lambda: _gain(1.1, (0.1, math.inf)),
+     (E, ValueError, r"q_offset must hold finite")),
+    ("theory_gain: q_offset complex", lambda: _gain(1.1, (0.1j,)),
+     (E, TypeError, r"q_offset must hold real")),
+    ("theory_gain: eps -0.01", lambda: _gain(1.1, eps=-0.01, A0=1.0),
+     (E, ValueError, r"eps must be finite and > 0")),
+    ("theory_gain: material a str", lambda: __import__("numerics").theory_gain(
+        "paper NLS", "blue", "coupled", 1.1, [0.1], amplitude=0.015),
+     (E, TypeError, r"material must be a Material")),
+    ("snap_wavenumber: N 0", lambda: _snap(N=0), (E, ValueError, r"N must be an integer in")),
+    ("snap_wavenumber: N -64", lambda: _snap(N=-64), (E, ValueError, r"N must be an integer")),
+    ("snap_wavenumber: N False", lambda: _snap(N=False), (E, TypeError, r"N must be an integer")),
+    ("snap_wavenumber: N 120.0", lambda: _snap(N=120.0), (E, TypeError, r"N must be an integer")),
+    ("snap_wavenumber: rel_tol NaN", lambda: _snap(rel_tol=math.nan),
+     (E, ValueError, r"rel_tol must be in \[0, inf\)")),
+    ("snap_wavenumber: rel_tol -0.1", lambda: _snap(rel_tol=-0.1), (E, ValueError, "rel_tol")),
+    ("snap_wavenumber: rel_tol inf snaps anything", lambda: _snap(k=1.0, rel_tol=math.inf),
+     ("ok", lambda r: r[1] == 19)),
+    ("generated g1: k False", lambda: _generated("g1", False, 3.1, 0.024, 0.0205),
+     (E, TypeError, r"k must hold real numbers")),
+    ("generated omega: K_s '0.024'", lambda: _generated("omega", 1.1, 3.1, "0.024", 0.0205),
+     (E, TypeError, r"K_s must hold real numbers")),
+    ("generated g2_coupled: alpha 3.1j", lambda: _generated("g2_coupled", 1.1, 3.1j, 0.024,
+                                                            0.0205),
+     (E, TypeError, r"alpha must hold real numbers")),
+    ("generated omega: integer arrays are real", lambda: _generated("omega", [1, 2], 3, 1, 1),
+     ("ok", lambda w: w.shape == (2,) and bool(np.all(np.isfinite(w))))),
     # class 2: a run too short to show growth is refused (U's build-up from rest read as MI)
     ("map: --t-end 3e-5 (coupled) is too short to measure growth",
      lambda: _cli(*MAP, "--delta", "0.0035", "--k", "1.1", "--t-end", "3e-5"),

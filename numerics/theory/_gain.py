@@ -132,6 +132,10 @@ def theory_gain(theory: str, material: Material, case: str, k: float, q_offset,
 
     The plane wave has peak rotation ``amplitude`` = 2 eps A0 (eq. `IC`): give either.
     """
+    checks.instance("material", material, Material)
+    check_case(case)
+    k = checks.real("k", k, 0.0, np.pi)
+    q_offset = checks.finite_array("q_offset", q_offset)
     eps, A0 = _eps_A0(eps, A0, amplitude)
     if theory == "exact lattice":
         return mi_gain(material, case, k, 2 * eps * A0, q_offset)
@@ -145,8 +149,10 @@ def theory_gain(theory: str, material: Material, case: str, k: float, q_offset,
     p = (k, material.alpha, material.K_s, material.K_theta)
     if nls_undefined(nls, material, case, k) is not None:  # no verdict: NaN, not a rate
         return np.full(np.shape(q_offset), np.nan)
+    eps = checks.positive("eps", eps)
+    A0 = checks.real("A0", A0, 0.0, MAX_AMPLITUDE / (2 * eps), high_open=False)
     g = getattr(nls, f"g_{case}")(*p)
-    return eps**2 * abs(nls.g1(*p)) * nls.mi_growth_rate(np.asarray(q_offset) / eps, g, A0)
+    return eps**2 * abs(nls.g1(*p)) * nls.mi_growth_rate(q_offset / eps, g, A0)
 
 
 #: run length of a gain measurement: this many e-foldings of the predicted peak gain
