@@ -74,7 +74,47 @@ def _generated(name, *args):
     return getattr(co, name)(*args)
 
 
+def _lock(content):
+    """Take the store lock of a map beside a lock file made by ``content(path)``: what the
+    log said (or the error)."""
+    import shutil
+    import tempfile
+    from pathlib import Path
+
+    from numerics.maps._integrity import store_lock
+
+    d = Path(tempfile.mkdtemp())
+    try:
+        content(d / "map.zarr.lock")
+        seen = []
+        with store_lock(d / "map.zarr", log=seen.append):
+            pass
+        return seen
+    finally:
+        shutil.rmtree(d, ignore_errors=True)
+
+
+def _record(**fields):
+    import json
+
+    return lambda p: p.write_text(json.dumps(fields))
+
+
 ROUND3 = [
+    # class 5: a lock file of any content is named with its path, never a traceback
+    ("store lock: a live holder's record without 'since'", lambda: _lock(_record(
+        host=__import__("socket").gethostname(), pid=__import__("os").getpid())),
+     (E, ValueError, r"being written by pid \d+ on .* since an unknown time \(lock .*"
+                     r"map.zarr.lock\)")),
+    ("store lock: a binary lock file is replaced, named", lambda: _lock(
+        lambda p: p.write_bytes(bytes(range(256)))),
+     ("ok", lambda seen: len(seen) == 1 and "map.zarr.lock" in seen[0]
+      and "no flexmm lock record" in seen[0])),
+    ("store lock: a JSON list as lock file is replaced, named", lambda: _lock(
+        lambda p: p.write_text("[1, 2]")),
+     ("ok", lambda seen: len(seen) == 1 and "no flexmm lock record" in seen[0])),
+    ("store lock: a folder where the lock file goes", lambda: _lock(lambda p: p.mkdir()),
+     (E, ValueError, r"cannot read the lock file .*map.zarr.lock")),
     # class 2: every public numeric function refuses NaN, bool, complex, str and a bad sign
     # with the one set of checks (numerics.lattice.checks; generated code prints its rule)
     ("theory_gain: k NaN", lambda: _gain(math.nan), (E, ValueError, r"k must be in")),
