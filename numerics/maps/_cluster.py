@@ -23,6 +23,7 @@ import socket
 import struct
 import sys
 import threading
+import time
 from urllib.parse import urlparse
 
 _QUIET = ("distributed", "distributed.worker", "distributed.scheduler", "distributed.nanny",
@@ -32,6 +33,53 @@ _QUIET = ("distributed", "distributed.worker", "distributed.scheduler", "distrib
 
 class SchedulerError(ValueError):
     """--scheduler does not lead to a Dask scheduler (one line naming the address)."""
+
+
+class ClusterLost(ValueError):
+    """The map's cluster stopped working mid-map: its scheduler is gone, or it has had no
+    worker for ``timeout`` seconds (one line naming the address and what was kept)."""
+
+
+class Watchdog:
+    """Is the cluster still able to finish the map? Called while no task finishes:
+    :meth:`check` raises ClusterLost once the scheduler has been unreachable, or has had
+    no worker, for ``timeout`` seconds (a worker that comes back resets the count). Each
+    call asks the scheduler at most every ``every`` seconds, within ``every`` seconds."""
+
+    def __init__(self, client, address: str, timeout: float, every: float = 1.0):
+        self.client, self.address, self.timeout = client, address, timeout
+        self.every = min(every, timeout / 4)
+        now = time.monotonic()
+        self.asked = now - self.every
+        self.connected = self.had_workers = now
+
+    def _workers(self) -> int | None:
+        """Workers the scheduler has (None: it did not answer)."""
+        try:
+            return len(self.client.nthreads(callback_timeout=self.every))
+        except Exception:  # noqa: BLE001 - no answer, whatever the reason
+            return None
+
+    def check(self) -> str | None:
+        """None while the cluster works or may still; else why it cannot finish."""
+        now = time.monotonic()
+        if now - self.asked < self.every:
+            return None
+        self.asked = now
+        running = self.client.status == "running"
+        n = self._workers() if running else None
+        now = time.monotonic()
+        if running and n is not None:
+            self.connected = now
+        if n:
+            self.had_workers = now
+        if self.client.status in ("closing", "closed") or now - self.connected > self.timeout:
+            return (f"lost the scheduler {self.address}: no answer for {self.timeout:g} s "
+                    "(--timeout; it stopped, or the network did)")
+        if now - self.had_workers > self.timeout:
+            return (f"the scheduler {self.address} has had no worker for {self.timeout:g} s "
+                    "(--timeout)")
+        return None
 
 
 def probe(address: str, timeout: float) -> None:

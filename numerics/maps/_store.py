@@ -267,13 +267,24 @@ def _run_tasks(params, path, todo, n_todo, scheduler, workers, progress, log, ar
     from dask.distributed import as_completed
     from tqdm.auto import tqdm
 
-    from ._cluster import connect
+    from ._cluster import ClusterLost, Watchdog, connect
 
     client, cluster = connect(scheduler, workers, timeout)
     writer = _CellWriter(path)
     bar = tqdm(total=n_todo, unit="cell", disable=None if progress is None else not progress,
                desc="map")
     t0 = time.perf_counter()
+    address = scheduler or "of this machine's LocalCluster"
+    watch = Watchdog(client, scheduler or getattr(cluster, "scheduler_address", "local"),
+                     timeout)
+
+    def kept() -> str:
+        n = int(arrays["done_predicted" if params.theory_only else "done"].sum()) \
+            if arrays is not None else None
+        total = len(params.delta) * len(params.k)
+        return (f"{n} of {total} cells are done and kept in {path}" if n
+                else f"no cell is done yet ({path} holds the theories)")
+
     try:
         # longest first (fewer idle workers at the end of a map): dask runs the highest
         # priority first
@@ -282,20 +293,34 @@ def _run_tasks(params, path, todo, n_todo, scheduler, workers, progress, log, ar
                                  retries=2, pure=False, priority=len(todo) - rank)
                    for rank, (i, js) in enumerate(order)]
         cells = dict(zip(futures, order))
-        for fut in as_completed(futures):
-            try:
-                result = fut.result()
-            except Exception as exc:  # noqa: BLE001 - one line naming the cell, no traceback
-                i, js = cells[fut]
-                for f in futures:
-                    f.cancel()
-                raise MapCellError(
-                    f"cells delta = {params.delta[i]:g}, k = "
-                    f"{', '.join(f'{params.k[j]:g}' for j in js)}: "
-                    f"{type(exc).__name__}: {str(exc).splitlines()[0] if str(exc) else ''}; "
-                    f"the finished cells are kept in {path}") from None
-            _write_block(path, params, result, arrays, writer)
-            bar.update(len(result["js"]))
+        finished = as_completed(futures)
+        while not finished.is_empty():
+            ready = finished.next_batch(block=False) if finished.has_ready() else []
+            if not ready:
+                # nothing finished: is the cluster still able to finish the map?
+                if (why := watch.check()) is not None:
+                    raise ClusterLost(f"{why}: {kept()}; the same command continues the map "
+                                      "once the cluster works again") from None
+                time.sleep(0.05)
+                continue
+            for fut in ready:
+                try:
+                    result = fut.result()
+                except Exception as exc:  # noqa: BLE001 - one line naming the cell
+                    if (why := watch.check() if client.status == "running" else
+                            f"lost the scheduler {address}") is not None:
+                        raise ClusterLost(f"{why}: {kept()}; the same command continues the "
+                                          "map once the cluster works again") from None
+                    i, js = cells[fut]
+                    for f in futures:
+                        f.cancel()
+                    raise MapCellError(
+                        f"cells delta = {params.delta[i]:g}, k = "
+                        f"{', '.join(f'{params.k[j]:g}' for j in js)}: "
+                        f"{type(exc).__name__}: "
+                        f"{str(exc).splitlines()[0] if str(exc) else ''}; {kept()}") from None
+                _write_block(path, params, result, arrays, writer)
+                bar.update(len(result["js"]))
     finally:
         bar.close()
         from ._cluster import close
