@@ -100,7 +100,96 @@ def _record(**fields):
     return lambda p: p.write_text(json.dumps(fields))
 
 
+def _damaged_store(tamper, other=None):
+    """A theory-only 2 x 2 map store (alpha 3.1, K_s 0.024) damaged by ``tamper(path)``,
+    then opened again with the same (or ``other``) parameters: (log lines, done flags of
+    the reopened store, whether xr.open_zarr reads it as the README shows)."""
+    import shutil
+    import tempfile
+    import warnings
+    from pathlib import Path
+
+    import xarray as xr
+
+    from numerics.maps import open_or_create
+
+    d = Path(tempfile.mkdtemp())
+    try:
+        params = _params(delta=(0.0035, -0.002), k=(1.1, 1.6), theory_only=True, block=1)
+        open_or_create(d / "map.zarr", params, log=lambda *_: None)
+        tamper(d / "map.zarr")
+        seen = []
+        ds = open_or_create(d / "map.zarr", other or params, log=seen.append)
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")
+            try:
+                xr.open_zarr(d / "map.zarr").close()
+                readable = True
+            except Exception:  # noqa: BLE001 - what a user would see fail
+                readable = False
+        return seen, ds["done_predicted"].values.tolist(), readable
+    finally:
+        shutil.rmtree(d, ignore_errors=True)
+
+
+def _write(name, data):
+    def tamper(path):
+        (path / name).write_bytes(data)
+    return tamper
+
+
+def _remove(name):
+    def tamper(path):
+        (path / name).unlink()
+    return tamper
+
+
+def _mark_predicted(path):
+    import zarr
+
+    zarr.open_group(str(path), mode="r+", use_consolidated=False)["done_predicted"][0, 1] = True
+
+
+def _damaged(name):
+    return lambda r: (len(r[0]) == 2 and f"damaged: {name};" in r[0][0]
+                      and "rebuilt from this map's parameters" in r[0][0]
+                      and "other parameters" not in " ".join(r[0]) and r[2])
+
+
 ROUND3 = [
+    # class 4: a damaged store is "damaged: NAME", repaired where the cells' data survive,
+    # never "other parameters"; what xr.open_zarr reads first (.zmetadata) rebuilt
+    ("store: garbage in the delta coordinate's chunk", lambda: _damaged_store(
+        _write("delta/0", b"\x00garbage" * 3)),
+     ("ok", lambda r: len(r[0]) == 1 and "damaged: delta;" in r[0][0] and r[2])),
+    ("store: the k_simulated chunk deleted", lambda: _damaged_store(_remove("k_simulated/0")),
+     ("ok", lambda r: len(r[0]) == 1 and "damaged: k_simulated;" in r[0][0] and r[2])),
+    ("store: the K_theta .zarray deleted", lambda: _damaged_store(_remove("K_theta/.zarray")),
+     ("ok", lambda r: len(r[0]) == 1 and "damaged: K_theta;" in r[0][0] and r[2])),
+    ("store: a theory column's .zarray deleted", lambda: _damaged_store(
+        _remove("peak_gain_semidiscrete/.zarray")),
+     ("ok", lambda r: "damaged: peak_gain_semidiscrete;" in r[0][0] and r[2])),
+    ("store: .zmetadata holds half a JSON", lambda: _damaged_store(
+        _write(".zmetadata", b'{"metadata": {')),
+     ("ok", lambda r: len(r[0]) == 1 and "damaged: .zmetadata;" in r[0][0] and r[2])),
+    ("store: .zmetadata deleted", lambda: _damaged_store(_remove(".zmetadata")),
+     ("ok", lambda r: len(r[0]) == 1 and "damaged: .zmetadata;" in r[0][0] and r[2])),
+    ("store: .zattrs garbled: which map is unknown, named", lambda: _damaged_store(
+        _write(".zattrs", b"\xff\xfe")),
+     (E, ValueError, r"map.zarr: damaged: .zgroup/.zattrs .*--overwrite")),
+    ("store: a simulated column's chunk garbled, the cell named and run again",
+     lambda: _damaged_store(_write("growth/1.0", b"nonsense")),
+     ("ok", lambda r: len(r[0]) == 1 and "1 of 4 cells" in r[0][0]
+      and "delta = -0.002, k = 1.1" in r[0][0])),
+    # class 4: a store of another map with no finished cell does not block
+    ("store: another map with no finished cell is replaced", lambda: _damaged_store(
+        lambda p: None, other=_params(N=160, theory_only=True)),
+     ("ok", lambda r: len(r[0]) == 1 and "no finished cell" in r[0][0] and r[2])),
+    ("store: another map with a finished cell is refused", lambda: _damaged_store(
+        _mark_predicted, other=_params(N=160, theory_only=True)),
+     (E, ValueError, r"holds a map with other parameters")),
+    ("MapParameters: N 6 (no cell could run) is refused before any work",
+     lambda: _params(N=6), (E, ValueError, r"N must be an integer in \[8, ")),
     # class 5: a lock file of any content is named with its path, never a traceback
     ("store lock: a live holder's record without 'since'", lambda: _lock(_record(
         host=__import__("socket").gethostname(), pid=__import__("os").getpid())),

@@ -115,9 +115,21 @@ def test_a_damaged_store_is_repaired_and_what_run_map_returns_is_the_store(tmp_p
 
 
 def test_a_map_with_other_parameters_is_not_mixed_in(tmp_path):
+    import zarr
+
     maps.open_or_create(tmp_path / "map.zarr", _params())
+    zarr.open_group(str(tmp_path / "map.zarr"), mode="r+")["done"][0, 0] = True  # a finished cell
     with pytest.raises(ValueError, match="other parameters"):
         maps.open_or_create(tmp_path / "map.zarr", _params(t_end=3000.0))
+
+
+def test_a_map_without_a_finished_cell_does_not_block_the_corrected_command(tmp_path):
+    # every cell of the first command failed: its store holds nothing a rerun would lose
+    maps.open_or_create(tmp_path / "map.zarr", _params())
+    seen = []
+    ds = maps.open_or_create(tmp_path / "map.zarr", _params(t_end=3000.0), log=seen.append)
+    assert len(seen) == 1 and "no finished cell" in seen[0] and "replaced" in seen[0]
+    assert ds.attrs["t_end"] == 3000.0
 
 
 @pytest.mark.parametrize("extra, match", [

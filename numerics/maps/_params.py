@@ -15,6 +15,7 @@ from ..lattice._analysis import GROWTH_THRESHOLD, non_carrier_bins, shortest_run
 from ..lattice._integrate import _check_time
 from ..lattice._integrators import get_method
 from ..lattice._starts import paper_start_undefined
+from ..theory._response import SITES
 from ._cells import GROWTH_ERROR_CONSTANTS, GROWTH_TOL, RECORDS
 
 #: k values per task (one delta row is split into blocks of this many cells)
@@ -135,7 +136,7 @@ class MapParameters:
         checks.positive("K_s", self.K_s)
         checks.real("amplitude", self.amplitude, 0.0, 1.5)
         checks.positive("eps", self.eps)
-        checks.integer("N", self.N, 3, 10**6)
+        checks.integer("N", self.N, *SITES)  # every cell is predicted
         checks.positive("t_end", self.t_end)
         checks.integer("seeds", self.seeds, 1, 1000)
         checks.integer("block", self.block, 1, 10**6)

@@ -30,8 +30,11 @@ from common.text import duration
 
 from ._agreement import agreement
 from ._blocks import blocks, simulate_block
-from ._columns import (PREDICTED, SIMULATED, STORE_FORMAT, empty_dataset, theory_columns,
-                       tri_state)
+from ._columns import (PREDICTED, SIMULATED, STORE_FORMAT, THEORY_NAMES, empty_dataset,
+                       theory_columns, tri_state)
+from ._integrity import CHECKSUM
+
+THEORY_SET = frozenset(THEORY_NAMES)
 from ._params import MapParameters, local_cores
 
 def _holds(ds, params: MapParameters) -> bool:
@@ -79,6 +82,80 @@ def open_or_create(path: Path, params: MapParameters, overwrite: bool = False, l
     return _open(path, params, overwrite, log)[0]
 
 
+#: the coordinates of a store, as MapParameters gives them
+_COORDS = ("delta", "K_theta", "k", "k_simulated")
+
+
+def _attrs_hold(attrs: dict, params: MapParameters) -> bool:
+    return (attrs.get("store_format") == STORE_FORMAT
+            and all(attrs.get(n) == v for n, v in params.attrs().items()
+                    if n not in ("theory_only",)))
+
+
+def _inspect(path: Path, params: MapParameters):
+    """What the store at ``path`` is, read piece by piece (a damaged piece named, never
+    taken for another map): ("this", [damaged names]) when its attributes are this map's and
+    its coordinates are this grid's or damaged; ("other", finished) when it holds another
+    map (``finished``: cells done or predicted, None if unreadable); ("unreadable", why)
+    when which map it holds cannot be read."""
+    import json
+
+    import zarr
+
+    try:
+        group = zarr.open_group(str(path), mode="r", use_consolidated=False)
+        attrs = dict(group.attrs)
+    except Exception as exc:  # noqa: BLE001 - a missing or garbled .zgroup/.zattrs
+        first = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+        return "unreadable", f".zgroup/.zattrs ({first[:100]})"
+
+    def finished():
+        try:
+            return int(sum(np.asarray(group[f][...]).sum() for f in ("done", "done_predicted")
+                           if f in group))
+        except Exception:  # noqa: BLE001 - unreadable flags: unknown
+            return None
+
+    if not _attrs_hold(attrs, params):
+        return "other", finished()
+    damaged = []
+    for name in _COORDS:
+        want = np.asarray(getattr(params, name), float)
+        try:
+            arr = group[name]
+            whole = arr.nchunks_initialized == arr.nchunks
+            got = np.asarray(arr[...], float)
+        except Exception:  # noqa: BLE001 - missing metadata, a chunk that does not decode
+            damaged.append(name)
+            continue
+        if not whole or got.shape != want.shape and name in ("K_theta", "k_simulated"):
+            damaged.append(name)
+        elif not np.array_equal(got, want):
+            return "other", finished()
+    shape = (len(params.delta), len(params.k))
+    for name in empty_dataset_names(params):
+        try:
+            arr = group[name]
+            if tuple(arr.shape) != shape:
+                raise ValueError
+        except Exception:  # noqa: BLE001 - a variable's metadata missing or garbled
+            damaged.append(name)
+    try:
+        meta = json.loads((path / ".zmetadata").read_text())["metadata"]
+        if not isinstance(meta, dict):
+            raise ValueError
+    except Exception:  # noqa: BLE001 - what xr.open_zarr reads first
+        damaged.append(".zmetadata")
+    return "this", damaged
+
+
+def empty_dataset_names(params: MapParameters) -> list:
+    """The data variables a store of ``params`` holds."""
+    from ._columns import THEORY_NAMES
+
+    return sorted({*SIMULATED, *PREDICTED, "done", "done_predicted", CHECKSUM, *THEORY_NAMES})
+
+
 def _open(path: Path, params: MapParameters, overwrite: bool = False, log=print):
     """``open_or_create``'s dataset (lazy) and its variables' values in memory, the store
     read once: on a 64 x 64 map each full read costs ~6 s (zarr reads 22 variables of 1 024
@@ -89,57 +166,85 @@ def _open(path: Path, params: MapParameters, overwrite: bool = False, log=print)
         return {n: (ds[n].values if raw is None else np.asarray(raw[n], ds[n].dtype))
                 for n in ds.data_vars}
 
-    if path.exists():
-        try:
-            ds = xr.open_zarr(path, consolidated=False, chunks=None)
-            ds.attrs  # noqa: B018 - metadata read
-        except Exception as exc:  # noqa: BLE001 - any unreadable store
-            if not overwrite:
-                first = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
-                raise ValueError(f"{path} exists but its metadata is not readable ({first[:120]}"
-                                 "); replace it with --overwrite, or choose another --out") \
-                    from None
-            ds = None
-        if ds is not None and _holds(ds, params):
-            ds, raw = _verified(path, ds, params, log)
-            return ds, values(ds, raw)  # raw None: rewritten, read afresh
-        if ds is not None and not overwrite:
+    if path.exists() and not overwrite:
+        what, detail = _inspect(path, params)
+        if what == "unreadable":
+            raise ValueError(f"{path}: damaged: {detail}; which map it holds cannot be read, so "
+                             "nothing in it can be trusted; replace it with --overwrite, or "
+                             "choose another --out")
+        if what == "other" and detail != 0:
             raise ValueError(f"{path} holds a map with other parameters (or of an older "
                              "format); replace it with --overwrite, or choose another --out")
+        if what == "other":  # no finished cell: nothing is lost by replacing it
+            log(f"note: {path} held another map with no finished cell (every cell failed, "
+                "or none ran): replaced")
+        elif detail:
+            log(f"{path}: damaged: {', '.join(detail)}; rebuilt from this map's parameters, "
+                "keeping every cell whose data and checksum survive")
+            ds, raw = _verified(path, None, params, log, rebuild=True)
+            return ds, values(ds, raw)
+        else:
+            ds = xr.open_zarr(path, consolidated=False, chunks=None)
+            ds, raw = _verified(path, ds, params, log)
+            return ds, values(ds, raw)  # raw None: rewritten, read afresh
     ds = empty_dataset(params, theory_columns(params))
     _write_new(path, ds, params)
     ds = xr.open_zarr(path, consolidated=False, chunks=None)
     return ds, values(ds)
 
 
-def _verified(path: Path, ds, params: MapParameters, log):
+def _verified(path: Path, ds, params: MapParameters, log, rebuild: bool = False):
     """(ds, raw): ``ds`` if every cell matches its checksum, with the values read to check
-    them (None when the store was rewritten); else the store rewritten with the damaged
-    cells' theory recomputed and their simulations marked not done (named)."""
+    them (None when the store was rewritten); else (or ``rebuild``: its metadata is
+    damaged) the store rewritten with the damaged cells' theory recomputed and their
+    simulations marked not done (named). A theory column that cannot be read is taken
+    from the recomputed theories (it is what they give), so the cells' own data decide."""
     import xarray as xr
 
-    from ._integrity import CHECKSUM, describe_cells, verify
+    from ._integrity import CHECKSUM, cell_checksums, describe_cells, read_raw
 
-    names = [n for n in ds.data_vars if n != CHECKSUM]
-    for n in SIMULATED + PREDICTED + ("done", "done_predicted"):
-        if n not in names:
-            names.append(n)
     shape = (len(params.delta), len(params.k))
-    bad, raw = verify(path, names, shape)
-    if not bad.any():
+    names = [n for n in empty_dataset_names(params) if n != CHECKSUM]
+    fresh = None
+    raw, unreadable = {}, np.zeros(shape, bool)
+    recomputed, theory_lost = [], np.zeros(shape, bool)
+    for name in names + [CHECKSUM]:
+        got, bad_cells = read_raw(path, [name], shape)
+        if name in THEORY_SET and (name not in got or bad_cells.any()):
+            if fresh is None:
+                fresh = empty_dataset(params, theory_columns(params))
+            value = np.asarray(got.get(name, fresh[name].values))
+            got = {name: np.where(bad_cells, fresh[name].values, value).astype(
+                fresh[name].dtype)}
+            recomputed.append(name)
+            theory_lost |= bad_cells
+            bad_cells = np.zeros(shape, bool)
+        raw.update(got)
+        unreadable |= bad_cells
+    if recomputed:
+        log(f"{path}: damaged: {', '.join(recomputed)} at {int(theory_lost.sum())} of "
+            f"{theory_lost.size} cells ({describe_cells(theory_lost, params.delta, params.k)})"
+            ": recomputed from the map's parameters; the cells' simulations are kept where "
+            "their checksums hold")
+    if CHECKSUM in raw and all(n in raw for n in names):
+        bad = unreadable | (cell_checksums({n: raw[n] for n in names})
+                            != raw[CHECKSUM].astype(np.uint64))
+    else:
+        bad = np.ones(shape, bool)
+    if not bad.any() and not rebuild and fresh is None:
         return ds, raw
-    log(f"{path}: {int(bad.sum())} of {bad.size} cells fail their checksum or cannot be "
-        f"read ({describe_cells(bad, params.delta, params.k)}): their theories are "
-        "recomputed and their simulations run again")
-    fresh = empty_dataset(params, theory_columns(params))
+    if bad.any():
+        log(f"{path}: {int(bad.sum())} of {bad.size} cells fail their checksum or cannot be "
+            f"read ({describe_cells(bad, params.delta, params.k)}): their theories are "
+            "recomputed and their simulations run again")
+    if fresh is None:
+        fresh = empty_dataset(params, theory_columns(params))
     for flag, columns in (("done", SIMULATED), ("done_predicted", PREDICTED)):
         done = np.asarray(raw.get(flag, np.zeros(shape, bool)), bool) & ~bad
         for name in columns + (flag,):
             if name in raw:
                 kept = np.where(done, raw[name].astype(fresh[name].dtype), fresh[name].values)
                 fresh[name] = (fresh[name].dims, kept, fresh[name].attrs)
-    from ._integrity import cell_checksums
-
     fresh[CHECKSUM] = (fresh[CHECKSUM].dims,
                        cell_checksums({n: fresh[n].values for n in fresh.data_vars}),
                        fresh[CHECKSUM].attrs)
