@@ -157,6 +157,13 @@ def _damaged(name):
 
 
 ROUND3 = [
+    # class 5: a --scheduler that no client here can use is one line naming it and the remedy
+    ("map: --scheduler inproc://", lambda: _cli(*MAP, "--delta", "0.0035", "--k", "1.1",
+                                                "--scheduler", "inproc://10.1.2.3/77/2"),
+     (C, 2, r"--scheduler inproc://10.1.2.3/77/2: an inproc:// address .* give tcp://")),
+    ("map: --scheduler ucx://", lambda: _cli(*MAP, "--delta", "0.0035", "--k", "1.1",
+                                             "--scheduler", "ucx://127.0.0.1:9"),
+     (C, 2, r"--scheduler ucx://127.0.0.1:9: cannot use it as a Dask scheduler")),
     # class 4: a damaged store is "damaged: NAME", repaired where the cells' data survive,
     # never "other parameters"; what xr.open_zarr reads first (.zmetadata) rebuilt
     ("store: garbage in the delta coordinate's chunk", lambda: _damaged_store(

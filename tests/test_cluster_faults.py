@@ -202,3 +202,14 @@ def test_a_killed_scheduler_is_said_and_the_rerun_completes_the_map(undisturbed,
     log = _finish(_map(cluster[0], tmp_path / "m"))
     assert "resuming" in log
     _assert_same(_load(tmp_path / "m"), undisturbed)
+
+
+def test_a_workers_address_as_scheduler_is_one_line_naming_it(cluster, tmp_path):
+    from dask.distributed import Client
+
+    with Client(cluster[0], timeout=START_TIMEOUT) as client:
+        worker = next(iter(client.scheduler_info()["workers"]))
+    proc = _map(worker, tmp_path / "m", "--timeout", str(LOST_TIMEOUT))
+    line = _fails_within_timeout(proc, time.monotonic(), rf"--scheduler {worker}: cannot use "
+                                 r"it as a Dask scheduler .*answers as a Dask worker")
+    assert "give the address its scheduler printed" in line

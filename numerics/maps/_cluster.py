@@ -87,6 +87,10 @@ def probe(address: str, timeout: float) -> None:
     Dask scheduler within ``timeout`` seconds. Other schemes (tls, inproc, ucx) are left to
     ``Client``."""
     url = urlparse(address if "://" in address else f"tcp://{address}")
+    if url.scheme == "inproc":
+        raise SchedulerError(f"--scheduler {address}: an inproc:// address reaches a scheduler "
+                             "inside this same process only; give tcp://HOST:PORT of a "
+                             "running `dask scheduler`")
     if url.scheme != "tcp":
         return
     try:
@@ -152,9 +156,13 @@ def connect(scheduler: str | None, workers: int | None, timeout: float = 20.0):
         probe(scheduler, timeout)
         try:
             return Client(scheduler, timeout=f"{timeout}s"), None
-        except (OSError, TimeoutError) as exc:
-            raise SchedulerError(f"--scheduler {scheduler}: {type(exc).__name__}: "
-                                 f"{str(exc).splitlines()[0] if str(exc) else ''}") from None
+        except Exception as exc:  # noqa: BLE001 - whatever Dask says, one line naming it
+            text = str(exc).splitlines()[0] if str(exc) else ""
+            why = ("it answers as a Dask worker, not a scheduler: give the address its "
+                   "scheduler printed" if "Worker." in text else
+                   "give tcp://HOST:PORT of a running `dask scheduler`")
+            raise SchedulerError(f"--scheduler {scheduler}: cannot use it as a Dask scheduler "
+                                 f"({type(exc).__name__}: {text[:120]}); {why}") from None
     n = workers or local_cores()
     # multiprocessing's resource tracker (started with this interpreter's -W options) warns
     # of "leaked semaphores" of workers stopped by a signal: nothing leaks past its clean-up
