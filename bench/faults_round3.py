@@ -157,6 +157,10 @@ def _damaged(name):
 
 
 ROUND3 = [
+    # class 5: advice names a real option of the command that gave it
+    ("soliton: --amplitude 3e-9 --simulate: advice names --travel and --amplitude",
+     lambda: _cli(*SOLITON, "--amplitude", "3e-9", "--simulate"),
+     (C, 2, r"^(?!.*t_end).*take T = .*give --travel <= \S+, or --amplitude >= \S+")),
     # class 5: a --scheduler that no client here can use is one line naming it and the remedy
     ("map: --scheduler inproc://", lambda: _cli(*MAP, "--delta", "0.0035", "--k", "1.1",
                                                 "--scheduler", "inproc://10.1.2.3/77/2"),

@@ -31,7 +31,7 @@ from ._quasiperiodic import GainSpectrum
 from ._response import GrowthPrediction, predict_growth
 from ._soliton import (KINDS, MIN_WIDTH, SOLITON_THEORIES, Soliton, SolitonWarning,
                        ring_wavenumber, soliton)
-from ._soliton_launch import default_ring, simulate_soliton, soliton_state
+from ._soliton_launch import RunTooLong, default_ring, simulate_soliton, soliton_state
 from ._soliton_measure import Snapshot, SolitonRun, measure_state, soliton_report
 
 __all__ = [
@@ -42,5 +42,5 @@ __all__ = [
     "KINDS", "MIN_WIDTH",
     "SOLITON_THEORIES", "Snapshot", "Soliton", "SolitonRun", "SolitonWarning", "default_ring",
     "measure_state", "ring_wavenumber", "simulate_soliton", "soliton", "soliton_report",
-    "soliton_state",
+    "soliton_state", "RunTooLong",
 ]
