@@ -156,7 +156,27 @@ def _damaged(name):
                       and "other parameters" not in " ".join(r[0]) and r[2])
 
 
+def _undefined(alpha, K_s, K_theta):
+    from numerics import Material
+    from numerics.theory import nls_undefined
+
+    return nls_undefined("semi-discrete NLS", Material(alpha, K_s, K_theta), "coupled", 1.1)
+
+
 ROUND3 = [
+    # class 5: an overflow or underflow is told apart from a resonance
+    ("nls_undefined: alpha 1e+250 overflows, not a resonance",
+     lambda: _undefined(1e250, 0.024, 0.0205),
+     ("ok", lambda why: why.startswith("an overflow in float64") and "not a resonance" in why)),
+    ("nls_undefined: alpha 3e-280 underflows, not a resonance",
+     lambda: _undefined(3e-280, 0.024, 0.0205),
+     ("ok", lambda why: why.startswith("an underflow in float64") and "resonat" not in why)),
+    ("nls_undefined: K_theta 5e307 overflows", lambda: _undefined(3.1, 0.024, 5e307),
+     ("ok", lambda why: "float64" in why and "resonat" not in why)),
+    ("point: --K-s 3e307 (omega overflows) is one line, no traceback",
+     lambda: _cli("point", "--alpha", "3.1", "--K-s", "3e307", "--K-theta", "0.0205",
+                  "--case", "coupled", "--k", "1.1"),
+     (C, 2, r"not a positive float64 number .* not a resonance")),
     # class 5: advice names a real option of the command that gave it
     ("soliton: --amplitude 3e-9 --simulate: advice names --travel and --amplitude",
      lambda: _cli(*SOLITON, "--amplitude", "3e-9", "--simulate"),

@@ -90,13 +90,20 @@ def shortest_run(material, case: str, k) -> float:
         return 0.0
     omega = float(np.min(discrete_omega_rotation(np.atleast_1d(np.asarray(k, float)),
                                                  material)))
+    if not (omega > 0 and math.isfinite(omega)):  # under- or overflowed
+        return math.inf
     return U_SETTLE_PERIODS * 2 * np.pi / omega / U_REFERENCE
 
 
 def shortest_run_error(name: str, t_end: float, cells, case: str) -> str | None:
     """The one-line refusal of a ``t_end`` too short to measure growth at any of ``cells``
     ((material, k values) pairs), naming ``name``; None when it is long enough."""
-    need = max((shortest_run(mat, case, k) for mat, k in cells), default=0.0)
+    with np.errstate(all="ignore"):
+        need = max((shortest_run(mat, case, k) for mat, k in cells), default=0.0)
+    if not math.isfinite(need):  # omega under- or overflowed: no period to wait for
+        return (f"{name}: no run length can measure growth here: the carrier's frequency is "
+                f"not a positive float64 number for this material (an underflow or overflow,"
+                " not a resonance); rescale the material")
     if t_end >= need:
         return None
     return (f"{name} = {t_end:g} is too short to measure growth: U starts at rest and its "
