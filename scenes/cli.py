@@ -234,7 +234,8 @@ def main(argv=None) -> int:
                       file=sys.stderr)
                 return exit_code(interrupt)
             if isinstance(exc, OSError):
-                where = f" {exc.filename}" if exc.filename else ""
+                where = f" {exc.filename}" if exc.filename else (  # else the --out it wrote
+                    f" under {args.out}" if getattr(locals().get("args"), "out", None) else "")
                 print(f"flexmm: error:{where}: {exc.strerror or exc}", file=sys.stderr)
             else:
                 text = str(exc).splitlines()[0] if str(exc) else type(exc).__name__

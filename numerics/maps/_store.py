@@ -21,6 +21,7 @@ the verdicts in ``_agreement``.
 
 from __future__ import annotations
 
+import contextlib
 import time
 from pathlib import Path
 
@@ -311,6 +312,20 @@ def _write_block(path: Path, params: MapParameters, result: dict, arrays: dict |
     (writer or _CellWriter(path)).write(region, cells)
 
 
+@contextlib.contextmanager
+def _named_os_errors(path: Path):
+    """An OSError that names no file (zarr's writes: a full disk, a quota) names the store,
+    and says that its finished cells are kept (each block is written whole or not at all)."""
+    try:
+        yield
+    except OSError as exc:
+        if exc.filename:
+            raise
+        raise OSError(exc.errno, f"{exc.strerror or exc} (writing the map store; the cells "
+                                 "finished before are kept, and the same command continues "
+                                 "once there is room)", str(path)) from None
+
+
 def run_map(params: MapParameters, out: Path, scheduler: str | None = None,
             workers: int | None = None, progress: bool | None = None, log=print,
             overwrite: bool = False, timeout: float = 20.0):
@@ -325,7 +340,7 @@ def run_map(params: MapParameters, out: Path, scheduler: str | None = None,
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     path = out / "map.zarr"
-    with store_lock(path, log):
+    with store_lock(path, log), _named_os_errors(path):
         ds, arrays = _open(path, params, overwrite, log)
         # a theory-only map predicts its cells; a simulated one simulates (and predicts)
         done = arrays["done_predicted" if params.theory_only else "done"]
