@@ -34,20 +34,10 @@ from ._blocks import blocks, simulate_block
 from ._columns import (PREDICTED, SIMULATED, STORE_FORMAT, THEORY_NAMES, empty_dataset,
                        theory_columns, tri_state)
 from ._integrity import CHECKSUM
-
-THEORY_SET = frozenset(THEORY_NAMES)
 from ._params import MapParameters, local_cores
 
-def _holds(ds, params: MapParameters) -> bool:
-    """Does the stored dataset ``ds`` hold the map ``params`` defines (same grid, same
-    parameters; theory_only aside, so a theory-only map is resumed by simulations)?"""
-    return (np.array_equal(ds["delta"].values, params.delta)
-            and ("K_theta" not in ds.coords  # stores written before it was a coordinate
-                 or np.array_equal(ds["K_theta"].values, params.K_theta))
-            and np.array_equal(ds["k"].values, params.k)
-            and ds.attrs.get("store_format") == STORE_FORMAT
-            and all(ds.attrs.get(n) == v for n, v in params.attrs().items()
-                    if n not in ("theory_only",)))
+#: the theory columns: recomputed from the parameters where a store lost them
+THEORY_SET = frozenset(THEORY_NAMES)
 
 
 def _write_new(path: Path, ds, params: MapParameters):
@@ -122,6 +112,9 @@ def _inspect(path: Path, params: MapParameters):
     damaged = []
     for name in _COORDS:
         want = np.asarray(getattr(params, name), float)
+        if name == "K_theta" and name not in group:  # stores written before it was stored
+            damaged.append("K_theta (absent: written before it was a coordinate)")
+            continue
         try:
             arr = group[name]
             whole = arr.nchunks_initialized == arr.nchunks
@@ -129,7 +122,7 @@ def _inspect(path: Path, params: MapParameters):
         except Exception:  # noqa: BLE001 - missing metadata, a chunk that does not decode
             damaged.append(name)
             continue
-        if not whole or got.shape != want.shape and name in ("K_theta", "k_simulated"):
+        if not whole:
             damaged.append(name)
         elif not np.array_equal(got, want):
             return "other", finished()
@@ -152,8 +145,6 @@ def _inspect(path: Path, params: MapParameters):
 
 def empty_dataset_names(params: MapParameters) -> list:
     """The data variables a store of ``params`` holds."""
-    from ._columns import THEORY_NAMES
-
     return sorted({*SIMULATED, *PREDICTED, "done", "done_predicted", CHECKSUM, *THEORY_NAMES})
 
 
@@ -167,27 +158,27 @@ def _open(path: Path, params: MapParameters, overwrite: bool = False, log=print)
         return {n: (ds[n].values if raw is None else np.asarray(raw[n], ds[n].dtype))
                 for n in ds.data_vars}
 
-    if path.exists() and not overwrite:
-        what, detail = _inspect(path, params)
-        if what == "unreadable":
-            raise ValueError(f"{path}: damaged: {detail}; which map it holds cannot be read, so "
-                             "nothing in it can be trusted; replace it with --overwrite, or "
-                             "choose another --out")
-        if what == "other" and detail != 0:
-            raise ValueError(f"{path} holds a map with other parameters (or of an older "
-                             "format); replace it with --overwrite, or choose another --out")
-        if what == "other":  # no finished cell: nothing is lost by replacing it
-            log(f"note: {path} held another map with no finished cell (every cell failed, "
-                "or none ran): replaced")
-        elif detail:
+    # --overwrite replaces another map or an unreadable store; this map's store is resumed
+    what, detail = _inspect(path, params) if path.exists() else ("none", None)
+    if what == "unreadable" and not overwrite:
+        raise ValueError(f"{path}: damaged: {detail}; which map it holds cannot be read, so "
+                         "nothing in it can be trusted; replace it with --overwrite, or "
+                         "choose another --out")
+    if what == "other" and detail != 0 and not overwrite:
+        raise ValueError(f"{path} holds a map with other parameters (or of an older "
+                         "format); replace it with --overwrite, or choose another --out")
+    if what == "other" and detail == 0:  # no finished cell: nothing is lost by replacing it
+        log(f"note: {path} held another map with no finished cell (every cell failed, "
+            "or none ran): replaced")
+    if what == "this":
+        if detail:
             log(f"{path}: damaged: {', '.join(detail)}; rebuilt from this map's parameters, "
                 "keeping every cell whose data and checksum survive")
             ds, raw = _verified(path, None, params, log, rebuild=True)
             return ds, values(ds, raw)
-        else:
-            ds = xr.open_zarr(path, consolidated=False, chunks=None)
-            ds, raw = _verified(path, ds, params, log)
-            return ds, values(ds, raw)  # raw None: rewritten, read afresh
+        ds = xr.open_zarr(path, consolidated=False, chunks=None)
+        ds, raw = _verified(path, ds, params, log)
+        return ds, values(ds, raw)  # raw None: rewritten, read afresh
     ds = empty_dataset(params, theory_columns(params))
     _write_new(path, ds, params)
     ds = xr.open_zarr(path, consolidated=False, chunks=None)
