@@ -112,7 +112,7 @@ def _inspect(path: Path, params: MapParameters):
     damaged = []
     for name in _COORDS:
         want = np.asarray(getattr(params, name), float)
-        if name == "K_theta" and name not in group:  # stores written before it was stored
+        if name == "K_theta" and not (path / name).exists():  # written before it was stored
             damaged.append("K_theta (absent: written before it was a coordinate)")
             continue
         try:
