@@ -163,7 +163,32 @@ def _undefined(alpha, K_s, K_theta):
     return nls_undefined("semi-discrete NLS", Material(alpha, K_s, K_theta), "coupled", 1.1)
 
 
-ROUND3 = [
+def _public_k_functions():
+    """The public functions of numerics that take a carrier k, each called with ``k``."""
+    import numerics as nm
+
+    mat = nm.Material(3.1, 0.024, 0.0205)
+    return {
+        "mi_gain": lambda k: nm.mi_gain(mat, "coupled", k, 0.015, [0.1]),
+        "plane_wave": lambda k: nm.plane_wave(mat, "coupled", k, 0.015),
+        "nls_summary": lambda k: nm.nls_summary(mat, "coupled", k, amplitude=0.015),
+        "theory_gain": lambda k: nm.theory_gain("paper NLS", mat, "coupled", k, [0.1],
+                                                amplitude=0.015),
+        "snap_wavenumber": lambda k: nm.snap_wavenumber(k, 120),
+        "predict_growth": lambda k: nm.predict_growth(mat, "coupled", k, 0.015, N=120,
+                                                      t_end=800.0),
+        "soliton": lambda k: nm.soliton(mat, "coupled", k, 0.002),
+    }
+
+
+#: a bad k and what it must raise (every function, the same check)
+BAD_K = [(math.nan, ValueError), (-1.1, ValueError), (True, TypeError), (1.1 + 0j, TypeError),
+         ("1.1", TypeError)]
+
+ROUND3 = [(f"{fn}: k = {k!r}", (lambda fn=fn, k=k: _public_k_functions()[fn](k)),
+           (E, exc, r"\bk\b.*must be")) for fn in _public_k_functions() for k, exc in BAD_K]
+
+ROUND3 += [
     # class 5: an overflow or underflow is told apart from a resonance
     ("nls_undefined: alpha 1e+250 overflows, not a resonance",
      lambda: _undefined(1e250, 0.024, 0.0205),
