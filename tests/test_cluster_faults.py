@@ -152,9 +152,10 @@ def test_killed_worker_loses_no_cell(cluster, undisturbed, tmp_path):
     _assert_same(_load(tmp_path), undisturbed)
 
 
-#: --timeout of the maps whose cluster fails: the client must say so within it (plus the
-#: time to close the client, and a loaded machine's slack)
-LOST_TIMEOUT, SLACK = 5.0, 15.0
+#: --timeout of the maps whose cluster fails: the client must say so within it, plus SLACK
+#: for what is not waiting (the command's start: imports and theory columns, 3-9 s measured
+#: on this 2-core machine shared by several jobs; closing the client) - a hang fails it
+LOST_TIMEOUT, SLACK = 5.0, 25.0
 
 
 def _fails_within_timeout(proc, since, match):
