@@ -348,6 +348,11 @@ def run_map(params: MapParameters, out: Path, scheduler: str | None = None,
         if todo:
             _run_tasks(params, path, todo, n_cells - n_done, scheduler, workers, progress,
                        log, arrays, timeout)
+        # .zmetadata is derived from the arrays' own metadata: rebuilt on every run, so a
+        # stale or damaged copy never keeps xr.open_zarr(path) from reading the store
+        import zarr
+
+        zarr.consolidate_metadata(str(path), zarr_format=2)
         # the store's metadata and coordinates read; its variables are ``arrays``, which
         # every block written has updated (tests/test_maps.py: identical to a fresh read)
         return ds.copy(data={n: arrays[n] for n in ds.data_vars}).load()
