@@ -72,7 +72,7 @@ def cell_costs(params, paper_params):
     from numerics.maps import predict_cell
 
     for p in (params, paper_params):  # compile (or load) the kernels outside the timing
-        _simulate_cells(dataclasses.replace(p, t_end=10.0, k=p.k[:1]), 0, [0])
+        _simulate_cells(dataclasses.replace(p, t_end=300.0, k=p.k[:1]), 0, [0])
     mat = Material(params.alpha, params.K_s, params.K_s - params.delta[0])
     rows = []
     for j, k in enumerate(params.k_simulated):
@@ -100,7 +100,7 @@ def layout_walls(params):
                                              processes=True)}
     tiny = maps.MapParameters(case="coupled", alpha=paper.ALPHA, K_s=paper.K_S,
                               delta=(0.003,), k=(2 * np.pi * 13 / 100,), amplitude=0.02,
-                              N=100, t_end=10.0)
+                              N=100, t_end=300.0)
     walls, tasks = {}, {}
     for name, kw in layouts.items():
         d = Path(tempfile.mkdtemp())

@@ -265,7 +265,7 @@ def main(quick=False, out=None):
                          for k, v in c.items() if k not in ("check", "pass"))
         lines.append(f"| {c['check']} | {'pass' if c['pass'] else '**FAIL**'} | "
                      f"{meas.replace('|', '/')[:300]} |")
-    lines += ["", "## Fault catalogue (bench/faults.py, bench/faults_maps.py; "
+    lines += ["", "## Fault catalogue (bench/faults.py, bench/faults_maps.py, bench/faults_round3.py; "
               f"tests/test_faults.py adds the signal, file and CLI faults): {fc['tried']} tried, {fc['clear error']} clear errors, "
               f"{fc['worked']} worked, {fc['problem']} problems", "",
               "| fault | outcome | what happened |", "|---|---|---|"]

@@ -9,6 +9,7 @@ import time
 from pathlib import Path
 
 from common import paper
+from common.options import unused_without
 
 EPILOG = {
     "coefficients": "example:\n  flexmm coefficients --alpha 2.5 --K-s 0.01851 --K-theta 0.01551 "
@@ -121,7 +122,8 @@ def _point_parser(sub):
                    help="run length in T (default: 9 e-foldings of the exact peak gain, "
                         "within [1000, 20000]; 5000 where nothing grows). With --simulate "
                         "the verdicts are 'grows more than 20x within it'")
-    p.add_argument("--seeds", type=int, default=4, help="noise seeds of the simulation")
+    p.add_argument("--seeds", type=int, default=4,
+                   help="with --simulate: noise seeds of the simulation")
     p.add_argument("--out", help="folder for point.json and point.png (default: none, "
                    "print only)")
 
@@ -181,15 +183,21 @@ def _map_parser(sub):
     p.add_argument("--block", type=int, default=4, help="cells per task")
 
 
+#: what float() reads after a minus sign and argparse takes for an option (``--t-end -inf``)
+_NON_FINITE = ("inf", "infinity", "nan")
+
+
 def _join_negative_values(argv: list) -> list:
     """``--delta -0.01:0.01:5`` as ``--delta=-0.01:0.01:5``: argparse would read a value that
-    starts with '-' and holds ':' or ',' as an option."""
+    starts with '-' and holds ':' or ',' (or is -inf, -nan) as an option, so the check that
+    names the option never saw it."""
     out, i = [], 0
     while i < len(argv):
         a = argv[i]
         if (a.startswith("--") and "=" not in a and i + 1 < len(argv)
-                and argv[i + 1][:1] == "-" and argv[i + 1][1:2] in "0123456789."
-                and argv[i + 1][1:2] != ""):
+                and argv[i + 1][:1] == "-" and (argv[i + 1][1:2] in "0123456789."
+                                                and argv[i + 1][1:2] != ""
+                                                or argv[i + 1][1:].lower() in _NON_FINITE)):
             out.append(f"{a}={argv[i + 1]}")
             i += 2
             continue
@@ -231,7 +239,8 @@ def main(argv=None) -> int:
                       file=sys.stderr)
                 return exit_code(interrupt)
             if isinstance(exc, OSError):
-                where = f" {exc.filename}" if exc.filename else ""
+                where = f" {exc.filename}" if exc.filename else (  # else the --out it wrote
+                    f" under {args.out}" if getattr(locals().get("args"), "out", None) else "")
                 print(f"flexmm: error:{where}: {exc.strerror or exc}", file=sys.stderr)
             else:
                 text = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
@@ -247,6 +256,8 @@ def _parse(argv):
 
     p = build_parser()
     args, extra = p.parse_known_args(argv)
+    sub = next(a for a in p._actions
+               if isinstance(a, argparse._SubParsersAction)).choices[args.cmd]
     if extra:
         sub = p.commands[args.cmd]
         # the command's options, as its help lists them (argparse's public output)
@@ -255,6 +266,7 @@ def _parse(argv):
                  for c in difflib.get_close_matches(e.split("=")[0], known, n=1)]
         sub.error(f"unrecognized arguments: {' '.join(extra)}"
                   + (f" (did you mean {close[0]}?)" if close else ""))
+    unused_without(sub, args, argv)  # an option that acts only with another, given alone
     return args
 
 

@@ -11,7 +11,14 @@ from pathlib import Path
 from common.files import write_text
 from common.output import prepare_output, strict_json
 from numerics.lattice import checks
-from numerics.theory import NLS_THEORIES, SolitonWarning, simulate_soliton, soliton, soliton_report
+from numerics.theory import (
+    NLS_THEORIES,
+    RunTooLong,
+    SolitonWarning,
+    simulate_soliton,
+    soliton,
+    soliton_report,
+)
 
 ROWS = (("velocity", "sites/T"), ("width", "sites"), ("amplitude", "rad (peak rotation)"),
         ("frequency", "1/T"), ("kink_height", "U, lattice units"))
@@ -68,8 +75,11 @@ def run_soliton(args, log=print) -> dict:
     if args.simulate:
         with warnings.catch_warnings():  # a narrow soliton was reported above
             warnings.simplefilter("ignore", SolitonWarning)
-            run = simulate_soliton(mat, args.case, k, amplitude, sol.kind, theory=theory,
-                                   N=args.N, travel=args.travel)
+            try:
+                run = simulate_soliton(mat, args.case, k, amplitude, sol.kind, theory=theory,
+                                       N=args.N, travel=args.travel)
+            except RunTooLong as exc:  # its remedies as this command's options
+                raise ValueError(exc.advice("--travel", "--amplitude")) from None
         sol_ring = run.predicted
         log(f"simulated: N = {run.N} sites, k = {sol_ring.k:.6g} rad/site (the nearest a ring "
             f"carries a {sol.kind} soliton), T = {run.t_end:.6g}, {run.method} dt = "

@@ -34,6 +34,10 @@ def check_output(out: Path | str, cache: bool = True) -> Path:
     for commands that announce their work before ``prepare_output`` creates the folder."""
     out = Path(out) if str(out) else Path(".")
     for folder in (out, out / ".cache") if cache else (out,):
+        if folder.is_symlink() and not folder.exists():
+            raise ValueError(f"{folder} is a symbolic link to {os.readlink(folder)}, which does "
+                             "not exist; create that folder, remove the link, or give another "
+                             "--out")
         if folder.exists() and not folder.is_dir():
             raise ValueError(f"{folder} is a file, not a folder")
     # the folder, or the nearest existing one it would be created in, must take new entries

@@ -36,6 +36,20 @@ class _Printer(NumPyPrinter):
         return f"numpy.abs({self._print(expr.args[0])})"
 
 
+# Every argument passes this check (the rule of numerics.lattice.checks.real_array, printed
+# here because generated code imports numpy only): a bool, a string or a complex number is
+# refused, not cast (numpy.asarray(x, dtype=float) reads True as 1.0 and "1.0" as 1.0).
+_REAL = '''def _real(name, value):
+    """``value`` as a float array; TypeError naming ``name`` unless it holds real numbers
+    (a bool, a string or a complex number is refused, not cast)."""
+    a = numpy.asarray(value)
+    if a.dtype.kind not in "fiu":
+        raise TypeError(f"{name} must hold real numbers, got {type(value).__name__} "
+                        f"{value!r}"[:200])
+    return a.astype(float, copy=False)
+'''
+
+
 def _function_source(form, printer):
     args = [str(a) for a in form.args]
     matrix = isinstance(form.expr, sp.MatrixBase)
@@ -54,7 +68,7 @@ def _function_source(form, printer):
     lines.append("    give inf/nan with NumPy's RuntimeWarning, never an exception.")
     lines.append('    """')
     for a in args:
-        lines.append(f"    {a} = numpy.asarray({a}, dtype=float)")
+        lines.append(f"    {a} = _real({a!r}, {a})")
     for sym, val in subs:
         lines.append(f"    {sym} = {printer.doprint(val)}")
     if not matrix:
@@ -81,6 +95,9 @@ def module_source(derivation, module_doc, forms=None):
         "import numpy",
         "",
         f"__all__ = {names!r}",
+        "",
+        "",
+        _REAL.rstrip("\n"),
         "",
     ]
     for form in forms:

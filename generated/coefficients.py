@@ -18,6 +18,16 @@ import numpy
 __all__ = ['omega', 'group_velocity', 'g1', 'g2_rotation', 'g2_coupled', 'g_rotation', 'g_coupled', 'u2_coefficient', 'mi_cutoff', 'mi_fastest', 'mi_growth_rate']
 
 
+def _real(name, value):
+    """``value`` as a float array; TypeError naming ``name`` unless it holds real numbers
+    (a bool, a string or a complex number is refused, not cast)."""
+    a = numpy.asarray(value)
+    if a.dtype.kind not in "fiu":
+        raise TypeError(f"{name} must hold real numbers, got {type(value).__name__} "
+                        f"{value!r}"[:200])
+    return a.astype(float, copy=False)
+
+
 def omega(k, alpha, K_s, K_theta):
     r"""Carrier frequency of the rotational branch, continuum limit.
 
@@ -28,10 +38,10 @@ def omega(k, alpha, K_s, K_theta):
     Parameters are floats or arrays (NumPy broadcasting); singular points
     give inf/nan with NumPy's RuntimeWarning, never an exception.
     """
-    k = numpy.asarray(k, dtype=float)
-    alpha = numpy.asarray(alpha, dtype=float)
-    K_s = numpy.asarray(K_s, dtype=float)
-    K_theta = numpy.asarray(K_theta, dtype=float)
+    k = _real('k', k)
+    alpha = _real('alpha', alpha)
+    K_s = _real('K_s', K_s)
+    K_theta = _real('K_theta', K_theta)
     x0 = k**2
     return alpha*numpy.sqrt(K_s*x0 - K_theta*x0 + 6*K_theta)
 
@@ -46,10 +56,10 @@ def group_velocity(k, alpha, K_s, K_theta):
     Parameters are floats or arrays (NumPy broadcasting); singular points
     give inf/nan with NumPy's RuntimeWarning, never an exception.
     """
-    k = numpy.asarray(k, dtype=float)
-    alpha = numpy.asarray(alpha, dtype=float)
-    K_s = numpy.asarray(K_s, dtype=float)
-    K_theta = numpy.asarray(K_theta, dtype=float)
+    k = _real('k', k)
+    alpha = _real('alpha', alpha)
+    K_s = _real('K_s', K_s)
+    K_theta = _real('K_theta', K_theta)
     x0 = k**2
     return alpha*k*(K_s - K_theta)/numpy.sqrt(K_s*x0 - K_theta*x0 + 6*K_theta)
 
@@ -64,10 +74,10 @@ def g1(k, alpha, K_s, K_theta):
     Parameters are floats or arrays (NumPy broadcasting); singular points
     give inf/nan with NumPy's RuntimeWarning, never an exception.
     """
-    k = numpy.asarray(k, dtype=float)
-    alpha = numpy.asarray(alpha, dtype=float)
-    K_s = numpy.asarray(K_s, dtype=float)
-    K_theta = numpy.asarray(K_theta, dtype=float)
+    k = _real('k', k)
+    alpha = _real('alpha', alpha)
+    K_s = _real('K_s', K_s)
+    K_theta = _real('K_theta', K_theta)
     x0 = 6*K_theta
     x1 = k**2
     return alpha*x0*(K_s - K_theta)/(K_s*x1 - K_theta*x1 + x0)**(3/2)
@@ -83,10 +93,10 @@ def g2_rotation(k, alpha, K_s, K_theta):
     Parameters are floats or arrays (NumPy broadcasting); singular points
     give inf/nan with NumPy's RuntimeWarning, never an exception.
     """
-    k = numpy.asarray(k, dtype=float)
-    alpha = numpy.asarray(alpha, dtype=float)
-    K_s = numpy.asarray(K_s, dtype=float)
-    K_theta = numpy.asarray(K_theta, dtype=float)
+    k = _real('k', k)
+    alpha = _real('alpha', alpha)
+    K_s = _real('K_s', K_s)
+    K_theta = _real('K_theta', K_theta)
     x0 = k**2
     return -3*alpha/numpy.sqrt(K_s*x0 - K_theta*x0 + 6*K_theta)
 
@@ -101,10 +111,10 @@ def g2_coupled(k, alpha, K_s, K_theta):
     Parameters are floats or arrays (NumPy broadcasting); singular points
     give inf/nan with NumPy's RuntimeWarning, never an exception.
     """
-    k = numpy.asarray(k, dtype=float)
-    alpha = numpy.asarray(alpha, dtype=float)
-    K_s = numpy.asarray(K_s, dtype=float)
-    K_theta = numpy.asarray(K_theta, dtype=float)
+    k = _real('k', k)
+    alpha = _real('alpha', alpha)
+    K_s = _real('K_s', K_s)
+    K_theta = _real('K_theta', K_theta)
     x0 = k**2
     x1 = K_s*x0 - K_theta*x0 + 6*K_theta
     x2 = alpha**2*x1
@@ -121,10 +131,10 @@ def g_rotation(k, alpha, K_s, K_theta):
     Parameters are floats or arrays (NumPy broadcasting); singular points
     give inf/nan with NumPy's RuntimeWarning, never an exception.
     """
-    k = numpy.asarray(k, dtype=float)
-    alpha = numpy.asarray(alpha, dtype=float)
-    K_s = numpy.asarray(K_s, dtype=float)
-    K_theta = numpy.asarray(K_theta, dtype=float)
+    k = _real('k', k)
+    alpha = _real('alpha', alpha)
+    K_s = _real('K_s', K_s)
+    K_theta = _real('K_theta', K_theta)
     x0 = k**2
     return (1/2)*(-K_s*x0 + K_theta*x0 - 6*K_theta)/(K_theta*(K_s - K_theta))
 
@@ -139,10 +149,10 @@ def g_coupled(k, alpha, K_s, K_theta):
     Parameters are floats or arrays (NumPy broadcasting); singular points
     give inf/nan with NumPy's RuntimeWarning, never an exception.
     """
-    k = numpy.asarray(k, dtype=float)
-    alpha = numpy.asarray(alpha, dtype=float)
-    K_s = numpy.asarray(K_s, dtype=float)
-    K_theta = numpy.asarray(K_theta, dtype=float)
+    k = _real('k', k)
+    alpha = _real('alpha', alpha)
+    K_s = _real('K_s', K_s)
+    K_theta = _real('K_theta', K_theta)
     x0 = k**2
     x1 = K_s*x0 - K_theta*x0 + 6*K_theta
     x2 = alpha**2*x1
@@ -159,10 +169,10 @@ def u2_coefficient(k, alpha, K_s, K_theta):
     Parameters are floats or arrays (NumPy broadcasting); singular points
     give inf/nan with NumPy's RuntimeWarning, never an exception.
     """
-    k = numpy.asarray(k, dtype=float)
-    alpha = numpy.asarray(alpha, dtype=float)
-    K_s = numpy.asarray(K_s, dtype=float)
-    K_theta = numpy.asarray(K_theta, dtype=float)
+    k = _real('k', k)
+    alpha = _real('alpha', alpha)
+    K_s = _real('K_s', K_s)
+    K_theta = _real('K_theta', K_theta)
     x0 = k**2
     return -1j*k/(4*alpha**2*(K_s*x0 - K_theta*x0 + 6*K_theta) - 4*x0)
 
@@ -177,8 +187,8 @@ def mi_cutoff(g, A0):
     Parameters are floats or arrays (NumPy broadcasting); singular points
     give inf/nan with NumPy's RuntimeWarning, never an exception.
     """
-    g = numpy.asarray(g, dtype=float)
-    A0 = numpy.asarray(A0, dtype=float)
+    g = _real('g', g)
+    A0 = _real('A0', A0)
     return 2*A0*numpy.sqrt(g)
 
 
@@ -192,8 +202,8 @@ def mi_fastest(g, A0):
     Parameters are floats or arrays (NumPy broadcasting); singular points
     give inf/nan with NumPy's RuntimeWarning, never an exception.
     """
-    g = numpy.asarray(g, dtype=float)
-    A0 = numpy.asarray(A0, dtype=float)
+    g = _real('g', g)
+    A0 = _real('A0', A0)
     return numpy.sqrt(2)*A0*numpy.sqrt(g)
 
 
@@ -207,7 +217,7 @@ def mi_growth_rate(K, g, A0):
     Parameters are floats or arrays (NumPy broadcasting); singular points
     give inf/nan with NumPy's RuntimeWarning, never an exception.
     """
-    K = numpy.asarray(K, dtype=float)
-    g = numpy.asarray(g, dtype=float)
-    A0 = numpy.asarray(A0, dtype=float)
+    K = _real('K', K)
+    g = _real('g', g)
+    A0 = _real('A0', A0)
     return numpy.abs(K)*numpy.sqrt(numpy.maximum(0, A0**2*g - 1/4*K**2))

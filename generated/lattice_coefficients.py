@@ -19,6 +19,16 @@ import numpy
 __all__ = ['omega', 'group_velocity', 'g1', 'g2_rotation', 'g2_coupled', 'g_rotation', 'g_coupled', 'u2_coefficient', 'mean_flow_coefficient', 'mi_cutoff', 'mi_fastest', 'mi_growth_rate']
 
 
+def _real(name, value):
+    """``value`` as a float array; TypeError naming ``name`` unless it holds real numbers
+    (a bool, a string or a complex number is refused, not cast)."""
+    a = numpy.asarray(value)
+    if a.dtype.kind not in "fiu":
+        raise TypeError(f"{name} must hold real numbers, got {type(value).__name__} "
+                        f"{value!r}"[:200])
+    return a.astype(float, copy=False)
+
+
 def omega(k, alpha, K_s, K_theta):
     r"""Carrier frequency, the lattice's rotational branch. Semi-discrete: derived from eq. `norm` itself (exact carrier on the lattice).
 
@@ -29,10 +39,10 @@ def omega(k, alpha, K_s, K_theta):
     Parameters are floats or arrays (NumPy broadcasting); singular points
     give inf/nan with NumPy's RuntimeWarning, never an exception.
     """
-    k = numpy.asarray(k, dtype=float)
-    alpha = numpy.asarray(alpha, dtype=float)
-    K_s = numpy.asarray(K_s, dtype=float)
-    K_theta = numpy.asarray(K_theta, dtype=float)
+    k = _real('k', k)
+    alpha = _real('alpha', alpha)
+    K_s = _real('K_s', K_s)
+    K_theta = _real('K_theta', K_theta)
     x0 = numpy.cos(k)
     return numpy.sqrt(2)*alpha*numpy.sqrt(-K_s*x0 + K_s + K_theta*x0 + 2*K_theta)
 
@@ -47,10 +57,10 @@ def group_velocity(k, alpha, K_s, K_theta):
     Parameters are floats or arrays (NumPy broadcasting); singular points
     give inf/nan with NumPy's RuntimeWarning, never an exception.
     """
-    k = numpy.asarray(k, dtype=float)
-    alpha = numpy.asarray(alpha, dtype=float)
-    K_s = numpy.asarray(K_s, dtype=float)
-    K_theta = numpy.asarray(K_theta, dtype=float)
+    k = _real('k', k)
+    alpha = _real('alpha', alpha)
+    K_s = _real('K_s', K_s)
+    K_theta = _real('K_theta', K_theta)
     x0 = numpy.cos(k)
     return (1/2)*numpy.sqrt(2)*alpha*(K_s - K_theta)*numpy.sin(k)/numpy.sqrt(-K_s*x0 + K_s + K_theta*x0 + 2*K_theta)
 
@@ -65,10 +75,10 @@ def g1(k, alpha, K_s, K_theta):
     Parameters are floats or arrays (NumPy broadcasting); singular points
     give inf/nan with NumPy's RuntimeWarning, never an exception.
     """
-    k = numpy.asarray(k, dtype=float)
-    alpha = numpy.asarray(alpha, dtype=float)
-    K_s = numpy.asarray(K_s, dtype=float)
-    K_theta = numpy.asarray(K_theta, dtype=float)
+    k = _real('k', k)
+    alpha = _real('alpha', alpha)
+    K_s = _real('K_s', K_s)
+    K_theta = _real('K_theta', K_theta)
     x0 = numpy.cos(k)
     x1 = -K_s*x0 + K_s + K_theta*x0 + 2*K_theta
     return (1/4)*numpy.sqrt(2)*alpha*(2*x0*x1*(K_s - K_theta) + (-K_s**2 + 2*K_s*K_theta - K_theta**2)*numpy.sin(k)**2)/x1**(3/2)
@@ -84,10 +94,10 @@ def g2_rotation(k, alpha, K_s, K_theta):
     Parameters are floats or arrays (NumPy broadcasting); singular points
     give inf/nan with NumPy's RuntimeWarning, never an exception.
     """
-    k = numpy.asarray(k, dtype=float)
-    alpha = numpy.asarray(alpha, dtype=float)
-    K_s = numpy.asarray(K_s, dtype=float)
-    K_theta = numpy.asarray(K_theta, dtype=float)
+    k = _real('k', k)
+    alpha = _real('alpha', alpha)
+    K_s = _real('K_s', K_s)
+    K_theta = _real('K_theta', K_theta)
     x0 = numpy.cos(k)
     x1 = K_s*x0
     return (1/4)*numpy.sqrt(2)*alpha*(4*K_s - 4*x1 - numpy.cos(2*k) - 5)/numpy.sqrt(K_s + K_theta*x0 + 2*K_theta - x1)
@@ -103,10 +113,10 @@ def g2_coupled(k, alpha, K_s, K_theta):
     Parameters are floats or arrays (NumPy broadcasting); singular points
     give inf/nan with NumPy's RuntimeWarning, never an exception.
     """
-    k = numpy.asarray(k, dtype=float)
-    alpha = numpy.asarray(alpha, dtype=float)
-    K_s = numpy.asarray(K_s, dtype=float)
-    K_theta = numpy.asarray(K_theta, dtype=float)
+    k = _real('k', k)
+    alpha = _real('alpha', alpha)
+    K_s = _real('K_s', K_s)
+    K_theta = _real('K_theta', K_theta)
     x0 = 2*K_theta
     x1 = numpy.cos(k)
     x2 = K_s*x1
@@ -130,10 +140,10 @@ def g_rotation(k, alpha, K_s, K_theta):
     Parameters are floats or arrays (NumPy broadcasting); singular points
     give inf/nan with NumPy's RuntimeWarning, never an exception.
     """
-    k = numpy.asarray(k, dtype=float)
-    alpha = numpy.asarray(alpha, dtype=float)
-    K_s = numpy.asarray(K_s, dtype=float)
-    K_theta = numpy.asarray(K_theta, dtype=float)
+    k = _real('k', k)
+    alpha = _real('alpha', alpha)
+    K_s = _real('K_s', K_s)
+    K_theta = _real('K_theta', K_theta)
     x0 = numpy.cos(k)
     x1 = K_s*x0
     x2 = K_s + K_theta*x0 + 2*K_theta - x1
@@ -150,10 +160,10 @@ def g_coupled(k, alpha, K_s, K_theta):
     Parameters are floats or arrays (NumPy broadcasting); singular points
     give inf/nan with NumPy's RuntimeWarning, never an exception.
     """
-    k = numpy.asarray(k, dtype=float)
-    alpha = numpy.asarray(alpha, dtype=float)
-    K_s = numpy.asarray(K_s, dtype=float)
-    K_theta = numpy.asarray(K_theta, dtype=float)
+    k = _real('k', k)
+    alpha = _real('alpha', alpha)
+    K_s = _real('K_s', K_s)
+    K_theta = _real('K_theta', K_theta)
     x0 = 2*K_theta
     x1 = numpy.cos(k)
     x2 = K_s*x1
@@ -180,10 +190,10 @@ def u2_coefficient(k, alpha, K_s, K_theta):
     Parameters are floats or arrays (NumPy broadcasting); singular points
     give inf/nan with NumPy's RuntimeWarning, never an exception.
     """
-    k = numpy.asarray(k, dtype=float)
-    alpha = numpy.asarray(alpha, dtype=float)
-    K_s = numpy.asarray(K_s, dtype=float)
-    K_theta = numpy.asarray(K_theta, dtype=float)
+    k = _real('k', k)
+    alpha = _real('alpha', alpha)
+    K_s = _real('K_s', K_s)
+    K_theta = _real('K_theta', K_theta)
     x0 = 2*k
     x1 = numpy.cos(k)
     return -1j*numpy.sin(x0)/(16*alpha**2*(-K_s*x1 + K_s + K_theta*x1 + 2*K_theta) + 4*numpy.cos(x0) - 4)
@@ -199,10 +209,10 @@ def mean_flow_coefficient(k, alpha, K_s, K_theta):
     Parameters are floats or arrays (NumPy broadcasting); singular points
     give inf/nan with NumPy's RuntimeWarning, never an exception.
     """
-    k = numpy.asarray(k, dtype=float)
-    alpha = numpy.asarray(alpha, dtype=float)
-    K_s = numpy.asarray(K_s, dtype=float)
-    K_theta = numpy.asarray(K_theta, dtype=float)
+    k = _real('k', k)
+    alpha = _real('alpha', alpha)
+    K_s = _real('K_s', K_s)
+    K_theta = _real('K_theta', K_theta)
     x0 = 2*K_theta
     x1 = numpy.cos(k)
     x2 = 2*K_s
@@ -221,8 +231,8 @@ def mi_cutoff(g, A0):
     Parameters are floats or arrays (NumPy broadcasting); singular points
     give inf/nan with NumPy's RuntimeWarning, never an exception.
     """
-    g = numpy.asarray(g, dtype=float)
-    A0 = numpy.asarray(A0, dtype=float)
+    g = _real('g', g)
+    A0 = _real('A0', A0)
     return 2*A0*numpy.sqrt(g)
 
 
@@ -236,8 +246,8 @@ def mi_fastest(g, A0):
     Parameters are floats or arrays (NumPy broadcasting); singular points
     give inf/nan with NumPy's RuntimeWarning, never an exception.
     """
-    g = numpy.asarray(g, dtype=float)
-    A0 = numpy.asarray(A0, dtype=float)
+    g = _real('g', g)
+    A0 = _real('A0', A0)
     return numpy.sqrt(2)*A0*numpy.sqrt(g)
 
 
@@ -251,7 +261,7 @@ def mi_growth_rate(K, g, A0):
     Parameters are floats or arrays (NumPy broadcasting); singular points
     give inf/nan with NumPy's RuntimeWarning, never an exception.
     """
-    K = numpy.asarray(K, dtype=float)
-    g = numpy.asarray(g, dtype=float)
-    A0 = numpy.asarray(A0, dtype=float)
+    K = _real('K', K)
+    g = _real('g', g)
+    A0 = _real('A0', A0)
     return numpy.abs(K)*numpy.sqrt(numpy.maximum(0, A0**2*g - 1/4*K**2))

@@ -19,6 +19,16 @@ import numpy
 __all__ = ['acceleration_U', 'acceleration_theta', 'jacobian', 'omega_longitudinal', 'omega_rotation']
 
 
+def _real(name, value):
+    """``value`` as a float array; TypeError naming ``name`` unless it holds real numbers
+    (a bool, a string or a complex number is refused, not cast)."""
+    a = numpy.asarray(value)
+    if a.dtype.kind not in "fiu":
+        raise TypeError(f"{name} must hold real numbers, got {type(value).__name__} "
+                        f"{value!r}"[:200])
+    return a.astype(float, copy=False)
+
+
 def acceleration_U(U_m, U_0, U_p, theta_m, theta_0, theta_p, alpha, K_s, K_theta):
     r"""d^2 U_n / dT^2 from the neighbourhood of site n.
 
@@ -29,15 +39,15 @@ def acceleration_U(U_m, U_0, U_p, theta_m, theta_0, theta_p, alpha, K_s, K_theta
     Parameters are floats or arrays (NumPy broadcasting); singular points
     give inf/nan with NumPy's RuntimeWarning, never an exception.
     """
-    U_m = numpy.asarray(U_m, dtype=float)
-    U_0 = numpy.asarray(U_0, dtype=float)
-    U_p = numpy.asarray(U_p, dtype=float)
-    theta_m = numpy.asarray(theta_m, dtype=float)
-    theta_0 = numpy.asarray(theta_0, dtype=float)
-    theta_p = numpy.asarray(theta_p, dtype=float)
-    alpha = numpy.asarray(alpha, dtype=float)
-    K_s = numpy.asarray(K_s, dtype=float)
-    K_theta = numpy.asarray(K_theta, dtype=float)
+    U_m = _real('U_m', U_m)
+    U_0 = _real('U_0', U_0)
+    U_p = _real('U_p', U_p)
+    theta_m = _real('theta_m', theta_m)
+    theta_0 = _real('theta_0', theta_0)
+    theta_p = _real('theta_p', theta_p)
+    alpha = _real('alpha', alpha)
+    K_s = _real('K_s', K_s)
+    K_theta = _real('K_theta', K_theta)
     return -2*U_0 + U_m + U_p + (1/2)*numpy.cos(theta_m) - 1/2*numpy.cos(theta_p)
 
 
@@ -51,15 +61,15 @@ def acceleration_theta(U_m, U_0, U_p, theta_m, theta_0, theta_p, alpha, K_s, K_t
     Parameters are floats or arrays (NumPy broadcasting); singular points
     give inf/nan with NumPy's RuntimeWarning, never an exception.
     """
-    U_m = numpy.asarray(U_m, dtype=float)
-    U_0 = numpy.asarray(U_0, dtype=float)
-    U_p = numpy.asarray(U_p, dtype=float)
-    theta_m = numpy.asarray(theta_m, dtype=float)
-    theta_0 = numpy.asarray(theta_0, dtype=float)
-    theta_p = numpy.asarray(theta_p, dtype=float)
-    alpha = numpy.asarray(alpha, dtype=float)
-    K_s = numpy.asarray(K_s, dtype=float)
-    K_theta = numpy.asarray(K_theta, dtype=float)
+    U_m = _real('U_m', U_m)
+    U_0 = _real('U_0', U_0)
+    U_p = _real('U_p', U_p)
+    theta_m = _real('theta_m', theta_m)
+    theta_0 = _real('theta_0', theta_0)
+    theta_p = _real('theta_p', theta_p)
+    alpha = _real('alpha', alpha)
+    K_s = _real('K_s', K_s)
+    K_theta = _real('K_theta', K_theta)
     x0 = numpy.cos(theta_0)
     x1 = numpy.sin(theta_0)
     return alpha**2*(K_s*x0*(-2*x1 + numpy.sin(theta_m) + numpy.sin(theta_p)) - K_theta*(4*theta_0 + theta_m + theta_p) - x1*(-2*U_m + 2*U_p - 2*x0 - numpy.cos(theta_m) - numpy.cos(theta_p) + 4))
@@ -75,15 +85,15 @@ def jacobian(U_m, U_0, U_p, theta_m, theta_0, theta_p, alpha, K_s, K_theta):
     Parameters are floats or arrays (NumPy broadcasting); singular points
     give inf/nan with NumPy's RuntimeWarning, never an exception.
     """
-    U_m = numpy.asarray(U_m, dtype=float)
-    U_0 = numpy.asarray(U_0, dtype=float)
-    U_p = numpy.asarray(U_p, dtype=float)
-    theta_m = numpy.asarray(theta_m, dtype=float)
-    theta_0 = numpy.asarray(theta_0, dtype=float)
-    theta_p = numpy.asarray(theta_p, dtype=float)
-    alpha = numpy.asarray(alpha, dtype=float)
-    K_s = numpy.asarray(K_s, dtype=float)
-    K_theta = numpy.asarray(K_theta, dtype=float)
+    U_m = _real('U_m', U_m)
+    U_0 = _real('U_0', U_0)
+    U_p = _real('U_p', U_p)
+    theta_m = _real('theta_m', theta_m)
+    theta_0 = _real('theta_0', theta_0)
+    theta_p = _real('theta_p', theta_p)
+    alpha = _real('alpha', alpha)
+    K_s = _real('K_s', K_s)
+    K_theta = _real('K_theta', K_theta)
     x0 = numpy.sin(theta_m)
     x1 = numpy.sin(theta_p)
     x2 = alpha**2
@@ -107,7 +117,7 @@ def omega_longitudinal(q):
     Parameters are floats or arrays (NumPy broadcasting); singular points
     give inf/nan with NumPy's RuntimeWarning, never an exception.
     """
-    q = numpy.asarray(q, dtype=float)
+    q = _real('q', q)
     return 2*numpy.abs(numpy.sin((1/2)*q))
 
 
@@ -121,10 +131,10 @@ def omega_rotation(q, alpha, K_s, K_theta):
     Parameters are floats or arrays (NumPy broadcasting); singular points
     give inf/nan with NumPy's RuntimeWarning, never an exception.
     """
-    q = numpy.asarray(q, dtype=float)
-    alpha = numpy.asarray(alpha, dtype=float)
-    K_s = numpy.asarray(K_s, dtype=float)
-    K_theta = numpy.asarray(K_theta, dtype=float)
+    q = _real('q', q)
+    alpha = _real('alpha', alpha)
+    K_s = _real('K_s', K_s)
+    K_theta = _real('K_theta', K_theta)
     x0 = alpha**2
     x1 = 4*x0
     return numpy.sqrt(6*K_theta*x0 + (K_s*x1 - K_theta*x1)*numpy.sin((1/2)*q)**2)

@@ -21,6 +21,16 @@ import numpy
 __all__ = ['bright_envelope', 'bright_width', 'bright_frequency_shift', 'bright_kink', 'dark_envelope', 'dark_width', 'dark_velocity', 'dark_frequency_shift', 'dark_phase_jump', 'dark_kink', 'continuum_mean_flow_coefficient', 'lattice_g2_mean_flow']
 
 
+def _real(name, value):
+    """``value`` as a float array; TypeError naming ``name`` unless it holds real numbers
+    (a bool, a string or a complex number is refused, not cast)."""
+    a = numpy.asarray(value)
+    if a.dtype.kind not in "fiu":
+        raise TypeError(f"{name} must hold real numbers, got {type(value).__name__} "
+                        f"{value!r}"[:200])
+    return a.astype(float, copy=False)
+
+
 def bright_envelope(xi, t, amplitude, g1, g2):
     r"""Bright soliton E(xi, t) of i E_t + g1/2 E_xixi + g2 |E|^2 E = 0 (g2/g1 > 0); theta_n = E e^{i(k n - omega t)} + c.c. Lattice units: xi = n - v_g t (sites), t in T, amplitude = peak rotation 2|E| (rad); g1, g2 from generated.coefficients (paper NLS) or generated.lattice_coefficients (semi-discrete NLS).
 
@@ -31,11 +41,11 @@ def bright_envelope(xi, t, amplitude, g1, g2):
     Parameters are floats or arrays (NumPy broadcasting); singular points
     give inf/nan with NumPy's RuntimeWarning, never an exception.
     """
-    xi = numpy.asarray(xi, dtype=float)
-    t = numpy.asarray(t, dtype=float)
-    amplitude = numpy.asarray(amplitude, dtype=float)
-    g1 = numpy.asarray(g1, dtype=float)
-    g2 = numpy.asarray(g2, dtype=float)
+    xi = _real('xi', xi)
+    t = _real('t', t)
+    amplitude = _real('amplitude', amplitude)
+    g1 = _real('g1', g1)
+    g2 = _real('g2', g2)
     x0 = (1/2)*amplitude
     return x0*numpy.exp((1/8)*1j*amplitude**2*g2*t)/numpy.cosh(x0*xi*numpy.sqrt(g2/g1))
 
@@ -50,9 +60,9 @@ def bright_width(amplitude, g1, g2):
     Parameters are floats or arrays (NumPy broadcasting); singular points
     give inf/nan with NumPy's RuntimeWarning, never an exception.
     """
-    amplitude = numpy.asarray(amplitude, dtype=float)
-    g1 = numpy.asarray(g1, dtype=float)
-    g2 = numpy.asarray(g2, dtype=float)
+    amplitude = _real('amplitude', amplitude)
+    g1 = _real('g1', g1)
+    g2 = _real('g2', g2)
     return 2/(amplitude*numpy.sqrt(g2/g1))
 
 
@@ -66,9 +76,9 @@ def bright_frequency_shift(amplitude, g1, g2):
     Parameters are floats or arrays (NumPy broadcasting); singular points
     give inf/nan with NumPy's RuntimeWarning, never an exception.
     """
-    amplitude = numpy.asarray(amplitude, dtype=float)
-    g1 = numpy.asarray(g1, dtype=float)
-    g2 = numpy.asarray(g2, dtype=float)
+    amplitude = _real('amplitude', amplitude)
+    g1 = _real('g1', g1)
+    g2 = _real('g2', g2)
     return (1/8)*amplitude**2*g2
 
 
@@ -82,10 +92,10 @@ def bright_kink(amplitude, g1, g2, mu):
     Parameters are floats or arrays (NumPy broadcasting); singular points
     give inf/nan with NumPy's RuntimeWarning, never an exception.
     """
-    amplitude = numpy.asarray(amplitude, dtype=float)
-    g1 = numpy.asarray(g1, dtype=float)
-    g2 = numpy.asarray(g2, dtype=float)
-    mu = numpy.asarray(mu, dtype=float)
+    amplitude = _real('amplitude', amplitude)
+    g1 = _real('g1', g1)
+    g2 = _real('g2', g2)
+    mu = _real('mu', mu)
     return amplitude*mu/numpy.sqrt(g2/g1)
 
 
@@ -99,12 +109,12 @@ def dark_envelope(xi, t, amplitude, phi, g1, g2):
     Parameters are floats or arrays (NumPy broadcasting); singular points
     give inf/nan with NumPy's RuntimeWarning, never an exception.
     """
-    xi = numpy.asarray(xi, dtype=float)
-    t = numpy.asarray(t, dtype=float)
-    amplitude = numpy.asarray(amplitude, dtype=float)
-    phi = numpy.asarray(phi, dtype=float)
-    g1 = numpy.asarray(g1, dtype=float)
-    g2 = numpy.asarray(g2, dtype=float)
+    xi = _real('xi', xi)
+    t = _real('t', t)
+    amplitude = _real('amplitude', amplitude)
+    phi = _real('phi', phi)
+    g1 = _real('g1', g1)
+    g2 = _real('g2', g2)
     x0 = numpy.sin(phi)
     x1 = numpy.cos(phi)
     x2 = (1/2)*amplitude
@@ -122,10 +132,10 @@ def dark_width(amplitude, phi, g1, g2):
     Parameters are floats or arrays (NumPy broadcasting); singular points
     give inf/nan with NumPy's RuntimeWarning, never an exception.
     """
-    amplitude = numpy.asarray(amplitude, dtype=float)
-    phi = numpy.asarray(phi, dtype=float)
-    g1 = numpy.asarray(g1, dtype=float)
-    g2 = numpy.asarray(g2, dtype=float)
+    amplitude = _real('amplitude', amplitude)
+    phi = _real('phi', phi)
+    g1 = _real('g1', g1)
+    g2 = _real('g2', g2)
     return 2/(amplitude*numpy.sqrt(-g2/g1)*numpy.cos(phi))
 
 
@@ -139,10 +149,10 @@ def dark_velocity(amplitude, phi, g1, g2):
     Parameters are floats or arrays (NumPy broadcasting); singular points
     give inf/nan with NumPy's RuntimeWarning, never an exception.
     """
-    amplitude = numpy.asarray(amplitude, dtype=float)
-    phi = numpy.asarray(phi, dtype=float)
-    g1 = numpy.asarray(g1, dtype=float)
-    g2 = numpy.asarray(g2, dtype=float)
+    amplitude = _real('amplitude', amplitude)
+    phi = _real('phi', phi)
+    g1 = _real('g1', g1)
+    g2 = _real('g2', g2)
     return (1/2)*amplitude*g1*numpy.sqrt(-g2/g1)*numpy.sin(phi)
 
 
@@ -156,8 +166,8 @@ def dark_frequency_shift(amplitude, g2):
     Parameters are floats or arrays (NumPy broadcasting); singular points
     give inf/nan with NumPy's RuntimeWarning, never an exception.
     """
-    amplitude = numpy.asarray(amplitude, dtype=float)
-    g2 = numpy.asarray(g2, dtype=float)
+    amplitude = _real('amplitude', amplitude)
+    g2 = _real('g2', g2)
     return (1/4)*amplitude**2*g2
 
 
@@ -171,7 +181,7 @@ def dark_phase_jump(phi):
     Parameters are floats or arrays (NumPy broadcasting); singular points
     give inf/nan with NumPy's RuntimeWarning, never an exception.
     """
-    phi = numpy.asarray(phi, dtype=float)
+    phi = _real('phi', phi)
     return 2*phi - numpy.pi
 
 
@@ -185,11 +195,11 @@ def dark_kink(amplitude, phi, g1, g2, mu):
     Parameters are floats or arrays (NumPy broadcasting); singular points
     give inf/nan with NumPy's RuntimeWarning, never an exception.
     """
-    amplitude = numpy.asarray(amplitude, dtype=float)
-    phi = numpy.asarray(phi, dtype=float)
-    g1 = numpy.asarray(g1, dtype=float)
-    g2 = numpy.asarray(g2, dtype=float)
-    mu = numpy.asarray(mu, dtype=float)
+    amplitude = _real('amplitude', amplitude)
+    phi = _real('phi', phi)
+    g1 = _real('g1', g1)
+    g2 = _real('g2', g2)
+    mu = _real('mu', mu)
     return -amplitude*mu*numpy.cos(phi)/numpy.sqrt(-g2/g1)
 
 
@@ -203,10 +213,10 @@ def continuum_mean_flow_coefficient(k, alpha, K_s, K_theta):
     Parameters are floats or arrays (NumPy broadcasting); singular points
     give inf/nan with NumPy's RuntimeWarning, never an exception.
     """
-    k = numpy.asarray(k, dtype=float)
-    alpha = numpy.asarray(alpha, dtype=float)
-    K_s = numpy.asarray(K_s, dtype=float)
-    K_theta = numpy.asarray(K_theta, dtype=float)
+    k = _real('k', k)
+    alpha = _real('alpha', alpha)
+    K_s = _real('K_s', K_s)
+    K_theta = _real('K_theta', K_theta)
     x0 = k**2
     x1 = K_s*x0 - K_theta*x0 + 6*K_theta
     return x1/(alpha**2*x0*(K_s - K_theta)**2 - x1)
@@ -222,10 +232,10 @@ def lattice_g2_mean_flow(k, alpha, K_s, K_theta):
     Parameters are floats or arrays (NumPy broadcasting); singular points
     give inf/nan with NumPy's RuntimeWarning, never an exception.
     """
-    k = numpy.asarray(k, dtype=float)
-    alpha = numpy.asarray(alpha, dtype=float)
-    K_s = numpy.asarray(K_s, dtype=float)
-    K_theta = numpy.asarray(K_theta, dtype=float)
+    k = _real('k', k)
+    alpha = _real('alpha', alpha)
+    K_s = _real('K_s', K_s)
+    K_theta = _real('K_theta', K_theta)
     x0 = 2*K_theta
     x1 = numpy.cos(k)
     x2 = -K_s*x1 + K_s + K_theta*x1 + x0

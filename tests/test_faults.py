@@ -313,3 +313,30 @@ def test_a_wavenumber_below_the_longest_wave_names_the_limit():
     with pytest.raises(ValueError, match=r"2 pi / N = 0\.01257: choose k >= 0\.01257, or "
                                          r"more sites \(N >= 1257\)"):
         snap_wavenumber(0.005, 500)
+
+
+def test_a_full_disk_while_a_map_writes_names_the_store_and_keeps_its_cells(tmp_path,
+                                                                            monkeypatch, capsys):
+    # the disk fills after the first block: one line naming the store, the block kept
+    from numerics.maps import _store
+
+    written = []
+    real = _store._CellWriter.write
+
+    def write(self, region, cells):
+        if written:
+            raise OSError(28, "No space left on device")
+        written.append(cells)
+        return real(self, region, cells)
+
+    monkeypatch.setattr(_store._CellWriter, "write", write)
+    args = ["map", "--case", "rotation", "--alpha", "3.1", "--K-s", "0.024", "--delta",
+            "0.0035", "--k", "0.9,1.3", "--N", "64", "--t-end", "300", "--block", "1",
+            "--workers", "1", "--out", str(tmp_path / "m")]
+    assert cli(args) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and f"{tmp_path / 'm' / 'map.zarr'}: No space left on device" in err[0]
+    assert "cells finished before are kept" in err[0]
+    monkeypatch.undo()
+    assert cli(args) == 0
+    assert "1 of 2 cells already done" in capsys.readouterr().out

@@ -50,7 +50,7 @@ def test_a_scheduler_that_is_not_dask_fails_within_the_timeout(answer, match, tm
     srv, address = _server(answer)
     try:
         t0 = time.monotonic()
-        p = subprocess.run(FLEXMM + MAP + ["--t-end", "100", "--scheduler", address,
+        p = subprocess.run(FLEXMM + MAP + ["--t-end", "500", "--scheduler", address,
                                            "--timeout", "3", "--out", str(tmp_path / "m")],
                            cwd=ROOT, capture_output=True, text=True, timeout=SLOW)
         elapsed = time.monotonic() - t0

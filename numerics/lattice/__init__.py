@@ -32,7 +32,8 @@ from ._accuracy import (ERROR_CONSTANTS, STABILITY_MARGIN, AccuracyWarning, choo
 from ._analysis import (GROWTH_THRESHOLD, U_REFERENCE, band_summary, carrier_amplitude, carrier_frequency,
                         forced_second_harmonic, growth_rates, grows_beyond_threshold,
                         LINEAR_STAGE_RULE, harmonic_bins, linear_stage, mode, non_carrier_bins,
-                        sideband_to_carrier, spectrum, spectrum_growth, stability_verdict)
+                        shortest_run, shortest_run_error, sideband_to_carrier, spectrum, spectrum_growth,
+                        stability_verdict)
 from ._cache import cached_simulate
 from ._integrate import (BlowUpError, SimulationInterrupted, Stepper, blowup_message,
                          check_time, integrate)
@@ -61,4 +62,5 @@ __all__ = [
     "Stepper", "blowup_message", "check_time", "check_case", "check_start",
     "dominant_frequency", "ERROR_CONSTANTS", "STABILITY_MARGIN", "FASTMATH", "sincos_vers",
     "site_acceleration", "accel", "numpy_accel", "numpy_rk4", "U_REFERENCE",
+    "shortest_run", "shortest_run_error",
 ]

@@ -5,6 +5,8 @@ Every verdict here comes from the simulated fields alone, never from the theory.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 #: A run is "unstable" when the largest non-carrier component of the theta spectrum,
@@ -68,6 +70,48 @@ def non_carrier_bins(m: int, N: int, field: str = "theta") -> np.ndarray:
 U_REFERENCE = 0.05
 
 
+#: U's reference record must lie this many carrier periods into the run: before it, U is
+#: still building up from rest and its "growth" is that build-up. Measured (coupled, alpha
+#: 2.5, K_s 0.01851, delta 0.003, k = 2 pi 64/500, N = 500; exact theory: < 1.1x within
+#: T <= 10): U's reading gives 20.7x at T = 1e-7 and 20.3x at T = 1 (reference well inside
+#: the first period: false MI), 11.9x at 0.6 periods, 5.3x at 1.2, 3.7x at 2.5, 1.9x at 5;
+#: from one period on it stays below the 20x threshold by a factor of about 3
+U_SETTLE_PERIODS = 1.0
+
+
+def shortest_run(material, case: str, k) -> float:
+    """The shortest t_end whose growth reading can tell MI (0 in case rotation, where U
+    is not read): U's reference record, U_REFERENCE t_end, at least U_SETTLE_PERIODS
+    periods 2 pi / omega of the slowest carrier among ``k`` (rotational branch, eq.
+    `discrete2`) into the run. A shorter run reads U's build-up from rest as growth."""
+    from ._model import check_case, discrete_omega_rotation
+
+    if check_case(case) == "rotation":
+        return 0.0
+    omega = float(np.min(discrete_omega_rotation(np.atleast_1d(np.asarray(k, float)),
+                                                 material)))
+    if not (omega > 0 and math.isfinite(omega)):  # under- or overflowed
+        return math.inf
+    return U_SETTLE_PERIODS * 2 * np.pi / omega / U_REFERENCE
+
+
+def shortest_run_error(name: str, t_end: float, cells, case: str) -> str | None:
+    """The one-line refusal of a ``t_end`` too short to measure growth at any of ``cells``
+    ((material, k values) pairs), naming ``name``; None when it is long enough."""
+    with np.errstate(all="ignore"):
+        need = max((shortest_run(mat, case, k) for mat, k in cells), default=0.0)
+    if not math.isfinite(need):  # omega under- or overflowed: no period to wait for
+        return (f"{name}: no run length can measure growth here: the carrier's frequency is "
+                f"not a positive float64 number for this material (an underflow or overflow,"
+                " not a resonance); rescale the material")
+    if t_end >= need:
+        return None
+    return (f"{name} = {t_end:g} is too short to measure growth: U starts at rest and its "
+            f"growth counts from {U_REFERENCE:g} t_end, which must lie a carrier period in "
+            f"(U is still building up before that, and would read as MI); give at least "
+            f"{math.ceil(need):g}")
+
+
 def spectrum_growth(t, ratios: dict, bins: dict, N: int, t_end: float | None = None):
     """The simulated verdicts' reading of a run: the largest growth factor of the largest
     non-carrier, non-harmonic component relative to the carrier, and where it sits.
@@ -101,7 +145,7 @@ def spectrum_growth(t, ratios: dict, bins: dict, N: int, t_end: float | None = N
     for name, r in ratios.items():
         i0 = 0 if name == "theta" else int(np.searchsorted(
             t, U_REFERENCE * (t[-1] if t_end is None else t_end)))
-        if i0 >= len(t) - 1:
+        if i0 >= len(t) - 1 or r.shape[2] == 0:  # no record after the reference, no bin
             continue
         top = r[:, i0:].max(axis=2)  # (draws, nt)
         ref = top[:, 0]

@@ -11,7 +11,6 @@ keeping what was computed.
 from __future__ import annotations
 
 import math
-import numbers
 
 import numpy as np
 
@@ -36,11 +35,9 @@ def _check_sites(N):
 
 def snap_wavenumber(k: float, N: int, rel_tol: float = 1e-3):
     """Nearest periodic wavenumber 2 pi m / N to k; ValueError if further than rel_tol."""
-    if isinstance(k, (bool, np.bool_)) or not isinstance(k, numbers.Real):
-        raise TypeError(f"k must be a real number, got {type(k).__name__} {k!r}")
-    k = float(k)
-    if not math.isfinite(k) or k <= 0 or k >= math.pi:
-        raise ValueError(f"k must be in (0, {math.pi:g}), got {k!r}")
+    k = checks.real("k", k, 0.0, math.pi)
+    N = _check_sites(N)
+    rel_tol = checks.real("rel_tol", rel_tol, 0.0, None, low_open=False, finite=False)
     m = int(round(k * N / (2 * math.pi)))
     ks = 2 * math.pi * m / N
     if m == 0:

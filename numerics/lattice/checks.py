@@ -14,15 +14,17 @@ SEED_RANGE = (0, 2**63)
 
 
 def real(name: str, value, low: float | None = None, high: float | None = None, *,
-         low_open: bool = True, high_open: bool = True) -> float:
-    """A finite real number, optionally in (low, high) (closed ends when *_open=False)."""
+         low_open: bool = True, high_open: bool = True, finite: bool = True) -> float:
+    """A finite real number, optionally in (low, high) (closed ends when *_open=False).
+    ``finite=False`` admits an infinite value within the bounds (a tolerance "no limit");
+    NaN never passes."""
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
         raise TypeError(f"{name} must be a real number, got {type(value).__name__} "
                         f"{value!r}")
     v = float(value)
     lo = "-inf" if low is None else f"{'(' if low_open else '['}{low:g}"
-    hi = "inf" if high is None else f"{high:g}{')' if high_open else ']'}"
-    ok = math.isfinite(v)
+    hi = "inf)" if high is None else f"{high:g}{')' if high_open else ']'}"
+    ok = math.isfinite(v) or (not finite and math.isinf(v))
     if ok and low is not None:
         ok = v > low if low_open else v >= low
     if ok and high is not None:
@@ -84,6 +86,15 @@ def real_array(name: str, value) -> np.ndarray:
     if arr.dtype.kind not in "fiu" or arr.dtype == bool:
         raise TypeError(f"{name} must hold real numbers, got dtype {arr.dtype}")
     return arr.astype(float)
+
+
+def finite_array(name: str, value) -> np.ndarray:
+    """:func:`real_array`, every value finite (a NaN or an infinity names ``name``)."""
+    arr = real_array(name, value)
+    if not np.all(np.isfinite(arr)):
+        bad = arr[~np.isfinite(arr)].ravel()[0]
+        raise ValueError(f"{name} must hold finite values, got {float(bad)!r}")
+    return arr
 
 
 def real_values(name: str, values) -> tuple:

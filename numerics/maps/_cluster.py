@@ -23,6 +23,7 @@ import socket
 import struct
 import sys
 import threading
+import time
 from urllib.parse import urlparse
 
 _QUIET = ("distributed", "distributed.worker", "distributed.scheduler", "distributed.nanny",
@@ -34,11 +35,62 @@ class SchedulerError(ValueError):
     """--scheduler does not lead to a Dask scheduler (one line naming the address)."""
 
 
+class ClusterLost(ValueError):
+    """The map's cluster stopped working mid-map: its scheduler is gone, or it has had no
+    worker for ``timeout`` seconds (one line naming the address and what was kept)."""
+
+
+class Watchdog:
+    """Is the cluster still able to finish the map? Called while no task finishes:
+    :meth:`check` raises ClusterLost once the scheduler has been unreachable, or has had
+    no worker, for ``timeout`` seconds (a worker that comes back resets the count). Each
+    call asks the scheduler at most every ``every`` seconds, within ``every`` seconds."""
+
+    def __init__(self, client, address: str, timeout: float, every: float = 1.0):
+        self.client, self.address, self.timeout = client, address, timeout
+        self.every = min(every, timeout / 4)
+        now = time.monotonic()
+        self.asked = now - self.every
+        self.connected = self.had_workers = now
+
+    def _workers(self) -> int | None:
+        """Workers the scheduler has (None: it did not answer)."""
+        try:
+            return len(self.client.nthreads(callback_timeout=self.every))
+        except Exception:  # noqa: BLE001 - no answer, whatever the reason
+            return None
+
+    def check(self) -> str | None:
+        """None while the cluster works or may still; else why it cannot finish."""
+        now = time.monotonic()
+        if now - self.asked < self.every:
+            return None
+        self.asked = now
+        running = self.client.status == "running"
+        n = self._workers() if running else None
+        now = time.monotonic()
+        if running and n is not None:
+            self.connected = now
+        if n:
+            self.had_workers = now
+        if self.client.status in ("closing", "closed") or now - self.connected > self.timeout:
+            return (f"lost the scheduler {self.address}: no answer for {self.timeout:g} s "
+                    "(--timeout; it stopped, or the network did)")
+        if now - self.had_workers > self.timeout:
+            return (f"the scheduler {self.address} has had no worker for {self.timeout:g} s "
+                    "(--timeout)")
+        return None
+
+
 def probe(address: str, timeout: float) -> None:
     """SchedulerError unless ``address`` (tcp://host:port or host:port) answers like a
     Dask scheduler within ``timeout`` seconds. Other schemes (tls, inproc, ucx) are left to
     ``Client``."""
     url = urlparse(address if "://" in address else f"tcp://{address}")
+    if url.scheme == "inproc":
+        raise SchedulerError(f"--scheduler {address}: an inproc:// address reaches a scheduler "
+                             "inside this same process only; give tcp://HOST:PORT of a "
+                             "running `dask scheduler`")
     if url.scheme != "tcp":
         return
     try:
@@ -104,9 +156,13 @@ def connect(scheduler: str | None, workers: int | None, timeout: float = 20.0):
         probe(scheduler, timeout)
         try:
             return Client(scheduler, timeout=f"{timeout}s"), None
-        except (OSError, TimeoutError) as exc:
-            raise SchedulerError(f"--scheduler {scheduler}: {type(exc).__name__}: "
-                                 f"{str(exc).splitlines()[0] if str(exc) else ''}") from None
+        except Exception as exc:  # noqa: BLE001 - whatever Dask says, one line naming it
+            text = str(exc).splitlines()[0] if str(exc) else ""
+            why = ("it answers as a Dask worker, not a scheduler: give the address its "
+                   "scheduler printed" if "Worker." in text else
+                   "give tcp://HOST:PORT of a running `dask scheduler`")
+            raise SchedulerError(f"--scheduler {scheduler}: cannot use it as a Dask scheduler "
+                                 f"({type(exc).__name__}: {text[:120]}); {why}") from None
     n = workers or local_cores()
     # multiprocessing's resource tracker (started with this interpreter's -W options) warns
     # of "leaked semaphores" of workers stopped by a signal: nothing leaks past its clean-up

@@ -119,6 +119,8 @@ UNDETERMINED_REASONS = {f"{kind}_{name}": reason for kind in ("verdict", "peak_g
                                              ("semidiscrete", _NLS_REASON),
                                              ("exact", _EXACT_REASON),
                                              ("exact_all", _EXACT_REASON))}
+#: the theory columns of a store (recomputed from the parameters alone)
+THEORY_NAMES = tuple(UNDETERMINED_REASONS)
 
 
 def tri_state(gain: np.ndarray, t_end: float) -> np.ndarray:
@@ -170,4 +172,4 @@ def theory_columns(params: MapParameters) -> dict:
 
 
 __all__ = ["MI", "STABLE", "UNDETERMINED", "SIMULATED", "PREDICTED", "STORE_FORMAT",
-           "EXACT_OFFSETS", "UNDETERMINED_REASONS", "tri_state", "theory_columns"]
+           "EXACT_OFFSETS", "UNDETERMINED_REASONS", "THEORY_NAMES", "tri_state", "theory_columns"]

@@ -148,18 +148,25 @@ def _alive(pid: int) -> bool:
 def lock_holder(lock: Path) -> dict | None:
     """The lock's record, with ``stale`` (True when its holder is gone), or None."""
     try:
-        text = lock.read_text()
+        data = lock.read_bytes()
         age = time.time() - lock.stat().st_mtime
     except FileNotFoundError:
         return None
+    except OSError as exc:  # a folder, no permission: named, not a traceback
+        raise StoreLocked(f"cannot read the lock file {lock} ({exc.strerror or exc}); remove "
+                          "it if no map is being written there") from None
     try:
-        info = json.loads(text)
+        info = json.loads(data.decode("utf-8"))
         host, pid = str(info["host"]), int(info["pid"])
-    except (ValueError, KeyError, TypeError):  # a torn write: its writer died mid-way
-        return {"host": "?", "pid": -1, "since": "?", "stale": True, "age": age}
+    except (ValueError, KeyError, TypeError, AttributeError):
+        # not a record of ours (a torn write whose writer died mid-way, or a foreign file):
+        # nobody can be holding it
+        return {"host": "?", "pid": -1, "since": "?", "stale": True, "age": age,
+                "foreign": True}
     same_host = host == socket.gethostname()
     stale = (not _alive(pid)) if same_host else age > STALE_SECONDS
-    return {**info, "stale": stale, "age": age}
+    return {"since": "an unknown time", **info, "host": host, "pid": pid, "stale": stale,
+            "age": age}
 
 
 @contextlib.contextmanager
@@ -181,8 +188,12 @@ def store_lock(store: Path, log=print):
                     f"{store} is being written by pid {holder['pid']} on {holder['host']} "
                     f"since {holder['since']} (lock {lock}); wait for it to finish, or stop "
                     "it: the same command then continues its map") from None
-            log(f"note: took over the stale lock {lock} of pid {holder['pid']} on "
-                f"{holder['host']} (since {holder['since']}; that process is gone)")
+            if holder.get("foreign"):
+                log(f"note: replaced the lock file {lock}: it holds no flexmm lock record "
+                    "(a torn write, or a file of something else), so nobody holds it")
+            else:
+                log(f"note: took over the stale lock {lock} of pid {holder['pid']} on "
+                    f"{holder['host']} (since {holder['since']}; that process is gone)")
             with contextlib.suppress(FileNotFoundError):
                 lock.unlink()
             continue

@@ -18,8 +18,9 @@ from ..lattice import (
     get_method,
     non_carrier_bins,
     paper_start_undefined,
+    shortest_run_error,
 )
-from ..theory import MAX_AMPLITUDE
+from ..theory import MAX_AMPLITUDE, SITES
 from ._cells import GROWTH_ERROR_CONSTANTS, GROWTH_TOL, RECORDS
 
 #: k values per task (one delta row is split into blocks of this many cells)
@@ -46,6 +47,10 @@ CRITERION = (f"MI when the largest non-carrier, non-harmonic component (theta; U
 MAX_AXIS = 100_000
 
 
+class _DropsBound(ValueError):
+    """A range SPEC whose count cannot hold both of its ends."""
+
+
 def parse_spec(text: str, name: str) -> np.ndarray:
     """``v1,v2,...`` or ``start:stop:num`` (inclusive) -> sorted values; ValueError else."""
     if not isinstance(text, str) or not text.strip():
@@ -58,9 +63,15 @@ def parse_spec(text: str, name: str) -> np.ndarray:
             start, stop, num = float(parts[0]), float(parts[1]), int(parts[2])
             if num < 1 or (num > 1 and start == stop):
                 raise ValueError
+            if num == 1 and start != stop:  # linspace would keep start and drop stop
+                raise _DropsBound(f"{name}: SPEC {text!r} asks for 1 value between {start:g} "
+                                  f"and {stop:g}, so it would drop {stop:g}; give num >= 2 "
+                                  f"for both ends, or the single value {start:g}")
             values = np.linspace(start, stop, min(num, MAX_AXIS + 1))  # > MAX_AXIS: refused
         else:
             values = np.array([float(v) for v in text.split(",")])
+    except _DropsBound:
+        raise
     except ValueError:
         raise ValueError(f"{name}: cannot read SPEC {text!r}; give v1,v2,... or "
                          "start:stop:num (num >= 1, inclusive)") from None
@@ -130,7 +141,7 @@ class MapParameters:
         checks.positive("K_s", self.K_s)
         checks.real("amplitude", self.amplitude, 0.0, MAX_AMPLITUDE)
         checks.positive("eps", self.eps)
-        checks.integer("N", self.N, 3, 10**6)
+        checks.integer("N", self.N, *SITES)  # every cell is predicted
         checks.positive("t_end", self.t_end)
         checks.integer("seeds", self.seeds, 1, 1000)
         checks.integer("block", self.block, 1, 10**6)
@@ -178,6 +189,11 @@ class MapParameters:
                 more = f" and {len(bad) - 1} more rows" if len(bad) > 1 else ""
                 raise ValueError(f"--start paper: at K_theta = {self.K_theta[bad[0][0]]:g}{more}, "
                                  f"{bad[0][1]}, or narrow --k")
+        short = shortest_run_error(
+            "t_end", self.t_end, [(self.material_at(i), snapped)
+                                  for i in range(len(self.K_theta))], self.case)
+        if short:
+            raise ValueError(short)
         for j in range(1, len(snapped)):
             if snapped[j] == snapped[j - 1]:
                 m = round(snapped[j] * self.N / (2 * math.pi))

@@ -24,6 +24,7 @@ from ..lattice import (
     grows_beyond_threshold,
     initial_condition,
     paper_start_undefined,
+    shortest_run_error,
     snap_wavenumber,
 )
 from ..lattice import simulate as simulate_chain
@@ -324,6 +325,8 @@ def measure_point(material: Material, case: str, k: float,
     exact_name = EXACT_LATTICE.label if start == "travelling" else PAPER_START
     exact = th[exact_name]["peak_gain"]
     t_end = t_end or measurement_length(exact if math.isfinite(exact) else 0.0)
+    if short := shortest_run_error("--t-end", t_end, [(material, k)], case):
+        raise ValueError(short)
     prediction, predicted = _predicted(material, case, k, amplitude, start, N, t_end, seeds)
     simulated = meas = growths = None
     if simulate:

@@ -21,6 +21,7 @@ the verdicts in ``_agreement``.
 
 from __future__ import annotations
 
+import contextlib
 import time
 from pathlib import Path
 
@@ -30,20 +31,20 @@ from common.text import duration
 
 from ._agreement import agreement
 from ._blocks import blocks, simulate_block
-from ._columns import PREDICTED, SIMULATED, STORE_FORMAT, empty_dataset, theory_columns, tri_state
+from ._columns import (
+    PREDICTED,
+    SIMULATED,
+    STORE_FORMAT,
+    THEORY_NAMES,
+    empty_dataset,
+    theory_columns,
+    tri_state,
+)
+from ._integrity import CHECKSUM
 from ._params import MapParameters, local_cores
 
-
-def _holds(ds, params: MapParameters) -> bool:
-    """Does the stored dataset ``ds`` hold the map ``params`` defines (same grid, same
-    parameters; theory_only aside, so a theory-only map is resumed by simulations)?"""
-    return (np.array_equal(ds["delta"].values, params.delta)
-            and ("K_theta" not in ds.coords  # stores written before it was a coordinate
-                 or np.array_equal(ds["K_theta"].values, params.K_theta))
-            and np.array_equal(ds["k"].values, params.k)
-            and ds.attrs.get("store_format") == STORE_FORMAT
-            and all(ds.attrs.get(n) == v for n, v in params.attrs().items()
-                    if n not in ("theory_only",)))
+#: the theory columns: recomputed from the parameters where a store lost them
+THEORY_SET = frozenset(THEORY_NAMES)
 
 
 def _write_new(path: Path, ds, params: MapParameters):
@@ -79,6 +80,81 @@ def open_or_create(path: Path, params: MapParameters, overwrite: bool = False, l
     return _open(path, params, overwrite, log)[0]
 
 
+#: the coordinates of a store, as MapParameters gives them
+_COORDS = ("delta", "K_theta", "k", "k_simulated")
+
+
+def _attrs_hold(attrs: dict, params: MapParameters) -> bool:
+    return (attrs.get("store_format") == STORE_FORMAT
+            and all(attrs.get(n) == v for n, v in params.attrs().items()
+                    if n not in ("theory_only",)))
+
+
+def _inspect(path: Path, params: MapParameters):
+    """What the store at ``path`` is, read piece by piece (a damaged piece named, never
+    taken for another map): ("this", [damaged names]) when its attributes are this map's and
+    its coordinates are this grid's or damaged; ("other", finished) when it holds another
+    map (``finished``: cells done or predicted, None if unreadable); ("unreadable", why)
+    when which map it holds cannot be read."""
+    import json
+
+    import zarr
+
+    try:
+        group = zarr.open_group(str(path), mode="r", use_consolidated=False)
+        attrs = dict(group.attrs)
+    except Exception as exc:  # a missing or garbled .zgroup/.zattrs
+        first = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+        return "unreadable", f".zgroup/.zattrs ({first[:100]})"
+
+    def finished():
+        try:
+            return int(sum(np.asarray(group[f][...]).sum() for f in ("done", "done_predicted")
+                           if f in group))
+        except Exception:  # unreadable flags: unknown
+            return None
+
+    if not _attrs_hold(attrs, params):
+        return "other", finished()
+    damaged = []
+    for name in _COORDS:
+        want = np.asarray(getattr(params, name), float)
+        if name == "K_theta" and not (path / name).exists():  # written before it was stored
+            damaged.append("K_theta (absent: written before it was a coordinate)")
+            continue
+        try:
+            arr = group[name]
+            whole = arr.nchunks_initialized == arr.nchunks
+            got = np.asarray(arr[...], float)
+        except Exception:  # missing metadata, a chunk that does not decode
+            damaged.append(name)
+            continue
+        if not whole:
+            damaged.append(name)
+        elif not np.array_equal(got, want):
+            return "other", finished()
+    shape = (len(params.delta), len(params.k))
+    for name in empty_dataset_names(params):
+        try:
+            arr = group[name]
+            if tuple(arr.shape) != shape:
+                raise ValueError
+        except Exception:  # a variable's metadata missing or garbled
+            damaged.append(name)
+    try:
+        meta = json.loads((path / ".zmetadata").read_text())["metadata"]
+        if not isinstance(meta, dict):
+            raise ValueError
+    except Exception:  # what xr.open_zarr reads first
+        damaged.append(".zmetadata")
+    return "this", damaged
+
+
+def empty_dataset_names(params: MapParameters) -> list:
+    """The data variables a store of ``params`` holds."""
+    return sorted({*SIMULATED, *PREDICTED, "done", "done_predicted", CHECKSUM, *THEORY_NAMES})
+
+
 def _open(path: Path, params: MapParameters, overwrite: bool = False, log=print):
     """``open_or_create``'s dataset (lazy) and its variables' values in memory, the store
     read once: on a 64 x 64 map each full read costs ~6 s (zarr reads 22 variables of 1 024
@@ -89,57 +165,85 @@ def _open(path: Path, params: MapParameters, overwrite: bool = False, log=print)
         return {n: (ds[n].values if raw is None else np.asarray(raw[n], ds[n].dtype))
                 for n in ds.data_vars}
 
-    if path.exists():
-        try:
-            ds = xr.open_zarr(path, consolidated=False, chunks=None)
-            ds.attrs  # metadata read (a damaged .zattrs raises here)
-        except Exception as exc:  # any unreadable store
-            if not overwrite:
-                first = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
-                raise ValueError(f"{path} exists but its metadata is not readable ({first[:120]}"
-                                 "); replace it with --overwrite, or choose another --out") \
-                    from None
-            ds = None
-        if ds is not None and _holds(ds, params):
-            ds, raw = _verified(path, ds, params, log)
-            return ds, values(ds, raw)  # raw None: rewritten, read afresh
-        if ds is not None and not overwrite:
-            raise ValueError(f"{path} holds a map with other parameters (or of an older "
-                             "format); replace it with --overwrite, or choose another --out")
+    # --overwrite replaces another map or an unreadable store; this map's store is resumed
+    what, detail = _inspect(path, params) if path.exists() else ("none", None)
+    if what == "unreadable" and not overwrite:
+        raise ValueError(f"{path}: damaged: {detail}; which map it holds cannot be read, so "
+                         "nothing in it can be trusted; replace it with --overwrite, or "
+                         "choose another --out")
+    if what == "other" and detail != 0 and not overwrite:
+        raise ValueError(f"{path} holds a map with other parameters (or of an older "
+                         "format); replace it with --overwrite, or choose another --out")
+    if what == "other" and detail == 0:  # no finished cell: nothing is lost by replacing it
+        log(f"note: {path} held another map with no finished cell (every cell failed, "
+            "or none ran): replaced")
+    if what == "this":
+        if detail:
+            log(f"{path}: damaged: {', '.join(detail)}; rebuilt from this map's parameters, "
+                "keeping every cell whose data and checksum survive")
+            ds, raw = _verified(path, None, params, log, rebuild=True)
+            return ds, values(ds, raw)
+        ds = xr.open_zarr(path, consolidated=False, chunks=None)
+        ds, raw = _verified(path, ds, params, log)
+        return ds, values(ds, raw)  # raw None: rewritten, read afresh
     ds = empty_dataset(params, theory_columns(params))
     _write_new(path, ds, params)
     ds = xr.open_zarr(path, consolidated=False, chunks=None)
     return ds, values(ds)
 
 
-def _verified(path: Path, ds, params: MapParameters, log):
+def _verified(path: Path, ds, params: MapParameters, log, rebuild: bool = False):
     """(ds, raw): ``ds`` if every cell matches its checksum, with the values read to check
-    them (None when the store was rewritten); else the store rewritten with the damaged
-    cells' theory recomputed and their simulations marked not done (named)."""
+    them (None when the store was rewritten); else (or ``rebuild``: its metadata is
+    damaged) the store rewritten with the damaged cells' theory recomputed and their
+    simulations marked not done (named). A theory column that cannot be read is taken
+    from the recomputed theories (it is what they give), so the cells' own data decide."""
     import xarray as xr
 
-    from ._integrity import CHECKSUM, describe_cells, verify
+    from ._integrity import CHECKSUM, cell_checksums, describe_cells, read_raw
 
-    names = [n for n in ds.data_vars if n != CHECKSUM]
-    for n in SIMULATED + PREDICTED + ("done", "done_predicted"):
-        if n not in names:
-            names.append(n)
     shape = (len(params.delta), len(params.k))
-    bad, raw = verify(path, names, shape)
-    if not bad.any():
+    names = [n for n in empty_dataset_names(params) if n != CHECKSUM]
+    fresh = None
+    raw, unreadable = {}, np.zeros(shape, bool)
+    recomputed, theory_lost = [], np.zeros(shape, bool)
+    for name in names + [CHECKSUM]:
+        got, bad_cells = read_raw(path, [name], shape)
+        if name in THEORY_SET and (name not in got or bad_cells.any()):
+            if fresh is None:
+                fresh = empty_dataset(params, theory_columns(params))
+            value = np.asarray(got.get(name, fresh[name].values))
+            got = {name: np.where(bad_cells, fresh[name].values, value).astype(
+                fresh[name].dtype)}
+            recomputed.append(name)
+            theory_lost |= bad_cells
+            bad_cells = np.zeros(shape, bool)
+        raw.update(got)
+        unreadable |= bad_cells
+    if recomputed:
+        log(f"{path}: damaged: {', '.join(recomputed)} at {int(theory_lost.sum())} of "
+            f"{theory_lost.size} cells ({describe_cells(theory_lost, params.delta, params.k)})"
+            ": recomputed from the map's parameters; the cells' simulations are kept where "
+            "their checksums hold")
+    if CHECKSUM in raw and all(n in raw for n in names):
+        bad = unreadable | (cell_checksums({n: raw[n] for n in names})
+                            != raw[CHECKSUM].astype(np.uint64))
+    else:
+        bad = np.ones(shape, bool)
+    if not bad.any() and not rebuild and fresh is None:
         return ds, raw
-    log(f"{path}: {int(bad.sum())} of {bad.size} cells fail their checksum or cannot be "
-        f"read ({describe_cells(bad, params.delta, params.k)}): their theories are "
-        "recomputed and their simulations run again")
-    fresh = empty_dataset(params, theory_columns(params))
+    if bad.any():
+        log(f"{path}: {int(bad.sum())} of {bad.size} cells fail their checksum or cannot be "
+            f"read ({describe_cells(bad, params.delta, params.k)}): their theories are "
+            "recomputed and their simulations run again")
+    if fresh is None:
+        fresh = empty_dataset(params, theory_columns(params))
     for flag, columns in (("done", SIMULATED), ("done_predicted", PREDICTED)):
         done = np.asarray(raw.get(flag, np.zeros(shape, bool)), bool) & ~bad
         for name in columns + (flag,):
             if name in raw:
                 kept = np.where(done, raw[name].astype(fresh[name].dtype), fresh[name].values)
                 fresh[name] = (fresh[name].dims, kept, fresh[name].attrs)
-    from ._integrity import cell_checksums
-
     fresh[CHECKSUM] = (fresh[CHECKSUM].dims,
                        cell_checksums({n: fresh[n].values for n in fresh.data_vars}),
                        fresh[CHECKSUM].attrs)
@@ -206,6 +310,20 @@ def _write_block(path: Path, params: MapParameters, result: dict, arrays: dict |
     (writer or _CellWriter(path)).write(region, cells)
 
 
+@contextlib.contextmanager
+def _named_os_errors(path: Path):
+    """An OSError that names no file (zarr's writes: a full disk, a quota) names the store,
+    and says that its finished cells are kept (each block is written whole or not at all)."""
+    try:
+        yield
+    except OSError as exc:
+        if exc.filename:
+            raise
+        raise OSError(exc.errno, f"{exc.strerror or exc} (writing the map store; the cells "
+                                 "finished before are kept, and the same command continues "
+                                 "once there is room)", str(path)) from None
+
+
 def run_map(params: MapParameters, out: Path, scheduler: str | None = None,
             workers: int | None = None, progress: bool | None = None, log=print,
             overwrite: bool = False, timeout: float = 20.0):
@@ -220,7 +338,7 @@ def run_map(params: MapParameters, out: Path, scheduler: str | None = None,
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     path = out / "map.zarr"
-    with store_lock(path, log):
+    with store_lock(path, log), _named_os_errors(path):
         ds, arrays = _open(path, params, overwrite, log)
         # a theory-only map predicts its cells; a simulated one simulates (and predicts)
         done = arrays["done_predicted" if params.theory_only else "done"]
@@ -237,6 +355,11 @@ def run_map(params: MapParameters, out: Path, scheduler: str | None = None,
         if todo:
             _run_tasks(params, path, todo, n_cells - n_done, scheduler, workers, progress,
                        log, arrays, timeout)
+        # .zmetadata is derived from the arrays' own metadata: rebuilt on every run, so a
+        # stale or damaged copy never keeps xr.open_zarr(path) from reading the store
+        import zarr
+
+        zarr.consolidate_metadata(str(path), zarr_format=2)
         # the store's metadata and coordinates read; its variables are ``arrays``, which
         # every block written has updated (tests/test_maps.py: identical to a fresh read)
         return ds.copy(data={n: arrays[n] for n in ds.data_vars}).load()
@@ -267,13 +390,24 @@ def _run_tasks(params, path, todo, n_todo, scheduler, workers, progress, log, ar
     from dask.distributed import as_completed
     from tqdm.auto import tqdm
 
-    from ._cluster import connect
+    from ._cluster import ClusterLost, Watchdog, connect
 
     client, cluster = connect(scheduler, workers, timeout)
     writer = _CellWriter(path)
     bar = tqdm(total=n_todo, unit="cell", disable=None if progress is None else not progress,
                desc="map")
     t0 = time.perf_counter()
+    address = scheduler or "of this machine's LocalCluster"
+    watch = Watchdog(client, scheduler or getattr(cluster, "scheduler_address", "local"),
+                     timeout)
+
+    def kept() -> str:
+        n = int(arrays["done_predicted" if params.theory_only else "done"].sum()) \
+            if arrays is not None else None
+        total = len(params.delta) * len(params.k)
+        return (f"{n} of {total} cells are done and kept in {path}" if n
+                else f"no cell is done yet ({path} holds the theories)")
+
     try:
         # longest first (fewer idle workers at the end of a map): dask runs the highest
         # priority first
@@ -282,20 +416,34 @@ def _run_tasks(params, path, todo, n_todo, scheduler, workers, progress, log, ar
                                  retries=2, pure=False, priority=len(todo) - rank)
                    for rank, (i, js) in enumerate(order)]
         cells = dict(zip(futures, order))
-        for fut in as_completed(futures):
-            try:
-                result = fut.result()
-            except Exception as exc:  # one line naming the cell, no traceback
-                i, js = cells[fut]
-                for f in futures:
-                    f.cancel()
-                raise MapCellError(
-                    f"cells delta = {params.delta[i]:g}, k = "
-                    f"{', '.join(f'{params.k[j]:g}' for j in js)}: "
-                    f"{type(exc).__name__}: {str(exc).splitlines()[0] if str(exc) else ''}; "
-                    f"the finished cells are kept in {path}") from None
-            _write_block(path, params, result, arrays, writer)
-            bar.update(len(result["js"]))
+        finished = as_completed(futures)
+        while not finished.is_empty():
+            ready = finished.next_batch(block=False) if finished.has_ready() else []
+            if not ready:
+                # nothing finished: is the cluster still able to finish the map?
+                if (why := watch.check()) is not None:
+                    raise ClusterLost(f"{why}: {kept()}; the same command continues the map "
+                                      "once the cluster works again") from None
+                time.sleep(0.05)
+                continue
+            for fut in ready:
+                try:
+                    result = fut.result()
+                except Exception as exc:  # one line naming the cell
+                    if (why := watch.check() if client.status == "running" else
+                            f"lost the scheduler {address}") is not None:
+                        raise ClusterLost(f"{why}: {kept()}; the same command continues the "
+                                          "map once the cluster works again") from None
+                    i, js = cells[fut]
+                    for f in futures:
+                        f.cancel()
+                    raise MapCellError(
+                        f"cells delta = {params.delta[i]:g}, k = "
+                        f"{', '.join(f'{params.k[j]:g}' for j in js)}: "
+                        f"{type(exc).__name__}: "
+                        f"{str(exc).splitlines()[0] if str(exc) else ''}; {kept()}") from None
+                _write_block(path, params, result, arrays, writer)
+                bar.update(len(result["js"]))
     finally:
         bar.close()
         from ._cluster import close

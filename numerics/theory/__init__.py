@@ -55,7 +55,7 @@ from ._records import (
                        Theory,
 )
 from ._resonance import resonance_map
-from ._response import GrowthPrediction, predict_growth
+from ._response import SITES, GrowthPrediction, predict_growth
 from ._soliton import (
                        KINDS,
                        MIN_WIDTH,
@@ -65,7 +65,7 @@ from ._soliton import (
                        ring_wavenumber,
                        soliton,
 )
-from ._soliton_launch import default_ring, simulate_soliton, soliton_state
+from ._soliton_launch import RunTooLong, default_ring, simulate_soliton, soliton_state
 from ._soliton_measure import Snapshot, SolitonRun, measure_state, soliton_report
 
 __all__ = [
@@ -78,5 +78,5 @@ __all__ = [
     "EXACT_LATTICE", "EXACT_PAPER_START", "EXACT_ALL_MODES", "PREDICTED",
     "SOLITON_THEORIES", "Snapshot", "Soliton", "SolitonRun", "SolitonWarning", "default_ring",
     "measure_state", "ring_wavenumber", "simulate_soliton", "soliton", "soliton_report",
-    "soliton_state",
+    "soliton_state", "RunTooLong", "SITES",
 ]

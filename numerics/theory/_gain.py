@@ -63,9 +63,14 @@ def nls_undefined(nls, material: Material, case: str, k: float) -> str | None:
         except KeyError:
             raise ValueError(f"nls must be one of {tuple(_NLS)}, got {nls!r}") from None
     p = (k, material.alpha, material.K_s, material.K_theta)
-    with np.errstate(all="ignore"):
-        omega, g1 = float(nls.omega(*p)), float(nls.g1(*p))
-        g2 = float(getattr(nls, f"g2_{case}")(*p))
+    try:  # an overflow or underflow is the arithmetic's limit, not the physics'
+        with np.errstate(over="raise", under="raise", divide="ignore", invalid="ignore"):
+            omega, g1 = float(nls.omega(*p)), float(nls.g1(*p))
+            g2 = float(getattr(nls, f"g2_{case}")(*p))
+    except FloatingPointError as exc:
+        return (f"an {str(exc).split()[0]} in float64 at alpha = {material.alpha:g}, K_s = "
+                f"{material.K_s:g}, K_theta = {material.K_theta:g} (not a resonance: the "
+                "numbers leave float64's range); rescale the material")
     if not np.isfinite(omega):
         if nls is _NLS[PAPER_NLS.label]:
             return (f"no real carrier frequency: omega^2 = alpha^2 (6 K_theta + delta k^2) < 0 "
@@ -130,6 +135,10 @@ def theory_gain(theory: str, material: Material, case: str, k: float, q_offset,
 
     The plane wave has peak rotation ``amplitude`` = 2 eps A0 (eq. `IC`): give either.
     """
+    checks.instance("material", material, Material)
+    check_case(case)
+    k = checks.real("k", k, 0.0, np.pi)
+    q_offset = checks.finite_array("q_offset", q_offset)
     eps, A0 = _eps_A0(eps, A0, amplitude)
     if theory == "exact lattice":
         return mi_gain(material, case, k, 2 * eps * A0, q_offset)
@@ -143,8 +152,10 @@ def theory_gain(theory: str, material: Material, case: str, k: float, q_offset,
     p = (k, material.alpha, material.K_s, material.K_theta)
     if nls_undefined(nls, material, case, k) is not None:  # no verdict: NaN, not a rate
         return np.full(np.shape(q_offset), np.nan)
+    eps = checks.positive("eps", eps)
+    A0 = checks.real("A0", A0, 0.0, MAX_AMPLITUDE / (2 * eps), high_open=False)
     g = getattr(nls, f"g_{case}")(*p)
-    return eps**2 * abs(nls.g1(*p)) * nls.mi_growth_rate(np.asarray(q_offset) / eps, g, A0)
+    return eps**2 * abs(nls.g1(*p)) * nls.mi_growth_rate(q_offset / eps, g, A0)
 
 
 #: run length of a gain measurement: this many e-foldings of the predicted peak gain

@@ -65,6 +65,9 @@ from ._torus import uniform_phases
 #: draws of the noise law for the expected growth factor (its Monte-Carlo error on the
 #: mean is std / sqrt(DRAWS), ~ 10% of the spread between seeds)
 DRAWS = 32
+#: the chains a prediction takes, [low, high) sites (below 8 no sideband pair and its
+#: neighbours fit beside the carrier's harmonics; a map's cells need it too)
+SITES = (8, 10**6)
 #: bytes of one chunk of evolved families (and its temporaries): the spectra stay the
 #: largest arrays (the result does not depend on it, tests/test_response.py)
 CHUNK_BYTES = 2**27
@@ -242,7 +245,7 @@ def predict_growth(material: Material, case: str, k: float, amplitude: float = 0
     checks.instance("material", material, Material)
     case = check_case(case)
     start = check_start(start)
-    N = checks.integer("N", N, 8, 10**6)
+    N = checks.integer("N", N, *SITES)
     noise = checks.real("noise", noise, 0.0, 1.0, low_open=False, high_open=True)
     seed = checks.seed(seed)
     t_end = checks.positive("t_end", t_end)
@@ -312,6 +315,8 @@ def predict_growth(material: Material, case: str, k: float, amplitude: float = 0
         full[:, :, rest] += free
         mask = non_carrier_bins(m0, N, name)
         perturbation[name] = 2 * np.abs(full[:, 0, : N // 2 + 1])
+        if not mask.any():  # every bin of this field is a harmonic (small N): nothing to read
+            continue
         spec = 2 * np.abs(full[:, :, : N // 2 + 1][:, :, mask])  # (nt, draws, nbins)
         linear &= bool(np.all(spec[:, 0].max(axis=1) < LINEAR_LIMIT * carrier))
         ratio[name] = np.transpose(spec / carrier[:, None, None], (1, 0, 2))

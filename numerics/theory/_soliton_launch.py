@@ -23,6 +23,25 @@ from ._soliton_measure import SolitonRun, carrier_phasor, measure_state, measure
 MAX_T_END = 5e5
 
 
+class RunTooLong(ValueError):
+    """The asked travel takes longer than MAX_T_END; :meth:`advice` says it with the
+    caller's names of the parameters that shorten it."""
+
+    def __init__(self, velocity, travel, t_end, amplitude):
+        self.velocity, self.travel, self.t_end, self.amplitude = velocity, travel, t_end, \
+            amplitude
+        super().__init__(self.advice("travel", "amplitude", "t_end"))
+
+    def advice(self, travel: str, amplitude: str, t_end: str | None = None) -> str:
+        """The refusal, its remedies named ``travel``, ``amplitude`` (and ``t_end``)."""
+        shorter = MAX_T_END / self.t_end  # T is travel x width / |v|, and width ~ 1/amplitude
+        return (f"the soliton moves at {self.velocity:.3g} sites/T: {self.travel:g} widths "
+                f"take T = {self.t_end:.3g} (> {MAX_T_END:g}); give {travel} <= "
+                f"{self.travel * shorter:.3g}, or {amplitude} >= "
+                f"{self.amplitude / shorter:.3g} (its width shrinks as 1 / amplitude)"
+                + (f", or {t_end}" if t_end else ""))
+
+
 def soliton_state(sol: Soliton, N: int, centre: float | None = None) -> LatticeState:
     """theta, theta_dot (and U, U_dot in case II) of ``sol`` centred at site ``centre``.
 
@@ -111,8 +130,7 @@ def simulate_soliton(material: Material, case: str, k: float, amplitude: float,
         travel = checks.positive("travel", travel)
         t_end = travel * sol.width / max(abs(sol.velocity), 1e-12)
         if t_end > MAX_T_END:
-            raise ValueError(f"the soliton moves at {sol.velocity:.3g} sites/T: {travel:g} "
-                             f"widths take T = {t_end:.3g} (> {MAX_T_END:g}); give t_end")
+            raise RunTooLong(sol.velocity, travel, t_end, amplitude)
     t_end = checks.positive("t_end", t_end)
     state = soliton_state(sol, N)
     times = np.linspace(0.0, t_end, snapshots)
@@ -135,4 +153,4 @@ def simulate_soliton(material: Material, case: str, k: float, amplitude: float,
                       theta=np.array(thetas), U=np.array(Us) if case == "coupled" else None)
 
 
-__all__ = ["soliton_state", "simulate_soliton", "default_ring", "MAX_T_END"]
+__all__ = ["soliton_state", "simulate_soliton", "default_ring", "MAX_T_END", "RunTooLong"]
