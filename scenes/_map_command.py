@@ -50,40 +50,11 @@ def _mi_fraction(v: np.ndarray) -> float:
 
 
 def plot_map(ds, ax=None):
-    """Simulated verdict (white: MI) with the theories' boundaries drawn over it."""
-    from ._plotting import image, plt
+    """Simulated verdict (white: MI) with the theories' boundaries drawn over it, each cell
+    centred on its value (``scenes._plotting.map_figure``; any grid shape)."""
+    from ._plotting import map_figure
 
-    if ax is None:
-        fig, ax = plt.subplots(figsize=(6, 4.5), layout="constrained")
-    else:
-        fig = ax.figure
-    k, d = ds["k"].values, ds["delta"].values
-    done = ds["done"].values
-    # a theory-only map has no simulated cell: its background is the predicted verdict
-    shown, what = "verdict_simulated", "simulated"
-    if not done.any() and "verdict_predicted" in ds and "done_predicted" in ds:
-        shown, what = "verdict_predicted", "predicted growth > 20x"
-        done = ds["done_predicted"].values & (ds["verdict_predicted"].values >= 0)
-    sim = np.where(done, np.where(ds[shown].values == 1, 1.0, -1.0), 0.0)
-    if len(k) > 1 and len(d) > 1:
-        image(ax, k, d, sim, cmap="gray", vmin=-1, vmax=1)
-        for name, color in (("verdict_paper", "C1"), ("verdict_semidiscrete", "C2"),
-                            ("verdict_exact", "C3")):
-            v = ds[name].values.astype(float)
-            v[v < 0] = np.nan  # undetermined: no boundary drawn through it
-            if np.isfinite(v).any() and 0 < np.nanmean(v) < 1:
-                ax.contour(k, d, v, levels=[0.5], colors=color, linewidths=1.2)
-            ax.plot([], [], color=color, label=name.removeprefix("verdict_"))
-        ax.legend(fontsize=7, loc="upper right")
-    else:
-        ax.scatter(np.repeat(k[None], len(d), 0), np.repeat(d[:, None], len(k), 1), c=sim,
-                   cmap="gray", vmin=-1, vmax=1, edgecolors="k")
-    ax.set_xlabel("k (rad per site)")
-    ax.set_ylabel("delta")
-    ax.set_title(f"case {ds.attrs['case']}, alpha = {ds.attrs['alpha']}, amplitude "
-                 f"{ds.attrs['amplitude']:g} rad\n{what}: white MI, black stable, grey "
-                 "not done or undetermined", fontsize=9)
-    return fig
+    return map_figure(ds, ax)
 
 
 def _agreement_text(name: str, ag: dict) -> str:
