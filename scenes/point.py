@@ -321,7 +321,8 @@ def run_point(args, log=print) -> dict:
         out.mkdir(parents=True, exist_ok=True)
         from ._runner import _strict
 
-        _figure(out, th, meas, k, args, amplitude)
+        _figure(out, th, meas, k, args, amplitude, mat,
+                result.get("simulated", {}).get("no_rate"))
         write_text(out / "point.json", json.dumps(_strict(result), indent=2) + "\n")
         log(f"wrote {out / 'point.json'} and {out / 'point.png'}")
     return result
@@ -339,7 +340,7 @@ def _table(rows, units=None) -> str:
     return "\n".join(lines)
 
 
-def _figure(out, th, meas, k, args, amplitude):
+def _figure(out, th, meas, k, args, amplitude, mat=None, no_rate=None):
     from common.files import atomic_write
 
     from ._plotting import plt
@@ -357,16 +358,26 @@ def _figure(out, th, meas, k, args, amplitude):
     if meas:
         tops.append(float(np.max(meas["sigma"])))
     top = max([v for v in tops if np.isfinite(v)], default=0.0)
-    if top <= 0:  # nothing grows: say so instead of an empty plot on a 1e-12 axis
-        ax.set_ylim(-1, 1)
-        ax.text(0.5, 0.6, "stable: no growing sideband in any theory" +
-                (" or the simulation" if meas else ""), transform=ax.transAxes,
-                ha="center", fontsize=10)
-    else:
+    # what is missing is said on the figure, never an empty axes (a failed run, no theory)
+    missing = [f"simulated: {no_rate}"] if args.simulate and not meas and no_rate else []
+    missing += [f"{n}: {t['reason']}" for n, t in th.items()
+                if "reason" in t and not np.any(np.isfinite(t["curve"]))]
+    if missing:
+        ax.text(0.02, 0.97, "\n".join(missing), transform=ax.transAxes, va="top",
+                fontsize=7, wrap=True, bbox=dict(facecolor="w", edgecolor="0.7"))
+    if top > 0:
         ax.set_ylim(-0.1 * top, 1.4 * top)
+    else:  # nothing grows: say so instead of an empty plot on a 1e-12 axis
+        ax.set_ylim(-1, 1)
+        if meas or any(np.any(np.isfinite(t["curve"])) for t in th.values()):
+            ax.text(0.5, 0.6, "stable: no growing sideband in any theory" +
+                    (" or the simulation" if meas else ""), transform=ax.transAxes,
+                    ha="center", fontsize=10)
     ax.set_xlabel(r"sideband offset $Q = |q - k|$ (rad/site): sidebands at $k \pm Q$")
     ax.set_ylabel(r"growth rate $\sigma$ (1/T)")
-    ax.set_title(f"case {args.case}, $k$ = {k:.4g}, amplitude {amplitude:g} rad, "
+    ax.set_title((f"alpha = {mat.alpha:g}, K_s = {mat.K_s:g}, K_theta = {mat.K_theta:g}; "
+                  if mat is not None else "")
+                 + f"case {args.case}\n$k$ = {k:.4g}, amplitude {amplitude:g} rad, "
                  f"start {args.start}", fontsize=9)
     ax.legend(fontsize=7)
     with atomic_write(out / "point.png", mode=None) as tmp:

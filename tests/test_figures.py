@@ -286,3 +286,42 @@ def test_cell_edges_of_any_grid():
     probe = np.linspace(e[0], e[-1], 1001)[1:-1]
     nearest = np.argmin(np.abs(probe[:, None] - x), axis=1)
     np.testing.assert_array_equal(np.searchsorted(e, probe) - 1, nearest)
+
+
+def test_point_figure_of_a_failed_run_says_so(tmp_path):
+    """A simulation without a linear stage and a theory without a curve leave a note on
+    point.png, never an empty axes; the title names the material."""
+    from types import SimpleNamespace
+
+    import matplotlib.image as mpimg
+
+    from numerics import Material
+    from scenes import point
+
+    Q = np.linspace(0, np.pi, 11)
+    th = {"paper NLS": {"offset": Q, "curve": np.full(Q.shape, np.nan),
+                        "reason": "g1 = 0: no NLS"},
+          "semi-discrete NLS": {"offset": Q, "curve": np.full(Q.shape, np.nan),
+                                "reason": "g1 = 0: no NLS"}}
+    args = SimpleNamespace(simulate=True, seeds=2, case="coupled", start="travelling")
+    captured = {}
+
+    def keep(fig):
+        captured["fig"] = fig
+
+    import scenes._plotting as P
+
+    old = P.plt.close
+    P.plt.close = keep
+    try:
+        point._figure(tmp_path, th, None, 1.0, args, 0.02, Material(2.0, 0.03, 0.02),
+                      "no seed had a linear stage to fit a rate over")
+    finally:
+        P.plt.close = old
+    fig = captured["fig"]
+    texts = [t.get_text() for t in fig.axes[0].texts]
+    assert any("no seed had a linear stage" in t for t in texts)
+    assert any("g1 = 0" in t for t in texts)
+    assert "K_s = 0.03" in fig.axes[0].get_title()
+    assert mpimg.imread(tmp_path / "point.png").shape[0] > 100
+    plt.close(fig)
