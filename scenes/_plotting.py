@@ -225,3 +225,87 @@ def map_figure(ds, ax=None):
     ax.legend(handles=handles, fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0),
               borderaxespad=0.0)
     return fig
+
+
+def soliton_figure(sol, run=None):
+    """The figure of `flexmm soliton`: (a) the profile, theta_n and the predicted envelope
+    +-2|E| (measured: the run's last record, the envelope at its fitted centre); (b) the kink
+    of U across the soliton (case II; measured beside predicted); (c) the trajectory, the
+    fitted centre against the predicted v_g t. Without a run, the prediction alone.
+
+    Parameters
+    ----------
+    sol : numerics.theory.Soliton
+        The prediction (on the ring's k when there is a run: ``run.predicted``).
+    run : numerics.theory.SolitonRun, optional
+    """
+    from numerics.theory._soliton_launch import soliton_state
+
+    m = sol.material
+    fig, axes = plt.subplots(1, 3, figsize=(12, 3.8), layout="constrained")
+    w = sol.width
+    span = 8 * w
+    if run is not None:
+        last = run.snapshots[-1]
+        n = np.arange(run.N)
+        xi = (n - last.centre + run.N / 2) % run.N - run.N / 2
+        order = np.argsort(xi)
+        keep = order[np.abs(xi[order]) < span]
+        axes[0].plot(xi[keep], run.theta[-1][keep], ".", ms=2, color="0.5",
+                     label=fr"$\theta_n$ measured at $T = {last.t:.4g}$")
+    xs = np.linspace(-span, span, 801)
+    env = 2 * np.abs(sol.envelope(xs))
+    axes[0].plot(xs, env, "C3-", lw=1.2, label=r"predicted envelope $\pm 2|E|$")
+    axes[0].plot(xs, -env, "C3-", lw=1.2)
+    axes[0].set(xlabel="site from the centre $n - n_c$", ylabel=r"$\theta_n$ (rad)",
+                title=f"(a) {sol.kind} soliton: profile", xlim=(-span, span))
+    axes[0].legend(fontsize=7, loc="lower right")
+    ax = axes[1]
+    if sol.case == "coupled":
+        if run is not None:  # on the ring, as launched (its uniform strain included)
+            N = run.N
+            pred = soliton_state(sol, N)  # centred at N / 2
+            n = np.arange(N)
+            d = n - N / 2
+            sel = np.abs(d) < span
+            ax.plot(d[sel], pred.U[sel] - pred.U[sel][0], "C3-", lw=1.2,
+                    label=f"predicted (kink height {sol.kink_height:.3g})")
+        else:  # on an infinite chain: U = sum of the strain mu (|E|^2 - background)
+            bg = 0.0 if sol.kind == "bright" else (sol.amplitude / 2) ** 2
+            U = np.cumsum(sol.mu * (np.abs(sol.envelope(xs)) ** 2 - bg)) * (xs[1] - xs[0])
+            ax.plot(xs, U - U[0], "C3-", lw=1.2,
+                    label=f"predicted (kink height {sol.kink_height:.3g})")
+        if run is not None and run.U is not None:
+            d = (n - last.centre + N / 2) % N - N / 2
+            order = np.argsort(d)
+            sel = order[np.abs(d[order]) < span]
+            ax.plot(d[sel], run.U[-1][sel] - run.U[-1][sel][0], ".", ms=2, color="0.4",
+                    label=f"measured (kink height {last.kink_height:.3g})")
+        ax.legend(fontsize=7)
+    else:
+        ax.text(0.5, 0.5, "case rotation: no U field, no kink", transform=ax.transAxes,
+                ha="center")
+    ax.set(xlabel="site from the centre $n - n_c$", ylabel="$U_n - U$ at the left edge",
+           title="(b) kink of U", xlim=(-span, span))
+    ax = axes[2]
+    if run is not None:
+        t, c = run.t, run.series("centre")
+        ax.plot(t, c - c[0], "o", ms=3, color="0.3",
+                label=f"measured (v = {run.velocity:.4g} sites/T)")
+        ax.plot(t, sol.velocity * t, "C3-", lw=1.2,
+                label=f"predicted v_g t (v_g = {sol.velocity:.4g} sites/T)")
+        ax.legend(fontsize=7)
+    else:
+        t = np.linspace(0, 20 * w / max(abs(sol.velocity), 1e-12), 50)
+        ax.plot(t, sol.velocity * t, "C3-", lw=1.2,
+                label=f"predicted (v_g = {sol.velocity:.4g} sites/T)")
+        ax.text(0.05, 0.85, "no run: --simulate measures it", transform=ax.transAxes,
+                fontsize=8)
+        ax.legend(fontsize=7, loc="lower right")
+    ax.set(xlabel="$T$ (lattice units)", ylabel="centre moved (sites)",
+           title="(c) trajectory")
+    fig.suptitle(f"alpha = {m.alpha:g}, K_s = {m.K_s:g}, K_theta = {m.K_theta:g}; case "
+                 f"{sol.case}, k = {sol.k:.6g}, amplitude {sol.amplitude:g} rad, "
+                 f"{sol.theory}" + (f"; ring N = {run.N}" if run is not None else ""),
+                 fontsize=9)
+    return fig
