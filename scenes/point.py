@@ -143,7 +143,7 @@ def snapped(k_requested: float, N: int):
     """k on a periodic chain of N sites: the nearest 2 pi m / N, whatever k was typed."""
     k_requested = checks.real("--k", k_requested, 0.0, math.pi)
     N = checks.integer("--N", N, 8, 10**6)  # the bounds of simulate and predict_growth
-    return snap_wavenumber(k_requested, N, rel_tol=math.inf)
+    return snap_wavenumber(k_requested, N, return_index=True)
 
 
 def run_point(args, log=print) -> dict:

@@ -31,7 +31,7 @@ from ..lattice._analysis import (GROWTH_THRESHOLD, U_REFERENCE, growth_rates, li
 from ..lattice._integrate import BlowUpError, _blowup_message, _Stepper
 from ..lattice._integrators import get_method
 from ..lattice._model import Material
-from ..lattice._simulate import initial_condition, snap_wavenumber
+from ..lattice._simulate import RUN_REL_TOL, initial_condition, snap_wavenumber
 
 #: spectrum records over a run (every t_end / RECORDS): the growth factor's time resolution
 RECORDS = 200
@@ -131,7 +131,7 @@ def cell_records(material: Material, case: str, k: float, N: int, t_end: float,
     """The spectrum records of a cell's run (what :func:`simulate_cell` measures): t,
     theta_hat, U_hat (None in case "rotation") up to the early stop (or record
     ``stop_at``), the carrier bin m and k, the method and step used."""
-    ks, m = snap_wavenumber(k, N)
+    ks, m = snap_wavenumber(k, N, rel_tol=RUN_REL_TOL, return_index=True)
     state = initial_condition(material, case, N, ks, amplitude, noise, seed, start)
     if dt is None:
         method, dt = cell_step(state, material, case, t_end, growth_tol,
