@@ -228,7 +228,7 @@ MAP_CATALOGUE += [
                                                 harmonics=True), (E, TypeError, "harmonics")),
     ("plane_wave: harmonics 1000", lambda: plane_wave(BLUE, "coupled", 0.8, 0.02, 1000),
      (E, ValueError, "harmonics")),
-    ("stability_map: q = []", lambda: _smap(q=[]), (E, ValueError, "q must hold")),
+    ("stability_map: offset = []", lambda: _smap(offset=[]), (E, ValueError, "offset must hold")),
     ("stability_map: no plane wave is NaN, not stable", lambda: stability_map(
         np.array([0.565487]), np.array([0.012]), "coupled", 2.5, paper.K_S, 0.2),
      ("ok", lambda g: bool(np.isnan(g).all()))),

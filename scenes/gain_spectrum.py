@@ -37,7 +37,8 @@ def compute(ctx):
             checks.append(check(f"gain {point}/{case}", "MI", "no linear stage found", False))
             continue
         q, k = meas["q"], meas["k"]
-        curve = theory_gain("paper NLS", Material.paper(point), case, k, qf - k, paper.EPS)
+        curve = theory_gain("paper NLS", Material.paper(point), case, k, offset=qf - k,
+                            eps=paper.EPS)
         m_sum, t_sum = band_summary(q, meas["sigma"], k), band_summary(qf, curve, k)
         th = nls_summary(Material.paper(point), case, paper.k(point), paper.EPS)
         r = {"theory": dict(t_sum, eps_K_c=paper.EPS * th["K_c"],

@@ -59,7 +59,7 @@ def _verdicts():
     for point in paper.POINTS:
         mat, kk = Material.paper(point), paper.k(point)
         for case in ("rotation", "coupled"):
-            v = {th: "MI" if theory_gain(th, mat, case, kk, q - kk, paper.EPS).max() > 0
+            v = {th: "MI" if theory_gain(th, mat, case, kk, offset=q - kk, eps=paper.EPS).max() > 0
                  else "stable" for th in THEORIES}
             # U-pair modes exist in case II only (seen in the green II run's U spectrum)
             v["exact lattice, U modes too"] = "n/a" if case == "rotation" else (
@@ -79,7 +79,8 @@ def _quick_N(k):
 
 def _curve(ctx, key, theory, mat, case, k, q):
     return ctx.memo("gain", dict(key, theory=theory, k=k, q=[q[0], q[-1], q.size]),
-                    lambda: theory_gain(theory, mat, case, k, q - k, paper.EPS, key["A0"]))
+                    lambda: theory_gain(theory, mat, case, k, offset=q - k, eps=paper.EPS,
+                                        A0=key["A0"]))
 
 
 def _verdict(peak, t_end):

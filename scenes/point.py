@@ -118,7 +118,7 @@ def theories(material, case, k, amplitude, start="travelling") -> dict:
             Q = Q_GRID if th != PAPER_START else _start_grid(material, case, k, amplitude)
             q = fold(k + Q)  # the upper sideband's wavenumber (k + Q beyond pi folds)
             with np.errstate(all="ignore"):
-                curve = theory_gain(th, material, case, k, Q, EPS, A0)
+                curve = theory_gain(th, material, case, k, offset=Q, eps=EPS, A0=A0)
         except ArithmeticError as exc:  # no plane wave (a resonance): say so, no verdict
             out[th] = {"offset": Q, "q": q, "curve": np.full(q.shape, np.nan),
                        "verdict": "undefined", "reason": f"no plane wave: {exc}",
