@@ -116,8 +116,9 @@ def _point_parser(sub):
     p.add_argument("--simulate", action="store_true", help="measure sigma(q) too")
     p.add_argument("--t-end", dest="t_end", type=float,
                    help="run length in T (default: 9 e-foldings of the exact peak gain, "
-                        "within [1000, 20000]; 5000 where nothing grows). With --simulate "
-                        "the verdicts are 'grows more than 20x within it'")
+                        "within [1000, 100000]; 5000 where nothing grows; the output says "
+                        "when the cap stops a run short of the 4 e-foldings that decide). "
+                        "A run's verdict: MI, 'no growth within T' or undetermined")
     p.add_argument("--seeds", type=int, default=4, help="noise seeds of the simulation")
     p.add_argument("--out", help="folder for point.json and point.png (default: none, "
                    "print only)")

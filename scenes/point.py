@@ -13,12 +13,13 @@ from common.files import write_text
 from common import paper
 from numerics import Material, initial_condition, simulate, snap_wavenumber
 from numerics.lattice import (GROWTH_THRESHOLD, LINEAR_STAGE_RULE, band_summary,
-                              grows_beyond_threshold, paper_start_undefined)
+                              grows_beyond_threshold, paper_start_undefined, run_length,
+                              simulated_verdict)
+from numerics.lattice._verdict import DECIDE_E_FOLDINGS
 from numerics.maps import cell_step, growth_of
 from numerics.theory import nls_undefined, predict_growth
 from numerics.lattice import checks
-from numerics.theory import (PAPER_START, THEORIES, measure_gain, measurement_length,
-                             theory_gain)
+from numerics.theory import PAPER_START, THEORIES, measure_gain, theory_gain
 
 from .coefficients import coefficients, weak_nonlinearity_note
 
@@ -197,7 +198,9 @@ def run_point(args, log=print) -> dict:
     meas = None
     exact_name = "exact lattice" if args.start == "travelling" else PAPER_START
     exact = th[exact_name]["peak_gain"]
-    t_end = args.t_end or measurement_length(exact if math.isfinite(exact) else 0.0)
+    # T from the fastest predicted rate: enough e-foldings to decide, within a stated cap
+    length = run_length(exact if math.isfinite(exact) else 0.0)
+    t_end = args.t_end or length.t_end
     seeds = checks.integer("--seeds", args.seeds, 1, 1000)
     # the growth factor the simulation measures, predicted from each seed's initial state
     # (records every 5 T, as the simulation below saves them)
@@ -207,8 +210,8 @@ def run_point(args, log=print) -> dict:
                               records=max(2, min(4000, int(round(t_end / SAVE_EVERY)))))
         predicted = [pred.growth, *pred.growth_draws.tolist()]
         result["predicted"] = {
-            "growth": predicted, "verdict": "MI" if np.median(predicted) > GROWTH_THRESHOLD
-            else "stable", "t_end": t_end, "seeds": seeds, "rate": pred.rate,
+            "growth": predicted, "verdict": simulated_verdict(predicted, t_end).word,
+            "t_end": t_end, "seeds": seeds, "rate": pred.rate,
             "linear": pred.linear, "approximate": pred.approximate,
             "method": "linear response of each seed's initial state (numerics.theory."
                       "predict_growth)"}
@@ -235,7 +238,6 @@ def run_point(args, log=print) -> dict:
                             save_every=SAVE_EVERY, start=args.start, progress=None,
                             energy_tolerance=1.0)
         growths = [growth_of(r.t, r.theta_hat, r.U_hat, r.m, r.N) for r in runs]
-        verdict = sum(g["growth"] > GROWTH_THRESHOLD for g in growths) * 2 > len(growths)
         # no seed with a linear stage (linear_stage's rule): no rate to fit, shown as "-",
         # not as a gain of 0
         if meas:  # sigma over the offset Q, once: the table, the JSON and the figure
@@ -244,22 +246,24 @@ def run_point(args, log=print) -> dict:
         s = band_summary(k + meas["offset"], meas["sigma_by_offset"], k) if meas else \
             {"peak_gain": float("nan"), "peak_offset": float("nan"), "band_edge": float("nan"),
              "no_rate": f"no seed had a linear stage to fit a rate over ({LINEAR_STAGE_RULE})"}
-        # the theories answer the simulation's question: grows > threshold within t_end
-        rows = [(r[0], ("MI" if grows_beyond_threshold(r[2], t_end) else "stable")
-                 if math.isfinite(r[2]) else r[1], *r[2:]) for r in rows]
+        sv = simulated_verdict([g["growth"] for g in growths], t_end, s["peak_gain"])
+        # the theories keep their physical verdict; "grows 20x within T" is an observable
         for n, r in zip(th, rows):
-            result["theories"][n]["verdict_within_t_end"] = r[1]
+            result["theories"][n]["grows_beyond_threshold_within_t_end"] = (
+                bool(grows_beyond_threshold(r[2], t_end)) if math.isfinite(r[2]) else None)
         rows.append((f"simulated ({args.seeds} seeds, N = {N}, T = {t_end:g}, {method} "
-                     f"dt = {dt:.3g})",
-                     "MI" if verdict else "stable", s["peak_gain"], s["peak_offset"],
+                     f"dt = {dt:.3g})", sv.word, s["peak_gain"], s["peak_offset"],
                      s["band_edge"]))
-        result["simulated"] = {"verdict": "MI" if verdict else "stable", **s, "t_end": t_end,
+        result["simulated"] = {**s, **sv.to_dict(), "t_end": t_end,
                                "seeds": args.seeds, "method": method, "dt": dt,
                                "growth": [g["growth"] for g in growths],
                                "growth_field": [g["growth_field"] for g in growths],
-                               "criterion": f"MI when the largest non-carrier theta or U "
-                                            f"component grows more than "
-                                            f"{GROWTH_THRESHOLD:g}x within t_end",
+                               "criterion": f"MI when most seeds' largest non-carrier theta "
+                                            f"or U component grows more than "
+                                            f"{GROWTH_THRESHOLD:g}x within t_end; no growth "
+                                            f"within T below sqrt({GROWTH_THRESHOLD:g})x; "
+                                            "undetermined between",
+                               "peak_gain": s["peak_gain"],
                                **({"q": meas["q"].tolist(), "sigma": meas["sigma"].tolist(),
                                    "sigma_std": meas["sigma_std"].tolist(),
                                    "offset": meas["offset"].tolist(),
@@ -288,18 +292,29 @@ def run_point(args, log=print) -> dict:
                 "column counts every mode")
     else:
         log(f"growth factor within T = {t_end:g}: no prediction ({result['predicted']['reason']})")
+    log("verdicts: a theory's MI = the plane wave is unstable (peak gain > 0, however "
+        "slow); a run's: MI (grew more than "
+        f"{GROWTH_THRESHOLD:g}x), no growth within T, or undetermined")
     if args.simulate:
-        log(f"verdicts: MI = grows more than {GROWTH_THRESHOLD:g}x within T = {t_end:g} "
-            f"(theories: exp(peak gain x T); simulated: measured growth "
-            + ", ".join(f"{g['growth']:.3g}x" for g in growths) + ")")
-    else:
-        log("verdicts: MI = the plane wave is unstable (peak gain > 0, however slow); with "
-            f"--simulate they answer the run's question instead: grows more than "
-            f"{GROWTH_THRESHOLD:g}x within T = {t_end:g}")
+        log(f"grows more than {GROWTH_THRESHOLD:g}x within T = {t_end:g} (theories: exp(peak "
+            "gain x T)): " + ", ".join(
+                f"{n} {'yes' if t['grows_beyond_threshold_within_t_end'] else 'no'}"
+                for n, t in result["theories"].items()
+                if t.get("grows_beyond_threshold_within_t_end") is not None)
+            + "; measured " + ", ".join(f"{g['growth']:.3g}x" for g in growths))
+    if length.capped and not args.t_end:
+        log(f"note: {length.note()} decide (the cap T = {length.cap:g} keeps a point "
+            "within about a minute)")
+    elif args.t_end and length.rate * t_end < DECIDE_E_FOLDINGS:
+        log(f"note: --t-end {t_end:g} holds {length.rate * t_end:.2g} e-foldings of the "
+            f"fastest predicted rate {length.rate:.4g} /T; {DECIDE_E_FOLDINGS:g} decide: "
+            f"--t-end {length.decides_at:g} would")
     log(_table(rows, units))
     for n, t in th.items():
         if "reason" in t:
             log(f"{n}: {t['reason']}")
+    if args.simulate:
+        log(f"simulated verdict: {result['simulated']['text']}")
     if args.simulate and "no_rate" in result["simulated"]:
         log(f"simulated: {result['simulated']['no_rate']}")
     # the most faithful row that grows: the simulation, else the exact theory, else an NLS

@@ -32,3 +32,33 @@ def test_snap_wavenumber_checks_N(N, error):
 def test_snap_wavenumber_refuses_a_nan_tolerance():
     with pytest.raises(ValueError, match="rel_tol"):
         snap_wavenumber(0.8, 500, rel_tol=float("nan"))
+
+
+def test_a_runs_verdict_is_never_a_bare_stable():
+    """issue 36 item 1: MI (measured rate), no growth within T (with the slowest rate that
+    could show), or undetermined (grew, not to the threshold), from growth factors."""
+    from numerics.lattice import VERDICT_WORDS, simulated_verdict
+
+    mi = simulated_verdict([50.0, 60.0, 3.0], 20000.0, 4.9e-4)
+    assert mi.word == "MI" and "4.9e-04" in f"{mi.rate:.1e}" and "measured rate" in str(mi)
+    none = simulated_verdict([1.2, 1.5], 20000.0)
+    assert none.word == "no growth within T"
+    assert none.slowest_visible == pytest.approx(math.log(20) / 20000)
+    assert "a rate below 0.00015 /T cannot show" in str(none)
+    grew = simulated_verdict([6.77, 10.2, 6.06, 10.7], 20000.0)  # issue 36's material
+    assert grew.word == "undetermined" and "longer --t-end" in str(grew)
+    assert simulated_verdict([], 100.0).word == "undetermined"
+    assert {mi.word, none.word, grew.word} == set(VERDICT_WORDS)
+
+
+def test_run_length_decides_within_its_cap_and_says_when_it_cannot():
+    from numerics.lattice import T_CAP, run_length
+    from numerics.lattice._verdict import DECIDE_E_FOLDINGS
+
+    r = run_length(1.123e-4)  # issue 36: capped at 20 000 before, ~2 e-foldings
+    assert not r.capped and r.rate * r.t_end >= DECIDE_E_FOLDINGS and r.t_end <= T_CAP
+    slow = run_length(2e-5)
+    assert slow.capped and slow.t_end == T_CAP
+    assert f"--t-end {slow.decides_at:g} would" in slow.note()
+    assert slow.decides_at * 2e-5 >= DECIDE_E_FOLDINGS
+    assert run_length(0.0).t_end == 5000.0 and not run_length(float("nan")).capped

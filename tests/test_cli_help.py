@@ -62,16 +62,13 @@ def test_run_reports_each_scene_as_it_finishes(tmp_path):
 
 def test_point_t_end_help_states_the_bounds_the_default_uses():
     """The help's numbers are typed in the parser (importing the theory there would slow
-    every `--help`): they must be those of ``measurement_length``."""
-    import inspect
-
-    from numerics.theory import _gain
+    every `--help`): they must be those of ``run_length``."""
+    from numerics.lattice import _verdict as v
     from scenes.cli import _parser
 
     sub = next(a for a in _parser()._actions if a.dest == "cmd")
     help_text = " ".join(next(a for a in sub.choices["point"]._actions
                               if a.dest == "t_end").help.split())
-    lo, hi = _gain.T_BOUNDS
-    default = inspect.signature(_gain.measurement_length).parameters["default"].default
-    assert f"{_gain.E_FOLDINGS:g} e-foldings" in help_text
-    assert f"within [{lo:g}, {hi:g}]; {default:g} where nothing grows" in help_text
+    assert f"{v.MEASURE_E_FOLDINGS:g} e-foldings" in help_text
+    assert f"within [{v.T_MIN:g}, {v.T_CAP:g}]; {v.DEFAULT_T:g} where nothing grows" in help_text
+    assert f"the {v.DECIDE_E_FOLDINGS:g} e-foldings that decide" in help_text

@@ -16,6 +16,9 @@ Analysis      spectrum, mode, harmonic_bins, sideband_to_carrier, stability_verd
               band_summary, spectrum_growth, forced_second_harmonic,
               carrier_amplitude, carrier_frequency; the growth criterion GROWTH_THRESHOLD
               and :func:`grows_beyond_threshold`
+Verdicts      simulated_verdict -> Verdict ("MI", "no growth within T", "undetermined":
+              VERDICT_WORDS), run_length -> RunLength (T from the fastest predicted
+              rate, within T_CAP)
 Input checks  ``numerics.lattice.checks`` (the limits every layer imports)
 """
 
@@ -34,6 +37,8 @@ from ._model import (CASES, LatticeState, Material, discrete_omega_longitudinal,
 from ._simulate import (Run, initial_condition, noise_field, resume, simulate,
                         snap_wavenumber)
 from ._starts import STARTS, paper_start_undefined, register_start
+from ._verdict import (T_CAP, VERDICT_WORDS, RunLength, Verdict, run_length,
+                       simulated_verdict)
 from ._version import SIMULATOR_VERSION, source_hash
 
 __all__ = [
@@ -46,5 +51,6 @@ __all__ = [
     "harmonic_bins", "non_carrier_bins", "sideband_to_carrier", "stability_verdict",
     "linear_stage", "LINEAR_STAGE_RULE", "growth_rates", "band_summary", "forced_second_harmonic",
     "carrier_amplitude", "carrier_frequency", "GROWTH_THRESHOLD", "grows_beyond_threshold",
-    "checks", "noise_field", "spectrum_growth",
+    "checks", "noise_field", "spectrum_growth", "VERDICT_WORDS", "Verdict",
+    "simulated_verdict", "RunLength", "run_length", "T_CAP",
 ]
