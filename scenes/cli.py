@@ -58,10 +58,10 @@ def _parser():
                      "A0 (peak rotation 2 eps A0 with eps = 0.01)")
     _sub(sub, "scenes", "list the scenes with a description and run time")
     one = _sub(sub, "scene", "run one scene (one figure of the paper)")
-    import scenes
+    from ._registry import SCENE_NAMES
 
     one.add_argument("name", metavar="NAME",
-                     help="one of: " + ", ".join(sorted(scenes.REGISTRY)))
+                     help="one of: " + ", ".join(sorted(SCENE_NAMES)))
     one.add_argument("--replot", action="store_true",
                      help="redraw the figure from OUT/NAME/data.h5 without computing")
     for sp_ in (one, _sub(sub, "run", "run every scene and write OUT/report.md")):
