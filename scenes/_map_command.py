@@ -118,14 +118,18 @@ def run_map_command(args, log=print):
             f" e.g. {moved[0][0]:g} -> {moved[0][1]:.6g}; simulation and theories use the "
             "snapped k (coordinate k_simulated)")
     n_workers = args.workers or (1 if args.scheduler else local_cores())
-    est = params.estimated_seconds(n_workers)
+    from numerics.maps._estimate import estimate_map
+
+    estimate = estimate_map(params, n_workers, args.scheduler)  # this machine's speed
+    est = estimate.seconds
     if params.theory_only:
         log(f"map (theory only): {cells} cells, N = {params.N}, T = {params.t_end:g}: "
-            f"predictions about {_duration(est)} on {n_workers} worker(s)")
+            f"predictions about {_duration(est)} ({estimate.describe()}) on {n_workers} "
+            "worker(s)")
     else:
         log(f"map: {cells} cells x {params.seeds} seed(s), N = {params.N}, T = "
-            f"{params.t_end:g}: about {_duration(est)} on {n_workers} worker(s) "
-            "(less where MI stops a run early)")
+            f"{params.t_end:g}: about {_duration(est)} ({estimate.describe()}) on "
+            f"{n_workers} worker(s) (less where MI stops a run early)")
     if est > CONFIRM_SECONDS and not args.yes:
         raise ValueError(f"the map would take about {_duration(est)} (> "
                          f"{_duration(CONFIRM_SECONDS)}); add --yes to run it, or use "

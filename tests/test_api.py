@@ -62,3 +62,32 @@ def test_run_length_decides_within_its_cap_and_says_when_it_cannot():
     assert f"--t-end {slow.decides_at:g} would" in slow.note()
     assert slow.decides_at * 2e-5 >= DECIDE_E_FOLDINGS
     assert run_length(0.0).t_end == 5000.0 and not run_length(float("nan")).capped
+
+
+def test_map_estimate_counts_start_up_cells_and_load(tmp_path, monkeypatch):
+    """issue 36 item 2: the estimate is the command's wall time: start-up (cluster, imports,
+    store) plus the cells at this machine's measured speed (cached once), slowed by the
+    load average."""
+    from numerics.maps import MapParameters
+    from numerics.maps import _estimate as e
+
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path))
+    calls = []
+    monkeypatch.setattr(e, "measure_speed",
+                        lambda: calls.append(1) or {"simulate": 0.02, "predict": 0.1})
+    assert e.machine_speed() == e.machine_speed() == {"simulate": 0.02, "predict": 0.1}
+    assert calls == [1] and (tmp_path / "flexmm-mi" / "speed.json").exists()
+    monkeypatch.setattr(e, "load_slowdown", lambda workers: (1.0, 0.0, 2))
+    p = MapParameters(case="coupled", alpha=2.5, K_s=0.01851, delta=(-0.003, 0.003),
+                      k=(0.5, 0.8, 1.1, 1.4), amplitude=0.02, N=500, t_end=1000.0, seeds=1,
+                      start="paper")
+    est = e.estimate_map(p, 2)
+    start = e.STARTUP_SECONDS["local"] + e.WORKER_WARMUP_SECONDS
+    assert est.startup == start and est.predict == pytest.approx(8 * 0.1)
+    assert est.simulate > 0 and est.seconds == pytest.approx(start + (0.8 + est.simulate) / 2)
+    import dataclasses
+
+    theory = e.estimate_map(dataclasses.replace(p, theory_only=True), 2)
+    assert theory.simulate == 0 and theory.seconds < est.seconds
+    monkeypatch.setattr(e, "load_slowdown", lambda workers: (2.0, 3.0, 2))
+    assert e.estimate_map(p, 2).seconds == pytest.approx(2 * est.seconds)
