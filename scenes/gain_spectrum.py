@@ -31,7 +31,7 @@ PEAK_FINDING = known("finding: the paper's NLS overestimates the peak gain, docs
 def compute(ctx):
     data, results, checks = {"eps": paper.EPS, "A0": paper.A0}, {}, []
     qf = np.linspace(0, np.pi, 4000)
-    for point, case in paper.MI_RUNS:
+    for point, case in ctx.progress(paper.MI_RUNS, "gain-spectrum: runs"):
         meas = measured_gain(ctx, point, case)
         if meas is None:
             checks.append(check(f"gain {point}/{case}", "MI", "no linear stage found", False))

@@ -92,7 +92,7 @@ def compute(ctx):
     qf = np.linspace(0, np.pi, 3001)
     qs = np.linspace(0, np.pi, 301 if ctx.quick else 1201)  # paper-start theory: 0.2 s each
     data["q_theory"], data["q_start"] = qf, qs
-    for label, point, case, A0, kk, delta in POINTS:
+    for label, point, case, A0, kk, delta in ctx.progress(POINTS, "gain-theories: points"):
         mat = Material.paper(point) if delta is None else Material(paper.ALPHA, paper.K_S,
                                                                    paper.K_S - delta)
         k0 = paper.k(point) if kk is None else kk
