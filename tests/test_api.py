@@ -91,3 +91,24 @@ def test_map_estimate_counts_start_up_cells_and_load(tmp_path, monkeypatch):
     assert theory.simulate == 0 and theory.seconds < est.seconds
     monkeypatch.setattr(e, "load_slowdown", lambda workers: (2.0, 3.0, 2))
     assert e.estimate_map(p, 2).seconds == pytest.approx(2 * est.seconds)
+
+
+def test_runs_and_gain_spectra_convert_to_xarray_with_units_and_inputs(tmp_path):
+    import numpy as np
+
+    from numerics import Material, gain_spectrum, simulate
+
+    mat = Material(2.0, 0.03, 0.02)
+    k = snap_wavenumber(1.2, 64)
+    run = simulate(mat, "coupled", 64, k, amplitude=0.04, t_end=5.0, store="spectrum")
+    ds = run.to_xarray()
+    assert set(ds.data_vars) >= {"theta_hat", "U_hat", "energy"}
+    assert ds["theta_hat"].dims == ("t", "wavenumber")
+    assert ds["wavenumber"].attrs["units"] == "rad per site"
+    assert ds.attrs["K_theta"] == 0.02 and ds.attrs["start"] == "paper" and ds.attrs["k"] == k
+    ds.to_zarr(tmp_path / "run.zarr", consolidated=False)
+    spec = gain_spectrum(mat, "coupled", k, 0.04, np.linspace(0.05, 0.6, 5), start="travelling")
+    g = spec.to_xarray(material=mat, case="coupled", k=k, amplitude=0.04)
+    assert g["sigma"].dims == ("offset",) and g["sigma"].attrs["units"].startswith("1/T")
+    assert g.attrs["alpha"] == 2.0 and g.attrs["amplitude"] == 0.04
+    np.testing.assert_array_equal(g["sigma"].values, spec.sigma)
