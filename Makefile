@@ -4,6 +4,7 @@
 #   derive                   always re-derive generated/ and update its source stamp
 #   run, figures             re-derive first only when the derivation's sources changed
 #   test / test-all          fast tests / every test, slow ones included
+#   docs                     the HTML site into build/docs/ (Sphinx -W, the tutorial executed)
 #   bench, bench-quick       results + PNGs into out/bench/ (gitignored): the git tree stays clean
 #   bench-update             the same as bench, rewriting the committed bench/results.json + PNGs
 #   stress, stress-quick     bench/stress.py into out/bench/
@@ -29,7 +30,7 @@ STALE := $(shell { $(SOURCES); } | cmp -s - $(SOURCES_STAMP) || echo sources-cha
 BENCH_ARGS ?=
 
 .PHONY: setup derive generated test test-all run figures bench bench-quick bench-update \
-	stress stress-quick stress-update clean
+	stress stress-quick stress-update clean docs
 
 setup: $(STAMP)
 
@@ -50,6 +51,17 @@ generated: derive
 else
 generated: ;
 endif
+
+# HTML documentation into build/docs/: Sphinx with -W (a warning fails the build), numpydoc
+# for the API reference, myst-nb executing docs/tutorial.ipynb (~30 s); the `docs` extra.
+DOCS_STAMP := $(VENV)/.docs-stamp
+$(DOCS_STAMP): $(STAMP)
+	PYTHONWARNINGS='ignore:Editable installation' $(VPY) -m pip install -q -e '.[dev,docs]'
+	@touch $(DOCS_STAMP)
+
+docs: $(DOCS_STAMP)
+	$(VPY) -m sphinx -W --keep-going -q -b html docs build/docs
+	@echo "wrote build/docs/index.html"
 
 test: $(STAMP)
 	$(VPY) -m pytest -q
