@@ -192,9 +192,9 @@ def map_figure(ds, ax=None):
         done = ds["done_predicted"].values & (ds["verdict_predicted"].values >= 0)
     background = np.where(done, np.where(ds[shown].values == 1, 1.0, -1.0), np.nan)
     verdict_image(ax, k, d, background)
-    handles = [Patch(facecolor=c, edgecolor="k", label=f"{what}: {lab}")
-               for c, lab, present in (("white", "MI", background > 0),
-                                       ("black", "stable", background < 0),
+    handles = [Patch(facecolor=c, edgecolor="k", label=lab)
+               for c, lab, present in (("white", f"{what}: MI", background > 0),
+                                       ("black", f"{what}: stable", background < 0),
                                        ("0.6", "not done or undetermined",
                                         np.isnan(background))) if present.any()]
     notes = []
@@ -209,7 +209,8 @@ def map_figure(ds, ax=None):
             notes.append(f"{label}: " + ("undetermined everywhere" if not decided.size else
                                          "MI in every cell it decides" if decided.all() else
                                          "stable in every cell it decides" if not decided.any()
-                                         else "no boundary"))
+                                         else "no MI cell next to a stable one (undetermined "
+                                         "cells between)"))
     xe, ye = cell_edges(k), cell_edges(d)
     ax.set_xlim(xe[0], xe[-1])
     ax.set_ylim(ye[0], ye[-1])
@@ -222,8 +223,7 @@ def map_figure(ds, ax=None):
                              if notes else ""), fontsize=8)
     ax.set_ylabel(DELTA_LABEL)
     ax.set_title(material_title(ds.attrs), fontsize=8)
-    ax.legend(handles=handles, fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0),
-              borderaxespad=0.0)
+    fig.legend(handles=handles, fontsize=7, loc="outside lower center", ncols=2)
     return fig
 
 

@@ -262,7 +262,7 @@ def test_map_figure_centres_every_cell_on_its_value(shape):
             (x0, y0), (x1, y1) = seg
             assert (np.isclose(x0, xe).any() and np.isclose(x1, xe).any()
                     and np.isclose(y0, ye).any() and np.isclose(y1, ye).any())
-    labels = [t.get_text() for t in ax.get_legend().get_texts()]
+    labels = [t.get_text() for t in fig.legends[0].get_texts()]
     assert sum("boundary" in lab for lab in labels) == len(drawn)
     assert all(("MI" in lab) == (sim[ds["done"].values] == 1).any()
                for lab in labels if lab.startswith("simulated: MI"))
