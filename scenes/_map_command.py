@@ -118,7 +118,7 @@ def run_map_command(args, log=print):
             f" e.g. {moved[0][0]:g} -> {moved[0][1]:.6g}; simulation and theories use the "
             "snapped k (coordinate k_simulated)")
     n_workers = args.workers or (1 if args.scheduler else local_cores())
-    from numerics.maps._estimate import estimate_map
+    from numerics.maps import estimate_map
 
     estimate = estimate_map(params, n_workers, args.scheduler)  # this machine's speed
     est = estimate.seconds

@@ -239,7 +239,7 @@ def soliton_figure(sol, run=None):
         The prediction (on the ring's k when there is a run: ``run.predicted``).
     run : numerics.theory.SolitonRun, optional
     """
-    from numerics.theory._soliton_launch import soliton_state
+    from numerics.theory import soliton_state
 
     m = sol.material
     fig, axes = plt.subplots(1, 3, figsize=(12, 3.8), layout="constrained")

@@ -12,10 +12,9 @@ import numpy as np
 from common.files import write_text
 from common import paper
 from numerics import Material, initial_condition, simulate, snap_wavenumber
-from numerics.lattice import (GROWTH_THRESHOLD, LINEAR_STAGE_RULE, band_summary,
-                              grows_beyond_threshold, paper_start_undefined, run_length,
-                              simulated_verdict)
-from numerics.lattice._verdict import DECIDE_E_FOLDINGS
+from numerics.lattice import (DECIDE_E_FOLDINGS, GROWTH_THRESHOLD, LINEAR_STAGE_RULE,
+                              band_summary, grows_beyond_threshold, paper_start_undefined,
+                              run_length, simulated_verdict)
 from numerics.maps import cell_step, growth_of
 from numerics.theory import nls_undefined, predict_growth
 from numerics.lattice import checks

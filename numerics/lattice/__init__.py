@@ -37,8 +37,8 @@ from ._model import (CASES, LatticeState, Material, discrete_omega_longitudinal,
 from ._simulate import (Run, initial_condition, noise_field, resume, simulate,
                         snap_wavenumber)
 from ._starts import STARTS, paper_start_undefined, register_start
-from ._verdict import (T_CAP, VERDICT_WORDS, RunLength, Verdict, run_length,
-                       simulated_verdict)
+from ._verdict import (DECIDE_E_FOLDINGS, T_CAP, VERDICT_WORDS, RunLength, Verdict,
+                       run_length, simulated_verdict)
 from ._version import SIMULATOR_VERSION, source_hash
 
 __all__ = [
@@ -52,5 +52,5 @@ __all__ = [
     "linear_stage", "LINEAR_STAGE_RULE", "growth_rates", "band_summary", "forced_second_harmonic",
     "carrier_amplitude", "carrier_frequency", "GROWTH_THRESHOLD", "grows_beyond_threshold",
     "checks", "noise_field", "spectrum_growth", "VERDICT_WORDS", "Verdict",
-    "simulated_verdict", "RunLength", "run_length", "T_CAP",
+    "simulated_verdict", "RunLength", "run_length", "T_CAP", "DECIDE_E_FOLDINGS",
 ]

@@ -8,6 +8,8 @@ One cell         simulate_cell (the simulated verdict, growth factor, early stop
 Maps by sim.     MapParameters (what defines a map), parse_spec (``v1,v2`` or
                  ``start:stop:num``), run_map (cells as tasks on a Dask cluster, results in
                  a resumable Zarr store), theory_columns, agreement (AGREEMENT_MARGIN)
+Run time         estimate_map -> MapEstimate (start-up + cells at this machine's measured
+                 speed, machine_speed, cached), slowed by the load average
 """
 
 from ._cells import cell_step, growth_of, measured_peak_gain, simulate_cell
@@ -17,11 +19,13 @@ from ._agreement import MARGIN as AGREEMENT_MARGIN, agreement
 from ._blocks import simulate_block
 from ._columns import theory_columns
 from ._store import MapCellError, open_or_create, run_map
+from ._estimate import MapEstimate, estimate_map, machine_speed
 
 __all__ = [
     "resonance_map", "simulate_cell", "cell_step", "growth_of", "measured_peak_gain",
     "MapParameters",
     "parse_spec", "run_map", "theory_columns", "agreement", "AGREEMENT_MARGIN",
     "open_or_create",
-    "simulate_block", "CRITERION", "MapCellError", "local_cores",
+    "simulate_block", "CRITERION", "MapCellError", "local_cores", "MapEstimate",
+    "estimate_map", "machine_speed",
 ]
