@@ -20,7 +20,6 @@ from __future__ import annotations
 
 import functools
 
-import dask
 import numpy as np
 
 from common.threads import one_blas_thread
@@ -279,6 +278,8 @@ def stability_map(k, delta=None, case: str | None = None, alpha: float | None = 
     kf, Ktf = k.ravel(), K_theta.ravel()
     out = np.zeros(kf.size)
     starts = range(0, kf.size, chunk)
+    import dask  # here: importing the theory (`flexmm coefficients`) needs no Dask
+
     tasks = [dask.delayed(_stability_chunk)(kf[s:s + chunk], Ktf[s:s + chunk], float(alpha),
                                             float(K_s), float(amplitude), q, H,
                                             case == "coupled", modes) for s in starts]
