@@ -5,6 +5,7 @@
 #   run, figures             re-derive first only when the derivation's sources changed
 #   lint                     ruff check . (ruff.toml: pyflakes, import order, pyupgrade, bugbear)
 #   test / test-all          fast tests / every test, slow ones included
+#   docs                     the HTML site into build/docs/ (Sphinx -W, the tutorial executed)
 #   bench, bench-quick       results + PNGs into out/bench/ (gitignored): the git tree stays clean
 #   bench-update             the same as bench, rewriting the committed bench/results.json + PNGs
 #   stress, stress-quick     bench/stress.py into out/bench/
@@ -32,7 +33,7 @@ STALE := $(shell { $(SOURCES); } | cmp -s - $(SOURCES_STAMP) || echo sources-cha
 BENCH_ARGS ?=
 
 .PHONY: setup derive generated lint test test-all run figures bench bench-quick bench-update \
-	stress stress-quick stress-update clean
+	stress stress-quick stress-update clean docs
 
 setup: $(STAMP)
 
@@ -56,6 +57,17 @@ endif
 
 lint: $(STAMP)
 	$(VENV)/bin/ruff check .
+
+# HTML documentation into build/docs/: Sphinx with -W (a warning fails the build), numpydoc
+# for the API reference, myst-nb executing docs/tutorial.ipynb (~30 s); the `docs` extra.
+DOCS_STAMP := $(VENV)/.docs-stamp
+$(DOCS_STAMP): $(STAMP)
+	PYTHONWARNINGS='ignore:Editable installation' $(VPY) -m pip install -q -e '.[dev,docs]'
+	@touch $(DOCS_STAMP)
+
+docs: $(DOCS_STAMP)
+	$(VPY) -m sphinx -W --keep-going -q -b html docs build/docs
+	@echo "wrote build/docs/index.html"
 
 test: $(STAMP)
 	$(VPY) -m pytest -q

@@ -71,7 +71,7 @@ def main(quick=False, out=None):
             changed[f"{case}_{start}"] = int(np.sum(a != b))
         g20 = np.nan_to_num(stability_map(Kc, Dc, case, *args)) > THRESHOLD
         g160 = np.nan_to_num(stability_map(Kc, Dc, case, *args,
-                                           q=np.linspace(0.005, np.pi, 160))) > THRESHOLD
+                                           offset=np.linspace(0.005, np.pi, 160))) > THRESHOLD
         sampled[case] = int(np.sum(g20 != g160))
     res = {"machine": machine(), "quick": quick, "grid": [n, n], "amplitude": 0.02,
            "wall_s": walls, "wall_s_every_run": runs, "repeats": REPEATS, "check_grid": [n_check, n_check],

@@ -62,10 +62,10 @@ def build_parser():
                      "A0 (peak rotation 2 eps A0 with eps = 0.01)")
     _sub(sub, "scenes", "list the scenes with a description and run time")
     one = _sub(sub, "scene", "run one scene (one figure of the paper)")
-    import scenes
+    from ._registry import SCENE_NAMES
 
     one.add_argument("name", metavar="NAME",
-                     help="one of: " + ", ".join(sorted(scenes.REGISTRY)))
+                     help="one of: " + ", ".join(sorted(SCENE_NAMES)))
     one.add_argument("--replot", action="store_true",
                      help="redraw the figure from OUT/NAME/data.h5 without computing")
     for sp_ in (one, _sub(sub, "run", "run every scene and write OUT/report.md")):
@@ -120,10 +120,10 @@ def _point_parser(sub):
     p.add_argument("--simulate", action="store_true", help="measure sigma(q) too")
     p.add_argument("--t-end", dest="t_end", type=float,
                    help="run length in T (default: 9 e-foldings of the exact peak gain, "
-                        "within [1000, 20000]; 5000 where nothing grows). With --simulate "
-                        "the verdicts are 'grows more than 20x within it'")
-    p.add_argument("--seeds", type=int, default=4,
-                   help="with --simulate: noise seeds of the simulation")
+                        "within [1000, 100000]; 5000 where nothing grows; the output says "
+                        "when the cap stops a run short of the 4 e-foldings that decide). "
+                        "A run's verdict: MI, 'no growth within T' or undetermined")
+    p.add_argument("--seeds", type=int, default=4, help="noise seeds of the simulation")
     p.add_argument("--out", help="folder for point.json and point.png (default: none, "
                    "print only)")
 

@@ -54,40 +54,11 @@ def _mi_fraction(v: np.ndarray) -> float:
 
 
 def plot_map(ds, ax=None):
-    """Simulated verdict (white: MI) with the theories' boundaries drawn over it."""
-    from scenes import image, plt
+    """Simulated verdict (white: MI) with the theories' boundaries drawn over it, each cell
+    centred on its value (``scenes.map_figure``; any grid shape)."""
+    from scenes import map_figure
 
-    if ax is None:
-        fig, ax = plt.subplots(figsize=(6, 4.5), layout="constrained")
-    else:
-        fig = ax.figure
-    k, d = ds["k"].values, ds["delta"].values
-    done = ds["done"].values
-    # a theory-only map has no simulated cell: its background is the predicted verdict
-    shown, what = "verdict_simulated", "simulated"
-    if not done.any() and "verdict_predicted" in ds and "done_predicted" in ds:
-        shown, what = "verdict_predicted", "predicted growth > 20x"
-        done = ds["done_predicted"].values & (ds["verdict_predicted"].values >= 0)
-    sim = np.where(done, np.where(ds[shown].values == 1, 1.0, -1.0), 0.0)
-    if len(k) > 1 and len(d) > 1:
-        image(ax, k, d, sim, cmap="gray", vmin=-1, vmax=1)
-        for name, color in (("verdict_paper", "C1"), ("verdict_semidiscrete", "C2"),
-                            ("verdict_exact", "C3")):
-            v = ds[name].values.astype(float)
-            v[v < 0] = np.nan  # undetermined: no boundary drawn through it
-            if np.isfinite(v).any() and 0 < np.nanmean(v) < 1:
-                ax.contour(k, d, v, levels=[0.5], colors=color, linewidths=1.2)
-            ax.plot([], [], color=color, label=name.removeprefix("verdict_"))
-        ax.legend(fontsize=7, loc="upper right")
-    else:
-        ax.scatter(np.repeat(k[None], len(d), 0), np.repeat(d[:, None], len(k), 1), c=sim,
-                   cmap="gray", vmin=-1, vmax=1, edgecolors="k")
-    ax.set_xlabel("k (rad per site)")
-    ax.set_ylabel("delta")
-    ax.set_title(f"case {ds.attrs['case']}, alpha = {ds.attrs['alpha']}, amplitude "
-                 f"{ds.attrs['amplitude']:g} rad\n{what}: white MI, black stable, grey "
-                 "not done or undetermined", fontsize=9)
-    return fig
+    return map_figure(ds, ax)
 
 
 def _agreement_text(name: str, ag: dict) -> str:
@@ -154,14 +125,18 @@ def run_map_command(args, log=print):
             f" e.g. {moved[0][0]:g} -> {moved[0][1]:.6g}; simulation and theories use the "
             "snapped k (coordinate k_simulated)")
     n_workers = args.workers or (1 if args.scheduler else local_cores())
-    est = params.estimated_seconds(n_workers)
+    from numerics.maps import estimate_map
+
+    estimate = estimate_map(params, n_workers, args.scheduler)  # this machine's speed
+    est = estimate.seconds
     if params.theory_only:
         log(f"map (theory only): {cells} cells, N = {params.N}, T = {params.t_end:g}: "
-            f"predictions about {_duration(est)} on {n_workers} worker(s)")
+            f"predictions about {_duration(est)} ({estimate.describe()}) on {n_workers} "
+            "worker(s)")
     else:
         log(f"map: {cells} cells x {params.seeds} seed(s), N = {params.N}, T = "
-            f"{params.t_end:g}: about {_duration(est)} on {n_workers} worker(s) "
-            "(less where MI stops a run early)")
+            f"{params.t_end:g}: about {_duration(est)} ({estimate.describe()}) on "
+            f"{n_workers} worker(s) (less where MI stops a run early)")
     if est > CONFIRM_SECONDS and not args.yes:
         raise ValueError(f"the map would take about {_duration(est)} (> "
                          f"{_duration(CONFIRM_SECONDS)}); add --yes to run it, or use "

@@ -110,9 +110,23 @@ def run_soliton(args, log=print) -> dict:
     if args.out:
         out = Path(args.out)
         out.mkdir(parents=True, exist_ok=True)
-        write_text(out / "soliton.json", json.dumps(strict_json(result), indent=2) + "\n")
-        log(f"wrote {out / 'soliton.json'}")
+        write_text(out / "soliton.json", json.dumps(strict_json(result), indent=2) + "
+")
+        _figure(out / "soliton.png", sol, run)
+        log(f"wrote {out / 'soliton.json'} and {out / 'soliton.png'}")
     return result
+
+
+def _figure(path, sol, run):
+    """soliton.png: profile, kink and trajectory against the prediction."""
+    from common.files import atomic_write
+
+    from scenes import plt, soliton_figure
+
+    fig = soliton_figure(sol, run)
+    with atomic_write(path, mode=None) as tmp:
+        fig.savefig(tmp, format="png", dpi=110)
+    plt.close(fig)
 
 
 #: the kink is measured by low-passing the strain at |q| < k/2; a sech^2 kink of width w

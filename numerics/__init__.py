@@ -27,11 +27,12 @@ MapParameters, run_map              simulated MI maps (Dask + Zarr)
 
 from importlib import import_module as _import_module
 
-from . import lattice, theory, maps
+# maps (Dask, xarray, Zarr) is imported on first use: `flexmm coefficients` needs none of it;
+# theory registers its start with lattice (the import order is the point)
+from . import lattice, theory
 from .lattice import (GROWTH_THRESHOLD, METHODS, STARTS, AccuracyWarning, BlowUpError,
                       LatticeState, Material, Run, SimulationInterrupted, energy, get_method,
                       initial_condition, integrate, resume, simulate, snap_wavenumber)
-from .maps import MapParameters, resonance_map, run_map
 from .theory import (THEORIES, PlaneWave, gain_spectrum, launched_state, mi_gain,
                      nls_summary, plane_wave, theory_gain)
 
@@ -46,6 +47,8 @@ __all__ = [
 
 
 def __getattr__(name):
+    if name == "maps":
+        return _import_module(".maps", __name__)
     # every other public name of a subpackage stays reachable as numerics.<name>
     for sub in ("lattice", "theory", "maps"):
         mod = _import_module(f".{sub}", __name__)

@@ -15,22 +15,28 @@ read_data(path)                     a scene's data dict from its data.h5
 plt, image                          pyplot (Agg backend) and the raster image the figures use
 """
 
-from . import (
-               fig2_dispersion,
-               fig3_g_sign,
-               fig3_simulated,
-               fig4_km_map,
-               fig5_8_plane_waves,
-               fig9_mi_band,
-               gain_spectrum,
-               gain_theories,
-               harmonics,
-               solitons,
-)
-from ._plotting import image, plt
 from ._registry import AGREE, REGISTRY, Scene, check, get_scene, known
-from ._runner import Context, read_data, replot_scene, run_all, run_scene, write_report
+
+#: the runner's names, imported on first use (it imports matplotlib: `flexmm --help` and
+#: `flexmm coefficients` need none of it)
+_RUNNER = ("Context", "read_data", "replot_scene", "run_all", "run_scene", "write_report")
+
+
+#: the plotting names commands draw with (matplotlib, imported on first use)
+_PLOTTING = ("image", "plt", "map_figure", "soliton_figure", "point_figure")
+
+
+def __getattr__(name):
+    if name in _RUNNER:
+        from . import _runner
+
+        return getattr(_runner, name)
+    if name in _PLOTTING:
+        from . import _plotting
+
+        return getattr(_plotting, name)
+    raise AttributeError(f"module 'scenes' has no attribute {name!r}")
 
 __all__ = ["REGISTRY", "Scene", "get_scene", "run_scene", "replot_scene", "run_all",
            "write_report", "read_data", "Context", "check", "known", "AGREE",
-           "image", "plt"]
+           "image", "plt", "map_figure", "soliton_figure"]

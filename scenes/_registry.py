@@ -35,7 +35,67 @@ class Scene:
     report: Callable | None = field(default=None, repr=False)
 
 
-REGISTRY: dict[str, Scene] = {}
+#: the scene modules, in registration order: imported on the registry's first use, so that
+#: `flexmm --help` and `flexmm coefficients` import no figure module (nor matplotlib)
+SCENE_MODULES = ("fig2_dispersion", "fig3_g_sign", "fig3_simulated", "fig4_km_map",
+                 "fig5_8_plane_waves", "fig9_mi_band", "gain_spectrum", "gain_theories",
+                 "harmonics", "solitons")
+#: the names they register (for `flexmm scene NAME --help` without importing them; a test
+#: checks it against the registry)
+SCENE_NAMES = ("fig2-dispersion", "fig3-g-sign", "fig3-simulated", "fig4-km-map",
+               "fig5-blue-rotation", "fig6-blue-coupled", "fig7-green-rotation",
+               "fig8-green-coupled", "fig9-mi-band", "gain-spectrum", "gain-theories",
+               "harmonics", "soliton-bright", "soliton-dark", "soliton-convergence",
+               "soliton-existence")
+
+
+class _Registry(dict):
+    """The scenes by name; reading it first imports every scene module (they register)."""
+
+    _loaded = False
+
+    def _load(self):
+        if not _Registry._loaded:
+            _Registry._loaded = True  # first: the modules' register() reads the registry
+            import importlib
+
+            for module in SCENE_MODULES:
+                importlib.import_module(f"{__package__}.{module}")
+
+    def __getitem__(self, key):
+        self._load()
+        return super().__getitem__(key)
+
+    def __contains__(self, key):
+        self._load()
+        return super().__contains__(key)
+
+    def __iter__(self):
+        self._load()
+        return super().__iter__()
+
+    def __len__(self):
+        self._load()
+        return super().__len__()
+
+    def get(self, key, default=None):
+        self._load()
+        return super().get(key, default)
+
+    def keys(self):
+        self._load()
+        return super().keys()
+
+    def values(self):
+        self._load()
+        return super().values()
+
+    def items(self):
+        self._load()
+        return super().items()
+
+
+REGISTRY: dict[str, Scene] = _Registry()
 
 
 def register(scene: Scene) -> Scene:

@@ -50,6 +50,13 @@ class Context:
         params.setdefault("progress", None)
         return cached_simulate(self.cache_dir, self.force, **params)
 
+    def progress(self, items, desc: str):
+        """``items`` with a progress bar (tqdm) on a terminal, silent when stderr is not
+        one: the steps of a scene that can pass 10 s."""
+        from tqdm.auto import tqdm
+
+        return tqdm(items, desc=desc, leave=False, disable=None, unit="step")
+
     def memo(self, tag: str, params: dict, compute):
         """``compute()`` (an array, or JSON-able data) cached under ``tag`` and ``params``
         (plain values) and the simulator's source hash: theory work is not redone."""

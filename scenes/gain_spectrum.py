@@ -31,13 +31,14 @@ PEAK_FINDING = known("finding: the paper's NLS overestimates the peak gain, docs
 def compute(ctx):
     data, results, checks = {"eps": paper.EPS, "A0": paper.A0}, {}, []
     qf = np.linspace(0, np.pi, 4000)
-    for point, case in paper.MI_RUNS:
+    for point, case in ctx.progress(paper.MI_RUNS, "gain-spectrum: runs"):
         meas = measured_gain(ctx, point, case)
         if meas is None:
             checks.append(check(f"gain {point}/{case}", "MI", "no linear stage found", False))
             continue
         q, k = meas["q"], meas["k"]
-        curve = theory_gain("paper NLS", Material.paper(point), case, k, qf - k, paper.EPS)
+        curve = theory_gain("paper NLS", Material.paper(point), case, k, offset=qf - k,
+                            eps=paper.EPS)
         m_sum, t_sum = band_summary(q, meas["sigma"], k), band_summary(qf, curve, k)
         th = nls_summary(Material.paper(point), case, paper.k(point), paper.EPS)
         r = {"theory": dict(t_sum, eps_K_c=paper.EPS * th["K_c"],

@@ -66,7 +66,7 @@ def _verdicts():
     for point in paper.POINTS:
         mat, kk = Material.paper(point), paper.k(point)
         for case in ("rotation", "coupled"):
-            v = {th: "MI" if theory_gain(th, mat, case, kk, q - kk, paper.EPS).max() > 0
+            v = {th: "MI" if theory_gain(th, mat, case, kk, offset=q - kk, eps=paper.EPS).max() > 0
                  else "stable" for th in THEORIES}
             # U-pair modes exist in case II only (seen in the green II run's U spectrum)
             v["exact lattice, U modes too"] = "n/a" if case == "rotation" else (
@@ -86,7 +86,8 @@ def _quick_N(k):
 
 def _curve(ctx, key, theory, mat, case, k, q):
     return ctx.memo("gain", dict(key, theory=theory, k=k, q=[q[0], q[-1], q.size]),
-                    lambda: theory_gain(theory, mat, case, k, q - k, paper.EPS, key["A0"]))
+                    lambda: theory_gain(theory, mat, case, k, offset=q - k, eps=paper.EPS,
+                                        A0=key["A0"]))
 
 
 def _verdict(peak, t_end):
@@ -98,7 +99,7 @@ def compute(ctx):
     qf = np.linspace(0, np.pi, 3001)
     qs = np.linspace(0, np.pi, 301 if ctx.quick else 1201)  # paper-start theory: 0.2 s each
     data["q_theory"], data["q_start"] = qf, qs
-    for label, point, case, A0, kk, delta in POINTS:
+    for label, point, case, A0, kk, delta in ctx.progress(POINTS, "gain-theories: points"):
         mat = Material.paper(point) if delta is None else Material(paper.ALPHA, paper.K_S,
                                                                    paper.K_S - delta)
         k0 = paper.k(point) if kk is None else kk

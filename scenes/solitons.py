@@ -210,7 +210,8 @@ QUICK_PICK = ((5, 7), (3, 4))  # quick mode: these amplitudes of each series (fa
 
 def _convergence_compute(ctx):
     data, checks, rows = {"quick": ctx.quick}, [], []
-    for si, (label, spec, case, k) in enumerate(SERIES):
+    for si, (label, spec, case, k) in enumerate(ctx.progress(SERIES,
+                                                             "soliton-convergence: series")):
         amps = AMPLITUDES[label]
         if ctx.quick:
             amps = amps[list(QUICK_PICK[si])]

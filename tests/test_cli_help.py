@@ -63,16 +63,43 @@ def test_run_reports_each_scene_as_it_finishes(tmp_path):
 
 def test_point_t_end_help_states_the_bounds_the_default_uses():
     """The help's numbers are typed in the parser (importing the theory there would slow
-    every `--help`): they must be those of ``measurement_length``."""
-    import inspect
-
+    every `--help`): they must be those of ``run_length``."""
     from cli.app import build_parser
-    from numerics.theory import _gain
+    from numerics.lattice import _verdict as v
 
     sub = next(a for a in build_parser()._actions if a.dest == "cmd")
     help_text = " ".join(next(a for a in sub.choices["point"]._actions
                               if a.dest == "t_end").help.split())
-    lo, hi = _gain.T_BOUNDS
-    default = inspect.signature(_gain.measurement_length).parameters["default"].default
-    assert f"{_gain.E_FOLDINGS:g} e-foldings" in help_text
-    assert f"within [{lo:g}, {hi:g}]; {default:g} where nothing grows" in help_text
+    assert f"{v.MEASURE_E_FOLDINGS:g} e-foldings" in help_text
+    assert f"within [{v.T_MIN:g}, {v.T_CAP:g}]; {v.DEFAULT_T:g} where nothing grows" in help_text
+    assert f"the {v.DECIDE_E_FOLDINGS:g} e-foldings that decide" in help_text
+
+
+def _cpu_seconds(argv) -> float:
+    """CPU (user + system) of `flexmm ARGV` in a fresh interpreter."""
+    import resource
+    import subprocess
+    import sys
+
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    subprocess.run([sys.executable, "-c", "import sys; from cli import main; "
+                    f"sys.exit(main({list(argv)!r}))"], check=True, capture_output=True)
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+
+
+def test_help_and_coefficients_answer_in_under_a_second_of_cpu():
+    """issue 36 item 2: `flexmm --help` imports no figure module, no matplotlib, no numerics
+    (measured 0.06 s CPU, 2 s before); `coefficients` no matplotlib and no scene (0.7 s)."""
+    import subprocess
+    import sys
+
+    code = ("import sys; from cli.app import build_parser; build_parser(); "
+            "print(' '.join(m for m in ('matplotlib', 'numpy', 'numerics', 'scenes.fig2_dispersion')"
+            " if m in sys.modules))")
+    loaded = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                            check=True).stdout.split()
+    assert loaded == []
+    assert _cpu_seconds(["--help"]) < 0.5
+    assert _cpu_seconds(["coefficients", "--alpha", "2", "--K-s", "0.03", "--K-theta", "0.02",
+                         "--k", "1.2"]) < 1.0

@@ -196,3 +196,132 @@ def test_benchmark_figures_are_talk_ready(monkeypatch, tmp_path):
         problems = figure_problems(fig)
         plt.close(fig)
         assert not problems, "\n".join(problems)
+
+
+def _map_dataset(n_delta, n_k, seed=0):
+    """A map store's columns as ``flexmm map`` writes them, with random verdicts, for the
+    figure alone (no simulation): shape (n_delta, n_k)."""
+    import xarray as xr
+
+    rng = np.random.default_rng(seed)
+    k = np.linspace(0.5, 1.4, n_k) if n_k > 1 else np.array([0.8])  # start:stop:num
+    d = np.linspace(-0.003, 0.003, n_delta) if n_delta > 1 else np.array([0.003])
+    shape = (n_delta, n_k)
+
+    def v():
+        return rng.integers(-1, 2, shape).astype(np.int8)
+
+    return xr.Dataset(
+        {"done": (("delta", "k"), rng.random(shape) < 0.8),
+         "verdict_simulated": (("delta", "k"), v()),
+         "verdict_paper": (("delta", "k"), v()),
+         "verdict_semidiscrete": (("delta", "k"), v()),
+         "verdict_exact": (("delta", "k"), v())},
+        coords={"k": k, "delta": d},
+        attrs={"case": "coupled", "alpha": 2.5, "K_s": 0.01851, "start": "paper",
+               "amplitude": 0.02, "N": 500, "t_end": 1000.0, "growth_threshold": 20.0})
+
+
+SHAPES = ([(1, n) for n in range(1, 7)] + [(n, 1) for n in range(1, 7)]
+          + [(2, 4), (3, 5), (6, 2)])
+
+
+@pytest.mark.parametrize("shape", SHAPES, ids=[f"{a}x{b}" for a, b in SHAPES])
+def test_map_figure_centres_every_cell_on_its_value(shape):
+    """issue 35 item 1, issue 36 item 3: every grid shape draws (one delta row with 3 or 4 k
+    values read as one RGBA colour before); each cell's centre is its (k, delta); each
+    cell's colour is its verdict; the theories' boundaries lie on cell edges; the legend
+    lists only what is drawn; the title names the material and the start."""
+    from matplotlib.collections import LineCollection, QuadMesh
+    from scenes._map_command import plot_map
+
+    from scenes._plotting import cell_edges
+
+    ds = _map_dataset(*shape, seed=sum(shape))
+    fig = plot_map(ds)
+    ax = fig.axes[0]
+    mesh = [c for c in ax.collections if isinstance(c, QuadMesh)]
+    assert len(mesh) == 1
+    corners = mesh[0].get_coordinates()  # (n_delta + 1, n_k + 1, 2)
+    assert corners.shape == (shape[0] + 1, shape[1] + 1, 2)
+    centre_k = (corners[:-1, :-1, 0] + corners[1:, 1:, 0]) / 2
+    centre_d = (corners[:-1, :-1, 1] + corners[1:, 1:, 1]) / 2
+    np.testing.assert_allclose(centre_k, np.broadcast_to(ds["k"].values, shape), rtol=1e-12)
+    np.testing.assert_allclose(centre_d, np.broadcast_to(ds["delta"].values[:, None], shape),
+                               rtol=1e-12, atol=1e-15)
+    # the colour of each cell: white MI, black stable, grey not done or undetermined
+    rgba = mesh[0].to_rgba(mesh[0].get_array()).reshape(*shape, 4)
+    sim = ds["verdict_simulated"].values
+    want = np.where(ds["done"].values, np.where(sim == 1, 1.0, 0.0), 0.6)
+    np.testing.assert_allclose(rgba[..., 0], want, atol=0.01)
+    # boundaries: every segment on a cell edge, between two cells of different verdicts
+    xe, ye = cell_edges(ds["k"].values), cell_edges(ds["delta"].values)
+    drawn = [c for c in ax.collections if isinstance(c, LineCollection)]
+    for lc in drawn:
+        for seg in lc.get_segments():
+            (x0, y0), (x1, y1) = seg
+            assert (np.isclose(x0, xe).any() and np.isclose(x1, xe).any()
+                    and np.isclose(y0, ye).any() and np.isclose(y1, ye).any())
+    labels = [t.get_text() for t in fig.legends[0].get_texts()]
+    assert sum("boundary" in lab for lab in labels) == len(drawn)
+    assert all(("MI" in lab) == (sim[ds["done"].values] == 1).any()
+               for lab in labels if lab.startswith("simulated: MI"))
+    assert "K_s = 0.01851" in ax.get_title() and "start paper" in ax.get_title()
+    assert not figure_problems(fig)
+    fig.savefig(__import__("io").BytesIO(), format="png")  # draws (the RGBA fault raised here)
+    plt.close(fig)
+
+
+def test_cell_edges_of_any_grid():
+    from scenes._plotting import cell_edges
+
+    np.testing.assert_allclose(cell_edges([1.0, 2.0, 4.0]), [0.5, 1.5, 3.0, 5.0])
+    np.testing.assert_allclose(cell_edges([2.0]), [1.9, 2.1])
+    np.testing.assert_allclose(cell_edges([0.0]), [-0.5, 0.5])
+    # a non-uniform list (--k 0.5,0.6,1.4): no cells can be centred on every value; each
+    # cell is then where its value is the nearest one (edges halfway), the value inside it
+    x = np.array([0.5, 0.6, 1.4])
+    e = cell_edges(x)
+    assert np.all((e[:-1] < x) & (x < e[1:]))
+    probe = np.linspace(e[0], e[-1], 1001)[1:-1]
+    nearest = np.argmin(np.abs(probe[:, None] - x), axis=1)
+    np.testing.assert_array_equal(np.searchsorted(e, probe) - 1, nearest)
+
+
+def test_point_figure_of_a_failed_run_says_so(tmp_path):
+    """A simulation without a linear stage and a theory without a curve leave a note on
+    point.png, never an empty axes; the title names the material."""
+    from types import SimpleNamespace
+
+    import matplotlib.image as mpimg
+
+    from numerics import Material
+    from scenes import point
+
+    Q = np.linspace(0, np.pi, 11)
+    th = {"paper NLS": {"offset": Q, "curve": np.full(Q.shape, np.nan),
+                        "reason": "g1 = 0: no NLS"},
+          "semi-discrete NLS": {"offset": Q, "curve": np.full(Q.shape, np.nan),
+                                "reason": "g1 = 0: no NLS"}}
+    args = SimpleNamespace(simulate=True, seeds=2, case="coupled", start="travelling")
+    captured = {}
+
+    def keep(fig):
+        captured["fig"] = fig
+
+    import scenes._plotting as P
+
+    old = P.plt.close
+    P.plt.close = keep
+    try:
+        point._figure(tmp_path, th, None, 1.0, args, 0.02, Material(2.0, 0.03, 0.02),
+                      "no seed had a linear stage to fit a rate over")
+    finally:
+        P.plt.close = old
+    fig = captured["fig"]
+    texts = [t.get_text() for t in fig.axes[0].texts]
+    assert any("no seed had a linear stage" in t for t in texts)
+    assert any("g1 = 0" in t for t in texts)
+    assert "K_s = 0.03" in fig.axes[0].get_title()
+    assert mpimg.imread(tmp_path / "point.png").shape[0] > 100
+    plt.close(fig)

@@ -129,10 +129,10 @@ def test_speed_is_not_asserted_but_500_q_work():
 @pytest.mark.parametrize("kw,msg", [
     (dict(k=0.0), "k must be"), (dict(k=np.nan), "k must be"), (dict(amplitude=-1), "amplitude"),
     (dict(amplitude=2.0), "amplitude"), (dict(case="shear"), "case"),
-    (dict(harmonics=0), "harmonics"), (dict(q=[np.inf]), "q must be finite"),
+    (dict(harmonics=0), "harmonics"), (dict(offset=[np.inf]), "offset must be finite"),
     (dict(modes="some"), "modes")])
 def test_bad_input(kw, msg):
-    args = dict(material=BLUE, case="coupled", k=K_BLUE, amplitude=AMP, q=[0.1])
+    args = dict(material=BLUE, case="coupled", k=K_BLUE, amplitude=AMP, offset=[0.1])
     args.update(kw)
     with pytest.raises(ValueError, match=msg):
         mi_gain(**args)

@@ -24,7 +24,7 @@ N = 500
 
 @pytest.fixture(scope="module")
 def blue_k():
-    return snap_wavenumber(paper.k("blue"), N)[0]
+    return snap_wavenumber(paper.k("blue"), N)
 
 
 @pytest.fixture(scope="module")
@@ -131,7 +131,7 @@ def test_paper_start_grows_slower_than_the_travelling_wave(blue, blue_k):
 def test_case_I_paper_start_is_nearly_the_travelling_wave(green):
     """Case I has no U: eq. `IC` launches only a small backward rotational wave (0.1% of
     the carrier at the green point), the gain moves by < 1%."""
-    k = snap_wavenumber(paper.k("green"), N)[0]
+    k = snap_wavenumber(paper.k("green"), N)
     q = np.linspace(0.01, 0.4, 30)
     trav = mi_gain(green, "rotation", k, 0.02, q, harmonics=2)
     pap = mi_gain(green, "rotation", k, 0.02, q, harmonics=2, start="paper")

@@ -36,7 +36,7 @@ def test_case_I_matches_a_dense_hill_scan():
     K, D = _grid(8)
     res = resonance_map(K, D, "rotation", paper.ALPHA, paper.K_S, 0.02)["peak_gain"]
     dense = stability_map(K, D, "rotation", paper.ALPHA, paper.K_S, 0.02,
-                          q=np.linspace(1e-3, np.pi, 2000))
+                          offset=np.linspace(1e-3, np.pi, 2000))
     assert np.array_equal(res > 0, dense > 0)
     both = dense > 0
     assert np.max(np.abs(res[both] / dense[both] - 1)) < 2e-3
@@ -49,7 +49,7 @@ def test_case_II_finds_every_band_a_dense_scan_finds():
     K, D = _grid(14)
     res = resonance_map(K, D, "coupled", paper.ALPHA, paper.K_S, 0.02)["peak_gain"]
     dense = stability_map(K, D, "coupled", paper.ALPHA, paper.K_S, 0.02,
-                          q=np.linspace(1e-3, np.pi, 800))
+                          offset=np.linspace(1e-3, np.pi, 800))
     clear = np.nan_to_num(dense) > 2 * THRESHOLD
     assert clear.sum() >= 15
     ratio = np.nan_to_num(res[clear]) / dense[clear]

@@ -181,3 +181,11 @@ def test_paper_start_unstable_where_the_travelling_wave_is_not(quick_scenes):
     assert min(abs(w1 + w2 - 2 * k), abs(w2 - w1 - 2 * k), abs(2 * np.pi - w1 - w2 - 2 * k),
                abs(w1 - w2 - 2 * k)) < 1e-3
     assert abs(starts["paper"]["measured_peak"] / starts["paper"]["predicted_peak"] - 1) < 0.05
+
+
+def test_the_static_scene_list_is_the_registry():
+    """`flexmm scene --help` names the scenes without importing them (SCENE_NAMES): the
+    list is the registry's, in its order."""
+    from scenes._registry import SCENE_NAMES
+
+    assert tuple(scenes.REGISTRY) == SCENE_NAMES

@@ -221,7 +221,8 @@ def test_cli_writes_the_stated_json(tmp_path, capsys):
     assert cli(["soliton", *MATERIAL, "--k", "0.92991", "--amplitude", "0.004", "--case",
                 "rotation", "--simulate", "--travel", "1", "--out", str(out)]) == 0
     lines = capsys.readouterr().out.strip().splitlines()
-    assert lines[-1] == f"wrote {out / 'soliton.json'}"
+    assert lines[-1] == f"wrote {out / 'soliton.json'} and {out / 'soliton.png'}"
+    assert (out / "soliton.png").stat().st_size > 10_000  # profile, kink, trajectory
     assert any("alpha = 2.5" in line for line in lines)
     data = json.loads((out / "soliton.json").read_text())
     assert data["kind"] == "bright"

@@ -21,6 +21,9 @@ Analysis      spectrum, mode, harmonic_bins, sideband_to_carrier, stability_verd
               band_summary, spectrum_growth, forced_second_harmonic,
               carrier_amplitude, carrier_frequency; the growth criterion GROWTH_THRESHOLD
               and :func:`grows_beyond_threshold`
+Verdicts      simulated_verdict -> Verdict ("MI", "no growth within T", "undetermined":
+              VERDICT_WORDS), run_length -> RunLength (T from the fastest predicted
+              rate, within T_CAP)
 Input checks  ``numerics.lattice.checks`` (the limits every layer imports), check_case,
               check_start
 """
@@ -42,9 +45,11 @@ from ._baseline import numpy_accel, numpy_rk4
 from ._kernels import FASTMATH, accel, sincos_vers, site_acceleration
 from ._model import (CASES, LatticeState, Material, check_case, discrete_omega_longitudinal,
                      discrete_omega_rotation, energy)
-from ._simulate import (Run, initial_condition, noise_field, resume, simulate,
+from ._simulate import (RUN_REL_TOL, Run, initial_condition, noise_field, resume, simulate,
                         snap_wavenumber)
 from ._starts import STARTS, check_start, paper_start_undefined, register_start
+from ._verdict import (DECIDE_E_FOLDINGS, T_CAP, VERDICT_WORDS, RunLength, Verdict,
+                       run_length, simulated_verdict)
 from ._version import SIMULATOR_VERSION, source_hash
 
 __all__ = [
@@ -62,5 +67,6 @@ __all__ = [
     "Stepper", "blowup_message", "check_time", "check_case", "check_start",
     "dominant_frequency", "ERROR_CONSTANTS", "STABILITY_MARGIN", "FASTMATH", "sincos_vers",
     "site_acceleration", "accel", "numpy_accel", "numpy_rk4", "U_REFERENCE",
-    "shortest_run", "shortest_run_error",
+    "shortest_run", "shortest_run_error", "RUN_REL_TOL", "VERDICT_WORDS", "Verdict",
+    "simulated_verdict", "RunLength", "run_length", "T_CAP", "DECIDE_E_FOLDINGS",
 ]

@@ -71,6 +71,49 @@ class Run:
                 f"energy_error={self.energy_error:.1e}"
                 f"{'' if self.completed else ', completed=False'})")
 
+    def to_xarray(self):
+        """The run as an ``xarray.Dataset``: ``theta``, ``U`` over (t, site) and/or
+        ``theta_hat``, ``U_hat`` over (t, wavenumber), ``energy`` over t, with units in
+        the variables' attrs and every input (material, case, k, amplitude, start, noise,
+        seed, method, dt) in the dataset's attrs. ``ds.to_netcdf(path)`` or
+        ``ds.to_zarr(path)`` stores it.
+
+        Returns
+        -------
+        xarray.Dataset
+        """
+        import xarray as xr
+
+        data = {"energy": ("t", self.energy, {"long_name": "total energy (eq. `norm`)",
+                                             "units": "lattice units"})}
+        for name, v, dims, what in (("theta", self.theta, ("t", "site"), "rotation"),
+                                    ("U", self.U, ("t", "site"), "longitudinal displacement"),
+                                    ("theta_hat", self.theta_hat, ("t", "wavenumber"),
+                                     "|rfft(theta)| 2/N"),
+                                    ("U_hat", self.U_hat, ("t", "wavenumber"),
+                                     "|rfft(U)| 2/N")):
+            if v is not None:
+                data[name] = (dims, np.asarray(v), {
+                    "long_name": what, "units": "rad" if name.startswith("theta")
+                    else "lattice spacing a"})
+        coords = {"t": ("t", self.t, {"long_name": "time T = t sqrt(k_l/m)",
+                                      "units": "lattice time"})}
+        if self.theta is not None or self.U is not None:
+            coords["site"] = ("site", np.arange(self.N), {"long_name": "site n"})
+        if self.theta_hat is not None or self.U_hat is not None:
+            coords["wavenumber"] = ("wavenumber", self.wavenumbers,
+                                    {"long_name": "wavenumber q (absolute)",
+                                     "units": "rad per site"})
+        m = self.material
+        attrs = {"alpha": m.alpha, "K_s": m.K_s, "K_theta": m.K_theta, "case": self.case,
+                 "N": self.N, "k": self.k, "m": self.m, "k_requested": self.k_requested,
+                 "amplitude": self.amplitude, "noise": self.noise, "seed": self.seed,
+                 "method": self.method, "dt": self.dt, "t_end": self.t_end,
+                 "save_every": self.save_every, "store": self.store, "start": self.start,
+                 "completed": int(self.completed), "units": "lattice units: T = t sqrt(k_l/m), "
+                 "wavenumbers in rad per site, rotations in rad"}
+        return xr.Dataset(data, coords=coords, attrs=attrs)
+
     @property
     def wavenumbers(self) -> np.ndarray:
         """q of the spectrum columns, rad per site."""

@@ -33,11 +33,58 @@ def _check_sites(N):
     return checks.integer("N", N, 3, 10**8 + 1)
 
 
-def snap_wavenumber(k: float, N: int, rel_tol: float = 1e-3):
-    """Nearest periodic wavenumber 2 pi m / N to k; ValueError if further than rel_tol."""
-    k = checks.real("k", k, 0.0, math.pi)
-    N = _check_sites(N)
-    rel_tol = checks.real("rel_tol", rel_tol, 0.0, None, low_open=False, finite=False)
+#: simulate() and a map cell refuse a k further than this (relative) from 2 pi m / N
+RUN_REL_TOL = 1e-3
+
+
+def snap_wavenumber(k: float, N: int, *, rel_tol: float | None = None,
+                    return_index: bool = False):
+    """The periodic wavenumber 2 pi m / N nearest to k, on a chain of N sites.
+
+    Parameters
+    ----------
+    k : float
+        Wavenumber (rad per site), in (0, pi).
+    N : int
+        Sites of the periodic chain (>= 2).
+    rel_tol : float, optional
+        Strictness: raise ValueError when the nearest 2 pi m / N is further than
+        ``rel_tol * k`` from k. None (default): always snap.
+    return_index : bool, optional
+        Also return the mode number m (as ``numpy.unique``'s ``return_index``).
+
+    Returns
+    -------
+    k_snapped : float
+        2 pi m / N.
+    m : int
+        The mode number, only when ``return_index`` is True.
+
+    Raises
+    ------
+    ValueError
+        k outside (0, pi), k that snaps to 0 or to pi (no sidebands there), or, with
+        ``rel_tol``, further from 2 pi m / N than it allows.
+
+    Examples
+    --------
+    >>> snap_wavenumber(0.8, 500)
+    0.8042477193189871
+    >>> snap_wavenumber(0.8, 500, return_index=True)
+    (0.8042477193189871, 64)
+    """
+    if isinstance(k, (bool, np.bool_)) or not isinstance(k, numbers.Real):
+        raise TypeError(f"k must be a real number, got {type(k).__name__} {k!r}")
+    if isinstance(N, (bool, np.bool_)) or not isinstance(N, numbers.Integral):
+        raise TypeError(f"N must be an integer number of sites, got {type(N).__name__} {N!r}")
+    N = int(N)
+    if N < 2:
+        raise ValueError(f"N must be >= 2 sites, got {N}")
+    k = float(k)
+    if not math.isfinite(k) or k <= 0 or k >= math.pi:
+        raise ValueError(f"k must be in (0, {math.pi:g}), got {k!r}")
+    if rel_tol is not None and not rel_tol >= 0:  # NaN too: it would turn the check off
+        raise ValueError(f"rel_tol must be >= 0 or None, got {rel_tol!r}")
     m = int(round(k * N / (2 * math.pi)))
     ks = 2 * math.pi * m / N
     if m == 0:
@@ -53,12 +100,12 @@ def snap_wavenumber(k: float, N: int, rel_tol: float = 1e-3):
             + (f", or more sites (N >= {need})" if need <= 10**6 else
                f" (k is within {math.pi - k:.2g} of pi: no chain of up to 10^6 sites "
                "carries it)"))
-    if abs(ks - k) > rel_tol * k:
+    if rel_tol is not None and abs(ks - k) > rel_tol * k:
         raise ValueError(
             f"k = {k} is not commensurate with N = {N} periodic sites: the nearest "
             f"2 pi m / N is {ks:.6g} (m = {m}), {abs(ks - k) / k:.2e} away (> {rel_tol:g} "
-            f"relative); choose k = 2 pi m / N")
-    return ks, m
+            f"relative); choose k = 2 pi m / N (snap_wavenumber(k, N) gives it)")
+    return (ks, m) if return_index else ks
 
 
 def _amplitude(amplitude, eps, A0) -> float:
@@ -197,7 +244,7 @@ def simulate(material: Material, case: str, N: int, k: float,
     N = _check_sites(N)
     start = _start(start, omega_model)
     amplitude = _amplitude(amplitude, eps, A0)
-    ks, mode = snap_wavenumber(k, N)
+    ks, mode = snap_wavenumber(k, N, rel_tol=RUN_REL_TOL, return_index=True)
     if initial is None:
         state = initial_condition(material, case, N, ks, amplitude, noise, seed, start)
     else:

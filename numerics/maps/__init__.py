@@ -16,6 +16,8 @@ Maps by sim.     MapParameters (what defines a map), parse_spec (``v1,v2`` or
 Their parts      cell_records, predict_cell, GROWTH_TOL, GROWTH_ERROR_CONSTANTS (a cell's
                  step accuracy), tri_state (gains -> verdicts), store_lock (one writer),
                  cells_done (what a store holds)
+Run time         estimate_map -> MapEstimate (start-up + cells at this machine's measured
+                 speed, machine_speed, cached), slowed by the load average
 """
 
 from ..theory import resonance_map  # the exact-map engine lives with the theory
@@ -59,4 +61,6 @@ __all__ = [
     "offset_curve", "fold", "snap_carrier", "MAX_SEEDS", "MAX_T_END",
     "cell_records", "predict_cell", "GROWTH_TOL", "GROWTH_ERROR_CONSTANTS", "tri_state",
     "store_lock", "cells_done",
+    "simulate_block", "CRITERION", "MapCellError", "local_cores", "MapEstimate",
+    "estimate_map", "machine_speed",
 ]

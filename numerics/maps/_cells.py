@@ -27,6 +27,7 @@ import numpy as np
 
 from ..lattice import (
     GROWTH_THRESHOLD,
+    RUN_REL_TOL,
     U_REFERENCE,
     BlowUpError,
     Material,
@@ -148,7 +149,7 @@ def cell_records(material: Material, case: str, k: float, N: int, t_end: float,
     """The spectrum records of a cell's run (what :func:`simulate_cell` measures): t,
     theta_hat, U_hat (None in case "rotation") up to the early stop (or record
     ``stop_at``), the carrier bin m and k, the method and step used."""
-    ks, m = snap_wavenumber(k, N)
+    ks, m = snap_wavenumber(k, N, rel_tol=RUN_REL_TOL, return_index=True)
     state = initial_condition(material, case, N, ks, amplitude, noise, seed, start)
     if dt is None:
         method, dt = cell_step(state, material, case, t_end, growth_tol,

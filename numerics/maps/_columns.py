@@ -155,7 +155,7 @@ def theory_columns(params: MapParameters) -> dict:
                 amplitude=params.amplitude, K_theta=Kt)
     # any growing Hill mode of the travelling wave, in both cases, as the column is defined
     # (case I copied `exact`, which for --start paper is another state's sideband theory)
-    gains["exact_all"] = stability_map(K, q=EXACT_OFFSETS, modes="all", **grid)
+    gains["exact_all"] = stability_map(K, offset=EXACT_OFFSETS, modes="all", **grid)
     if params.start == "paper":
         # the exact theory of the state the map's runs start in: eq. `IC`'s launched state
         # (its free U waves pump bands of their own in case II), sampling-independent
@@ -163,7 +163,7 @@ def theory_columns(params: MapParameters) -> dict:
 
         gains["exact"] = resonance_map(K, start="paper", **grid)["peak_gain"]
     else:
-        gains["exact"] = stability_map(K, q=EXACT_OFFSETS, **grid)
+        gains["exact"] = stability_map(K, offset=EXACT_OFFSETS, **grid)
     out = {}
     for name, gain in gains.items():
         out[f"verdict_{name}"] = tri_state(gain, params.t_end)

@@ -128,17 +128,40 @@ def nls_summary(material: Material, case: str, k: float, eps: float | None = Non
     return out
 
 
-def theory_gain(theory: str, material: Material, case: str, k: float, q_offset,
-                eps: float | None = None, A0: float | None = None, *,
-                amplitude: float | None = None) -> np.ndarray:
-    """sigma(q) of one theory at offsets ``q_offset`` from the carrier (lattice units).
+def theory_gain(theory: str, material: Material, case: str, k: float,
+                amplitude: float | None = None, offset=None, *, eps: float | None = None,
+                A0: float | None = None) -> np.ndarray:
+    """sigma at sideband offsets ``offset`` from the carrier, by one theory (lattice units).
 
-    The plane wave has peak rotation ``amplitude`` = 2 eps A0 (eq. `IC`): give either.
+    The argument order of :func:`mi_gain` (material, case, k, amplitude, offset), the
+    theory's name first.
+
+    Parameters
+    ----------
+    theory : str
+        One of ``THEORIES`` ("paper NLS", "semi-discrete NLS", "exact lattice") or
+        ``PAPER_START``.
+    material : Material
+    case : {"rotation", "coupled"}
+    k : float
+        Carrier wavenumber, rad per site.
+    amplitude : float
+        Peak rotation of the plane wave, rad (2 eps A0, eq. `IC`). Or give the paper's
+        ``eps`` and ``A0`` (keywords) instead.
+    offset : array_like
+        Sideband offsets q = |sideband - k|, rad per site.
+
+    Returns
+    -------
+    ndarray, same shape as offset
+        sigma (1/T); NaN where an NLS has no verdict at k (:func:`nls_undefined`).
     """
+    if offset is None:
+        raise TypeError("theory_gain needs offset= (the sideband offsets, rad per site)")
     checks.instance("material", material, Material)
     check_case(case)
     k = checks.real("k", k, 0.0, np.pi)
-    q_offset = checks.finite_array("q_offset", q_offset)
+    q_offset = checks.finite_array("offset", offset)
     eps, A0 = _eps_A0(eps, A0, amplitude)
     if theory == "exact lattice":
         return mi_gain(material, case, k, 2 * eps * A0, q_offset)

@@ -20,7 +20,6 @@ from __future__ import annotations
 
 import functools
 
-import dask
 import numpy as np
 
 from common.threads import one_blas_thread
@@ -134,7 +133,7 @@ def _check_wave(wave, material, case, k, amplitude, H):
 
 
 @one_blas_thread
-def mi_gain(material: Material, case: str, k: float, amplitude: float, q,
+def mi_gain(material: Material, case: str, k: float, amplitude: float, offset,
             harmonics: int = HARMONICS, wave: PlaneWave | None = None,
             modes: str = "sidebands", start: str = "travelling") -> np.ndarray:
     """Exact linear growth rate of the sidebands k + q and k - q of a lattice plane wave.
@@ -147,8 +146,8 @@ def mi_gain(material: Material, case: str, k: float, amplitude: float, q,
         Carrier wavenumber (rad per site).
     amplitude : float
         Peak rotation of the carrier, rad (2 eps A0 in the paper's eq. `IC`).
-    q : array_like
-        Sideband offsets, rad per site.
+    offset : array_like
+        Sideband offsets q = |sideband - k|, rad per site (not absolute wavenumbers).
     harmonics : int
         Truncation H: the wave keeps theta harmonics 1, 3, .., 2H - 1 and U harmonics
         2, .., 2H; the Hill matrix keeps theta harmonics |p| <= 2H - 1 and U harmonics
@@ -171,15 +170,15 @@ def mi_gain(material: Material, case: str, k: float, amplitude: float, q,
 
     Returns
     -------
-    ndarray, same shape as q
+    ndarray, same shape as offset
         sigma(q) = max Re lambda >= 0, per unit of lattice time T. No long-wave or weak-
         modulation approximation: the truncation is the only one.
     """
     k, amplitude = _check(material, case, k, amplitude)
     H = _check_harmonics(harmonics)
-    q_arr = checks.real_array("q", q)
+    q_arr = checks.real_array("offset", offset)
     if not np.all(np.isfinite(q_arr)):
-        raise ValueError("q must be finite")
+        raise ValueError("offset must be finite")
     checks.choice("start", start, STARTS)
     if start != "travelling":
         if wave is not None:
@@ -253,7 +252,7 @@ def map_grid(k, delta, case, alpha, K_s, amplitude, material=None, K_theta=None,
 
 @one_blas_thread
 def stability_map(k, delta=None, case: str | None = None, alpha: float | None = None,
-                  K_s: float | None = None, amplitude: float | None = None, q=None,
+                  K_s: float | None = None, amplitude: float | None = None, offset=None,
                   harmonics: int = 1, chunk: int = 2000, modes: str = "sidebands", *,
                   material: Material | None = None, K_theta=None):
     """Peak sideband growth rate max_q sigma(q) over a grid of (k, delta), batched.
@@ -270,8 +269,8 @@ def stability_map(k, delta=None, case: str | None = None, alpha: float | None = 
     K_theta : array_like, optional
         The grid's second axis as K_theta itself instead of delta (keyword; no K_s - delta
         round trip): give delta or K_theta.
-    q : array_like, optional
-        Offsets searched (default 20 values in (0, 1.5]: at amplitude 0.02 every
+    offset : array_like, optional
+        Sideband offsets searched (default 20 values in (0, 1.5]: at amplitude 0.02 every
         sideband band of the paper's parameter range lies inside).
     harmonics : int
         Truncation H (default 1: theta at k +- q, U at 0 and +-2: the mean flow and the
@@ -285,9 +284,9 @@ def stability_map(k, delta=None, case: str | None = None, alpha: float | None = 
         Peak growth rate; 0 where the plane wave is stable (to the q grid).
     """
     chunk = checks.integer("chunk", chunk, 1)
-    q = MAP_OFFSETS if q is None else checks.real_array("q", q).ravel()
+    q = MAP_OFFSETS if offset is None else checks.real_array("offset", offset).ravel()
     if q.size == 0 or not np.all(np.isfinite(q)):
-        raise ValueError(f"q must hold at least one finite offset, got {q.size} values"
+        raise ValueError(f"offset must hold at least one finite offset, got {q.size} values"
                          + ("" if q.size == 0 else " with a non-finite one"))
     H = _check_harmonics(harmonics)
     checks.choice("modes", modes, ("sidebands", "all"))
@@ -296,6 +295,8 @@ def stability_map(k, delta=None, case: str | None = None, alpha: float | None = 
     kf, Ktf = k.ravel(), K_theta.ravel()
     out = np.zeros(kf.size)
     starts = range(0, kf.size, chunk)
+    import dask  # here: importing the theory (`flexmm coefficients`) needs no Dask
+
     tasks = [dask.delayed(_stability_chunk)(kf[s:s + chunk], Ktf[s:s + chunk], float(alpha),
                                             float(K_s), float(amplitude), q, H,
                                             case == "coupled", modes) for s in starts]
@@ -339,7 +340,7 @@ FREE_ORDER = 1
 
 
 @one_blas_thread
-def gain_spectrum(material: Material, case: str, k: float, amplitude: float, q,
+def gain_spectrum(material: Material, case: str, k: float, amplitude: float, offset,
                   start: str = "travelling", modes: str = "sidebands",
                   harmonics: int = HARMONICS, free_order: int = FREE_ORDER) -> GainSpectrum:
     """Growth rate per Bloch offset q, and which field and wavenumber grow.
@@ -361,9 +362,9 @@ def gain_spectrum(material: Material, case: str, k: float, amplitude: float, q,
     # the Hill matrices grow as (2 free_order + 1)^(free phases): 4 is already far beyond
     # the converged 1 (the peak gain changes by < 1e-7 from 1 to 2)
     free_order = checks.integer("free_order", free_order, 0, 5)
-    q = checks.real_array("q", q).ravel()
+    q = checks.real_array("offset", offset).ravel()
     if not np.all(np.isfinite(q)):
-        raise ValueError("q must be finite")
+        raise ValueError("offset must be finite")
     if start == "travelling":
         tor, R = torus_of_wave(plane_wave(material, case, k, amplitude, H)), 0
     else:

@@ -49,8 +49,8 @@ class GainSpectrum:
 
     Attributes
     ----------
-    q : ndarray, shape (nq,)
-        Offsets from the carrier (rad per site); the sidebands are k + q and k - q.
+    offset : ndarray, shape (nq,)
+        Sideband offsets from the carrier (rad per site); the sidebands are k +- offset.
     sigma : ndarray, shape (nq,)
         Largest growth rate (1/T) of the modes selected (``modes``), 0 where none grows.
     field : ndarray of str, shape (nq,)
@@ -65,13 +65,45 @@ class GainSpectrum:
     start : str
     """
 
-    q: np.ndarray
+    offset: np.ndarray
     sigma: np.ndarray
     field: np.ndarray
     wavenumber: np.ndarray
     frequency: np.ndarray
     sideband: np.ndarray
     start: str
+
+    def to_xarray(self, **inputs):
+        """The spectrum as an ``xarray.Dataset`` over ``offset``, units in the variables'
+        attrs; ``inputs`` (material, case, k, amplitude: what it was computed for) go
+        into the attrs (a Material as alpha, K_s, K_theta).
+
+        Returns
+        -------
+        xarray.Dataset
+        """
+        import xarray as xr
+
+        attrs = {"start": self.start}
+        for key, v in inputs.items():
+            if hasattr(v, "alpha") and hasattr(v, "K_theta"):
+                attrs.update(alpha=v.alpha, K_s=v.K_s, K_theta=v.K_theta)
+            else:
+                attrs[key] = v
+        return xr.Dataset(
+            {"sigma": ("offset", self.sigma, {"long_name": "growth rate",
+                                              "units": "1/T (lattice time)"}),
+             "field": ("offset", self.field.astype(str), {"long_name": "field that grows"}),
+             "wavenumber": ("offset", self.wavenumber,
+                            {"long_name": "dominant wavenumber of the growing mode "
+                                          "(absolute, folded into [0, pi])",
+                             "units": "rad per site"}),
+             "frequency": ("offset", self.frequency, {"long_name": "its lab frequency",
+                                                      "units": "1/T"}),
+             "sideband": ("offset", self.sideband, {"long_name": "an MI (sideband) mode"})},
+            coords={"offset": ("offset", self.offset,
+                               {"long_name": "sideband offset from the carrier k",
+                                "units": "rad per site"})}, attrs=attrs)
 
 
 def _multi_indices(R, d):

@@ -36,7 +36,6 @@ growth factor is then an upper bound of what a saturating run shows (``linear`` 
 from __future__ import annotations
 
 import dataclasses
-import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -253,7 +252,7 @@ def predict_growth(material: Material, case: str, k: float, amplitude: float = 0
     draws = checks.integer("draws", draws, 0, 10**4)
     free_order = checks.integer("free_order", free_order, 0, 3)
     H = _check_harmonics(harmonics)
-    k_run, m0 = snap_wavenumber(k, N, rel_tol=math.inf)
+    k_run, m0 = snap_wavenumber(k, N, return_index=True)
     if 2 * m0 >= N:
         raise ValueError(f"k = {k:g} snaps to pi on N = {N} sites: no sidebands")
     # the state the run starts in (imported here: _launched imports _hill's torus cache)
