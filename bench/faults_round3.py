@@ -59,13 +59,14 @@ def _gain(k, q=(0.12,), theory="semi-discrete NLS", **kw):
     from numerics import Material, theory_gain
 
     kw = kw or {"amplitude": 0.015}
-    return theory_gain(theory, Material(3.1, 0.024, 0.0205), "coupled", k, list(q), **kw)
+    return theory_gain(theory, Material(3.1, 0.024, 0.0205), "coupled", k, offset=list(q),
+                       **kw)
 
 
 def _snap(k=1.1, N=120, rel_tol=1e-3):
     from numerics import snap_wavenumber
 
-    return snap_wavenumber(k, N, rel_tol)
+    return snap_wavenumber(k, N, rel_tol=rel_tol)
 
 
 def _generated(name, *args):
@@ -172,8 +173,8 @@ def _public_k_functions():
         "mi_gain": lambda k: nm.mi_gain(mat, "coupled", k, 0.015, [0.1]),
         "plane_wave": lambda k: nm.plane_wave(mat, "coupled", k, 0.015),
         "nls_summary": lambda k: nm.nls_summary(mat, "coupled", k, amplitude=0.015),
-        "theory_gain": lambda k: nm.theory_gain("paper NLS", mat, "coupled", k, [0.1],
-                                                amplitude=0.015),
+        "theory_gain": lambda k: nm.theory_gain("paper NLS", mat, "coupled", k,
+                                                offset=[0.1], amplitude=0.015),
         "snap_wavenumber": lambda k: nm.snap_wavenumber(k, 120),
         "predict_growth": lambda k: nm.predict_growth(mat, "coupled", k, 0.015, N=120,
                                                       t_end=800.0),
@@ -267,13 +268,13 @@ ROUND3 += [
     ("theory_gain: k 1.1+0j", lambda: _gain(1.1 + 0j), (E, TypeError, r"k must be a real")),
     ("theory_gain: k '1.1'", lambda: _gain("1.1"), (E, TypeError, r"k must be a real")),
     ("theory_gain: q_offset holds inf", lambda: _gain(1.1, (0.1, math.inf)),
-     (E, ValueError, r"q_offset must hold finite")),
+     (E, ValueError, r"offset must hold finite")),
     ("theory_gain: q_offset complex", lambda: _gain(1.1, (0.1j,)),
-     (E, TypeError, r"q_offset must hold real")),
+     (E, TypeError, r"offset must hold real")),
     ("theory_gain: eps -0.01", lambda: _gain(1.1, eps=-0.01, A0=1.0),
      (E, ValueError, r"eps must be finite and > 0")),
     ("theory_gain: material a str", lambda: __import__("numerics").theory_gain(
-        "paper NLS", "blue", "coupled", 1.1, [0.1], amplitude=0.015),
+        "paper NLS", "blue", "coupled", 1.1, offset=[0.1], amplitude=0.015),
      (E, TypeError, r"material must be a Material")),
     ("snap_wavenumber: N 0", lambda: _snap(N=0), (E, ValueError, r"N must be an integer in")),
     ("snap_wavenumber: N -64", lambda: _snap(N=-64), (E, ValueError, r"N must be an integer")),

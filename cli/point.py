@@ -14,7 +14,13 @@ from common.files import write_text
 from common.output import prepare_output, strict_json
 from common.paper import EPS
 from numerics import Material
-from numerics.lattice import GROWTH_THRESHOLD, checks, grows_beyond_threshold, paper_start_undefined
+from numerics.lattice import (
+    DECIDE_E_FOLDINGS,
+    GROWTH_THRESHOLD,
+    checks,
+    grows_beyond_threshold,
+    paper_start_undefined,
+)
 from numerics.maps import MAX_SEEDS, MAX_T_END, fold, measure_point, snap_carrier
 from numerics.theory import (
     EXACT_LATTICE,
@@ -98,14 +104,14 @@ def _log_header(log, args, mat, units, k, m, amplitude):
 
 
 def _rows(res) -> list:
-    """The table's rows (theory, verdict, peak gain, its offset, half-gain edge); with a
-    simulation the theories' verdicts answer its question, and its own row comes last."""
-    rows = [(n, t.get("verdict_within_t_end", t["verdict"]), t["peak_gain"], t["peak_offset"],
+    """The table's rows (theory, verdict, peak gain, its offset, half-gain edge); the
+    theories keep their physical verdict, a simulation's row comes last."""
+    rows = [(n, t["verdict"], t["peak_gain"], t["peak_offset"],
              t["band_edge"]) for n, t in res.theories.items()]
     sim = res.simulated
     if sim is not None:
         rows.append((f"simulated ({sim['seeds']} seeds, N = {res.N}, T = {res.t_end:g}, "
-                     f"{sim['method']} dt = {sim['dt']:.3g})", sim["verdict"],
+                     f"{sim['method']} dt = {sim['dt']:.3g})", sim["word"],
                      sim["peak_gain"], sim["peak_offset"], sim["band_edge"]))
     return rows
 
@@ -138,15 +144,25 @@ def _log_growth(log, res):
             "exact_all column counts every mode")
 
 
-def _log_verdicts(log, res):
+def _log_verdicts(log, res, args):
+    log("verdicts: a theory's MI = the plane wave is unstable (peak gain > 0, however "
+        "slow); a run's: MI (grew more than "
+        f"{GROWTH_THRESHOLD:g}x), no growth within T, or undetermined")
     if res.simulated is not None:
-        log(f"verdicts: MI = grows more than {GROWTH_THRESHOLD:g}x within T = {res.t_end:g} "
-            f"(theories: exp(peak gain x T); simulated: measured growth "
-            + ", ".join(f"{g['growth']:.3g}x" for g in res.growths) + ")")
-    else:
-        log("verdicts: MI = the plane wave is unstable (peak gain > 0, however slow); with "
-            f"--simulate they answer the run's question instead: grows more than "
-            f"{GROWTH_THRESHOLD:g}x within T = {res.t_end:g}")
+        log(f"grows more than {GROWTH_THRESHOLD:g}x within T = {res.t_end:g} (theories: "
+            "exp(peak gain x T)): " + ", ".join(
+                f"{n} {'yes' if t['grows_beyond_threshold_within_t_end'] else 'no'}"
+                for n, t in res.theories.items()
+                if t.get("grows_beyond_threshold_within_t_end") is not None)
+            + "; measured " + ", ".join(f"{g['growth']:.3g}x" for g in res.growths))
+    length = res.length
+    if length.capped and not args.t_end:
+        log(f"note: {length.note()} decide (the cap T = {length.cap:g} keeps a point "
+            "within about a minute)")
+    elif args.t_end and length.rate * res.t_end < DECIDE_E_FOLDINGS:
+        log(f"note: --t-end {res.t_end:g} holds {length.rate * res.t_end:.2g} e-foldings of "
+            f"the fastest predicted rate {length.rate:.4g} /T; {DECIDE_E_FOLDINGS:g} decide: "
+            f"--t-end {length.decides_at:g} would")
 
 
 def _log_fastest(log, rows, k, units):
@@ -182,18 +198,21 @@ def run_point(args, log=print) -> dict:
     rows = _rows(res)
     log("")
     _log_growth(log, res)
-    _log_verdicts(log, res)
+    _log_verdicts(log, res, args)
     log(_table(rows, units))
     for n, t in res.theories.items():
         if "reason" in t:
             log(f"{n}: {t['reason']}")
+    if res.simulated is not None:
+        log(f"simulated verdict: {res.simulated['text']}")
     if res.simulated is not None and "no_rate" in res.simulated:
         log(f"simulated: {res.simulated['no_rate']}")
     _log_fastest(log, rows, k, units)
     if args.out:
         out = Path(args.out)
         out.mkdir(parents=True, exist_ok=True)
-        _figure(out, res.theories, res.measured, k, args, amplitude)
+        _figure(out, res.theories, res.measured, k, args, amplitude, mat,
+                (res.simulated or {}).get("no_rate"))
         write_text(out / "point.json", json.dumps(strict_json(result), indent=2) + "\n")
         log(f"wrote {out / 'point.json'} and {out / 'point.png'}")
     return result
@@ -211,7 +230,7 @@ def _table(rows, units=None) -> str:
     return "\n".join(lines)
 
 
-def _figure(out, th, meas, k, args, amplitude):
+def _figure(out, th, meas, k, args, amplitude, mat=None, no_rate=None):
     from common.files import atomic_write
     from scenes import plt
 
@@ -228,16 +247,26 @@ def _figure(out, th, meas, k, args, amplitude):
     if meas:
         tops.append(float(np.max(meas["sigma"])))
     top = max([v for v in tops if np.isfinite(v)], default=0.0)
-    if top <= 0:  # nothing grows: say so instead of an empty plot on a 1e-12 axis
-        ax.set_ylim(-1, 1)
-        ax.text(0.5, 0.6, "stable: no growing sideband in any theory" +
-                (" or the simulation" if meas else ""), transform=ax.transAxes,
-                ha="center", fontsize=10)
-    else:
+    # what is missing is said on the figure, never an empty axes (a failed run, no theory)
+    missing = [f"simulated: {no_rate}"] if args.simulate and not meas and no_rate else []
+    missing += [f"{n}: {t['reason']}" for n, t in th.items()
+                if "reason" in t and not np.any(np.isfinite(t["curve"]))]
+    if missing:
+        ax.text(0.02, 0.97, "\n".join(missing), transform=ax.transAxes, va="top",
+                fontsize=7, wrap=True, bbox=dict(facecolor="w", edgecolor="0.7"))
+    if top > 0:
         ax.set_ylim(-0.1 * top, 1.4 * top)
+    else:  # nothing grows: say so instead of an empty plot on a 1e-12 axis
+        ax.set_ylim(-1, 1)
+        if meas or any(np.any(np.isfinite(t["curve"])) for t in th.values()):
+            ax.text(0.5, 0.6, "stable: no growing sideband in any theory" +
+                    (" or the simulation" if meas else ""), transform=ax.transAxes,
+                    ha="center", fontsize=10)
     ax.set_xlabel(r"sideband offset $Q = |q - k|$ (rad/site): sidebands at $k \pm Q$")
     ax.set_ylabel(r"growth rate $\sigma$ (1/T)")
-    ax.set_title(f"case {args.case}, $k$ = {k:.4g}, amplitude {amplitude:g} rad, "
+    ax.set_title((f"alpha = {mat.alpha:g}, K_s = {mat.K_s:g}, K_theta = {mat.K_theta:g}; "
+                  if mat is not None else "")
+                 + f"case {args.case}\n$k$ = {k:.4g}, amplitude {amplitude:g} rad, "
                  f"start {args.start}", fontsize=9)
     ax.legend(fontsize=7)
     with atomic_write(out / "point.png", mode=None) as tmp:

@@ -110,8 +110,7 @@ def run_soliton(args, log=print) -> dict:
     if args.out:
         out = Path(args.out)
         out.mkdir(parents=True, exist_ok=True)
-        write_text(out / "soliton.json", json.dumps(strict_json(result), indent=2) + "
-")
+        write_text(out / "soliton.json", json.dumps(strict_json(result), indent=2) + "\n")
         _figure(out / "soliton.png", sol, run)
         log(f"wrote {out / 'soliton.json'} and {out / 'soliton.png'}")
     return result
@@ -120,7 +119,6 @@ def run_soliton(args, log=print) -> dict:
 def _figure(path, sol, run):
     """soliton.png: profile, kink and trajectory against the prediction."""
     from common.files import atomic_write
-
     from scenes import plt, soliton_figure
 
     fig = soliton_figure(sol, run)

@@ -11,6 +11,7 @@ keeping what was computed.
 from __future__ import annotations
 
 import math
+import numbers
 
 import numpy as np
 
@@ -46,7 +47,7 @@ def snap_wavenumber(k: float, N: int, *, rel_tol: float | None = None,
     k : float
         Wavenumber (rad per site), in (0, pi).
     N : int
-        Sites of the periodic chain (>= 2).
+        Sites of the periodic chain (>= 3).
     rel_tol : float, optional
         Strictness: raise ValueError when the nearest 2 pi m / N is further than
         ``rel_tol * k`` from k. None (default): always snap.
@@ -75,11 +76,7 @@ def snap_wavenumber(k: float, N: int, *, rel_tol: float | None = None,
     """
     if isinstance(k, (bool, np.bool_)) or not isinstance(k, numbers.Real):
         raise TypeError(f"k must be a real number, got {type(k).__name__} {k!r}")
-    if isinstance(N, (bool, np.bool_)) or not isinstance(N, numbers.Integral):
-        raise TypeError(f"N must be an integer number of sites, got {type(N).__name__} {N!r}")
-    N = int(N)
-    if N < 2:
-        raise ValueError(f"N must be >= 2 sites, got {N}")
+    N = _check_sites(N)
     k = float(k)
     if not math.isfinite(k) or k <= 0 or k >= math.pi:
         raise ValueError(f"k must be in (0, {math.pi:g}), got {k!r}")

@@ -24,7 +24,9 @@ from ..lattice import (
     grows_beyond_threshold,
     initial_condition,
     paper_start_undefined,
+    run_length,
     shortest_run_error,
+    simulated_verdict,
     snap_wavenumber,
 )
 from ..lattice import simulate as simulate_chain
@@ -34,14 +36,13 @@ from ..theory import (
     PAPER_START,
     THEORIES,
     measure_gain,
-    measurement_length,
     nls_coefficients,
     nls_undefined,
     predict_growth,
     resonance_map,
     theory_gain,
 )
-from ._cells import cell_step, growth_of, seed_majority
+from ._cells import cell_step, growth_of
 
 #: sideband offsets Q = |q - k| searched for the theories' bands (lattice units): the
 #: whole zone, as the map searches it (sidebands k + Q beyond pi fold back, k - Q below 0
@@ -80,7 +81,7 @@ class PointResult:
     semidiscrete_nls : dict     omega, v_g, g1, g2, g of the semi-discrete NLS at k
     theories : dict             {theory: offset, q, curve (ndarray, shape (nQ,)), verdict,
                                 peak_gain, peak_offset, band_edge[, reason][,
-                                verdict_within_t_end]}
+                                grows_beyond_threshold_within_t_end]}
     predicted : dict            the growth factor per seed from the linear response of
                                 each seed's initial state, its verdict (or the reason none)
     simulated : dict or None    the measured verdict, band and sigma(q) (``simulate=True``)
@@ -89,6 +90,7 @@ class PointResult:
     prediction : GrowthPrediction or None
     measured : dict or None     ``measure_gain``'s sigma(q), with sigma_by_offset
     growths : list of dict      each seed's growth factor, field and wavenumber
+    length : RunLength          how T was chosen from the fastest predicted rate
     """
 
     material: Material
@@ -110,6 +112,7 @@ class PointResult:
     prediction: object = field(default=None, metadata={"json": False})
     measured: dict | None = field(default=None, metadata={"json": False})
     growths: list | None = field(default=None, metadata={"json": False})
+    length: object = field(default=None, metadata={"json": False})
 
     def as_dict(self, units: dict | None = None) -> dict:
         """The JSON fields in order (arrays as lists, ``simulated`` only when simulated),
@@ -186,7 +189,7 @@ def theory_curves(material, case, k, amplitude, start="travelling") -> dict:
             Q = Q_GRID if th != PAPER_START else _start_grid(material, case, k, amplitude)
             q = fold(k + Q)  # the upper sideband's wavenumber (k + Q beyond pi folds)
             with np.errstate(all="ignore"):
-                curve = theory_gain(th, material, case, k, Q, EPS, A0)
+                curve = theory_gain(th, material, case, k, offset=Q, eps=EPS, A0=A0)
         except ArithmeticError as exc:  # no plane wave (a resonance): say so, no verdict
             out[th] = _undefined(Q, q, np.full(q.shape, np.nan), f"no plane wave: {exc}")
             continue
@@ -206,7 +209,7 @@ def snap_carrier(k_requested: float, N: int, names=("k", "N")):
     ``names`` are the ones an error message gives k and N (a command's options)."""
     k_requested = checks.real(names[0], k_requested, 0.0, math.pi)
     N = checks.integer(names[1], N, *N_RANGE)  # the bounds of simulate and predict_growth
-    return snap_wavenumber(k_requested, N, rel_tol=math.inf)
+    return snap_wavenumber(k_requested, N, return_index=True)
 
 
 def point_step(material, case, N, k, amplitude, start, t_end) -> tuple[str, float]:
@@ -232,8 +235,8 @@ def _predicted(material, case, k, amplitude, start, N, t_end, seeds):
                       "reason": str(exc).splitlines()[0]}
     predicted = [pred.growth, *pred.growth_draws.tolist()]
     return pred, {
-        "growth": predicted, "verdict": "MI" if np.median(predicted) > GROWTH_THRESHOLD
-        else "stable", "t_end": t_end, "seeds": seeds, "rate": pred.rate,
+        "growth": predicted, "verdict": simulated_verdict(predicted, t_end).word,
+        "t_end": t_end, "seeds": seeds, "rate": pred.rate,
         "linear": pred.linear, "approximate": pred.approximate,
         "method": "linear response of each seed's initial state (numerics.theory."
                   "predict_growth)"}
@@ -255,7 +258,6 @@ def _simulated(material, case, k, amplitude, start, N, t_end, seeds):
                         save_every=SAVE_EVERY, start=start, progress=None,
                         energy_tolerance=1.0)
     growths = [growth_of(r.t, r.theta_hat, r.U_hat, r.m, r.N) for r in runs]
-    verdict = seed_majority([g["growth"] for g in growths])
     # no seed with a linear stage (linear_stage's rule): no rate to fit, shown as "-",
     # not as a gain of 0
     if meas:  # sigma over the offset Q, once: the table, the JSON and the figure
@@ -264,12 +266,16 @@ def _simulated(material, case, k, amplitude, start, N, t_end, seeds):
     s = band_summary(k + meas["offset"], meas["sigma_by_offset"], k) if meas else \
         {"peak_gain": float("nan"), "peak_offset": float("nan"), "band_edge": float("nan"),
          "no_rate": f"no seed had a linear stage to fit a rate over ({LINEAR_STAGE_RULE})"}
-    simulated = {"verdict": "MI" if verdict else "stable", **s, "t_end": t_end,
+    sv = simulated_verdict([g["growth"] for g in growths], t_end, s["peak_gain"])
+    simulated = {**s, **sv.to_dict(), "t_end": t_end,
                  "seeds": seeds, "method": method, "dt": dt,
                  "growth": [g["growth"] for g in growths],
                  "growth_field": [g["growth_field"] for g in growths],
-                 "criterion": f"MI when the largest non-carrier theta or U component grows "
-                              f"more than {GROWTH_THRESHOLD:g}x within t_end",
+                 "criterion": f"MI when most seeds' largest non-carrier theta or U component "
+                              f"grows more than {GROWTH_THRESHOLD:g}x within t_end; no growth "
+                              f"within T below sqrt({GROWTH_THRESHOLD:g})x; undetermined "
+                              "between",
+                 "peak_gain": s["peak_gain"],
                  **({"q": meas["q"].tolist(), "sigma": meas["sigma"].tolist(),
                      "sigma_std": meas["sigma_std"].tolist(),
                      "offset": meas["offset"].tolist(),
@@ -301,15 +307,18 @@ def measure_point(material: Material, case: str, k: float,
         measure sigma(q) and the growth factor; the verdict is the seeds' majority
         (``seed_majority``, as in a map cell).
     t_end : float, optional
-        Run length (T); default ``measurement_length`` of the exact peak gain.
+        Run length (T); default ``run_length`` of the exact peak gain (enough e-foldings
+        to decide, within a cap).
     seeds : int
         Noise seeds of the prediction and the simulation.
 
     Returns
     -------
     PointResult
-        With ``simulate``, each theory also carries ``verdict_within_t_end``: the run's
-        question (grows more than GROWTH_THRESHOLD within t_end).
+        With ``simulate``, each theory also carries
+        ``grows_beyond_threshold_within_t_end`` (an observable, not its verdict); the
+        simulated verdict is ``numerics.lattice.simulated_verdict``'s: MI, no growth
+        within T, or undetermined. ``length`` says how T was chosen (``run_length``).
     """
     checks.instance("material", material, Material)
     amplitude = checks.real("amplitude", amplitude, 0.0, MAX_AMPLITUDE)
@@ -324,7 +333,9 @@ def measure_point(material: Material, case: str, k: float,
     th = theory_curves(material, case, k, amplitude, start)
     exact_name = EXACT_LATTICE.label if start == "travelling" else PAPER_START
     exact = th[exact_name]["peak_gain"]
-    t_end = t_end or measurement_length(exact if math.isfinite(exact) else 0.0)
+    # T from the fastest predicted rate: enough e-foldings to decide, within a stated cap
+    length = run_length(exact if math.isfinite(exact) else 0.0)
+    t_end = t_end or length.t_end
     if short := shortest_run_error("--t-end", t_end, [(material, k)], case):
         raise ValueError(short)
     prediction, predicted = _predicted(material, case, k, amplitude, start, N, t_end, seeds)
@@ -332,18 +343,19 @@ def measure_point(material: Material, case: str, k: float,
     if simulate:
         simulated, meas, growths = _simulated(material, case, k, amplitude, start, N, t_end,
                                               seeds)
-        # the theories answer the simulation's question: grows > threshold within t_end
+        # the theories keep their physical verdict; "grows 20x within T" is an observable
         for t in th.values():
-            t["verdict_within_t_end"] = (
-                ("MI" if grows_beyond_threshold(t["peak_gain"], t_end) else "stable")
-                if math.isfinite(t["peak_gain"]) else t["verdict"])
+            t["grows_beyond_threshold_within_t_end"] = (
+                bool(grows_beyond_threshold(t["peak_gain"], t_end))
+                if math.isfinite(t["peak_gain"]) else None)
     return PointResult(
         material=material, case=case, N=N, m=m, k=k, k_requested=k_requested,
         amplitude=amplitude, eps=EPS, A0=amplitude / (2 * EPS), start=start,
         semidiscrete_nls={"omega": co["omega"], "v_g": co["v_g"], "g1": co["g1"],
                           "g2": co[case]["g2"], "g": co[case]["g"]},
         theories=th, predicted=predicted, simulated=simulated, t_end=t_end,
-        exact_theory=exact_name, prediction=prediction, measured=meas, growths=growths)
+        exact_theory=exact_name, prediction=prediction, measured=meas, growths=growths,
+        length=length)
 
 
 __all__ = ["PointResult", "measure_point", "point_step", "theory_curves", "offset_curve", "fold",
