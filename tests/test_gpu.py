@@ -124,3 +124,16 @@ def test_gpu_cells_equal_cpu_cells_on_a_gpu():
         cells = [{"point": "blue", "case": case, "ks": ks, "N": 500, "t_end": 500.0,
                   "amplitude": 0.02, "seeds": 2, "method": "srkn11b", "dt": 0.25}]
         compare(cells, runs)
+
+
+def test_aggregate_seeds_is_simulate_blocks_rule():
+    from numerics.maps._gpu import aggregate_seeds
+
+    runs = [{"verdict_simulated": v, "growth": g, "growth_field": f, "growth_q": q,
+             "t_simulated": t, "peak_gain": p}
+            for v, g, f, q, t, p in ((True, 30.0, "U", 0.5, 40.0, 0.01),
+                                     (False, 5.0, "theta", 0.3, 100.0, float("nan")),
+                                     (True, 25.0, "theta", 0.4, 60.0, 0.02))]
+    row = aggregate_seeds(runs)
+    assert row == {"verdict_simulated": True, "growth": 25.0, "growth_field": 1,
+                   "growth_q": 0.5, "t_simulated": 100.0, "peak_gain": 0.015}

@@ -235,5 +235,43 @@ def simulate_cells_gpu(materials, case: str, ks, N: int, t_end: float,
     return results
 
 
-__all__ = ["simulate_cells_gpu", "gpu_status", "gpu_name", "simulated", "record_step",
-           "INSTALL_HINT"]
+def aggregate_seeds(runs: list) -> dict:
+    """A map cell's simulated columns from its seeds' runs: ``simulate_block``'s rule (the
+    majority verdict, the median growth, field and q of the seed that grew most, the
+    longest time simulated, the median measured peak gain)."""
+    from ._blocks import FIELD_CODES
+
+    growths = [r["growth"] for r in runs]
+    top = runs[int(np.argmax(growths))]
+    gains = [r["peak_gain"] for r in runs]
+    return {"verdict_simulated": bool(sum(r["verdict_simulated"] for r in runs) * 2
+                                      > len(runs)),
+            "growth": float(np.median(growths)),
+            "growth_field": FIELD_CODES[top["growth_field"]],
+            "growth_q": float(top["growth_q"]),
+            "t_simulated": float(max(r["t_simulated"] for r in runs)),
+            "peak_gain": float(np.nanmedian(gains)) if any(np.isfinite(gains))
+            else float("nan")}
+
+
+def simulate_map_cells_gpu(params, cells, peak_gain: bool = True) -> dict:
+    """The simulated columns of a map's cells, all in one launch (or a few, see
+    ``max_spectra_bytes``): {(i, j): ``aggregate_seeds`` row} for the (i, j) in ``cells``
+    (``params`` a MapParameters; its ``cell_step``, seeds 0 .. seeds - 1). The runs of every
+    seed are under ``(i, j, "runs")``, for the caller's growth_log_ratio (first seed)."""
+    method, dt = params.cell_step
+    cells = list(cells)
+    runs = simulate_cells_gpu([params.material_at(i) for i, _ in cells], params.case,
+                              [params.k_simulated[j] for _, j in cells], params.N,
+                              params.t_end, params.amplitude, params.noise, params.seeds,
+                              params.start, method, dt, peak_gain=peak_gain)
+    out = {}
+    for n, (i, j) in enumerate(cells):
+        mine = runs[n * params.seeds:(n + 1) * params.seeds]
+        out[(i, j)] = aggregate_seeds(mine)
+        out[(i, j, "runs")] = mine
+    return out
+
+
+__all__ = ["simulate_cells_gpu", "simulate_map_cells_gpu", "aggregate_seeds", "gpu_status",
+           "gpu_name", "simulated", "record_step", "INSTALL_HINT"]
