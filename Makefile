@@ -10,6 +10,7 @@
 #   bench-update             the same as bench, rewriting the committed bench/results.json + PNGs
 #   stress, stress-quick     bench/stress.py into out/bench/
 #   stress-update            the same as stress, rewriting the committed bench/stress.json/.md
+#   bench-gpu                bench/gpu.py -> bench/results_gpu.json (needs a GPU and .[gpu])
 PY ?= python3
 VENV := .venv
 VPY := $(VENV)/bin/python
@@ -33,7 +34,7 @@ STALE := $(shell { $(SOURCES); } | cmp -s - $(SOURCES_STAMP) || echo sources-cha
 BENCH_ARGS ?=
 
 .PHONY: setup derive generated lint test test-all run figures bench bench-quick bench-update \
-	stress stress-quick stress-update clean docs
+	stress stress-quick stress-update bench-gpu clean docs
 
 setup: $(STAMP)
 
@@ -121,6 +122,12 @@ stress-quick: $(STAMP)
 # The committed bench/stress.json, bench/stress.md
 stress-update:
 	$(MAKE) --no-print-directory stress BENCH_ARGS=--update
+
+# The GPU's cell kernel and maps against this machine's CPU cores -> bench/results_gpu.json;
+# without a GPU (or the gpu extra) one line says which is missing and nothing is written.
+bench-gpu: $(STAMP)
+	command -v nvidia-smi >/dev/null && $(VPY) -m pip install -q -e '.[gpu]' || true
+	$(VPY) -m bench.gpu --update $(BENCH_ARGS)
 
 clean:
 	rm -rf $(VENV) out .pytest_cache

@@ -18,6 +18,8 @@ Their parts      cell_records, predict_cell, GROWTH_TOL, GROWTH_ERROR_CONSTANTS 
                  cells_done (what a store holds)
 Run time         estimate_map -> MapEstimate (start-up + cells at this machine's measured
                  speed, machine_speed, cached), slowed by the load average
+On a GPU         gpu_status (is there one, or what is missing), simulate_cells_gpu
+                 (simulate_cell for many cells in one launch), simulate_map_cells_gpu
 """
 
 from ..theory import resonance_map  # the exact-map engine lives with the theory
@@ -36,6 +38,7 @@ from ._cells import (
                      simulate_cell,
 )
 from ._columns import theory_columns, tri_state
+from ._gpu import gpu_status, simulate_cells_gpu, simulate_map_cells_gpu
 from ._integrity import store_lock
 from ._params import CRITERION, MapParameters, local_cores, parse_spec
 from ._point import (
@@ -63,4 +66,5 @@ __all__ = [
     "store_lock", "cells_done",
     "simulate_block", "CRITERION", "MapCellError", "local_cores", "MapEstimate",
     "estimate_map", "machine_speed",
+    "gpu_status", "simulate_cells_gpu", "simulate_map_cells_gpu",
 ]

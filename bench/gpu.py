@@ -1,0 +1,128 @@
+"""GPU map cells against this machine's CPU cores -> bench/results_gpu.json (issue 34).
+
+Run by ``make bench-gpu`` on a machine with an NVIDIA GPU and the ``gpu`` extra. Without
+one it prints one line naming what is missing and writes nothing (exit 1).
+
+Keys: ``device`` (the GPU's name), ``ps_per_site_evaluation`` (the cell kernel: wall time of
+one launch over chains x sites x force evaluations done), ``cells_per_s`` (the same launch),
+``map_64x64_wall_s`` and ``map_512x512_wall_s`` (N = 500, T = 5000, paper start, one seed,
+through ``flexmm map --device gpu``), ``cpu_cores`` and ``map_64x64_cpu_wall_s`` (the same
+64 x 64 map through ``flexmm map`` on the CPU cores) and ``gpu_speedup`` (their ratio).
+The maps are measured, never estimated: a map the CLI cannot run on the GPU (no
+``--device`` yet) is null with the reason in ``notes``.
+
+    python -m bench.gpu [--quick] [--out DIR | --update] [--skip-cpu-map]
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+HERE = Path(__file__).resolve().parent
+#: the map of the goals: the paper's alpha and K_s, delta across zero, k over the branch
+MAP = ["--alpha", "2.5", "--K-s", "0.01851", "--case", "coupled", "--N", "500",
+       "--t-end", "5000", "--start", "paper", "--seeds", "1", "--overwrite", "--yes"]
+
+
+def map_args(n: int) -> list:
+    return MAP + ["--delta=-0.012:0.012:%d" % n, "--k", "0.25:2.9:%d" % n]
+
+
+def kernel_rate(cells: int, N: int = 500, t_end: float = 5000.0) -> dict:
+    """One launch of ``cells`` chains (one row of k at delta = 0.003, paper start)."""
+    from numerics import Material
+    from numerics.lattice import get_method
+    from numerics.maps._cells import map_step
+    from numerics.maps._gpu import simulate_cells_gpu
+
+    mat = Material(2.5, 0.01851, 0.01851 - 0.003)
+    ks = [2 * np.pi * m / N for m in np.linspace(10, N // 2 - 10, cells).round()]
+    method, dt = map_step([mat], "coupled", ks, N, t_end, 0.02)
+    simulate_cells_gpu(mat, "coupled", ks[:2], N, 50.0, 0.02, 1e-3, 1, "paper", method,
+                       dt, peak_gain=False)  # compile
+    t0 = time.perf_counter()
+    runs = simulate_cells_gpu(mat, "coupled", ks, N, t_end, 0.02, 1e-3, 1, "paper", method,
+                              dt, peak_gain=False)
+    wall = time.perf_counter() - t0
+    evals = get_method(method).evaluations
+    site_evals = sum(round(r["t_simulated"] / r["dt"]) * evals * N for r in runs)
+    return {"ps_per_site_evaluation": wall / site_evals * 1e12, "cells_per_s": cells / wall,
+            "kernel_cells": cells, "kernel_method": method, "kernel_dt": runs[0]["dt"],
+            "kernel_wall_s": wall}
+
+
+def timed_map(n: int, device: str | None, out: Path, notes: list) -> float | None:
+    cmd = [shutil.which("flexmm") or "flexmm", "map", *map_args(n), "--out", str(out)]
+    if device:
+        cmd += ["--device", device]
+    t0 = time.perf_counter()
+    res = subprocess.run(cmd, capture_output=True, text=True)
+    wall = time.perf_counter() - t0
+    if res.returncode:
+        notes.append(f"{n}x{n} map on {device or 'cpu'}: exit {res.returncode}: "
+                     + (res.stderr.strip().splitlines() or ["?"])[-1])
+        return None
+    return wall
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--quick", action="store_true", help="kernel only, 512 chains")
+    ap.add_argument("--out", default="out/bench", help="folder of results_gpu.json")
+    ap.add_argument("--update", action="store_true", help="write bench/results_gpu.json")
+    ap.add_argument("--skip-cpu-map", action="store_true",
+                    help="no CPU map (minutes): no map_64x64_cpu_wall_s, no gpu_speedup")
+    a = ap.parse_args(argv)
+    from numerics.maps._gpu import gpu_name, gpu_status, simulated
+
+    ok, reason = gpu_status()
+    if not ok or simulated():
+        print(f"bench.gpu: nothing measured, nothing written: {reason}")
+        return 1
+    notes: list = []
+    result = {"device": gpu_name(), "status": reason, "cpu_cores": os.cpu_count()}
+    result.update(kernel_rate(512 if a.quick else 4096))
+    help_text = subprocess.run([shutil.which("flexmm") or "flexmm", "map", "--help"],
+                               capture_output=True, text=True).stdout
+    has_device = "--device" in help_text
+    with tempfile.TemporaryDirectory() as tmp:
+        tmp = Path(tmp)
+        for n in (64, 512):
+            key = f"map_{n}x{n}_wall_s"
+            if a.quick or not has_device:
+                result[key] = None
+                if not has_device:
+                    notes.append(f"{key}: flexmm map has no --device option yet")
+                continue
+            result[key] = timed_map(n, "gpu", tmp / f"gpu{n}", notes)
+        result["map_64x64_cpu_wall_s"] = (None if a.quick or a.skip_cpu_map else
+                                          timed_map(64, "cpu" if has_device else None,
+                                                    tmp / "cpu64", notes))
+    g, c = result["map_64x64_wall_s"], result["map_64x64_cpu_wall_s"]
+    result["gpu_speedup"] = c / g if g and c else None
+    result["notes"] = notes
+    out = HERE / "results_gpu.json" if a.update else Path(a.out) / "results_gpu.json"
+    out.parent.mkdir(parents=True, exist_ok=True)
+    out.write_text(json.dumps(result, indent=2, sort_keys=True) + "\n")
+    for k in ("device", "ps_per_site_evaluation", "cells_per_s", "map_64x64_wall_s",
+              "map_512x512_wall_s", "map_64x64_cpu_wall_s", "gpu_speedup"):
+        v = result[k]
+        print(f"{k:>24}: {v:.4g}" if isinstance(v, float) and math.isfinite(v) else
+              f"{k:>24}: {v}")
+    print(f"wrote {out}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
