@@ -36,7 +36,7 @@ MAP = ["--alpha", "2.5", "--K-s", "0.01851", "--case", "coupled", "--N", "500",
 
 
 def map_args(n: int) -> list:
-    return MAP + ["--delta=-0.012:0.012:%d" % n, "--k", "0.25:2.9:%d" % n]
+    return MAP + [f"--delta=-0.012:0.012:{n}", "--k", f"0.25:2.9:{n}"]
 
 
 def kernel_rate(cells: int, N: int = 500, t_end: float = 5000.0) -> dict:

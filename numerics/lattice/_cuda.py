@@ -223,7 +223,7 @@ def cells_kernel(theta0, w0, U0, V0, params, carrier_bin, mask_th, mask_U, coupl
     status = STATUS_OK
     for j in range(records + 1):
         if j > 0:
-            for step in range(per_record):
+            for _step in range(per_record):
                 for st in range(nst):
                     hb = bcoef[st] * dt
                     if st > 0:
