@@ -82,7 +82,7 @@ def _lock(content):
     import tempfile
     from pathlib import Path
 
-    from numerics.maps._integrity import store_lock
+    from numerics.maps import store_lock
 
     d = Path(tempfile.mkdtemp())
     try:

@@ -43,8 +43,8 @@ def kernel_rate(cells: int, N: int = 500, t_end: float = 5000.0) -> dict:
     """One launch of ``cells`` chains (one row of k at delta = 0.003, paper start)."""
     from numerics import Material
     from numerics.lattice import get_method
+    from numerics.maps import simulate_cells_gpu
     from numerics.maps._cells import map_step
-    from numerics.maps._gpu import simulate_cells_gpu
 
     mat = Material(2.5, 0.01851, 0.01851 - 0.003)
     ks = [2 * np.pi * m / N for m in np.linspace(10, N // 2 - 10, cells).round()]

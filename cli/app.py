@@ -11,7 +11,11 @@ from pathlib import Path
 from common import paper
 from common.options import unused_without
 
+from .models import add_model_args
+
 EPILOG = {
+    "models": "example:\n  flexmm models\n  flexmm coefficients --model fput --param alpha=1 "
+              "--param beta=1 --k 1.57 --amplitude 0.1",
     "coefficients": "example:\n  flexmm coefficients --alpha 2.5 --K-s 0.01851 --K-theta 0.01551 "
                     "--k 0.81681",
     "table": "example:\n  flexmm table --A0 1.4",
@@ -44,7 +48,9 @@ def _sub(sub, name, help_):
                           epilog=EPILOG[name], formatter_class=_Help)
 
 
-def build_parser():
+def build_parser(model_mode: bool = False):
+    """The parser; ``model_mode`` (a --model on the line): the paper chain's required
+    --case is not required (the model's commands refuse it)."""
     p = argparse.ArgumentParser(
         prog="flexmm", description="Modulation instability in flexible mechanical "
         "metamaterials: coefficients, MI verdicts, simulations, maps and the paper's figures.",
@@ -56,13 +62,15 @@ def build_parser():
     co.add_argument("--k", type=float, required=True,
                     help="(required) carrier wavenumber, rad per site, in (0, pi)")
     co.add_argument("--amplitude", type=float, default=paper.AMPLITUDE,
-                    help="peak rotation of the plane wave, rad (the paper's 2 eps A0)")
+                    help="peak rotation of the plane wave, rad (the paper's 2 eps A0); with "
+                         "--model the amplitude a of the carrier's first harmonic in its field")
+    add_model_args(co)
     tab = _sub(sub, "table", "NLS coefficients at the paper's two test points")
     tab.add_argument("--A0", type=float, default=1.0, help="the paper's envelope amplitude "
                      "A0 (peak rotation 2 eps A0 with eps = 0.01)")
     _sub(sub, "scenes", "list the scenes with a description and run time")
     one = _sub(sub, "scene", "run one scene (one figure of the paper)")
-    from ._registry import SCENE_NAMES
+    from scenes import SCENE_NAMES
 
     one.add_argument("name", metavar="NAME",
                      help="one of: " + ", ".join(sorted(SCENE_NAMES)))
@@ -74,9 +82,11 @@ def build_parser():
         sp_.add_argument("--out", default="out", help="output folder")
         sp_.add_argument("--seed", type=int, default=0, help="noise seed")
         sp_.add_argument("--force", action="store_true", help="recompute cached simulations")
-    _point_parser(sub)
-    _map_parser(sub)
-    _soliton_parser(sub)
+    _point_parser(sub, model_mode)
+    _map_parser(sub, model_mode)
+    _soliton_parser(sub, model_mode)
+    ms = _sub(sub, "models", "list the built-in lattice models: fields, parameters, what")
+    ms.add_argument("--json", action="store_true", help="one JSON object on stdout")
     return p
 
 
@@ -98,8 +108,8 @@ def _material_args(p, map_=False):
                             "N m/rad); answers then also in seconds and metres")
 
 
-def _experiment_args(p):
-    p.add_argument("--case", required=True, choices=("rotation", "coupled"),
+def _experiment_args(p, model_mode=False):
+    p.add_argument("--case", required=not model_mode, choices=("rotation", "coupled"),
                    help="(required) rotation: case I, U = 0; coupled: case II, U and theta")
     p.add_argument("--amplitude", type=float, default=paper.AMPLITUDE,
                    help="peak rotation of the plane wave, rad (the paper's 2 eps A0)")
@@ -110,11 +120,12 @@ def _experiment_args(p):
                    "snapped to the nearest 2 pi m / N")
 
 
-def _point_parser(sub):
+def _point_parser(sub, model_mode=False):
     p = _sub(sub, "point", "MI at one point of any material: the theories' verdicts and "
              "gain curves (and a simulation that checks them, with --simulate)")
     _material_args(p)
-    _experiment_args(p)
+    _experiment_args(p, model_mode)
+    add_model_args(p)
     p.add_argument("--k", type=float, required=True,
                    help="(required) carrier wavenumber, rad per site, in (0, pi)")
     p.add_argument("--simulate", action="store_true", help="measure sigma(q) too")
@@ -128,7 +139,7 @@ def _point_parser(sub):
                    "print only)")
 
 
-def _soliton_parser(sub):
+def _soliton_parser(sub, model_mode=False):
     p = _sub(sub, "soliton", "the envelope soliton (bright or dark) a material carries at one "
              "k: width, velocity, frequency and kink of U, and with --simulate the same "
              "measured in the lattice")
@@ -138,15 +149,16 @@ def _soliton_parser(sub):
     p.add_argument("--amplitude", type=float, default=0.002,
                    help="peak rotation of the soliton (bright) or of its background (dark), "
                         "rad; the width is about 2 / (amplitude sqrt|g|) sites")
-    p.add_argument("--case", choices=("rotation", "coupled"), default="coupled",
+    add_model_args(p)
+    p.add_argument("--case", choices=("rotation", "coupled"),
+                   default=None if model_mode else "coupled",
                    help="rotation: case I, U = 0; coupled: case II, with the kink of U")
     p.add_argument("--kind", choices=("bright", "dark"),
                    help="the soliton asked for (default: the one that exists here; asking "
                         "for the other is an error that names it)")
-    from numerics.theory import PAPER_NLS, SEMIDISCRETE_NLS
-
-    p.add_argument("--theory", choices=(SEMIDISCRETE_NLS.cli, PAPER_NLS.cli),
-                   default=SEMIDISCRETE_NLS.cli,
+    # the records' CLI names (numerics.theory: SEMIDISCRETE_NLS.cli, PAPER_NLS.cli; a test
+    # checks them), typed here so that `--help` imports no numerics
+    p.add_argument("--theory", choices=("semi-discrete", "paper"), default="semi-discrete",
                    help="the NLS that predicts it: the semi-discrete one (derived on the "
                         "lattice) or the paper's continuum one")
     p.add_argument("--simulate", action="store_true",
@@ -158,11 +170,12 @@ def _soliton_parser(sub):
     p.add_argument("--out", help="folder for soliton.json (default: none, print only)")
 
 
-def _map_parser(sub):
+def _map_parser(sub, model_mode=False):
     p = _sub(sub, "map", "an MI map over (delta, k): the theories' verdicts and, unless "
              "--theory-only, simulations on a Dask cluster")
     _material_args(p, map_=True)
-    _experiment_args(p)
+    _experiment_args(p, model_mode)
+    add_model_args(p, "print one JSON object on stdout (MI shares, files written)")
     p.add_argument("--k", required=True, help="(required) SPEC of k (rad per site): "
                    "v1,v2,... or start:stop:num; each k is snapped to 2 pi m / N "
                    "(k_simulated in the dataset; the theories use it too)")
@@ -254,7 +267,7 @@ def _parse(argv):
     import difflib
     import re
 
-    p = build_parser()
+    p = build_parser(any(a == "--model" or a.startswith("--model=") for a in argv))
     args, extra = p.parse_known_args(argv)
     sub = next(a for a in p._actions
                if isinstance(a, argparse._SubParsersAction)).choices[args.cmd]
@@ -342,6 +355,19 @@ def _run(args) -> int:
 
 
 def _dispatch(args, scenes) -> int:
+    if args.cmd == "models":
+        from .models import run_models
+
+        return run_models(args)
+    if getattr(args, "json", False) and getattr(args, "model", None) is None:
+        raise ValueError("--json: for --model commands (the paper chain's point writes "
+                         "point.json with --out; try --model flexmm --param alpha=...)")
+    if getattr(args, "model", None) is not None:
+        from . import models
+
+        run = {"coefficients": models.run_coefficients, "point": models.run_point,
+               "map": models.run_map, "soliton": models.run_soliton}[args.cmd]
+        return run(args)
     if args.cmd == "point":
         from .point import run_point
 

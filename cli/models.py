@@ -252,7 +252,9 @@ def run_map(args) -> int:
                "axes": {x[0]: list(map(float, x[1])), y[0]: list(map(float, y[1]))},
                "mi_share": mi, "files": [str(nc), str(png)]})
         return 0
-    print(f"model: {model.describe()}; amplitude {amp:g}; {y[0]} x {x[0]} = "
+    fixed = ", ".join(f"{p} = {v:g}" for p, v in model.params.items()
+                      if p not in (x[0], y[0]))
+    print(f"model: {model.name} ({fixed}); amplitude {amp:g}; {y[0]} x {x[0]} = "
           f"{len(y[1])} x {len(x[1])} cells")
     for v, share in mi.items():
         print(f"MI share, {v.replace('verdict_', '')}: {share:.0%}")
@@ -291,3 +293,64 @@ def _plot_map(ds, path: Path, model):
     fig.savefig(path, dpi=120)
     plt.close(fig)
 
+
+
+# ------------------------------------------------------------------ point
+def _continuum(model, k, amplitude):
+    """The paper's continuum NLS where the model is the paper's chain (flexmm: case II,
+    flexmm-rotation: case I), else None: other models have the semi-discrete NLS only."""
+    from energy import builtin
+
+    case = {"flexmm": "coupled", "flexmm-rotation": "rotation"}.get(model.name)
+    if case is None or model.lattice.content_hash != builtin(model.name).content_hash:
+        return None
+    from generated import coefficients as c
+
+    p = (k, model.params["alpha"], model.params["K_s"], model.params["K_theta"])
+    g1, g2 = float(c.g1(*p)), float(getattr(c, f"g2_{case}")(*p))
+    if not (math.isfinite(g1) and math.isfinite(g2)) or g1 == 0:
+        return {"verdict": "undefined", "peak_gain": None, "g1": None, "g2": None}
+    mi = g2 / g1 > 0
+    return {"verdict": "MI" if mi else "stable",
+            "peak_gain": abs(g2) * amplitude**2 / 4 if mi else 0.0, "g1": g1, "g2": g2}
+
+
+def run_point(args) -> int:
+    from numerics.lattice import checks
+    from numerics.models import model_coefficients
+
+    model = load(args)
+    checks.real("--k", args.k, 0.0, math.pi)
+    checks.real("--amplitude", args.amplitude, 0.0, None)
+    if args.simulate:
+        raise ValueError("--simulate with --model: the simulator and the exact lattice theory "
+                         "for any model are not in this version (see docs/models.md); the "
+                         "paper chain (no --model) simulates")
+    co = model_coefficients(model, args.k, args.amplitude, branch_of(args))
+    out = {"model": model.name, "parameters": dict(model.params), "k": co["k"],
+           "k_requested": float(args.k), "amplitude": co["amplitude"], "branch": co["branch"],
+           "field": co["field"]}
+    cont = _continuum(model, args.k, args.amplitude)
+    if cont is not None:
+        out["continuum NLS"] = cont
+    out["semi-discrete NLS"] = {"verdict": co["verdict"], "peak_gain": co["peak_gain"],
+                                "fastest_offset": co["fastest_offset"],
+                                "band_edge": co["band_edge"], "g1": co["g1"], "g2": co["g2"],
+                                "reason": co["reason"]}
+    if args.json:
+        _emit(out)
+        return 0
+    print(f"model:    {model.describe()}")
+    print(f"carrier:  k = {co['k']:g} rad/site on branch {co['branch']} (field {co['field']}), "
+          f"amplitude a = {co['amplitude']:g}")
+    print(f"{'theory':<20} {'verdict':>9} {'peak gain (1/time)':>19} {'at offset':>10}")
+    for name in ("continuum NLS", "semi-discrete NLS"):
+        if name in out:
+            t = out[name]
+            print(f"{name:<20} {t['verdict']:>9} {_fmt(t['peak_gain'], 4):>19} "
+                  f"{_fmt(t.get('fastest_offset'), 4):>10}")
+    if co["reason"]:
+        print(f"undefined: {co['reason']}")
+    for w in co["warnings"]:
+        print(f"note: {w}")
+    return 0

@@ -280,8 +280,7 @@ def write_builtin_models(out_dir) -> list:
     from pathlib import Path
 
     from common.files import write_text
-    from energy import BUILTIN, builtin
-    from energy._model import module_name
+    from energy import BUILTIN, builtin, module_name
 
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)

@@ -16,8 +16,8 @@ load_model -> Model          a model with parameter values and its generated cod
 
 from __future__ import annotations
 
-from ._model import BUILTIN, Model, builtin, load_model, resolve_model
+from ._model import BUILTIN, Model, builtin, load_model, module_name, resolve_model
 from ._spec import FUNCTIONS, Lattice, ModelError, check_value, parse_model, read_model
 
 __all__ = ["Lattice", "ModelError", "read_model", "parse_model", "BUILTIN", "builtin",
-           "load_model", "resolve_model", "Model", "FUNCTIONS", "check_value"]
+           "load_model", "resolve_model", "module_name", "Model", "FUNCTIONS", "check_value"]

@@ -15,7 +15,7 @@ read_data(path)                     a scene's data dict from its data.h5
 plt, image                          pyplot (Agg backend) and the raster image the figures use
 """
 
-from ._registry import AGREE, REGISTRY, Scene, check, get_scene, known
+from ._registry import AGREE, REGISTRY, SCENE_NAMES, Scene, check, get_scene, known
 
 #: the runner's names, imported on first use (it imports matplotlib: `flexmm --help` and
 #: `flexmm coefficients` need none of it)
@@ -37,6 +37,6 @@ def __getattr__(name):
         return getattr(_plotting, name)
     raise AttributeError(f"module 'scenes' has no attribute {name!r}")
 
-__all__ = ["REGISTRY", "Scene", "get_scene", "run_scene", "replot_scene", "run_all",
+__all__ = ["REGISTRY", "SCENE_NAMES", "Scene", "get_scene", "run_scene", "replot_scene", "run_all",
            "write_report", "read_data", "Context", "check", "known", "AGREE",
            "image", "plt", "map_figure", "soliton_figure"]

@@ -233,8 +233,8 @@ def test_map_figure_centres_every_cell_on_its_value(shape):
     cell's colour is its verdict; the theories' boundaries lie on cell edges; the legend
     lists only what is drawn; the title names the material and the start."""
     from matplotlib.collections import LineCollection, QuadMesh
-    from scenes._map_command import plot_map
 
+    from cli.map import plot_map
     from scenes._plotting import cell_edges
 
     ds = _map_dataset(*shape, seed=sum(shape))

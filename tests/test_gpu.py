@@ -23,8 +23,7 @@ import numpy as np
 import pytest
 
 from numerics import Material
-from numerics.maps import simulate_cell
-from numerics.maps._gpu import gpu_status
+from numerics.maps import gpu_status, simulate_cell
 
 REL_TOL = 1e-9
 N, T_END, DT = 16, 20.0, 0.1
@@ -33,7 +32,7 @@ SCRIPT = """
 import json, sys
 import numpy as np
 from numerics import Material
-from numerics.maps._gpu import simulate_cells_gpu, gpu_status
+from numerics.maps import gpu_status, simulate_cells_gpu
 cells = json.loads(sys.argv[1])
 out = {"status": gpu_status(), "runs": []}
 for c in cells:

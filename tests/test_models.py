@@ -314,3 +314,37 @@ def test_fput_map_over_k_and_beta_has_the_zone_boundary_line():
     # s^2 = 0.9996, the edge moves by ~1e-3)
     assert list(ds.verdict_semidiscrete.values[:, 0]) == ["stable", "stable", "MI", "MI"]
     assert ds.attrs["param_alpha"] == 1.0
+
+
+def _flexmm(*argv):
+    import json
+    import subprocess
+    import sys
+
+    proc = subprocess.run([sys.executable, "-m", "cli", *argv], capture_output=True,
+                          text=True)
+    return proc.returncode, proc.stdout, proc.stderr, (
+        json.loads(proc.stdout) if "--json" in argv and proc.returncode == 0 else None)
+
+
+def test_cli_point_json_per_theory_and_the_fput_flip():
+    # at k near pi the semi-discrete verdict flips at 3 beta = 4 alpha^2 (alpha = 1: 1.333)
+    for beta, want in ((1.2, "stable"), (1.5, "MI")):
+        code, _, err, data = _flexmm("point", "--model", "fput", "--param", "alpha=1",
+                                     "--param", f"beta={beta}", "--k", "3.1", "--amplitude",
+                                     "0.05", "--json")
+        assert code == 0, err
+        assert data["semi-discrete NLS"]["verdict"] == want
+        assert data["k"] == 3.1 and data["parameters"]["beta"] == beta
+    code, _, _, data = _flexmm("point", "--model", "flexmm", "--k", "0.81681", "--json")
+    assert set(data) >= {"continuum NLS", "semi-discrete NLS"}  # the paper's chain only
+
+
+def test_cli_model_errors_are_one_line():
+    for argv, words in ((("coefficients", "--model", "fput", "--alpha", "2", "--k", "1"),
+                         "--param NAME=VALUE"),
+                        (("coefficients", "--model", "nope", "--k", "1"), "built-in:"),
+                        (("coefficients", "--model", "fput", "--param", "gamma=1", "--k", "1"),
+                         "no parameter 'gamma'")):
+        code, out, err, _ = _flexmm(*argv)
+        assert code == 2 and words in err and len(err.strip().splitlines()) == 1, err

@@ -186,6 +186,6 @@ def test_paper_start_unstable_where_the_travelling_wave_is_not(quick_scenes):
 def test_the_static_scene_list_is_the_registry():
     """`flexmm scene --help` names the scenes without importing them (SCENE_NAMES): the
     list is the registry's, in its order."""
-    from scenes._registry import SCENE_NAMES
+    from scenes import SCENE_NAMES
 
     assert tuple(scenes.REGISTRY) == SCENE_NAMES

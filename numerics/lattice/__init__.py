@@ -52,7 +52,15 @@ from ._verdict import (DECIDE_E_FOLDINGS, T_CAP, VERDICT_WORDS, RunLength, Verdi
                        run_length, simulated_verdict)
 from ._version import SIMULATOR_VERSION, source_hash
 
-__all__ = [
+def cuda_kernels():
+    """The CUDA kernels of map cells (``_cuda``), imported on first use: numba.cuda loads
+    only where a GPU map asks for it."""
+    from . import _cuda
+
+    return _cuda
+
+
+__all__ = ["cuda_kernels", 
     "Material", "LatticeState", "energy", "CASES", "discrete_omega_rotation",
     "discrete_omega_longitudinal", "simulate", "Run", "resume", "initial_condition",
     "snap_wavenumber", "STARTS", "register_start", "paper_start_undefined", "cached_simulate",

@@ -38,6 +38,7 @@ from ._cells import (
                      simulate_cell,
 )
 from ._columns import theory_columns, tri_state
+from ._estimate import MapEstimate, estimate_map, machine_speed
 from ._gpu import gpu_status, simulate_cells_gpu, simulate_map_cells_gpu
 from ._integrity import store_lock
 from ._params import CRITERION, MapParameters, local_cores, parse_spec

@@ -20,10 +20,17 @@ import os
 
 import numpy as np
 
-from ..lattice._analysis import GROWTH_THRESHOLD, U_REFERENCE, non_carrier_bins
-from ..lattice._integrators import get_method
-from ..lattice._model import Material, check_case
-from ..lattice._simulate import initial_condition, snap_wavenumber
+from ..lattice import (
+    GROWTH_THRESHOLD,
+    U_REFERENCE,
+    Material,
+    check_case,
+    cuda_kernels,
+    get_method,
+    initial_condition,
+    non_carrier_bins,
+    snap_wavenumber,
+)
 from ._cells import RECORDS, measured_peak_gain, simulate_cell
 
 #: what a user installs to get the GPU path
@@ -118,7 +125,7 @@ def _chains(materials, case, ks, N, amplitude, noise, seeds, start):
 
 def _row_to_cell(row, N, t_end, i0_U, coupled):
     """simulate_cell's growth fields from a chain's output row (growth_of's rules)."""
-    from ..lattice import _cuda as K
+    K = cuda_kernels()
 
     n = int(row[K.OUT_RECORDS])
     growth, field, q = 0.0, "theta", float("nan")
@@ -179,7 +186,7 @@ def simulate_cells_gpu(materials, case: str, ks, N: int, t_end: float,
     """
     from numba import cuda
 
-    from ..lattice import _cuda as K
+    K = cuda_kernels()
 
     check_case(case)
     meth = get_method(method)
