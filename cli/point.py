@@ -111,7 +111,7 @@ def _rows(res) -> list:
     sim = res.simulated
     if sim is not None:
         rows.append((f"simulated ({sim['seeds']} seeds, N = {res.N}, T = {res.t_end:g}, "
-                     f"{sim['method']} dt = {sim['dt']:.3g})", sim["word"],
+                     f"{sim['method']} dt = {sim['dt']:.3g})", sim["verdict"],
                      sim["peak_gain"], sim["peak_offset"], sim["band_edge"]))
     return rows
 
