@@ -291,7 +291,7 @@ def test_each_theory_has_one_spelling_per_layer_from_its_record():
     assert set(theory.choices) == {t.cli for t in NLS_THEORIES}
     # the store: verdict_<key> and peak_gain_<key> for every map column but the predicted one
     params = MapParameters(case="coupled", alpha=2.5, K_s=0.01851, delta=(0.003,), k=(0.8,),
-                           amplitude=0.02, N=64, t_end=100.0, seeds=1, start="travelling",
+                           amplitude=0.02, N=64, t_end=500.0, seeds=1, start="travelling",
                            theory_only=True)
     stored = set(theory_columns(params))
     for key in MAP_COLUMNS:

@@ -22,6 +22,7 @@ import numpy as np
 
 from ..lattice import (
     GROWTH_THRESHOLD,
+    RUN_REL_TOL,
     U_REFERENCE,
     Material,
     check_case,
@@ -104,7 +105,7 @@ def _chains(materials, case, ks, N, amplitude, noise, seeds, start):
     cells = []
     th, w, U, V, params, bins, mth, mU = ([] for _ in range(8))
     for mat, k in zip(materials, ks):
-        k_s, m = snap_wavenumber(k, N)
+        k_s, m = snap_wavenumber(k, N, rel_tol=RUN_REL_TOL, return_index=True)
         for seed in seeds:
             st = initial_condition(mat, case, N, k_s, amplitude, noise, seed, start)
             cells.append((mat, k, k_s, m, seed))
