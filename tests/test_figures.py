@@ -295,8 +295,8 @@ def test_point_figure_of_a_failed_run_says_so(tmp_path):
 
     import matplotlib.image as mpimg
 
-    from numerics import Material
     from cli import point
+    from numerics import Material
 
     Q = np.linspace(0, np.pi, 11)
     th = {"paper NLS": {"offset": Q, "curve": np.full(Q.shape, np.nan),
