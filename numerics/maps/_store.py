@@ -430,8 +430,13 @@ def _run_tasks(params, path, todo, n_todo, scheduler, workers, progress, log, ar
                 try:
                     result = fut.result()
                 except Exception as exc:  # one line naming the cell
-                    if (why := watch.check() if client.status == "running" else
-                            f"lost the scheduler {address}") is not None:
+                    from distributed.comm import CommClosedError
+
+                    # the connection to the scheduler closed under the gather: the cluster
+                    # failed, not the cell (the client may not know yet: status "running")
+                    lost = isinstance(exc, (CommClosedError, ConnectionError))
+                    if (why := f"lost the scheduler {address}" if lost or
+                            client.status != "running" else watch.check()) is not None:
                         raise ClusterLost(f"{why}: {kept()}; the same command continues the "
                                           "map once the cluster works again") from None
                     i, js = cells[fut]
