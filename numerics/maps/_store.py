@@ -40,7 +40,7 @@ from ._columns import (
     theory_columns,
     tri_state,
 )
-from ._integrity import CHECKSUM
+from ._integrity import CHECKSUM, unsound_chunks
 from ._params import MapParameters, local_cores
 
 #: the theory columns: recomputed from the parameters where a store lost them
@@ -109,6 +109,8 @@ def _inspect(path: Path, params: MapParameters):
 
     def finished():
         try:
+            if any(unsound_chunks(path / f) for f in ("done", "done_predicted")):
+                return None
             return int(sum(np.asarray(group[f][...]).sum() for f in ("done", "done_predicted")
                            if f in group))
         except Exception:  # unreadable flags: unknown
@@ -125,6 +127,8 @@ def _inspect(path: Path, params: MapParameters):
         try:
             arr = group[name]
             whole = arr.nchunks_initialized == arr.nchunks
+            if unsound_chunks(path / name):
+                raise ValueError("a chunk's Blosc header does not match its file")
             got = np.asarray(arr[...], float)
         except Exception:  # missing metadata, a chunk that does not decode
             damaged.append(name)
