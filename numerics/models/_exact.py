@@ -1,0 +1,378 @@
+"""The exact lattice theory of any model: the travelling plane wave by harmonic balance and
+the Hill (Floquet) spectrum of its sidebands.
+
+Travelling wave. Every field is a 2 pi-periodic function of xi = k n - omega t,
+u_j(n, t) = U_j(xi) = sum_{|h| <= H} c_{j,h} e^{i h xi} (a general Fourier ansatz, cos and
+sin in every field: no parity is assumed). With W(x), x = (u_n, u_{n+1}), the cell energy,
+the lattice's equations of motion become
+
+    m_j omega^2 U_j''(xi) = -[d_j W(U(xi), U(xi + k)) + d_{d+j} W(U(xi - k), U(xi))],
+
+solved by collocation at M points with the carrier's first harmonic fixed,
+c_{f,1} = a / 2 (u_f = a cos xi + harmonics + mean: the ``amplitude`` of every command),
+for omega and every other coefficient. The means along the acoustic directions (uniform
+translations, a symmetry of W) are a gauge and set to 0: the ring's wave has no mean
+strain. One equation is redundant (the phase of the wave: the residual is orthogonal to
+U' for any U), so the system is solved in the least-squares sense and its residual
+checked to be round-off.
+
+Hill spectrum. A perturbation e^{lambda t} e^{i q n} sum_{|l| <= P} c_l e^{i l xi_n} turns
+the linearised equations into a quadratic eigenproblem in lambda whose coefficients are the
+Fourier coefficients of the cell Hessian along the wave (sampled from the generated
+``cell_hessian_into``):
+
+    m (lambda - i l omega)^2 c_l + sum_h [Hhat_{l-h}[:d] X_h(q)
+                                          + e^{-i (l-h) k} Hhat_{l-h}[d:] Y_h(q)] = 0,
+
+X_h = (c_h, e^{i (q + h k)} c_h), Y_h = (e^{-i (q + h k)} c_h, c_h). At a = 0 it reduces to
+lambda = i (l omega +- omega_b(q + l k)) (checked in tests); the wave is unstable where
+some Re lambda > 0. A physical mode of spatial wavenumber kappa appears at every q with
+q + l k = kappa; only its copies centred at l = -1, 0 or 1 (which the scan over q reaches
+for every kappa) with less than 1e-6 of their weight in the outer three harmonics are kept:
+the copies near the truncation are artefacts (measured: rates up to 4e-4 on an FPUT chain
+that is stable, at l = 18 of 20). The growth a simulation sees is the largest rate over
+the kept modes; the mode is named by its wavenumber kappa = q + l k: sidebands of the
+carrier (within pi/4 of +-k: the modulational instability) or a resonance elsewhere.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from energy import Model, ModelError
+
+from ._linear import Carrier, carrier
+from ._nls import acoustic_directions
+
+#: Relative size of the harmonic-balance residual above which no travelling wave is found.
+RESIDUAL_TOL = 1e-9
+#: A growth rate below this fraction of omega is round-off of the eigensolver: at a
+#: commensurate k (k = 2 pi p / r) a mode appears in several harmonics and its eigenvalues
+#: are degenerate, which eig resolves only to sqrt(machine epsilon) (measured up to
+#: 8e-8 omega on FPUT at k = pi / 2); a rate that small needs > 1e6 periods to show.
+GAIN_FLOOR = 3e-7
+
+
+@dataclass(frozen=True)
+class TravellingWave:
+    """The exact travelling plane wave u_j(n, t) = sum_h c[j, h] e^{i h (k n - omega t)}.
+
+    Attributes
+    ----------
+    model : Model
+    carrier : Carrier
+        The linear carrier it continues (k, branch, field, linear omega).
+    amplitude : float
+        a: the carrier field's first harmonic is a cos(k n - omega t).
+    omega : float
+        The wave's frequency (1/time, lattice units); ``omega - carrier.omega`` its
+        nonlinear shift.
+    coefficients : ndarray, shape (d, 2 H + 1), complex
+        c[j, h + H] for h = -H..H.
+    residual : float
+        Largest collocation residual over m omega^2 a (round-off when converged).
+    """
+
+    model: Model
+    carrier: Carrier
+    amplitude: float
+    omega: float
+    coefficients: np.ndarray
+    residual: float
+
+    @property
+    def k(self) -> float:
+        return self.carrier.k
+
+    @property
+    def harmonics(self) -> int:
+        return (self.coefficients.shape[1] - 1) // 2
+
+    def profile(self, xi) -> np.ndarray:
+        """U_j(xi), shape (d,) + xi.shape."""
+        xi = np.asarray(xi, dtype=float)
+        h = np.arange(-self.harmonics, self.harmonics + 1)
+        return np.real(np.tensordot(self.coefficients, np.exp(1j * h[:, None] * xi.ravel()),
+                                    axes=(1, 0))).reshape((-1,) + xi.shape)
+
+    def slope(self, xi) -> np.ndarray:
+        """U_j'(xi)."""
+        xi = np.asarray(xi, dtype=float)
+        h = np.arange(-self.harmonics, self.harmonics + 1)
+        return np.real(np.tensordot(self.coefficients * (1j * h),
+                                    np.exp(1j * h[:, None] * xi.ravel()),
+                                    axes=(1, 0))).reshape((-1,) + xi.shape)
+
+    def state(self, N: int, t: float = 0.0):
+        """(u, v) of the wave on a ring of N sites at time t, each shape (d, N)."""
+        xi = self.k * np.arange(N) - self.omega * t
+        return self.profile(xi), -self.omega * self.slope(xi)
+
+    def harmonic_amplitudes(self) -> np.ndarray:
+        """2 |c[j, h]| for h = 0..H (the mean as |c_0|), shape (d, H + 1)."""
+        H = self.harmonics
+        out = 2 * np.abs(self.coefficients[:, H:])
+        out[:, 0] /= 2
+        return out
+
+
+def _grid(M):
+    return 2 * np.pi * np.arange(M) / M
+
+
+def _fields_at(c, xi, shift=0.0):
+    """U(xi + shift) from coefficients c (d, 2H + 1)."""
+    H = (c.shape[1] - 1) // 2
+    h = np.arange(-H, H + 1)
+    return np.real(c @ np.exp(1j * h[:, None] * (xi[None, :] + shift)))
+
+
+def _force(model: Model, c, xi, k):
+    """F_j(xi) = -[d_j W(U(xi), U(xi + k)) + d_{d+j} W(U(xi - k), U(xi))], shape (d, M)."""
+    d = model.n_fields
+    U0, Up, Um = _fields_at(c, xi), _fields_at(c, xi, k), _fields_at(c, xi, -k)
+    g_here = np.empty((2 * d, xi.size))
+    g_back = np.empty((2 * d, xi.size))
+    model.code.cell_gradient_into(np.concatenate([U0, Up]), model.p, g_here)
+    model.code.cell_gradient_into(np.concatenate([Um, U0]), model.p, g_back)
+    return -(g_here[:d] + g_back[d:])
+
+
+def _pack_layout(d, H, field, acoustic):
+    """Which unknowns are free: (complement basis of the acoustic directions, mask of the
+    free Re/Im parts of c[j, h], h = 1..H)."""
+    if acoustic.shape[1]:
+        q, _ = np.linalg.qr(np.concatenate([acoustic, np.eye(d)], axis=1))
+        optical = q[:, acoustic.shape[1]:d]
+    else:
+        optical = np.eye(d)
+    free = np.ones((d, H, 2), bool)
+    free[field, 0, :] = False  # c[f, 1] = a / 2, real: the amplitude and the phase
+    return optical, free
+
+
+def travelling_wave(model: Model, k: float, amplitude: float, branch=None, *,
+                    harmonics: int | None = None) -> TravellingWave:
+    """The exact travelling plane wave of ``model`` on ``branch`` at wavenumber ``k`` whose
+    carrier field has first harmonic ``amplitude`` cos(k n - omega t).
+
+    Raises ModelError where none is found (a resonance with another harmonic, an
+    amplitude beyond the branch's nonlinear range): said in one line.
+    """
+    from scipy.optimize import least_squares
+
+    a = float(amplitude)
+    if not (math.isfinite(a) and a > 0):
+        raise ModelError(f"amplitude must be a finite number > 0, got {amplitude!r}")
+    car = carrier(model, k, branch)
+    d = model.n_fields
+    masses = np.asarray(model.masses, float)
+    acoustic = acoustic_directions(model)
+    H = harmonics or 8
+    c_lin = np.zeros((d, 2 * H + 1), complex)
+    c_lin[:, H + 1] = a / 2 * car.e
+    c_lin[:, H - 1] = np.conj(c_lin[:, H + 1])
+    omega0, c0 = car.omega, c_lin
+    while True:
+        wave = _solve(model, car, a, masses, acoustic, H, c0, omega0, least_squares)
+        tail = np.max(np.abs(wave.coefficients[:, [0, -1]])) / a
+        if harmonics or tail < 1e-13 or H >= 32:
+            break
+        H2 = 2 * H  # the harmonics reach the truncation: twice as many
+        c0 = np.zeros((d, 2 * H2 + 1), complex)
+        c0[:, H2 - H:H2 + H + 1] = wave.coefficients
+        omega0, H = wave.omega, H2
+    scale = max(np.max(masses) * wave.omega**2, 1e-300)
+    if not (wave.residual < RESIDUAL_TOL) or not np.isfinite(wave.omega):
+        raise ModelError(
+            f"model {model.describe()}: no travelling wave of amplitude {a:g} at k = {k:.6g} "
+            f"(harmonic balance residual {wave.residual:.2g} of m omega^2 a = {scale * a:.3g}; "
+            "a harmonic resonant with a branch, or an amplitude beyond the branch's range)")
+    return wave
+
+
+def _solve(model, car, a, masses, acoustic, H, c0, omega0, least_squares):
+    d = model.n_fields
+    M = max(64, 4 * H + 8)
+    xi = _grid(M)
+    optical, free = _pack_layout(d, H, car.field, acoustic)
+    h = np.arange(-H, H + 1)
+    E = np.exp(-1j * h[:, None] * xi[None, :]) / M  # projection onto e^{i h xi}
+    scale = float(np.max(masses)) * omega0**2 * a
+
+    def unpack(x):
+        omega = x[0]
+        mean = optical @ x[1:1 + optical.shape[1]]
+        parts = np.zeros((d, H, 2))
+        parts[free] = x[1 + optical.shape[1]:]
+        parts[car.field, 0] = (a / 2, 0.0)
+        c = np.zeros((d, 2 * H + 1), complex)
+        c[:, H] = mean
+        c[:, H + 1:] = parts[..., 0] + 1j * parts[..., 1]
+        c[:, :H] = np.conj(c[:, H + 1:][:, ::-1])
+        return omega, c
+
+    def residual(x):
+        omega, c = unpack(x)
+        R = masses[:, None] * omega**2 * _fields_at(c * (-(h**2)), xi) - _force(model, c, xi, car.k)
+        R_hat = R @ E.T  # (d, 2H + 1)
+        eqs = [np.real(optical.T @ R_hat[:, H])]
+        pos = R_hat[:, H + 1:]
+        eqs += [np.real(pos).ravel(), np.imag(pos).ravel()]
+        return np.concatenate(eqs) / scale
+
+    x0 = [omega0, *(optical.T @ np.real(c0[:, H]))]
+    parts0 = np.stack([np.real(c0[:, H + 1:]), np.imag(c0[:, H + 1:])], axis=-1)
+    x0 = np.array(x0 + list(parts0[free]))
+    sol = least_squares(residual, x0, method="lm", xtol=1e-15, ftol=1e-15, gtol=1e-15,
+                        max_nfev=200 * (x0.size + 1))
+    omega, c = unpack(sol.x)
+    res = float(np.max(np.abs(residual(sol.x)))) if np.all(np.isfinite(sol.x)) else math.inf
+    return TravellingWave(model=model, carrier=car, amplitude=a, omega=float(omega),
+                          coefficients=c, residual=res)
+
+
+@dataclass(frozen=True)
+class HillSpectrum:
+    """Growth rates of the sidebands of a travelling wave.
+
+    Attributes
+    ----------
+    wave : TravellingWave
+    offsets : ndarray
+        Perturbation wavenumbers q (rad/site), as asked.
+    gain : ndarray
+        Largest Re lambda over the resolved modes at each q (1/time, >= 0).
+    harmonic : ndarray of int
+        The harmonic l (-1, 0 or 1: only modes centred there are kept, which every mode is
+        at some q) that carries most of the fastest mode's weight at each q.
+    """
+
+    wave: TravellingWave
+    offsets: np.ndarray
+    gain: np.ndarray
+    harmonic: np.ndarray
+
+    @property
+    def peak_gain(self) -> float:
+        return float(np.max(self.gain)) if self.gain.size else 0.0
+
+    @property
+    def fastest_wavenumber(self) -> float:
+        """The spatial wavenumber kappa = q + l k (wrapped to (-pi, pi]) of the fastest
+        mode's dominant harmonic."""
+        if not self.gain.size or self.peak_gain <= 0:
+            return math.nan
+        i = int(np.argmax(self.gain))
+        kap = self.offsets[i] + self.harmonic[i] * self.wave.k
+        return float((kap + np.pi) % (2 * np.pi) - np.pi)
+
+    @property
+    def fastest_offset(self) -> float:
+        """The fastest mode's distance in wavenumber from the carrier's +-k (rad/site)."""
+        kap = self.fastest_wavenumber
+        if math.isnan(kap):
+            return math.nan
+        k = self.wave.k
+        return float(min(abs((kap - s * k + np.pi) % (2 * np.pi) - np.pi) for s in (1, -1)))
+
+    @property
+    def verdict(self) -> str:
+        """'MI' where a sideband grows, else 'stable'."""
+        return "MI" if self.peak_gain > 0 else "stable"
+
+    @property
+    def mode(self) -> str:
+        """What grows fastest: 'sidebands k +- q' (within pi/4 of the carrier: the
+        modulational instability) or 'resonance at wavenumber kappa' (a parametric one)."""
+        if self.peak_gain <= 0:
+            return "none"
+        if self.fastest_offset <= np.pi / 4:
+            return "sidebands k +- q"
+        return f"resonance at wavenumber {self.fastest_wavenumber:.4g}"
+
+
+def _hessian_harmonics(wave: TravellingWave, P: int):
+    """Hhat_s, s = -2P..2P, of the cell Hessian along the wave: shape (4P + 1, 2d, 2d)."""
+    model = wave.model
+    d = model.n_fields
+    M = max(128, 8 * P + 8, 4 * wave.harmonics + 8)
+    xi = _grid(M)
+    x = np.concatenate([wave.profile(xi), wave.profile(xi + wave.k)])
+    Hs = np.empty((2 * d, 2 * d, M))
+    model.code.cell_hessian_into(x, model.p, Hs)
+    s = np.arange(-2 * P, 2 * P + 1)
+    return np.einsum("abm,sm->sab", Hs, np.exp(-1j * s[:, None] * xi[None, :])) / M
+
+
+def hill_spectrum(wave: TravellingWave, offsets, *, harmonics: int | None = None,
+                  return_eigenvalues: bool = False):
+    """The growth rate of the fastest resolved sideband mode at each offset q.
+
+    ``harmonics`` P: the perturbation's harmonics l = -P..P (default: the wave's H + 4).
+    With ``return_eigenvalues``, also the lambdas at each q (list of arrays).
+    """
+    model = wave.model
+    d = model.n_fields
+    k, omega = wave.k, wave.omega
+    P = harmonics or wave.harmonics + 4
+    Hh = _hessian_harmonics(wave, P)
+    l_ = np.arange(-P, P + 1)
+    n = d * (2 * P + 1)
+    m = np.tile(np.asarray(model.masses, float), 2 * P + 1)
+    Minv = 1 / m
+    offsets = np.atleast_1d(np.asarray(offsets, dtype=float))
+    gains, modes, lams = [], [], []
+    floor = GAIN_FLOOR * max(omega, 1e-300)
+    outer = np.zeros((2 * P + 1, d), bool)
+    outer[:3] = outer[-3:] = True
+    outer = outer.ravel()
+    diff = l_[:, None] - l_[None, :] + 2 * P
+    back = np.exp(-1j * (l_[:, None] - l_[None, :]) * k)[..., None, None]
+    for q in offsets:
+        ph = np.exp(1j * (q + l_ * k))[None, :, None, None]  # per column harmonic h
+        S = Hh[diff]                                          # (l, h, 2d, 2d)
+        Sb = S * back
+        blk = (S[..., :d, :d] + S[..., :d, d:] * ph + Sb[..., d:, :d] / ph
+               + Sb[..., d:, d:])                            # (l, h, d, d)
+        L = blk.transpose(0, 2, 1, 3).reshape(n, n)
+        ll = np.repeat(l_, d)
+        K0 = L - np.diag(ll**2 * omega**2 * m)
+        B = np.diag(-2j * omega * ll * m)
+        A = np.zeros((2 * n, 2 * n), complex)
+        A[:n, n:] = np.eye(n)
+        A[n:, :n] = -Minv[:, None] * K0
+        A[n:, n:] = -Minv[:, None] * B
+        lam, vec = np.linalg.eig(A)
+        c = np.abs(vec[:n]) ** 2
+        weight = c / np.maximum(c.sum(axis=0), 1e-300)
+        per_l = weight.reshape(2 * P + 1, d, -1).sum(axis=1)
+        central = np.abs(l_[np.argmax(per_l, axis=0)]) <= 1
+        resolved = central & (weight[outer].sum(axis=0) < 1e-6)
+        re = np.where(resolved, lam.real, -np.inf)
+        best = int(np.argmax(re))
+        g = float(re[best]) if np.isfinite(re[best]) else 0.0
+        gains.append(g if g > floor else 0.0)
+        modes.append(int(l_[int(np.argmax(per_l[:, best]))]))
+        if return_eigenvalues:
+            lams.append(lam[resolved])
+    spec = HillSpectrum(wave=wave, offsets=offsets, gain=np.array(gains),
+                        harmonic=np.array(modes, int))
+    return (spec, lams) if return_eigenvalues else spec
+
+
+def ring_offsets(N: int) -> np.ndarray:
+    """The perturbation wavenumbers of a ring of N sites, q = 2 pi j / N, 0 < q <= pi."""
+    return 2 * np.pi * np.arange(1, N // 2 + 1) / N
+
+
+def exact_gain(model: Model, k: float, amplitude: float, branch=None, *, N: int | None = None,
+               samples: int = 400) -> HillSpectrum:
+    """The exact lattice theory at one point: the travelling wave and its Hill spectrum on
+    the ring's offsets (``N``) or on ``samples`` offsets in (0, pi]."""
+    wave = travelling_wave(model, k, amplitude, branch)
+    q = ring_offsets(N) if N else np.linspace(np.pi / samples, np.pi, samples)
+    return hill_spectrum(wave, q)
