@@ -113,9 +113,10 @@ def _experiment_args(p, model_mode=False):
                    help="(required) rotation: case I, U = 0; coupled: case II, U and theta")
     p.add_argument("--amplitude", type=float, default=paper.AMPLITUDE,
                    help="peak rotation of the plane wave, rad (the paper's 2 eps A0)")
-    p.add_argument("--start", choices=("paper", "travelling"), default="paper",
-                   help="initial state: eq. IC of the paper (U at rest), or the exact "
-                        "travelling wave")
+    p.add_argument("--start", choices=("paper", "travelling", "linear"), default=None,
+                   help="initial state: paper (default for the paper chain): eq. IC of the "
+                        "paper (U at rest); travelling (default with --model): the exact "
+                        "travelling wave; linear (--model only): the linear plane wave")
     p.add_argument("--N", type=int, default=500, help="sites of the periodic chain; k is "
                    "snapped to the nearest 2 pi m / N")
 
@@ -368,6 +369,11 @@ def _dispatch(args, scenes) -> int:
         run = {"coefficients": models.run_coefficients, "point": models.run_point,
                "map": models.run_map, "soliton": models.run_soliton}[args.cmd]
         return run(args)
+    if hasattr(args, "start"):  # the paper chain's starts: eq. IC (default) or travelling
+        if args.start == "linear":
+            raise ValueError("--start linear: for --model runs (the paper chain starts from "
+                             "eq. IC, 'paper', or the exact wave, 'travelling')")
+        args.start = args.start or "paper"
     if args.cmd == "point":
         from .point import run_point
 

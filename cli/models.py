@@ -315,42 +315,129 @@ def _continuum(model, k, amplitude):
             "peak_gain": abs(g2) * amplitude**2 / 4 if mi else 0.0, "g1": g1, "g2": g2}
 
 
+def _start_of(args) -> str:
+    start = getattr(args, "start", None)
+    if start == "paper":
+        raise ValueError("--start paper: the paper's start (eq. IC) is for the paper chain "
+                         "(no --model); with --model: travelling (the exact wave, default) "
+                         "or linear (the linear plane wave)")
+    return "linear" if start == "linear" else "exact"
+
+
+def _exact_row(spec) -> dict:
+    return {"verdict": spec.verdict, "peak_gain": spec.peak_gain,
+            "fastest_offset": spec.fastest_offset, "mode": spec.mode,
+            "omega": spec.wave.omega, "omega_linear": spec.wave.carrier.omega}
+
+
+def _simulated_row(model, k, args, spec, start) -> dict:
+    """Seeded runs of the ring from the exact wave (or the linear one) and the verdict
+    ``numerics.lattice.simulated_verdict`` gives their growth factors, as for the paper's
+    chain: MI, 'no growth within T' or 'undetermined'."""
+    import numpy as np
+
+    from numerics.lattice import run_length, simulated_verdict
+    from numerics.models import simulate_model
+
+    seeds = args.seeds
+    if isinstance(seeds, bool) or not isinstance(seeds, int) or seeds < 1:
+        raise ValueError(f"--seeds must be an integer >= 1, got {seeds!r}")
+    length = run_length(spec.peak_gain) if args.t_end is None else None
+    t_end = args.t_end if args.t_end is not None else length.t_end
+    runs = [simulate_model(model, k, args.amplitude, branch=branch_of(args), N=args.N,
+                           t_end=t_end, start=start, seed=s, wave=spec.wave)
+            for s in range(seeds)]
+    growth = [r.growth() for r in runs]
+    rates = [g.rate for g in growth if g.verdict == "unstable"]
+    rate = float(np.median(rates)) if rates else float("nan")
+    v = simulated_verdict([g.factor for g in growth], t_end, rate)
+    row = {"verdict": v.word, "peak_gain": rate if v.word == "MI" else None,
+           "text": str(v), "t_end": t_end, "seeds": seeds, "start": start,
+           "growth": list(v.growth), "slowest_visible_rate": v.slowest_visible,
+           "energy_drift": max(r.energy_drift for r in runs), "dt": runs[0].dt,
+           "method": runs[0].method}
+    if length is not None and length.note():
+        row["note"] = length.note()
+    return row
+
+
 def run_point(args) -> int:
+    from common.output import strict_json
     from numerics.lattice import checks
-    from numerics.models import model_coefficients
+    from numerics.models import exact_gain, model_coefficients, snap_ring
 
     model = load(args)
     checks.real("--k", args.k, 0.0, math.pi)
     checks.real("--amplitude", args.amplitude, 0.0, None)
-    if args.simulate:
-        raise ValueError("--simulate with --model: the simulator and the exact lattice theory "
-                         "for any model are not in this version (see docs/models.md); the "
-                         "paper chain (no --model) simulates")
-    co = model_coefficients(model, args.k, args.amplitude, branch_of(args))
+    if args.t_end is not None and not args.simulate:
+        raise ValueError("--t-end acts with --simulate only")
+    start = _start_of(args)
+    k, _ = snap_ring(args.k, args.N)
+    if args.out:
+        from common.output import check_output
+        check_output(args.out, cache=False)
+    co = model_coefficients(model, k, args.amplitude, branch_of(args))
     out = {"model": model.name, "parameters": dict(model.params), "k": co["k"],
-           "k_requested": float(args.k), "amplitude": co["amplitude"], "branch": co["branch"],
-           "field": co["field"]}
-    cont = _continuum(model, args.k, args.amplitude)
+           "k_requested": float(args.k), "N": args.N, "amplitude": co["amplitude"],
+           "branch": co["branch"], "field": co["field"]}
+    cont = _continuum(model, k, args.amplitude)
     if cont is not None:
         out["continuum NLS"] = cont
     out["semi-discrete NLS"] = {"verdict": co["verdict"], "peak_gain": co["peak_gain"],
                                 "fastest_offset": co["fastest_offset"],
                                 "band_edge": co["band_edge"], "g1": co["g1"], "g2": co["g2"],
                                 "reason": co["reason"]}
+    try:
+        spec = exact_gain(model, k, args.amplitude, branch_of(args), N=args.N)
+        out["exact lattice"] = _exact_row(spec)
+    except Exception as exc:  # no travelling wave: the theory has no verdict here
+        from energy import ModelError
+        if not isinstance(exc, ModelError):
+            raise
+        spec = None
+        out["exact lattice"] = {"verdict": "undefined", "peak_gain": None,
+                                "reason": str(exc)}
+    if args.simulate:
+        if spec is None:
+            raise ValueError(f"--simulate: {out['exact lattice']['reason']}")
+        out["simulated"] = _simulated_row(model, k, args, spec, start)
+    out = strict_json(out)
+    if args.out:
+        import json
+
+        from common.files import write_text
+        from common.output import prepare_output
+        folder = prepare_output(args.out, cache=False)
+        write_text(folder / "point.json", json.dumps(out, indent=1, allow_nan=False) + "\n")
     if args.json:
         _emit(out)
         return 0
     print(f"model:    {model.describe()}")
-    print(f"carrier:  k = {co['k']:g} rad/site on branch {co['branch']} (field {co['field']}), "
-          f"amplitude a = {co['amplitude']:g}")
-    print(f"{'theory':<20} {'verdict':>9} {'peak gain (1/time)':>19} {'at offset':>10}")
-    for name in ("continuum NLS", "semi-discrete NLS"):
+    print(f"carrier:  k = {co['k']:g} rad/site (2 pi m / N on the ring of N = {args.N}) on "
+          f"branch {co['branch']} (field {co['field']}), amplitude a = {co['amplitude']:g}")
+    print(f"{'theory':<20} {'verdict':>19} {'peak gain (1/time)':>19} {'at offset':>10}")
+    for name in ("continuum NLS", "semi-discrete NLS", "exact lattice", "simulated"):
         if name in out:
             t = out[name]
-            print(f"{name:<20} {t['verdict']:>9} {_fmt(t['peak_gain'], 4):>19} "
+            print(f"{name:<20} {t['verdict']:>19} {_fmt(t['peak_gain'], 4):>19} "
                   f"{_fmt(t.get('fastest_offset'), 4):>10}")
     if co["reason"]:
         print(f"undefined: {co['reason']}")
+    ex = out["exact lattice"]
+    if ex.get("reason"):
+        print(f"exact lattice undefined: {ex['reason']}")
+    elif ex["verdict"] == "MI" and ex["mode"] != "sidebands k +- q":
+        print(f"note: the exact lattice's fastest mode is a {ex['mode']}, not a sideband "
+              "pair of the carrier: the NLS cannot see it")
+    if "simulated" in out:
+        sim = out["simulated"]
+        print(f"simulated: {sim['text']}; {sim['seeds']} seed(s) from the "
+              f"{'exact travelling' if start == 'exact' else 'linear plane'} wave, "
+              f"energy drift {sim['energy_drift']:.1g}")
+        if sim.get("note"):
+            print(f"note: {sim['note']}")
     for w in co["warnings"]:
         print(f"note: {w}")
+    if args.out:
+        print(f"wrote {Path(args.out) / 'point.json'}")
     return 0

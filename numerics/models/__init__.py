@@ -5,14 +5,38 @@ carrier, branches, check_rest_stable   linear waves: k -> omega, v_g, g1 on a br
 nls -> ModelNLS                         the semi-discrete NLS (g1, g2, second harmonic,
                                         mean flow), MI verdict, gain curve, soliton
 model_coefficients                      the NLS at one carrier as a JSON-ready dict
+travelling_wave -> TravellingWave       the exact plane wave (harmonic balance)
+hill_spectrum -> HillSpectrum           its sidebands' growth rates (Hill/Floquet)
+exact_gain                              both at one point: the exact lattice theory
+simulate_model -> ModelRun              a ring of the model; .growth() -> Growth
+lattice_force, lattice_energy           the compiled force and the model's energy
 model_map                               MI map over two parameters, or a parameter and k
 """
 
+from ._exact import (
+                     HillSpectrum,
+                     TravellingWave,
+                     exact_gain,
+                     hill_spectrum,
+                     ring_offsets,
+                     travelling_wave,
+)
 from ._linear import Carrier, branch_index, branches, carrier, check_rest_stable
 from ._map import model_map
 from ._nls import ModelNLS, ModelSoliton, acoustic_directions, nls
+from ._simulate import (
+                     Growth,
+                     ModelRun,
+                     lattice_energy,
+                     lattice_force,
+                     measure_growth,
+                     simulate_model,
+                     snap_ring,
+)
 from ._summary import model_coefficients
 
 __all__ = ["Carrier", "carrier", "branches", "branch_index", "check_rest_stable", "ModelNLS",
            "ModelSoliton", "nls", "acoustic_directions", "model_map",
-           "model_coefficients"]
+           "model_coefficients", "TravellingWave", "HillSpectrum", "travelling_wave",
+           "hill_spectrum", "exact_gain", "ring_offsets", "simulate_model", "ModelRun", "Growth",
+           "measure_growth", "lattice_force", "lattice_energy", "snap_ring"]

@@ -119,6 +119,11 @@ class TravellingWave:
         return out
 
 
+def _wrap(x):
+    """|x| wrapped to [0, pi]."""
+    return np.abs((np.asarray(x) + np.pi) % (2 * np.pi) - np.pi)
+
+
 def _grid(M):
     return 2 * np.pi * np.arange(M) / M
 
@@ -249,12 +254,17 @@ class HillSpectrum:
     harmonic : ndarray of int
         The harmonic l (-1, 0 or 1: only modes centred there are kept, which every mode is
         at some q) that carries most of the fastest mode's weight at each q.
+    sideband_offset : ndarray
+        Where the fastest mode at q holds >= 10% of its weight within pi/4 of the carrier's
+        +-k (a modulational mode: at k = pi a sideband pair with the mean flow), its
+        heaviest such component's distance from +-k (rad/site); else nan.
     """
 
     wave: TravellingWave
     offsets: np.ndarray
     gain: np.ndarray
     harmonic: np.ndarray
+    sideband_offset: np.ndarray
 
     @property
     def peak_gain(self) -> float:
@@ -272,12 +282,15 @@ class HillSpectrum:
 
     @property
     def fastest_offset(self) -> float:
-        """The fastest mode's distance in wavenumber from the carrier's +-k (rad/site)."""
-        kap = self.fastest_wavenumber
-        if math.isnan(kap):
+        """The fastest mode's sideband offset from the carrier's +-k (rad/site); for a
+        resonance (no sideband component), the distance of its wavenumber from +-k."""
+        if not self.gain.size or self.peak_gain <= 0:
             return math.nan
-        k = self.wave.k
-        return float(min(abs((kap - s * k + np.pi) % (2 * np.pi) - np.pi) for s in (1, -1)))
+        off = self.sideband_offset[int(np.argmax(self.gain))]
+        if math.isfinite(off):
+            return float(off)
+        kap, k = self.fastest_wavenumber, self.wave.k
+        return float(min(_wrap(kap - k), _wrap(kap + k)))
 
     @property
     def verdict(self) -> str:
@@ -286,11 +299,12 @@ class HillSpectrum:
 
     @property
     def mode(self) -> str:
-        """What grows fastest: 'sidebands k +- q' (within pi/4 of the carrier: the
-        modulational instability) or 'resonance at wavenumber kappa' (a parametric one)."""
+        """What grows fastest: 'sidebands k +- q' (the modulational instability: the mode
+        has sideband components near the carrier) or 'resonance at wavenumber kappa' (a
+        parametric one, far from the carrier)."""
         if self.peak_gain <= 0:
             return "none"
-        if self.fastest_offset <= np.pi / 4:
+        if math.isfinite(self.sideband_offset[int(np.argmax(self.gain))]):
             return "sidebands k +- q"
         return f"resonance at wavenumber {self.fastest_wavenumber:.4g}"
 
@@ -325,7 +339,7 @@ def hill_spectrum(wave: TravellingWave, offsets, *, harmonics: int | None = None
     m = np.tile(np.asarray(model.masses, float), 2 * P + 1)
     Minv = 1 / m
     offsets = np.atleast_1d(np.asarray(offsets, dtype=float))
-    gains, modes, lams = [], [], []
+    gains, modes, lams, offs = [], [], [], []
     floor = GAIN_FLOOR * max(omega, 1e-300)
     outer = np.zeros((2 * P + 1, d), bool)
     outer[:3] = outer[-3:] = True
@@ -357,10 +371,16 @@ def hill_spectrum(wave: TravellingWave, offsets, *, harmonics: int | None = None
         g = float(re[best]) if np.isfinite(re[best]) else 0.0
         gains.append(g if g > floor else 0.0)
         modes.append(int(l_[int(np.argmax(per_l[:, best]))]))
+        kap = q + l_ * k
+        dist = np.minimum(_wrap(kap - k), _wrap(kap + k))
+        near = dist <= np.pi / 4
+        w_best = per_l[:, best]
+        side = w_best[near].sum() >= 0.1 * w_best.sum()
+        offs.append(float(dist[near][np.argmax(w_best[near])]) if side else math.nan)
         if return_eigenvalues:
             lams.append(lam[resolved])
     spec = HillSpectrum(wave=wave, offsets=offsets, gain=np.array(gains),
-                        harmonic=np.array(modes, int))
+                        harmonic=np.array(modes, int), sideband_offset=np.array(offs))
     return (spec, lams) if return_eigenvalues else spec
 
 
@@ -372,7 +392,30 @@ def ring_offsets(N: int) -> np.ndarray:
 def exact_gain(model: Model, k: float, amplitude: float, branch=None, *, N: int | None = None,
                samples: int = 400) -> HillSpectrum:
     """The exact lattice theory at one point: the travelling wave and its Hill spectrum on
-    the ring's offsets (``N``) or on ``samples`` offsets in (0, pi]."""
+    a ring of ``N`` sites (k snapped to 2 pi m / N, the offsets the ring carries) or, N
+    None, on the infinite chain (``samples`` offsets in (0, pi], the peak refined between
+    them)."""
+    if N:
+        from ._simulate import snap_ring
+        k = snap_ring(k, N)[0]
     wave = travelling_wave(model, k, amplitude, branch)
-    q = ring_offsets(N) if N else np.linspace(np.pi / samples, np.pi, samples)
-    return hill_spectrum(wave, q)
+    if N:
+        return hill_spectrum(wave, ring_offsets(N))
+    q = np.linspace(np.pi / samples, np.pi, samples)
+    spec = hill_spectrum(wave, q)
+    if spec.peak_gain <= 0:
+        return spec
+    # the infinite chain's peak between the samples (bounded scalar search of the rate)
+    from scipy.optimize import minimize_scalar
+
+    i = int(np.argmax(spec.gain))
+    lo, hi = q[max(i - 1, 0)], q[min(i + 1, q.size - 1)]
+    best = minimize_scalar(lambda x: -hill_spectrum(wave, [x]).gain[0], bounds=(lo, hi),
+                           method="bounded", options={"xatol": 1e-6 * (hi - lo)})
+    extra = hill_spectrum(wave, [best.x])
+    order = np.argsort(np.concatenate([q, extra.offsets]))
+    return HillSpectrum(
+        wave=wave, offsets=np.concatenate([q, extra.offsets])[order],
+        gain=np.concatenate([spec.gain, extra.gain])[order],
+        harmonic=np.concatenate([spec.harmonic, extra.harmonic])[order],
+        sideband_offset=np.concatenate([spec.sideband_offset, extra.sideband_offset])[order])

@@ -1,0 +1,387 @@
+"""Simulation of any lattice model on a ring, and the growth a run measures.
+
+The force is compiled (Numba) from the model's generated ``cell_gradient_into``: for each
+cell (n, n + 1) the gradient of W(u_n, u_{n+1}) is subtracted from both sites' forces,
+on a ring of N sites with (n_fields, N) arrays. The integrators are the registry's
+(``numerics.METHODS``): the symplectic SRKN family (srkn11b by default, order 6), verlet,
+kahanli8 and rk4, each with the coefficients the paper's chain uses; the kick that ends a
+step and the one that starts the next share one force evaluation.
+
+Start. ``start="exact"`` (default) launches the exact travelling wave (harmonic balance,
+``travelling_wave``) plus seeded noise; ``start="linear"`` the linear plane wave, which
+leaves free second-harmonic and mean-flow waves beside the carrier.
+
+Measurement. The deviation delta = u - U_exact(k n - omega t) from the exact wave is
+Fourier transformed over the ring at each record; the growth of every ring mode
+kappa_j = 2 pi j / N but the carrier's harmonics (where the integrator's phase error and
+the noise's drift of the centre of mass grow secularly) is followed until the deviation
+reaches a tenth of the wave (``SATURATION``). A mode that grew ``GROWTH_FACTOR`` (20x)
+from its start makes the run "unstable", its rate the least-squares slope of log |delta_j|
+over the stretch above ten times its start; otherwise "no growth within T", with the
+slowest rate the run could have shown.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from energy import Model, ModelError
+
+#: deviation (rms over sites, relative to the amplitude) where the linear growth ends
+SATURATION = 0.1
+#: growth of a mode that makes a run "unstable" (the verdict's threshold, as for maps)
+GROWTH_FACTOR = 20.0
+#: noise relative to the amplitude: 16 e-foldings fit below SATURATION
+NOISE = 1e-8
+STARTS = ("exact", "linear")
+
+_KERNELS: dict = {}
+
+
+def _kernels(model: Model):
+    """(accel, srkn_steps, rk4_steps, energy) compiled for the model's generated code."""
+    key = (model.code.__name__, model.code.MODEL_HASH)
+    if key in _KERNELS:
+        return _KERNELS[key]
+    import numba
+
+    grad = numba.njit(cache=False)(model.code.cell_gradient_into)
+    cell_energy = numba.njit(cache=False)(model.code.cell_energy)
+
+    @numba.njit(cache=False)
+    def accel(u, p, minv, out, x, g):
+        d, N = u.shape
+        for a in range(d):
+            for n in range(N):
+                out[a, n] = 0.0
+        for n in range(N):
+            m = n + 1 if n + 1 < N else 0
+            for a in range(d):
+                x[a] = u[a, n]
+                x[d + a] = u[a, m]
+            grad(x, p, g)
+            for a in range(d):
+                out[a, n] -= g[a]
+                out[a, m] -= g[d + a]
+        for a in range(d):
+            for n in range(N):
+                out[a, n] *= minv[a]
+
+    @numba.njit(cache=False)
+    def srkn_steps(u, v, p, minv, A, B, dt, nsteps, acc, x, g):
+        d, N = u.shape
+        accel(u, p, minv, acc, x, g)
+        for _ in range(nsteps):
+            for j in range(B.size):
+                hb = B[j] * dt
+                for a in range(d):
+                    for n in range(N):
+                        v[a, n] += hb * acc[a, n]
+                if A[j] != 0.0:
+                    ha = A[j] * dt
+                    for a in range(d):
+                        for n in range(N):
+                            u[a, n] += ha * v[a, n]
+                    accel(u, p, minv, acc, x, g)
+            if not np.isfinite(u[0, 0]):
+                return False
+        return True
+
+    @numba.njit(cache=False)
+    def rk4_steps(u, v, p, minv, dt, nsteps, acc, x, g):
+        d, N = u.shape
+        k1u = np.empty_like(u)
+        k1v = np.empty_like(u)
+        k2u = np.empty_like(u)
+        k2v = np.empty_like(u)
+        k3u = np.empty_like(u)
+        k3v = np.empty_like(u)
+        k4v = np.empty_like(u)
+        tu = np.empty_like(u)
+        for _ in range(nsteps):
+            accel(u, p, minv, k1v, x, g)
+            k1u[:] = v
+            tu[:] = u + 0.5 * dt * k1u
+            accel(tu, p, minv, k2v, x, g)
+            k2u[:] = v + 0.5 * dt * k1v
+            tu[:] = u + 0.5 * dt * k2u
+            accel(tu, p, minv, k3v, x, g)
+            k3u[:] = v + 0.5 * dt * k2v
+            tu[:] = u + dt * k3u
+            accel(tu, p, minv, k4v, x, g)
+            k4u = v + dt * k3v
+            u += dt / 6 * (k1u + 2 * k2u + 2 * k3u + k4u)
+            v += dt / 6 * (k1v + 2 * k2v + 2 * k3v + k4v)
+            if not np.isfinite(u[0, 0]):
+                return False
+        return True
+
+    @numba.njit(cache=False)
+    def energy(u, v, p, masses, x):
+        d, N = u.shape
+        e = 0.0
+        for n in range(N):
+            m = n + 1 if n + 1 < N else 0
+            for a in range(d):
+                x[a] = u[a, n]
+                x[d + a] = u[a, m]
+                e += 0.5 * masses[a] * v[a, n] ** 2
+            e += cell_energy(x, p)
+        return e
+
+    _KERNELS[key] = (accel, srkn_steps, rk4_steps, energy)
+    return _KERNELS[key]
+
+
+def lattice_force(model: Model, u: np.ndarray) -> np.ndarray:
+    """The acceleration of every site, shape (d, N), from the compiled force."""
+    accel = _kernels(model)[0]
+    u = np.ascontiguousarray(u, dtype=float)
+    d = model.n_fields
+    out = np.empty_like(u)
+    accel(u, np.asarray(model.p, float), 1 / np.asarray(model.masses, float), out,
+          np.empty(2 * d), np.empty(2 * d))
+    return out
+
+
+def lattice_energy(model: Model, u: np.ndarray, v: np.ndarray) -> float:
+    """Total energy of a ring state (kinetic + every cell's W), from the model file."""
+    energy = _kernels(model)[3]
+    return float(energy(np.ascontiguousarray(u, float), np.ascontiguousarray(v, float),
+                        np.asarray(model.p, float), np.asarray(model.masses, float),
+                        np.empty(2 * model.n_fields)))
+
+
+def snap_ring(k: float, N: int) -> tuple[float, int]:
+    """(2 pi m / N, m) nearest to k on a ring of N sites; k = pi is allowed (N even)."""
+    if isinstance(N, bool) or not isinstance(N, (int, np.integer)) or N < 8:
+        raise ModelError(f"N must be an integer >= 8, got {N!r}")
+    if not (isinstance(k, (int, float, np.floating)) and math.isfinite(k) and 0 < k <= math.pi):
+        raise ModelError(f"k must be in (0, pi], got {k!r}")
+    m = int(round(k * N / (2 * math.pi)))
+    if m == 0:
+        raise ModelError(f"k = {k:g} snaps to 0 on a ring of N = {N} (no wave): raise N "
+                         f"above {math.ceil(math.pi / k)}")
+    return 2 * math.pi * m / N, m
+
+
+@dataclass(frozen=True)
+class ModelRun:
+    """A run of a model's ring: what it recorded and the growth it measured.
+
+    Attributes
+    ----------
+    k, amplitude, N, t_end, dt, method, start, noise, seed
+        The run's inputs (k snapped to the ring).
+    wave : TravellingWave
+        The exact wave the deviation is measured from.
+    t : ndarray
+        Record times.
+    spectrum : ndarray, shape (records, N)
+        |FFT of the deviation| per ring mode j, summed over fields in quadrature.
+    deviation : ndarray
+        rms deviation from the exact wave over sites and fields, per record.
+    energy : ndarray
+        Total energy per record (from the model file).
+    """
+
+    model: Model
+    k: float
+    amplitude: float
+    N: int
+    t_end: float
+    dt: float
+    method: str
+    start: str
+    noise: float
+    seed: int
+    wave: object
+    t: np.ndarray
+    spectrum: np.ndarray
+    deviation: np.ndarray
+    energy: np.ndarray
+
+    @property
+    def energy_drift(self) -> float:
+        """max |E(t) - E(0)| / |E(0) - E_rest| over the run (E_rest = 0 at rest)."""
+        return float(np.max(np.abs(self.energy - self.energy[0])) / abs(self.energy[0]))
+
+    def growth(self) -> Growth:
+        """What the run shows: unstable with a rate, or no growth within T."""
+        return measure_growth(self)
+
+
+@dataclass(frozen=True)
+class Growth:
+    """The growth a run measured.
+
+    verdict : 'unstable' or 'no growth within T'
+    rate : float
+        The fastest mode's rate (1/time) where unstable, else nan.
+    wavenumber : float
+        That mode's ring wavenumber (rad/site) in (-pi, pi], else nan.
+    factor : float
+        The sidebands' growth: their largest rms in the linear stage over their start.
+    detectable : float
+        The slowest rate that would have grown GROWTH_FACTOR within the run's linear stage.
+    t_linear : float
+        Where the linear stage ended (the deviation reached SATURATION, or T).
+    """
+
+    verdict: str
+    rate: float
+    wavenumber: float
+    factor: float
+    detectable: float
+    t_linear: float
+
+    @property
+    def label(self) -> str:
+        if self.verdict == "unstable":
+            return f"unstable (measured rate {self.rate:.4g})"
+        return (f"no growth within T (a rate below {self.detectable:.2g} cannot show by "
+                f"t = {self.t_linear:.4g})")
+
+
+def measure_growth(run: ModelRun) -> Growth:
+    N = run.N
+    m = int(round(run.k * N / (2 * math.pi)))
+    # the carrier's harmonics that stand above the noise (on a small ring a high harmonic
+    # aliases onto a sideband: h k = k + q mod 2 pi; those far below the noise are kept)
+    H = run.wave.harmonics
+    size = np.max(np.abs(run.wave.coefficients), axis=0)[H:]  # |c_h|, h = 0..H
+    harmonics = {0} | {(s * h * m) % N for h in range(1, H + 1) for s in (1, -1)
+                       if 2 * size[h] > run.noise * run.amplitude}
+    keep = np.array([j not in harmonics and 0 < j <= N // 2 for j in range(N)])
+    # the sidebands' rms (the carrier's harmonics left out: a linear start slips in phase)
+    sidebands = np.sqrt(2 * np.sum(run.spectrum[:, keep] ** 2, axis=1))
+    sat = np.nonzero(sidebands > SATURATION * run.amplitude)[0]
+    end = int(sat[0]) if sat.size else len(run.t) - 1
+    end = max(end, 1)
+    S = run.spectrum[:end + 1, keep]
+    start = np.maximum(np.median(run.spectrum[:3, keep], axis=0), 1e-300)
+    factor = np.max(S, axis=0) / start
+    # the verdict reads the sidebands' rms: one mode's share of the noise can swing
+    # between its stable eigenmodes (measured: 20x on stable FPUT and flexmm rings), their
+    # sum cannot
+    total = float(np.max(sidebands[:end + 1]) / max(np.median(sidebands[:3]), 1e-300))
+    t_lin = float(run.t[end])
+    # ... and an exponential one: the log-slope over the linear stage's second half, run
+    # over the whole stage, bounds the factor. Algebraic growth near the carrier (the
+    # near-degenerate Bogoliubov pairs of a stable wave exchange amplitude, measured 5x on
+    # flexmm-rotation at k = 1, a = 0.1) has a slope of at most ln 2 / (T / 2) there: 4x
+    half = run.t[:end + 1] >= t_lin / 2
+    if half.sum() >= 3:
+        slope = np.polyfit(run.t[:end + 1][half], np.log(np.maximum(
+            sidebands[:end + 1][half], 1e-300)), 1)[0]
+        total = min(total, float(math.exp(min(max(slope, 0.0) * t_lin, 700.0))))
+    detectable = math.log(GROWTH_FACTOR) / t_lin if t_lin > 0 else math.inf
+    if not factor.size or total < GROWTH_FACTOR:
+        return Growth("no growth within T", math.nan, math.nan, total, detectable, t_lin)
+    # the largest mode at the end of the linear stage is the fastest: products of growing
+    # modes (rates 2 sigma, 3 sigma) rise late from below it, so their slopes are not read
+    i = int(np.argmax(S[-1]))
+    y = np.log(np.maximum(S[:, i], 1e-300))
+    above = np.nonzero(y > math.log(10 * start[i]))[0]
+    first = int(above[0]) if above.size else 0
+    if S.shape[0] - first < 4:
+        first = max(0, S.shape[0] - 4)
+    rate = float(np.polyfit(run.t[first:end + 1], y[first:], 1)[0])
+    j = np.nonzero(keep)[0][i]
+    kap = 2 * math.pi * j / N
+    return Growth("unstable", rate, float((kap + math.pi) % (2 * math.pi) - math.pi),
+                  total, detectable, t_lin)
+
+
+def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: int = 256,
+                   t_end: float | None = None, dt: float | None = None,
+                   method: str = "srkn11b", start: str = "exact", noise: float = NOISE,
+                   seed: int = 0, records: int = 400, expected_gain: float | None = None,
+                   wave=None) -> ModelRun:
+    """Run the ring of ``model`` from a plane wave at ``k`` (snapped to the ring) with
+    first harmonic ``amplitude`` in its carrier field, plus seeded noise.
+
+    ``t_end`` None: ``numerics.lattice.run_length`` of ``expected_gain`` (default: the
+    exact theory's on this ring), as for the paper's chain: 9 e-foldings within
+    [1 000, 100 000], 5 000 where nothing is predicted to grow. ``dt`` None: a fifth of the method's stability
+    limit over the highest frequency of the lattice.
+    """
+    from numerics.lattice import get_method, run_length
+
+    from ._exact import ring_offsets, travelling_wave
+    from ._linear import branches
+
+    meth = get_method(method)
+    if meth.kind not in ("srkn", "rk4"):
+        raise ModelError(f"method {method!r} is not a fixed-step method; choose one of "
+                         "srkn11b, srkn6b, kahanli8, verlet, rk4")
+    if start not in STARTS:
+        raise ModelError(f"start must be one of {', '.join(STARTS)}, got {start!r}")
+    if not (isinstance(noise, (int, float)) and math.isfinite(noise) and noise >= 0):
+        raise ModelError(f"noise must be a finite number >= 0, got {noise!r}")
+    k_ring, _ = snap_ring(k, N)
+    if wave is None:
+        wave = travelling_wave(model, k_ring, amplitude, branch)
+    if t_end is None:
+        if expected_gain is None:
+            from ._exact import hill_spectrum
+            expected_gain = hill_spectrum(wave, ring_offsets(N)).peak_gain
+        t_end = run_length(expected_gain).t_end
+    if not (math.isfinite(t_end) and t_end > 0):
+        raise ModelError(f"t_end must be a finite time > 0, got {t_end!r}")
+    wmax = float(np.nanmax(branches(model, np.linspace(0, math.pi, 129)))) * 1.1 + wave.omega
+    if dt is None:
+        dt = 0.2 * meth.stability_limit() / wmax
+    if not (math.isfinite(dt) and dt > 0):
+        raise ModelError(f"dt must be a finite step > 0, got {dt!r}")
+    nsteps = max(1, int(math.ceil(t_end / dt)))
+    dt = t_end / nsteps
+    every = max(1, nsteps // records)
+    d = model.n_fields
+    rng = np.random.default_rng(seed)
+    u, v = wave.state(N)
+    if start == "linear":
+        xi = k_ring * np.arange(N)
+        e = wave.carrier.e[:, None]
+        w0 = wave.carrier.omega
+        u = amplitude * np.real(e * np.exp(1j * xi))
+        v = amplitude * w0 * np.real(-1j * e * np.exp(1j * xi))
+    u = np.ascontiguousarray(u + noise * amplitude * rng.standard_normal((d, N)))
+    v = np.ascontiguousarray(v + noise * amplitude * wave.omega * rng.standard_normal((d, N)))
+    accel, srkn, rk4, energy = _kernels(model)
+    p = np.asarray(model.p, float)
+    masses = np.asarray(model.masses, float)
+    minv = 1 / masses
+    acc, x, g = np.empty_like(u), np.empty(2 * d), np.empty(2 * d)
+    A = np.asarray(meth.a, float)
+    B = np.asarray(meth.b, float)
+    ts, spec, dev, en = [], [], [], []
+
+    def record(t):
+        U = wave.profile(k_ring * np.arange(N) - wave.omega * t)
+        delta = u - U
+        ts.append(t)
+        spec.append(np.sqrt(np.sum(np.abs(np.fft.fft(delta, axis=1)) ** 2, axis=0)) / N)
+        dev.append(float(np.sqrt(np.mean(delta**2))))
+        en.append(energy(u, v, p, masses, x))
+
+    record(0.0)
+    done = 0
+    while done < nsteps:
+        n = min(every, nsteps - done)
+        ok = (srkn(u, v, p, minv, A, B, dt, n, acc, x, g) if meth.kind == "srkn"
+              else rk4(u, v, p, minv, dt, n, acc, x, g))
+        done += n
+        if not ok or not np.all(np.isfinite(u)):
+            raise FloatingPointError(
+                f"model {model.describe()}: the run blew up by t = {done * dt:.4g} "
+                f"(dt = {dt:.3g}, method {method}): the wave left the lattice's range; "
+                "lower the amplitude or dt")
+        record(done * dt)
+    return ModelRun(model=model, k=k_ring, amplitude=float(amplitude), N=N, t_end=float(t_end),
+                    dt=dt, method=method, start=start, noise=float(noise), seed=int(seed),
+                    wave=wave, t=np.array(ts), spectrum=np.array(spec),
+                    deviation=np.array(dev), energy=np.array(en))
