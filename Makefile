@@ -99,6 +99,7 @@ bench: $(STAMP)
 	$(VPY) -m bench.error_budget $(BENCH_ARGS)
 	$(VPY) -m bench.maps $(BENCH_ARGS)
 	$(VPY) -m bench.exact_maps $(BENCH_ARGS)
+	$(VPY) -m bench.models $(BENCH_ARGS)
 
 bench-quick: $(STAMP)
 	$(VPY) -m bench.simulator --quick $(BENCH_ARGS)
@@ -107,6 +108,7 @@ bench-quick: $(STAMP)
 	$(VPY) -m bench.error_budget --quick $(BENCH_ARGS)
 	$(VPY) -m bench.maps --quick $(BENCH_ARGS)
 	$(VPY) -m bench.exact_maps --quick $(BENCH_ARGS)
+	$(VPY) -m bench.models --quick $(BENCH_ARGS)
 
 # The committed numbers: bench/results.json, bench/simulator.json, bench/*.png
 bench-update:

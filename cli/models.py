@@ -327,6 +327,7 @@ def _start_of(args) -> str:
 def _exact_row(spec) -> dict:
     return {"verdict": spec.verdict, "peak_gain": spec.peak_gain,
             "fastest_offset": spec.fastest_offset, "mode": spec.mode,
+            "modulational_gain": spec.modulational_gain,
             "omega": spec.wave.omega, "omega_linear": spec.wave.carrier.omega}
 
 
@@ -428,7 +429,8 @@ def run_point(args) -> int:
         print(f"exact lattice undefined: {ex['reason']}")
     elif ex["verdict"] == "MI" and ex["mode"] != "sidebands k +- q":
         print(f"note: the exact lattice's fastest mode is a {ex['mode']}, not a sideband "
-              "pair of the carrier: the NLS cannot see it")
+              "pair of the carrier: the NLS cannot see it (the sidebands' own fastest rate: "
+              f"{_fmt(ex['modulational_gain'], 4)})")
     if "simulated" in out:
         sim = out["simulated"]
         print(f"simulated: {sim['text']}; {sim['seeds']} seed(s) from the "

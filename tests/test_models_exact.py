@@ -16,6 +16,7 @@ import pytest
 
 from energy import load_model
 from numerics.models import (
+    branches,
     exact_gain,
     hill_spectrum,
     lattice_energy,
@@ -24,7 +25,6 @@ from numerics.models import (
     simulate_model,
     travelling_wave,
 )
-from numerics.models._linear import branches
 
 
 def _model(name, **p):

@@ -271,6 +271,13 @@ class HillSpectrum:
         return float(np.max(self.gain)) if self.gain.size else 0.0
 
     @property
+    def modulational_gain(self) -> float:
+        """The fastest rate among the sideband modes only (what the NLS describes); the
+        peak_gain may be a resonance's, far from the carrier."""
+        side = np.isfinite(self.sideband_offset) & (self.gain > 0)
+        return float(np.max(self.gain[side])) if side.any() else 0.0
+
+    @property
     def fastest_wavenumber(self) -> float:
         """The spatial wavenumber kappa = q + l k (wrapped to (-pi, pi]) of the fastest
         mode's dominant harmonic."""

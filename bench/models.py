@@ -1,0 +1,94 @@
+"""Any model's compiled force against the fused flexMM kernel, and a model run's cost.
+
+- ns per site of one force evaluation on a ring of N = 500: the fused kernel of eq. `norm`
+  (``numerics.lattice`` accel, the paper chain's fast path) and the force compiled from the
+  flexmm energy file (``numerics.models``: per cell, the generated gradient of
+  W(u_n, u_{n+1}), subtracted from both sites). Same state, same run, best of REPEATS.
+  The issue's bar: the generic force within 3x the fused kernel per site.
+- The same for the other built-in models (one and two fields).
+- A three-way point (exact theory, a simulation, the NLS) per model: wall times.
+Writes the "models" section of results.json (results_quick.json with --quick).
+
+    python -m bench.models [--quick] [--update | --out DIR]
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+from bench.simulator import arguments, machine, write_section
+from energy import load_model
+from numerics.lattice._kernels import accel
+from numerics.models import exact_gain, lattice_force, simulate_model
+
+REPEATS = 5
+
+
+def _best(f, reps):
+    walls = []
+    for _ in range(REPEATS):
+        t0 = time.perf_counter()
+        for _ in range(reps):
+            f()
+        walls.append((time.perf_counter() - t0) / reps)
+    return min(walls)
+
+
+def main(quick=False, out=None):
+    N = 500
+    reps = 200 if quick else 2000
+    rng = np.random.default_rng(0)
+    flex = load_model("flexmm")
+    p = flex.params
+    th, U = rng.normal(0, 0.05, N), rng.normal(0, 1e-3, N)
+    s, c, v, ath, aU = (np.empty(N) for _ in range(5))
+    args = (th, U, True, p["alpha"] ** 2, p["K_s"], p["K_theta"], s, c, v, ath, aU)
+    accel(*args)
+    fused = _best(lambda: accel(*args), reps) / N * 1e9
+    from numerics.models._simulate import _kernels
+
+    per_model = {}
+    for name in ("flexmm", "flexmm-rotation", "fput", "klein-gordon", "sine-gordon",
+                 "diatomic-fput"):
+        model = load_model(name)
+        d = model.n_fields
+        u = np.ascontiguousarray(rng.normal(0, 0.05, (d, N)))
+        kern = _kernels(model)[0]
+        pp = np.asarray(model.p, float)
+        minv = 1 / np.asarray(model.masses, float)
+        outa, x, g = np.empty_like(u), np.empty(2 * d), np.empty(2 * d)
+        lattice_force(model, u)  # compile
+        per_model[name] = _best(lambda: kern(u, pp, minv, outa, x, g), reps) / N * 1e9
+    points = {}
+    for name, params, k, br in (("fput", dict(alpha=0.0, beta=1.0), 2.0, None),
+                                ("diatomic-fput", {}, 1.0, 0),
+                                ("flexmm", {}, 1.0, None)):
+        model = load_model(name).with_params(**params) if params else load_model(name)
+        t0 = time.perf_counter()
+        e = exact_gain(model, k, 0.1, br, N=256)
+        t1 = time.perf_counter()
+        r = simulate_model(model, k, 0.1, branch=br, N=256, wave=e.wave,
+                           expected_gain=e.peak_gain, t_end=500.0 if quick else None)
+        t2 = time.perf_counter()
+        g = r.growth()
+        points[name] = {"exact_s": t1 - t0, "simulation_s": t2 - t1, "t_end": r.t_end,
+                        "exact_gain": e.peak_gain, "measured_rate": g.rate,
+                        "energy_drift": r.energy_drift}
+    res = {"machine": machine(), "quick": quick, "N": N, "repeats": REPEATS,
+           "fused_flexmm_ns_per_site": fused, "generic_ns_per_site": per_model,
+           "generic_flexmm_over_fused": per_model["flexmm"] / fused, "points": points}
+    write_section("models", res, quick, out)
+    print(f"force per site, N = {N}: fused flexMM kernel {fused:.2f} ns; generic:")
+    for name, t in per_model.items():
+        print(f"  {name:<16} {t:6.2f} ns ({t / fused:.2f}x the fused kernel)")
+    for name, pt in points.items():
+        print(f"point {name}: exact {pt['exact_s']:.2f} s, simulation {pt['simulation_s']:.2f} s "
+              f"(T = {pt['t_end']:g}); gain {pt['exact_gain']:.4g} vs measured "
+              f"{pt['measured_rate']:.4g}")
+    return res
+
+
+if __name__ == "__main__":
+    main(*arguments(__doc__))
