@@ -362,6 +362,25 @@ def _simulated_row(model, k, args, spec, start) -> dict:
     return row
 
 
+def _coefficients_or_undefined(model, k, amplitude, branch) -> dict:
+    """The NLS row, or (at k = pi, where 2k is the mean: no expansion) an undefined one
+    with its reason: the exact theory and a simulation still answer there."""
+    from energy import ModelError
+    from numerics.models import carrier, model_coefficients
+
+    try:
+        return model_coefficients(model, k, amplitude, branch)
+    except ModelError as exc:
+        if k < math.pi:
+            raise
+        car = carrier(model, k, branch)
+        return {"k": k, "amplitude": float(amplitude), "branch": car.branch,
+                "field": model.fields[car.field], "verdict": "undefined", "peak_gain": None,
+                "fastest_offset": None, "band_edge": None, "g1": car.g1, "g2": None,
+                "reason": f"{exc} (at k = pi the second harmonic 2k is the mean, 0 mod 2 pi)",
+                "warnings": []}
+
+
 def run_point(args) -> int:
     from common.output import strict_json
     from numerics.lattice import checks
@@ -377,7 +396,7 @@ def run_point(args) -> int:
     if args.out:
         from common.output import check_output
         check_output(args.out, cache=False)
-    co = model_coefficients(model, k, args.amplitude, branch_of(args))
+    co = _coefficients_or_undefined(model, k, args.amplitude, branch_of(args))
     out = {"model": model.name, "parameters": dict(model.params), "k": co["k"],
            "k_requested": float(args.k), "N": args.N, "amplitude": co["amplitude"],
            "branch": co["branch"], "field": co["field"]}
