@@ -21,7 +21,7 @@ import numpy as np
 from bench.simulator import arguments, machine, write_section
 from energy import load_model
 from numerics.lattice._kernels import accel
-from numerics.models import exact_gain, lattice_force, simulate_model
+from numerics.models import compiled_force, exact_gain, simulate_model
 
 REPEATS = 5
 
@@ -47,20 +47,16 @@ def main(quick=False, out=None):
     args = (th, U, True, p["alpha"] ** 2, p["K_s"], p["K_theta"], s, c, v, ath, aU)
     accel(*args)
     fused = _best(lambda: accel(*args), reps) / N * 1e9
-    from numerics.models._simulate import _kernels
-
     per_model = {}
     for name in ("flexmm", "flexmm-rotation", "fput", "klein-gordon", "sine-gordon",
                  "diatomic-fput"):
         model = load_model(name)
         d = model.n_fields
         u = np.ascontiguousarray(rng.normal(0, 0.05, (d, N)))
-        kern = _kernels(model)[0]
-        pp = np.asarray(model.p, float)
-        minv = 1 / np.asarray(model.masses, float)
-        outa, x, g = np.empty_like(u), np.empty(2 * d), np.empty(2 * d)
-        lattice_force(model, u)  # compile
-        per_model[name] = _best(lambda: kern(u, pp, minv, outa, x, g), reps) / N * 1e9
+        force = compiled_force(model, N)
+        outa = np.empty_like(u)
+        force(u, outa)  # compile
+        per_model[name] = _best(lambda f=force, u=u, o=outa: f(u, o), reps) / N * 1e9
     points = {}
     for name, params, k, br in (("fput", dict(alpha=0.0, beta=1.0), 2.0, None),
                                 ("diatomic-fput", {}, 1.0, 0),

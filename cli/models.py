@@ -384,7 +384,7 @@ def _coefficients_or_undefined(model, k, amplitude, branch) -> dict:
 def run_point(args) -> int:
     from common.output import strict_json
     from numerics.lattice import checks
-    from numerics.models import exact_gain, model_coefficients, snap_ring
+    from numerics.models import exact_gain, snap_ring
 
     model = load(args)
     checks.real("--k", args.k, 0.0, math.pi)

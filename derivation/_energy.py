@@ -177,15 +177,66 @@ def _body(e: Energies, exprs: list, targets: list, indent: str = "    ") -> list
     pr = _printer()
     lines = []
     for i, v in enumerate(s.here + s.next):
-        lines.append(f"{indent}{v.name} = x[{i}]")
+        lines.append(f"{indent}{v.name} = _x[{i}]")
     for i, v in enumerate(s.params):
-        lines.append(f"{indent}{v.name} = p[{i}]")
+        lines.append(f"{indent}{v.name} = _p[{i}]")
     subexprs, reduced = sp.cse(exprs, symbols=sp.numbered_symbols("_c"), optimizations=None,
                                order="canonical")
     for sym, val in subexprs:
         lines.append(f"{indent}{sym.name} = {pr.doprint(val)}")
     for t, val in zip(targets, reduced):
         lines.append(f"{indent}{t} = {pr.doprint(val)}")
+    return lines
+
+
+def _site_loop_text(e: Energies) -> list:
+    """site_functions_all and accelerations_into: the simulator's force as one loop over
+    the sites, each site's acceleration from the equations of motion (u_{n-1}, u_n,
+    u_{n+1}), the elementary functions of single sites computed once per site first.
+    Scalars in the loop body, so Numba keeps them in registers (the fused flexMM kernel's
+    form)."""
+    s = e.symbols
+    pr = _printer()
+    acc = list(equations_of_motion(e))
+    sides = {"m": (s.prev, "_m"), "n": (s.here, "_n"), "l": (s.next, "_l")}
+    found = {}
+    for ex in acc:
+        for f in ex.atoms(sp.Function):
+            fs = f.free_symbols - set(s.params)
+            for key, (syms, _) in sides.items():
+                if fs and fs <= set(syms):
+                    found[f] = (key, f.xreplace(dict(zip(syms, s.here))))
+    templates = sorted({t for _, t in found.values()}, key=sp.srepr)
+    index = {t: i for i, t in enumerate(templates)}
+    repl = {f: sp.Symbol(f"_f{key}{index[t]}", real=True) for f, (key, t) in found.items()}
+    acc = [ex.xreplace(repl) for ex in acc]
+    d = len(s.here)
+    lines = ["", "", f"SITE_FUNCTIONS_ALL = {len(templates)}", "", "",
+             "def site_functions_all(_u, _p, _F):",
+             '    """F[i, n] = the i-th elementary function of site n\'s fields, every site."""']
+    lines += [f"    {v.name} = _p[{i}]" for i, v in enumerate(s.params)]
+    lines += ["    for _n in range(_u.shape[1]):"]
+    lines += [f"        {v.name} = _u[{i}, _n]" for i, v in enumerate(s.here)]
+    lines += [f"        _F[{i}, _n] = {pr.doprint(t)}" for i, t in enumerate(templates)]
+    if not templates:
+        lines.append("        pass")
+    lines += ["", "", "def accelerations_into(_u, _F, _p, _out):",
+              '    """out[i, n] = d^2 u_{i,n}/dt^2 on a ring: the equations of motion, site by '
+              'site (F from site_functions_all)."""',
+              "    _N = _u.shape[1]"]
+    lines += [f"    {v.name} = _p[{i}]" for i, v in enumerate(s.params)]
+    lines += ["    for _n in range(_N):",
+              "        _m = _n - 1 if _n > 0 else _N - 1",
+              "        _l = _n + 1 if _n + 1 < _N else 0"]
+    for key, (syms, idx) in sides.items():
+        lines += [f"        {v.name} = _u[{i}, {idx}]" for i, v in enumerate(syms)]
+        used = {str(v) for ex in acc for v in ex.free_symbols}
+        lines += [f"        _f{key}{i} = _F[{i}, {idx}]" for i in range(len(templates))
+                  if f"_f{key}{i}" in used]
+    subexprs, reduced = sp.cse(acc, symbols=sp.numbered_symbols("_c"), optimizations=None,
+                               order="canonical")
+    lines += [f"        {sym.name} = {pr.doprint(val)}" for sym, val in subexprs]
+    lines += [f"        _out[{a}, _n] = {pr.doprint(val)}" for a, val in zip(range(d), reduced)]
     return lines
 
 
@@ -224,39 +275,40 @@ def model_module_text(lat: Lattice, e: Energies | None = None, command: str = ""
         f"MODEL_HASH = {lat.content_hash!r}",
         "",
         "",
-        "def masses(p):",
+        "def masses(_p):",
         '    """Masses m_i of the fields (kinetic energy sum_i m_i u_t**2/2)."""',
     ]
     for i, v in enumerate(s.params):
-        head.append(f"    {v.name} = p[{i}]")
+        head.append(f"    {v.name} = _p[{i}]")
     head.append("    return numpy.array([" + ", ".join(pr.doprint(m) for m in e.masses)
                 + "], dtype=float)")
-    head += ["", "", "def cell_energy(x, p):",
+    head += ["", "", "def cell_energy(_x, _p):",
              '    """W = bond + site of the cell (n, n + 1)."""']
     head += _body(e, [e.cell], ["_w"])
-    head += ["    return _w + 0.0 * x[0]", "", "",
-             "def cell_gradient_into(x, p, out):",
+    head += ["    return _w + 0.0 * _x[0]", "", "",
+             "def cell_gradient_into(_x, _p, _out):",
              '    """out[a] = dW/dx_a."""']
-    head += _body(e, grad, [f"out[{a}]" for a in range(d)])
-    head += ["", "", "def cell_hessian_into(x, p, out):",
+    head += _body(e, grad, [f"_out[{a}]" for a in range(d)])
+    head += _site_loop_text(e)
+    head += ["", "", "def cell_hessian_into(_x, _p, _out):",
              '    """out[a, b] = d^2 W/dx_a dx_b."""']
     flat = [hess[a][b] for a in range(d) for b in range(d)]
-    head += _body(e, flat, [f"out[{a}, {b}]" for a in range(d) for b in range(d)])
-    head += ["", "", "def taylor(p):",
+    head += _body(e, flat, [f"_out[{a}, {b}]" for a in range(d) for b in range(d)])
+    head += ["", "", "def taylor(_p):",
              '    """Derivatives of W at rest: H (order 2), T (3), Q (4), symmetric arrays."""']
     for i, v in enumerate(s.params):
-        head.append(f"    {v.name} = p[{i}]")
-    head += [f"    H = numpy.zeros(({d}, {d}))", f"    T = numpy.zeros(({d}, {d}, {d}))",
-             f"    Q = numpy.zeros(({d}, {d}, {d}, {d}))",
-             "    vals = {"]
+        head.append(f"    {v.name} = _p[{i}]")
+    head += [f"    _H = numpy.zeros(({d}, {d}))", f"    _T = numpy.zeros(({d}, {d}, {d}))",
+             f"    _Q = numpy.zeros(({d}, {d}, {d}, {d}))",
+             "    _vals = {"]
     for idx, val in tens.items():
         name = "HTQ"[len(idx) - 2]
         head.append(f"        ({name!r}, {idx!r}): {pr.doprint(val)},")
-    head += ["    }", "    arrays = {'H': H, 'T': T, 'Q': Q}",
-             "    for (name, idx), v in vals.items():",
-             "        for perm in _permutations(idx):",
-             "            arrays[name][perm] = v",
-             "    return H, T, Q",
+    head += ["    }", "    _arrays = {'H': _H, 'T': _T, 'Q': _Q}",
+             "    for (_name, _idx), _v in _vals.items():",
+             "        for _perm in _permutations(_idx):",
+             "            _arrays[_name][_perm] = _v",
+             "    return _H, _T, _Q",
              "", "",
              "def _permutations(idx):",
              "    import itertools",

@@ -45,6 +45,12 @@ def module_name(name: str) -> str:
     return name.replace("-", "_")
 
 
+#: The layout of a generated model module (its functions and their arguments); a cached
+#: module of another layout is derived again (2: the site loop accelerations_into, argument
+#: names that no field or parameter can shadow).
+CODEGEN_VERSION = 2
+
+
 def cache_dir() -> Path:
     """Where derived code of models that are not built in is kept (FLEXMM_CACHE or
     ~/.cache/flexmm-mi/models), one file per content hash."""
@@ -71,8 +77,8 @@ def generated_code(lat: Lattice) -> ModuleType:
                 return mod
         except ImportError:
             pass
-    path = cache_dir() / f"model_{h[:24]}.py"
-    name = f"_flexmm_model_{h[:24]}"
+    path = cache_dir() / f"model_{h[:24]}_v{CODEGEN_VERSION}.py"
+    name = f"_flexmm_model_{h[:24]}_v{CODEGEN_VERSION}"
     if name in sys.modules:
         return sys.modules[name]
     if not path.exists() or _hash_in(path) != h:

@@ -335,7 +335,10 @@ def test_cli_point_json_per_theory_and_the_fput_flip():
                                      "0.05", "--json")
         assert code == 0, err
         assert data["semi-discrete NLS"]["verdict"] == want
-        assert data["k"] == 3.1 and data["parameters"]["beta"] == beta
+        assert data["exact lattice"]["verdict"] == want
+        # k snapped to the ring point's theories and runs use (N = 500): 2 pi 247 / 500
+        assert data["k_requested"] == 3.1 and data["k"] == pytest.approx(2 * math.pi * 247 / 500)
+        assert data["parameters"]["beta"] == beta
     code, _, _, data = _flexmm("point", "--model", "flexmm", "--k", "0.81681", "--json")
     assert set(data) >= {"continuum NLS", "semi-discrete NLS"}  # the paper's chain only
 

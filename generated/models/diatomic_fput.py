@@ -21,62 +21,101 @@ PARAMETERS = ('m', 'alpha', 'beta')
 MODEL_HASH = '8b6daa83158d49fe5be4c3d4857eb800b2b5399b4776aded5f36b0b91665c09b'
 
 
-def masses(p):
+def masses(_p):
     """Masses m_i of the fields (kinetic energy sum_i m_i u_t**2/2)."""
-    m = p[0]
-    alpha = p[1]
-    beta = p[2]
+    m = _p[0]
+    alpha = _p[1]
+    beta = _p[2]
     return numpy.array([1, m], dtype=float)
 
 
-def cell_energy(x, p):
+def cell_energy(_x, _p):
     """W = bond + site of the cell (n, n + 1)."""
-    u = x[0]
-    v = x[1]
-    u_next = x[2]
-    v_next = x[3]
-    m = p[0]
-    alpha = p[1]
-    beta = p[2]
+    u = _x[0]
+    v = _x[1]
+    u_next = _x[2]
+    v_next = _x[3]
+    m = _p[0]
+    alpha = _p[1]
+    beta = _p[2]
     _c0 = -v
     _c1 = -_c0 - u
     _c2 = _c0 + u_next
     _c3 = (1/3)*alpha
     _c4 = (1/4)*beta
     _w = _c1**4*_c4 + _c1**3*_c3 + (1/2)*_c1**2 + _c2**4*_c4 + _c2**3*_c3 + (1/2)*_c2**2
-    return _w + 0.0 * x[0]
+    return _w + 0.0 * _x[0]
 
 
-def cell_gradient_into(x, p, out):
+def cell_gradient_into(_x, _p, _out):
     """out[a] = dW/dx_a."""
-    u = x[0]
-    v = x[1]
-    u_next = x[2]
-    v_next = x[3]
-    m = p[0]
-    alpha = p[1]
-    beta = p[2]
+    u = _x[0]
+    v = _x[1]
+    u_next = _x[2]
+    v_next = _x[3]
+    m = _p[0]
+    alpha = _p[1]
+    beta = _p[2]
     _c0 = -v
     _c1 = -_c0 - u
     _c2 = _c1**2*alpha
     _c3 = _c1**3*beta
     _c4 = _c0 + u_next
     _c5 = _c4**3*beta + _c4**2*alpha
-    out[0] = -_c2 - _c3 + u - v
-    out[1] = _c2 + _c3 - _c5 - u - u_next + 2*v
-    out[2] = _c4 + _c5
-    out[3] = 0
+    _out[0] = -_c2 - _c3 + u - v
+    _out[1] = _c2 + _c3 - _c5 - u - u_next + 2*v
+    _out[2] = _c4 + _c5
+    _out[3] = 0
 
 
-def cell_hessian_into(x, p, out):
+SITE_FUNCTIONS_ALL = 0
+
+
+def site_functions_all(_u, _p, _F):
+    """F[i, n] = the i-th elementary function of site n's fields, every site."""
+    m = _p[0]
+    alpha = _p[1]
+    beta = _p[2]
+    for _n in range(_u.shape[1]):
+        u = _u[0, _n]
+        v = _u[1, _n]
+        pass
+
+
+def accelerations_into(_u, _F, _p, _out):
+    """out[i, n] = d^2 u_{i,n}/dt^2 on a ring: the equations of motion, site by site (F from site_functions_all)."""
+    _N = _u.shape[1]
+    m = _p[0]
+    alpha = _p[1]
+    beta = _p[2]
+    for _n in range(_N):
+        _m = _n - 1 if _n > 0 else _N - 1
+        _l = _n + 1 if _n + 1 < _N else 0
+        u_prev = _u[0, _m]
+        v_prev = _u[1, _m]
+        u = _u[0, _n]
+        v = _u[1, _n]
+        u_next = _u[0, _l]
+        v_next = _u[1, _l]
+        _c0 = -v
+        _c1 = -_c0 - u
+        _c2 = _c1**2*alpha
+        _c3 = _c1**3*beta
+        _c4 = u - v_prev
+        _c5 = _c0 + u_next
+        _out[0, _n] = _c2 + _c3 - _c4**3*beta - _c4**2*alpha - 2*u + v + v_prev
+        _out[1, _n] = (-_c2 - _c3 + _c5**3*beta + _c5**2*alpha + u + u_next - 2*v)/m
+
+
+def cell_hessian_into(_x, _p, _out):
     """out[a, b] = d^2 W/dx_a dx_b."""
-    u = x[0]
-    v = x[1]
-    u_next = x[2]
-    v_next = x[3]
-    m = p[0]
-    alpha = p[1]
-    beta = p[2]
+    u = _x[0]
+    v = _x[1]
+    u_next = _x[2]
+    v_next = _x[3]
+    m = _p[0]
+    alpha = _p[1]
+    beta = _p[2]
     _c0 = -2*v
     _c1 = _c0 + 2*u
     _c2 = -v
@@ -90,33 +129,33 @@ def cell_hessian_into(x, p, out):
     _c10 = _c3*(_c2 + u_next)**2
     _c11 = _c10 + 1
     _c12 = _c11 + _c8*alpha
-    out[0, 0] = _c6
-    out[0, 1] = -_c5 - _c7
-    out[0, 2] = 0
-    out[0, 3] = 0
-    out[1, 0] = -_c6
-    out[1, 1] = _c10 + _c4 + _c7 + _c9 + 2
-    out[1, 2] = -_c12
-    out[1, 3] = 0
-    out[2, 0] = 0
-    out[2, 1] = -_c11 - _c9
-    out[2, 2] = _c12
-    out[2, 3] = 0
-    out[3, 0] = 0
-    out[3, 1] = 0
-    out[3, 2] = 0
-    out[3, 3] = 0
+    _out[0, 0] = _c6
+    _out[0, 1] = -_c5 - _c7
+    _out[0, 2] = 0
+    _out[0, 3] = 0
+    _out[1, 0] = -_c6
+    _out[1, 1] = _c10 + _c4 + _c7 + _c9 + 2
+    _out[1, 2] = -_c12
+    _out[1, 3] = 0
+    _out[2, 0] = 0
+    _out[2, 1] = -_c11 - _c9
+    _out[2, 2] = _c12
+    _out[2, 3] = 0
+    _out[3, 0] = 0
+    _out[3, 1] = 0
+    _out[3, 2] = 0
+    _out[3, 3] = 0
 
 
-def taylor(p):
+def taylor(_p):
     """Derivatives of W at rest: H (order 2), T (3), Q (4), symmetric arrays."""
-    m = p[0]
-    alpha = p[1]
-    beta = p[2]
-    H = numpy.zeros((4, 4))
-    T = numpy.zeros((4, 4, 4))
-    Q = numpy.zeros((4, 4, 4, 4))
-    vals = {
+    m = _p[0]
+    alpha = _p[1]
+    beta = _p[2]
+    _H = numpy.zeros((4, 4))
+    _T = numpy.zeros((4, 4, 4))
+    _Q = numpy.zeros((4, 4, 4, 4))
+    _vals = {
         ('H', (0, 0)): 1,
         ('H', (0, 1)): -1,
         ('H', (1, 1)): 2,
@@ -138,11 +177,11 @@ def taylor(p):
         ('Q', (1, 2, 2, 2)): -6*beta,
         ('Q', (2, 2, 2, 2)): 6*beta,
     }
-    arrays = {'H': H, 'T': T, 'Q': Q}
-    for (name, idx), v in vals.items():
-        for perm in _permutations(idx):
-            arrays[name][perm] = v
-    return H, T, Q
+    _arrays = {'H': _H, 'T': _T, 'Q': _Q}
+    for (_name, _idx), _v in _vals.items():
+        for _perm in _permutations(_idx):
+            _arrays[_name][_perm] = _v
+    return _H, _T, _Q
 
 
 def _permutations(idx):

@@ -21,32 +21,32 @@ PARAMETERS = ('alpha', 'K_s', 'K_theta')
 MODEL_HASH = 'e16837568b3ece3752c731874e57f3865b77f41acd8188d2326c593bd2afad5e'
 
 
-def masses(p):
+def masses(_p):
     """Masses m_i of the fields (kinetic energy sum_i m_i u_t**2/2)."""
-    alpha = p[0]
-    K_s = p[1]
-    K_theta = p[2]
+    alpha = _p[0]
+    K_s = _p[1]
+    K_theta = _p[2]
     return numpy.array([alpha**(-2.0)], dtype=float)
 
 
-def cell_energy(x, p):
+def cell_energy(_x, _p):
     """W = bond + site of the cell (n, n + 1)."""
-    theta = x[0]
-    theta_next = x[1]
-    alpha = p[0]
-    K_s = p[1]
-    K_theta = p[2]
+    theta = _x[0]
+    theta_next = _x[1]
+    alpha = _p[0]
+    K_s = _p[1]
+    K_theta = _p[2]
     _w = (1/2)*K_s*(-numpy.sin(theta) + numpy.sin(theta_next))**2 + K_theta*theta**2 + (1/2)*K_theta*(theta + theta_next)**2 + 2*(-1/2*numpy.cos(theta) - 1/2*numpy.cos(theta_next) + 1)**2
-    return _w + 0.0 * x[0]
+    return _w + 0.0 * _x[0]
 
 
-def cell_gradient_into(x, p, out):
+def cell_gradient_into(_x, _p, _out):
     """out[a] = dW/dx_a."""
-    theta = x[0]
-    theta_next = x[1]
-    alpha = p[0]
-    K_s = p[1]
-    K_theta = p[2]
+    theta = _x[0]
+    theta_next = _x[1]
+    alpha = _p[0]
+    K_s = _p[1]
+    K_theta = _p[2]
     _c0 = 2*theta
     _c1 = (1/2)*K_theta*(_c0 + 2*theta_next)
     _c2 = numpy.cos(theta)
@@ -55,17 +55,57 @@ def cell_gradient_into(x, p, out):
     _c5 = K_s*(-_c3 + _c4)
     _c6 = numpy.cos(theta_next)
     _c7 = -_c2 - _c6 + 2
-    out[0] = K_theta*_c0 + _c1 - _c2*_c5 + _c3*_c7
-    out[1] = _c1 + _c4*_c7 + _c5*_c6
+    _out[0] = K_theta*_c0 + _c1 - _c2*_c5 + _c3*_c7
+    _out[1] = _c1 + _c4*_c7 + _c5*_c6
 
 
-def cell_hessian_into(x, p, out):
+SITE_FUNCTIONS_ALL = 2
+
+
+def site_functions_all(_u, _p, _F):
+    """F[i, n] = the i-th elementary function of site n's fields, every site."""
+    alpha = _p[0]
+    K_s = _p[1]
+    K_theta = _p[2]
+    for _n in range(_u.shape[1]):
+        theta = _u[0, _n]
+        _F[0, _n] = numpy.cos(theta)
+        _F[1, _n] = numpy.sin(theta)
+
+
+def accelerations_into(_u, _F, _p, _out):
+    """out[i, n] = d^2 u_{i,n}/dt^2 on a ring: the equations of motion, site by site (F from site_functions_all)."""
+    _N = _u.shape[1]
+    alpha = _p[0]
+    K_s = _p[1]
+    K_theta = _p[2]
+    for _n in range(_N):
+        _m = _n - 1 if _n > 0 else _N - 1
+        _l = _n + 1 if _n + 1 < _N else 0
+        theta_prev = _u[0, _m]
+        _fm0 = _F[0, _m]
+        _fm1 = _F[1, _m]
+        theta = _u[0, _n]
+        _fn0 = _F[0, _n]
+        _fn1 = _F[1, _n]
+        theta_next = _u[0, _l]
+        _fl0 = _F[0, _l]
+        _fl1 = _F[1, _l]
+        _c0 = 2*theta
+        _c1 = -_fn1
+        _c2 = (1/2)*K_theta
+        _c3 = (1/2)*_fn0 - 1
+        _c4 = 2*_fn1
+        _out[0, _n] = alpha**2*(-K_s*_fn0*(-_c1 - _fm1) + K_s*_fn0*(_c1 + _fl1) - K_theta*_c0 - _c2*(_c0 + 2*theta_next) - _c2*(_c0 + 2*theta_prev) - _c4*(-_c3 - 1/2*_fl0) - _c4*(-_c3 - 1/2*_fm0))
+
+
+def cell_hessian_into(_x, _p, _out):
     """out[a, b] = d^2 W/dx_a dx_b."""
-    theta = x[0]
-    theta_next = x[1]
-    alpha = p[0]
-    K_s = p[1]
-    K_theta = p[2]
+    theta = _x[0]
+    theta_next = _x[1]
+    alpha = _p[0]
+    K_s = _p[1]
+    K_theta = _p[2]
     _c0 = numpy.sin(theta)
     _c1 = numpy.cos(theta)
     _c2 = numpy.sin(theta_next)
@@ -73,21 +113,21 @@ def cell_hessian_into(x, p, out):
     _c4 = numpy.cos(theta_next)
     _c5 = -_c1 - _c4 + 2
     _c6 = -K_s*_c1*_c4 + K_theta + _c0*_c2
-    out[0, 0] = K_s*_c1**2 + 3*K_theta + _c0**2 + _c0*_c3 + _c1*_c5
-    out[0, 1] = _c6
-    out[1, 0] = _c6
-    out[1, 1] = K_s*_c4**2 + K_theta + _c2**2 - _c2*_c3 + _c4*_c5
+    _out[0, 0] = K_s*_c1**2 + 3*K_theta + _c0**2 + _c0*_c3 + _c1*_c5
+    _out[0, 1] = _c6
+    _out[1, 0] = _c6
+    _out[1, 1] = K_s*_c4**2 + K_theta + _c2**2 - _c2*_c3 + _c4*_c5
 
 
-def taylor(p):
+def taylor(_p):
     """Derivatives of W at rest: H (order 2), T (3), Q (4), symmetric arrays."""
-    alpha = p[0]
-    K_s = p[1]
-    K_theta = p[2]
-    H = numpy.zeros((2, 2))
-    T = numpy.zeros((2, 2, 2))
-    Q = numpy.zeros((2, 2, 2, 2))
-    vals = {
+    alpha = _p[0]
+    K_s = _p[1]
+    K_theta = _p[2]
+    _H = numpy.zeros((2, 2))
+    _T = numpy.zeros((2, 2, 2))
+    _Q = numpy.zeros((2, 2, 2, 2))
+    _vals = {
         ('H', (0, 0)): K_s + 3*K_theta,
         ('H', (0, 1)): -K_s + K_theta,
         ('H', (1, 1)): K_s + K_theta,
@@ -97,11 +137,11 @@ def taylor(p):
         ('Q', (0, 1, 1, 1)): K_s,
         ('Q', (1, 1, 1, 1)): 3 - 4*K_s,
     }
-    arrays = {'H': H, 'T': T, 'Q': Q}
-    for (name, idx), v in vals.items():
-        for perm in _permutations(idx):
-            arrays[name][perm] = v
-    return H, T, Q
+    _arrays = {'H': _H, 'T': _T, 'Q': _Q}
+    for (_name, _idx), _v in _vals.items():
+        for _perm in _permutations(_idx):
+            _arrays[_name][_perm] = _v
+    return _H, _T, _Q
 
 
 def _permutations(idx):

@@ -21,40 +21,40 @@ PARAMETERS = ('alpha', 'K_s', 'K_theta', 'K_3')
 MODEL_HASH = '0f7b1f531fdc33b7c80bc19d11cc2eba15f0e7bb12c9fb73fc1949564fecf8c1'
 
 
-def masses(p):
+def masses(_p):
     """Masses m_i of the fields (kinetic energy sum_i m_i u_t**2/2)."""
-    alpha = p[0]
-    K_s = p[1]
-    K_theta = p[2]
-    K_3 = p[3]
+    alpha = _p[0]
+    K_s = _p[1]
+    K_theta = _p[2]
+    K_3 = _p[3]
     return numpy.array([alpha**(-2.0), 4], dtype=float)
 
 
-def cell_energy(x, p):
+def cell_energy(_x, _p):
     """W = bond + site of the cell (n, n + 1)."""
-    theta = x[0]
-    U = x[1]
-    theta_next = x[2]
-    U_next = x[3]
-    alpha = p[0]
-    K_s = p[1]
-    K_theta = p[2]
-    K_3 = p[3]
+    theta = _x[0]
+    U = _x[1]
+    theta_next = _x[2]
+    U_next = _x[3]
+    alpha = _p[0]
+    K_s = _p[1]
+    K_theta = _p[2]
+    K_3 = _p[3]
     _c0 = theta + theta_next
     _w = (1/4)*K_3*_c0**4 + (1/2)*K_3*theta**4 + (1/2)*K_s*(-numpy.sin(theta) + numpy.sin(theta_next))**2 + (1/2)*K_theta*_c0**2 + K_theta*theta**2 + 2*(-U + U_next - 1/2*numpy.cos(theta) - 1/2*numpy.cos(theta_next) + 1)**2
-    return _w + 0.0 * x[0]
+    return _w + 0.0 * _x[0]
 
 
-def cell_gradient_into(x, p, out):
+def cell_gradient_into(_x, _p, _out):
     """out[a] = dW/dx_a."""
-    theta = x[0]
-    U = x[1]
-    theta_next = x[2]
-    U_next = x[3]
-    alpha = p[0]
-    K_s = p[1]
-    K_theta = p[2]
-    K_3 = p[3]
+    theta = _x[0]
+    U = _x[1]
+    theta_next = _x[2]
+    U_next = _x[3]
+    alpha = _p[0]
+    K_s = _p[1]
+    K_theta = _p[2]
+    K_3 = _p[3]
     _c0 = 2*theta
     _c1 = numpy.sin(theta)
     _c2 = numpy.cos(theta)
@@ -64,22 +64,71 @@ def cell_gradient_into(x, p, out):
     _c6 = K_s*(-_c1 + _c5)
     _c7 = K_3*(theta + theta_next)**3 + (1/2)*K_theta*(_c0 + 2*theta_next)
     _c8 = 4*U - 4*U_next + 2*_c2 + 2*_c3 - 4
-    out[0] = 2*K_3*theta**3 + K_theta*_c0 + _c1*_c4 - _c2*_c6 + _c7
-    out[1] = _c8
-    out[2] = _c3*_c6 + _c4*_c5 + _c7
-    out[3] = -_c8
+    _out[0] = 2*K_3*theta**3 + K_theta*_c0 + _c1*_c4 - _c2*_c6 + _c7
+    _out[1] = _c8
+    _out[2] = _c3*_c6 + _c4*_c5 + _c7
+    _out[3] = -_c8
 
 
-def cell_hessian_into(x, p, out):
+SITE_FUNCTIONS_ALL = 2
+
+
+def site_functions_all(_u, _p, _F):
+    """F[i, n] = the i-th elementary function of site n's fields, every site."""
+    alpha = _p[0]
+    K_s = _p[1]
+    K_theta = _p[2]
+    K_3 = _p[3]
+    for _n in range(_u.shape[1]):
+        theta = _u[0, _n]
+        U = _u[1, _n]
+        _F[0, _n] = numpy.cos(theta)
+        _F[1, _n] = numpy.sin(theta)
+
+
+def accelerations_into(_u, _F, _p, _out):
+    """out[i, n] = d^2 u_{i,n}/dt^2 on a ring: the equations of motion, site by site (F from site_functions_all)."""
+    _N = _u.shape[1]
+    alpha = _p[0]
+    K_s = _p[1]
+    K_theta = _p[2]
+    K_3 = _p[3]
+    for _n in range(_N):
+        _m = _n - 1 if _n > 0 else _N - 1
+        _l = _n + 1 if _n + 1 < _N else 0
+        theta_prev = _u[0, _m]
+        U_prev = _u[1, _m]
+        _fm0 = _F[0, _m]
+        _fm1 = _F[1, _m]
+        theta = _u[0, _n]
+        U = _u[1, _n]
+        _fn0 = _F[0, _n]
+        _fn1 = _F[1, _n]
+        theta_next = _u[0, _l]
+        U_next = _u[1, _l]
+        _fl0 = _F[0, _l]
+        _fl1 = _F[1, _l]
+        _c0 = 2*theta
+        _c1 = -_fn1
+        _c2 = (1/2)*K_theta
+        _c3 = (1/2)*_fl0
+        _c4 = (1/2)*_fn0 - 1
+        _c5 = 2*_fn1
+        _c6 = U_prev + (1/2)*_fm0
+        _out[0, _n] = alpha**2*(-2*K_3*theta**3 - K_3*(theta + theta_next)**3 - K_3*(theta + theta_prev)**3 - K_s*_fn0*(-_c1 - _fm1) + K_s*_fn0*(_c1 + _fl1) - K_theta*_c0 - _c2*(_c0 + 2*theta_next) - _c2*(_c0 + 2*theta_prev) - _c5*(U - _c4 - _c6) - _c5*(-U + U_next - _c3 - _c4))
+        _out[1, _n] = -2*U + U_next - _c3 + _c6
+
+
+def cell_hessian_into(_x, _p, _out):
     """out[a, b] = d^2 W/dx_a dx_b."""
-    theta = x[0]
-    U = x[1]
-    theta_next = x[2]
-    U_next = x[3]
-    alpha = p[0]
-    K_s = p[1]
-    K_theta = p[2]
-    K_3 = p[3]
+    theta = _x[0]
+    U = _x[1]
+    theta_next = _x[2]
+    U_next = _x[3]
+    alpha = _p[0]
+    K_s = _p[1]
+    K_theta = _p[2]
+    K_3 = _p[3]
     _c0 = numpy.sin(theta)
     _c1 = numpy.cos(theta)
     _c2 = 3*K_3*(theta + theta_next)**2
@@ -93,34 +142,34 @@ def cell_hessian_into(x, p, out):
     _c10 = -K_s*_c1*_c5 + _c0*_c3 + _c9
     _c11 = 2*_c3
     _c12 = -_c11
-    out[0, 0] = 6*K_3*theta**2 + K_s*_c1**2 + 3*K_theta + _c0**2 + _c0*_c4 + _c1*_c6 + _c2
-    out[0, 1] = _c8
-    out[0, 2] = _c10
-    out[0, 3] = _c7
-    out[1, 0] = _c8
-    out[1, 1] = 4
-    out[1, 2] = _c12
-    out[1, 3] = -4
-    out[2, 0] = _c10
-    out[2, 1] = _c12
-    out[2, 2] = K_s*_c5**2 + _c3**2 - _c3*_c4 + _c5*_c6 + _c9
-    out[2, 3] = _c11
-    out[3, 0] = _c7
-    out[3, 1] = -4
-    out[3, 2] = _c11
-    out[3, 3] = 4
+    _out[0, 0] = 6*K_3*theta**2 + K_s*_c1**2 + 3*K_theta + _c0**2 + _c0*_c4 + _c1*_c6 + _c2
+    _out[0, 1] = _c8
+    _out[0, 2] = _c10
+    _out[0, 3] = _c7
+    _out[1, 0] = _c8
+    _out[1, 1] = 4
+    _out[1, 2] = _c12
+    _out[1, 3] = -4
+    _out[2, 0] = _c10
+    _out[2, 1] = _c12
+    _out[2, 2] = K_s*_c5**2 + _c3**2 - _c3*_c4 + _c5*_c6 + _c9
+    _out[2, 3] = _c11
+    _out[3, 0] = _c7
+    _out[3, 1] = -4
+    _out[3, 2] = _c11
+    _out[3, 3] = 4
 
 
-def taylor(p):
+def taylor(_p):
     """Derivatives of W at rest: H (order 2), T (3), Q (4), symmetric arrays."""
-    alpha = p[0]
-    K_s = p[1]
-    K_theta = p[2]
-    K_3 = p[3]
-    H = numpy.zeros((4, 4))
-    T = numpy.zeros((4, 4, 4))
-    Q = numpy.zeros((4, 4, 4, 4))
-    vals = {
+    alpha = _p[0]
+    K_s = _p[1]
+    K_theta = _p[2]
+    K_3 = _p[3]
+    _H = numpy.zeros((4, 4))
+    _T = numpy.zeros((4, 4, 4))
+    _Q = numpy.zeros((4, 4, 4, 4))
+    _vals = {
         ('H', (0, 0)): K_s + 3*K_theta,
         ('H', (0, 2)): -K_s + K_theta,
         ('H', (1, 1)): 4,
@@ -137,11 +186,11 @@ def taylor(p):
         ('Q', (0, 2, 2, 2)): 6*K_3 + K_s,
         ('Q', (2, 2, 2, 2)): 6*K_3 - 4*K_s + 3,
     }
-    arrays = {'H': H, 'T': T, 'Q': Q}
-    for (name, idx), v in vals.items():
-        for perm in _permutations(idx):
-            arrays[name][perm] = v
-    return H, T, Q
+    _arrays = {'H': _H, 'T': _T, 'Q': _Q}
+    for (_name, _idx), _v in _vals.items():
+        for _perm in _permutations(_idx):
+            _arrays[_name][_perm] = _v
+    return _H, _T, _Q
 
 
 def _permutations(idx):

@@ -21,77 +21,109 @@ PARAMETERS = ('C', 'omega0', 'alpha', 'beta')
 MODEL_HASH = '9b1f4255b3436544833b4e6d2f15799d018732400dfc6b9a8d1385dca3346df3'
 
 
-def masses(p):
+def masses(_p):
     """Masses m_i of the fields (kinetic energy sum_i m_i u_t**2/2)."""
-    C = p[0]
-    omega0 = p[1]
-    alpha = p[2]
-    beta = p[3]
+    C = _p[0]
+    omega0 = _p[1]
+    alpha = _p[2]
+    beta = _p[3]
     return numpy.array([1], dtype=float)
 
 
-def cell_energy(x, p):
+def cell_energy(_x, _p):
     """W = bond + site of the cell (n, n + 1)."""
-    u = x[0]
-    u_next = x[1]
-    C = p[0]
-    omega0 = p[1]
-    alpha = p[2]
-    beta = p[3]
+    u = _x[0]
+    u_next = _x[1]
+    C = _p[0]
+    omega0 = _p[1]
+    alpha = _p[2]
+    beta = _p[3]
     _w = (1/2)*C*(-u + u_next)**2 + (1/3)*alpha*u**3 + (1/4)*beta*u**4 + (1/2)*omega0**2*u**2
-    return _w + 0.0 * x[0]
+    return _w + 0.0 * _x[0]
 
 
-def cell_gradient_into(x, p, out):
+def cell_gradient_into(_x, _p, _out):
     """out[a] = dW/dx_a."""
-    u = x[0]
-    u_next = x[1]
-    C = p[0]
-    omega0 = p[1]
-    alpha = p[2]
-    beta = p[3]
+    u = _x[0]
+    u_next = _x[1]
+    C = _p[0]
+    omega0 = _p[1]
+    alpha = _p[2]
+    beta = _p[3]
     _c0 = 2*u - 2*u_next
     _c1 = (1/2)*C
-    out[0] = _c0*_c1 + alpha*u**2 + beta*u**3 + omega0**2*u
-    out[1] = -_c0*_c1
+    _out[0] = _c0*_c1 + alpha*u**2 + beta*u**3 + omega0**2*u
+    _out[1] = -_c0*_c1
 
 
-def cell_hessian_into(x, p, out):
+SITE_FUNCTIONS_ALL = 0
+
+
+def site_functions_all(_u, _p, _F):
+    """F[i, n] = the i-th elementary function of site n's fields, every site."""
+    C = _p[0]
+    omega0 = _p[1]
+    alpha = _p[2]
+    beta = _p[3]
+    for _n in range(_u.shape[1]):
+        u = _u[0, _n]
+        pass
+
+
+def accelerations_into(_u, _F, _p, _out):
+    """out[i, n] = d^2 u_{i,n}/dt^2 on a ring: the equations of motion, site by site (F from site_functions_all)."""
+    _N = _u.shape[1]
+    C = _p[0]
+    omega0 = _p[1]
+    alpha = _p[2]
+    beta = _p[3]
+    for _n in range(_N):
+        _m = _n - 1 if _n > 0 else _N - 1
+        _l = _n + 1 if _n + 1 < _N else 0
+        u_prev = _u[0, _m]
+        u = _u[0, _n]
+        u_next = _u[0, _l]
+        _c0 = 2*u
+        _c1 = (1/2)*C
+        _out[0, _n] = -_c1*(_c0 - 2*u_next) - _c1*(_c0 - 2*u_prev) - alpha*u**2 - beta*u**3 - omega0**2*u
+
+
+def cell_hessian_into(_x, _p, _out):
     """out[a, b] = d^2 W/dx_a dx_b."""
-    u = x[0]
-    u_next = x[1]
-    C = p[0]
-    omega0 = p[1]
-    alpha = p[2]
-    beta = p[3]
+    u = _x[0]
+    u_next = _x[1]
+    C = _p[0]
+    omega0 = _p[1]
+    alpha = _p[2]
+    beta = _p[3]
     _c0 = -C
-    out[0, 0] = C + 2*alpha*u + 3*beta*u**2 + omega0**2
-    out[0, 1] = _c0
-    out[1, 0] = _c0
-    out[1, 1] = C
+    _out[0, 0] = C + 2*alpha*u + 3*beta*u**2 + omega0**2
+    _out[0, 1] = _c0
+    _out[1, 0] = _c0
+    _out[1, 1] = C
 
 
-def taylor(p):
+def taylor(_p):
     """Derivatives of W at rest: H (order 2), T (3), Q (4), symmetric arrays."""
-    C = p[0]
-    omega0 = p[1]
-    alpha = p[2]
-    beta = p[3]
-    H = numpy.zeros((2, 2))
-    T = numpy.zeros((2, 2, 2))
-    Q = numpy.zeros((2, 2, 2, 2))
-    vals = {
+    C = _p[0]
+    omega0 = _p[1]
+    alpha = _p[2]
+    beta = _p[3]
+    _H = numpy.zeros((2, 2))
+    _T = numpy.zeros((2, 2, 2))
+    _Q = numpy.zeros((2, 2, 2, 2))
+    _vals = {
         ('H', (0, 0)): C + omega0**2,
         ('H', (0, 1)): -C,
         ('H', (1, 1)): C,
         ('T', (0, 0, 0)): 2*alpha,
         ('Q', (0, 0, 0, 0)): 6*beta,
     }
-    arrays = {'H': H, 'T': T, 'Q': Q}
-    for (name, idx), v in vals.items():
-        for perm in _permutations(idx):
-            arrays[name][perm] = v
-    return H, T, Q
+    _arrays = {'H': _H, 'T': _T, 'Q': _Q}
+    for (_name, _idx), _v in _vals.items():
+        for _perm in _permutations(_idx):
+            _arrays[_name][_perm] = _v
+    return _H, _T, _Q
 
 
 def _permutations(idx):

@@ -42,7 +42,7 @@ from ._integrate import (BlowUpError, SimulationInterrupted, Stepper, blowup_mes
                          check_time, integrate)
 from ._integrators import METHODS, Method, get_method
 from ._baseline import numpy_accel, numpy_rk4
-from ._kernels import FASTMATH, accel, sincos_vers, site_acceleration
+from ._kernels import FASTMATH, TRIG_LIMIT, accel, sincos_vers, site_acceleration
 from ._model import (CASES, LatticeState, Material, check_case, discrete_omega_longitudinal,
                      discrete_omega_rotation, energy)
 from ._simulate import (RUN_REL_TOL, Run, initial_condition, noise_field, resume, simulate,
@@ -60,7 +60,7 @@ def cuda_kernels():
     return _cuda
 
 
-__all__ = ["cuda_kernels", 
+__all__ = ["cuda_kernels", "TRIG_LIMIT", 
     "Material", "LatticeState", "energy", "CASES", "discrete_omega_rotation",
     "discrete_omega_longitudinal", "simulate", "Run", "resume", "initial_condition",
     "snap_wavenumber", "STARTS", "register_start", "paper_start_undefined", "cached_simulate",

@@ -27,6 +27,7 @@ from ._nls import ModelNLS, ModelSoliton, acoustic_directions, nls
 from ._simulate import (
                      Growth,
                      ModelRun,
+                     compiled_force,
                      lattice_energy,
                      lattice_force,
                      measure_growth,
@@ -39,4 +40,4 @@ __all__ = ["Carrier", "carrier", "branches", "branch_index", "check_rest_stable"
            "ModelSoliton", "nls", "acoustic_directions", "model_map",
            "model_coefficients", "TravellingWave", "HillSpectrum", "travelling_wave",
            "hill_spectrum", "exact_gain", "ring_offsets", "simulate_model", "ModelRun", "Growth",
-           "measure_growth", "lattice_force", "lattice_energy", "snap_ring"]
+           "measure_growth", "compiled_force", "lattice_force", "lattice_energy", "snap_ring"]

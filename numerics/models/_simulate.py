@@ -1,8 +1,10 @@
 """Simulation of any lattice model on a ring, and the growth a run measures.
 
-The force is compiled (Numba) from the model's generated ``cell_gradient_into``: for each
-cell (n, n + 1) the gradient of W(u_n, u_{n+1}) is subtracted from both sites' forces,
-on a ring of N sites with (n_fields, N) arrays. The integrators are the registry's
+The force is the model's generated site loop ``accelerations_into`` (each site's
+acceleration printed from its equations of motion, the elementary functions of one site's
+fields computed once per site in ``site_functions_all`` before, with the fused kernel's
+polynomial sin and cos), compiled with Numba, on a ring of N sites with (n_fields, N)
+arrays. The integrators are the registry's
 (``numerics.METHODS``): the symplectic SRKN family (srkn11b by default, order 6), verlet,
 kahanli8 and rk4, each with the coefficients the paper's chain uses; the kick that ends a
 step and the one that starts the next share one force evaluation.
@@ -41,39 +43,78 @@ STARTS = ("exact", "linear")
 _KERNELS: dict = {}
 
 
+def _fast_trig(f):
+    """``f`` with numpy.sin / numpy.cos replaced by the fused kernel's branch-free
+    polynomial (``numerics.lattice.sincos_vers``: within 1 ulp of libm for |x| <= TRIG_LIMIT,
+    tests/test_kernels.py): the generated source, recompiled. A libm sin and cos cost
+    ~10 ns a site; the polynomial inlines (~2 ns, bench/models.py). The kernel uses it only
+    where every field of the site is within TRIG_LIMIT (a run beyond has blown up)."""
+    import inspect
+    import textwrap
+
+    src = textwrap.dedent(inspect.getsource(f))
+    if "numpy.sin(" not in src and "numpy.cos(" not in src:
+        return f
+    from numerics.lattice import sincos_vers
+
+    def _psin(x):
+        return sincos_vers(x)[0]
+
+    def _pcos(x):
+        return sincos_vers(x)[1]
+
+    import numba
+
+    src = src.replace("numpy.sin(", "_psin(").replace("numpy.cos(", "_pcos(")
+    namespace = {"numpy": np,
+                 "_psin": numba.njit(inline="always", fastmath={"contract"})(_psin),
+                 "_pcos": numba.njit(inline="always", fastmath={"contract"})(_pcos)}
+    exec(compile(src, f"<{f.__module__}.{f.__name__}, polynomial trig>", "exec"), namespace)
+    return namespace[f.__name__]
+
+
 def _kernels(model: Model):
-    """(accel, srkn_steps, rk4_steps, energy) compiled for the model's generated code."""
+    """(accel, srkn_steps, rk4_steps, energy, number of site functions) compiled for the
+    model's generated code."""
     key = (model.code.__name__, model.code.MODEL_HASH)
     if key in _KERNELS:
         return _KERNELS[key]
     import numba
 
-    grad = numba.njit(cache=False)(model.code.cell_gradient_into)
-    cell_energy = numba.njit(cache=False)(model.code.cell_energy)
+    code = model.code
+    cell_energy = numba.njit(cache=False)(code.cell_energy)
+    if not hasattr(code, "accelerations_into"):
+        raise ModelError(f"model {model.describe()}: its generated module {code.__name__} "
+                         "is of an older layout (no accelerations_into): run `make derive`")
+    # the generated site loop: each site's acceleration from its equations of motion,
+    # the elementary functions of single sites (sin, cos, exp, ...) computed once per
+    # site in a pass before (the fused flexMM kernel's form)
+    from numerics.lattice import TRIG_LIMIT
 
-    @numba.njit(cache=False)
-    def accel(u, p, minv, out, x, g):
+    nf = int(code.SITE_FUNCTIONS_ALL)
+    fast_sites = numba.njit(cache=False, boundscheck=False)(
+        _fast_trig(code.site_functions_all))
+    libm_sites = numba.njit(cache=False, boundscheck=False)(code.site_functions_all)
+    site_loop = numba.njit(cache=False, boundscheck=False)(code.accelerations_into)
+
+    @numba.njit(cache=False, boundscheck=False)
+    def accel(u, p, minv, out, x, g, S):
         d, N = u.shape
+        near = True  # the polynomial sin/cos where every field is within TRIG_LIMIT
         for a in range(d):
             for n in range(N):
-                out[a, n] = 0.0
-        for n in range(N):
-            m = n + 1 if n + 1 < N else 0
-            for a in range(d):
-                x[a] = u[a, n]
-                x[d + a] = u[a, m]
-            grad(x, p, g)
-            for a in range(d):
-                out[a, n] -= g[a]
-                out[a, m] -= g[d + a]
-        for a in range(d):
-            for n in range(N):
-                out[a, n] *= minv[a]
+                near &= abs(u[a, n]) <= TRIG_LIMIT
+        if near:
+            fast_sites(u, p, S)
+        else:
+            libm_sites(u, p, S)
+        site_loop(u, S, p, out)
 
     @numba.njit(cache=False)
     def srkn_steps(u, v, p, minv, A, B, dt, nsteps, acc, x, g):
         d, N = u.shape
-        accel(u, p, minv, acc, x, g)
+        S = np.empty((max(nf, 1), N))
+        accel(u, p, minv, acc, x, g, S)
         for _ in range(nsteps):
             for j in range(B.size):
                 hb = B[j] * dt
@@ -85,7 +126,7 @@ def _kernels(model: Model):
                     for a in range(d):
                         for n in range(N):
                             u[a, n] += ha * v[a, n]
-                    accel(u, p, minv, acc, x, g)
+                    accel(u, p, minv, acc, x, g, S)
             if not np.isfinite(u[0, 0]):
                 return False
         return True
@@ -93,6 +134,7 @@ def _kernels(model: Model):
     @numba.njit(cache=False)
     def rk4_steps(u, v, p, minv, dt, nsteps, acc, x, g):
         d, N = u.shape
+        S = np.empty((max(nf, 1), N))
         k1u = np.empty_like(u)
         k1v = np.empty_like(u)
         k2u = np.empty_like(u)
@@ -102,16 +144,16 @@ def _kernels(model: Model):
         k4v = np.empty_like(u)
         tu = np.empty_like(u)
         for _ in range(nsteps):
-            accel(u, p, minv, k1v, x, g)
+            accel(u, p, minv, k1v, x, g, S)
             k1u[:] = v
             tu[:] = u + 0.5 * dt * k1u
-            accel(tu, p, minv, k2v, x, g)
+            accel(tu, p, minv, k2v, x, g, S)
             k2u[:] = v + 0.5 * dt * k1v
             tu[:] = u + 0.5 * dt * k2u
-            accel(tu, p, minv, k3v, x, g)
+            accel(tu, p, minv, k3v, x, g, S)
             k3u[:] = v + 0.5 * dt * k2v
             tu[:] = u + dt * k3u
-            accel(tu, p, minv, k4v, x, g)
+            accel(tu, p, minv, k4v, x, g, S)
             k4u = v + dt * k3v
             u += dt / 6 * (k1u + 2 * k2u + 2 * k3u + k4u)
             v += dt / 6 * (k1v + 2 * k2v + 2 * k3v + k4v)
@@ -132,19 +174,34 @@ def _kernels(model: Model):
             e += cell_energy(x, p)
         return e
 
-    _KERNELS[key] = (accel, srkn_steps, rk4_steps, energy)
+    _KERNELS[key] = (accel, srkn_steps, rk4_steps, energy, nf)
     return _KERNELS[key]
 
 
 def lattice_force(model: Model, u: np.ndarray) -> np.ndarray:
     """The acceleration of every site, shape (d, N), from the compiled force."""
-    accel = _kernels(model)[0]
+    accel, nf = _kernels(model)[0], _kernels(model)[4]
     u = np.ascontiguousarray(u, dtype=float)
     d = model.n_fields
     out = np.empty_like(u)
     accel(u, np.asarray(model.p, float), 1 / np.asarray(model.masses, float), out,
-          np.empty(2 * d), np.empty(2 * d))
+          np.empty(2 * d), np.empty(2 * d), np.empty((max(nf, 1), u.shape[1])))
     return out
+
+
+def compiled_force(model: Model, N: int):
+    """force(u, out): the compiled acceleration of a ring of N sites into ``out`` (both
+    (d, N), C-contiguous), its work buffers made once: for timing the kernel itself."""
+    accel, nf = _kernels(model)[0], _kernels(model)[4]
+    d = model.n_fields
+    p = np.asarray(model.p, float)
+    minv = 1 / np.asarray(model.masses, float)
+    x, g, S = np.empty(2 * d), np.empty(2 * d), np.empty((max(nf, 1), N))
+
+    def force(u, out):
+        accel(u, p, minv, out, x, g, S)
+
+    return force
 
 
 def lattice_energy(model: Model, u: np.ndarray, v: np.ndarray) -> float:
@@ -351,7 +408,7 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
         v = amplitude * w0 * np.real(-1j * e * np.exp(1j * xi))
     u = np.ascontiguousarray(u + noise * amplitude * rng.standard_normal((d, N)))
     v = np.ascontiguousarray(v + noise * amplitude * wave.omega * rng.standard_normal((d, N)))
-    accel, srkn, rk4, energy = _kernels(model)
+    accel, srkn, rk4, energy, _ = _kernels(model)
     p = np.asarray(model.p, float)
     masses = np.asarray(model.masses, float)
     minv = 1 / masses
