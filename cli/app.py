@@ -180,6 +180,10 @@ def _map_parser(sub, model_mode=False):
     p.add_argument("--k", required=True, help="(required) SPEC of k (rad per site): "
                    "v1,v2,... or start:stop:num; each k is snapped to 2 pi m / N "
                    "(k_simulated in the dataset; the theories use it too)")
+    p.add_argument("--exact", action="store_true",
+                   help="with --model: add the exact lattice theory per cell (harmonic "
+                        "balance and Hill spectrum on the ring of --N sites, about 1 s a "
+                        "cell); the paper chain's maps have it already")
     p.add_argument("--t-end", dest="t_end", type=float, default=5000.0, help="run length, T")
     p.add_argument("--seeds", type=int, default=1, help="noise seeds per cell")
     p.add_argument("--out", default="out/map", help="folder of map.zarr")
@@ -369,6 +373,9 @@ def _dispatch(args, scenes) -> int:
         run = {"coefficients": models.run_coefficients, "point": models.run_point,
                "map": models.run_map, "soliton": models.run_soliton}[args.cmd]
         return run(args)
+    if getattr(args, "exact", False):
+        raise ValueError("--exact: for --model maps (the paper chain's maps hold the exact "
+                         "lattice theory already)")
     if hasattr(args, "start"):  # the paper chain's starts: eq. IC (default) or travelling
         if args.start == "linear":
             raise ValueError("--start linear: for --model runs (the paper chain starts from "

@@ -231,14 +231,27 @@ def run_map(args) -> int:
     if k_axis is None and k_fixed is None:
         raise ValueError("--k: give the carrier wavenumber (one value, or a SPEC to sweep)")
     if not getattr(args, "theory_only", False):
-        raise ValueError("a model map is theory-only for now (the semi-discrete NLS and the "
-                         "exact lattice theory per cell): add --theory-only; simulated maps "
-                         "run for the paper chain (no --model)")
+        raise ValueError("a model map is theory-only for now (the semi-discrete NLS per cell, "
+                         "and with --exact the exact lattice theory): add --theory-only; "
+                         "simulated maps run for the paper chain (no --model); one point of a "
+                         "model simulates with `point --model ... --simulate`")
     amp = args.amplitude
     x, y = (named[1], named[0]) if named[0][0] == "k" else (named[0], named[1])
     if y[0] == "k":
         x, y = y, x
-    ds = model_map(model, x, y, amp, k=k_fixed, branch=branch_of(args))
+    exact = None
+    if args.exact:
+        from energy import ModelError
+        from numerics.models import exact_gain
+
+        def exact(m, k, a, branch):
+            try:
+                spec = exact_gain(m, k, a, branch, N=args.N)
+            except ModelError:  # no travelling wave at this cell
+                return "undefined", float("nan")
+            return spec.verdict, spec.peak_gain
+
+    ds = model_map(model, x, y, amp, k=k_fixed, branch=branch_of(args), exact=exact)
     mi = {v: float(np.mean(ds[v].values == "MI")) for v in ds.data_vars
           if v.startswith("verdict_")}
     out = Path(args.out)
@@ -280,15 +293,20 @@ def _plot_map(ds, path: Path, model):
         return np.concatenate([[2 * v[0] - mid[0]], mid, [2 * v[-1] - mid[-1]]])
 
     code = {"stable": 0, "MI": 1, "undefined": 2}
-    V = np.vectorize(lambda s: code.get(s, 2))(ds["verdict_semidiscrete"].values)
-    fig, ax = plt.subplots(figsize=(6, 4.5))
-    ax.pcolormesh(edges(x), edges(y), V, cmap=ListedColormap(["#3b4cc0", "#f2a134", "#bbbbbb"]),
-                  vmin=-0.5, vmax=2.5, shading="flat")
-    ax.set_xlabel(xdim + (" (rad/site)" if xdim == "k" else ""))
-    ax.set_ylabel(ydim + (" (rad/site)" if ydim == "k" else ""))
+    panels = [(v, label) for v, label in (("verdict_semidiscrete", "semi-discrete NLS"),
+                                          ("verdict_exact", "exact lattice"))
+              if v in ds]
+    fig, axes = plt.subplots(1, len(panels), figsize=(6 * len(panels), 4.5), squeeze=False)
     fixed = ", ".join(f"{p} = {v:g}" for p, v in model.params.items() if p not in (xdim, ydim))
-    ax.set_title(f"{model.name} ({fixed}), a = {ds.attrs['amplitude']:g}: semi-discrete NLS\n"
-                 "orange MI, blue stable, grey undefined", fontsize=9)
+    for ax, (name, label) in zip(axes[0], panels):
+        V = np.vectorize(lambda s: code.get(s, 2))(ds[name].values)
+        ax.pcolormesh(edges(x), edges(y), V,
+                      cmap=ListedColormap(["#3b4cc0", "#f2a134", "#bbbbbb"]),
+                      vmin=-0.5, vmax=2.5, shading="flat")
+        ax.set_xlabel(xdim + (" (rad/site)" if xdim == "k" else ""))
+        ax.set_ylabel(ydim + (" (rad/site)" if ydim == "k" else ""))
+        ax.set_title(f"{model.name} ({fixed}), a = {ds.attrs['amplitude']:g}: {label}\n"
+                     "orange MI, blue stable, grey undefined", fontsize=9)
     fig.tight_layout()
     fig.savefig(path, dpi=120)
     plt.close(fig)

@@ -246,3 +246,27 @@ def test_point_refuses_starts_of_the_other_kind(argv, match, capsys):
     code = main(["point", "--k", "1", *argv])
     err = capsys.readouterr().err
     assert code == 2 and match in err and len(err.strip().splitlines()) == 1
+
+
+def test_a_model_map_with_the_exact_theory_per_cell(tmp_path, capsys):
+    import json
+
+    import xarray as xr
+
+    from cli.app import main
+
+    code = main(["map", "--model", "fput", "--param", "alpha=1", "--param", "beta=0.8,1.6",
+                 "--k", "2.6,2.8", "--amplitude", "0.1", "--N", "64", "--theory-only", "--exact",
+                 "--out", str(tmp_path), "--json"])
+    out = json.loads(capsys.readouterr().out)
+    assert code == 0 and set(out["mi_share"]) == {"verdict_semidiscrete", "verdict_exact"}
+    ds = xr.open_dataset(tmp_path / "map.nc")
+    # the NLS and the exact theory agree on both sides of this chain's critical beta
+    want = [["stable", "stable"], ["MI", "MI"]]  # (beta, k)
+    assert ds["verdict_exact"].dims == ("beta", "k")
+    assert ds["verdict_exact"].values.tolist() == want
+    assert ds["verdict_semidiscrete"].values.tolist() == want
+    ds.close()
+    assert main(["map", "--alpha", "2.5", "--K-s", "0.02", "--delta", "0.001", "--case",
+                 "coupled", "--k", "1", "--theory-only", "--exact",
+                 "--out", str(tmp_path / "p")]) == 2
