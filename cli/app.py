@@ -199,6 +199,11 @@ def _map_parser(sub, model_mode=False):
     p.add_argument("--theory-only", action="store_true",
                    help="the theories' verdicts only: no simulation")
     p.add_argument("--block", type=int, default=4, help="cells per task")
+    p.add_argument("--device", choices=("cpu", "gpu", "auto"), default="cpu",
+                   help="where the cells' simulations run: cpu (a Dask cluster, default), "
+                        "gpu (this machine's CUDA GPU, batches of cells in one launch; needs "
+                        "the gpu extra: pip install -e '.[gpu]'), auto (the GPU where one is "
+                        "usable); the theories run on the CPU")
 
 
 #: what float() reads after a minus sign and argparse takes for an option (``--t-end -inf``)
@@ -369,6 +374,10 @@ def _dispatch(args, scenes) -> int:
                          "point.json with --out; try --model flexmm --param alpha=...)")
     if getattr(args, "model", None) is not None:
         from . import models
+
+        if getattr(args, "device", "cpu") != "cpu":
+            raise ValueError(f"--device {args.device}: a --model map is theory-only (it "
+                             "simulates nothing); drop --device")
 
         run = {"coefficients": models.run_coefficients, "point": models.run_point,
                "map": models.run_map, "soliton": models.run_soliton}[args.cmd]

@@ -116,9 +116,15 @@ def _map_parameters(args):
 def run_map_command(args, log=print):
     """`flexmm map`: parse, check everything (nothing is written on bad input), run."""
     from common.files import write_text
+    from numerics.maps import resolve_device
 
     params, k, cells = _map_parameters(args)
     check_output(args.out)  # a bad --out fails before the map is announced
+    # a GPU asked where there is none fails here, in one line, before the work is announced
+    device = resolve_device(getattr(args, "device", "cpu"), params.theory_only, log)
+    if device == "gpu" and args.scheduler:
+        raise ValueError("--device gpu runs on this machine's GPU: drop --scheduler (a "
+                         "cluster's workers simulate on their CPUs)")
     moved = [(a, b) for a, b in zip(params.k, params.k_simulated) if abs(a - b) > 1e-9 * a]
     if moved:
         log(f"note: {len(moved)} of {len(k)} k values snapped to 2 pi m / N (N = {params.N}),"
@@ -137,13 +143,16 @@ def run_map_command(args, log=print):
         log(f"map: {cells} cells x {params.seeds} seed(s), N = {params.N}, T = "
             f"{params.t_end:g}: about {_duration(est)} ({estimate.describe()}) on "
             f"{n_workers} worker(s) (less where MI stops a run early)")
-    if est > CONFIRM_SECONDS and not args.yes:
+    if device == "gpu":
+        log("device gpu: the cells' simulations run on the GPU in batches (the estimate "
+            "above is this CPU's; bench/gpu.py measures the GPU)")
+    if est > CONFIRM_SECONDS and not args.yes and device == "cpu":
         raise ValueError(f"the map would take about {_duration(est)} (> "
                          f"{_duration(CONFIRM_SECONDS)}); add --yes to run it, or use "
                          "fewer cells, seeds, a shorter --t-end or --theory-only")
     out = prepare_output(args.out)
     ds = run_map(params, out, args.scheduler, args.workers, log=log,
-                 overwrite=args.overwrite, timeout=args.timeout)
+                 overwrite=args.overwrite, timeout=args.timeout, device=device)
     verdicts = [n for n in ds.data_vars if n.startswith("verdict_")]
     summary = {"cells": int(ds["done"].size), "simulated": int(ds["done"].values.sum()),
                "agreement_with_simulation_percent": agreement(ds),

@@ -165,3 +165,52 @@ def test_kernel_compiles_for_an_h100():
                                            if k != "NUMBA_ENABLE_CUDASIM"})
     assert res.returncode == 0, res.stderr[-3000:]
     assert res.stdout.split() == ["0", "0", "0"]
+
+
+MAP_SCRIPT = """
+import json, sys, tempfile
+from common import paper
+from numerics.maps import MapParameters, run_map
+p = MapParameters(case="rotation", alpha=paper.ALPHA, K_s=paper.K_S, delta=(0.003,),
+                  k=(1.4,), amplitude=0.05, N=16, t_end=20.0, block=1)
+ds = run_map(p, tempfile.mkdtemp(), progress=False, log=lambda *a: None, device="gpu")
+print(json.dumps({n: ds[n].values.tolist() for n in ("growth", "verdict_simulated", "done",
+                                                      "growth_log_ratio", "checksum")}))
+"""
+
+
+def test_a_map_on_the_gpu_is_the_map_on_the_cpu(tmp_path):
+    """run_map(device="gpu") under the CUDA simulator: the same store as the CPU's map (the
+    theories, the simulated columns to the kernels' bound, every cell done)."""
+    from common import paper
+    from numerics.maps import MapParameters, run_map
+
+    env = dict(os.environ, NUMBA_ENABLE_CUDASIM="1")
+    res = subprocess.run([sys.executable, "-c", MAP_SCRIPT], env=env, capture_output=True,
+                         text=True, timeout=900)
+    assert res.returncode == 0, res.stderr[-3000:]
+    gpu = json.loads(res.stdout.splitlines()[-1])
+    p = MapParameters(case="rotation", alpha=paper.ALPHA, K_s=paper.K_S, delta=(0.003,),
+                      k=(1.4,), amplitude=0.05, N=16, t_end=20.0, block=1)
+    cpu = run_map(p, tmp_path, workers=1, progress=False, log=lambda *a: None)
+    assert gpu["done"] == [[True]] and cpu["done"].values.tolist() == [[True]]
+    assert gpu["verdict_simulated"] == cpu["verdict_simulated"].values.tolist()
+    np.testing.assert_allclose(gpu["growth"], cpu["growth"].values, rtol=REL_TOL)
+    np.testing.assert_allclose(gpu["growth_log_ratio"], cpu["growth_log_ratio"].values,
+                               rtol=REL_TOL, atol=1e-12)
+
+
+@pytest.mark.parametrize("argv, match", [
+    (["--device", "gpu"], "--device gpu: "),
+    (["--device", "gpu", "--theory-only"], "theory-only map runs no simulation"),
+])
+def test_map_device_gpu_without_a_gpu_is_one_line(argv, match, tmp_path, capsys):
+    from cli.app import main
+
+    if gpu_status()[0] and "--theory-only" not in argv:
+        pytest.skip("a GPU is usable here")
+    code = main(["map", "--alpha", "2.5", "--K-s", "0.02", "--delta", "0.001", "--case",
+                 "rotation", "--k", "1", "--out", str(tmp_path / "m"), *argv])
+    err = capsys.readouterr().err
+    assert code == 2 and match in err and len(err.strip().splitlines()) == 1, err
+    assert not (tmp_path / "m").exists()

@@ -53,12 +53,12 @@ from ._point import (
                      snap_carrier,
                      theory_curves,
 )
-from ._store import MapCellError, cells_done, open_or_create, run_map
+from ._store import DEVICES, MapCellError, cells_done, open_or_create, resolve_device, run_map
 
 __all__ = [
     "resonance_map", "simulate_cell", "cell_step", "growth_of", "measured_peak_gain",
     "MapParameters",
-    "parse_spec", "run_map", "theory_columns", "agreement", "AGREEMENT_MARGIN",
+    "parse_spec", "run_map", "DEVICES", "resolve_device", "theory_columns", "agreement", "AGREEMENT_MARGIN",
     "open_or_create",
     "simulate_block", "CRITERION", "MapCellError", "local_cores",
     "seed_majority", "PointResult", "measure_point", "point_step", "theory_curves",

@@ -45,10 +45,49 @@ def keep_freed_memory() -> bool:
                 and mallopt(M_TRIM_THRESHOLD, TRIM_THRESHOLD))
 
 
+def simulated_row(runs: list, pred) -> dict:
+    """A cell's simulated columns from its seeds' runs (``simulate_cell``'s answers, on the
+    CPU or the GPU): the seed-majority verdict (as measure_point decides), the median
+    growth, field and q of the seed that grew most, the longest time simulated, the median
+    measured peak gain, and log10(predicted / measured growth) over the first seed's span
+    (a run stops early once its verdict is certain)."""
+    from ._cells import seed_majority
+
+    growths = [r["growth"] for r in runs]
+    top = runs[int(np.argmax(growths))]
+    row = {
+        "verdict_simulated": bool(seed_majority(growths)), "growth": float(np.median(growths)),
+        "growth_field": FIELD_CODES[top["growth_field"]],
+        "growth_q": float(top["growth_q"]),
+        "t_simulated": float(max(r["t_simulated"] for r in runs)),
+        "peak_gain": float(np.nanmedian([r["peak_gain"] for r in runs]))
+        if any(np.isfinite(r["peak_gain"]) for r in runs) else float("nan")}
+    row["growth_log_ratio"] = (
+        math.log10(pred.growth_at(runs[0]["t_simulated"]) / runs[0]["growth"])
+        if pred is not None and runs[0]["growth"] > 0 else float("nan"))
+    return row
+
+
+def predict_block(params: MapParameters, i: int, js: list) -> tuple[list, list]:
+    """(rows, predictions) of the cells (i, j), j in ``js``: the theory columns, and the
+    predicted growth each simulation is compared with."""
+    from ._cells import predict_cell
+
+    mat = params.material_at(i)
+    rows, preds = [], []
+    for j in js:
+        row, pred = predict_cell(mat, params.case, params.k_simulated[j], params.N,
+                                 params.t_end, params.amplitude, params.noise, params.seeds,
+                                 params.start)
+        rows.append(row)
+        preds.append(pred)
+    return rows, preds
+
+
 def simulate_block(params: MapParameters, i: int, js: list, simulate: bool = True) -> dict:
     """Predict, and unless ``simulate`` is False simulate, the cells (i, j) for j in
     ``js`` (runs on a worker)."""
-    from ._cells import predict_cell, seed_majority, simulate_cell
+    from ._cells import predict_cell, simulate_cell
 
     keep_freed_memory()
     mat = params.material_at(i)
@@ -62,21 +101,7 @@ def simulate_block(params: MapParameters, i: int, js: list, simulate: bool = Tru
             runs = [simulate_cell(mat, params.case, k, params.N, params.t_end,
                                   params.amplitude, params.noise, seed, params.start,
                                   dt, method) for seed in range(params.seeds)]
-            growths = [r["growth"] for r in runs]
-            verdict = seed_majority(growths)  # as measure_point decides
-            top = runs[int(np.argmax(growths))]
-            row.update({
-                "verdict_simulated": bool(verdict), "growth": float(np.median(growths)),
-                "growth_field": FIELD_CODES[top["growth_field"]],
-                "growth_q": float(top["growth_q"]),
-                "t_simulated": float(max(r["t_simulated"] for r in runs)),
-                "peak_gain": float(np.nanmedian([r["peak_gain"] for r in runs]))
-                if any(np.isfinite(r["peak_gain"]) for r in runs) else float("nan")})
-            # predicted and measured growth over the same span (a run stops early once
-            # its verdict is certain): log10 of their ratio, first seed
-            row["growth_log_ratio"] = (
-                math.log10(pred.growth_at(runs[0]["t_simulated"]) / runs[0]["growth"])
-                if pred is not None and runs[0]["growth"] > 0 else float("nan"))
+            row.update(simulated_row(runs, pred))
         rows.append(row)
     return {"i": i, "js": list(js), "rows": rows, "simulated": simulate}
 
