@@ -174,8 +174,10 @@ from numerics.maps import MapParameters, run_map
 p = MapParameters(case="rotation", alpha=paper.ALPHA, K_s=paper.K_S, delta=(0.003,),
                   k=(1.4,), amplitude=0.05, N=16, t_end=20.0, block=1)
 ds = run_map(p, tempfile.mkdtemp(), progress=False, log=lambda *a: None, device="gpu")
-print(json.dumps({n: ds[n].values.tolist() for n in ("growth", "verdict_simulated", "done",
-                                                      "growth_log_ratio", "checksum")}))
+out = {n: ds[n].values.tolist() for n in ("growth", "verdict_simulated", "done",
+                                          "growth_log_ratio")}
+out["attrs"] = {n: ds.attrs[n] for n in ("device", "device_name")}
+print(json.dumps(out))
 """
 
 
@@ -194,6 +196,8 @@ def test_a_map_on_the_gpu_is_the_map_on_the_cpu(tmp_path):
                       k=(1.4,), amplitude=0.05, N=16, t_end=20.0, block=1)
     cpu = run_map(p, tmp_path, workers=1, progress=False, log=lambda *a: None)
     assert gpu["done"] == [[True]] and cpu["done"].values.tolist() == [[True]]
+    assert gpu["attrs"] == {"device": "gpu", "device_name": "CUDA simulator"}
+    assert cpu.attrs["device"] == "cpu"
     assert gpu["verdict_simulated"] == cpu["verdict_simulated"].values.tolist()
     np.testing.assert_allclose(gpu["growth"], cpu["growth"].values, rtol=REL_TOL)
     np.testing.assert_allclose(gpu["growth_log_ratio"], cpu["growth_log_ratio"].values,

@@ -398,9 +398,14 @@ def run_map(params: MapParameters, out: Path, scheduler: str | None = None,
         elif todo:
             _run_tasks(params, path, todo, n_cells - n_done, scheduler, workers, progress,
                        log, arrays, timeout)
+        import zarr
+
+        if todo and not params.theory_only:  # who simulated (the last run's cells)
+            who = _device_attrs(device, scheduler)
+            zarr.open_group(str(path), mode="r+", use_consolidated=False).attrs.update(who)
+            ds.attrs.update(who)
         # .zmetadata is derived from the arrays' own metadata: rebuilt on every run, so a
         # stale or damaged copy never keeps xr.open_zarr(path) from reading the store
-        import zarr
 
         zarr.consolidate_metadata(str(path), zarr_format=2)
         # the store's metadata and coordinates read; its variables are ``arrays``, which
@@ -422,6 +427,21 @@ def _longest_first(params, todo, arrays=None) -> list:
         return (stable, float(k[list(js)].sum()))
 
     return sorted(todo, key=cost, reverse=True)
+
+
+def _device_attrs(device: str, scheduler: str | None) -> dict:
+    """The store's record of where its last cells were simulated: ``device`` ("cpu" or
+    "gpu") and ``device_name`` (the GPU's name, or the CPU's with the cluster's address).
+    Not part of the map's identity: a store resumes on either device."""
+    import platform
+
+    if device == "gpu":
+        from ._gpu import gpu_name
+
+        return {"device": "gpu", "device_name": gpu_name()}
+    cpu = platform.processor() or platform.machine()
+    return {"device": "cpu", "device_name": f"{cpu}, Dask cluster {scheduler}" if scheduler
+            else f"{cpu}, LocalCluster"}
 
 
 #: cells simulated on the GPU in one launch (each a chain per seed; the launch's spectra
