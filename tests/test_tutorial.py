@@ -17,3 +17,4 @@ def test_tutorial_notebook_executes(tmp_path):
     outputs = "".join(o.get("text", "") for c in nb.cells if c.cell_type == "code"
                       for o in c.get("outputs", []))
     assert "measured peak gain" in outputs and "predicted 40 cells" in outputs
+    assert "exact lattice:     MI" in outputs and "simulation:        unstable" in outputs
