@@ -232,6 +232,17 @@ def test_point_with_a_model_simulates_and_reports_every_theory(capsys):
     assert out["simulated"]["peak_gain"] == pytest.approx(out["exact lattice"]["peak_gain"],
                                                           rel=0.10)
     assert out["k"] == pytest.approx(2 * math.pi * round(2 * 128 / (2 * math.pi)) / 128)
+    # a stable chain (pure alpha): every object's verdict in the same three words, the
+    # run's own word beside it
+    code = main(["point", "--model", "fput", "--param", "alpha=1", "--param", "beta=0",
+                 "--k", "2", "--amplitude", "0.1", "--N", "64", "--simulate", "--seeds", "1",
+                 "--json"])
+    out = json.loads(capsys.readouterr().out)
+    assert code == 0
+    assert {out[n]["verdict"] for n in ("semi-discrete NLS", "exact lattice", "simulated")} \
+        == {"stable"}
+    assert out["simulated"]["simulation_verdict"] == "no growth within T"
+    assert out["simulated"]["peak_gain"] == 0.0 and out["simulated"]["slowest_visible_rate"] > 0
 
 
 @pytest.mark.parametrize("argv, match", [
