@@ -281,3 +281,28 @@ def test_a_model_map_with_the_exact_theory_per_cell(tmp_path, capsys):
     assert main(["map", "--alpha", "2.5", "--K-s", "0.02", "--delta", "0.001", "--case",
                  "coupled", "--k", "1", "--theory-only", "--exact",
                  "--out", str(tmp_path / "p")]) == 2
+
+
+def test_spectra_and_runs_convert_to_xarray(tmp_path):
+    model = _model("fput", alpha=0.0, beta=1.0)
+    spec = exact_gain(model, 2.0, 0.1, N=64)
+    ds = spec.to_xarray()
+    assert float(ds["gain"].max()) == spec.peak_gain and ds.attrs["verdict"] == "MI"
+    run = simulate_model(model, 2.0, 0.1, N=64, t_end=50.0, wave=spec.wave, records=10)
+    rs = run.to_xarray()
+    assert rs["spectrum"].shape == (run.t.size, 64) and rs.attrs["param_beta"] == 1.0
+    rs.to_netcdf(tmp_path / "run.nc")
+
+
+def test_a_point_converts_to_xarray_with_its_inputs(tmp_path):
+    from numerics import Material, measure_point
+
+    res = measure_point(Material(alpha=2.5, K_s=0.01851, K_theta=0.01551), "coupled", 0.8,
+                        0.02, N=64)
+    ds = res.to_xarray()
+    assert {"gain_semi_discrete_nls", "gain_paper_nls"} <= set(ds.data_vars)
+    t = res.theories["semi-discrete NLS"]
+    assert ds["gain_semi_discrete_nls"].attrs["verdict"] == t["verdict"]
+    np.testing.assert_array_equal(ds["gain_semi_discrete_nls"].values, t["curve"])
+    assert ds.attrs["k"] == res.k and ds.attrs["N"] == 64
+    ds.to_netcdf(tmp_path / "point.nc")

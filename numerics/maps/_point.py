@@ -114,6 +114,19 @@ class PointResult:
     growths: list | None = field(default=None, metadata={"json": False})
     length: object = field(default=None, metadata={"json": False})
 
+    def to_xarray(self):
+        """The gain curves as an ``xarray.Dataset``: ``gain_<theory>`` over its own
+        ``offset_<theory>`` (each theory samples its offsets), ``gain_simulated`` (and its
+        spread) over the ring's offsets when simulated; units and each theory's verdict and
+        peak gain in the variables' attrs, the inputs (material, case, N, k, amplitude,
+        start, T) and the simulated verdict in the dataset's. ``.to_netcdf(path)`` keeps it.
+
+        Returns
+        -------
+        xarray.Dataset
+        """
+        return point_to_xarray(self)
+
     def as_dict(self, units: dict | None = None) -> dict:
         """The JSON fields in order (arrays as lists, ``simulated`` only when simulated),
         with ``units`` (what the numbers are in) after ``start``."""
@@ -132,6 +145,49 @@ class PointResult:
             if f.name == "start" and units is not None:
                 out["units"] = units
         return out
+
+
+def _theory_key(label: str) -> str:
+    """A variable-name-safe key of a theory's label (its record's key, with the start)."""
+    import re
+
+    return re.sub(r"[^0-9a-zA-Z]+", "_", label).strip("_").lower()
+
+
+def point_to_xarray(res: PointResult):
+    """``PointResult.to_xarray``: see there."""
+    import xarray as xr
+
+    data, coords = {}, {}
+    for label, t in res.theories.items():
+        key = _theory_key(label)
+        dim = f"offset_{key}"
+        coords[dim] = (dim, np.asarray(t["offset"], float),
+                       {"long_name": f"sideband offset from the carrier k ({label})",
+                        "units": "rad per site"})
+        data[f"gain_{key}"] = (dim, np.asarray(t["curve"], float), {
+            "long_name": f"growth rate sigma(q): {label}", "units": "1/T (lattice time)",
+            "theory": label, "verdict": t["verdict"],
+            "peak_gain": float(t["peak_gain"]) if t["peak_gain"] is not None else math.nan})
+    if res.measured is not None:
+        coords["offset_simulated"] = ("offset_simulated",
+                                      np.asarray(res.measured["offset"], float),
+                                      {"long_name": "sideband offset from k (the ring's)",
+                                       "units": "rad per site"})
+        for name, values, what in (("gain_simulated", "sigma_by_offset", "measured sigma(q)"),
+                                   ("gain_simulated_std", "std_by_offset",
+                                    "its spread over the seeds and windows")):
+            data[name] = ("offset_simulated", np.asarray(res.measured[values], float),
+                          {"long_name": what, "units": "1/T (lattice time)"})
+    m = res.material
+    attrs = {"alpha": m.alpha, "K_s": m.K_s, "K_theta": m.K_theta, "delta": m.delta,
+             "case": res.case, "N": res.N, "m": res.m, "k": res.k,
+             "k_requested": res.k_requested, "amplitude": res.amplitude, "start": res.start,
+             "t_end": res.t_end, "units": "lattice units: time T, wavenumbers rad per site"}
+    if res.simulated is not None:
+        attrs["verdict_simulated"] = res.simulated["verdict"]
+        attrs["verdict_simulated_text"] = res.simulated.get("text", "")
+    return xr.Dataset(data, coords=coords, attrs=attrs)
 
 
 def fold(q):

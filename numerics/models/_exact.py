@@ -270,6 +270,30 @@ class HillSpectrum:
     def peak_gain(self) -> float:
         return float(np.max(self.gain)) if self.gain.size else 0.0
 
+    def to_xarray(self):
+        """The spectrum as an ``xarray.Dataset`` over ``offset`` (q): ``gain``, the kept
+        mode's ``harmonic`` and ``sideband_offset``; the model, its parameters, k,
+        amplitude, omega and the verdict in attrs."""
+        import xarray as xr
+
+        w = self.wave
+        attrs = {"model": w.model.name, "k": w.k, "amplitude": w.amplitude, "omega": w.omega,
+                 "omega_linear": w.carrier.omega, "branch": w.carrier.branch,
+                 "verdict": self.verdict, "peak_gain": self.peak_gain, "mode": self.mode,
+                 "units": "lattice units: time as in the model file, wavenumbers rad/site"}
+        attrs.update({f"param_{n}": v for n, v in w.model.params.items()})
+        return xr.Dataset(
+            {"gain": ("offset", self.gain, {"long_name": "growth rate of the fastest kept "
+                                                         "mode", "units": "1/time"}),
+             "harmonic": ("offset", self.harmonic, {"long_name": "its dominant harmonic l"}),
+             "sideband_offset": ("offset", self.sideband_offset,
+                                 {"long_name": "its sideband component's distance from "
+                                               "+-k (nan: a resonance)",
+                                  "units": "rad/site"})},
+            coords={"offset": ("offset", self.offsets,
+                               {"long_name": "perturbation wavenumber q", "units": "rad/site"})},
+            attrs=attrs)
+
     @property
     def modulational_gain(self) -> float:
         """The fastest rate among the sideband modes only (what the NLS describes); the

@@ -266,6 +266,27 @@ class ModelRun:
         """max |E(t) - E(0)| / |E(0) - E_rest| over the run (E_rest = 0 at rest)."""
         return float(np.max(np.abs(self.energy - self.energy[0])) / abs(self.energy[0]))
 
+    def to_xarray(self):
+        """The records as an ``xarray.Dataset`` over ``t``: ``deviation`` (rms from the
+        exact wave), ``energy`` and ``spectrum`` (over ring mode j); inputs in attrs."""
+        import xarray as xr
+
+        attrs = {"model": self.model.name, "k": self.k, "amplitude": self.amplitude,
+                 "N": self.N, "t_end": self.t_end, "dt": self.dt, "method": self.method,
+                 "start": self.start, "noise": self.noise, "seed": self.seed,
+                 "omega": self.wave.omega}
+        attrs.update({f"param_{n}": v for n, v in self.model.params.items()})
+        j = np.arange(self.N)
+        return xr.Dataset(
+            {"deviation": ("t", self.deviation, {"long_name": "rms deviation from the exact "
+                                                               "travelling wave"}),
+             "energy": ("t", self.energy, {"long_name": "total energy (model file)"}),
+             "spectrum": (("t", "mode"), self.spectrum,
+                          {"long_name": "|FFT of the deviation| / N, fields in quadrature"})},
+            coords={"t": ("t", self.t, {"units": "time (lattice units)"}),
+                    "mode": ("mode", j, {"long_name": "ring mode j: wavenumber 2 pi j / N"})},
+            attrs=attrs)
+
     def growth(self) -> Growth:
         """What the run shows: unstable with a rate, or no growth within T."""
         return measure_growth(self)
