@@ -221,3 +221,15 @@ def test_the_map_summary_has_no_nan_where_a_theory_evaluated_nothing():
     some = {"p": 50.0, "p_decided": float("nan"), "p_decided_cells": 0,
             "p_undetermined_cells": 0}
     assert "nan" not in _agreement_text("p", some)
+
+
+def test_a_gain_that_vanishes_with_the_amplitude_is_explained(capsys):
+    """Issue 36's material: at amplitude 0.04 the exact theory has no growing sideband
+    where the NLS has one; point says the band closes, found at a quarter amplitude."""
+    from cli.app import main
+
+    code = main(["point", "--alpha", "1.3", "--K-s", "0.05", "--K-theta", "0.045", "--k", "1",
+                 "--case", "coupled", "--amplitude", "0.04"])
+    out = capsys.readouterr().out
+    assert code == 0
+    assert "has no growing sideband at amplitude 0.04 but has one at 0.01" in out
