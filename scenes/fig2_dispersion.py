@@ -17,7 +17,7 @@ from ._plotting import Q_LABEL, figure, reserve_quick_stamp
 from ._registry import Scene, check, register
 
 #: K_theta of the four panels (the paper's Fig. 2 and the two test points)
-K_THETAS = (1.534e-4, 0.1, 0.01551, 0.02151)
+K_THETAS = (1.534e-4, 0.1, paper.POINTS["blue"]["K_theta"], paper.POINTS["green"]["K_theta"])
 #: a continuum branch within this relative gap "captures" the lattice (paper: 'well')
 GAP_TOLERANCE = 0.05
 

@@ -16,6 +16,8 @@ import platform
 from dataclasses import dataclass
 from pathlib import Path
 
+from common import paper
+
 #: the command's fixed cost (imports, theory columns, store, cluster start and its workers'
 #: first imports and kernels), fitted on this machine (2 cores, 2026-11-24): a simulated
 #: 8-cell map at T = 1000 takes 7.1 s wall at load average 2 (2.4 s of it the cells), a
@@ -23,8 +25,9 @@ from pathlib import Path
 STARTUP_SECONDS = {"local": 4.5, "scheduler": 2.0}
 WORKER_WARMUP_SECONDS = 1.0
 #: the reference cell the speed is measured on (N = 500, T = 1000, case II, srkn6b)
-REFERENCE = dict(alpha=2.5, K_s=0.01851, K_theta=0.01551, case="coupled", N=500,
-                 t_end=1000.0, method="srkn6b", dt=0.7217454817376319)
+REFERENCE = dict(alpha=paper.ALPHA, K_s=paper.K_S, K_theta=paper.POINTS["blue"]["K_theta"],
+                 case="coupled", N=paper.N, t_end=1000.0, method="srkn6b",
+                 dt=0.7217454817376319)
 #: a prediction for the travelling-wave start costs this share of the paper start's (no
 #: torus to find first: PREDICT_SECONDS in _params, 0.15 s against 0.35 s)
 TRAVELLING_SHARE = 0.15 / 0.35
