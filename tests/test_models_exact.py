@@ -306,3 +306,29 @@ def test_a_point_converts_to_xarray_with_its_inputs(tmp_path):
     np.testing.assert_array_equal(ds["gain_semi_discrete_nls"].values, t["curve"])
     assert ds.attrs["k"] == res.k and ds.attrs["N"] == 64
     ds.to_netcdf(tmp_path / "point.nc")
+
+
+def test_a_weak_waves_narrow_band_is_found():
+    """a = 0.002: the band edge (0.005) lies inside the first uniform offset step (pi / 400);
+    the log-spaced small offsets find it (the NLS's peak to 1e-4: the a -> 0 limit)."""
+    model = _model("fput", alpha=0.5, beta=1.0)
+    n = nls(model, 1.5)
+    assert exact_gain(model, 1.5, 0.002).peak_gain == pytest.approx(n.peak_gain(0.002),
+                                                                    rel=1e-3)
+
+
+def test_finding_fput_at_a_quarter_wavelength_grows_faster_than_its_nls():
+    """FINDING (recorded, not a failure): FPUT alpha = 0.5, beta = 1 at k = pi / 2 exactly
+    (4k = 2 pi): the exact theory and the runs agree, and both grow 1.6x faster than the
+    semi-discrete NLS, whose peak they match to 1e-4 at k = pi / 2 +- 0.02 and at every
+    other k tried. A commensurability effect the NLS does not carry; its mechanism is not
+    identified yet (docs/models.md)."""
+    model = _model("fput", alpha=0.5, beta=1.0)
+    exact = exact_gain(model, math.pi / 2, 0.1, N=128)
+    g = simulate_model(model, math.pi / 2, 0.1, N=128, wave=exact.wave,
+                       expected_gain=exact.peak_gain).growth()
+    assert g.rate == pytest.approx(exact.peak_gain, rel=0.10)
+    ratio = exact_gain(model, math.pi / 2, 0.005).peak_gain / nls(model, math.pi / 2).peak_gain(0.005)
+    assert 1.5 < ratio < 1.8  # measured 1.666
+    near = exact_gain(model, math.pi / 2 + 0.02, 0.005).peak_gain
+    assert near == pytest.approx(nls(model, math.pi / 2 + 0.02).peak_gain(0.005), rel=1e-3)

@@ -424,15 +424,18 @@ def exact_gain(model: Model, k: float, amplitude: float, branch=None, *, N: int 
                samples: int = 400) -> HillSpectrum:
     """The exact lattice theory at one point: the travelling wave and its Hill spectrum on
     a ring of ``N`` sites (k snapped to 2 pi m / N, the offsets the ring carries) or, N
-    None, on the infinite chain (``samples`` offsets in (0, pi], the peak refined between
-    them)."""
+    None, on the infinite chain (``samples`` offsets in [pi / samples, pi] and 40
+    log-spaced below, the peak refined between them)."""
     if N:
         from ._simulate import snap_ring
         k = snap_ring(k, N)[0]
     wave = travelling_wave(model, k, amplitude, branch)
     if N:
         return hill_spectrum(wave, ring_offsets(N))
-    q = np.linspace(np.pi / samples, np.pi, samples)
+    # small offsets log-spaced below the uniform grid's first point: a weak wave's band is
+    # O(a) wide (a = 0.002: edge 0.005, inside the first uniform step pi / 400)
+    q = np.concatenate([np.geomspace(1e-5, np.pi / samples, 40, endpoint=False),
+                        np.linspace(np.pi / samples, np.pi, samples)])
     spec = hill_spectrum(wave, q)
     if spec.peak_gain <= 0:
         return spec
