@@ -332,3 +332,22 @@ def test_finding_fput_at_a_quarter_wavelength_grows_faster_than_its_nls():
     assert 1.5 < ratio < 1.8  # measured 1.666
     near = exact_gain(model, math.pi / 2 + 0.02, 0.005).peak_gain
     assert near == pytest.approx(nls(model, math.pi / 2 + 0.02).peak_gain(0.005), rel=1e-3)
+
+
+def test_point_says_when_the_ring_is_too_small_for_the_nls_band(capsys):
+    """A weak sine-Gordon wave's NLS band (edge 0.022) fits no offset of a 128-site ring
+    (2 pi / 128 = 0.049): the exact theory there is stable, and point says why; on 300
+    sites the band is carried and the exact theory finds it."""
+    import json
+
+    from cli.app import main
+
+    argv = ["point", "--model", "sine-gordon", "--param", "C=1.901", "--param",
+            "omega0=1.092", "--k", "0.335", "--amplitude", "0.05"]
+    assert main([*argv, "--N", "128"]) == 0
+    out = capsys.readouterr().out
+    assert "narrower than the ring's first sideband offset" in out and "--N above 282" in out
+    assert main([*argv, "--N", "300", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["semi-discrete NLS"]["ring_peak_gain"] > 0
+    assert data["exact lattice"]["verdict"] == "MI"
