@@ -14,13 +14,16 @@ Start. ``start="exact"`` (default) launches the exact travelling wave (harmonic 
 leaves free second-harmonic and mean-flow waves beside the carrier.
 
 Measurement. The deviation delta = u - U_exact(k n - omega t) from the exact wave is
-Fourier transformed over the ring at each record; the growth of every ring mode
-kappa_j = 2 pi j / N but the carrier's harmonics (where the integrator's phase error and
-the noise's drift of the centre of mass grow secularly) is followed until the deviation
-reaches a tenth of the wave (``SATURATION``). A mode that grew ``GROWTH_FACTOR`` (20x)
-from its start makes the run "unstable", its rate the least-squares slope of log |delta_j|
-over the stretch above ten times its start; otherwise "no growth within T", with the
-slowest rate the run could have shown.
+Fourier transformed over the ring at each record. The sidebands are every ring mode but
+the carrier's harmonics that stand above the noise (where the integrator's phase error and
+the noise's drift of the centre of mass grow secularly; a harmonic far below the noise is
+kept, as on a small ring it aliases onto a sideband); they are followed until their rms
+reaches a tenth of the amplitude (``SATURATION``). The run is "unstable" when the
+sidebands grew ``GROWTH_FACTOR`` (20x) and exponentially (the log-slope over the linear
+stage's second half, run over the whole stage, bounds the factor: algebraic growth of a
+stable wave's near-carrier pairs does not pass), with the rate the least-squares slope of
+the largest mode's log amplitude over its stretch above ten times its start; otherwise
+"no growth within T", with the slowest rate the run could have shown.
 """
 
 from __future__ import annotations
@@ -384,8 +387,8 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
 
     ``t_end`` None: ``numerics.lattice.run_length`` of ``expected_gain`` (default: the
     exact theory's on this ring), as for the paper's chain: 9 e-foldings within
-    [1 000, 100 000], 5 000 where nothing is predicted to grow. ``dt`` None: a fifth of the method's stability
-    limit over the highest frequency of the lattice.
+    [1 000, 100 000], 5 000 where nothing is predicted to grow. ``dt`` None: a fifth of
+    the method's stability limit over the highest frequency of the lattice.
     """
     from numerics.lattice import get_method, run_length
 
