@@ -290,6 +290,9 @@ def _parse(argv):
         sub.error(f"unrecognized arguments: {' '.join(extra)}"
                   + (f" (did you mean {close[0]}?)" if close else ""))
     unused_without(sub, args, argv)  # an option that acts only with another, given alone
+    # the options the user typed (a default that differs by command, e.g. a model map's
+    # T chosen from the exact rate unless --t-end is given)
+    args.given = frozenset(a.split("=", 1)[0] for a in argv if a.startswith("--"))
     return args
 
 

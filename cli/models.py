@@ -230,11 +230,16 @@ def run_map(args) -> int:
                          f"{', '.join(n for n, _ in named) or 'none'}")
     if k_axis is None and k_fixed is None:
         raise ValueError("--k: give the carrier wavenumber (one value, or a SPEC to sweep)")
-    if not getattr(args, "theory_only", False):
-        raise ValueError("a model map is theory-only for now (the semi-discrete NLS per cell, "
-                         "and with --exact the exact lattice theory): add --theory-only; "
-                         "simulated maps run for the paper chain (no --model); one point of a "
-                         "model simulates with `point --model ... --simulate`")
+    simulated = not getattr(args, "theory_only", False)
+    unused = sorted(set(getattr(args, "given", ())) & {"--scheduler", "--workers", "--block",
+                                                         "--timeout", "--yes", "--start"})
+    if unused:
+        raise ValueError(f"{', '.join(unused)}: a --model map runs its cells in this process "
+                         "from the exact wave (they act on the paper chain's maps); drop them")
+    if not simulated and ("--seeds" in getattr(args, "given", ())
+                          or "--t-end" in getattr(args, "given", ())):
+        raise ValueError("--seeds and --t-end act on a simulated model map: drop them, or "
+                         "--theory-only")
     amp = args.amplitude
     x, y = (named[1], named[0]) if named[0][0] == "k" else (named[0], named[1])
     if y[0] == "k":
@@ -251,10 +256,34 @@ def run_map(args) -> int:
                 return "undefined", float("nan")
             return spec.verdict, spec.peak_gain
 
-    ds = model_map(model, x, y, amp, k=k_fixed, branch=branch_of(args), exact=exact)
+    cell = done = on_cell = None
+    out = Path(args.out)
+    if simulated:  # each cell: the exact theory and runs of the ring, journalled
+        from numerics.models import simulated_cell
+
+        if args.exact:
+            raise ValueError("--exact: a simulated model map has the exact lattice theory "
+                             "per cell already")
+        exact = None
+        seeds, N = args.seeds, args.N
+        if isinstance(seeds, bool) or not isinstance(seeds, int) or seeds < 1:
+            raise ValueError(f"--seeds must be an integer >= 1, got {seeds!r}")
+        t_end = args.t_end if "--t-end" in getattr(args, "given", ()) else None
+
+        def cell(m, k, a, branch):
+            return simulated_cell(m, k, a, branch, N=N, seeds=seeds, t_end=t_end)
+
+        head = {"model": model.name, "model_hash": model.lattice.content_hash,
+                "parameters": dict(model.params), "amplitude": amp, "branch": str(args.branch),
+                "axes": {x[0]: list(map(float, x[1])), y[0]: list(map(float, y[1]))},
+                "k": k_fixed, "N": N, "seeds": seeds, "t_end": t_end}
+        done, on_cell = _journal(out / "map.cells.jsonl", head, args.overwrite)
+        if done:
+            print(f"resuming {out / 'map.cells.jsonl'}: {len(done)} cells already done")
+    ds = model_map(model, x, y, amp, k=k_fixed, branch=branch_of(args), exact=exact,
+                   cell=cell, done=done, on_cell=on_cell, progress=None if simulated else False)
     mi = {v: float(np.mean(ds[v].values == "MI")) for v in ds.data_vars
           if v.startswith("verdict_")}
-    out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     nc = out / "map.nc"
     ds.to_netcdf(nc)
@@ -273,6 +302,51 @@ def run_map(args) -> int:
         print(f"MI share, {v.replace('verdict_', '')}: {share:.0%}")
     print(f"wrote {nc} and {png}")
     return 0
+
+
+def _journal(path: Path, head: dict, overwrite: bool):
+    """(cells done, on_cell) of a simulated model map's journal ``path``: one JSON line per
+    finished cell after a header naming the map, each line written and flushed whole, so
+    an interrupted map keeps every finished cell and the same command resumes it (a torn
+    last line is dropped). A journal of another map is refused unless ``overwrite``."""
+    import os
+
+    done = {}
+    if path.exists():
+        text = path.read_text(encoding="utf-8", errors="replace")
+        if text and not text.endswith("\n"):  # a line torn by a kill: cut it off
+            with open(path, "r+b") as fh:
+                fh.truncate(path.read_bytes().rfind(b"\n") + 1)
+            text = text[:text.rfind("\n") + 1]
+        lines = text.splitlines()
+        try:
+            first = json.loads(lines[0]) if lines else None
+        except ValueError:
+            first = None
+        if first != {"map": head}:
+            if not overwrite:
+                raise ValueError(f"{path} holds another map (or is damaged); replace it with "
+                                 "--overwrite, or choose another --out")
+            path.unlink()
+        else:
+            for line in lines[1:]:
+                try:
+                    rec = json.loads(line)
+                    done[(rec["i"], rec["j"])] = rec["columns"]
+                except (ValueError, KeyError, TypeError):  # a line torn by a kill
+                    continue
+    path.parent.mkdir(parents=True, exist_ok=True)
+    if not path.exists():
+        with open(path, "w", encoding="utf-8") as fh:
+            fh.write(json.dumps({"map": head}, allow_nan=False) + "\n")
+
+    def on_cell(i, j, columns):
+        with open(path, "a", encoding="utf-8") as fh:
+            fh.write(json.dumps({"i": i, "j": j, "columns": columns}) + "\n")
+            fh.flush()
+            os.fsync(fh.fileno())
+
+    return done, on_cell
 
 
 def _plot_map(ds, path: Path, model):
@@ -294,8 +368,10 @@ def _plot_map(ds, path: Path, model):
 
     code = {"stable": 0, "MI": 1, "undefined": 2}
     panels = [(v, label) for v, label in (("verdict_semidiscrete", "semi-discrete NLS"),
-                                          ("verdict_exact", "exact lattice"))
+                                          ("verdict_exact", "exact lattice"),
+                                          ("verdict_simulated", "simulated (MI: grew 20x)"))
               if v in ds]
+    code = {**code, "no growth within T": 0, "undetermined": 2}
     fig, axes = plt.subplots(1, len(panels), figsize=(6 * len(panels), 4.5), squeeze=False)
     fixed = ", ".join(f"{p} = {v:g}" for p, v in model.params.items() if p not in (xdim, ydim))
     for ax, (name, label) in zip(axes[0], panels):

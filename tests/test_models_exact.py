@@ -351,3 +351,38 @@ def test_point_says_when_the_ring_is_too_small_for_the_nls_band(capsys):
     data = json.loads(capsys.readouterr().out)
     assert data["semi-discrete NLS"]["ring_peak_gain"] > 0
     assert data["exact lattice"]["verdict"] == "MI"
+
+
+def test_a_simulated_model_map_is_journalled_and_resumes(tmp_path, capsys):
+    """Each cell: the exact theory and a run of the ring; one journal line per finished
+    cell, so a rerun computes nothing again (a torn last line, as a kill leaves, is
+    dropped and that cell computed again), and a journal of another map is refused."""
+    import json
+
+    import xarray as xr
+
+    from cli.app import main
+
+    argv = ["map", "--model", "fput", "--param", "alpha=1", "--param", "beta=0.8,1.6",
+            "--k", "2.6,2.8", "--amplitude", "0.1", "--N", "64", "--out", str(tmp_path)]
+    assert main(argv) == 0
+    ds = xr.open_dataset(tmp_path / "map.nc")
+    want = [["stable", "stable"], ["MI", "MI"]]  # (beta, k)
+    assert ds["verdict_exact"].values.tolist() == want
+    # the runs agree with the exact theory: MI where it says so, no growth where stable
+    assert ds["verdict_simulated"].values.tolist() == [["no growth within T"] * 2, ["MI"] * 2]
+    mi = ds["peak_gain_exact"].values[1]
+    np.testing.assert_allclose(ds["peak_gain_simulated"].values[1], mi, rtol=0.10)
+    ds.close()
+    journal = tmp_path / "map.cells.jsonl"
+    lines = journal.read_text().splitlines()
+    assert len(lines) == 5 and json.loads(lines[0])["map"]["N"] == 64
+    journal.write_text("\n".join(lines[:-1]) + "\n" + lines[-1][:20])  # a torn last line
+    capsys.readouterr()
+    assert main(argv) == 0
+    assert "3 cells already done" in capsys.readouterr().out
+    lines = journal.read_text().splitlines()
+    assert len(lines) == 5 and all(json.loads(line) for line in lines)  # torn one redone
+    other = [a if a != "beta=0.8,1.6" else "beta=0.8,1.7" for a in argv]
+    assert main(other) == 2
+    assert "holds another map" in capsys.readouterr().err

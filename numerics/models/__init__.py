@@ -22,7 +22,7 @@ from ._exact import (
                      travelling_wave,
 )
 from ._linear import Carrier, branch_index, branches, carrier, check_rest_stable
-from ._map import model_map
+from ._map import model_map, simulated_cell
 from ._nls import ModelNLS, ModelSoliton, acoustic_directions, nls
 from ._simulate import (
                      Growth,
@@ -37,7 +37,7 @@ from ._simulate import (
 from ._summary import model_coefficients
 
 __all__ = ["Carrier", "carrier", "branches", "branch_index", "check_rest_stable", "ModelNLS",
-           "ModelSoliton", "nls", "acoustic_directions", "model_map",
+           "ModelSoliton", "nls", "acoustic_directions", "model_map", "simulated_cell",
            "model_coefficients", "TravellingWave", "HillSpectrum", "travelling_wave",
            "hill_spectrum", "exact_gain", "ring_offsets", "simulate_model", "ModelRun", "Growth",
            "measure_growth", "compiled_force", "lattice_force", "lattice_energy", "snap_ring"]

@@ -26,7 +26,8 @@ def _axis(model: Model, name: str, values) -> np.ndarray:
 
 
 def model_map(model: Model, x: tuple, y: tuple, amplitude: float, k: float | None = None,
-              branch=None, exact=None):
+              branch=None, exact=None, cell=None, done=None, on_cell=None,
+              progress: bool | None = False):
     """Theory MI map of ``model`` over two axes.
 
     Parameters
@@ -42,6 +43,14 @@ def model_map(model: Model, x: tuple, y: tuple, amplitude: float, k: float | Non
     exact : callable, optional
         ``exact(model, k, amplitude, branch) -> (verdict, peak_gain)``: adds the exact
         lattice columns.
+    cell : callable, optional
+        ``cell(model, k, amplitude, branch) -> dict``: more columns per cell (a simulation:
+        :func:`simulated_cell`); its keys name them.
+    done, on_cell : optional
+        ``done[(i, j)]``: a cell's ``cell`` columns computed before (a resumed map), not
+        computed again; ``on_cell(i, j, columns)`` after each cell computed (a journal).
+    progress : bool or None
+        A progress bar over the cells (None: where stderr is a terminal).
 
     Returns
     -------
@@ -64,11 +73,29 @@ def model_map(model: Model, x: tuple, y: tuple, amplitude: float, k: float | Non
     peak, g1, g2 = (np.full(shape, np.nan) for _ in range(3))
     ex_verdict = np.empty(shape, dtype=object)
     ex_peak = np.full(shape, np.nan)
+    extra: dict = {}
+    done = done or {}
+    from tqdm.auto import tqdm
+
+    bar = tqdm(total=verdict.size, unit="cell", desc="model map",
+               disable=None if progress is None else not progress)
     for i, yy in enumerate(yv):
         for j, xx in enumerate(xv):
+            bar.update(1)
             vals = {n: v for n, v in ((xn, xx), (yn, yy)) if n != AXIS_K}
             kk = {xn: xx, yn: yy}.get(AXIS_K, k)
             m = model.with_params(**vals)
+            if cell is not None:
+                cols = done.get((i, j))
+                if cols is None:
+                    cols = cell(m, kk, amplitude, branch)
+                    if on_cell is not None:
+                        on_cell(i, j, cols)
+                for name, v in cols.items():
+                    if name not in extra:
+                        extra[name] = np.full(shape, np.nan) if isinstance(
+                            v, (int, float)) or v is None else np.full(shape, "", dtype=object)
+                    extra[name][i, j] = np.nan if v is None else v
             try:
                 r = nls(m, kk, branch)
             except ModelError as exc:  # e.g. no carrier on this branch at these values
@@ -79,6 +106,7 @@ def model_map(model: Model, x: tuple, y: tuple, amplitude: float, k: float | Non
             peak[i, j], g1[i, j], g2[i, j] = r.peak_gain(amplitude), r.g1, r.g2
             if exact is not None:
                 ex_verdict[i, j], ex_peak[i, j] = exact(m, kk, amplitude, branch)
+    bar.close()
     dims = (yn, xn)
     data = {
         "verdict_semidiscrete": (dims, verdict.astype(str),
@@ -92,6 +120,9 @@ def model_map(model: Model, x: tuple, y: tuple, amplitude: float, k: float | Non
         data["verdict_exact"] = (dims, ex_verdict.astype(str),
                                  {"long_name": "exact lattice verdict"})
         data["peak_gain_exact"] = (dims, ex_peak, {"units": "1/time (lattice units)"})
+    for name, arr in extra.items():
+        data[name] = (dims, arr.astype(str) if arr.dtype == object else arr,
+                      {"units": "1/time (lattice units)"} if "gain" in name else {})
     attrs = {"model": model.name, "model_hash": model.lattice.content_hash,
              "amplitude": float(amplitude), "branch": "" if branch is None else str(branch)}
     attrs.update({f"param_{p}": v for p, v in model.params.items() if p not in (xn, yn)})
@@ -100,3 +131,31 @@ def model_map(model: Model, x: tuple, y: tuple, amplitude: float, k: float | Non
     coords = {xn: (xn, xv, {"units": "rad/site"} if xn == AXIS_K else {}),
               yn: (yn, yv, {"units": "rad/site"} if yn == AXIS_K else {})}
     return xr.Dataset(data, coords=coords, attrs=attrs)
+
+
+def simulated_cell(model: Model, k: float, amplitude: float, branch=None, *, N: int = 256,
+                   seeds: int = 1, t_end: float | None = None) -> dict:
+    """One simulated map cell: the exact lattice theory on the ring of N sites and seeded
+    runs from its exact wave, as ``point --model --simulate`` does (``run_length`` of the
+    exact rate unless ``t_end``): verdict_exact, peak_gain_exact, verdict_simulated (MI,
+    "no growth within T", "undetermined"; "undefined" without a travelling wave) and
+    peak_gain_simulated (the seeds' median rate where MI)."""
+    from numerics.lattice import run_length, simulated_verdict
+
+    from ._exact import exact_gain
+    from ._simulate import simulate_model
+
+    try:
+        spec = exact_gain(model, k, amplitude, branch, N=N)
+    except ModelError:  # no travelling wave here: nothing to launch or measure from
+        return {"verdict_exact": "undefined", "peak_gain_exact": None,
+                "verdict_simulated": "undefined", "peak_gain_simulated": None}
+    T = t_end if t_end is not None else run_length(spec.peak_gain).t_end
+    growth = [simulate_model(model, k, amplitude, branch=branch, N=N, t_end=T, seed=s,
+                             wave=spec.wave).growth() for s in range(seeds)]
+    rates = [g.rate for g in growth if g.verdict == "unstable"]
+    rate = float(np.median(rates)) if rates else math.nan
+    v = simulated_verdict([g.factor for g in growth], T, rate)
+    return {"verdict_exact": spec.verdict, "peak_gain_exact": spec.peak_gain,
+            "verdict_simulated": v.word,
+            "peak_gain_simulated": rate if v.word == "MI" else None}
