@@ -376,14 +376,15 @@ def _dispatch(args, scenes) -> int:
         raise ValueError("--json: for --model commands (the paper chain's point writes "
                          "point.json with --out; try --model flexmm --param alpha=...)")
     if getattr(args, "model", None) is not None:
-        from . import models
+        from . import model_map, model_point, models
 
         if getattr(args, "device", "cpu") != "cpu":
-            raise ValueError(f"--device {args.device}: a --model map is theory-only (it "
-                             "simulates nothing); drop --device")
+            raise ValueError(f"--device {args.device}: a --model map runs its cells on this "
+                             "CPU, in this process (the GPU kernel is the paper chain's); "
+                             "drop --device")
 
-        run = {"coefficients": models.run_coefficients, "point": models.run_point,
-               "map": models.run_map, "soliton": models.run_soliton}[args.cmd]
+        run = {"coefficients": models.run_coefficients, "point": model_point.run_point,
+               "map": model_map.run_map, "soliton": models.run_soliton}[args.cmd]
         return run(args)
     if getattr(args, "exact", False):
         raise ValueError("--exact: for --model maps (the paper chain's maps hold the exact "

@@ -121,10 +121,8 @@ def run_map_command(args, log=print):
     params, k, cells = _map_parameters(args)
     check_output(args.out)  # a bad --out fails before the map is announced
     # a GPU asked where there is none fails here, in one line, before the work is announced
-    device = resolve_device(getattr(args, "device", "cpu"), params.theory_only, log)
-    if device == "gpu" and args.scheduler:
-        raise ValueError("--device gpu runs on this machine's GPU: drop --scheduler (a "
-                         "cluster's workers simulate on their CPUs)")
+    device = resolve_device(getattr(args, "device", "cpu"), params.theory_only, log,
+                            args.scheduler)
     moved = [(a, b) for a, b in zip(params.k, params.k_simulated) if abs(a - b) > 1e-9 * a]
     if moved:
         log(f"note: {len(moved)} of {len(k)} k values snapped to 2 pi m / N (N = {params.N}),"

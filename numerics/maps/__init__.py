@@ -38,6 +38,7 @@ from ._cells import (
                      simulate_cell,
 )
 from ._columns import theory_columns, tri_state
+from ._devices import DEVICES, resolve_device
 from ._estimate import MapEstimate, estimate_map, machine_speed
 from ._gpu import gpu_status, simulate_cells_gpu, simulate_map_cells_gpu
 from ._integrity import store_lock
@@ -53,7 +54,7 @@ from ._point import (
                      snap_carrier,
                      theory_curves,
 )
-from ._store import DEVICES, MapCellError, cells_done, open_or_create, resolve_device, run_map
+from ._store import MapCellError, cells_done, open_or_create, run_map
 
 __all__ = [
     "resonance_map", "simulate_cell", "cell_step", "growth_of", "measured_peak_gain",

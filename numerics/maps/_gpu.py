@@ -244,22 +244,15 @@ def simulate_cells_gpu(materials, case: str, ks, N: int, t_end: float,
 
 
 def aggregate_seeds(runs: list) -> dict:
-    """A map cell's simulated columns from its seeds' runs: ``simulate_block``'s rule (the
-    majority verdict, the median growth, field and q of the seed that grew most, the
-    longest time simulated, the median measured peak gain)."""
-    from ._blocks import FIELD_CODES
+    """A map cell's simulated columns from its seeds' runs: ``simulated_row``'s rule, the
+    one ``simulate_block`` applies (the seed-majority verdict, the median growth, field
+    and q of the seed that grew most, the longest time simulated, the median measured
+    peak gain), without the prediction's ratio."""
+    from ._blocks import simulated_row
 
-    growths = [r["growth"] for r in runs]
-    top = runs[int(np.argmax(growths))]
-    gains = [r["peak_gain"] for r in runs]
-    return {"verdict_simulated": bool(sum(r["verdict_simulated"] for r in runs) * 2
-                                      > len(runs)),
-            "growth": float(np.median(growths)),
-            "growth_field": FIELD_CODES[top["growth_field"]],
-            "growth_q": float(top["growth_q"]),
-            "t_simulated": float(max(r["t_simulated"] for r in runs)),
-            "peak_gain": float(np.nanmedian(gains)) if any(np.isfinite(gains))
-            else float("nan")}
+    row = simulated_row(runs, None)
+    del row["growth_log_ratio"]
+    return row
 
 
 def simulate_map_cells_gpu(params, cells, peak_gain: bool = True) -> dict:

@@ -27,11 +27,13 @@ from ._nls import ModelNLS, ModelSoliton, acoustic_directions, nls
 from ._simulate import (
                      Growth,
                      ModelRun,
+                     SeededRuns,
                      compiled_force,
                      lattice_energy,
                      lattice_force,
                      measure_growth,
                      simulate_model,
+                     simulate_seeds,
                      snap_ring,
 )
 from ._summary import model_coefficients
@@ -39,5 +41,5 @@ from ._summary import model_coefficients
 __all__ = ["Carrier", "carrier", "branches", "branch_index", "check_rest_stable", "ModelNLS",
            "ModelSoliton", "nls", "acoustic_directions", "model_map", "simulated_cell",
            "model_coefficients", "TravellingWave", "HillSpectrum", "travelling_wave",
-           "hill_spectrum", "exact_gain", "ring_offsets", "simulate_model", "ModelRun", "Growth",
+           "hill_spectrum", "exact_gain", "ring_offsets", "simulate_model", "simulate_seeds", "SeededRuns", "ModelRun", "Growth",
            "measure_growth", "compiled_force", "lattice_force", "lattice_energy", "snap_ring"]

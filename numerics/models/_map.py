@@ -140,22 +140,16 @@ def simulated_cell(model: Model, k: float, amplitude: float, branch=None, *, N: 
     exact rate unless ``t_end``): verdict_exact, peak_gain_exact, verdict_simulated (MI,
     "no growth within T", "undetermined"; "undefined" without a travelling wave) and
     peak_gain_simulated (the seeds' median rate where MI)."""
-    from numerics.lattice import run_length, simulated_verdict
-
     from ._exact import exact_gain
-    from ._simulate import simulate_model
+    from ._simulate import simulate_seeds
 
     try:
         spec = exact_gain(model, k, amplitude, branch, N=N)
     except ModelError:  # no travelling wave here: nothing to launch or measure from
         return {"verdict_exact": "undefined", "peak_gain_exact": None,
                 "verdict_simulated": "undefined", "peak_gain_simulated": None}
-    T = t_end if t_end is not None else run_length(spec.peak_gain).t_end
-    growth = [simulate_model(model, k, amplitude, branch=branch, N=N, t_end=T, seed=s,
-                             wave=spec.wave).growth() for s in range(seeds)]
-    rates = [g.rate for g in growth if g.verdict == "unstable"]
-    rate = float(np.median(rates)) if rates else math.nan
-    v = simulated_verdict([g.factor for g in growth], T, rate)
+    sim = simulate_seeds(model, k, amplitude, spec, branch=branch, N=N, seeds=seeds,
+                         t_end=t_end)
     return {"verdict_exact": spec.verdict, "peak_gain_exact": spec.peak_gain,
-            "verdict_simulated": v.word,
-            "peak_gain_simulated": rate if v.word == "MI" else None}
+            "verdict_simulated": sim.verdict.word,
+            "peak_gain_simulated": sim.rate if sim.verdict.word == "MI" else None}

@@ -183,12 +183,9 @@ def _kernels(model: Model):
 
 def lattice_force(model: Model, u: np.ndarray) -> np.ndarray:
     """The acceleration of every site, shape (d, N), from the compiled force."""
-    accel, nf = _kernels(model)[0], _kernels(model)[4]
     u = np.ascontiguousarray(u, dtype=float)
-    d = model.n_fields
     out = np.empty_like(u)
-    accel(u, np.asarray(model.p, float), 1 / np.asarray(model.masses, float), out,
-          np.empty(2 * d), np.empty(2 * d), np.empty((max(nf, 1), u.shape[1])))
+    compiled_force(model, u.shape[1])(u, out)
     return out
 
 
@@ -473,3 +470,47 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
                     dt=dt, method=method, start=start, noise=float(noise), seed=int(seed),
                     wave=wave, t=np.array(ts), spectrum=np.array(spec),
                     deviation=np.array(dev), energy=np.array(en))
+
+
+@dataclass(frozen=True)
+class SeededRuns:
+    """Runs of one point from the exact wave with seeds 0 .. n - 1, and their verdict.
+
+    verdict : numerics.lattice.Verdict
+        ``simulated_verdict`` of their growth factors (MI, "no growth within T",
+        "undetermined"), with the median rate of the unstable runs.
+    rate : float
+        That median rate (1/time); nan where no run was unstable.
+    runs : list of ModelRun
+    t_end : float
+        The runs' length.
+    length : RunLength or None
+        How T was chosen from the exact rate (None where ``t_end`` was given).
+    """
+
+    verdict: object
+    rate: float
+    runs: list
+    t_end: float
+    length: object = None
+
+
+def simulate_seeds(model: Model, k: float, amplitude: float, spec, *, branch=None,
+                   N: int = 256, seeds: int = 1, t_end: float | None = None,
+                   start: str = "exact") -> SeededRuns:
+    """``seeds`` runs of the ring from ``spec``'s exact wave (``exact_gain`` on this ring)
+    and their verdict: one rule for a point and a map cell. T is ``run_length`` of the
+    exact rate unless ``t_end`` is given."""
+    from numerics.lattice import run_length, simulated_verdict
+
+    if isinstance(seeds, bool) or not isinstance(seeds, (int, np.integer)) or seeds < 1:
+        raise ModelError(f"seeds must be an integer >= 1, got {seeds!r}")
+    length = run_length(spec.peak_gain) if t_end is None else None
+    T = float(t_end) if t_end is not None else length.t_end
+    runs = [simulate_model(model, k, amplitude, branch=branch, N=N, t_end=T, start=start,
+                           seed=s, wave=spec.wave) for s in range(int(seeds))]
+    growth = [r.growth() for r in runs]
+    rates = [g.rate for g in growth if g.verdict == "unstable"]
+    rate = float(np.median(rates)) if rates else math.nan
+    return SeededRuns(simulated_verdict([g.factor for g in growth], T, rate), rate, runs, T,
+                      length)

@@ -1,0 +1,190 @@
+"""`flexmm map --model`: a model's map over two axes (the NLS per cell; the exact theory
+with --exact; runs of the ring per cell, journalled, without --theory-only)."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+from .models import _emit, branch_of, load
+
+
+# ------------------------------------------------------------------ map
+def run_map(args) -> int:
+    import numpy as np
+
+    from numerics.maps import parse_spec
+    from numerics.models import model_map
+
+    model, axes = load(args, axes_ok=True)
+    k_axis = None
+    k_fixed = None
+    if args.k is not None:
+        vals = parse_spec(args.k, "--k")
+        if vals.size > 1:
+            k_axis = vals
+        else:
+            k_fixed = float(vals[0])
+    named = list(axes.items()) + ([("k", k_axis)] if k_axis is not None else [])
+    if len(named) != 2:
+        raise ValueError(f"a model map sweeps two axes: --k SPEC and/or --param NAME=SPEC "
+                         f"(SPEC v1,v2,... or start:stop:num); got {len(named)}: "
+                         f"{', '.join(n for n, _ in named) or 'none'}")
+    if k_axis is None and k_fixed is None:
+        raise ValueError("--k: give the carrier wavenumber (one value, or a SPEC to sweep)")
+    simulated = not getattr(args, "theory_only", False)
+    unused = sorted(set(getattr(args, "given", ())) & {"--scheduler", "--workers", "--block",
+                                                         "--timeout", "--yes", "--start"})
+    if unused:
+        raise ValueError(f"{', '.join(unused)}: a --model map runs its cells in this process "
+                         "from the exact wave (they act on the paper chain's maps); drop them")
+    if not simulated and ("--seeds" in getattr(args, "given", ())
+                          or "--t-end" in getattr(args, "given", ())):
+        raise ValueError("--seeds and --t-end act on a simulated model map: drop them, or "
+                         "--theory-only")
+    amp = args.amplitude
+    x, y = (named[1], named[0]) if named[0][0] == "k" else (named[0], named[1])
+    if y[0] == "k":
+        x, y = y, x
+    exact = None
+    if args.exact:
+        from energy import ModelError
+        from numerics.models import exact_gain
+
+        def exact(m, k, a, branch):
+            try:
+                spec = exact_gain(m, k, a, branch, N=args.N)
+            except ModelError:  # no travelling wave at this cell
+                return "undefined", float("nan")
+            return spec.verdict, spec.peak_gain
+
+    cell = done = on_cell = None
+    out = Path(args.out)
+    if simulated:  # each cell: the exact theory and runs of the ring, journalled
+        from numerics.models import simulated_cell
+
+        if args.exact:
+            raise ValueError("--exact: a simulated model map has the exact lattice theory "
+                             "per cell already")
+        exact = None
+        seeds, N = args.seeds, args.N
+        if isinstance(seeds, bool) or not isinstance(seeds, int) or seeds < 1:
+            raise ValueError(f"--seeds must be an integer >= 1, got {seeds!r}")
+        t_end = args.t_end if "--t-end" in getattr(args, "given", ()) else None
+
+        def cell(m, k, a, branch):
+            return simulated_cell(m, k, a, branch, N=N, seeds=seeds, t_end=t_end)
+
+        head = {"model": model.name, "model_hash": model.lattice.content_hash,
+                "parameters": dict(model.params), "amplitude": amp, "branch": str(args.branch),
+                "axes": {x[0]: list(map(float, x[1])), y[0]: list(map(float, y[1]))},
+                "k": k_fixed, "N": N, "seeds": seeds, "t_end": t_end}
+        done, on_cell = _journal(out / "map.cells.jsonl", head, args.overwrite)
+        if done:
+            print(f"resuming {out / 'map.cells.jsonl'}: {len(done)} cells already done")
+    ds = model_map(model, x, y, amp, k=k_fixed, branch=branch_of(args), exact=exact,
+                   cell=cell, done=done, on_cell=on_cell, progress=None if simulated else False)
+    mi = {v: float(np.mean(ds[v].values == "MI")) for v in ds.data_vars
+          if v.startswith("verdict_")}
+    out.mkdir(parents=True, exist_ok=True)
+    nc = out / "map.nc"
+    ds.to_netcdf(nc)
+    png = out / "map.png"
+    _plot_map(ds, png, model)
+    if args.json:
+        _emit({"model": model.name, "parameters": dict(model.params), "amplitude": amp,
+               "axes": {x[0]: list(map(float, x[1])), y[0]: list(map(float, y[1]))},
+               "mi_share": mi, "files": [str(nc), str(png)]})
+        return 0
+    fixed = ", ".join(f"{p} = {v:g}" for p, v in model.params.items()
+                      if p not in (x[0], y[0]))
+    print(f"model: {model.name} ({fixed}); amplitude {amp:g}; {y[0]} x {x[0]} = "
+          f"{len(y[1])} x {len(x[1])} cells")
+    for v, share in mi.items():
+        print(f"MI share, {v.replace('verdict_', '')}: {share:.0%}")
+    print(f"wrote {nc} and {png}")
+    return 0
+
+
+def _journal(path: Path, head: dict, overwrite: bool):
+    """(cells done, on_cell) of a simulated model map's journal ``path``: one JSON line per
+    finished cell after a header naming the map, each line written and flushed whole, so
+    an interrupted map keeps every finished cell and the same command resumes it (a torn
+    last line is dropped). A journal of another map is refused unless ``overwrite``."""
+    import os
+
+    done = {}
+    if path.exists():
+        text = path.read_text(encoding="utf-8", errors="replace")
+        if text and not text.endswith("\n"):  # a line torn by a kill: cut it off
+            with open(path, "r+b") as fh:
+                fh.truncate(path.read_bytes().rfind(b"\n") + 1)
+            text = text[:text.rfind("\n") + 1]
+        lines = text.splitlines()
+        try:
+            first = json.loads(lines[0]) if lines else None
+        except ValueError:
+            first = None
+        if first != {"map": head}:
+            if not overwrite:
+                raise ValueError(f"{path} holds another map (or is damaged); replace it with "
+                                 "--overwrite, or choose another --out")
+            path.unlink()
+        else:
+            for line in lines[1:]:
+                try:
+                    rec = json.loads(line)
+                    done[(rec["i"], rec["j"])] = rec["columns"]
+                except (ValueError, KeyError, TypeError):  # a line torn by a kill
+                    continue
+    path.parent.mkdir(parents=True, exist_ok=True)
+    if not path.exists():
+        with open(path, "w", encoding="utf-8") as fh:
+            fh.write(json.dumps({"map": head}, allow_nan=False) + "\n")
+
+    def on_cell(i, j, columns):
+        with open(path, "a", encoding="utf-8") as fh:
+            fh.write(json.dumps({"i": i, "j": j, "columns": columns}) + "\n")
+            fh.flush()
+            os.fsync(fh.fileno())
+
+    return done, on_cell
+
+
+def _plot_map(ds, path: Path, model):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import numpy as np
+    from matplotlib.colors import ListedColormap
+
+    ydim, xdim = ds["verdict_semidiscrete"].dims
+    x, y = ds[xdim].values, ds[ydim].values
+
+    def edges(v):
+        if v.size == 1:
+            return np.array([v[0] - 0.5, v[0] + 0.5])
+        mid = (v[1:] + v[:-1]) / 2
+        return np.concatenate([[2 * v[0] - mid[0]], mid, [2 * v[-1] - mid[-1]]])
+
+    code = {"stable": 0, "MI": 1, "undefined": 2}
+    panels = [(v, label) for v, label in (("verdict_semidiscrete", "semi-discrete NLS"),
+                                          ("verdict_exact", "exact lattice"),
+                                          ("verdict_simulated", "simulated (MI: grew 20x)"))
+              if v in ds]
+    code = {**code, "no growth within T": 0, "undetermined": 2}
+    fig, axes = plt.subplots(1, len(panels), figsize=(6 * len(panels), 4.5), squeeze=False)
+    fixed = ", ".join(f"{p} = {v:g}" for p, v in model.params.items() if p not in (xdim, ydim))
+    for ax, (name, label) in zip(axes[0], panels):
+        V = np.vectorize(lambda s: code.get(s, 2))(ds[name].values)
+        ax.pcolormesh(edges(x), edges(y), V,
+                      cmap=ListedColormap(["#3b4cc0", "#f2a134", "#bbbbbb"]),
+                      vmin=-0.5, vmax=2.5, shading="flat")
+        ax.set_xlabel(xdim + (" (rad/site)" if xdim == "k" else ""))
+        ax.set_ylabel(ydim + (" (rad/site)" if ydim == "k" else ""))
+        ax.set_title(f"{model.name} ({fixed}), a = {ds.attrs['amplitude']:g}: {label}\n"
+                     "orange MI, blue stable, grey undefined", fontsize=9)
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)

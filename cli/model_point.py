@@ -1,0 +1,203 @@
+"""`flexmm point --model`: a model checked at one point three ways (the semi-discrete NLS,
+the exact lattice theory on the ring, runs of the ring with --simulate)."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+from .models import _emit, _fmt, branch_of, load
+
+
+# ------------------------------------------------------------------ point
+def _continuum(model, k, amplitude):
+    """The paper's continuum NLS where the model is the paper's chain (flexmm: case II,
+    flexmm-rotation: case I), else None: other models have the semi-discrete NLS only."""
+    from energy import builtin
+
+    case = {"flexmm": "coupled", "flexmm-rotation": "rotation"}.get(model.name)
+    if case is None or model.lattice.content_hash != builtin(model.name).content_hash:
+        return None
+    from generated import coefficients as c
+
+    p = (k, model.params["alpha"], model.params["K_s"], model.params["K_theta"])
+    g1, g2 = float(c.g1(*p)), float(getattr(c, f"g2_{case}")(*p))
+    if not (math.isfinite(g1) and math.isfinite(g2)) or g1 == 0:
+        return {"verdict": "undefined", "peak_gain": None, "g1": None, "g2": None}
+    mi = g2 / g1 > 0
+    return {"verdict": "MI" if mi else "stable",
+            "peak_gain": abs(g2) * amplitude**2 / 4 if mi else 0.0, "g1": g1, "g2": g2}
+
+
+def _start_of(args) -> str:
+    start = getattr(args, "start", None)
+    if start == "paper":
+        raise ValueError("--start paper: the paper's start (eq. IC) is for the paper chain "
+                         "(no --model); with --model: travelling (the exact wave, default) "
+                         "or linear (the linear plane wave)")
+    return "linear" if start == "linear" else "exact"
+
+
+def _exact_row(spec) -> dict:
+    return {"verdict": spec.verdict, "peak_gain": spec.peak_gain,
+            "fastest_offset": spec.fastest_offset, "mode": spec.mode,
+            "modulational_gain": spec.modulational_gain,
+            "omega": spec.wave.omega, "omega_linear": spec.wave.carrier.omega}
+
+
+def _simulated_row(model, k, args, spec, start) -> dict:
+    """Seeded runs of the ring from the exact wave (or the linear one) and the verdict
+    ``numerics.lattice.simulated_verdict`` gives their growth factors, as for the paper's
+    chain: MI, 'no growth within T' or 'undetermined'."""
+    from numerics.models import simulate_seeds
+
+    seeds = args.seeds
+    if isinstance(seeds, bool) or not isinstance(seeds, int) or seeds < 1:
+        raise ValueError(f"--seeds must be an integer >= 1, got {seeds!r}")
+    sim = simulate_seeds(model, k, args.amplitude, spec, branch=branch_of(args), N=args.N,
+                         seeds=seeds, t_end=args.t_end, start=start)
+    v, rate, runs, t_end, length = sim.verdict, sim.rate, sim.runs, sim.t_end, sim.length
+    # the JSON's verdict speaks the theories' three words (MI, stable, undefined: the
+    # contract every theory's object keeps); the run's own word, which never claims more
+    # than T shows, is ``simulation_verdict``, with the slowest rate it could show
+    word = {"MI": "MI", "no growth within T": "stable"}.get(v.word, "undefined")
+    row = {"verdict": word, "simulation_verdict": v.word,
+           "peak_gain": rate if v.word == "MI" else (0.0 if word == "stable" else None),
+           "text": str(v), "t_end": t_end, "seeds": seeds, "start": start,
+           "growth": list(v.growth), "slowest_visible_rate": v.slowest_visible,
+           "energy_drift": max(r.energy_drift for r in runs), "dt": runs[0].dt,
+           "method": runs[0].method}
+    if length is not None and length.note():
+        row["note"] = length.note()
+    return row
+
+
+def _coefficients_or_undefined(model, k, amplitude, branch) -> dict:
+    """The NLS row, or (at k = pi, where 2k is the mean: no expansion) an undefined one
+    with its reason: the exact theory and a simulation still answer there."""
+    from energy import ModelError
+    from numerics.models import carrier, model_coefficients
+
+    try:
+        return model_coefficients(model, k, amplitude, branch)
+    except ModelError as exc:
+        if k < math.pi:
+            raise
+        car = carrier(model, k, branch)
+        return {"k": k, "amplitude": float(amplitude), "branch": car.branch,
+                "field": model.fields[car.field], "verdict": "undefined", "peak_gain": None,
+                "fastest_offset": None, "band_edge": None, "g1": car.g1, "g2": None,
+                "reason": f"{exc} (at k = pi the second harmonic 2k is the mean, 0 mod 2 pi)",
+                "warnings": []}
+
+
+def _ring_note(model, k, amplitude, branch, N, row) -> str | None:
+    """The NLS's peak gain over the offsets a ring of N sites carries (2 pi j / N), into
+    ``row["ring_peak_gain"]``; a sentence when its band is too narrow for the ring (the
+    NLS's verdict is the infinite chain's: the ring, the exact theory on it and the runs
+    cannot show that band)."""
+    import numpy as np
+
+    from numerics.models import nls, ring_offsets
+
+    if row["verdict"] != "MI":
+        row["ring_peak_gain"] = row["peak_gain"]
+        return None
+    r = nls(model, k, branch)
+    ring = float(np.max(r.gain(ring_offsets(N), amplitude)))
+    row["ring_peak_gain"] = ring
+    if ring > 0:
+        return None
+    edge = row["band_edge"]
+    return (f"the semi-discrete NLS's band (offsets below {edge:.3g}) is narrower than the "
+            f"ring's first sideband offset 2 pi / N = {2 * math.pi / N:.3g}: a ring of "
+            f"N = {N} carries none of it; --N above {math.ceil(2 * math.pi / edge)} does")
+
+
+def run_point(args) -> int:
+    from common.output import strict_json
+    from numerics.lattice import checks
+    from numerics.models import exact_gain, snap_ring
+
+    model = load(args)
+    checks.real("--k", args.k, 0.0, math.pi)
+    checks.real("--amplitude", args.amplitude, 0.0, None)
+    if args.t_end is not None and not args.simulate:
+        raise ValueError("--t-end acts with --simulate only")
+    start = _start_of(args)
+    k, _ = snap_ring(args.k, args.N)
+    if args.out:
+        from common.output import check_output
+        check_output(args.out, cache=False)
+    co = _coefficients_or_undefined(model, k, args.amplitude, branch_of(args))
+    out = {"model": model.name, "parameters": dict(model.params), "k": co["k"],
+           "k_requested": float(args.k), "N": args.N, "amplitude": co["amplitude"],
+           "branch": co["branch"], "field": co["field"]}
+    cont = _continuum(model, k, args.amplitude)
+    if cont is not None:
+        out["continuum NLS"] = cont
+    out["semi-discrete NLS"] = {"verdict": co["verdict"], "peak_gain": co["peak_gain"],
+                                "fastest_offset": co["fastest_offset"],
+                                "band_edge": co["band_edge"], "g1": co["g1"], "g2": co["g2"],
+                                "reason": co["reason"]}
+    ring_note = _ring_note(model, k, args.amplitude, branch_of(args), args.N,
+                           out["semi-discrete NLS"])
+    try:
+        spec = exact_gain(model, k, args.amplitude, branch_of(args), N=args.N)
+        out["exact lattice"] = _exact_row(spec)
+    except Exception as exc:  # no travelling wave: the theory has no verdict here
+        from energy import ModelError
+        if not isinstance(exc, ModelError):
+            raise
+        spec = None
+        out["exact lattice"] = {"verdict": "undefined", "peak_gain": None,
+                                "reason": str(exc)}
+    if args.simulate:
+        if spec is None:
+            raise ValueError(f"--simulate: {out['exact lattice']['reason']}")
+        out["simulated"] = _simulated_row(model, k, args, spec, start)
+    out = strict_json(out)
+    if args.out:
+        import json
+
+        from common.files import write_text
+        from common.output import prepare_output
+        folder = prepare_output(args.out, cache=False)
+        write_text(folder / "point.json", json.dumps(out, indent=1, allow_nan=False) + "\n")
+    if args.json:
+        _emit(out)
+        return 0
+    print(f"model:    {model.describe()}")
+    print(f"carrier:  k = {co['k']:g} rad/site (2 pi m / N on the ring of N = {args.N}) on "
+          f"branch {co['branch']} (field {co['field']}), amplitude a = {co['amplitude']:g}")
+    print(f"{'theory':<20} {'verdict':>19} {'peak gain (1/time)':>19} {'at offset':>10}")
+    for name in ("continuum NLS", "semi-discrete NLS", "exact lattice", "simulated"):
+        if name in out:
+            t = out[name]
+            word = t.get("simulation_verdict", t["verdict"])  # a run says what T shows
+            gain = t["peak_gain"] if word == "MI" or name != "simulated" else None
+            print(f"{name:<20} {word:>19} {_fmt(gain, 4):>19} "
+                  f"{_fmt(t.get('fastest_offset'), 4):>10}")
+    if co["reason"]:
+        print(f"undefined: {co['reason']}")
+    ex = out["exact lattice"]
+    if ex.get("reason"):
+        print(f"exact lattice undefined: {ex['reason']}")
+    elif ex["verdict"] == "MI" and ex["mode"] != "sidebands k +- q":
+        print(f"note: the exact lattice's fastest mode is a {ex['mode']}, not a sideband "
+              "pair of the carrier: the NLS cannot see it (the sidebands' own fastest rate: "
+              f"{_fmt(ex['modulational_gain'], 4)})")
+    if "simulated" in out:
+        sim = out["simulated"]
+        print(f"simulated: {sim['text']}; {sim['seeds']} seed(s) from the "
+              f"{'exact travelling' if start == 'exact' else 'linear plane'} wave, "
+              f"energy drift {sim['energy_drift']:.1g}")
+        if sim.get("note"):
+            print(f"note: {sim['note']}")
+    if ring_note:
+        print(f"note: {ring_note}")
+    for w in co["warnings"]:
+        print(f"note: {w}")
+    if args.out:
+        print(f"wrote {Path(args.out) / 'point.json'}")
+    return 0

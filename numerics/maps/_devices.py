@@ -1,0 +1,96 @@
+"""Where a map's cells are simulated: the device choice (cpu, gpu, auto) and the GPU path
+of ``run_map``, which writes each block into the store as a Dask worker's would be."""
+
+from __future__ import annotations
+
+import time
+
+from ._store import _CellWriter, _write_block
+
+DEVICES = ("cpu", "gpu", "auto")
+
+
+def resolve_device(device: str, theory_only: bool = False, log=print,
+                   scheduler: str | None = None) -> str:
+    """'cpu' or 'gpu' for ``device`` ("cpu", "gpu" or "auto": the GPU where one is usable,
+    never the CUDA simulator), or ValueError in one line: an unknown device, a GPU asked
+    where there is none (the reason: no device, or the gpu extra missing), a GPU for a
+    theory-only map (it runs no simulation) or with a ``scheduler`` (its workers simulate
+    on their CPUs)."""
+    from ._gpu import gpu_status, simulated
+
+    if device not in DEVICES:
+        raise ValueError(f"device must be one of {', '.join(DEVICES)}, got {device!r}")
+    if device == "cpu":
+        return "cpu"
+    if theory_only:
+        if device == "gpu":
+            raise ValueError("--device gpu: a theory-only map runs no simulation (its "
+                             "theories run on the CPU); drop --device or --theory-only")
+        return "cpu"
+    ok, why = gpu_status()
+    if device == "gpu":
+        if not ok:
+            raise ValueError(f"--device gpu: {why}")
+        if scheduler:
+            raise ValueError("--device gpu runs on this machine's GPU: drop --scheduler (a "
+                             "cluster's workers simulate on their CPUs)")
+        return "gpu"
+    use = ok and not simulated()
+    log(f"device auto: {'GPU, ' + why if use else 'CPU (' + why + ')'}")
+    return "gpu" if use else "cpu"
+
+
+def device_attrs(device: str, scheduler: str | None) -> dict:
+    """The store's record of where its last cells were simulated: ``device`` ("cpu" or
+    "gpu") and ``device_name`` (the GPU's name, or the CPU's with the cluster's address).
+    Not part of the map's identity: a store resumes on either device."""
+    import platform
+
+    if device == "gpu":
+        from ._gpu import gpu_name
+
+        return {"device": "gpu", "device_name": gpu_name()}
+    cpu = platform.processor() or platform.machine()
+    return {"device": "cpu", "device_name": f"{cpu}, Dask cluster {scheduler}" if scheduler
+            else f"{cpu}, LocalCluster"}
+
+
+#: cells simulated on the GPU in one launch (each a chain per seed; the launch's spectra
+#: are bounded by simulate_cells_gpu's max_spectra_bytes too): enough to fill an H100's
+#: SMs at N = 500, few enough that an interrupted map loses at most one batch
+GPU_BATCH_CELLS = 4096
+
+
+def run_gpu(params, path, todo, n_todo, progress, log, arrays):
+    """The GPU path of run_map: blocks in batches of about GPU_BATCH_CELLS cells; each
+    batch's theories on the CPU, its simulations in one launch, then each block written
+    (checksummed) as a worker's would be: an interrupted map keeps every batch written."""
+    from tqdm.auto import tqdm
+
+    from ._blocks import predict_block, simulated_row
+    from ._gpu import simulate_map_cells_gpu
+
+    writer = _CellWriter(path)
+    bar = tqdm(total=n_todo, unit="cell", disable=None if progress is None else not progress,
+               desc="map (GPU)")
+    t0 = time.perf_counter()
+    try:
+        batch: list = []
+        for n, block in enumerate(todo):
+            batch.append(block)
+            if sum(len(js) for _, js in batch) < GPU_BATCH_CELLS and n + 1 < len(todo):
+                continue
+            predicted = [predict_block(params, i, js) for i, js in batch]
+            cells = [(i, j) for i, js in batch for j in js]
+            sims = simulate_map_cells_gpu(params, cells)
+            for (i, js), (rows, preds) in zip(batch, predicted):
+                for j, row, pred in zip(js, rows, preds):
+                    row.update(simulated_row(sims[(i, j, "runs")], pred))
+                _write_block(path, params, {"i": i, "js": list(js), "rows": rows,
+                                            "simulated": True}, arrays, writer)
+                bar.update(len(js))
+            batch = []
+    finally:
+        bar.close()
+    log(f"simulated {n_todo} cells on the GPU in {time.perf_counter() - t0:.1f} s")
