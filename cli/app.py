@@ -262,9 +262,9 @@ def main(argv=None) -> int:
                       file=sys.stderr)
                 return exit_code(interrupt)
             if isinstance(exc, OSError):
-                where = f" {exc.filename}" if exc.filename else (  # else the --out it wrote
-                    f" under {args.out}" if getattr(locals().get("args"), "out", None) else "")
-                print(f"flexmm: error:{where}: {exc.strerror or exc}", file=sys.stderr)
+                where = f" {exc.filename}:" if exc.filename else (  # else the --out it wrote
+                    f" under {args.out}:" if getattr(locals().get("args"), "out", None) else "")
+                print(f"flexmm: error:{where} {exc.strerror or exc}", file=sys.stderr)
             else:
                 text = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
                 print(f"flexmm: error: {text}", file=sys.stderr)
@@ -354,13 +354,15 @@ def _run(args) -> int:
     import warnings
 
     import scenes
+    from energy import ModelCacheWarning
     from numerics import AccuracyWarning
 
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", AccuracyWarning)
+        warnings.simplefilter("always", ModelCacheWarning)
         code = _dispatch(args, scenes)
     for w in caught:
-        if issubclass(w.category, AccuracyWarning):
+        if issubclass(w.category, (AccuracyWarning, ModelCacheWarning)):
             print(f"flexmm: warning: {w.message}", file=sys.stderr)
         else:
             warnings.showwarning(w.message, w.category, w.filename, w.lineno)

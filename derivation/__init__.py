@@ -10,6 +10,8 @@ analyse_mi()             MI analysis of the normalised NLS
 model_energies(lattice)  any lattice model (energy.Lattice) read into SymPy, checked
 equations_of_motion(e)   its equations of motion, from the energy (Lagrange)
 compile_model(lat, path) its generated NumPy module (derivatives of the cell energy)
+model_module_text(lat)   that module's text (only checked names and repr literals of the
+                         model file reach it; its last line holds the body's hash)
 paper                    the paper's numbers (test points, eps, noise, N, T) - no SymPy
 paper_forms              the paper's closed forms typed by hand (for comparison)
 ERRATA                   errata of the paper
@@ -35,13 +37,14 @@ _LAZY = {
     "analyse_mi": ("._mi", "analyse"),
     "paper_forms": (".paper_forms", None),
     "compile_model": ("._energy", "compile_model"),
+    "model_module_text": ("._energy", "model_module_text"),
     "model_energies": ("._energy", "energies"),
     "equations_of_motion": ("._energy", "equations_of_motion"),
 }
 
 __all__ = ["derive", "derive_continuum", "solve_case", "analyse_mi", "paper", "paper_forms",
            "ERRATA", "Derivation", "ClosedForm", "atomic_write", "compile_model",
-           "model_energies", "equations_of_motion"]
+           "model_module_text", "model_energies", "equations_of_motion"]
 
 
 def __getattr__(name):

@@ -22,15 +22,28 @@ from dataclasses import dataclass
 
 import sympy as sp
 
-from energy import Lattice, ModelError
+from energy import Lattice, ModelError, with_body_hash
 
 _FUNCS = {"sin": sp.sin, "cos": sp.cos, "tan": sp.tan, "exp": sp.exp, "log": sp.log,
           "sqrt": sp.sqrt, "sinh": sp.sinh, "cosh": sp.cosh, "tanh": sp.tanh,
           "atan": sp.atan, "Abs": sp.Abs}
 
 
+def _chain(node, ops):
+    """The operands of a left-deep chain of ``ops`` (a + b - c ...), with their signs or
+    operators, read without recursion: a 2000-term sum is 2000 levels deep in the tree."""
+    items = []
+    while isinstance(node, ast.BinOp) and isinstance(node.op, ops):
+        items.append((type(node.op), node.right))
+        node = node.left
+    items.append((None, node))
+    return items[::-1]
+
+
 def to_sympy(tree: ast.Expression, names: dict) -> sp.Expr:
-    """SymPy expression of a checked energy tree (``energy._spec``): no ``eval``."""
+    """SymPy expression of a checked energy tree (``energy._spec``): no ``eval``. Chains of
+    + - and of * are read flat (one SymPy Add or Mul), so the recursion goes only as deep
+    as the expression's nesting, which ``energy._spec`` bounds."""
 
     def conv(node):
         if isinstance(node, ast.Expression):
@@ -44,14 +57,14 @@ def to_sympy(tree: ast.Expression, names: dict) -> sp.Expr:
             x = conv(node.operand)
             return -x if isinstance(node.op, ast.USub) else x
         if isinstance(node, ast.BinOp):
-            a, b = conv(node.left), conv(node.right)
             op = type(node.op)
-            if op is ast.Add:
-                return a + b
-            if op is ast.Sub:
-                return a - b
+            if op in (ast.Add, ast.Sub):
+                terms = [conv(n) if o is not ast.Sub else -conv(n)
+                         for o, n in _chain(node, (ast.Add, ast.Sub))]
+                return sp.Add(*terms)
             if op is ast.Mult:
-                return a * b
+                return sp.Mul(*[conv(n) for _, n in _chain(node, (ast.Mult,))])
+            a, b = conv(node.left), conv(node.right)
             if op is ast.Div:
                 return a / b
             return a**b
@@ -109,6 +122,10 @@ def energies(lat: Lattice) -> Energies:
     kin = to_sympy(lat.tree("kinetic"), names)
     bond = to_sympy(lat.tree("bond"), names)
     site = to_sympy(lat.tree("site"), names)
+    for key, ex in (("kinetic", kin), ("bond", bond), ("site", site)):
+        if ex.has(sp.zoo, sp.oo, -sp.oo, sp.nan):
+            raise ModelError(f"model {lat.name!r}: energy.{key} is infinite or undefined as "
+                             "written (a division by zero?)")
     where = f"model {lat.name!r}: energy.kinetic"
     masses = []
     for i, v in enumerate(s.vel):
@@ -117,6 +134,9 @@ def energies(lat: Lattice) -> Energies:
             raise ModelError(f"{where}: the mass of {lat.fields[i]} depends on the state "
                              f"({m}); the kinetic energy must be sum_i m_i u_t**2/2, m_i "
                              "constant")
+        if m == 0:
+            raise ModelError(f"{where}: the mass of {lat.fields[i]} is 0; every field needs a "
+                             f"positive mass (a term m*{lat.fields[i]}_t**2/2 with m > 0)")
         masses.append(m)
         for j in range(i + 1, len(s.vel)):
             if sp.simplify(sp.diff(kin, v, s.vel[j])) != 0:
@@ -130,10 +150,25 @@ def energies(lat: Lattice) -> Energies:
     for i, x in enumerate(s.here):
         # net force on field i of a chain at rest: -(dW/du + dW/du_next) at u = 0
         f0 = sp.simplify((sp.diff(bond + site, x) + sp.diff(bond, s.next[i])).subs(at_rest))
+        if f0.has(sp.zoo, sp.oo, -sp.oo, sp.nan):
+            raise ModelError(f"model {lat.name!r}: the energy is not differentiable at the "
+                             f"rest state (every field 0): the force on {lat.fields[i]} there "
+                             "is infinite or undefined (sqrt, log or a negative power of a "
+                             "quantity that vanishes at rest?)")
         if f0 != 0:
             raise ModelError(f"model {lat.name!r}: the rest state (every field 0) is not an "
                              f"equilibrium: the force on {lat.fields[i]} there is {-f0}")
     return Energies(lat, s, kin, bond, site, tuple(masses))
+
+
+def _regular(expr):
+    """``expr`` away from the kinks of Abs: the derivatives of Abs give sign (printed as
+    numpy.sign, 0 at the kink) and DiracDelta terms, which vanish everywhere but on the
+    kink itself and are dropped (the force of a piecewise-smooth energy, as a simulation
+    of it evaluates)."""
+    if not expr.has(sp.DiracDelta):
+        return expr
+    return expr.replace(lambda x: isinstance(x, sp.DiracDelta), lambda x: sp.S.Zero)
 
 
 def equations_of_motion(e: Energies) -> tuple:
@@ -141,7 +176,7 @@ def equations_of_motion(e: Energies) -> tuple:
     s = e.symbols
     back = dict(zip(s.here, s.prev)) | dict(zip(s.next, s.here))
     w_left = e.bond.subs(back, simultaneous=True)  # the bond (n-1, n)
-    return tuple(-(sp.diff(e.cell, x) + sp.diff(w_left, x)) / m
+    return tuple(_regular(-(sp.diff(e.cell, x) + sp.diff(w_left, x)) / m)
                  for x, m in zip(s.here, e.masses))
 
 
@@ -158,7 +193,15 @@ def taylor_tensors(e: Energies, order: int = 4) -> dict:
             d = W
             for i in idx:
                 d = sp.diff(d, x[i])
-            val = sp.simplify(d.subs(at_rest))
+            val = sp.simplify(_regular(d).subs(at_rest))
+            if val.has(sp.zoo, sp.oo, -sp.oo, sp.nan):
+                if n == 2:
+                    names = [str(x[i]) for i in idx]
+                    raise ModelError(f"model {e.lattice.name!r}: the energy's stiffness at "
+                                     f"rest d2W/d{names[0]} d{names[1]} is infinite: linear "
+                                     "waves are not defined (a power below 2 of a quantity "
+                                     "that vanishes at rest?)")
+                val = sp.nan  # printed as numpy.nan: the NLS says it is undefined
             if val != 0:
                 out[idx] = val
     return out
@@ -247,8 +290,8 @@ def model_module_text(lat: Lattice, e: Energies | None = None, command: str = ""
     x = s.here + s.next
     d = len(x)
     pr = _printer()
-    grad = [sp.diff(e.cell, v) for v in x]
-    hess = [[sp.diff(g, v) for v in x] for g in grad]
+    grad = [_regular(sp.diff(e.cell, v)) for v in x]
+    hess = [[_regular(sp.diff(g, v)) for v in x] for g in grad]
     tens = taylor_tensors(e)
     head = [
         "# " + "-" * 77,
@@ -259,8 +302,6 @@ def model_module_text(lat: Lattice, e: Energies | None = None, command: str = ""
         "# " + "-" * 77,
         "",
         f'"""Derivatives of the cell energy W(u_n, u_{{n+1}}) of model {lat.name!r}.',
-        "",
-        f"{lat.description}",
         "",
         "x = (u_n fields..., u_{n+1} fields...) (first axis), p = parameters in PARAMETERS",
         "order. Every function works on floats (Numba) and on arrays of shape (2 d, ...)",
@@ -313,7 +354,7 @@ def model_module_text(lat: Lattice, e: Energies | None = None, command: str = ""
              "def _permutations(idx):",
              "    import itertools",
              "    return set(itertools.permutations(idx))", ""]
-    return "\n".join(head)
+    return with_body_hash("\n".join(head))
 
 
 def compile_model(lat: Lattice, path, command: str = ""):

@@ -12,12 +12,35 @@ read_model, parse_model      a model file (path or text) -> Lattice
 BUILTIN, builtin             the built-in models (energy/models/*.toml) by name
 load_model -> Model          a model with parameter values and its generated code (derived
                              on first use and cached by the content hash of its energy)
+check_generated              is a generated module whole (its body's hash) and of this energy
+check_name, RESERVED         the rule for field and parameter names
 """
 
 from __future__ import annotations
 
-from ._model import BUILTIN, Model, builtin, load_model, module_name, resolve_model
-from ._spec import FUNCTIONS, Lattice, ModelError, check_value, parse_model, read_model
+from ._model import (
+    BUILTIN,
+    Model,
+    ModelCacheWarning,
+    builtin,
+    check_generated,
+    load_model,
+    module_name,
+    resolve_model,
+    with_body_hash,
+)
+from ._spec import (
+    FUNCTIONS,
+    RESERVED,
+    Lattice,
+    ModelError,
+    check_name,
+    check_value,
+    parse_model,
+    read_model,
+)
 
 __all__ = ["Lattice", "ModelError", "read_model", "parse_model", "BUILTIN", "builtin",
-           "load_model", "resolve_model", "module_name", "Model", "FUNCTIONS", "check_value"]
+           "load_model", "resolve_model", "module_name", "Model", "FUNCTIONS", "RESERVED",
+           "check_name", "check_value", "ModelCacheWarning", "check_generated",
+           "with_body_hash"]

@@ -47,8 +47,50 @@ def module_name(name: str) -> str:
 
 #: The layout of a generated model module (its functions and their arguments); a cached
 #: module of another layout is derived again (2: the site loop accelerations_into, argument
-#: names that no field or parameter can shadow).
-CODEGEN_VERSION = 2
+#: names that no field or parameter can shadow; 3: no text of the model file but checked
+#: names and repr literals, and a last line holding the hash of the body).
+CODEGEN_VERSION = 3
+
+#: The last line of a generated model module: sha256 of everything before it.
+BODY_HASH_PREFIX = "# BODY_SHA256 = "
+
+
+class ModelCacheWarning(UserWarning):
+    """The derived code of a model in the cache was damaged and is derived again."""
+
+
+def body_hash(text: str) -> str:
+    """sha256 of a generated module's body (its text before the hash line)."""
+    return hashlib.sha256(text.encode("utf-8")).hexdigest()
+
+
+def with_body_hash(text: str) -> str:
+    """``text`` (ending in a newline) with its hash line appended."""
+    return f"{text}{BODY_HASH_PREFIX}{body_hash(text)}\n"
+
+
+def check_generated(path: Path, model_hash: str) -> str | None:
+    """What is wrong with the generated module at ``path`` for a model of content hash
+    ``model_hash`` (None: it is whole). Read as bytes and checked before anything imports
+    it: UTF-8, a last line holding the hash of the body, the body's MODEL_HASH."""
+    try:
+        raw = path.read_bytes()
+    except FileNotFoundError:
+        return "missing"
+    except OSError as exc:
+        return f"unreadable ({exc.strerror or exc})"
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError:
+        return "not UTF-8 text"
+    body, sep, last = text.rstrip("\n").rpartition("\n")
+    if not sep or not last.startswith(BODY_HASH_PREFIX):
+        return "no hash line (truncated, or of an older layout)"
+    if last[len(BODY_HASH_PREFIX):].strip() != body_hash(body + "\n"):
+        return "its body does not match its hash line: edited?"
+    if f"\nMODEL_HASH = {model_hash!r}\n" not in body:
+        return "derived from another energy"
+    return None
 
 
 def cache_dir() -> Path:
@@ -62,40 +104,80 @@ def _import_file(path: Path, name: str) -> ModuleType:
     spec = importlib.util.spec_from_file_location(name, path)
     mod = importlib.util.module_from_spec(spec)
     sys.modules[name] = mod  # numba's cache locates a function's module through sys.modules
-    spec.loader.exec_module(mod)
+    try:
+        spec.loader.exec_module(mod)
+    except BaseException:
+        sys.modules.pop(name, None)
+        raise
     return mod
+
+
+def _builtin_code(lat: Lattice, h: str) -> ModuleType | None:
+    """The committed generated module of a built-in model, when it is whole and of this
+    energy (checked before it is imported)."""
+    name = f"generated.models.{module_name(lat.name)}"
+    if name in sys.modules:
+        mod = sys.modules[name]
+        return mod if getattr(mod, "MODEL_HASH", None) == h else None
+    try:
+        spec = importlib.util.find_spec(name)
+    except (ImportError, ValueError):
+        return None
+    if spec is None or spec.origin is None or check_generated(Path(spec.origin), h):
+        return None
+    try:
+        mod = importlib.import_module(name)
+    except ImportError:
+        return None
+    return mod if getattr(mod, "MODEL_HASH", None) == h else None
 
 
 def generated_code(lat: Lattice) -> ModuleType:
     """The generated module of ``lat``: the committed one of a built-in model, else the
-    cached one, derived now if it is not cached (SymPy, seconds)."""
+    cached one, derived now if it is not cached (SymPy, seconds).
+
+    A cached module is checked before it is imported (:func:`check_generated`): a damaged
+    one is derived again, said in one :class:`ModelCacheWarning`. A module that does not
+    import is removed from the cache and the model refused (:class:`ModelError`)."""
     h = lat.content_hash
     if lat.source.startswith("builtin:"):
-        try:
-            mod = importlib.import_module(f"generated.models.{module_name(lat.name)}")
-            if getattr(mod, "MODEL_HASH", None) == h:
-                return mod
-        except ImportError:
-            pass
+        mod = _builtin_code(lat, h)
+        if mod is not None:
+            return mod
     path = cache_dir() / f"model_{h[:24]}_v{CODEGEN_VERSION}.py"
     name = f"_flexmm_model_{h[:24]}_v{CODEGEN_VERSION}"
     if name in sys.modules:
         return sys.modules[name]
-    if not path.exists() or _hash_in(path) != h:
+    problem = check_generated(path, h)
+    if problem is not None:
+        if problem != "missing":
+            import warnings
+
+            warnings.warn(f"the cached code of model {lat.name!r} ({path}) is damaged "
+                          f"({problem}): "
+                          "derived again", ModelCacheWarning, stacklevel=2)
         from derivation import compile_model  # the one step that needs SymPy
 
-        compile_model(lat, path)
-    return _import_file(path, name)
-
-
-def _hash_in(path: Path) -> str | None:
+        try:
+            compile_model(lat, path)
+        except OSError as exc:  # say which file could not be written
+            raise OSError(exc.errno, f"cannot write the derived code of model {lat.name!r} "
+                          f"({exc.strerror or exc})", str(path)) from None
+        problem = check_generated(path, h)
+        if problem is not None:  # another process wrote a different file meanwhile
+            raise ModelError(f"model {lat.name!r}: its derived code at {path} is {problem} "
+                             "right after it was written; remove the file and try again")
     try:
-        for line in path.read_text(encoding="utf-8").splitlines():
-            if line.startswith("MODEL_HASH = "):
-                return line.split("=", 1)[1].strip().strip("'\"")
-    except OSError:
-        return None
-    return None
+        return _import_file(path, name)
+    except Exception as exc:  # never keep a module that does not import
+        try:
+            path.unlink()
+        except OSError:
+            pass
+        raise ModelError(f"model {lat.name!r}: its generated code does not import "
+                         f"({type(exc).__name__}: {str(exc).splitlines()[0][:200] if str(exc) else ''}); "
+                         "this is a bug of the generator, please report it with the model "
+                         "file") from None
 
 
 @dataclass(frozen=True)

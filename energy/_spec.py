@@ -9,8 +9,10 @@ model file cannot run code. SymPy reads them later (``derivation``), from the ch
 from __future__ import annotations
 
 import ast
+import builtins
 import hashlib
 import json
+import keyword
 import math
 import numbers
 import re
@@ -24,8 +26,36 @@ FUNCTIONS = ("sin", "cos", "tan", "exp", "log", "sqrt", "sinh", "cosh", "tanh", 
              "Abs")
 #: Constants an energy may use.
 CONSTANTS = ("pi",)
-_NAME = re.compile(r"^[A-Za-z][A-Za-z0-9]*(?:_?[A-Za-z0-9]+)*$")
-_SUFFIXES = ("_next", "_t")
+# Letters and digits, single underscores between them. Unambiguous (each '_' starts a new
+# group), so matching is linear in the name's length; the old ``(?:_?[A-Za-z0-9]+)*``
+# backtracked exponentially on a long name ending in a character it refuses.
+_NAME = re.compile(r"[A-Za-z][A-Za-z0-9]*(?:_[A-Za-z0-9]+)*")
+#: The longest field or parameter name.
+MAX_NAME = 64
+#: Suffixes the generator gives a field (u_prev = u_{n-1}, u_next = u_{n+1}, u_t = du_n/dt):
+#: no field or parameter may end in one.
+_SUFFIXES = ("_next", "_prev", "_t")
+#: Names the generated module uses itself (its imports, module constants and functions):
+#: a field or parameter of the same name would shadow them.
+GENERATOR_NAMES = frozenset({
+    "numpy", "numba", "itertools", "math", "NAME", "FIELDS", "PARAMETERS", "MODEL_HASH",
+    "BODY_SHA256", "SITE_FUNCTIONS_ALL", "masses", "cell_energy", "cell_gradient_into",
+    "site_functions_all", "accelerations_into", "cell_hessian_into", "taylor"})
+#: Every name a field or parameter may not take: Python's keywords and built-ins (the
+#: generated code is Python), the generator's own names, the functions and constants.
+RESERVED = frozenset(keyword.kwlist) | frozenset(keyword.softkwlist) | frozenset(
+    n for n in dir(builtins) if not n.startswith("_")) | GENERATOR_NAMES
+#: Bounds on what a model file may ask of the derivation (checked before SymPy sees it).
+MAX_FILE_BYTES = 256 * 1024
+MAX_TEXT = 4096  # description, references
+MAX_FIELDS = 8
+MAX_PARAMETERS = 64
+MAX_EXPRESSION = 20_000  # characters of one energy
+MAX_NODES = 10_000  # syntax-tree nodes of one energy
+MAX_DEPTH = 60  # nesting, a chain of + - * counted once
+MAX_CALL_DEPTH = 4  # functions nested in functions (each level ~4x the derivation time)
+MAX_EXPONENT = 64  # |a constant exponent|
+MAX_CONSTANT = 1e15  # |a number in an energy|
 _KEYS = {"name", "description", "fields", "parameters", "energy", "branch", "references"}
 _ENERGY_KEYS = ("kinetic", "bond", "site")
 
@@ -36,6 +66,38 @@ class ModelError(ValueError):
 
 def _fail(where: str, message: str):
     raise ModelError(f"{where}: {message}")
+
+
+def _short(text, limit: int = 60) -> str:
+    """``repr`` of a user's text, cut to ``limit`` characters (error lines stay one line)."""
+    text = str(text).strip()
+    if len(text) > limit:
+        text = text[:limit - 15] + " ... " + text[-10:]
+    return repr(text)
+
+
+def check_name(where: str, kind: str, name) -> str:
+    """A field or parameter name: letters and digits with single '_' between them, at most
+    MAX_NAME characters, not reserved (see :data:`RESERVED`) and not ending in a suffix the
+    generator gives a field (_next, _prev, _t)."""
+    if not isinstance(name, str):
+        _fail(where, f"{kind} name must be a string, got {type(name).__name__} {_short(name)}")
+    if len(name) > MAX_NAME:
+        _fail(where, f"{kind} name {_short(name)} is longer than {MAX_NAME} characters")
+    if not _NAME.fullmatch(name):
+        _fail(where, f"{kind} name {_short(name)} is not valid (letters and digits, single '_' "
+                     "between them, starting with a letter)")
+    if name.endswith(_SUFFIXES):
+        _fail(where, f"{kind} name {name!r} ends in {name[name.rindex('_'):]!r}, which the "
+                     "generator gives fields (u_prev, u_next, u_t): rename it")
+    if name in FUNCTIONS or name in CONSTANTS:
+        _fail(where, f"{kind} name {name!r} is a function or constant of the energies")
+    if name in RESERVED:
+        why = ("a Python keyword" if keyword.iskeyword(name) or keyword.issoftkeyword(name)
+               else "a name the generated code uses" if name in GENERATOR_NAMES
+               else "a Python built-in")
+        _fail(where, f"{kind} name {name!r} is reserved ({why}): rename it")
+    return name
 
 
 @dataclass(frozen=True)
@@ -83,25 +145,39 @@ class Lattice:
 
     def __post_init__(self):
         where = f"model {self.name!r}" if isinstance(self.name, str) else "model"
-        if not isinstance(self.name, str) or not re.fullmatch(r"[A-Za-z][A-Za-z0-9_-]*",
-                                                              self.name):
-            _fail(where, f"name must be letters, digits, '-' or '_', got {self.name!r}")
+        if not isinstance(self.name, str) or len(self.name) > MAX_NAME or not re.fullmatch(
+                r"[A-Za-z][A-Za-z0-9_-]*", self.name):
+            where = "model"
+            _fail(where, f"name must be letters, digits, '-' or '_' (at most {MAX_NAME}), got "
+                         f"{_short(self.name)}")
+        for key in ("description", "references", "source"):
+            text = getattr(self, key)
+            if not isinstance(text, str):
+                _fail(where, f"{key} must be a string, got {type(text).__name__} "
+                             f"{_short(text)}")
+            if key != "source" and len(text) > MAX_TEXT:
+                _fail(where, f"{key} is {len(text)} characters long (at most {MAX_TEXT})")
         flds = self.fields
         if isinstance(flds, str) or not isinstance(flds, (list, tuple)) or not flds:
-            _fail(where, f"fields must be a non-empty list of names, got {flds!r}")
+            _fail(where, f"fields must be a non-empty list of names, got {_short(flds)}")
+        if len(flds) > MAX_FIELDS:
+            _fail(where, f"{len(flds)} fields: at most {MAX_FIELDS} (the derivation's fourth-"
+                         "order tensors grow as the fourth power of the fields)")
         for f in flds:
-            if not isinstance(f, str) or not _NAME.match(f) or f.endswith(_SUFFIXES):
-                _fail(where, f"field name {f!r} is not valid (letters and digits, not ending "
-                             "in _next or _t)")
+            check_name(where, "field", f)
         if len(set(flds)) != len(flds):
             _fail(where, f"fields repeat a name: {list(flds)}")
         object.__setattr__(self, "fields", tuple(flds))
+        if not isinstance(self.parameters, (dict, MappingProxyType)):
+            _fail(where, "parameters must be a mapping of name to default value, got "
+                         f"{type(self.parameters).__name__}")
         params = dict(self.parameters)
+        if len(params) > MAX_PARAMETERS:
+            _fail(where, f"{len(params)} parameters: at most {MAX_PARAMETERS}")
         for p, v in params.items():
-            if not isinstance(p, str) or not _NAME.match(p):
-                _fail(where, f"parameter name {p!r} is not valid")
-            if p in flds or p in FUNCTIONS or p in CONSTANTS or p.endswith(_SUFFIXES):
-                _fail(where, f"parameter {p!r} clashes with a field, function or constant")
+            check_name(where, "parameter", p)
+            if p in flds:
+                _fail(where, f"parameter {p!r} clashes with the field of the same name")
             params[p] = check_value(f"{where}: parameter {p}", v)
         object.__setattr__(self, "parameters", MappingProxyType(params))
         for key in _ENERGY_KEYS:
@@ -111,7 +187,8 @@ class Lattice:
             self._trees[key] = _checked_tree(f"{where}: energy.{key}", text,
                                              self._allowed(key))
         if self.branch is not None and self.branch not in flds:
-            _fail(where, f"branch {self.branch!r} is not one of the fields {list(flds)}")
+            _fail(where, f"branch {_short(self.branch, 40)} is not one of the fields "
+                         f"{list(flds)}")
         _check_kinetic(where, self._trees["kinetic"], self.fields)
 
     def _allowed(self, key: str) -> set:
@@ -177,37 +254,117 @@ _NODES = (ast.Expression, ast.BinOp, ast.UnaryOp, ast.Call, ast.Name, ast.Consta
 
 
 def _checked_tree(where: str, text: str, allowed: set) -> ast.Expression:
+    """The syntax tree of one energy, checked node by node and bounded (size, nesting,
+    constants, exponents) before anything else reads it. Every check is one pass."""
+    if len(text) > MAX_EXPRESSION:
+        _fail(where, f"the expression is {len(text)} characters long (at most "
+                     f"{MAX_EXPRESSION})")
     try:
         tree = ast.parse(text.strip(), mode="eval")
     except SyntaxError as exc:
-        _fail(where, f"syntax error in {text.strip()!r} at column {exc.offset}: {exc.msg}")
-    for node in ast.walk(tree):
+        _fail(where, f"syntax error in {_short(text)} at column {exc.offset}: {exc.msg}")
+    except (RecursionError, MemoryError):
+        _fail(where, f"the expression {_short(text)} has too many terms or is nested too "
+                     f"deeply to read (at most {MAX_NODES} terms and symbols, {MAX_DEPTH} "
+                     "levels)")
+    shown = _short(text)
+    nodes = 0
+    for node in ast.walk(tree):  # what kinds of node: one pass, before anything reads them
+        nodes += isinstance(node, ast.expr)  # numbers, names, operations, calls
+        if nodes > MAX_NODES:
+            _fail(where, f"the expression {shown} has more than {MAX_NODES} terms and symbols")
         if isinstance(node, ast.BinOp) and isinstance(node.op, ast.BitXor):
-            _fail(where, f"'^' is not a power in {text.strip()!r}: write '**'")
-    for node in ast.walk(tree):
+            _fail(where, f"'^' is not a power in {shown}: write '**'")
         if not isinstance(node, _NODES):
-            _fail(where, f"{type(node).__name__.lower()} is not allowed in {text.strip()!r} "
+            _fail(where, f"{type(node).__name__.lower()} is not allowed in {shown} "
                          "(only numbers, names, + - * / ** and function calls)")
-    for node in ast.walk(tree):
-        if isinstance(node, ast.Constant) and (isinstance(node.value, bool) or not isinstance(
-                node.value, (int, float))):
-            _fail(where, f"constant {node.value!r} is not a real number")
+    # iterative walk carrying each node's nesting depth and function-call depth; a chain
+    # of the same associative operator (a + b + c ...) is one level, as SymPy reads it
+    stack = [(tree, 0, 0)]
+    while stack:
+        node, depth, cdepth = stack.pop()
+        if depth > MAX_DEPTH:
+            _fail(where, f"the expression {shown} is nested deeper than {MAX_DEPTH} levels")
+        if isinstance(node, ast.Constant):
+            v = node.value
+            if isinstance(v, bool) or not isinstance(v, (int, float)):
+                _fail(where, f"constant {_short(v)} is not a real number")
+            if not (isinstance(v, int) and v.bit_length() <= 64) and not (
+                    isinstance(v, float) and math.isfinite(v)):
+                if isinstance(v, int):
+                    _fail(where, f"constant {_short(v)} is larger than {MAX_CONSTANT:g}")
+                _fail(where, f"constant {v!r} is not finite")
+            if abs(v) > MAX_CONSTANT:
+                _fail(where, f"constant {_short(v)} is larger than {MAX_CONSTANT:g}")
         if isinstance(node, ast.Call):
             if not isinstance(node.func, ast.Name) or node.func.id not in FUNCTIONS:
-                fn = getattr(node.func, "id", ast.unparse(node.func))
-                _fail(where, f"unknown function {fn!r} (allowed: {', '.join(FUNCTIONS)})")
+                fn = getattr(node.func, "id", None) or type(node.func).__name__.lower()
+                _fail(where, f"unknown function {_short(fn, 30)} (allowed: "
+                             f"{', '.join(FUNCTIONS)})")
             if node.keywords or len(node.args) != 1:
                 _fail(where, f"{node.func.id}() takes one argument")
-        if isinstance(node, ast.Name) and not (isinstance(node.ctx, ast.Load)):
-            _fail(where, "assignment is not allowed")
-    for node in ast.walk(tree):
-        if isinstance(node, ast.Name) and not _is_func(tree, node) and node.id not in allowed:
-            _fail(where, _unknown(node.id, allowed))
+            if cdepth + 1 > MAX_CALL_DEPTH:
+                _fail(where, f"functions are nested more than {MAX_CALL_DEPTH} deep in {shown}")
+            stack.append((node.args[0], depth + 1, cdepth + 1))
+            continue
+        if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Pow):
+            _check_exponent(where, node.right, shown)
+        if isinstance(node, ast.Name):
+            if not isinstance(node.ctx, ast.Load):
+                _fail(where, "assignment is not allowed")
+            if node.id not in allowed:  # a function's name is not visited: see ast.Call
+                _fail(where, _unknown(node.id, allowed))
+            continue
+        op = type(node.op) if isinstance(node, ast.BinOp) else None
+        for child in ast.iter_child_nodes(node):
+            if isinstance(child, (ast.operator, ast.unaryop, ast.expr_context)):
+                continue
+            same = op in (ast.Add, ast.Sub, ast.Mult) and isinstance(child, ast.BinOp) and (
+                type(child.op) in ((ast.Add, ast.Sub) if op is not ast.Mult else (ast.Mult,)))
+            stack.append((child, depth if same else depth + 1, cdepth))
     return tree
 
 
-def _is_func(tree, name_node) -> bool:
-    return any(isinstance(n, ast.Call) and n.func is name_node for n in ast.walk(tree))
+def _constant_value(node):
+    """The value of a subtree of numbers, + - * / ** and pi (None if it holds a symbol or
+    a function); float arithmetic, bounded: an overflow is infinite."""
+    if isinstance(node, ast.Constant) and isinstance(node.value, (int, float)) and not (
+            isinstance(node.value, bool)):
+        return float(node.value) if abs(node.value) <= 1e308 else math.inf
+    if isinstance(node, ast.Name) and node.id == "pi":
+        return math.pi
+    if isinstance(node, ast.UnaryOp):
+        v = _constant_value(node.operand)
+        return None if v is None else (-v if isinstance(node.op, ast.USub) else v)
+    if isinstance(node, ast.BinOp):
+        a, b = _constant_value(node.left), _constant_value(node.right)
+        if a is None or b is None:
+            return None
+        try:
+            op = type(node.op)
+            if op is ast.Add:
+                return a + b
+            if op is ast.Sub:
+                return a - b
+            if op is ast.Mult:
+                return a * b
+            if op is ast.Div:
+                return a / b if b != 0 else math.inf
+            if op is ast.Pow:
+                if abs(b) > MAX_EXPONENT:
+                    return math.inf
+                r = abs(a) ** b
+                return r if isinstance(r, float) else math.inf
+        except (OverflowError, ZeroDivisionError):
+            return math.inf
+    return None
+
+
+def _check_exponent(where: str, node, shown: str):
+    v = _constant_value(node)
+    if v is not None and not (math.isfinite(v) and abs(v) <= MAX_EXPONENT):
+        _fail(where, f"the exponent {_short(ast.unparse(node), 30)} in {shown} is beyond "
+                     f"|exponent| <= {MAX_EXPONENT}")
 
 
 def _unknown(name: str, allowed: set) -> str:
@@ -220,7 +377,7 @@ def _unknown(name: str, allowed: set) -> str:
     elif name.endswith("_t"):
         hint = " (velocities are allowed in energy.kinetic only)"
     names = ", ".join(sorted(n for n in allowed if n not in FUNCTIONS and n not in CONSTANTS))
-    return f"unknown symbol {name!r}{hint}; allowed here: {names}"
+    return f"unknown symbol {_short(name, 40)}{hint}; allowed here: {names}"
 
 
 def _check_kinetic(where: str, tree: ast.Expression, fields: tuple):
@@ -258,20 +415,37 @@ def read_model(path: str | Path) -> Lattice:
     path = Path(path)
     where = str(path)
     try:
-        text = path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise ModelError(f"{where}: no such model file") from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise ModelError(f"{where}: cannot read the model file ({exc})") from None
+        if not path.is_file():
+            raise ModelError(f"{where}: no such model file" if not path.exists() else
+                             f"{where}: not a regular file (a model file is a .toml file)")
+        with path.open("rb") as fh:
+            raw = fh.read(MAX_FILE_BYTES + 1)
+    except OSError as exc:
+        raise ModelError(f"{where}: cannot read the model file ({exc.strerror or exc})") \
+            from None
+    if len(raw) > MAX_FILE_BYTES:
+        raise ModelError(f"{where}: the model file is larger than {MAX_FILE_BYTES // 1024} KiB")
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise ModelError(f"{where}: the model file is not UTF-8 text (byte {exc.start})") \
+            from None
     return parse_model(text, where)
 
 
 def parse_model(text: str, where: str = "model") -> Lattice:
     """A :class:`Lattice` from the text of a model file."""
+    if not isinstance(text, str):
+        raise ModelError(f"{where}: the model's text must be a string, got "
+                         f"{type(text).__name__}")
+    if len(text.encode("utf-8", "surrogatepass")) > MAX_FILE_BYTES:
+        raise ModelError(f"{where}: the model file is larger than {MAX_FILE_BYTES // 1024} KiB")
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
-        raise ModelError(f"{where}: not valid TOML ({exc})") from None
+        raise ModelError(f"{where}: not valid TOML ({_short(exc, 200)[1:-1]})") from None
+    except (RecursionError, MemoryError):
+        raise ModelError(f"{where}: not valid TOML (nested too deeply)") from None
     unknown = sorted(set(data) - _KEYS)
     if unknown:
         _fail(where, f"unknown key(s) {', '.join(unknown)} (known: {', '.join(sorted(_KEYS))})")
@@ -294,8 +468,8 @@ def parse_model(text: str, where: str = "model") -> Lattice:
         return Lattice(name=data["name"], fields=data["fields"], parameters=params,
                        kinetic=energy["kinetic"], bond=energy["bond"],
                        site=energy.get("site", "0"),
-                       description=str(data.get("description", "")),
-                       branch=data.get("branch"), references=str(data.get("references", "")),
+                       description=data.get("description", ""),
+                       branch=data.get("branch"), references=data.get("references", ""),
                        source=where)
     except ModelError as exc:
         msg = str(exc)

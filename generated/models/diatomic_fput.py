@@ -6,8 +6,6 @@
 
 """Derivatives of the cell energy W(u_n, u_{n+1}) of model 'diatomic-fput'.
 
-diatomic FPUT chain: masses 1 (u) and m (v), every spring V(r) = r^2/2 + alpha r^3/3 + beta r^4/4
-
 x = (u_n fields..., u_{n+1} fields...) (first axis), p = parameters in PARAMETERS
 order. Every function works on floats (Numba) and on arrays of shape (2 d, ...)
 (NumPy); the ``*_into`` forms write into ``out`` of shape (2 d[, 2 d], ...).
@@ -187,3 +185,4 @@ def taylor(_p):
 def _permutations(idx):
     import itertools
     return set(itertools.permutations(idx))
+# BODY_SHA256 = 11c378619f2ffcfb42479debc52077f27e11029d138c2e3c2573374ffedb57e8

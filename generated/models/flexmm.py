@@ -6,8 +6,6 @@
 
 """Derivatives of the cell energy W(u_n, u_{n+1}) of model 'flexmm'.
 
-the paper's chain, case II (coupled): rotations theta and sliding U, eq. norm
-
 x = (u_n fields..., u_{n+1} fields...) (first axis), p = parameters in PARAMETERS
 order. Every function works on floats (Numba) and on arrays of shape (2 d, ...)
 (NumPy); the ``*_into`` forms write into ``out`` of shape (2 d[, 2 d], ...).
@@ -186,3 +184,4 @@ def taylor(_p):
 def _permutations(idx):
     import itertools
     return set(itertools.permutations(idx))
+# BODY_SHA256 = d40e36136664938568ec44062234ad4046edcdabf3b4aaebf22dab476739f466

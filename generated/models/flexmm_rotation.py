@@ -6,8 +6,6 @@
 
 """Derivatives of the cell energy W(u_n, u_{n+1}) of model 'flexmm-rotation'.
 
-the paper's chain, case I (rotation): sliding frozen (U = 0), eq. norm
-
 x = (u_n fields..., u_{n+1} fields...) (first axis), p = parameters in PARAMETERS
 order. Every function works on floats (Numba) and on arrays of shape (2 d, ...)
 (NumPy); the ``*_into`` forms write into ``out`` of shape (2 d[, 2 d], ...).
@@ -147,3 +145,4 @@ def taylor(_p):
 def _permutations(idx):
     import itertools
     return set(itertools.permutations(idx))
+# BODY_SHA256 = aaed83d57163c2b836157dae072010043239867de30de5346e19c0697002faa7

@@ -6,8 +6,6 @@
 
 """Derivatives of the cell energy W(u_n, u_{n+1}) of model 'flexmm-stiff-hinge'.
 
-the paper's chain (case II) with stiffening hinges: hinge energy K_theta phi^2/2 + K_3 phi^4/4
-
 x = (u_n fields..., u_{n+1} fields...) (first axis), p = parameters in PARAMETERS
 order. Every function works on floats (Numba) and on arrays of shape (2 d, ...)
 (NumPy); the ``*_into`` forms write into ``out`` of shape (2 d[, 2 d], ...).
@@ -196,3 +194,4 @@ def taylor(_p):
 def _permutations(idx):
     import itertools
     return set(itertools.permutations(idx))
+# BODY_SHA256 = 8cea96f50a49126d9e3bee205302d0aac54fe24e0b21b7f494b55df8b9604d86

@@ -6,8 +6,6 @@
 
 """Derivatives of the cell energy W(u_n, u_{n+1}) of model 'fput'.
 
-Fermi-Pasta-Ulam-Tsingou alpha-beta chain: bond V(r) = r^2/2 + alpha r^3/3 + beta r^4/4
-
 x = (u_n fields..., u_{n+1} fields...) (first axis), p = parameters in PARAMETERS
 order. Every function works on floats (Numba) and on arrays of shape (2 d, ...)
 (NumPy); the ``*_into`` forms write into ``out`` of shape (2 d[, 2 d], ...).
@@ -126,3 +124,4 @@ def taylor(_p):
 def _permutations(idx):
     import itertools
     return set(itertools.permutations(idx))
+# BODY_SHA256 = 98a229efa542e12fb0deb2454de0aeafb79b132538c4a4698d2e4ba43443ee53

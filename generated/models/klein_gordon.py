@@ -6,8 +6,6 @@
 
 """Derivatives of the cell energy W(u_n, u_{n+1}) of model 'klein-gordon'.
 
-phi^4 chain with a cubic term: site omega0^2 u^2/2 + alpha u^3/3 + beta u^4/4
-
 x = (u_n fields..., u_{n+1} fields...) (first axis), p = parameters in PARAMETERS
 order. Every function works on floats (Numba) and on arrays of shape (2 d, ...)
 (NumPy); the ``*_into`` forms write into ``out`` of shape (2 d[, 2 d], ...).
@@ -129,3 +127,4 @@ def taylor(_p):
 def _permutations(idx):
     import itertools
     return set(itertools.permutations(idx))
+# BODY_SHA256 = c7bbd26245c4842ee83b2919f6b28238c69eae4dd8d110c3cd596db6ac398d9c

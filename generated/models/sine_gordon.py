@@ -6,8 +6,6 @@
 
 """Derivatives of the cell energy W(u_n, u_{n+1}) of model 'sine-gordon'.
 
-discrete sine-Gordon (Frenkel-Kontorova) chain: site omega0^2 (1 - cos u)
-
 x = (u_n fields..., u_{n+1} fields...) (first axis), p = parameters in PARAMETERS
 order. Every function works on floats (Numba) and on arrays of shape (2 d, ...)
 (NumPy); the ``*_into`` forms write into ``out`` of shape (2 d[, 2 d], ...).
@@ -115,3 +113,4 @@ def taylor(_p):
 def _permutations(idx):
     import itertools
     return set(itertools.permutations(idx))
+# BODY_SHA256 = 7be18ea5f31f1e0e74bd50f1da1f48e4d247041366d3cfa893dd0a40e42c804a

@@ -30,6 +30,7 @@ sideband gain sigma(q) = (|g1|/2) |q| sqrt(g a^2 - q^2) at offsets |q| < sqrt(g)
 from __future__ import annotations
 
 import math
+import numbers
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -208,11 +209,19 @@ def nls(model: Model, k: float, branch=None) -> ModelNLS:
     second harmonic resonant with a branch (omega_b(2k) = 2 omega), a group velocity equal
     to a sound speed, or g1 = 0.
     """
+    if isinstance(k, bool) or not isinstance(k, numbers.Real):
+        raise ModelError(f"k must be a real number, got {type(k).__name__} {k!r}")
     k = float(k)
     if not (math.isfinite(k) and 0 < k < math.pi):
         raise ModelError(f"k must be in (0, {math.pi:.6g}), got {k!r}")
     c = carrier(model, k, branch)
     H, T, Q = model.code.taylor(model.p)
+    if not (np.all(np.isfinite(T)) and np.all(np.isfinite(Q))):
+        nan_d = np.full(model.n_fields, np.nan)
+        return ModelNLS(model, c, math.nan, nan_d.astype(complex), nan_d, nan_d,
+                        "the energy's third or fourth derivatives at rest are not finite "
+                        "(a power below 4 of a quantity that vanishes at rest, as r**(5/2)): "
+                        "no weakly nonlinear expansion")
     d = model.n_fields
     m = model.masses
     M = np.diag(m)
@@ -281,6 +290,10 @@ def nls(model: Model, k: float, branch=None) -> ModelNLS:
     parts = {key: float(np.real(e.conj() @ f)) / (2 * w0 * me)
              for key, f in parts_force.items()}
     g2 = sum(parts.values())
+    if not math.isfinite(g2):
+        return ModelNLS(model, c, math.nan, v2, w, strain_dir,
+                        f"g2 is not finite at k = {k:.6g} (it overflows: parameters "
+                        f"{model.describe()} out of floating-point range?)", parts)
     out = ModelNLS(model, c, g2, v2, w, strain_dir, "", parts)
     if abs(c.g1) < 1e-12 * max(abs(w0), 1.0):
         return ModelNLS(model, c, math.nan, v2, w, strain_dir,
