@@ -335,6 +335,14 @@ def _interrupted(args, exc) -> str:
                 + (f", the running one was checkpointed in {running}" if running else
                    ", no simulation was running")
                 + ": run the same command again to continue")
+    if cmd == "map" and getattr(args, "model", None):
+        from .model_map import JOURNAL, journal_cells
+
+        n = journal_cells(args.out)
+        kept = (f"{n} finished cells are kept in {Path(args.out) / JOURNAL}" if n else
+                "no cell had finished, nothing was kept")
+        return (f"interrupted ({name}); {kept}; the cells that were running were not kept: "
+                "run the same command again to continue")
     if cmd == "map":
         store = Path(args.out) / "map.zarr"
         from numerics.maps import cells_done

@@ -43,6 +43,17 @@ def run_map(args) -> int:
         raise ValueError("--seeds and --t-end act on a simulated model map: drop them, or "
                          "--theory-only")
     amp = args.amplitude
+    from energy import check_value
+
+    if check_value("--amplitude", amp) <= 0:
+        raise ValueError(f"--amplitude must be > 0, got {amp!r}")
+    if args.exact or simulated:  # the ring the exact theory and the runs use
+        from numerics.models import check_ring
+
+        try:
+            check_ring(args.N)
+        except ValueError as exc:
+            raise ValueError(f"--N: {exc}") from None
     x, y = (named[1], named[0]) if named[0][0] == "k" else (named[0], named[1])
     if y[0] == "k":
         x, y = y, x
@@ -52,9 +63,11 @@ def run_map(args) -> int:
         from numerics.models import exact_gain
 
         def exact(m, k, a, branch):
+            # the command's own arguments were checked above: a ModelError here is this
+            # cell's (no travelling wave at these values)
             try:
                 spec = exact_gain(m, k, a, branch, N=args.N)
-            except ModelError:  # no travelling wave at this cell
+            except ModelError:
                 return "undefined", float("nan")
             return spec.verdict, spec.peak_gain
 
@@ -71,6 +84,8 @@ def run_map(args) -> int:
         if isinstance(seeds, bool) or not isinstance(seeds, int) or seeds < 1:
             raise ValueError(f"--seeds must be an integer >= 1, got {seeds!r}")
         t_end = args.t_end if "--t-end" in getattr(args, "given", ()) else None
+        if t_end is not None and not (isinstance(t_end, (int, float)) and 0 < t_end < 1e12):
+            raise ValueError(f"--t-end must be a finite time > 0, got {t_end!r}")
 
         def cell(m, k, a, branch):
             return simulated_cell(m, k, a, branch, N=N, seeds=seeds, t_end=t_end)
@@ -79,11 +94,19 @@ def run_map(args) -> int:
                 "parameters": dict(model.params), "amplitude": amp, "branch": str(args.branch),
                 "axes": {x[0]: list(map(float, x[1])), y[0]: list(map(float, y[1]))},
                 "k": k_fixed, "N": N, "seeds": seeds, "t_end": t_end}
-        done, on_cell = _journal(out / "map.cells.jsonl", head, args.overwrite)
-        if done:
-            print(f"resuming {out / 'map.cells.jsonl'}: {len(done)} cells already done")
-    ds = model_map(model, x, y, amp, k=k_fixed, branch=branch_of(args), exact=exact,
-                   cell=cell, done=done, on_cell=on_cell, progress=None if simulated else False)
+    import contextlib
+
+    from numerics.maps import store_lock
+
+    journal = out / JOURNAL
+    if simulated:
+        out.mkdir(parents=True, exist_ok=True)  # removed again if the command fails empty
+    with (store_lock(journal) if simulated else contextlib.nullcontext()):
+        if simulated:
+            done, on_cell = _journal(journal, head, args.overwrite)
+        ds = model_map(model, x, y, amp, k=k_fixed, branch=branch_of(args), exact=exact,
+                       cell=cell, done=done, on_cell=on_cell,
+                       progress=None if simulated else False)
     mi = {v: float(np.mean(ds[v].values == "MI")) for v in ds.data_vars
           if v.startswith("verdict_")}
     out.mkdir(parents=True, exist_ok=True)
@@ -106,49 +129,116 @@ def run_map(args) -> int:
     return 0
 
 
+#: A simulated model map's journal in OUT: a header naming the map, one line per cell.
+JOURNAL = "map.cells.jsonl"
+
+
+def _line_sum(head_sum: str, i, j, columns) -> str:
+    import hashlib
+
+    text = json.dumps([head_sum, i, j, columns], sort_keys=True, allow_nan=True)
+    return hashlib.sha256(text.encode()).hexdigest()[:32]
+
+
+def _cell_record(head_sum: str, rec, shape):
+    """(i, j, columns) of a journal line whose checksum and form hold, else None."""
+    if not isinstance(rec, dict) or set(rec) != {"i", "j", "columns", "sum"}:
+        return None
+    i, j, cols = rec["i"], rec["j"], rec["columns"]
+    if not (type(i) is int and type(j) is int and 0 <= i < shape[0] and 0 <= j < shape[1]):
+        return None
+    if not (isinstance(cols, dict) and cols and all(
+            isinstance(k, str) and (v is None or type(v) in (int, float, str))
+            for k, v in cols.items())):
+        return None
+    if rec["sum"] != _line_sum(head_sum, i, j, cols):
+        return None
+    return i, j, cols
+
+
 def _journal(path: Path, head: dict, overwrite: bool):
-    """(cells done, on_cell) of a simulated model map's journal ``path``: one JSON line per
-    finished cell after a header naming the map, each line written and flushed whole, so
-    an interrupted map keeps every finished cell and the same command resumes it (a torn
-    last line is dropped). A journal of another map is refused unless ``overwrite``."""
+    """(cells done, on_cell) of a simulated model map's journal ``path``: a header naming
+    the map, then one JSON line per finished cell with its checksum (of the header and the
+    line), each written and flushed whole. An interrupted map keeps every finished cell and
+    the same command resumes it. The file is made with the first finished cell, so a
+    refused or interrupted command before it leaves nothing behind; a line that fails its
+    checksum or its form (torn, edited) is computed again, and said. A journal of another
+    map is refused unless ``overwrite``, except one that holds no cell (nothing to lose)."""
+    import hashlib
     import os
 
+    head_text = json.dumps({"map": head}, allow_nan=False, sort_keys=True)
+    head_sum = hashlib.sha256(head_text.encode()).hexdigest()
+    axes = list(head["axes"].values())
+    shape = (len(axes[1]), len(axes[0]))
     done = {}
     if path.exists():
-        text = path.read_text(encoding="utf-8", errors="replace")
-        if text and not text.endswith("\n"):  # a line torn by a kill: cut it off
-            with open(path, "r+b") as fh:
-                fh.truncate(path.read_bytes().rfind(b"\n") + 1)
-            text = text[:text.rfind("\n") + 1]
-        lines = text.splitlines()
+        raw = path.read_bytes()
+        lines = raw.decode("utf-8", errors="replace").split("\n")
         try:
-            first = json.loads(lines[0]) if lines else None
+            first = json.loads(lines[0])
         except ValueError:
             first = None
-        if first != {"map": head}:
-            if not overwrite:
-                raise ValueError(f"{path} holds another map (or is damaged); replace it with "
-                                 "--overwrite, or choose another --out")
+        records = []
+        for line in lines[1:]:
+            if not line.strip():
+                continue
+            try:
+                records.append(json.loads(line))
+            except ValueError:
+                records.append(None)
+        same = first == json.loads(head_text)
+        if not same:
+            if records and not overwrite:
+                raise ValueError(f"{path} holds another map (or is damaged); "
+                                 "replace it with --overwrite, or choose another --out")
             path.unlink()
         else:
-            for line in lines[1:]:
-                try:
-                    rec = json.loads(line)
-                    done[(rec["i"], rec["j"])] = rec["columns"]
-                except (ValueError, KeyError, TypeError):  # a line torn by a kill
+            bad = 0
+            for rec in records:
+                cell = _cell_record(head_sum, rec, shape)
+                if cell is None:
+                    bad += 1
                     continue
-    path.parent.mkdir(parents=True, exist_ok=True)
-    if not path.exists():
-        with open(path, "w", encoding="utf-8") as fh:
-            fh.write(json.dumps({"map": head}, allow_nan=False) + "\n")
+                done[cell[:2]] = cell[2]
+            if bad:
+                print(f"note: {bad} line(s) of {path} failed their checksum or form (torn or "
+                      "edited): those cells are computed again")
+            # rewrite the journal from what holds (atomically), so later appends follow a
+            # clean last line
+            from common.files import write_text
+
+            write_text(path, head_text + "\n" + "".join(
+                json.dumps({"i": i, "j": j, "columns": c,
+                            "sum": _line_sum(head_sum, i, j, c)}) + "\n"
+                for (i, j), c in sorted(done.items())))
+            if done:
+                print(f"resuming {path}: {len(done)} cells already done")
 
     def on_cell(i, j, columns):
+        if not path.exists():
+            path.parent.mkdir(parents=True, exist_ok=True)
+            from common.files import write_text
+
+            write_text(path, head_text + "\n")
+        line = json.dumps({"i": i, "j": j, "columns": columns,
+                           "sum": _line_sum(head_sum, i, j, columns)})
         with open(path, "a", encoding="utf-8") as fh:
-            fh.write(json.dumps({"i": i, "j": j, "columns": columns}) + "\n")
+            fh.write(line + "\n")
             fh.flush()
             os.fsync(fh.fileno())
 
     return done, on_cell
+
+
+def journal_cells(out) -> int | None:
+    """How many finished cells the model map journal in ``out`` keeps (None: no journal)."""
+    path = Path(out) / JOURNAL
+    try:
+        lines = path.read_text(encoding="utf-8", errors="replace").splitlines()
+    except OSError:
+        return None
+    return max(0, sum(1 for line in lines[1:] if line.strip()))
 
 
 def _plot_map(ds, path: Path, model):

@@ -387,3 +387,115 @@ def test_lattice_text_fields_must_be_strings(value):
         Lattice(name="x", fields=("u",), parameters={}, kinetic="u_t**2/2",
                 bond="(u_next - u)**2", description=value)
     one_line(exc, "description must be a string")
+
+
+# --- 10-14, 16. model maps: refused input leaves nothing, the journal trusts nothing ----
+
+def _map(tmp_path, *extra, out="m"):
+    return ["map", "--model", "fput", "--param", "alpha=1", "--param", "beta=0.9,1.7",
+            "--k", "2.6,2.8", "--amplitude", "0.1", "--N", "16", "--out", str(tmp_path / out),
+            *extra]
+
+
+@pytest.mark.parametrize("bad,option", [(("--t-end", "inf"), "--t-end"),
+                                        (("--N", "7"), "--N"),
+                                        (("--N", "3000000"), "--N"),
+                                        (("--amplitude", "nan"), "--amplitude"),
+                                        (("--branch", "2"), "branch")])
+def test_a_refused_model_map_leaves_nothing_that_blocks_the_corrected_one(
+        bad, option, tmp_path, capsys):
+    from cli.app import main
+
+    argv = _map(tmp_path, "--t-end", "40")
+    i = argv.index(bad[0]) if bad[0] in argv else None
+    if i is not None:
+        argv[i + 1] = bad[1]
+    else:
+        argv += list(bad)
+    assert main(argv) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.count("\n") == 0 and option in err and "Traceback" not in err
+    assert not (tmp_path / "m").exists()  # nothing written, no empty folder
+
+
+def test_every_cell_undefined_is_an_error_naming_why(tmp_path, capsys):
+    from cli.app import main
+
+    # negative bond stiffness: omega^2 < 0 at these k, no carrier in any cell
+    argv = ["map", "--model", "klein-gordon", "--param", "C=-5,-6", "--k", "2.0,2.5",
+            "--amplitude", "0.1", "--theory-only", "--out", str(tmp_path / "u")]
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert "every cell of the map is undefined" in err and "omega^2" in err
+
+
+def test_a_model_map_refuses_booleans_and_bad_amplitudes():
+    from numerics.models import model_map
+
+    m = load_model("fput")
+    for bad in ([True, 2.0], ["1.0", 2.0]):
+        with pytest.raises(ModelError, match="real numbers"):
+            model_map(m, ("k", bad), ("beta", [1.0, 2.0]), 0.1)
+    for amp in (-0.1, float("nan"), True, 0.0):
+        with pytest.raises(ModelError, match="amplitude"):
+            model_map(m, ("k", [1.0, 2.0]), ("beta", [1.0, 2.0]), amp)
+
+
+def test_the_journal_checks_each_line_and_resumes(tmp_path, capsys):
+    import json
+
+    from cli.app import main
+
+    argv = _map(tmp_path, "--t-end", "40")
+    assert main(argv) == 0
+    journal = tmp_path / "m" / "map.cells.jsonl"
+    lines = journal.read_text().splitlines()
+    assert len(lines) == 5
+    first = json.loads(lines[1])
+    # an edited number: the checksum no longer holds; a line of another form
+    edited = dict(first, columns={**first["columns"], "peak_gain_exact": 123.0})
+    journal.write_text("\n".join([lines[0], json.dumps(edited), lines[2],
+                                  json.dumps({"i": 1, "j": 0, "columns": [], "sum": "x"})])
+                       + "\n")
+    capsys.readouterr()
+    assert main(argv) == 0
+    out = capsys.readouterr().out
+    assert "2 line(s)" in out and "computed again" in out and "1 cells already done" in out
+    now = [json.loads(x) for x in journal.read_text().splitlines()[1:]]
+    assert sorted((r["i"], r["j"]) for r in now) == [(0, 0), (0, 1), (1, 0), (1, 1)]
+    assert all(r["columns"]["peak_gain_exact"] != 123.0 for r in now)
+    # the same numbers as the first map computed (the runs are seeded)
+    cols = {(r["i"], r["j"]): r["columns"] for r in now}[(first["i"], first["j"])]
+    assert cols == first["columns"]
+
+
+def test_two_writers_of_one_model_map_are_refused(tmp_path, capsys):
+    from cli.app import main
+    from numerics.maps import store_lock
+
+    out = tmp_path / "m"
+    out.mkdir()
+    with store_lock(out / "map.cells.jsonl"):
+        assert main(_map(tmp_path, "--t-end", "40")) == 2
+    assert "is being written by pid" in capsys.readouterr().err
+
+
+def test_interrupted_model_map_says_what_was_kept(tmp_path, monkeypatch, capsys):
+    from cli.app import main
+    from numerics.models import _map as map_module
+
+    calls = []
+    real = map_module.nls
+
+    def interrupt_on_second(*a, **kw):
+        calls.append(1)
+        if len(calls) == 2:
+            raise KeyboardInterrupt
+        return real(*a, **kw)
+
+    monkeypatch.setattr(map_module, "nls", interrupt_on_second)
+    assert main(_map(tmp_path, "--t-end", "40")) == 130
+    err = capsys.readouterr().err
+    # the second cell had finished its runs (journalled) when its NLS was interrupted
+    assert "2 finished cells are kept in" in err and "map.cells.jsonl" in err
+    assert "nothing was written" not in err

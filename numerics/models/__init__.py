@@ -28,6 +28,7 @@ from ._simulate import (
                      Growth,
                      ModelRun,
                      SeededRuns,
+                     check_ring,
                      compiled_force,
                      lattice_energy,
                      lattice_force,
@@ -42,4 +43,4 @@ __all__ = ["Carrier", "carrier", "branches", "branch_index", "check_rest_stable"
            "ModelSoliton", "nls", "acoustic_directions", "model_map", "simulated_cell",
            "model_coefficients", "TravellingWave", "HillSpectrum", "travelling_wave",
            "hill_spectrum", "exact_gain", "ring_offsets", "simulate_model", "simulate_seeds", "SeededRuns", "ModelRun", "Growth",
-           "measure_growth", "compiled_force", "lattice_force", "lattice_energy", "snap_ring"]
+           "measure_growth", "check_ring", "compiled_force", "lattice_force", "lattice_energy", "snap_ring"]

@@ -426,9 +426,12 @@ def exact_gain(model: Model, k: float, amplitude: float, branch=None, *, N: int 
     a ring of ``N`` sites (k snapped to 2 pi m / N, the offsets the ring carries) or, N
     None, on the infinite chain (``samples`` offsets in [pi / samples, pi] and 40
     log-spaced below, the peak refined between them)."""
-    if N:
-        from ._simulate import snap_ring
+    from ._simulate import check_count, check_ring, snap_ring
+
+    if N is not None:
+        N = check_ring(N)  # N = 0 is a bad ring, not the infinite chain
         k = snap_ring(k, N)[0]
+    samples = check_count("samples", samples, least=8)
     wave = travelling_wave(model, k, amplitude, branch)
     if N:
         return hill_spectrum(wave, ring_offsets(N))

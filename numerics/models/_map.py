@@ -17,7 +17,14 @@ def _axis(model: Model, name: str, values) -> np.ndarray:
     if name != AXIS_K and name not in model.lattice.parameters:
         raise ModelError(f"map axis {name!r} is neither 'k' nor a parameter of model "
                          f"{model.name!r} ({', '.join(model.lattice.parameters)})")
-    v = np.asarray(values, dtype=float)
+    if isinstance(values, (str, bytes)) or any(
+            isinstance(x, (bool, np.bool_, str, bytes)) for x in np.ravel(
+                np.asarray(values, dtype=object))):
+        raise ModelError(f"map axis {name} needs real numbers, got {values!r}")
+    try:
+        v = np.asarray(values, dtype=float)
+    except (TypeError, ValueError):
+        raise ModelError(f"map axis {name} needs real numbers, got {values!r}") from None
     if v.ndim != 1 or v.size == 0 or not np.all(np.isfinite(v)):
         raise ModelError(f"map axis {name} needs finite values, got {values!r}")
     if name == AXIS_K and (v.min() <= 0 or v.max() >= math.pi):
@@ -61,12 +68,23 @@ def model_map(model: Model, x: tuple, y: tuple, amplitude: float, k: float | Non
     """
     import xarray as xr
 
+    from energy import check_value
+
+    amplitude = check_value("amplitude", amplitude)
+    if amplitude <= 0:
+        raise ModelError(f"amplitude must be > 0, got {amplitude!r}")
+    if k is not None:
+        k = float(_axis(model, AXIS_K, [k])[0])
     xn, xv = x[0], _axis(model, *x)
     yn, yv = y[0], _axis(model, *y)
     if xn == yn:
         raise ModelError(f"the two map axes must differ, got {xn!r} twice")
     if AXIS_K not in (xn, yn) and k is None:
         raise ModelError("give k (the carrier) when neither map axis is 'k'")
+    from ._linear import branch_index
+
+    k0 = xv[0] if xn == AXIS_K else (yv[0] if yn == AXIS_K else k)
+    branch_index(model, k0, branch)  # an impossible branch is the caller's, not each cell's
     shape = (yv.size, xv.size)
     verdict = np.empty(shape, dtype=object)
     reason = np.empty(shape, dtype=object)
@@ -107,6 +125,14 @@ def model_map(model: Model, x: tuple, y: tuple, amplitude: float, k: float | Non
             if exact is not None:
                 ex_verdict[i, j], ex_peak[i, j] = exact(m, kk, amplitude, branch)
     bar.close()
+    undefined = {"undefined", "undetermined", "", "nan", "None"}
+    if all(str(v) in undefined for v in verdict.flat) and (exact is None or all(
+            str(v) in undefined for v in ex_verdict.flat)) and all(
+            str(v) in undefined for name, arr in extra.items()
+            if name.startswith("verdict_") for v in arr.flat):
+        why = next((str(r) for r in reason.flat if r), "no theory has a verdict")
+        raise ModelError(f"every cell of the map is undefined (first cell: {why}); "
+                         "change the axes, k, the amplitude or --branch")
     dims = (yn, xn)
     data = {
         "verdict_semidiscrete": (dims, verdict.astype(str),

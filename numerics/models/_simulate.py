@@ -212,10 +212,27 @@ def lattice_energy(model: Model, u: np.ndarray, v: np.ndarray) -> float:
                         np.empty(2 * model.n_fields)))
 
 
+#: The largest ring (sites): a run keeps ``records`` spectra of N values each.
+MAX_RING = 2**20
+
+
+def check_ring(N) -> int:
+    """A ring size: an integer in [8, MAX_RING] (not a bool)."""
+    if isinstance(N, bool) or not isinstance(N, (int, np.integer)) or not 8 <= N <= MAX_RING:
+        raise ModelError(f"N must be an integer in [8, {MAX_RING}], got {N!r}")
+    return int(N)
+
+
+def check_count(name: str, value, least: int = 1) -> int:
+    """An integer option (records, samples, seed, ...) >= ``least``, not a bool."""
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < least:
+        raise ModelError(f"{name} must be an integer >= {least}, got {value!r}")
+    return int(value)
+
+
 def snap_ring(k: float, N: int) -> tuple[float, int]:
     """(2 pi m / N, m) nearest to k on a ring of N sites; k = pi is allowed (N even)."""
-    if isinstance(N, bool) or not isinstance(N, (int, np.integer)) or N < 8:
-        raise ModelError(f"N must be an integer >= 8, got {N!r}")
+    N = check_ring(N)
     if not (isinstance(k, (int, float, np.floating)) and math.isfinite(k) and 0 < k <= math.pi):
         raise ModelError(f"k must be in (0, pi], got {k!r}")
     m = int(round(k * N / (2 * math.pi)))
@@ -405,8 +422,11 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
                          "srkn11b, srkn6b, kahanli8, verlet, rk4")
     if start not in STARTS:
         raise ModelError(f"start must be one of {', '.join(STARTS)}, got {start!r}")
-    if not (isinstance(noise, (int, float)) and math.isfinite(noise) and noise >= 0):
+    if isinstance(noise, bool) or not (isinstance(noise, (int, float)) and math.isfinite(
+            noise) and noise >= 0):
         raise ModelError(f"noise must be a finite number >= 0, got {noise!r}")
+    records = check_count("records", records)
+    seed = check_count("seed", seed, least=0)
     k_ring, _ = snap_ring(k, N)
     if wave is None:
         wave = travelling_wave(model, k_ring, amplitude, branch)
