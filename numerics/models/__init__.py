@@ -24,7 +24,7 @@ from ._exact import (
                      ring_offsets,
                      travelling_wave,
 )
-from ._fourwave import FourWave, four_wave, pair_rates
+from ._fourwave import FourWave, classify_mode, four_wave, pair_rates, ring_misses
 from ._linear import Carrier, branch_index, branches, carrier, check_rest_stable
 from ._map import model_map, simulated_cell
 from ._nls import ModelNLS, ModelSoliton, acoustic_directions, nls
@@ -45,5 +45,5 @@ from ._summary import model_coefficients
 __all__ = ["Carrier", "carrier", "branches", "branch_index", "check_rest_stable", "ModelNLS",
            "ModelSoliton", "nls", "acoustic_directions", "model_map", "simulated_cell",
            "model_coefficients", "TravellingWave", "HillSpectrum", "travelling_wave",
-           "hill_spectrum", "exact_gain", "FourWave", "four_wave", "pair_rates", "ring_offsets", "simulate_model", "simulate_seeds", "SeededRuns", "ModelRun", "Growth",
+           "hill_spectrum", "exact_gain", "FourWave", "four_wave", "pair_rates", "classify_mode", "ring_misses", "ring_offsets", "simulate_model", "simulate_seeds", "SeededRuns", "ModelRun", "Growth",
            "measure_growth", "compiled_force", "lattice_force", "lattice_energy", "snap_ring"]

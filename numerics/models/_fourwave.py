@@ -55,6 +55,13 @@ from ._linear import carrier, dynamical_matrix
 #: A driven wave whose operator has a singular value below this share of the largest is
 #: resonant with a branch: the four-wave ordering fails there (a three-wave process).
 RESONANT = 1e-8
+#: A driven wave this large (mass-weighted norm, the pair's waves having norm 1) is no
+#: longer slaved to the pair: it is a free wave in a three-wave resonance with the carrier
+#: and the pair, which the four-wave ordering does not treat (its rate is left nan).
+DRIVEN_MAX = 0.5
+
+#: A discriminant (Delta'/2)^2 - kappa12 kappa21 this small against its terms is round-off.
+FLOOR = 1e-10
 
 KINDS = ("sidebands", "backward", "parametric", "resonance")
 
@@ -320,8 +327,13 @@ def pair_rates(model: Model, k: float, amplitude: float, branch=None, offsets=No
             C21 = np.einsum("ni,ni->n", e2c.conj(), c21)
             kk = C12 * C21 / (4 * w1 * w2)
             delta = w1 + S1 / (2 * w1) + w2 + S2 / (2 * w2) - 2 * Omega
-            sig = np.abs(np.imag(np.sqrt(delta**2 / 4 - kk + 0j)))
-            resonant = r0 | r2 | rm2
+            disc = delta**2 / 4 - kk
+            sig = np.abs(np.imag(np.sqrt(disc + 0j)))
+            # a pair at the edge of its band: the discriminant is round-off, not growth
+            sig[np.abs(disc) <= FLOOR * np.maximum(np.abs(kk), delta**2 / 4)] = 0.0
+            size = np.max([np.sqrt(np.abs(np.einsum("ni,i,ni->n", y.conj(), m, y)))
+                           for y in (y01, y0m, y2, ym2)], axis=0)
+            resonant = r0 | r2 | rm2 | (size > DRIVEN_MAX)
             rate[:, j] = np.where(resonant, np.nan, sig)
             det[:, j] = delta
             coup[:, j] = np.sqrt(np.abs(kk))
@@ -336,22 +348,16 @@ def _offset_grid(samples: int) -> np.ndarray:
                                      math.pi - near]))
 
 
-def _resonances(model, k, a, branch, q, det):
+def _resonances(det, q):
     """Offsets where a pair's nonlinear detuning crosses zero between grid points (the
-    centre of its band, however narrow), per branch pair: shape (m,)."""
-    from scipy.optimize import brentq
-
+    centre of its band, however narrow; linear interpolation), any branch pair."""
     out = []
     for j in range(det.shape[1]):
         dj = det[:, j]
         ok = np.isfinite(dj[:-1]) & np.isfinite(dj[1:])
-        for i in np.flatnonzero(ok & (np.sign(dj[:-1]) * np.sign(dj[1:]) < 0)):
-            try:
-                out.append(brentq(lambda x, j=j: pair_rates(model, k, a, branch, [x])[1][0, j],
-                                  q[i], q[i + 1], xtol=1e-12))
-            except ValueError:
-                continue
-    return np.array(out)
+        i = np.flatnonzero(ok & (np.sign(dj[:-1]) * np.sign(dj[1:]) < 0))
+        out.append(q[i] + (q[i + 1] - q[i]) * dj[i] / (dj[i] - dj[i + 1]))
+    return np.unique(np.concatenate(out)) if out else np.zeros(0)
 
 
 def _merge(q, arrays, q2, arrays2):
@@ -409,7 +415,7 @@ def four_wave(model: Model, k: float, amplitude: float, branch=None, *, N: int |
                         out)
     rate, det, coup, pairs, car, Omega = out
     if not N:
-        extra_q = _resonances(model, k, a, branch, q, det)
+        extra_q = _resonances(det, q)
         if extra_q.size:
             extra = pair_rates(model, k, a, branch, extra_q)
             q, rate, det, coup = _merge(q, (rate, det, coup), extra_q, extra[:3])
@@ -427,3 +433,107 @@ def four_wave(model: Model, k: float, amplitude: float, branch=None, *, N: int |
         q, rate, det, coup = _merge(q, (rate, det, coup), np.array([best.x]), extra[:3])
     return FourWave(model, k, a, car.branch, car.omega, float(Omega), q, tuple(pairs),
                     rate, det, coup)
+
+
+def classify_mode(spectrum) -> dict:
+    """What the fastest mode of an exact Hill spectrum (``exact_gain``'s result) is.
+
+    The mode e^{lambda t} e^{iqn} sum_l c_l e^{il xi} holds, in its harmonics l and l - 2,
+    the waves (q + lk, l Omega - Im lambda) and (2k - q - lk, Im lambda - (l - 2) Omega)
+    whose wavenumbers sum to 2k and frequencies to 2 Omega: a four-wave pair. The pair
+    whose two waves lie nearest to linear waves (a branch each, by frequency) names the
+    mode; its eigenvalue is found again at the fastest q. The harmonic that carries most
+    of the mode's weight does not name it (an acoustic mean-flow harmonic can outweigh
+    the pair), nor does a copy of it at a commensurate k.
+
+    Returns
+    -------
+    dict
+        ``mode_kind`` ('sidebands', 'backward', 'parametric', 'resonance' where a wave is
+        no linear wave within max(2% Omega, 10 rates) -- a harmonic resonant with a branch
+        -- or 'none'), ``mode_waves`` [{branch, wavenumber, frequency}] x 2 and
+        ``fastest_offset``, the pair's own offset (from k, or from k - pi for a backward
+        pair), not a copy's.
+    """
+    from ._exact import hill_spectrum
+    from ._linear import branches
+
+    if spectrum.peak_gain <= 0:
+        return {"mode_kind": "none", "mode_waves": [], "fastest_offset": None}
+    wave = spectrum.wave
+    model, k, Omega = wave.model, wave.k, wave.omega
+    i = int(np.argmax(spectrum.gain))
+    q = float(spectrum.offsets[i])
+    _, lams = hill_spectrum(wave, [q], return_eigenvalues=True)
+    lam = lams[0][int(np.argmax(lams[0].real))]
+    best = None
+    for l in range(-1, 4):
+        phi, phi2 = l * Omega - lam.imag, lam.imag - (l - 2) * Omega
+        if phi <= 0 or phi2 <= 0:
+            continue
+        kap, kap2 = float(_wrap(q + l * k)), float(_wrap(2 * k - q - l * k))
+        w1, w2 = branches(model, [kap, kap2])
+        b1, b2 = int(np.nanargmin(np.abs(w1 - phi))), int(np.nanargmin(np.abs(w2 - phi2)))
+        miss = max(abs(w1[b1] - phi), abs(w2[b2] - phi2))
+        if best is None or miss < best[0]:
+            best = (miss, kap, phi, b1, kap2, phi2, b2)
+    miss, kap, phi, b1, kap2, phi2, b2 = best
+    tol = max(0.02 * Omega, 10 * float(lam.real))
+    waves = [{"branch": b1, "wavenumber": kap, "frequency": float(phi)},
+             {"branch": b2, "wavenumber": kap2, "frequency": float(phi2)}]
+    if miss > tol:
+        return {"mode_kind": "resonance", "mode_waves": waves,
+                "fastest_offset": float(min(abs(_wrap(kap - k)), abs(_wrap(kap + k))))}
+    kind = pair_kind(wave.carrier.branch, (b1, b2), kap - k)
+    return {"mode_kind": kind, "mode_waves": waves,
+            "fastest_offset": own_offset(kind, kap - k)}
+
+
+def ring_misses(model: Model, k: float, amplitude: float, branch=None, *, N: int,
+                chain=None) -> list:
+    """The infinite chain's unstable bands (exact theory) that a ring of ``N`` sites does
+    not sample: none of its offsets 2 pi j / N falls in them.
+
+    ``chain``: the infinite chain's ``exact_gain`` at the ring's k (computed if None). Its
+    offset grid can step over a narrow band (a parametric pair's is ~ rate / |v1 - v2|
+    wide), so the Hill spectrum is also sampled where the four-wave theory puts a band.
+    Returns a list of dicts: ``band`` (lo, hi), the Hill offsets q (rad/site) where the
+    chain grows, ``peak_gain`` there and ``N``, the smallest ring size above N with an
+    offset inside the band (its k snaps to 2 pi m / N as well).
+    """
+    from ._exact import exact_gain
+    from ._simulate import snap_ring
+
+    k_ring = snap_ring(k, N)[0]
+    if chain is None:
+        chain = exact_gain(model, k_ring, amplitude, branch)
+    from ._exact import hill_spectrum
+
+    fw = four_wave(model, k_ring, amplitude, branch)
+    q, g = chain.offsets, chain.gain
+    if fw.verdict == "MI":
+        # nine Hill offsets across each band the four-wave theory finds (and 4e-3 beyond)
+        r4 = np.nan_to_num(fw.rates, nan=0.0).max(axis=1) > 0
+        e4 = np.flatnonzero(np.diff(np.concatenate([[0], r4.astype(int), [0]])))
+        extra = np.concatenate([np.linspace(fw.offsets[a] - 4e-3, fw.offsets[b - 1] + 4e-3, 9)
+                                for a, b in zip(e4[::2], e4[1::2])])
+        extra = extra[(extra > 0) & (extra <= math.pi)]
+        if extra.size:
+            more = hill_spectrum(chain.wave, extra)
+            q, g = np.concatenate([q, extra]), np.concatenate([g, more.gain])
+            order = np.argsort(q)
+            q, g = q[order], g[order]
+    grows = g > 0
+    out = []
+    edges = np.flatnonzero(np.diff(np.concatenate([[0], grows.astype(int), [0]])))
+    for start, stop in zip(edges[::2], edges[1::2]):
+        lo, hi = float(q[start]), float(q[stop - 1])
+        j = np.arange(math.ceil(lo * N / (2 * math.pi)), math.floor(hi * N / (2 * math.pi)) + 1)
+        if j.size:
+            continue
+        n_carry = next((n for n in range(N + 1, 64 * N)
+                        if math.floor(hi * n / (2 * math.pi)) >= math.ceil(lo * n / (2 * math.pi))),
+                       None)
+        out.append({"band": (lo, hi), "peak_gain": float(np.max(g[start:stop])),
+                    "N": n_carry})
+    return out
