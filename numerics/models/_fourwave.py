@@ -512,11 +512,14 @@ def ring_misses(model: Model, k: float, amplitude: float, branch=None, *, N: int
     fw = four_wave(model, k_ring, amplitude, branch)
     q, g = chain.offsets, chain.gain
     if fw.verdict == "MI":
-        # nine Hill offsets across each band the four-wave theory finds (and 4e-3 beyond)
+        # Hill offsets every 1e-3 (at most 40) across each band the four-wave theory finds
+        # and 4e-3 beyond it
         r4 = np.nan_to_num(fw.rates, nan=0.0).max(axis=1) > 0
         e4 = np.flatnonzero(np.diff(np.concatenate([[0], r4.astype(int), [0]])))
-        extra = np.concatenate([np.linspace(fw.offsets[a] - 4e-3, fw.offsets[b - 1] + 4e-3, 9)
-                                for a, b in zip(e4[::2], e4[1::2])])
+        spans = [(fw.offsets[a] - 4e-3, fw.offsets[b - 1] + 4e-3) for a, b in
+                 zip(e4[::2], e4[1::2])]
+        extra = np.concatenate([np.linspace(lo, hi, min(40, int((hi - lo) / 1e-3) + 2))
+                                for lo, hi in spans])
         extra = extra[(extra > 0) & (extra <= math.pi)]
         if extra.size:
             more = hill_spectrum(chain.wave, extra)
@@ -527,13 +530,44 @@ def ring_misses(model: Model, k: float, amplitude: float, branch=None, *, N: int
     out = []
     edges = np.flatnonzero(np.diff(np.concatenate([[0], grows.astype(int), [0]])))
     for start, stop in zip(edges[::2], edges[1::2]):
-        lo, hi = float(q[start]), float(q[stop - 1])
-        j = np.arange(math.ceil(lo * N / (2 * math.pi)), math.floor(hi * N / (2 * math.pi)) + 1)
-        if j.size:
+        lo = _edge(chain.wave, q[start], q[start - 1] if start > 0 else None)
+        hi = _edge(chain.wave, q[stop - 1], q[stop] if stop < q.size else None)
+        # a mode shows at Hill offsets q + l k too (its copies): one band per mode
+        mid = (lo + hi) / 2
+        if any(_same_mode(mid, (b["band"][0] + b["band"][1]) / 2, k_ring, hi - lo)
+               for b in out):
             continue
-        n_carry = next((n for n in range(N + 1, 64 * N)
-                        if math.floor(hi * n / (2 * math.pi)) >= math.ceil(lo * n / (2 * math.pi))),
-                       None)
-        out.append({"band": (lo, hi), "peak_gain": float(np.max(g[start:stop])),
-                    "N": n_carry})
-    return out
+        j = np.arange(math.ceil(lo * N / (2 * math.pi)), math.floor(hi * N / (2 * math.pi)) + 1)
+        record = {"band": (lo, hi), "peak_gain": float(np.max(g[start:stop])), "N": None}
+        if not j.size:
+            record["N"] = next((n for n in range(N + 1, 64 * N) if
+                                math.floor(hi * n / (2 * math.pi))
+                                >= math.ceil(lo * n / (2 * math.pi))), None)
+        out.append(record)
+    return [b for b in out if b["N"] is not None]
+
+
+def _same_mode(q1, q2, k, width):
+    """Whether Hill offsets q1, q2 are copies of one mode: q1 = +-q2 + l k (mod 2 pi)."""
+    for sign in (1, -1):
+        for l in range(-3, 4):
+            if abs(float(_wrap(q1 - sign * q2 - l * k))) <= max(width, 1e-9):
+                return True
+    return False
+
+
+def _edge(wave, inside: float, outside, steps: int = 12) -> float:
+    """The band edge between an unstable offset and a stable one (bisection on Hill's
+    rate); ``inside`` where there is no stable neighbour."""
+    from ._exact import hill_spectrum
+
+    if outside is None:
+        return float(inside)
+    a, b = float(inside), float(outside)
+    for _ in range(steps):
+        m = (a + b) / 2
+        if hill_spectrum(wave, [m]).gain[0] > 0:
+            a = m
+        else:
+            b = m
+    return a
