@@ -50,13 +50,15 @@ import numpy as np
 
 from energy import Model, ModelError
 
+from ._exact import GAIN_FLOOR
 from ._linear import carrier, dynamical_matrix
 
 #: A driven wave whose operator has a singular value below this share of the largest is
 #: resonant with a branch: the four-wave ordering fails there (a three-wave process).
 RESONANT = 1e-8
-#: A driven wave this large (mass-weighted norm, the pair's waves having norm 1) is no
-#: longer slaved to the pair: it is a free wave in a three-wave resonance with the carrier
+#: A driven wave this large (the square root of its energy, y^H K y + phi^2 y^H M y,
+#: against the pair's, omega1^2 + omega2^2: a long acoustic wave's displacement is large
+#: for a small strain, its energy is not) is no longer slaved to the pair: it is a free wave in a three-wave resonance with the carrier
 #: and the pair, which the four-wave ordering does not treat (its rate is left nan).
 DRIVEN_MAX = 0.5
 
@@ -117,7 +119,9 @@ class FourWave:
         if self.undefined:
             return math.nan
         r = np.nan_to_num(self.rates, nan=0.0)
-        return float(np.max(r)) if r.size else 0.0
+        best = float(np.max(r)) if r.size else 0.0
+        # the exact theory's floor: a rate below 3e-7 omega needs > 1e6 periods to show
+        return best if best > GAIN_FLOOR * self.omega else 0.0
 
     @property
     def verdict(self) -> str:
@@ -331,13 +335,20 @@ def pair_rates(model: Model, k: float, amplitude: float, branch=None, offsets=No
             sig = np.abs(np.imag(np.sqrt(disc + 0j)))
             # a pair at the edge of its band: the discriminant is round-off, not growth
             sig[np.abs(disc) <= FLOOR * np.maximum(np.abs(kk), delta**2 / 4)] = 0.0
-            size = np.max([np.sqrt(np.abs(np.einsum("ni,i,ni->n", y.conj(), m, y)))
-                           for y in (y01, y0m, y2, ym2)], axis=0)
+            size = np.max([np.sqrt(np.abs(_energy(Kd[l], m, y, f)) / (w1**2 + w2**2))
+                           for l, y, f in ((0, y01, t1 - Omega), (0, y0m, t1 - Omega),
+                                           (2, y2, t1 + Omega), (-2, ym2, t2 + Omega))],
+                           axis=0)
             resonant = r0 | r2 | rm2 | (size > DRIVEN_MAX)
             rate[:, j] = np.where(resonant, np.nan, sig)
             det[:, j] = delta
             coup[:, j] = np.sqrt(np.abs(kk))
     return rate, det, coup, pairs, car, Omega
+
+
+def _energy(K, m, y, phi):
+    return (np.einsum("ni,nij,nj->n", y.conj(), K, y)
+            + phi**2 * np.einsum("ni,i,ni->n", y.conj(), m, y)).real
 
 
 def _offset_grid(samples: int) -> np.ndarray:
