@@ -91,7 +91,9 @@ class FourWave:
     pairs : tuple of (int, int)
         Branch pairs (b1, b2) of the waves k + q and k - q, shape (m,) (every ordered pair).
     rates : ndarray, shape (n, m)
-        Growth rate of each pair (1/time, >= 0; nan where a driven wave is resonant).
+        Growth rate of each pair (1/time, >= 0; nan where a driven wave is resonant with a
+        branch -- a three-wave process this ordering does not treat -- or a wave has zero
+        frequency).
     detuning : ndarray, shape (n, m)
         Delta' = omega1' + omega2' - 2 Omega, the nonlinear detuning (1/time).
     coupling : ndarray, shape (n, m)
@@ -244,23 +246,39 @@ def _plane_wave(model: Model, k: float, a: float, branch):
 
 def pair_rates(model: Model, k: float, amplitude: float, branch=None, offsets=None):
     """Every pair's (rate, detuning, coupling), each shape (n, d^2), at the offsets q
-    (shape (n,)) and the plane wave's (Carrier, Omega); a reason string where the
-    expansion fails. The kernel of the module docstring, vectorised over q."""
-    a = float(amplitude)
+    (shape (n,)), the branch pairs and the plane wave's (Carrier, Omega); a reason string
+    where the expansion fails. The kernel of the module docstring, vectorised over q."""
+    kernel = _kernel(model, k, float(amplitude), branch)
+    if isinstance(kernel, str):
+        return kernel
+    rates, pairs, car, Omega = kernel
+    return (*rates(offsets), pairs, car, Omega)
+
+
+def _kernel(model: Model, k: float, a: float, branch):
+    """(rates, pairs, carrier, Omega): rates(q) -> (rate, detuning, coupling) of every
+    branch pair at the offsets q; or the reason the expansion fails."""
     wave = _plane_wave(model, k, a, branch)
     if isinstance(wave, str):
         return wave
     car, Omega, x1, x2, x0 = wave
     H, T, Q = model.code.taylor(model.p)
     d = model.n_fields
-    m = np.asarray(model.masses, float)
-    s = 1 / np.sqrt(m)
-    q = np.atleast_1d(np.asarray(offsets, dtype=float))
-    n = q.size
+    pairs = [(b1, b2) for b1 in range(d) for b2 in range(d)]
     Hh = {1: _contract(T, x1), -1: _contract(T, x1.conj()),
           2: _contract(T, x2) + np.einsum("ijmn,m,n->ij", Q, x1, x1) / 2}
     Hh[-2] = Hh[2].conj()
     Hh[0] = _contract(T, x0) + np.einsum("ijmn,m,n->ij", Q, x1, x1.conj())
+    return (lambda offsets: _rates(model, k, car, Omega, Hh, pairs, offsets)), pairs, car, Omega
+
+
+def _rates(model, k, car, Omega, Hh, pairs, offsets):
+    H = model.code.taylor(model.p)[0]
+    d = model.n_fields
+    m = np.asarray(model.masses, float)
+    s = 1 / np.sqrt(m)
+    q = np.atleast_1d(np.asarray(offsets, dtype=float))
+    n = q.size
     eye = np.eye(d)
 
     def Pm(kap):  # (n, d, 2d)
@@ -294,7 +312,6 @@ def pair_rates(model: Model, k: float, amplitude: float, branch=None, offsets=No
                                         (0, -1), (-1, 0), (1, 2), (2, 1), (-1, -2), (-2, -1))}
     Kd = {l: K(kap[l]) for l in (0, 2, -2)}
     M = np.diag(m)
-    pairs = [(b1, b2) for b1 in range(d) for b2 in range(d)]
     rate = np.full((n, len(pairs)), np.nan)
     det = np.full_like(rate, np.nan)
     coup = np.full_like(rate, np.nan)
@@ -303,10 +320,16 @@ def pair_rates(model: Model, k: float, amplitude: float, branch=None, offsets=No
         return np.einsum("nij,nj->ni", A, v)
 
     def solve(D, f):
-        sv = np.linalg.svd(D, compute_uv=False)
-        bad = sv[:, -1] < RESONANT * np.maximum(sv[:, 0], 1.0)
-        Dr = np.where(bad[:, None, None], np.eye(d), D)
-        return np.linalg.solve(Dr, f[..., None])[..., 0], bad
+        # a nearly singular D shows as a driven wave too large to be slaved (DRIVEN_MAX);
+        # an exactly singular one (rare) is found by the SVD
+        try:
+            y = np.linalg.solve(D, f[..., None])[..., 0]
+            return y, ~np.all(np.isfinite(y), axis=1)
+        except np.linalg.LinAlgError:
+            sv = np.linalg.svd(D, compute_uv=False)
+            bad = sv[:, -1] < RESONANT * np.maximum(sv[:, 0], 1.0)
+            Dr = np.where(bad[:, None, None], np.eye(d), D)
+            return np.linalg.solve(Dr, f[..., None])[..., 0], bad
 
     with np.errstate(invalid="ignore", divide="ignore"):  # a zero-frequency wave: nan
         for j, (b1, b2) in enumerate(pairs):
@@ -340,10 +363,12 @@ def pair_rates(model: Model, k: float, amplitude: float, branch=None, offsets=No
                                            (2, y2, t1 + Omega), (-2, ym2, t2 + Omega))],
                            axis=0)
             resonant = r0 | r2 | rm2 | (size > DRIVEN_MAX)
-            rate[:, j] = np.where(resonant, np.nan, sig)
+            # a zero-frequency wave (a uniform translation, kappa = 0) is no wave
+            still = ~(np.minimum(w1, w2) > 1e-9 * max(car.omega, 1e-300))
+            rate[:, j] = np.where(resonant | still | ~np.isfinite(sig), np.nan, sig)
             det[:, j] = delta
             coup[:, j] = np.sqrt(np.abs(kk))
-    return rate, det, coup, pairs, car, Omega
+    return rate, det, coup
 
 
 def _energy(K, m, y, phi):
@@ -378,7 +403,7 @@ def _merge(q, arrays, q2, arrays2):
 
 
 def four_wave(model: Model, k: float, amplitude: float, branch=None, *, N: int | None = None,
-              samples: int = 256) -> FourWave:
+              samples: int = 128) -> FourWave:
     """The four-wave theory of the plane wave (k, ``branch``, ``amplitude``) of ``model``.
 
     Parameters
@@ -416,32 +441,28 @@ def four_wave(model: Model, k: float, amplitude: float, branch=None, *, N: int |
         if not (math.isfinite(k) and 0 < k <= math.pi):
             raise ModelError(f"k must be in (0, pi], got {k!r}")
         q = _offset_grid(samples)
-    out = pair_rates(model, k, a, branch, q)
+    kernel = _kernel(model, k, a, branch)
     d = model.n_fields
-    if isinstance(out, str):
+    if isinstance(kernel, str):
         car = carrier(model, k, branch)
         nan = np.full((q.size, d * d), np.nan)
         return FourWave(model, k, a, car.branch, car.omega, math.nan, q,
                         tuple((i, j) for i in range(d) for j in range(d)), nan, nan, nan,
-                        out)
-    rate, det, coup, pairs, car, Omega = out
+                        kernel)
+    rates, pairs, car, Omega = kernel
+    rate, det, coup = rates(q)
     if not N:
         extra_q = _resonances(det, q)
         if extra_q.size:
-            extra = pair_rates(model, k, a, branch, extra_q)
-            q, rate, det, coup = _merge(q, (rate, det, coup), extra_q, extra[:3])
-    r = np.nan_to_num(rate, nan=0.0)
-    if not N and np.max(r) > 0:
-        # the infinite chain's fastest pair between the samples (bounded scalar search)
-        from scipy.optimize import minimize_scalar
-
-        i, j = np.unravel_index(int(np.argmax(r)), r.shape)
-        lo, hi = q[max(i - 1, 0)], q[min(i + 1, q.size - 1)]
-        best = minimize_scalar(
-            lambda x: -np.nan_to_num(pair_rates(model, k, a, branch, [x])[0][0, j]),
-            bounds=(lo, hi), method="bounded", options={"xatol": 1e-6 * (hi - lo)})
-        extra = pair_rates(model, k, a, branch, [best.x])
-        q, rate, det, coup = _merge(q, (rate, det, coup), np.array([best.x]), extra[:3])
+            q, rate, det, coup = _merge(q, (rate, det, coup), extra_q, rates(extra_q))
+        # the infinite chain's fastest pair between the samples: two finer local grids
+        for _ in range(2):
+            r = np.nan_to_num(rate, nan=0.0)
+            if not np.max(r) > 0:
+                break
+            i = int(np.unravel_index(int(np.argmax(r)), r.shape)[0])
+            fine = np.linspace(q[max(i - 1, 0)], q[min(i + 1, q.size - 1)], 35)[1:-1]
+            q, rate, det, coup = _merge(q, (rate, det, coup), fine, rates(fine))
     return FourWave(model, k, a, car.branch, car.omega, float(Omega), q, tuple(pairs),
                     rate, det, coup)
 
