@@ -55,14 +55,18 @@ def _waves(row) -> str:
 
 
 def _ring_misses(model, k, amplitude, branch, N) -> list:
-    """The infinite chain's unstable bands that the ring's offsets do not sample (one
-    sentence each)."""
+    """The infinite chain's unstable bands that the ring's offsets do not sample:
+    [{band, peak_gain, N}] (``numerics.models.ring_misses``)."""
     from numerics.models import ring_misses
 
-    return [f"the infinite chain grows at {b['peak_gain']:.3g} /T in the band of offsets "
-            f"{b['band'][0]:.4g} to {b['band'][1]:.4g} rad/site, which no offset 2 pi j / N "
-            f"of the ring of N = {N} samples: N = {b['N']} does (k snaps to 2 pi m / N)"
+    return [{"band": list(b["band"]), "peak_gain": b["peak_gain"], "N": b["N"]}
             for b in ring_misses(model, k, amplitude, branch, N=N)]
+
+
+def _miss_text(b, N) -> str:
+    return (f"the infinite chain grows at {b['peak_gain']:.3g} /T in the band of offsets "
+            f"{b['band'][0]:.4g} to {b['band'][1]:.4g} rad/site, which no offset 2 pi j / N "
+            f"of the ring of N = {N} samples: N = {b['N']} does (k snaps to 2 pi m / N)")
 
 
 def _simulated_row(model, k, args, spec, start) -> dict:
@@ -211,8 +215,9 @@ def run_point(args) -> int:
     if ex.get("reason"):
         print(f"exact lattice undefined: {ex['reason']}")
     elif ex["verdict"] == "MI" and ex["mode_kind"] != "sidebands":
-        print(f"note: the exact lattice's fastest mode is a {ex['mode_kind']} pair "
-              f"({_waves(ex)}), not the carrier's sidebands: the NLS cannot see it")
+        what = "a resonance" if ex["mode_kind"] == "resonance" else f"a {ex['mode_kind']} pair"
+        print(f"note: the exact lattice's fastest mode is {what} ({_waves(ex)}), not the "
+              "carrier's sidebands: the NLS cannot see it")
     fw = out["four-wave"]
     if fw["verdict"] == "MI":
         print(f"four-wave: the fastest pair is {fw['mode_kind']} ({_waves(fw)})")
@@ -226,7 +231,7 @@ def run_point(args) -> int:
     if ring_note:
         print(f"note: {ring_note}")
     for m in misses:
-        print(f"note: {m}")
+        print(f"note: {_miss_text(m, args.N)}")
     for w in co["warnings"]:
         print(f"note: {w}")
     if args.out:

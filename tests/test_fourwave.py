@@ -197,3 +197,16 @@ def test_the_four_wave_theory_at_every_three_way_point(name, params, k, a, branc
     if ex.verdict == "MI":
         assert fw.gain == pytest.approx(ex.peak_gain, rel=0.10)
         assert fw.mode_kind == classify_mode(ex)["mode_kind"]
+
+
+def test_point_names_the_band_the_ring_misses(capsys):
+    from cli.app import main
+
+    argv = ["point", "--model", "sine-gordon", "--param", "C=1.901", "--param",
+            "omega0=1.092", "--k", "0.335", "--amplitude", "0.05", "--N", "128"]
+    assert main([*argv, "--json"]) == 0
+    misses = json.loads(capsys.readouterr().out)["ring_misses"]
+    assert len(misses) == 1 and misses[0]["N"] == 282
+    assert main(argv) == 0
+    assert "which no offset 2 pi j / N of the ring of N = 128 samples: N = 282 does" in \
+        capsys.readouterr().out
