@@ -50,7 +50,7 @@ def _exact_row(spec) -> dict:
 
 
 def _waves(row) -> str:
-    return " and ".join(f"branch {w['branch']} at {w['wavenumber']:.4g}"
+    return " and ".join(f"branch {w['branch']} ({w['field']}) at {w['wavenumber']:.4g}"
                         for w in row.get("mode_waves", []))
 
 

@@ -162,7 +162,7 @@ def run_coefficients(args) -> int:
         print(f"{f + ': 2k harmonic, mean':<26} {_fmt(co['second_harmonic'][f]):>14} "
               f"{_fmt(co['mean'][f]):>12}  (mean strain {_fmt(co['mean_strain'][f])})")
     fw = co["four_wave"]
-    waves = " and ".join(f"branch {w['branch']} at {w['wavenumber']:.4g}"
+    waves = " and ".join(f"branch {w['branch']} ({w['field']}) at {w['wavenumber']:.4g}"
                          for w in fw["mode_waves"])
     print(f"{'four-wave':<26} {fw['verdict']:>14}  peak gain {_fmt(fw['peak_gain'])}"
           + (f", {fw['mode_kind']} ({waves}), offset {_fmt(fw['fastest_offset'], 4)}"

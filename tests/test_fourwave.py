@@ -74,6 +74,7 @@ def test_a_rotor_chain_decays_into_a_pair_of_the_other_branch():
     # branch indices ascend in frequency at each kappa, so the u branch is 0 or 1)
     for b, kap in fw.mode_waves:
         assert branches(model, kap)[b] == pytest.approx(2 * abs(math.sin(kap / 2)), rel=1e-12)
+    assert [w["field"] for w in fw.row()["mode_waves"]] == ["u", "u"]
     q = float(np.abs(np.angle(np.exp(1j * (k1 - k)))))
     wave = travelling_wave(model, k, a)
     spec = hill_spectrum(wave, np.linspace(q - 0.01, q + 0.01, 201))
@@ -140,6 +141,38 @@ def test_near_the_carrier_the_four_wave_rate_is_the_nls_gain(name, params, k, br
         errors.append(float(np.max(np.abs(got / r.gain(q, a) - 1))))
     assert errors[1] < 0.05
     assert errors[1] < errors[0] / 3 or errors[1] < 1e-6
+
+
+@pytest.mark.parametrize("name, params, k, branch", [
+    ("klein-gordon", dict(alpha=0.5), 1.0, None),
+    ("diatomic-fput", {}, 1.0, 1),
+])
+def test_the_kernel_is_hermitian_and_phase_invariant(name, params, k, branch):
+    """Without acoustic fields (no mean flow), two independent properties of the kernel:
+    kappa12 kappa21 is real and >= 0 (a Hamiltonian pair of positive-energy waves), and at
+    q -> 0 the pair is the carrier's own phase mode, (Delta'/2)^2 = |kappa|^2 up to the
+    dispersion g1 q^2 / 2 (the wave's frequency Omega, computed apart, and the pair's
+    cross-phase shifts and coupling must agree: a slip in either shows as a gap of O(a^2)
+    at q = 0). a = 0.005: the frequencies' O(a^4) (omega' = omega + S/(2 omega) is the
+    first order of sqrt(omega^2 + S)) stay below 1e-3 of g1 q^2 / 2 (at a = 0.05 they are
+    as large as it).
+    """
+    model = load_model(name).with_params(**params) if params else load_model(name)
+    a, q = 0.005, np.array([1e-3, 2e-3])
+    rate, det, coup, pairs, car, _ = pair_rates(model, k, a, branch, q)
+    j = pairs.index((car.branch, car.branch))
+    gap = np.abs(det[:, j]) / 2 - coup[:, j]
+    # + for a defocusing wave (Klein-Gordon at k = 1), - for a focusing one (the optical
+    # diatomic carrier: sigma^2 = |kappa|^2 - (Delta'/2)^2 > 0)
+    sign = -1 if nls(model, k, branch).verdict == "MI" else 1
+    assert np.allclose(gap, sign * abs(car.g1) * q**2 / 2, rtol=0.05, atol=0)
+    assert np.all(coup[:, j] > 1e-4 * a**2)
+    # kappa12 kappa21 >= 0 across every pair: growth is sqrt(|kappa|^2 - (Delta'/2)^2)
+    q_all = np.linspace(0.05, math.pi, 40)
+    rate, det, coup, *_ = pair_rates(model, k, a, branch, q_all)
+    ok = np.isfinite(rate)
+    want = np.sqrt(np.maximum(coup**2 - det**2 / 4, 0))
+    assert np.allclose(rate[ok], want[ok], rtol=1e-6, atol=1e-12)
 
 
 # ------------------------------------------------ the ring's misses

@@ -185,9 +185,21 @@ class FourWave:
                 "peak_gain": None if self.undefined else self.gain,
                 "fastest_offset": None if not math.isfinite(self.offset) else self.offset,
                 "mode_kind": self.mode_kind,
-                "mode_waves": [{"branch": b, "wavenumber": kap} for b, kap in self.mode_waves],
+                "mode_waves": [{"branch": b, "wavenumber": kap,
+                                "field": wave_field(self.model, kap, b)}
+                               for b, kap in self.mode_waves],
                 "frequency": self.frequency, "kind_rates": self.kind_rates(),
                 "reason": self.undefined}
+
+
+def wave_field(model: Model, kappa: float, branch: int) -> str:
+    """The field that carries most of the kinetic energy of the linear wave (kappa,
+    branch): branch indices ascend in frequency at each wavenumber, so where branches
+    cross the field says which wave it is."""
+    from ._linear import _modes
+
+    vecs = _modes(model, float(kappa))[1]
+    return model.fields[int(np.argmax(np.abs(vecs[:, branch]) ** 2))]
 
 
 def pair_kind(branch: int, pair, q: float) -> str:
@@ -483,7 +495,7 @@ def classify_mode(spectrum) -> dict:
     dict
         ``mode_kind`` ('sidebands', 'backward', 'parametric', 'resonance' where a wave is
         no linear wave within max(2% Omega, 10 rates) -- a harmonic resonant with a branch
-        -- or 'none'), ``mode_waves`` [{branch, wavenumber, frequency}] x 2 and
+        -- or 'none'), ``mode_waves`` [{branch, wavenumber, frequency, field}] x 2 and
         ``fastest_offset``, the pair's own offset (from k, or from k - pi for a backward
         pair), not a copy's.
     """
@@ -511,8 +523,10 @@ def classify_mode(spectrum) -> dict:
             best = (miss, kap, phi, b1, kap2, phi2, b2)
     miss, kap, phi, b1, kap2, phi2, b2 = best
     tol = max(0.02 * Omega, 10 * float(lam.real))
-    waves = [{"branch": b1, "wavenumber": kap, "frequency": float(phi)},
-             {"branch": b2, "wavenumber": kap2, "frequency": float(phi2)}]
+    waves = [{"branch": b1, "wavenumber": kap, "frequency": float(phi),
+              "field": wave_field(model, kap, b1)},
+             {"branch": b2, "wavenumber": kap2, "frequency": float(phi2),
+              "field": wave_field(model, kap2, b2)}]
     if miss > tol:
         return {"mode_kind": "resonance", "mode_waves": waves,
                 "fastest_offset": float(min(abs(_wrap(kap - k)), abs(_wrap(kap + k))))}
