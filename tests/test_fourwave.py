@@ -33,6 +33,11 @@ ROTOR = Lattice(name="rotor-chain", fields=("u", "phi"),
                      "+ g*(u_next - u)**2*(phi**2 + phi_next**2)/4",
                 site="omega0**2*phi**2/2 + beta*phi**4/4", branch="phi")
 
+#: a precompressed Hertz chain (issue 43's "new user's" chain): V = (2/5)(d0 - r)^(5/2),
+#: its linear term (a uniform pre-force) removed
+HERTZ = Lattice(name="hertz", fields=("u",), parameters={"d0": 0.5}, kinetic="u_t**2/2",
+                bond="2*(d0 - (u_next - u))**(5/2)/5 + d0**(3/2)*(u_next - u)")
+
 
 # ------------------------------------------------ the issue's points, against the exact theory
 @pytest.mark.parametrize("name, params, m, kind", [
@@ -173,6 +178,23 @@ def test_the_kernel_is_hermitian_and_phase_invariant(name, params, k, branch):
     ok = np.isfinite(rate)
     want = np.sqrt(np.maximum(coup**2 - det**2 / 4, 0))
     assert np.allclose(rate[ok], want[ok], rtol=1e-6, atol=1e-12)
+
+
+def test_a_hertz_chain_grows_where_the_nls_sees_nothing_and_a_small_ring_misses_it():
+    """d0 = 0.5, a = 0.05, k = 1.458: the NLS says stable; on a ring of 500 the exact theory
+    grows at 6.76e-4 (the issue's number) through a backward pair k - pi +- 0.93, the
+    four-wave theory at 6.73e-4 (-0.4%; 10% bar); 256 sites sample none of its band (Hill
+    offsets 0.720-0.728), and ring_misses says so."""
+    model = load_model(HERTZ)
+    assert nls(model, 1.458).verdict == "stable"
+    ex = exact_gain(model, 1.458, 0.05, N=500)
+    fw = four_wave(model, 1.458, 0.05, N=500)
+    assert fw.gain == pytest.approx(ex.peak_gain, rel=0.10)
+    assert fw.mode_kind == classify_mode(ex)["mode_kind"] == "backward"
+    assert exact_gain(model, 1.458, 0.05, N=256).verdict == "stable"
+    (miss,) = ring_misses(model, 1.458, 0.05, N=256)
+    lo, hi = miss["band"]
+    assert 0.70 < lo < hi < 0.75 and 256 < miss["N"] <= 500
 
 
 # ------------------------------------------------ the ring's misses
