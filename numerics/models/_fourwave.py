@@ -50,7 +50,7 @@ import numpy as np
 
 from energy import Model, ModelError
 
-from ._exact import GAIN_FLOOR
+from ._exact import GAIN_FLOOR  # one floor for both theories' verdicts
 from ._linear import carrier, dynamical_matrix
 
 #: A driven wave whose operator has a singular value below this share of the largest is
@@ -58,8 +58,9 @@ from ._linear import carrier, dynamical_matrix
 RESONANT = 1e-8
 #: A driven wave this large (the square root of its energy, y^H K y + phi^2 y^H M y,
 #: against the pair's, omega1^2 + omega2^2: a long acoustic wave's displacement is large
-#: for a small strain, its energy is not) is no longer slaved to the pair: it is a free wave in a three-wave resonance with the carrier
-#: and the pair, which the four-wave ordering does not treat (its rate is left nan).
+#: for a small strain, its energy is not) is no longer slaved to the pair: it is a free
+#: wave in a three-wave resonance with the carrier and the pair, which the four-wave
+#: ordering does not treat (its rate is left nan).
 DRIVEN_MAX = 0.5
 
 #: A discriminant (Delta'/2)^2 - kappa12 kappa21 this small against its terms is round-off.
