@@ -7,6 +7,10 @@
   The issue's bar: the generic force within 3x the fused kernel per site.
 - The same for the other built-in models (one and two fields).
 - A three-way point (exact theory, a simulation, the NLS) per model: wall times.
+- The four-wave row against the NLS row per point (``four_wave_cost``): the NLS row
+  (``model_coefficients``), the four-wave theory on the ring of 256 sites (``point``'s
+  row) and on the infinite chain (``coefficients``' row), best of REPEATS each. The
+  issue's bar: the four-wave row within 20x the NLS row.
 Writes the "models" section of results.json (results_quick.json with --quick).
 
     python -m bench.models [--quick] [--update | --out DIR]
@@ -14,6 +18,7 @@ Writes the "models" section of results.json (results_quick.json with --quick).
 
 from __future__ import annotations
 
+import math
 import time
 
 import numpy as np
@@ -21,7 +26,13 @@ import numpy as np
 from bench.simulator import arguments, machine, write_section
 from energy import load_model
 from numerics.lattice._kernels import accel
-from numerics.models import compiled_force, exact_gain, simulate_model
+from numerics.models import (
+                     compiled_force,
+                     exact_gain,
+                     four_wave,
+                     model_coefficients,
+                     simulate_model,
+)
 
 REPEATS = 5
 
@@ -34,6 +45,30 @@ def _best(f, reps):
             f()
         walls.append((time.perf_counter() - t0) / reps)
     return min(walls)
+
+
+#: the four-wave cost points: the issue's FPUT and Klein-Gordon points at k = pi / 2, a
+#: two-field optical carrier, the paper chain
+FOUR_WAVE_POINTS = (("fput", dict(alpha=0.5, beta=1.0), math.pi / 2, None),
+                    ("klein-gordon", dict(alpha=0.5), math.pi / 2, None),
+                    ("diatomic-fput", {}, 1.0, 1),
+                    ("flexmm", {}, 1.0, None))
+
+
+def four_wave_cost(reps=20) -> dict:
+    """Wall time per point of the NLS row and the four-wave rows (ring of 256, chain), and
+    their ratios (a = 0.1)."""
+    out = {}
+    for name, params, k, br in FOUR_WAVE_POINTS:
+        model = load_model(name).with_params(**params) if params else load_model(name)
+        four_wave(model, k, 0.1, br, N=256)  # first call: imports, generated module
+        nls_s = _best(lambda m=model, k=k, b=br: model_coefficients(m, k, 0.1, b), reps)
+        ring_s = _best(lambda m=model, k=k, b=br: four_wave(m, k, 0.1, b, N=256), reps)
+        chain_s = _best(lambda m=model, k=k, b=br: four_wave(m, k, 0.1, b), reps)
+        out[name] = {"nls_row_s": nls_s, "four_wave_ring_s": ring_s,
+                     "four_wave_chain_s": chain_s, "ring_over_nls": ring_s / nls_s,
+                     "chain_over_nls": chain_s / nls_s}
+    return out
 
 
 def main(quick=False, out=None):
@@ -72,9 +107,11 @@ def main(quick=False, out=None):
         points[name] = {"exact_s": t1 - t0, "simulation_s": t2 - t1, "t_end": r.t_end,
                         "exact_gain": e.peak_gain, "measured_rate": g.rate,
                         "energy_drift": r.energy_drift}
+    cost = four_wave_cost(5 if quick else 20)
     res = {"machine": machine(), "quick": quick, "N": N, "repeats": REPEATS,
            "fused_flexmm_ns_per_site": fused, "generic_ns_per_site": per_model,
-           "generic_flexmm_over_fused": per_model["flexmm"] / fused, "points": points}
+           "generic_flexmm_over_fused": per_model["flexmm"] / fused, "points": points,
+           "four_wave_vs_nls": cost}
     write_section("models", res, quick, out)
     print(f"force per site, N = {N}: fused flexMM kernel {fused:.2f} ns; generic:")
     for name, t in per_model.items():
@@ -83,6 +120,10 @@ def main(quick=False, out=None):
         print(f"point {name}: exact {pt['exact_s']:.2f} s, simulation {pt['simulation_s']:.2f} s "
               f"(T = {pt['t_end']:g}); gain {pt['exact_gain']:.4g} vs measured "
               f"{pt['measured_rate']:.4g}")
+    for name, c in cost.items():
+        print(f"four-wave {name}: NLS row {c['nls_row_s'] * 1e3:.2f} ms, four-wave ring "
+              f"{c['four_wave_ring_s'] * 1e3:.2f} ms ({c['ring_over_nls']:.1f}x), chain "
+              f"{c['four_wave_chain_s'] * 1e3:.2f} ms ({c['chain_over_nls']:.1f}x)")
     return res
 
 

@@ -39,10 +39,34 @@ def _start_of(args) -> str:
 
 
 def _exact_row(spec) -> dict:
-    return {"verdict": spec.verdict, "peak_gain": spec.peak_gain,
-            "fastest_offset": spec.fastest_offset, "mode": spec.mode,
-            "modulational_gain": spec.modulational_gain,
-            "omega": spec.wave.omega, "omega_linear": spec.wave.carrier.omega}
+    from numerics.models import classify_mode
+
+    row = {"verdict": spec.verdict, "peak_gain": spec.peak_gain,
+           "fastest_offset": spec.fastest_offset, "mode": spec.mode,
+           "modulational_gain": spec.modulational_gain,
+           "omega": spec.wave.omega, "omega_linear": spec.wave.carrier.omega}
+    row.update(classify_mode(spec))  # mode_kind, mode_waves and the pair's own offset
+    return row
+
+
+def _waves(row) -> str:
+    return " and ".join(f"branch {w['branch']} ({w['field']}) at {w['wavenumber']:.4g}"
+                        for w in row.get("mode_waves", []))
+
+
+def _ring_misses(model, k, amplitude, branch, N) -> list:
+    """The infinite chain's unstable bands that the ring's offsets do not sample:
+    [{band, peak_gain, N}] (``numerics.models.ring_misses``)."""
+    from numerics.models import ring_misses
+
+    return [{"band": list(b["band"]), "peak_gain": b["peak_gain"], "N": b["N"]}
+            for b in ring_misses(model, k, amplitude, branch, N=N)]
+
+
+def _miss_text(b, N) -> str:
+    return (f"the infinite chain grows at {b['peak_gain']:.3g} /T in the band of offsets "
+            f"{b['band'][0]:.4g} to {b['band'][1]:.4g} rad/site, which no offset 2 pi j / N "
+            f"of the ring of N = {N} samples: N = {b['N']} does (k snaps to 2 pi m / N)")
 
 
 def _simulated_row(model, k, args, spec, start) -> dict:
@@ -152,6 +176,12 @@ def run_point(args) -> int:
         spec = None
         out["exact lattice"] = {"verdict": "undefined", "peak_gain": None,
                                 "reason": str(exc)}
+    from numerics.models import four_wave
+
+    out["four-wave"] = four_wave(model, k, args.amplitude, branch_of(args), N=args.N).row()
+    misses = [] if spec is None else _ring_misses(model, k, args.amplitude, branch_of(args),
+                                                  args.N)
+    out["ring_misses"] = misses
     if args.simulate:
         if spec is None:
             raise ValueError(f"--simulate: {out['exact lattice']['reason']}")
@@ -171,7 +201,8 @@ def run_point(args) -> int:
     print(f"carrier:  k = {co['k']:g} rad/site (2 pi m / N on the ring of N = {args.N}) on "
           f"branch {co['branch']} (field {co['field']}), amplitude a = {co['amplitude']:g}")
     print(f"{'theory':<20} {'verdict':>19} {'peak gain (1/time)':>19} {'at offset':>10}")
-    for name in ("continuum NLS", "semi-discrete NLS", "exact lattice", "simulated"):
+    for name in ("continuum NLS", "semi-discrete NLS", "four-wave", "exact lattice",
+                 "simulated"):
         if name in out:
             t = out[name]
             word = t.get("simulation_verdict", t["verdict"])  # a run says what T shows
@@ -183,10 +214,13 @@ def run_point(args) -> int:
     ex = out["exact lattice"]
     if ex.get("reason"):
         print(f"exact lattice undefined: {ex['reason']}")
-    elif ex["verdict"] == "MI" and ex["mode"] != "sidebands k +- q":
-        print(f"note: the exact lattice's fastest mode is a {ex['mode']}, not a sideband "
-              "pair of the carrier: the NLS cannot see it (the sidebands' own fastest rate: "
-              f"{_fmt(ex['modulational_gain'], 4)})")
+    elif ex["verdict"] == "MI" and ex["mode_kind"] != "sidebands":
+        what = "a resonance" if ex["mode_kind"] == "resonance" else f"a {ex['mode_kind']} pair"
+        print(f"note: the exact lattice's fastest mode is {what} ({_waves(ex)}), not the "
+              "carrier's sidebands: the NLS cannot see it")
+    fw = out["four-wave"]
+    if fw["verdict"] == "MI":
+        print(f"four-wave: the fastest pair is {fw['mode_kind']} ({_waves(fw)})")
     if "simulated" in out:
         sim = out["simulated"]
         print(f"simulated: {sim['text']}; {sim['seeds']} seed(s) from the "
@@ -196,6 +230,8 @@ def run_point(args) -> int:
             print(f"note: {sim['note']}")
     if ring_note:
         print(f"note: {ring_note}")
+    for m in misses:
+        print(f"note: {_miss_text(m, args.N)}")
     for w in co["warnings"]:
         print(f"note: {w}")
     if args.out:

@@ -132,6 +132,9 @@ def run_coefficients(args) -> int:
     checks.real("--k", args.k, 0.0, math.pi)
     checks.real("--amplitude", args.amplitude, 0.0, None)
     co = model_coefficients(model, args.k, args.amplitude, branch_of(args))
+    from numerics.models import four_wave
+
+    co["four_wave"] = four_wave(model, args.k, args.amplitude, branch_of(args)).row()
     if args.json:
         _emit(co)
         return 0
@@ -158,6 +161,12 @@ def run_coefficients(args) -> int:
     for f in model.fields:
         print(f"{f + ': 2k harmonic, mean':<26} {_fmt(co['second_harmonic'][f]):>14} "
               f"{_fmt(co['mean'][f]):>12}  (mean strain {_fmt(co['mean_strain'][f])})")
+    fw = co["four_wave"]
+    waves = " and ".join(f"branch {w['branch']} ({w['field']}) at {w['wavenumber']:.4g}"
+                         for w in fw["mode_waves"])
+    print(f"{'four-wave':<26} {fw['verdict']:>14}  peak gain {_fmt(fw['peak_gain'])}"
+          + (f", {fw['mode_kind']} ({waves}), offset {_fmt(fw['fastest_offset'], 4)}"
+             if fw["verdict"] == "MI" else ""))
     if co["reason"]:
         print(f"undefined: {co['reason']}")
     for w in co["warnings"]:

@@ -39,14 +39,14 @@ class Scene:
 #: `flexmm --help` and `flexmm coefficients` import no figure module (nor matplotlib)
 SCENE_MODULES = ("fig2_dispersion", "fig3_g_sign", "fig3_simulated", "fig4_km_map",
                  "fig5_8_plane_waves", "fig9_mi_band", "gain_spectrum", "gain_theories",
-                 "harmonics", "solitons")
+                 "harmonics", "solitons", "four_wave_pairs")
 #: the names they register (for `flexmm scene NAME --help` without importing them; a test
 #: checks it against the registry)
 SCENE_NAMES = ("fig2-dispersion", "fig3-g-sign", "fig3-simulated", "fig4-km-map",
                "fig5-blue-rotation", "fig6-blue-coupled", "fig7-green-rotation",
                "fig8-green-coupled", "fig9-mi-band", "gain-spectrum", "gain-theories",
                "harmonics", "soliton-bright", "soliton-dark", "soliton-convergence",
-               "soliton-existence")
+               "soliton-existence", "four-wave-pairs")
 
 
 class _Registry(dict):

@@ -77,8 +77,9 @@ ALLOWED = {
     "numerics.maps": {"common", "generated", "numerics.lattice", "numerics.theory"},
     "numerics.models": {"common", "generated", "energy", "numerics.lattice"},
     "numerics": {"numerics.lattice", "numerics.theory", "numerics.maps"},
-    "scenes": {"common", "derivation", "generated", "numerics", "numerics.lattice",
-               "numerics.theory", "numerics.maps"},
+    # any model's figures (four-wave-pairs) read models from energy and numerics.models
+    "scenes": {"common", "derivation", "generated", "energy", "numerics", "numerics.lattice",
+               "numerics.theory", "numerics.maps", "numerics.models"},
     "cli": {"common", "energy", "derivation", "generated", "numerics", "numerics.lattice",
             "numerics.theory", "numerics.maps", "numerics.models", "scenes"},
 }

@@ -321,8 +321,9 @@ def test_finding_fput_at_a_quarter_wavelength_grows_faster_than_its_nls():
     """FINDING (recorded, not a failure): FPUT alpha = 0.5, beta = 1 at k = pi / 2 exactly
     (4k = 2 pi): the exact theory and the runs agree, and both grow 1.6x faster than the
     semi-discrete NLS, whose peak they match to 1e-4 at k = pi / 2 +- 0.02 and at every
-    other k tried. A commensurability effect the NLS does not carry; its mechanism is not
-    identified yet (docs/models.md)."""
+    other k tried. The NLS does not carry it: a backward (umklapp) pair near k - pi grows,
+    which the four-wave theory rates in closed form (docs/theory.md; tests/test_fourwave.py).
+    """
     model = _model("fput", alpha=0.5, beta=1.0)
     exact = exact_gain(model, math.pi / 2, 0.1, N=128)
     g = simulate_model(model, math.pi / 2, 0.1, N=128, wave=exact.wave,

@@ -8,6 +8,9 @@ model_coefficients                      the NLS at one carrier as a JSON-ready d
 travelling_wave -> TravellingWave       the exact plane wave (harmonic balance)
 hill_spectrum -> HillSpectrum           its sidebands' growth rates (Hill/Floquet)
 exact_gain                              both at one point: the exact lattice theory
+four_wave -> FourWave                   every four-wave pair's rate (Zakharov's kernel of the
+                                        lattice): sidebands, backward pairs, parametric decays
+classify_mode, ring_misses              what an exact mode is; bands a ring does not sample
 simulate_model -> ModelRun              a ring of the model; .growth() -> Growth
 lattice_force, lattice_energy           the compiled force and the model's energy
 model_map                               MI map over two parameters, or a parameter and k
@@ -21,6 +24,7 @@ from ._exact import (
                      ring_offsets,
                      travelling_wave,
 )
+from ._fourwave import FourWave, classify_mode, four_wave, pair_rates, ring_misses
 from ._linear import Carrier, branch_index, branches, carrier, check_rest_stable
 from ._map import model_map, simulated_cell
 from ._nls import ModelNLS, ModelSoliton, acoustic_directions, nls
@@ -42,5 +46,7 @@ from ._summary import model_coefficients
 __all__ = ["Carrier", "carrier", "branches", "branch_index", "check_rest_stable", "ModelNLS",
            "ModelSoliton", "nls", "acoustic_directions", "model_map", "simulated_cell",
            "model_coefficients", "TravellingWave", "HillSpectrum", "travelling_wave",
-           "hill_spectrum", "exact_gain", "ring_offsets", "simulate_model", "simulate_seeds", "SeededRuns", "ModelRun", "Growth",
-           "measure_growth", "check_ring", "compiled_force", "lattice_force", "lattice_energy", "snap_ring"]
+           "hill_spectrum", "exact_gain", "FourWave", "four_wave", "pair_rates",
+           "classify_mode", "ring_misses", "ring_offsets", "simulate_model", "simulate_seeds",
+           "SeededRuns", "ModelRun", "Growth", "measure_growth", "check_ring", "compiled_force",
+           "lattice_force", "lattice_energy", "snap_ring"]
