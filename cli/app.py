@@ -335,15 +335,7 @@ def _interrupted(args, exc) -> str:
                 + (f", the running one was checkpointed in {running}" if running else
                    ", no simulation was running")
                 + ": run the same command again to continue")
-    if cmd == "map" and getattr(args, "model", None):
-        from .model_map import JOURNAL, journal_cells
-
-        n = journal_cells(args.out)
-        kept = (f"{n} finished cells are kept in {Path(args.out) / JOURNAL}" if n else
-                "no cell had finished, nothing was kept")
-        return (f"interrupted ({name}); {kept}; the cells that were running were not kept: "
-                "run the same command again to continue")
-    if cmd == "map":
+    if cmd == "map":  # any model's map: the one store
         store = Path(args.out) / "map.zarr"
         from numerics.maps import cells_done
 
@@ -389,8 +381,8 @@ def _dispatch(args, scenes) -> int:
         from . import model_map, model_point, models
 
         if getattr(args, "device", "cpu") != "cpu":
-            raise ValueError(f"--device {args.device}: a --model map runs its cells on this "
-                             "CPU, in this process (the GPU kernel is the paper chain's); "
+            raise ValueError(f"--device {args.device}: a --model map runs its cells on the "
+                             "CPU, as Dask tasks (the GPU kernel is the paper chain's); "
                              "drop --device")
 
         run = {"coefficients": models.run_coefficients, "point": model_point.run_point,

@@ -74,7 +74,9 @@ ALLOWED = {
     "derivation": {"common", "energy"},
     "numerics.lattice": {"common", "generated"},
     "numerics.theory": {"common", "generated", "numerics.lattice"},
-    "numerics.maps": {"common", "generated", "numerics.lattice", "numerics.theory"},
+    # the one map engine takes any model (ModelMapParameters): models sit below it
+    "numerics.maps": {"common", "generated", "energy", "numerics.lattice", "numerics.theory",
+                      "numerics.models"},
     "numerics.models": {"common", "generated", "energy", "numerics.lattice"},
     "numerics": {"numerics.lattice", "numerics.theory", "numerics.maps"},
     # any model's figures (four-wave-pairs) read models from energy and numerics.models

@@ -389,12 +389,12 @@ def test_lattice_text_fields_must_be_strings(value):
     one_line(exc, "description must be a string")
 
 
-# --- 10-14, 16. model maps: refused input leaves nothing, the journal trusts nothing ----
+# --- 10-14, 16. model maps: refused input leaves nothing, the store trusts nothing ------
 
 def _map(tmp_path, *extra, out="m"):
     return ["map", "--model", "fput", "--param", "alpha=1", "--param", "beta=0.9,1.7",
-            "--k", "2.6,2.8", "--amplitude", "0.1", "--N", "16", "--out", str(tmp_path / out),
-            *extra]
+            "--k", "2.6,2.8", "--amplitude", "0.1", "--N", "16", "--workers", "1",
+            "--out", str(tmp_path / out), *extra]
 
 
 @pytest.mark.parametrize("bad,option", [(("--t-end", "inf"), "--t-end"),
@@ -427,6 +427,8 @@ def test_every_cell_undefined_is_an_error_naming_why(tmp_path, capsys):
     assert main(argv) == 2
     err = capsys.readouterr().err
     assert "every cell of the map is undefined" in err and "omega^2" in err
+    # the store of a map without a verdict is not kept: the corrected command runs
+    assert not (tmp_path / "u" / "map.zarr").exists()
 
 
 def test_a_model_map_refuses_booleans_and_bad_amplitudes():
@@ -441,32 +443,30 @@ def test_a_model_map_refuses_booleans_and_bad_amplitudes():
             model_map(m, ("k", [1.0, 2.0]), ("beta", [1.0, 2.0]), amp)
 
 
-def test_the_journal_checks_each_line_and_resumes(tmp_path, capsys):
-    import json
+def test_the_store_checks_each_cell_and_resumes(tmp_path, capsys):
+    import xarray as xr
+    import zarr
 
     from cli.app import main
 
     argv = _map(tmp_path, "--t-end", "40")
     assert main(argv) == 0
-    journal = tmp_path / "m" / "map.cells.jsonl"
-    lines = journal.read_text().splitlines()
-    assert len(lines) == 5
-    first = json.loads(lines[1])
-    # an edited number: the checksum no longer holds; a line of another form
-    edited = dict(first, columns={**first["columns"], "peak_gain_exact": 123.0})
-    journal.write_text("\n".join([lines[0], json.dumps(edited), lines[2],
-                                  json.dumps({"i": 1, "j": 0, "columns": [], "sum": "x"})])
-                       + "\n")
+    store = tmp_path / "m" / "map.zarr"
+    first = xr.open_zarr(store).load()
+    assert first["done"].values.all()
+    # an edited number, and a deleted chunk: the checksums no longer hold
+    group = zarr.open_group(str(store), mode="r+")
+    group["peak_gain_exact"][0, 0] = 123.0
+    (store / "t_simulated" / "1.0").unlink()
     capsys.readouterr()
     assert main(argv) == 0
     out = capsys.readouterr().out
-    assert "2 line(s)" in out and "computed again" in out and "1 cells already done" in out
-    now = [json.loads(x) for x in journal.read_text().splitlines()[1:]]
-    assert sorted((r["i"], r["j"]) for r in now) == [(0, 0), (0, 1), (1, 0), (1, 1)]
-    assert all(r["columns"]["peak_gain_exact"] != 123.0 for r in now)
+    assert "3 of 4 cells fail their checksum" in out and "1 of 4 cells already done" in out
+    now = xr.open_zarr(store).load()
+    assert now["done"].values.all() and (now["peak_gain_exact"].values != 123.0).all()
     # the same numbers as the first map computed (the runs are seeded)
-    cols = {(r["i"], r["j"]): r["columns"] for r in now}[(first["i"], first["j"])]
-    assert cols == first["columns"]
+    for name in first.data_vars:
+        np.testing.assert_array_equal(now[name].values, first[name].values, err_msg=name)
 
 
 def test_two_writers_of_one_model_map_are_refused(tmp_path, capsys):
@@ -475,26 +475,26 @@ def test_two_writers_of_one_model_map_are_refused(tmp_path, capsys):
 
     out = tmp_path / "m"
     out.mkdir()
-    with store_lock(out / "map.cells.jsonl"):
+    with store_lock(out / "map.zarr"):
         assert main(_map(tmp_path, "--t-end", "40")) == 2
     assert "is being written by pid" in capsys.readouterr().err
 
 
 def test_interrupted_model_map_says_what_was_kept(tmp_path, monkeypatch, capsys):
-    import numerics.models
     from cli.app import main
+    from numerics.maps import _store
 
     calls = []
-    real = numerics.models.simulated_cell
+    real = _store._write_block
 
-    def interrupt_on_third(*a, **kw):  # Ctrl-C while the third cell runs
+    def interrupt_on_third(*a, **kw):  # Ctrl-C as the third cell comes back
         calls.append(1)
         if len(calls) == 3:
             raise KeyboardInterrupt
         return real(*a, **kw)
 
-    monkeypatch.setattr(numerics.models, "simulated_cell", interrupt_on_third)
-    assert main(_map(tmp_path, "--t-end", "40")) == 130
+    monkeypatch.setattr(_store, "_write_block", interrupt_on_third)
+    assert main(_map(tmp_path, "--t-end", "40", "--block", "1")) == 130
     err = capsys.readouterr().err
-    assert "2 finished cells are kept in" in err and "map.cells.jsonl" in err
+    assert "2 of 4 cells are kept in" in err and "map.zarr" in err
     assert "nothing was written" not in err

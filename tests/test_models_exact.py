@@ -265,18 +265,24 @@ def test_a_model_map_with_the_exact_theory_per_cell(tmp_path, capsys):
     import xarray as xr
 
     from cli.app import main
+    from energy import builtin
 
     code = main(["map", "--model", "fput", "--param", "alpha=1", "--param", "beta=0.8,1.6",
                  "--k", "2.6,2.8", "--amplitude", "0.1", "--N", "64", "--theory-only", "--exact",
-                 "--out", str(tmp_path), "--json"])
+                 "--workers", "1", "--out", str(tmp_path), "--json"])
     out = json.loads(capsys.readouterr().out)
     assert code == 0 and set(out["mi_share"]) == {"verdict_semidiscrete", "verdict_exact"}
-    ds = xr.open_dataset(tmp_path / "map.nc")
+    # the one map engine's store: int8 verdicts (1 MI, 0 stable, -1 undetermined)
+    ds = xr.open_zarr(tmp_path / "map.zarr")
     # the NLS and the exact theory agree on both sides of this chain's critical beta
-    want = [["stable", "stable"], ["MI", "MI"]]  # (beta, k)
+    want = [[0, 0], [1, 1]]  # (beta, k)
     assert ds["verdict_exact"].dims == ("beta", "k")
     assert ds["verdict_exact"].values.tolist() == want
     assert ds["verdict_semidiscrete"].values.tolist() == want
+    assert ds["verdict_exact"].dtype == "int8" and "flag_meanings" in ds["verdict_exact"].attrs
+    assert ds["done_predicted"].values.all() and not ds["done"].values.any()
+    assert ds.attrs["model"] == "fput" and ds.attrs["model_hash"] == builtin("fput").content_hash
+    assert 'name = "fput"' in ds.attrs["model_file"] and ds.attrs["param_alpha"] == 1.0
     ds.close()
     assert main(["map", "--alpha", "2.5", "--K-s", "0.02", "--delta", "0.001", "--case",
                  "coupled", "--k", "1", "--theory-only", "--exact",
@@ -354,36 +360,37 @@ def test_point_says_when_the_ring_is_too_small_for_the_nls_band(capsys):
     assert data["exact lattice"]["verdict"] == "MI"
 
 
-def test_a_simulated_model_map_is_journalled_and_resumes(tmp_path, capsys):
-    """Each cell: the exact theory and a run of the ring; one journal line per finished
-    cell, so a rerun computes nothing again (a torn last line, as a kill leaves, is
-    dropped and that cell computed again), and a journal of another map is refused."""
-    import json
-
+def test_a_simulated_model_map_is_stored_and_resumes(tmp_path, capsys):
+    """Each cell: the exact theory and a run of the ring, a task of the one map engine,
+    written into the checksummed map.zarr, so a rerun computes nothing again (a cell
+    whose values no longer match its checksum, as a torn write leaves, is computed again),
+    and a store of another map is refused."""
     import xarray as xr
+    import zarr
 
     from cli.app import main
 
     argv = ["map", "--model", "fput", "--param", "alpha=1", "--param", "beta=0.8,1.6",
-            "--k", "2.6,2.8", "--amplitude", "0.1", "--N", "64", "--out", str(tmp_path)]
+            "--k", "2.6,2.8", "--amplitude", "0.1", "--N", "64", "--workers", "1",
+            "--out", str(tmp_path)]
     assert main(argv) == 0
-    ds = xr.open_dataset(tmp_path / "map.nc")
-    want = [["stable", "stable"], ["MI", "MI"]]  # (beta, k)
+    ds = xr.open_zarr(tmp_path / "map.zarr").load()
+    want = [[0, 0], [1, 1]]  # (beta, k): 1 MI, 0 stable
     assert ds["verdict_exact"].values.tolist() == want
     # the runs agree with the exact theory: MI where it says so, no growth where stable
-    assert ds["verdict_simulated"].values.tolist() == [["no growth within T"] * 2, ["MI"] * 2]
+    assert ds["verdict_simulated"].values.tolist() == want
     mi = ds["peak_gain_exact"].values[1]
     np.testing.assert_allclose(ds["peak_gain_simulated"].values[1], mi, rtol=0.10)
-    ds.close()
-    journal = tmp_path / "map.cells.jsonl"
-    lines = journal.read_text().splitlines()
-    assert len(lines) == 5 and json.loads(lines[0])["map"]["N"] == 64
-    journal.write_text("\n".join(lines[:-1]) + "\n" + lines[-1][:20])  # a torn last line
+    assert ds["done"].values.all() and ds.attrs["N"] == 64
+    assert {"growth", "growth_q", "t_simulated", "k_simulated"} <= set(ds.data_vars)
+    group = zarr.open_group(str(tmp_path / "map.zarr"), mode="r+")
+    group["growth"][1, 1] = 1e9  # a cell's value no longer matches its checksum
     capsys.readouterr()
     assert main(argv) == 0
-    assert "3 cells already done" in capsys.readouterr().out
-    lines = journal.read_text().splitlines()
-    assert len(lines) == 5 and all(json.loads(line) for line in lines)  # torn one redone
+    out = capsys.readouterr().out
+    assert "1 of 4 cells fail their checksum" in out and "3 of 4 cells already done" in out
+    again = xr.open_zarr(tmp_path / "map.zarr").load()
+    assert again["growth"].values[1, 1] == ds["growth"].values[1, 1]  # seeded: the same
     other = [a if a != "beta=0.8,1.6" else "beta=0.8,1.7" for a in argv]
     assert main(other) == 2
-    assert "holds another map" in capsys.readouterr().err
+    assert "holds a map with other parameters" in capsys.readouterr().err

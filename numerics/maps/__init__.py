@@ -10,7 +10,8 @@ One point        measure_point -> PointResult (`flexmm point`: the theories over
                  sideband offsets, the predicted growth, a simulation with a cell's step
                  choice and seed majority), point_step, theory_curves, offset_curve, fold,
                  snap_carrier (k -> 2 pi m / N, checked), MAX_SEEDS, MAX_T_END
-Maps by sim.     MapParameters (what defines a map), parse_spec (``v1,v2`` or
+Maps by sim.     MapParameters (what defines a map; ModelMapParameters: a lattice model's,
+                 model_text its file's text), parse_spec (``v1,v2`` or
                  ``start:stop:num``), run_map (cells as tasks on a Dask cluster, results in
                  a resumable Zarr store), theory_columns, agreement (AGREEMENT_MARGIN)
 Their parts      cell_records, predict_cell, GROWTH_TOL, GROWTH_ERROR_CONSTANTS (a cell's
@@ -42,6 +43,7 @@ from ._devices import DEVICES, resolve_device
 from ._estimate import MapEstimate, estimate_map, machine_speed
 from ._gpu import gpu_status, simulate_cells_gpu, simulate_map_cells_gpu
 from ._integrity import store_lock
+from ._model_params import ModelMapParameters, model_text
 from ._params import CRITERION, MapParameters, local_cores, parse_spec
 from ._point import (
                      MAX_SEEDS,
@@ -58,7 +60,7 @@ from ._store import MapCellError, cells_done, open_or_create, run_map
 
 __all__ = [
     "resonance_map", "simulate_cell", "cell_step", "growth_of", "measured_peak_gain",
-    "MapParameters",
+    "MapParameters", "ModelMapParameters", "model_text",
     "parse_spec", "run_map", "DEVICES", "resolve_device", "theory_columns", "agreement", "AGREEMENT_MARGIN",
     "open_or_create",
     "simulate_block", "CRITERION", "MapCellError", "local_cores",

@@ -109,9 +109,10 @@ def simulate_block(params: MapParameters, i: int, js: list, simulate: bool = Tru
 def blocks(params: MapParameters, done: np.ndarray) -> list:
     """(i, [j, ...]) blocks of the cells not done, aligned with the store's chunks."""
     out = []
-    for i in range(len(params.delta)):
-        for j0 in range(0, len(params.k), params.block):
-            js = [j for j in range(j0, min(j0 + params.block, len(params.k)))]
+    rows, cols = params.grid_shape
+    for i in range(rows):
+        for j0 in range(0, cols, params.block):
+            js = [j for j in range(j0, min(j0 + params.block, cols))]
             if not np.all(done[i, js]):
                 out.append((i, js))
     return out

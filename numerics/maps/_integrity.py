@@ -159,10 +159,12 @@ def verify(path: Path, names, shape) -> tuple[np.ndarray, dict]:
     return bad, raw
 
 
-def describe_cells(mask: np.ndarray, delta, k, most: int = 4) -> str:
-    """'delta = .., k = ..; ...' for the first ``most`` cells of ``mask`` (and how many more)."""
+def describe_cells(mask: np.ndarray, delta, k, dims=("delta", "k"), most: int = 4) -> str:
+    """'delta = .., k = ..; ...' for the first ``most`` cells of ``mask`` (and how many
+    more); ``dims``: the names of the rows and the columns."""
     ii, jj = np.nonzero(mask)
-    shown = "; ".join(f"delta = {delta[i]:g}, k = {k[j]:g}" for i, j in zip(ii[:most], jj[:most]))
+    shown = "; ".join(f"{dims[0]} = {delta[i]:g}, {dims[1]} = {k[j]:g}"
+                      for i, j in zip(ii[:most], jj[:most]))
     return shown + (f"; and {len(ii) - most} more" if len(ii) > most else "")
 
 

@@ -298,6 +298,63 @@ class MapParameters:
         return out
 
 
+    # --- what the map engine (``_store.run_map``) asks of any map: the paper chain's
+    # answers here, a lattice model's in ``_model_params.ModelMapParameters``
+
+    @property
+    def grid_shape(self) -> tuple:
+        """(rows, columns) of the store: (delta, k)."""
+        return len(self.delta), len(self.k)
+
+    @property
+    def dims(self) -> tuple:
+        return "delta", "k"
+
+    def axis_values(self) -> tuple:
+        """The rows' and the columns' values (cells named in messages)."""
+        return self.delta, self.k
+
+    def store_coords(self) -> dict:
+        """The coordinates a store of this map holds, as this map gives them (a store whose
+        coordinates differ holds another map)."""
+        return {n: getattr(self, n) for n in ("delta", "K_theta", "k", "k_simulated")}
+
+    def theory_names(self) -> frozenset:
+        """The variables recomputed from the parameters alone (where a store lost them)."""
+        from ._columns import THEORY_NAMES
+
+        return frozenset(THEORY_NAMES)
+
+    def flag_columns(self) -> dict:
+        """Each done flag and the variables its tasks write."""
+        from ._columns import PREDICTED, SIMULATED
+
+        return {"done": SIMULATED, "done_predicted": PREDICTED}
+
+    def new_dataset(self):
+        """The store's dataset before any task: the theory columns filled in."""
+        from ._columns import empty_dataset, theory_columns
+
+        return empty_dataset(self, theory_columns(self))
+
+    @property
+    def task(self):
+        """The function a worker runs on a block: ``task(params, i, js, simulate)``."""
+        from ._blocks import simulate_block
+
+        return simulate_block
+
+    def block_cost(self, i: int, js: list, arrays=None) -> tuple:
+        """The block's expected cost, for the longest-first order: a cell the exact theory
+        calls stable runs the whole t_end (an MI cell stops once it passed 20x), and a
+        prediction's Bloch families grow with k (one per 2 pi / N up to k)."""
+        exact = None if arrays is None else arrays.get("verdict_exact")
+        k = np.asarray(self.k_simulated, float)
+        stable = 0 if exact is None or self.theory_only else sum(
+            exact[i, j] != 1 for j in js)
+        return (stable, float(k[list(js)].sum()))
+
+
 def _largest_stable_step(alpha, K_s, K_theta, case) -> float:
     """The largest step any map method may take on this grid (its extreme K_theta): 0.8 of
     the most stable method's limit over the grid's highest frequency

@@ -32,11 +32,8 @@ from common.text import duration
 from ._agreement import agreement
 from ._blocks import blocks, simulate_block
 from ._columns import (
-    PREDICTED,
-    SIMULATED,
     STORE_FORMAT,
     THEORY_NAMES,
-    empty_dataset,
     theory_columns,
     tri_state,
 )
@@ -52,7 +49,7 @@ def _write_new(path: Path, ds, params: MapParameters):
     write (disk full, Ctrl-C) leaves the previous store or none, never half of one."""
     import shutil
 
-    chunks = (1, min(params.block, len(params.k)))  # one chunk per task block
+    chunks = (1, min(params.block, params.grid_shape[1]))  # one chunk per task block
     tmp = path.with_name(f".{path.name}.partial")
     old = path.with_name(f".{path.name}.old")
     for p in (tmp, old):
@@ -80,8 +77,6 @@ def open_or_create(path: Path, params: MapParameters, overwrite: bool = False, l
     return _open(path, params, overwrite, log)[0]
 
 
-#: the coordinates of a store, as MapParameters gives them
-_COORDS = ("delta", "K_theta", "k", "k_simulated")
 
 
 def _attrs_hold(attrs: dict, params: MapParameters) -> bool:
@@ -119,8 +114,8 @@ def _inspect(path: Path, params: MapParameters):
     if not _attrs_hold(attrs, params):
         return "other", finished()
     damaged = []
-    for name in _COORDS:
-        want = np.asarray(getattr(params, name), float)
+    for name, values in params.store_coords().items():
+        want = np.asarray(values, float)
         if name == "K_theta" and not (path / name).exists():  # written before it was stored
             damaged.append("K_theta (absent: written before it was a coordinate)")
             continue
@@ -137,7 +132,7 @@ def _inspect(path: Path, params: MapParameters):
             damaged.append(name)
         elif not np.array_equal(got, want):
             return "other", finished()
-    shape = (len(params.delta), len(params.k))
+    shape = params.grid_shape
     for name in empty_dataset_names(params):
         try:
             arr = group[name]
@@ -156,7 +151,9 @@ def _inspect(path: Path, params: MapParameters):
 
 def empty_dataset_names(params: MapParameters) -> list:
     """The data variables a store of ``params`` holds."""
-    return sorted({*SIMULATED, *PREDICTED, "done", "done_predicted", CHECKSUM, *THEORY_NAMES})
+    flags = params.flag_columns()
+    return sorted({*(n for cols in flags.values() for n in cols), *flags, CHECKSUM,
+                   *params.theory_names()})
 
 
 def _open(path: Path, params: MapParameters, overwrite: bool = False, log=print):
@@ -190,7 +187,7 @@ def _open(path: Path, params: MapParameters, overwrite: bool = False, log=print)
         ds = xr.open_zarr(path, consolidated=False, chunks=None)
         ds, raw = _verified(path, ds, params, log)
         return ds, values(ds, raw)  # raw None: rewritten, read afresh
-    ds = empty_dataset(params, theory_columns(params))
+    ds = params.new_dataset()
     _write_new(path, ds, params)
     ds = xr.open_zarr(path, consolidated=False, chunks=None)
     return ds, values(ds)
@@ -206,16 +203,18 @@ def _verified(path: Path, ds, params: MapParameters, log, rebuild: bool = False)
 
     from ._integrity import CHECKSUM, cell_checksums, describe_cells, read_raw
 
-    shape = (len(params.delta), len(params.k))
+    shape = params.grid_shape
+    rows, cols = params.axis_values()
+    theory_set = params.theory_names()
     names = [n for n in empty_dataset_names(params) if n != CHECKSUM]
     fresh = None
     raw, unreadable = {}, np.zeros(shape, bool)
     recomputed, theory_lost = [], np.zeros(shape, bool)
     for name in names + [CHECKSUM]:
         got, bad_cells = read_raw(path, [name], shape)
-        if name in THEORY_SET and (name not in got or bad_cells.any()):
+        if name in theory_set and (name not in got or bad_cells.any()):
             if fresh is None:
-                fresh = empty_dataset(params, theory_columns(params))
+                fresh = params.new_dataset()
             value = np.asarray(got.get(name, fresh[name].values))
             got = {name: np.where(bad_cells, fresh[name].values, value).astype(
                 fresh[name].dtype)}
@@ -226,7 +225,7 @@ def _verified(path: Path, ds, params: MapParameters, log, rebuild: bool = False)
         unreadable |= bad_cells
     if recomputed:
         log(f"{path}: damaged: {', '.join(recomputed)} at {int(theory_lost.sum())} of "
-            f"{theory_lost.size} cells ({describe_cells(theory_lost, params.delta, params.k)})"
+            f"{theory_lost.size} cells ({describe_cells(theory_lost, rows, cols, params.dims)})"
             ": recomputed from the map's parameters; the cells' simulations are kept where "
             "their checksums hold")
     if CHECKSUM in raw and all(n in raw for n in names):
@@ -238,11 +237,11 @@ def _verified(path: Path, ds, params: MapParameters, log, rebuild: bool = False)
         return ds, raw
     if bad.any():
         log(f"{path}: {int(bad.sum())} of {bad.size} cells fail their checksum or cannot be "
-            f"read ({describe_cells(bad, params.delta, params.k)}): their theories are "
+            f"read ({describe_cells(bad, rows, cols, params.dims)}): their theories are "
             "recomputed and their simulations run again")
     if fresh is None:
-        fresh = empty_dataset(params, theory_columns(params))
-    for flag, columns in (("done", SIMULATED), ("done_predicted", PREDICTED)):
+        fresh = params.new_dataset()
+    for flag, columns in params.flag_columns().items():
         done = np.asarray(raw.get(flag, np.zeros(shape, bool)), bool) & ~bad
         for name in columns + (flag,):
             if name in raw:
@@ -390,16 +389,7 @@ def _longest_first(params, todo, arrays=None) -> list:
     """The blocks in decreasing expected cost: a cell the exact theory calls stable runs the
     whole t_end (an MI cell stops once it passed 20x), and a prediction's Bloch families
     grow with k (one per 2 pi / N up to k). Ties keep the grid's order."""
-    exact = None if arrays is None else arrays.get("verdict_exact")
-    k = np.asarray(params.k_simulated, float)
-
-    def cost(block):
-        i, js = block
-        stable = 0 if exact is None or params.theory_only else sum(
-            exact[i, j] != 1 for j in js)
-        return (stable, float(k[list(js)].sum()))
-
-    return sorted(todo, key=cost, reverse=True)
+    return sorted(todo, key=lambda block: params.block_cost(*block, arrays), reverse=True)
 
 
 class MapCellError(ValueError):
@@ -425,7 +415,7 @@ def _run_tasks(params, path, todo, n_todo, scheduler, workers, progress, log, ar
     def kept() -> str:
         n = int(arrays["done_predicted" if params.theory_only else "done"].sum()) \
             if arrays is not None else None
-        total = len(params.delta) * len(params.k)
+        total = int(np.prod(params.grid_shape))
         return (f"{n} of {total} cells are done and kept in {path}" if n
                 else f"no cell is done yet ({path} holds the theories)")
 
@@ -433,7 +423,7 @@ def _run_tasks(params, path, todo, n_todo, scheduler, workers, progress, log, ar
         # longest first (fewer idle workers at the end of a map): dask runs the highest
         # priority first
         order = _longest_first(params, todo, arrays)
-        futures = [client.submit(simulate_block, params, i, js, not params.theory_only,
+        futures = [client.submit(params.task, params, i, js, not params.theory_only,
                                  retries=2, pure=False, priority=len(todo) - rank)
                    for rank, (i, js) in enumerate(order)]
         cells = dict(zip(futures, order))
@@ -463,9 +453,11 @@ def _run_tasks(params, path, todo, n_todo, scheduler, workers, progress, log, ar
                     i, js = cells[fut]
                     for f in futures:
                         f.cancel()
+                    rows, cols = params.axis_values()
+                    ydim, xdim = params.dims
                     raise MapCellError(
-                        f"cells delta = {params.delta[i]:g}, k = "
-                        f"{', '.join(f'{params.k[j]:g}' for j in js)}: "
+                        f"cells {ydim} = {rows[i]:g}, {xdim} = "
+                        f"{', '.join(f'{cols[j]:g}' for j in js)}: "
                         f"{type(exc).__name__}: "
                         f"{str(exc).splitlines()[0] if str(exc) else ''}; {kept()}") from None
                 _write_block(path, params, result, arrays, writer)

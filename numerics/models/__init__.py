@@ -14,6 +14,7 @@ classify_mode, ring_misses              what an exact mode is; bands a ring does
 simulate_model -> ModelRun              a ring of the model; .growth() -> Growth
 lattice_force, lattice_energy           the compiled force and the model's energy
 model_map                               MI map over two parameters, or a parameter and k
+map_cells                               the columns of a block of map cells (a run_map task)
 """
 
 from ._exact import (
@@ -26,7 +27,7 @@ from ._exact import (
 )
 from ._fourwave import FourWave, classify_mode, four_wave, pair_rates, ring_misses
 from ._linear import Carrier, branch_index, branches, carrier, check_rest_stable
-from ._map import model_map, simulated_cell
+from ._map import map_cells, model_map, simulated_cell
 from ._nls import ModelNLS, ModelSoliton, acoustic_directions, nls
 from ._simulate import (
                      Growth,
@@ -44,7 +45,7 @@ from ._simulate import (
 from ._summary import model_coefficients
 
 __all__ = ["Carrier", "carrier", "branches", "branch_index", "check_rest_stable", "ModelNLS",
-           "ModelSoliton", "nls", "acoustic_directions", "model_map", "simulated_cell",
+           "ModelSoliton", "nls", "acoustic_directions", "model_map", "map_cells", "simulated_cell",
            "model_coefficients", "TravellingWave", "HillSpectrum", "travelling_wave",
            "hill_spectrum", "exact_gain", "FourWave", "four_wave", "pair_rates",
            "classify_mode", "ring_misses", "ring_offsets", "simulate_model", "simulate_seeds",

@@ -179,3 +179,86 @@ def simulated_cell(model: Model, k: float, amplitude: float, branch=None, *, N: 
     return {"verdict_exact": spec.verdict, "peak_gain_exact": spec.peak_gain,
             "verdict_simulated": sim.verdict.word,
             "peak_gain_simulated": sim.rate if sim.verdict.word == "MI" else None}
+
+
+def _map_cell(model: Model, k: float, amplitude: float, branch=None, *, exact: bool = False,
+              simulate: bool = False, N: int = 256, seeds: int = 1,
+              t_end: float | None = None) -> dict:
+    from common.threads import one_blas_thread
+
+    return one_blas_thread(_cell_columns)(model, k, amplitude, branch, exact=exact,
+                                          simulate=simulate, N=N, seeds=seeds, t_end=t_end)
+
+
+def _cell_columns(model, k, amplitude, branch, *, exact, simulate, N, seeds, t_end):
+    from ._exact import exact_gain
+    from ._simulate import simulate_seeds, snap_ring
+
+    row = {"verdict_semidiscrete": "undefined", "peak_gain_semidiscrete": math.nan,
+           "g1": math.nan, "g2": math.nan, "reason": ""}
+    try:
+        r = nls(model, k, branch)
+        row.update(verdict_semidiscrete=r.verdict, peak_gain_semidiscrete=r.peak_gain(amplitude),
+                   g1=r.g1, g2=r.g2, reason=r.undefined or "")
+    except ModelError as exc:  # e.g. no carrier on this branch at these values
+        row["reason"] = str(exc)
+    if not (exact or simulate):
+        row["k_simulated"] = float(k)
+        return row
+    row["k_simulated"] = snap_ring(k, N)[0]
+    row.update(verdict_exact="undefined", peak_gain_exact=math.nan)
+    if simulate:
+        row.update(verdict_simulated="undefined", peak_gain_simulated=math.nan,
+                   growth=math.nan, growth_q=math.nan, t_simulated=math.nan)
+    try:
+        spec = exact_gain(model, k, amplitude, branch, N=N)
+    except ModelError:  # no travelling wave here: nothing to launch or measure from
+        return row
+    row.update(verdict_exact=spec.verdict, peak_gain_exact=spec.peak_gain)
+    if simulate:
+        sim = simulate_seeds(model, k, amplitude, spec, branch=branch, N=N, seeds=seeds,
+                             t_end=t_end)
+        growth = [run.growth() for run in sim.runs]
+        top = max(growth, key=lambda g: g.factor if math.isfinite(g.factor) else -1.0)
+        row.update(verdict_simulated=sim.verdict.word,
+                   peak_gain_simulated=sim.rate if sim.verdict.word == "MI" else math.nan,
+                   growth=float(np.median([g.factor for g in growth])),
+                   growth_q=float(top.wavenumber), t_simulated=float(sim.t_end))
+    return row
+
+
+def map_cells(model: Model, cells, amplitude: float, branch=None, *, exact: bool = False,
+              simulate: bool = False, N: int = 256, seeds: int = 1,
+              t_end: float | None = None) -> list:
+    """The columns of a block of map cells (what one task of ``numerics.maps.run_map``
+    computes), on one BLAS thread.
+
+    Parameters
+    ----------
+    model : energy.Model
+    cells : sequence of (dict, float)
+        Each cell's parameter values (the map's axes among the model's parameters) and its
+        carrier k.
+    amplitude : float
+    branch : int or str, optional
+    exact : bool
+        The exact lattice theory on the ring of ``N`` sites (``exact_gain``).
+    simulate : bool
+        Also ``seeds`` runs of the ring from the exact wave (``simulate_seeds``; T is
+        ``run_length`` of the exact rate unless ``t_end``); implies ``exact``.
+
+    Returns
+    -------
+    list of dict
+        Per cell: ``verdict_semidiscrete`` ("MI", "stable", "undefined"),
+        ``peak_gain_semidiscrete``, ``g1``, ``g2``, ``reason`` (why undefined),
+        ``k_simulated`` (k snapped to the ring where the ring is used); with ``exact`` or
+        ``simulate`` ``verdict_exact``, ``peak_gain_exact``; with ``simulate``
+        ``verdict_simulated`` (MI, "no growth within T", "undetermined", "undefined"),
+        ``peak_gain_simulated`` (the seeds' median rate where MI), ``growth`` (median
+        growth factor), ``growth_q`` (wavenumber of the fastest mode of the seed that grew
+        most) and ``t_simulated``.
+    """
+    return [_map_cell(model.with_params(**values), k, amplitude, branch, exact=exact,
+                      simulate=simulate, N=N, seeds=seeds, t_end=t_end)
+            for values, k in cells]

@@ -1,0 +1,274 @@
+"""A map of any lattice model (``flexmm map --model``) for the one map engine.
+
+``ModelMapParameters`` answers what ``_store.run_map`` asks of a map (its grid, coordinates,
+variables, attributes and the task a worker runs on a block of cells), as ``MapParameters``
+does for the paper chain: the same store (``OUT/map.zarr``: int8 tri-state verdicts,
+checksums, lock, resume, repair, consolidated metadata), the same Dask tasks.
+
+Dims are the map's two axes, named by the parameter's own name, or ``k`` (rows first: the
+parameter, then k when k is an axis). A task (:func:`model_block`) computes its cells with
+``numerics.models.map_cells``: the semi-discrete NLS per cell, the exact lattice theory on
+the ring of N sites (``exact``, or a simulated map), and the seeded runs from the exact wave.
+The model travels to the workers as its file text and is loaded there once per process.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from dataclasses import asdict, dataclass
+
+import numpy as np
+
+from ..lattice import GROWTH_THRESHOLD
+from ._columns import MI, STABLE, STORE_FORMAT, UNDETERMINED, VERDICT_ATTRS
+from ._params import DEFAULT_BLOCK
+
+#: a model's verdict words (``numerics.models``) -> the store's int8 codes
+VERDICT_CODES = {"MI": MI, "stable": STABLE, "no growth within T": STABLE,
+                 "undetermined": UNDETERMINED, "undefined": UNDETERMINED}
+#: the mapping, stored with each verdict variable
+MODEL_VERDICT_ATTRS = {**VERDICT_ATTRS, "verdict_words": (
+    "MI -> 1 (MI); stable, 'no growth within T' -> 0 (stable); undefined (no carrier or no "
+    "travelling wave at the cell), undetermined (a run grew, but less than the threshold) "
+    "-> -1 (undetermined)")}
+#: rough seconds per cell on one core (the resume message's estimate): the NLS, the exact
+#: theory on a ring of 256 sites, and one run of T = 1000 on 256 sites
+CELL_SECONDS = {"nls": 0.05, "exact": 0.3, "run": 1.0}
+
+
+@functools.cache
+def _load(model: str, text: str, parameters: tuple):
+    """The model (loaded once per process): a built-in by name when ``text`` is its file,
+    else parsed from ``text``."""
+    from energy import BUILTIN, load_model, parse_model
+
+    if model in BUILTIN and model_text(model) == text:
+        return load_model(model, **dict(parameters))
+    return load_model(parse_model(text, model), **dict(parameters))
+
+
+def model_text(model: str) -> str:
+    """The text of a model's file: a built-in name's, or the file ``model``."""
+    from pathlib import Path
+
+    import energy
+
+    # the built-in models' files ship in the energy package (energy/models/NAME.toml)
+    path = (Path(energy.__file__).parent / "models" / f"{model}.toml"
+            if model in energy.BUILTIN else Path(model))
+    return path.read_text(encoding="utf-8")
+
+
+@dataclass(frozen=True)
+class ModelMapParameters:
+    """Everything that defines a model's map (stored in the store's attributes).
+
+    ``model`` is a built-in name or a model file's path; ``text`` its file's text (what the
+    workers load); ``parameters`` every parameter's value, as (name, value) pairs (an axis'
+    entry is its default, unused). ``rows`` and ``cols`` are (name, values): the axes, a
+    parameter or ``"k"``; ``k`` the carrier when neither axis is k. ``t_end`` None: each
+    cell's runs last ``run_length`` of its exact rate.
+    """
+
+    model: str
+    text: str
+    parameters: tuple
+    rows: tuple
+    cols: tuple
+    amplitude: float
+    k: float | None = None
+    branch: str | None = None
+    exact: bool = False
+    theory_only: bool = False
+    N: int = 256
+    seeds: int = 1
+    t_end: float | None = None
+    block: int = DEFAULT_BLOCK
+
+    def __post_init__(self):
+        for name in ("rows", "cols"):
+            axis, values = getattr(self, name)
+            object.__setattr__(self, name, (str(axis), tuple(float(v) for v in values)))
+        if self.rows[0] == self.cols[0]:
+            raise ValueError(f"the two map axes must differ, got {self.rows[0]!r} twice")
+        if "k" not in (self.rows[0], self.cols[0]) and self.k is None:
+            raise ValueError("give k (the carrier) when neither map axis is 'k'")
+        object.__setattr__(self, "parameters", tuple((str(n), float(v))
+                                                     for n, v in self.parameters))
+
+    # --- the model and its cells
+    @property
+    def lattice_model(self):
+        """The model at ``parameters`` (loaded once per process)."""
+        return _load(self.model, self.text, self.parameters)
+
+    @property
+    def ring(self) -> bool:
+        """Whether the cells use the ring of N sites (the exact theory, the runs)."""
+        return self.exact or not self.theory_only
+
+    def cell(self, i: int, j: int) -> tuple[dict, float]:
+        """(the parameter values of the axes, k) at cell (i, j)."""
+        at = {self.rows[0]: self.rows[1][i], self.cols[0]: self.cols[1][j]}
+        k = at.pop("k", self.k)
+        return at, float(k)
+
+    def undefined_reason(self) -> str:
+        """Why the first cell has no verdict (the semi-discrete NLS's reason)."""
+        from energy import ModelError
+        from numerics.models import nls
+
+        values, k = self.cell(0, 0)
+        try:
+            r = nls(self.lattice_model.with_params(**values), k, self.branch_value)
+        except ModelError as exc:
+            return str(exc)
+        return r.undefined or "no theory has a verdict"
+
+    @property
+    def branch_value(self):
+        """The branch as the model functions take it (an index or a field name)."""
+        if self.branch is None:
+            return None
+        return int(self.branch) if self.branch.lstrip("-").isdigit() else self.branch
+
+    # --- what the map engine asks
+    @property
+    def grid_shape(self) -> tuple:
+        return len(self.rows[1]), len(self.cols[1])
+
+    @property
+    def dims(self) -> tuple:
+        return self.rows[0], self.cols[0]
+
+    def axis_values(self) -> tuple:
+        return self.rows[1], self.cols[1]
+
+    def store_coords(self) -> dict:
+        return {self.rows[0]: self.rows[1], self.cols[0]: self.cols[1]}
+
+    def theory_names(self) -> frozenset:
+        """None: every column is a task's (the NLS per cell as well)."""
+        return frozenset()
+
+    def theory_columns(self) -> tuple:
+        """The theories of this map's cells, as variable names' suffixes."""
+        return ("semidiscrete", "exact") if self.ring else ("semidiscrete",)
+
+    def flag_columns(self) -> dict:
+        theory = ["g1", "g2", "k_simulated"] + [f"{kind}_{name}" for name in
+                                                self.theory_columns()
+                                                for kind in ("verdict", "peak_gain")]
+        return {"done": SIMULATED_COLUMNS, "done_predicted": tuple(sorted(theory))}
+
+    @property
+    def task(self):
+        return model_block
+
+    def block_cost(self, i: int, js: list, arrays=None) -> tuple:
+        """Longest first: a cell the exact theory calls stable runs its whole T."""
+        exact = None if arrays is None else arrays.get("verdict_exact")
+        stable = 0 if exact is None or self.theory_only else sum(
+            exact[i, j] != MI for j in js)
+        return (stable, len(js))
+
+    def estimated_seconds(self, workers: int = 1) -> float:
+        """Rough run time (CELL_SECONDS per cell, the runs scaled by N and T)."""
+        cells = int(np.prod(self.grid_shape))
+        per = CELL_SECONDS["nls"] + (CELL_SECONDS["exact"] * self.N / 256 if self.ring else 0)
+        if not self.theory_only:
+            per += (self.seeds * CELL_SECONDS["run"] * self.N / 256
+                    * (self.t_end or 1000.0) / 1000.0)
+        return cells * per / max(workers, 1)
+
+    def attrs(self) -> dict:
+        """The store's attributes: the model (name, file text, content hash), every
+        parameter, the amplitude, N, T, seeds, the method and step of the runs."""
+        out = {n: v for n, v in asdict(self).items()
+               if n not in ("rows", "cols", "parameters", "text", "k", "branch", "t_end")}
+        out.update(model_file=self.text, model_hash=self.lattice_model.lattice.content_hash,
+                   axes=[self.rows[0], self.cols[0]], branch="" if self.branch is None
+                   else str(self.branch), k="" if self.k is None else float(self.k),
+                   t_end=("run_length of each cell's exact rate" if self.t_end is None
+                          else float(self.t_end)),
+                   method="srkn11b (numerics.models.simulate_model)",
+                   step="per cell: 0.2 of the method's stability limit over the lattice's "
+                        "highest frequency, rounded so that the steps fill T",
+                   growth_threshold=GROWTH_THRESHOLD, map_of="model")
+        out.update({f"param_{n}": v for n, v in self.parameters
+                    if n not in (self.rows[0], self.cols[0])})
+        return out
+
+    def new_dataset(self):
+        """The store before any task: every variable at its fill value, ``done`` False."""
+        import xarray as xr
+
+        from ._integrity import CHECKSUM, CHECKSUM_ATTRS, cell_checksums
+
+        shape = self.grid_shape
+        dims = self.dims
+        data = {}
+        flags = self.flag_columns()
+        for name in (*flags["done_predicted"], *SIMULATED_COLUMNS):
+            if name.startswith("verdict_"):
+                theory = name.removeprefix("verdict_")
+                long = (f"simulated: most seeds grew more than {GROWTH_THRESHOLD:g}x"
+                        if theory == "simulated" else f"{theory} theory's verdict")
+                data[name] = (dims, np.full(shape, UNDETERMINED, np.int8),
+                              {"long_name": long, **MODEL_VERDICT_ATTRS})
+            else:
+                data[name] = (dims, np.full(shape, np.nan), dict(VARIABLE_ATTRS.get(name, {})))
+        data["done"] = (dims, np.zeros(shape, bool), {"long_name": "cell simulated"})
+        data["done_predicted"] = (dims, np.zeros(shape, bool),
+                                  {"long_name": "cell's theories computed"})
+        data[CHECKSUM] = (dims, cell_checksums({n: v[1] for n, v in data.items()}),
+                          CHECKSUM_ATTRS)
+        coords = {n: (n, np.asarray(v), {"units": "rad per site"} if n == "k" else {})
+                  for n, v in self.store_coords().items()}
+        return xr.Dataset(data, coords=coords, attrs={**self.attrs(),
+                                                       "store_format": STORE_FORMAT})
+
+
+#: the variables a simulated block writes (with ``done``)
+SIMULATED_COLUMNS = ("verdict_simulated", "peak_gain_simulated", "growth", "growth_q",
+                     "t_simulated")
+_GAIN = {"units": "1/T (lattice time)"}
+VARIABLE_ATTRS = {
+    "peak_gain_semidiscrete": {"long_name": "semi-discrete NLS peak growth rate", **_GAIN},
+    "peak_gain_exact": {"long_name": "exact lattice theory's peak growth rate on the ring",
+                        **_GAIN},
+    "peak_gain_simulated": {"long_name": "the seeds' median measured rate where MI", **_GAIN},
+    "g1": {"long_name": "d^2 omega/dk^2"},
+    "g2": {"long_name": "NLS nonlinear coefficient (mean flow included)"},
+    "k_simulated": {"long_name": "k snapped to 2 pi m / N where the ring is used",
+                    "units": "rad per site"},
+    "growth": {"long_name": "the seeds' median growth factor of the sidebands", "units": "1"},
+    "growth_q": {"long_name": "wavenumber of the fastest mode (seed that grew most)",
+                 "units": "rad per site"},
+    "t_simulated": {"long_name": "the runs' length T", "units": "T (lattice time)"},
+}
+
+
+def model_block(params: ModelMapParameters, i: int, js: list, simulate: bool = True) -> dict:
+    """The cells (i, j), j in ``js``, of a model's map (runs on a worker): their theories
+    and, unless ``simulate`` is False, their runs, as the store's rows."""
+    from numerics.models import map_cells
+
+    from ._blocks import keep_freed_memory
+
+    keep_freed_memory()
+    rows = map_cells(params.lattice_model, [params.cell(i, j) for j in js], params.amplitude,
+                     params.branch_value, exact=params.ring, simulate=simulate, N=params.N,
+                     seeds=params.seeds, t_end=params.t_end)
+    keep = set(params.flag_columns()["done_predicted"]) | (
+        set(SIMULATED_COLUMNS) if simulate else set())
+    out = []
+    for row in rows:
+        out.append({n: (np.int8(VERDICT_CODES[v]) if n.startswith("verdict_") else
+                        float(v) if v is not None else math.nan)
+                    for n, v in row.items() if n in keep})
+    return {"i": i, "js": list(js), "rows": out, "simulated": simulate}
+
+
+__all__ = ["ModelMapParameters", "model_block", "model_text", "VERDICT_CODES"]
