@@ -22,7 +22,12 @@ scheduling overhead, the 64 x 64 map's wall time, and the cells' accuracy.
 Writes the "maps" section of results.json (results_quick.json with --quick; in out/bench/,
 or bench/ with --update). Reports the load average: the machine is shared.
 
+- Issue 40's table: the same 3 x 3 map of case II (N 128, amplitude 0.1, T 2000, exact
+  wave start, one worker) as `flexmm map` with the paper flags and with `--model flexmm`:
+  wall and CPU time of each command (its worker processes included), and their ratio.
+
     python -m bench.maps [--quick] [--update | --out DIR]
+    python -m bench.maps --model-row     (issue 40's table alone, printed)
 """
 
 from __future__ import annotations
@@ -186,6 +191,54 @@ def map_64_run_map(N, T):
             "predicted_undetermined_cells": agree.get("predicted_undetermined_cells")}
 
 
+#: issue 40's table: the same 3 x 3 map of the paper's case II (N 128, amplitude 0.1,
+#: T 2000, exact wave start) through the paper flags and as the built-in model flexmm,
+#: both on one worker of the one map engine
+MODEL_ROW = {
+    "paper flags": ["--alpha", "2.5", "--K-s", "0.01851", "--case", "coupled", "--K-theta",
+                    "0.012,0.016,0.020", "--k", "0.6,0.9,1.2", "--start", "travelling"],
+    "--model flexmm": ["--model", "flexmm", "--param", "K_theta=0.012,0.016,0.020", "--k",
+                       "0.6,0.9,1.2", "--seeds", "1"],
+}
+
+
+def model_vs_paper_map(workers: int = 1) -> dict:
+    """Wall and CPU time (the command and its worker processes) of issue 40's two map
+    commands, each a fresh `flexmm map` process into a fresh folder; the ratio model /
+    paper flags (the issue asks for at most 1.2)."""
+    import resource
+    import subprocess
+    import sys
+
+    common = ["--N", "128", "--amplitude", "0.1", "--t-end", "2000", "--workers",
+              str(workers)]
+    out = {}
+    for name, argv in MODEL_ROW.items():
+        with tempfile.TemporaryDirectory() as tmp:
+            before = resource.getrusage(resource.RUSAGE_CHILDREN)
+            t0 = time.perf_counter()
+            proc = subprocess.run([sys.executable, "-m", "cli", "map", *argv, *common,
+                                   "--out", str(Path(tmp) / "map")], capture_output=True,
+                                  text=True, env={**os.environ, "OMP_NUM_THREADS": "1"})
+            wall = time.perf_counter() - t0
+            after = resource.getrusage(resource.RUSAGE_CHILDREN)
+        if proc.returncode:
+            raise RuntimeError(f"{name}: exit {proc.returncode}: {proc.stderr[-500:]}")
+        cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+        out[name] = {"wall_s": wall, "cpu_s": cpu, "argv": argv + common}
+    out["model_over_paper_wall"] = out["--model flexmm"]["wall_s"] / out["paper flags"]["wall_s"]
+    out["model_over_paper_cpu"] = out["--model flexmm"]["cpu_s"] / out["paper flags"]["cpu_s"]
+    return out
+
+
+def print_model_row(res: dict):
+    for name in MODEL_ROW:
+        print(f"3 x 3 map, {name}: {res[name]['wall_s']:.1f} s wall, "
+              f"{res[name]['cpu_s']:.1f} s CPU")
+    print(f"--model flexmm / paper flags: {res['model_over_paper_wall']:.2f}x wall, "
+          f"{res['model_over_paper_cpu']:.2f}x CPU (issue 40 asks <= 1.2x)")
+
+
 def main(quick=False, out=None):
     from bench.calibrate_growth import check_grid
 
@@ -222,8 +275,10 @@ def main(quick=False, out=None):
         res["map_64x64"] = map_64(N, T)
         res["map_64x64_run_map"] = map_64_run_map(N, T)
         res["cell_accuracy"] = check_grid()
+    res["model_vs_paper_map"] = model_vs_paper_map()
     res["load_average_before_after"] = [load_before, os.getloadavg()]
     write_section("maps", res, quick, out)
+    print_model_row(res["model_vs_paper_map"])
     print(f"per cell (N = {N}, T = {T:g}, {res['method']} dt = {res['dt']:.3g}): simulated "
           f"in {serial:.3f} s serially = {1 / serial:.1f} cells/s/core (RK4 at dt = 0.05 "
           f"{serial_rk4:.3f} s: {serial_rk4 / serial:.1f}x); its prediction {predict:.3f} s; "
@@ -256,4 +311,12 @@ def main(quick=False, out=None):
 
 
 if __name__ == "__main__":
-    main(*arguments(__doc__))
+    import sys
+
+    if "--model-row" in sys.argv:  # issue 40's table alone (printed, not written)
+        load = os.getloadavg()[0]
+        print_model_row(model_vs_paper_map())
+        print(f"load average before/after: {load:.1f} / {os.getloadavg()[0]:.1f} on "
+              f"{os.cpu_count()} cores")
+    else:
+        main(*arguments(__doc__))

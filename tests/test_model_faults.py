@@ -7,6 +7,7 @@ is what is tested.
 
 import ast
 import time
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -467,6 +468,32 @@ def test_the_store_checks_each_cell_and_resumes(tmp_path, capsys):
     # the same numbers as the first map computed (the runs are seeded)
     for name in first.data_vars:
         np.testing.assert_array_equal(now[name].values, first[name].values, err_msg=name)
+
+
+def test_a_store_of_another_model_or_a_changed_energy_is_refused(tmp_path, capsys):
+    from cli.app import main
+    from energy import BUILTIN
+
+    assert "fput" in BUILTIN
+    text = (Path(__file__).resolve().parents[1] / "energy" / "models" / "fput.toml").read_text()
+    assert "beta*(u_next" in text
+    model = tmp_path / "chain.toml"
+    model.write_text(text)
+    out = tmp_path / "m"
+    argv = ["map", "--model", str(model), "--param", "beta=0.9,1.7", "--k", "2.6,2.8",
+            "--amplitude", "0.1", "--theory-only", "--workers", "1", "--out", str(out)]
+    assert main(argv) == 0
+    model.write_text(text.replace("beta*(u_next", "1.01*beta*(u_next", 1))  # the energy
+    capsys.readouterr()
+    assert main(argv) == 2
+    err = capsys.readouterr().err.strip()
+    assert "whose energy differs" in err and "--overwrite" in err and "\n" not in err
+    assert main([*argv, "--overwrite"]) == 0
+    capsys.readouterr()
+    other = [a if a != str(model) else "klein-gordon" for a in argv]
+    other[other.index("beta=0.9,1.7")] = "C=0.5,1"
+    assert main(other) == 2
+    assert "a map of model 'fput', not 'klein-gordon'" in capsys.readouterr().err
 
 
 def test_two_writers_of_one_model_map_are_refused(tmp_path, capsys):

@@ -393,4 +393,4 @@ def test_a_simulated_model_map_is_stored_and_resumes(tmp_path, capsys):
     assert again["growth"].values[1, 1] == ds["growth"].values[1, 1]  # seeded: the same
     other = [a if a != "beta=0.8,1.6" else "beta=0.8,1.7" for a in argv]
     assert main(other) == 2
-    assert "holds a map with other parameters" in capsys.readouterr().err
+    assert "holds a map of model 'fput' with other parameters" in capsys.readouterr().err

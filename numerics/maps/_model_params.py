@@ -187,8 +187,9 @@ class ModelMapParameters:
         parameter, the amplitude, N, T, seeds, the method and step of the runs."""
         out = {n: v for n, v in asdict(self).items()
                if n not in ("rows", "cols", "parameters", "text", "k", "branch", "t_end")}
-        out.update(model_file=self.text, model_hash=self.lattice_model.lattice.content_hash,
-                   axes=[self.rows[0], self.cols[0]], branch="" if self.branch is None
+        out.update(model=self.lattice_model.name, model_ref=self.model, model_file=self.text,
+                   model_hash=self.lattice_model.lattice.content_hash,
+                   axes=f"{self.rows[0]} {self.cols[0]}", branch="" if self.branch is None
                    else str(self.branch), k="" if self.k is None else float(self.k),
                    t_end=("run_length of each cell's exact rate" if self.t_end is None
                           else float(self.t_end)),
@@ -198,7 +199,24 @@ class ModelMapParameters:
                    growth_threshold=GROWTH_THRESHOLD, map_of="model")
         out.update({f"param_{n}": v for n, v in self.parameters
                     if n not in (self.rows[0], self.cols[0])})
+        # netCDF-safe (a user's to_netcdf of the opened store): no bools, no lists of text
+        out.update(exact=int(self.exact), theory_only=int(self.theory_only))
         return out
+
+    def other_map(self, attrs: dict) -> str:
+        """What a store of another map holds: another model's, this model's before its
+        energy changed, or this model's with other parameters."""
+        if attrs.get("map_of") != "model" or attrs.get("model") is None:
+            return "a map of the paper flags (or of an older format)"
+        name = self.lattice_model.name
+        if attrs.get("model") != name:
+            return f"a map of model {attrs['model']!r}, not {name!r}"
+        mine = self.lattice_model.lattice.content_hash
+        if attrs.get("model_hash") != mine:
+            return (f"a map of model {name!r} whose energy differs from this one's "
+                    f"(content hash {str(attrs.get('model_hash'))[:12]} against "
+                    f"{mine[:12]}: the model file changed)")
+        return f"a map of model {name!r} with other parameters"
 
     def new_dataset(self):
         """The store before any task: every variable at its fill value, ``done`` False."""

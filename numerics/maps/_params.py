@@ -331,6 +331,10 @@ class MapParameters:
 
         return {"done": SIMULATED, "done_predicted": PREDICTED}
 
+    def other_map(self, attrs: dict) -> str:
+        """What a store of another map holds, in words (its attributes ``attrs``)."""
+        return "a map with other parameters (or of an older format)"
+
     def new_dataset(self):
         """The store's dataset before any task: the theory columns filled in."""
         from ._columns import empty_dataset, theory_columns

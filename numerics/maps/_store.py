@@ -149,6 +149,16 @@ def _inspect(path: Path, params: MapParameters):
     return "this", damaged
 
 
+def _stored_attrs(path: Path) -> dict:
+    """The store's attributes, or {} where they cannot be read."""
+    import zarr
+
+    try:
+        return dict(zarr.open_group(str(path), mode="r", use_consolidated=False).attrs)
+    except Exception:  # unreadable: the caller names the map without them
+        return {}
+
+
 def empty_dataset_names(params: MapParameters) -> list:
     """The data variables a store of ``params`` holds."""
     flags = params.flag_columns()
@@ -173,8 +183,8 @@ def _open(path: Path, params: MapParameters, overwrite: bool = False, log=print)
                          "nothing in it can be trusted; replace it with --overwrite, or "
                          "choose another --out")
     if what == "other" and detail != 0 and not overwrite:
-        raise ValueError(f"{path} holds a map with other parameters (or of an older "
-                         "format); replace it with --overwrite, or choose another --out")
+        raise ValueError(f"{path} holds {params.other_map(_stored_attrs(path))}; replace it "
+                         "with --overwrite, or choose another --out")
     if what == "other" and detail == 0:  # no finished cell: nothing is lost by replacing it
         log(f"note: {path} held another map with no finished cell (every cell failed, "
             "or none ran): replaced")
