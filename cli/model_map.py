@@ -97,7 +97,10 @@ def run_map(args) -> int:
     n_workers = args.workers or (1 if args.scheduler else None)
     from numerics.maps import local_cores
 
-    log(f"map of {model.name}: {y[0]} x {x[0]} = {len(y[1])} x {len(x[1])} cells"
+    fixed = ", ".join(f"{p} = {v:g}" for p, v in model.params.items()
+                      if p not in (x[0], y[0]))
+    log(f"map of {model.name}" + (f" ({fixed})" if fixed else "")
+        + f": {y[0]} x {x[0]} = {len(y[1])} x {len(x[1])} cells"
         + (f", k = {k_fixed:g}" if k_fixed is not None else "")
         + f", amplitude {amp:g}; {'theories ' + ', '.join(params.theory_columns())}"
         + (f" and {seeds} run(s) per cell (N = {args.N}, T = "

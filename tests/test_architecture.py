@@ -306,3 +306,28 @@ def test_each_theory_has_one_spelling_per_layer_from_its_record():
     # point.json: the theories by their labels
     point = measure_point(BLUE, "coupled", 0.81681, start="travelling", N=64).as_dict()
     assert list(point["theories"]) == list(THEORIES)
+
+
+def test_one_map_engine():
+    """Every `flexmm map`, the paper flags' and any model's, runs through
+    ``numerics.maps.run_map`` into OUT/map.zarr: no command keeps cells of its own (a loop
+    over cells, a journal, a second file format)."""
+    for name in ("map.py", "model_map.py"):
+        tree = ast.parse((ROOT / "cli" / name).read_text())
+        imported = {(node.module, a.name) for node in ast.walk(tree)
+                    if isinstance(node, ast.ImportFrom) for a in node.names}
+        assert ("numerics.maps", "run_map") in imported, name
+        called = {n.func.id if isinstance(n.func, ast.Name) else getattr(n.func, "attr", None)
+                  for n in ast.walk(tree) if isinstance(n, ast.Call)}
+        assert not called & {"model_map", "map_cells", "simulated_cell", "to_netcdf"}, name
+        strings = {n.value for n in ast.walk(tree) if isinstance(n, ast.Constant)
+                   and isinstance(n.value, str)}
+        assert not any(".jsonl" in s or s.endswith(".nc") for s in strings), name
+    # a model's map answers what the engine asks, as the paper chain's does
+    from numerics.maps import MapParameters, ModelMapParameters
+
+    asked = ("grid_shape", "dims", "axis_values", "store_coords", "theory_names",
+             "flag_columns", "new_dataset", "task", "block_cost", "estimated_seconds",
+             "attrs", "other_map")
+    for cls in (MapParameters, ModelMapParameters):
+        assert all(hasattr(cls, a) for a in asked), cls

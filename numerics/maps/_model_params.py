@@ -33,8 +33,11 @@ MODEL_VERDICT_ATTRS = {**VERDICT_ATTRS, "verdict_words": (
     "travelling wave at the cell), undetermined (a run grew, but less than the threshold) "
     "-> -1 (undetermined)")}
 #: rough seconds per cell on one core (the resume message's estimate): the NLS, the exact
-#: theory on a ring of 256 sites, and one run of T = 1000 on 256 sites
-CELL_SECONDS = {"nls": 0.05, "exact": 0.3, "run": 1.0}
+#: theory on a ring of 128 sites, one run of T = 1000 on 128 sites; measured serially for
+#: flexmm (k 0.6 .. 1.2, a = 0.1) on the 2-core VM at load ~4: exact 2-5 s, a run of
+#: T = 2000 0.4-0.5 s once compiled. Other models and rings differ (a one-field chain's
+#: Hill problem is smaller): an order of magnitude, not a measurement of this map
+CELL_SECONDS = {"nls": 0.01, "exact": 3.0, "run": 0.25}
 
 
 @functools.cache
@@ -176,9 +179,9 @@ class ModelMapParameters:
     def estimated_seconds(self, workers: int = 1) -> float:
         """Rough run time (CELL_SECONDS per cell, the runs scaled by N and T)."""
         cells = int(np.prod(self.grid_shape))
-        per = CELL_SECONDS["nls"] + (CELL_SECONDS["exact"] * self.N / 256 if self.ring else 0)
+        per = CELL_SECONDS["nls"] + (CELL_SECONDS["exact"] * self.N / 128 if self.ring else 0)
         if not self.theory_only:
-            per += (self.seeds * CELL_SECONDS["run"] * self.N / 256
+            per += (self.seeds * CELL_SECONDS["run"] * self.N / 128
                     * (self.t_end or 1000.0) / 1000.0)
         return cells * per / max(workers, 1)
 
