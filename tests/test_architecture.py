@@ -328,6 +328,6 @@ def test_one_map_engine():
 
     asked = ("grid_shape", "dims", "axis_values", "store_coords", "theory_names",
              "flag_columns", "new_dataset", "task", "block_cost", "estimated_seconds",
-             "attrs", "other_map")
+             "attrs", "identity", "other_map")
     for cls in (MapParameters, ModelMapParameters):
         assert all(hasattr(cls, a) for a in asked), cls

@@ -483,6 +483,10 @@ def test_a_store_of_another_model_or_a_changed_energy_is_refused(tmp_path, capsy
     argv = ["map", "--model", str(model), "--param", "beta=0.9,1.7", "--k", "2.6,2.8",
             "--amplitude", "0.1", "--theory-only", "--workers", "1", "--out", str(out)]
     assert main(argv) == 0
+    model.write_text("# a comment changes no energy\n" + text)
+    capsys.readouterr()
+    assert main(argv) == 0  # the same map, resumed
+    assert "4 of 4 cells already done" in capsys.readouterr().out
     model.write_text(text.replace("beta*(u_next", "1.01*beta*(u_next", 1))  # the energy
     capsys.readouterr()
     assert main(argv) == 2

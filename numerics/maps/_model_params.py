@@ -190,7 +190,7 @@ class ModelMapParameters:
         parameter, the amplitude, N, T, seeds, the method and step of the runs."""
         out = {n: v for n, v in asdict(self).items()
                if n not in ("rows", "cols", "parameters", "text", "k", "branch", "t_end")}
-        out.update(model=self.lattice_model.name, model_ref=self.model, model_file=self.text,
+        out.update(model=self.lattice_model.name, model_file=self.text,
                    model_hash=self.lattice_model.lattice.content_hash,
                    axes=f"{self.rows[0]} {self.cols[0]}", branch="" if self.branch is None
                    else str(self.branch), k="" if self.k is None else float(self.k),
@@ -205,6 +205,13 @@ class ModelMapParameters:
         # netCDF-safe (a user's to_netcdf of the opened store): no bools, no lists of text
         out.update(exact=int(self.exact), theory_only=int(self.theory_only))
         return out
+
+    def identity(self) -> dict:
+        """The attributes a store of this map holds: all but theory_only and the model
+        file's text (its comments and description may change; its energy is the content
+        hash, its parameter values the ``param_`` attributes)."""
+        return {n: v for n, v in self.attrs().items()
+                if n not in ("theory_only", "model_file")}
 
     def other_map(self, attrs: dict) -> str:
         """What a store of another map holds: another model's, this model's before its

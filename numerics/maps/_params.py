@@ -331,6 +331,12 @@ class MapParameters:
 
         return {"done": SIMULATED, "done_predicted": PREDICTED}
 
+    def identity(self) -> dict:
+        """The attributes a store of this map holds (a store whose attributes differ
+        holds another map): all but theory_only (a simulated map resumes a theory-only
+        one's store)."""
+        return {n: v for n, v in self.attrs().items() if n != "theory_only"}
+
     def other_map(self, attrs: dict) -> str:
         """What a store of another map holds, in words (its attributes ``attrs``)."""
         return "a map with other parameters (or of an older format)"

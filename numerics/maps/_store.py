@@ -81,8 +81,7 @@ def open_or_create(path: Path, params: MapParameters, overwrite: bool = False, l
 
 def _attrs_hold(attrs: dict, params: MapParameters) -> bool:
     return (attrs.get("store_format") == STORE_FORMAT
-            and all(attrs.get(n) == v for n, v in params.attrs().items()
-                    if n not in ("theory_only",)))
+            and all(attrs.get(n) == v for n, v in params.identity().items()))
 
 
 def _inspect(path: Path, params: MapParameters):
