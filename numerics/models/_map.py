@@ -114,14 +114,14 @@ def model_map(model: Model, x: tuple, y: tuple, amplitude: float, k: float | Non
                         extra[name] = np.full(shape, np.nan) if isinstance(
                             v, (int, float)) or v is None else np.full(shape, "", dtype=object)
                     extra[name][i, j] = np.nan if v is None else v
-            try:
-                r = nls(m, kk, branch)
-            except ModelError as exc:  # e.g. no carrier on this branch at these values
-                verdict[i, j], reason[i, j] = "undefined", str(exc)
+            # the NLS columns as a map task computes them (map_cells)
+            row = _map_cell(m, kk, amplitude, branch)
+            verdict[i, j], reason[i, j] = row["verdict_semidiscrete"], row["reason"]
+            if not row["carrier"]:  # no carrier on this branch at these values
                 ex_verdict[i, j] = "undefined"
                 continue
-            verdict[i, j], reason[i, j] = r.verdict, r.undefined
-            peak[i, j], g1[i, j], g2[i, j] = r.peak_gain(amplitude), r.g1, r.g2
+            peak[i, j], g1[i, j], g2[i, j] = (row["peak_gain_semidiscrete"], row["g1"],
+                                              row["g2"])
             if exact is not None:
                 ex_verdict[i, j], ex_peak[i, j] = exact(m, kk, amplitude, branch)
     bar.close()
@@ -195,11 +195,11 @@ def _cell_columns(model, k, amplitude, branch, *, exact, simulate, N, seeds, t_e
     from ._simulate import simulate_seeds, snap_ring
 
     row = {"verdict_semidiscrete": "undefined", "peak_gain_semidiscrete": math.nan,
-           "g1": math.nan, "g2": math.nan, "reason": ""}
+           "g1": math.nan, "g2": math.nan, "reason": "", "carrier": False}
     try:
         r = nls(model, k, branch)
         row.update(verdict_semidiscrete=r.verdict, peak_gain_semidiscrete=r.peak_gain(amplitude),
-                   g1=r.g1, g2=r.g2, reason=r.undefined or "")
+                   g1=r.g1, g2=r.g2, reason=r.undefined or "", carrier=True)
     except ModelError as exc:  # e.g. no carrier on this branch at these values
         row["reason"] = str(exc)
     if not (exact or simulate):
@@ -252,6 +252,7 @@ def map_cells(model: Model, cells, amplitude: float, branch=None, *, exact: bool
     list of dict
         Per cell: ``verdict_semidiscrete`` ("MI", "stable", "undefined"),
         ``peak_gain_semidiscrete``, ``g1``, ``g2``, ``reason`` (why undefined),
+        ``carrier`` (False where the branch has no carrier at the cell),
         ``k_simulated`` (k snapped to the ring where the ring is used); with ``exact`` or
         ``simulate`` ``verdict_exact``, ``peak_gain_exact``; with ``simulate``
         ``verdict_simulated`` (MI, "no growth within T", "undetermined", "undefined"),
