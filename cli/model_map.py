@@ -142,7 +142,9 @@ def _as_words(ds, verdicts):
     import numpy as np
 
     words = np.array(["undefined", "stable", "MI"])
-    return ds.assign({v: (ds[v].dims, words[ds[v].values.astype(int) + 1]) for v in verdicts})
+    unused = [v for v in ds.data_vars if v.startswith("verdict_") and v not in verdicts]
+    return ds.drop_vars(unused).assign(  # a theory-only map has no simulated panel
+        {v: (ds[v].dims, words[ds[v].values.astype(int) + 1]) for v in verdicts})
 
 
 def _plot_map(ds, path: Path, model):
