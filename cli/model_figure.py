@@ -54,7 +54,7 @@ def simulated_curve(runs, k) -> dict | None:
     has grown 10x to its end, ``measure_growth``'s window), mean and spread over those
     runs; None where no run was unstable."""
     from numerics.lattice import growth_rates
-    from numerics.maps._point import offset_curve
+    from numerics.maps import offset_curve
 
     rates = []
     for run in runs:
