@@ -60,7 +60,7 @@ def run_map(args) -> int:
     exact = None
     if args.exact:
         from energy import ModelError
-        from numerics.models import exact_gain
+        from numerics.models import exact_gain_checked as exact_gain
 
         def exact(m, k, a, branch):
             # the command's own arguments were checked above: a ModelError here is this

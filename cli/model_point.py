@@ -144,7 +144,7 @@ def _ring_note(model, k, amplitude, branch, N, row) -> str | None:
 def run_point(args) -> int:
     from common.output import strict_json
     from numerics.lattice import checks
-    from numerics.models import exact_gain, snap_ring
+    from numerics.models import exact_gain_checked, snap_ring
 
     model = load(args)
     checks.real("--k", args.k, 0.0, math.pi)
@@ -170,7 +170,7 @@ def run_point(args) -> int:
     ring_note = _ring_note(model, k, args.amplitude, branch_of(args), args.N,
                            out["semi-discrete NLS"])
     try:
-        spec = exact_gain(model, k, args.amplitude, branch_of(args), N=args.N)
+        spec = exact_gain_checked(model, k, args.amplitude, branch_of(args), N=args.N)
         out["exact lattice"] = _exact_row(spec)
     except Exception as exc:  # no travelling wave: the theory has no verdict here
         from energy import ModelError
