@@ -43,8 +43,11 @@ def theory_curves(model, k, amplitude, branch, N, spec, fw) -> dict:
     if spec is not None:
         out["exact lattice"] = _curve(spec.offsets, spec.gain)
     if not fw.undefined:
-        out["four-wave"] = _curve(fw.offsets, np.max(np.nan_to_num(fw.rates, nan=0.0),
-                                                      axis=1) if fw.rates.size else [])
+        rates = np.max(np.nan_to_num(fw.rates, nan=0.0), axis=1) if fw.rates.size else \
+            np.zeros(fw.offsets.size)
+        if fw.verdict != "MI":  # every rate below the theories' floor: its verdict, stable
+            rates = np.zeros_like(rates)
+        out["four-wave"] = _curve(fw.offsets, rates)
     return out
 
 
@@ -117,7 +120,7 @@ def figure(path, model, out, curves, measured, seeds, simulate):
         ax.set_ylim(-0.1 * top, 1.4 * top)
     else:
         ax.set_ylim(-1, 1)
-        ax.text(0.5, 0.6, "stable: no growing sideband in any theory"
+        ax.text(0.5, 0.6, "stable: no growing sideband in any theory drawn"
                 + (" or the simulation" if measured else ""), transform=ax.transAxes,
                 ha="center", fontsize=10)
     ax.set_xlim(0, math.pi)
