@@ -166,11 +166,11 @@ def simulated_cell(model: Model, k: float, amplitude: float, branch=None, *, N: 
     exact rate unless ``t_end``): verdict_exact, peak_gain_exact, verdict_simulated (MI,
     "no growth within T", "undetermined"; "undefined" without a travelling wave) and
     peak_gain_simulated (the seeds' median rate where MI)."""
-    from ._exact import exact_gain
+    from ._reach import exact_gain_checked
     from ._simulate import simulate_seeds
 
-    try:
-        spec = exact_gain(model, k, amplitude, branch, N=N)
+    try:  # the energy not real along the wave: undefined, as without a travelling wave
+        spec = exact_gain_checked(model, k, amplitude, branch, N=N)
     except ModelError:  # no travelling wave here: nothing to launch or measure from
         return {"verdict_exact": "undefined", "peak_gain_exact": None,
                 "verdict_simulated": "undefined", "peak_gain_simulated": None}
