@@ -70,12 +70,26 @@ docs: $(DOCS_STAMP)
 	$(VPY) -m sphinx -W --keep-going -q -b html docs build/docs
 	@echo "wrote build/docs/index.html"
 
+# Both cores: the tests that are safe in parallel on TEST_WORKERS pytest-xdist workers, then,
+# one at a time, those that start Dask clusters (a paper-chain map, theory-only included; the
+# scenes, whose session fixture quick_scenes every xdist worker would compute again), send
+# signals, kill processes or time the machine (SERIAL_TESTS: two at once would fight for the
+# same cores and ports).
+# Both runs always happen; the target fails if either did.
+TEST_WORKERS ?= 2
+SERIAL_TESTS := tests/test_cluster_faults.py tests/test_faults.py tests/test_faults_cli.py \
+	tests/test_maps.py tests/test_tutorial.py tests/test_docs.py tests/test_models_exact.py \
+	tests/test_first_hour.py tests/test_threads.py tests/test_bench.py tests/test_gpu.py \
+	tests/test_scenes.py tests/test_figures.py tests/test_cli_help.py
+PYTEST_PARALLEL = $(VPY) -m pytest -q -n $(TEST_WORKERS) $(addprefix --ignore=,$(SERIAL_TESTS))
+PYTEST_SERIAL = $(VPY) -m pytest -q $(SERIAL_TESTS)
+
 test: $(STAMP)
-	$(VPY) -m pytest -q
+	@rc=0; $(PYTEST_PARALLEL) || rc=1; $(PYTEST_SERIAL) || rc=1; exit $$rc
 
 # -m '' replaces pyproject's addopts -m 'not slow' (the last -m wins): every test runs.
 test-all: $(STAMP)
-	$(VPY) -m pytest -q -m ''
+	@rc=0; $(PYTEST_PARALLEL) -m '' || rc=1; $(PYTEST_SERIAL) -m '' || rc=1; exit $$rc
 
 # The main job: coefficients at the test points, then every scene (quick) and out/report.md.
 run: $(STAMP) generated

@@ -13,25 +13,45 @@ from common.options import unused_without
 
 from .models import add_model_args
 
+#: the first example line of each command runs in the tests (tests/test_cli_help.py); a
+#: command that takes --model shows one for any model first, then the paper chain's shorthand
 EPILOG = {
     "models": "example:\n  flexmm models\n  flexmm coefficients --model fput --param alpha=1 "
               "--param beta=1 --k 1.57 --amplitude 0.1",
-    "coefficients": "example:\n  flexmm coefficients --alpha 2.5 --K-s 0.01851 --K-theta 0.01551 "
+    "coefficients": "examples:\n  any model:\n  flexmm coefficients --model fput --param alpha=1 "
+                    "--param beta=1 --k 1.57 --amplitude 0.1\n  the paper chain:\n  "
+                    "flexmm coefficients --alpha 2.5 --K-s 0.01851 --K-theta 0.01551 "
                     "--k 0.81681",
     "table": "example:\n  flexmm table --A0 1.4",
     "scenes": "example:\n  flexmm scenes",
     "scene": "example:\n  flexmm scene fig2-dispersion --quick --out out",
     "run": "example:\n  flexmm run --quick --out out",
-    "point": "examples:\n  flexmm point --alpha 2.5 --K-s 0.01851 --K-theta 0.01551 --k 0.81681 "
-             "--case coupled\n  flexmm point --physical 0.01,2e-6,0.02,1e4,185,1 --k 1.0 "
-             "--case rotation --simulate --seeds 2 --out out/point",
-    "soliton": "examples:\n  flexmm soliton --alpha 2.5 --K-s 0.01851 --K-theta 0.02151 --k 0.92991 "
+    "point": "examples:\n  any model:\n  flexmm point --model fput --param alpha=1 --param beta=1.5 "
+             "--k 2.5 --amplitude 0.1 --N 64 --out out/point\n  flexmm point --model fput "
+             "--param alpha=1 --param beta=1.5 --k 3.1 --amplitude 0.1 --N 64 --simulate "
+             "--seeds 2 --out out/point\n  the paper chain:\n  flexmm point --alpha 2.5 "
+             "--K-s 0.01851 --K-theta 0.01551 --k 0.81681 --case coupled\n  flexmm point "
+             "--physical 0.01,2e-6,0.02,1e4,185,1 --k 1.0 --case rotation --simulate "
+             "--seeds 2 --out out/point",
+    "soliton": "examples:\n  any model:\n  flexmm soliton --model fput --param alpha=1 "
+               "--param beta=1 --k 1.0 --amplitude 0.05\n  the paper chain:\n  "
+               "flexmm soliton --alpha 2.5 --K-s 0.01851 --K-theta 0.02151 --k 0.92991 "
                "--amplitude 0.002 --case rotation\n  flexmm soliton --alpha 3 --K-s 0.05 "
                "--K-theta 0.03 --k 0.7 --amplitude 0.009 --kind dark --simulate --travel 5 "
                "--out out/soliton",
-    "map": "example:\n  flexmm map --alpha 2.5 --K-s 0.01851 --delta -0.01:0.01:5 --k 0.3:2.9:6 "
+    "map": "examples:\n  any model (a parameter and k swept: --param NAME=start:stop:num):\n  "
+           "flexmm map --model fput --param alpha=1 --param beta=0.5:1.5:3 --k 0.5:3:4 "
+           "--amplitude 0.1 --theory-only --out out/map\n  the paper chain:\n  "
+           "flexmm map --alpha 2.5 --K-s 0.01851 --delta -0.01:0.01:5 --k 0.3:2.9:6 "
            "--case rotation --theory-only --out out/map",
 }
+
+#: --amplitude, the same for every command that takes --model
+AMPLITUDE_HELP = ("amplitude a of the carrier's first harmonic in its field (any model: the "
+                  "field is a cos(k n - omega t) + higher harmonics); for the paper chain "
+                  "the peak rotation, rad (the paper's 2 eps A0)")
+#: the title of the paper chain's group of options
+PAPER_GROUP = "the paper chain's shorthand (without --model; there required: "
 
 
 class _Help(argparse.ArgumentDefaultsHelpFormatter, argparse.RawDescriptionHelpFormatter):
@@ -57,14 +77,13 @@ def build_parser(model_mode: bool = False):
         epilog="run `flexmm COMMAND --help` for a command's options and an example")
     sub = p.add_subparsers(dest="cmd", required=True, metavar="COMMAND")
     p.commands = sub.choices  # {name: its parser}, for the errors of _parse
-    co = _sub(sub, "coefficients", "NLS coefficients and MI band of any material at any k")
-    _material_args(co, map_=False)
+    co = _sub(sub, "coefficients", "NLS coefficients and MI band of any model or material "
+              "at any k")
     co.add_argument("--k", type=float, required=True,
                     help="(required) carrier wavenumber, rad per site, in (0, pi)")
-    co.add_argument("--amplitude", type=float, default=paper.AMPLITUDE,
-                    help="peak rotation of the plane wave, rad (the paper's 2 eps A0); with "
-                         "--model the amplitude a of the carrier's first harmonic in its field")
+    co.add_argument("--amplitude", type=float, default=paper.AMPLITUDE, help=AMPLITUDE_HELP)
     add_model_args(co)
+    _material_args(co, map_=False)
     tab = _sub(sub, "table", "NLS coefficients at the paper's two test points")
     tab.add_argument("--A0", type=float, default=1.0, help="the paper's envelope amplitude "
                      "A0 (peak rotation 2 eps A0 with eps = 0.01)")
@@ -90,9 +109,11 @@ def build_parser(model_mode: bool = False):
     return p
 
 
-def _material_args(p, map_=False):
-    g = p.add_argument_group("material (required: --alpha, --K-s and "
-                             + ("--K-theta or --delta)" if map_ else "--K-theta; or --physical)"))
+def _material_args(p, map_=False, case=False, model_mode=False):
+    """The paper chain's options, apart: its material (and --case where ``case``)."""
+    g = p.add_argument_group(PAPER_GROUP + "--alpha, --K-s and "
+                             + ("--K-theta or --delta" if map_ else "--K-theta, or --physical")
+                             + ("; --case" if case else "") + ")")
     g.add_argument("--alpha", type=float, help="inertia parameter alpha = a sqrt(m / (4 J))")
     g.add_argument("--K-s", dest="K_s", type=float, help="shear stiffness K_s = k_s / k_l")
     if map_:
@@ -106,13 +127,14 @@ def _material_args(p, map_=False):
                        help="physical units instead: mass (kg), moment of inertia (kg m^2), "
                             "cell length (m), and the three spring stiffnesses (N/m, N/m, "
                             "N m/rad); answers then also in seconds and metres")
+    if case:  # required without --model; the help says so in the group's title
+        g.add_argument("--case", required=not model_mode, choices=("rotation", "coupled"),
+                       help="rotation: case I, U = 0; coupled: case II, U and theta")
+    return g
 
 
-def _experiment_args(p, model_mode=False):
-    p.add_argument("--case", required=not model_mode, choices=("rotation", "coupled"),
-                   help="(required) rotation: case I, U = 0; coupled: case II, U and theta")
-    p.add_argument("--amplitude", type=float, default=paper.AMPLITUDE,
-                   help="peak rotation of the plane wave, rad (the paper's 2 eps A0)")
+def _experiment_args(p):
+    p.add_argument("--amplitude", type=float, default=paper.AMPLITUDE, help=AMPLITUDE_HELP)
     p.add_argument("--start", choices=("paper", "travelling", "linear"), default=None,
                    help="initial state: paper (default for the paper chain): eq. IC of the "
                         "paper (U at rest); travelling (default with --model): the exact "
@@ -122,13 +144,11 @@ def _experiment_args(p, model_mode=False):
 
 
 def _point_parser(sub, model_mode=False):
-    p = _sub(sub, "point", "MI at one point of any material: the theories' verdicts and "
-             "gain curves (and a simulation that checks them, with --simulate)")
-    _material_args(p)
-    _experiment_args(p, model_mode)
-    add_model_args(p)
+    p = _sub(sub, "point", "MI at one point of any model or material: the theories' "
+             "verdicts and gain curves (and a simulation that checks them, with --simulate)")
     p.add_argument("--k", type=float, required=True,
                    help="(required) carrier wavenumber, rad per site, in (0, pi)")
+    _experiment_args(p)
     p.add_argument("--simulate", action="store_true", help="measure sigma(q) too")
     p.add_argument("--t-end", dest="t_end", type=float,
                    help="run length in T (default: 9 e-foldings of the exact peak gain, "
@@ -138,22 +158,21 @@ def _point_parser(sub, model_mode=False):
     p.add_argument("--seeds", type=int, default=4, help="with --simulate: noise seeds of the simulation")
     p.add_argument("--out", help="folder for point.json and point.png (default: none, "
                    "print only)")
+    add_model_args(p)
+    _material_args(p, case=True, model_mode=model_mode)
 
 
 def _soliton_parser(sub, model_mode=False):
     p = _sub(sub, "soliton", "the envelope soliton (bright or dark) a material carries at one "
              "k: width, velocity, frequency and kink of U, and with --simulate the same "
              "measured in the lattice")
-    _material_args(p)
     p.add_argument("--k", type=float, required=True,
                    help="(required) carrier wavenumber, rad per site, in (0, pi)")
     p.add_argument("--amplitude", type=float, default=0.002,
-                   help="peak rotation of the soliton (bright) or of its background (dark), "
-                        "rad; the width is about 2 / (amplitude sqrt|g|) sites")
-    add_model_args(p)
-    p.add_argument("--case", choices=("rotation", "coupled"),
-                   default=None if model_mode else "coupled",
-                   help="rotation: case I, U = 0; coupled: case II, with the kink of U")
+                   help="peak amplitude of the soliton (bright) or of its background (dark): "
+                        "a of the carrier's first harmonic in its field (the paper chain: "
+                        "the peak rotation, rad, the paper's 2 eps A0); the width is about "
+                        "2 / (amplitude sqrt|g|) sites")
     p.add_argument("--kind", choices=("bright", "dark"),
                    help="the soliton asked for (default: the one that exists here; asking "
                         "for the other is an error that names it)")
@@ -169,17 +188,22 @@ def _soliton_parser(sub, model_mode=False):
     p.add_argument("--N", type=int, help="with --simulate: ring size (default: 20 widths, at "
                    "least 256 sites); k moves to the nearest wavenumber the ring carries")
     p.add_argument("--out", help="folder for soliton.json (default: none, print only)")
+    add_model_args(p)
+    g = _material_args(p)
+    g.add_argument("--case", choices=("rotation", "coupled"),
+                   default=None if model_mode else "coupled",
+                   help="rotation: case I, U = 0; coupled: case II, with the kink of U")
 
 
 def _map_parser(sub, model_mode=False):
-    p = _sub(sub, "map", "an MI map over (delta, k): the theories' verdicts and, unless "
-             "--theory-only, simulations on a Dask cluster")
-    _material_args(p, map_=True)
-    _experiment_args(p, model_mode)
-    add_model_args(p, "print one JSON object on stdout (MI shares, files written)")
+    p = _sub(sub, "map", "an MI map over a model's parameter and k, two parameters, or the "
+             "paper chain's (delta, k): the theories' verdicts and, unless --theory-only, "
+             "simulations")
     p.add_argument("--k", required=True, help="(required) SPEC of k (rad per site): "
-                   "v1,v2,... or start:stop:num; each k is snapped to 2 pi m / N "
+                   "v1,v2,... or start:stop:num (with --model one value where two "
+                   "parameters are swept); each k is snapped to 2 pi m / N "
                    "(k_simulated in the dataset; the theories use it too)")
+    _experiment_args(p)
     p.add_argument("--exact", action="store_true",
                    help="with --model: add the exact lattice theory per cell (harmonic "
                         "balance and Hill spectrum on the ring of --N sites, about 1 s a "
@@ -204,6 +228,14 @@ def _map_parser(sub, model_mode=False):
                         "gpu (this machine's CUDA GPU, batches of cells in one launch; needs "
                         "the gpu extra: pip install -e '.[gpu]'), auto (the GPU where one is "
                         "usable); the theories run on the CPU")
+    add_model_args(p, "print one JSON object on stdout (MI shares, files written)")
+    param = next(a for a in p._actions if a.dest == "param")
+    param.metavar = "NAME=VALUE|NAME=start:stop:num"
+    param.help = ("a parameter of the model (repeatable): a value, or an axis swept "
+                  "--param NAME=start:stop:num (or NAME=v1,v2,...); a map sweeps two axes: "
+                  "one parameter and --k SPEC, or two parameters at one --k; the others "
+                  "keep their defaults")
+    _material_args(p, map_=True, case=True, model_mode=model_mode)
 
 
 #: what float() reads after a minus sign and argparse takes for an option (``--t-end -inf``)
@@ -277,7 +309,10 @@ def _parse(argv):
     import difflib
     import re
 
-    p = build_parser(any(a == "--model" or a.startswith("--model=") for a in argv))
+    # --help: the usage line shows --case optional (the help's group title says where it
+    # is required), as it is with --model
+    p = build_parser(any(a == "--model" or a.startswith("--model=") or a in ("-h", "--help")
+                         for a in argv))
     args, extra = p.parse_known_args(argv)
     sub = next(a for a in p._actions
                if isinstance(a, argparse._SubParsersAction)).choices[args.cmd]

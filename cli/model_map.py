@@ -158,11 +158,14 @@ def _plot_map(ds, path: Path, model):
     ydim, xdim = ds["verdict_semidiscrete"].dims
     x, y = ds[xdim].values, ds[ydim].values
 
-    def edges(v):
+    def edges(v, dim):
         if v.size == 1:
-            return np.array([v[0] - 0.5, v[0] + 0.5])
-        mid = (v[1:] + v[:-1]) / 2
-        return np.concatenate([[2 * v[0] - mid[0]], mid, [2 * v[-1] - mid[-1]]])
+            e = np.array([v[0] - 0.5, v[0] + 0.5])
+        else:
+            mid = (v[1:] + v[:-1]) / 2
+            e = np.concatenate([[2 * v[0] - mid[0]], mid, [2 * v[-1] - mid[-1]]])
+        # a carrier's k lies in (0, pi]: its cells are drawn there only (the edges clipped)
+        return np.clip(e, 0.0, np.pi) if dim == "k" else e
 
     code = {"stable": 0, "MI": 1, "undefined": 2}
     panels = [(v, label) for v, label in (("verdict_semidiscrete", "semi-discrete NLS"),
@@ -174,12 +177,13 @@ def _plot_map(ds, path: Path, model):
     fixed = ", ".join(f"{p} = {v:g}" for p, v in model.params.items() if p not in (xdim, ydim))
     for ax, (name, label) in zip(axes[0], panels):
         V = np.vectorize(lambda s: code.get(s, 2))(ds[name].values)
-        ax.pcolormesh(edges(x), edges(y), V,
+        ax.pcolormesh(edges(x, xdim), edges(y, ydim), V,
                       cmap=ListedColormap(["#3b4cc0", "#f2a134", "#bbbbbb"]),
                       vmin=-0.5, vmax=2.5, shading="flat")
         ax.set_xlabel(xdim + (" (rad/site)" if xdim == "k" else ""))
         ax.set_ylabel(ydim + (" (rad/site)" if ydim == "k" else ""))
-        ax.set_title(f"{model.name} ({fixed}), a = {ds.attrs['amplitude']:g}: {label}\n"
+        ax.set_title(f"{model.name}" + (f" ({fixed})" if fixed else "")  # all swept: none
+                     + f", a = {ds.attrs['amplitude']:g}: {label}\n"
                      "orange MI, blue stable, grey undefined", fontsize=9)
     fig.tight_layout()
     fig.savefig(path, dpi=120)

@@ -93,6 +93,9 @@ def _simulated_row(model, k, args, spec, start) -> dict:
            "method": runs[0].method}
     if length is not None and length.note():
         row["note"] = length.note()
+    from .model_figure import simulated_curve
+
+    row["curve"] = simulated_curve(runs, k)  # sigma(q) measured; None where none grew
     return row
 
 
@@ -141,7 +144,7 @@ def _ring_note(model, k, amplitude, branch, N, row) -> str | None:
 def run_point(args) -> int:
     from common.output import strict_json
     from numerics.lattice import checks
-    from numerics.models import exact_gain, snap_ring
+    from numerics.models import exact_gain_checked, snap_ring
 
     model = load(args)
     checks.real("--k", args.k, 0.0, math.pi)
@@ -167,7 +170,7 @@ def run_point(args) -> int:
     ring_note = _ring_note(model, k, args.amplitude, branch_of(args), args.N,
                            out["semi-discrete NLS"])
     try:
-        spec = exact_gain(model, k, args.amplitude, branch_of(args), N=args.N)
+        spec = exact_gain_checked(model, k, args.amplitude, branch_of(args), N=args.N)
         out["exact lattice"] = _exact_row(spec)
     except Exception as exc:  # no travelling wave: the theory has no verdict here
         from energy import ModelError
@@ -178,7 +181,8 @@ def run_point(args) -> int:
                                 "reason": str(exc)}
     from numerics.models import four_wave
 
-    out["four-wave"] = four_wave(model, k, args.amplitude, branch_of(args), N=args.N).row()
+    fw = four_wave(model, k, args.amplitude, branch_of(args), N=args.N)
+    out["four-wave"] = fw.row()
     misses = [] if spec is None else _ring_misses(model, k, args.amplitude, branch_of(args),
                                                   args.N)
     out["ring_misses"] = misses
@@ -186,6 +190,13 @@ def run_point(args) -> int:
         if spec is None:
             raise ValueError(f"--simulate: {out['exact lattice']['reason']}")
         out["simulated"] = _simulated_row(model, k, args, spec, start)
+    from .model_figure import CURVES, theory_curves
+
+    out["curves"] = {"description": CURVES,
+                     **theory_curves(model, k, args.amplitude, branch_of(args), args.N,
+                                     spec, fw)}
+    if args.simulate:
+        out["curves"]["simulated"] = out["simulated"].pop("curve")
     out = strict_json(out)
     if args.out:
         import json
@@ -194,6 +205,11 @@ def run_point(args) -> int:
         from common.output import prepare_output
         folder = prepare_output(args.out, cache=False)
         write_text(folder / "point.json", json.dumps(out, indent=1, allow_nan=False) + "\n")
+        from .model_figure import figure
+        curves = {n: c for n, c in out["curves"].items() if n not in ("description",
+                                                                       "simulated")}
+        figure(folder / "point.png", model, out, curves, out["curves"].get("simulated"),
+               getattr(args, "seeds", 1), args.simulate)
     if args.json:
         _emit(out)
         return 0
@@ -235,5 +251,5 @@ def run_point(args) -> int:
     for w in co["warnings"]:
         print(f"note: {w}")
     if args.out:
-        print(f"wrote {Path(args.out) / 'point.json'}")
+        print(f"wrote {Path(args.out) / 'point.json'} and {Path(args.out) / 'point.png'}")
     return 0

@@ -44,6 +44,10 @@ def atomic_write(path, mode: str = "w"):
             with fh:
                 yield fh
         os.replace(tmp, path)
+    except OSError as exc:
+        if exc.filename is None:  # a full disk says ENOSPC, not where: name the file
+            raise OSError(exc.errno, exc.strerror or str(exc), str(path)) from exc
+        raise
     finally:
         if fd is not None:
             os.close(fd)

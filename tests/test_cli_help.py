@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 import shlex
 
 import pytest
@@ -24,6 +25,49 @@ def test_help_shows_required_defaults_and_example(cmd, capsys):
         assert "(required)" in out and "(default: 0.02)" in out
 
 
+#: the commands that take --model: their help lists every model's options first, the paper
+#: chain's shorthand apart, and shows an example of each
+MODEL_COMMANDS = ("coefficients", "point", "map", "soliton")
+
+
+def _help(cmd, capsys) -> str:
+    with pytest.raises(SystemExit):
+        cli([cmd, "--help"])
+    return " ".join(capsys.readouterr().out.split())  # argparse's wrapping undone
+
+
+@pytest.mark.parametrize("cmd", MODEL_COMMANDS)
+def test_help_is_written_for_every_model(cmd, capsys):
+    """issue 44 item 5: --case is not "(required)" where --model runs without it, the
+    amplitude means the same for every model (the paper chain's 2 eps A0 said apart), the
+    paper chain's options come after every model's, and each has an example."""
+    out = _help(cmd, capsys)
+    options, _, examples = out.partition("example")
+    assert "(required) rotation" not in out and "[--case {rotation,coupled}]" in out \
+        or cmd == "coefficients"
+    assert options.index("--model NAME|FILE.toml a built-in") < options.index(
+        "the paper chain's shorthand (without --model")
+    assert "--alpha ALPHA inertia" in options.split("the paper chain's shorthand")[1]
+    assert "first harmonic" in options and "2 eps A0" in options
+    assert re.search(r"any model( \([^)]*\))?: flexmm " + cmd + " --model", examples)
+    assert "the paper chain: flexmm " + cmd + " --alpha" in examples
+
+
+def test_map_help_shows_a_swept_parameter_and_a_model_example(capsys):
+    out = _help("map", capsys)
+    assert "--param NAME=VALUE|NAME=start:stop:num" in out
+    assert "--param NAME=start:stop:num" in out.partition("examples")[0]
+    assert "flexmm map --model fput --param alpha=1 --param beta=0.5:1.5:3" in out
+
+
+@pytest.mark.parametrize("cmd", ["coefficients", "map", "soliton"])
+def test_help_paper_chain_example_runs(cmd, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    line = next(ln.strip() for ln in EPILOG[cmd].splitlines()
+                if ln.strip().startswith("flexmm") and "--model" not in ln)
+    assert cli(shlex.split(line)[1:]) == 0
+
+
 @pytest.mark.parametrize("cmd", [c for c in sorted(EPILOG) if c not in SLOW])
 def test_help_example_runs(cmd, tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
@@ -31,10 +75,12 @@ def test_help_example_runs(cmd, tmp_path, monkeypatch):
     assert cli(shlex.split(line)[1:]) == 0
 
 
-def test_point_example_without_simulation_runs(tmp_path, monkeypatch):
+@pytest.mark.parametrize("paper_chain", [False, True])
+def test_point_example_without_simulation_runs(paper_chain, tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     line = next(ln.strip() for ln in EPILOG["point"].splitlines()
-                if ln.strip().startswith("flexmm") and "--simulate" not in ln)
+                if ln.strip().startswith("flexmm") and "--simulate" not in ln
+                and ("--model" not in ln) == paper_chain)
     assert cli(shlex.split(line)[1:]) == 0
 
 

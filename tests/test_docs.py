@@ -105,3 +105,10 @@ def test_the_output_matcher_can_fail():
     assert pat.match("a 1.23\nx\ny\nend 42 s\n")
     assert not pat.match("a 1.24\nend 1\n")
     assert not pat.match("a 1.23\n")
+
+
+def test_the_readme_is_a_front_door():
+    """CONVENTIONS (User documentation): a few hundred lines at most, deep dives in docs/
+    (issue 44 item 10: 300)."""
+    lines = (ROOT / "README.md").read_text().count("\n")
+    assert lines <= 300, f"README.md has {lines} lines; move a deep dive to docs/"

@@ -529,3 +529,22 @@ def test_interrupted_model_map_says_what_was_kept(tmp_path, monkeypatch, capsys)
     err = capsys.readouterr().err
     assert "2 of 4 cells are kept in" in err and "map.zarr" in err
     assert "nothing was written" not in err
+
+
+def test_a_full_disk_names_the_file(cache, tmp_path, monkeypatch, capsys):
+    import errno
+
+    import common.files
+    from cli.app import main
+
+    path = tmp_path / "full.toml"
+    path.write_text(model_text(name="fulldisk", parameters="C = 0.66"))
+
+    def full(src, dst):
+        raise OSError(errno.ENOSPC, "No space left on device")  # no filename, as write() says
+
+    monkeypatch.setattr(common.files.os, "replace", full)
+    assert main(["coefficients", "--model", str(path), "--k", "1.0"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.count("\n") == 0 and "No space left on device" in err
+    assert str(cache) in err and "error::" not in err

@@ -11,6 +11,8 @@ exact_gain                              both at one point: the exact lattice the
 four_wave -> FourWave                   every four-wave pair's rate (Zakharov's kernel of the
                                         lattice): sidebands, backward pairs, parametric decays
 classify_mode, ring_misses              what an exact mode is; bands a ring does not sample
+energy_not_real, amplitude_reach        where the energy stops being real along a wave: why
+exact_gain_checked                      there is no travelling wave, the largest amplitude
 simulate_model -> ModelRun              a ring of the model; .growth() -> Growth
 lattice_force, lattice_energy           the compiled force and the model's energy
 model_map                               MI map over two parameters, or a parameter and k
@@ -29,6 +31,7 @@ from ._fourwave import FourWave, classify_mode, four_wave, pair_rates, ring_miss
 from ._linear import Carrier, branch_index, branches, carrier, check_rest_stable
 from ._map import map_cells, model_map, simulated_cell
 from ._nls import ModelNLS, ModelSoliton, acoustic_directions, nls
+from ._reach import amplitude_reach, energy_not_real, exact_gain_checked
 from ._simulate import (
                      Growth,
                      ModelRun,
@@ -47,7 +50,8 @@ from ._summary import model_coefficients
 __all__ = ["Carrier", "carrier", "branches", "branch_index", "check_rest_stable", "ModelNLS",
            "ModelSoliton", "nls", "acoustic_directions", "model_map", "map_cells", "simulated_cell",
            "model_coefficients", "TravellingWave", "HillSpectrum", "travelling_wave",
-           "hill_spectrum", "exact_gain", "FourWave", "four_wave", "pair_rates",
+           "hill_spectrum", "exact_gain", "exact_gain_checked", "energy_not_real",
+           "amplitude_reach", "FourWave", "four_wave", "pair_rates",
            "classify_mode", "ring_misses", "ring_offsets", "simulate_model", "simulate_seeds",
            "SeededRuns", "ModelRun", "Growth", "measure_growth", "check_ring", "compiled_force",
            "lattice_force", "lattice_energy", "snap_ring"]

@@ -166,11 +166,11 @@ def simulated_cell(model: Model, k: float, amplitude: float, branch=None, *, N: 
     exact rate unless ``t_end``): verdict_exact, peak_gain_exact, verdict_simulated (MI,
     "no growth within T", "undetermined"; "undefined" without a travelling wave) and
     peak_gain_simulated (the seeds' median rate where MI)."""
-    from ._exact import exact_gain
+    from ._reach import exact_gain_checked
     from ._simulate import simulate_seeds
 
-    try:
-        spec = exact_gain(model, k, amplitude, branch, N=N)
+    try:  # the energy not real along the wave: undefined, as without a travelling wave
+        spec = exact_gain_checked(model, k, amplitude, branch, N=N)
     except ModelError:  # no travelling wave here: nothing to launch or measure from
         return {"verdict_exact": "undefined", "peak_gain_exact": None,
                 "verdict_simulated": "undefined", "peak_gain_simulated": None}
@@ -191,7 +191,7 @@ def _map_cell(model: Model, k: float, amplitude: float, branch=None, *, exact: b
 
 
 def _cell_columns(model, k, amplitude, branch, *, exact, simulate, N, seeds, t_end):
-    from ._exact import exact_gain
+    from ._reach import exact_gain_checked
     from ._simulate import simulate_seeds, snap_ring
 
     row = {"verdict_semidiscrete": "undefined", "peak_gain_semidiscrete": math.nan,
@@ -210,8 +210,8 @@ def _cell_columns(model, k, amplitude, branch, *, exact, simulate, N, seeds, t_e
     if simulate:
         row.update(verdict_simulated="undefined", peak_gain_simulated=math.nan,
                    growth=math.nan, growth_q=math.nan, t_simulated=math.nan)
-    try:
-        spec = exact_gain(model, k, amplitude, branch, N=N)
+    try:  # the energy not real along the wave: undefined, as without a travelling wave
+        spec = exact_gain_checked(model, k, amplitude, branch, N=N)
     except ModelError:  # no travelling wave here: nothing to launch or measure from
         return row
     row.update(verdict_exact=spec.verdict, peak_gain_exact=spec.peak_gain)

@@ -313,6 +313,8 @@ class ModelRun:
 class Growth:
     """The growth a run measured.
 
+    Attributes
+    ----------
     verdict : 'unstable' or 'no growth within T'
     rate : float
         The fastest mode's rate (1/time) where unstable, else nan.

@@ -1,0 +1,137 @@
+"""The sigma(q) curves of a model point (``flexmm point --model``) and its point.png: the
+same figure as the paper chain's point (``cli.point._figure``), one gain curve per theory
+over the sideband offset Q = |q - k|, and the measured sigma(Q) where the ring was run."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+#: what the curves in point.json are (the model's own units: time as in the model file)
+CURVES = ("theories: growth rate (1/time) over the sideband offset Q = |q - k| (rad/site), "
+          "sidebands k +- Q; four-wave: the fastest pair's rate at each offset q; "
+          "simulated: sigma per ring mode q (rfft bins 0 .. pi) and sigma_by_offset (the "
+          "smaller of a pair's two sidebands)")
+
+
+def _curve(offset, gain) -> dict:
+    offset, gain = np.asarray(offset, float), np.asarray(gain, float)
+    return {"offset": offset.tolist(),
+            "curve": [g if math.isfinite(g) else None for g in gain.tolist()]}
+
+
+def theory_curves(model, k, amplitude, branch, N, spec, fw) -> dict:
+    """{theory: {"offset": [...], "curve": [...]}}: the semi-discrete NLS on a fine grid
+    of its band, the exact lattice (``spec``, a HillSpectrum on the ring, may be None) and
+    the four-wave theory (``fw``, a FourWave) at the ring's offsets."""
+    from energy import ModelError
+    from numerics.models import nls
+
+    out = {}
+    try:
+        r = nls(model, k, branch)
+        if not r.undefined:
+            q = np.linspace(0.0, math.pi, 801)[1:]
+            if r.verdict == "MI":  # the band is O(a) wide: resolve it
+                edge = r.band_edge(amplitude)
+                q = np.unique(np.concatenate([q, np.linspace(0.0, min(edge, math.pi),
+                                                             201)[1:]]))
+            out["semi-discrete NLS"] = _curve(q, r.gain(q, amplitude))
+    except ModelError:
+        pass  # at k = pi: no NLS, said in its row
+    if spec is not None:
+        out["exact lattice"] = _curve(spec.offsets, spec.gain)
+    if not fw.undefined:
+        rates = np.max(np.nan_to_num(fw.rates, nan=0.0), axis=1) if fw.rates.size else \
+            np.zeros(fw.offsets.size)
+        if fw.verdict != "MI":  # every rate below the theories' floor: its verdict, stable
+            rates = np.zeros_like(rates)
+        out["four-wave"] = _curve(fw.offsets, rates)
+    return out
+
+
+def simulated_curve(runs, k) -> dict | None:
+    """sigma(q) of seeded runs of the ring (``numerics.models.ModelRun``): the log-slope of
+    every ring mode over each unstable run's linear stage (from where its fastest mode
+    has grown 10x to its end, ``measure_growth``'s window), mean and spread over those
+    runs; None where no run was unstable."""
+    from numerics.lattice import growth_rates
+    from numerics.maps import offset_curve
+
+    rates = []
+    for run in runs:
+        g = run.growth()
+        if g.verdict != "unstable":
+            continue
+        half = run.N // 2 + 1
+        spec = run.spectrum[:, :half]
+        end = int(np.searchsorted(run.t, g.t_linear))
+        end = min(max(end, 4), len(run.t) - 1)
+        i = int(np.argmax(spec[end]))
+        above = np.nonzero(spec[:end + 1, i] > 10 * max(spec[0, i], 1e-300))[0]
+        first = int(above[0]) if above.size else 0
+        first = max(min(first, end - 3), 0)
+        rates.append(growth_rates(run.t, spec, (first, end)))
+    if not rates:
+        return None
+    rates = np.array(rates)
+    spread = rates.std(axis=0, ddof=1) if len(rates) > 1 else np.zeros(rates.shape[1])
+    N = runs[0].N
+    q = 2 * math.pi * np.arange(N // 2 + 1) / N
+    sigma = rates.mean(axis=0)
+    Q, by_offset, std = offset_curve(q, sigma, spread, k)
+    return {"q": q.tolist(), "sigma": sigma.tolist(), "sigma_std": spread.tolist(),
+            "offset": Q.tolist(), "sigma_by_offset": by_offset.tolist(),
+            "std_by_offset": std.tolist(), "seeds": len(rates)}
+
+
+def figure(path, model, out, curves, measured, seeds, simulate):
+    """point.png: each theory's gain over the offset, the measured sigma(Q) with its
+    spread; what is missing is said on the axes (as the paper chain's figure does)."""
+    from common.files import atomic_write
+    from scenes import plt
+
+    fig, ax = plt.subplots(figsize=(7, 4), layout="constrained")
+    if measured:
+        ax.errorbar(measured["offset"], measured["sigma_by_offset"],
+                    yerr=measured["std_by_offset"], fmt=".", ms=3, lw=0.5,
+                    label=f"simulated ({measured['seeds']} of {seeds} seeds unstable)")
+    styles = {"semi-discrete NLS": "k--", "exact lattice": "C3-", "four-wave": "C2:"}
+    tops = []
+    for name, c in curves.items():
+        y = np.array([np.nan if v is None else v for v in c["curve"]], float)
+        ax.plot(c["offset"], y, styles.get(name, "C0-"), lw=1, label=f"{name} (theory)")
+        if np.any(np.isfinite(y)):
+            tops.append(float(np.nanmax(y)))
+    if measured:
+        tops.append(float(np.max(measured["sigma_by_offset"])))
+    top = max([v for v in tops if math.isfinite(v)], default=0.0)
+    missing = [f"{n}: {out[n]['reason']}" for n in ("semi-discrete NLS", "exact lattice",
+                                                    "four-wave")
+               if n in out and out[n].get("reason") and n not in curves]
+    if simulate and not measured:
+        missing.append("simulated: no run grew (" + out["simulated"]["text"] + ")"
+                       if "simulated" in out else "simulated: not run")
+    if missing:
+        ax.text(0.02, 0.97, "\n".join(missing), transform=ax.transAxes, va="top",
+                fontsize=7, wrap=True, bbox=dict(facecolor="w", edgecolor="0.7"))
+    if top > 0:
+        ax.set_ylim(-0.1 * top, 1.4 * top)
+    else:
+        ax.set_ylim(-1, 1)
+        ax.text(0.5, 0.6, "stable: no growing sideband in any theory drawn"
+                + (" or the simulation" if measured else ""), transform=ax.transAxes,
+                ha="center", fontsize=10)
+    ax.set_xlim(0, math.pi)
+    ax.set_xlabel(r"sideband offset $Q = |q - k|$ (rad/site): sidebands at $k \pm Q$")
+    ax.set_ylabel(r"growth rate $\sigma$ (1/time)")
+    params = ", ".join(f"{n} = {v:g}" for n, v in out["parameters"].items())
+    ax.set_title(f"{out['model']}" + (f" ({params})" if params else "")
+                 + f"\n$k$ = {out['k']:.4g} rad/site, branch {out['branch']} "
+                 f"({out['field']}), amplitude a = {out['amplitude']:g}", fontsize=9)
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(fontsize=7)
+    with atomic_write(path, mode=None) as tmp:
+        fig.savefig(tmp, format="png", dpi=110)
+    plt.close(fig)

@@ -1,0 +1,118 @@
+"""Where a model's energy stops being real along a plane wave, said in the model's words.
+
+A model whose energy is real only in part of the strain space (a Hertz contact
+``(d0 - (u_next - u))**(5/2)`` that opens past d0, a logarithm, a square root) has no
+travelling wave of an amplitude whose linear profile leaves that part: the solver then
+stops on non-finite residuals ("Residuals are not finite in the initial point."). This
+module tells why, and the largest amplitude the model allows at that k:
+
+amplitude_reach      the largest amplitude with the energy and force finite along the linear
+                     wave at k (bisection), and the strain it reaches there
+energy_not_real      the sentence (None where the energy is finite at this amplitude)
+exact_gain_checked   ``exact_gain``, whose non-finite failures become a ModelError with
+                     that sentence (the call sites of the travelling wave use it)
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from energy import Model, ModelError
+
+#: sites of the ring the linear profile is checked on (its phases k n mod 2 pi)
+_SITES = 512
+
+
+def _profile(model: Model, k: float, amplitude: float, branch):
+    """The linear plane wave's displacements and velocities on a ring of ``_SITES`` sites
+    at the nearest k it carries: (u, v), each (d, N)."""
+    from ._linear import carrier
+
+    car = carrier(model, k, branch)
+    m = max(1, round(k * _SITES / (2 * math.pi)))
+    xi = 2 * math.pi * m / _SITES * np.arange(_SITES)
+    e = car.e[:, None]
+    u = amplitude * np.real(e * np.exp(1j * xi))
+    v = amplitude * car.omega * np.real(-1j * e * np.exp(1j * xi))
+    return np.ascontiguousarray(u), np.ascontiguousarray(v), car
+
+
+def _finite(model: Model, k: float, amplitude: float, branch) -> bool:
+    from ._simulate import lattice_energy, lattice_force
+
+    u, v, _ = _profile(model, k, amplitude, branch)
+    with np.errstate(all="ignore"):
+        return bool(np.all(np.isfinite(lattice_force(model, u)))
+                    and math.isfinite(lattice_energy(model, u, v)))
+
+
+def _strain(model: Model, k: float, amplitude: float, branch) -> tuple[float, str]:
+    """The largest bond strain |u_next - u| of the linear wave and its field."""
+    u, _, car = _profile(model, k, amplitude, branch)
+    r = np.abs(np.roll(u, -1, axis=1) - u).max(axis=1)
+    i = int(np.argmax(r))
+    return float(r[i]), model.fields[i]
+
+
+def amplitude_reach(model: Model, k: float, amplitude: float, branch=None, *,
+                    rtol: float = 1e-4) -> float:
+    """The largest amplitude a <= ``amplitude`` with the model's energy and force finite
+    along the linear wave at ``k`` (bisection, to ``rtol``); ``amplitude`` itself where
+    they are finite there, 0 where they are not finite at any amplitude tried."""
+    if _finite(model, k, amplitude, branch):
+        return float(amplitude)
+    lo, hi = 0.0, float(amplitude)
+    while hi - lo > rtol * hi:
+        mid = (lo + hi) / 2
+        lo, hi = (mid, hi) if _finite(model, k, mid, branch) else (lo, mid)
+    return lo
+
+
+def energy_not_real(model: Model, k: float, amplitude: float, branch=None) -> str | None:
+    """Why there is no wave of this amplitude at k, when its energy is not real there: the
+    strain the linear wave reaches, the strain where the energy stops being real (with the
+    parameter of that value, if one has it) and the largest amplitude allowed at this k.
+    None where energy and force are finite along the linear wave."""
+    a_max = amplitude_reach(model, k, amplitude, branch)
+    if a_max >= amplitude:
+        return None
+    strain, field = _strain(model, k, amplitude, branch)
+    edge, _ = _strain(model, k, a_max, branch)
+    named = [f"{n} = {v:g}" for n, v in model.params.items()
+             if v and abs(edge / v - 1) < 2e-3]
+    where = (f"the {field} strain |{field}_next - {field}| of the linear wave reaches "
+             f"{strain:.3g}, beyond {edge:.3g}"
+             + (f" ({' or '.join(named)})" if named else "")
+             + " where the model's energy stops being real")
+    allowed = (f"the largest amplitude the model allows at k = {k:.4g} is about {a_max:.3g}"
+               if a_max > 0 else "no amplitude tried had a real energy at this k")
+    return (f"at amplitude {amplitude:g} the energy is not real: {where}; {allowed} "
+            "(its linear wave keeps the energy real)")
+
+
+def exact_gain_checked(model: Model, k: float, amplitude: float, branch=None, **kw):
+    """``exact_gain``; where its solver stops on non-finite values, a ModelError that says
+    the energy is not real there and the largest amplitude allowed (``energy_not_real``)."""
+    import warnings
+
+    from ._exact import exact_gain
+
+    with warnings.catch_warnings(record=True) as caught:  # said again unless it fails here
+        warnings.simplefilter("always")
+        try:
+            spec = exact_gain(model, k, amplitude, branch, **kw)
+        except (ValueError, FloatingPointError) as exc:
+            if isinstance(exc, ModelError):
+                raise
+            try:
+                why = energy_not_real(model, k, amplitude, branch)
+            except Exception:  # the check itself failed: the solver's own error stands
+                why = None
+            if why is None:
+                raise
+            raise ModelError(why) from exc
+    for w in caught:
+        warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
+    return spec
