@@ -360,6 +360,25 @@ def test_point_says_when_the_ring_is_too_small_for_the_nls_band(capsys):
     assert data["exact lattice"]["verdict"] == "MI"
 
 
+def test_run_map_takes_a_model(tmp_path):
+    """The one map engine from Python: a model's map through numerics.maps.run_map gives
+    the verdicts of the in-process model_map, in the store's int8 codes."""
+    from numerics.maps import ModelMapParameters, run_map
+    from numerics.models import model_map
+
+    params = ModelMapParameters.from_model("fput", ("beta", [0.8, 1.6]), ("k", [2.6, 2.8]),
+                                           0.1, params={"alpha": 1.0}, theory_only=True)
+    ds = run_map(params, tmp_path, workers=1, progress=False, log=lambda *_: None)
+    ref = model_map(load_model("fput", alpha=1.0), ("k", [2.6, 2.8]), ("beta", [0.8, 1.6]),
+                    0.1)
+    codes = {"MI": 1, "stable": 0, "undefined": -1}
+    assert ds["verdict_semidiscrete"].values.tolist() == [
+        [codes[v] for v in row] for row in ref["verdict_semidiscrete"].values.tolist()]
+    np.testing.assert_array_equal(ds["peak_gain_semidiscrete"].values,
+                                  ref["peak_gain_semidiscrete"].values)
+    assert ds["done_predicted"].values.all() and ds.attrs["model"] == "fput"
+
+
 def test_a_simulated_model_map_is_stored_and_resumes(tmp_path, capsys):
     """Each cell: the exact theory and a run of the ring, a task of the one map engine,
     written into the checksummed map.zarr, so a rerun computes nothing again (a cell

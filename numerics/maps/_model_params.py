@@ -100,6 +100,27 @@ class ModelMapParameters:
         object.__setattr__(self, "parameters", tuple((str(n), float(v))
                                                      for n, v in self.parameters))
 
+    @classmethod
+    def from_model(cls, model: str, rows: tuple, cols: tuple, amplitude: float,
+                   params: dict | None = None, **options) -> ModelMapParameters:
+        """The map of the built-in model or model file ``model`` at ``params`` (the other
+        parameters at their defaults) over the axes ``rows`` and ``cols``; ``options``:
+        the other fields (k, branch, exact, theory_only, N, seeds, t_end, block).
+
+        Examples
+        --------
+        >>> p = ModelMapParameters.from_model("fput", ("beta", [0.8, 1.6]), ("k", [2.6, 2.8]),
+        ...                                   0.1, params={"alpha": 1.0}, theory_only=True)
+        >>> p.dims, p.grid_shape
+        (('beta', 'k'), (2, 2))
+        """
+        from energy import load_model
+
+        loaded = load_model(model, **(params or {}))
+        return cls(model=str(model), text=model_text(str(model)),
+                   parameters=tuple(loaded.params.items()), rows=rows, cols=cols,
+                   amplitude=amplitude, **options)
+
     # --- the model and its cells
     @property
     def lattice_model(self):
