@@ -90,15 +90,39 @@ class ModelMapParameters:
     block: int = DEFAULT_BLOCK
 
     def __post_init__(self):
+        from ..lattice import checks
+
         for name in ("rows", "cols"):
             axis, values = getattr(self, name)
-            object.__setattr__(self, name, (str(axis), tuple(float(v) for v in values)))
+            if not isinstance(axis, str):
+                raise TypeError(f"{name}: the axis name must be a string, got {axis!r}")
+            values = checks.real_values(f"{name} ({axis})", tuple(np.ravel(values)))
+            if axis == "k" and any(not 0 < v <= math.pi for v in values):
+                raise ValueError(f"k must be in (0, pi], got {min(values):g}..{max(values):g}")
+            object.__setattr__(self, name, (axis, values))
         if self.rows[0] == self.cols[0]:
             raise ValueError(f"the two map axes must differ, got {self.rows[0]!r} twice")
         if "k" not in (self.rows[0], self.cols[0]) and self.k is None:
             raise ValueError("give k (the carrier) when neither map axis is 'k'")
-        object.__setattr__(self, "parameters", tuple((str(n), float(v))
-                                                     for n, v in self.parameters))
+        if self.k is not None:
+            checks.real("k", self.k, 0.0, math.pi, high_open=False)
+        checks.positive("amplitude", self.amplitude)
+        object.__setattr__(self, "parameters", tuple(
+            (str(n), checks.real(f"parameter {n}", v)) for n, v in self.parameters))
+        names = {n for n, _ in self.parameters}
+        for axis in (self.rows[0], self.cols[0]):
+            if axis != "k" and axis not in names:
+                raise ValueError(f"map axis {axis!r} is neither 'k' nor a parameter of the "
+                                 f"model ({', '.join(sorted(names)) or 'none'})")
+        for flag in ("exact", "theory_only"):
+            if not isinstance(getattr(self, flag), (bool, np.bool_)):
+                raise TypeError(f"{flag} must be True or False, got {getattr(self, flag)!r}")
+        if self.ring:  # the ring of the exact theory and the runs
+            checks.integer("N", self.N, 8, 2**20 + 1)
+        checks.integer("seeds", self.seeds, 1, 1001)
+        checks.integer("block", self.block, 1, 10**6 + 1)
+        if self.t_end is not None:
+            checks.positive("t_end", self.t_end)
 
     @classmethod
     def from_model(cls, model: str, rows: tuple, cols: tuple, amplitude: float,
