@@ -494,6 +494,9 @@ def test_a_store_of_another_model_or_a_changed_energy_is_refused(tmp_path, capsy
     assert "whose energy differs" in err and "--overwrite" in err and "\n" not in err
     assert main([*argv, "--overwrite"]) == 0
     capsys.readouterr()
+    # a simulated map cannot continue a store without the exact theory's columns
+    assert main([a for a in argv if a != "--theory-only"]) == 2
+    assert "of other theories" in capsys.readouterr().err
     other = [a if a != str(model) else "klein-gordon" for a in argv]
     other[other.index("beta=0.9,1.7")] = "C=0.5,1"
     assert main(other) == 2

@@ -244,7 +244,8 @@ class ModelMapParameters:
                    method="srkn11b (numerics.models.simulate_model)",
                    step="per cell: 0.2 of the method's stability limit over the lattice's "
                         "highest frequency, rounded so that the steps fill T",
-                   growth_threshold=GROWTH_THRESHOLD, map_of="model")
+                   growth_threshold=GROWTH_THRESHOLD, map_of="model",
+                   theories=" ".join(self.theory_columns()))
         out.update({f"param_{n}": v for n, v in self.parameters
                     if n not in (self.rows[0], self.cols[0])})
         # netCDF-safe (a user's to_netcdf of the opened store): no bools, no lists of text
@@ -252,11 +253,12 @@ class ModelMapParameters:
         return out
 
     def identity(self) -> dict:
-        """The attributes a store of this map holds: all but theory_only and the model
-        file's text (its comments and description may change; its energy is the content
-        hash, its parameter values the ``param_`` attributes)."""
+        """The attributes a store of this map holds: all but theory_only and exact (a
+        simulated map continues a theory-only store of the same theories, ``theories``)
+        and the model file's text (its comments and description may change; its energy
+        is the content hash, its parameter values the ``param_`` attributes)."""
         return {n: v for n, v in self.attrs().items()
-                if n not in ("theory_only", "model_file")}
+                if n not in ("theory_only", "exact", "model_file")}
 
     def other_map(self, attrs: dict) -> str:
         """What a store of another map holds: another model's, this model's before its
@@ -271,6 +273,9 @@ class ModelMapParameters:
             return (f"a map of model {name!r} whose energy differs from this one's "
                     f"(content hash {str(attrs.get('model_hash'))[:12]} against "
                     f"{mine[:12]}: the model file changed)")
+        if attrs.get("theories") != " ".join(self.theory_columns()):
+            return (f"a map of model {name!r} of other theories ({attrs.get('theories')}; "
+                    "a --theory-only map without --exact has no exact columns to continue)")
         return f"a map of model {name!r} with other parameters"
 
     def new_dataset(self):
