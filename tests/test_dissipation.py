@@ -89,3 +89,36 @@ def test_bond_damping_matrix(cache):
     m = load_model(_chain(None, "eta*(u_next_t - u_t)**2/2"), eta=0.5)
     S, B = m.damping
     assert np.allclose(B, 0.5 * np.array([[1, -1], [-1, 1]])) and not S.any()
+
+
+def test_damping_rates_equal_the_closed_forms(cache):
+    from numerics.models import branches, carrier_damping, damping_rates
+
+    # one field, mass 1: omega^2 + i C(k) omega - K(k) = 0, Gamma = C(k)/2 when underdamped
+    m = load_model(_chain("gamma*u_t**2/2", "eta*(u_next_t - u_t)**2/2"), gamma=0.02,
+                   eta=0.05)
+    k = np.array([0.2, 1.0, 2.5])
+    C = 0.02 + 0.05 * (2 - 2 * np.cos(k))
+    assert np.allclose(damping_rates(m, k)[:, 0], C / 2, rtol=1e-12)
+    w = np.sqrt(2 - 2 * np.cos(k))
+    from numerics.models import damped_frequencies
+
+    re = [damped_frequencies(m, x)[0].real for x in k]
+    assert np.allclose(re, np.sqrt(w**2 - C**2 / 4), rtol=1e-12)
+    # the lossy twin of the paper's chain: theta and U decouple at linear order, so each
+    # branch decays at gamma/(2 m): gamma_theta alpha^2/2 and gamma_U/8
+    lossy = load_model("flexmm-lossy", gamma_theta=0.01, gamma_U=0.02)
+    assert carrier_damping(lossy, 1.0) == pytest.approx(0.01 * 2.5**2 / 2, rel=1e-10)
+    assert np.allclose(np.sort(damping_rates(lossy, 1.0)), [0.02 / 8, 0.01 * 2.5**2 / 2])
+    # and the branches' frequencies are the lossless ones shifted by the damping only
+    lossless = load_model("flexmm")
+    assert np.allclose(branches(lossy, k), branches(lossless, k))
+    assert not damping_rates(lossless, k).any() and carrier_damping(lossless, 1.0) == 0
+
+
+def test_coefficients_print_the_carrier_damping():
+    from numerics.models import model_coefficients
+
+    co = model_coefficients(load_model("flexmm-lossy", gamma_theta=0.01), 1.0, 0.1)
+    assert co["carrier_damping"] == pytest.approx(0.03125)
+    assert "carrier_damping" not in model_coefficients(load_model("flexmm"), 1.0, 0.1)

@@ -25,7 +25,17 @@ from ._exact import (
                      travelling_wave,
 )
 from ._fourwave import FourWave, classify_mode, four_wave, pair_rates, ring_misses
-from ._linear import Carrier, branch_index, branches, carrier, check_rest_stable
+from ._linear import (
+                     Carrier,
+                     branch_index,
+                     branches,
+                     carrier,
+                     carrier_damping,
+                     check_rest_stable,
+                     damped_frequencies,
+                     damping_matrix,
+                     damping_rates,
+)
 from ._map import model_map, simulated_cell
 from ._nls import ModelNLS, ModelSoliton, acoustic_directions, nls
 from ._simulate import (
@@ -45,7 +55,8 @@ from ._summary import model_coefficients
 
 __all__ = ["Carrier", "carrier", "branches", "branch_index", "check_rest_stable", "ModelNLS",
            "ModelSoliton", "nls", "acoustic_directions", "model_map", "simulated_cell",
-           "model_coefficients", "TravellingWave", "HillSpectrum", "travelling_wave",
+           "model_coefficients", "carrier_damping", "damped_frequencies", "damping_matrix",
+           "damping_rates", "TravellingWave", "HillSpectrum", "travelling_wave",
            "hill_spectrum", "exact_gain", "FourWave", "four_wave", "pair_rates",
            "classify_mode", "ring_misses", "ring_offsets", "simulate_model", "simulate_seeds",
            "SeededRuns", "ModelRun", "Growth", "measure_growth", "check_ring", "compiled_force",

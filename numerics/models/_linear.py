@@ -159,3 +159,48 @@ def field_of(model: Model, e: np.ndarray, name: str | None = None) -> int:
         if abs(e[f]) > 1e-8 * np.max(np.abs(e)):
             return f
     return int(np.argmax(np.abs(e)))
+
+
+def damping_matrix(model: Model, kappa: float) -> np.ndarray:
+    """C(kappa) = C_site + B11 + B22 + B12 e^{i kappa} + B21 e^{-i kappa}: the damping
+    force -C(kappa) v on a wave v_n = v e^{i kappa n} (zeros without [dissipation])."""
+    S, B = model.damping
+    return S.astype(complex) + dynamical_matrix(B, kappa)
+
+
+def damped_frequencies(model: Model, kappa: float) -> np.ndarray:
+    """Complex omega_b(kappa) of every branch, ascending in Re omega: the roots of
+    det(K - i omega C - omega^2 M) = 0 with Re omega >= 0 (a wave e^{i(kappa n - omega t)}
+    decays as e^{Im(omega) t}). Companion linearisation in mass-weighted coordinates."""
+    H = model.code.taylor(model.p)[0]
+    m = model.masses
+    s = 1 / np.sqrt(m)
+    d = len(m)
+    A = s[:, None] * dynamical_matrix(H, kappa) * s[None, :]
+    G = s[:, None] * damping_matrix(model, kappa) * s[None, :]
+    L = np.block([[np.zeros((d, d)), np.eye(d)], [A, -1j * G]])
+    w = np.linalg.eigvals(L)
+    # the d roots of the forward waves: the largest real parts (an overdamped pair has
+    # Re omega = 0: the slower-decaying root of the pair)
+    order = np.lexsort((np.imag(w), np.round(np.real(w), 12)))[::-1][:d]
+    w = w[order]
+    return w[np.argsort(np.real(w))]
+
+
+def damping_rates(model: Model, kappa) -> np.ndarray:
+    """Gamma_b(kappa) = -Im omega_b: each branch's amplitude decay rate (1/time), shape
+    (..., d), ascending branches as :func:`branches`; zeros without [dissipation]."""
+    kap = np.asarray(kappa, dtype=float)
+    out = np.zeros(kap.shape + (model.n_fields,))
+    if not model.lossy:
+        return out
+    for idx in np.ndindex(kap.shape):
+        out[idx] = -np.imag(damped_frequencies(model, float(kap[idx])))
+    return out
+
+
+def carrier_damping(model: Model, k: float, branch=None) -> float:
+    """Gamma of the carrier's branch at k (0 without [dissipation])."""
+    if not model.lossy:
+        return 0.0
+    return float(damping_rates(model, k)[branch_index(model, k, branch)])
