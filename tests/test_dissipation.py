@@ -1,5 +1,7 @@
 """Losses (issue 42): the [dissipation] table, damping rates, damped runs and theories."""
 
+import math
+
 import numpy as np
 import pytest
 
@@ -122,3 +124,49 @@ def test_coefficients_print_the_carrier_damping():
     co = model_coefficients(load_model("flexmm-lossy", gamma_theta=0.01), 1.0, 0.1)
     assert co["carrier_damping"] == pytest.approx(0.03125)
     assert "carrier_damping" not in model_coefficients(load_model("flexmm"), 1.0, 0.1)
+
+
+def _lossy_chain(cache, **values):
+    return load_model(_chain("gamma*u_t**2/2", "eta*(u_next_t - u_t)**2/2"), **values)
+
+
+@pytest.mark.parametrize("eta", [0.0, 0.05])  # site-local damping; and bond damping (FFT)
+def test_damped_splitting_is_second_order_and_rk4_fourth(cache, eta):
+    from numerics.models import simulate_model
+
+    m = _lossy_chain(cache, beta=1.0, gamma=0.02, eta=eta)
+    kw = dict(N=32, t_end=20.0, noise=1e-2, records=10)
+    ref = simulate_model(m, 0.8, 0.5, dt=0.0025, method="rk4", **kw).state[0]
+    dts = [0.2, 0.1, 0.05]
+    for method, order in (("verlet", 2), ("srkn11b", 2), ("rk4", 4)):
+        errs = [np.max(np.abs(simulate_model(m, 0.8, 0.5, dt=dt, method=method, **kw)
+                              .state[0] - ref)) for dt in dts]
+        slope = np.polyfit(np.log(dts), np.log(errs), 1)[0]
+        assert abs(slope - order) < 0.2, (method, errs, slope)
+
+
+def test_energy_balance_and_a_linear_mode_decays_at_twice_gamma(cache):
+    from numerics.models import damping_rates, simulate_model
+
+    m = _lossy_chain(cache, beta=1.0, gamma=0.02, eta=0.05)
+    for method, dt, tol in (("srkn11b", 0.05, 1e-4), ("rk4", 0.05, 1e-4)):
+        r = simulate_model(m, 0.8, 0.5, N=32, t_end=20.0, dt=dt, method=method, noise=1e-2,
+                           records=400)  # a record every step: trapezoids of order 2
+        lost = r.energy[0] - r.energy[-1]
+        assert lost > 0.3 * r.energy[0]  # the losses matter over the run
+        assert r.energy_balance() < tol, (method, r.energy_balance())
+    # a single linear mode (beta = 0): E ~ exp(-2 Gamma t)
+    m = _lossy_chain(cache, beta=0.0, gamma=0.02, eta=0.05)
+    k = 2 * math.pi * 8 / 64
+    for method in ("rk4", "srkn11b"):
+        r = simulate_model(m, k, 1e-3, N=64, t_end=200.0, method=method, start="linear",
+                           noise=0.0, records=200)
+        rate = -np.polyfit(r.t, np.log(r.energy), 1)[0]
+        assert rate == pytest.approx(2 * damping_rates(m, k)[0], rel=1e-4)
+
+
+def test_lossless_runs_unchanged():
+    from numerics.models import simulate_model
+
+    r = simulate_model(load_model("fput", beta=1.0), 1.0, 0.2, N=32, t_end=10.0, records=5)
+    assert r.dissipation is None and r.energy_balance() == r.energy_drift
