@@ -170,3 +170,46 @@ def test_lossless_runs_unchanged():
 
     r = simulate_model(load_model("fput", beta=1.0), 1.0, 0.2, N=32, t_end=10.0, records=5)
     assert r.dissipation is None and r.energy_balance() == r.energy_drift
+
+
+def test_damped_nls_amplification_against_closed_form_and_solve_ivp():
+    from scipy.integrate import solve_ivp
+
+    from numerics.models._losses import integrate_pairs
+
+    P, Q, psi0, G = -0.4, -1.3, 0.05, 0.002
+    q = np.array([0.02, 0.05, 0.08])
+    sigma = abs(P) * q * np.sqrt(2 * Q / P * psi0**2 - q**2)
+    # constant carrier: the growing eigenvector grows as exp((sigma - G) t), exactly
+    amp, t = integrate_pairs(P, Q, psi0, 0.0, G, q, 200.0, steps=400, carrier_decays=False)
+    assert np.allclose(amp[-1], np.exp((sigma - G) * 200.0), rtol=1e-10)
+    # decaying carrier: an independent integration (RK45, tight tolerances)
+    Gamma = 0.004
+    amp, t = integrate_pairs(P, Q, psi0, Gamma, G, q, 600.0, steps=4000)
+    for j, qj in enumerate(q):
+        b = P * qj**2
+
+        def rhs(s, z, qj=qj, b=b):
+            c = 2 * Q * psi0**2 * math.exp(-2 * Gamma * s) - P * qj**2
+            return [-G * z[0] + b * z[1], c * z[0] - G * z[1]]
+
+        c0 = 2 * Q * psi0**2 - P * qj**2
+        z0 = np.array([b, math.sqrt(b * c0)])
+        sol = solve_ivp(rhs, (0, 600.0), z0 / np.hypot(*z0), t_eval=t[::400], rtol=1e-11,
+                        atol=1e-14)
+        assert np.allclose(np.hypot(*sol.y), amp[::400, j], rtol=1e-5)
+    assert 1 < amp.max() < np.exp(sigma.max() * 600.0)
+
+
+def test_theories_amplification_on_the_lossy_chain():
+    from numerics.models._losses import exact_amplification, nls_amplification
+
+    weak = load_model("flexmm-lossy", gamma_theta=0.001, gamma_U=0.001)
+    a = nls_amplification(weak, 1.0, 0.1)
+    assert a.carrier_damping == pytest.approx(0.003125)
+    assert a.observable and a.amplification > 20 and a.initial_gain > 0
+    strong = weak.with_params(gamma_theta=0.008, gamma_U=0.008)
+    b = nls_amplification(strong, 1.0, 0.1)
+    assert b.amplification < a.amplification and not b.observable
+    e = exact_amplification(strong, 1.0, 0.1, N=64, amplitudes=6)
+    assert e.amplification < 20 and not e.observable
