@@ -506,20 +506,22 @@ class Amplification:
                 "observable": self.observable, "peaked": self.peaked}
 
 
-def _sideband_modes(N: int, m: int) -> np.ndarray:
-    """Ring modes that are not harmonics of the carrier mode m (multiples of m mod N)."""
-    harm = {(h * m) % N for h in range(N)}
+def _sideband_modes(N: int, m: int, H: int) -> np.ndarray:
+    """Ring modes that are not harmonics of the carrier mode m: h m mod N, |h| <= H (the
+    exact wave's harmonics), and the mean (h = 0)."""
+    harm = {(h * m) % N for h in range(-H, H + 1)}
     return np.array([j not in harm for j in range(N)])
 
 
-def sideband_amplitude(spectrum: np.ndarray, N: int, k: float) -> np.ndarray:
-    """A(t): the largest |FFT| / N over the ring modes that are not carrier harmonics."""
+def sideband_amplitude(spectrum: np.ndarray, N: int, k: float, H: int) -> np.ndarray:
+    """A(t): the largest |FFT| / N over the ring modes that are not carrier harmonics
+    (up to the H-th)."""
     m = int(round(k * N / (2 * math.pi)))
-    return np.max(np.asarray(spectrum)[..., _sideband_modes(N, m)], axis=-1)
+    return np.max(np.asarray(spectrum)[..., _sideband_modes(N, m, H)], axis=-1)
 
 
 def measure_amplification(run: ModelRun) -> Amplification:
-    A = sideband_amplitude(run.spectrum, run.N, run.k)
+    A = sideband_amplitude(run.spectrum, run.N, run.k, run.wave.harmonics)
     i = int(np.argmax(A))
     amp = float(A[i] / max(A[0], 1e-300))
     peaked = bool(np.any(A[i:] <= A[i] / 2)) if run.peaked is None else bool(run.peaked)
@@ -705,7 +707,7 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
     done = 0
     peaked = None
     if until_peak:
-        modes = _sideband_modes(N, int(round(k_ring * N / (2 * math.pi))))
+        modes = _sideband_modes(N, int(round(k_ring * N / (2 * math.pi))), wave.harmonics)
         a0 = float(np.max(spec[0][modes]))
         top = a0
         peaked = False
