@@ -331,3 +331,7 @@ MAP_CATALOGUE += [
 from bench.faults_round3 import ROUND3  # noqa: E402 - the third round (issue 35)
 
 MAP_CATALOGUE += ROUND3
+
+from bench.faults_round4 import ROUND4  # noqa: E402 - the fourth round (issue 39)
+
+MAP_CATALOGUE += ROUND4

@@ -39,3 +39,18 @@ def quick_scenes(tmp_path_factory):
 
     out = tmp_path_factory.mktemp("quick_scenes")
     return out, {name: scenes.run_scene(name, out, quick=True) for name in scenes.REGISTRY}
+
+
+@pytest.fixture
+def sigint_raises():
+    """SIGINT raises KeyboardInterrupt during the test, whatever the process inherited: a
+    non-interactive shell starts background jobs (``make test &``, nohup, batch systems)
+    with SIGINT ignored, and Python then keeps it ignored. Tests that send themselves
+    SIGINT install the handler they rely on."""
+    import signal
+
+    old = signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, old)

@@ -25,6 +25,9 @@ from common import paper
 from numerics import BlowUpError, SimulationInterrupted, resume, simulate
 from numerics.lattice import _cache
 
+# these tests send themselves SIGINT: the handler they rely on, also in a background job
+pytestmark = pytest.mark.usefixtures("sigint_raises")
+
 
 @pytest.mark.parametrize("name, action, expected", faults.CATALOGUE,
                          ids=[c[0] for c in faults.CATALOGUE])

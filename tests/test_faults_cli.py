@@ -13,6 +13,9 @@ from pathlib import Path
 
 import pytest
 
+# these tests send themselves SIGINT: the handler they rely on, also in a background job
+pytestmark = pytest.mark.usefixtures("sigint_raises")
+
 ROOT = Path(__file__).resolve().parents[1]
 FLEXMM = [sys.executable, "-m", "cli"]
 MAP = ["map", "--case", "coupled", "--alpha", "2.5", "--K-s", "0.01851", "--delta",

@@ -481,21 +481,20 @@ def test_two_writers_of_one_model_map_are_refused(tmp_path, capsys):
 
 
 def test_interrupted_model_map_says_what_was_kept(tmp_path, monkeypatch, capsys):
+    import numerics.models
     from cli.app import main
-    from numerics.models import _map as map_module
 
     calls = []
-    real = map_module.nls
+    real = numerics.models.simulated_cell
 
-    def interrupt_on_second(*a, **kw):
+    def interrupt_on_third(*a, **kw):  # Ctrl-C while the third cell runs
         calls.append(1)
-        if len(calls) == 2:
+        if len(calls) == 3:
             raise KeyboardInterrupt
         return real(*a, **kw)
 
-    monkeypatch.setattr(map_module, "nls", interrupt_on_second)
+    monkeypatch.setattr(numerics.models, "simulated_cell", interrupt_on_third)
     assert main(_map(tmp_path, "--t-end", "40")) == 130
     err = capsys.readouterr().err
-    # the second cell had finished its runs (journalled) when its NLS was interrupted
     assert "2 finished cells are kept in" in err and "map.cells.jsonl" in err
     assert "nothing was written" not in err

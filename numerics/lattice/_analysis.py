@@ -138,6 +138,8 @@ def spectrum_growth(t, ratios: dict, bins: dict, N: int, t_end: float | None = N
         Wavenumber (rad per site) of the largest component at the record of the peak
         (NaN where nothing was measured).
     """
+    if not ratios:  # every ring mode is a harmonic of the carrier (a small or odd ring)
+        raise ValueError(_no_sideband(N))
     draws = next(iter(ratios.values())).shape[0]
     growth = np.zeros(draws)
     field = np.full(draws, "theta", dtype=object)
@@ -180,7 +182,14 @@ def sideband_to_carrier(spec: np.ndarray, m: int, N: int) -> np.ndarray:
     ndarray, shape (nt,)
     """
     mask = non_carrier_bins(m, N)
+    if not mask.any():
+        raise ValueError(_no_sideband(N))
     return spec[:, mask].max(axis=1) / spec[:, m]
+
+
+def _no_sideband(N: int) -> str:
+    return (f"no sideband to measure on a ring of N = {N} sites: every ring mode there is "
+            "a harmonic of the carrier; choose another N (a larger one, or an even one)")
 
 
 def stability_verdict(spec: np.ndarray, m: int, N: int) -> dict:
