@@ -211,7 +211,7 @@ def test_theories_amplification_on_the_lossy_chain():
     strong = weak.with_params(gamma_theta=0.008, gamma_U=0.008)
     b = nls_amplification(strong, 1.0, 0.1)
     assert b.amplification < a.amplification and not b.observable
-    e = exact_amplification(strong, 1.0, 0.1, N=64, amplitudes=6)
+    e = exact_amplification(strong, 1.0, 0.1, N=64)
     assert e.amplification < 20 and not e.observable
 
 
@@ -243,6 +243,66 @@ def test_run_amplification_against_the_theories(cache):
         s = r.amplification()
         assert s.peaked and s.observable == observable, (gamma, s.row())
         assert r.energy_balance() < 1e-3
-        e = exact_amplification(m, 2.5, 0.2, N=128, amplitudes=8)
+        e = exact_amplification(m, 2.5, 0.2, N=128)
         assert e.observable == observable
         assert s.amplification <= e.amplification
+
+
+def test_lossless_limit_is_todays_answer():
+    # Gamma = 0 (no [dissipation], or zero damping): the carrier keeps its amplitude, a
+    # mode with a positive rate grows without end: amplification inf at time inf,
+    # observable where MI; the rates and verdicts are today's
+    from numerics.models import exact_gain, four_wave, nls
+    from numerics.models._losses import (
+        exact_amplification,
+        four_wave_amplification,
+        nls_amplification,
+    )
+
+    for model, k, a in ((load_model("fput", beta=1.0), 2.5, 0.2),
+                        (load_model("flexmm-lossy", gamma_theta=0.0, gamma_U=0.0), 1.0, 0.1)):
+        e = exact_gain(model, k, a, N=64)
+        x = exact_amplification(model, k, a, N=64, first=e)
+        assert x.carrier_damping == 0.0 and x.initial_gain == e.peak_gain > 0
+        assert x.amplification == math.inf == x.amplification_time and x.observable
+        f = four_wave(model, k, a, N=64)
+        y = four_wave_amplification(model, k, a, N=64, first=f)
+        assert y.initial_gain == pytest.approx(f.gain)
+        assert y.amplification == (math.inf if f.gain > 0 else 1.0)
+        r = nls(model, k)
+        z = nls_amplification(model, k, a)
+        assert z.observable == (r.verdict == "MI") and z.carrier_damping == 0.0
+        assert z.amplification == (math.inf if r.verdict == "MI" else 1.0)
+    # stable: amplification 1 at t = 0, not observable
+    stable = load_model("fput", beta=-1.0)
+    x = exact_amplification(stable, 2.5, 0.2, N=64)
+    assert (x.amplification, x.amplification_time, x.observable) == (1.0, 0.0, False)
+    # the lossy twin at zero damping answers as the lossless model
+    twin = parse_model(FPUT_LOSSY)
+    assert exact_amplification(load_model(twin, gamma=0.0), 2.5, 0.2, N=64) == \
+        exact_amplification(load_model("fput", beta=1.0), 2.5, 0.2, N=64)
+
+
+def test_along_decay_sampling_against_dense_quadrature():
+    # an NLS-like gain (sigma^2 linear in s = (a/a0)^2: exact with two samples) and a
+    # bumped one; the reference is the quadrature of the gain at every time
+    from numerics.models._losses import along_decay
+
+    a0, Gamma = 0.1, 2e-3
+    q = np.linspace(0.05, 1.0, 12)
+    G = 1e-3 + 0 * q
+
+    def nls_like(a, bump=0.0):
+        s = (a / a0) ** 2
+        return np.sqrt(np.maximum(q**2 * (0.04 * s - 0.01 * q**2), 0) + bump * s * (1 - s) * 1e-4)
+
+    for bump in (0.0, 1.0):
+        amp, t, j, n = along_decay(lambda a, b=bump: nls_like(a, b), a0, nls_like(a0, bump),
+                                   G, Gamma)
+        tt = np.linspace(0, 6000, 60001)
+        rate = np.array([nls_like(a0 * math.exp(-Gamma * x), bump) for x in tt]) - G
+        ref = np.exp(np.max(np.cumsum(rate, axis=0) * (tt[1] - tt[0])))
+        assert n <= 10
+        # exact for sigma^2 linear in s; a bump between the samples (s = 1, 1/2, 1/4...):
+        # measured 5.4% high in log (38.6 against 36.6), the price of few samples
+        assert math.log(amp) == pytest.approx(math.log(ref), rel=0.06 if bump else 2e-3)

@@ -119,7 +119,7 @@ def nls_amplification(model: Model, k: float, amplitude: float, branch=None, *,
 
     r = nls(model, k, branch)
     c = r.carrier
-    Gamma = carrier_damping(model, c.k, c.branch)
+    Gamma = max(carrier_damping(model, c.k, c.branch), 0.0) + 0.0  # -0.0 at zero damping
     P, Q = c.g1 / 2, r.g2
     psi0 = amplitude / 2
     if r.undefined or not (np.isfinite(Q) and P * Q > 0):  # defocusing: no band
@@ -130,44 +130,146 @@ def nls_amplification(model: Model, k: float, amplitude: float, branch=None, *,
     q = np.linspace(edge / offsets, edge, offsets, endpoint=False)
     G = sideband_damping(model, c.k, q, c.branch)
     rate0 = abs(P) * q * np.sqrt(np.maximum(q**2 * 0 + (2 * Q / P) * psi0**2 - q**2, 0))
+    net0 = float(np.max(rate0 - G))
+    if Gamma <= 0:  # the lossless limit: a constant carrier, growth never stops
+        return _unbounded(Gamma, net0, float(q[int(np.argmax(rate0 - G))]))
     t_end = _horizon(float(np.max(rate0)), Gamma)
-    if not math.isfinite(t_end):
-        raise ValueError("the NLS's amplification needs losses (Gamma > 0)")
     amp, t = integrate_pairs(P, Q, psi0, Gamma, G, q, t_end, steps)
     i, j = np.unravel_index(int(np.argmax(amp)), amp.shape)
     best = float(amp[i, j])
-    return Amplified(Gamma, best, float(t[i]), float(q[j]), best >= OBSERVABLE,
-                     float(np.max(rate0 - G)))
+    return Amplified(Gamma, best, float(t[i]), float(q[j]), best >= OBSERVABLE, net0)
+
+
+def _unbounded(Gamma: float, net0: float, offset: float) -> Amplified:
+    """The lossless limit (Gamma = 0: no [dissipation], or zero damping of the carrier):
+    the carrier keeps its amplitude, so a mode whose net rate is positive grows without
+    end. Convention: amplification inf at time inf, observable True where it grows (MI),
+    else amplification 1 at time 0, observable False."""
+    if net0 > 0:
+        return Amplified(Gamma, math.inf, math.inf, offset, True, net0)
+    return Amplified(Gamma, 1.0, 0.0, math.nan, False, net0)
+
+
+def along_decay(gain_at, a0: float, gain0, G, Gamma: float, *, ratio: float = 0.5,
+                most: int = 10, steps: int = 4000):
+    """(amplification, time, column, samples) of modes whose growth rates at carrier
+    amplitude a are ``gain_at(a)`` (an array over columns; ``gain0`` the rates at a0),
+    each damped at its own rate G, along the carrier a(t) = a0 e^{-Gamma t} (Gamma > 0):
+    max over columns and t of exp(int_0^t (sigma(a(s)) - G) ds).
+
+    The gain is sampled at few amplitudes, s = (a / a0)^2 = 1, ratio, ratio^2, ... until
+    no column grows at the last (or ``most`` samples); sigma^2 is taken piecewise linear
+    in s between the samples and, below a column's lowest positive sample (a rate is
+    clipped at 0), on the line through its two lowest positive ones (clipped at 0): exact for the NLS's gain, sigma^2 = P^2 q^2 (2 Q/P psi0^2 s - q^2),
+    where the gain ~ a^2 the samples are ~ ln(sigma0 / G) / ln(1 / ratio)."""
+    gain0 = np.asarray(gain0, float)
+    G = np.broadcast_to(np.asarray(G, float), gain0.shape)
+    S = [(1.0, gain0 ** 2)]
+    s = 1.0
+    while len(S) < most:
+        s *= ratio
+        g = np.asarray(gain_at(a0 * math.sqrt(s)), float)
+        S.append((s, g ** 2))
+        if not np.any(g > G):
+            break
+    S.sort(key=lambda x: x[0])
+    s_arr = np.array([x[0] for x in S])
+    g2 = np.array([x[1] for x in S])  # (samples, cols)
+    # time: the horizon of the gain at t = 0 against the carrier's damping
+    t_end = _horizon(float(np.max(gain0)), Gamma)
+    t = np.linspace(0.0, t_end, steps + 1)
+    s_t = np.exp(-2 * Gamma * t)
+    sig2 = np.empty((t.size, g2.shape[1]))
+    for c in range(g2.shape[1]):
+        # the samples are clipped rates (0 where stable): below a column's lowest positive
+        # sample its sigma^2 follows the line through the two lowest positive ones
+        pos = np.flatnonzero(g2[:, c] > 0)
+        lo = pos[0] if pos.size else s_arr.size - 1
+        up = min(lo + 1, s_arr.size - 1)
+        above = s_t >= s_arr[lo]
+        sig2[above, c] = np.interp(s_t[above], s_arr[lo:], g2[lo:, c])
+        if up == lo:  # only s = 1 grows: fall to the next sample below
+            up, lo = lo, max(lo - 1, 0)
+        slope = (g2[up, c] - g2[lo, c]) / (s_arr[up] - s_arr[lo]) if up != lo else 0.0
+        sig2[~above, c] = g2[up, c] + slope * (s_t[~above] - s_arr[up])
+    rate = np.sqrt(np.maximum(sig2, 0.0)) - G[None, :]
+    log_amp = np.concatenate([np.zeros((1, G.size)), np.cumsum(
+        np.diff(t)[:, None] * (rate[1:] + rate[:-1]) / 2, axis=0)])
+    i, j = np.unravel_index(int(np.argmax(log_amp)), log_amp.shape)
+    return math.exp(min(float(log_amp[i, j]), 700.0)), float(t[i]), int(j), len(S)
 
 
 def exact_amplification(model: Model, k: float, amplitude: float, branch=None, *,
-                        N: int = 256, amplitudes: int = 24) -> Amplified:
+                        N: int = 256, first=None, ratio: float = 0.5,
+                        most: int = 10) -> Amplified:
     """The exact lattice theory along the decaying carrier (module docstring): the Hill
-    gain on a ring of N sites at ``amplitudes`` carrier amplitudes a0 e^{-Gamma t}."""
-    from ._exact import exact_gain
+    gain on a ring of N sites at the carrier amplitudes a0 e^{-Gamma t} (``along_decay``:
+    a few amplitudes, the gain interpolated between them), for the offsets that grow net
+    of their damping at t = 0, each damped as the carrier branch's sidebands (a mode of
+    other branches is damped at their rates: this is then approximate). ``first``: ``exact_gain`` at a0 on this
+    ring, where already computed."""
+    from ._exact import exact_gain, hill_spectrum, travelling_wave
     from ._linear import carrier_damping
 
-    first = exact_gain(model, k, amplitude, branch, N=N)
+    if first is None:
+        first = exact_gain(model, k, amplitude, branch, N=N)
     c = first.wave.carrier
-    Gamma = carrier_damping(model, c.k, c.branch)
+    Gamma = max(carrier_damping(model, c.k, c.branch), 0.0) + 0.0  # -0.0 at zero damping
     q = np.asarray(first.offsets, float)
-    G = sideband_damping(model, c.k, q, c.branch)
-    net0 = np.asarray(first.gain, float) - G
-    t_end = _horizon(max(first.peak_gain, 0.0), Gamma)
-    if first.peak_gain <= 0 or float(np.max(net0)) <= 0:
-        return Amplified(Gamma, 1.0, 0.0, math.nan, False, float(np.max(net0)))
-    t = np.linspace(0.0, t_end, amplitudes)
-    gains = [np.asarray(first.gain, float)]
-    for ti in t[1:]:
-        gains.append(np.asarray(exact_gain(model, k, amplitude * math.exp(-Gamma * ti),
-                                           branch, N=N).gain, float))
-    net = np.array(gains) - G[None, :]
-    # trapezoids of the net rate, on a finer grid (linear between the amplitudes)
-    fine = np.linspace(0.0, t_end, 20 * amplitudes)
-    rate = np.array([np.interp(fine, t, net[:, j]) for j in range(q.size)]).T
-    log_amp = np.concatenate([np.zeros((1, q.size)), np.cumsum(
-        np.diff(fine)[:, None] * (rate[1:] + rate[:-1]) / 2, axis=0)])
-    i, j = np.unravel_index(int(np.argmax(log_amp)), log_amp.shape)
-    best = float(math.exp(min(log_amp[i, j], 700.0)))
-    return Amplified(Gamma, best, float(fine[i]), float(q[j]), best >= OBSERVABLE,
-                     float(np.max(net0)))
+    gain0 = np.asarray(first.gain, float)
+    G = sideband_damping(model, c.k, q, c.branch) if model.lossy else np.zeros(q.size)
+    net0 = gain0 - G
+    top = float(np.max(net0)) if q.size else 0.0
+    if first.peak_gain <= 0 or top <= 0:
+        return Amplified(Gamma, 1.0, 0.0, math.nan, False, top)
+    if Gamma <= 0:
+        return _unbounded(Gamma, top, float(q[int(np.argmax(net0))]))
+    live = np.flatnonzero(net0 > 0)
+    qk = q[live]
+
+    def gain_at(a):
+        w = travelling_wave(model, c.k, a, c.branch)
+        return hill_spectrum(w, qk).gain
+
+    amp, t, j, _ = along_decay(gain_at, amplitude, gain0[live], G[live], Gamma, ratio=ratio,
+                               most=most)
+    return Amplified(Gamma, amp, t, float(qk[j]), amp >= OBSERVABLE, top)
+
+
+def four_wave_amplification(model: Model, k: float, amplitude: float, branch=None, *,
+                            N: int | None = None, first=None, ratio: float = 0.5,
+                            most: int = 10) -> Amplified:
+    """The four-wave theory along the decaying carrier: every pair (offset q, branches
+    b1, b2) at its rate at a(t), damped at the mean of its two waves' rates
+    (Gamma_b1(k + q) + Gamma_b2(k - q)) / 2 (``along_decay``)."""
+    from ._fourwave import four_wave
+    from ._linear import carrier_damping, damping_rates
+
+    if first is None:
+        first = four_wave(model, k, amplitude, branch, N=N)
+    Gamma = max(carrier_damping(model, first.k, first.branch), 0.0) + 0.0  # -0.0 at zero damping
+    if first.undefined or not first.gain > 0:
+        return Amplified(Gamma, 1.0, 0.0, math.nan, False, 0.0)
+    q = np.asarray(first.offsets, float)
+    rates0 = np.nan_to_num(np.asarray(first.rates, float), nan=0.0)  # (n, m)
+    if model.lossy:
+        up, down = damping_rates(model, first.k + q), damping_rates(model, first.k - q)
+        G = np.array([0.5 * (up[:, b1] + down[:, b2]) for b1, b2 in first.pairs]).T
+    else:
+        G = np.zeros_like(rates0)
+    net0 = rates0 - G
+    top = float(np.max(net0))
+    col_q = np.repeat(q, rates0.shape[1])
+    if top <= 0:
+        return Amplified(Gamma, 1.0, 0.0, math.nan, False, top)
+    if Gamma <= 0:
+        return _unbounded(Gamma, top, float(col_q[int(np.argmax(net0))]))
+    live = net0.ravel() > 0
+
+    def gain_at(a):
+        fw = four_wave(model, first.k, a, first.branch, N=N)
+        return np.nan_to_num(np.asarray(fw.rates, float), nan=0.0).ravel()[live]
+
+    amp, t, j, _ = along_decay(gain_at, amplitude, rates0.ravel()[live], G.ravel()[live],
+                               Gamma, ratio=ratio, most=most)
+    return Amplified(Gamma, amp, t, float(col_q[live][j]), amp >= OBSERVABLE, top)
