@@ -306,3 +306,35 @@ def test_along_decay_sampling_against_dense_quadrature():
         # exact for sigma^2 linear in s; a bump between the samples (s = 1, 1/2, 1/4...):
         # measured 5.4% high in log (38.6 against 36.6), the price of few samples
         assert math.log(amp) == pytest.approx(math.log(ref), rel=0.06 if bump else 2e-3)
+
+
+def test_point_of_a_lossy_model_reports_amplifications(tmp_path, capsys):
+    import json
+
+    from cli.app import main
+
+    path = tmp_path / "fput-lossy.toml"
+    path.write_text(FPUT_LOSSY)
+    argv = ["point", "--model", str(path), "--param", "gamma=0.002", "--k", "2.5",
+            "--amplitude", "0.2", "--N", "64", "--simulate", "--seeds", "1", "--t-end",
+            "400"]
+    assert main(argv + ["--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    keys = {"carrier_damping", "amplification", "amplification_time", "observable"}
+    for name in ("semi-discrete NLS", "four-wave", "exact lattice"):
+        assert keys <= set(out[name]), name
+        assert out[name]["carrier_damping"] == pytest.approx(0.001, rel=1e-6)
+    assert keys - {"carrier_damping"} <= set(out["simulated"])
+    assert out["exact lattice"]["observable"] and out["simulated"]["observable"]
+    assert main(argv) == 0
+    text = capsys.readouterr().out
+    assert "with losses" in text and "energy balance" in text
+    # zero damping: unbounded (JSON null, said), observable; a lossless model: no keys
+    assert main(argv[:3] + ["--param", "gamma=0"] + argv[5:11] + ["--json"]) == 0
+    zero = json.loads(capsys.readouterr().out)["exact lattice"]
+    assert zero["amplification"] is None and zero["observable"] and "unbounded" in zero[
+        "amplification_note"]
+    assert main(["point", "--model", "fput", "--k", "2.5", "--amplitude", "0.2", "--N", "64",
+                 "--json"]) == 0
+    plain = json.loads(capsys.readouterr().out)
+    assert "amplification" not in plain["exact lattice"]

@@ -761,10 +761,11 @@ class SeededRuns:
 
 def simulate_seeds(model: Model, k: float, amplitude: float, spec, *, branch=None,
                    N: int = 256, seeds: int = 1, t_end: float | None = None,
-                   start: str = "exact") -> SeededRuns:
+                   start: str = "exact", **run) -> SeededRuns:
     """``seeds`` runs of the ring from ``spec``'s exact wave (``exact_gain`` on this ring)
     and their verdict: one rule for a point and a map cell. T is ``run_length`` of the
-    exact rate unless ``t_end`` is given."""
+    exact rate unless ``t_end`` is given. ``run``: more keywords of ``simulate_model``
+    (``noise_on``, ``until_peak``: a lossy point's launch, issue 42)."""
     from numerics.lattice import run_length, simulated_verdict
 
     if isinstance(seeds, bool) or not isinstance(seeds, (int, np.integer)) or seeds < 1:
@@ -772,7 +773,7 @@ def simulate_seeds(model: Model, k: float, amplitude: float, spec, *, branch=Non
     length = run_length(spec.peak_gain) if t_end is None else None
     T = float(t_end) if t_end is not None else length.t_end
     runs = [simulate_model(model, k, amplitude, branch=branch, N=N, t_end=T, start=start,
-                           seed=s, wave=spec.wave) for s in range(int(seeds))]
+                           seed=s, wave=spec.wave, **run) for s in range(int(seeds))]
     growth = [r.growth() for r in runs]
     rates = [g.rate for g in growth if g.verdict == "unstable"]
     rate = float(np.median(rates)) if rates else math.nan
