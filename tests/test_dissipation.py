@@ -328,7 +328,7 @@ def test_along_decay_sampling_against_dense_quadrature():
         return np.sqrt(np.maximum(q**2 * (0.04 * s - 0.01 * q**2), 0) + bump * s * (1 - s) * 1e-4)
 
     for bump in (0.0, 1.0):
-        amp, t, j, n = along_decay(lambda a, b=bump: nls_like(a, b), a0, nls_like(a0, bump),
+        amp, t, j, n = along_decay(lambda a, c, b=bump: nls_like(a, b)[c], a0, nls_like(a0, bump),
                                    G, Gamma)
         tt = np.linspace(0, 6000, 60001)
         rate = np.array([nls_like(a0 * math.exp(-Gamma * x), bump) for x in tt]) - G

@@ -172,19 +172,36 @@ def damped_frequencies(model: Model, kappa: float) -> np.ndarray:
     """Complex omega_b(kappa) of every branch, ascending in Re omega: the roots of
     det(K - i omega C - omega^2 M) = 0 with Re omega >= 0 (a wave e^{i(kappa n - omega t)}
     decays as e^{Im(omega) t}). Companion linearisation in mass-weighted coordinates."""
+    return _damped_many(model, np.array([float(kappa)]))[0]
+
+
+def _damped_many(model: Model, kappas: np.ndarray) -> np.ndarray:
+    """damped_frequencies at every kappa of a 1-d array, shape (n, d): one batched
+    eigenvalue call."""
     H = model.code.taylor(model.p)[0]
+    S, B = model.damping
     m = model.masses
     s = 1 / np.sqrt(m)
     d = len(m)
-    A = s[:, None] * dynamical_matrix(H, kappa) * s[None, :]
-    G = s[:, None] * damping_matrix(model, kappa) * s[None, :]
-    L = np.block([[np.zeros((d, d)), np.eye(d)], [A, -1j * G]])
+    z = np.exp(1j * kappas)[:, None, None]
+    Hb = blocks(H, d)
+    Bb = blocks(B, d)
+    K = (Hb[0] + Hb[3]).astype(complex) + Hb[1] * z + Hb[2] / z
+    C = (S + Bb[0] + Bb[3]).astype(complex) + Bb[1] * z + Bb[2] / z
+    w2 = s[None, :, None] * s[None, None, :]
+    L = np.zeros((kappas.size, 2 * d, 2 * d), complex)
+    L[:, :d, d:] = np.eye(d)
+    L[:, d:, :d] = K * w2
+    L[:, d:, d:] = -1j * C * w2
     w = np.linalg.eigvals(L)
-    # the d roots of the forward waves: the largest real parts (an overdamped pair has
-    # Re omega = 0: the slower-decaying root of the pair)
-    order = np.lexsort((np.imag(w), np.round(np.real(w), 12)))[::-1][:d]
-    w = w[order]
-    return w[np.argsort(np.real(w))]
+    out = np.empty((kappas.size, d), complex)
+    for i in range(kappas.size):
+        # the d roots of the forward waves: the largest real parts (an overdamped pair has
+        # Re omega = 0: the slower-decaying root of the pair)
+        order = np.lexsort((np.imag(w[i]), np.round(np.real(w[i]), 12)))[::-1][:d]
+        wi = w[i][order]
+        out[i] = wi[np.argsort(np.real(wi))]
+    return out
 
 
 def damping_rates(model: Model, kappa) -> np.ndarray:
@@ -194,9 +211,8 @@ def damping_rates(model: Model, kappa) -> np.ndarray:
     out = np.zeros(kap.shape + (model.n_fields,))
     if not model.lossy:
         return out
-    for idx in np.ndindex(kap.shape):
-        out[idx] = -np.imag(damped_frequencies(model, float(kap[idx])))
-    return out
+    flat = -np.imag(_damped_many(model, kap.ravel()))
+    return flat.reshape(kap.shape + (model.n_fields,))
 
 
 def carrier_damping(model: Model, k: float, branch=None) -> float:

@@ -112,7 +112,7 @@ def _horizon(rate0: float, Gamma: float) -> float:
 
 
 def nls_amplification(model: Model, k: float, amplitude: float, branch=None, *,
-                      offsets: int = 200, steps: int = 4000) -> Amplified:
+                      offsets: int = 200, steps: int = 1000) -> Amplified:
     """The damped semi-discrete NLS's amplification (module docstring)."""
     from ._linear import carrier_damping
     from ._nls import nls
@@ -153,7 +153,8 @@ def _unbounded(Gamma: float, net0: float, offset: float) -> Amplified:
 def along_decay(gain_at, a0: float, gain0, G, Gamma: float, *, ratio: float = 0.5,
                 most: int = 10, steps: int = 4000):
     """(amplification, time, column, samples) of modes whose growth rates at carrier
-    amplitude a are ``gain_at(a)`` (an array over columns; ``gain0`` the rates at a0),
+    amplitude a are ``gain_at(a, cols)`` (an array over the columns ``cols``; ``gain0``
+    the rates at a0, every column),
     each damped at its own rate G, along the carrier a(t) = a0 e^{-Gamma t} (Gamma > 0):
     max over columns and t of exp(int_0^t (sigma(a(s)) - G) ds).
 
@@ -166,9 +167,15 @@ def along_decay(gain_at, a0: float, gain0, G, Gamma: float, *, ratio: float = 0.
     G = np.broadcast_to(np.asarray(G, float), gain0.shape)
     S = [(1.0, gain0 ** 2)]
     s = 1.0
+    g = gain0
     while len(S) < most:
         s *= ratio
-        g = np.asarray(gain_at(a0 * math.sqrt(s)), float)
+        # a band shrinks as the carrier weakens: only the columns that grew net of their
+        # damping at the last sample are computed at the next (the others are taken 0:
+        # they only decay from there, which leaves the maximum over t unchanged)
+        cols = np.flatnonzero(g > G)
+        g = np.zeros_like(gain0)
+        g[cols] = np.asarray(gain_at(a0 * math.sqrt(s), cols), float)
         S.append((s, g ** 2))
         if not np.any(g > G):
             break
@@ -227,9 +234,9 @@ def exact_amplification(model: Model, k: float, amplitude: float, branch=None, *
     live = np.flatnonzero(net0 > 0)
     qk = q[live]
 
-    def gain_at(a):
+    def gain_at(a, cols):
         w = travelling_wave(model, c.k, a, c.branch)
-        return hill_spectrum(w, qk).gain
+        return hill_spectrum(w, qk[cols]).gain
 
     amp, t, j, _ = along_decay(gain_at, amplitude, gain0[live], G[live], Gamma, ratio=ratio,
                                most=most)
@@ -266,9 +273,9 @@ def four_wave_amplification(model: Model, k: float, amplitude: float, branch=Non
         return _unbounded(Gamma, top, float(col_q[int(np.argmax(net0))]))
     live = net0.ravel() > 0
 
-    def gain_at(a):
+    def gain_at(a, cols):
         fw = four_wave(model, first.k, a, first.branch, N=N)
-        return np.nan_to_num(np.asarray(fw.rates, float), nan=0.0).ravel()[live]
+        return np.nan_to_num(np.asarray(fw.rates, float), nan=0.0).ravel()[live][cols]
 
     amp, t, j, _ = along_decay(gain_at, amplitude, rates0.ravel()[live], G.ravel()[live],
                                Gamma, ratio=ratio, most=most)

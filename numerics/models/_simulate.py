@@ -192,7 +192,9 @@ def _damped_kernels(model: Model):
     rk4_damped                  RK4 with the velocity-dependent force;
     split_local                 Strang: the exact damping flow v <- E v over half a step
                                 (E = expm(-dt/2 M^-1 C), site-local damping), a step of
-                                the symplectic SRKN method, the half flow again (order 2).
+                                the symplectic SRKN method, the half flow again (order 2);
+    split_band                  the same with bond damping: the flow is a circulant
+                                convolution v_n <- sum_r K_r v_{n-r} (``damping_flow``).
     """
     key = (model.code.__name__, model.code.MODEL_HASH)
     if key in _DAMPED:
@@ -278,14 +280,39 @@ def _damped_kernels(model: Model):
                     v[a, n] = tmp[a]
         return True
 
-    _DAMPED[key] = (damp, rk4_damped, split_local)
+    @numba.njit(cache=False)
+    def _band(v, offs, K, w):
+        d, N = v.shape
+        for n in range(N):
+            for a in range(d):
+                w[a, n] = 0.0
+            for i in range(offs.size):
+                m = (n - offs[i]) % N
+                for a in range(d):
+                    for b in range(d):
+                        w[a, n] += K[i, a, b] * v[b, m]
+        v[:, :] = w
+
+    @numba.njit(cache=False)
+    def split_band(u, v, p, minv, A, B, dt, nsteps, acc, x, g, offs, K):
+        w = np.empty_like(v)
+        for _ in range(nsteps):
+            _band(v, offs, K, w)
+            if not srkn_steps(u, v, p, minv, A, B, dt, 1, acc, x, g):
+                return False
+            _band(v, offs, K, w)
+        return True
+
+    _DAMPED[key] = (damp, rk4_damped, split_local, split_band)
     return _DAMPED[key]
 
 
 def damping_flow(model: Model, N: int, h: float):
-    """The exact flow of dv/dt = -M^-1 C v over time h on a ring of N sites: per ring mode
-    j, E_j = expm(-h M^-1 C(2 pi j / N)), shape (N, d, d); (None, E) where the damping is
-    site-local (C independent of the mode: one (d, d) matrix)."""
+    """The exact flow of dv/dt = -M^-1 C v over time h on a ring of N sites: where the
+    damping is site-local, (None, E) with E = expm(-h M^-1 C) (d, d); else ((offs, K),
+    None), the flow as a circulant convolution v_n <- sum_i K_i v_{n - offs_i}: K is the
+    ring's inverse FFT of E_j = expm(-h M^-1 C(2 pi j / N)), kept where it exceeds 1e-15
+    of its largest entry (exp of a banded matrix of small norm: a few sites each side)."""
     from scipy.linalg import expm
 
     from ._linear import damping_matrix
@@ -296,7 +323,14 @@ def damping_flow(model: Model, N: int, h: float):
     if not (Bd[:d, d:].any() or Bd[d:, :d].any()):
         return None, expm(-h * minv[:, None] * (S + Bd[:d, :d] + Bd[d:, d:]))
     kap = 2 * math.pi * np.arange(N) / N
-    return np.array([expm(-h * minv[:, None] * damping_matrix(model, q)) for q in kap]), None
+    E = np.array([expm(-h * minv[:, None] * damping_matrix(model, q)) for q in kap])
+    K = np.real(np.fft.ifft(E, axis=0))  # K[r]: offset r mod N
+    size = np.max(np.abs(K), axis=(1, 2))
+    r = np.arange(N)
+    dist = np.minimum(r, N - r)
+    R = int(np.max(dist[size > 1e-15 * size.max()]))
+    keep = dist <= R
+    return (np.ascontiguousarray(r[keep].astype(np.int64)), np.ascontiguousarray(K[keep])), None
 
 
 def rayleigh(model: Model, v: np.ndarray) -> float:
@@ -670,7 +704,7 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
     ts, spec, dev, en, diss = [], [], [], [], []
     lossy = model.lossy
     if lossy:
-        damp, rk4_damped, split_local = _damped_kernels(model)
+        damp, rk4_damped, split_local, split_band = _damped_kernels(model)
         S_d, B_d = model.damping
         S_d, B_d = np.ascontiguousarray(S_d), np.ascontiguousarray(B_d)
         if meth.kind == "srkn":
@@ -684,14 +718,8 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
             return rk4_damped(u, v, p, minv, S_d, B_d, dt, n, acc, x, g)
         if E_local is not None:
             return split_local(u, v, p, minv, A, B, dt, n, acc, x, g, E_local)
-        for _ in range(n):  # bond damping: the exact flow per ring mode (FFT)
-            v[:] = np.real(np.fft.ifft(np.einsum("jab,bj->aj", E_modes, np.fft.fft(
-                v, axis=1)), axis=1))
-            if not srkn(u, v, p, minv, A, B, dt, 1, acc, x, g):
-                return False
-            v[:] = np.real(np.fft.ifft(np.einsum("jab,bj->aj", E_modes, np.fft.fft(
-                v, axis=1)), axis=1))
-        return True
+        # bond damping: the exact flow as a short circulant convolution (compiled)
+        return split_band(u, v, p, minv, A, B, dt, n, acc, x, g, *E_modes)
 
     def record(t):
         U = wave.profile(k_ring * np.arange(N) - wave.omega * t)
