@@ -14,6 +14,9 @@ classify_mode, ring_misses              what an exact mode is; bands a ring does
 simulate_model -> ModelRun              a ring of the model; .growth() -> Growth
 lattice_force, lattice_energy           the compiled force and the model's energy
 model_map                               MI map over two parameters, or a parameter and k
+nls_amplification, four_wave_amplification, exact_amplification
+                                        with [dissipation]: each theory's sidebands'
+                                        amplification along the decaying carrier
 """
 
 from ._exact import (
@@ -35,6 +38,12 @@ from ._linear import (
                      damped_frequencies,
                      damping_matrix,
                      damping_rates,
+)
+from ._losses import (
+                     Amplified,
+                     exact_amplification,
+                     four_wave_amplification,
+                     nls_amplification,
 )
 from ._map import model_map, simulated_cell
 from ._nls import ModelNLS, ModelSoliton, acoustic_directions, nls
@@ -60,4 +69,5 @@ __all__ = ["Carrier", "carrier", "branches", "branch_index", "check_rest_stable"
            "hill_spectrum", "exact_gain", "FourWave", "four_wave", "pair_rates",
            "classify_mode", "ring_misses", "ring_offsets", "simulate_model", "simulate_seeds",
            "SeededRuns", "ModelRun", "Growth", "measure_growth", "check_ring", "compiled_force",
-           "lattice_force", "lattice_energy", "snap_ring"]
+           "lattice_force", "lattice_energy", "snap_ring", "Amplified", "nls_amplification",
+           "four_wave_amplification", "exact_amplification"]

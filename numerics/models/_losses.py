@@ -17,9 +17,13 @@ integrated with exact exponentials of the matrix at each step's midpoint (order 
 the growing eigenvector at t = 0; the amplification is |(x, y)(t)| / |(x, y)(0)|.
 
 Exact lattice theory along the decaying carrier: the Hill gain sigma(q, a) of the exact
-travelling wave (``exact_gain``, a black box) on a grid of amplitudes a(t), minus G_q,
+travelling wave (``exact_gain``, a black box) at a few amplitudes (``along_decay``:
+s = (a/a0)^2 halved until nothing grows, sigma^2 piecewise linear in s), minus G_q,
 integrated in time per ring offset: amplification = max over q and t of
-exp(int_0^t (sigma(q, a(s)) - G_q) ds).
+exp(int_0^t (sigma(q, a(s)) - G_q) ds). The four-wave theory the same way, per pair.
+
+The lossless limit (Gamma = 0): the carrier keeps its amplitude and a growing mode grows
+without end: amplification inf at time inf, observable where MI (``_unbounded``).
 """
 
 from __future__ import annotations
