@@ -100,10 +100,10 @@ def losses_cost(t_end=500.0, N=256) -> dict:
     amplifications) and a run of ``t_end`` (no early stop), each after a warm-up call,
     best of 3."""
     from energy import parse_model
-    from numerics.models import nls
-    from numerics.models._losses import (
+    from numerics.models import (
         exact_amplification,
         four_wave_amplification,
+        nls,
         nls_amplification,
     )
 

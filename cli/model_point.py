@@ -110,7 +110,7 @@ def _losses(model, k, amplitude, branch, N, out, spec, fw) -> None:
     carrier_damping, amplification (max over modes and times along the decaying
     carrier), amplification_time, observable (amplification >= 20)."""
     from energy import ModelError
-    from numerics.models._losses import (
+    from numerics.models import (
         exact_amplification,
         four_wave_amplification,
         nls_amplification,

@@ -202,7 +202,7 @@ def test_damped_nls_amplification_against_closed_form_and_solve_ivp():
 
 
 def test_theories_amplification_on_the_lossy_chain():
-    from numerics.models._losses import exact_amplification, nls_amplification
+    from numerics.models import exact_amplification, nls_amplification
 
     weak = load_model("flexmm-lossy", gamma_theta=0.001, gamma_U=0.001)
     a = nls_amplification(weak, 1.0, 0.1)
@@ -258,11 +258,11 @@ RUNS = [(FPUT_LOSSY, 2.5, 0.2, 0.012, True), (FPUT_LOSSY, 2.5, 0.2, 0.03, False)
 @pytest.mark.parametrize("text, k, a, gamma, observable", RUNS,
                          ids=["fput-grows", "fput-hidden", "kg-grows", "kg-hidden"])
 def test_run_amplification_against_the_theories(cache, text, k, a, gamma, observable):
-    from numerics.models import simulate_model
-    from numerics.models._losses import (
+    from numerics.models import (
         exact_amplification,
         four_wave_amplification,
         nls_amplification,
+        simulate_model,
     )
 
     m = load_model(parse_model(text), gamma=gamma)
@@ -283,10 +283,12 @@ def test_lossless_limit_is_todays_answer():
     # Gamma = 0 (no [dissipation], or zero damping): the carrier keeps its amplitude, a
     # mode with a positive rate grows without end: amplification inf at time inf,
     # observable where MI; the rates and verdicts are today's
-    from numerics.models import exact_gain, four_wave, nls
-    from numerics.models._losses import (
+    from numerics.models import (
         exact_amplification,
+        exact_gain,
+        four_wave,
         four_wave_amplification,
+        nls,
         nls_amplification,
     )
 
