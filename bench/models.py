@@ -11,6 +11,10 @@
   (``model_coefficients``), the four-wave theory on the ring of 256 sites (``point``'s
   row) and on the infinite chain (``coefficients``' row), best of REPEATS each. The
   issue's bar: the four-wave row within 20x the NLS row.
+- A damped point against its lossless twin (``losses_cost``, issue 42): the theories'
+  rows (NLS, four-wave, exact on a ring of 256) with and without the amplification along
+  the decaying carrier, and a run of the same length (site damping: the exact flow per
+  site; bond damping: per ring mode). The issue's bar: within 2x the lossless twin.
 Writes the "models" section of results.json (results_quick.json with --quick).
 
     python -m bench.models [--quick] [--update | --out DIR]
@@ -71,6 +75,79 @@ def four_wave_cost(reps=20) -> dict:
     return out
 
 
+FPUT_BOND = """name = "fput-bond-lossy"
+fields = ["u"]
+[parameters]
+beta = 1.0
+eta = 0.004
+[energy]
+kinetic = "u_t**2/2"
+bond = "(u_next - u)**2/2 + beta*(u_next - u)**4/4"
+[dissipation]
+bond = "eta*(u_next_t - u_t)**2/2"
+"""
+
+#: (label, lossless twin, lossy model, k, a): the paper's blue point (case II, a = 2 eps
+#: A0 with A0 = 1.4) with weak damping, FPUT with bond damping (the per-mode flow)
+LOSS_POINTS = (("flexmm blue, gamma 1e-4", ("flexmm", {}),
+                ("flexmm-lossy", dict(gamma_theta=1e-4, gamma_U=1e-4)), 0.81681, 0.028),
+               ("fput bond eta 0.004", ("fput", dict(alpha=0.0, beta=1.0)),
+                (FPUT_BOND, {}), 2.5, 0.2))
+
+
+def losses_cost(t_end=500.0, N=256) -> dict:
+    """Wall times of a damped point against its lossless twin: the theories (with the
+    amplifications) and a run of ``t_end`` (no early stop), each after a warm-up call,
+    best of 3."""
+    from energy import parse_model
+    from numerics.models import (
+        exact_amplification,
+        four_wave_amplification,
+        nls,
+        nls_amplification,
+    )
+
+    def theories(m, k, a, lossy):
+        e = exact_gain(m, k, a, N=N)
+        f = four_wave(m, k, a, N=N)
+        nls(m, k)
+        if lossy:
+            nls_amplification(m, k, a)
+            four_wave_amplification(m, k, a, N=N, first=f)
+            return exact_amplification(m, k, a, N=N, first=e)
+        return e
+
+    out = {}
+    for label, (plain, pp), (lossy, lp), k, a in LOSS_POINTS:
+        m0 = load_model(plain).with_params(**pp) if pp else load_model(plain)
+        m1 = load_model(parse_model(lossy) if "\n" in lossy else lossy)
+        m1 = m1.with_params(**lp) if lp else m1
+        row = {}
+        for key, m, is_lossy in (("lossless", m0, False), ("lossy", m1, True)):
+            theories(m, k, a, is_lossy)  # warm-up: imports, generated module, JIT
+            simulate_model(m, k, a, N=N, t_end=10.0)
+            th_s, run_s = [], []
+            for _ in range(3):  # best of 3 (a shared machine)
+                t0 = time.perf_counter()
+                th = theories(m, k, a, is_lossy)
+                t1 = time.perf_counter()
+                simulate_model(m, k, a, N=N, t_end=t_end)
+                th_s.append(t1 - t0)
+                run_s.append(time.perf_counter() - t1)
+            row[f"{key}_theory_s"], row[f"{key}_run_s"] = min(th_s), min(run_s)
+            if is_lossy:
+                row["amplification"] = th.amplification
+        row["theory_ratio"] = row["lossy_theory_s"] / row["lossless_theory_s"]
+        row["run_ratio"] = row["lossy_run_s"] / row["lossless_run_s"]
+        out[label] = row
+        print(f"{label}: theory {row['lossless_theory_s']:.2f} s -> "
+              f"{row['lossy_theory_s']:.2f} s ({row['theory_ratio']:.2f}x, exact "
+              f"amplification {row['amplification']:.4g}); run of T = {t_end:g}, N = {N}: "
+              f"{row['lossless_run_s']:.2f} s -> {row['lossy_run_s']:.2f} s "
+              f"({row['run_ratio']:.2f}x)")
+    return out
+
+
 def main(quick=False, out=None):
     N = 500
     reps = 200 if quick else 2000
@@ -108,10 +185,11 @@ def main(quick=False, out=None):
                         "exact_gain": e.peak_gain, "measured_rate": g.rate,
                         "energy_drift": r.energy_drift}
     cost = four_wave_cost(5 if quick else 20)
+    losses = losses_cost(200.0 if quick else 500.0)
     res = {"machine": machine(), "quick": quick, "N": N, "repeats": REPEATS,
            "fused_flexmm_ns_per_site": fused, "generic_ns_per_site": per_model,
            "generic_flexmm_over_fused": per_model["flexmm"] / fused, "points": points,
-           "four_wave_vs_nls": cost}
+           "four_wave_vs_nls": cost, "losses": losses}
     write_section("models", res, quick, out)
     print(f"force per site, N = {N}: fused flexMM kernel {fused:.2f} ns; generic:")
     for name, t in per_model.items():

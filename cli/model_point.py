@@ -69,7 +69,7 @@ def _miss_text(b, N) -> str:
             f"of the ring of N = {N} samples: N = {b['N']} does (k snaps to 2 pi m / N)")
 
 
-def _simulated_row(model, k, args, spec, start) -> dict:
+def _simulated_row(model, k, args, spec, start, peak_time=None) -> dict:
     """Seeded runs of the ring from the exact wave (or the linear one) and the verdict
     ``numerics.lattice.simulated_verdict`` gives their growth factors, as for the paper's
     chain: MI, 'no growth within T' or 'undetermined'."""
@@ -78,8 +78,17 @@ def _simulated_row(model, k, args, spec, start) -> dict:
     seeds = args.seeds
     if isinstance(seeds, bool) or not isinstance(seeds, int) or seeds < 1:
         raise ValueError(f"--seeds must be an integer >= 1, got {seeds!r}")
+    # a lossy model's runs are launched as issue 42 measures an amplification: noise on
+    # the carrier field's positions, run until A(t) has fallen to half its peak (T a cap)
+    launch = {"noise_on": "carrier", "until_peak": True} if model.lossy else {}
+    t_end = args.t_end
+    if model.lossy and t_end is None and peak_time is not None and math.isfinite(peak_time):
+        # the cap reaches past the exact theory's peak (1.5x its time), at least the
+        # lossless run's length
+        from numerics.lattice import run_length
+        t_end = max(run_length(spec.peak_gain).t_end, 1.5 * peak_time)
     sim = simulate_seeds(model, k, args.amplitude, spec, branch=branch_of(args), N=args.N,
-                         seeds=seeds, t_end=args.t_end, start=start)
+                         seeds=seeds, t_end=t_end, start=start, **launch)
     v, rate, runs, t_end, length = sim.verdict, sim.rate, sim.runs, sim.t_end, sim.length
     # the JSON's verdict speaks the theories' three words (MI, stable, undefined: the
     # contract every theory's object keeps); the run's own word, which never claims more
@@ -96,7 +105,62 @@ def _simulated_row(model, k, args, spec, start) -> dict:
     from .model_figure import simulated_curve
 
     row["curve"] = simulated_curve(runs, k)  # sigma(q) measured; None where none grew
+    if model.lossy:  # the runs' own amplification: the median seed's
+        amps = sorted((r.amplification() for r in runs), key=lambda a: a.amplification)
+        med = amps[len(amps) // 2]
+        row.update(med.row())
+        row["t_end"] = max(float(r.t[-1]) for r in runs)
+        row["energy_balance"] = max(r.energy_balance() for r in runs)
     return row
+
+
+def _losses(model, k, amplitude, branch, N, out, spec, fw) -> None:
+    """A lossy model's amplification per theory (issue 42), into each theory's object:
+    carrier_damping, amplification (max over modes and times along the decaying
+    carrier), amplification_time, observable (amplification >= 20)."""
+    from energy import ModelError
+    from numerics.models import (
+        exact_amplification,
+        four_wave_amplification,
+        nls_amplification,
+    )
+
+    def put(name, f):
+        try:
+            a = f()
+            out[name].update(a.row())
+            if a.amplification == math.inf:  # JSON null: said in words
+                out[name]["amplification_note"] = (
+                    "unbounded: the carrier is not damped (Gamma = 0), its sidebands grow "
+                    "without end")
+        except ModelError as exc:  # no theory here: the verdict's reason says why
+            out[name].update({"carrier_damping": None, "amplification": None,
+                              "amplification_time": None, "observable": None,
+                              "amplification_reason": str(exc)})
+
+    if out["semi-discrete NLS"]["verdict"] != "undefined":
+        put("semi-discrete NLS", lambda: nls_amplification(model, k, amplitude, branch))
+    if fw is not None:
+        put("four-wave", lambda: four_wave_amplification(model, k, amplitude, branch, N=N,
+                                                         first=fw))
+    if spec is not None:
+        put("exact lattice", lambda: exact_amplification(model, k, amplitude, branch, N=N,
+                                                         first=spec))
+
+
+def _loss_table(out) -> None:
+    """The table of a lossy point's amplifications (printed after the verdicts)."""
+    print(f"{'with losses':<20} {'carrier damping':>16} {'amplification':>14} "
+          f"{'at time':>10} {'observable':>11}")
+    for name in ("semi-discrete NLS", "four-wave", "exact lattice", "simulated"):
+        t = out.get(name, {})
+        if "amplification" not in t:
+            continue
+        amp = t["amplification"]
+        amp_s = "inf" if amp is None and t["observable"] else _fmt(amp, 4)
+        obs = {True: "yes (>= 20x)", False: "no", None: "-"}[t["observable"]]
+        print(f"{name:<20} {_fmt(t.get('carrier_damping'), 3):>16} {amp_s:>14} "
+              f"{_fmt(t['amplification_time'], 4):>10} {obs:>11}")
 
 
 def _coefficients_or_undefined(model, k, amplitude, branch) -> dict:
@@ -189,7 +253,11 @@ def run_point(args) -> int:
     if args.simulate:
         if spec is None:
             raise ValueError(f"--simulate: {out['exact lattice']['reason']}")
-        out["simulated"] = _simulated_row(model, k, args, spec, start)
+    if model.lossy:
+        _losses(model, k, args.amplitude, branch_of(args), args.N, out, spec, fw)
+    if args.simulate:
+        out["simulated"] = _simulated_row(model, k, args, spec, start,
+                                          out["exact lattice"].get("amplification_time"))
     from .model_figure import CURVES, theory_curves
 
     out["curves"] = {"description": CURVES,
@@ -225,6 +293,8 @@ def run_point(args) -> int:
             gain = t["peak_gain"] if word == "MI" or name != "simulated" else None
             print(f"{name:<20} {word:>19} {_fmt(gain, 4):>19} "
                   f"{_fmt(t.get('fastest_offset'), 4):>10}")
+    if model.lossy:
+        _loss_table(out)
     if co["reason"]:
         print(f"undefined: {co['reason']}")
     ex = out["exact lattice"]
@@ -239,9 +309,19 @@ def run_point(args) -> int:
         print(f"four-wave: the fastest pair is {fw['mode_kind']} ({_waves(fw)})")
     if "simulated" in out:
         sim = out["simulated"]
-        print(f"simulated: {sim['text']}; {sim['seeds']} seed(s) from the "
-              f"{'exact travelling' if start == 'exact' else 'linear plane'} wave, "
-              f"energy drift {sim['energy_drift']:.1g}")
+        drift = (f"energy balance error {sim['energy_balance']:.1g} (dE/dt = -2R)"
+                 if "energy_balance" in sim else f"energy drift {sim['energy_drift']:.1g}")
+        text = sim["text"]
+        if "amplification" in sim:  # with losses growth is transient: say the factor first
+            text = (f"the sidebands grew {sim['amplification']:.4g}x by t = "
+                    f"{sim['amplification_time']:.4g} (the rate rule over the run: {text})")
+        print(f"simulated: {text}; {sim['seeds']} seed(s) from the "
+              f"{'exact travelling' if start == 'exact' else 'linear plane'} wave, {drift}")
+        if "peaked" in sim:
+            print("simulated with losses: noise on the carrier field's positions; the runs "
+                  f"went on to t = {sim['t_end']:.4g}, " + (
+                      "where A(t) had fallen to half its peak" if sim["peaked"] else
+                      "their cap (A(t) had not fallen to half its peak)"))
         if sim.get("note"):
             print(f"note: {sim['note']}")
     if ring_note:

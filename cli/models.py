@@ -156,8 +156,10 @@ def run_coefficients(args) -> int:
     for name, key in (("peak gain (1/time)", "peak_gain"), ("e-folding time", "e_folding_time"),
                       ("fastest offset (rad/site)", "fastest_offset"),
                       ("band edge (rad/site)", "band_edge"),
-                      ("frequency shift", "frequency_shift")):
-        print(f"{name:<26} {_fmt(co[key]):>14}")
+                      ("frequency shift", "frequency_shift"),
+                      ("carrier damping (1/time)", "carrier_damping")):
+        if key in co:
+            print(f"{name:<26} {_fmt(co[key]):>14}")
     for f in model.fields:
         print(f"{f + ': 2k harmonic, mean':<26} {_fmt(co['second_harmonic'][f]):>14} "
               f"{_fmt(co['mean'][f]):>12}  (mean strain {_fmt(co['mean_strain'][f])})")

@@ -105,6 +105,8 @@ class Energies:
     bond: sp.Expr
     site: sp.Expr
     masses: tuple
+    #: Rayleigh functions (None without [dissipation]): site in vel, bond in vel + vel_next
+    dissipation: dict | None = None
 
     @property
     def cell(self) -> sp.Expr:
@@ -158,7 +160,35 @@ def energies(lat: Lattice) -> Energies:
         if f0 != 0:
             raise ModelError(f"model {lat.name!r}: the rest state (every field 0) is not an "
                              f"equilibrium: the force on {lat.fields[i]} there is {-f0}")
-    return Energies(lat, s, kin, bond, site, tuple(masses))
+    return Energies(lat, s, kin, bond, site, tuple(masses), _dissipation(lat, s, names))
+
+
+def _dissipation(lat: Lattice, s: Symbols, names: dict) -> dict | None:
+    """The Rayleigh functions of [dissipation] in SymPy, checked: homogeneous quadratic
+    forms in the velocities (coefficients free of the fields and velocities)."""
+    if lat.dissipation is None:
+        return None
+    vel_next = tuple(sp.Symbol(f"{x}_next_t", real=True) for x in lat.fields)
+    names = dict(names) | {f + "_next_t": v for f, v in zip(lat.fields, vel_next)}
+    out = {}
+    for key in lat.dissipation:
+        where = f"model {lat.name!r}: dissipation.{key}"
+        R = to_sympy(lat.tree("dissipation." + key), names)
+        if R.has(sp.zoo, sp.oo, -sp.oo, sp.nan):
+            raise ModelError(f"{where}: is infinite or undefined as written")
+        v = s.vel + (vel_next if key == "bond" else ())
+        C = sp.hessian(R, v)
+        if C.free_symbols & (set(v) | set(s.here) | set(s.next)):
+            raise ModelError(f"{where}: is not a quadratic form in the velocities with "
+                             "constant coefficients (its second derivatives depend on the "
+                             "state)")
+        vec = sp.Matrix(v)
+        rest = sp.simplify(sp.expand(R - (vec.T * C * vec)[0, 0] / 2))
+        if rest != 0:
+            raise ModelError(f"{where}: is not a quadratic form in the velocities (the rest "
+                             f"{rest} is not quadratic)")
+        out[key] = C
+    return out
 
 
 def _regular(expr):
@@ -354,7 +384,34 @@ def model_module_text(lat: Lattice, e: Energies | None = None, command: str = ""
              "def _permutations(idx):",
              "    import itertools",
              "    return set(itertools.permutations(idx))", ""]
+    if e.dissipation is not None:
+        head += _damping_text(e)
     return with_body_hash("\n".join(head))
+
+
+def _damping_text(e: Energies) -> list:
+    """damping_matrices(p): the Hessians of the Rayleigh functions in the velocities, the
+    site's (d, d) over u_t and the bond's (2 d, 2 d) over (u_t, u_next_t). The damping
+    force on u_n is -(C_site v_n + B11 v_n + B12 v_{n+1} + B21 v_{n-1} + B22 v_n)."""
+    s = e.symbols
+    d = len(s.here)
+    pr = _printer()
+    lines = ["", "", "def damping_matrices(_p):",
+             '    """(C_site (d, d), C_bond (2 d, 2 d)): Hessians of the Rayleigh functions '
+             'in the velocities."""']
+    lines += [f"    {v.name} = _p[{i}]" for i, v in enumerate(s.params)]
+    lines += [f"    _S = numpy.zeros(({d}, {d}))", f"    _B = numpy.zeros(({2 * d}, {2 * d}))"]
+    for key, arr in (("site", "_S"), ("bond", "_B")):
+        C = e.dissipation.get(key)
+        if C is None:
+            continue
+        for a in range(C.shape[0]):
+            for b in range(C.shape[1]):
+                val = sp.simplify(C[a, b])
+                if val != 0:
+                    lines.append(f"    {arr}[{a}, {b}] = {pr.doprint(val)}")
+    lines += ["    return _S, _B", ""]
+    return lines
 
 
 def compile_model(lat: Lattice, path, command: str = ""):

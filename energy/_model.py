@@ -228,12 +228,46 @@ class Model:
                              f"at {self.describe()} (masses {m.tolist()})")
         return m
 
+    @property
+    def lossy(self) -> bool:
+        """Whether the model has a [dissipation] table."""
+        return self.lattice.lossy
+
+    @property
+    def damping(self):
+        """(C_site (d, d), C_bond (2 d, 2 d)): the Hessians of the Rayleigh functions in the
+        velocities at these values (zeros without [dissipation]), checked symmetric
+        positive semi-definite: R >= 0 for every velocity of the chain."""
+        import numpy as np
+
+        d = self.n_fields
+        if not self.lattice.lossy:
+            return np.zeros((d, d)), np.zeros((2 * d, 2 * d))
+        if not hasattr(self.code, "damping_matrices"):
+            raise ModelError(f"model {self.name!r}: its generated module has no damping "
+                             "(an older layout): run `make derive`")
+        S, B = (np.asarray(x, dtype=float) for x in self.code.damping_matrices(self.p))
+        for key, C in (("site", S), ("bond", B)):
+            if not np.all(np.isfinite(C)):
+                raise ModelError(f"model {self.name!r}: dissipation.{key} is not finite at "
+                                 f"{self.describe()}")
+            lam = np.linalg.eigvalsh((C + C.T) / 2) if C.size else np.zeros(1)
+            scale = max(1.0, float(np.max(np.abs(C))))
+            if lam[0] < -1e-12 * scale:
+                raise ModelError(f"model {self.name!r}: dissipation.{key} is not positive "
+                                 f"semi-definite at {self.describe()} (an eigenvalue of its "
+                                 f"velocity Hessian is {lam[0]:.3g} < 0): R must be >= 0")
+        return S, B
+
     def with_params(self, **params) -> Model:
         """The same model at other parameter values."""
         checked = self.lattice.values(params)
         vals = dict(self.params)
         vals.update({p: checked[p] for p in params})
-        return Model(self.lattice, MappingProxyType(vals), self.code)
+        out = Model(self.lattice, MappingProxyType(vals), self.code)
+        if out.lossy:
+            out.damping  # noqa: B018 (checks R >= 0 at the new values)
+        return out
 
     def describe(self) -> str:
         """``name (p1 = v1, p2 = v2)``: the full model in one line (titles, tables)."""
@@ -264,4 +298,7 @@ def load_model(model, **params) -> Model:
     """
     lat = resolve_model(model)
     vals = lat.values(params)
-    return Model(lat, MappingProxyType(vals), generated_code(lat))
+    out = Model(lat, MappingProxyType(vals), generated_code(lat))
+    if lat.lossy:
+        out.damping  # noqa: B018 (checks R >= 0 at these values)
+    return out

@@ -40,7 +40,8 @@ _SUFFIXES = ("_next", "_prev", "_t")
 GENERATOR_NAMES = frozenset({
     "numpy", "numba", "itertools", "math", "NAME", "FIELDS", "PARAMETERS", "MODEL_HASH",
     "BODY_SHA256", "SITE_FUNCTIONS_ALL", "masses", "cell_energy", "cell_gradient_into",
-    "site_functions_all", "accelerations_into", "cell_hessian_into", "taylor"})
+    "site_functions_all", "accelerations_into", "cell_hessian_into", "taylor",
+    "damping_matrices"})
 #: Every name a field or parameter may not take: Python's keywords and built-ins (the
 #: generated code is Python), the generator's own names, the functions and constants.
 RESERVED = frozenset(keyword.kwlist) | frozenset(keyword.softkwlist) | frozenset(
@@ -56,8 +57,13 @@ MAX_DEPTH = 60  # nesting, a chain of + - * counted once
 MAX_CALL_DEPTH = 4  # functions nested in functions (each level ~4x the derivation time)
 MAX_EXPONENT = 64  # |a constant exponent|
 MAX_CONSTANT = 1e15  # |a number in an energy|
-_KEYS = {"name", "description", "fields", "parameters", "energy", "branch", "references"}
+_KEYS = {"name", "description", "fields", "parameters", "energy", "branch", "references",
+         "dissipation"}
 _ENERGY_KEYS = ("kinetic", "bond", "site")
+#: Rayleigh dissipation functions (optional table [dissipation]): quadratic forms in the
+#: velocities of cell n (``site``) and of cells n, n + 1 (``bond``), coefficients from the
+#: parameters.
+_DISSIPATION_KEYS = ("site", "bond")
 
 
 class ModelError(ValueError):
@@ -141,6 +147,7 @@ class Lattice:
     branch: str | None = None
     references: str = ""
     source: str = "python"
+    dissipation: MappingProxyType | None = None
     _trees: dict = field(default_factory=dict, repr=False, compare=False, hash=False)
 
     def __post_init__(self):
@@ -190,9 +197,42 @@ class Lattice:
             _fail(where, f"branch {_short(self.branch, 40)} is not one of the fields "
                          f"{list(flds)}")
         _check_kinetic(where, self._trees["kinetic"], self.fields)
+        self._check_dissipation(where)
+
+    def _check_dissipation(self, where: str):
+        diss = self.dissipation
+        if diss is None:
+            return
+        if not isinstance(diss, (dict, MappingProxyType)):
+            _fail(where, "[dissipation] must be a table with site and/or bond, got "
+                         f"{type(diss).__name__}")
+        extra = sorted(str(k) for k in set(diss) - set(_DISSIPATION_KEYS))
+        if extra:
+            _fail(where, f"unknown dissipation key(s) {', '.join(extra)} (known: site, bond)")
+        if not diss:
+            _fail(where, "[dissipation] is empty: give site and/or bond (or leave it out)")
+        out = {}
+        for key in _DISSIPATION_KEYS:
+            if key not in diss:
+                continue
+            text = diss[key]
+            if not isinstance(text, str) or not text.strip():
+                _fail(where, f"dissipation.{key} must be an expression (a string), got "
+                             f"{_short(text)}")
+            tree = _checked_tree(f"{where}: dissipation.{key}", text,
+                                 self._allowed("dissipation." + key))
+            _check_rayleigh(f"{where}: dissipation.{key}", tree)
+            self._trees["dissipation." + key] = tree
+            out[key] = text
+        object.__setattr__(self, "dissipation", MappingProxyType(out))
 
     def _allowed(self, key: str) -> set:
         names = set(self.parameters) | set(FUNCTIONS) | set(CONSTANTS)
+        if key.startswith("dissipation."):  # velocities and parameters only
+            names |= {f + "_t" for f in self.fields}
+            if key == "dissipation.bond":
+                names |= {f + "_next_t" for f in self.fields}
+            return names
         if key == "kinetic":
             return names | {f + "_t" for f in self.fields}
         names |= set(self.fields)
@@ -205,14 +245,25 @@ class Lattice:
         return len(self.fields)
 
     def tree(self, key: str) -> ast.Expression:
-        """The checked syntax tree of energy ``key`` (kinetic, bond or site)."""
+        """The checked syntax tree of energy ``key`` (kinetic, bond or site) or of a
+        dissipation function (``dissipation.site``, ``dissipation.bond``)."""
         return self._trees[key]
 
+    @property
+    def lossy(self) -> bool:
+        """Whether the model has a [dissipation] table."""
+        return self.dissipation is not None
+
     def canonical(self) -> dict:
-        """What defines the equations (not the defaults, the description or the source)."""
-        return {"name": self.name, "fields": list(self.fields),
-                "parameters": sorted(self.parameters),
-                "energy": {k: ast.dump(self._trees[k]) for k in _ENERGY_KEYS}}
+        """What defines the equations (not the defaults, the description or the source).
+        A model without [dissipation] has no key for it: its hash is the lossless one."""
+        out = {"name": self.name, "fields": list(self.fields),
+               "parameters": sorted(self.parameters),
+               "energy": {k: ast.dump(self._trees[k]) for k in _ENERGY_KEYS}}
+        if self.dissipation is not None:
+            out["dissipation"] = {k: ast.dump(self._trees["dissipation." + k])
+                                  for k in self.dissipation}
+        return out
 
     @property
     def content_hash(self) -> str:
@@ -224,7 +275,7 @@ class Lattice:
         """A copy with some of name, fields, parameters, kinetic, bond, site replaced."""
         kw = {k: getattr(self, k) for k in ("name", "fields", "parameters", "kinetic", "bond",
                                            "site", "description", "branch", "references",
-                                           "source")}
+                                           "source", "dissipation")}
         kw.update(changes)
         return Lattice(**kw)
 
@@ -375,7 +426,8 @@ def _unknown(name: str, allowed: set) -> str:
     elif name.endswith("_next"):
         hint = " (u_next is allowed in energy.bond only)"
     elif name.endswith("_t"):
-        hint = " (velocities are allowed in energy.kinetic only)"
+        hint = (" (velocities are allowed in energy.kinetic and [dissipation] only; "
+                "u_next_t in dissipation.bond only)")
     names = ", ".join(sorted(n for n in allowed if n not in FUNCTIONS and n not in CONSTANTS))
     return f"unknown symbol {_short(name, 40)}{hint}; allowed here: {names}"
 
@@ -408,6 +460,29 @@ def _check_kinetic(where: str, tree: ast.Expression, fields: tuple):
     if missing:
         _fail(where, f"energy.kinetic has no term for field(s) {', '.join(missing)} "
                      f"(every field needs a mass: e.g. '{missing[0]}_t**2/2')")
+
+
+def _check_rayleigh(where: str, tree: ast.Expression):
+    """A Rayleigh function's light check without SymPy: every term of its top-level sum
+    holds a velocity (a term without one is not a quadratic form in the velocities);
+    ``derivation`` checks the form (homogeneous of degree 2) symbolically and the model
+    checks it is positive semi-definite at its parameter values."""
+    terms = []
+
+    def walk(node):
+        if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.Add, ast.Sub)):
+            walk(node.left)
+            walk(node.right)
+        else:
+            terms.append(node)
+
+    walk(tree.body)
+    for t in terms:
+        if not any(isinstance(n, ast.Name) and n.id.endswith("_t") for n in ast.walk(t)):
+            if _constant_value(t) == 0:
+                continue
+            _fail(where, f"must be a quadratic form in the velocities; the term "
+                         f"{_short(ast.unparse(t))} has no velocity")
 
 
 def read_model(path: str | Path) -> Lattice:
@@ -470,7 +545,7 @@ def parse_model(text: str, where: str = "model") -> Lattice:
                        site=energy.get("site", "0"),
                        description=data.get("description", ""),
                        branch=data.get("branch"), references=data.get("references", ""),
-                       source=where)
+                       source=where, dissipation=data.get("dissipation"))
     except ModelError as exc:
         msg = str(exc)
         raise ModelError(msg if msg.startswith(where) else f"{where}: {msg}") from None

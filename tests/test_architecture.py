@@ -132,6 +132,9 @@ def test_cli_above_scenes_above_numerics():
 TEST_EXCEPTIONS = {
     "cli.map._agreement_text": "the map summary's wording, a sentence at a time",
     "derivation._continuum": "the continuum model's symbolic steps against the paper",
+    "derivation._energy": "a Rayleigh function refused by the derivation (not quadratic)",
+    "numerics.models._losses": "the damped NLS's pair integrator against solve_ivp, the "
+                               "amplitude sampling against dense quadrature",
     "derivation._mi": "the MI band's derivation step",
     "derivation._pipeline": "the semi-discrete NLS derived afresh (the generated code's source)",
     "numerics.maps._integrity": "a garbled chunk found from its Blosc header, never decoded",

@@ -174,7 +174,7 @@ BAD = {
     "unknown symbol": ('bond = "K*(u_next - u)**2/2"', "unknown symbol 'K'"),
     "beyond nearest": ('bond = "(u_next2 - u)**2/2"', "beyond the nearest neighbour"),
     "velocity in bond": ('bond = "u_t*(u_next - u)**2/2"', "velocities are allowed in "
-                         "energy.kinetic only"),
+                         "energy.kinetic and [dissipation] only"),
     "xor power": ('bond = "(u_next - u)^2/2"', "write '**'"),
     "attribute": ('bond = "__import__(\'os\').system(\'true\')"', "attribute is not allowed"),
     "call": ('bond = "exec(u)"', "unknown function 'exec'"),

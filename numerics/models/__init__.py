@@ -17,6 +17,9 @@ simulate_model -> ModelRun              a ring of the model; .growth() -> Growth
 lattice_force, lattice_energy           the compiled force and the model's energy
 model_map                               MI map over two parameters, or a parameter and k
 map_cells                               the columns of a block of map cells (a run_map task)
+nls_amplification, four_wave_amplification, exact_amplification
+                                        with [dissipation]: each theory's sidebands'
+                                        amplification along the decaying carrier
 """
 
 from ._exact import (
@@ -28,7 +31,23 @@ from ._exact import (
                      travelling_wave,
 )
 from ._fourwave import FourWave, classify_mode, four_wave, pair_rates, ring_misses
-from ._linear import Carrier, branch_index, branches, carrier, check_rest_stable
+from ._linear import (
+                     Carrier,
+                     branch_index,
+                     branches,
+                     carrier,
+                     carrier_damping,
+                     check_rest_stable,
+                     damped_frequencies,
+                     damping_matrix,
+                     damping_rates,
+)
+from ._losses import (
+                     Amplified,
+                     exact_amplification,
+                     four_wave_amplification,
+                     nls_amplification,
+)
 from ._map import map_cells, model_map, simulated_cell
 from ._nls import ModelNLS, ModelSoliton, acoustic_directions, nls
 from ._reach import amplitude_reach, energy_not_real, exact_gain_checked
@@ -48,10 +67,12 @@ from ._simulate import (
 from ._summary import model_coefficients
 
 __all__ = ["Carrier", "carrier", "branches", "branch_index", "check_rest_stable", "ModelNLS",
-           "ModelSoliton", "nls", "acoustic_directions", "model_map", "map_cells", "simulated_cell",
-           "model_coefficients", "TravellingWave", "HillSpectrum", "travelling_wave",
-           "hill_spectrum", "exact_gain", "exact_gain_checked", "energy_not_real",
-           "amplitude_reach", "FourWave", "four_wave", "pair_rates",
+           "ModelSoliton", "nls", "acoustic_directions", "model_map", "map_cells",
+           "simulated_cell", "model_coefficients", "carrier_damping", "damped_frequencies",
+           "damping_matrix", "damping_rates", "TravellingWave", "HillSpectrum",
+           "travelling_wave", "hill_spectrum", "exact_gain", "exact_gain_checked",
+           "energy_not_real", "amplitude_reach", "FourWave", "four_wave", "pair_rates",
            "classify_mode", "ring_misses", "ring_offsets", "simulate_model", "simulate_seeds",
            "SeededRuns", "ModelRun", "Growth", "measure_growth", "check_ring", "compiled_force",
-           "lattice_force", "lattice_energy", "snap_ring"]
+           "lattice_force", "lattice_energy", "snap_ring", "Amplified", "nls_amplification",
+           "four_wave_amplification", "exact_amplification"]

@@ -159,3 +159,64 @@ def field_of(model: Model, e: np.ndarray, name: str | None = None) -> int:
         if abs(e[f]) > 1e-8 * np.max(np.abs(e)):
             return f
     return int(np.argmax(np.abs(e)))
+
+
+def damping_matrix(model: Model, kappa: float) -> np.ndarray:
+    """C(kappa) = C_site + B11 + B22 + B12 e^{i kappa} + B21 e^{-i kappa}: the damping
+    force -C(kappa) v on a wave v_n = v e^{i kappa n} (zeros without [dissipation])."""
+    S, B = model.damping
+    return S.astype(complex) + dynamical_matrix(B, kappa)
+
+
+def damped_frequencies(model: Model, kappa: float) -> np.ndarray:
+    """Complex omega_b(kappa) of every branch, ascending in Re omega: the roots of
+    det(K - i omega C - omega^2 M) = 0 with Re omega >= 0 (a wave e^{i(kappa n - omega t)}
+    decays as e^{Im(omega) t}). Companion linearisation in mass-weighted coordinates."""
+    return _damped_many(model, np.array([float(kappa)]))[0]
+
+
+def _damped_many(model: Model, kappas: np.ndarray) -> np.ndarray:
+    """damped_frequencies at every kappa of a 1-d array, shape (n, d): one batched
+    eigenvalue call."""
+    H = model.code.taylor(model.p)[0]
+    S, B = model.damping
+    m = model.masses
+    s = 1 / np.sqrt(m)
+    d = len(m)
+    z = np.exp(1j * kappas)[:, None, None]
+    Hb = blocks(H, d)
+    Bb = blocks(B, d)
+    K = (Hb[0] + Hb[3]).astype(complex) + Hb[1] * z + Hb[2] / z
+    C = (S + Bb[0] + Bb[3]).astype(complex) + Bb[1] * z + Bb[2] / z
+    w2 = s[None, :, None] * s[None, None, :]
+    L = np.zeros((kappas.size, 2 * d, 2 * d), complex)
+    L[:, :d, d:] = np.eye(d)
+    L[:, d:, :d] = K * w2
+    L[:, d:, d:] = -1j * C * w2
+    w = np.linalg.eigvals(L)
+    out = np.empty((kappas.size, d), complex)
+    for i in range(kappas.size):
+        # the d roots of the forward waves: the largest real parts (an overdamped pair has
+        # Re omega = 0: the slower-decaying root of the pair)
+        order = np.lexsort((np.imag(w[i]), np.round(np.real(w[i]), 12)))[::-1][:d]
+        wi = w[i][order]
+        out[i] = wi[np.argsort(np.real(wi))]
+    return out
+
+
+def damping_rates(model: Model, kappa) -> np.ndarray:
+    """Gamma_b(kappa) = -Im omega_b: each branch's amplitude decay rate (1/time), shape
+    (..., d), ascending branches as :func:`branches`; zeros without [dissipation]."""
+    kap = np.asarray(kappa, dtype=float)
+    out = np.zeros(kap.shape + (model.n_fields,))
+    if not model.lossy:
+        return out
+    flat = -np.imag(_damped_many(model, kap.ravel()))
+    return flat.reshape(kap.shape + (model.n_fields,))
+
+
+def carrier_damping(model: Model, k: float, branch=None) -> float:
+    """Gamma of the carrier's branch at k (0 without [dissipation])."""
+    if not model.lossy:
+        return 0.0
+    return float(damping_rates(model, k)[branch_index(model, k, branch)])

@@ -181,6 +181,166 @@ def _kernels(model: Model):
     return _KERNELS[key]
 
 
+_DAMPED: dict = {}
+
+
+def _damped_kernels(model: Model):
+    """(damp, rk4_damped, split_local) for a model with [dissipation]:
+
+    damp(v, S, Bd, minv, out)   out = -M^-1 dR/dv: the damping acceleration, site by site
+                                (S the site block, Bd the bond's (2 d, 2 d) Hessian);
+    rk4_damped                  RK4 with the velocity-dependent force;
+    split_local                 Strang: the exact damping flow v <- E v over half a step
+                                (E = expm(-dt/2 M^-1 C), site-local damping), a step of
+                                the symplectic SRKN method, the half flow again (order 2);
+    split_band                  the same with bond damping: the flow is a circulant
+                                convolution v_n <- sum_r K_r v_{n-r} (``damping_flow``).
+    """
+    key = (model.code.__name__, model.code.MODEL_HASH)
+    if key in _DAMPED:
+        return _DAMPED[key]
+    import numba
+
+    accel, srkn_steps = _kernels(model)[:2]
+    nf = _kernels(model)[4]
+
+    @numba.njit(cache=False, boundscheck=False)
+    def damp(v, S, Bd, minv, out):
+        d, N = v.shape
+        for n in range(N):
+            m = n - 1 if n > 0 else N - 1
+            l_ = n + 1 if n + 1 < N else 0
+            for a in range(d):
+                f = 0.0
+                for b in range(d):
+                    f += (S[a, b] + Bd[a, b] + Bd[d + a, d + b]) * v[b, n]
+                    f += Bd[a, d + b] * v[b, l_] + Bd[d + a, b] * v[b, m]
+                out[a, n] = -minv[a] * f
+
+    @numba.njit(cache=False)
+    def rk4_damped(u, v, p, minv, S, Bd, dt, nsteps, acc, x, g):
+        d, N = u.shape
+        F = np.empty((max(nf, 1), N))
+        k1v = np.empty_like(u)
+        k2v = np.empty_like(u)
+        k3v = np.empty_like(u)
+        k4v = np.empty_like(u)
+        w = np.empty_like(u)
+        tu = np.empty_like(u)
+        tv = np.empty_like(u)
+        for _ in range(nsteps):
+            accel(u, p, minv, k1v, x, g, F)
+            damp(v, S, Bd, minv, w)
+            k1v += w
+            k1u = v.copy()
+            tu[:] = u + 0.5 * dt * k1u
+            tv[:] = v + 0.5 * dt * k1v
+            accel(tu, p, minv, k2v, x, g, F)
+            damp(tv, S, Bd, minv, w)
+            k2v += w
+            k2u = tv.copy()
+            tu[:] = u + 0.5 * dt * k2u
+            tv[:] = v + 0.5 * dt * k2v
+            accel(tu, p, minv, k3v, x, g, F)
+            damp(tv, S, Bd, minv, w)
+            k3v += w
+            k3u = tv.copy()
+            tu[:] = u + dt * k3u
+            tv[:] = v + dt * k3v
+            accel(tu, p, minv, k4v, x, g, F)
+            damp(tv, S, Bd, minv, w)
+            k4v += w
+            k4u = tv
+            u += dt / 6 * (k1u + 2 * k2u + 2 * k3u + k4u)
+            v += dt / 6 * (k1v + 2 * k2v + 2 * k3v + k4v)
+            if not np.isfinite(u[0, 0]):
+                return False
+        return True
+
+    @numba.njit(cache=False)
+    def split_local(u, v, p, minv, A, B, dt, nsteps, acc, x, g, E):
+        d, N = u.shape
+        tmp = np.empty(d)
+        for _ in range(nsteps):
+            for n in range(N):
+                for a in range(d):
+                    tmp[a] = 0.0
+                    for b in range(d):
+                        tmp[a] += E[a, b] * v[b, n]
+                for a in range(d):
+                    v[a, n] = tmp[a]
+            if not srkn_steps(u, v, p, minv, A, B, dt, 1, acc, x, g):
+                return False
+            for n in range(N):
+                for a in range(d):
+                    tmp[a] = 0.0
+                    for b in range(d):
+                        tmp[a] += E[a, b] * v[b, n]
+                for a in range(d):
+                    v[a, n] = tmp[a]
+        return True
+
+    @numba.njit(cache=False)
+    def _band(v, offs, K, w):
+        d, N = v.shape
+        for n in range(N):
+            for a in range(d):
+                w[a, n] = 0.0
+            for i in range(offs.size):
+                m = (n - offs[i]) % N
+                for a in range(d):
+                    for b in range(d):
+                        w[a, n] += K[i, a, b] * v[b, m]
+        v[:, :] = w
+
+    @numba.njit(cache=False)
+    def split_band(u, v, p, minv, A, B, dt, nsteps, acc, x, g, offs, K):
+        w = np.empty_like(v)
+        for _ in range(nsteps):
+            _band(v, offs, K, w)
+            if not srkn_steps(u, v, p, minv, A, B, dt, 1, acc, x, g):
+                return False
+            _band(v, offs, K, w)
+        return True
+
+    _DAMPED[key] = (damp, rk4_damped, split_local, split_band)
+    return _DAMPED[key]
+
+
+def damping_flow(model: Model, N: int, h: float):
+    """The exact flow of dv/dt = -M^-1 C v over time h on a ring of N sites: where the
+    damping is site-local, (None, E) with E = expm(-h M^-1 C) (d, d); else ((offs, K),
+    None), the flow as a circulant convolution v_n <- sum_i K_i v_{n - offs_i}: K is the
+    ring's inverse FFT of E_j = expm(-h M^-1 C(2 pi j / N)), kept where it exceeds 1e-15
+    of its largest entry (exp of a banded matrix of small norm: a few sites each side)."""
+    from scipy.linalg import expm
+
+    from ._linear import damping_matrix
+
+    S, Bd = model.damping
+    d = model.n_fields
+    minv = 1 / np.asarray(model.masses, float)
+    if not (Bd[:d, d:].any() or Bd[d:, :d].any()):
+        return None, expm(-h * minv[:, None] * (S + Bd[:d, :d] + Bd[d:, d:]))
+    kap = 2 * math.pi * np.arange(N) / N
+    E = np.array([expm(-h * minv[:, None] * damping_matrix(model, q)) for q in kap])
+    K = np.real(np.fft.ifft(E, axis=0))  # K[r]: offset r mod N
+    size = np.max(np.abs(K), axis=(1, 2))
+    r = np.arange(N)
+    dist = np.minimum(r, N - r)
+    R = int(np.max(dist[size > 1e-15 * size.max()]))
+    keep = dist <= R
+    return (np.ascontiguousarray(r[keep].astype(np.int64)), np.ascontiguousarray(K[keep])), None
+
+
+def rayleigh(model: Model, v: np.ndarray) -> float:
+    """R of a ring's velocities (d, N): sum over cells of the site and bond functions."""
+    S, Bd = model.damping
+    vn = np.concatenate([v, np.roll(v, -1, axis=1)])
+    return float(0.5 * (np.einsum("an,ab,bn->", v, S, v) + np.einsum("an,ab,bn->", vn, Bd,
+                                                                      vn)))
+
+
 def lattice_force(model: Model, u: np.ndarray) -> np.ndarray:
     """The acceleration of every site, shape (d, N), from the compiled force."""
     u = np.ascontiguousarray(u, dtype=float)
@@ -277,6 +437,27 @@ class ModelRun:
     spectrum: np.ndarray
     deviation: np.ndarray
     energy: np.ndarray
+    #: 2 R (the power the losses take) per record; None for a lossless model
+    dissipation: np.ndarray | None = None
+    #: whether the run stopped where its amplification had peaked (``until_peak``)
+    peaked: bool | None = None
+    #: (u, v) at the run's end, each (d, N)
+    state: tuple | None = None
+
+    def energy_balance(self) -> float:
+        """max over the records of |E(t) - E(0) + int_0^t 2 R dt'| / E(0) (trapezoids over
+        the records): the error of dE/dt = -2 R (0 for a lossless model)."""
+        if self.dissipation is None:
+            return self.energy_drift
+        lost = np.concatenate([[0.0], np.cumsum(np.diff(self.t) * (
+            self.dissipation[1:] + self.dissipation[:-1]) / 2)])
+        return float(np.max(np.abs(self.energy - self.energy[0] + lost)) / abs(
+            self.energy[0]))
+
+    def amplification(self) -> Amplification:
+        """The sidebands' amplification (issue 42): A(t), the largest |mode| over the ring
+        modes that are not harmonics of the carrier; max A(t) / A(0) and when."""
+        return measure_amplification(self)
 
     @property
     def energy_drift(self) -> float:
@@ -343,6 +524,46 @@ class Growth:
                 f"t = {self.t_linear:.4g})")
 
 
+@dataclass(frozen=True)
+class Amplification:
+    """A run's amplification: ``amplification`` = max_t A(t) / A(0), at
+    ``amplification_time``; ``observable`` = amplification >= GROWTH_FACTOR; ``peaked``:
+    A(t) fell to half its maximum before the run's end (else the run's cap ended it)."""
+
+    amplification: float
+    amplification_time: float
+    observable: bool
+    peaked: bool
+    A: np.ndarray
+
+    def row(self) -> dict:
+        return {"amplification": self.amplification,
+                "amplification_time": self.amplification_time,
+                "observable": self.observable, "peaked": self.peaked}
+
+
+def _sideband_modes(N: int, m: int, H: int) -> np.ndarray:
+    """Ring modes that are not harmonics of the carrier mode m: h m mod N, |h| <= H (the
+    exact wave's harmonics), and the mean (h = 0)."""
+    harm = {(h * m) % N for h in range(-H, H + 1)}
+    return np.array([j not in harm for j in range(N)])
+
+
+def sideband_amplitude(spectrum: np.ndarray, N: int, k: float, H: int) -> np.ndarray:
+    """A(t): the largest |FFT| / N over the ring modes that are not carrier harmonics
+    (up to the H-th)."""
+    m = int(round(k * N / (2 * math.pi)))
+    return np.max(np.asarray(spectrum)[..., _sideband_modes(N, m, H)], axis=-1)
+
+
+def measure_amplification(run: ModelRun) -> Amplification:
+    A = sideband_amplitude(run.spectrum, run.N, run.k, run.wave.harmonics)
+    i = int(np.argmax(A))
+    amp = float(A[i] / max(A[0], 1e-300))
+    peaked = bool(np.any(A[i:] <= A[i] / 2)) if run.peaked is None else bool(run.peaked)
+    return Amplification(amp, float(run.t[i]), amp >= GROWTH_FACTOR, peaked, A)
+
+
 def measure_growth(run: ModelRun) -> Growth:
     N = run.N
     m = int(round(run.k * N / (2 * math.pi)))
@@ -404,7 +625,8 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
                    t_end: float | None = None, dt: float | None = None,
                    method: str = "srkn11b", start: str = "exact", noise: float = NOISE,
                    seed: int = 0, records: int = 400, expected_gain: float | None = None,
-                   wave=None) -> ModelRun:
+                   wave=None, until_peak: bool = False,
+                   noise_on: str = "all") -> ModelRun:
     """Run the ring of ``model`` from a plane wave at ``k`` (snapped to the ring) with
     first harmonic ``amplitude`` in its carrier field, plus seeded noise.
 
@@ -412,6 +634,13 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
     exact theory's on this ring), as for the paper's chain: 9 e-foldings within
     [1 000, 100 000], 5 000 where nothing is predicted to grow. ``dt`` None: a fifth of
     the method's stability limit over the highest frequency of the lattice.
+
+    A model with [dissipation] runs with its damping force -M^-1 dR/dv: ``rk4`` takes it
+    in every stage; an SRKN method is wrapped in a Strang splitting (the damping flow's
+    exact half steps around each symplectic step: order 2). ``until_peak``: stop once
+    the sidebands' amplitude A(t) (``sideband_amplitude``) has risen 2x and fallen to half
+    its maximum (else ``t_end`` is the cap). ``noise_on="carrier"``: the noise on the
+    carrier field's positions only (the amplification's launch, issue 42).
     """
     from numerics.lattice import get_method, run_length
 
@@ -456,8 +685,17 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
         w0 = wave.carrier.omega
         u = amplitude * np.real(e * np.exp(1j * xi))
         v = amplitude * w0 * np.real(-1j * e * np.exp(1j * xi))
-    u = np.ascontiguousarray(u + noise * amplitude * rng.standard_normal((d, N)))
-    v = np.ascontiguousarray(v + noise * amplitude * wave.omega * rng.standard_normal((d, N)))
+    if noise_on not in ("all", "carrier"):
+        raise ModelError(f"noise_on must be 'all' or 'carrier', got {noise_on!r}")
+    if noise_on == "carrier":
+        kick = np.zeros((d, N))
+        kick[wave.carrier.field] = rng.standard_normal(N)
+        u = np.ascontiguousarray(u + noise * amplitude * kick)
+        v = np.ascontiguousarray(v)
+    else:
+        u = np.ascontiguousarray(u + noise * amplitude * rng.standard_normal((d, N)))
+        v = np.ascontiguousarray(v + noise * amplitude * wave.omega * rng.standard_normal(
+            (d, N)))
     accel, srkn, rk4, energy, _ = _kernels(model)
     p = np.asarray(model.p, float)
     masses = np.asarray(model.masses, float)
@@ -465,7 +703,25 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
     acc, x, g = np.empty_like(u), np.empty(2 * d), np.empty(2 * d)
     A = np.asarray(meth.a, float)
     B = np.asarray(meth.b, float)
-    ts, spec, dev, en = [], [], [], []
+    ts, spec, dev, en, diss = [], [], [], [], []
+    lossy = model.lossy
+    if lossy:
+        damp, rk4_damped, split_local, split_band = _damped_kernels(model)
+        S_d, B_d = model.damping
+        S_d, B_d = np.ascontiguousarray(S_d), np.ascontiguousarray(B_d)
+        if meth.kind == "srkn":
+            E_modes, E_local = damping_flow(model, N, dt / 2)
+
+    def advance(n):
+        if not lossy:
+            return (srkn(u, v, p, minv, A, B, dt, n, acc, x, g) if meth.kind == "srkn"
+                    else rk4(u, v, p, minv, dt, n, acc, x, g))
+        if meth.kind == "rk4":
+            return rk4_damped(u, v, p, minv, S_d, B_d, dt, n, acc, x, g)
+        if E_local is not None:
+            return split_local(u, v, p, minv, A, B, dt, n, acc, x, g, E_local)
+        # bond damping: the exact flow as a short circulant convolution (compiled)
+        return split_band(u, v, p, minv, A, B, dt, n, acc, x, g, *E_modes)
 
     def record(t):
         U = wave.profile(k_ring * np.arange(N) - wave.omega * t)
@@ -474,13 +730,20 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
         spec.append(np.sqrt(np.sum(np.abs(np.fft.fft(delta, axis=1)) ** 2, axis=0)) / N)
         dev.append(float(np.sqrt(np.mean(delta**2))))
         en.append(energy(u, v, p, masses, x))
+        if lossy:
+            diss.append(2 * rayleigh(model, v))
 
     record(0.0)
     done = 0
+    peaked = None
+    if until_peak:
+        modes = _sideband_modes(N, int(round(k_ring * N / (2 * math.pi))), wave.harmonics)
+        a0 = float(np.max(spec[0][modes]))
+        top = a0
+        peaked = False
     while done < nsteps:
         n = min(every, nsteps - done)
-        ok = (srkn(u, v, p, minv, A, B, dt, n, acc, x, g) if meth.kind == "srkn"
-              else rk4(u, v, p, minv, dt, n, acc, x, g))
+        ok = advance(n)
         done += n
         if not ok or not np.all(np.isfinite(u)):
             raise FloatingPointError(
@@ -488,10 +751,19 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
                 f"(dt = {dt:.3g}, method {method}): the wave left the lattice's range; "
                 "lower the amplitude or dt")
         record(done * dt)
-    return ModelRun(model=model, k=k_ring, amplitude=float(amplitude), N=N, t_end=float(t_end),
+        if until_peak:
+            a = float(np.max(spec[-1][modes]))
+            top = max(top, a)
+            if top >= 2 * a0 and a <= top / 2:
+                peaked = True
+                break
+    return ModelRun(model=model, k=k_ring, amplitude=float(amplitude), N=N,
+                    t_end=float(ts[-1]) if until_peak else float(t_end),
                     dt=dt, method=method, start=start, noise=float(noise), seed=int(seed),
                     wave=wave, t=np.array(ts), spectrum=np.array(spec),
-                    deviation=np.array(dev), energy=np.array(en))
+                    deviation=np.array(dev), energy=np.array(en),
+                    dissipation=np.array(diss) if lossy else None, peaked=peaked,
+                    state=(u.copy(), v.copy()))
 
 
 @dataclass(frozen=True)
@@ -519,10 +791,11 @@ class SeededRuns:
 
 def simulate_seeds(model: Model, k: float, amplitude: float, spec, *, branch=None,
                    N: int = 256, seeds: int = 1, t_end: float | None = None,
-                   start: str = "exact") -> SeededRuns:
+                   start: str = "exact", **run) -> SeededRuns:
     """``seeds`` runs of the ring from ``spec``'s exact wave (``exact_gain`` on this ring)
     and their verdict: one rule for a point and a map cell. T is ``run_length`` of the
-    exact rate unless ``t_end`` is given."""
+    exact rate unless ``t_end`` is given. ``run``: more keywords of ``simulate_model``
+    (``noise_on``, ``until_peak``: a lossy point's launch, issue 42)."""
     from numerics.lattice import run_length, simulated_verdict
 
     if isinstance(seeds, bool) or not isinstance(seeds, (int, np.integer)) or seeds < 1:
@@ -530,7 +803,7 @@ def simulate_seeds(model: Model, k: float, amplitude: float, spec, *, branch=Non
     length = run_length(spec.peak_gain) if t_end is None else None
     T = float(t_end) if t_end is not None else length.t_end
     runs = [simulate_model(model, k, amplitude, branch=branch, N=N, t_end=T, start=start,
-                           seed=s, wave=spec.wave) for s in range(int(seeds))]
+                           seed=s, wave=spec.wave, **run) for s in range(int(seeds))]
     growth = [r.growth() for r in runs]
     rates = [g.rate for g in growth if g.verdict == "unstable"]
     rate = float(np.median(rates)) if rates else math.nan

@@ -6,6 +6,7 @@ import math
 
 from energy import Model, ModelError
 
+from ._linear import carrier_damping
 from ._nls import nls
 
 #: The NLS's own frequency shift beyond this share of omega is outside the weakly nonlinear
@@ -25,7 +26,8 @@ def model_coefficients(model: Model, k: float, amplitude: float, branch=None) ->
     ``g2``, ``g2_parts``, ``g``, ``verdict`` ("MI", "stable", "undefined"), ``reason``,
     ``peak_gain`` (1/time), ``e_folding_time``, ``fastest_offset``, ``band_edge`` (rad/site),
     ``second_harmonic`` / ``mean`` / ``mean_strain`` (amplitude per field at this a),
-    ``frequency_shift`` and ``warnings``. Non-finite numbers are None.
+    ``frequency_shift`` and ``warnings``; a model with [dissipation] adds
+    ``carrier_damping`` (the carrier branch's amplitude decay rate Gamma, 1/time). Non-finite numbers are None.
     """
     a = float(amplitude)
     if not (math.isfinite(a) and a > 0):
@@ -55,4 +57,4 @@ def model_coefficients(model: Model, k: float, amplitude: float, branch=None) ->
         "mean_strain": {f: _num(float(v) * a**2 / 4) for f, v in zip(fields, r.strain)},
         "frequency_shift": _num(r.frequency_shift(a)) if not r.undefined else None,
         "warnings": warn,
-    }
+    } | ({"carrier_damping": carrier_damping(model, c.k, c.branch)} if model.lossy else {})

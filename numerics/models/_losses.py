@@ -1,0 +1,286 @@
+"""Losses (issue 42): the sidebands' amplification along a decaying carrier.
+
+With a Rayleigh dissipation the carrier decays, a(t) = a0 exp(-Gamma t) (Gamma its
+branch's damping rate), and growth is transient: a theory reports the largest
+amplification of a sideband over offsets and times, when it peaks, and whether it passes
+the runs' 20x (``observable``). The verdict stays physical: MI where the gain at t = 0
+exceeds the sidebands' own damping.
+
+Semi-discrete NLS with its loss term, i psi_t + P psi_xx + Q |psi|^2 psi + i Gamma psi = 0
+(P = g1/2, Q = g2, psi0 = a/2 in lattice units, ``_nls``). Linearised about the carrier
+psi0(t) e^{i theta(t)} with b = (x + i y) cos(q X), each offset q obeys the 2 x 2 system
+
+    x' = -G_q x + P q^2 y,   y' = (2 Q psi0(t)^2 - P q^2) x - G_q y,
+
+G_q the sidebands' own damping (the mean of Gamma_b(k + q) and Gamma_b(k - q)). It is
+integrated with exact exponentials of the matrix at each step's midpoint (order 2), from
+the growing eigenvector at t = 0; the amplification is |(x, y)(t)| / |(x, y)(0)|.
+
+Exact lattice theory along the decaying carrier: the Hill gain sigma(q, a) of the exact
+travelling wave (``exact_gain``, a black box) at a few amplitudes (``along_decay``:
+s = (a/a0)^2 halved until nothing grows, sigma^2 piecewise linear in s), minus G_q,
+integrated in time per ring offset: amplification = max over q and t of
+exp(int_0^t (sigma(q, a(s)) - G_q) ds). The four-wave theory the same way, per pair.
+
+The lossless limit (Gamma = 0): the carrier keeps its amplitude and a growing mode grows
+without end: amplification inf at time inf, observable where MI (``_unbounded``).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from energy import Model
+
+#: amplification a theory calls observable (the runs' threshold)
+OBSERVABLE = 20.0
+
+
+@dataclass(frozen=True)
+class Amplified:
+    """A theory's answer with losses: ``carrier_damping`` (Gamma, 1/time),
+    ``amplification`` (max over offsets and times), ``amplification_time``,
+    ``offset`` (rad/site) of the mode that reaches it, ``observable``
+    (amplification >= 20), ``initial_gain`` (the net rate at t = 0: gain minus damping)."""
+
+    carrier_damping: float
+    amplification: float
+    amplification_time: float
+    offset: float
+    observable: bool
+    initial_gain: float
+
+    def row(self) -> dict:
+        return {"carrier_damping": self.carrier_damping, "amplification": self.amplification,
+                "amplification_time": self.amplification_time,
+                "observable": self.observable}
+
+
+def sideband_damping(model: Model, k: float, q, branch: int) -> np.ndarray:
+    """G_q: the mean amplitude decay rate of the sidebands k + q and k - q on the branch."""
+    from ._linear import damping_rates
+
+    q = np.atleast_1d(np.asarray(q, float))
+    return 0.5 * (damping_rates(model, k + q)[:, branch] + damping_rates(model, k - q)[:, branch])
+
+
+def _pair_step(P, q2, c, G, h):
+    """exp(h [[-G, P q2], [c, -G]]) for arrays of offsets: e^{-G h} [[ch, b sh/l],
+    [c sh/l, ch]], l = sqrt(b c)."""
+    b = P * q2
+    lam = np.sqrt((b * c).astype(complex))
+    lh = lam * h
+    ch = np.cosh(lh)
+    shl = np.where(np.abs(lh) > 1e-12, np.sinh(lh) / np.where(lam == 0, 1, lam), h)
+    e = np.exp(-G * h)
+    return (e * np.real(ch), e * np.real(b * shl), e * np.real(c * shl), e * np.real(ch))
+
+
+def integrate_pairs(P, Q, psi0, Gamma, G, q, t_end, steps=4000, carrier_decays=True):
+    """|(x, y)(t)| / |(x, y)(0)| of the linearised damped NLS per offset q: array
+    (steps + 1, len(q)), and the times. The carrier psi0 e^{-Gamma t} (constant where
+    ``carrier_decays`` is False); start on the growing eigenvector at t = 0."""
+    q = np.atleast_1d(np.asarray(q, float))
+    G = np.broadcast_to(np.asarray(G, float), q.shape)
+    q2 = q * q
+    b = P * q2
+    c0 = 2 * Q * psi0**2 - P * q2
+    s0 = np.sqrt(np.maximum(b * c0, 0.0))
+    # growing eigenvector of [[0, b], [c0, 0]]: (b, s0) (normalised); neutral: (1, 0)
+    x = np.where(s0 > 0, b, 1.0)
+    y = np.where(s0 > 0, s0, 0.0)
+    n0 = np.hypot(x, y)
+    x, y = x / n0, y / n0
+    h = t_end / steps
+    t = np.linspace(0.0, t_end, steps + 1)
+    out = np.empty((steps + 1, q.size))
+    out[0] = 1.0
+    for i in range(steps):
+        tm = (i + 0.5) * h
+        a2 = psi0**2 * (math.exp(-2 * Gamma * tm) if carrier_decays else 1.0)
+        m11, m12, m21, m22 = _pair_step(P, q2, 2 * Q * a2 - P * q2, G, h)
+        x, y = m11 * x + m12 * y, m21 * x + m22 * y
+        out[i + 1] = np.hypot(x, y)
+    return out, t
+
+
+def _horizon(rate0: float, Gamma: float) -> float:
+    """How long to follow a decaying carrier: its gain ~ a^2 falls below the damping at
+    ln(rate0 / Gamma) / (2 Gamma); beyond it nothing grows. Twice that, and 3 / Gamma."""
+    if Gamma <= 0:
+        return math.inf
+    return 2 * max(math.log(max(rate0, Gamma) / Gamma), 0.0) / (2 * Gamma) + 3 / Gamma
+
+
+def nls_amplification(model: Model, k: float, amplitude: float, branch=None, *,
+                      offsets: int = 200, steps: int = 1000) -> Amplified:
+    """The damped semi-discrete NLS's amplification (module docstring)."""
+    from ._linear import carrier_damping
+    from ._nls import nls
+
+    r = nls(model, k, branch)
+    c = r.carrier
+    Gamma = max(carrier_damping(model, c.k, c.branch), 0.0) + 0.0  # -0.0 at zero damping
+    P, Q = c.g1 / 2, r.g2
+    psi0 = amplitude / 2
+    if r.undefined or not (np.isfinite(Q) and P * Q > 0):  # defocusing: no band
+        q = np.array([1e-3])
+        return Amplified(Gamma, 1.0, 0.0, math.nan, False, -float(
+            sideband_damping(model, c.k, q, c.branch)[0]))
+    edge = math.sqrt(2 * Q / P) * psi0  # band edge of the carrier at t = 0
+    q = np.linspace(edge / offsets, edge, offsets, endpoint=False)
+    G = sideband_damping(model, c.k, q, c.branch)
+    rate0 = abs(P) * q * np.sqrt(np.maximum(q**2 * 0 + (2 * Q / P) * psi0**2 - q**2, 0))
+    net0 = float(np.max(rate0 - G))
+    if Gamma <= 0:  # the lossless limit: a constant carrier, growth never stops
+        return _unbounded(Gamma, net0, float(q[int(np.argmax(rate0 - G))]))
+    t_end = _horizon(float(np.max(rate0)), Gamma)
+    amp, t = integrate_pairs(P, Q, psi0, Gamma, G, q, t_end, steps)
+    i, j = np.unravel_index(int(np.argmax(amp)), amp.shape)
+    best = float(amp[i, j])
+    return Amplified(Gamma, best, float(t[i]), float(q[j]), best >= OBSERVABLE, net0)
+
+
+def _unbounded(Gamma: float, net0: float, offset: float) -> Amplified:
+    """The lossless limit (Gamma = 0: no [dissipation], or zero damping of the carrier):
+    the carrier keeps its amplitude, so a mode whose net rate is positive grows without
+    end. Convention: amplification inf at time inf, observable True where it grows (MI),
+    else amplification 1 at time 0, observable False."""
+    if net0 > 0:
+        return Amplified(Gamma, math.inf, math.inf, offset, True, net0)
+    return Amplified(Gamma, 1.0, 0.0, math.nan, False, net0)
+
+
+def along_decay(gain_at, a0: float, gain0, G, Gamma: float, *, ratio: float = 0.5,
+                most: int = 10, steps: int = 4000):
+    """(amplification, time, column, samples) of modes whose growth rates at carrier
+    amplitude a are ``gain_at(a, cols)`` (an array over the columns ``cols``; ``gain0``
+    the rates at a0, every column),
+    each damped at its own rate G, along the carrier a(t) = a0 e^{-Gamma t} (Gamma > 0):
+    max over columns and t of exp(int_0^t (sigma(a(s)) - G) ds).
+
+    The gain is sampled at few amplitudes, s = (a / a0)^2 = 1, ratio, ratio^2, ... until
+    no column grows at the last (or ``most`` samples); sigma^2 is taken piecewise linear
+    in s between the samples and, below a column's lowest positive sample (a rate is
+    clipped at 0), on the line through its two lowest positive ones (clipped at 0): exact for the NLS's gain, sigma^2 = P^2 q^2 (2 Q/P psi0^2 s - q^2),
+    where the gain ~ a^2 the samples are ~ ln(sigma0 / G) / ln(1 / ratio)."""
+    gain0 = np.asarray(gain0, float)
+    G = np.broadcast_to(np.asarray(G, float), gain0.shape)
+    S = [(1.0, gain0 ** 2)]
+    s = 1.0
+    g = gain0
+    while len(S) < most:
+        s *= ratio
+        # a band shrinks as the carrier weakens: only the columns that grew net of their
+        # damping at the last sample are computed at the next (the others are taken 0:
+        # they only decay from there, which leaves the maximum over t unchanged)
+        cols = np.flatnonzero(g > G)
+        g = np.zeros_like(gain0)
+        g[cols] = np.asarray(gain_at(a0 * math.sqrt(s), cols), float)
+        S.append((s, g ** 2))
+        if not np.any(g > G):
+            break
+    S.sort(key=lambda x: x[0])
+    s_arr = np.array([x[0] for x in S])
+    g2 = np.array([x[1] for x in S])  # (samples, cols)
+    # time: the horizon of the gain at t = 0 against the carrier's damping
+    t_end = _horizon(float(np.max(gain0)), Gamma)
+    t = np.linspace(0.0, t_end, steps + 1)
+    s_t = np.exp(-2 * Gamma * t)
+    sig2 = np.empty((t.size, g2.shape[1]))
+    for c in range(g2.shape[1]):
+        # the samples are clipped rates (0 where stable): below a column's lowest positive
+        # sample its sigma^2 follows the line through the two lowest positive ones
+        pos = np.flatnonzero(g2[:, c] > 0)
+        lo = pos[0] if pos.size else s_arr.size - 1
+        up = min(lo + 1, s_arr.size - 1)
+        above = s_t >= s_arr[lo]
+        sig2[above, c] = np.interp(s_t[above], s_arr[lo:], g2[lo:, c])
+        if up == lo:  # only s = 1 grows: fall to the next sample below
+            up, lo = lo, max(lo - 1, 0)
+        slope = (g2[up, c] - g2[lo, c]) / (s_arr[up] - s_arr[lo]) if up != lo else 0.0
+        sig2[~above, c] = g2[up, c] + slope * (s_t[~above] - s_arr[up])
+    rate = np.sqrt(np.maximum(sig2, 0.0)) - G[None, :]
+    log_amp = np.concatenate([np.zeros((1, G.size)), np.cumsum(
+        np.diff(t)[:, None] * (rate[1:] + rate[:-1]) / 2, axis=0)])
+    i, j = np.unravel_index(int(np.argmax(log_amp)), log_amp.shape)
+    return math.exp(min(float(log_amp[i, j]), 700.0)), float(t[i]), int(j), len(S)
+
+
+def exact_amplification(model: Model, k: float, amplitude: float, branch=None, *,
+                        N: int = 256, first=None, ratio: float = 0.5,
+                        most: int = 10) -> Amplified:
+    """The exact lattice theory along the decaying carrier (module docstring): the Hill
+    gain on a ring of N sites at the carrier amplitudes a0 e^{-Gamma t} (``along_decay``:
+    a few amplitudes, the gain interpolated between them), for the offsets that grow net
+    of their damping at t = 0, each damped as the carrier branch's sidebands (a mode of
+    other branches is damped at their rates: this is then approximate). ``first``: ``exact_gain`` at a0 on this
+    ring, where already computed."""
+    from ._exact import exact_gain, hill_spectrum, travelling_wave
+    from ._linear import carrier_damping
+
+    if first is None:
+        first = exact_gain(model, k, amplitude, branch, N=N)
+    c = first.wave.carrier
+    Gamma = max(carrier_damping(model, c.k, c.branch), 0.0) + 0.0  # -0.0 at zero damping
+    q = np.asarray(first.offsets, float)
+    gain0 = np.asarray(first.gain, float)
+    G = sideband_damping(model, c.k, q, c.branch) if model.lossy else np.zeros(q.size)
+    net0 = gain0 - G
+    top = float(np.max(net0)) if q.size else 0.0
+    if first.peak_gain <= 0 or top <= 0:
+        return Amplified(Gamma, 1.0, 0.0, math.nan, False, top)
+    if Gamma <= 0:
+        return _unbounded(Gamma, top, float(q[int(np.argmax(net0))]))
+    live = np.flatnonzero(net0 > 0)
+    qk = q[live]
+
+    def gain_at(a, cols):
+        w = travelling_wave(model, c.k, a, c.branch)
+        return hill_spectrum(w, qk[cols]).gain
+
+    amp, t, j, _ = along_decay(gain_at, amplitude, gain0[live], G[live], Gamma, ratio=ratio,
+                               most=most)
+    return Amplified(Gamma, amp, t, float(qk[j]), amp >= OBSERVABLE, top)
+
+
+def four_wave_amplification(model: Model, k: float, amplitude: float, branch=None, *,
+                            N: int | None = None, first=None, ratio: float = 0.5,
+                            most: int = 10) -> Amplified:
+    """The four-wave theory along the decaying carrier: every pair (offset q, branches
+    b1, b2) at its rate at a(t), damped at the mean of its two waves' rates
+    (Gamma_b1(k + q) + Gamma_b2(k - q)) / 2 (``along_decay``)."""
+    from ._fourwave import four_wave
+    from ._linear import carrier_damping, damping_rates
+
+    if first is None:
+        first = four_wave(model, k, amplitude, branch, N=N)
+    Gamma = max(carrier_damping(model, first.k, first.branch), 0.0) + 0.0  # -0.0 at zero damping
+    if first.undefined or not first.gain > 0:
+        return Amplified(Gamma, 1.0, 0.0, math.nan, False, 0.0)
+    q = np.asarray(first.offsets, float)
+    rates0 = np.nan_to_num(np.asarray(first.rates, float), nan=0.0)  # (n, m)
+    if model.lossy:
+        up, down = damping_rates(model, first.k + q), damping_rates(model, first.k - q)
+        G = np.array([0.5 * (up[:, b1] + down[:, b2]) for b1, b2 in first.pairs]).T
+    else:
+        G = np.zeros_like(rates0)
+    net0 = rates0 - G
+    top = float(np.max(net0))
+    col_q = np.repeat(q, rates0.shape[1])
+    if top <= 0:
+        return Amplified(Gamma, 1.0, 0.0, math.nan, False, top)
+    if Gamma <= 0:
+        return _unbounded(Gamma, top, float(col_q[int(np.argmax(net0))]))
+    live = net0.ravel() > 0
+
+    def gain_at(a, cols):
+        fw = four_wave(model, first.k, a, first.branch, N=N)
+        return np.nan_to_num(np.asarray(fw.rates, float), nan=0.0).ravel()[live][cols]
+
+    amp, t, j, _ = along_decay(gain_at, amplitude, rates0.ravel()[live], G.ravel()[live],
+                               Gamma, ratio=ratio, most=most)
+    return Amplified(Gamma, amp, t, float(col_q[live][j]), amp >= OBSERVABLE, top)
