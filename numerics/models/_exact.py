@@ -42,6 +42,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from common.threads import one_blas_thread
 from energy import Model, ModelError
 
 from ._linear import Carrier, carrier
@@ -159,14 +160,20 @@ def _pack_layout(d, H, field, acoustic):
     return optical, free
 
 
+@one_blas_thread
 def travelling_wave(model: Model, k: float, amplitude: float, branch=None, *,
                     harmonics: int | None = None) -> TravellingWave:
     """The exact travelling plane wave of ``model`` on ``branch`` at wavenumber ``k`` whose
     carrier field has first harmonic ``amplitude`` cos(k n - omega t).
 
     Raises ModelError where none is found (a resonance with another harmonic, an
-    amplitude beyond the branch's nonlinear range): said in one line.
+    amplitude beyond the branch's nonlinear range): said in one line. Small dense algebra:
+    on one BLAS thread (``common.threads``).
     """
+    return _travelling_wave(model, k, amplitude, branch, harmonics)
+
+
+def _travelling_wave(model, k, amplitude, branch, harmonics):
     from scipy.optimize import least_squares
 
     a = float(amplitude)
@@ -200,6 +207,10 @@ def travelling_wave(model: Model, k: float, amplitude: float, branch=None, *,
 
 
 def _solve(model, car, a, masses, acoustic, H, c0, omega0, least_squares):
+    """The collocation equations at H harmonics: Gauss-Newton with their exact Jacobian
+    (from the generated cell Hessian), least squares with a finite-difference Jacobian
+    (scipy's "lm") where Newton does not settle. Both solve the same equations; Newton
+    needs ~5 steps of one Hessian evaluation and a small least-squares solve each."""
     d = model.n_fields
     M = max(64, 4 * H + 8)
     xi = _grid(M)
@@ -207,12 +218,13 @@ def _solve(model, car, a, masses, acoustic, H, c0, omega0, least_squares):
     h = np.arange(-H, H + 1)
     E = np.exp(-1j * h[:, None] * xi[None, :]) / M  # projection onto e^{i h xi}
     scale = float(np.max(masses)) * omega0**2 * a
+    n_opt = optical.shape[1]
 
     def unpack(x):
         omega = x[0]
-        mean = optical @ x[1:1 + optical.shape[1]]
+        mean = optical @ x[1:1 + n_opt]
         parts = np.zeros((d, H, 2))
-        parts[free] = x[1 + optical.shape[1]:]
+        parts[free] = x[1 + n_opt:]
         parts[car.field, 0] = (a / 2, 0.0)
         c = np.zeros((d, 2 * H + 1), complex)
         c[:, H] = mean
@@ -220,24 +232,97 @@ def _solve(model, car, a, masses, acoustic, H, c0, omega0, least_squares):
         c[:, :H] = np.conj(c[:, H + 1:][:, ::-1])
         return omega, c
 
-    def residual(x):
-        omega, c = unpack(x)
-        R = masses[:, None] * omega**2 * _fields_at(c * (-(h**2)), xi) - _force(model, c, xi, car.k)
-        R_hat = R @ E.T  # (d, 2H + 1)
+    def equations(R_hat):
         eqs = [np.real(optical.T @ R_hat[:, H])]
         pos = R_hat[:, H + 1:]
         eqs += [np.real(pos).ravel(), np.imag(pos).ravel()]
         return np.concatenate(eqs) / scale
 
+    def residual(x):
+        omega, c = unpack(x)
+        R = masses[:, None] * omega**2 * _fields_at(c * (-(h**2)), xi) - _force(model, c, xi, car.k)
+        return equations(R @ E.T)
+
+    def jacobian(x):
+        omega, c = unpack(x)
+        U0 = _fields_at(c, xi)
+        Hf = np.empty((2 * d, 2 * d, M))
+        Hb = np.empty((2 * d, 2 * d, M))
+        model.code.cell_hessian_into(np.concatenate([U0, _fields_at(c, xi, car.k)]), model.p, Hf)
+        model.code.cell_hessian_into(np.concatenate([_fields_at(c, xi, -car.k), U0]), model.p,
+                                     Hb)
+        # dR_hat[l, j] / dc[h, b] (c[h] and c[-h] independent): the DFT of the force's
+        # derivative at l - h, the same grid as the residual (exact for the discrete system)
+        s = (h[:, None] - h[None, :]) % M
+        Ff, Fb = np.fft.fft(Hf, axis=-1) / M, np.fft.fft(Hb, axis=-1) / M
+        ph = np.exp(1j * h * car.k)[None, :, None, None]
+        J = (Ff[:d, :d][..., s] + Fb[d:, d:][..., s]).transpose(2, 3, 0, 1) \
+            + Ff[:d, d:][..., s].transpose(2, 3, 0, 1) * ph \
+            + Fb[d:, :d][..., s].transpose(2, 3, 0, 1) / ph      # (l, h, j, b)
+        J[np.arange(2 * H + 1), np.arange(2 * H + 1)] -= (
+            (h**2 * omega**2)[:, None, None] * np.diag(masses)[None])
+        J = J.transpose(2, 0, 3, 1)                               # (j, l, b, h)
+        cols = [equations(-2 * omega * masses[:, None] * h**2 * c)]  # d / d omega
+        for i in range(n_opt):                                    # the optical means
+            cols.append(equations(J[:, :, :, H] @ optical[:, i]))
+        for b in range(d):
+            for hh in range(1, H + 1):
+                if free[b, hh - 1, 0]:
+                    cols.append(equations(J[:, :, b, H + hh] + J[:, :, b, H - hh]))
+        for b in range(d):
+            for hh in range(1, H + 1):
+                if free[b, hh - 1, 1]:
+                    cols.append(equations(1j * (J[:, :, b, H + hh] - J[:, :, b, H - hh])))
+        return np.stack(cols, axis=1)
+
     x0 = [omega0, *(optical.T @ np.real(c0[:, H]))]
     parts0 = np.stack([np.real(c0[:, H + 1:]), np.imag(c0[:, H + 1:])], axis=-1)
     x0 = np.array(x0 + list(parts0[free]))
-    sol = least_squares(residual, x0, method="lm", xtol=1e-15, ftol=1e-15, gtol=1e-15,
-                        max_nfev=200 * (x0.size + 1))
-    omega, c = unpack(sol.x)
-    res = float(np.max(np.abs(residual(sol.x)))) if np.all(np.isfinite(sol.x)) else math.inf
+    x = _gauss_newton(residual, _reorder(jacobian, free), x0)
+    if x is None:
+        sol = least_squares(residual, x0, method="lm", xtol=1e-15, ftol=1e-15, gtol=1e-15,
+                            max_nfev=200 * (x0.size + 1))
+        x = sol.x
+    omega, c = unpack(x)
+    res = float(np.max(np.abs(residual(x)))) if np.all(np.isfinite(x)) else math.inf
     return TravellingWave(model=model, carrier=car, amplitude=a, omega=float(omega),
                           coefficients=c, residual=res)
+
+
+def _reorder(jacobian, free):
+    """The Jacobian's columns in the unknowns' order (omega, means, then the free parts as
+    ``parts[free]`` flattens them: field, harmonic, Re/Im innermost)."""
+    d, H, _ = free.shape
+    keys = [(b, hh, 0) for b in range(d) for hh in range(H) if free[b, hh, 0]]
+    keys += [(b, hh, 1) for b in range(d) for hh in range(H) if free[b, hh, 1]]
+    order = sorted(range(len(keys)), key=lambda i: keys[i])
+
+    def jac(x):
+        J = jacobian(x)
+        head = J.shape[1] - len(keys)
+        return np.concatenate([J[:, :head], J[:, head:][:, order]], axis=1)
+
+    return jac
+
+
+def _gauss_newton(residual, jacobian, x0, steps=40):
+    """Gauss-Newton until the residual is round-off (None where it does not settle: the
+    caller falls back to scipy's least squares)."""
+    x = x0.copy()
+    r = residual(x)
+    start = best = np.max(np.abs(r))
+    for _ in range(steps):
+        if not (np.isfinite(best) and best < 1e6 * max(start, 1e-3)):
+            return None
+        if best < 1e-14:
+            return x
+        x = x + np.linalg.lstsq(jacobian(x), -r, rcond=None)[0]
+        r = residual(x)
+        now = np.max(np.abs(r))
+        if best < 1e-11 and now >= best / 4:
+            return x if now < 2 * best else None  # round-off: the last step changed nothing
+        best = now
+    return x if best < RESIDUAL_TOL else None
 
 
 @dataclass(frozen=True)
@@ -353,13 +438,19 @@ def _hessian_harmonics(wave: TravellingWave, P: int):
     return np.einsum("abm,sm->sab", Hs, np.exp(-1j * s[:, None] * xi[None, :])) / M
 
 
+@one_blas_thread
 def hill_spectrum(wave: TravellingWave, offsets, *, harmonics: int | None = None,
                   return_eigenvalues: bool = False):
     """The growth rate of the fastest resolved sideband mode at each offset q.
 
     ``harmonics`` P: the perturbation's harmonics l = -P..P (default: the wave's H + 4).
-    With ``return_eigenvalues``, also the lambdas at each q (list of arrays).
+    With ``return_eigenvalues``, also the lambdas at each q (list of arrays). On one BLAS
+    thread (``common.threads``).
     """
+    return _hill_spectrum(wave, offsets, harmonics, return_eigenvalues)
+
+
+def _hill_spectrum(wave, offsets, harmonics=None, return_eigenvalues=False):
     model = wave.model
     d = model.n_fields
     k, omega = wave.k, wave.omega
@@ -420,23 +511,26 @@ def ring_offsets(N: int) -> np.ndarray:
     return 2 * np.pi * np.arange(1, N // 2 + 1) / N
 
 
+@one_blas_thread
 def exact_gain(model: Model, k: float, amplitude: float, branch=None, *, N: int | None = None,
                samples: int = 400) -> HillSpectrum:
     """The exact lattice theory at one point: the travelling wave and its Hill spectrum on
     a ring of ``N`` sites (k snapped to 2 pi m / N, the offsets the ring carries) or, N
     None, on the infinite chain (``samples`` offsets in [pi / samples, pi] and 40
-    log-spaced below, the peak refined between them)."""
+    log-spaced below, the peak refined between them). On one BLAS thread
+    (``common.threads``: a multithreaded BLAS only adds synchronisation to small dense
+    algebra, and on a busy machine its threads spin against the work)."""
     if N:
         from ._simulate import snap_ring
         k = snap_ring(k, N)[0]
-    wave = travelling_wave(model, k, amplitude, branch)
+    wave = _travelling_wave(model, k, amplitude, branch, None)
     if N:
-        return hill_spectrum(wave, ring_offsets(N))
+        return _hill_spectrum(wave, ring_offsets(N))
     # small offsets log-spaced below the uniform grid's first point: a weak wave's band is
     # O(a) wide (a = 0.002: edge 0.005, inside the first uniform step pi / 400)
     q = np.concatenate([np.geomspace(1e-5, np.pi / samples, 40, endpoint=False),
                         np.linspace(np.pi / samples, np.pi, samples)])
-    spec = hill_spectrum(wave, q)
+    spec = _hill_spectrum(wave, q)
     if spec.peak_gain <= 0:
         return spec
     # the infinite chain's peak between the samples (bounded scalar search of the rate)
@@ -444,9 +538,9 @@ def exact_gain(model: Model, k: float, amplitude: float, branch=None, *, N: int 
 
     i = int(np.argmax(spec.gain))
     lo, hi = q[max(i - 1, 0)], q[min(i + 1, q.size - 1)]
-    best = minimize_scalar(lambda x: -hill_spectrum(wave, [x]).gain[0], bounds=(lo, hi),
+    best = minimize_scalar(lambda x: -_hill_spectrum(wave, [x]).gain[0], bounds=(lo, hi),
                            method="bounded", options={"xatol": 1e-6 * (hi - lo)})
-    extra = hill_spectrum(wave, [best.x])
+    extra = _hill_spectrum(wave, [best.x])
     order = np.argsort(np.concatenate([q, extra.offsets]))
     return HillSpectrum(
         wave=wave, offsets=np.concatenate([q, extra.offsets])[order],
