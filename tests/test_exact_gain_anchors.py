@@ -11,8 +11,18 @@ resonance at some offsets; a commensurate k = pi / 2; a weak wave's narrow band 
 infinite chain). The physics is checked in tests/test_models_exact.py.
 
 Compared: the wave's omega; the growth rate at every offset (0 where the old code saw no
-resolved growing mode); where a mode grows, its harmonic l and its sideband offset (nan for
-a resonance); on the infinite chain the offsets themselves (the refined peak's included).
+resolved growing mode); where a mode grows, the wavenumber q + l k its harmonic l names and
+its sideband offset (nan for a resonance); on the infinite chain the offsets themselves
+(the refined peak's included).
+
+What round-off decides is left out, as the old code itself measured it: the generator ran
+the old theory again from the wave moved by 1e-15 relative (four draws) and marks
+(``fragile``) the offsets where a draw differs; where the refined peak moved, the infinite
+chain is compared on its fixed grid. At a commensurate k a mode's copies tie (at k = pi / 2
+the fastest may sit at q or at q + pi; at k = pi the harmonics 1 and -1 name one
+wavenumber; at q = pi the harmonics l and -l name kappa and -kappa), and a rate within
+~1e-9 omega of a double eigenvalue is the eigensolver's round-off (``GAIN_FLOOR``): rates
+are compared to 1e-6 relative or 1e-9 omega absolute.
 """
 
 import json
@@ -27,12 +37,20 @@ from numerics.models import exact_gain
 
 ANCHORS = json.loads((Path(__file__).parent / "anchors" / "exact_gain.json").read_text())
 RTOL = 1e-6
+#: absolute tolerance on rates, relative to omega (the eigensolver's own round-off there)
+ATOL_OMEGA = 1e-9
+CHAIN_GRID = np.concatenate([np.geomspace(1e-5, np.pi / 400, 40, endpoint=False),
+                             np.linspace(np.pi / 400, np.pi, 400)])
 
 
 def _id(p):
     where = f"N{p['N']}" if p["N"] else "chain"
     par = ",".join(f"{n}={v:g}" for n, v in p["params"].items())
     return f"{p['model']}[{par}]-k{p['k']:.4g}-a{p['amplitude']:g}-b{p['branch']}-{where}"
+
+
+def _on_grid(q):
+    return np.isclose(q[:, None], CHAIN_GRID[None, :], rtol=1e-12, atol=0).any(axis=1)
 
 
 @pytest.mark.parametrize("point", ANCHORS["points"], ids=[_id(p) for p in ANCHORS["points"]])
@@ -43,12 +61,35 @@ def test_exact_gain_equals_the_old_implementation(point):
         model = model.with_params(**p["params"])
     spec = exact_gain(model, p["k"], p["amplitude"], p["branch"], N=p["N"])
     assert spec.wave.omega == pytest.approx(p["omega"], rel=RTOL)
-    np.testing.assert_allclose(spec.offsets, p["offsets"], rtol=RTOL, atol=0)
-    gain = np.array(p["gain"])
-    np.testing.assert_allclose(spec.gain, gain, rtol=RTOL, atol=0)
     assert spec.peak_gain == pytest.approx(p["peak_gain"], rel=RTOL)
+    q_old, q_new = np.array(p["offsets"]), spec.offsets
+    keep_old = np.ones(q_old.size, bool)
+    keep_old[p["fragile"]] = False
+    if p["refined_offset_fragile"]:  # the chain's fixed grid only
+        grid_old, grid_new = _on_grid(q_old), _on_grid(q_new)
+        assert grid_old.sum() == grid_new.sum() == CHAIN_GRID.size
+        sel_old = np.flatnonzero(grid_old & keep_old)
+        sel_new = np.flatnonzero(grid_new)[keep_old[grid_old]]
+    else:
+        assert q_new.size == q_old.size
+        sel_old = sel_new = np.flatnonzero(keep_old)
+    np.testing.assert_allclose(q_new[sel_new], q_old[sel_old], rtol=RTOL, atol=0)
+    gain = np.array(p["gain"])[sel_old]
+    np.testing.assert_allclose(spec.gain[sel_new], gain, rtol=RTOL,
+                               atol=ATOL_OMEGA * p["omega"])
     grows = gain > 0
-    np.testing.assert_array_equal(spec.harmonic[grows], np.array(p["harmonic"])[grows])
-    side = np.array([math.nan if x is None else x for x in p["sideband_offset"]])
-    np.testing.assert_allclose(spec.sideband_offset[grows], side[grows], rtol=RTOL, atol=1e-12)
-    assert spec.mode == p["mode"]
+    # the harmonic through the wavenumber kappa = q + l k it names; at q = pi the chain's
+    # reflection maps l onto -l at the same offset (kappa onto -kappa): a tie, compared
+    # up to the sign of kappa
+    k = spec.wave.k
+    kappa_new = np.exp(1j * (q_new[sel_new] + spec.harmonic[sel_new] * k))[grows]
+    kappa_old = np.exp(1j * (q_old[sel_old] + np.array(p["harmonic"])[sel_old] * k))[grows]
+    at_pi = np.isclose(q_old[sel_old][grows], np.pi, rtol=0, atol=1e-12)
+    kappa_new[at_pi] = kappa_new[at_pi].real
+    kappa_old[at_pi] = kappa_old[at_pi].real
+    np.testing.assert_allclose(kappa_new, kappa_old, rtol=0, atol=1e-9)
+    side = np.array([math.nan if x is None else x for x in p["sideband_offset"]])[sel_old]
+    np.testing.assert_allclose(spec.sideband_offset[sel_new][grows], side[grows], rtol=RTOL,
+                               atol=1e-12)
+    if not p["fragile"] and not p["refined_offset_fragile"]:
+        assert spec.mode == p["mode"]

@@ -450,17 +450,82 @@ def hill_spectrum(wave: TravellingWave, offsets, *, harmonics: int | None = None
     return _hill_spectrum(wave, offsets, harmonics, return_eigenvalues)
 
 
+#: The fast path's truncation: harmonics l = -P..P with P = min(H + 4, WORK_HARMONICS).
+#: A kept mode is centred at |l| <= 1 with < 1e-6 of its weight in the outer three
+#: harmonics; its tail falls faster than geometrically (the gaps grow as (l omega)^2):
+#: measured on the anchors (tests/test_exact_gain_anchors.py), P = 8 and P = 20 give the
+#: same rates to 5e-11 relative, P = 6 drops modes (the weight filter reaches them).
+WORK_HARMONICS = 10
+#: growing modes per offset the compiled path reports at most, and the largest cluster of
+#: roots (coordinates) it solves; beyond either, that offset's dense eigenproblem
+MAX_MODES, MAX_CLUSTER = 12, 6
+
+
 def _hill_spectrum(wave, offsets, harmonics=None, return_eigenvalues=False):
+    offsets = np.atleast_1d(np.asarray(offsets, dtype=float))
+    if harmonics or return_eigenvalues:
+        return _dense_spectrum(wave, offsets, harmonics or wave.harmonics + 4,
+                               return_eigenvalues)
+    from ._sidebands import sideband_modes
+
     model = wave.model
     d = model.n_fields
     k, omega = wave.k, wave.omega
-    P = harmonics or wave.harmonics + 4
+    P = min(wave.harmonics + 4, WORK_HARMONICS)
+    l_ = np.arange(-P, P + 1)
+    floor = GAIN_FLOOR * max(omega, 1e-300)
+    masses = np.asarray(model.masses, float)
+    lam, vec, count = sideband_modes(_hessian_harmonics(wave, P), masses, k, omega, P,
+                                     offsets, floor, MAX_MODES, MAX_CLUSTER)
+    gains = np.zeros(offsets.size)
+    modes = np.zeros(offsets.size, int)
+    offs = np.full(offsets.size, math.nan)
+    c = np.abs(vec) ** 2                                         # (Q, modes, n)
+    weight = c / np.maximum(c.sum(axis=-1, keepdims=True), 1e-300)
+    per_l = weight.reshape(offsets.size, MAX_MODES, 2 * P + 1, d).sum(axis=-1)
+    central = np.abs(l_[np.argmax(per_l, axis=-1)]) <= 1
+    outer = per_l[..., :3].sum(axis=-1) + per_l[..., -3:].sum(axis=-1)
+    have = np.arange(MAX_MODES)[None, :] < count[:, None]
+    resolved = have & central & (outer < 1e-6)
+    re = np.where(resolved, lam.real, -np.inf)
+    dense = []
+    for i, q in enumerate(offsets):
+        if count[i] < 0:
+            dense.append(i)
+            continue
+        best = int(np.argmax(re[i]))
+        if not (re[i, best] > floor):
+            continue
+        gains[i] = re[i, best]
+        w_best = per_l[i, best]
+        modes[i] = int(l_[int(np.argmax(w_best))])
+        offs[i] = _sideband_offset(q, l_, k, w_best)
+    if dense:
+        sub = _dense_spectrum(wave, offsets[dense], P, False)
+        gains[dense], modes[dense], offs[dense] = sub.gain, sub.harmonic, sub.sideband_offset
+    return HillSpectrum(wave=wave, offsets=offsets, gain=gains, harmonic=modes,
+                        sideband_offset=offs)
+
+
+def _sideband_offset(q, l_, k, w_best):
+    kap = q + l_ * k
+    dist = np.minimum(_wrap(kap - k), _wrap(kap + k))
+    near = dist <= np.pi / 4
+    side = w_best[near].sum() >= 0.1 * w_best.sum()
+    return float(dist[near][np.argmax(w_best[near])]) if side else math.nan
+
+
+def _dense_spectrum(wave, offsets, P, return_eigenvalues):
+    """The Hill pencil's whole spectrum per offset (numpy.linalg.eig of its 2 n x 2 n
+    linearisation): the reference the compiled path equals, and its fallback."""
+    model = wave.model
+    d = model.n_fields
+    k, omega = wave.k, wave.omega
     Hh = _hessian_harmonics(wave, P)
     l_ = np.arange(-P, P + 1)
     n = d * (2 * P + 1)
     m = np.tile(np.asarray(model.masses, float), 2 * P + 1)
     Minv = 1 / m
-    offsets = np.atleast_1d(np.asarray(offsets, dtype=float))
     gains, modes, lams, offs = [], [], [], []
     floor = GAIN_FLOOR * max(omega, 1e-300)
     outer = np.zeros((2 * P + 1, d), bool)

@@ -1,15 +1,17 @@
 """Writes tests/anchors/exact_gain.json: regression anchors of ``exact_gain``.
 
-The committed file was written by this script run on the implementation at commit
+The committed file was written by this script (the implementation's own round-off
+spread: each point again from the wave moved by 1e-15) run on the implementation at commit
 ac52a2e (dense ``numpy.linalg.eig`` per offset at P = H + 4 harmonics, least-squares
 harmonic balance with a finite-difference Jacobian), before the fast exact theory of
 issue 41 replaced it. It is not to be rewritten from a newer implementation: the anchors
 say what the old, slow code gave, and tests/test_exact_gain_anchors.py checks the new code
-against them (1e-6 relative). To reproduce them:
+against them (1e-6 relative). To reproduce them (the script came later than ac52a2e; it
+uses ``exact_gain`` and, to move the wave, ``_exact.travelling_wave`` as exact_gain calls
+it there):
 
-    git worktree add /tmp/old ac52a2e && cd /tmp/old && python tests/anchors/make_exact_gain_anchors.py OUT.json
-
-(the script itself came later; it uses only ``exact_gain``'s public result).
+    mkdir /tmp/old && git archive ac52a2e | tar -x -C /tmp/old
+    cd /tmp/old && PYTHONPATH=/tmp/old python /path/to/make_exact_gain_anchors.py OUT.json
 """
 
 from __future__ import annotations
@@ -43,13 +45,51 @@ POINTS = [
 ]
 
 
+def _perturbed(travelling_wave, seed):
+    """``travelling_wave`` whose coefficients are moved by 1e-15 relative (seeded)."""
+    import dataclasses
+
+    import numpy as np
+
+    def wave(*args, **kwargs):
+        w = travelling_wave(*args, **kwargs)
+        r = np.random.default_rng(seed).standard_normal(w.coefficients.shape)
+        return dataclasses.replace(w, coefficients=w.coefficients * (1 + 1e-15 * r))
+
+    return wave
+
+
 def _row(name, params, k, a, branch, N):
+    import numpy as np
+
     from energy import load_model
-    from numerics.models import exact_gain
+    from numerics.models import _exact, exact_gain
 
     model = load_model(name).with_params(**params) if params else load_model(name)
     spec = exact_gain(model, k, a, branch, N=N)
-    return {"model": name, "params": params, "k": k, "amplitude": a, "branch": branch, "N": N,
+    # the same theory from the wave moved by 1e-15, four times: what round-off alone
+    # decides (at a commensurate k a mode's copies tie: which one is "fastest" or
+    # "central"; measured: at k = pi / 2, q = pi / 2 the old rate is 0 or 0.0070 by the
+    # draw of a 1e-16 perturbation)
+    fragile = np.zeros(spec.gain.size, bool)
+    same_grid = True
+    plain = _exact.travelling_wave
+    for seed in range(4):
+        _exact.travelling_wave = _perturbed(plain, seed)
+        try:
+            moved = exact_gain(model, k, a, branch, N=N)
+        finally:
+            _exact.travelling_wave = plain
+        if not (moved.offsets.size == spec.offsets.size
+                and np.allclose(moved.offsets, spec.offsets, rtol=1e-6, atol=0)):
+            same_grid = False
+            continue
+        fragile |= ~np.isclose(moved.gain, spec.gain, rtol=1e-6, atol=1e-9 * spec.wave.omega)
+        kap = np.exp(1j * (spec.offsets + spec.harmonic * spec.wave.k))
+        kap_moved = np.exp(1j * (moved.offsets + moved.harmonic * spec.wave.k))
+        fragile |= (spec.gain > 0) & (np.abs(kap - kap_moved) > 1e-9)
+    return {"fragile": np.flatnonzero(fragile).tolist(),
+            "refined_offset_fragile": not same_grid, "model": name, "params": params, "k": k, "amplitude": a, "branch": branch, "N": N,
             "omega": spec.wave.omega, "peak_gain": spec.peak_gain, "mode": spec.mode,
             "offsets": spec.offsets.tolist(), "gain": spec.gain.tolist(),
             "harmonic": spec.harmonic.tolist(),

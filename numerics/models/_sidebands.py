@@ -1,0 +1,470 @@
+"""The growing modes of the Hill pencil of ``_exact`` at many offsets, compiled: what the
+dense eigenproblem per offset gave, at the cost of a few small solves.
+
+At offset q the pencil is Q(lambda) = M (lambda - i Omega)^2 + L(q), Omega = diag(l omega),
+L(q) Hermitian (the cell Hessian's Fourier coefficients, ``_exact``'s module docstring).
+Scaled by M^{-1/2} and with each harmonic's diagonal block diagonalised
+(V_l^* M^{-1/2} L_ll M^{-1/2} V_l = diag w_lj^2), it is
+
+    T(lambda) = diag((lambda - i l omega)^2 + w_lj^2) + E,   E Hermitian, zero on the
+                                                             diagonal blocks,
+
+whose roots at E = 0 are lambda = i (l omega +- w_lj), each with the Krein sign +-.
+
+Which offsets can grow (certified, not sampled). An eigenvalue lies where some
+|(lambda - i l omega)^2 + w_lj^2| <= R_lj, R_lj the row sum of |E| (a Gershgorin bound for
+the block-diagonal part), so in discs on the imaginary axis about the roots (radius
+w - sqrt(w^2 - R), or one disc sqrt(|w^2| + R) about i l omega for both roots where
+w^2 <= R). Along E -> t E, t in [0, 1] the discs only shrink, so each connected cluster of
+discs holds as many eigenvalues as roots; the spectrum is symmetric under
+lambda -> -conj(lambda) and so is each cluster: a cluster of one root keeps its eigenvalue
+on the axis. So does a cluster whose roots all have one Krein sign (the form the pencil is
+self-adjoint in is definite on its spectral subspace, for every t). Only a cluster with
+roots of both signs, or a joint disc, can hold a growing mode; a mode the theory keeps is
+centred at l = -1, 0 or 1, so only clusters holding a root of those harmonics are solved.
+
+Solving a cluster. With C its coordinates (r_c of them) and the rest folded in by the Schur
+complement, S(lambda) = T_CC(lambda) - E_CR (T_RR(lambda))^{-1} E_RC, whose zeros near the
+cluster are the pencil's eigenvalues there. The fold Sigma(lambda) = E_CR T_RR^{-1} E_RC
+changes slowly across the cluster (the other roots are outside it): each eigenvalue is the
+fixed point of "the eigenvalue of the r_c x r_c pencil with Sigma frozen at lambda nearest
+lambda", iterated to round-off from the frozen pencil at the cluster's centre. Its
+eigenvector (the small pencil's, the rest -T_RR^{-1} E_RC y_C) gives the weights the kept
+modes are chosen by, as the dense eigenproblem's did. Where the iteration does not settle
+the caller solves that offset densely.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+#: fixed-point steps at most per eigenvalue, and the step that counts as settled
+#: (relative to |lambda| + omega)
+STEPS, TOL = 60, 1e-14
+
+_KW = dict(cache=True, nogil=True, error_model="numpy", boundscheck=False)
+
+
+@njit(**_KW)
+def _lu(A, piv):
+    """In-place LU with partial pivoting of a square complex matrix; False if singular."""
+    n = A.shape[0]
+    for j in range(n):
+        p = j
+        big = abs(A[j, j])
+        for i in range(j + 1, n):
+            if abs(A[i, j]) > big:
+                big = abs(A[i, j])
+                p = i
+        piv[j] = p
+        if big == 0.0:
+            return False
+        if p != j:
+            for c in range(n):
+                t = A[j, c]
+                A[j, c] = A[p, c]
+                A[p, c] = t
+        inv = 1.0 / A[j, j]
+        for i in range(j + 1, n):
+            f = A[i, j] * inv
+            A[i, j] = f
+            if f != 0:
+                for c in range(j + 1, n):
+                    A[i, c] -= f * A[j, c]
+    return True
+
+
+@njit(**_KW)
+def _lu_solve(A, piv, B):
+    """Solves A X = B in place (B, shape (n, m)) with ``_lu``'s factors."""
+    n, m = B.shape
+    for j in range(n):
+        p = piv[j]
+        if p != j:
+            for c in range(m):
+                t = B[j, c]
+                B[j, c] = B[p, c]
+                B[p, c] = t
+    for c in range(m):
+        for i in range(n):
+            s = B[i, c]
+            for k in range(i):
+                s -= A[i, k] * B[k, c]
+            B[i, c] = s
+        for i in range(n - 1, -1, -1):
+            s = B[i, c]
+            for k in range(i + 1, n):
+                s -= A[i, k] * B[k, c]
+            B[i, c] = s / A[i, i]
+
+
+@njit(**_KW)
+def _lu_solve_t(A, piv, B):
+    """Solves A^T X = B in place with ``_lu``'s factors (P A = L U: A^T = U^T L^T P)."""
+    n, m = B.shape
+    for c in range(m):
+        for i in range(n):
+            s = B[i, c]
+            for k in range(i):
+                s -= A[k, i] * B[k, c]
+            B[i, c] = s / A[i, i]
+        for i in range(n - 1, -1, -1):
+            s = B[i, c]
+            for k in range(i + 1, n):
+                s -= A[k, i] * B[k, c]
+            B[i, c] = s
+    for j in range(n - 1, -1, -1):
+        p = piv[j]
+        if p != j:
+            for c in range(m):
+                t = B[j, c]
+                B[j, c] = B[p, c]
+                B[p, c] = t
+
+
+@njit(**_KW)
+def _schur(Kt, Om, lam, cidx, ridx, X, S, dS):
+    """S(lam) = T_CC - E_CR T_RR^{-1} E_RC and dS/dlam into S, dS; X = T_RR^{-1} E_RC;
+    False where T_RR is singular."""
+    nr = ridx.size
+    rc = cidx.size
+    A = np.empty((nr, nr), np.complex128)
+    Yt = np.empty((nr, rc), np.complex128)
+    for a in range(nr):
+        ia = ridx[a]
+        for b in range(nr):
+            A[a, b] = Kt[ia, ridx[b]]
+        z = lam - 1j * Om[ia]
+        A[a, a] += z * z
+        for b in range(rc):
+            X[a, b] = Kt[ia, cidx[b]]
+            Yt[a, b] = Kt[cidx[b], ia]
+    for a in range(rc):
+        for b in range(rc):
+            S[a, b] = Kt[cidx[a], cidx[b]]
+            dS[a, b] = 0.0
+        z = lam - 1j * Om[cidx[a]]
+        S[a, a] += z * z
+        dS[a, a] = 2 * z
+    if nr == 0:
+        return True
+    piv = np.empty(nr, np.int64)
+    if not _lu(A, piv):
+        return False
+    _lu_solve(A, piv, X)
+    _lu_solve_t(A, piv, Yt)
+    for a in range(rc):
+        for b in range(rc):
+            s = 0j
+            t = 0j
+            for c in range(nr):
+                s += Kt[cidx[a], ridx[c]] * X[c, b]
+                t += Yt[c, a] * (2 * (lam - 1j * Om[ridx[c]])) * X[c, b]
+            S[a, b] -= s
+            dS[a, b] += t
+    return True
+
+
+@njit(**_KW)
+def _newton(Kt, Om, lam, cidx, ridx, scale, y):
+    """Newton on det S(lambda) from ``lam`` (steps -1 / tr(S^{-1} S')); the eigenvalue
+    and its C part into y. Returns (lambda, settled)."""
+    rc = cidx.size
+    X = np.empty((ridx.size, rc), np.complex128)
+    S = np.empty((rc, rc), np.complex128)
+    dS = np.empty((rc, rc), np.complex128)
+    piv = np.empty(rc, np.int64)
+    for _ in range(STEPS):
+        if not _schur(Kt, Om, lam, cidx, ridx, X, S, dS):
+            return lam, False
+        if not _lu(S, piv):
+            break  # exactly singular: an eigenvalue
+        _lu_solve(S, piv, dS)
+        tr = 0j
+        for a in range(rc):
+            tr += dS[a, a]
+        if tr == 0:
+            return lam, False
+        step = -1.0 / tr
+        lam += step
+        if abs(step) <= TOL * (abs(lam) + scale):
+            break
+    else:
+        return lam, False
+    # the null vector of S(lambda): one inverse-iteration step
+    _schur(Kt, Om, lam, cidx, ridx, X, S, dS)
+    B = np.ones((rc, 1), np.complex128)
+    if _lu(S, piv):
+        _lu_solve(S, piv, B)
+        nrm = 0.0
+        for a in range(rc):
+            nrm = max(nrm, abs(B[a, 0]))
+        for a in range(rc):
+            y[a] = B[a, 0] / nrm
+    else:  # a zero pivot: its column is free
+        for a in range(rc):
+            y[a] = 0.0
+        j = 0
+        for a in range(rc):
+            if S[a, a] == 0:
+                j = a
+        y[j] = 1.0
+        for i in range(j - 1, -1, -1):
+            t = 0j
+            for c in range(i + 1, rc):
+                t += S[i, c] * y[c]
+            y[i] = -t / S[i, i] if S[i, i] != 0 else 0.0
+    return lam, True
+
+
+@njit(**_KW)
+def _fold(Kt, Om, lam, cidx, ridx, X):
+    """Sigma(lam) (r_c x r_c) and X = T_RR(lam)^{-1} E_RC (into ``X``); ok flag."""
+    nr = ridx.size
+    rc = cidx.size
+    A = np.empty((nr, nr), np.complex128)
+    for a in range(nr):
+        ia = ridx[a]
+        for b in range(nr):
+            A[a, b] = Kt[ia, ridx[b]]
+        z = lam - 1j * Om[ia]
+        A[a, a] += z * z
+    for a in range(nr):
+        for b in range(rc):
+            X[a, b] = Kt[ridx[a], cidx[b]]
+    piv = np.empty(nr, np.int64)
+    Sig = np.zeros((rc, rc), np.complex128)
+    if nr == 0:
+        return Sig, True
+    if not _lu(A, piv):
+        return Sig, False
+    _lu_solve(A, piv, X)
+    for a in range(rc):
+        for b in range(rc):
+            s = 0j
+            for c in range(nr):
+                s += Kt[cidx[a], ridx[c]] * X[c, b]
+            Sig[a, b] = s
+    return Sig, True
+
+
+@njit(**_KW)
+def _small_pencil(Kt, Om, cidx, Sig):
+    """Eigenvalues and eigenvectors (the displacement half) of the r_c x r_c pencil
+    (lam - i Omega_C)^2 + K_CC - Sig."""
+    rc = cidx.size
+    A = np.zeros((2 * rc, 2 * rc), np.complex128)
+    for a in range(rc):
+        A[a, rc + a] = 1.0
+        oa = Om[cidx[a]]
+        for b in range(rc):
+            A[rc + a, b] = -(Kt[cidx[a], cidx[b]] - Sig[a, b])
+        A[rc + a, a] += oa * oa
+        A[rc + a, rc + a] = 2j * oa
+    lam, vec = np.linalg.eig(A)
+    return lam, vec[:rc]
+
+
+@njit(**_KW)
+def _offset(Kt, Om, lvec, cidx, ridx, lo, hi, floor, om, out_lam, out_vec):
+    """The eigenvalues of one cluster (roots in [lo, hi] on the imaginary axis) with
+    Re lambda > floor: into out_lam / out_vec (full coordinates); their count, or -1 where
+    Newton did not settle. Starts: the pencil with the fold frozen at the cluster's centre
+    (all its eigenvalues there at once): each that grows, and the midpoint of each pair of
+    its eigenvalues close on the axis (a collision the frozen fold may not resolve)."""
+    rc = cidx.size
+    nr = ridx.size
+    X = np.empty((nr, rc), np.complex128)
+    width = hi - lo
+    scale = width + om
+    Sig, ok = _fold(Kt, Om, 0.5j * (lo + hi), cidx, ridx, X)
+    if not ok:
+        return -1
+    lam0, _ = _small_pencil(Kt, Om, cidx, Sig)
+    inside = np.zeros(lam0.size, np.bool_)
+    for s in range(lam0.size):
+        inside[s] = (lo - 0.5 * width <= lam0[s].imag <= hi + 0.5 * width
+                     and lam0[s].real >= -1e-9 * om)
+    starts = np.empty(lam0.size * lam0.size, np.complex128)
+    ns = 0
+    for s in range(lam0.size):
+        if inside[s] and lam0[s].real > 1e-9 * om:
+            starts[ns] = lam0[s]
+            ns += 1
+    for s in range(lam0.size):
+        for t in range(s + 1, lam0.size):
+            gap = abs(lam0[s] - lam0[t])
+            if inside[s] and inside[t] and gap < 0.1 * width + 1e-6 * om:
+                starts[ns] = 0.5 * (lam0[s] + lam0[t]) + 0.5 * gap + 1e-3 * width
+                ns += 1
+    found = 0
+    y = np.empty(rc, np.complex128)
+    for s in range(ns):
+        lam, settled = _newton(Kt, Om, starts[s], cidx, ridx, scale, y)
+        if not settled:
+            return -1
+        if lam.real <= floor:
+            continue
+        if not (lo - 0.5 * width <= lam.imag <= hi + 0.5 * width):
+            return -1  # Newton left the cluster: let the dense eigenproblem decide
+        dup = False
+        for f in range(found):
+            if abs(out_lam[f] - lam) <= 1e-9 * scale:
+                dup = True
+        if dup:
+            continue
+        if found >= out_lam.size:
+            return -1
+        Sig, ok = _fold(Kt, Om, lam, cidx, ridx, X)
+        for a in range(rc):
+            out_vec[found, cidx[a]] = y[a]
+        for a in range(nr):
+            acc = 0j
+            for b in range(rc):
+                acc += X[a, b] * y[b]
+            out_vec[found, ridx[a]] = -acc
+        out_lam[found] = lam
+        found += 1
+    return found
+
+
+@njit(**_KW)
+def sideband_modes(Hh, masses, k, omega, P, offsets, floor, max_modes, max_cluster):
+    """For each offset: the growing eigenvalues of every cluster that can hold a mode
+    centred at l = -1, 0, 1 (module docstring), with their eigenvectors in the harmonics'
+    coordinates (field-major inside a harmonic, as ``_exact``'s dense pencil).
+
+    Returns lam (Q, max_modes) complex (count per offset in ``count``), vec
+    (Q, max_modes, n) complex, count (Q,) int: -1 where the offset needs the dense
+    eigenproblem (an iteration did not settle, more growing modes than max_modes, or a
+    cluster of more than max_cluster coordinates: strong coupling or a flat branch whose
+    copies l omega + w and (l + 2) omega - w meet at every harmonic chain the discs).
+    """
+    d = masses.size
+    nl = 2 * P + 1
+    n = d * nl
+    Q = offsets.size
+    lam_out = np.zeros((Q, max_modes), np.complex128)
+    vec_out = np.zeros((Q, max_modes, n), np.complex128)
+    count = np.zeros(Q, np.int64)
+    sq = 1.0 / np.sqrt(masses)
+    sq_n = np.empty(n)
+    for i in range(n):
+        sq_n[i] = sq[i % d]
+    Om = np.empty(n)
+    lvec = np.empty(n, np.int64)
+    for li in range(nl):
+        for a in range(d):
+            Om[li * d + a] = (li - P) * omega
+            lvec[li * d + a] = li - P
+    K = np.empty((n, n), np.complex128)
+    V = np.zeros((n, n), np.complex128)
+    w2 = np.empty(n)
+    Rrow = np.empty(n)
+    for iq in range(Q):
+        q = offsets[iq]
+        # L(q), scaled: block (l, h) = A + B e^{i th_h} + C e^{-i th_l} + D e^{-i (l-h) k}
+        for li in range(nl):
+            l_ = li - P
+            el = np.exp(-1j * (q + l_ * k))
+            for hi_ in range(nl):
+                h = hi_ - P
+                s = l_ - h + 2 * P
+                eh = np.exp(1j * (q + h * k))
+                ed = np.exp(-1j * (l_ - h) * k)
+                for a in range(d):
+                    for b in range(d):
+                        val = (Hh[s, a, b] + Hh[s, a, d + b] * eh + Hh[s, d + a, b] * el
+                               + Hh[s, d + a, d + b] * ed)
+                        K[li * d + a, hi_ * d + b] = val * sq[a] * sq[b]
+        # each harmonic's diagonal block diagonalised
+        for li in range(nl):
+            blk = np.empty((d, d), np.complex128)
+            for a in range(d):
+                for b in range(d):
+                    blk[a, b] = 0.5 * (K[li * d + a, li * d + b]
+                                       + np.conj(K[li * d + b, li * d + a]))
+            ev, evec = np.linalg.eigh(blk)
+            for a in range(d):
+                w2[li * d + a] = ev[a]
+                for b in range(d):
+                    V[li * d + b, li * d + a] = evec[b, a]
+        Kt = np.conj(V.T) @ K @ V
+        for i in range(n):
+            r = 0.0
+            for j in range(n):
+                if lvec[j] != lvec[i]:
+                    r += abs(Kt[i, j])
+            Rrow[i] = r
+            # the diagonal block is diag(w^2) exactly in these coordinates
+            for j in range(n):
+                if lvec[j] == lvec[i]:
+                    Kt[i, j] = w2[i] if i == j else 0.0
+        # roots and their discs: (lo, hi, sign, coordinate); sign 0: a joint disc
+        m = 0
+        lo_ = np.empty(2 * n)
+        hi2 = np.empty(2 * n)
+        sg = np.empty(2 * n, np.int64)
+        co = np.empty(2 * n, np.int64)
+        for i in range(n):
+            c = Om[i]
+            if w2[i] > Rrow[i]:
+                w = math.sqrt(w2[i])
+                rho = w - math.sqrt(w2[i] - Rrow[i])
+                for sgn in (1, -1):
+                    lo_[m] = c + sgn * w - rho
+                    hi2[m] = c + sgn * w + rho
+                    sg[m] = sgn
+                    co[m] = i
+                    m += 1
+            else:
+                rho = math.sqrt(abs(w2[i]) + Rrow[i])
+                lo_[m] = c - rho
+                hi2[m] = c + rho
+                sg[m] = 0
+                co[m] = i
+                m += 1
+        order = np.argsort(lo_[:m])
+        found = 0
+        start = 0
+        bad = False
+        while start < m and not bad:
+            end = start + 1
+            top = hi2[order[start]]
+            while end < m and lo_[order[end]] <= top:
+                top = max(top, hi2[order[end]])
+                end += 1
+            plus = minus = joint = central = False
+            for t in range(start, end):
+                j = order[t]
+                plus |= sg[j] == 1
+                minus |= sg[j] == -1
+                joint |= sg[j] == 0
+                central |= abs(lvec[co[j]]) <= 1
+            if central and (joint or (plus and minus)):
+                inC = np.zeros(n, np.bool_)
+                for t in range(start, end):
+                    inC[co[order[t]]] = True
+                cidx = np.flatnonzero(inC)
+                ridx = np.flatnonzero(~inC)
+                if cidx.size > max_cluster:
+                    bad = True
+                    break
+                lam_c = np.zeros(max_modes, np.complex128)
+                vec_c = np.zeros((max_modes, n), np.complex128)
+                got = _offset(Kt, Om, lvec, cidx, ridx, lo_[order[start]], top, floor,
+                              omega, lam_c, vec_c)
+                if got < 0 or found + got > max_modes:
+                    bad = True
+                else:
+                    for g in range(got):
+                        lam_out[iq, found] = lam_c[g]
+                        # back to the harmonics' coordinates: M^{-1/2} V y
+                        vec_out[iq, found] = (V @ vec_c[g]) * sq_n
+                        found += 1
+            start = end
+        count[iq] = -1 if bad else found
+    return lam_out, vec_out, count
