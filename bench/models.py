@@ -7,6 +7,13 @@
   The issue's bar: the generic force within 3x the fused kernel per site.
 - The same for the other built-in models (one and two fields).
 - A three-way point (exact theory, a simulation, the NLS) per model: wall times.
+- The exact lattice theory against the run it predicts (issue 41), per built-in model at
+  one point: CPU seconds of ``exact_gain`` on the ring of N = 256 and on the infinite
+  chain, of one seeded run of that ring (``simulate_seeds(..., seeds=1)``, its default
+  length), and their ratios (the goal: <= 0.1). Warm (compiled), one BLAS thread
+  (``exact_gain``'s own), best of REPEATS_EXACT, ``time.process_time``.
+- A 64 x 64 theory-only ``--exact`` map of fput (N = 256) through the command line: wall
+  and CPU seconds (the goal: <= 60 s; 8 x 8 with --quick).
 Writes the "models" section of results.json (results_quick.json with --quick).
 
     python -m bench.models [--quick] [--update | --out DIR]
@@ -24,6 +31,77 @@ from numerics.lattice._kernels import accel
 from numerics.models import compiled_force, exact_gain, simulate_model
 
 REPEATS = 5
+REPEATS_EXACT = 3
+#: one point per built-in model: params, k, amplitude, branch
+EXACT_POINTS = {
+    "fput": (dict(alpha=0.5, beta=1.0), 2 * np.pi * 66 / 256, 0.1, None),
+    "klein-gordon": (dict(alpha=0.5), 2.5, 0.05, None),
+    "sine-gordon": ({}, 1.0, 0.3, None),
+    "diatomic-fput": ({}, 1.0, 0.1, 0),
+    "flexmm": (dict(K_theta=0.016), 2 * np.pi * 36 / 256, 0.1, None),
+    "flexmm-rotation": ({}, 1.0, 0.1, None),
+    "flexmm-stiff-hinge": ({}, 1.0, 0.1, None),
+}
+
+
+def _cpu(f, reps):
+    """Best CPU seconds of ``f()`` over ``reps`` calls, and its last result."""
+    best, out = float("inf"), None
+    for _ in range(reps):
+        t0 = time.process_time()
+        out = f()
+        best = min(best, time.process_time() - t0)
+    return best, out
+
+
+def exact_against_runs(quick=False, N=256):
+    """exact_gain (ring of N, infinite chain) against one seeded run, CPU seconds."""
+    from energy import ModelError
+    from numerics.models import simulate_seeds
+
+    rows = {}
+    for name, (params, k, a, br) in EXACT_POINTS.items():
+        model = load_model(name).with_params(**params) if params else load_model(name)
+        try:
+            exact_gain(model, k, a, br, N=N)
+        except ModelError as exc:
+            rows[name] = {"error": str(exc)}
+            continue
+        reps = 1 if quick else REPEATS_EXACT
+        ring_s, spec = _cpu(lambda m=model, k=k, a=a, b=br: exact_gain(m, k, a, b, N=N), reps)
+        chain_s, chain = _cpu(lambda m=model, k=k, a=a, b=br: exact_gain(m, k, a, b), reps)
+        simulate_seeds(model, k, a, spec, branch=br, N=N, seeds=1, t_end=10.0)  # compile
+        t_end = 200.0 if quick else None
+        run_s, runs = _cpu(lambda m=model, k=k, a=a, b=br, s=spec, T=t_end: simulate_seeds(
+            m, k, a, s, branch=b, N=N, seeds=1, t_end=T), 1)
+        rows[name] = {"params": params, "k": spec.wave.k, "amplitude": a, "branch": br, "N": N,
+                      "exact_ring_cpu_s": ring_s, "exact_chain_cpu_s": chain_s,
+                      "run_cpu_s": run_s, "run_t_end": runs.t_end,
+                      "ring_over_run": ring_s / run_s, "chain_over_run": chain_s / run_s,
+                      "ring_peak_gain": spec.peak_gain, "chain_peak_gain": chain.peak_gain,
+                      "truncations": list(spec.truncations)}
+    return rows
+
+
+def exact_map(quick=False, N=256):
+    """A theory-only --exact map of fput through the command line: (wall s, CPU s, cells)."""
+    import contextlib
+    import io
+    import tempfile
+
+    from cli.app import main as cli
+
+    n = 8 if quick else 64
+    with tempfile.TemporaryDirectory() as tmp:
+        argv = ["map", "--model", "fput", "--param", "alpha=0.5", "--param",
+                f"beta=0.5:2.0:{n}", "--k", f"0.5:3.0:{n}", "--amplitude", "0.1", "--N",
+                str(N), "--theory-only", "--exact", "--out", tmp]
+        t0, c0 = time.perf_counter(), time.process_time()
+        with contextlib.redirect_stdout(io.StringIO()):
+            code = cli(argv)
+        wall, cpu = time.perf_counter() - t0, time.process_time() - c0
+    return {"cells": n * n, "N": N, "wall_s": wall, "cpu_s": cpu, "exit": code,
+            "argv": argv[:-1]}
 
 
 def _best(f, reps):
@@ -72,9 +150,12 @@ def main(quick=False, out=None):
         points[name] = {"exact_s": t1 - t0, "simulation_s": t2 - t1, "t_end": r.t_end,
                         "exact_gain": e.peak_gain, "measured_rate": g.rate,
                         "energy_drift": r.energy_drift}
+    against = exact_against_runs(quick)
+    emap = exact_map(quick)
     res = {"machine": machine(), "quick": quick, "N": N, "repeats": REPEATS,
            "fused_flexmm_ns_per_site": fused, "generic_ns_per_site": per_model,
-           "generic_flexmm_over_fused": per_model["flexmm"] / fused, "points": points}
+           "generic_flexmm_over_fused": per_model["flexmm"] / fused, "points": points,
+           "exact_against_runs": against, "exact_map_fput": emap}
     write_section("models", res, quick, out)
     print(f"force per site, N = {N}: fused flexMM kernel {fused:.2f} ns; generic:")
     for name, t in per_model.items():
@@ -83,6 +164,17 @@ def main(quick=False, out=None):
         print(f"point {name}: exact {pt['exact_s']:.2f} s, simulation {pt['simulation_s']:.2f} s "
               f"(T = {pt['t_end']:g}); gain {pt['exact_gain']:.4g} vs measured "
               f"{pt['measured_rate']:.4g}")
+    print("exact_gain against one seeded run (CPU s, N = 256; goal: ratio <= 0.1):")
+    for name, r in against.items():
+        if "error" in r:
+            print(f"  {name:<18} {r['error']}")
+            continue
+        print(f"  {name:<18} ring {r['exact_ring_cpu_s']:.4f} s, chain "
+              f"{r['exact_chain_cpu_s']:.4f} s, run {r['run_cpu_s']:.3f} s "
+              f"(T = {r['run_t_end']:g}): ring/run {r['ring_over_run']:.3f}, chain/run "
+              f"{r['chain_over_run']:.3f}")
+    print(f"theory-only --exact map of fput, {emap['cells']} cells, N = {emap['N']}: "
+          f"{emap['wall_s']:.1f} s wall, {emap['cpu_s']:.1f} s CPU (goal: <= 60 s at 64 x 64)")
     return res
 
 

@@ -37,6 +37,7 @@ carrier (within pi/4 of +-k: the modulational instability) or a resonance elsewh
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 
@@ -342,7 +343,12 @@ class HillSpectrum:
     sideband_offset : ndarray
         Where the fastest mode at q holds >= 10% of its weight within pi/4 of the carrier's
         +-k (a modulational mode: at k = pi a sideband pair with the mean flow), its
-        heaviest such component's distance from +-k (rad/site); else nan.
+        heaviest such component's distance from +-k (rad/site); else nan. Where no mode
+        grows (gain 0): harmonic 0 and nan.
+    truncations : tuple of int
+        The truncations P (harmonics l = -P..P) the verdict rests on: the spectrum's,
+        then the one the fastest mode was checked to persist at (CONVENTIONS.md: a mode
+        counts when it persists at the same q across truncations).
     """
 
     wave: TravellingWave
@@ -350,6 +356,7 @@ class HillSpectrum:
     gain: np.ndarray
     harmonic: np.ndarray
     sideband_offset: np.ndarray
+    truncations: tuple = ()
 
     @property
     def peak_gain(self) -> float:
@@ -365,6 +372,7 @@ class HillSpectrum:
         attrs = {"model": w.model.name, "k": w.k, "amplitude": w.amplitude, "omega": w.omega,
                  "omega_linear": w.carrier.omega, "branch": w.carrier.branch,
                  "verdict": self.verdict, "peak_gain": self.peak_gain, "mode": self.mode,
+                 "truncations": list(self.truncations),
                  "units": "lattice units: time as in the model file, wavenumbers rad/site"}
         attrs.update({f"param_{n}": v for n, v in w.model.params.items()})
         return xr.Dataset(
@@ -452,10 +460,14 @@ def hill_spectrum(wave: TravellingWave, offsets, *, harmonics: int | None = None
 
 #: The fast path's truncation: harmonics l = -P..P with P = min(H + 4, WORK_HARMONICS).
 #: A kept mode is centred at |l| <= 1 with < 1e-6 of its weight in the outer three
-#: harmonics; its tail falls faster than geometrically (the gaps grow as (l omega)^2):
-#: measured on the anchors (tests/test_exact_gain_anchors.py), P = 8 and P = 20 give the
-#: same rates to 5e-11 relative, P = 6 drops modes (the weight filter reaches them).
+#: harmonics; its tail falls faster than geometrically (the gaps grow as (l omega)^2).
+#: Measured against the dense spectrum at P = H + 4 (20 for flexmm): the anchors
+#: (tests/test_exact_gain_anchors.py) pass at P = 10; at P = 8 the flexmm ring's rates
+#: agree to 5e-11 but its infinite chain does not; at P = 6 modes are dropped (the weight
+#: filter reaches them). Every spectrum's fastest mode is checked at P + PERSIST_STEP.
 WORK_HARMONICS = 10
+#: the second truncation the fastest mode is checked at: P + PERSIST_STEP
+PERSIST_STEP = 4
 #: growing modes per offset the compiled path reports at most, and the largest cluster of
 #: roots (coordinates) it solves; beyond either, that offset's dense eigenproblem
 MAX_MODES, MAX_CLUSTER = 12, 6
@@ -466,45 +478,69 @@ def _hill_spectrum(wave, offsets, harmonics=None, return_eigenvalues=False):
     if harmonics or return_eigenvalues:
         return _dense_spectrum(wave, offsets, harmonics or wave.harmonics + 4,
                                return_eigenvalues)
-    from ._sidebands import sideband_modes
+    return _Sidebands(wave).checked(offsets)
 
-    model = wave.model
-    d = model.n_fields
-    k, omega = wave.k, wave.omega
-    P = min(wave.harmonics + 4, WORK_HARMONICS)
-    l_ = np.arange(-P, P + 1)
-    floor = GAIN_FLOOR * max(omega, 1e-300)
-    masses = np.asarray(model.masses, float)
-    lam, vec, count = sideband_modes(_hessian_harmonics(wave, P), masses, k, omega, P,
-                                     offsets, floor, MAX_MODES, MAX_CLUSTER)
-    gains = np.zeros(offsets.size)
-    modes = np.zeros(offsets.size, int)
-    offs = np.full(offsets.size, math.nan)
-    c = np.abs(vec) ** 2                                         # (Q, modes, n)
-    weight = c / np.maximum(c.sum(axis=-1, keepdims=True), 1e-300)
-    per_l = weight.reshape(offsets.size, MAX_MODES, 2 * P + 1, d).sum(axis=-1)
-    central = np.abs(l_[np.argmax(per_l, axis=-1)]) <= 1
-    outer = per_l[..., :3].sum(axis=-1) + per_l[..., -3:].sum(axis=-1)
-    have = np.arange(MAX_MODES)[None, :] < count[:, None]
-    resolved = have & central & (outer < 1e-6)
-    re = np.where(resolved, lam.real, -np.inf)
-    dense = []
-    for i, q in enumerate(offsets):
-        if count[i] < 0:
-            dense.append(i)
-            continue
-        best = int(np.argmax(re[i]))
-        if not (re[i, best] > floor):
-            continue
-        gains[i] = re[i, best]
-        w_best = per_l[i, best]
-        modes[i] = int(l_[int(np.argmax(w_best))])
-        offs[i] = _sideband_offset(q, l_, k, w_best)
-    if dense:
-        sub = _dense_spectrum(wave, offsets[dense], P, False)
-        gains[dense], modes[dense], offs[dense] = sub.gain, sub.harmonic, sub.sideband_offset
-    return HillSpectrum(wave=wave, offsets=offsets, gain=gains, harmonic=modes,
-                        sideband_offset=offs)
+
+class _Sidebands:
+    """The compiled Hill spectrum of one wave at truncation P (``_sidebands``): the cell
+    Hessian's harmonics computed once for every offset asked."""
+
+    def __init__(self, wave, P=None):
+        self.wave = wave
+        self.P = P or min(wave.harmonics + 4, WORK_HARMONICS)
+        self.Hh = _hessian_harmonics(wave, self.P)
+        self.masses = np.asarray(wave.model.masses, float)
+        self.floor = GAIN_FLOOR * max(wave.omega, 1e-300)
+
+    def spectrum(self, offsets) -> HillSpectrum:
+        from ._sidebands import sideband_modes
+
+        wave, P = self.wave, self.P
+        offsets = np.atleast_1d(np.asarray(offsets, dtype=float))
+        d = wave.model.n_fields
+        k = wave.k
+        l_ = np.arange(-P, P + 1)
+        lam, vec, count = sideband_modes(self.Hh, self.masses, k, wave.omega, P, offsets,
+                                         self.floor, MAX_MODES, MAX_CLUSTER)
+        gains = np.zeros(offsets.size)
+        modes = np.zeros(offsets.size, int)
+        offs = np.full(offsets.size, math.nan)
+        c = np.abs(vec) ** 2                                         # (Q, modes, n)
+        weight = c / np.maximum(c.sum(axis=-1, keepdims=True), 1e-300)
+        per_l = weight.reshape(offsets.size, MAX_MODES, 2 * P + 1, d).sum(axis=-1)
+        central = np.abs(l_[np.argmax(per_l, axis=-1)]) <= 1
+        outer = per_l[..., :3].sum(axis=-1) + per_l[..., -3:].sum(axis=-1)
+        have = np.arange(MAX_MODES)[None, :] < count[:, None]
+        re = np.where(have & central & (outer < 1e-6), lam.real, -np.inf)
+        best = np.argmax(re, axis=1)
+        for i in np.flatnonzero(re[np.arange(offsets.size), best] > self.floor):
+            gains[i] = re[i, best[i]]
+            w_best = per_l[i, best[i]]
+            modes[i] = int(l_[int(np.argmax(w_best))])
+            offs[i] = _sideband_offset(offsets[i], l_, k, w_best)
+        dense = np.flatnonzero(count < 0)
+        if dense.size:
+            sub = _dense_spectrum(wave, offsets[dense], P, False)
+            gains[dense], modes[dense] = sub.gain, sub.harmonic
+            offs[dense] = sub.sideband_offset
+        return HillSpectrum(wave=wave, offsets=offsets, gain=gains, harmonic=modes,
+                            sideband_offset=offs, truncations=(P,))
+
+    def checked(self, offsets) -> HillSpectrum:
+        """``spectrum``, its fastest mode checked at P + PERSIST_STEP harmonics: where it
+        moves by more than 1e-6 relative, the whole spectrum densely at the wave's
+        H + 4 (the truncation before issue 41)."""
+        spec = self.spectrum(offsets)
+        if spec.peak_gain <= 0:
+            return spec
+        i = int(np.argmax(spec.gain))
+        again = _Sidebands(self.wave, self.P + PERSIST_STEP).spectrum(offsets[i:i + 1])
+        P2 = self.P + PERSIST_STEP
+        if abs(again.gain[0] - spec.gain[i]) <= 1e-6 * spec.gain[i]:
+            return dataclasses.replace(spec, truncations=(self.P, P2))
+        P = self.wave.harmonics + 4
+        return dataclasses.replace(_dense_spectrum(self.wave, offsets, P, False),
+                                   truncations=(P,))
 
 
 def _sideband_offset(q, l_, k, w_best):
@@ -567,7 +603,8 @@ def _dense_spectrum(wave, offsets, P, return_eigenvalues):
         if return_eigenvalues:
             lams.append(lam[resolved])
     spec = HillSpectrum(wave=wave, offsets=offsets, gain=np.array(gains),
-                        harmonic=np.array(modes, int), sideband_offset=np.array(offs))
+                        harmonic=np.array(modes, int), sideband_offset=np.array(offs),
+                        truncations=(P,))
     return (spec, lams) if return_eigenvalues else spec
 
 
@@ -589,13 +626,14 @@ def exact_gain(model: Model, k: float, amplitude: float, branch=None, *, N: int 
         from ._simulate import snap_ring
         k = snap_ring(k, N)[0]
     wave = _travelling_wave(model, k, amplitude, branch, None)
+    engine = _Sidebands(wave)
     if N:
-        return _hill_spectrum(wave, ring_offsets(N))
+        return engine.checked(ring_offsets(N))
     # small offsets log-spaced below the uniform grid's first point: a weak wave's band is
     # O(a) wide (a = 0.002: edge 0.005, inside the first uniform step pi / 400)
     q = np.concatenate([np.geomspace(1e-5, np.pi / samples, 40, endpoint=False),
                         np.linspace(np.pi / samples, np.pi, samples)])
-    spec = _hill_spectrum(wave, q)
+    spec = engine.spectrum(q)
     if spec.peak_gain <= 0:
         return spec
     # the infinite chain's peak between the samples (bounded scalar search of the rate)
@@ -603,12 +641,16 @@ def exact_gain(model: Model, k: float, amplitude: float, branch=None, *, N: int 
 
     i = int(np.argmax(spec.gain))
     lo, hi = q[max(i - 1, 0)], q[min(i + 1, q.size - 1)]
-    best = minimize_scalar(lambda x: -_hill_spectrum(wave, [x]).gain[0], bounds=(lo, hi),
+    best = minimize_scalar(lambda x: -engine.spectrum([x]).gain[0], bounds=(lo, hi),
                            method="bounded", options={"xatol": 1e-6 * (hi - lo)})
-    extra = _hill_spectrum(wave, [best.x])
+    extra = engine.checked(np.array([best.x]))
+    if len(extra.truncations) != 2:  # the peak did not persist: the old dense way
+        spec = _dense_spectrum(wave, q, wave.harmonics + 4, False)
+        extra = _dense_spectrum(wave, extra.offsets, wave.harmonics + 4, False)
     order = np.argsort(np.concatenate([q, extra.offsets]))
     return HillSpectrum(
         wave=wave, offsets=np.concatenate([q, extra.offsets])[order],
         gain=np.concatenate([spec.gain, extra.gain])[order],
         harmonic=np.concatenate([spec.harmonic, extra.harmonic])[order],
-        sideband_offset=np.concatenate([spec.sideband_offset, extra.sideband_offset])[order])
+        sideband_offset=np.concatenate([spec.sideband_offset, extra.sideband_offset])[order],
+        truncations=extra.truncations)

@@ -41,9 +41,9 @@ import math
 import numpy as np
 from numba import njit
 
-#: fixed-point steps at most per eigenvalue, and the step that counts as settled
-#: (relative to |lambda| + omega)
-STEPS, TOL = 60, 1e-14
+#: Newton steps at most per eigenvalue, and the step (relative to |lambda| + omega)
+#: after which it has settled: Newton's next error is ~ its square, below round-off
+STEPS, TOL = 40, 1e-9
 
 _KW = dict(cache=True, nogil=True, error_model="numpy", boundscheck=False)
 
@@ -170,8 +170,9 @@ def _schur(Kt, Om, lam, cidx, ridx, X, S, dS):
 
 @njit(**_KW)
 def _newton(Kt, Om, lam, cidx, ridx, scale, y):
-    """Newton on det S(lambda) from ``lam`` (steps -1 / tr(S^{-1} S')); the eigenvalue
-    and its C part into y. Returns (lambda, settled)."""
+    """Newton on det S(lambda) from ``lam`` (steps -1 / tr(S^{-1} S')) until a step is
+    below TOL (quadratic convergence: the step after it is below round-off); the
+    eigenvalue and its C part into y. Returns (lambda, settled)."""
     rc = cidx.size
     X = np.empty((ridx.size, rc), np.complex128)
     S = np.empty((rc, rc), np.complex128)
@@ -253,8 +254,7 @@ def _fold(Kt, Om, lam, cidx, ridx, X):
 
 @njit(**_KW)
 def _small_pencil(Kt, Om, cidx, Sig):
-    """Eigenvalues and eigenvectors (the displacement half) of the r_c x r_c pencil
-    (lam - i Omega_C)^2 + K_CC - Sig."""
+    """Eigenvalues of the r_c x r_c pencil (lam - i Omega_C)^2 + K_CC - Sig."""
     rc = cidx.size
     A = np.zeros((2 * rc, 2 * rc), np.complex128)
     for a in range(rc):
@@ -264,8 +264,7 @@ def _small_pencil(Kt, Om, cidx, Sig):
             A[rc + a, b] = -(Kt[cidx[a], cidx[b]] - Sig[a, b])
         A[rc + a, a] += oa * oa
         A[rc + a, rc + a] = 2j * oa
-    lam, vec = np.linalg.eig(A)
-    return lam, vec[:rc]
+    return np.linalg.eigvals(A)
 
 
 @njit(**_KW)
@@ -283,7 +282,7 @@ def _offset(Kt, Om, lvec, cidx, ridx, lo, hi, floor, om, out_lam, out_vec):
     Sig, ok = _fold(Kt, Om, 0.5j * (lo + hi), cidx, ridx, X)
     if not ok:
         return -1
-    lam0, _ = _small_pencil(Kt, Om, cidx, Sig)
+    lam0 = _small_pencil(Kt, Om, cidx, Sig)
     inside = np.zeros(lam0.size, np.bool_)
     for s in range(lam0.size):
         inside[s] = (lo - 0.5 * width <= lam0[s].imag <= hi + 0.5 * width
@@ -364,35 +363,42 @@ def sideband_modes(Hh, masses, k, omega, P, offsets, floor, max_modes, max_clust
     V = np.zeros((n, n), np.complex128)
     w2 = np.empty(n)
     Rrow = np.empty(n)
+    ed = np.empty(4 * P + 1, np.complex128)
+    for s in range(4 * P + 1):
+        ed[s] = np.exp(-1j * (s - 2 * P) * k)
+    eq = np.empty(nl, np.complex128)
+    blk = np.empty((d, d), np.complex128)
     for iq in range(Q):
         q = offsets[iq]
+        for li in range(nl):
+            eq[li] = np.exp(1j * (q + (li - P) * k))
         # L(q), scaled: block (l, h) = A + B e^{i th_h} + C e^{-i th_l} + D e^{-i (l-h) k}
         for li in range(nl):
-            l_ = li - P
-            el = np.exp(-1j * (q + l_ * k))
+            el = np.conj(eq[li])
             for hi_ in range(nl):
-                h = hi_ - P
-                s = l_ - h + 2 * P
-                eh = np.exp(1j * (q + h * k))
-                ed = np.exp(-1j * (l_ - h) * k)
+                s = li - hi_ + 2 * P
+                eh = eq[hi_]
                 for a in range(d):
                     for b in range(d):
                         val = (Hh[s, a, b] + Hh[s, a, d + b] * eh + Hh[s, d + a, b] * el
-                               + Hh[s, d + a, d + b] * ed)
+                               + Hh[s, d + a, d + b] * ed[s])
                         K[li * d + a, hi_ * d + b] = val * sq[a] * sq[b]
-        # each harmonic's diagonal block diagonalised
-        for li in range(nl):
-            blk = np.empty((d, d), np.complex128)
-            for a in range(d):
-                for b in range(d):
-                    blk[a, b] = 0.5 * (K[li * d + a, li * d + b]
-                                       + np.conj(K[li * d + b, li * d + a]))
-            ev, evec = np.linalg.eigh(blk)
-            for a in range(d):
-                w2[li * d + a] = ev[a]
-                for b in range(d):
-                    V[li * d + b, li * d + a] = evec[b, a]
-        Kt = np.conj(V.T) @ K @ V
+        if d == 1:  # the diagonal "blocks" are numbers: no rotation
+            for i in range(n):
+                w2[i] = K[i, i].real
+            Kt = K
+        else:  # each harmonic's diagonal block diagonalised
+            for li in range(nl):
+                for a in range(d):
+                    for b in range(d):
+                        blk[a, b] = 0.5 * (K[li * d + a, li * d + b]
+                                           + np.conj(K[li * d + b, li * d + a]))
+                ev, evec = np.linalg.eigh(blk)
+                for a in range(d):
+                    w2[li * d + a] = ev[a]
+                    for b in range(d):
+                        V[li * d + b, li * d + a] = evec[b, a]
+            Kt = np.conj(V.T) @ K @ V
         for i in range(n):
             r = 0.0
             for j in range(n):
@@ -463,7 +469,10 @@ def sideband_modes(Hh, masses, k, omega, P, offsets, floor, max_modes, max_clust
                     for g in range(got):
                         lam_out[iq, found] = lam_c[g]
                         # back to the harmonics' coordinates: M^{-1/2} V y
-                        vec_out[iq, found] = (V @ vec_c[g]) * sq_n
+                        if d == 1:
+                            vec_out[iq, found] = vec_c[g] * sq_n
+                        else:
+                            vec_out[iq, found] = (V @ vec_c[g]) * sq_n
                         found += 1
             start = end
         count[iq] = -1 if bad else found
