@@ -233,53 +233,62 @@ def _solve(model, car, a, masses, acoustic, H, c0, omega0, least_squares):
         c[:, :H] = np.conj(c[:, H + 1:][:, ::-1])
         return omega, c
 
+    # e^{i h xi}, e^{i h (xi + k)}, e^{i h (xi - k)} on the grid, once per solve
+    B0 = np.exp(1j * h[:, None] * xi[None, :])
+    Bp = B0 * np.exp(1j * h * car.k)[:, None]
+    Bm = B0 * np.exp(-1j * h * car.k)[:, None]
+
     def equations(R_hat):
-        eqs = [np.real(optical.T @ R_hat[:, H])]
+        """The real equations of R_hat, shape (d, 2H + 1[, ncols])."""
+        eqs = [np.real(np.tensordot(optical.T, R_hat[:, H], axes=1))]
         pos = R_hat[:, H + 1:]
-        eqs += [np.real(pos).ravel(), np.imag(pos).ravel()]
+        rest = pos.shape[2:]
+        eqs += [np.real(pos).reshape((-1,) + rest), np.imag(pos).reshape((-1,) + rest)]
         return np.concatenate(eqs) / scale
 
     def residual(x):
         omega, c = unpack(x)
-        R = masses[:, None] * omega**2 * _fields_at(c * (-(h**2)), xi) - _force(model, c, xi, car.k)
+        U0, Up, Um = np.real(c @ B0), np.real(c @ Bp), np.real(c @ Bm)
+        g_here = np.empty((2 * d, M))
+        g_back = np.empty((2 * d, M))
+        model.code.cell_gradient_into(np.concatenate([U0, Up]), model.p, g_here)
+        model.code.cell_gradient_into(np.concatenate([Um, U0]), model.p, g_back)
+        R = (masses[:, None] * omega**2 * np.real((c * (-(h**2))) @ B0)
+             + g_here[:d] + g_back[d:])
         return equations(R @ E.T)
 
     def jacobian(x):
         omega, c = unpack(x)
-        U0 = _fields_at(c, xi)
+        U0 = np.real(c @ B0)
         Hf = np.empty((2 * d, 2 * d, M))
         Hb = np.empty((2 * d, 2 * d, M))
-        model.code.cell_hessian_into(np.concatenate([U0, _fields_at(c, xi, car.k)]), model.p, Hf)
-        model.code.cell_hessian_into(np.concatenate([_fields_at(c, xi, -car.k), U0]), model.p,
-                                     Hb)
+        model.code.cell_hessian_into(np.concatenate([U0, np.real(c @ Bp)]), model.p, Hf)
+        model.code.cell_hessian_into(np.concatenate([np.real(c @ Bm), U0]), model.p, Hb)
         # dR_hat[l, j] / dc[h, b] (c[h] and c[-h] independent): the DFT of the force's
         # derivative at l - h, the same grid as the residual (exact for the discrete system)
-        s = (h[:, None] - h[None, :]) % M
+        sidx = (h[:, None] - h[None, :]) % M
         Ff, Fb = np.fft.fft(Hf, axis=-1) / M, np.fft.fft(Hb, axis=-1) / M
         ph = np.exp(1j * h * car.k)[None, :, None, None]
-        J = (Ff[:d, :d][..., s] + Fb[d:, d:][..., s]).transpose(2, 3, 0, 1) \
-            + Ff[:d, d:][..., s].transpose(2, 3, 0, 1) * ph \
-            + Fb[d:, :d][..., s].transpose(2, 3, 0, 1) / ph      # (l, h, j, b)
+        J = (Ff[:d, :d][..., sidx] + Fb[d:, d:][..., sidx]).transpose(2, 3, 0, 1) \
+            + Ff[:d, d:][..., sidx].transpose(2, 3, 0, 1) * ph \
+            + Fb[d:, :d][..., sidx].transpose(2, 3, 0, 1) / ph   # (l, h, j, b)
         J[np.arange(2 * H + 1), np.arange(2 * H + 1)] -= (
             (h**2 * omega**2)[:, None, None] * np.diag(masses)[None])
         J = J.transpose(2, 0, 3, 1)                               # (j, l, b, h)
-        cols = [equations(-2 * omega * masses[:, None] * h**2 * c)]  # d / d omega
-        for i in range(n_opt):                                    # the optical means
-            cols.append(equations(J[:, :, :, H] @ optical[:, i]))
-        for b in range(d):
-            for hh in range(1, H + 1):
-                if free[b, hh - 1, 0]:
-                    cols.append(equations(J[:, :, b, H + hh] + J[:, :, b, H - hh]))
-        for b in range(d):
-            for hh in range(1, H + 1):
-                if free[b, hh - 1, 1]:
-                    cols.append(equations(1j * (J[:, :, b, H + hh] - J[:, :, b, H - hh])))
-        return np.stack(cols, axis=1)
+        # the unknowns: omega, the optical means, Re and Im of c[b, 1..H] where free
+        # (c[-h] = conj c[h]), in the order unpack reads them
+        Jp, Jm = J[..., H + 1:], J[..., H - 1::-1]
+        parts = np.stack([Jp + Jm, 1j * (Jp - Jm)], axis=-1)[:, :, free]  # (j, l, n_free)
+        cols = [equations(-2 * omega * masses[:, None] * h**2 * c)[:, None]]
+        if n_opt:
+            cols.append(equations(np.tensordot(J[:, :, :, H], optical, axes=1)))
+        cols.append(equations(parts))
+        return np.concatenate(cols, axis=1)
 
     x0 = [omega0, *(optical.T @ np.real(c0[:, H]))]
     parts0 = np.stack([np.real(c0[:, H + 1:]), np.imag(c0[:, H + 1:])], axis=-1)
     x0 = np.array(x0 + list(parts0[free]))
-    x = _gauss_newton(residual, _reorder(jacobian, free), x0)
+    x = _gauss_newton(residual, jacobian, x0)
     if x is None:
         sol = least_squares(residual, x0, method="lm", xtol=1e-15, ftol=1e-15, gtol=1e-15,
                             max_nfev=200 * (x0.size + 1))
@@ -288,22 +297,6 @@ def _solve(model, car, a, masses, acoustic, H, c0, omega0, least_squares):
     res = float(np.max(np.abs(residual(x)))) if np.all(np.isfinite(x)) else math.inf
     return TravellingWave(model=model, carrier=car, amplitude=a, omega=float(omega),
                           coefficients=c, residual=res)
-
-
-def _reorder(jacobian, free):
-    """The Jacobian's columns in the unknowns' order (omega, means, then the free parts as
-    ``parts[free]`` flattens them: field, harmonic, Re/Im innermost)."""
-    d, H, _ = free.shape
-    keys = [(b, hh, 0) for b in range(d) for hh in range(H) if free[b, hh, 0]]
-    keys += [(b, hh, 1) for b in range(d) for hh in range(H) if free[b, hh, 1]]
-    order = sorted(range(len(keys)), key=lambda i: keys[i])
-
-    def jac(x):
-        J = jacobian(x)
-        head = J.shape[1] - len(keys)
-        return np.concatenate([J[:, :head], J[:, head:][:, order]], axis=1)
-
-    return jac
 
 
 def _gauss_newton(residual, jacobian, x0, steps=40):
