@@ -169,10 +169,11 @@ def _schur(Kt, Om, lam, cidx, ridx, X, S, dS):
 
 
 @njit(**_KW)
-def _newton(Kt, Om, lam, cidx, ridx, scale, y):
-    """Newton on det S(lambda) from ``lam`` (steps -1 / tr(S^{-1} S')) until a step is
-    below TOL (quadratic convergence: the step after it is below round-off); the
-    eigenvalue and its C part into y. Returns (lambda, settled)."""
+def _newton(Kt, Om, lam, cidx, ridx, scale, y, deflate):
+    """Newton on det S(lambda) from ``lam`` (steps -1 / tr(S^{-1} S'), with ``deflate``
+    the mirror root -conj(lambda) divided out) until a step is below TOL (quadratic
+    convergence: the step after it is below round-off); the eigenvalue and its C part
+    into y. Returns (lambda, settled)."""
     rc = cidx.size
     X = np.empty((ridx.size, rc), np.complex128)
     S = np.empty((rc, rc), np.complex128)
@@ -187,6 +188,10 @@ def _newton(Kt, Om, lam, cidx, ridx, scale, y):
         tr = 0j
         for a in range(rc):
             tr += dS[a, a]
+        if deflate and lam.real > 1e-9 * scale:
+            # the mirror root -conj(lambda) deflated (Maehly): a growing pair's roots are
+            # 2 Re lambda apart, and Newton on det S alone crawls between them
+            tr -= 1.0 / (2.0 * lam.real)
         if tr == 0:
             return lam, False
         step = -1.0 / tr
@@ -302,7 +307,9 @@ def _offset(Kt, Om, lvec, cidx, ridx, lo, hi, floor, om, out_lam, out_vec):
     found = 0
     y = np.empty(rc, np.complex128)
     for s in range(ns):
-        lam, settled = _newton(Kt, Om, starts[s], cidx, ridx, scale, y)
+        lam, settled = _newton(Kt, Om, starts[s], cidx, ridx, scale, y, True)
+        if not settled or not (lo - 0.5 * width <= lam.imag <= hi + 0.5 * width):
+            lam, settled = _newton(Kt, Om, starts[s], cidx, ridx, scale, y, False)
         if not settled:
             return -1
         if lam.real <= floor:
