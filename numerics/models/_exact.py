@@ -33,6 +33,22 @@ the copies near the truncation are artefacts (measured: rates up to 4e-4 on an F
 that is stable, at l = 18 of 20). The growth a simulation sees is the largest rate over
 the kept modes; the mode is named by its wavenumber kappa = q + l k: sidebands of the
 carrier (within pi/4 of +-k: the modulational instability) or a resonance elsewhere.
+
+How it is computed (issue 41: at most a tenth of one run of the point). The wave: Gauss-
+Newton on the collocation equations with their exact Jacobian, the DFT of the generated
+cell Hessian along the wave (least squares with finite differences where Newton does not
+settle). The spectrum: compiled (``_sidebands``) at P = min(H + 4, WORK_HARMONICS)
+harmonics. Gershgorin discs about the roots i (l omega +- w) of each harmonic's own block,
+with the roots' Krein signs, certify the offsets and frequencies where no mode can grow;
+each cluster of discs that can hold a growing mode centred at l = -1, 0, 1 is solved by
+Newton on its Schur complement, and the modes found are kept by the same weights as the
+dense eigenproblem's (argmax at |l| <= 1, < 1e-6 in the outer three harmonics). Where a
+cluster is too large (strong coupling, or a flat branch: flexmm), or Newton does not
+settle, that offset's dense eigenproblem at the same P. The fastest mode is computed again
+at P + PERSIST_STEP (the truncation persistence rule of CONVENTIONS.md;
+``HillSpectrum.truncations`` names both); where it moves by more than 1e-6 relative, the
+whole spectrum is the dense one at H + 4. tests/test_exact_gain_anchors.py holds the
+implementation before this one (dense ``eig`` at H + 4 per offset) to 1e-6 relative.
 """
 
 from __future__ import annotations
