@@ -20,18 +20,24 @@ discs holds as many eigenvalues as roots; the spectrum is symmetric under
 lambda -> -conj(lambda) and so is each cluster: a cluster of one root keeps its eigenvalue
 on the axis. So does a cluster whose roots all have one Krein sign (the form the pencil is
 self-adjoint in is definite on its spectral subspace, for every t). Only a cluster with
-roots of both signs, or a joint disc, can hold a growing mode; a mode the theory keeps is
-centred at l = -1, 0 or 1, so only clusters holding a root of those harmonics are solved.
+roots of both signs, or a joint disc, can hold a growing mode. A mode the theory keeps has
+its largest weight at l = -1, 0 or 1, and an eigenvector's largest coordinate lies in its
+eigenvalue's cluster (outside it |y_i| = |(E y)_i| / |f_i| < max |y|, since |f_i| > R_i
+there): only clusters holding a root of those harmonics are solved. (Exact for one field;
+with several the weight sums a harmonic's fields over their masses, and the largest
+coordinate and the heaviest harmonic could differ: the anchors hold it on two-field
+models.)
 
 Solving a cluster. With C its coordinates (r_c of them) and the rest folded in by the Schur
 complement, S(lambda) = T_CC(lambda) - E_CR (T_RR(lambda))^{-1} E_RC, whose zeros near the
 cluster are the pencil's eigenvalues there. The fold Sigma(lambda) = E_CR T_RR^{-1} E_RC
-changes slowly across the cluster (the other roots are outside it): each eigenvalue is the
-fixed point of "the eigenvalue of the r_c x r_c pencil with Sigma frozen at lambda nearest
-lambda", iterated to round-off from the frozen pencil at the cluster's centre. Its
-eigenvector (the small pencil's, the rest -T_RR^{-1} E_RC y_C) gives the weights the kept
-modes are chosen by, as the dense eigenproblem's did. Where the iteration does not settle
-the caller solves that offset densely.
+changes slowly across the cluster (the other roots are outside it): the r_c x r_c pencil
+with Sigma frozen at the cluster's centre places all the cluster's eigenvalues at once;
+Newton on det S from each that grows (and from between any two that nearly meet on the
+axis) settles on the exact ones, the growing root's mirror -conj(lambda) divided out. Its
+eigenvector (S's null vector, the rest -T_RR^{-1} E_RC y_C) gives the weights the kept
+modes are chosen by, as the dense eigenproblem's did. Where Newton does not settle, or a
+cluster is larger than the caller allows, the caller solves that offset densely.
 """
 
 from __future__ import annotations
