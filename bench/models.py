@@ -6,6 +6,10 @@
   W(u_n, u_{n+1}), subtracted from both sites). Same state, same run, best of REPEATS.
   The issue's bar: the generic force within 3x the fused kernel per site.
 - The same for the other built-in models (one and two fields).
+- The floor a person would write (issue 41): hand-written Numba forces of fput and
+  klein-gordon (``_fput_by_hand``, ``_kg_by_hand``: one loop over the sites, the
+  neighbours' differences in registers, the ring's ends outside the loop), timed as the
+  generated ones; the generated force's ns per site over the hand-written one (goal: 1.3).
 - A three-way point (exact theory, a simulation, the NLS) per model: wall times.
 - The exact lattice theory against the run it predicts (issue 41), per built-in model at
   one point: CPU seconds of ``exact_gain`` on the ring of N = 256 and on the infinite
@@ -24,6 +28,7 @@ from __future__ import annotations
 import time
 
 import numpy as np
+from numba import njit
 
 from bench.simulator import arguments, machine, write_section
 from energy import load_model
@@ -42,6 +47,62 @@ EXACT_POINTS = {
     "flexmm-rotation": ({}, 1.0, 0.1, None),
     "flexmm-stiff-hinge": ({}, 1.0, 0.1, None),
 }
+
+
+@njit(cache=True, fastmath={"contract"}, error_model="numpy", boundscheck=False)
+def _fput_by_hand(u, alpha, beta, out):
+    """a_n = V'(u_{n+1} - u_n) - V'(u_n - u_{n-1}), V'(r) = r + alpha r^2 + beta r^3."""
+    N = u.shape[1]
+    x = u[0]
+    a = out[0]
+    r = x[0] - x[N - 1]
+    f_back = r + alpha * r * r + beta * r * r * r
+    for n in range(N - 1):
+        r = x[n + 1] - x[n]
+        f = r + alpha * r * r + beta * r * r * r
+        a[n] = f - f_back
+        f_back = f
+    r = x[0] - x[N - 1]
+    a[N - 1] = r + alpha * r * r + beta * r * r * r - f_back
+
+
+@njit(cache=True, fastmath={"contract"}, error_model="numpy", boundscheck=False)
+def _kg_by_hand(u, C, w2, alpha, beta, out):
+    """a_n = C (u_{n+1} - 2 u_n + u_{n-1}) - (w0^2 u_n + alpha u_n^2 + beta u_n^3)."""
+    N = u.shape[1]
+    x = u[0]
+    a = out[0]
+    for n in range(N):
+        xm = x[n - 1] if n > 0 else x[N - 1]
+        xp = x[n + 1] if n < N - 1 else x[0]
+        xn = x[n]
+        a[n] = C * (xp - 2.0 * xn + xm) - xn * (w2 + xn * (alpha + beta * xn))
+
+
+def by_hand(rng, N, reps):
+    """(generated, hand-written) ns per site for fput and klein-gordon at their default
+    parameters with alpha = 0.5 (every term of the energy present), same state."""
+    out = {}
+    for name in ("fput", "klein-gordon"):
+        model = load_model(name).with_params(alpha=0.5)
+        p = model.params
+        u = np.ascontiguousarray(rng.normal(0, 0.05, (1, N)))
+        gen, hand = np.empty_like(u), np.empty_like(u)
+        force = compiled_force(model, N)
+        if name == "fput":
+            def f_hand(u=u, o=hand, p=p):
+                _fput_by_hand(u, p["alpha"], p["beta"], o)
+        else:
+            def f_hand(u=u, o=hand, p=p):
+                _kg_by_hand(u, p["C"], p["omega0"] ** 2, p["alpha"], p["beta"], o)
+        force(u, gen)
+        f_hand()
+        np.testing.assert_allclose(gen, hand, rtol=1e-12, atol=1e-15)
+        t_gen = _best(lambda f=force, u=u, o=gen: f(u, o), reps) / N * 1e9
+        t_hand = _best(f_hand, reps) / N * 1e9
+        out[name] = {"generated_ns_per_site": t_gen, "by_hand_ns_per_site": t_hand,
+                     "generated_over_by_hand": t_gen / t_hand}
+    return out
 
 
 def _cpu(f, reps):
@@ -150,12 +211,14 @@ def main(quick=False, out=None):
         points[name] = {"exact_s": t1 - t0, "simulation_s": t2 - t1, "t_end": r.t_end,
                         "exact_gain": e.peak_gain, "measured_rate": g.rate,
                         "energy_drift": r.energy_drift}
+    floor = by_hand(rng, N, reps)
     against = exact_against_runs(quick)
     emap = exact_map(quick)
     res = {"machine": machine(), "quick": quick, "N": N, "repeats": REPEATS,
            "fused_flexmm_ns_per_site": fused, "generic_ns_per_site": per_model,
            "generic_flexmm_over_fused": per_model["flexmm"] / fused, "points": points,
-           "exact_against_runs": against, "exact_map_fput": emap}
+           "generated_against_by_hand": floor, "exact_against_runs": against,
+           "exact_map_fput": emap}
     write_section("models", res, quick, out)
     print(f"force per site, N = {N}: fused flexMM kernel {fused:.2f} ns; generic:")
     for name, t in per_model.items():
@@ -164,6 +227,10 @@ def main(quick=False, out=None):
         print(f"point {name}: exact {pt['exact_s']:.2f} s, simulation {pt['simulation_s']:.2f} s "
               f"(T = {pt['t_end']:g}); gain {pt['exact_gain']:.4g} vs measured "
               f"{pt['measured_rate']:.4g}")
+    for name, r in floor.items():
+        print(f"  {name:<16} generated {r['generated_ns_per_site']:.2f} ns, by hand "
+              f"{r['by_hand_ns_per_site']:.2f} ns: {r['generated_over_by_hand']:.2f}x "
+              "(goal: <= 1.3x)")
     print("exact_gain against one seeded run (CPU s, N = 256; goal: ratio <= 0.1):")
     for name, r in against.items():
         if "error" in r:
