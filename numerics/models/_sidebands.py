@@ -33,8 +33,8 @@ complement, S(lambda) = T_CC(lambda) - E_CR (T_RR(lambda))^{-1} E_RC, whose zero
 cluster are the pencil's eigenvalues there. The fold Sigma(lambda) = E_CR T_RR^{-1} E_RC
 changes slowly across the cluster (the other roots are outside it): the r_c x r_c pencil
 with Sigma frozen at the cluster's centre places all the cluster's eigenvalues at once;
-Newton on det S from each that grows (and from between any two that nearly meet on the
-axis) settles on the exact ones, the growing root's mirror -conj(lambda) divided out. Its
+Newton on det S from each that grows (and from where two that nearly meet on the axis
+grow once the fold is frozen again between them) settles on the exact ones, the growing root's mirror -conj(lambda) divided out. Its
 eigenvector (S's null vector, the rest -T_RR^{-1} E_RC y_C) gives the weights the kept
 modes are chosen by, as the dense eigenproblem's did. Where Newton does not settle, or a
 cluster is larger than the caller allows, the caller solves that offset densely.
@@ -52,6 +52,29 @@ from numba import njit
 STEPS, TOL = 40, 1e-9
 
 _KW = dict(cache=True, nogil=True, error_model="numpy", boundscheck=False)
+
+
+@njit(**_KW)
+def _eigh2(A, ev, vec):
+    """Eigenvalues (ascending) and orthonormal eigenvectors (columns) of a 2 x 2
+    Hermitian matrix, in closed form (LAPACK's call costs more than the algebra)."""
+    a, c, b = A[0, 0].real, A[1, 1].real, A[0, 1]
+    mid, half = 0.5 * (a + c), 0.5 * (a - c)
+    r = math.sqrt(half * half + abs(b) ** 2)
+    ev[0], ev[1] = mid - r, mid + r
+    if abs(b) == 0.0:
+        lo_first = a <= c
+        vec[0, 0], vec[1, 0] = (1.0, 0.0) if lo_first else (0.0, 1.0)
+        vec[0, 1], vec[1, 1] = (0.0, 1.0) if lo_first else (1.0, 0.0)
+        return
+    for j in range(2):
+        lam = ev[j]
+        x0, x1 = b, lam - a + 0j             # from the first row
+        y0, y1 = lam - c + 0j, np.conj(b)    # from the second
+        if abs(x0) ** 2 + abs(x1) ** 2 < abs(y0) ** 2 + abs(y1) ** 2:
+            x0, x1 = y0, y1
+        nrm = math.sqrt(abs(x0) ** 2 + abs(x1) ** 2)
+        vec[0, j], vec[1, j] = x0 / nrm, x1 / nrm
 
 
 @njit(**_KW)
@@ -283,8 +306,9 @@ def _offset(Kt, Om, lvec, cidx, ridx, lo, hi, floor, om, out_lam, out_vec):
     """The eigenvalues of one cluster (roots in [lo, hi] on the imaginary axis) with
     Re lambda > floor: into out_lam / out_vec (full coordinates); their count, or -1 where
     Newton did not settle. Starts: the pencil with the fold frozen at the cluster's centre
-    (all its eigenvalues there at once): each that grows, and the midpoint of each pair of
-    its eigenvalues close on the axis (a collision the frozen fold may not resolve)."""
+    (all its eigenvalues there at once): each that grows, and, for two of them close on
+    the axis (a collision the fold frozen at the centre may not resolve), each that grows
+    with the fold frozen again between them."""
     rc = cidx.size
     nr = ridx.size
     X = np.empty((nr, rc), np.complex128)
@@ -307,9 +331,22 @@ def _offset(Kt, Om, lvec, cidx, ridx, lo, hi, floor, om, out_lam, out_vec):
     for s in range(lam0.size):
         for t in range(s + 1, lam0.size):
             gap = abs(lam0[s] - lam0[t])
-            if inside[s] and inside[t] and gap < 0.1 * width + 1e-6 * om:
-                starts[ns] = 0.5 * (lam0[s] + lam0[t]) + 0.5 * gap + 1e-3 * width
-                ns += 1
+            if not (inside[s] and inside[t] and gap < 0.1 * width + 1e-6 * om):
+                continue
+            if lam0[s].real > 1e-9 * om or lam0[t].real > 1e-9 * om:
+                continue  # a growing pair: already a start
+            # two close on the axis: the fold frozen again between them (its error is
+            # then second order in their distance) says whether they meet
+            mid = 0.5 * (lam0[s] + lam0[t])
+            Sig, ok = _fold(Kt, Om, 1j * mid.imag, cidx, ridx, X)
+            if not ok:
+                return -1
+            lam1 = _small_pencil(Kt, Om, cidx, Sig)
+            for u in range(lam1.size):
+                if lam1[u].real > 1e-9 * om and abs(lam1[u] - mid) < 2 * gap + 1e-6 * om:
+                    starts[ns] = lam1[u]
+                    ns += 1
+                    break
     found = 0
     y = np.empty(rc, np.complex128)
     for s in range(ns):
@@ -381,6 +418,9 @@ def sideband_modes(Hh, masses, k, omega, P, offsets, floor, max_modes, max_clust
         ed[s] = np.exp(-1j * (s - 2 * P) * k)
     eq = np.empty(nl, np.complex128)
     blk = np.empty((d, d), np.complex128)
+    ev2 = np.empty(2)
+    evec2 = np.empty((2, 2), np.complex128)
+    Kt = np.empty((n, n), np.complex128)
     for iq in range(Q):
         q = offsets[iq]
         for li in range(nl):
@@ -399,19 +439,34 @@ def sideband_modes(Hh, masses, k, omega, P, offsets, floor, max_modes, max_clust
         if d == 1:  # the diagonal "blocks" are numbers: no rotation
             for i in range(n):
                 w2[i] = K[i, i].real
-            Kt = K
+            Kt[:, :] = K
         else:  # each harmonic's diagonal block diagonalised
             for li in range(nl):
                 for a in range(d):
                     for b in range(d):
                         blk[a, b] = 0.5 * (K[li * d + a, li * d + b]
                                            + np.conj(K[li * d + b, li * d + a]))
-                ev, evec = np.linalg.eigh(blk)
+                if d == 2:
+                    _eigh2(blk, ev2, evec2)
+                    ev, evec = ev2, evec2
+                else:
+                    ev, evec = np.linalg.eigh(blk)
                 for a in range(d):
                     w2[li * d + a] = ev[a]
                     for b in range(d):
                         V[li * d + b, li * d + a] = evec[b, a]
-            Kt = np.conj(V.T) @ K @ V
+            # Kt = V^* K V, block by block (V is block diagonal)
+            for li in range(nl):
+                for hi_ in range(nl):
+                    for a in range(d):
+                        for b in range(d):
+                            acc = 0j
+                            for c in range(d):
+                                vc = np.conj(V[li * d + c, li * d + a])
+                                for e in range(d):
+                                    acc += (vc * K[li * d + c, hi_ * d + e]
+                                            * V[hi_ * d + e, hi_ * d + b])
+                            Kt[li * d + a, hi_ * d + b] = acc
         for i in range(n):
             r = 0.0
             for j in range(n):
