@@ -93,3 +93,29 @@ def test_exact_gain_equals_the_old_implementation(point):
                                atol=1e-12)
     if not p["fragile"] and not p["refined_offset_fragile"]:
         assert spec.mode == p["mode"]
+
+
+@pytest.mark.parametrize("name, params, k, a, branch", [
+    ("fput", {"alpha": 0.3, "beta": 1.0}, 1.2, 0.12, None),
+    ("klein-gordon", {"alpha": 0.3}, 2.0, 0.08, None),
+    ("diatomic-fput", {"alpha": 0.2}, 2.0, 0.08, 1),
+    ("flexmm-rotation", {}, 0.7, 0.1, None),
+])
+def test_the_compiled_spectrum_is_the_dense_one(name, params, k, a, branch):
+    """Points the anchors do not hold: the compiled spectrum (``hill_spectrum`` by default)
+    against the dense eigenproblem at the old truncation H + 4 (``harmonics=``), and the
+    truncations the verdict rests on."""
+    from numerics.models import hill_spectrum, ring_offsets, travelling_wave
+
+    model = load_model(name).with_params(**params)
+    wave = travelling_wave(model, k, a, branch)
+    q = ring_offsets(96)
+    fast = hill_spectrum(wave, q)
+    dense = hill_spectrum(wave, q, harmonics=wave.harmonics + 4)
+    np.testing.assert_allclose(fast.gain, dense.gain, rtol=RTOL, atol=ATOL_OMEGA * wave.omega)
+    grows = dense.gain > 0
+    np.testing.assert_array_equal(fast.harmonic[grows], dense.harmonic[grows])
+    assert dense.truncations == (wave.harmonics + 4,)
+    assert fast.truncations[0] <= wave.harmonics + 4
+    if fast.peak_gain > 0:  # the fastest mode checked at a second truncation
+        assert len(fast.truncations) == 2 and fast.truncations[1] > fast.truncations[0]
