@@ -101,14 +101,15 @@ def test_exact_gain_equals_the_old_implementation(point):
     ("diatomic-fput", {"alpha": 0.2}, 2.0, 0.08, 1),
     ("flexmm-rotation", {}, 0.7, 0.1, None),
     # strongly nonlinear (H = 32): its only growing mode couples the harmonics 1 and 5,
-    # dropped at P = 10 (found by 96 random points against the dense spectrum)
+    # dropped at P = 10 (found by random points against the dense spectrum)
     ("fput", {"alpha": 0.5118216247002567, "beta": 1.9108346533866836}, 0.704, 0.238, None),
 ])
 def test_the_compiled_spectrum_is_the_dense_one(name, params, k, a, branch):
     """Points the anchors do not hold: the compiled spectrum (``hill_spectrum`` by default)
     against the dense eigenproblem at the old truncation H + 4 (``harmonics=``), and the
-    truncations the verdict rests on. (96 random points of six models, amplitudes up to
-    0.25, agreed to 1e-6 this way when the fast path was written.)"""
+    truncations the verdict rests on. (144 random points of six models, amplitudes up to
+    0.25, rings of 64, agreed to 1e-6 this way when the fast path was written, the
+    strongly nonlinear one below excepted until P followed H.)"""
     from numerics.models import hill_spectrum, ring_offsets, travelling_wave
 
     model = load_model(name).with_params(**params)

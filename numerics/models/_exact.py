@@ -472,7 +472,7 @@ def hill_spectrum(wave: TravellingWave, offsets, *, harmonics: int | None = None
 #: A kept mode is centred at |l| <= 1 with < 1e-6 of its weight in the outer three
 #: harmonics; its tail falls faster than geometrically (the gaps grow as (l omega)^2).
 #: Measured against the dense spectrum at P = H + 4 (20 for flexmm): the anchors
-#: (tests/test_exact_gain_anchors.py) and 96 random points of six models pass at P = 10;
+#: (tests/test_exact_gain_anchors.py) and 144 random points of six models pass at P = 10;
 #: P = 8 passes the anchors too and 36 of the random points (it would halve flexmm's
 #: cost), 10 is kept as the margin; at P = 6 modes are dropped (the weight filter reaches
 #: them). Every spectrum's fastest mode is checked at P + PERSIST_STEP.
