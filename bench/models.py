@@ -6,7 +6,18 @@
   W(u_n, u_{n+1}), subtracted from both sites). Same state, same run, best of REPEATS.
   The issue's bar: the generic force within 3x the fused kernel per site.
 - The same for the other built-in models (one and two fields).
+- The floor a person would write (issue 41): hand-written Numba forces of fput and
+  klein-gordon (``_fput_by_hand``, ``_kg_by_hand``: one loop over the sites, the
+  neighbours' differences in registers, the ring's ends outside the loop), timed as the
+  generated ones; the generated force's ns per site over the hand-written one (goal: 1.3).
 - A three-way point (exact theory, a simulation, the NLS) per model: wall times.
+- The exact lattice theory against the run it predicts (issue 41), per built-in model at
+  one point: CPU seconds of ``exact_gain`` on the ring of N = 256 and on the infinite
+  chain, of one seeded run of that ring (``simulate_seeds(..., seeds=1)``, its default
+  length), and their ratios (the goal: <= 0.1). Warm (compiled), one BLAS thread
+  (``exact_gain``'s own), best of REPEATS_EXACT, ``time.process_time``.
+- A 64 x 64 theory-only ``--exact`` map of fput (N = 256) through the command line: wall
+  and CPU seconds (the goal: <= 60 s; 8 x 8 with --quick).
 - The four-wave row against the NLS row per point (``four_wave_cost``): the NLS row
   (``model_coefficients``), the four-wave theory on the ring of 256 sites (``point``'s
   row) and on the infinite chain (``coefficients``' row), best of REPEATS each. The
@@ -23,9 +34,11 @@ Writes the "models" section of results.json (results_quick.json with --quick).
 from __future__ import annotations
 
 import math
+import os
 import time
 
 import numpy as np
+from numba import njit
 
 from bench.simulator import arguments, machine, write_section
 from energy import load_model
@@ -39,6 +52,133 @@ from numerics.models import (
 )
 
 REPEATS = 5
+REPEATS_EXACT = 3
+#: one point per built-in model: params, k, amplitude, branch
+EXACT_POINTS = {
+    "fput": (dict(alpha=0.5, beta=1.0), 2 * np.pi * 66 / 256, 0.1, None),
+    "klein-gordon": (dict(alpha=0.5), 2.5, 0.05, None),
+    "sine-gordon": ({}, 1.0, 0.3, None),
+    "diatomic-fput": ({}, 1.0, 0.1, 0),
+    "flexmm": (dict(K_theta=0.016), 2 * np.pi * 36 / 256, 0.1, None),
+    "flexmm-rotation": ({}, 1.0, 0.1, None),
+    "flexmm-stiff-hinge": ({}, 1.0, 0.1, None),
+}
+
+
+@njit(cache=True, fastmath={"contract"}, error_model="numpy", boundscheck=False)
+def _fput_by_hand(u, alpha, beta, out):
+    """a_n = V'(u_{n+1} - u_n) - V'(u_n - u_{n-1}), V'(r) = r + alpha r^2 + beta r^3."""
+    N = u.shape[1]
+    x = u[0]
+    a = out[0]
+    r = x[0] - x[N - 1]
+    f_back = r + alpha * r * r + beta * r * r * r
+    for n in range(N - 1):
+        r = x[n + 1] - x[n]
+        f = r + alpha * r * r + beta * r * r * r
+        a[n] = f - f_back
+        f_back = f
+    r = x[0] - x[N - 1]
+    a[N - 1] = r + alpha * r * r + beta * r * r * r - f_back
+
+
+@njit(cache=True, fastmath={"contract"}, error_model="numpy", boundscheck=False)
+def _kg_by_hand(u, C, w2, alpha, beta, out):
+    """a_n = C (u_{n+1} - 2 u_n + u_{n-1}) - (w0^2 u_n + alpha u_n^2 + beta u_n^3)."""
+    N = u.shape[1]
+    x = u[0]
+    a = out[0]
+    for n in range(N):
+        xm = x[n - 1] if n > 0 else x[N - 1]
+        xp = x[n + 1] if n < N - 1 else x[0]
+        xn = x[n]
+        a[n] = C * (xp - 2.0 * xn + xm) - xn * (w2 + xn * (alpha + beta * xn))
+
+
+def by_hand(rng, N, reps):
+    """(generated, hand-written) ns per site for fput and klein-gordon at their default
+    parameters with alpha = 0.5 (every term of the energy present), same state."""
+    out = {}
+    for name in ("fput", "klein-gordon"):
+        model = load_model(name).with_params(alpha=0.5)
+        p = model.params
+        u = np.ascontiguousarray(rng.normal(0, 0.05, (1, N)))
+        gen, hand = np.empty_like(u), np.empty_like(u)
+        force = compiled_force(model, N)
+        if name == "fput":
+            def f_hand(u=u, o=hand, p=p):
+                _fput_by_hand(u, p["alpha"], p["beta"], o)
+        else:
+            def f_hand(u=u, o=hand, p=p):
+                _kg_by_hand(u, p["C"], p["omega0"] ** 2, p["alpha"], p["beta"], o)
+        force(u, gen)
+        f_hand()
+        np.testing.assert_allclose(gen, hand, rtol=1e-12, atol=1e-15)
+        t_gen = _best(lambda f=force, u=u, o=gen: f(u, o), reps) / N * 1e9
+        t_hand = _best(f_hand, reps) / N * 1e9
+        out[name] = {"generated_ns_per_site": t_gen, "by_hand_ns_per_site": t_hand,
+                     "generated_over_by_hand": t_gen / t_hand}
+    return out
+
+
+def _cpu(f, reps):
+    """Best CPU seconds of ``f()`` over ``reps`` calls, and its last result."""
+    best, out = float("inf"), None
+    for _ in range(reps):
+        t0 = time.process_time()
+        out = f()
+        best = min(best, time.process_time() - t0)
+    return best, out
+
+
+def exact_against_runs(quick=False, N=256):
+    """exact_gain (ring of N, infinite chain) against one seeded run, CPU seconds."""
+    from energy import ModelError
+    from numerics.models import simulate_seeds
+
+    rows = {}
+    for name, (params, k, a, br) in EXACT_POINTS.items():
+        model = load_model(name).with_params(**params) if params else load_model(name)
+        try:
+            exact_gain(model, k, a, br, N=N)
+        except ModelError as exc:
+            rows[name] = {"error": str(exc)}
+            continue
+        reps = 1 if quick else REPEATS_EXACT
+        ring_s, spec = _cpu(lambda m=model, k=k, a=a, b=br: exact_gain(m, k, a, b, N=N), reps)
+        chain_s, chain = _cpu(lambda m=model, k=k, a=a, b=br: exact_gain(m, k, a, b), reps)
+        simulate_seeds(model, k, a, spec, branch=br, N=N, seeds=1, t_end=10.0)  # compile
+        t_end = 200.0 if quick else None
+        run_s, runs = _cpu(lambda m=model, k=k, a=a, b=br, s=spec, T=t_end: simulate_seeds(
+            m, k, a, s, branch=b, N=N, seeds=1, t_end=T), 1)
+        rows[name] = {"params": params, "k": spec.wave.k, "amplitude": a, "branch": br, "N": N,
+                      "exact_ring_cpu_s": ring_s, "exact_chain_cpu_s": chain_s,
+                      "run_cpu_s": run_s, "run_t_end": runs.t_end,
+                      "ring_over_run": ring_s / run_s, "chain_over_run": chain_s / run_s,
+                      "ring_peak_gain": spec.peak_gain, "chain_peak_gain": chain.peak_gain,
+                      "truncations": list(spec.truncations)}
+    return rows
+
+
+def exact_map(quick=False, N=256):
+    """A theory-only --exact map of fput through the command line: (wall s, CPU s, cells)."""
+    import contextlib
+    import io
+    import tempfile
+
+    from cli.app import main as cli
+
+    n = 8 if quick else 64
+    with tempfile.TemporaryDirectory() as tmp:
+        argv = ["map", "--model", "fput", "--param", "alpha=0.5", "--param",
+                f"beta=0.5:2.0:{n}", "--k", f"0.5:3.0:{n}", "--amplitude", "0.1", "--N",
+                str(N), "--theory-only", "--exact", "--out", tmp]
+        t0, c0 = time.perf_counter(), time.process_time()
+        with contextlib.redirect_stdout(io.StringIO()):
+            code = cli(argv)
+        wall, cpu = time.perf_counter() - t0, time.process_time() - c0
+    return {"cells": n * n, "N": N, "wall_s": wall, "cpu_s": cpu, "exit": code,
+            "argv": argv[:-1]}
 
 
 def _best(f, reps):
@@ -169,6 +309,10 @@ def main(quick=False, out=None):
         outa = np.empty_like(u)
         force(u, outa)  # compile
         per_model[name] = _best(lambda f=force, u=u, o=outa: f(u, o), reps) / N * 1e9
+    # compile the exact theory's kernels outside every timing (numba caches them on disk:
+    # ~12 s once per install on an idle machine, 57 s measured under a load of 6)
+    exact_gain(load_model("fput"), 2.0, 0.1, N=32)
+    exact_gain(load_model("diatomic-fput"), 1.0, 0.1, 0, N=32)
     points = {}
     for name, params, k, br in (("fput", dict(alpha=0.0, beta=1.0), 2.0, None),
                                 ("diatomic-fput", {}, 1.0, 0),
@@ -186,10 +330,16 @@ def main(quick=False, out=None):
                         "energy_drift": r.energy_drift}
     cost = four_wave_cost(5 if quick else 20)
     losses = losses_cost(200.0 if quick else 500.0)
+    floor = by_hand(rng, N, reps)
+    against = exact_against_runs(quick)
+    emap = exact_map(quick)
     res = {"machine": machine(), "quick": quick, "N": N, "repeats": REPEATS,
+           "load_average": list(os.getloadavg()),
            "fused_flexmm_ns_per_site": fused, "generic_ns_per_site": per_model,
            "generic_flexmm_over_fused": per_model["flexmm"] / fused, "points": points,
-           "four_wave_vs_nls": cost, "losses": losses}
+           "four_wave_vs_nls": cost, "losses": losses,
+           "generated_against_by_hand": floor, "exact_against_runs": against,
+           "exact_map_fput": emap}
     write_section("models", res, quick, out)
     print(f"force per site, N = {N}: fused flexMM kernel {fused:.2f} ns; generic:")
     for name, t in per_model.items():
@@ -202,6 +352,21 @@ def main(quick=False, out=None):
         print(f"four-wave {name}: NLS row {c['nls_row_s'] * 1e3:.2f} ms, four-wave ring "
               f"{c['four_wave_ring_s'] * 1e3:.2f} ms ({c['ring_over_nls']:.1f}x), chain "
               f"{c['four_wave_chain_s'] * 1e3:.2f} ms ({c['chain_over_nls']:.1f}x)")
+    for name, r in floor.items():
+        print(f"  {name:<16} generated {r['generated_ns_per_site']:.2f} ns, by hand "
+              f"{r['by_hand_ns_per_site']:.2f} ns: {r['generated_over_by_hand']:.2f}x "
+              "(goal: <= 1.3x)")
+    print("exact_gain against one seeded run (CPU s, N = 256; goal: ratio <= 0.1):")
+    for name, r in against.items():
+        if "error" in r:
+            print(f"  {name:<18} {r['error']}")
+            continue
+        print(f"  {name:<18} ring {r['exact_ring_cpu_s']:.4f} s, chain "
+              f"{r['exact_chain_cpu_s']:.4f} s, run {r['run_cpu_s']:.3f} s "
+              f"(T = {r['run_t_end']:g}): ring/run {r['ring_over_run']:.3f}, chain/run "
+              f"{r['chain_over_run']:.3f}")
+    print(f"theory-only --exact map of fput, {emap['cells']} cells, N = {emap['N']}: "
+          f"{emap['wall_s']:.1f} s wall, {emap['cpu_s']:.1f} s CPU (goal: <= 60 s at 64 x 64)")
     return res
 
 

@@ -33,15 +33,33 @@ the copies near the truncation are artefacts (measured: rates up to 4e-4 on an F
 that is stable, at l = 18 of 20). The growth a simulation sees is the largest rate over
 the kept modes; the mode is named by its wavenumber kappa = q + l k: sidebands of the
 carrier (within pi/4 of +-k: the modulational instability) or a resonance elsewhere.
+
+How it is computed (issue 41: at most a tenth of one run of the point). The wave: Gauss-
+Newton on the collocation equations with their exact Jacobian, the DFT of the generated
+cell Hessian along the wave (least squares with finite differences where Newton does not
+settle). The spectrum: compiled (``_sidebands``) at P = min(H + 4, WORK_HARMONICS)
+harmonics. Gershgorin discs about the roots i (l omega +- w) of each harmonic's own block,
+with the roots' Krein signs, certify the offsets and frequencies where no mode can grow;
+each cluster of discs that can hold a growing mode centred at l = -1, 0, 1 is solved by
+Newton on its Schur complement, and the modes found are kept by the same weights as the
+dense eigenproblem's (argmax at |l| <= 1, < 1e-6 in the outer three harmonics). Where a
+cluster is too large (strong coupling, or a flat branch: flexmm), or Newton does not
+settle, that offset's dense eigenproblem at the same P. The fastest mode is computed again
+at P + PERSIST_STEP (the truncation persistence rule of CONVENTIONS.md;
+``HillSpectrum.truncations`` names both); where it moves by more than 1e-6 relative, the
+whole spectrum is the dense one at H + 4. tests/test_exact_gain_anchors.py holds the
+implementation before this one (dense ``eig`` at H + 4 per offset) to 1e-6 relative.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 
 import numpy as np
 
+from common.threads import one_blas_thread
 from energy import Model, ModelError
 
 from ._linear import Carrier, carrier
@@ -159,14 +177,20 @@ def _pack_layout(d, H, field, acoustic):
     return optical, free
 
 
+@one_blas_thread
 def travelling_wave(model: Model, k: float, amplitude: float, branch=None, *,
                     harmonics: int | None = None) -> TravellingWave:
     """The exact travelling plane wave of ``model`` on ``branch`` at wavenumber ``k`` whose
     carrier field has first harmonic ``amplitude`` cos(k n - omega t).
 
     Raises ModelError where none is found (a resonance with another harmonic, an
-    amplitude beyond the branch's nonlinear range): said in one line.
+    amplitude beyond the branch's nonlinear range): said in one line. Small dense algebra:
+    on one BLAS thread (``common.threads``).
     """
+    return _travelling_wave(model, k, amplitude, branch, harmonics)
+
+
+def _travelling_wave(model, k, amplitude, branch, harmonics):
     from scipy.optimize import least_squares
 
     a = float(amplitude)
@@ -200,6 +224,10 @@ def travelling_wave(model: Model, k: float, amplitude: float, branch=None, *,
 
 
 def _solve(model, car, a, masses, acoustic, H, c0, omega0, least_squares):
+    """The collocation equations at H harmonics: Gauss-Newton with their exact Jacobian
+    (from the generated cell Hessian), least squares with a finite-difference Jacobian
+    (scipy's "lm") where Newton does not settle. Both solve the same equations; Newton
+    needs ~5 steps of one Hessian evaluation and a small least-squares solve each."""
     d = model.n_fields
     M = max(64, 4 * H + 8)
     xi = _grid(M)
@@ -207,12 +235,13 @@ def _solve(model, car, a, masses, acoustic, H, c0, omega0, least_squares):
     h = np.arange(-H, H + 1)
     E = np.exp(-1j * h[:, None] * xi[None, :]) / M  # projection onto e^{i h xi}
     scale = float(np.max(masses)) * omega0**2 * a
+    n_opt = optical.shape[1]
 
     def unpack(x):
         omega = x[0]
-        mean = optical @ x[1:1 + optical.shape[1]]
+        mean = optical @ x[1:1 + n_opt]
         parts = np.zeros((d, H, 2))
-        parts[free] = x[1 + optical.shape[1]:]
+        parts[free] = x[1 + n_opt:]
         parts[car.field, 0] = (a / 2, 0.0)
         c = np.zeros((d, 2 * H + 1), complex)
         c[:, H] = mean
@@ -220,24 +249,90 @@ def _solve(model, car, a, masses, acoustic, H, c0, omega0, least_squares):
         c[:, :H] = np.conj(c[:, H + 1:][:, ::-1])
         return omega, c
 
+    # e^{i h xi}, e^{i h (xi + k)}, e^{i h (xi - k)} on the grid, once per solve
+    B0 = np.exp(1j * h[:, None] * xi[None, :])
+    Bp = B0 * np.exp(1j * h * car.k)[:, None]
+    Bm = B0 * np.exp(-1j * h * car.k)[:, None]
+
+    def equations(R_hat):
+        """The real equations of R_hat, shape (d, 2H + 1[, ncols])."""
+        eqs = [np.real(np.tensordot(optical.T, R_hat[:, H], axes=1))]
+        pos = R_hat[:, H + 1:]
+        rest = pos.shape[2:]
+        eqs += [np.real(pos).reshape((-1,) + rest), np.imag(pos).reshape((-1,) + rest)]
+        return np.concatenate(eqs) / scale
+
     def residual(x):
         omega, c = unpack(x)
-        R = masses[:, None] * omega**2 * _fields_at(c * (-(h**2)), xi) - _force(model, c, xi, car.k)
-        R_hat = R @ E.T  # (d, 2H + 1)
-        eqs = [np.real(optical.T @ R_hat[:, H])]
-        pos = R_hat[:, H + 1:]
-        eqs += [np.real(pos).ravel(), np.imag(pos).ravel()]
-        return np.concatenate(eqs) / scale
+        U0, Up, Um = np.real(c @ B0), np.real(c @ Bp), np.real(c @ Bm)
+        g_here = np.empty((2 * d, M))
+        g_back = np.empty((2 * d, M))
+        model.code.cell_gradient_into(np.concatenate([U0, Up]), model.p, g_here)
+        model.code.cell_gradient_into(np.concatenate([Um, U0]), model.p, g_back)
+        R = (masses[:, None] * omega**2 * np.real((c * (-(h**2))) @ B0)
+             + g_here[:d] + g_back[d:])
+        return equations(R @ E.T)
+
+    def jacobian(x):
+        omega, c = unpack(x)
+        U0 = np.real(c @ B0)
+        Hf = np.empty((2 * d, 2 * d, M))
+        Hb = np.empty((2 * d, 2 * d, M))
+        model.code.cell_hessian_into(np.concatenate([U0, np.real(c @ Bp)]), model.p, Hf)
+        model.code.cell_hessian_into(np.concatenate([np.real(c @ Bm), U0]), model.p, Hb)
+        # dR_hat[l, j] / dc[h, b] (c[h] and c[-h] independent): the DFT of the force's
+        # derivative at l - h, the same grid as the residual (exact for the discrete system)
+        sidx = (h[:, None] - h[None, :]) % M
+        Ff, Fb = np.fft.fft(Hf, axis=-1) / M, np.fft.fft(Hb, axis=-1) / M
+        ph = np.exp(1j * h * car.k)[None, :, None, None]
+        J = (Ff[:d, :d][..., sidx] + Fb[d:, d:][..., sidx]).transpose(2, 3, 0, 1) \
+            + Ff[:d, d:][..., sidx].transpose(2, 3, 0, 1) * ph \
+            + Fb[d:, :d][..., sidx].transpose(2, 3, 0, 1) / ph   # (l, h, j, b)
+        J[np.arange(2 * H + 1), np.arange(2 * H + 1)] -= (
+            (h**2 * omega**2)[:, None, None] * np.diag(masses)[None])
+        J = J.transpose(2, 0, 3, 1)                               # (j, l, b, h)
+        # the unknowns: omega, the optical means, Re and Im of c[b, 1..H] where free
+        # (c[-h] = conj c[h]), in the order unpack reads them
+        Jp, Jm = J[..., H + 1:], J[..., H - 1::-1]
+        parts = np.stack([Jp + Jm, 1j * (Jp - Jm)], axis=-1)[:, :, free]  # (j, l, n_free)
+        cols = [equations(-2 * omega * masses[:, None] * h**2 * c)[:, None]]
+        if n_opt:
+            cols.append(equations(np.tensordot(J[:, :, :, H], optical, axes=1)))
+        cols.append(equations(parts))
+        return np.concatenate(cols, axis=1)
 
     x0 = [omega0, *(optical.T @ np.real(c0[:, H]))]
     parts0 = np.stack([np.real(c0[:, H + 1:]), np.imag(c0[:, H + 1:])], axis=-1)
     x0 = np.array(x0 + list(parts0[free]))
-    sol = least_squares(residual, x0, method="lm", xtol=1e-15, ftol=1e-15, gtol=1e-15,
-                        max_nfev=200 * (x0.size + 1))
-    omega, c = unpack(sol.x)
-    res = float(np.max(np.abs(residual(sol.x)))) if np.all(np.isfinite(sol.x)) else math.inf
+    x = _gauss_newton(residual, jacobian, x0)
+    if x is None:
+        sol = least_squares(residual, x0, method="lm", xtol=1e-15, ftol=1e-15, gtol=1e-15,
+                            max_nfev=200 * (x0.size + 1))
+        x = sol.x
+    omega, c = unpack(x)
+    res = float(np.max(np.abs(residual(x)))) if np.all(np.isfinite(x)) else math.inf
     return TravellingWave(model=model, carrier=car, amplitude=a, omega=float(omega),
                           coefficients=c, residual=res)
+
+
+def _gauss_newton(residual, jacobian, x0, steps=40):
+    """Gauss-Newton until the residual is round-off (None where it does not settle: the
+    caller falls back to scipy's least squares)."""
+    x = x0.copy()
+    r = residual(x)
+    start = best = np.max(np.abs(r))
+    for _ in range(steps):
+        if not (np.isfinite(best) and best < 1e6 * max(start, 1e-3)):
+            return None
+        if best < 1e-14:
+            return x
+        x = x + np.linalg.lstsq(jacobian(x), -r, rcond=None)[0]
+        r = residual(x)
+        now = np.max(np.abs(r))
+        if best < 1e-11 and now >= best / 4:
+            return x if now < 2 * best else None  # round-off: the last step changed nothing
+        best = now
+    return x if best < RESIDUAL_TOL else None
 
 
 @dataclass(frozen=True)
@@ -257,7 +352,12 @@ class HillSpectrum:
     sideband_offset : ndarray
         Where the fastest mode at q holds >= 10% of its weight within pi/4 of the carrier's
         +-k (a modulational mode: at k = pi a sideband pair with the mean flow), its
-        heaviest such component's distance from +-k (rad/site); else nan.
+        heaviest such component's distance from +-k (rad/site); else nan. Where no mode
+        grows (gain 0): harmonic 0 and nan.
+    truncations : tuple of int
+        The truncations P (harmonics l = -P..P) the verdict rests on: the spectrum's,
+        then the one the fastest mode was checked to persist at (CONVENTIONS.md: a mode
+        counts when it persists at the same q across truncations).
     """
 
     wave: TravellingWave
@@ -265,6 +365,7 @@ class HillSpectrum:
     gain: np.ndarray
     harmonic: np.ndarray
     sideband_offset: np.ndarray
+    truncations: tuple = ()
 
     @property
     def peak_gain(self) -> float:
@@ -280,6 +381,7 @@ class HillSpectrum:
         attrs = {"model": w.model.name, "k": w.k, "amplitude": w.amplitude, "omega": w.omega,
                  "omega_linear": w.carrier.omega, "branch": w.carrier.branch,
                  "verdict": self.verdict, "peak_gain": self.peak_gain, "mode": self.mode,
+                 "truncations": list(self.truncations),
                  "units": "lattice units: time as in the model file, wavenumbers rad/site"}
         attrs.update({f"param_{n}": v for n, v in w.model.params.items()})
         return xr.Dataset(
@@ -353,23 +455,189 @@ def _hessian_harmonics(wave: TravellingWave, P: int):
     return np.einsum("abm,sm->sab", Hs, np.exp(-1j * s[:, None] * xi[None, :])) / M
 
 
+@one_blas_thread
 def hill_spectrum(wave: TravellingWave, offsets, *, harmonics: int | None = None,
                   return_eigenvalues: bool = False):
     """The growth rate of the fastest resolved sideband mode at each offset q.
 
     ``harmonics`` P: the perturbation's harmonics l = -P..P (default: the wave's H + 4).
-    With ``return_eigenvalues``, also the lambdas at each q (list of arrays).
+    With ``return_eigenvalues``, also the lambdas at each q (list of arrays). On one BLAS
+    thread (``common.threads``).
     """
+    return _hill_spectrum(wave, offsets, harmonics, return_eigenvalues)
+
+
+#: The fast path's truncation: harmonics l = -P..P with P = min(H + 4, WORK_HARMONICS)
+#: (H + 4 for a strongly nonlinear wave, ``_work_harmonics``).
+#: A kept mode is centred at |l| <= 1 with < 1e-6 of its weight in the outer three
+#: harmonics; its tail falls faster than geometrically (the gaps grow as (l omega)^2).
+#: Measured against the dense spectrum at P = H + 4 (20 for flexmm): the anchors
+#: (tests/test_exact_gain_anchors.py) and 144 random points of six models pass at P = 10;
+#: P = 8 passes the anchors too and 36 of the random points (it would halve flexmm's
+#: cost), 10 is kept as the margin; at P = 6 modes are dropped (the weight filter reaches
+#: them). Every spectrum's fastest mode is checked at P + PERSIST_STEP.
+WORK_HARMONICS = 10
+#: the second truncation the fastest mode is checked at: P + PERSIST_STEP
+PERSIST_STEP = 4
+#: growing modes per offset the compiled path reports at most, and the largest cluster of
+#: roots (coordinates) it solves; beyond either, that offset's dense eigenproblem
+MAX_MODES, MAX_CLUSTER = 12, 6
+
+
+def _work_harmonics(wave) -> int:
+    """The compiled path's truncation: min(H + 4, WORK_HARMONICS) for a wave whose
+    harmonics fell below 1e-13 of its amplitude by H = 16; H + 4 (the dense path's) for a
+    strongly nonlinear one (measured: fput alpha 0.51, beta 1.91, k 0.70, a 0.24 has
+    H = 32 and a growing mode at q = 0.196 made of the harmonics 1 and 5, which at P = 10
+    holds more than 1e-6 of its weight in the outer three and is dropped)."""
+    H = wave.harmonics
+    return H + 4 if H > 16 else min(H + 4, WORK_HARMONICS)
+
+
+def _hill_spectrum(wave, offsets, harmonics=None, return_eigenvalues=False):
+    offsets = np.atleast_1d(np.asarray(offsets, dtype=float))
+    if harmonics or return_eigenvalues:
+        return _dense_spectrum(wave, offsets, harmonics or wave.harmonics + 4,
+                               return_eigenvalues)
+    return _Sidebands(wave).checked(offsets)
+
+
+class _Sidebands:
+    """The compiled Hill spectrum of one wave at truncation P (``_sidebands``): the cell
+    Hessian's harmonics computed once for every offset asked."""
+
+    def __init__(self, wave, P=None):
+        self.wave = wave
+        self.P = P or _work_harmonics(wave)
+        self.Hh = _hessian_harmonics(wave, self.P)
+        self.masses = np.asarray(wave.model.masses, float)
+        self.floor = GAIN_FLOOR * max(wave.omega, 1e-300)
+
+    def spectrum(self, offsets) -> HillSpectrum:
+        from ._sidebands import sideband_modes
+
+        wave, P = self.wave, self.P
+        offsets = np.atleast_1d(np.asarray(offsets, dtype=float))
+        d = wave.model.n_fields
+        k = wave.k
+        l_ = np.arange(-P, P + 1)
+        lam, vec, count = sideband_modes(self.Hh, self.masses, k, wave.omega, P, offsets,
+                                         self.floor, MAX_MODES, MAX_CLUSTER)
+        gains = np.zeros(offsets.size)
+        modes = np.zeros(offsets.size, int)
+        offs = np.full(offsets.size, math.nan)
+        c = np.abs(vec) ** 2                                         # (Q, modes, n)
+        weight = c / np.maximum(c.sum(axis=-1, keepdims=True), 1e-300)
+        per_l = weight.reshape(offsets.size, MAX_MODES, 2 * P + 1, d).sum(axis=-1)
+        central = np.abs(l_[np.argmax(per_l, axis=-1)]) <= 1
+        outer = per_l[..., :3].sum(axis=-1) + per_l[..., -3:].sum(axis=-1)
+        have = np.arange(MAX_MODES)[None, :] < count[:, None]
+        re = np.where(have & central & (outer < 1e-6), lam.real, -np.inf)
+        best = np.argmax(re, axis=1)
+        for i in np.flatnonzero(re[np.arange(offsets.size), best] > self.floor):
+            gains[i] = re[i, best[i]]
+            w_best = per_l[i, best[i]]
+            modes[i] = int(l_[int(np.argmax(w_best))])
+            offs[i] = _sideband_offset(offsets[i], l_, k, w_best)
+        dense = np.flatnonzero(count < 0)
+        if dense.size:
+            sub = _dense_growing(wave, offsets[dense], P)
+            gains[dense], modes[dense] = sub.gain, sub.harmonic
+            offs[dense] = sub.sideband_offset
+        return HillSpectrum(wave=wave, offsets=offsets, gain=gains, harmonic=modes,
+                            sideband_offset=offs, truncations=(P,))
+
+    def checked(self, offsets) -> HillSpectrum:
+        """``spectrum``, its fastest mode checked at P + PERSIST_STEP harmonics: where it
+        moves by more than 1e-6 relative, the whole spectrum densely at the wave's
+        H + 4 (the truncation before issue 41)."""
+        spec = self.spectrum(offsets)
+        if spec.peak_gain <= 0:
+            return spec
+        i = int(np.argmax(spec.gain))
+        again = _Sidebands(self.wave, self.P + PERSIST_STEP).spectrum(offsets[i:i + 1])
+        P2 = self.P + PERSIST_STEP
+        if abs(again.gain[0] - spec.gain[i]) <= 1e-6 * spec.gain[i]:
+            return dataclasses.replace(spec, truncations=(self.P, P2))
+        P = self.wave.harmonics + 4
+        return dataclasses.replace(_dense_spectrum(self.wave, offsets, P, False),
+                                   truncations=(P,))
+
+
+def _sideband_offset(q, l_, k, w_best):
+    kap = q + l_ * k
+    dist = np.minimum(_wrap(kap - k), _wrap(kap + k))
+    near = dist <= np.pi / 4
+    side = w_best[near].sum() >= 0.1 * w_best.sum()
+    return float(dist[near][np.argmax(w_best[near])]) if side else math.nan
+
+
+def _dense_growing(wave, offsets, P):
+    """The compiled path's fallback: the dense eigenvalues (``eigvals``, no vectors) at
+    each offset, then the eigenvectors of the growing ones only, fastest first (inverse
+    iteration on the linearisation), until one is kept by the dense spectrum's rule: the
+    same rate, harmonic and sideband offset at ~60% of ``eig``'s cost (flexmm, P = 10)."""
+    from scipy.linalg import lu_factor, lu_solve
+
     model = wave.model
     d = model.n_fields
     k, omega = wave.k, wave.omega
-    P = harmonics or wave.harmonics + 4
     Hh = _hessian_harmonics(wave, P)
     l_ = np.arange(-P, P + 1)
     n = d * (2 * P + 1)
     m = np.tile(np.asarray(model.masses, float), 2 * P + 1)
     Minv = 1 / m
-    offsets = np.atleast_1d(np.asarray(offsets, dtype=float))
+    floor = GAIN_FLOOR * max(omega, 1e-300)
+    diff = l_[:, None] - l_[None, :] + 2 * P
+    back = np.exp(-1j * (l_[:, None] - l_[None, :]) * k)[..., None, None]
+    ll = np.repeat(l_, d)
+    gains = np.zeros(offsets.size)
+    modes = np.zeros(offsets.size, int)
+    offs = np.full(offsets.size, math.nan)
+    b = np.random.default_rng(0).standard_normal(2 * n) + 0j  # inverse iteration's start
+    for i, q in enumerate(offsets):
+        ph = np.exp(1j * (q + l_ * k))[None, :, None, None]
+        S = Hh[diff]
+        Sb = S * back
+        blk = (S[..., :d, :d] + S[..., :d, d:] * ph + Sb[..., d:, :d] / ph
+               + Sb[..., d:, d:])
+        L = blk.transpose(0, 2, 1, 3).reshape(n, n)
+        A = np.zeros((2 * n, 2 * n), complex)
+        A[:n, n:] = np.eye(n)
+        A[n:, :n] = -Minv[:, None] * (L - np.diag(ll**2 * omega**2 * m))
+        A[n:, n:] = np.diag(2j * omega * ll)
+        lam = np.linalg.eigvals(A)
+        for j in np.argsort(-lam.real):
+            if not lam[j].real > floor:
+                break
+            # A - lam I is singular to round-off: two solves give its null vector
+            shift = lam[j] + 1e-13 * (abs(lam[j]) + omega)
+            lu = lu_factor(A - shift * np.eye(2 * n), check_finite=False)
+            x = lu_solve(lu, b, check_finite=False)
+            x = lu_solve(lu, x / np.max(np.abs(x)), check_finite=False)
+            c = np.abs(x[:n]) ** 2
+            per_l = (c / max(c.sum(), 1e-300)).reshape(2 * P + 1, d).sum(axis=1)
+            if abs(l_[np.argmax(per_l)]) > 1 or per_l[:3].sum() + per_l[-3:].sum() >= 1e-6:
+                continue
+            gains[i] = lam[j].real
+            modes[i] = int(l_[int(np.argmax(per_l))])
+            offs[i] = _sideband_offset(q, l_, k, per_l)
+            break
+    return HillSpectrum(wave=wave, offsets=offsets, gain=gains, harmonic=modes,
+                        sideband_offset=offs, truncations=(P,))
+
+
+def _dense_spectrum(wave, offsets, P, return_eigenvalues):
+    """The Hill pencil's whole spectrum per offset (numpy.linalg.eig of its 2 n x 2 n
+    linearisation): the reference the compiled path equals, and its fallback."""
+    model = wave.model
+    d = model.n_fields
+    k, omega = wave.k, wave.omega
+    Hh = _hessian_harmonics(wave, P)
+    l_ = np.arange(-P, P + 1)
+    n = d * (2 * P + 1)
+    m = np.tile(np.asarray(model.masses, float), 2 * P + 1)
+    Minv = 1 / m
     gains, modes, lams, offs = [], [], [], []
     floor = GAIN_FLOOR * max(omega, 1e-300)
     outer = np.zeros((2 * P + 1, d), bool)
@@ -411,7 +679,8 @@ def hill_spectrum(wave: TravellingWave, offsets, *, harmonics: int | None = None
         if return_eigenvalues:
             lams.append(lam[resolved])
     spec = HillSpectrum(wave=wave, offsets=offsets, gain=np.array(gains),
-                        harmonic=np.array(modes, int), sideband_offset=np.array(offs))
+                        harmonic=np.array(modes, int), sideband_offset=np.array(offs),
+                        truncations=(P,))
     return (spec, lams) if return_eigenvalues else spec
 
 
@@ -420,26 +689,30 @@ def ring_offsets(N: int) -> np.ndarray:
     return 2 * np.pi * np.arange(1, N // 2 + 1) / N
 
 
+@one_blas_thread
 def exact_gain(model: Model, k: float, amplitude: float, branch=None, *, N: int | None = None,
                samples: int = 400) -> HillSpectrum:
     """The exact lattice theory at one point: the travelling wave and its Hill spectrum on
     a ring of ``N`` sites (k snapped to 2 pi m / N, the offsets the ring carries) or, N
     None, on the infinite chain (``samples`` offsets in [pi / samples, pi] and 40
-    log-spaced below, the peak refined between them)."""
+    log-spaced below, the peak refined between them). On one BLAS thread
+    (``common.threads``: a multithreaded BLAS only adds synchronisation to small dense
+    algebra, and on a busy machine its threads spin against the work)."""
     from ._simulate import check_count, check_ring, snap_ring
 
     if N is not None:
         N = check_ring(N)  # N = 0 is a bad ring, not the infinite chain
         k = snap_ring(k, N)[0]
     samples = check_count("samples", samples, least=8)
-    wave = travelling_wave(model, k, amplitude, branch)
+    wave = _travelling_wave(model, k, amplitude, branch, None)
+    engine = _Sidebands(wave)
     if N:
-        return hill_spectrum(wave, ring_offsets(N))
+        return engine.checked(ring_offsets(N))
     # small offsets log-spaced below the uniform grid's first point: a weak wave's band is
     # O(a) wide (a = 0.002: edge 0.005, inside the first uniform step pi / 400)
     q = np.concatenate([np.geomspace(1e-5, np.pi / samples, 40, endpoint=False),
                         np.linspace(np.pi / samples, np.pi, samples)])
-    spec = hill_spectrum(wave, q)
+    spec = engine.spectrum(q)
     if spec.peak_gain <= 0:
         return spec
     # the infinite chain's peak between the samples (bounded scalar search of the rate)
@@ -447,12 +720,16 @@ def exact_gain(model: Model, k: float, amplitude: float, branch=None, *, N: int 
 
     i = int(np.argmax(spec.gain))
     lo, hi = q[max(i - 1, 0)], q[min(i + 1, q.size - 1)]
-    best = minimize_scalar(lambda x: -hill_spectrum(wave, [x]).gain[0], bounds=(lo, hi),
+    best = minimize_scalar(lambda x: -engine.spectrum([x]).gain[0], bounds=(lo, hi),
                            method="bounded", options={"xatol": 1e-6 * (hi - lo)})
-    extra = hill_spectrum(wave, [best.x])
+    extra = engine.checked(np.array([best.x]))
+    if len(extra.truncations) != 2:  # the peak did not persist: the old dense way
+        spec = _dense_spectrum(wave, q, wave.harmonics + 4, False)
+        extra = _dense_spectrum(wave, extra.offsets, wave.harmonics + 4, False)
     order = np.argsort(np.concatenate([q, extra.offsets]))
     return HillSpectrum(
         wave=wave, offsets=np.concatenate([q, extra.offsets])[order],
         gain=np.concatenate([spec.gain, extra.gain])[order],
         harmonic=np.concatenate([spec.harmonic, extra.harmonic])[order],
-        sideband_offset=np.concatenate([spec.sideband_offset, extra.sideband_offset])[order])
+        sideband_offset=np.concatenate([spec.sideband_offset, extra.sideband_offset])[order],
+        truncations=extra.truncations)

@@ -1,0 +1,628 @@
+"""The growing modes of the Hill pencil of ``_exact`` at many offsets, compiled: what the
+dense eigenproblem per offset gave, at the cost of a few small solves.
+
+At offset q the pencil is Q(lambda) = M (lambda - i Omega)^2 + L(q), Omega = diag(l omega),
+L(q) Hermitian (the cell Hessian's Fourier coefficients, ``_exact``'s module docstring).
+Scaled by M^{-1/2} and with each harmonic's diagonal block diagonalised
+(V_l^* M^{-1/2} L_ll M^{-1/2} V_l = diag w_lj^2), it is
+
+    T(lambda) = diag((lambda - i l omega)^2 + w_lj^2) + E,   E Hermitian, zero on the
+                                                             diagonal blocks,
+
+whose roots at E = 0 are lambda = i (l omega +- w_lj), each with the Krein sign +-.
+
+Which offsets can grow (certified, not sampled). An eigenvalue lies where some
+|(lambda - i l omega)^2 + w_lj^2| <= R_lj, R_lj the row sum of |E| (a Gershgorin bound for
+the block-diagonal part), so in discs on the imaginary axis about the roots (radius
+w - sqrt(w^2 - R), or one disc sqrt(|w^2| + R) about i l omega for both roots where
+w^2 <= R). Along E -> t E, t in [0, 1] the discs only shrink, so each connected cluster of
+discs holds as many eigenvalues as roots; the spectrum is symmetric under
+lambda -> -conj(lambda) and so is each cluster: a cluster of one root keeps its eigenvalue
+on the axis. So does a cluster whose roots all have one Krein sign (the form the pencil is
+self-adjoint in is definite on its spectral subspace, for every t). Only a cluster with
+roots of both signs, or a joint disc, can hold a growing mode. A mode the theory keeps has
+its largest weight at l = -1, 0 or 1, and an eigenvector's largest coordinate lies in its
+eigenvalue's cluster (outside it |y_i| = |(E y)_i| / |f_i| < max |y|, since |f_i| > R_i
+there): only clusters holding a root of those harmonics are solved. (Exact for one field;
+with several the weight sums a harmonic's fields over their masses, and the largest
+coordinate and the heaviest harmonic could differ: the anchors hold it on two-field
+models.)
+
+Solving a cluster. With C its coordinates (r_c of them) and the rest folded in by the Schur
+complement, S(lambda) = T_CC(lambda) - E_CR (T_RR(lambda))^{-1} E_RC, whose zeros near the
+cluster are the pencil's eigenvalues there. The fold Sigma(lambda) = E_CR T_RR^{-1} E_RC
+changes slowly across the cluster (the other roots are outside it): the r_c x r_c pencil
+with Sigma frozen at the cluster's centre places all the cluster's eigenvalues at once;
+Newton on det S from each that grows (and from where two that nearly meet on the axis
+grow once the fold is frozen again between them) settles on the exact ones, the growing root's mirror -conj(lambda) divided out. Its
+eigenvector (S's null vector, the rest -T_RR^{-1} E_RC y_C) gives the weights the kept
+modes are chosen by, as the dense eigenproblem's did. Where Newton does not settle, or a
+cluster is larger than the caller allows, the caller solves that offset densely.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+#: Newton steps at most per eigenvalue, and the step (relative to |lambda| + omega)
+#: after which it has settled: Newton's next error is ~ its square, below round-off
+STEPS, TOL = 40, 1e-9
+
+_KW = dict(cache=True, nogil=True, error_model="numpy", boundscheck=False)
+
+
+@njit(**_KW)
+def _eigh2(A, ev, vec):
+    """Eigenvalues (ascending) and orthonormal eigenvectors (columns) of a 2 x 2
+    Hermitian matrix, in closed form (LAPACK's call costs more than the algebra)."""
+    a, c, b = A[0, 0].real, A[1, 1].real, A[0, 1]
+    mid, half = 0.5 * (a + c), 0.5 * (a - c)
+    r = math.sqrt(half * half + abs(b) ** 2)
+    ev[0], ev[1] = mid - r, mid + r
+    if abs(b) == 0.0:
+        lo_first = a <= c
+        vec[0, 0], vec[1, 0] = (1.0, 0.0) if lo_first else (0.0, 1.0)
+        vec[0, 1], vec[1, 1] = (0.0, 1.0) if lo_first else (1.0, 0.0)
+        return
+    for j in range(2):
+        lam = ev[j]
+        x0, x1 = b, lam - a + 0j             # from the first row
+        y0, y1 = lam - c + 0j, np.conj(b)    # from the second
+        if abs(x0) ** 2 + abs(x1) ** 2 < abs(y0) ** 2 + abs(y1) ** 2:
+            x0, x1 = y0, y1
+        nrm = math.sqrt(abs(x0) ** 2 + abs(x1) ** 2)
+        vec[0, j], vec[1, j] = x0 / nrm, x1 / nrm
+
+
+@njit(**_KW)
+def _lu(A, piv):
+    """In-place LU with partial pivoting of a square complex matrix; False if singular."""
+    n = A.shape[0]
+    for j in range(n):
+        p = j
+        big = abs(A[j, j])
+        for i in range(j + 1, n):
+            if abs(A[i, j]) > big:
+                big = abs(A[i, j])
+                p = i
+        piv[j] = p
+        if big == 0.0:
+            return False
+        if p != j:
+            for c in range(n):
+                t = A[j, c]
+                A[j, c] = A[p, c]
+                A[p, c] = t
+        inv = 1.0 / A[j, j]
+        for i in range(j + 1, n):
+            f = A[i, j] * inv
+            A[i, j] = f
+            if f != 0:
+                for c in range(j + 1, n):
+                    A[i, c] -= f * A[j, c]
+    return True
+
+
+@njit(**_KW)
+def _lu_solve(A, piv, B):
+    """Solves A X = B in place (B, shape (n, m)) with ``_lu``'s factors."""
+    n, m = B.shape
+    for j in range(n):
+        p = piv[j]
+        if p != j:
+            for c in range(m):
+                t = B[j, c]
+                B[j, c] = B[p, c]
+                B[p, c] = t
+    for c in range(m):
+        for i in range(n):
+            s = B[i, c]
+            for k in range(i):
+                s -= A[i, k] * B[k, c]
+            B[i, c] = s
+        for i in range(n - 1, -1, -1):
+            s = B[i, c]
+            for k in range(i + 1, n):
+                s -= A[i, k] * B[k, c]
+            B[i, c] = s / A[i, i]
+
+
+@njit(**_KW)
+def _lu_solve_t(A, piv, B):
+    """Solves A^T X = B in place with ``_lu``'s factors (P A = L U: A^T = U^T L^T P)."""
+    n, m = B.shape
+    for c in range(m):
+        for i in range(n):
+            s = B[i, c]
+            for k in range(i):
+                s -= A[k, i] * B[k, c]
+            B[i, c] = s / A[i, i]
+        for i in range(n - 1, -1, -1):
+            s = B[i, c]
+            for k in range(i + 1, n):
+                s -= A[k, i] * B[k, c]
+            B[i, c] = s
+    for j in range(n - 1, -1, -1):
+        p = piv[j]
+        if p != j:
+            for c in range(m):
+                t = B[j, c]
+                B[j, c] = B[p, c]
+                B[p, c] = t
+
+
+@njit(**_KW)
+def _schur(Kt, Om, lam, cidx, ridx, X, S, dS):
+    """S(lam) = T_CC - E_CR T_RR^{-1} E_RC and dS/dlam into S, dS; X = T_RR^{-1} E_RC;
+    False where T_RR is singular."""
+    nr = ridx.size
+    rc = cidx.size
+    A = np.empty((nr, nr), np.complex128)
+    Yt = np.empty((nr, rc), np.complex128)
+    for a in range(nr):
+        ia = ridx[a]
+        for b in range(nr):
+            A[a, b] = Kt[ia, ridx[b]]
+        z = lam - 1j * Om[ia]
+        A[a, a] += z * z
+        for b in range(rc):
+            X[a, b] = Kt[ia, cidx[b]]
+            Yt[a, b] = Kt[cidx[b], ia]
+    for a in range(rc):
+        for b in range(rc):
+            S[a, b] = Kt[cidx[a], cidx[b]]
+            dS[a, b] = 0.0
+        z = lam - 1j * Om[cidx[a]]
+        S[a, a] += z * z
+        dS[a, a] = 2 * z
+    if nr == 0:
+        return True
+    piv = np.empty(nr, np.int64)
+    if not _lu(A, piv):
+        return False
+    _lu_solve(A, piv, X)
+    _lu_solve_t(A, piv, Yt)
+    for a in range(rc):
+        for b in range(rc):
+            s = 0j
+            t = 0j
+            for c in range(nr):
+                s += Kt[cidx[a], ridx[c]] * X[c, b]
+                t += Yt[c, a] * (2 * (lam - 1j * Om[ridx[c]])) * X[c, b]
+            S[a, b] -= s
+            dS[a, b] += t
+    return True
+
+
+@njit(**_KW)
+def _newton(Kt, Om, lam, cidx, ridx, scale, y, deflate):
+    """Newton on det S(lambda) from ``lam`` (steps -1 / tr(S^{-1} S'), with ``deflate``
+    the mirror root -conj(lambda) divided out) until a step is below TOL (quadratic
+    convergence: the step after it is below round-off); the eigenvalue and its C part
+    into y. Returns (lambda, settled)."""
+    rc = cidx.size
+    X = np.empty((ridx.size, rc), np.complex128)
+    S = np.empty((rc, rc), np.complex128)
+    dS = np.empty((rc, rc), np.complex128)
+    piv = np.empty(rc, np.int64)
+    for _ in range(STEPS):
+        if not _schur(Kt, Om, lam, cidx, ridx, X, S, dS):
+            return lam, False
+        if not _lu(S, piv):
+            break  # exactly singular: an eigenvalue
+        _lu_solve(S, piv, dS)
+        tr = 0j
+        for a in range(rc):
+            tr += dS[a, a]
+        if deflate and lam.real > 1e-9 * scale:
+            # the mirror root -conj(lambda) deflated (Maehly): a growing pair's roots are
+            # 2 Re lambda apart, and Newton on det S alone crawls between them
+            tr -= 1.0 / (2.0 * lam.real)
+        if tr == 0:
+            return lam, False
+        step = -1.0 / tr
+        lam += step
+        if abs(step) <= TOL * (abs(lam) + scale):
+            break
+    else:
+        return lam, False
+    # the null vector of S(lambda): one inverse-iteration step
+    _schur(Kt, Om, lam, cidx, ridx, X, S, dS)
+    B = np.ones((rc, 1), np.complex128)
+    if _lu(S, piv):
+        _lu_solve(S, piv, B)
+        nrm = 0.0
+        for a in range(rc):
+            nrm = max(nrm, abs(B[a, 0]))
+        for a in range(rc):
+            y[a] = B[a, 0] / nrm
+    else:  # a zero pivot: its column is free
+        for a in range(rc):
+            y[a] = 0.0
+        j = 0
+        for a in range(rc):
+            if S[a, a] == 0:
+                j = a
+        y[j] = 1.0
+        for i in range(j - 1, -1, -1):
+            t = 0j
+            for c in range(i + 1, rc):
+                t += S[i, c] * y[c]
+            y[i] = -t / S[i, i] if S[i, i] != 0 else 0.0
+    return lam, True
+
+
+@njit(**_KW)
+def _fold(Kt, Om, lam, cidx, ridx, X):
+    """Sigma(lam) (r_c x r_c) and X = T_RR(lam)^{-1} E_RC (into ``X``); ok flag."""
+    nr = ridx.size
+    rc = cidx.size
+    A = np.empty((nr, nr), np.complex128)
+    for a in range(nr):
+        ia = ridx[a]
+        for b in range(nr):
+            A[a, b] = Kt[ia, ridx[b]]
+        z = lam - 1j * Om[ia]
+        A[a, a] += z * z
+    for a in range(nr):
+        for b in range(rc):
+            X[a, b] = Kt[ridx[a], cidx[b]]
+    piv = np.empty(nr, np.int64)
+    Sig = np.zeros((rc, rc), np.complex128)
+    if nr == 0:
+        return Sig, True
+    if not _lu(A, piv):
+        return Sig, False
+    _lu_solve(A, piv, X)
+    for a in range(rc):
+        for b in range(rc):
+            s = 0j
+            for c in range(nr):
+                s += Kt[cidx[a], ridx[c]] * X[c, b]
+            Sig[a, b] = s
+    return Sig, True
+
+
+@njit(**_KW)
+def _small_pencil(Kt, Om, cidx, Sig):
+    """Eigenvalues of the r_c x r_c pencil (lam - i Omega_C)^2 + K_CC - Sig."""
+    rc = cidx.size
+    A = np.zeros((2 * rc, 2 * rc), np.complex128)
+    for a in range(rc):
+        A[a, rc + a] = 1.0
+        oa = Om[cidx[a]]
+        for b in range(rc):
+            A[rc + a, b] = -(Kt[cidx[a], cidx[b]] - Sig[a, b])
+        A[rc + a, a] += oa * oa
+        A[rc + a, rc + a] = 2j * oa
+    return np.linalg.eigvals(A)
+
+
+@njit(**_KW)
+def _polymul(a, b):
+    """Coefficients (ascending) of the product of two polynomials."""
+    out = np.zeros(a.size + b.size - 1, np.complex128)
+    for i in range(a.size):
+        for j in range(b.size):
+            out[i + j] += a[i] * b[j]
+    return out
+
+
+@njit(**_KW)
+def _frozen(Kt, Om, cidx, Sig, centre, scale):
+    """The eigenvalues of the frozen pencil (``_small_pencil``). Up to three coordinates:
+    the roots of its determinant, a polynomial of degree 2 r_c in z = lambda - centre
+    (products of each coordinate's quadratic (z + centre - i Omega_c)^2 + A_cc and the
+    couplings A = K_CC - Sigma), by Aberth's iteration from the uncoupled roots: LAPACK's
+    zgeev takes 12 us on 4 x 4 and 28 us on 6 x 6, this ~1 us. Beyond three coordinates,
+    or where Aberth does not settle, LAPACK."""
+    rc = cidx.size
+    if rc > 3:
+        return _small_pencil(Kt, Om, cidx, Sig)
+    A = np.empty((rc, rc), np.complex128)
+    for a in range(rc):
+        for b in range(rc):
+            A[a, b] = Kt[cidx[a], cidx[b]] - Sig[a, b]
+    quad = np.empty((rc, 3), np.complex128)
+    for c in range(rc):
+        bc = centre - 1j * Om[cidx[c]]
+        quad[c, 0] = bc * bc + A[c, c]
+        quad[c, 1] = 2 * bc
+        quad[c, 2] = 1.0
+    if rc == 1:
+        poly = quad[0].copy()
+    elif rc == 2:
+        poly = _polymul(quad[0], quad[1])
+        poly[0] -= A[0, 1] * A[1, 0]
+    else:
+        poly = _polymul(_polymul(quad[0], quad[1]), quad[2])
+        for c, (a, b) in enumerate(((1, 2), (0, 2), (0, 1))):
+            cross = A[a, b] * A[b, a]
+            for m in range(3):
+                poly[m] -= quad[c, m] * cross
+        poly[0] += A[0, 1] * A[1, 2] * A[2, 0] + A[0, 2] * A[1, 0] * A[2, 1]
+    D = 2 * rc
+    z = np.empty(D, np.complex128)
+    for c in range(rc):
+        r = 1j * np.sqrt(A[c, c] + 0j)
+        z[2 * c] = -(centre - 1j * Om[cidx[c]]) + r
+        z[2 * c + 1] = -(centre - 1j * Om[cidx[c]]) - r
+    for k in range(D):  # Aberth needs distinct starts
+        for j in range(k):
+            if abs(z[k] - z[j]) < 1e-9 * scale:
+                z[k] += 1e-6 * scale * (k + 1) * (0.6 + 0.8j)
+    for _ in range(60):
+        big = 0.0
+        for k in range(D):
+            pv = poly[D]
+            dp = 0j
+            for m in range(D - 1, -1, -1):
+                dp = dp * z[k] + pv
+                pv = pv * z[k] + poly[m]
+            if pv == 0:
+                continue
+            if dp == 0:
+                return _small_pencil(Kt, Om, cidx, Sig)
+            w = pv / dp
+            rep = 0j
+            for j in range(D):
+                if j != k:
+                    rep += 1.0 / (z[k] - z[j])
+            den = 1.0 - w * rep
+            if den == 0:
+                return _small_pencil(Kt, Om, cidx, Sig)
+            corr = w / den
+            z[k] -= corr
+            big = max(big, abs(corr) / (abs(z[k]) + scale))
+        if big <= 1e-15:
+            return z + centre
+    return _small_pencil(Kt, Om, cidx, Sig)
+
+
+@njit(**_KW)
+def _offset(Kt, Om, lvec, cidx, ridx, lo, hi, floor, om, out_lam, out_vec):
+    """The eigenvalues of one cluster (roots in [lo, hi] on the imaginary axis) with
+    Re lambda > floor: into out_lam / out_vec (full coordinates); their count, or -1 where
+    Newton did not settle. Starts: the pencil with the fold frozen at the cluster's centre
+    (all its eigenvalues there at once): each that grows, and, for two of them close on
+    the axis (a collision the fold frozen at the centre may not resolve), each that grows
+    with the fold frozen again between them."""
+    rc = cidx.size
+    nr = ridx.size
+    X = np.empty((nr, rc), np.complex128)
+    width = hi - lo
+    scale = width + om
+    Sig, ok = _fold(Kt, Om, 0.5j * (lo + hi), cidx, ridx, X)
+    if not ok:
+        return -1
+    lam0 = _frozen(Kt, Om, cidx, Sig, 0.5j * (lo + hi), scale)
+    inside = np.zeros(lam0.size, np.bool_)
+    for s in range(lam0.size):
+        inside[s] = (lo - 0.5 * width <= lam0[s].imag <= hi + 0.5 * width
+                     and lam0[s].real >= -1e-9 * om)
+    starts = np.empty(lam0.size * lam0.size, np.complex128)
+    ns = 0
+    for s in range(lam0.size):
+        if inside[s] and lam0[s].real > 1e-9 * om:
+            starts[ns] = lam0[s]
+            ns += 1
+    for s in range(lam0.size):
+        for t in range(s + 1, lam0.size):
+            gap = abs(lam0[s] - lam0[t])
+            if not (inside[s] and inside[t] and gap < 0.1 * width + 1e-6 * om):
+                continue
+            if lam0[s].real > 1e-9 * om or lam0[t].real > 1e-9 * om:
+                continue  # a growing pair: already a start
+            # two close on the axis: the fold frozen again between them (its error is
+            # then second order in their distance) says whether they meet
+            mid = 0.5 * (lam0[s] + lam0[t])
+            Sig, ok = _fold(Kt, Om, 1j * mid.imag, cidx, ridx, X)
+            if not ok:
+                return -1
+            lam1 = _frozen(Kt, Om, cidx, Sig, 1j * mid.imag, scale)
+            for u in range(lam1.size):
+                if lam1[u].real > 1e-9 * om and abs(lam1[u] - mid) < 2 * gap + 1e-6 * om:
+                    starts[ns] = lam1[u]
+                    ns += 1
+                    break
+    found = 0
+    y = np.empty(rc, np.complex128)
+    for s in range(ns):
+        lam, settled = _newton(Kt, Om, starts[s], cidx, ridx, scale, y, True)
+        if not settled or not (lo - 0.5 * width <= lam.imag <= hi + 0.5 * width):
+            lam, settled = _newton(Kt, Om, starts[s], cidx, ridx, scale, y, False)
+        if not settled:
+            return -1
+        if lam.real <= floor:
+            continue
+        if not (lo - 0.5 * width <= lam.imag <= hi + 0.5 * width):
+            return -1  # Newton left the cluster: let the dense eigenproblem decide
+        dup = False
+        for f in range(found):
+            if abs(out_lam[f] - lam) <= 1e-9 * scale:
+                dup = True
+        if dup:
+            continue
+        if found >= out_lam.size:
+            return -1
+        Sig, ok = _fold(Kt, Om, lam, cidx, ridx, X)
+        for a in range(rc):
+            out_vec[found, cidx[a]] = y[a]
+        for a in range(nr):
+            acc = 0j
+            for b in range(rc):
+                acc += X[a, b] * y[b]
+            out_vec[found, ridx[a]] = -acc
+        out_lam[found] = lam
+        found += 1
+    return found
+
+
+@njit(**_KW)
+def sideband_modes(Hh, masses, k, omega, P, offsets, floor, max_modes, max_cluster):
+    """For each offset: the growing eigenvalues of every cluster that can hold a mode
+    centred at l = -1, 0, 1 (module docstring), with their eigenvectors in the harmonics'
+    coordinates (field-major inside a harmonic, as ``_exact``'s dense pencil).
+
+    Returns lam (Q, max_modes) complex (count per offset in ``count``), vec
+    (Q, max_modes, n) complex, count (Q,) int: -1 where the offset needs the dense
+    eigenproblem (an iteration did not settle, more growing modes than max_modes, or a
+    cluster of more than max_cluster coordinates: strong coupling or a flat branch whose
+    copies l omega + w and (l + 2) omega - w meet at every harmonic chain the discs).
+    """
+    d = masses.size
+    nl = 2 * P + 1
+    n = d * nl
+    Q = offsets.size
+    lam_out = np.zeros((Q, max_modes), np.complex128)
+    vec_out = np.zeros((Q, max_modes, n), np.complex128)
+    count = np.zeros(Q, np.int64)
+    sq = 1.0 / np.sqrt(masses)
+    sq_n = np.empty(n)
+    for i in range(n):
+        sq_n[i] = sq[i % d]
+    Om = np.empty(n)
+    lvec = np.empty(n, np.int64)
+    for li in range(nl):
+        for a in range(d):
+            Om[li * d + a] = (li - P) * omega
+            lvec[li * d + a] = li - P
+    K = np.empty((n, n), np.complex128)
+    V = np.zeros((n, n), np.complex128)
+    w2 = np.empty(n)
+    Rrow = np.empty(n)
+    ed = np.empty(4 * P + 1, np.complex128)
+    for s in range(4 * P + 1):
+        ed[s] = np.exp(-1j * (s - 2 * P) * k)
+    eq = np.empty(nl, np.complex128)
+    blk = np.empty((d, d), np.complex128)
+    ev2 = np.empty(2)
+    evec2 = np.empty((2, 2), np.complex128)
+    Kt = np.empty((n, n), np.complex128)
+    for iq in range(Q):
+        q = offsets[iq]
+        for li in range(nl):
+            eq[li] = np.exp(1j * (q + (li - P) * k))
+        # L(q), scaled: block (l, h) = A + B e^{i th_h} + C e^{-i th_l} + D e^{-i (l-h) k}
+        for li in range(nl):
+            el = np.conj(eq[li])
+            for hi_ in range(nl):
+                s = li - hi_ + 2 * P
+                eh = eq[hi_]
+                for a in range(d):
+                    for b in range(d):
+                        val = (Hh[s, a, b] + Hh[s, a, d + b] * eh + Hh[s, d + a, b] * el
+                               + Hh[s, d + a, d + b] * ed[s])
+                        K[li * d + a, hi_ * d + b] = val * sq[a] * sq[b]
+        if d == 1:  # the diagonal "blocks" are numbers: no rotation
+            for i in range(n):
+                w2[i] = K[i, i].real
+            Kt[:, :] = K
+        else:  # each harmonic's diagonal block diagonalised
+            for li in range(nl):
+                for a in range(d):
+                    for b in range(d):
+                        blk[a, b] = 0.5 * (K[li * d + a, li * d + b]
+                                           + np.conj(K[li * d + b, li * d + a]))
+                if d == 2:
+                    _eigh2(blk, ev2, evec2)
+                    ev, evec = ev2, evec2
+                else:
+                    ev, evec = np.linalg.eigh(blk)
+                for a in range(d):
+                    w2[li * d + a] = ev[a]
+                    for b in range(d):
+                        V[li * d + b, li * d + a] = evec[b, a]
+            # Kt = V^* K V, block by block (V is block diagonal)
+            for li in range(nl):
+                for hi_ in range(nl):
+                    for a in range(d):
+                        for b in range(d):
+                            acc = 0j
+                            for c in range(d):
+                                vc = np.conj(V[li * d + c, li * d + a])
+                                for e in range(d):
+                                    acc += (vc * K[li * d + c, hi_ * d + e]
+                                            * V[hi_ * d + e, hi_ * d + b])
+                            Kt[li * d + a, hi_ * d + b] = acc
+        for i in range(n):
+            r = 0.0
+            for j in range(n):
+                if lvec[j] != lvec[i]:
+                    r += abs(Kt[i, j])
+            Rrow[i] = r
+            # the diagonal block is diag(w^2) exactly in these coordinates
+            for j in range(n):
+                if lvec[j] == lvec[i]:
+                    Kt[i, j] = w2[i] if i == j else 0.0
+        # roots and their discs: (lo, hi, sign, coordinate); sign 0: a joint disc
+        m = 0
+        lo_ = np.empty(2 * n)
+        hi2 = np.empty(2 * n)
+        sg = np.empty(2 * n, np.int64)
+        co = np.empty(2 * n, np.int64)
+        for i in range(n):
+            c = Om[i]
+            if w2[i] > Rrow[i]:
+                w = math.sqrt(w2[i])
+                rho = w - math.sqrt(w2[i] - Rrow[i])
+                for sgn in (1, -1):
+                    lo_[m] = c + sgn * w - rho
+                    hi2[m] = c + sgn * w + rho
+                    sg[m] = sgn
+                    co[m] = i
+                    m += 1
+            else:
+                rho = math.sqrt(abs(w2[i]) + Rrow[i])
+                lo_[m] = c - rho
+                hi2[m] = c + rho
+                sg[m] = 0
+                co[m] = i
+                m += 1
+        order = np.argsort(lo_[:m])
+        found = 0
+        start = 0
+        bad = False
+        while start < m and not bad:
+            end = start + 1
+            top = hi2[order[start]]
+            while end < m and lo_[order[end]] <= top:
+                top = max(top, hi2[order[end]])
+                end += 1
+            plus = minus = joint = central = False
+            for t in range(start, end):
+                j = order[t]
+                plus |= sg[j] == 1
+                minus |= sg[j] == -1
+                joint |= sg[j] == 0
+                central |= abs(lvec[co[j]]) <= 1
+            if central and (joint or (plus and minus)):
+                inC = np.zeros(n, np.bool_)
+                for t in range(start, end):
+                    inC[co[order[t]]] = True
+                cidx = np.flatnonzero(inC)
+                ridx = np.flatnonzero(~inC)
+                if cidx.size > max_cluster:
+                    bad = True
+                    break
+                lam_c = np.zeros(max_modes, np.complex128)
+                vec_c = np.zeros((max_modes, n), np.complex128)
+                got = _offset(Kt, Om, lvec, cidx, ridx, lo_[order[start]], top, floor,
+                              omega, lam_c, vec_c)
+                if got < 0 or found + got > max_modes:
+                    bad = True
+                else:
+                    for g in range(got):
+                        lam_out[iq, found] = lam_c[g]
+                        # back to the harmonics' coordinates: M^{-1/2} V y
+                        if d == 1:
+                            vec_out[iq, found] = vec_c[g] * sq_n
+                        else:
+                            vec_out[iq, found] = (V @ vec_c[g]) * sq_n
+                        found += 1
+            start = end
+        count[iq] = -1 if bad else found
+    return lam_out, vec_out, count
