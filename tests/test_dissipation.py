@@ -312,8 +312,13 @@ def test_lossless_limit_is_todays_answer():
     assert (x.amplification, x.amplification_time, x.observable) == (1.0, 0.0, False)
     # the lossy twin at zero damping answers as the lossless model
     twin = parse_model(FPUT_LOSSY)
-    assert exact_amplification(load_model(twin, gamma=0.0), 2.5, 0.2, N=64) == \
-        exact_amplification(load_model("fput", beta=1.0), 2.5, 0.2, N=64)
+    a = exact_amplification(load_model(twin, gamma=0.0), 2.5, 0.2, N=64)
+    b = exact_amplification(load_model("fput", beta=1.0), 2.5, 0.2, N=64)
+    # two generated modules of one energy differ in round-off (1e-16 relative), which may
+    # pick another of two ring offsets whose rates tie to that level: compare the answer
+    assert (a.carrier_damping, a.amplification, a.amplification_time, a.observable) == \
+        (b.carrier_damping, b.amplification, b.amplification_time, b.observable)
+    assert a.initial_gain == pytest.approx(b.initial_gain, rel=1e-12)
 
 
 def test_along_decay_sampling_against_dense_quadrature():
