@@ -17,6 +17,9 @@ class Units:
 
     seconds_per_T: float | None = None  # sqrt(m / k_l)
     metres_per_site: float | None = None  # a
+    #: the lattice time's name in the printed units ("T" for the paper chain, "time" for a
+    #: model, whose file sets its time unit: cli/units.py)
+    time_name: str = "T"
 
     @classmethod
     def physical(cls, m, k_l, a) -> Units:
@@ -24,13 +27,13 @@ class Units:
 
     def rate(self, sigma: float) -> str:
         """A growth rate in 1/T, and in 1/s with its e-folding time."""
-        s = f"{sigma:.4g} 1/T"
+        s = f"{sigma:.4g} 1/{self.time_name}"
         if self.seconds_per_T and math.isfinite(sigma):
             s += f" = {sigma / self.seconds_per_T:.4g} 1/s"
         return s
 
     def time(self, T: float) -> str:
-        s = f"{T:.4g} T"
+        s = f"{T:.4g} {self.time_name}"
         if self.seconds_per_T and math.isfinite(T):
             s += f" = {T * self.seconds_per_T:.4g} s"
         return s

@@ -20,7 +20,10 @@ def run_map(args) -> int:
     from numerics.maps import ModelMapParameters, model_text, parse_spec
     from numerics.maps import run_map as run_engine
 
+    from .units import ModelUnits, model_units
+
     model, axes = load(args, axes_ok=True)
+    units = model_units(args)
     k_axis = None
     k_fixed = None
     if args.k is not None:
@@ -91,7 +94,8 @@ def run_map(args) -> int:
         model=args.model, text=model_text(args.model), parameters=tuple(model.params.items()),
         rows=y, cols=x, amplitude=float(amp), k=k_fixed,
         branch=None if args.branch is None else str(args.branch), exact=bool(args.exact),
-        theory_only=not simulated, N=args.N, seeds=seeds, t_end=t_end, block=args.block)
+        theory_only=not simulated, N=args.N, seeds=seeds, t_end=t_end, block=args.block,
+        time_unit_s=units.seconds_per_T, length_unit_m=units.metres_per_site)
     check_output(args.out)
     log = (lambda *a: print(*a, file=sys.stderr)) if args.json else print
     n_workers = args.workers or (1 if args.scheduler else None)
@@ -107,6 +111,8 @@ def run_map(args) -> int:
            + (f"{t_end:g})" if t_end is not None else "from each cell's exact rate)")
            if simulated else "")
         + f" on {n_workers or local_cores()} worker(s)")
+    log(f"units: {units.describe()} (the store's numbers in lattice units, the factors in "
+        "its attributes time_unit_s and length_unit_m)")
     out = prepare_output(args.out, cache=False)
     path = out / "map.zarr"
     existed = path.exists()
@@ -127,9 +133,24 @@ def run_map(args) -> int:
     _plot_map(_as_words(ds, verdicts), png, model)
     files = [str(path), str(png)]
     if args.json:
-        _emit({"model": model.name, "parameters": dict(model.params), "amplitude": amp,
+        res = {"model": model.name, "parameters": dict(model.params), "amplitude": amp,
                "axes": {x[0]: list(map(float, x[1])), y[0]: list(map(float, y[1]))},
-               "mi_share": mi, "files": files})
+               "mi_share": mi, "files": files}
+        u, _ = ModelUnits.json(units, {})
+        if "k" in res["axes"]:  # the k axis, in rad/m too
+            u["lattice"]["k"] = "rad/site"
+            if units.metres_per_site:
+                u["si"]["k"] = "rad/m"
+                res["si"] = {"axes": {"k": [v / units.metres_per_site
+                                            for v in res["axes"]["k"]]}}
+        if k_fixed is not None:
+            res["k"] = k_fixed
+            u["lattice"]["k"] = "rad/site"
+            if units.metres_per_site:
+                u["si"]["k"] = "rad/m"
+                res["si"] = {"k": k_fixed / units.metres_per_site}
+        res["units"] = u
+        _emit(res)
         return 0
     for v, share in mi.items():
         print(f"MI share, {v.replace('verdict_', '')}: {share:.0%}")

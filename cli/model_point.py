@@ -148,10 +148,22 @@ def _losses(model, k, amplitude, branch, N, out, spec, fw) -> None:
                                                          first=spec))
 
 
-def _loss_table(out) -> None:
-    """The table of a lossy point's amplifications (printed after the verdicts)."""
+def _times(x, f):
+    """x f, None where either is None."""
+    return None if x is None or f is None else x * f
+
+
+def _inverse(rate):
+    """The e-folding time 1/rate of a positive rate, else None."""
+    return 1 / rate if rate is not None and rate > 0 else None
+
+
+def _loss_table(out, units=None) -> None:
+    """The table of a lossy point's amplifications (printed after the verdicts; the time
+    also in s where --time-unit is given)."""
+    t_f = units.factor("time") if units is not None else None
     print(f"{'with losses':<20} {'carrier damping':>16} {'amplification':>14} "
-          f"{'at time':>10} {'observable':>11}")
+          f"{'at time':>10} {'observable':>11}" + (f" {'at time (s)':>12}" if t_f else ""))
     for name in ("semi-discrete NLS", "four-wave", "exact lattice", "simulated"):
         t = out.get(name, {})
         if "amplification" not in t:
@@ -160,7 +172,8 @@ def _loss_table(out) -> None:
         amp_s = "inf" if amp is None and t["observable"] else _fmt(amp, 4)
         obs = {True: "yes (>= 20x)", False: "no", None: "-"}[t["observable"]]
         print(f"{name:<20} {_fmt(t.get('carrier_damping'), 3):>16} {amp_s:>14} "
-              f"{_fmt(t['amplification_time'], 4):>10} {obs:>11}")
+              f"{_fmt(t['amplification_time'], 4):>10} {obs:>11}"
+              + (f" {_fmt(_times(t['amplification_time'], t_f), 4):>12}" if t_f else ""))
 
 
 def _coefficients_or_undefined(model, k, amplitude, branch) -> dict:
@@ -210,7 +223,10 @@ def run_point(args) -> int:
     from numerics.lattice import checks
     from numerics.models import exact_gain_checked, snap_ring
 
+    from .units import add_units, model_units
+
     model = load(args)
+    units = model_units(args)
     checks.real("--k", args.k, 0.0, math.pi)
     checks.real("--amplitude", args.amplitude, 0.0, None)
     if args.t_end is not None and not args.simulate:
@@ -265,7 +281,7 @@ def run_point(args) -> int:
                                      spec, fw)}
     if args.simulate:
         out["curves"]["simulated"] = out["simulated"].pop("curve")
-    out = strict_json(out)
+    out = strict_json(add_units(out, units))
     if args.out:
         import json
 
@@ -283,18 +299,27 @@ def run_point(args) -> int:
         return 0
     print(f"model:    {model.describe()}")
     print(f"carrier:  k = {co['k']:g} rad/site (2 pi m / N on the ring of N = {args.N}) on "
-          f"branch {co['branch']} (field {co['field']}), amplitude a = {co['amplitude']:g}")
-    print(f"{'theory':<20} {'verdict':>19} {'peak gain (1/time)':>19} {'at offset':>10}")
+          f"branch {co['branch']} (field {co['field']}), amplitude a = {co['amplitude']:g}"
+          + (f"; k{units.si(co['k'], 'wavenumber')}" if units.metres_per_site else ""))
+    print(f"units:    {units.describe()}")
+    rate_f, k_f = units.factor("rate"), units.factor("wavenumber")
+    print(f"{'theory':<20} {'verdict':>19} {'peak gain (1/time)':>19} {'at offset':>10}"
+          + (f" {'peak gain (1/s)':>16} {'e-folding (s)':>14}" if rate_f else "")
+          + (f" {'offset (rad/m)':>15}" if k_f else ""))
     for name in ("continuum NLS", "semi-discrete NLS", "four-wave", "exact lattice",
                  "simulated"):
         if name in out:
             t = out[name]
             word = t.get("simulation_verdict", t["verdict"])  # a run says what T shows
             gain = t["peak_gain"] if word == "MI" or name != "simulated" else None
-            print(f"{name:<20} {word:>19} {_fmt(gain, 4):>19} "
-                  f"{_fmt(t.get('fastest_offset'), 4):>10}")
+            off = t.get("fastest_offset")
+            print(f"{name:<20} {word:>19} {_fmt(gain, 4):>19} {_fmt(off, 4):>10}"
+                  + (f" {_fmt(_times(gain, rate_f), 4):>16} "
+                     f"{_fmt(_times(_inverse(gain), units.seconds_per_T), 4):>14}"
+                     if rate_f else "")
+                  + (f" {_fmt(_times(off, k_f), 4):>15}" if k_f else ""))
     if model.lossy:
-        _loss_table(out)
+        _loss_table(out, units)
     if co["reason"]:
         print(f"undefined: {co['reason']}")
     ex = out["exact lattice"]

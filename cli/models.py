@@ -24,6 +24,12 @@ def add_model_args(p, json_help="print one JSON object on stdout and nothing els
                         "that dominates it (default: the model's branch field, else 0; for "
                         "flexmm the rotational branch theta)")
     g.add_argument("--json", action="store_true", help=json_help)
+    g.add_argument("--time-unit", dest="time_unit", type=float, metavar="SECONDS",
+                   help="with --model: seconds per unit of the model's time; rates are then "
+                        "also given in 1/s, times in s (the paper chain: --physical)")
+    g.add_argument("--length-unit", dest="length_unit", type=float, metavar="METRES",
+                   help="with --model: the lattice spacing in metres; wavenumbers are then "
+                        "also given in rad/m (k / spacing)")
 
 
 def wants_model(args) -> bool:
@@ -128,7 +134,10 @@ def run_coefficients(args) -> int:
     from numerics.lattice import checks
     from numerics.models import model_coefficients
 
+    from .units import KEYS, add_units, model_units
+
     model = load(args)
+    units = model_units(args)
     checks.real("--k", args.k, 0.0, math.pi)
     checks.real("--amplitude", args.amplitude, 0.0, None)
     co = model_coefficients(model, args.k, args.amplitude, branch_of(args))
@@ -136,30 +145,34 @@ def run_coefficients(args) -> int:
 
     co["four_wave"] = four_wave(model, args.k, args.amplitude, branch_of(args)).row()
     if args.json:
-        _emit(co)
+        _emit(add_units(co, units))
         return 0
+    kind_of = {key: kind for kind, keys in KEYS.items() for key in keys}
     print(f"model:    {model.describe()}")
-    print(f"carrier:  k = {_fmt(co['k'])} rad/site on branch {co['branch']} (field "
-          f"{co['field']}), amplitude a = {_fmt(co['amplitude'])} ({co['field']} = a cos(k n - "
-          "omega t) + harmonics + mean)")
+    print(f"carrier:  k = {_fmt(co['k'])} rad/site{units.si(co['k'], 'wavenumber')} on branch "
+          f"{co['branch']} (field {co['field']}), amplitude a = {_fmt(co['amplitude'])} "
+          f"({co['field']} = a cos(k n - omega t) + harmonics + mean)")
+    print(f"units:    {units.describe()}")
     parts = co["g2_parts"]
-    rows = [("omega", co["omega"]), ("group velocity", co["group_velocity"]),
-            ("g1 = d^2 omega/dk^2", co["g1"]), ("g2", co["g2"])]
-    rows += [(f"  of which {p}", v) for p, v in parts.items()]
-    rows += [("g = g2/g1", co["g"])]
-    for name, v in rows:
-        print(f"{name:<26} {_fmt(v):>14}")
+    rows = [("omega (1/time)", co["omega"], "omega"),
+            ("group velocity (site/time)", co["group_velocity"], "group_velocity"),
+            ("g1 = d^2 omega/dk^2", co["g1"], None), ("g2", co["g2"], None)]
+    rows += [(f"  of which {p}", v, None) for p, v in parts.items()]
+    rows += [("g = g2/g1", co["g"], None)]
+    for name, v, key in rows:
+        print(f"{name:<26} {_fmt(v):>14}" + (units.si(v, kind_of[key]) if key else ""))
     verdict = co["verdict"]
     if verdict != "undefined":
         verdict += " (focusing)" if verdict == "MI" else " (defocusing)"
     print(f"{'verdict (semi-discrete NLS)':<26} {verdict:>14}")
-    for name, key in (("peak gain (1/time)", "peak_gain"), ("e-folding time", "e_folding_time"),
+    for name, key in (("peak gain (1/time)", "peak_gain"),
+                      ("e-folding time (time)", "e_folding_time"),
                       ("fastest offset (rad/site)", "fastest_offset"),
                       ("band edge (rad/site)", "band_edge"),
-                      ("frequency shift", "frequency_shift"),
+                      ("frequency shift (1/time)", "frequency_shift"),
                       ("carrier damping (1/time)", "carrier_damping")):
         if key in co:
-            print(f"{name:<26} {_fmt(co[key]):>14}")
+            print(f"{name:<26} {_fmt(co[key]):>14}{units.si(co[key], kind_of[key])}")
     for f in model.fields:
         print(f"{f + ': 2k harmonic, mean':<26} {_fmt(co['second_harmonic'][f]):>14} "
               f"{_fmt(co['mean'][f]):>12}  (mean strain {_fmt(co['mean_strain'][f])})")
@@ -181,7 +194,10 @@ def run_soliton(args) -> int:
     from numerics.lattice import checks
     from numerics.models import nls
 
+    from .units import add_units, model_units
+
     model = load(args)
+    units = model_units(args)
     checks.real("--k", args.k, 0.0, math.pi)
     checks.real("--amplitude", args.amplitude, 0.0, None)
     if getattr(args, "simulate", False):
@@ -201,13 +217,17 @@ def run_soliton(args) -> int:
            "kink": {f: float(v) for f, v in zip(model.fields, s.kink)},
            "g1": r.g1, "g2": r.g2}
     if args.json:
-        _emit(out)
+        _emit(add_units(out, units))
         return 0
     print(f"model:    {model.describe()}")
-    print(f"carrier:  k = {args.k:g} rad/site on branch {r.carrier.branch}, omega = "
-          f"{r.carrier.omega:.6g}; g1 = {r.g1:.6g}, g2 = {r.g2:.6g}")
-    print(f"{s.kind} soliton, amplitude {s.amplitude:g}: width {s.width:.4g} sites, velocity "
-          f"{s.velocity:.4g} sites/time, frequency {s.frequency:.6g}")
+    print(f"carrier:  k = {args.k:g} rad/site{units.si(args.k, 'wavenumber')} on branch "
+          f"{r.carrier.branch}, omega = {r.carrier.omega:.6g}; g1 = {r.g1:.6g}, "
+          f"g2 = {r.g2:.6g}")
+    print(f"units:    {units.describe()}")
+    print(f"{s.kind} soliton, amplitude {s.amplitude:g}: width {s.width:.4g} sites"
+          f"{units.si(s.width, 'length')}, velocity {s.velocity:.4g} sites/time"
+          f"{units.si(s.velocity, 'velocity')}, frequency {s.frequency:.6g}"
+          f"{units.si(s.frequency, 'rate')}")
     for f, v in zip(model.fields, s.kink):
         if v != 0:
             print(f"kink of {f}: {v:.4g} (step of its mean displacement across the soliton)")

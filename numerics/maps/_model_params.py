@@ -88,6 +88,10 @@ class ModelMapParameters:
     seeds: int = 1
     t_end: float | None = None
     block: int = DEFAULT_BLOCK
+    #: seconds per unit of the model's time and the lattice spacing in metres (the
+    #: store's numbers stay in lattice units; these say how to convert them)
+    time_unit_s: float | None = None
+    length_unit_m: float | None = None
 
     def __post_init__(self):
         from ..lattice import checks
@@ -123,6 +127,9 @@ class ModelMapParameters:
         checks.integer("block", self.block, 1, 10**6 + 1)
         if self.t_end is not None:
             checks.positive("t_end", self.t_end)
+        for unit in ("time_unit_s", "length_unit_m"):
+            if getattr(self, unit) is not None:
+                object.__setattr__(self, unit, checks.positive(unit, getattr(self, unit)))
 
     @classmethod
     def from_model(cls, model: str, rows: tuple, cols: tuple, amplitude: float,
@@ -234,7 +241,8 @@ class ModelMapParameters:
         """The store's attributes: the model (name, file text, content hash), every
         parameter, the amplitude, N, T, seeds, the method and step of the runs."""
         out = {n: v for n, v in asdict(self).items()
-               if n not in ("rows", "cols", "parameters", "text", "k", "branch", "t_end")}
+               if n not in ("rows", "cols", "parameters", "text", "k", "branch", "t_end",
+                            "time_unit_s", "length_unit_m")}
         out.update(model=self.lattice_model.name, model_file=self.text,
                    model_hash=self.lattice_model.lattice.content_hash,
                    axes=f"{self.rows[0]} {self.cols[0]}", branch="" if self.branch is None
@@ -250,6 +258,12 @@ class ModelMapParameters:
                     if n not in (self.rows[0], self.cols[0])})
         # netCDF-safe (a user's to_netcdf of the opened store): no bools, no lists of text
         out.update(exact=int(self.exact), theory_only=int(self.theory_only))
+        # the units, where given ("" none: lattice units only; netCDF has no None)
+        out.update(time_unit_s="" if self.time_unit_s is None else self.time_unit_s,
+                   length_unit_m="" if self.length_unit_m is None else self.length_unit_m,
+                   units="lattice units: time as in the model file, wavenumbers rad per "
+                         "site; in SI: rates / time_unit_s (1/s), times * time_unit_s (s), "
+                         "wavenumbers / length_unit_m (rad/m)")
         return out
 
     def identity(self) -> dict:
@@ -258,7 +272,8 @@ class ModelMapParameters:
         and the model file's text (its comments and description may change; its energy
         is the content hash, its parameter values the ``param_`` attributes)."""
         return {n: v for n, v in self.attrs().items()
-                if n not in ("theory_only", "exact", "model_file")}
+                if n not in ("theory_only", "exact", "model_file", "units")
+                and not (n in ("time_unit_s", "length_unit_m") and v == "")}
 
     def other_map(self, attrs: dict) -> str:
         """What a store of another map holds: another model's, this model's before its
@@ -276,6 +291,12 @@ class ModelMapParameters:
         if attrs.get("theories") != " ".join(self.theory_columns()):
             return (f"a map of model {name!r} of other theories ({attrs.get('theories')}; "
                     "a --theory-only map without --exact has no exact columns to continue)")
+        for unit in ("time_unit_s", "length_unit_m"):
+            mine = getattr(self, unit)
+            if mine is not None and attrs.get(unit) != mine:
+                return (f"a map of model {name!r} with {unit} = {attrs.get(unit) or 'none'} "
+                        f"(asked {mine:g}: the stored numbers are in lattice units either "
+                        "way)")
         return f"a map of model {name!r} with other parameters"
 
     def new_dataset(self):
