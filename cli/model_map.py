@@ -1,6 +1,7 @@
 """`flexmm map --model`: a model's map over two axes, through the one map engine
 (``numerics.maps.run_map``: cells as Dask tasks, the checksummed ``OUT/map.zarr``): the NLS
-per cell, the exact theory with --exact, runs of the ring per cell without --theory-only."""
+per cell, the exact and four-wave theories with --exact, runs of the ring per cell without
+--theory-only."""
 
 from __future__ import annotations
 
@@ -168,6 +169,10 @@ def _as_words(ds, verdicts):
         {v: (ds[v].dims, words[ds[v].values.astype(int) + 1]) for v in verdicts})
 
 
+#: the amplification a lossy map's figure marks observable (the runs' growth threshold)
+OBSERVABLE = 20.0
+
+
 def _plot_map(ds, path: Path, model):
     import matplotlib
 
@@ -190,6 +195,7 @@ def _plot_map(ds, path: Path, model):
 
     code = {"stable": 0, "MI": 1, "undefined": 2}
     panels = [(v, label) for v, label in (("verdict_semidiscrete", "semi-discrete NLS"),
+                                          ("verdict_fourwave", "four-wave"),
                                           ("verdict_exact", "exact lattice"),
                                           ("verdict_simulated", "simulated (MI: grew 20x)"))
               if v in ds]
@@ -201,11 +207,19 @@ def _plot_map(ds, path: Path, model):
         ax.pcolormesh(edges(x, xdim), edges(y, ydim), V,
                       cmap=ListedColormap(["#3b4cc0", "#f2a134", "#bbbbbb"]),
                       vmin=-0.5, vmax=2.5, shading="flat")
+        amp = name.replace("verdict_", "amplification_")
+        marked = amp in ds  # a lossy model's map: the cells whose sidebands grow 20x
+        if marked:
+            X, Y = np.meshgrid(x, y)
+            seen = np.asarray(ds[amp].values, float) >= OBSERVABLE
+            ax.scatter(X[seen], Y[seen], marker="x", color="black", s=30)
         ax.set_xlabel(xdim + (" (rad/site)" if xdim == "k" else ""))
         ax.set_ylabel(ydim + (" (rad/site)" if ydim == "k" else ""))
         ax.set_title(f"{model.name}" + (f" ({fixed})" if fixed else "")  # all swept: none
                      + f", a = {ds.attrs['amplitude']:g}: {label}\n"
-                     "orange MI, blue stable, grey undefined", fontsize=9)
+                     "orange MI, blue stable, grey undefined"
+                     + (f"; x: amplification >= {OBSERVABLE:g}x (observable with losses)"
+                        if marked else ""), fontsize=9)
     fig.tight_layout()
     fig.savefig(path, dpi=120)
     plt.close(fig)

@@ -271,7 +271,8 @@ def test_a_model_map_with_the_exact_theory_per_cell(tmp_path, capsys):
                  "--k", "2.6,2.8", "--amplitude", "0.1", "--N", "64", "--theory-only", "--exact",
                  "--workers", "1", "--out", str(tmp_path), "--json"])
     out = json.loads(capsys.readouterr().out)
-    assert code == 0 and set(out["mi_share"]) == {"verdict_semidiscrete", "verdict_exact"}
+    assert code == 0 and set(out["mi_share"]) == {"verdict_semidiscrete", "verdict_exact",
+                                                  "verdict_fourwave"}
     # the one map engine's store: int8 verdicts (1 MI, 0 stable, -1 undetermined)
     ds = xr.open_zarr(tmp_path / "map.zarr")
     # the NLS and the exact theory agree on both sides of this chain's critical beta

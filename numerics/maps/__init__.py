@@ -43,7 +43,7 @@ from ._devices import DEVICES, resolve_device
 from ._estimate import MapEstimate, estimate_map, machine_speed
 from ._gpu import gpu_status, simulate_cells_gpu, simulate_map_cells_gpu
 from ._integrity import store_lock
-from ._model_params import ModelMapParameters, model_text
+from ._model_params import MODE_KIND_CODES, VERDICT_CODES, ModelMapParameters, model_text
 from ._params import CRITERION, MapParameters, local_cores, parse_spec
 from ._point import (
                      MAX_SEEDS,
@@ -60,7 +60,7 @@ from ._store import MapCellError, cells_done, open_or_create, run_map
 
 __all__ = [
     "resonance_map", "simulate_cell", "cell_step", "growth_of", "measured_peak_gain",
-    "MapParameters", "ModelMapParameters", "model_text",
+    "MapParameters", "ModelMapParameters", "model_text", "VERDICT_CODES", "MODE_KIND_CODES",
     "parse_spec", "run_map", "DEVICES", "resolve_device", "theory_columns", "agreement", "AGREEMENT_MARGIN",
     "open_or_create",
     "simulate_block", "CRITERION", "MapCellError", "local_cores",

@@ -7,8 +7,9 @@ checksums, lock, resume, repair, consolidated metadata), the same Dask tasks.
 
 Dims are the map's two axes, named by the parameter's own name, or ``k`` (rows first: the
 parameter, then k when k is an axis). A task (:func:`model_block`) computes its cells with
-``numerics.models.map_cells``: the semi-discrete NLS per cell, the exact lattice theory on
-the ring of N sites (``exact``, or a simulated map), and the seeded runs from the exact wave.
+``numerics.models.map_cells``: the semi-discrete NLS per cell, the exact lattice theory and
+the four-wave theory on the ring of N sites (``exact``, or a simulated map), and the seeded
+runs from the exact wave.
 The model travels to the workers as its file text and is loaded there once per process.
 """
 
@@ -32,6 +33,16 @@ MODEL_VERDICT_ATTRS = {**VERDICT_ATTRS, "verdict_words": (
     "MI -> 1 (MI); stable, 'no growth within T' -> 0 (stable); undefined (no carrier or no "
     "travelling wave at the cell), undetermined (a run grew, but less than the threshold) "
     "-> -1 (undetermined)")}
+#: the four-wave theory's fastest pair (``FourWave.mode_kind``) -> the store's int8 codes
+MODE_KIND_CODES = {"undefined": -1, "none": 0, "sidebands": 1, "backward": 2,
+                   "parametric": 3}
+#: the mapping, stored with ``mode_kind_fourwave``
+MODE_KIND_ATTRS = {
+    "long_name": "four-wave theory's fastest pair", "flag_values": [-1, 0, 1, 2, 3],
+    "flag_meanings": "undefined none sidebands backward parametric",
+    "mode_kinds": "-1 undefined (no theory), 0 none (stable), 1 sidebands (k +- q on the "
+                  "carrier's branch, q <= pi/2), 2 backward (q > pi/2), 3 parametric (a "
+                  "pair on other branches)"}
 #: rough seconds per cell on one core (the resume message's estimate): the NLS, the exact
 #: theory on a ring of 128 sites, one run of T = 1000 on 128 sites; measured serially for
 #: flexmm (k 0.6 .. 1.2, a = 0.1) on the 2-core VM at load ~4: exact 2-5 s, a run of
@@ -209,12 +220,20 @@ class ModelMapParameters:
 
     def theory_columns(self) -> tuple:
         """The theories of this map's cells, as variable names' suffixes."""
-        return ("semidiscrete", "exact") if self.ring else ("semidiscrete",)
+        return ("semidiscrete", "exact", "fourwave") if self.ring else ("semidiscrete",)
+
+    def amplified(self) -> tuple:
+        """The theories whose amplification a cell stores: each of ``theory_columns`` for a
+        lossy model (``[dissipation]``, issue 42), none for a lossless one."""
+        return self.theory_columns() if self.lattice_model.lossy else ()
 
     def flag_columns(self) -> dict:
         theory = ["g1", "g2", "k_simulated"] + [f"{kind}_{name}" for name in
                                                 self.theory_columns()
                                                 for kind in ("verdict", "peak_gain")]
+        if "fourwave" in self.theory_columns():
+            theory.append("mode_kind_fourwave")
+        theory += [f"amplification_{name}" for name in self.amplified()]
         return {"done": SIMULATED_COLUMNS, "done_predicted": tuple(sorted(theory))}
 
     @property
@@ -254,6 +273,8 @@ class ModelMapParameters:
                         "highest frequency, rounded so that the steps fill T",
                    growth_threshold=GROWTH_THRESHOLD, map_of="model",
                    theories=" ".join(self.theory_columns()))
+        if self.amplified():  # a lossy model's store only (a lossless store's identity kept)
+            out["amplification"] = " ".join(self.amplified())
         out.update({f"param_{n}": v for n, v in self.parameters
                     if n not in (self.rows[0], self.cols[0])})
         # netCDF-safe (a user's to_netcdf of the opened store): no bools, no lists of text
@@ -289,8 +310,13 @@ class ModelMapParameters:
                     f"(content hash {str(attrs.get('model_hash'))[:12]} against "
                     f"{mine[:12]}: the model file changed)")
         if attrs.get("theories") != " ".join(self.theory_columns()):
-            return (f"a map of model {name!r} of other theories ({attrs.get('theories')}; "
-                    "a --theory-only map without --exact has no exact columns to continue)")
+            return (f"a map of model {name!r} of other theories ({attrs.get('theories')} "
+                    f"against {' '.join(self.theory_columns())}; a --theory-only map without "
+                    "--exact has no exact columns to continue, a store made before the "
+                    "four-wave columns none of those)")
+        if attrs.get("amplification", "") != " ".join(self.amplified()):
+            return (f"a map of lossy model {name!r} made before its amplification columns "
+                    f"(amplification_<theory> of {' '.join(self.amplified())})")
         for unit in ("time_unit_s", "length_unit_m"):
             mine = getattr(self, unit)
             if mine is not None and attrs.get(unit) != mine:
@@ -310,7 +336,10 @@ class ModelMapParameters:
         data = {}
         flags = self.flag_columns()
         for name in (*flags["done_predicted"], *SIMULATED_COLUMNS):
-            if name.startswith("verdict_"):
+            if name == "mode_kind_fourwave":
+                data[name] = (dims, np.full(shape, MODE_KIND_CODES["undefined"], np.int8),
+                              dict(MODE_KIND_ATTRS))
+            elif name.startswith("verdict_"):
                 theory = name.removeprefix("verdict_")
                 long = (f"simulated: most seeds grew more than {GROWTH_THRESHOLD:g}x"
                         if theory == "simulated" else f"{theory} theory's verdict")
@@ -337,6 +366,13 @@ VARIABLE_ATTRS = {
     "peak_gain_semidiscrete": {"long_name": "semi-discrete NLS peak growth rate", **_GAIN},
     "peak_gain_exact": {"long_name": "exact lattice theory's peak growth rate on the ring",
                         **_GAIN},
+    "peak_gain_fourwave": {"long_name": "four-wave theory's fastest pair's rate on the ring",
+                           **_GAIN},
+    **{f"amplification_{t}": {
+        "long_name": f"{t} theory's largest amplification of the sidebands along the "
+                     "decaying carrier (inf: the carrier is not damped and a mode grows)",
+        "observable_from": GROWTH_THRESHOLD, "units": "1"} for t in ("semidiscrete", "exact",
+                                                               "fourwave")},
     "peak_gain_simulated": {"long_name": "the seeds' median measured rate where MI", **_GAIN},
     "g1": {"long_name": "d^2 omega/dk^2"},
     "g2": {"long_name": "NLS nonlinear coefficient (mean flow included)"},
@@ -365,9 +401,11 @@ def model_block(params: ModelMapParameters, i: int, js: list, simulate: bool = T
     out = []
     for row in rows:
         out.append({n: (np.int8(VERDICT_CODES[v]) if n.startswith("verdict_") else
+                        np.int8(MODE_KIND_CODES[v]) if n == "mode_kind_fourwave" else
                         float(v) if v is not None else math.nan)
                     for n, v in row.items() if n in keep})
     return {"i": i, "js": list(js), "rows": out, "simulated": simulate}
 
 
-__all__ = ["ModelMapParameters", "model_block", "model_text", "VERDICT_CODES"]
+__all__ = ["ModelMapParameters", "model_block", "model_text", "VERDICT_CODES",
+           "MODE_KIND_CODES"]

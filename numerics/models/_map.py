@@ -202,11 +202,25 @@ def _cell_columns(model, k, amplitude, branch, *, exact, simulate, N, seeds, t_e
                    g1=r.g1, g2=r.g2, reason=r.undefined or "", carrier=True)
     except ModelError as exc:  # e.g. no carrier on this branch at these values
         row["reason"] = str(exc)
+    lossy = model.lossy
+    if lossy:  # issue 42: the sidebands' amplification along the decaying carrier
+        from ._losses import nls_amplification
+
+        row["amplification_semidiscrete"] = _amplification(
+            lambda: nls_amplification(model, k, amplitude, branch)) if row["carrier"] \
+            else math.nan
     if not (exact or simulate):
         row["k_simulated"] = float(k)
         return row
     row["k_simulated"] = snap_ring(k, N)[0]
-    row.update(verdict_exact="undefined", peak_gain_exact=math.nan)
+    fw_columns, fw = _four_wave_columns(model, k, amplitude, branch, N)
+    row.update(verdict_exact="undefined", peak_gain_exact=math.nan, **fw_columns)
+    if lossy:
+        from ._losses import four_wave_amplification
+
+        row["amplification_exact"] = math.nan
+        row["amplification_fourwave"] = math.nan if fw is None else _amplification(
+            lambda: four_wave_amplification(model, k, amplitude, branch, N=N, first=fw))
     if simulate:
         row.update(verdict_simulated="undefined", peak_gain_simulated=math.nan,
                    growth=math.nan, growth_q=math.nan, t_simulated=math.nan)
@@ -215,6 +229,11 @@ def _cell_columns(model, k, amplitude, branch, *, exact, simulate, N, seeds, t_e
     except ModelError:  # no travelling wave here: nothing to launch or measure from
         return row
     row.update(verdict_exact=spec.verdict, peak_gain_exact=spec.peak_gain)
+    if lossy:
+        from ._losses import exact_amplification
+
+        row["amplification_exact"] = _amplification(
+            lambda: exact_amplification(model, k, amplitude, branch, N=N, first=spec))
     if simulate:
         sim = simulate_seeds(model, k, amplitude, spec, branch=branch, N=N, seeds=seeds,
                              t_end=t_end)
@@ -225,6 +244,33 @@ def _cell_columns(model, k, amplitude, branch, *, exact, simulate, N, seeds, t_e
                    growth=float(np.median([g.factor for g in growth])),
                    growth_q=float(top.wavenumber), t_simulated=float(sim.t_end))
     return row
+
+
+def _four_wave_columns(model, k, amplitude, branch, N) -> tuple:
+    """The four-wave theory on the ring of N sites (as ``point``'s four-wave row):
+    ({verdict_fourwave, peak_gain_fourwave, mode_kind_fourwave ('sidebands', 'backward',
+    'parametric', 'none' where stable; 'undefined' without a theory)}, the FourWave or
+    None where it is undefined)."""
+    from ._fourwave import four_wave
+
+    try:
+        fw = four_wave(model, k, amplitude, branch, N=N)
+    except ModelError:  # no carrier on this branch at these values
+        fw = None
+    if fw is None or fw.undefined:
+        return {"verdict_fourwave": "undefined", "peak_gain_fourwave": math.nan,
+                "mode_kind_fourwave": "undefined"}, None
+    return {"verdict_fourwave": fw.verdict, "peak_gain_fourwave": fw.gain,
+            "mode_kind_fourwave": fw.mode_kind}, fw
+
+
+def _amplification(f) -> float:
+    """A theory's amplification with losses (``Amplified.amplification``: inf where the
+    carrier is not damped and a mode grows); nan where the theory has none here."""
+    try:
+        return float(f().amplification)
+    except ModelError:
+        return math.nan
 
 
 def map_cells(model: Model, cells, amplitude: float, branch=None, *, exact: bool = False,
@@ -254,7 +300,13 @@ def map_cells(model: Model, cells, amplitude: float, branch=None, *, exact: bool
         ``peak_gain_semidiscrete``, ``g1``, ``g2``, ``reason`` (why undefined),
         ``carrier`` (False where the branch has no carrier at the cell),
         ``k_simulated`` (k snapped to the ring where the ring is used); with ``exact`` or
-        ``simulate`` ``verdict_exact``, ``peak_gain_exact``; with ``simulate``
+        ``simulate`` ``verdict_exact``, ``peak_gain_exact`` and the four-wave theory on
+        the same ring, ``verdict_fourwave``, ``peak_gain_fourwave``, ``mode_kind_fourwave``
+        ("sidebands", "backward", "parametric", "none" where stable, "undefined"); for a
+        lossy model (``[dissipation]``) ``amplification_<theory>`` of each theory computed
+        (the sidebands' largest amplification along the decaying carrier, inf where the
+        carrier is not damped and a mode grows; nan without a theory); with
+        ``simulate``
         ``verdict_simulated`` (MI, "no growth within T", "undetermined", "undefined"),
         ``peak_gain_simulated`` (the seeds' median rate where MI), ``growth`` (median
         growth factor), ``growth_q`` (wavenumber of the fastest mode of the seed that grew
