@@ -78,8 +78,9 @@ def _fast_trig(f):
 
 
 def _kernels(model: Model):
-    """(accel, srkn_steps, rk4_steps, energy, number of site functions, force) compiled
-    for the model's generated code (force(u, p, out, S): accel's work, four arguments)."""
+    """(accel, srkn_steps, rk4_steps, energy, number of site functions, force, site_loop)
+    compiled for the model's generated code (force(u, p, out, S): accel's work, four
+    arguments; site_loop(u, S, p, out): the generated accelerations_into)."""
     key = (model.code.__name__, model.code.MODEL_HASH)
     if key in _KERNELS:
         return _KERNELS[key]
@@ -199,7 +200,7 @@ def _kernels(model: Model):
             e += cell_energy(x, p)
         return e
 
-    _KERNELS[key] = (accel, srkn_steps, rk4_steps, energy, nf, force)
+    _KERNELS[key] = (accel, srkn_steps, rk4_steps, energy, nf, force, site_loop)
     return _KERNELS[key]
 
 
@@ -374,12 +375,16 @@ def lattice_force(model: Model, u: np.ndarray) -> np.ndarray:
 def compiled_force(model: Model, N: int):
     """force(u, out): the compiled acceleration of a ring of N sites into ``out`` (both
     (d, N), C-contiguous), its work buffers made once: for timing the kernel itself."""
-    nf, kernel = _kernels(model)[4:6]
+    nf, kernel, loop = _kernels(model)[4:7]
     p = np.asarray(model.p, float)
     S = np.empty((max(nf, 1), N))
 
-    def force(u, out):
-        kernel(u, p, out, S)
+    if nf == 0:  # no site functions: the generated loop is the whole force (one call less)
+        def force(u, out):
+            loop(u, S, p, out)
+    else:
+        def force(u, out):
+            kernel(u, p, out, S)
 
     return force
 
