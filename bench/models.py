@@ -288,16 +288,15 @@ def losses_cost(t_end=500.0, N=256) -> dict:
     return out
 
 
-def main(quick=False, out=None):
-    N = 500
-    reps = 200 if quick else 2000
-    rng = np.random.default_rng(0)
-    flex = load_model("flexmm")
-    p = flex.params
-    th, U = rng.normal(0, 0.05, N), rng.normal(0, 1e-3, N)
-    s, c, v, ath, aU = (np.empty(N) for _ in range(5))
-    args = (th, U, True, p["alpha"] ** 2, p["K_s"], p["K_theta"], s, c, v, ath, aU)
-    accel(*args)
+def force_rows(rng, N, reps, args=None):
+    """(fused flexMM kernel, {model: generated force}) ns per site on a ring of N."""
+    if args is None:
+        flex = load_model("flexmm")
+        p = flex.params
+        th, U = rng.normal(0, 0.05, N), rng.normal(0, 1e-3, N)
+        s, c, v, ath, aU = (np.empty(N) for _ in range(5))
+        args = (th, U, True, p["alpha"] ** 2, p["K_s"], p["K_theta"], s, c, v, ath, aU)
+        accel(*args)
     fused = _best(lambda: accel(*args), reps) / N * 1e9
     per_model = {}
     for name in ("flexmm", "flexmm-rotation", "fput", "klein-gordon", "sine-gordon",
@@ -309,6 +308,20 @@ def main(quick=False, out=None):
         outa = np.empty_like(u)
         force(u, outa)  # compile
         per_model[name] = _best(lambda f=force, u=u, o=outa: f(u, o), reps) / N * 1e9
+    return fused, per_model
+
+
+def main(quick=False, out=None):
+    N = 500
+    reps = 200 if quick else 2000
+    rng = np.random.default_rng(0)
+    flex = load_model("flexmm")
+    p = flex.params
+    th, U = rng.normal(0, 0.05, N), rng.normal(0, 1e-3, N)
+    s, c, v, ath, aU = (np.empty(N) for _ in range(5))
+    args = (th, U, True, p["alpha"] ** 2, p["K_s"], p["K_theta"], s, c, v, ath, aU)
+    accel(*args)
+    fused, per_model = force_rows(rng, N, reps, args=args)
     # compile the exact theory's kernels outside every timing (numba caches them on disk:
     # ~12 s once per install on an idle machine, 57 s measured under a load of 6)
     exact_gain(load_model("fput"), 2.0, 0.1, N=32)
@@ -370,5 +383,25 @@ def main(quick=False, out=None):
     return res
 
 
+def force_only(reps=2000, N=500):
+    """The force rows alone (``python -m bench.models --force-only``): printed, not written."""
+    rng = np.random.default_rng(0)
+    fused, per_model = force_rows(rng, N, reps)
+    floor = by_hand(rng, N, reps)
+    print(f"force per site, N = {N}: fused flexMM kernel {fused:.2f} ns; generic:")
+    for name, t in per_model.items():
+        print(f"  {name:<16} {t:6.2f} ns ({t / fused:.2f}x the fused kernel)")
+    for name, r in floor.items():
+        print(f"  {name:<16} generated {r['generated_ns_per_site']:.2f} ns, by hand "
+              f"{r['by_hand_ns_per_site']:.2f} ns: {r['generated_over_by_hand']:.2f}x "
+              "(goal: <= 1.3x)")
+    return fused, per_model, floor
+
+
 if __name__ == "__main__":
-    main(*arguments(__doc__))
+    import sys
+
+    if "--force-only" in sys.argv:
+        force_only()
+    else:
+        main(*arguments(__doc__))

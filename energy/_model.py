@@ -48,8 +48,9 @@ def module_name(name: str) -> str:
 #: The layout of a generated model module (its functions and their arguments); a cached
 #: module of another layout is derived again (2: the site loop accelerations_into, argument
 #: names that no field or parameter can shadow; 3: no text of the model file but checked
-#: names and repr literals, and a last line holding the hash of the body).
-CODEGEN_VERSION = 3
+#: names and repr literals, and a last line holding the hash of the body; 4: the force loop
+#: over the bonds, each bond's pulls computed once, the ring's ends outside the loop).
+CODEGEN_VERSION = 4
 
 #: The last line of a generated model module: sha256 of everything before it.
 BODY_HASH_PREFIX = "# BODY_SHA256 = "

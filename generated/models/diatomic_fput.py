@@ -81,28 +81,44 @@ def site_functions_all(_u, _p, _F):
 
 
 def accelerations_into(_u, _F, _p, _out):
-    """out[i, n] = d^2 u_{i,n}/dt^2 on a ring: the equations of motion, site by site (F from site_functions_all)."""
+    """out[i, n] = d^2 u_{i,n}/dt^2 on a ring: the equations of motion, bond by bond (F from site_functions_all)."""
     _N = _u.shape[1]
+    if _N == 0:
+        return
     m = _p[0]
     alpha = _p[1]
     beta = _p[2]
-    for _n in range(_N):
-        _m = _n - 1 if _n > 0 else _N - 1
-        _l = _n + 1 if _n + 1 < _N else 0
-        u_prev = _u[0, _m]
-        v_prev = _u[1, _m]
+    _r1 = m**(-1.0)
+    v = _u[1, _N - 1]
+    u_next = _u[0, 0]
+    _c0 = u_next - v
+    _c1 = _c0**3*beta + _c0**2*alpha + _c0
+    _w1 = _c1
+    _b0 = -_c1
+    for _n in range(_N - 1):
         u = _u[0, _n]
         v = _u[1, _n]
-        u_next = _u[0, _l]
-        v_next = _u[1, _l]
+        u_next = _u[0, _n + 1]
         _c0 = -v
-        _c1 = -_c0 - u
-        _c2 = _c1**2*alpha
-        _c3 = _c1**3*beta
-        _c4 = u - v_prev
-        _c5 = _c0 + u_next
-        _out[0, _n] = _c2 + _c3 - _c4**3*beta - _c4**2*alpha - 2*u + v + v_prev
-        _out[1, _n] = (-_c2 - _c3 + _c5**3*beta + _c5**2*alpha + u + u_next - 2*v)/m
+        _c1 = _c0 + u_next
+        _c2 = _c1**3*beta + _c1**2*alpha + _c1
+        _c3 = -_c0 - u
+        _c4 = _c3**3*beta + _c3**2*alpha - u + v
+        _h1 = _c2
+        _g0 = -_c2
+        _s0 = _c4
+        _s1 = -_c4
+        _out[0, _n] = _b0 + _s0
+        _out[1, _n] = (_h1 + _s1)*_r1
+        _b0 = _g0
+    u = _u[0, _N - 1]
+    v = _u[1, _N - 1]
+    _c0 = -u + v
+    _c1 = _c0**3*beta + _c0**2*alpha - u + v
+    _s0 = _c1
+    _s1 = -_c1
+    _out[0, _N - 1] = _b0 + _s0
+    _out[1, _N - 1] = (_w1 + _s1)*_r1
 
 
 def cell_hessian_into(_x, _p, _out):
@@ -185,4 +201,4 @@ def taylor(_p):
 def _permutations(idx):
     import itertools
     return set(itertools.permutations(idx))
-# BODY_SHA256 = 11c378619f2ffcfb42479debc52077f27e11029d138c2e3c2573374ffedb57e8
+# BODY_SHA256 = 2a8ac2bb3e570eb585ded85ce93adc44c69225bf8b80eadd6ce7becf6c1231ca

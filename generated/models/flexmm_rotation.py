@@ -72,29 +72,44 @@ def site_functions_all(_u, _p, _F):
 
 
 def accelerations_into(_u, _F, _p, _out):
-    """out[i, n] = d^2 u_{i,n}/dt^2 on a ring: the equations of motion, site by site (F from site_functions_all)."""
+    """out[i, n] = d^2 u_{i,n}/dt^2 on a ring: the equations of motion, bond by bond (F from site_functions_all)."""
     _N = _u.shape[1]
+    if _N == 0:
+        return
     alpha = _p[0]
     K_s = _p[1]
     K_theta = _p[2]
-    for _n in range(_N):
-        _m = _n - 1 if _n > 0 else _N - 1
-        _l = _n + 1 if _n + 1 < _N else 0
-        theta_prev = _u[0, _m]
-        _fm0 = _F[0, _m]
-        _fm1 = _F[1, _m]
+    _r0 = alpha**2
+    theta = _u[0, _N - 1]
+    _fn0 = _F[0, _N - 1]
+    _fn1 = _F[1, _N - 1]
+    theta_next = _u[0, 0]
+    _fl0 = _F[0, 0]
+    _fl1 = _F[1, 0]
+    _c0 = _fl1 - _fn1
+    _c1 = (1/2)*K_theta*(2*theta + 2*theta_next)
+    _c2 = -_fl0 - _fn0 + 2
+    _w0 = K_s*_c0*_fn0 - _c1 - _c2*_fn1
+    _b0 = -K_s*_c0*_fl0 - _c1 - _c2*_fl1
+    for _n in range(_N - 1):
         theta = _u[0, _n]
         _fn0 = _F[0, _n]
         _fn1 = _F[1, _n]
-        theta_next = _u[0, _l]
-        _fl0 = _F[0, _l]
-        _fl1 = _F[1, _l]
-        _c0 = 2*theta
-        _c1 = -_fn1
-        _c2 = (1/2)*K_theta
-        _c3 = (1/2)*_fn0 - 1
-        _c4 = 2*_fn1
-        _out[0, _n] = alpha**2*(-K_s*_fn0*(-_c1 - _fm1) + K_s*_fn0*(_c1 + _fl1) - K_theta*_c0 - _c2*(_c0 + 2*theta_next) - _c2*(_c0 + 2*theta_prev) - _c4*(-_c3 - 1/2*_fl0) - _c4*(-_c3 - 1/2*_fm0))
+        theta_next = _u[0, _n + 1]
+        _fl0 = _F[0, _n + 1]
+        _fl1 = _F[1, _n + 1]
+        _c0 = _fl1 - _fn1
+        _c1 = 2*theta
+        _c2 = (1/2)*K_theta*(_c1 + 2*theta_next)
+        _c3 = -_fl0 - _fn0 + 2
+        _h0 = K_s*_c0*_fn0 - _c2 - _c3*_fn1
+        _g0 = -K_s*_c0*_fl0 - _c2 - _c3*_fl1
+        _s0 = -K_theta*_c1
+        _out[0, _n] = (_b0 + _h0 + _s0)*_r0
+        _b0 = _g0
+    theta = _u[0, _N - 1]
+    _s0 = -2*K_theta*theta
+    _out[0, _N - 1] = (_b0 + _w0 + _s0)*_r0
 
 
 def cell_hessian_into(_x, _p, _out):
@@ -145,4 +160,4 @@ def taylor(_p):
 def _permutations(idx):
     import itertools
     return set(itertools.permutations(idx))
-# BODY_SHA256 = aaed83d57163c2b836157dae072010043239867de30de5346e19c0697002faa7
+# BODY_SHA256 = d21f5ddf1a4d3ec01d9843dd618c6414fbdf0722251525fddb990cfd866d59df

@@ -85,36 +85,56 @@ def site_functions_all(_u, _p, _F):
 
 
 def accelerations_into(_u, _F, _p, _out):
-    """out[i, n] = d^2 u_{i,n}/dt^2 on a ring: the equations of motion, site by site (F from site_functions_all)."""
+    """out[i, n] = d^2 u_{i,n}/dt^2 on a ring: the equations of motion, bond by bond (F from site_functions_all)."""
     _N = _u.shape[1]
+    if _N == 0:
+        return
     alpha = _p[0]
     K_s = _p[1]
     K_theta = _p[2]
     K_3 = _p[3]
-    for _n in range(_N):
-        _m = _n - 1 if _n > 0 else _N - 1
-        _l = _n + 1 if _n + 1 < _N else 0
-        theta_prev = _u[0, _m]
-        U_prev = _u[1, _m]
-        _fm0 = _F[0, _m]
-        _fm1 = _F[1, _m]
+    _r0 = alpha**2
+    _r1 = 1/4
+    theta = _u[0, _N - 1]
+    U = _u[1, _N - 1]
+    _fn0 = _F[0, _N - 1]
+    _fn1 = _F[1, _N - 1]
+    theta_next = _u[0, 0]
+    U_next = _u[1, 0]
+    _fl0 = _F[0, 0]
+    _fl1 = _F[1, 0]
+    _c0 = -2*U + 2*U_next - _fl0 - _fn0 + 2
+    _c1 = _fl1 - _fn1
+    _c2 = K_3*(theta + theta_next)**3 + (1/2)*K_theta*(2*theta + 2*theta_next)
+    _w0 = K_s*_c1*_fn0 - _c0*_fn1 - _c2
+    _w1 = -4*U + 4*U_next - 2*_fl0 - 2*_fn0 + 4
+    _b0 = -K_s*_c1*_fl0 - _c0*_fl1 - _c2
+    _b1 = _w1
+    for _n in range(_N - 1):
         theta = _u[0, _n]
         U = _u[1, _n]
         _fn0 = _F[0, _n]
         _fn1 = _F[1, _n]
-        theta_next = _u[0, _l]
-        U_next = _u[1, _l]
-        _fl0 = _F[0, _l]
-        _fl1 = _F[1, _l]
-        _c0 = 2*theta
-        _c1 = -_fn1
-        _c2 = (1/2)*K_theta
-        _c3 = (1/2)*_fl0
-        _c4 = (1/2)*_fn0 - 1
-        _c5 = 2*_fn1
-        _c6 = U_prev + (1/2)*_fm0
-        _out[0, _n] = alpha**2*(-2*K_3*theta**3 - K_3*(theta + theta_next)**3 - K_3*(theta + theta_prev)**3 - K_s*_fn0*(-_c1 - _fm1) + K_s*_fn0*(_c1 + _fl1) - K_theta*_c0 - _c2*(_c0 + 2*theta_next) - _c2*(_c0 + 2*theta_prev) - _c5*(U - _c4 - _c6) - _c5*(-U + U_next - _c3 - _c4))
-        _out[1, _n] = -2*U + U_next - _c3 + _c6
+        theta_next = _u[0, _n + 1]
+        U_next = _u[1, _n + 1]
+        _fl0 = _F[0, _n + 1]
+        _fl1 = _F[1, _n + 1]
+        _c0 = -2*U + 2*U_next - _fl0 - _fn0 + 2
+        _c1 = _fl1 - _fn1
+        _c2 = 2*theta
+        _c3 = K_3*(theta + theta_next)**3 + (1/2)*K_theta*(_c2 + 2*theta_next)
+        _h0 = K_s*_c1*_fn0 - _c0*_fn1 - _c3
+        _h1 = -4*U + 4*U_next - 2*_fl0 - 2*_fn0 + 4
+        _g0 = -K_s*_c1*_fl0 - _c0*_fl1 - _c3
+        _s0 = -2*K_3*theta**3 - K_theta*_c2
+        _out[0, _n] = (_b0 + _h0 + _s0)*_r0
+        _out[1, _n] = (_h1 - _b1)*_r1
+        _b0 = _g0
+        _b1 = _h1
+    theta = _u[0, _N - 1]
+    _s0 = -2*K_3*theta**3 - 2*K_theta*theta
+    _out[0, _N - 1] = (_b0 + _w0 + _s0)*_r0
+    _out[1, _N - 1] = (_w1 - _b1)*_r1
 
 
 def cell_hessian_into(_x, _p, _out):
@@ -194,4 +214,4 @@ def taylor(_p):
 def _permutations(idx):
     import itertools
     return set(itertools.permutations(idx))
-# BODY_SHA256 = 8cea96f50a49126d9e3bee205302d0aac54fe24e0b21b7f494b55df8b9604d86
+# BODY_SHA256 = bcd9e9d1f632f66bc497027a4b61729d85e882335f9006169d3320a0c322717f

@@ -62,19 +62,25 @@ def site_functions_all(_u, _p, _F):
 
 
 def accelerations_into(_u, _F, _p, _out):
-    """out[i, n] = d^2 u_{i,n}/dt^2 on a ring: the equations of motion, site by site (F from site_functions_all)."""
+    """out[i, n] = d^2 u_{i,n}/dt^2 on a ring: the equations of motion, bond by bond (F from site_functions_all)."""
     _N = _u.shape[1]
+    if _N == 0:
+        return
     alpha = _p[0]
     beta = _p[1]
-    for _n in range(_N):
-        _m = _n - 1 if _n > 0 else _N - 1
-        _l = _n + 1 if _n + 1 < _N else 0
-        u_prev = _u[0, _m]
+    u = _u[0, _N - 1]
+    u_next = _u[0, 0]
+    _c0 = -u + u_next
+    _w0 = _c0**3*beta + _c0**2*alpha - u + u_next
+    _b0 = _w0
+    for _n in range(_N - 1):
         u = _u[0, _n]
-        u_next = _u[0, _l]
+        u_next = _u[0, _n + 1]
         _c0 = -u + u_next
-        _c1 = u - u_prev
-        _out[0, _n] = _c0**3*beta + _c0**2*alpha - _c1**3*beta - _c1**2*alpha - 2*u + u_next + u_prev
+        _h0 = _c0**3*beta + _c0**2*alpha - u + u_next
+        _out[0, _n] = _h0 - _b0
+        _b0 = _h0
+    _out[0, _N - 1] = _w0 - _b0
 
 
 def cell_hessian_into(_x, _p, _out):
@@ -124,4 +130,4 @@ def taylor(_p):
 def _permutations(idx):
     import itertools
     return set(itertools.permutations(idx))
-# BODY_SHA256 = 98a229efa542e12fb0deb2454de0aeafb79b132538c4a4698d2e4ba43443ee53
+# BODY_SHA256 = 28f98c8f75188932a690ce515ce956eebd3514779754b242f6e8933f4936e3d8

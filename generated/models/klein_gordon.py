@@ -69,21 +69,28 @@ def site_functions_all(_u, _p, _F):
 
 
 def accelerations_into(_u, _F, _p, _out):
-    """out[i, n] = d^2 u_{i,n}/dt^2 on a ring: the equations of motion, site by site (F from site_functions_all)."""
+    """out[i, n] = d^2 u_{i,n}/dt^2 on a ring: the equations of motion, bond by bond (F from site_functions_all)."""
     _N = _u.shape[1]
+    if _N == 0:
+        return
     C = _p[0]
     omega0 = _p[1]
     alpha = _p[2]
     beta = _p[3]
-    for _n in range(_N):
-        _m = _n - 1 if _n > 0 else _N - 1
-        _l = _n + 1 if _n + 1 < _N else 0
-        u_prev = _u[0, _m]
+    u = _u[0, _N - 1]
+    u_next = _u[0, 0]
+    _w0 = -1/2*C*(2*u - 2*u_next)
+    _b0 = _w0
+    for _n in range(_N - 1):
         u = _u[0, _n]
-        u_next = _u[0, _l]
-        _c0 = 2*u
-        _c1 = (1/2)*C
-        _out[0, _n] = -_c1*(_c0 - 2*u_next) - _c1*(_c0 - 2*u_prev) - alpha*u**2 - beta*u**3 - omega0**2*u
+        u_next = _u[0, _n + 1]
+        _h0 = -1/2*C*(2*u - 2*u_next)
+        _s0 = -alpha*u**2 - beta*u**3 - omega0**2*u
+        _out[0, _n] = _h0 + _s0 - _b0
+        _b0 = _h0
+    u = _u[0, _N - 1]
+    _s0 = -alpha*u**2 - beta*u**3 - omega0**2*u
+    _out[0, _N - 1] = _w0 + _s0 - _b0
 
 
 def cell_hessian_into(_x, _p, _out):
@@ -127,4 +134,4 @@ def taylor(_p):
 def _permutations(idx):
     import itertools
     return set(itertools.permutations(idx))
-# BODY_SHA256 = c7bbd26245c4842ee83b2919f6b28238c69eae4dd8d110c3cd596db6ac398d9c
+# BODY_SHA256 = f002fd360dfb3b24ba27410a98b3f32260ab6e06577ffdd8962aec21f6c5c10c

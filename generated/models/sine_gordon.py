@@ -61,20 +61,27 @@ def site_functions_all(_u, _p, _F):
 
 
 def accelerations_into(_u, _F, _p, _out):
-    """out[i, n] = d^2 u_{i,n}/dt^2 on a ring: the equations of motion, site by site (F from site_functions_all)."""
+    """out[i, n] = d^2 u_{i,n}/dt^2 on a ring: the equations of motion, bond by bond (F from site_functions_all)."""
     _N = _u.shape[1]
+    if _N == 0:
+        return
     C = _p[0]
     omega0 = _p[1]
-    for _n in range(_N):
-        _m = _n - 1 if _n > 0 else _N - 1
-        _l = _n + 1 if _n + 1 < _N else 0
-        u_prev = _u[0, _m]
+    u = _u[0, _N - 1]
+    u_next = _u[0, 0]
+    _w0 = -1/2*C*(2*u - 2*u_next)
+    _b0 = _w0
+    for _n in range(_N - 1):
         u = _u[0, _n]
         _fn0 = _F[0, _n]
-        u_next = _u[0, _l]
-        _c0 = 2*u
-        _c1 = (1/2)*C
-        _out[0, _n] = -_c1*(_c0 - 2*u_next) - _c1*(_c0 - 2*u_prev) - _fn0*omega0**2
+        u_next = _u[0, _n + 1]
+        _h0 = -1/2*C*(2*u - 2*u_next)
+        _s0 = -_fn0*omega0**2
+        _out[0, _n] = _h0 + _s0 - _b0
+        _b0 = _h0
+    _fn0 = _F[0, _N - 1]
+    _s0 = -_fn0*omega0**2
+    _out[0, _N - 1] = _w0 + _s0 - _b0
 
 
 def cell_hessian_into(_x, _p, _out):
@@ -113,4 +120,4 @@ def taylor(_p):
 def _permutations(idx):
     import itertools
     return set(itertools.permutations(idx))
-# BODY_SHA256 = 7be18ea5f31f1e0e74bd50f1da1f48e4d247041366d3cfa893dd0a40e42c804a
+# BODY_SHA256 = f53c194a95e7783a12252cc83b79e5685421b6cb12046c87b18ff5a68ab7fe54

@@ -1,10 +1,11 @@
 """Simulation of any lattice model on a ring, and the growth a run measures.
 
-The force is the model's generated site loop ``accelerations_into`` (each site's
-acceleration printed from its equations of motion, the elementary functions of one site's
-fields computed once per site in ``site_functions_all`` before, with the fused kernel's
-polynomial sin and cos), compiled with Numba, on a ring of N sites with (n_fields, N)
-arrays. The integrators are the registry's
+The force is the model's generated loop ``accelerations_into`` (over the bonds: each
+bond's pulls on its two sites printed from the derivatives of the energy and computed once,
+each site's own term beside them, the ring's ends outside the loop; the elementary functions
+of one site's fields computed once per site in ``site_functions_all`` before, with the fused
+kernel's polynomial sin and cos), compiled with Numba (fused multiply-adds allowed), on a
+ring of N sites with (n_fields, N) arrays. The integrators are the registry's
 (``numerics.METHODS``): the symplectic SRKN family (srkn11b by default, order 6), verlet,
 kahanli8 and rk4, each with the coefficients the paper's chain uses; the kick that ends a
 step and the one that starts the next share one force evaluation.
@@ -77,8 +78,9 @@ def _fast_trig(f):
 
 
 def _kernels(model: Model):
-    """(accel, srkn_steps, rk4_steps, energy, number of site functions) compiled for the
-    model's generated code."""
+    """(accel, srkn_steps, rk4_steps, energy, number of site functions, force, site_loop)
+    compiled for the model's generated code (force(u, p, out, S): accel's work, four
+    arguments; site_loop(u, S, p, out): the generated accelerations_into)."""
     key = (model.code.__name__, model.code.MODEL_HASH)
     if key in _KERNELS:
         return _KERNELS[key]
@@ -95,23 +97,44 @@ def _kernels(model: Model):
     from numerics.lattice import TRIG_LIMIT
 
     nf = int(code.SITE_FUNCTIONS_ALL)
-    fast_sites = numba.njit(cache=False, boundscheck=False)(
-        _fast_trig(code.site_functions_all))
+    fast = _fast_trig(code.site_functions_all)
+    fast_sites = numba.njit(cache=False, boundscheck=False, fastmath={"contract"})(fast)
     libm_sites = numba.njit(cache=False, boundscheck=False)(code.site_functions_all)
-    site_loop = numba.njit(cache=False, boundscheck=False)(code.accelerations_into)
+    # contraction into fused multiply-adds, as the fused kernel (numerics.lattice.FASTMATH)
+    site_loop = numba.njit(cache=False, boundscheck=False, fastmath={"contract"},
+                           error_model="numpy")(code.accelerations_into)
+
+    if nf == 0:  # no site functions: the bond loop alone
+
+        @numba.njit(cache=False, boundscheck=False)
+        def force(u, p, out, S):
+            site_loop(u, S, p, out)
+
+    elif fast is code.site_functions_all:  # no sin or cos: nothing to range-check
+
+        @numba.njit(cache=False, boundscheck=False)
+        def force(u, p, out, S):
+            libm_sites(u, p, S)
+            site_loop(u, S, p, out)
+
+    else:
+
+        @numba.njit(cache=False, boundscheck=False)
+        def force(u, p, out, S):
+            d, N = u.shape
+            near = True  # the polynomial sin/cos where every field is within TRIG_LIMIT
+            for a in range(d):
+                for n in range(N):
+                    near &= abs(u[a, n]) <= TRIG_LIMIT
+            if near:
+                fast_sites(u, p, S)
+            else:
+                libm_sites(u, p, S)
+            site_loop(u, S, p, out)
 
     @numba.njit(cache=False, boundscheck=False)
     def accel(u, p, minv, out, x, g, S):
-        d, N = u.shape
-        near = True  # the polynomial sin/cos where every field is within TRIG_LIMIT
-        for a in range(d):
-            for n in range(N):
-                near &= abs(u[a, n]) <= TRIG_LIMIT
-        if near:
-            fast_sites(u, p, S)
-        else:
-            libm_sites(u, p, S)
-        site_loop(u, S, p, out)
+        force(u, p, out, S)
 
     @numba.njit(cache=False)
     def srkn_steps(u, v, p, minv, A, B, dt, nsteps, acc, x, g):
@@ -177,7 +200,7 @@ def _kernels(model: Model):
             e += cell_energy(x, p)
         return e
 
-    _KERNELS[key] = (accel, srkn_steps, rk4_steps, energy, nf)
+    _KERNELS[key] = (accel, srkn_steps, rk4_steps, energy, nf, force, site_loop)
     return _KERNELS[key]
 
 
@@ -352,14 +375,16 @@ def lattice_force(model: Model, u: np.ndarray) -> np.ndarray:
 def compiled_force(model: Model, N: int):
     """force(u, out): the compiled acceleration of a ring of N sites into ``out`` (both
     (d, N), C-contiguous), its work buffers made once: for timing the kernel itself."""
-    accel, nf = _kernels(model)[0], _kernels(model)[4]
-    d = model.n_fields
+    nf, kernel, loop = _kernels(model)[4:7]
     p = np.asarray(model.p, float)
-    minv = 1 / np.asarray(model.masses, float)
-    x, g, S = np.empty(2 * d), np.empty(2 * d), np.empty((max(nf, 1), N))
+    S = np.empty((max(nf, 1), N))
 
-    def force(u, out):
-        accel(u, p, minv, out, x, g, S)
+    if nf == 0:  # no site functions: the generated loop is the whole force (one call less)
+        def force(u, out):
+            loop(u, S, p, out)
+    else:
+        def force(u, out):
+            kernel(u, p, out, S)
 
     return force
 
@@ -696,7 +721,7 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
         u = np.ascontiguousarray(u + noise * amplitude * rng.standard_normal((d, N)))
         v = np.ascontiguousarray(v + noise * amplitude * wave.omega * rng.standard_normal(
             (d, N)))
-    accel, srkn, rk4, energy, _ = _kernels(model)
+    accel, srkn, rk4, energy = _kernels(model)[:4]
     p = np.asarray(model.p, float)
     masses = np.asarray(model.masses, float)
     minv = 1 / masses
