@@ -376,3 +376,22 @@ def test_point_of_a_lossy_model_reports_amplifications(tmp_path, capsys):
                  "--json"]) == 0
     plain = json.loads(capsys.readouterr().out)
     assert "amplification" not in plain["exact lattice"]
+
+
+def test_zero_damping_of_a_lossy_model_is_no_damping():
+    # round-off in the damped eigenproblem must not read as a tiny damping (it gave an
+    # amplification of ~1e304 instead of unbounded at gamma = 0, k = 2.6, N = 32)
+    from numerics.models import (
+        carrier_damping,
+        damping_rates,
+        exact_amplification,
+        four_wave_amplification,
+    )
+
+    model = load_model(parse_model(FPUT_LOSSY), gamma=0.0)
+    assert np.all(damping_rates(model, np.linspace(0.1, 3.0, 7)) == 0.0)
+    assert carrier_damping(model, 2.6) == 0.0
+    for amp in (exact_amplification(model, 2.6, 0.2, N=32),
+                four_wave_amplification(model, 2.6, 0.2, N=32)):
+        assert amp.carrier_damping == 0.0
+        assert amp.amplification in (math.inf, 1.0)

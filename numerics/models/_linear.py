@@ -211,7 +211,13 @@ def damping_rates(model: Model, kappa) -> np.ndarray:
     out = np.zeros(kap.shape + (model.n_fields,))
     if not model.lossy:
         return out
-    flat = -np.imag(_damped_many(model, kap.ravel()))
+    w = _damped_many(model, kap.ravel())
+    flat = -np.imag(w)
+    # zero damping (a lossy model at gamma = 0) leaves round-off of ~1e-16 omega in Im w,
+    # which would read as a finite damping and an amplification of 1e304, not unbounded:
+    # a rate below 1e-12 of the frequency (10^12 periods to decay) is none
+    flat = np.where(np.abs(flat) <= 1e-12 * np.maximum(np.abs(np.real(w)), 1e-300), 0.0,
+                    flat)
     return flat.reshape(kap.shape + (model.n_fields,))
 
 
