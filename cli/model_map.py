@@ -133,10 +133,13 @@ def run_map(args) -> int:
     png = out / "map.png"
     _plot_map(_as_words(ds, verdicts), png, model)
     files = [str(path), str(png)]
+    critical = _critical_rows(ds)
     if args.json:
         res = {"model": model.name, "parameters": dict(model.params), "amplitude": amp,
                "axes": {x[0]: list(map(float, x[1])), y[0]: list(map(float, y[1]))},
                "mi_share": mi, "files": files}
+        if critical:
+            res["critical_damping"] = critical
         u, _ = ModelUnits.json(units, {})
         if "k" in res["axes"]:  # the k axis, in rad/m too
             u["lattice"]["k"] = "rad/site"
@@ -155,8 +158,29 @@ def run_map(args) -> int:
         return 0
     for v, share in mi.items():
         print(f"MI share, {v.replace('verdict_', '')}: {share:.0%}")
+    for name, c in critical.items():
+        other = c["along"]
+        print(f"{name} (amplification {OBSERVABLE:g}x): " + ", ".join(
+            f"{other} {v:g}: " + ("-" if x is None else f"{x:.4g}")
+            for v, x in zip(c[other], c["value"]))
+              + ("" if all(x is not None for x in c["value"]) else f" ({c['reason']})"))
     print(f"wrote {path} and {png} (xarray: xr.open_zarr({str(path)!r}))")
     return 0
+
+
+def _critical_rows(ds) -> dict:
+    """{critical_<damping>_<theory>: {"along": the other axis, its values, "value" (None
+    where none inside the axis), "reason"}} of a map over a damping axis (issue 42)."""
+    import math
+
+    out = {}
+    for name in sorted(n for n in ds.data_vars if n.startswith("critical_")):
+        var = ds[name]
+        other = var.dims[0]
+        out[name] = {"along": other, other: [float(v) for v in ds[other].values],
+                     "value": [float(v) if math.isfinite(v) else None for v in var.values],
+                     "reason": str(var.attrs.get("reason", ""))}
+    return out
 
 
 def _as_words(ds, verdicts):
@@ -173,6 +197,11 @@ def _as_words(ds, verdicts):
 OBSERVABLE = 20.0
 
 
+#: the critical-damping curves of the other theories on a panel (its own: black)
+CRITICAL_COLOURS = {"semidiscrete": "#1a9850", "fourwave": "#5e3c99", "exact": "#b2182b",
+                    "simulated": "white"}
+
+
 def _plot_map(ds, path: Path, model):
     import matplotlib
 
@@ -184,7 +213,17 @@ def _plot_map(ds, path: Path, model):
     ydim, xdim = ds["verdict_semidiscrete"].dims
     x, y = ds[xdim].values, ds[ydim].values
 
+    critical = {str(ds[n].attrs["theory"]): ds[n] for n in ds.data_vars
+                if n.startswith("critical_")}
+    damping = next(iter(critical.values())).attrs["damping_axis"] if critical else None
+    # a damping axis over a decade or more: drawn in log scale (where MI hides, issue 42)
+    logs = {d for d, v in ((xdim, x), (ydim, y)) if d == damping and v.size > 1
+            and v.min() > 0 and v.max() >= 10 * v.min()}
+
     def edges(v, dim):
+        if dim in logs:
+            mid = np.sqrt(v[1:] * v[:-1]) if v.size > 1 else v
+            return np.concatenate([[v[0] ** 2 / mid[0]], mid, [v[-1] ** 2 / mid[-1]]])
         if v.size == 1:
             e = np.array([v[0] - 0.5, v[0] + 0.5])
         else:
@@ -213,13 +252,30 @@ def _plot_map(ds, path: Path, model):
             X, Y = np.meshgrid(x, y)
             seen = np.asarray(ds[amp].values, float) >= OBSERVABLE
             ax.scatter(X[seen], Y[seen], marker="x", color="black", s=30)
+        own = name.replace("verdict_", "")
+        for theory, crit in critical.items():  # the critical damping per value of the other
+            other = crit.dims[0]
+            vals = ds[other].values
+            xs, ys = (vals, crit.values) if other == xdim else (crit.values, vals)
+            mine = theory == own
+            ax.plot(xs, ys, "-o" if mine else "--", lw=2 if mine else 1,
+                    color="black" if mine else CRITICAL_COLOURS.get(theory, "0.3"),
+                    ms=3 if mine else 0, label=f"critical {damping}, {theory}"
+                    + (" (this panel)" if mine else ""))
+        if critical:
+            ax.legend(fontsize=6, loc="best")
+        for d, setter in ((xdim, ax.set_xscale), (ydim, ax.set_yscale)):
+            if d in logs:
+                setter("log")
         ax.set_xlabel(xdim + (" (rad/site)" if xdim == "k" else ""))
         ax.set_ylabel(ydim + (" (rad/site)" if ydim == "k" else ""))
         ax.set_title(f"{model.name}" + (f" ({fixed})" if fixed else "")  # all swept: none
                      + f", a = {ds.attrs['amplitude']:g}: {label}\n"
                      "orange MI, blue stable, grey undefined"
                      + (f"; x: amplification >= {OBSERVABLE:g}x (observable with losses)"
-                        if marked else ""), fontsize=9)
+                        if marked else "")
+                     + (f"\nline: critical {damping}, amplification {OBSERVABLE:g}x"
+                        if critical else ""), fontsize=9)
     fig.tight_layout()
     fig.savefig(path, dpi=120)
     plt.close(fig)
