@@ -17,6 +17,8 @@ Maps by sim.     MapParameters (what defines a map; ModelMapParameters: a lattic
 Their parts      cell_records, predict_cell, GROWTH_TOL, GROWTH_ERROR_CONSTANTS (a cell's
                  step accuracy), tri_state (gains -> verdicts), store_lock (one writer),
                  cells_done (what a store holds)
+With losses      critical_damping (where an amplification falls below 20x along a damping
+                 axis: a lossy model map's critical_<damping>_<theory>), damping_parameters
 Run time         estimate_map -> MapEstimate (start-up + cells at this machine's measured
                  speed, machine_speed, cached), slowed by the load average
 On a GPU         gpu_status (is there one, or what is missing), simulate_cells_gpu
@@ -39,6 +41,7 @@ from ._cells import (
                      simulate_cell,
 )
 from ._columns import theory_columns, tri_state
+from ._critical import critical_damping, damping_parameters
 from ._devices import DEVICES, resolve_device
 from ._estimate import MapEstimate, estimate_map, machine_speed
 from ._gpu import gpu_status, simulate_cells_gpu, simulate_map_cells_gpu
@@ -71,4 +74,5 @@ __all__ = [
     "simulate_block", "CRITERION", "MapCellError", "local_cores", "MapEstimate",
     "estimate_map", "machine_speed",
     "gpu_status", "simulate_cells_gpu", "simulate_map_cells_gpu",
+    "critical_damping", "damping_parameters",
 ]

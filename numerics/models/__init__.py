@@ -20,6 +20,7 @@ map_cells                               the columns of a block of map cells (a r
 nls_amplification, four_wave_amplification, exact_amplification
                                         with [dissipation]: each theory's sidebands'
                                         amplification along the decaying carrier
+lossy_runs                              a lossy cell's runs and their amplification
 """
 
 from ._exact import (
@@ -48,7 +49,7 @@ from ._losses import (
                      four_wave_amplification,
                      nls_amplification,
 )
-from ._map import map_cells, model_map, simulated_cell
+from ._map import lossy_runs, map_cells, model_map, simulated_cell
 from ._nls import ModelNLS, ModelSoliton, acoustic_directions, nls
 from ._reach import amplitude_reach, energy_not_real, exact_gain_checked
 from ._simulate import (
@@ -75,4 +76,4 @@ __all__ = ["Carrier", "carrier", "branches", "branch_index", "check_rest_stable"
            "classify_mode", "ring_misses", "ring_offsets", "simulate_model", "simulate_seeds",
            "SeededRuns", "ModelRun", "Growth", "measure_growth", "check_ring", "compiled_force",
            "lattice_force", "lattice_energy", "snap_ring", "Amplified", "nls_amplification",
-           "four_wave_amplification", "exact_amplification"]
+           "four_wave_amplification", "exact_amplification", "lossy_runs"]
