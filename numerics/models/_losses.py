@@ -69,14 +69,18 @@ def sideband_damping(model: Model, k: float, q, branch: int) -> np.ndarray:
 
 def _pair_step(P, q2, c, G, h):
     """exp(h [[-G, P q2], [c, -G]]) for arrays of offsets: e^{-G h} [[ch, b sh/l],
-    [c sh/l, ch]], l = sqrt(b c)."""
+    [c sh/l, ch]], l = sqrt(b c); in real arithmetic (cosh, sinh where b c > 0, cos, sin
+    where b c < 0: l is real or imaginary)."""
     b = P * q2
-    lam = np.sqrt((b * c).astype(complex))
-    lh = lam * h
-    ch = np.cosh(lh)
-    shl = np.where(np.abs(lh) > 1e-12, np.sinh(lh) / np.where(lam == 0, 1, lam), h)
+    bc = b * c
+    r = np.sqrt(np.abs(bc))
+    rh = r * h
+    grows = bc > 0
+    ch = np.where(grows, np.cosh(np.where(grows, rh, 0.0)), np.cos(rh))
+    sh = np.where(grows, np.sinh(np.where(grows, rh, 0.0)), np.sin(rh))
+    shl = np.where(rh > 1e-12, sh / np.where(r == 0, 1.0, r), h)
     e = np.exp(-G * h)
-    return (e * np.real(ch), e * np.real(b * shl), e * np.real(c * shl), e * np.real(ch))
+    return (e * ch, e * b * shl, e * c * shl, e * ch)
 
 
 def integrate_pairs(P, Q, psi0, Gamma, G, q, t_end, steps=4000, carrier_decays=True):
@@ -98,11 +102,13 @@ def integrate_pairs(P, Q, psi0, Gamma, G, q, t_end, steps=4000, carrier_decays=T
     t = np.linspace(0.0, t_end, steps + 1)
     out = np.empty((steps + 1, q.size))
     out[0] = 1.0
+    # every step's exponential at once (the carrier at each step's midpoint), then the
+    # products in order
+    tm = (np.arange(steps) + 0.5) * h
+    a2 = psi0**2 * (np.exp(-2 * Gamma * tm) if carrier_decays else np.ones(steps))
+    m11, m12, m21, m22 = _pair_step(P, q2, 2 * Q * a2[:, None] - P * q2, G, h)
     for i in range(steps):
-        tm = (i + 0.5) * h
-        a2 = psi0**2 * (math.exp(-2 * Gamma * tm) if carrier_decays else 1.0)
-        m11, m12, m21, m22 = _pair_step(P, q2, 2 * Q * a2 - P * q2, G, h)
-        x, y = m11 * x + m12 * y, m21 * x + m22 * y
+        x, y = m11[i] * x + m12[i] * y, m21[i] * x + m22[i] * y
         out[i + 1] = np.hypot(x, y)
     return out, t
 
@@ -190,24 +196,37 @@ def along_decay(gain_at, a0: float, gain0, G, Gamma: float, *, ratio: float = 0.
     t_end = _horizon(float(np.max(gain0)), Gamma)
     t = np.linspace(0.0, t_end, steps + 1)
     s_t = np.exp(-2 * Gamma * t)
-    sig2 = np.empty((t.size, g2.shape[1]))
-    for c in range(g2.shape[1]):
-        # the samples are clipped rates (0 where stable): below a column's lowest positive
-        # sample its sigma^2 follows the line through the two lowest positive ones
-        pos = np.flatnonzero(g2[:, c] > 0)
-        lo = pos[0] if pos.size else s_arr.size - 1
-        up = min(lo + 1, s_arr.size - 1)
-        above = s_t >= s_arr[lo]
-        sig2[above, c] = np.interp(s_t[above], s_arr[lo:], g2[lo:, c])
-        if up == lo:  # only s = 1 grows: fall to the next sample below
-            up, lo = lo, max(lo - 1, 0)
-        slope = (g2[up, c] - g2[lo, c]) / (s_arr[up] - s_arr[lo]) if up != lo else 0.0
-        sig2[~above, c] = g2[up, c] + slope * (s_t[~above] - s_arr[up])
+    sig2 = _piecewise(s_arr, g2, s_t)
     rate = np.sqrt(np.maximum(sig2, 0.0)) - G[None, :]
     log_amp = np.concatenate([np.zeros((1, G.size)), np.cumsum(
         np.diff(t)[:, None] * (rate[1:] + rate[:-1]) / 2, axis=0)])
     i, j = np.unravel_index(int(np.argmax(log_amp)), log_amp.shape)
     return math.exp(min(float(log_amp[i, j]), 700.0)), float(t[i]), int(j), len(S)
+
+
+def _piecewise(s_arr, g2, s_t):
+    """sigma^2 at the carrier's s_t (times,) of every column of the samples g2 (samples,
+    cols) at s_arr (ascending, the last 1): linear between the samples; the samples are
+    clipped rates (0 where stable), so below a column's lowest positive sample its sigma^2
+    follows the line through its two lowest positive ones (through its top two where only
+    s = 1 grows). All columns at once; shape (times, cols)."""
+    n = s_arr.size
+    cols = np.arange(g2.shape[1])
+    pos = g2 > 0
+    lo = np.where(pos.any(axis=0), np.argmax(pos, axis=0), n - 1)  # lowest positive
+    # within the samples: the segment [s_arr[j - 1], s_arr[j]] that holds s_t
+    j = np.clip(np.searchsorted(s_arr, s_t), 1, n - 1) if n > 1 else np.zeros(s_t.size, int)
+    lo_j = np.maximum(j - 1, 0)
+    w = ((s_t - s_arr[lo_j]) / np.where(j != lo_j, s_arr[j] - s_arr[lo_j], 1.0))[:, None]
+    inside = g2[lo_j] + w * (g2[j] - g2[lo_j])
+    # below: the line through samples (a, b) = (lo, lo + 1), or (lo - 1, lo) at the top
+    b = np.minimum(lo + 1, n - 1)
+    a = np.where(b == lo, np.maximum(lo - 1, 0), lo)
+    b = np.where(b == lo, lo, b)
+    ds = s_arr[b] - s_arr[a]
+    slope = np.where(ds != 0, (g2[b, cols] - g2[a, cols]) / np.where(ds != 0, ds, 1.0), 0.0)
+    below = g2[b, cols][None, :] + slope[None, :] * (s_t[:, None] - s_arr[b][None, :])
+    return np.where(s_t[:, None] >= s_arr[lo][None, :], inside, below)
 
 
 def exact_amplification(model: Model, k: float, amplitude: float, branch=None, *,
