@@ -109,7 +109,10 @@ def run_map(args) -> int:
         + (f", k = {k_fixed:g}" if k_fixed is not None else "")
         + f", amplitude {amp:g}; {'theories ' + ', '.join(params.theory_columns())}"
         + (f" and {seeds} run(s) per cell (N = {args.N}, T = "
-           + (f"{t_end:g})" if t_end is not None else "from each cell's exact rate)")
+           + (f"{t_end:g}" if t_end is not None else "from each cell's exact rate"
+              + (" and its peak time" if model.lossy else ""))
+           + ("; with losses: noise on the carrier field, until A(t) halves, T a cap)"
+              if model.lossy else ")")
            if simulated else "")
         + f" on {n_workers or local_cores()} worker(s)")
     log(f"units: {units.describe()} (the store's numbers in lattice units, the factors in "

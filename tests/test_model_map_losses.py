@@ -123,6 +123,12 @@ def test_a_simulated_lossy_map_stores_its_runs_and_draws_the_critical_damping(
                                                                    rel=1e-12)
     assert float(cell["amplification_time_simulated"]) == run.amplification_time
     assert float(cell["amplification_exact"]) == pytest.approx(peak.amplification, rel=1e-9)
+    # the in-memory map's cell (model_map's ``cell``) launches its runs the same way
+    from numerics.models import simulated_cell
+
+    mem = simulated_cell(model, K, AMPLITUDE, N=N)
+    assert mem["amplification_simulated"] == float(cell["amplification_simulated"])
+    assert mem["observable_simulated"] == float(cell["observable_simulated"]) == 1.0
     # weak damping: the runs' sidebands grow past 20x; five times more: they do not
     assert ds["observable_simulated"].values.tolist() == [[1, 1], [0, 0]]
     assert (ds["amplification_simulated"].values[1] < 20).all()

@@ -178,9 +178,13 @@ def simulated_cell(model: Model, k: float, amplitude: float, branch=None, *, N: 
     if model.lossy:  # issue 42: the runs' amplification, launched as a point's
         from ._losses import exact_amplification
 
-        peak = exact_amplification(model, k, amplitude, branch, N=N, first=spec)
+        try:
+            peak = exact_amplification(model, k, amplitude, branch, N=N,
+                                       first=spec).amplification_time
+        except ModelError:  # no peak time: the cap from the exact rate alone
+            peak = None
         sim, amp = lossy_runs(model, k, amplitude, spec, branch=branch, N=N, seeds=seeds,
-                              t_end=t_end, peak_time=peak.amplification_time)
+                              t_end=t_end, peak_time=peak)
     else:
         sim, amp = simulate_seeds(model, k, amplitude, spec, branch=branch, N=N,
                                   seeds=seeds, t_end=t_end), {}
