@@ -244,8 +244,14 @@ def _plot_map(ds, path: Path, model):
     code = {**code, "no growth within T": 0, "undetermined": 2}
     fig, axes = plt.subplots(1, len(panels), figsize=(6 * len(panels), 4.5), squeeze=False)
     fixed = ", ".join(f"{p} = {v:g}" for p, v in model.params.items() if p not in (xdim, ydim))
+    runs_amplified = "observable_simulated" in ds  # a lossy model's runs (issue 42)
     for ax, (name, label) in zip(axes[0], panels):
         V = np.vectorize(lambda s: code.get(s, 2))(ds[name].values)
+        if name == "verdict_simulated" and runs_amplified:
+            # runs that stop once A(t) has halved: their rate rule reads the decay, so the
+            # panel shows what they measure, whether the sidebands grew 20x (-1: no run)
+            V = np.choose(np.asarray(ds["observable_simulated"].values, int) + 1, [2, 0, 1])
+            label = f"simulated with losses (orange: grew {OBSERVABLE:g}x)"
         ax.pcolormesh(edges(x, xdim), edges(y, ydim), V,
                       cmap=ListedColormap(["#3b4cc0", "#f2a134", "#bbbbbb"]),
                       vmin=-0.5, vmax=2.5, shading="flat")
