@@ -333,6 +333,16 @@ def test_along_decay_sampling_against_dense_quadrature():
         # exact for sigma^2 linear in s; a bump between the samples (s = 1, 1/2, 1/4...):
         # measured 5.4% high in log (38.6 against 36.6), the price of few samples
         assert math.log(amp) == pytest.approx(math.log(ref), rel=0.06 if bump else 2e-3)
+        # sampling stops where three samples lie on a line in s within 1e-3 of sigma0^2
+        # (the NLS law: at three, nothing changed); the bump's curvature (1.25e-5 off the
+        # line at s = 1/2, 4e-4 of sigma0^2) passes too: measured 2.2% low in log, where
+        # sampling on to no growth (9 samples) is 5.4% high, both within the 6% above
+        every = along_decay(lambda a, c, b=bump: nls_like(a, b)[c], a0, nls_like(a0, bump),
+                            G, Gamma, linear_tol=None)
+        assert n == 3 and every[3] == 9
+        if not bump:
+            assert amp == pytest.approx(every[0], rel=1e-12) and t == every[1]
+        assert math.log(every[0]) == pytest.approx(math.log(ref), rel=0.06 if bump else 2e-3)
 
 
 def test_point_of_a_lossy_model_reports_amplifications(tmp_path, capsys, fput_lossy):

@@ -161,7 +161,7 @@ def _unbounded(Gamma: float, net0: float, offset: float) -> Amplified:
 
 
 def along_decay(gain_at, a0: float, gain0, G, Gamma: float, *, ratio: float = 0.5,
-                most: int = 10, steps: int = 4000):
+                most: int = 10, steps: int = 4000, linear_tol: float | None = 1e-3):
     """(amplification, time, column, samples) of modes whose growth rates at carrier
     amplitude a are ``gain_at(a, cols)`` (an array over the columns ``cols``; ``gain0``
     the rates at a0, every column),
@@ -171,8 +171,16 @@ def along_decay(gain_at, a0: float, gain0, G, Gamma: float, *, ratio: float = 0.
     The gain is sampled at few amplitudes, s = (a / a0)^2 = 1, ratio, ratio^2, ... until
     no column grows at the last (or ``most`` samples); sigma^2 is taken piecewise linear
     in s between the samples and, below a column's lowest positive sample (a rate is
-    clipped at 0), on the line through its two lowest positive ones (clipped at 0): exact for the NLS's gain, sigma^2 = P^2 q^2 (2 Q/P psi0^2 s - q^2),
-    where the gain ~ a^2 the samples are ~ ln(sigma0 / G) / ln(1 / ratio)."""
+    clipped at 0), on the line through its two lowest positive ones (clipped at 0): exact
+    for the NLS's gain, sigma^2 = P^2 q^2 (2 Q/P psi0^2 s - q^2), where the gain ~ a^2
+    the samples are ~ ln(sigma0 / G) / ln(1 / ratio). Sampling also stops where the last
+    three samples of every column still growing lie on a line in s (within ``linear_tol``
+    of the largest sigma^2 at s = 1; None: never): below, that line is what a column
+    follows. Measured: FPUT with bond damping 4 samples instead of 8, FPUT and
+    Klein-Gordon with site damping 4 instead of 5, the paper's blue point 6 (unchanged),
+    each the same amplification to the last bit; a synthetic gain with a curvature of
+    4e-4 sigma0^2 stops at 3 and lands 2.2% low in log (9 samples: 5.4% high;
+    tests/test_dissipation.py)."""
     gain0 = np.asarray(gain0, float)
     G = np.broadcast_to(np.asarray(G, float), gain0.shape)
     S = [(1.0, gain0 ** 2)]
@@ -189,6 +197,12 @@ def along_decay(gain_at, a0: float, gain0, G, Gamma: float, *, ratio: float = 0.
         S.append((s, g ** 2))
         if not np.any(g > G):
             break
+        if linear_tol is not None and len(S) >= 3:
+            live = g > G
+            (s1, y1), (s2, y2), (s3, y3) = S[-3:]
+            line = y1 + (y3 - y1) * (s2 - s1) / (s3 - s1)
+            if np.all(np.abs(line - y2)[live] <= linear_tol * np.max(S[0][1])):
+                break
     S.sort(key=lambda x: x[0])
     s_arr = np.array([x[0] for x in S])
     g2 = np.array([x[1] for x in S])  # (samples, cols)
