@@ -67,22 +67,6 @@ def sideband_damping(model: Model, k: float, q, branch: int) -> np.ndarray:
     return 0.5 * (damping_rates(model, k + q)[:, branch] + damping_rates(model, k - q)[:, branch])
 
 
-def _pair_step(P, q2, c, G, h):
-    """exp(h [[-G, P q2], [c, -G]]) for arrays of offsets: e^{-G h} [[ch, b sh/l],
-    [c sh/l, ch]], l = sqrt(b c); in real arithmetic (cosh, sinh where b c > 0, cos, sin
-    where b c < 0: l is real or imaginary)."""
-    b = P * q2
-    bc = b * c
-    r = np.sqrt(np.abs(bc))
-    rh = r * h
-    grows = bc > 0
-    ch = np.where(grows, np.cosh(np.where(grows, rh, 0.0)), np.cos(rh))
-    sh = np.where(grows, np.sinh(np.where(grows, rh, 0.0)), np.sin(rh))
-    shl = np.where(rh > 1e-12, sh / np.where(r == 0, 1.0, r), h)
-    e = np.exp(-G * h)
-    return (e * ch, e * b * shl, e * c * shl, e * ch)
-
-
 def integrate_pairs(P, Q, psi0, Gamma, G, q, t_end, steps=4000, carrier_decays=True):
     """|(x, y)(t)| / |(x, y)(0)| of the linearised damped NLS per offset q: array
     (steps + 1, len(q)), and the times. The carrier psi0 e^{-Gamma t} (constant where
@@ -102,15 +86,46 @@ def integrate_pairs(P, Q, psi0, Gamma, G, q, t_end, steps=4000, carrier_decays=T
     t = np.linspace(0.0, t_end, steps + 1)
     out = np.empty((steps + 1, q.size))
     out[0] = 1.0
-    # every step's exponential at once (the carrier at each step's midpoint), then the
-    # products in order
+    # the carrier at each step's midpoint
     tm = (np.arange(steps) + 0.5) * h
     a2 = psi0**2 * (np.exp(-2 * Gamma * tm) if carrier_decays else np.ones(steps))
-    m11, m12, m21, m22 = _pair_step(P, q2, 2 * Q * a2[:, None] - P * q2, G, h)
-    for i in range(steps):
-        x, y = m11[i] * x + m12[i] * y, m21[i] * x + m22[i] * y
-        out[i + 1] = np.hypot(x, y)
+    _pairs_compiled()(float(P), float(Q), a2, np.ascontiguousarray(G, dtype=float), q2, h,
+                      x, y, out)
     return out, t
+
+
+_PAIRS = []
+
+
+def _pairs_compiled():
+    """The steps of ``integrate_pairs``, compiled (cached on disk): per offset, the
+    product in order of each step's exp(h [[-G, b], [c, -G]]) = e^{-G h} [[ch, b sh/l],
+    [c sh/l, ch]], l = sqrt(b c), b = P q^2, c = 2 Q a(t)^2 - b (cosh, sinh where b c > 0;
+    cos, sin where b c < 0: l is real or imaginary)."""
+    if not _PAIRS:
+        import numba
+
+        @numba.njit(cache=True, error_model="numpy", boundscheck=False)
+        def pairs(P, Q, a2, G, q2, h, x, y, out):
+            for j in range(q2.size):
+                b = P * q2[j]
+                e = math.exp(-G[j] * h)
+                xj, yj = x[j], y[j]
+                for i in range(a2.size):
+                    c = 2 * Q * a2[i] - b
+                    bc = b * c
+                    r = math.sqrt(abs(bc))
+                    rh = r * h
+                    if bc > 0:
+                        ch, sh = math.cosh(rh), math.sinh(rh)
+                    else:
+                        ch, sh = math.cos(rh), math.sin(rh)
+                    shl = sh / r if rh > 1e-12 else h
+                    xj, yj = e * ch * xj + e * b * shl * yj, e * c * shl * xj + e * ch * yj
+                    out[i + 1, j] = math.hypot(xj, yj)
+
+        _PAIRS.append(pairs)
+    return _PAIRS[0]
 
 
 def _horizon(rate0: float, Gamma: float) -> float:
