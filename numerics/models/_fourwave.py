@@ -245,6 +245,16 @@ def _plane_wave(model: Model, k: float, a: float, branch):
     if sv[-1] < RESONANT * max(sv[0], scale) and np.linalg.norm(f2) > RESONANT * scale:
         return f"second harmonic resonant with a branch at 2k = {2 * k:.6g}"
     v2 = np.linalg.lstsq(D2, f2, rcond=None)[0]
+    # near (not at) that resonance the second harmonic is no longer slaved: its energy
+    # against the first harmonic's, as DRIVEN_MAX measures a pair's driven waves
+    K1, K2 = dynamical_matrix(H, k), dynamical_matrix(H, 2 * k)
+    e1 = np.real(e.conj() @ K1 @ e + w**2 * e.conj() @ M @ e)
+    e2 = np.real(v2.conj() @ K2 @ v2 + (2 * w) ** 2 * v2.conj() @ M @ v2)
+    size = a / 2 * math.sqrt(abs(e2) / e1) if e1 > 0 else math.inf
+    if size > DRIVEN_MAX:
+        return (f"second harmonic near resonance with a branch at 2k = {2 * k:.6g}: its energy "
+                f"{size**2:.3g} x the carrier's at amplitude {a:.6g}; the four-wave ordering "
+                "fails there (a three-wave process; the exact theory holds)")
     K0 = np.real(dynamical_matrix(H, 0.0))
     f0 = -np.real(P(0.0) @ np.einsum("ibc,b,c->i", T, X1, X1.conj()))
     w0 = np.linalg.pinv(K0, rcond=1e-10, hermitian=True) @ f0  # optical mean: no strain
@@ -325,6 +335,9 @@ def _rates(model, k, car, Omega, Hh, pairs, offsets):
                                         (0, -1), (-1, 0), (1, 2), (2, 1), (-1, -2), (-2, -1))}
     Kd = {l: K(kap[l]) for l in (0, 2, -2)}
     M = np.diag(m)
+    # the driven second harmonics at the carrier's linear 2 omega, as the carrier's own
+    # (_plane_wave): the same denominator at q -> 0, where the pair is the carrier
+    w = car.omega
     rate = np.full((n, len(pairs)), np.nan)
     det = np.full_like(rate, np.nan)
     coup = np.full_like(rate, np.nan)
@@ -351,8 +364,8 @@ def _rates(model, k, car, Omega, Hh, pairs, offsets):
             t1 = Omega + (w1 - w2) / 2  # the pair's frequencies, summing to 2 Omega
             t2 = Omega + (w2 - w1) / 2
             D0 = Kd[0] - ((t1 - Omega) ** 2)[:, None, None] * M
-            D2 = Kd[2] - ((t1 + Omega) ** 2)[:, None, None] * M
-            Dm2 = Kd[-2] - ((t2 + Omega) ** 2)[:, None, None] * M
+            D2 = Kd[2] - ((t1 - Omega + 2 * w) ** 2)[:, None, None] * M
+            Dm2 = Kd[-2] - ((t2 - Omega + 2 * w) ** 2)[:, None, None] * M
             y01, r0 = solve(D0, mv(Bs[0, 1], e1))
             y0m, _ = solve(D0, mv(Bs[0, -1], e2c))
             y2, r2 = solve(D2, mv(Bs[2, 1], e1))
@@ -373,7 +386,7 @@ def _rates(model, k, car, Omega, Hh, pairs, offsets):
             sig[np.abs(disc) <= FLOOR * np.maximum(np.abs(kk), delta**2 / 4)] = 0.0
             size = np.max([np.sqrt(np.abs(_energy(Kd[l], m, y, f)) / (w1**2 + w2**2))
                            for l, y, f in ((0, y01, t1 - Omega), (0, y0m, t1 - Omega),
-                                           (2, y2, t1 + Omega), (-2, ym2, t2 + Omega))],
+                                           (2, y2, t1 - Omega + 2 * w), (-2, ym2, t2 - Omega + 2 * w))],
                            axis=0)
             resonant = r0 | r2 | rm2 | (size > DRIVEN_MAX)
             # a zero-frequency wave (a uniform translation, kappa = 0) is no wave
@@ -476,8 +489,28 @@ def four_wave(model: Model, k: float, amplitude: float, branch=None, *, N: int |
             i = int(np.unravel_index(int(np.argmax(r)), r.shape)[0])
             fine = np.linspace(q[max(i - 1, 0)], q[min(i + 1, q.size - 1)], 35)[1:-1]
             q, rate, det, coup = _merge(q, (rate, det, coup), fine, rates(fine))
+    why = ""
+    if not np.nanmax(np.nan_to_num(rate, nan=0.0), initial=0.0) > GAIN_FLOOR * car.omega:
+        why = _untreated(q, pairs, rate, det)
     return FourWave(model, k, a, car.branch, car.omega, float(Omega), q, tuple(pairs),
-                    rate, det, coup)
+                    rate, det, coup, why)
+
+
+def _untreated(q, pairs, rate, det) -> str:
+    """Why 'stable' cannot be said: a pair resonant (its detuning through zero) where its
+    rate is nan -- a driven wave not slaved, a three-wave process this ordering does not
+    rate -- or '' where every resonant pair was rated."""
+    for j, pair in enumerate(pairs):
+        d, r = det[:, j], rate[:, j]
+        i = np.flatnonzero(np.isfinite(d[:-1]) & np.isfinite(d[1:])
+                           & (np.sign(d[:-1]) * np.sign(d[1:]) < 0)
+                           & (np.isnan(r[:-1]) | np.isnan(r[1:])))
+        if i.size:
+            return (f"no rated pair grows, but the pair of branches {pair} is resonant at "
+                    f"offset {q[i[0]]:.4g} through a driven wave too large to be slaved (a "
+                    "three-wave process the four-wave ordering does not rate; the exact "
+                    "theory holds)")
+    return ""
 
 
 def classify_mode(spectrum) -> dict:
