@@ -30,7 +30,7 @@ from ._exact import (
                      ring_offsets,
                      travelling_wave,
 )
-from ._fourwave import FourWave, classify_mode, four_wave, pair_rates, ring_misses
+from ._fourwave import FourWave, four_wave, pair_rates
 from ._linear import (
                      Carrier,
                      branch_index,
@@ -49,6 +49,7 @@ from ._losses import (
                      nls_amplification,
 )
 from ._map import map_cells, model_map, simulated_cell
+from ._modes import classify_mode, ring_misses
 from ._nls import ModelNLS, ModelSoliton, acoustic_directions, nls
 from ._reach import amplitude_reach, energy_not_real, exact_gain_checked
 from ._simulate import (
