@@ -1,0 +1,514 @@
+"""Any model's envelope soliton launched in its lattice and tracked (``flexmm soliton --model
+... --simulate``), as ``numerics.theory.simulate_soliton`` does for the paper's chain.
+
+The launch is the multiple-scales solution of ``_nls`` with the soliton's envelope E
+(|E| = a/2 sech(xi/w) bright, a/2 tanh(xi/w) black; a = 2 eps |A|, xi = n - c - v_g t):
+
+    u_n = E e e^{i theta} + E^2 v2 e^{2 i theta} + c.c. + |E|^2 w + sum_{m<n} s (|E|^2 + lam),
+
+theta = k n - Omega t, e the carrier's polarisation, v2 the second harmonic, w the optical
+mean, s the acoustic mean strain per |E|^2 (its sum over the ring is the kink). A periodic
+field has no net strain, so a uniform strain lam s with lam = -<|E|^2> (the ring average)
+compensates the kink; the carrier feels it through the mean flow's part of g2, which
+moves its frequency by -g2_meanflow lam (order width / N for a bright soliton; for a
+black one the background's own strain). Velocities: the envelope moves at v_g and turns
+at Omega (the soliton's frequency on this ring), the mean fields translate with it.
+
+The measurement: the carrier field's analytic signal z = u + i u_dot / Omega, band-passed
+around +k (|q - k| < k/2: the mean at q = 0 and the second harmonic at 2k outside), is
+2 E e^{i theta}; |z|^2 is fitted by a^2 sech^2 (bright) or a^2 (1 - D sech^2) (dark) for
+the centre, amplitude and width; its phase, demodulated, gives the frequency; each
+acoustic field's strain low-passed at |q| < k/2 and summed over +-8 widths gives its kink.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from energy import Model, ModelError
+
+from ._linear import blocks, dynamical_matrix
+from ._nls import ModelNLS, ModelSoliton, acoustic_directions, nls
+
+KINDS = ("bright", "dark")
+#: below this width (sites) the envelope is too narrow for the weak-modulation ordering
+#: (the paper chain's MIN_WIDTH)
+MIN_WIDTH = 8.0
+#: the longest run picked by itself (the paper chain's MAX_T_END)
+MAX_T_END = 5e5
+#: half-width (in soliton widths) of the window counted as the soliton
+RADIATION_WINDOW = 6.0
+#: a sech^2 kink of width w keeps 99% of its spectrum below 4.5 / w: k w >= 9 separates it
+#: (and the envelope) from the carrier's band-pass at k/2
+SEPARATION = 9.0
+
+
+def ring_wavenumber(k: float, N: int, kind: str = "bright") -> float:
+    """The wavenumber nearest ``k`` on which a ring of ``N`` sites carries the soliton:
+    2 pi m / N (bright), (2 m + 1) pi / N (black: the envelope changes sign across it)."""
+    if kind not in KINDS:
+        raise ModelError(f"kind must be one of {KINDS}, got {kind!r}")
+    offset = 0.0 if kind == "bright" else math.pi
+    m = round((k * N - offset) / (2 * math.pi))
+    out = (2 * math.pi * m + offset) / N
+    if not 0 < out < math.pi:
+        raise ModelError(f"no ring wavenumber near k = {k:g} for N = {N} (a {kind} soliton)")
+    return out
+
+
+def default_ring(width: float) -> int:
+    """A ring of at least 20 widths (and 256 sites): the tails (e^{-20}) never meet."""
+    return int(max(256, 2 * math.ceil(10 * width)))
+
+
+@dataclass(frozen=True)
+class RingSoliton:
+    """The predicted soliton on a ring of N sites.
+
+    Attributes
+    ----------
+    nls : ModelNLS
+        The NLS at the ring's k.
+    soliton : ModelSoliton
+        On an infinite chain (kind, amplitude, width, velocity, kink per field).
+    N : int
+    frequency : float
+        The soliton's carrier frequency on this ring (1/time): ``soliton.frequency`` moved
+        by the ring's compensating strain.
+    ring_strain : float
+        lam = -<|E|^2>: the uniform strain lam s that closes the ring.
+    """
+
+    nls: ModelNLS
+    soliton: ModelSoliton
+    N: int
+    frequency: float
+    ring_strain: float
+
+    @property
+    def k(self) -> float:
+        return self.nls.carrier.k
+
+    @property
+    def kind(self) -> str:
+        return self.soliton.kind
+
+    @property
+    def width(self) -> float:
+        return self.soliton.width
+
+    @property
+    def velocity(self) -> float:
+        return self.soliton.velocity
+
+    def kink_fields(self) -> list:
+        """Indices of the fields that carry a kink (acoustic, nonzero mean strain)."""
+        s = np.abs(self.nls.strain)
+        return [int(i) for i in np.nonzero(s > 1e-12 * max(1.0, float(s.max())))[0]]
+
+    def summary(self, fields) -> dict:
+        """velocity, width, amplitude, frequency and kink_<field> for the kink fields."""
+        s = self.soliton
+        out = {"velocity": s.velocity, "width": s.width, "amplitude": s.amplitude,
+               "frequency": self.frequency}
+        for i in self.kink_fields():
+            out[f"kink_{fields[i]}"] = float(s.kink[i])
+        return out
+
+    def envelope(self, xi) -> np.ndarray:
+        """|E| at distances ``xi`` (sites) from the centre (real: sech or tanh)."""
+        a, w = self.soliton.amplitude, self.width
+        xi = np.asarray(xi, dtype=float)
+        return a / 2 / np.cosh(xi / w) if self.kind == "bright" else a / 2 * np.tanh(xi / w)
+
+    def state(self, centre: float | None = None) -> tuple:
+        """(u, v), each shape (d, N): the soliton centred at site ``centre`` (N/2), t = 0."""
+        N, nl = self.N, self.nls
+        n = np.arange(N, dtype=float)
+        c = N / 2 if centre is None else float(centre)
+        xi = (n - c + N / 2) % N - N / 2
+        w, vg, Om = self.width, self.velocity, self.frequency
+        E = self.envelope(xi)
+        h = 1e-4 * w  # central difference: relative error (h / w)^2 = 1e-8
+        dE = (self.envelope(xi + h) - self.envelope(xi - h)) / (2 * h)
+        carrier = np.exp(1j * self.k * n)[None, :]
+        e = nl.carrier.e[:, None]
+        v2 = nl.second_harmonic[:, None]
+        u = 2 * np.real(E * e * carrier) + 2 * np.real(E**2 * v2 * carrier**2)
+        v = (2 * np.real((-vg * dE - 1j * Om * E) * e * carrier)
+             + 2 * np.real((-2 * vg * E * dE - 2j * Om * E**2) * v2 * carrier**2))
+        u = u + nl.mean[:, None] * E**2
+        v = v - vg * nl.mean[:, None] * 2 * E * dE
+        s = nl.strain[:, None]
+        if np.any(s != 0):
+            mid = self.envelope(xi + 0.5) ** 2 + self.ring_strain  # between n and n + 1
+            strain = s * mid
+            U = np.concatenate([np.zeros((len(s), 1)), np.cumsum(strain, axis=1)[:, :-1]],
+                               axis=1)
+            u = u + U - U.mean(axis=1, keepdims=True) + _optical_per_strain(nl) * \
+                self.ring_strain
+            v = v - vg * (strain + np.roll(strain, 1, axis=1)) / 2
+        return np.ascontiguousarray(u), np.ascontiguousarray(v)
+
+
+def _optical_per_strain(nl: ModelNLS) -> np.ndarray:
+    """Optical mean displacement per unit lam of the uniform strain lam s, shape (d, 1):
+    -K(0)^+ (H12 + H22) N s_N (``_nls``: the optical fields' response to a strain)."""
+    model = nl.model
+    H = model.code.taylor(model.p)[0]
+    d = model.n_fields
+    _, H12, _, H22 = blocks(H, d)
+    Nd = acoustic_directions(model)
+    if not Nd.shape[1]:
+        return np.zeros((d, 1))
+    K0p = np.linalg.pinv(np.real(dynamical_matrix(H, 0.0)), rcond=1e-10, hermitian=True)
+    return (-K0p @ (H12 + H22) @ Nd @ (Nd.T @ nl.strain))[:, None]
+
+
+def ring_soliton(model: Model, k: float, amplitude: float, N: int, kind: str | None = None,
+                 branch=None) -> RingSoliton:
+    """The soliton of ``model``'s NLS at the ring wavenumber nearest ``k`` on N sites.
+
+    Raises
+    ------
+    ModelError
+        No NLS at k, a kind that does not exist there (the message names the one that does),
+        or a ring shorter than 12 widths.
+    """
+    probe = nls(model, k, branch)
+    if probe.undefined:
+        raise ModelError(f"no soliton at k = {k:.6g}: {probe.undefined}")
+    exists = probe.soliton(amplitude).kind
+    if kind is not None and kind != exists:
+        raise ModelError(f"kind {kind}: the NLS at k = {k:.6g} has g = g2/g1 = {probe.g:.4g} "
+                         f"({'> 0' if probe.g > 0 else '< 0'}), so only {exists} solitons")
+    kr = ring_wavenumber(k, N, exists)
+    nl = nls(model, kr, probe.carrier.branch)
+    if nl.undefined:
+        raise ModelError(f"no soliton at the ring's k = {kr:.6g}: {nl.undefined}")
+    s = nl.soliton(amplitude)
+    if s.kind != exists:
+        raise ModelError(f"the ring's k = {kr:.6g} (N = {N}) has a {s.kind} soliton, k = "
+                         f"{k:.6g} a {exists} one (g changes sign between): a longer ring")
+    if 12 * s.width > N:
+        raise ModelError(f"N = {N} is too short for a soliton {s.width:.3g} sites wide (need "
+                         f"N >= 12 widths = {math.ceil(12 * s.width)})")
+    n = np.arange(N, dtype=float)
+    a, w = s.amplitude, s.width
+    xi = n + 0.5 - N / 2
+    E2 = (a / 2 / np.cosh(xi / w)) ** 2 if s.kind == "bright" else (a / 2 * np.tanh(
+        xi / w)) ** 2
+    lam = -float(E2.mean()) if np.any(nl.strain != 0) else 0.0
+    # the soliton's own turn (e^{i shift t}), and the ring's uniform strain through the
+    # mean flow's part of g2 (ModelSoliton: the black one's background has no strain)
+    shift = nl.g2 * a**2 / 8 if s.kind == "bright" else nl.g2 * a**2 / 4
+    frequency = nl.carrier.omega - shift - nl.parts["mean flow"] * lam
+    return RingSoliton(nls=nl, soliton=s, N=int(N), frequency=float(frequency),
+                       ring_strain=lam)
+
+
+@dataclass(frozen=True)
+class ModelSnapshot:
+    """What one state shows of the soliton: fitted centre (unwrapped), amplitude (the
+    carrier's first harmonic at the peak, or of the background), width, depth (dark),
+    kink per field (0 where none), radiation and shape misfit as the paper chain's
+    ``Snapshot``."""
+
+    t: float
+    centre: float
+    amplitude: float
+    width: float
+    depth: float
+    kink: np.ndarray
+    radiation: float
+    shape_misfit: float
+
+
+def _ring_distance(n, c, N):
+    return (n - c + N / 2) % N - N / 2
+
+
+def analytic_carrier(u, v, pred: RingSoliton) -> np.ndarray:
+    """z = u + i v / Omega of the carrier field, band-passed at |q - k| < k/2: 2 E e^{i theta}."""
+    f = pred.nls.carrier.field
+    N = u.shape[1]
+    z = np.fft.fft(u[f] + 1j * v[f] / pred.frequency)
+    q = 2 * np.pi * np.fft.fftfreq(N)
+    near = np.abs((q - pred.k + np.pi) % (2 * np.pi) - np.pi) < pred.k / 2
+    return np.fft.ifft(np.where(near, z, 0))
+
+
+def _fit(amp2, kind, c0, w0, N):
+    """Least-squares fit of |2E|^2 near c0: (centre, amplitude, width, depth, radiation,
+    shape misfit)."""
+    from scipy.optimize import least_squares
+
+    n = np.arange(N, dtype=float)
+    d = _ring_distance(n, c0, N)
+    win = np.abs(d) < (6 if kind == "bright" else 8) * w0
+    scale = float(np.max(amp2))  # O(1) numbers: least_squares' tolerances are absolute
+    x, y = d[win], amp2[win] / scale
+    if kind == "bright":
+        def model(p):
+            return p[1] ** 2 / np.cosh((x - p[0]) / p[2]) ** 2
+        p0 = [x[np.argmax(y)], math.sqrt(y.max()), w0]
+    else:
+        def model(p):
+            return p[1] ** 2 * (1 - p[3] / np.cosh((x - p[0]) / p[2]) ** 2)
+        far = np.abs(d) > 8 * w0
+        bg = math.sqrt(np.median(amp2[far] / scale)) if far.any() else 1.0
+        p0 = [x[np.argmin(y)], bg, w0, 1.0 - y.min() / bg**2]
+    p = least_squares(lambda p: model(p) - y, p0, xtol=1e-12, ftol=1e-12, gtol=1e-12).x
+    amp, width = abs(float(p[1])) * math.sqrt(scale), abs(float(p[2]))
+    centre = c0 + float(p[0])
+    dd = _ring_distance(n, centre, N)
+    if kind == "bright":
+        full = amp**2 / np.cosh(dd / width) ** 2
+        own = full
+    else:
+        full = amp**2 * (1 - p[3] / np.cosh(dd / width) ** 2)
+        own = amp**2 - full
+    off = np.abs(amp2 - full)
+    core = np.abs(dd) <= RADIATION_WINDOW * width
+    content = float(np.sum(np.abs(own)))
+    share = max(1 - core.mean(), 1e-12)
+    radiation = float(np.sum(off[~core]) / content / share) if (~core).any() else math.nan
+    misfit = float(np.sum(off[core]) / content)
+    depth = 0.0 if kind == "bright" else float(p[3])
+    return centre, amp, width, depth, radiation, misfit
+
+
+def _kinks(u, pred: RingSoliton, centre, width):
+    """Each kink field's step: its strain low-passed at |q| < k/2 (the harmonics out),
+    summed over +-8 widths, minus the background strain over the window."""
+    d, N = u.shape
+    out = np.zeros(d)
+    q = 2 * np.pi * np.fft.rfftfreq(N)
+    dist = _ring_distance(np.arange(N) + 0.5, centre, N)
+    win = np.abs(dist) < 8 * width
+    for i in pred.kink_fields():
+        s_hat = np.fft.rfft(np.roll(u[i], -1) - u[i])
+        s_hat[q > pred.k / 2] = 0
+        strain = np.fft.irfft(s_hat, N)
+        bg = np.median(strain[~win]) if (~win).any() else 0.0
+        out[i] = float(np.sum(strain[win] - bg))
+    return out
+
+
+def measure_snapshot(u, v, pred: RingSoliton, t: float, centre_guess: float) -> ModelSnapshot:
+    """Fit the soliton in the state (u, v) (each shape (d, N))."""
+    N = u.shape[1]
+    z = analytic_carrier(u, v, pred)
+    c, a, w, depth, rad, misfit = _fit(np.abs(z) ** 2, pred.kind, centre_guess, pred.width, N)
+    return ModelSnapshot(t=float(t), centre=c, amplitude=a, width=w, depth=depth,
+                         kink=_kinks(u, pred, c, w), radiation=rad, shape_misfit=misfit)
+
+
+def _phasor(u, v, pred, centre, t):
+    """z demodulated by the predicted carrier e^{-i(k n - Omega t)}; dark: the background
+    far from the dip only (the phase jumps across it)."""
+    N = u.shape[1]
+    n = np.arange(N)
+    r = analytic_carrier(u, v, pred) * np.exp(-1j * (pred.k * n - pred.frequency * t))
+    if pred.kind == "bright":
+        return r
+    far = np.abs(_ring_distance(n, centre, N)) > 6 * pred.width
+    return np.where(far, r, 0)
+
+
+def _frequency(times, phases, pred):
+    """Omega - d(phase)/dt of the demodulated field (unwrapped between records): for a
+    bright soliton the phase of its sum (its mode at k), for a dark one the site-by-site
+    phase change of the background."""
+    if pred.kind == "bright":
+        steps = [np.angle(np.sum(b) * np.conj(np.sum(a)))
+                 for a, b in zip(phases[:-1], phases[1:])]
+    else:
+        steps = [np.angle(np.sum(b * np.conj(a))) for a, b in zip(phases[:-1], phases[1:])]
+    phase = np.concatenate([[0.0], np.cumsum(steps)])
+    return float(pred.frequency - np.polyfit(times, phase, 1)[0])
+
+
+@dataclass(frozen=True)
+class ModelSolitonRun:
+    """A model's soliton launched on a ring and tracked.
+
+    Attributes
+    ----------
+    predicted : RingSoliton
+        At the ring's k (``k_asked`` is what was asked).
+    N, t_end, dt, method : the run.
+    snapshots : tuple of ModelSnapshot, one per record (the first at t = 0).
+    frequency : float
+        Measured carrier frequency (1/time).
+    energy : ndarray, shape (n_snapshots,)
+        Total energy at each record.
+    fields : ndarray, shape (n_snapshots, d, N)
+        The recorded displacements, for the figure.
+    """
+
+    predicted: RingSoliton
+    k_asked: float
+    N: int
+    t_end: float
+    dt: float
+    method: str
+    snapshots: tuple
+    frequency: float
+    energy: np.ndarray = field(repr=False)
+    fields: np.ndarray = field(repr=False)
+
+    @property
+    def model(self) -> Model:
+        return self.predicted.nls.model
+
+    @property
+    def t(self) -> np.ndarray:
+        return np.array([s.t for s in self.snapshots])
+
+    def series(self, name: str) -> np.ndarray:
+        return np.array([getattr(s, name) for s in self.snapshots])
+
+    @property
+    def velocity(self) -> float:
+        """Least-squares slope of the unwrapped centre against time (sites per time)."""
+        return float(np.polyfit(self.t, self.series("centre"), 1)[0])
+
+    @property
+    def energy_drift(self) -> float:
+        """max |E(t) - E(0)| / |E(0)| over the records (E = 0 at rest)."""
+        return float(np.max(np.abs(self.energy - self.energy[0])) / abs(self.energy[0]))
+
+    def measured(self) -> dict:
+        """The counterparts of :meth:`RingSoliton.summary` (width, amplitude and kinks at
+        the run's end), the radiation and shape misfit at the end, the distance travelled
+        in widths, the energy drift and the drifts (end / start - 1) of width and
+        amplitude."""
+        first, last = self.snapshots[0], self.snapshots[-1]
+        names = self.model.fields
+        out = {"velocity": self.velocity, "width": last.width, "amplitude": last.amplitude,
+               "frequency": self.frequency}
+        for i in self.predicted.kink_fields():
+            out[f"kink_{names[i]}"] = float(last.kink[i])
+        out.update({"radiation": last.radiation, "shape_misfit": last.shape_misfit,
+                    "travelled_widths": abs(last.centre - first.centre) / self.predicted.width,
+                    "energy_drift": self.energy_drift,
+                    "drift": {"width": last.width / first.width - 1,
+                              "amplitude": last.amplitude / first.amplitude - 1}})
+        if self.predicted.kind == "dark":
+            out["depth"] = last.depth
+        return out
+
+    def errors(self) -> dict:
+        """measured / predicted - 1 of each quantity of the prediction's summary."""
+        p = self.predicted.summary(self.model.fields)
+        m = self.measured()
+        return {key: (m[key] / p[key] - 1) if p[key] else math.nan for key in p}
+
+
+def simulate_soliton(model: Model, k: float, amplitude: float, kind: str | None = None, *,
+                     branch=None, N: int | None = None, travel: float = 20.0,
+                     t_end: float | None = None, snapshots: int = 21,
+                     method: str = "srkn11b", dt: float | None = None) -> ModelSolitonRun:
+    """Launch ``model``'s NLS soliton on a ring, integrate and track it.
+
+    Parameters
+    ----------
+    model : Model
+    k : float
+        Carrier wavenumber (rad/site), moved to the nearest :func:`ring_wavenumber`.
+    amplitude : float
+        The carrier's first-harmonic amplitude a in its field: at the peak (bright) or of
+        the background (dark).
+    kind : {"bright", "dark"}, optional
+        Default: the one the NLS has (bright where g > 0); the other is an error.
+    branch : int or str, optional
+        As :func:`numerics.models.nls`.
+    N : int, optional
+        Ring size; default :func:`default_ring` (20 widths, at least 256 sites).
+    travel : float
+        Run until the soliton has moved this many widths at v_g (unless ``t_end``).
+    snapshots : int
+        Records, t = 0 included.
+    method, dt
+        As :func:`numerics.models.simulate_model` (default dt: a fifth of the method's
+        stability limit).
+
+    Returns
+    -------
+    ModelSolitonRun
+    """
+    from ._exact import travelling_wave
+    from ._simulate import check_count, check_ring, simulate_model, snap_ring
+
+    if kind is not None and kind not in KINDS:
+        raise ModelError(f"kind must be one of {KINDS}, got {kind!r}")
+    probe = nls(model, k, branch)
+    if probe.undefined:
+        raise ModelError(f"no soliton at k = {k:.6g}: {probe.undefined}")
+    s0 = probe.soliton(amplitude)
+    N = default_ring(s0.width) if N is None else check_ring(N)
+    pred = ring_soliton(model, k, amplitude, N, kind, probe.carrier.branch)
+    snapshots = check_count("snapshots", snapshots, least=3)
+    if t_end is None:
+        if not (isinstance(travel, (int, float)) and math.isfinite(travel) and travel > 0):
+            raise ModelError(f"travel must be a number of widths > 0, got {travel!r}")
+        t_end = travel * pred.width / max(abs(pred.velocity), 1e-12)
+        if t_end > MAX_T_END:
+            raise ModelError(
+                f"the soliton moves at {pred.velocity:.3g} sites/time: {travel:g} widths "
+                f"take T = {t_end:.3g} (> {MAX_T_END:g}); give a shorter travel, or a larger "
+                "amplitude (its width shrinks as 1 / amplitude)")
+    if not (math.isfinite(t_end) and t_end > 0):
+        raise ModelError(f"t_end must be a finite time > 0, got {t_end!r}")
+    u, v = pred.state()
+    # the plane wave the segment runs compare with (their records are not used here)
+    wave = travelling_wave(model, snap_ring(pred.k, N)[0], amplitude, pred.nls.carrier.branch)
+    times = np.linspace(0.0, t_end, snapshots)
+    snaps, phases, fields, energy = [], [], [], []
+    centre, step = N / 2, None
+    for i, ti in enumerate(times):
+        if i:
+            run = simulate_model(model, wave.carrier.k, amplitude, N=N, t_end=ti - times[i - 1],
+                                 dt=dt, method=method, noise=0.0, records=1, wave=wave,
+                                 initial=(u, v))
+            u, v = run.state
+            step = run.dt
+            if not energy:
+                energy.append(float(run.energy[0]))
+            energy.append(float(run.energy[-1]))
+        guess = centre + (pred.velocity * (ti - times[i - 1]) if i else 0.0)
+        snap = measure_snapshot(u, v, pred, float(ti), guess)
+        centre = snap.centre
+        snaps.append(snap)
+        phases.append(_phasor(u, v, pred, centre, float(ti)))
+        fields.append(u.copy())
+    return ModelSolitonRun(predicted=pred, k_asked=float(k), N=N, t_end=float(t_end),
+                           dt=float(step), method=method, snapshots=tuple(snaps),
+                           frequency=_frequency(times, phases, pred),
+                           energy=np.array(energy), fields=np.array(fields))
+
+
+def soliton_report(pred: RingSoliton, run: ModelSolitonRun | None = None) -> dict:
+    """The JSON of ``flexmm soliton --model``: kind, predicted, measured (None without a
+    run), errors, inputs and the run."""
+    model = pred.nls.model
+    out = {"model": model.name, "parameters": dict(model.params), "kind": pred.kind,
+           "k": pred.k, "branch": pred.nls.carrier.branch, "amplitude": pred.soliton.amplitude,
+           "g1": pred.nls.g1, "g2": pred.nls.g2,
+           "predicted": pred.summary(model.fields),
+           "measured": None if run is None else run.measured(),
+           "errors": None if run is None else run.errors()}
+    if run is not None:
+        out["run"] = {"N": run.N, "k_asked": run.k_asked, "k_ring": pred.k,
+                      "t_end": run.t_end, "dt": run.dt, "method": run.method,
+                      "snapshots": len(run.snapshots)}
+    return out
+
+
+__all__ = ["ring_wavenumber", "default_ring", "RingSoliton", "ring_soliton", "ModelSnapshot",
+           "ModelSolitonRun", "simulate_soliton", "soliton_report", "analytic_carrier",
+           "measure_snapshot"]
