@@ -80,12 +80,15 @@ def run_model_soliton(args, model, units, branch) -> dict:
     if args.json:
         _emit(add_units(report, units))
     else:
-        c = pred.nls.carrier
+        from numerics.models import nls
+
+        asked = nls(model, args.k, pred.nls.carrier.branch)  # the ring's k comes below
+        c = asked.carrier
         print(f"model:    {model.describe()}")
         print(f"carrier:  k = {args.k:g} rad/site{units.si(args.k, 'wavenumber')} on branch "
-              f"{c.branch}, omega = {c.omega:.6g}; g1 = {pred.nls.g1:.6g}, g2 = "
-              f"{pred.nls.g2:.6g}, g = g2/g1 = {pred.nls.g:.4g} -> "
-              f"{'focusing' if pred.nls.g > 0 else 'defocusing'}: {pred.kind} soliton")
+              f"{c.branch}, omega = {c.omega:.6g}; g1 = {asked.g1:.6g}, g2 = "
+              f"{asked.g2:.6g}, g = g2/g1 = {asked.g:.4g} -> "
+              f"{'focusing' if asked.g > 0 else 'defocusing'}: {pred.kind} soliton")
         print(f"units:    {units.describe()}")
         if run is not None:
             m = run.measured()
@@ -111,8 +114,8 @@ def run_model_soliton(args, model, units, branch) -> dict:
             print(f"warning: the envelope spans k x width = {pred.k * pred.width:.2g} rad of "
                   f"carrier phase (< {SEPARATION:g}): the envelope and the kink overlap the "
                   "mean and the second harmonic in wavenumber, so their measurement (band "
-                  "and low pass at k/2) is not clean; a smaller amplitude or a larger k "
-                  "widens the envelope")
+                  "and low pass at k/2) is not clean; a smaller amplitude (a wider "
+                  "envelope) or a larger k separates them")
     if folder is not None:
         from common.files import write_text
         from common.output import strict_json
@@ -131,7 +134,7 @@ def _figure(path, pred, run, model):
     import numpy as np
 
     from common.files import atomic_write
-    from numerics.models._soliton_run import analytic_carrier
+    from numerics.models._soliton_measure import analytic_carrier
     from scenes import plt
 
     fig, axes = plt.subplots(1, 3, figsize=(12, 3.8), layout="constrained")

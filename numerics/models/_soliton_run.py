@@ -14,7 +14,7 @@ moves its frequency by -g2_meanflow lam (order width / N for a bright soliton; f
 black one the background's own strain). Velocities: the envelope moves at v_g and turns
 at Omega (the soliton's frequency on this ring), the mean fields translate with it.
 
-The measurement: the carrier field's analytic signal z = u + i u_dot / Omega, band-passed
+The measurement (``_soliton_measure``): the carrier field's analytic signal z = u + i u_dot / Omega, band-passed
 around +k (|q - k| < k/2: the mean at q = 0 and the second harmonic at 2k outside), is
 2 E e^{i theta}; |z|^2 is fitted by a^2 sech^2 (bright) or a^2 (1 - D sech^2) (dark) for
 the centre, amplitude and width; its phase, demodulated, gives the frequency; each
@@ -32,6 +32,7 @@ from energy import Model, ModelError
 
 from ._linear import blocks, dynamical_matrix
 from ._nls import ModelNLS, ModelSoliton, acoustic_directions, nls
+from ._soliton_measure import frequency_of, measure_snapshot, phasor
 
 KINDS = ("bright", "dark")
 #: below this width (sites) the envelope is too narrow for the weak-modulation ordering
@@ -39,8 +40,6 @@ KINDS = ("bright", "dark")
 MIN_WIDTH = 8.0
 #: the longest run picked by itself (the paper chain's MAX_T_END)
 MAX_T_END = 5e5
-#: half-width (in soliton widths) of the window counted as the soliton
-RADIATION_WINDOW = 6.0
 #: a sech^2 kink of width w keeps 99% of its spectrum below 4.5 / w: k w >= 9 separates it
 #: (and the envelope) from the carrier's band-pass at k/2
 SEPARATION = 9.0
@@ -211,128 +210,6 @@ def ring_soliton(model: Model, k: float, amplitude: float, N: int, kind: str | N
 
 
 @dataclass(frozen=True)
-class ModelSnapshot:
-    """What one state shows of the soliton: fitted centre (unwrapped), amplitude (the
-    carrier's first harmonic at the peak, or of the background), width, depth (dark),
-    kink per field (0 where none), radiation and shape misfit as the paper chain's
-    ``Snapshot``."""
-
-    t: float
-    centre: float
-    amplitude: float
-    width: float
-    depth: float
-    kink: np.ndarray
-    radiation: float
-    shape_misfit: float
-
-
-def _ring_distance(n, c, N):
-    return (n - c + N / 2) % N - N / 2
-
-
-def analytic_carrier(u, v, pred: RingSoliton) -> np.ndarray:
-    """z = u + i v / Omega of the carrier field, band-passed at |q - k| < k/2: 2 E e^{i theta}."""
-    f = pred.nls.carrier.field
-    N = u.shape[1]
-    z = np.fft.fft(u[f] + 1j * v[f] / pred.frequency)
-    q = 2 * np.pi * np.fft.fftfreq(N)
-    near = np.abs((q - pred.k + np.pi) % (2 * np.pi) - np.pi) < pred.k / 2
-    return np.fft.ifft(np.where(near, z, 0))
-
-
-def _fit(amp2, kind, c0, w0, N):
-    """Least-squares fit of |2E|^2 near c0: (centre, amplitude, width, depth, radiation,
-    shape misfit)."""
-    from scipy.optimize import least_squares
-
-    n = np.arange(N, dtype=float)
-    d = _ring_distance(n, c0, N)
-    win = np.abs(d) < (6 if kind == "bright" else 8) * w0
-    scale = float(np.max(amp2))  # O(1) numbers: least_squares' tolerances are absolute
-    x, y = d[win], amp2[win] / scale
-    if kind == "bright":
-        def model(p):
-            return p[1] ** 2 / np.cosh((x - p[0]) / p[2]) ** 2
-        p0 = [x[np.argmax(y)], math.sqrt(y.max()), w0]
-    else:
-        def model(p):
-            return p[1] ** 2 * (1 - p[3] / np.cosh((x - p[0]) / p[2]) ** 2)
-        far = np.abs(d) > 8 * w0
-        bg = math.sqrt(np.median(amp2[far] / scale)) if far.any() else 1.0
-        p0 = [x[np.argmin(y)], bg, w0, 1.0 - y.min() / bg**2]
-    p = least_squares(lambda p: model(p) - y, p0, xtol=1e-12, ftol=1e-12, gtol=1e-12).x
-    amp, width = abs(float(p[1])) * math.sqrt(scale), abs(float(p[2]))
-    centre = c0 + float(p[0])
-    dd = _ring_distance(n, centre, N)
-    if kind == "bright":
-        full = amp**2 / np.cosh(dd / width) ** 2
-        own = full
-    else:
-        full = amp**2 * (1 - p[3] / np.cosh(dd / width) ** 2)
-        own = amp**2 - full
-    off = np.abs(amp2 - full)
-    core = np.abs(dd) <= RADIATION_WINDOW * width
-    content = float(np.sum(np.abs(own)))
-    share = max(1 - core.mean(), 1e-12)
-    radiation = float(np.sum(off[~core]) / content / share) if (~core).any() else math.nan
-    misfit = float(np.sum(off[core]) / content)
-    depth = 0.0 if kind == "bright" else float(p[3])
-    return centre, amp, width, depth, radiation, misfit
-
-
-def _kinks(u, pred: RingSoliton, centre, width):
-    """Each kink field's step: its strain low-passed at |q| < k/2 (the harmonics out),
-    summed over +-8 widths, minus the background strain over the window."""
-    d, N = u.shape
-    out = np.zeros(d)
-    q = 2 * np.pi * np.fft.rfftfreq(N)
-    dist = _ring_distance(np.arange(N) + 0.5, centre, N)
-    win = np.abs(dist) < 8 * width
-    for i in pred.kink_fields():
-        s_hat = np.fft.rfft(np.roll(u[i], -1) - u[i])
-        s_hat[q > pred.k / 2] = 0
-        strain = np.fft.irfft(s_hat, N)
-        bg = np.median(strain[~win]) if (~win).any() else 0.0
-        out[i] = float(np.sum(strain[win] - bg))
-    return out
-
-
-def measure_snapshot(u, v, pred: RingSoliton, t: float, centre_guess: float) -> ModelSnapshot:
-    """Fit the soliton in the state (u, v) (each shape (d, N))."""
-    N = u.shape[1]
-    z = analytic_carrier(u, v, pred)
-    c, a, w, depth, rad, misfit = _fit(np.abs(z) ** 2, pred.kind, centre_guess, pred.width, N)
-    return ModelSnapshot(t=float(t), centre=c, amplitude=a, width=w, depth=depth,
-                         kink=_kinks(u, pred, c, w), radiation=rad, shape_misfit=misfit)
-
-
-def _phasor(u, v, pred, centre, t):
-    """z demodulated by the predicted carrier e^{-i(k n - Omega t)}; dark: the background
-    far from the dip only (the phase jumps across it)."""
-    N = u.shape[1]
-    n = np.arange(N)
-    r = analytic_carrier(u, v, pred) * np.exp(-1j * (pred.k * n - pred.frequency * t))
-    if pred.kind == "bright":
-        return r
-    far = np.abs(_ring_distance(n, centre, N)) > 6 * pred.width
-    return np.where(far, r, 0)
-
-
-def _frequency(times, phases, pred):
-    """Omega - d(phase)/dt of the demodulated field (unwrapped between records): for a
-    bright soliton the phase of its sum (its mode at k), for a dark one the site-by-site
-    phase change of the background."""
-    if pred.kind == "bright":
-        steps = [np.angle(np.sum(b) * np.conj(np.sum(a)))
-                 for a, b in zip(phases[:-1], phases[1:])]
-    else:
-        steps = [np.angle(np.sum(b * np.conj(a))) for a, b in zip(phases[:-1], phases[1:])]
-    phase = np.concatenate([[0.0], np.cumsum(steps)])
-    return float(pred.frequency - np.polyfit(times, phase, 1)[0])
-
-
-@dataclass(frozen=True)
 class ModelSolitonRun:
     """A model's soliton launched on a ring and tracked.
 
@@ -383,16 +260,20 @@ class ModelSolitonRun:
         return float(np.max(np.abs(self.energy - self.energy[0])) / abs(self.energy[0]))
 
     def measured(self) -> dict:
-        """The counterparts of :meth:`RingSoliton.summary` (width, amplitude and kinks at
-        the run's end), the radiation and shape misfit at the end, the distance travelled
-        in widths, the energy drift and the drifts (end / start - 1) of width and
-        amplitude."""
+        """The counterparts of :meth:`RingSoliton.summary` (width, amplitude and kinks:
+        the median over the second half of the run, the settled soliton, which a ripple
+        of the launch's radiation crossing it at one record does not move), the radiation
+        and shape misfit at the end, the distance travelled in widths, the energy drift
+        and the drifts (end / start - 1) of width and amplitude."""
         first, last = self.snapshots[0], self.snapshots[-1]
+        late = self.snapshots[len(self.snapshots) // 2:]
         names = self.model.fields
-        out = {"velocity": self.velocity, "width": last.width, "amplitude": last.amplitude,
+        out = {"velocity": self.velocity,
+               "width": float(np.median([s.width for s in late])),
+               "amplitude": float(np.median([s.amplitude for s in late])),
                "frequency": self.frequency}
         for i in self.predicted.kink_fields():
-            out[f"kink_{names[i]}"] = float(last.kink[i])
+            out[f"kink_{names[i]}"] = float(np.median([s.kink[i] for s in late]))
         out.update({"radiation": last.radiation, "shape_misfit": last.shape_misfit,
                     "travelled_widths": abs(last.centre - first.centre) / self.predicted.width,
                     "energy_drift": self.energy_drift,
@@ -407,6 +288,33 @@ class ModelSolitonRun:
         p = self.predicted.summary(self.model.fields)
         m = self.measured()
         return {key: (m[key] / p[key] - 1) if p[key] else math.nan for key in p}
+
+
+#: the narrowest soliton launched (sites): narrower, the envelope is no envelope
+MIN_LAUNCH_WIDTH = 2.0
+#: the band-pass at |q - k| < k/2 keeps the envelope's spectrum (sech(pi q w / 2)) to 1e-4
+#: of its peak where k w >= 6 (to 9% at k w = 2)
+MIN_SEPARATION = 6.0
+
+
+def _check_launch(model: Model, pred: RingSoliton):
+    """Refuse a launch the lattice cannot carry or the measurement cannot see, each with
+    its remedy."""
+    from ._reach import energy_not_real
+
+    a, w = pred.soliton.amplitude, pred.width
+    why = energy_not_real(model, pred.k, a, pred.nls.carrier.branch)
+    if why is not None:
+        raise ModelError(why)
+    if w < MIN_LAUNCH_WIDTH:
+        raise ModelError(f"the {pred.kind} soliton of amplitude {a:g} is {w:.3g} sites wide "
+                         f"(< {MIN_LAUNCH_WIDTH:g}): no envelope; amplitude <= "
+                         f"{a * w / MIN_WIDTH:.3g} makes it {MIN_WIDTH:g} sites wide")
+    if pred.k * w < MIN_SEPARATION:
+        raise ModelError(f"k x width = {pred.k:.4g} x {w:.3g} = {pred.k * w:.3g} < "
+                         f"{MIN_SEPARATION:g}: the envelope's spectrum reaches the mean "
+                         "flow (q = 0), so the carrier cannot be told from it; a larger k or "
+                         f"an amplitude <= {a * pred.k * w / MIN_SEPARATION:.3g} (wider)")
 
 
 def simulate_soliton(model: Model, k: float, amplitude: float, kind: str | None = None, *,
@@ -452,6 +360,7 @@ def simulate_soliton(model: Model, k: float, amplitude: float, kind: str | None 
     s0 = probe.soliton(amplitude)
     N = default_ring(s0.width) if N is None else check_ring(N)
     pred = ring_soliton(model, k, amplitude, N, kind, probe.carrier.branch)
+    _check_launch(model, pred)
     snapshots = check_count("snapshots", snapshots, least=3)
     if t_end is None:
         if not (isinstance(travel, (int, float)) and math.isfinite(travel) and travel > 0):
@@ -481,14 +390,18 @@ def simulate_soliton(model: Model, k: float, amplitude: float, kind: str | None 
                 energy.append(float(run.energy[0]))
             energy.append(float(run.energy[-1]))
         guess = centre + (pred.velocity * (ti - times[i - 1]) if i else 0.0)
-        snap = measure_snapshot(u, v, pred, float(ti), guess)
+        try:
+            snap = measure_snapshot(u, v, pred, float(ti), guess)
+        except ValueError:  # the fit's own error (a non-finite start): no soliton to fit
+            raise ModelError(f"at T = {ti:.4g} no {pred.kind} soliton is left to fit (it "
+                             "broke up or radiated away): lower the amplitude") from None
         centre = snap.centre
         snaps.append(snap)
-        phases.append(_phasor(u, v, pred, centre, float(ti)))
+        phases.append(phasor(u, v, pred, centre, float(ti)))
         fields.append(u.copy())
     return ModelSolitonRun(predicted=pred, k_asked=float(k), N=N, t_end=float(t_end),
                            dt=float(step), method=method, snapshots=tuple(snaps),
-                           frequency=_frequency(times, phases, pred),
+                           frequency=frequency_of(times, phases, pred),
                            energy=np.array(energy), fields=np.array(fields))
 
 
@@ -509,6 +422,5 @@ def soliton_report(pred: RingSoliton, run: ModelSolitonRun | None = None) -> dic
     return out
 
 
-__all__ = ["ring_wavenumber", "default_ring", "RingSoliton", "ring_soliton", "ModelSnapshot",
-           "ModelSolitonRun", "simulate_soliton", "soliton_report", "analytic_carrier",
-           "measure_snapshot"]
+__all__ = ["ring_wavenumber", "default_ring", "RingSoliton", "ring_soliton",
+           "ModelSolitonRun", "simulate_soliton", "soliton_report"]
