@@ -51,7 +51,6 @@ def run_model_soliton(args, model, units, branch) -> dict:
     from common.output import prepare_output
     from numerics.lattice import checks
     from numerics.models import ring_soliton, simulate_soliton, soliton_report
-    from numerics.models._soliton_run import MIN_WIDTH, SEPARATION, default_ring
 
     from .models import _emit
     from .units import add_units
@@ -69,13 +68,7 @@ def run_model_soliton(args, model, units, branch) -> dict:
                                N=args.N, travel=args.travel)
         pred = run.predicted
     else:
-        from numerics.models import nls
-
-        probe = nls(model, args.k, branch)
-        if probe.undefined:
-            raise ValueError(f"no soliton at k = {args.k:g}: {probe.undefined}")
-        N = default_ring(probe.soliton(args.amplitude).width)
-        pred = ring_soliton(model, args.k, args.amplitude, N, args.kind, branch)
+        pred = ring_soliton(model, args.k, args.amplitude, kind=args.kind, branch=branch)
     report = soliton_report(pred, run)
     if args.json:
         _emit(add_units(report, units))
@@ -107,15 +100,8 @@ def run_model_soliton(args, model, units, branch) -> dict:
                   f"{m['radiation']:.2g}; shape off {shape} inside: {m['shape_misfit']:.2g}; "
                   f"drift over the run: width {m['drift']['width']:+.2%}, amplitude "
                   f"{m['drift']['amplitude']:+.2%}")
-        if pred.width < MIN_WIDTH:
-            print(f"note: {pred.width:.3g} sites is too narrow for the envelope theory; "
-                  "lower the amplitude")
-        if pred.k * pred.width < SEPARATION:
-            print(f"warning: the envelope spans k x width = {pred.k * pred.width:.2g} rad of "
-                  f"carrier phase (< {SEPARATION:g}): the envelope and the kink overlap the "
-                  "mean and the second harmonic in wavenumber, so their measurement (band "
-                  "and low pass at k/2) is not clean; a smaller amplitude (a wider "
-                  "envelope) or a larger k separates them")
+        for line in pred.notes():
+            print(line)
     if folder is not None:
         from common.files import write_text
         from common.output import strict_json
@@ -134,7 +120,6 @@ def _figure(path, pred, run, model):
     import numpy as np
 
     from common.files import atomic_write
-    from numerics.models._soliton_measure import analytic_carrier
     from scenes import plt
 
     fig, axes = plt.subplots(1, 3, figsize=(12, 3.8), layout="constrained")
@@ -148,7 +133,7 @@ def _figure(path, pred, run, model):
         last = run.snapshots[-1]
         u_last = run.fields[-1]
         # the velocities are not kept: the band-passed displacement alone (Re z)
-        z = analytic_carrier(u_last, np.zeros_like(u_last), pred)
+        z = pred.carrier_signal(u_last, np.zeros_like(u_last))
         xi = (n - last.centre + N / 2) % N - N / 2
         keep = np.argsort(xi)
         keep = keep[np.abs(xi[keep]) < span]

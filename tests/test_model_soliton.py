@@ -164,4 +164,4 @@ def test_no_bright_soliton_where_g_is_negative():
     model = load_model("fput", **FPUT)
     assert nls(model, 0.8).g < 0
     with pytest.raises(ModelError, match="only dark solitons"):
-        ring_soliton(model, 0.8, 0.1, 512, kind="bright")
+        ring_soliton(model, 0.8, 0.1, kind="bright")

@@ -32,7 +32,7 @@ from energy import Model, ModelError
 
 from ._linear import blocks, dynamical_matrix
 from ._nls import ModelNLS, ModelSoliton, acoustic_directions, nls
-from ._soliton_measure import frequency_of, measure_snapshot, phasor
+from ._soliton_measure import analytic_carrier, frequency_of, measure_snapshot, phasor
 
 KINDS = ("bright", "dark")
 #: below this width (sites) the envelope is too narrow for the weak-modulation ordering
@@ -117,6 +117,25 @@ class RingSoliton:
             out[f"kink_{fields[i]}"] = float(s.kink[i])
         return out
 
+    def notes(self) -> list:
+        """Sentences on where the envelope theory or its measurement is strained here."""
+        out = []
+        if self.width < MIN_WIDTH:
+            out.append(f"note: {self.width:.3g} sites is too narrow for the envelope theory; "
+                       "lower the amplitude")
+        if self.k * self.width < SEPARATION:
+            out.append(f"warning: the envelope spans k x width = {self.k * self.width:.2g} rad "
+                       f"of carrier phase (< {SEPARATION:g}): the envelope and the kink "
+                       "overlap the mean and the second harmonic in wavenumber, so their "
+                       "measurement (band and low pass at k/2) is not clean; a smaller "
+                       "amplitude (a wider envelope) or a larger k separates them")
+        return out
+
+    def carrier_signal(self, u, v) -> np.ndarray:
+        """The carrier field's band-passed analytic signal 2 E e^{i theta} in the state
+        (u, v) (``_soliton_measure.analytic_carrier``), shape (N,), complex."""
+        return analytic_carrier(u, v, self)
+
     def envelope(self, xi) -> np.ndarray:
         """|E| at distances ``xi`` (sites) from the centre (real: sech or tanh)."""
         a, w = self.soliton.amplitude, self.width
@@ -167,9 +186,10 @@ def _optical_per_strain(nl: ModelNLS) -> np.ndarray:
     return (-K0p @ (H12 + H22) @ Nd @ (Nd.T @ nl.strain))[:, None]
 
 
-def ring_soliton(model: Model, k: float, amplitude: float, N: int, kind: str | None = None,
-                 branch=None) -> RingSoliton:
-    """The soliton of ``model``'s NLS at the ring wavenumber nearest ``k`` on N sites.
+def ring_soliton(model: Model, k: float, amplitude: float, N: int | None = None,
+                 kind: str | None = None, branch=None) -> RingSoliton:
+    """The soliton of ``model``'s NLS at the ring wavenumber nearest ``k`` on N sites
+    (default :func:`default_ring` of its width).
 
     Raises
     ------
@@ -181,6 +201,8 @@ def ring_soliton(model: Model, k: float, amplitude: float, N: int, kind: str | N
     if probe.undefined:
         raise ModelError(f"no soliton at k = {k:.6g}: {probe.undefined}")
     exists = probe.soliton(amplitude).kind
+    if N is None:
+        N = default_ring(probe.soliton(amplitude).width)
     if kind is not None and kind != exists:
         raise ModelError(f"kind {kind}: the NLS at k = {k:.6g} has g = g2/g1 = {probe.g:.4g} "
                          f"({'> 0' if probe.g > 0 else '< 0'}), so only {exists} solitons")
