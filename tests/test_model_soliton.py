@@ -159,6 +159,19 @@ def test_bad_input_is_one_line_and_exit_2(argv, message, capsys):
     assert len(err.splitlines()) == 1 and message in err, err
 
 
+def test_a_lossy_model_is_refused_and_its_lossless_limit_runs(capsys):
+    # the NLS is lossless: a damped soliton decays, so it is refused in one line; the same
+    # file with its damping at 0 is the lossless lattice and runs
+    base = ["soliton", "--model", "flexmm-lossy", "--k", "1.0", "--param", "alpha=2",
+            "--param", "K_s=0.03", "--param", "K_theta=0.02", "--amplitude", "0.01",
+            "--simulate", "--travel", "1"]
+    assert cli(base) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and "[dissipation]" in err, err
+    assert cli(base + ["--param", "gamma_theta=0", "--param", "gamma_U=0"]) == 0
+    assert "energy drift" in capsys.readouterr().out
+
+
 def test_no_bright_soliton_where_g_is_negative():
     # fput alpha = 0.5 at k = 0.8: g2/g1 < 0 (defocusing) -> a bright one is refused
     model = load_model("fput", **FPUT)

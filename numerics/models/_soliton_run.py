@@ -324,6 +324,11 @@ def _check_launch(model: Model, pred: RingSoliton):
     its remedy."""
     from ._reach import energy_not_real
 
+    if model.lossy and any(np.any(m != 0) for m in model.damping):
+        raise ModelError(f"model {model.describe()} has [dissipation]: its soliton decays, "
+                         "and the NLS it is measured against is lossless; give its damping "
+                         "parameters 0 with --param (flexmm soliton --model ... --param "
+                         "NAME=0) to launch the lossless one")
     a, w = pred.soliton.amplitude, pred.width
     why = energy_not_real(model, pred.k, a, pred.nls.carrier.branch)
     if why is not None:
