@@ -4,9 +4,11 @@
 The launch is the multiple-scales solution of ``_nls`` with the soliton's envelope E
 (|E| = a/2 sech(xi/w) bright, a/2 tanh(xi/w) black; a = 2 eps |A|, xi = n - c - v_g t):
 
-    u_n = E e e^{i theta} + E^2 v2 e^{2 i theta} + c.c. + |E|^2 w + sum_{m<n} s (|E|^2 + lam),
+    u_n = (E e - i E_xi e') e^{i theta} + E^2 v2 e^{2 i theta} + c.c. + |E|^2 w
+          + sum_{m<n} s (|E|^2 + lam),
 
-theta = k n - Omega t, e the carrier's polarisation, v2 the second harmonic, w the optical
+theta = k n - Omega t, e the carrier's polarisation (e' = de/dk: the packet's
+wavenumbers k + p carry e(k + p)), v2 the second harmonic, w the optical
 mean, s the acoustic mean strain per |E|^2 (its sum over the ring is the kink). A periodic
 field has no net strain, so a uniform strain lam s with lam = -<|E|^2> (the ring average)
 compensates the kink; the carrier feels it through the mean flow's part of g2, which
@@ -158,6 +160,12 @@ class RingSoliton:
         u = 2 * np.real(E * e * carrier) + 2 * np.real(E**2 * v2 * carrier**2)
         v = (2 * np.real((-vg * dE - 1j * Om * E) * e * carrier)
              + 2 * np.real((-2 * vg * E * dE - 2j * Om * E**2) * v2 * carrier**2))
+        # a packet's polarisation follows its wavenumbers: e(k + p) = e + p e' puts
+        # -i e' E_xi e^{i theta} beside E e (no part in the carrier field: e[field] = 1),
+        # which turns at Omega; without it a two-field packet sheds the other branch
+        de = _polarisation_slope(nl)[:, None]
+        u = u + 2 * np.real(-1j * dE * de * carrier)
+        v = v + 2 * np.real(-Om * dE * de * carrier)
         u = u + nl.mean[:, None] * E**2
         v = v - vg * nl.mean[:, None] * 2 * E * dE
         s = nl.strain[:, None]
@@ -170,6 +178,17 @@ class RingSoliton:
                 self.ring_strain
             v = v - vg * (strain + np.roll(strain, 1, axis=1)) / 2
         return np.ascontiguousarray(u), np.ascontiguousarray(v)
+
+
+def _polarisation_slope(nl: ModelNLS) -> np.ndarray:
+    """de/dk of the carrier's polarisation (e[field] = 1), shape (d,), by central
+    differences (step 1e-5: truncation 1e-10, round-off 1e-11 relative)."""
+    from ._linear import carrier
+
+    c = nl.carrier
+    h = min(1e-5, c.k / 2, (math.pi - c.k) / 2)
+    ep, em = (carrier(nl.model, c.k + s, c.branch).e for s in (h, -h))
+    return (ep / ep[c.field] - em / em[c.field]) / (2 * h)
 
 
 def _optical_per_strain(nl: ModelNLS) -> np.ndarray:
