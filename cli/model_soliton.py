@@ -45,6 +45,23 @@ def table(pred, run, fields, units) -> str:
     return "\n".join([f"kind: {pred.kind}"] + lines)
 
 
+def with_units(report: dict, units) -> dict:
+    """``report`` with its "units" (and "si") objects: the relative numbers (errors, the
+    measured drifts) kept out of the scaling, which goes by key name."""
+    from .units import add_units
+
+    plain = {key: value for key, value in report.items() if key != "errors"}
+    measured = report.get("measured")
+    if measured:
+        plain["measured"] = {key: v for key, v in measured.items() if key != "drift"}
+    scaled = add_units(plain, units)
+    out = dict(report)
+    out["units"] = scaled["units"]
+    if "si" in scaled:
+        out["si"] = scaled["si"]
+    return out
+
+
 def run_model_soliton(args, model, units, branch) -> dict:
     """Predict (and with --simulate, run) the soliton; print; write --out. Returns the
     report (``numerics.models.soliton_report``)."""
@@ -53,7 +70,6 @@ def run_model_soliton(args, model, units, branch) -> dict:
     from numerics.models import ring_soliton, simulate_soliton, soliton_report
 
     from .models import _emit
-    from .units import add_units
 
     if getattr(args, "theory", "semi-discrete") == "paper":
         raise ValueError("--theory paper: the paper's continuum NLS is the paper chain's "
@@ -71,7 +87,7 @@ def run_model_soliton(args, model, units, branch) -> dict:
         pred = ring_soliton(model, args.k, args.amplitude, kind=args.kind, branch=branch)
     report = soliton_report(pred, run)
     if args.json:
-        _emit(add_units(report, units))
+        _emit(with_units(report, units))
     else:
         from numerics.models import nls
 
@@ -107,7 +123,7 @@ def run_model_soliton(args, model, units, branch) -> dict:
         from common.output import strict_json
 
         write_text(folder / "soliton.json",
-                   json.dumps(strict_json(add_units(dict(report), units)), indent=2) + "\n")
+                   json.dumps(strict_json(with_units(report, units)), indent=2) + "\n")
         _figure(Path(folder) / "soliton.png", pred, run, model)
         if not args.json:
             print(f"wrote {folder / 'soliton.json'} and {folder / 'soliton.png'}")

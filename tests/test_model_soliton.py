@@ -167,6 +167,22 @@ def test_cli_writes_the_table_json_and_figure(tmp_path, capsys):
     assert (out / "soliton.png").read_bytes()[:4] == b"\x89PNG"
 
 
+def test_cli_json_scales_the_numbers_to_si_but_not_the_errors(capsys):
+    # 1 ms per time unit, 1 cm per site: a velocity in sites/time is x10 in m/s, a width
+    # x0.01 in m; the errors and drifts are ratios and stay as they are
+    assert cli(["soliton", "--model", "fput", "--param", "alpha=0.5", "--k", "1.6",
+                "--amplitude", "0.1", "--simulate", "--travel", "2", "--json",
+                "--time-unit", "0.001", "--length-unit", "0.01"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    p, m, si = data["predicted"], data["measured"], data["si"]
+    assert si["predicted"]["velocity"] == pytest.approx(10 * p["velocity"], rel=1e-12)
+    assert si["measured"]["width"] == pytest.approx(0.01 * m["width"], rel=1e-12)
+    assert data["errors"]["velocity"] == pytest.approx(m["velocity"] / p["velocity"] - 1,
+                                                       rel=1e-12)
+    assert "errors" not in si and "drift" not in si["measured"]
+    assert data["units"]["si"]["velocity"] == "m/s"
+
+
 @pytest.mark.parametrize("argv, message", [
     (["--k", "0.8", "--amplitude", "0.1", "--kind", "bright"], "only dark solitons"),
     (["--k", "1.6", "--amplitude", "3"], "no envelope; amplitude <="),
