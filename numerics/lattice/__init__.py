@@ -11,7 +11,10 @@ Runs          simulate -> Run, resume, initial_condition, noise_field, snap_wave
               cached_simulate, SIMULATOR_VERSION, source_hash
 Stepping      integrate, METHODS, Method, get_method, choose_step (dominant_frequency,
               ERROR_CONSTANTS, STABILITY_MARGIN), Stepper (a run's work arrays, advanced
-              chunk by chunk: map cells stop it early), check_time, blowup_message
+              chunk by chunk: map cells stop it early), check_time, blowup_message;
+              ForceStepper: the same methods for any lattice with a compiled force (every
+              model's run), with a linear damping (linear_damping, and its exact flows
+              local_flow, band_flow for the Strang splitting)
 Kernel        FASTMATH, sincos_vers, site_acceleration: the site formula, for the torus;
               accel (a whole chain's force), numpy_accel, numpy_rk4 (the NumPy baseline
               the bench compares against)
@@ -40,6 +43,7 @@ from ._analysis import (GROWTH_THRESHOLD, U_REFERENCE, band_summary, carrier_amp
 from ._cache import cached_simulate
 from ._integrate import (BlowUpError, SimulationInterrupted, Stepper, blowup_message,
                          check_time, integrate)
+from ._force_steppers import ForceStepper, band_flow, linear_damping, local_flow
 from ._integrators import METHODS, Method, get_method
 from ._baseline import numpy_accel, numpy_rk4
 from ._kernels import FASTMATH, TRIG_LIMIT, accel, sincos_vers, site_acceleration
@@ -77,4 +81,6 @@ __all__ = ["cuda_kernels", "TRIG_LIMIT",
     "site_acceleration", "accel", "numpy_accel", "numpy_rk4", "U_REFERENCE",
     "shortest_run", "shortest_run_error", "RUN_REL_TOL", "VERDICT_WORDS", "Verdict",
     "simulated_verdict", "RunLength", "run_length", "T_CAP", "DECIDE_E_FOLDINGS",
+    # any lattice with a compiled force (numerics.models): the one SRKN / RK4 stepper
+    "ForceStepper", "local_flow", "band_flow", "linear_damping",
 ]

@@ -5,10 +5,11 @@ bond's pulls on its two sites printed from the derivatives of the energy and com
 each site's own term beside them, the ring's ends outside the loop; the elementary functions
 of one site's fields computed once per site in ``site_functions_all`` before, with the fused
 kernel's polynomial sin and cos), compiled with Numba (fused multiply-adds allowed), on a
-ring of N sites with (n_fields, N) arrays. The integrators are the registry's
-(``numerics.METHODS``): the symplectic SRKN family (srkn11b by default, order 6), verlet,
-kahanli8 and rk4, each with the coefficients the paper's chain uses; the kick that ends a
-step and the one that starts the next share one force evaluation.
+ring of N sites with (n_fields, N) arrays. It steps in ``numerics.lattice.ForceStepper``,
+the one implementation of the registry's fixed-step integrators (``numerics.METHODS``)
+for a compiled force: the symplectic SRKN family (srkn11b by default, order 6), verlet,
+kahanli8 and rk4, with the coefficients of ``numerics.lattice.Method``; the kick that ends
+a step and the one that starts the next share one force evaluation.
 
 Start. ``start="exact"`` (default) launches the exact travelling wave (harmonic balance,
 ``travelling_wave``) plus seeded noise; ``start="linear"`` the linear plane wave, which
@@ -31,6 +32,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 
@@ -77,10 +79,20 @@ def _fast_trig(f):
     return namespace[f.__name__]
 
 
-def _kernels(model: Model):
-    """(accel, srkn_steps, rk4_steps, energy, number of site functions, force, site_loop)
-    compiled for the model's generated code (force(u, p, out, S): accel's work, four
-    arguments; site_loop(u, S, p, out): the generated accelerations_into)."""
+class _Compiled(NamedTuple):
+    """A model's compiled generated code: ``force(u, p, out, S)`` (the acceleration of
+    every site, the steppers' force, ``numerics.lattice.ForceStepper``), ``rows`` (the
+    site functions: S has max(rows, 1) rows), ``energy(u, v, p, masses, x)`` (the total)
+    and ``site_loop(u, S, p, out)`` (the generated accelerations_into alone)."""
+
+    force: object
+    rows: int
+    energy: object
+    site_loop: object
+
+
+def _kernels(model: Model) -> _Compiled:
+    """The model's generated code compiled with Numba (``_Compiled``), once per module."""
     key = (model.code.__name__, model.code.MODEL_HASH)
     if key in _KERNELS:
         return _KERNELS[key]
@@ -132,61 +144,6 @@ def _kernels(model: Model):
                 libm_sites(u, p, S)
             site_loop(u, S, p, out)
 
-    @numba.njit(cache=False, boundscheck=False)
-    def accel(u, p, minv, out, x, g, S):
-        force(u, p, out, S)
-
-    @numba.njit(cache=False)
-    def srkn_steps(u, v, p, minv, A, B, dt, nsteps, acc, x, g):
-        d, N = u.shape
-        S = np.empty((max(nf, 1), N))
-        accel(u, p, minv, acc, x, g, S)
-        for _ in range(nsteps):
-            for j in range(B.size):
-                hb = B[j] * dt
-                for a in range(d):
-                    for n in range(N):
-                        v[a, n] += hb * acc[a, n]
-                if A[j] != 0.0:
-                    ha = A[j] * dt
-                    for a in range(d):
-                        for n in range(N):
-                            u[a, n] += ha * v[a, n]
-                    accel(u, p, minv, acc, x, g, S)
-            if not np.isfinite(u[0, 0]):
-                return False
-        return True
-
-    @numba.njit(cache=False)
-    def rk4_steps(u, v, p, minv, dt, nsteps, acc, x, g):
-        d, N = u.shape
-        S = np.empty((max(nf, 1), N))
-        k1u = np.empty_like(u)
-        k1v = np.empty_like(u)
-        k2u = np.empty_like(u)
-        k2v = np.empty_like(u)
-        k3u = np.empty_like(u)
-        k3v = np.empty_like(u)
-        k4v = np.empty_like(u)
-        tu = np.empty_like(u)
-        for _ in range(nsteps):
-            accel(u, p, minv, k1v, x, g, S)
-            k1u[:] = v
-            tu[:] = u + 0.5 * dt * k1u
-            accel(tu, p, minv, k2v, x, g, S)
-            k2u[:] = v + 0.5 * dt * k1v
-            tu[:] = u + 0.5 * dt * k2u
-            accel(tu, p, minv, k3v, x, g, S)
-            k3u[:] = v + 0.5 * dt * k2v
-            tu[:] = u + dt * k3u
-            accel(tu, p, minv, k4v, x, g, S)
-            k4u = v + dt * k3v
-            u += dt / 6 * (k1u + 2 * k2u + 2 * k3u + k4u)
-            v += dt / 6 * (k1v + 2 * k2v + 2 * k3v + k4v)
-            if not np.isfinite(u[0, 0]):
-                return False
-        return True
-
     @numba.njit(cache=False)
     def energy(u, v, p, masses, x):
         d, N = u.shape
@@ -200,134 +157,8 @@ def _kernels(model: Model):
             e += cell_energy(x, p)
         return e
 
-    _KERNELS[key] = (accel, srkn_steps, rk4_steps, energy, nf, force, site_loop)
+    _KERNELS[key] = _Compiled(force, nf, energy, site_loop)
     return _KERNELS[key]
-
-
-_DAMPED: dict = {}
-
-
-def _damped_kernels(model: Model):
-    """(damp, rk4_damped, split_local) for a model with [dissipation]:
-
-    damp(v, S, Bd, minv, out)   out = -M^-1 dR/dv: the damping acceleration, site by site
-                                (S the site block, Bd the bond's (2 d, 2 d) Hessian);
-    rk4_damped                  RK4 with the velocity-dependent force;
-    split_local                 Strang: the exact damping flow v <- E v over half a step
-                                (E = expm(-dt/2 M^-1 C), site-local damping), a step of
-                                the symplectic SRKN method, the half flow again (order 2);
-    split_band                  the same with bond damping: the flow is a circulant
-                                convolution v_n <- sum_r K_r v_{n-r} (``damping_flow``).
-    """
-    key = (model.code.__name__, model.code.MODEL_HASH)
-    if key in _DAMPED:
-        return _DAMPED[key]
-    import numba
-
-    accel, srkn_steps = _kernels(model)[:2]
-    nf = _kernels(model)[4]
-
-    @numba.njit(cache=False, boundscheck=False)
-    def damp(v, S, Bd, minv, out):
-        d, N = v.shape
-        for n in range(N):
-            m = n - 1 if n > 0 else N - 1
-            l_ = n + 1 if n + 1 < N else 0
-            for a in range(d):
-                f = 0.0
-                for b in range(d):
-                    f += (S[a, b] + Bd[a, b] + Bd[d + a, d + b]) * v[b, n]
-                    f += Bd[a, d + b] * v[b, l_] + Bd[d + a, b] * v[b, m]
-                out[a, n] = -minv[a] * f
-
-    @numba.njit(cache=False)
-    def rk4_damped(u, v, p, minv, S, Bd, dt, nsteps, acc, x, g):
-        d, N = u.shape
-        F = np.empty((max(nf, 1), N))
-        k1v = np.empty_like(u)
-        k2v = np.empty_like(u)
-        k3v = np.empty_like(u)
-        k4v = np.empty_like(u)
-        w = np.empty_like(u)
-        tu = np.empty_like(u)
-        tv = np.empty_like(u)
-        for _ in range(nsteps):
-            accel(u, p, minv, k1v, x, g, F)
-            damp(v, S, Bd, minv, w)
-            k1v += w
-            k1u = v.copy()
-            tu[:] = u + 0.5 * dt * k1u
-            tv[:] = v + 0.5 * dt * k1v
-            accel(tu, p, minv, k2v, x, g, F)
-            damp(tv, S, Bd, minv, w)
-            k2v += w
-            k2u = tv.copy()
-            tu[:] = u + 0.5 * dt * k2u
-            tv[:] = v + 0.5 * dt * k2v
-            accel(tu, p, minv, k3v, x, g, F)
-            damp(tv, S, Bd, minv, w)
-            k3v += w
-            k3u = tv.copy()
-            tu[:] = u + dt * k3u
-            tv[:] = v + dt * k3v
-            accel(tu, p, minv, k4v, x, g, F)
-            damp(tv, S, Bd, minv, w)
-            k4v += w
-            k4u = tv
-            u += dt / 6 * (k1u + 2 * k2u + 2 * k3u + k4u)
-            v += dt / 6 * (k1v + 2 * k2v + 2 * k3v + k4v)
-            if not np.isfinite(u[0, 0]):
-                return False
-        return True
-
-    @numba.njit(cache=False)
-    def split_local(u, v, p, minv, A, B, dt, nsteps, acc, x, g, E):
-        d, N = u.shape
-        tmp = np.empty(d)
-        for _ in range(nsteps):
-            for n in range(N):
-                for a in range(d):
-                    tmp[a] = 0.0
-                    for b in range(d):
-                        tmp[a] += E[a, b] * v[b, n]
-                for a in range(d):
-                    v[a, n] = tmp[a]
-            if not srkn_steps(u, v, p, minv, A, B, dt, 1, acc, x, g):
-                return False
-            for n in range(N):
-                for a in range(d):
-                    tmp[a] = 0.0
-                    for b in range(d):
-                        tmp[a] += E[a, b] * v[b, n]
-                for a in range(d):
-                    v[a, n] = tmp[a]
-        return True
-
-    @numba.njit(cache=False)
-    def _band(v, offs, K, w):
-        d, N = v.shape
-        for n in range(N):
-            for a in range(d):
-                w[a, n] = 0.0
-            for i in range(offs.size):
-                m = (n - offs[i]) % N
-                for a in range(d):
-                    for b in range(d):
-                        w[a, n] += K[i, a, b] * v[b, m]
-        v[:, :] = w
-
-    @numba.njit(cache=False)
-    def split_band(u, v, p, minv, A, B, dt, nsteps, acc, x, g, offs, K):
-        w = np.empty_like(v)
-        for _ in range(nsteps):
-            _band(v, offs, K, w)
-            if not srkn_steps(u, v, p, minv, A, B, dt, 1, acc, x, g):
-                return False
-            _band(v, offs, K, w)
-        return True
-
-    _DAMPED[key] = (damp, rk4_damped, split_local, split_band)
-    return _DAMPED[key]
 
 
 def damping_flow(model: Model, N: int, h: float):
@@ -375,7 +206,8 @@ def lattice_force(model: Model, u: np.ndarray) -> np.ndarray:
 def compiled_force(model: Model, N: int):
     """force(u, out): the compiled acceleration of a ring of N sites into ``out`` (both
     (d, N), C-contiguous), its work buffers made once: for timing the kernel itself."""
-    nf, kernel, loop = _kernels(model)[4:7]
+    compiled = _kernels(model)
+    nf, kernel, loop = compiled.rows, compiled.force, compiled.site_loop
     p = np.asarray(model.p, float)
     S = np.empty((max(nf, 1), N))
 
@@ -391,7 +223,7 @@ def compiled_force(model: Model, N: int):
 
 def lattice_energy(model: Model, u: np.ndarray, v: np.ndarray) -> float:
     """Total energy of a ring state (kinetic + every cell's W), from the model file."""
-    energy = _kernels(model)[3]
+    energy = _kernels(model).energy
     return float(energy(np.ascontiguousarray(u, float), np.ascontiguousarray(v, float),
                         np.asarray(model.p, float), np.asarray(model.masses, float),
                         np.empty(2 * model.n_fields)))
@@ -667,7 +499,7 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
     its maximum (else ``t_end`` is the cap). ``noise_on="carrier"``: the noise on the
     carrier field's positions only (the amplification's launch, issue 42).
     """
-    from numerics.lattice import get_method, run_length
+    from numerics.lattice import ForceStepper, band_flow, get_method, local_flow, run_length
 
     from ._exact import ring_offsets, travelling_wave
     from ._linear import branches
@@ -721,32 +553,27 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
         u = np.ascontiguousarray(u + noise * amplitude * rng.standard_normal((d, N)))
         v = np.ascontiguousarray(v + noise * amplitude * wave.omega * rng.standard_normal(
             (d, N)))
-    accel, srkn, rk4, energy = _kernels(model)[:4]
+    compiled = _kernels(model)
+    kernel, p_force, rows = compiled.force, np.asarray(model.p, float), compiled.rows
+    energy = compiled.energy
     p = np.asarray(model.p, float)
     masses = np.asarray(model.masses, float)
-    minv = 1 / masses
-    acc, x, g = np.empty_like(u), np.empty(2 * d), np.empty(2 * d)
-    A = np.asarray(meth.a, float)
-    B = np.asarray(meth.b, float)
+    x = np.empty(2 * d)
     ts, spec, dev, en, diss = [], [], [], [], []
     lossy = model.lossy
+    damping = flow = None
     if lossy:
-        damp, rk4_damped, split_local, split_band = _damped_kernels(model)
         S_d, B_d = model.damping
-        S_d, B_d = np.ascontiguousarray(S_d), np.ascontiguousarray(B_d)
-        if meth.kind == "srkn":
+        damping = (np.ascontiguousarray(S_d), np.ascontiguousarray(B_d), 1 / masses)
+        if meth.kind == "srkn":  # Strang: the damping's exact half-step flow around a step
             E_modes, E_local = damping_flow(model, N, dt / 2)
+            flow = ((local_flow, (np.ascontiguousarray(E_local),)) if E_local is not None
+                    else (band_flow, (*E_modes, np.empty((d, N)))))
+    stepper = ForceStepper(kernel, p_force, rows, u, v, meth, dt,
+                           damping=damping, flow=flow)
 
     def advance(n):
-        if not lossy:
-            return (srkn(u, v, p, minv, A, B, dt, n, acc, x, g) if meth.kind == "srkn"
-                    else rk4(u, v, p, minv, dt, n, acc, x, g))
-        if meth.kind == "rk4":
-            return rk4_damped(u, v, p, minv, S_d, B_d, dt, n, acc, x, g)
-        if E_local is not None:
-            return split_local(u, v, p, minv, A, B, dt, n, acc, x, g, E_local)
-        # bond damping: the exact flow as a short circulant convolution (compiled)
-        return split_band(u, v, p, minv, A, B, dt, n, acc, x, g, *E_modes)
+        return stepper.advance(n) == n
 
     def record(t):
         U = wave.profile(k_ring * np.arange(N) - wave.omega * t)
