@@ -15,6 +15,10 @@ Stepping      integrate, METHODS, Method, get_method, choose_step (dominant_freq
               ForceStepper: the same methods for any lattice with a compiled force (every
               model's run), with a linear damping (linear_damping, and its exact flows
               local_flow, band_flow for the Strang splitting)
+Fast forces   register_fast_force, fast_force, fast_forces, FastForce: a kernel that runs
+              instead of a model's generated force where the energy is the one it
+              implements (by content hash); flexmm_force, flexmm_rotation_force (FLEXMM_ROWS):
+              the fused kernel of eq. `norm` as such a force
 Kernel        FASTMATH, sincos_vers, site_acceleration: the site formula, for the torus;
               accel (a whole chain's force), numpy_accel, numpy_rk4 (the NumPy baseline
               the bench compares against)
@@ -43,6 +47,8 @@ from ._analysis import (GROWTH_THRESHOLD, U_REFERENCE, band_summary, carrier_amp
 from ._cache import cached_simulate
 from ._integrate import (BlowUpError, SimulationInterrupted, Stepper, blowup_message,
                          check_time, integrate)
+from ._fast_forces import (FLEXMM_ROWS, FastForce, fast_force, fast_forces, flexmm_force,
+                           flexmm_rotation_force, register_fast_force)
 from ._force_steppers import ForceStepper, band_flow, linear_damping, local_flow
 from ._integrators import METHODS, Method, get_method
 from ._baseline import numpy_accel, numpy_rk4
@@ -83,4 +89,7 @@ __all__ = ["cuda_kernels", "TRIG_LIMIT",
     "simulated_verdict", "RunLength", "run_length", "T_CAP", "DECIDE_E_FOLDINGS",
     # any lattice with a compiled force (numerics.models): the one SRKN / RK4 stepper
     "ForceStepper", "local_flow", "band_flow", "linear_damping",
+    # fast forces a model's run uses where its energy is the one they implement
+    "register_fast_force", "fast_force", "fast_forces", "FastForce", "flexmm_force",
+    "flexmm_rotation_force", "FLEXMM_ROWS",
 ]

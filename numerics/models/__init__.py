@@ -15,6 +15,9 @@ energy_not_real, amplitude_reach        where the energy stops being real along 
 exact_gain_checked                      there is no travelling wave, the largest amplitude
 simulate_model -> ModelRun              a ring of the model; .growth() -> Growth
 lattice_force, lattice_energy           the compiled force and the model's energy
+run_force, energy_hash, FORCES          the force a run steps with: a registered fast force
+                                        (the fused flexMM kernel) where the energy is the
+                                        one it implements, else the generated one
 model_map                               MI map over two parameters, or a parameter and k
 map_cells                               the columns of a block of map cells (a run_map task)
 nls_amplification, four_wave_amplification, exact_amplification
@@ -30,6 +33,7 @@ from ._exact import (
                      ring_offsets,
                      travelling_wave,
 )
+from ._forces import FORCES, energy_hash, run_force
 from ._fourwave import FourWave, classify_mode, four_wave, pair_rates, ring_misses
 from ._linear import (
                      Carrier,
@@ -75,4 +79,5 @@ __all__ = ["Carrier", "carrier", "branches", "branch_index", "check_rest_stable"
            "classify_mode", "ring_misses", "ring_offsets", "simulate_model", "simulate_seeds",
            "SeededRuns", "ModelRun", "Growth", "measure_growth", "check_ring", "compiled_force",
            "lattice_force", "lattice_energy", "snap_ring", "Amplified", "nls_amplification",
-           "four_wave_amplification", "exact_amplification"]
+           "four_wave_amplification", "exact_amplification", "FORCES", "energy_hash",
+           "run_force"]

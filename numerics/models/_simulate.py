@@ -300,6 +300,9 @@ class ModelRun:
     peaked: bool | None = None
     #: (u, v) at the run's end, each (d, N)
     state: tuple | None = None
+    #: the force that ran: "generated" (from the energy) or "fast:NAME", a registered fast
+    #: force (``numerics.models.run_force``)
+    force: str = "generated"
 
     def energy_balance(self) -> float:
         """max over the records of |E(t) - E(0) + int_0^t 2 R dt'| / E(0) (trapezoids over
@@ -329,7 +332,7 @@ class ModelRun:
         attrs = {"model": self.model.name, "k": self.k, "amplitude": self.amplitude,
                  "N": self.N, "t_end": self.t_end, "dt": self.dt, "method": self.method,
                  "start": self.start, "noise": self.noise, "seed": self.seed,
-                 "omega": self.wave.omega}
+                 "omega": self.wave.omega, "force": self.force}
         attrs.update({f"param_{n}": v for n, v in self.model.params.items()})
         j = np.arange(self.N)
         return xr.Dataset(
@@ -483,7 +486,7 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
                    method: str = "srkn11b", start: str = "exact", noise: float = NOISE,
                    seed: int = 0, records: int = 400, expected_gain: float | None = None,
                    wave=None, until_peak: bool = False,
-                   noise_on: str = "all") -> ModelRun:
+                   noise_on: str = "all", force: str = "auto") -> ModelRun:
     """Run the ring of ``model`` from a plane wave at ``k`` (snapped to the ring) with
     first harmonic ``amplitude`` in its carrier field, plus seeded noise.
 
@@ -498,10 +501,15 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
     the sidebands' amplitude A(t) (``sideband_amplitude``) has risen 2x and fallen to half
     its maximum (else ``t_end`` is the cap). ``noise_on="carrier"``: the noise on the
     carrier field's positions only (the amplification's launch, issue 42).
+    ``force="generated"``: the force generated from the energy even where a fast force
+    is registered for it ("auto", the default: the fused flexMM kernel for the paper
+    chain's energy, ``numerics.lattice.register_fast_force``); ``ModelRun.force`` says
+    which ran.
     """
     from numerics.lattice import ForceStepper, band_flow, get_method, local_flow, run_length
 
     from ._exact import ring_offsets, travelling_wave
+    from ._forces import FORCES, run_force
     from ._linear import branches
 
     meth = get_method(method)
@@ -510,6 +518,8 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
                          "srkn11b, srkn6b, kahanli8, verlet, rk4")
     if start not in STARTS:
         raise ModelError(f"start must be one of {', '.join(STARTS)}, got {start!r}")
+    if force not in FORCES:
+        raise ModelError(f"force must be one of {', '.join(FORCES)}, got {force!r}")
     if isinstance(noise, bool) or not (isinstance(noise, (int, float)) and math.isfinite(
             noise) and noise >= 0):
         raise ModelError(f"noise must be a finite number >= 0, got {noise!r}")
@@ -553,9 +563,8 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
         u = np.ascontiguousarray(u + noise * amplitude * rng.standard_normal((d, N)))
         v = np.ascontiguousarray(v + noise * amplitude * wave.omega * rng.standard_normal(
             (d, N)))
-    compiled = _kernels(model)
-    kernel, p_force, rows = compiled.force, np.asarray(model.p, float), compiled.rows
-    energy = compiled.energy
+    kernel, p_force, rows, force_label = run_force(model, force)
+    energy = _kernels(model).energy
     p = np.asarray(model.p, float)
     masses = np.asarray(model.masses, float)
     x = np.empty(2 * d)
@@ -615,7 +624,7 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
                     wave=wave, t=np.array(ts), spectrum=np.array(spec),
                     deviation=np.array(dev), energy=np.array(en),
                     dissipation=np.array(diss) if lossy else None, peaked=peaked,
-                    state=(u.copy(), v.copy()))
+                    state=(u.copy(), v.copy()), force=force_label)
 
 
 @dataclass(frozen=True)
