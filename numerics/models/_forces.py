@@ -75,7 +75,7 @@ def run_force(model: Model, force: str = "auto"):
         if fast is not None:
             return (fast.force, fast.parameters(model.params), fast.rows,
                     f"fast:{fast.name}")
-    from ._simulate import _kernels
+    from ._compiled import _kernels
 
     compiled = _kernels(model)
     return compiled.force, np.asarray(model.p, float), compiled.rows, "generated"

@@ -1,233 +1,39 @@
-"""Simulation of any lattice model on a ring, and the growth a run measures.
+"""Simulation of any lattice model on a ring: ``simulate_model`` -> ``ModelRun``, and the
+seeded runs of a point (``simulate_seeds``).
 
-The force is the model's generated loop ``accelerations_into`` (over the bonds: each
-bond's pulls on its two sites printed from the derivatives of the energy and computed once,
-each site's own term beside them, the ring's ends outside the loop; the elementary functions
-of one site's fields computed once per site in ``site_functions_all`` before, with the fused
-kernel's polynomial sin and cos), compiled with Numba (fused multiply-adds allowed), on a
-ring of N sites with (n_fields, N) arrays. It steps in ``numerics.lattice.ForceStepper``,
-the one implementation of the registry's fixed-step integrators (``numerics.METHODS``)
-for a compiled force: the symplectic SRKN family (srkn11b by default, order 6), verlet,
-kahanli8 and rk4, with the coefficients of ``numerics.lattice.Method``; the kick that ends
-a step and the one that starts the next share one force evaluation.
+A run steps in ``numerics.lattice.ForceStepper``, the one implementation of the registry's
+fixed-step integrators (``numerics.METHODS``) for a compiled force: the symplectic SRKN
+family (srkn11b by default, order 6), verlet, kahanli8 and rk4, with the coefficients of
+``numerics.lattice.Method``; the kick that ends a step and the one that starts the next
+share one force evaluation. The force is the model's generated one (``_compiled``), or the
+fast force registered for its energy (``_forces``: the fused flexMM kernel). A lossy model
+adds its damping (``_damping``).
 
 Start. ``start="exact"`` (default) launches the exact travelling wave (harmonic balance,
 ``travelling_wave``) plus seeded noise; ``start="linear"`` the linear plane wave, which
 leaves free second-harmonic and mean-flow waves beside the carrier.
 
-Measurement. The deviation delta = u - U_exact(k n - omega t) from the exact wave is
-Fourier transformed over the ring at each record. The sidebands are every ring mode but
-the carrier's harmonics that stand above the noise (where the integrator's phase error and
-the noise's drift of the centre of mass grow secularly; a harmonic far below the noise is
-kept, as on a small ring it aliases onto a sideband); they are followed until their rms
-reaches a tenth of the amplitude (``SATURATION``). The run is "unstable" when the
-sidebands grew ``GROWTH_FACTOR`` (20x) and exponentially (the log-slope over the linear
-stage's second half, run over the whole stage, bounds the factor: algebraic growth of a
-stable wave's near-carrier pairs does not pass), with the rate the least-squares slope of
-the largest mode's log amplitude over its stretch above ten times its start; otherwise
-"no growth within T", with the slowest rate the run could have shown.
+Measurement: ``_growth`` (``ModelRun.growth``, ``ModelRun.amplification``).
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import NamedTuple
 
 import numpy as np
 
 from energy import Model, ModelError
 
-#: deviation (rms over sites, relative to the amplitude) where the linear growth ends
-SATURATION = 0.1
-#: growth of a mode that makes a run "unstable" (the verdict's threshold, as for maps)
-GROWTH_FACTOR = 20.0
+# compiled_force, lattice_energy, lattice_force: here too, for the modules that import them
+# from here (the package's __init__, _reach)
+from ._compiled import _kernels, compiled_force, lattice_energy, lattice_force  # noqa: F401
+from ._damping import damping_flow, rayleigh
+from ._growth import Amplification, Growth, _sideband_modes, measure_amplification, measure_growth
+
 #: noise relative to the amplitude: 16 e-foldings fit below SATURATION
 NOISE = 1e-8
 STARTS = ("exact", "linear")
-
-_KERNELS: dict = {}
-
-
-def _fast_trig(f):
-    """``f`` with numpy.sin / numpy.cos replaced by the fused kernel's branch-free
-    polynomial (``numerics.lattice.sincos_vers``: within 1 ulp of libm for |x| <= TRIG_LIMIT,
-    tests/test_kernels.py): the generated source, recompiled. A libm sin and cos cost
-    ~10 ns a site; the polynomial inlines (~2 ns, bench/models.py). The kernel uses it only
-    where every field of the site is within TRIG_LIMIT (a run beyond has blown up)."""
-    import inspect
-    import textwrap
-
-    src = textwrap.dedent(inspect.getsource(f))
-    if "numpy.sin(" not in src and "numpy.cos(" not in src:
-        return f
-    from numerics.lattice import sincos_vers
-
-    def _psin(x):
-        return sincos_vers(x)[0]
-
-    def _pcos(x):
-        return sincos_vers(x)[1]
-
-    import numba
-
-    src = src.replace("numpy.sin(", "_psin(").replace("numpy.cos(", "_pcos(")
-    namespace = {"numpy": np,
-                 "_psin": numba.njit(inline="always", fastmath={"contract"})(_psin),
-                 "_pcos": numba.njit(inline="always", fastmath={"contract"})(_pcos)}
-    exec(compile(src, f"<{f.__module__}.{f.__name__}, polynomial trig>", "exec"), namespace)
-    return namespace[f.__name__]
-
-
-class _Compiled(NamedTuple):
-    """A model's compiled generated code: ``force(u, p, out, S)`` (the acceleration of
-    every site, the steppers' force, ``numerics.lattice.ForceStepper``), ``rows`` (the
-    site functions: S has max(rows, 1) rows), ``energy(u, v, p, masses, x)`` (the total)
-    and ``site_loop(u, S, p, out)`` (the generated accelerations_into alone)."""
-
-    force: object
-    rows: int
-    energy: object
-    site_loop: object
-
-
-def _kernels(model: Model) -> _Compiled:
-    """The model's generated code compiled with Numba (``_Compiled``), once per module."""
-    key = (model.code.__name__, model.code.MODEL_HASH)
-    if key in _KERNELS:
-        return _KERNELS[key]
-    import numba
-
-    code = model.code
-    cell_energy = numba.njit(cache=False)(code.cell_energy)
-    if not hasattr(code, "accelerations_into"):
-        raise ModelError(f"model {model.describe()}: its generated module {code.__name__} "
-                         "is of an older layout (no accelerations_into): run `make derive`")
-    # the generated site loop: each site's acceleration from its equations of motion,
-    # the elementary functions of single sites (sin, cos, exp, ...) computed once per
-    # site in a pass before (the fused flexMM kernel's form)
-    from numerics.lattice import TRIG_LIMIT
-
-    nf = int(code.SITE_FUNCTIONS_ALL)
-    fast = _fast_trig(code.site_functions_all)
-    fast_sites = numba.njit(cache=False, boundscheck=False, fastmath={"contract"})(fast)
-    libm_sites = numba.njit(cache=False, boundscheck=False)(code.site_functions_all)
-    # contraction into fused multiply-adds, as the fused kernel (numerics.lattice.FASTMATH)
-    site_loop = numba.njit(cache=False, boundscheck=False, fastmath={"contract"},
-                           error_model="numpy")(code.accelerations_into)
-
-    if nf == 0:  # no site functions: the bond loop alone
-
-        @numba.njit(cache=False, boundscheck=False)
-        def force(u, p, out, S):
-            site_loop(u, S, p, out)
-
-    elif fast is code.site_functions_all:  # no sin or cos: nothing to range-check
-
-        @numba.njit(cache=False, boundscheck=False)
-        def force(u, p, out, S):
-            libm_sites(u, p, S)
-            site_loop(u, S, p, out)
-
-    else:
-
-        @numba.njit(cache=False, boundscheck=False)
-        def force(u, p, out, S):
-            d, N = u.shape
-            near = True  # the polynomial sin/cos where every field is within TRIG_LIMIT
-            for a in range(d):
-                for n in range(N):
-                    near &= abs(u[a, n]) <= TRIG_LIMIT
-            if near:
-                fast_sites(u, p, S)
-            else:
-                libm_sites(u, p, S)
-            site_loop(u, S, p, out)
-
-    @numba.njit(cache=False)
-    def energy(u, v, p, masses, x):
-        d, N = u.shape
-        e = 0.0
-        for n in range(N):
-            m = n + 1 if n + 1 < N else 0
-            for a in range(d):
-                x[a] = u[a, n]
-                x[d + a] = u[a, m]
-                e += 0.5 * masses[a] * v[a, n] ** 2
-            e += cell_energy(x, p)
-        return e
-
-    _KERNELS[key] = _Compiled(force, nf, energy, site_loop)
-    return _KERNELS[key]
-
-
-def damping_flow(model: Model, N: int, h: float):
-    """The exact flow of dv/dt = -M^-1 C v over time h on a ring of N sites: where the
-    damping is site-local, (None, E) with E = expm(-h M^-1 C) (d, d); else ((offs, K),
-    None), the flow as a circulant convolution v_n <- sum_i K_i v_{n - offs_i}: K is the
-    ring's inverse FFT of E_j = expm(-h M^-1 C(2 pi j / N)), kept where it exceeds 1e-15
-    of its largest entry (exp of a banded matrix of small norm: a few sites each side)."""
-    from scipy.linalg import expm
-
-    from ._linear import damping_matrix
-
-    S, Bd = model.damping
-    d = model.n_fields
-    minv = 1 / np.asarray(model.masses, float)
-    if not (Bd[:d, d:].any() or Bd[d:, :d].any()):
-        return None, expm(-h * minv[:, None] * (S + Bd[:d, :d] + Bd[d:, d:]))
-    kap = 2 * math.pi * np.arange(N) / N
-    E = np.array([expm(-h * minv[:, None] * damping_matrix(model, q)) for q in kap])
-    K = np.real(np.fft.ifft(E, axis=0))  # K[r]: offset r mod N
-    size = np.max(np.abs(K), axis=(1, 2))
-    r = np.arange(N)
-    dist = np.minimum(r, N - r)
-    R = int(np.max(dist[size > 1e-15 * size.max()]))
-    keep = dist <= R
-    return (np.ascontiguousarray(r[keep].astype(np.int64)), np.ascontiguousarray(K[keep])), None
-
-
-def rayleigh(model: Model, v: np.ndarray) -> float:
-    """R of a ring's velocities (d, N): sum over cells of the site and bond functions."""
-    S, Bd = model.damping
-    vn = np.concatenate([v, np.roll(v, -1, axis=1)])
-    return float(0.5 * (np.einsum("an,ab,bn->", v, S, v) + np.einsum("an,ab,bn->", vn, Bd,
-                                                                      vn)))
-
-
-def lattice_force(model: Model, u: np.ndarray) -> np.ndarray:
-    """The acceleration of every site, shape (d, N), from the compiled force."""
-    u = np.ascontiguousarray(u, dtype=float)
-    out = np.empty_like(u)
-    compiled_force(model, u.shape[1])(u, out)
-    return out
-
-
-def compiled_force(model: Model, N: int):
-    """force(u, out): the compiled acceleration of a ring of N sites into ``out`` (both
-    (d, N), C-contiguous), its work buffers made once: for timing the kernel itself."""
-    compiled = _kernels(model)
-    nf, kernel, loop = compiled.rows, compiled.force, compiled.site_loop
-    p = np.asarray(model.p, float)
-    S = np.empty((max(nf, 1), N))
-
-    if nf == 0:  # no site functions: the generated loop is the whole force (one call less)
-        def force(u, out):
-            loop(u, S, p, out)
-    else:
-        def force(u, out):
-            kernel(u, p, out, S)
-
-    return force
-
-
-def lattice_energy(model: Model, u: np.ndarray, v: np.ndarray) -> float:
-    """Total energy of a ring state (kinetic + every cell's W), from the model file."""
-    energy = _kernels(model).energy
-    return float(energy(np.ascontiguousarray(u, float), np.ascontiguousarray(v, float),
-                        np.asarray(model.p, float), np.asarray(model.masses, float),
-                        np.empty(2 * model.n_fields)))
-
 
 #: The largest ring (sites): a run keeps ``records`` spectra of N values each.
 MAX_RING = 2**20
@@ -348,137 +154,6 @@ class ModelRun:
     def growth(self) -> Growth:
         """What the run shows: unstable with a rate, or no growth within T."""
         return measure_growth(self)
-
-
-@dataclass(frozen=True)
-class Growth:
-    """The growth a run measured.
-
-    Attributes
-    ----------
-    verdict : 'unstable' or 'no growth within T'
-    rate : float
-        The fastest mode's rate (1/time) where unstable, else nan.
-    wavenumber : float
-        That mode's ring wavenumber (rad/site) in (-pi, pi], else nan.
-    factor : float
-        The sidebands' growth: their largest rms in the linear stage over their start.
-    detectable : float
-        The slowest rate that would have grown GROWTH_FACTOR within the run's linear stage.
-    t_linear : float
-        Where the linear stage ended (the deviation reached SATURATION, or T).
-    """
-
-    verdict: str
-    rate: float
-    wavenumber: float
-    factor: float
-    detectable: float
-    t_linear: float
-
-    @property
-    def label(self) -> str:
-        if self.verdict == "unstable":
-            return f"unstable (measured rate {self.rate:.4g})"
-        return (f"no growth within T (a rate below {self.detectable:.2g} cannot show by "
-                f"t = {self.t_linear:.4g})")
-
-
-@dataclass(frozen=True)
-class Amplification:
-    """A run's amplification: ``amplification`` = max_t A(t) / A(0), at
-    ``amplification_time``; ``observable`` = amplification >= GROWTH_FACTOR; ``peaked``:
-    A(t) fell to half its maximum before the run's end (else the run's cap ended it)."""
-
-    amplification: float
-    amplification_time: float
-    observable: bool
-    peaked: bool
-    A: np.ndarray
-
-    def row(self) -> dict:
-        return {"amplification": self.amplification,
-                "amplification_time": self.amplification_time,
-                "observable": self.observable, "peaked": self.peaked}
-
-
-def _sideband_modes(N: int, m: int, H: int) -> np.ndarray:
-    """Ring modes that are not harmonics of the carrier mode m: h m mod N, |h| <= H (the
-    exact wave's harmonics), and the mean (h = 0)."""
-    harm = {(h * m) % N for h in range(-H, H + 1)}
-    return np.array([j not in harm for j in range(N)])
-
-
-def sideband_amplitude(spectrum: np.ndarray, N: int, k: float, H: int) -> np.ndarray:
-    """A(t): the largest |FFT| / N over the ring modes that are not carrier harmonics
-    (up to the H-th)."""
-    m = int(round(k * N / (2 * math.pi)))
-    return np.max(np.asarray(spectrum)[..., _sideband_modes(N, m, H)], axis=-1)
-
-
-def measure_amplification(run: ModelRun) -> Amplification:
-    A = sideband_amplitude(run.spectrum, run.N, run.k, run.wave.harmonics)
-    i = int(np.argmax(A))
-    amp = float(A[i] / max(A[0], 1e-300))
-    peaked = bool(np.any(A[i:] <= A[i] / 2)) if run.peaked is None else bool(run.peaked)
-    return Amplification(amp, float(run.t[i]), amp >= GROWTH_FACTOR, peaked, A)
-
-
-def measure_growth(run: ModelRun) -> Growth:
-    N = run.N
-    m = int(round(run.k * N / (2 * math.pi)))
-    # the carrier's harmonics whose phase drift could show: the wave's phase error phi
-    # (integrator, noise) makes harmonic h deviate by ~ h phi |c_h| (secular); phi is read
-    # off the carrier's own mode. A harmonic whose drift stays below a tenth of the noise is
-    # kept: on a small ring a high harmonic aliases onto a sideband (h k = k + q mod 2 pi;
-    # measured: FPUT on 64 sites, the 5th harmonic on the fastest sideband)
-    H = run.wave.harmonics
-    size = np.max(np.abs(run.wave.coefficients), axis=0)[H:]  # |c_h|, h = 0..H
-    others = np.array([j not in (0, m % N, (-m) % N) for j in range(N)])
-    floor = float(np.median(run.spectrum[0, others]))
-    phase = float(np.max(run.spectrum[:, m % N])) / max(size[1], 1e-300)
-    harmonics = {0, m % N, (-m) % N} | {
-        (s * h * m) % N for h in range(2, H + 1) for s in (1, -1)
-        if h * phase * size[h] > 0.1 * floor}
-    keep = np.array([j not in harmonics and 0 < j <= N // 2 for j in range(N)])
-    # the sidebands' rms (the carrier's harmonics left out: a linear start slips in phase)
-    sidebands = np.sqrt(2 * np.sum(run.spectrum[:, keep] ** 2, axis=1))
-    sat = np.nonzero(sidebands > SATURATION * run.amplitude)[0]
-    end = int(sat[0]) if sat.size else len(run.t) - 1
-    end = max(end, 1)
-    S = run.spectrum[:end + 1, keep]
-    start = np.maximum(np.median(run.spectrum[:3, keep], axis=0), 1e-300)
-    factor = np.max(S, axis=0) / start
-    # the verdict reads the sidebands' rms: one mode's share of the noise can swing
-    # between its stable eigenmodes (measured: 20x on stable FPUT and flexmm rings), their
-    # sum cannot
-    total = float(np.max(sidebands[:end + 1]) / max(np.median(sidebands[:3]), 1e-300))
-    t_lin = float(run.t[end])
-    # ... and an exponential one: the log-slope over the linear stage's second half, run
-    # over the whole stage, bounds the factor. Algebraic growth near the carrier (the
-    # near-degenerate Bogoliubov pairs of a stable wave exchange amplitude, measured 5x on
-    # flexmm-rotation at k = 1, a = 0.1) has a slope of at most ln 2 / (T / 2) there: 4x
-    half = run.t[:end + 1] >= t_lin / 2
-    if half.sum() >= 3:
-        slope = np.polyfit(run.t[:end + 1][half], np.log(np.maximum(
-            sidebands[:end + 1][half], 1e-300)), 1)[0]
-        total = min(total, float(math.exp(min(max(slope, 0.0) * t_lin, 700.0))))
-    detectable = math.log(GROWTH_FACTOR) / t_lin if t_lin > 0 else math.inf
-    if not factor.size or total < GROWTH_FACTOR:
-        return Growth("no growth within T", math.nan, math.nan, total, detectable, t_lin)
-    # the largest mode at the end of the linear stage is the fastest: products of growing
-    # modes (rates 2 sigma, 3 sigma) rise late from below it, so their slopes are not read
-    i = int(np.argmax(S[-1]))
-    y = np.log(np.maximum(S[:, i], 1e-300))
-    above = np.nonzero(y > math.log(10 * start[i]))[0]
-    first = int(above[0]) if above.size else 0
-    if S.shape[0] - first < 4:
-        first = max(0, S.shape[0] - 4)
-    rate = float(np.polyfit(run.t[first:end + 1], y[first:], 1)[0])
-    j = np.nonzero(keep)[0][i]
-    kap = 2 * math.pi * j / N
-    return Growth("unstable", rate, float((kap + math.pi) % (2 * math.pi) - math.pi),
-                  total, detectable, t_lin)
 
 
 def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: int = 256,
