@@ -35,6 +35,10 @@ from ._growth import Amplification, Growth, _sideband_modes, measure_amplificati
 NOISE = 1e-8
 STARTS = ("exact", "linear")
 
+class _Stop(Exception):
+    """Ctrl-C noticed between two compiled calls of a run; ``args[0]``: the signal."""
+
+
 #: The largest ring (sites): a run keeps ``records`` spectra of N values each.
 MAX_RING = 2**20
 
@@ -181,7 +185,17 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
     chain's energy, ``numerics.lattice.register_fast_force``); ``ModelRun.force`` says
     which ran.
     """
-    from numerics.lattice import ForceStepper, band_flow, get_method, local_flow, run_length
+    from common.signals import signal_number
+    from numerics.lattice import (
+        ForceStepper,
+        SimulationInterrupted,
+        band_flow,
+        deferred_interrupt,
+        get_method,
+        local_flow,
+        run_length,
+        steps_per_call,
+    )
 
     from ._exact import ring_offsets, travelling_wave
     from ._forces import FORCES, run_force
@@ -256,9 +270,6 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
     stepper = ForceStepper(kernel, p_force, rows, u, v, meth, dt,
                            damping=damping, flow=flow)
 
-    def advance(n):
-        return stepper.advance(n) == n
-
     def record(t):
         U = wave.profile(k_ring * np.arange(N) - wave.omega * t)
         delta = u - U
@@ -269,6 +280,15 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
         if lossy:
             diss.append(2 * rayleigh(model, v))
 
+    def run_so_far(t_last):
+        """The run's records so far (to ``t_last``) and its state now."""
+        return ModelRun(model=model, k=k_ring, amplitude=float(amplitude), N=N,
+                        t_end=t_last, dt=dt, method=method, start=start, noise=float(noise),
+                        seed=int(seed), wave=wave, t=np.array(ts), spectrum=np.array(spec),
+                        deviation=np.array(dev), energy=np.array(en),
+                        dissipation=np.array(diss) if lossy else None, peaked=peaked,
+                        state=(u.copy(), v.copy()), force=force_label)
+
     record(0.0)
     done = 0
     peaked = None
@@ -277,29 +297,49 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
         a0 = float(np.max(spec[0][modes]))
         top = a0
         peaked = False
-    while done < nsteps:
-        n = min(every, nsteps - done)
-        ok = advance(n)
-        done += n
-        if not ok or not np.all(np.isfinite(u)):
-            raise FloatingPointError(
-                f"model {model.describe()}: the run blew up by t = {done * dt:.4g} "
-                f"(dt = {dt:.3g}, method {method}): the wave left the lattice's range; "
-                "lower the amplitude or dt")
-        record(done * dt)
-        if until_peak:
-            a = float(np.max(spec[-1][modes]))
-            top = max(top, a)
-            if top >= 2 * a0 and a <= top / 2:
-                peaked = True
-                break
-    return ModelRun(model=model, k=k_ring, amplitude=float(amplitude), N=N,
-                    t_end=float(ts[-1]) if until_peak else float(t_end),
-                    dt=dt, method=method, start=start, noise=float(noise), seed=int(seed),
-                    wave=wave, t=np.array(ts), spectrum=np.array(spec),
-                    deviation=np.array(dev), energy=np.array(en),
-                    dissipation=np.array(diss) if lossy else None, peaked=peaked,
-                    state=(u.copy(), v.copy()), force=force_label)
+    # Ctrl-C (SIGINT, or SIGTERM where handled as one) is deferred to the end of a compiled
+    # call of bounded work (numerics.lattice's run control): the run stops on a state whose
+    # time is known, with its records kept (SimulationInterrupted)
+    per_call = steps_per_call(N * d, meth, every)
+    try:
+        with deferred_interrupt() as interrupted:
+            while done < nsteps:
+                target = min(done + every, nsteps)
+                while done < target:
+                    n = min(per_call, target - done)
+                    got = stepper.advance(n)
+                    done += got
+                    if got < n or not np.all(np.isfinite(u)):
+                        raise FloatingPointError(
+                            f"model {model.describe()}: the run blew up by t = "
+                            f"{done * dt:.4g} (dt = {dt:.3g}, method {method}): the wave "
+                            "left the lattice's range; lower the amplitude or dt")
+                    if interrupted() and done < nsteps:
+                        raise _Stop(interrupted())
+                record(done * dt)
+                if until_peak:
+                    a = float(np.max(spec[-1][modes]))
+                    top = max(top, a)
+                    if top >= 2 * a0 and a <= top / 2:
+                        peaked = True
+                        break
+            if interrupted():  # at the last record: the run is whole, and says it stopped
+                raise _Stop(interrupted())
+    except (_Stop, KeyboardInterrupt) as exc:
+        if isinstance(exc, SimulationInterrupted):
+            raise
+        signum = exc.args[0] if isinstance(exc, _Stop) else signal_number(exc)
+        # a KeyboardInterrupt (a second Ctrl-C) may land inside a record: keep whole ones
+        whole = min(len(r) for r in (ts, spec, dev, en) + ((diss,) if lossy else ()))
+        for r in (ts, spec, dev, en, diss):
+            del r[whole:]
+        kept = run_so_far(float(ts[-1]))
+        raise SimulationInterrupted(
+            f"model {model.describe()}: interrupted at t = {done * dt:.10g} of "
+            f"{t_end:g}; exc.run keeps {len(ts)} records (to t = {ts[-1]:g}), exc.state "
+            "the state at exc.time", run=kept, state=(u.copy(), v.copy()), time=done * dt,
+            remaining=(nsteps - done) * dt, dt=dt, signum=signum) from None
+    return run_so_far(float(ts[-1]) if until_peak else float(t_end))
 
 
 @dataclass(frozen=True)
