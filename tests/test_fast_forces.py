@@ -28,7 +28,9 @@ def test_the_fused_force_equals_the_generated_force(name, params, rng):
     force, p, rows, label = run_force(model)
     assert label.startswith("fast:")
     N = 48
-    for scale in (0.05, 0.3, 1.5):  # small waves, the paper's amplitudes, large rotations
+    # small waves, the paper's amplitudes, large rotations, and |theta| beyond TRIG_LIMIT
+    # (1e4: both forces hand over to libm's sin and cos there)
+    for scale in (0.05, 0.3, 1.5, 3e4):
         u = scale * rng.standard_normal((model.n_fields, N))
         if model.n_fields == 2:
             u[1] *= 0.3  # sliding smaller than rotation, as on the chain
