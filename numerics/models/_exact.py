@@ -530,7 +530,7 @@ class _Sidebands:
         self._keep(offsets, lam, vec, count, gains, modes, offs)
         dense = np.flatnonzero(count < 0)
         Pc = P - CENTRAL_MARGIN
-        if dense.size and 2 <= Pc and P <= WORK_HARMONICS:
+        if dense.size and 2 <= Pc and P <= WORK_HARMONICS + PERSIST_STEP:
             # the clusters chain (strong coupling): the central pencil, the rest folded in
             lam, vec, count = strong_modes(self.Hh, self.masses, wave.k, wave.omega, P, Pc,
                                            offsets[dense], self.floor,

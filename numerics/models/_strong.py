@@ -175,9 +175,9 @@ def strong_modes(Hh, masses, k, omega, P, Pc, offsets, floor, max_modes):
                 break
             if not _central(K, Om, cidx, Sig, starts[s], lvec, P, sq, F, piv, B):
                 continue
-            lam, settled = _newton(K, Om, starts[s], cidx, ridx, scale, y, True)
+            lam, settled = _newton(K, Om, starts[s], cidx, ridx, scale, y, True, X)
             if not settled or lam.real < -floor:
-                lam, settled = _newton(K, Om, starts[s], cidx, ridx, scale, y, False)
+                lam, settled = _newton(K, Om, starts[s], cidx, ridx, scale, y, False, X)
             if not settled:
                 bad = True
                 break
@@ -195,11 +195,7 @@ def strong_modes(Hh, masses, k, omega, P, Pc, offsets, floor, max_modes):
             if found >= max_modes:
                 bad = True
                 break
-            _, ok = _fold(K, Om, lam, cidx, ridx, X)
-            if not ok:
-                bad = True
-                break
-            for a in range(rc):
+            for a in range(rc):  # X: T_RR^{-1} K_RC at lam, from Newton's last step
                 vec_out[iq, found, cidx[a]] = y[a] * sq[cidx[a] % d]
             for a in range(nr):
                 acc = 0j
