@@ -532,9 +532,10 @@ class _Sidebands:
         Pc = P - CENTRAL_MARGIN
         if dense.size and 2 <= Pc and P <= WORK_HARMONICS + PERSIST_STEP:
             # the clusters chain (strong coupling): the central pencil, the rest folded in
+            # (it refines ~1.6 modes an offset, 4 at most at the bench points: more than
+            # MAX_MODES, that offset's dense eigenproblem)
             lam, vec, count = strong_modes(self.Hh, self.masses, wave.k, wave.omega, P, Pc,
-                                           offsets[dense], self.floor,
-                                           2 * wave.model.n_fields * (2 * Pc + 1))
+                                           offsets[dense], self.floor, MAX_MODES)
             sub = (gains[dense], modes[dense], offs[dense])
             self._keep(offsets[dense], lam, vec, count, *sub)
             gains[dense], modes[dense], offs[dense] = sub
