@@ -118,7 +118,8 @@ def run_map(args) -> int:
     path = out / "map.zarr"
     existed = path.exists()
     ds = run_engine(params, out, args.scheduler, args.workers, log=log,
-                    overwrite=args.overwrite, timeout=args.timeout)
+                    overwrite=args.overwrite, timeout=args.timeout,
+                    device=getattr(args, "device", "cpu"))
     verdicts = [v for v in ds.data_vars if v.startswith("verdict_")
                 and (simulated or v != "verdict_simulated")]
     if all((ds[v].values < 0).all() for v in verdicts):

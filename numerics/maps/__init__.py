@@ -20,7 +20,9 @@ Their parts      cell_records, predict_cell, GROWTH_TOL, GROWTH_ERROR_CONSTANTS 
 Run time         estimate_map -> MapEstimate (start-up + cells at this machine's measured
                  speed, machine_speed, cached), slowed by the load average
 On a GPU         gpu_status (is there one, or what is missing), simulate_cells_gpu
-                 (simulate_cell for many cells in one launch), simulate_map_cells_gpu
+                 (simulate_cell for many cells in one launch), simulate_map_cells_gpu;
+                 simulate_model_cells_gpu (any model's cells, its generated force on the
+                 GPU); DEVICE_PATHS, register_device_path (each map kind's GPU path)
 """
 
 from ..theory import resonance_map  # the exact-map engine lives with the theory
@@ -39,9 +41,10 @@ from ._cells import (
                      simulate_cell,
 )
 from ._columns import theory_columns, tri_state
-from ._devices import DEVICES, resolve_device
+from ._devices import DEVICE_PATHS, DEVICES, register_device_path, resolve_device
 from ._estimate import MapEstimate, estimate_map, machine_speed
 from ._gpu import gpu_status, simulate_cells_gpu, simulate_map_cells_gpu
+from ._gpu_models import simulate_model_cells_gpu
 from ._integrity import store_lock
 from ._model_params import MODE_KIND_CODES, VERDICT_CODES, ModelMapParameters, model_text
 from ._params import CRITERION, MapParameters, local_cores, parse_spec
@@ -70,5 +73,6 @@ __all__ = [
     "store_lock", "cells_done",
     "simulate_block", "CRITERION", "MapCellError", "local_cores", "MapEstimate",
     "estimate_map", "machine_speed",
-    "gpu_status", "simulate_cells_gpu", "simulate_map_cells_gpu",
+    "gpu_status", "simulate_cells_gpu", "simulate_map_cells_gpu", "simulate_model_cells_gpu",
+    "DEVICE_PATHS", "register_device_path",
 ]
