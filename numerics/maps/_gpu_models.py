@@ -47,11 +47,12 @@ class _Records:
 
 
 @dataclass
-class _Chain:
-    cell: int
-    seed: int
+class DeviceChain:
+    """One chain of a launch: the model (at the cell's parameters), its exact wave
+    (``spec``, an ``exact_gain_checked`` result), the run's length, its start (u, v),
+    step, steps and record spacing (``chain_start``), and which cell and seed it is."""
+
     model: object
-    k: float
     spec: object
     t_end: float
     u: np.ndarray
@@ -59,6 +60,8 @@ class _Chain:
     dt: float
     nsteps: int
     every: int
+    cell: int = 0
+    seed: int = 0
 
 
 def chain_start(model, k: float, amplitude: float, spec, N: int, t_end: float, seed: int,
@@ -84,9 +87,11 @@ def chain_start(model, k: float, amplitude: float, spec, N: int, t_end: float, s
     return np.ascontiguousarray(u), np.ascontiguousarray(v), dt, nsteps, every
 
 
-def _launch(chains: list, N: int, threads: int | None, max_spectra_bytes: int) -> list:
-    """Run ``chains`` (one model module) on the GPU: per chain (status, records, spectra
-    (records, N/2 + 1))."""
+def launch_chains(chains: list, N: int, threads: int | None = None,
+                  max_spectra_bytes: int = 2 << 30) -> list:
+    """Run ``chains`` (DeviceChain, one model's, N sites each) on the GPU in one launch (or
+    a few: the records' spectra within ``max_spectra_bytes``): per chain (status, records
+    taken, spectra (records, N/2 + 1)); status is the kernel's STATUS_OK or STATUS_BAD."""
     from numba import cuda
 
     from numerics.lattice import cuda_model_kernels, get_method
@@ -145,7 +150,7 @@ def _launch(chains: list, N: int, threads: int | None, max_spectra_bytes: int) -
     return out
 
 
-def _growth(chain: _Chain, N: int, amplitude: float, half: np.ndarray):
+def _growth(chain: DeviceChain, N: int, amplitude: float, half: np.ndarray):
     """``measure_growth`` of a chain's records (the half spectrum mirrored: real fields)."""
     from numerics.models import measure_growth
 
@@ -208,10 +213,19 @@ def simulate_model_cells_gpu(model, cells, amplitude: float, branch=None, *, N: 
     """
     from energy import ModelError
     from numerics.lattice import cuda_model_kernels, run_length
-    from numerics.models import exact_gain_checked, simulate_model, simulate_seeds
+    from numerics.models import check_ring, exact_gain_checked, simulate_model, simulate_seeds
 
+    N = check_ring(N)
+    if isinstance(seeds, bool) or not isinstance(seeds, (int, np.integer)) or seeds < 1:
+        raise ModelError(f"seeds must be an integer >= 1, got {seeds!r}")
+    if isinstance(amplitude, bool) or not (isinstance(amplitude, (int, float, np.floating))
+                                           and math.isfinite(amplitude) and amplitude > 0):
+        raise ModelError(f"amplitude must be a finite number > 0, got {amplitude!r}")
     K = cuda_model_kernels()
     noise = _default("noise") if noise is None else noise
+    if isinstance(noise, bool) or not (isinstance(noise, (int, float, np.floating))
+                                       and math.isfinite(noise) and noise >= 0):
+        raise ModelError(f"noise must be a finite number >= 0, got {noise!r}")
     cells = list(cells)
     models = [model.with_params(**values) for values, _ in cells]
     if specs is None:
@@ -241,18 +255,17 @@ def simulate_model_cells_gpu(model, cells, amplitude: float, branch=None, *, N: 
             continue
         for s in range(seeds):
             u, v, dt, nsteps, every = chain_start(m, k, amplitude, spec, N, T, s, noise=noise)
-            chains.append(_Chain(c, s, m, spec.wave.k, spec, T, u, v, dt, nsteps, every))
-    if why_cpu is not None and chains == [] and any(r is None or r["device"] == "cpu"
-                                                    for r in rows):
+            chains.append(DeviceChain(m, spec, T, u, v, dt, nsteps, every, c, s))
+    if why_cpu is not None and any(r is not None and r["growth_runs"] for r in rows):
         log(f"model {model.name}: its cells run on the CPU, not the GPU: {why_cpu}")
-    results = _launch(chains, N, threads, max_spectra_bytes) if chains else []
+    results = launch_chains(chains, N, threads, max_spectra_bytes) if chains else []
     per_cell: dict = {}
     t_of = {ch.cell: ch.t_end for ch in chains}
     again = 0
     for ch, (status, _, half) in zip(chains, results):
         if status != K.STATUS_OK:
             again += 1
-            run = simulate_model(ch.model, ch.k, amplitude, branch=branch, N=N,
+            run = simulate_model(ch.model, ch.spec.wave.k, amplitude, branch=branch, N=N,
                                  t_end=ch.t_end, seed=ch.seed, wave=ch.spec.wave,
                                  noise=noise)
             per_cell.setdefault(ch.cell, []).append((run.growth(), "cpu"))
@@ -297,4 +310,5 @@ def model_rows_gpu(params, batch: list, log=print) -> list:
     return out
 
 
-__all__ = ["simulate_model_cells_gpu", "model_rows_gpu", "chain_start", "UNDEFINED_ROW"]
+__all__ = ["simulate_model_cells_gpu", "model_rows_gpu", "chain_start", "launch_chains",
+           "DeviceChain", "UNDEFINED_ROW"]
