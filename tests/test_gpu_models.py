@@ -262,3 +262,18 @@ def test_bad_input_is_one_line(kw, match):
     with pytest.raises(ModelError, match=match) as err:
         simulate_model_cells_gpu(load_model("fput"), [({}, 1.0)], amp, **args)
     assert "\n" not in str(err.value)
+
+
+def test_model_map_device_gpu_without_a_gpu_is_one_line(tmp_path, capsys):
+    """`flexmm map --model ... --device gpu` where no GPU is usable: exit 2, one line
+    naming the option and what is missing, nothing written."""
+    from cli.app import main
+    from numerics.maps import gpu_status
+
+    if gpu_status()[0]:
+        pytest.skip("a GPU is usable here")
+    code = main(["map", "--model", "fput", "--param", "beta=0.8,1.6", "--k", "1,2", "--N", "16",
+                 "--out", str(tmp_path / "m"), "--device", "gpu"])
+    err = capsys.readouterr().err
+    assert code == 2 and "--device gpu: " in err and len(err.strip().splitlines()) == 1, err
+    assert not (tmp_path / "m").exists()
