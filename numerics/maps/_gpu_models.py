@@ -150,15 +150,16 @@ def launch_chains(chains: list, N: int, threads: int | None = None,
     return out
 
 
-def _growth(chain: DeviceChain, N: int, amplitude: float, half: np.ndarray):
-    """``measure_growth`` of a chain's records (the half spectrum mirrored: real fields)."""
+def _growth(chain: DeviceChain, N: int, amplitude: float, half: np.ndarray) -> tuple:
+    """(``measure_growth`` of a chain's records, their times, their spectra (records, N):
+    the half spectrum mirrored, the fields being real)."""
     from numerics.models import measure_growth
 
     j = np.arange(N)
     full = half[:, np.minimum(j, N - j)]
     t = np.minimum(np.arange(full.shape[0]) * chain.every, chain.nsteps) * chain.dt
     return measure_growth(_Records(N, chain.spec.wave.k, float(amplitude), chain.spec.wave,
-                                   t, full))
+                                   t, full)), t, full
 
 
 def _cell_row(growth: list, t_end: float) -> dict:
@@ -182,7 +183,7 @@ UNDEFINED_ROW = {"verdict_simulated": "undefined", "peak_gain_simulated": math.n
 def simulate_model_cells_gpu(model, cells, amplitude: float, branch=None, *, N: int = 256,
                              seeds: int = 1, t_end: float | None = None,
                              noise: float | None = None, specs=None,
-                             threads: int | None = None, log=print,
+                             threads: int | None = None, log=print, records: bool = False,
                              max_spectra_bytes: int = 2 << 30) -> list[dict]:
     """The simulated columns of a model's map cells, their runs on the GPU.
 
@@ -197,12 +198,16 @@ def simulate_model_cells_gpu(model, cells, amplitude: float, branch=None, *, N: 
     noise : float, optional
         The seeded noise relative to the amplitude (``simulate_model``'s default).
     specs : sequence, optional
-        Each cell's ``exact_gain_checked`` on the ring (computed here where not given);
-        a ModelError in its place marks a cell without a travelling wave.
+        Each cell's ``exact_gain_checked`` on the ring, or what the runs read of it (an
+        object with its ``wave`` and ``peak_gain``); computed here where not given (or
+        None); a ModelError in its place marks a cell without a travelling wave.
     threads : int, optional
         Threads per block (a power of two; default ``threads_for``).
     log : callable
         Gets one line for each reason the CPU runs some chains instead.
+    records : bool
+        Also return each seed's records: ``records`` [(t, spectrum (records, N)), ...],
+        the deviation's spectrum as ``ModelRun.spectrum``.
 
     Returns
     -------
@@ -228,13 +233,13 @@ def simulate_model_cells_gpu(model, cells, amplitude: float, branch=None, *, N: 
         raise ModelError(f"noise must be a finite number >= 0, got {noise!r}")
     cells = list(cells)
     models = [model.with_params(**values) for values, _ in cells]
-    if specs is None:
-        specs = []
-        for m, (_, k) in zip(models, cells):
+    specs = [None] * len(cells) if specs is None else list(specs)
+    for c, (m, (_, k)) in enumerate(zip(models, cells)):
+        if specs[c] is None:
             try:
-                specs.append(exact_gain_checked(m, k, amplitude, branch, N=N))
+                specs[c] = exact_gain_checked(m, k, amplitude, branch, N=N)
             except ModelError as exc:
-                specs.append(exc)
+                specs[c] = exc
     why_cpu = None
     if model.lossy:
         why_cpu = ("its losses ([dissipation]) run in the CPU's damped steppers")
@@ -252,6 +257,8 @@ def simulate_model_cells_gpu(model, cells, amplitude: float, branch=None, *, N: 
                                  t_end=T, noise=noise)
             growth = [r.growth() for r in sim.runs]
             rows[c] = dict(_cell_row(growth, T), growth_runs=growth, device="cpu")
+            if records:
+                rows[c]["records"] = [(r.t, r.spectrum) for r in sim.runs]
             continue
         for s in range(seeds):
             u, v, dt, nsteps, every = chain_start(m, k, amplitude, spec, N, T, s, noise=noise)
@@ -268,19 +275,49 @@ def simulate_model_cells_gpu(model, cells, amplitude: float, branch=None, *, N: 
             run = simulate_model(ch.model, ch.spec.wave.k, amplitude, branch=branch, N=N,
                                  t_end=ch.t_end, seed=ch.seed, wave=ch.spec.wave,
                                  noise=noise)
-            per_cell.setdefault(ch.cell, []).append((run.growth(), "cpu"))
+            per_cell.setdefault(ch.cell, []).append((run.growth(), run.t, run.spectrum,
+                                                     "cpu"))
         else:
-            per_cell.setdefault(ch.cell, []).append((_growth(ch, N, amplitude, half), "gpu"))
+            per_cell.setdefault(ch.cell, []).append((*_growth(ch, N, amplitude, half), "gpu"))
     if again:
         log(f"model {model.name}: {again} of {len(chains)} runs left the GPU's range (a "
             "position beyond the polynomial sin/cos's or not finite): run again on the CPU")
     for c, runs in per_cell.items():
-        growth = [g for g, _ in runs]
-        where = {w for _, w in runs}
+        growth = [r[0] for r in runs]
+        where = {r[3] for r in runs}
         rows[c] = dict(_cell_row(growth, t_of[c]), growth_runs=growth,
                        device="gpu" if where == {"gpu"} else "cpu" if where == {"cpu"}
                        else "gpu+cpu")
+        if records:
+            rows[c]["records"] = [(r[1], r[2]) for r in runs]
     return rows
+
+
+@dataclass(frozen=True)
+class _Exact:
+    """What a cell's runs read of its exact theory: the wave and the peak gain."""
+
+    wave: object
+    peak_gain: float
+
+
+def _wave_of(params, values: dict, k: float, peak_gain: float):
+    """A cell's runs' start without its exact theory again: the theory column's peak gain
+    (run_length's input) and the travelling wave on the ring (``exact_gain``'s own: the
+    harmonic balance at k snapped to the ring), or None (computed by
+    ``simulate_model_cells_gpu``) where the column has no gain, or the ModelError of a
+    cell without a wave."""
+    from energy import ModelError
+    from numerics.models import snap_ring, travelling_wave
+
+    if not math.isfinite(peak_gain):
+        return None
+    model = params.lattice_model.with_params(**values)
+    try:
+        return _Exact(travelling_wave(model, snap_ring(k, params.N)[0], params.amplitude,
+                                      params.branch_value), float(peak_gain))
+    except ModelError as exc:
+        return exc
 
 
 def model_rows_gpu(params, batch: list, log=print) -> list:
@@ -291,9 +328,12 @@ def model_rows_gpu(params, batch: list, log=print) -> list:
 
     theory = [model_block(params, i, js, simulate=False) for i, js in batch]
     cells = [params.cell(i, j) for i, js in batch for j in js]
+    rows = [row for block in theory for row in block["rows"]]
+    specs = [_wave_of(params, values, k, row.get("peak_gain_exact", math.nan))
+             for (values, k), row in zip(cells, rows)]
     sims = simulate_model_cells_gpu(params.lattice_model, cells, params.amplitude,
                                     params.branch_value, N=params.N, seeds=params.seeds,
-                                    t_end=params.t_end, log=log)
+                                    t_end=params.t_end, specs=specs, log=log)
     out, n = [], 0
     for (i, js), block in zip(batch, theory):
         rows = []
