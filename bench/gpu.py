@@ -103,7 +103,7 @@ def model_rates(chains: int = MODEL_CHAINS, N: int = MODEL_N, t_end: float = MOD
         t0 = time.perf_counter()
         res = launch_chains(todo, N)
         wall = time.perf_counter() - t0
-        bad = sum(r[0] != 0 for r in res)
+        bad = int(sum(r[0] != 0 for r in res))
         site_evals = sum(c.nsteps for c in todo) * evals * N
         out[name] = {"ps_per_site_evaluation": wall / site_evals * 1e12,
                      "chains_per_s": chains / wall, "wall_s": wall, "chains": chains,

@@ -288,3 +288,17 @@ def test_model_map_device_gpu_without_a_gpu_is_one_line(tmp_path, capsys):
     err = capsys.readouterr().err
     assert code == 2 and "--device gpu: " in err and len(err.strip().splitlines()) == 1, err
     assert not (tmp_path / "m").exists()
+
+
+def test_bench_gpu_without_a_gpu_says_so_and_exits_0(tmp_path, capsys):
+    """`make bench-gpu` where no GPU is usable: one line starting "no GPU", nothing written,
+    exit 0 (CI and laptops run it harmlessly)."""
+    from bench import gpu
+    from numerics.maps import gpu_status
+
+    if gpu_status()[0]:
+        pytest.skip("a GPU is usable here")
+    assert gpu.main(["--out", str(tmp_path)]) == 0
+    out = capsys.readouterr().out.strip().splitlines()
+    assert len(out) == 1 and out[0].startswith("no GPU"), out
+    assert not any(tmp_path.iterdir())
