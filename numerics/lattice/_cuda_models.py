@@ -233,34 +233,102 @@ def device_source(code) -> tuple[str, bool]:
     return "\n\n\n".join([src_sites, *parts]) + "\n", trig
 
 
+#: registered device forces: a model's MODEL_HASH (its energy's content hash) ->
+#: (name, fields, parameters, builder); builder() -> (site_functions, site_force, n_f) with
+#: the generated device functions' signatures. The paper chain's models register the
+#: fused flexMM kernel's force (``_cuda``'s ``_acc``, today's GPU kernel's): a model file
+#: with the same energy gets it too, any other model its printed force
+DEVICE_FORCES: dict = {}
+
+
+def register_device_force(model_hash: str, name: str, fields: tuple, parameters: tuple,
+                          builder) -> None:
+    """Register a hand-written device force for the model of ``model_hash`` (its fields
+    and parameters in this order, checked at use)."""
+    DEVICE_FORCES[model_hash] = (name, tuple(fields), tuple(parameters), builder)
+
+
+def device_force_of(code, fast: bool = True):
+    """(name, n_f): the device force a generated module's kernel uses, "generated" or a
+    registered one (``DEVICE_FORCES``; ``fast`` False: always the generated), and the site
+    functions it keeps per site (shared memory)."""
+    entry = DEVICE_FORCES.get(getattr(code, "MODEL_HASH", None)) if fast else None
+    if entry is not None and (tuple(code.FIELDS), tuple(code.PARAMETERS)) == entry[1:3]:
+        return entry[0], 3
+    return "generated", int(code.SITE_FUNCTIONS_ALL)
+
+
+def _fused_flexmm(coupled: bool):
+    """The fused flexMM kernel's site force (``_cuda``: eq. `norm`, theta's acceleration
+    with alpha^2, U's) behind the generated functions' signatures: F holds sin, cos and
+    1 - cos of theta (the polynomial), p = (alpha, K_s, K_theta)."""
+    from ._cuda import _acc_d, _sincosvers_d
+
+    @cuda.jit(device=True)
+    def functions(u, F, p, n, N):
+        s, c, v = _sincosvers_d(u[n])
+        F[n] = s
+        F[N + n] = c
+        F[2 * N + n] = v
+
+    @cuda.jit(device=True)
+    def force(u, F, p, n, N, acc, r, m, l):
+        U = u[N:2 * N] if coupled else u[0:N]  # case I never reads U
+        at, aU = _acc_d(n, m, l, u[0:N], U, F[0:N], F[N:2 * N], F[2 * N:3 * N], coupled,
+                        p[0] * p[0], p[1], p[2])
+        acc[r] = at
+        if coupled:
+            acc[PER_THREAD + r] = aU
+
+    return functions, force, 3
+
+
+def _register_builtin() -> None:
+    from generated.models import flexmm, flexmm_rotation
+
+    for mod, coupled in ((flexmm, True), (flexmm_rotation, False)):
+        register_device_force(mod.MODEL_HASH, f"fused flexMM ({mod.NAME})", mod.FIELDS,
+                              mod.PARAMETERS, lambda c=coupled: _fused_flexmm(c))
+
+
+_register_builtin()
+
 _BUILT: dict = {}
 
 
-def model_kernel(code):
+def model_kernel(code, fast: bool = True):
     """(kernel, trig) for a generated model module: the CUDA kernel of its chains (compiled
-    on first launch) and whether its site functions call sin/cos. Cached per module hash."""
-    key = (code.__name__, code.MODEL_HASH)
+    on first launch) and whether a position beyond TRIG_LIMIT stops a chain (its site
+    functions' sin/cos are the polynomial). ``fast``: a registered device force where the
+    model has one (``device_force_of``). Cached per module hash."""
+    force_name, nf = device_force_of(code, fast)
+    key = (code.__name__, code.MODEL_HASH, force_name)
     if key in _BUILT:
         return _BUILT[key]
-    src, trig = device_source(code)
-    sincos = cuda.jit(device=True)(_sincosvers.py_func)
+    if force_name != "generated":
+        site_functions, f_first, nf = DEVICE_FORCES[code.MODEL_HASH][3]()
+        f_last = f_inner = f_first
+        trig = True
+    else:
+        src, trig = device_source(code)
+        sincos = cuda.jit(device=True)(_sincosvers.py_func)
 
-    def _psin(x):
-        return sincos(x)[0]
+        def _psin(x):
+            return sincos(x)[0]
 
-    def _pcos(x):
-        return sincos(x)[1]
+        def _pcos(x):
+            return sincos(x)[1]
 
-    ns = {"math": math, "PER_THREAD": PER_THREAD, "_psin": cuda.jit(device=True)(_psin),
-          "_pcos": cuda.jit(device=True)(_pcos)}
-    exec(compile(src, f"<device force of {code.__name__}>", "exec"), ns)
-    site_functions = cuda.jit(device=True)(ns["_site_functions"])
-    f_first = cuda.jit(device=True)(ns["_site_force_first"])
-    f_last = cuda.jit(device=True)(ns["_site_force_last"])
-    f_inner = cuda.jit(device=True)(ns["_site_force_inner"])
+        ns = {"math": math, "PER_THREAD": PER_THREAD, "_psin": cuda.jit(device=True)(_psin),
+              "_pcos": cuda.jit(device=True)(_pcos)}
+        exec(compile(src, f"<device force of {code.__name__}>", "exec"), ns)
+        site_functions = cuda.jit(device=True)(ns["_site_functions"])
+        f_first = cuda.jit(device=True)(ns["_site_force_first"])
+        f_last = cuda.jit(device=True)(ns["_site_force_last"])
+        f_inner = cuda.jit(device=True)(ns["_site_force_inner"])
     D = len(code.FIELDS)
-    NF = max(int(code.SITE_FUNCTIONS_ALL), 1)
-    HAS_F = int(code.SITE_FUNCTIONS_ALL) > 0
+    NF = max(nf, 1)
+    HAS_F = nf > 0
     LOCAL = D * PER_THREAD
     CHECK = bool(trig)
     LIMIT = TRIG_LIMIT
@@ -451,6 +519,7 @@ def threads_for(N: int, simulated: bool = False) -> int:
     return bs
 
 
-__all__ = ["model_kernel", "device_source", "shared_bytes", "fits", "twiddles",
+__all__ = ["model_kernel", "device_source", "device_force_of", "register_device_force",
+           "DEVICE_FORCES", "shared_bytes", "fits", "twiddles",
            "threads_for", "DeviceSourceError", "PER_THREAD", "THREADS", "SHARED_LIMIT",
            "STATUS_OK", "STATUS_BAD"]

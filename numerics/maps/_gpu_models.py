@@ -88,10 +88,12 @@ def chain_start(model, k: float, amplitude: float, spec, N: int, t_end: float, s
 
 
 def launch_chains(chains: list, N: int, threads: int | None = None,
-                  max_spectra_bytes: int = 2 << 30) -> list:
+                  max_spectra_bytes: int = 2 << 30, fast_force: bool = True) -> list:
     """Run ``chains`` (DeviceChain, one model's, N sites each) on the GPU in one launch (or
     a few: the records' spectra within ``max_spectra_bytes``): per chain (status, records
-    taken, spectra (records, N/2 + 1)); status is the kernel's STATUS_OK or STATUS_BAD."""
+    taken, spectra (records, N/2 + 1)); status is the kernel's STATUS_OK or STATUS_BAD.
+    ``fast_force``: the model's registered device force where it has one (the fused
+    flexMM kernel's for the paper chain's models), else its generated force."""
     from numba import cuda
 
     from numerics.lattice import cuda_model_kernels, get_method
@@ -100,9 +102,9 @@ def launch_chains(chains: list, N: int, threads: int | None = None,
 
     K = cuda_model_kernels()
     code = chains[0].model.code
-    kernel, _ = K.model_kernel(code)
+    kernel, _ = K.model_kernel(code, fast_force)
     d = chains[0].model.n_fields
-    nf = int(code.SITE_FUNCTIONS_ALL)
+    nf = K.device_force_of(code, fast_force)[1]
     bs = threads or K.threads_for(N, simulated())
     if bs & (bs - 1) or bs * K.PER_THREAD < N:
         raise ValueError(f"threads = {bs}: a power of two with threads * {K.PER_THREAD} >= N")
@@ -184,6 +186,7 @@ def simulate_model_cells_gpu(model, cells, amplitude: float, branch=None, *, N: 
                              seeds: int = 1, t_end: float | None = None,
                              noise: float | None = None, specs=None,
                              threads: int | None = None, log=print, records: bool = False,
+                             fast_force: bool = True,
                              max_spectra_bytes: int = 2 << 30) -> list[dict]:
     """The simulated columns of a model's map cells, their runs on the GPU.
 
@@ -208,6 +211,10 @@ def simulate_model_cells_gpu(model, cells, amplitude: float, branch=None, *, N: 
     records : bool
         Also return each seed's records: ``records`` [(t, spectrum (records, N)), ...],
         the deviation's spectrum as ``ModelRun.spectrum``.
+    fast_force : bool
+        The model's registered device force where it has one (``flexmm`` and
+        ``flexmm-rotation``: the fused flexMM kernel's, as the paper flags' maps run);
+        False: its generated force, the reference.
 
     Returns
     -------
@@ -244,7 +251,7 @@ def simulate_model_cells_gpu(model, cells, amplitude: float, branch=None, *, N: 
     if model.lossy:
         why_cpu = ("its losses ([dissipation]) run in the CPU's damped steppers")
     else:
-        why_cpu = K.fits(model.n_fields, int(model.code.SITE_FUNCTIONS_ALL), N)
+        why_cpu = K.fits(model.n_fields, K.device_force_of(model.code, fast_force)[1], N)
     rows: list = [None] * len(cells)
     chains: list = []
     for c, ((_, k), m, spec) in enumerate(zip(cells, models, specs)):
@@ -265,7 +272,8 @@ def simulate_model_cells_gpu(model, cells, amplitude: float, branch=None, *, N: 
             chains.append(DeviceChain(m, spec, T, u, v, dt, nsteps, every, c, s))
     if why_cpu is not None and any(r is not None and r["growth_runs"] for r in rows):
         log(f"model {model.name}: its cells run on the CPU, not the GPU: {why_cpu}")
-    results = launch_chains(chains, N, threads, max_spectra_bytes) if chains else []
+    results = (launch_chains(chains, N, threads, max_spectra_bytes, fast_force) if chains
+               else [])
     per_cell: dict = {}
     t_of = {ch.cell: ch.t_end for ch in chains}
     again = 0
