@@ -105,6 +105,14 @@ _register_builtin()
 _BUILT: dict = {}
 
 
+def sign(x):
+    """numpy.sign of a float (0 at 0, NaN at NaN): the derivative of an Abs."""
+    return 1.0 if x > 0 else -1.0 if x < 0 else x * 0.0
+
+
+_sign_d = cuda.jit(device=True)(sign)
+
+
 def model_kernel(code, fast: bool = True):
     """(kernel, trig) for a generated model module: the CUDA kernel of its chains (compiled
     on first launch) and whether a position beyond TRIG_LIMIT stops a chain (its site
@@ -129,7 +137,7 @@ def model_kernel(code, fast: bool = True):
             return sincos(x)[1]
 
         ns = {"math": math, "PER_THREAD": PER_THREAD, "_psin": cuda.jit(device=True)(_psin),
-              "_pcos": cuda.jit(device=True)(_pcos)}
+              "_pcos": cuda.jit(device=True)(_pcos), "_sign": _sign_d}
         exec(compile(src, f"<device force of {code.__name__}>", "exec"), ns)
         site_functions = cuda.jit(device=True)(ns["_site_functions"])
         f_first = cuda.jit(device=True)(ns["_site_force_first"])
@@ -328,7 +336,7 @@ def threads_for(N: int, simulated: bool = False) -> int:
     return bs
 
 
-__all__ = ["model_kernel", "device_source", "device_force_of", "register_device_force",
+__all__ = ["model_kernel", "device_source", "sign", "device_force_of", "register_device_force",
            "DEVICE_FORCES", "shared_bytes", "fits", "twiddles",
            "threads_for", "DeviceSourceError", "PER_THREAD", "THREADS", "SHARED_LIMIT",
            "STATUS_OK", "STATUS_BAD"]

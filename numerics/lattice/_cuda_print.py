@@ -34,7 +34,10 @@ import textwrap
 _DEVICE_FUNCTIONS = {"sin": "math.sin", "cos": "math.cos", "tan": "math.tan",
                      "exp": "math.exp", "log": "math.log", "sqrt": "math.sqrt",
                      "sinh": "math.sinh", "cosh": "math.cosh", "tanh": "math.tanh",
-                     "arctan": "math.atan", "abs": "abs", "maximum": "max"}
+                     "arctan": "math.atan", "abs": "abs", "maximum": "max",
+                     "sign": "_sign"}
+#: Python's own functions the printer may call (abs of an Abs, range of the loops)
+_BUILTINS = ("abs", "range")
 _ARRAYS = ("_u", "_F", "_p", "_out")
 _ALLOWED_NODES = (ast.Module, ast.FunctionDef, ast.arguments, ast.arg, ast.Expr,
                   ast.Assign, ast.Name, ast.Load, ast.Store, ast.Constant, ast.BinOp,
@@ -66,7 +69,8 @@ def _check(tree: ast.AST, where: str) -> None:
         if isinstance(node, ast.Call):
             f = node.func
             ok = (isinstance(f, ast.Attribute) and isinstance(f.value, ast.Name)
-                  and f.value.id == "numpy") or (isinstance(f, ast.Name) and f.id == "range")
+                  and f.value.id == "numpy") or (isinstance(f, ast.Name)
+                                                 and f.id in _BUILTINS)
             if not ok or node.keywords:
                 raise DeviceSourceError(f"{where}: call {ast.unparse(node)}")
         if isinstance(node, ast.Name) and not node.id.isidentifier():
