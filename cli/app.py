@@ -422,11 +422,6 @@ def _dispatch(args, scenes) -> int:
     if getattr(args, "model", None) is not None:
         from . import model_map, model_point, models
 
-        if getattr(args, "device", "cpu") != "cpu":
-            raise ValueError(f"--device {args.device}: a --model map runs its cells on the "
-                             "CPU, as Dask tasks (the GPU kernel is the paper chain's); "
-                             "drop --device")
-
         run = {"coefficients": models.run_coefficients, "point": model_point.run_point,
                "map": model_map.run_map, "soliton": models.run_soliton}[args.cmd]
         return run(args)

@@ -99,6 +99,11 @@ def run_map(args) -> int:
         time_unit_s=units.seconds_per_T, length_unit_m=units.metres_per_site)
     check_output(args.out)
     log = (lambda *a: print(*a, file=sys.stderr)) if args.json else print
+    from numerics.maps import resolve_device
+
+    # before anything is written: a GPU asked where there is none is refused in one line
+    device = resolve_device(getattr(args, "device", "cpu"), params.theory_only, log,
+                            args.scheduler)
     n_workers = args.workers or (1 if args.scheduler else None)
     from numerics.maps import local_cores
 
@@ -121,7 +126,8 @@ def run_map(args) -> int:
     path = out / "map.zarr"
     existed = path.exists()
     ds = run_engine(params, out, args.scheduler, args.workers, log=log,
-                    overwrite=args.overwrite, timeout=args.timeout)
+                    overwrite=args.overwrite, timeout=args.timeout,
+                    device=device)
     verdicts = [v for v in ds.data_vars if v.startswith("verdict_")
                 and (simulated or v != "verdict_simulated")]
     if all((ds[v].values < 0).all() for v in verdicts):

@@ -73,7 +73,15 @@ def cuda_kernels():
     return _cuda
 
 
-__all__ = ["cuda_kernels", "TRIG_LIMIT", 
+def cuda_model_kernels():
+    """The CUDA kernel of any model's chains (``_cuda_models``: its generated site force
+    compiled for the device), imported on first use as :func:`cuda_kernels`."""
+    from . import _cuda_models
+
+    return _cuda_models
+
+
+__all__ = ["cuda_kernels", "cuda_model_kernels", "TRIG_LIMIT", 
     "Material", "LatticeState", "energy", "CASES", "discrete_omega_rotation",
     "discrete_omega_longitudinal", "simulate", "Run", "resume", "initial_condition",
     "snap_wavenumber", "STARTS", "register_start", "paper_start_undefined", "cached_simulate",

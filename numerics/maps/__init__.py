@@ -22,7 +22,9 @@ With losses      critical_damping (where an amplification falls below 20x along 
 Run time         estimate_map -> MapEstimate (start-up + cells at this machine's measured
                  speed, machine_speed, cached), slowed by the load average
 On a GPU         gpu_status (is there one, or what is missing), simulate_cells_gpu
-                 (simulate_cell for many cells in one launch), simulate_map_cells_gpu
+                 (simulate_cell for many cells in one launch), simulate_map_cells_gpu;
+                 simulate_model_cells_gpu (any model's cells, its generated force on the
+                 GPU); DEVICE_PATHS, register_device_path (each map kind's GPU path)
 """
 
 from ..theory import resonance_map  # the exact-map engine lives with the theory
@@ -42,9 +44,10 @@ from ._cells import (
 )
 from ._columns import theory_columns, tri_state
 from ._critical import critical_damping, damping_parameters
-from ._devices import DEVICES, resolve_device
+from ._devices import DEVICE_PATHS, DEVICES, register_device_path, resolve_device
 from ._estimate import MapEstimate, estimate_map, machine_speed
 from ._gpu import gpu_status, simulate_cells_gpu, simulate_map_cells_gpu
+from ._gpu_models import simulate_model_cells_gpu
 from ._integrity import store_lock
 from ._model_params import MODE_KIND_CODES, VERDICT_CODES, ModelMapParameters, model_text
 from ._params import CRITERION, MapParameters, local_cores, parse_spec
@@ -73,6 +76,6 @@ __all__ = [
     "store_lock", "cells_done",
     "simulate_block", "CRITERION", "MapCellError", "local_cores", "MapEstimate",
     "estimate_map", "machine_speed",
-    "gpu_status", "simulate_cells_gpu", "simulate_map_cells_gpu",
-    "critical_damping", "damping_parameters",
+    "gpu_status", "simulate_cells_gpu", "simulate_map_cells_gpu", "simulate_model_cells_gpu",
+    "DEVICE_PATHS", "register_device_path", "critical_damping", "damping_parameters",
 ]
