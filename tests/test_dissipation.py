@@ -398,3 +398,32 @@ def test_zero_damping_of_a_lossy_model_is_no_damping(fput_lossy):
                 four_wave_amplification(model, 2.6, 0.2, N=32)):
         assert amp.carrier_damping == 0.0
         assert amp.amplification in (math.inf, 1.0)
+
+
+def test_along_decays_compiled_quadrature_is_the_array_one():
+    # the compiled loop (issue 42, cost) against the array form it replaced, on random
+    # samples (clipped rates: columns growing only at the top samples, or at none), random
+    # damping and carriers: the same operations in the same order, so equal to the bit
+    from numerics.models._losses import _integrate, _piecewise
+
+    def by_arrays(s_arr, g2, s_t, t, G):
+        rate = np.sqrt(np.maximum(_piecewise(s_arr, g2, s_t), 0.0)) - G[None, :]
+        log_amp = np.concatenate([np.zeros((1, G.size)), np.cumsum(
+            np.diff(t)[:, None] * (rate[1:] + rate[:-1]) / 2, axis=0)])
+        i, j = np.unravel_index(int(np.argmax(log_amp)), log_amp.shape)
+        return float(log_amp[i, j]), int(i), int(j)
+
+    rng = np.random.default_rng(3)
+    grew = 0
+    for trial in range(60):
+        n, cols = int(rng.integers(1, 8)), int(rng.integers(1, 60))
+        s_arr = np.sort(0.5 ** np.arange(n))
+        g2 = np.maximum(rng.uniform(-0.3, 1, (n, cols)) * np.linspace(0.1, 1, n)[:, None], 0)
+        # every third: damping above every rate (sigma <= 1), nothing grows
+        G = rng.uniform(1.0, 2.0, cols) if trial % 3 == 0 else rng.uniform(0, 0.6, cols)
+        t = np.linspace(0, rng.uniform(5, 80), 2001)
+        s_t = np.exp(-2 * rng.uniform(0.01, 0.2) * t)
+        want = by_arrays(s_arr, g2, s_t, t, G)
+        assert _integrate(s_arr, g2, s_t, t, G) == want
+        grew += want[0] > 0
+    assert grew == 40  # both kinds met: some grow, some never do (then (0, 0, 0))

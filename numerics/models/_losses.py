@@ -84,14 +84,16 @@ def integrate_pairs(P, Q, psi0, Gamma, G, q, t_end, steps=4000, carrier_decays=T
     x, y = x / n0, y / n0
     h = t_end / steps
     t = np.linspace(0.0, t_end, steps + 1)
-    out = np.empty((steps + 1, q.size))
-    out[0] = 1.0
+    # one row per offset (the kernel walks each offset's steps in order), returned as
+    # (steps + 1, len(q)) by a transposed view
+    out = np.empty((q.size, steps + 1))
+    out[:, 0] = 1.0
     # the carrier at each step's midpoint
     tm = (np.arange(steps) + 0.5) * h
     a2 = psi0**2 * (np.exp(-2 * Gamma * tm) if carrier_decays else np.ones(steps))
     _pairs_compiled()(float(P), float(Q), a2, np.ascontiguousarray(G, dtype=float), q2, h,
                       x, y, out)
-    return out, t
+    return out.T, t
 
 
 _PAIRS = []
@@ -122,7 +124,9 @@ def _pairs_compiled():
                         ch, sh = math.cos(rh), math.sin(rh)
                     shl = sh / r if rh > 1e-12 else h
                     xj, yj = e * ch * xj + e * b * shl * yj, e * c * shl * xj + e * ch * yj
-                    out[i + 1, j] = math.hypot(xj, yj)
+                    # sqrt of the sum (2/3 of hypot's time), hypot where it would overflow
+                    r2 = xj * xj + yj * yj
+                    out[j, i + 1] = math.sqrt(r2) if r2 < 1e300 else math.hypot(xj, yj)
 
         _PAIRS.append(pairs)
     return _PAIRS[0]
@@ -160,9 +164,23 @@ def nls_amplification(model: Model, k: float, amplitude: float, branch=None, *,
         return _unbounded(Gamma, net0, float(q[int(np.argmax(rate0 - G))]))
     t_end = _horizon(float(np.max(rate0)), Gamma)
     amp, t = integrate_pairs(P, Q, psi0, Gamma, G, q, t_end, steps)
-    i, j = np.unravel_index(int(np.argmax(amp)), amp.shape)
+    i, j = _first_max(amp)
     best = float(amp[i, j])
     return Amplified(Gamma, best, float(t[i]), float(q[j]), best >= OBSERVABLE, net0)
+
+
+def _first_max(amp) -> tuple[int, int]:
+    """(i, j) of ``np.argmax(amp)`` (the first largest in row-major order) of the
+    transposed view ``integrate_pairs`` returns, without copying it: the largest along its
+    contiguous base, then the earliest row among the equal ones."""
+    base = amp.T  # (offsets, times), contiguous
+    where = np.flatnonzero(base.ravel() == base.max())
+    if not where.size:  # a nan: argmax's own answer
+        i, j = np.unravel_index(int(np.argmax(amp)), amp.shape)
+        return int(i), int(j)
+    jj, ii = np.divmod(where, base.shape[1])
+    first = int(np.lexsort((jj, ii))[0])
+    return int(ii[first]), int(jj[first])
 
 
 def _unbounded(Gamma: float, net0: float, offset: float) -> Amplified:
@@ -225,12 +243,68 @@ def along_decay(gain_at, a0: float, gain0, G, Gamma: float, *, ratio: float = 0.
     t_end = _horizon(float(np.max(gain0)), Gamma)
     t = np.linspace(0.0, t_end, steps + 1)
     s_t = np.exp(-2 * Gamma * t)
-    sig2 = _piecewise(s_arr, g2, s_t)
-    rate = np.sqrt(np.maximum(sig2, 0.0)) - G[None, :]
-    log_amp = np.concatenate([np.zeros((1, G.size)), np.cumsum(
-        np.diff(t)[:, None] * (rate[1:] + rate[:-1]) / 2, axis=0)])
-    i, j = np.unravel_index(int(np.argmax(log_amp)), log_amp.shape)
-    return math.exp(min(float(log_amp[i, j]), 700.0)), float(t[i]), int(j), len(S)
+    best, i, j = _integrate(s_arr, g2, s_t, t, G)
+    return math.exp(min(best, 700.0)), float(t[i]), int(j), len(S)
+
+
+def _integrate(s_arr, g2, s_t, t, G):
+    """(max log amplification, its time index, its column) of the rates
+    sqrt(sigma^2) - G along the carrier's s_t (sigma^2 as ``_piecewise``), integrated by
+    the trapezoid rule on t: the same arithmetic as ``_piecewise`` and a cumsum over all
+    columns at once, compiled, one column at a time (no (times, cols) arrays: ~10x
+    faster, the same numbers to the last bit; ties to the first in row-major order, as
+    argmax)."""
+    n = s_arr.size
+    pos = g2 > 0
+    lo = np.where(pos.any(axis=0), np.argmax(pos, axis=0), n - 1)
+    j = np.clip(np.searchsorted(s_arr, s_t), 1, n - 1) if n > 1 else np.zeros(s_t.size, int)
+    lo_j = np.maximum(j - 1, 0)
+    w = (s_t - s_arr[lo_j]) / np.where(j != lo_j, s_arr[j] - s_arr[lo_j], 1.0)
+    best, i, col = _integrate_compiled()(
+        np.ascontiguousarray(g2.T), s_arr, s_t, np.diff(t), np.ascontiguousarray(G, float),
+        lo.astype(np.int64), j.astype(np.int64), lo_j.astype(np.int64), w)
+    return float(best), int(i), int(col)
+
+
+_INTEGRATE = []
+
+
+def _integrate_compiled():
+    """The loop of ``_integrate`` (numba, cached on disk)."""
+    if not _INTEGRATE:
+        import numba
+
+        @numba.njit(cache=True, error_model="numpy", boundscheck=False)
+        def integrate(g2t, s_arr, s_t, dt, G, lo, j, lo_j, w):
+            n = s_arr.size
+            best, bi, bj = 0.0, 0, 0  # row 0: every column at 0
+            for c in range(g2t.shape[0]):
+                g = g2t[c]
+                # below the lowest positive sample: the line through (a, b)
+                b_ = min(lo[c] + 1, n - 1)
+                a_ = lo[c]
+                if b_ == lo[c]:
+                    a_ = max(lo[c] - 1, 0)
+                ds = s_arr[b_] - s_arr[a_]
+                slope = (g[b_] - g[a_]) / ds if ds != 0 else 0.0
+                s_lo = s_arr[lo[c]]
+                acc = 0.0
+                prev = 0.0
+                for i in range(s_t.size):
+                    if s_t[i] >= s_lo:
+                        sig2 = g[lo_j[i]] + w[i] * (g[j[i]] - g[lo_j[i]])
+                    else:
+                        sig2 = g[b_] + slope * (s_t[i] - s_arr[b_])
+                    rate = math.sqrt(max(sig2, 0.0)) - G[c]
+                    if i > 0:
+                        acc = acc + dt[i - 1] * (rate + prev) / 2
+                        if acc > best or (acc == best and (i < bi or (i == bi and c < bj))):
+                            best, bi, bj = acc, i, c
+                    prev = rate
+            return best, bi, bj
+
+        _INTEGRATE.append(integrate)
+    return _INTEGRATE[0]
 
 
 def _piecewise(s_arr, g2, s_t):
@@ -286,9 +360,12 @@ def exact_amplification(model: Model, k: float, amplitude: float, branch=None, *
     live = np.flatnonzero(net0 > 0)
     qk = q[live]
 
+    waves = [first.wave]
+
     def gain_at(a, cols):
-        w = travelling_wave(model, c.k, a, c.branch)
-        return hill_spectrum(w, qk[cols]).gain
+        # the amplitudes fall in turn: each wave's harmonic balance starts from the last
+        waves.append(travelling_wave(model, c.k, a, c.branch, start=waves[-1]))
+        return hill_spectrum(waves[-1], qk[cols]).gain
 
     amp, t, j, _ = along_decay(gain_at, amplitude, gain0[live], G[live], Gamma, ratio=ratio,
                                most=most)
