@@ -182,18 +182,45 @@ def _pack_layout(d, H, field, acoustic):
 
 @one_blas_thread
 def travelling_wave(model: Model, k: float, amplitude: float, branch=None, *,
-                    harmonics: int | None = None) -> TravellingWave:
+                    harmonics: int | None = None,
+                    start: TravellingWave | None = None) -> TravellingWave:
     """The exact travelling plane wave of ``model`` on ``branch`` at wavenumber ``k`` whose
     carrier field has first harmonic ``amplitude`` cos(k n - omega t).
+
+    ``start``: a wave of the same model, k and branch at another amplitude a1 (the
+    harmonic balance starts from it, each harmonic h scaled by (a / a1)^|h|, the mean and
+    the nonlinear frequency shift by (a / a1)^2, the lowest orders of a weakly nonlinear
+    wave, instead of from the linear wave: fewer Newton steps; the same equations,
+    truncation H = 8 (doubled as without) and residual test, so the same wave to
+    round-off).
 
     Raises ModelError where none is found (a resonance with another harmonic, an
     amplitude beyond the branch's nonlinear range): said in one line. Small dense algebra:
     on one BLAS thread (``common.threads``).
     """
-    return _travelling_wave(model, k, amplitude, branch, harmonics)
+    return _travelling_wave(model, k, amplitude, branch, harmonics, start)
 
 
-def _travelling_wave(model, k, amplitude, branch, harmonics):
+def _scaled_start(start, car, a, H):
+    """(omega, coefficients at H harmonics) of ``start`` moved to amplitude a: the first
+    guess of ``_travelling_wave`` (``travelling_wave``'s ``start``)."""
+    if (start.coefficients.shape[0] != car.e.size or start.carrier.branch != car.branch or abs(start.k - car.k) > 1e-12
+            or not np.isfinite(start.omega)):
+        raise ModelError(f"start must be a wave of the model at the same k ({car.k:.6g}) "
+                         f"and branch "
+                         f"({car.branch}), got k = {start.k:.6g}, branch "
+                         f"{start.carrier.branch}")
+    r = a / start.amplitude
+    H1 = start.harmonics
+    c0 = np.zeros((start.coefficients.shape[0], 2 * H + 1), complex)
+    m = min(H, H1)
+    h = np.arange(-m, m + 1)
+    c0[:, H - m:H + m + 1] = (start.coefficients[:, H1 - m:H1 + m + 1]
+                              * r ** np.where(h == 0, 2, np.abs(h)))
+    return car.omega + (start.omega - car.omega) * r**2, c0
+
+
+def _travelling_wave(model, k, amplitude, branch, harmonics, start=None):
     from scipy.optimize import least_squares
 
     a = float(amplitude)
@@ -204,10 +231,13 @@ def _travelling_wave(model, k, amplitude, branch, harmonics):
     masses = np.asarray(model.masses, float)
     acoustic = acoustic_directions(model)
     H = harmonics or 8
-    c_lin = np.zeros((d, 2 * H + 1), complex)
-    c_lin[:, H + 1] = a / 2 * car.e
-    c_lin[:, H - 1] = np.conj(c_lin[:, H + 1])
-    omega0, c0 = car.omega, c_lin
+    if start is not None:
+        omega0, c0 = _scaled_start(start, car, a, H)
+    else:
+        c0 = np.zeros((d, 2 * H + 1), complex)
+        c0[:, H + 1] = a / 2 * car.e
+        c0[:, H - 1] = np.conj(c0[:, H + 1])
+        omega0 = car.omega
     while True:
         wave = _solve(model, car, a, masses, acoustic, H, c0, omega0, least_squares)
         tail = np.max(np.abs(wave.coefficients[:, [0, -1]])) / a
