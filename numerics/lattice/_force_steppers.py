@@ -145,14 +145,19 @@ def band_flow(v, args):
     circulant convolution over the ring."""
     offs, K, w = args
     d, N = v.shape
-    for n in range(N):
+    w[:, :] = 0.0
+    # one tap at a time over the whole ring, in two contiguous runs (the wrap, then the
+    # rest; offs in [0, N)): loops the compiler vectorises, and every site's sum takes
+    # its terms in the same order as a loop over the sites would (the same bits)
+    for i in range(offs.size):
+        o = offs[i]
         for a in range(d):
-            w[a, n] = 0.0
-        for i in range(offs.size):
-            m = (n - offs[i]) % N
-            for a in range(d):
-                for b in range(d):
-                    w[a, n] += K[i, a, b] * v[b, m]
+            for b in range(d):
+                c = K[i, a, b]
+                for n in range(o):
+                    w[a, n] += c * v[b, n - o + N]
+                for n in range(o, N):
+                    w[a, n] += c * v[b, n - o]
     v[:, :] = w
 
 

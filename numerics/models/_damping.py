@@ -19,7 +19,7 @@ def damping_flow(model: Model, N: int, h: float):
     of its largest entry (exp of a banded matrix of small norm: a few sites each side)."""
     from scipy.linalg import expm
 
-    from ._linear import damping_matrix
+    from ._linear import dynamical_matrix
 
     S, Bd = model.damping
     d = model.n_fields
@@ -27,7 +27,10 @@ def damping_flow(model: Model, N: int, h: float):
     if not (Bd[:d, d:].any() or Bd[d:, :d].any()):
         return None, expm(-h * minv[:, None] * (S + Bd[:d, :d] + Bd[d:, d:]))
     kap = 2 * math.pi * np.arange(N) / N
-    E = np.array([expm(-h * minv[:, None] * damping_matrix(model, q)) for q in kap])
+    # C(kappa) of ``damping_matrix`` from one read of the (checked) matrices, every
+    # exponential in one batched call (the same as one call each)
+    C = np.array([S.astype(complex) + dynamical_matrix(Bd, q) for q in kap])
+    E = expm(-h * minv[None, :, None] * C)
     K = np.real(np.fft.ifft(E, axis=0))  # K[r]: offset r mod N
     size = np.max(np.abs(K), axis=(1, 2))
     r = np.arange(N)
@@ -37,9 +40,11 @@ def damping_flow(model: Model, N: int, h: float):
     return (np.ascontiguousarray(r[keep].astype(np.int64)), np.ascontiguousarray(K[keep])), None
 
 
-def rayleigh(model: Model, v: np.ndarray) -> float:
-    """R of a ring's velocities (d, N): sum over cells of the site and bond functions."""
-    S, Bd = model.damping
+def rayleigh(model: Model, v: np.ndarray, matrices=None) -> float:
+    """R of a ring's velocities (d, N): sum over cells of the site and bond functions.
+    ``matrices``: ``model.damping`` where already read (a run's records: reading it
+    checks them again, an eigenvalue problem each)."""
+    S, Bd = model.damping if matrices is None else matrices
     vn = np.concatenate([v, np.roll(v, -1, axis=1)])
     return float(0.5 * (np.einsum("an,ab,bn->", v, S, v) + np.einsum("an,ab,bn->", vn, Bd,
                                                                       vn)))

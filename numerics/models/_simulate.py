@@ -281,7 +281,7 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
         dev.append(float(np.sqrt(np.mean(delta**2))))
         en.append(energy(u, v, p, masses, x))
         if lossy:
-            diss.append(2 * rayleigh(model, v))
+            diss.append(2 * rayleigh(model, v, (S_d, B_d)))
 
     def run_so_far(t_last):
         """The run's records so far (to ``t_last``) and its state now."""
