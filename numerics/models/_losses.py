@@ -378,7 +378,7 @@ def four_wave_amplification(model: Model, k: float, amplitude: float, branch=Non
     """The four-wave theory along the decaying carrier: every pair (offset q, branches
     b1, b2) at its rate at a(t), damped at the mean of its two waves' rates
     (Gamma_b1(k + q) + Gamma_b2(k - q)) / 2 (``along_decay``)."""
-    from ._fourwave import four_wave
+    from ._fourwave import _kernel, four_wave
     from ._linear import carrier_damping, damping_rates
 
     if first is None:
@@ -403,10 +403,19 @@ def four_wave_amplification(model: Model, k: float, amplitude: float, branch=Non
     if Gamma <= 0:
         return _unbounded(Gamma, top, float(col_q[int(np.argmax(net0))]))
     live = net0.ravel() > 0
+    live_q = np.flatnonzero(live) // rates0.shape[1]  # the offset (row) of each live pair
 
     def gain_at(a, cols):
-        fw = four_wave(model, first.k, a, first.branch, N=N)
-        return np.nan_to_num(np.asarray(fw.rates, float), nan=0.0).ravel()[live][cols]
+        # the pairs' rates at a only at the offsets of the columns asked (a rate at q
+        # depends on q alone: the same numbers as four_wave's over every offset), at
+        # ``first``'s offsets (the infinite chain's refined ones included)
+        kernel = _kernel(model, first.k, a, first.branch)
+        if isinstance(kernel, str):  # the expansion fails at a: no rate (four_wave's nan)
+            return np.zeros(len(cols))
+        rows, where = np.unique(live_q[cols], return_inverse=True)
+        rates = np.nan_to_num(np.asarray(kernel[0](q[rows])[0], float), nan=0.0)
+        return rates.reshape(rows.size, -1)[where, np.flatnonzero(live)[cols]
+                                            % rates0.shape[1]]
 
     amp, t, j, _ = along_decay(gain_at, amplitude, rates0.ravel()[live], G.ravel()[live],
                                Gamma, ratio=ratio, most=most)
