@@ -13,6 +13,9 @@ from .models import _emit, branch_of, load
 # ------------------------------------------------------------------ map
 def run_map(args) -> int:
     import sys
+    import time
+
+    started = time.perf_counter()  # the estimate is of the command's wall time
 
     import numpy as np
 
@@ -114,6 +117,7 @@ def run_map(args) -> int:
         + f" on {n_workers or local_cores()} worker(s)")
     log(f"units: {units.describe()} (the store's numbers in lattice units, the factors in "
         "its attributes time_unit_s and length_unit_m)")
+    estimate = _estimate(params, n_workers or local_cores(), args.scheduler, log)
     out = prepare_output(args.out, cache=False)
     path = out / "map.zarr"
     existed = path.exists()
@@ -133,6 +137,7 @@ def run_map(args) -> int:
     png = out / "map.png"
     _plot_map(_as_words(ds, verdicts), png, model)
     files = [str(path), str(png)]
+    log(_took(estimate, started))
     if args.json:
         res = {"model": model.name, "parameters": dict(model.params), "amplitude": amp,
                "axes": {x[0]: list(map(float, x[1])), y[0]: list(map(float, y[1]))},
@@ -157,6 +162,31 @@ def run_map(args) -> int:
         print(f"MI share, {v.replace('verdict_', '')}: {share:.0%}")
     print(f"wrote {path} and {png} (xarray: xr.open_zarr({str(path)!r}))")
     return 0
+
+
+def _estimate(params, workers: int, scheduler, log):
+    """The map's wall time (a MapEstimate), estimated from one cell measured here (its
+    theories and, for a simulated map, a short run of its ring) and said before the work."""
+    from common.text import duration
+    from numerics.maps import estimate_model_map, probe_model_cell
+
+    cost = probe_model_cell(params)
+    est = estimate_model_map(params, workers, scheduler, cost)
+    measured = f"theories {cost.theory:.2g} s" + (
+        f", a run of T = {cost.t_end:g} {cost.run:.2g} s" if not params.theory_only else "")
+    log(f"estimate: about {duration(est.seconds)} ({est.describe()}; one cell measured here: "
+        f"{measured} of CPU) on {workers} worker(s)")
+    return est
+
+
+def _took(est, started: float) -> str:
+    """The command's wall time since ``started`` (perf_counter) beside its estimate."""
+    import time
+
+    from common.text import duration
+
+    return (f"took {duration(time.perf_counter() - started)} (estimated "
+            f"{duration(est.seconds)})")
 
 
 def _as_words(ds, verdicts):

@@ -87,8 +87,15 @@ def _simulated_row(model, k, args, spec, start, peak_time=None) -> dict:
         # lossless run's length
         from numerics.lattice import run_length
         t_end = max(run_length(spec.peak_gain).t_end, 1.5 * peak_time)
-    sim = simulate_seeds(model, k, args.amplitude, spec, branch=branch_of(args), N=args.N,
-                         seeds=seeds, t_end=t_end, start=start, **launch)
+    from tqdm.auto import tqdm
+
+    # progress over the runs (stderr, where it is a terminal: as the maps' bar)
+    with tqdm(total=float(seeds), unit="run", desc="point runs", disable=None,
+              bar_format="{l_bar}{bar}| {n:.1f}/{total:.0f} runs [{elapsed}<{remaining}]"
+              ) as bar:
+        sim = simulate_seeds(model, k, args.amplitude, spec, branch=branch_of(args),
+                             N=args.N, seeds=seeds, t_end=t_end, start=start,
+                             on_steps=lambda n, total: bar.update(n / total), **launch)
     v, rate, runs, t_end, length = sim.verdict, sim.rate, sim.runs, sim.t_end, sim.length
     # the JSON's verdict speaks the theories' three words (MI, stable, undefined: the
     # contract every theory's object keeps); the run's own word, which never claims more
@@ -218,7 +225,35 @@ def _ring_note(model, k, amplitude, branch, N, row) -> str | None:
             f"N = {N} carries none of it; --N above {math.ceil(2 * math.pi / edge)} does")
 
 
+def _log(args):
+    """Where a point's messages go: stdout, or stderr where stdout is the JSON."""
+    import sys
+
+    return (lambda *a: print(*a, file=sys.stderr)) if args.json else print
+
+
+def _estimate(model, k, args, spec, exact_cpu):
+    """The rest of a simulated point (``numerics.maps.estimate_model_point``: one run
+    measured here), said before the work; the PointEstimate."""
+    from common.text import duration
+    from numerics.lattice import run_length
+    from numerics.maps import estimate_model_point
+
+    t_end = args.t_end if args.t_end is not None else run_length(spec.peak_gain).t_end
+    est = estimate_model_point(model, k, args.amplitude, branch_of(args), N=args.N,
+                               seeds=args.seeds, t_end=t_end, exact_seconds=exact_cpu,
+                               figure=bool(args.out), wave=spec.wave)
+    _log(args)(f"estimate: about {duration(est.seconds)} more (the other theories "
+               f"~{est.theories:.2g} s, {est.seeds} run(s) of T = {est.t_end:g} on N = "
+               f"{args.N} sites ~{est.seeds * est.run:.2g} s of CPU, measured here"
+               + (f"; the cores shared (load average {est.load:.1f} on {est.cores}): "
+                  f"{est.slowdown:.1f}x slower, counted" if est.slowdown > 1 else "") + ")")
+    return est
+
+
 def run_point(args) -> int:
+    import time
+
     from common.output import strict_json
     from numerics.lattice import checks
     from numerics.models import exact_gain_checked, snap_ring
@@ -250,7 +285,9 @@ def run_point(args) -> int:
     ring_note = _ring_note(model, k, args.amplitude, branch_of(args), args.N,
                            out["semi-discrete NLS"])
     try:
+        exact_cpu = time.process_time()
         spec = exact_gain_checked(model, k, args.amplitude, branch_of(args), N=args.N)
+        exact_cpu = time.process_time() - exact_cpu
         out["exact lattice"] = _exact_row(spec)
     except Exception as exc:  # no travelling wave: the theory has no verdict here
         from energy import ModelError
@@ -259,6 +296,10 @@ def run_point(args) -> int:
         spec = None
         out["exact lattice"] = {"verdict": "undefined", "peak_gain": None,
                                 "reason": str(exc)}
+    estimate = None
+    if args.simulate and spec is not None:  # the long part: said before it starts
+        estimate = _estimate(model, k, args, spec, exact_cpu)
+        estimated_at = time.perf_counter()
     from numerics.models import four_wave
 
     fw = four_wave(model, k, args.amplitude, branch_of(args), N=args.N)
@@ -294,6 +335,11 @@ def run_point(args) -> int:
                                                                        "simulated")}
         figure(folder / "point.png", model, out, curves, out["curves"].get("simulated"),
                getattr(args, "seeds", 1), args.simulate)
+    if estimate is not None:
+        from common.text import duration
+
+        _log(args)(f"took {duration(time.perf_counter() - estimated_at)} after the estimate "
+                   f"(estimated {duration(estimate.seconds)})")
     if args.json:
         _emit(out)
         return 0

@@ -18,7 +18,10 @@ Their parts      cell_records, predict_cell, GROWTH_TOL, GROWTH_ERROR_CONSTANTS 
                  step accuracy), tri_state (gains -> verdicts), store_lock (one writer),
                  cells_done (what a store holds)
 Run time         estimate_map -> MapEstimate (start-up + cells at this machine's measured
-                 speed, machine_speed, cached), slowed by the load average
+                 speed, machine_speed, cached), slowed by the load average;
+                 estimate_model_map (a model's map: one cell measured here,
+                 probe_model_cell -> ModelCellCost); estimate_model_point (a model's
+                 point after its exact theory -> PointEstimate)
 On a GPU         gpu_status (is there one, or what is missing), simulate_cells_gpu
                  (simulate_cell for many cells in one launch), simulate_map_cells_gpu
 """
@@ -40,7 +43,16 @@ from ._cells import (
 )
 from ._columns import theory_columns, tri_state
 from ._devices import DEVICES, resolve_device
-from ._estimate import MapEstimate, estimate_map, machine_speed
+from ._estimate import (
+                     MapEstimate,
+                     ModelCellCost,
+                     PointEstimate,
+                     estimate_map,
+                     estimate_model_map,
+                     estimate_model_point,
+                     machine_speed,
+                     probe_model_cell,
+)
 from ._gpu import gpu_status, simulate_cells_gpu, simulate_map_cells_gpu
 from ._integrity import store_lock
 from ._model_params import MODE_KIND_CODES, VERDICT_CODES, ModelMapParameters, model_text
@@ -69,6 +81,7 @@ __all__ = [
     "cell_records", "predict_cell", "GROWTH_TOL", "GROWTH_ERROR_CONSTANTS", "tri_state",
     "store_lock", "cells_done",
     "simulate_block", "CRITERION", "MapCellError", "local_cores", "MapEstimate",
-    "estimate_map", "machine_speed",
+    "estimate_map", "machine_speed", "ModelCellCost", "probe_model_cell", "estimate_model_map",
+    "PointEstimate", "estimate_model_point",
     "gpu_status", "simulate_cells_gpu", "simulate_map_cells_gpu",
 ]

@@ -11,10 +11,13 @@ slows all of it down when the cores are shared.
 from __future__ import annotations
 
 import json
+import math
 import os
 import platform
 from dataclasses import dataclass
 from pathlib import Path
+
+import numpy as np
 
 from common import paper
 
@@ -87,15 +90,39 @@ def machine_speed(refresh: bool = False) -> dict:
     return speed
 
 
+#: wall seconds the share probe spins (the scheduler's time slices are ~4 ms: 50 of them)
+SHARE_PROBE_SECONDS = 0.2
+
+
+def cpu_share(seconds: float = SHARE_PROBE_SECONDS) -> float:
+    """The share of one core a busy thread of this process gets now: CPU time over wall
+    time of a short spin, at most 1."""
+    import time
+
+    w0, c0 = time.perf_counter(), time.process_time()
+    x = 0
+    while time.perf_counter() - w0 < seconds:
+        for i in range(2000):
+            x += i
+    wall = time.perf_counter() - w0
+    return min(1.0, max(time.process_time() - c0, 1e-3) / wall)
+
+
 def load_slowdown(workers: int) -> tuple[float, float, int]:
     """(slowdown, load average, cores): how much slower the work runs because the cores
-    are shared: (load - 1 + workers) / cores, at least 1 (this command counts as 1 of the
-    load; its workers join it)."""
+    are shared, measured now (:func:`cpu_share`). Where a busy thread gets less than a
+    core, the cores are contended, and this command's processes (its workers are of its
+    session) share what one of them gets (Linux' autogroup gives each session a fair
+    part, whatever its thread count): ``workers / share``. Else, from the load average:
+    (load - 1 + workers) / cores, at least 1 (this command counts as 1 of the load)."""
     cores = os.cpu_count() or 1
     try:
         load = os.getloadavg()[0]
     except OSError:
         load = 0.0
+    share = cpu_share()
+    if share < 0.9:
+        return max(1.0, workers / share), load, cores
     return max(1.0, (max(load - 1.0, 0.0) + workers) / cores), load, cores
 
 
@@ -114,8 +141,8 @@ class MapEstimate:
 
     def describe(self) -> str:
         return (f"start-up ~{self.startup * self.slowdown:.0f} s included"
-                + (f"; load average {self.load:.1f} on {self.cores} cores counted"
-                   if self.slowdown > 1 else ""))
+                + (f"; the cores shared (load average {self.load:.1f} on {self.cores}): "
+                   f"{self.slowdown:.1f}x slower, counted" if self.slowdown > 1 else ""))
 
 
 def estimate_map(params, workers: int, scheduler: str | None = None,
@@ -153,4 +180,165 @@ def estimate_map(params, workers: int, scheduler: str | None = None,
     return MapEstimate(total, startup, predict, simulate, slowdown, load, cores)
 
 
-__all__ = ["MapEstimate", "estimate_map", "machine_speed", "measure_speed", "load_slowdown"]
+@dataclass(frozen=True)
+class ModelCellCost:
+    """One cell of a model's map, measured on this machine (CPU seconds, one core).
+
+    ``theory``: its theories (the NLS; with the ring the exact lattice and four-wave
+    theories); ``run``: one seeded run of the ring over ``t_end`` (0 without runs);
+    ``warmup``: what a fresh process spends before its first cell (imports, the model's
+    compiled kernels); ``probe``: the wall time the measurement took."""
+
+    theory: float
+    run: float
+    t_end: float
+    warmup: float
+    probe: float
+
+
+#: a probe run of the ring takes this many steps (~0.1 s for a two-field chain of 128
+#: sites): enough that the timer's resolution and a time slice lost to another process
+#: stay a few per cent of it
+PROBE_STEPS = 4000
+
+
+def probe_model_run(model, k: float, amplitude: float, branch=None, *, N: int, t_end: float,
+                    wave=None) -> tuple[float, float]:
+    """(CPU seconds of one run of ``t_end`` on the ring of ``N`` sites, CPU seconds of the
+    first call's compile and load), measured: a short run (loads the kernels), then
+    PROBE_STEPS steps timed, scaled to ``t_end`` (the run's cost is its steps' force
+    evaluations; its 400 records are kept in the same proportion)."""
+    import time
+
+    from ..models import simulate_model, travelling_wave
+
+    if wave is None:
+        wave = travelling_wave(model, snap_ring_k(k, N), amplitude, branch)
+    t0 = time.process_time()
+    first = simulate_model(model, k, amplitude, branch=branch, N=N, t_end=t_end / 1e4,
+                           wave=wave, records=2)
+    warm = time.process_time() - t0
+    probe_t = min(t_end, PROBE_STEPS * first.dt)
+    records = max(2, round(400 * probe_t / t_end))
+    t0 = time.process_time()
+    simulate_model(model, k, amplitude, branch=branch, N=N, t_end=probe_t, wave=wave,
+                   records=records)
+    run = (time.process_time() - t0) * t_end / probe_t
+    return run, max(warm - run / 1e4, 0.0)  # the first call ran 1e-4 of the run
+
+
+def snap_ring_k(k: float, N: int) -> float:
+    from ..models import snap_ring
+
+    return snap_ring(k, N)[0]
+
+
+def probe_model_cell(params) -> ModelCellCost:
+    """One cell of the model map ``params`` (a ModelMapParameters), its middle one,
+    measured here: its theories as a task computes them, and, for a simulated map, a
+    short run of its ring (:func:`probe_model_run`; T as the task takes it: ``t_end`` or
+    ``run_length`` of the cell's exact rate)."""
+    import time
+
+    from ..lattice import run_length
+    from ..models import map_cells
+
+    w0 = time.perf_counter()
+    rows, cols = params.grid_shape
+    values, k = params.cell(rows // 2, cols // 2)
+    model = params.lattice_model.with_params(**values)
+
+    def theories():
+        t0 = time.process_time()
+        row = map_cells(model, [({}, k)], params.amplitude, params.branch_value,
+                        exact=params.ring, simulate=False, N=params.N)[0]
+        return time.process_time() - t0, row
+
+    first, row = theories()
+    theory, warmup = first, 0.0
+    if first < 0.5:  # a cheap cell: the first call's imports would dominate; time it again
+        theory, row = theories()
+        warmup = max(first - theory, 0.0)
+    run, t_end = 0.0, 0.0
+    if not params.theory_only:
+        rate = row.get("peak_gain_exact", math.nan)
+        t_end = float(params.t_end) if params.t_end is not None else run_length(rate).t_end
+        try:
+            run, compile_s = probe_model_run(model, k, params.amplitude, params.branch_value,
+                                             N=params.N, t_end=t_end)
+            warmup += compile_s
+        except Exception:  # noqa: BLE001 - no wave at the middle cell: theories only
+            run = 0.0
+    return ModelCellCost(theory, run, t_end, warmup, time.perf_counter() - w0)
+
+
+def estimate_model_map(params, workers: int, scheduler: str | None = None,
+                       cost: ModelCellCost | None = None) -> MapEstimate:
+    """Wall time of ``flexmm map --model`` for ``params`` (a ModelMapParameters) on
+    ``workers``: the start-up (as the paper chain's, plus each worker's warm-up), and every
+    cell at the measured cost of one (:func:`probe_model_cell`; measured when not given),
+    over the workers, slowed by the load.
+
+    Returns
+    -------
+    MapEstimate
+        ``predict``: the cells' theories, ``simulate``: their runs (CPU seconds, summed
+        over the cells).
+    """
+    cost = cost or probe_model_cell(params)
+    workers = max(int(workers), 1)
+    cells = int(np.prod(params.grid_shape))
+    theory = cells * cost.theory
+    runs = 0.0 if params.theory_only else cells * params.seeds * cost.run
+    startup = (STARTUP_SECONDS["scheduler" if scheduler else "local"]
+               + WORKER_WARMUP_SECONDS + cost.warmup)
+    slowdown, load, cores = (1.0, float("nan"), 0) if scheduler else load_slowdown(workers)
+    total = (startup + (theory + runs) / workers) * slowdown
+    return MapEstimate(total, startup, theory, runs, slowdown, load, cores)
+
+
+#: a point's other theories (the infinite chain's exact theory that ``ring_misses`` scans,
+#: four-wave, curves) cost about this many times the ring's exact theory: 3.5 (a
+#: Klein-Gordon chain) to 12 (flexmm at k = 0.6, N = 128), measured on fput, flexmm and
+#: klein-gordon (2-core VM, 2026-11-26): the geometric middle, within 2x of either end
+OTHER_THEORIES_PER_EXACT = 7.0
+#: a point's figure and files (matplotlib's import and drawing), CPU seconds measured
+#: (0.65-0.7 s on the 2-core VM)
+POINT_FIGURE_SECONDS = 0.7
+
+
+@dataclass(frozen=True)
+class PointEstimate:
+    """The rest of ``flexmm point --model --simulate`` once its exact theory is known
+    (``seconds``, wall) and its parts (CPU seconds, before the load's ``slowdown``):
+    the other theories, one run of ``t_end`` (measured), the figure."""
+
+    seconds: float
+    theories: float
+    run: float
+    seeds: int
+    t_end: float
+    slowdown: float
+    load: float
+    cores: int
+
+
+def estimate_model_point(model, k: float, amplitude: float, branch=None, *, N: int,
+                         seeds: int, t_end: float, exact_seconds: float,
+                         figure: bool = True, wave=None) -> PointEstimate:
+    """The wall time a model point's remaining work takes after its exact theory (which
+    took ``exact_seconds`` of CPU): the other theories (OTHER_THEORIES_PER_EXACT times
+    it), ``seeds`` runs of ``t_end`` on the ring of ``N`` sites (one measured here,
+    :func:`probe_model_run`; its kernels stay compiled for the runs) and the figure,
+    slowed by the load."""
+    run, _ = probe_model_run(model, k, amplitude, branch, N=N, t_end=t_end, wave=wave)
+    theories = OTHER_THEORIES_PER_EXACT * exact_seconds
+    slowdown, load, cores = load_slowdown(1)
+    total = (theories + seeds * run + (POINT_FIGURE_SECONDS if figure else 0.0)) * slowdown
+    return PointEstimate(total, theories, run, int(seeds), float(t_end), slowdown, load,
+                         cores)
+
+
+__all__ = ["MapEstimate", "estimate_map", "machine_speed", "measure_speed", "load_slowdown",
+           "ModelCellCost", "probe_model_cell", "probe_model_run", "estimate_model_map",
+           "PointEstimate", "estimate_model_point", "OTHER_THEORIES_PER_EXACT"]

@@ -651,7 +651,7 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
                    method: str = "srkn11b", start: str = "exact", noise: float = NOISE,
                    seed: int = 0, records: int = 400, expected_gain: float | None = None,
                    wave=None, until_peak: bool = False,
-                   noise_on: str = "all") -> ModelRun:
+                   noise_on: str = "all", on_steps=None) -> ModelRun:
     """Run the ring of ``model`` from a plane wave at ``k`` (snapped to the ring) with
     first harmonic ``amplitude`` in its carrier field, plus seeded noise.
 
@@ -666,6 +666,8 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
     the sidebands' amplitude A(t) (``sideband_amplitude``) has risen 2x and fallen to half
     its maximum (else ``t_end`` is the cap). ``noise_on="carrier"``: the noise on the
     carrier field's positions only (the amplification's launch, issue 42).
+    ``on_steps(n, nsteps)``: called after every stretch of ``n`` of the run's ``nsteps``
+    steps (a progress bar).
     """
     from numerics.lattice import get_method, run_length
 
@@ -776,6 +778,8 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
                 f"(dt = {dt:.3g}, method {method}): the wave left the lattice's range; "
                 "lower the amplitude or dt")
         record(done * dt)
+        if on_steps is not None:
+            on_steps(n, nsteps)
         if until_peak:
             a = float(np.max(spec[-1][modes]))
             top = max(top, a)
