@@ -121,8 +121,11 @@ def run_map(args) -> int:
     out = prepare_output(args.out, cache=False)
     path = out / "map.zarr"
     existed = path.exists()
-    ds = run_engine(params, out, args.scheduler, args.workers, log=log,
-                    overwrite=args.overwrite, timeout=args.timeout)
+    from .map import with_wall
+
+    ds = run_engine(params, out, args.scheduler, args.workers,
+                    log=with_wall(log, started, estimate.seconds), overwrite=args.overwrite,
+                    timeout=args.timeout)
     verdicts = [v for v in ds.data_vars if v.startswith("verdict_")
                 and (simulated or v != "verdict_simulated")]
     if all((ds[v].values < 0).all() for v in verdicts):
@@ -137,7 +140,6 @@ def run_map(args) -> int:
     png = out / "map.png"
     _plot_map(_as_words(ds, verdicts), png, model)
     files = [str(path), str(png)]
-    log(_took(estimate, started))
     if args.json:
         res = {"model": model.name, "parameters": dict(model.params), "amplitude": amp,
                "axes": {x[0]: list(map(float, x[1])), y[0]: list(map(float, y[1]))},
@@ -177,16 +179,6 @@ def _estimate(params, workers: int, scheduler, log):
     log(f"estimate: about {duration(est.seconds)} ({est.describe()}; one cell measured here: "
         f"{measured} of CPU) on {workers} worker(s)")
     return est
-
-
-def _took(est, started: float) -> str:
-    """The command's wall time since ``started`` (perf_counter) beside its estimate."""
-    import time
-
-    from common.text import duration
-
-    return (f"took {duration(time.perf_counter() - started)} (estimated "
-            f"{duration(est.seconds)})")
 
 
 def _as_words(ds, verdicts):

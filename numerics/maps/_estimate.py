@@ -34,6 +34,26 @@ REFERENCE = dict(alpha=paper.ALPHA, K_s=paper.K_S, K_theta=paper.POINTS["blue"][
 #: a prediction for the travelling-wave start costs this share of the paper start's (no
 #: torus to find first: PREDICT_SECONDS in _params, 0.15 s against 0.35 s)
 TRAVELLING_SHARE = 0.15 / 0.35
+#: the reference cell's k (``measure_speed``'s carrier)
+REFERENCE_K = 0.73
+#: the theory columns (computed in the client, serially, before the tasks: the exact
+#: theory's stability_map over EXACT_OFFSETS per cell) cost about this many times the
+#: reference cell's prediction per cell: 0.03 s a cell against 0.19 s on the 2-core VM
+#: (travelling start, 32 and 128 cells; the paper start 0.012 s a cell), plus a fixed
+#: 0.25 s
+THEORY_COLUMNS_PER_CELL = 0.03 / 0.19
+THEORY_COLUMNS_FIXED = 0.25 / 0.19
+
+
+def _predict_scale(k, N: int, start: str) -> float:
+    """A cell's prediction cost over the reference cell's (N = 500, k = 0.73): its Bloch
+    families grow with k N. Measured on the 2-core VM (N = 128 .. 1000, k = 0.3 .. 2.5): the
+    travelling start's cost is linear in k N (at least a quarter of the reference's),
+    the paper start's (a torus found first) about its square root."""
+    x = np.asarray(k, float) * N / (REFERENCE_K * REFERENCE["N"])
+    if start == "travelling":
+        return float(np.mean(np.maximum(x, 0.25))) * TRAVELLING_SHARE
+    return float(np.mean(np.sqrt(x)))
 
 
 def _cache_file() -> Path:
@@ -138,9 +158,11 @@ class MapEstimate:
     slowdown: float
     load: float
     cores: int
+    #: the start-up's slowdown: the client alone is busy then (``slowdown``: its workers)
+    startup_slowdown: float = 1.0
 
     def describe(self) -> str:
-        return (f"start-up ~{self.startup * self.slowdown:.0f} s included"
+        return (f"start-up ~{self.startup * self.startup_slowdown:.0f} s included"
                 + (f"; the cores shared (load average {self.load:.1f} on {self.cores}): "
                    f"{self.slowdown:.1f}x slower, counted" if self.slowdown > 1 else ""))
 
@@ -165,8 +187,8 @@ def estimate_map(params, workers: int, scheduler: str | None = None,
     workers = max(int(workers), 1)
     cells = len(params.k) * len(params.delta)
     scale_n = params.N / REFERENCE["N"]
-    predict = cells * speed["predict"] * max(scale_n, 1.0) * (
-        1.0 if params.start != "travelling" else TRAVELLING_SHARE)
+    predict = cells * speed["predict"] * _predict_scale(params.k_simulated, params.N,
+                                                        params.start)
     simulate = 0.0
     if not params.theory_only:
         method, dt = params.cell_step
@@ -174,10 +196,14 @@ def estimate_map(params, workers: int, scheduler: str | None = None,
         per_time = get_method(method).evaluations / dt / ref
         simulate = (cells * params.seeds * speed["simulate"] * per_time * scale_n
                     * params.t_end / REFERENCE["t_end"])
-    startup = STARTUP_SECONDS["scheduler" if scheduler else "local"] + WORKER_WARMUP_SECONDS
+    # the client's theory columns are part of the start-up: serial, before any task
+    columns = speed["predict"] * (THEORY_COLUMNS_FIXED + THEORY_COLUMNS_PER_CELL * cells)
+    startup = (STARTUP_SECONDS["scheduler" if scheduler else "local"] + WORKER_WARMUP_SECONDS
+               + columns)
     slowdown, load, cores = (1.0, float("nan"), 0) if scheduler else load_slowdown(workers)
-    total = (startup + (predict + simulate) / workers) * slowdown
-    return MapEstimate(total, startup, predict, simulate, slowdown, load, cores)
+    alone = 1.0 if scheduler else load_slowdown(1)[0]  # the client's start-up
+    total = startup * alone + (predict + simulate) / workers * slowdown
+    return MapEstimate(total, startup, predict, simulate, slowdown, load, cores, alone)
 
 
 @dataclass(frozen=True)
@@ -293,8 +319,9 @@ def estimate_model_map(params, workers: int, scheduler: str | None = None,
     startup = (STARTUP_SECONDS["scheduler" if scheduler else "local"]
                + WORKER_WARMUP_SECONDS + cost.warmup)
     slowdown, load, cores = (1.0, float("nan"), 0) if scheduler else load_slowdown(workers)
-    total = (startup + (theory + runs) / workers) * slowdown
-    return MapEstimate(total, startup, theory, runs, slowdown, load, cores)
+    alone = 1.0 if scheduler else load_slowdown(1)[0]  # the client's start-up
+    total = startup * alone + (theory + runs) / workers * slowdown
+    return MapEstimate(total, startup, theory, runs, slowdown, load, cores, alone)
 
 
 #: a point's other theories (the infinite chain's exact theory that ``ring_misses`` scans,
