@@ -2,10 +2,12 @@
 
 The estimate is the whole command's wall time: a fixed start-up (the command's imports, the
 theory columns, the store, a LocalCluster's start and its workers' first imports, measured
-here), plus the cells' predictions and simulations over the workers. The cells' costs come
-from this machine's speed, measured once (one reference cell simulated and predicted,
-about 1 s) and cached in ``~/.cache/flexmm-mi/speed.json``; the load average at the start
-slows all of it down when the cores are shared.
+here), plus the cells' predictions and simulations over the workers. The paper chain's
+cells' costs come from this machine's speed, measured once (one reference cell simulated
+and predicted, about 1 s) and cached in ``~/.cache/flexmm-mi/speed.json``; a model's from
+one of its cells measured before the work (:func:`probe_model_cell`; a model point's runs:
+:func:`estimate_model_point`). Where the cores are shared, all of it slows down by the
+share of a core a busy process gets at the start (:func:`cpu_share`, 0.2 s).
 """
 
 from __future__ import annotations
@@ -236,10 +238,10 @@ def probe_model_run(model, k: float, amplitude: float, branch=None, *, N: int, t
     evaluations; its 400 records are kept in the same proportion)."""
     import time
 
-    from ..models import simulate_model, travelling_wave
+    from ..models import simulate_model, snap_ring, travelling_wave
 
     if wave is None:
-        wave = travelling_wave(model, snap_ring_k(k, N), amplitude, branch)
+        wave = travelling_wave(model, snap_ring(k, N)[0], amplitude, branch)
     t0 = time.process_time()
     first = simulate_model(model, k, amplitude, branch=branch, N=N, t_end=t_end / 1e4,
                            wave=wave, records=2)
@@ -251,12 +253,6 @@ def probe_model_run(model, k: float, amplitude: float, branch=None, *, N: int, t
                    records=records)
     run = (time.process_time() - t0) * t_end / probe_t
     return run, max(warm - run / 1e4, 0.0)  # the first call ran 1e-4 of the run
-
-
-def snap_ring_k(k: float, N: int) -> float:
-    from ..models import snap_ring
-
-    return snap_ring(k, N)[0]
 
 
 def probe_model_cell(params) -> ModelCellCost:
@@ -280,20 +276,25 @@ def probe_model_cell(params) -> ModelCellCost:
                         exact=params.ring, simulate=False, N=params.N)[0]
         return time.process_time() - t0, row
 
+    t0 = time.process_time()  # the NLS alone first: the imports a worker pays once
+    map_cells(model, [({}, k)], params.amplitude, params.branch_value, N=params.N)
+    warmup = time.process_time() - t0
     first, row = theories()
-    theory, warmup = first, 0.0
-    if first < 0.5:  # a cheap cell: the first call's imports would dominate; time it again
+    theory = first
+    if first < 0.5:  # a cheap cell: what the first call still loaded would dominate
         theory, row = theories()
-        warmup = max(first - theory, 0.0)
+        warmup += max(first - theory, 0.0)
     run, t_end = 0.0, 0.0
     if not params.theory_only:
         rate = row.get("peak_gain_exact", math.nan)
         t_end = float(params.t_end) if params.t_end is not None else run_length(rate).t_end
+        from energy import ModelError
+
         try:
             run, compile_s = probe_model_run(model, k, params.amplitude, params.branch_value,
                                              N=params.N, t_end=t_end)
             warmup += compile_s
-        except Exception:  # noqa: BLE001 - no wave at the middle cell: theories only
+        except (ModelError, FloatingPointError):  # no wave at the middle cell to run
             run = 0.0
     return ModelCellCost(theory, run, t_end, warmup, time.perf_counter() - w0)
 
