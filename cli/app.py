@@ -34,7 +34,9 @@ EPILOG = {
              "--physical 0.01,2e-6,0.02,1e4,185,1 --k 1.0 --case rotation --simulate "
              "--seeds 2 --out out/point",
     "soliton": "examples:\n  any model:\n  flexmm soliton --model fput --param alpha=1 "
-               "--param beta=1 --k 1.0 --amplitude 0.05\n  the paper chain:\n  "
+               "--param beta=1 --k 1.0 --amplitude 0.05\n  flexmm soliton --model fput "
+               "--param alpha=0.5 --k 1.6 --amplitude 0.1 --simulate --travel 5 --out "
+               "out/soliton\n  the paper chain:\n  "
                "flexmm soliton --alpha 2.5 --K-s 0.01851 --K-theta 0.02151 --k 0.92991 "
                "--amplitude 0.002 --case rotation\n  flexmm soliton --alpha 3 --K-s 0.05 "
                "--K-theta 0.03 --k 0.7 --amplitude 0.009 --kind dark --simulate --travel 5 "
@@ -182,12 +184,14 @@ def _soliton_parser(sub, model_mode=False):
                    help="the NLS that predicts it: the semi-discrete one (derived on the "
                         "lattice) or the paper's continuum one")
     p.add_argument("--simulate", action="store_true",
-                   help="launch it in the lattice (srkn11b, dt = 0.25) and measure it")
+                   help="launch it in the lattice (srkn11b; dt = 0.25 for the paper chain, a "
+                        "fifth of the stability limit for --model) and measure it")
     p.add_argument("--travel", type=float, default=20.0,
                    help="with --simulate: run until it has moved this many widths")
     p.add_argument("--N", type=int, help="with --simulate: ring size (default: 20 widths, at "
                    "least 256 sites); k moves to the nearest wavenumber the ring carries")
-    p.add_argument("--out", help="folder for soliton.json (default: none, print only)")
+    p.add_argument("--out", help="folder for soliton.json and soliton.png (default: none, "
+                   "print only)")
     add_model_args(p)
     g = _material_args(p)
     g.add_argument("--case", choices=("rotation", "coupled"),

@@ -376,6 +376,8 @@ def run_point(args) -> int:
         print(f"note: the exact lattice's fastest mode is {what} ({_waves(ex)}), not the "
               "carrier's sidebands: the NLS cannot see it")
     fw = out["four-wave"]
+    if fw.get("reason"):
+        print(f"four-wave undefined: {fw['reason']}")
     if fw["verdict"] == "MI":
         print(f"four-wave: the fastest pair is {fw['mode_kind']} ({_waves(fw)})")
     if "simulated" in out:

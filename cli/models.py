@@ -200,9 +200,11 @@ def run_soliton(args) -> int:
     units = model_units(args)
     checks.real("--k", args.k, 0.0, math.pi)
     checks.real("--amplitude", args.amplitude, 0.0, None)
-    if getattr(args, "simulate", False):
-        raise ValueError("--simulate: soliton runs are for the paper chain (no --model) for "
-                         "now; the prediction below is the model's NLS soliton")
+    if getattr(args, "simulate", False) or getattr(args, "out", None):
+        from .model_soliton import run_model_soliton
+
+        run_model_soliton(args, model, units, branch_of(args))
+        return 0
     r = nls(model, args.k, branch_of(args))
     kind = getattr(args, "kind", None)
     if r.undefined:

@@ -42,7 +42,8 @@ autodoc_member_order = "bysource"
 
 html_theme = "alabaster"
 html_title = "flexmm-mi"
-html_static_path: list = []
+html_static_path = ["_static"]  # custom.css (alabaster links it): wide code blocks
+html_theme_options = {"page_width": "1240px", "sidebar_width": "220px"}
 
 exclude_patterns = ["_build", "**.ipynb_checkpoints"]
 

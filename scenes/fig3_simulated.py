@@ -214,7 +214,10 @@ def plot(data):
         ax.set_title(f"{case_title(case)}: predicted vs measured, per cell", fontsize=9)
         ax.legend(fontsize=7, loc="upper left")
     verdict_colorbar(fig, im, axes[0].tolist(), mi="MI", stable="stable", shrink=0.8)
-    fig.legend(handles=handles + point_handles(), loc="outside right center", fontsize=7)
+    # under the panels, in columns and a readable size: the README shows this figure at
+    # column width (~0.6x), where a 7-point legend at the side could not be read
+    fig.legend(handles=handles + point_handles(), loc="outside lower center", ncol=3,
+               fontsize=10)
     fig.suptitle(fr"MI map by simulation (eq. IC, amplitude {data['amplitude']:g} rad, "
                  fr"$\alpha = {data['alpha']}$)" "\n"
                  "top: simulated cells over the theories; bottom: predicted against "

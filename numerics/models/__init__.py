@@ -14,6 +14,8 @@ classify_mode, ring_misses              what an exact mode is; bands a ring does
 energy_not_real, amplitude_reach        where the energy stops being real along a wave: why
 exact_gain_checked                      there is no travelling wave, the largest amplitude
 simulate_model -> ModelRun              a ring of the model; .growth() -> Growth
+simulate_soliton -> ModelSolitonRun     its NLS soliton launched on a ring and tracked
+                                        (ring_soliton: the prediction on that ring)
 lattice_force, lattice_energy           the compiled force and the model's energy
 model_map                               MI map over two parameters, or a parameter and k
 map_cells                               the columns of a block of map cells (a run_map task)
@@ -30,7 +32,7 @@ from ._exact import (
                      ring_offsets,
                      travelling_wave,
 )
-from ._fourwave import FourWave, classify_mode, four_wave, pair_rates, ring_misses
+from ._fourwave import FourWave, four_wave, pair_rates
 from ._linear import (
                      Carrier,
                      branch_index,
@@ -49,6 +51,7 @@ from ._losses import (
                      nls_amplification,
 )
 from ._map import map_cells, model_map, simulated_cell
+from ._modes import classify_mode, ring_misses
 from ._nls import ModelNLS, ModelSoliton, acoustic_directions, nls
 from ._reach import amplitude_reach, energy_not_real, exact_gain_checked
 from ._simulate import (
@@ -64,6 +67,13 @@ from ._simulate import (
                      simulate_seeds,
                      snap_ring,
 )
+from ._soliton_run import (
+                     ModelSolitonRun,
+                     RingSoliton,
+                     ring_soliton,
+                     simulate_soliton,
+                     soliton_report,
+)
 from ._summary import model_coefficients
 
 __all__ = ["Carrier", "carrier", "branches", "branch_index", "check_rest_stable", "ModelNLS",
@@ -75,4 +85,5 @@ __all__ = ["Carrier", "carrier", "branches", "branch_index", "check_rest_stable"
            "classify_mode", "ring_misses", "ring_offsets", "simulate_model", "simulate_seeds",
            "SeededRuns", "ModelRun", "Growth", "measure_growth", "check_ring", "compiled_force",
            "lattice_force", "lattice_energy", "snap_ring", "Amplified", "nls_amplification",
-           "four_wave_amplification", "exact_amplification"]
+           "four_wave_amplification", "exact_amplification", "simulate_soliton",
+           "ModelSolitonRun", "RingSoliton", "ring_soliton", "soliton_report"]

@@ -52,6 +52,7 @@ from energy import Model, ModelError
 
 from ._exact import GAIN_FLOOR  # one floor for both theories' verdicts
 from ._linear import carrier, dynamical_matrix
+from ._modes import _wrap, own_offset, pair_kind, wave_field
 
 #: A driven wave whose operator has a singular value below this share of the largest is
 #: resonant with a branch: the four-wave ordering fails there (a three-wave process).
@@ -67,11 +68,6 @@ DRIVEN_MAX = 0.5
 FLOOR = 1e-10
 
 KINDS = ("sidebands", "backward", "parametric", "resonance")
-
-
-def _wrap(x):
-    """x wrapped to (-pi, pi]."""
-    return -((-np.asarray(x, dtype=float) + np.pi) % (2 * np.pi) - np.pi)
 
 
 @dataclass(frozen=True)
@@ -193,31 +189,6 @@ class FourWave:
                 "reason": self.undefined}
 
 
-def wave_field(model: Model, kappa: float, branch: int) -> str:
-    """The field that carries most of the kinetic energy of the linear wave (kappa,
-    branch): branch indices ascend in frequency at each wavenumber, so where branches
-    cross the field says which wave it is."""
-    from ._linear import _modes
-
-    vecs = _modes(model, float(kappa))[1]
-    return model.fields[int(np.argmax(np.abs(vecs[:, branch]) ** 2))]
-
-
-def pair_kind(branch: int, pair, q: float) -> str:
-    """'sidebands', 'backward' or 'parametric' for the pair (k + q on pair[0], k - q on
-    pair[1]) of a carrier on ``branch``."""
-    if pair[0] != branch or pair[1] != branch:
-        return "parametric"
-    return "sidebands" if abs(float(_wrap(q))) <= math.pi / 2 else "backward"
-
-
-def own_offset(kind: str, q: float) -> float:
-    """A pair's own offset from its centre: |q| from k, or pi - |q| from k - pi
-    (backward)."""
-    q = abs(float(_wrap(q)))
-    return math.pi - q if kind == "backward" else q
-
-
 def _contract(T, x):
     return np.einsum("ijm,m->ij", T, x)
 
@@ -245,6 +216,16 @@ def _plane_wave(model: Model, k: float, a: float, branch):
     if sv[-1] < RESONANT * max(sv[0], scale) and np.linalg.norm(f2) > RESONANT * scale:
         return f"second harmonic resonant with a branch at 2k = {2 * k:.6g}"
     v2 = np.linalg.lstsq(D2, f2, rcond=None)[0]
+    # near (not at) that resonance the second harmonic is no longer slaved: its energy
+    # against the first harmonic's, as DRIVEN_MAX measures a pair's driven waves
+    K1, K2 = dynamical_matrix(H, k), dynamical_matrix(H, 2 * k)
+    e1 = np.real(e.conj() @ K1 @ e + w**2 * e.conj() @ M @ e)
+    e2 = np.real(v2.conj() @ K2 @ v2 + (2 * w) ** 2 * v2.conj() @ M @ v2)
+    size = a / 2 * math.sqrt(abs(e2) / e1) if e1 > 0 else math.inf
+    if size > DRIVEN_MAX:
+        return (f"second harmonic near resonance with a branch at 2k = {2 * k:.6g}: its energy "
+                f"{size**2:.3g} x the carrier's at amplitude {a:.6g}; the four-wave ordering "
+                "fails there (a three-wave process; the exact theory holds)")
     K0 = np.real(dynamical_matrix(H, 0.0))
     f0 = -np.real(P(0.0) @ np.einsum("ibc,b,c->i", T, X1, X1.conj()))
     w0 = np.linalg.pinv(K0, rcond=1e-10, hermitian=True) @ f0  # optical mean: no strain
@@ -325,6 +306,9 @@ def _rates(model, k, car, Omega, Hh, pairs, offsets):
                                         (0, -1), (-1, 0), (1, 2), (2, 1), (-1, -2), (-2, -1))}
     Kd = {l: K(kap[l]) for l in (0, 2, -2)}
     M = np.diag(m)
+    # the driven second harmonics at the carrier's linear 2 omega, as the carrier's own
+    # (_plane_wave): the same denominator at q -> 0, where the pair is the carrier
+    w = car.omega
     rate = np.full((n, len(pairs)), np.nan)
     det = np.full_like(rate, np.nan)
     coup = np.full_like(rate, np.nan)
@@ -351,8 +335,8 @@ def _rates(model, k, car, Omega, Hh, pairs, offsets):
             t1 = Omega + (w1 - w2) / 2  # the pair's frequencies, summing to 2 Omega
             t2 = Omega + (w2 - w1) / 2
             D0 = Kd[0] - ((t1 - Omega) ** 2)[:, None, None] * M
-            D2 = Kd[2] - ((t1 + Omega) ** 2)[:, None, None] * M
-            Dm2 = Kd[-2] - ((t2 + Omega) ** 2)[:, None, None] * M
+            D2 = Kd[2] - ((t1 - Omega + 2 * w) ** 2)[:, None, None] * M
+            Dm2 = Kd[-2] - ((t2 - Omega + 2 * w) ** 2)[:, None, None] * M
             y01, r0 = solve(D0, mv(Bs[0, 1], e1))
             y0m, _ = solve(D0, mv(Bs[0, -1], e2c))
             y2, r2 = solve(D2, mv(Bs[2, 1], e1))
@@ -373,7 +357,7 @@ def _rates(model, k, car, Omega, Hh, pairs, offsets):
             sig[np.abs(disc) <= FLOOR * np.maximum(np.abs(kk), delta**2 / 4)] = 0.0
             size = np.max([np.sqrt(np.abs(_energy(Kd[l], m, y, f)) / (w1**2 + w2**2))
                            for l, y, f in ((0, y01, t1 - Omega), (0, y0m, t1 - Omega),
-                                           (2, y2, t1 + Omega), (-2, ym2, t2 + Omega))],
+                                           (2, y2, t1 - Omega + 2 * w), (-2, ym2, t2 - Omega + 2 * w))],
                            axis=0)
             resonant = r0 | r2 | rm2 | (size > DRIVEN_MAX)
             # a zero-frequency wave (a uniform translation, kappa = 0) is no wave
@@ -476,145 +460,25 @@ def four_wave(model: Model, k: float, amplitude: float, branch=None, *, N: int |
             i = int(np.unravel_index(int(np.argmax(r)), r.shape)[0])
             fine = np.linspace(q[max(i - 1, 0)], q[min(i + 1, q.size - 1)], 35)[1:-1]
             q, rate, det, coup = _merge(q, (rate, det, coup), fine, rates(fine))
+    why = ""
+    if not np.nanmax(np.nan_to_num(rate, nan=0.0), initial=0.0) > GAIN_FLOOR * car.omega:
+        why = _untreated(q, pairs, rate, det)
     return FourWave(model, k, a, car.branch, car.omega, float(Omega), q, tuple(pairs),
-                    rate, det, coup)
+                    rate, det, coup, why)
 
 
-def classify_mode(spectrum) -> dict:
-    """What the fastest mode of an exact Hill spectrum (``exact_gain``'s result) is.
-
-    The mode e^{lambda t} e^{iqn} sum_l c_l e^{il xi} holds, in its harmonics l and l - 2,
-    the waves (q + lk, l Omega - Im lambda) and (2k - q - lk, Im lambda - (l - 2) Omega)
-    whose wavenumbers sum to 2k and frequencies to 2 Omega: a four-wave pair. The pair
-    whose two waves lie nearest to linear waves (a branch each, by frequency) names the
-    mode; its eigenvalue is found again at the fastest q. The harmonic that carries most
-    of the mode's weight does not name it (an acoustic mean-flow harmonic can outweigh
-    the pair), nor does a copy of it at a commensurate k.
-
-    Returns
-    -------
-    dict
-        ``mode_kind`` ('sidebands', 'backward', 'parametric', 'resonance' where a wave is
-        no linear wave within max(2% Omega, 10 rates) -- a harmonic resonant with a branch
-        -- or 'none'), ``mode_waves`` [{branch, wavenumber, frequency, field}] x 2 and
-        ``fastest_offset``, the pair's own offset (from k, or from k - pi for a backward
-        pair), not a copy's.
-    """
-    from ._exact import hill_spectrum
-    from ._linear import branches
-
-    if spectrum.peak_gain <= 0:
-        return {"mode_kind": "none", "mode_waves": [], "fastest_offset": None}
-    wave = spectrum.wave
-    model, k, Omega = wave.model, wave.k, wave.omega
-    i = int(np.argmax(spectrum.gain))
-    q = float(spectrum.offsets[i])
-    _, lams = hill_spectrum(wave, [q], return_eigenvalues=True)
-    lam = lams[0][int(np.argmax(lams[0].real))]
-    best = None
-    for l in range(-1, 4):
-        phi, phi2 = l * Omega - lam.imag, lam.imag - (l - 2) * Omega
-        if phi <= 0 or phi2 <= 0:
-            continue
-        kap, kap2 = float(_wrap(q + l * k)), float(_wrap(2 * k - q - l * k))
-        w1, w2 = branches(model, [kap, kap2])
-        b1, b2 = int(np.nanargmin(np.abs(w1 - phi))), int(np.nanargmin(np.abs(w2 - phi2)))
-        miss = max(abs(w1[b1] - phi), abs(w2[b2] - phi2))
-        if best is None or miss < best[0]:
-            best = (miss, kap, phi, b1, kap2, phi2, b2)
-    miss, kap, phi, b1, kap2, phi2, b2 = best
-    tol = max(0.02 * Omega, 10 * float(lam.real))
-    waves = [{"branch": b1, "wavenumber": kap, "frequency": float(phi),
-              "field": wave_field(model, kap, b1)},
-             {"branch": b2, "wavenumber": kap2, "frequency": float(phi2),
-              "field": wave_field(model, kap2, b2)}]
-    if miss > tol:
-        return {"mode_kind": "resonance", "mode_waves": waves,
-                "fastest_offset": float(min(abs(_wrap(kap - k)), abs(_wrap(kap + k))))}
-    kind = pair_kind(wave.carrier.branch, (b1, b2), kap - k)
-    return {"mode_kind": kind, "mode_waves": waves,
-            "fastest_offset": own_offset(kind, kap - k)}
-
-
-def ring_misses(model: Model, k: float, amplitude: float, branch=None, *, N: int,
-                chain=None) -> list:
-    """The infinite chain's unstable bands (exact theory) that a ring of ``N`` sites does
-    not sample: none of its offsets 2 pi j / N falls in them.
-
-    ``chain``: the infinite chain's ``exact_gain`` at the ring's k (computed if None). Its
-    offset grid can step over a narrow band (a parametric pair's is ~ rate / |v1 - v2|
-    wide), so the Hill spectrum is also sampled where the four-wave theory puts a band.
-    Returns a list of dicts: ``band`` (lo, hi), the Hill offsets q (rad/site) where the
-    chain grows, ``peak_gain`` there and ``N``, the smallest ring size above N with an
-    offset inside the band (its k snaps to 2 pi m / N as well).
-    """
-    from ._exact import exact_gain
-    from ._simulate import snap_ring
-
-    k_ring = snap_ring(k, N)[0]
-    if chain is None:
-        chain = exact_gain(model, k_ring, amplitude, branch)
-    from ._exact import hill_spectrum
-
-    fw = four_wave(model, k_ring, amplitude, branch)
-    q, g = chain.offsets, chain.gain
-    if fw.verdict == "MI":
-        # Hill offsets every 1e-3 (at most 40) across each band the four-wave theory finds
-        # and 4e-3 beyond it
-        r4 = np.nan_to_num(fw.rates, nan=0.0).max(axis=1) > 0
-        e4 = np.flatnonzero(np.diff(np.concatenate([[0], r4.astype(int), [0]])))
-        spans = [(fw.offsets[a] - 4e-3, fw.offsets[b - 1] + 4e-3) for a, b in
-                 zip(e4[::2], e4[1::2])]
-        extra = np.concatenate([np.linspace(lo, hi, min(40, int((hi - lo) / 1e-3) + 2))
-                                for lo, hi in spans])
-        extra = extra[(extra > 0) & (extra <= math.pi)]
-        if extra.size:
-            more = hill_spectrum(chain.wave, extra)
-            q, g = np.concatenate([q, extra]), np.concatenate([g, more.gain])
-            order = np.argsort(q)
-            q, g = q[order], g[order]
-    grows = g > 0
-    out = []
-    edges = np.flatnonzero(np.diff(np.concatenate([[0], grows.astype(int), [0]])))
-    for start, stop in zip(edges[::2], edges[1::2]):
-        lo = _edge(chain.wave, q[start], q[start - 1] if start > 0 else None)
-        hi = _edge(chain.wave, q[stop - 1], q[stop] if stop < q.size else None)
-        # a mode shows at Hill offsets q + l k too (its copies): one band per mode
-        mid = (lo + hi) / 2
-        if any(_same_mode(mid, (b["band"][0] + b["band"][1]) / 2, k_ring, hi - lo)
-               for b in out):
-            continue
-        j = np.arange(math.ceil(lo * N / (2 * math.pi)), math.floor(hi * N / (2 * math.pi)) + 1)
-        record = {"band": (lo, hi), "peak_gain": float(np.max(g[start:stop])), "N": None}
-        if not j.size:
-            record["N"] = next((n for n in range(N + 1, 64 * N) if
-                                math.floor(hi * n / (2 * math.pi))
-                                >= math.ceil(lo * n / (2 * math.pi))), None)
-        out.append(record)
-    return [b for b in out if b["N"] is not None]
-
-
-def _same_mode(q1, q2, k, width):
-    """Whether Hill offsets q1, q2 are copies of one mode: q1 = +-q2 + l k (mod 2 pi)."""
-    for sign in (1, -1):
-        for l in range(-3, 4):
-            if abs(float(_wrap(q1 - sign * q2 - l * k))) <= max(width, 1e-9):
-                return True
-    return False
-
-
-def _edge(wave, inside: float, outside, steps: int = 12) -> float:
-    """The band edge between an unstable offset and a stable one (bisection on Hill's
-    rate); ``inside`` where there is no stable neighbour."""
-    from ._exact import hill_spectrum
-
-    if outside is None:
-        return float(inside)
-    a, b = float(inside), float(outside)
-    for _ in range(steps):
-        m = (a + b) / 2
-        if hill_spectrum(wave, [m]).gain[0] > 0:
-            a = m
-        else:
-            b = m
-    return a
+def _untreated(q, pairs, rate, det) -> str:
+    """Why 'stable' cannot be said: a pair resonant (its detuning through zero) where its
+    rate is nan -- a driven wave not slaved, a three-wave process this ordering does not
+    rate -- or '' where every resonant pair was rated."""
+    for j, pair in enumerate(pairs):
+        d, r = det[:, j], rate[:, j]
+        i = np.flatnonzero(np.isfinite(d[:-1]) & np.isfinite(d[1:])
+                           & (np.sign(d[:-1]) * np.sign(d[1:]) < 0)
+                           & (np.isnan(r[:-1]) | np.isnan(r[1:])))
+        if i.size:
+            return (f"no rated pair grows, but the pair of branches {pair} is resonant at "
+                    f"offset {q[i[0]]:.4g} through a driven wave too large to be slaved (a "
+                    "three-wave process the four-wave ordering does not rate; the exact "
+                    "theory holds)")
+    return ""

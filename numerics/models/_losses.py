@@ -33,7 +33,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from energy import Model
+from energy import Model, ModelError
 
 #: amplification a theory calls observable (the runs' threshold)
 OBSERVABLE = 20.0
@@ -259,7 +259,9 @@ def four_wave_amplification(model: Model, k: float, amplitude: float, branch=Non
     if first is None:
         first = four_wave(model, k, amplitude, branch, N=N)
     Gamma = max(carrier_damping(model, first.k, first.branch), 0.0) + 0.0  # -0.0 at zero damping
-    if first.undefined or not first.gain > 0:
+    if first.undefined:  # no rate, no amplification: the reason instead (issue 43)
+        raise ModelError(first.undefined)
+    if not first.gain > 0:
         return Amplified(Gamma, 1.0, 0.0, math.nan, False, 0.0)
     q = np.asarray(first.offsets, float)
     rates0 = np.nan_to_num(np.asarray(first.rates, float), nan=0.0)  # (n, m)

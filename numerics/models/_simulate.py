@@ -651,7 +651,7 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
                    method: str = "srkn11b", start: str = "exact", noise: float = NOISE,
                    seed: int = 0, records: int = 400, expected_gain: float | None = None,
                    wave=None, until_peak: bool = False,
-                   noise_on: str = "all", on_steps=None) -> ModelRun:
+                   noise_on: str = "all", initial=None, on_steps=None) -> ModelRun:
     """Run the ring of ``model`` from a plane wave at ``k`` (snapped to the ring) with
     first harmonic ``amplitude`` in its carrier field, plus seeded noise.
 
@@ -665,7 +665,8 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
     exact half steps around each symplectic step: order 2). ``until_peak``: stop once
     the sidebands' amplitude A(t) (``sideband_amplitude``) has risen 2x and fallen to half
     its maximum (else ``t_end`` is the cap). ``noise_on="carrier"``: the noise on the
-    carrier field's positions only (the amplification's launch, issue 42).
+    carrier field's positions only (the amplification's launch, issue 42). ``initial``:
+    (u, v), each shape (d, N), the state to start from instead of ``start`` (noise added).
     ``on_steps(n, nsteps)``: called after every stretch of ``n`` of the run's ``nsteps``
     steps (a progress bar).
     """
@@ -712,6 +713,8 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
         w0 = wave.carrier.omega
         u = amplitude * np.real(e * np.exp(1j * xi))
         v = amplitude * w0 * np.real(-1j * e * np.exp(1j * xi))
+    if initial is not None:
+        u, v = (np.array(x, dtype=float).reshape(d, N) for x in initial)
     if noise_on not in ("all", "carrier"):
         raise ModelError(f"noise_on must be 'all' or 'carrier', got {noise_on!r}")
     if noise_on == "carrier":

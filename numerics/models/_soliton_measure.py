@@ -1,0 +1,149 @@
+"""What a state of any model's lattice shows of its NLS soliton (``_soliton_run``): the
+carrier field's analytic signal z = u + i u_dot / Omega band-passed at |q - k| < k/2
+(2 E e^{i theta}: the mean at q = 0 and the second harmonic at 2k outside), |z|^2 fitted
+by a^2 sech^2 (bright) or a^2 (1 - D sech^2) (dark) for centre, amplitude and width; its
+demodulated phase for the frequency; each acoustic field's strain low-passed at |q| < k/2
+and summed over +-8 widths for its kink. As the paper chain's ``_soliton_measure``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+if TYPE_CHECKING:  # the prediction's type only: _soliton_run imports this module
+    from ._soliton_run import RingSoliton
+
+#: half-width (in soliton widths) of the window counted as the soliton
+RADIATION_WINDOW = 6.0
+
+
+@dataclass(frozen=True)
+class ModelSnapshot:
+    """What one state shows of the soliton: fitted centre (unwrapped), amplitude (the
+    carrier's first harmonic at the peak, or of the background), width, depth (dark),
+    kink per field (0 where none), radiation and shape misfit as the paper chain's
+    ``Snapshot``."""
+
+    t: float
+    centre: float
+    amplitude: float
+    width: float
+    depth: float
+    kink: np.ndarray
+    radiation: float
+    shape_misfit: float
+
+
+def _ring_distance(n, c, N):
+    return (n - c + N / 2) % N - N / 2
+
+
+def analytic_carrier(u, v, pred: RingSoliton) -> np.ndarray:
+    """z = u + i v / Omega of the carrier field, band-passed at |q - k| < k/2:
+    2 E e^{i theta}."""
+    f = pred.nls.carrier.field
+    N = u.shape[1]
+    z = np.fft.fft(u[f] + 1j * v[f] / pred.frequency)
+    q = 2 * np.pi * np.fft.fftfreq(N)
+    near = np.abs((q - pred.k + np.pi) % (2 * np.pi) - np.pi) < pred.k / 2
+    return np.fft.ifft(np.where(near, z, 0))
+
+
+def _fit(amp2, kind, c0, w0, N):
+    """Least-squares fit of |2E|^2 near c0: (centre, amplitude, width, depth, radiation,
+    shape misfit)."""
+    from scipy.optimize import least_squares
+
+    n = np.arange(N, dtype=float)
+    d = _ring_distance(n, c0, N)
+    win = np.abs(d) < (6 if kind == "bright" else 8) * w0
+    scale = float(np.max(amp2))  # O(1) numbers: least_squares' tolerances are absolute
+    x, y = d[win], amp2[win] / scale
+    if kind == "bright":
+        def model(p):
+            return p[1] ** 2 / np.cosh((x - p[0]) / p[2]) ** 2
+        p0 = [x[np.argmax(y)], math.sqrt(y.max()), w0]
+    else:
+        def model(p):
+            return p[1] ** 2 * (1 - p[3] / np.cosh((x - p[0]) / p[2]) ** 2)
+        far = np.abs(d) > 8 * w0
+        bg = math.sqrt(np.median(amp2[far] / scale)) if far.any() else 1.0
+        p0 = [x[np.argmin(y)], bg, w0, 1.0 - y.min() / bg**2]
+    p = least_squares(lambda p: model(p) - y, p0, xtol=1e-12, ftol=1e-12, gtol=1e-12).x
+    amp, width = abs(float(p[1])) * math.sqrt(scale), abs(float(p[2]))
+    centre = c0 + float(p[0])
+    dd = _ring_distance(n, centre, N)
+    if kind == "bright":
+        full = amp**2 / np.cosh(dd / width) ** 2
+        own = full
+    else:
+        full = amp**2 * (1 - p[3] / np.cosh(dd / width) ** 2)
+        own = amp**2 - full
+    off = np.abs(amp2 - full)
+    core = np.abs(dd) <= RADIATION_WINDOW * width
+    content = float(np.sum(np.abs(own)))
+    share = max(1 - core.mean(), 1e-12)
+    radiation = float(np.sum(off[~core]) / content / share) if (~core).any() else math.nan
+    misfit = float(np.sum(off[core]) / content)
+    depth = 0.0 if kind == "bright" else float(p[3])
+    return centre, amp, width, depth, radiation, misfit
+
+
+def _kinks(u, pred: RingSoliton, centre, width):
+    """Each kink field's step: its strain low-passed at |q| < k/2 (the harmonics out),
+    summed over +-8 widths, minus the background strain over the window."""
+    d, N = u.shape
+    out = np.zeros(d)
+    q = 2 * np.pi * np.fft.rfftfreq(N)
+    dist = _ring_distance(np.arange(N) + 0.5, centre, N)
+    win = np.abs(dist) < 8 * width
+    for i in pred.kink_fields():
+        s_hat = np.fft.rfft(np.roll(u[i], -1) - u[i])
+        s_hat[q > pred.k / 2] = 0
+        strain = np.fft.irfft(s_hat, N)
+        bg = np.median(strain[~win]) if (~win).any() else 0.0
+        out[i] = float(np.sum(strain[win] - bg))
+    return out
+
+
+def measure_snapshot(u, v, pred: RingSoliton, t: float,
+                     centre_guess: float) -> ModelSnapshot:
+    """Fit the soliton in the state (u, v) (each shape (d, N))."""
+    N = u.shape[1]
+    z = analytic_carrier(u, v, pred)
+    c, a, w, depth, rad, misfit = _fit(np.abs(z) ** 2, pred.kind, centre_guess, pred.width, N)
+    return ModelSnapshot(t=float(t), centre=c, amplitude=a, width=w, depth=depth,
+                         kink=_kinks(u, pred, c, w), radiation=rad, shape_misfit=misfit)
+
+
+def phasor(u, v, pred, centre, t):
+    """z demodulated by the predicted carrier e^{-i(k n - Omega t)}; dark: the background
+    far from the dip only (the phase jumps across it)."""
+    N = u.shape[1]
+    n = np.arange(N)
+    r = analytic_carrier(u, v, pred) * np.exp(-1j * (pred.k * n - pred.frequency * t))
+    if pred.kind == "bright":
+        return r
+    far = np.abs(_ring_distance(n, centre, N)) > 6 * pred.width
+    return np.where(far, r, 0)
+
+
+def frequency_of(times, phases, pred):
+    """Omega - d(phase)/dt of the demodulated field (unwrapped between records): for a
+    bright soliton the phase of its sum (its mode at k), for a dark one the site-by-site
+    phase change of the background."""
+    if pred.kind == "bright":
+        steps = [np.angle(np.sum(b) * np.conj(np.sum(a)))
+                 for a, b in zip(phases[:-1], phases[1:])]
+    else:
+        steps = [np.angle(np.sum(b * np.conj(a))) for a, b in zip(phases[:-1], phases[1:])]
+    phase = np.concatenate([[0.0], np.cumsum(steps)])
+    return float(pred.frequency - np.polyfit(times, phase, 1)[0])
+
+
+__all__ = ["ModelSnapshot", "analytic_carrier", "measure_snapshot", "phasor", "frequency_of",
+           "RADIATION_WINDOW"]

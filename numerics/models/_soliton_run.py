@@ -1,0 +1,480 @@
+"""Any model's envelope soliton launched in its lattice and tracked (``flexmm soliton --model
+... --simulate``), as ``numerics.theory.simulate_soliton`` does for the paper's chain.
+
+The launch is the multiple-scales solution of ``_nls`` with the soliton's envelope E
+(|E| = a/2 sech(xi/w) bright, a/2 tanh(xi/w) black; a = 2 eps |A|, xi = n - c - v_g t):
+
+    u_n = (E e - i E_xi e' - E_xixi e''/2) e^{i theta} + E^2 v2 e^{2 i theta} + c.c.
+          + |E|^2 w + sum_{m<n} s (|E|^2 + lam),
+
+theta = k n - Omega t, e the carrier's polarisation (e' = de/dk: the packet's
+wavenumbers k + p carry e(k + p)), v2 the second harmonic, w the optical
+mean, s the acoustic mean strain per |E|^2 (its sum over the ring is the kink). A periodic
+field has no net strain, so a uniform strain lam s with lam = -<|E|^2> (the ring average)
+compensates the kink; the carrier feels it through the mean flow's part of g2, which
+moves its frequency by -g2_meanflow lam (order width / N for a bright soliton; for a
+black one the background's own strain). Velocities: the envelope moves at v_g and turns
+at Omega (the soliton's frequency on this ring), the mean fields translate with it.
+
+The measurement (``_soliton_measure``): the carrier field's analytic signal z = u + i u_dot / Omega, band-passed
+around +k (|q - k| < k/2: the mean at q = 0 and the second harmonic at 2k outside), is
+2 E e^{i theta}; |z|^2 is fitted by a^2 sech^2 (bright) or a^2 (1 - D sech^2) (dark) for
+the centre, amplitude and width; its phase, demodulated, gives the frequency; each
+acoustic field's strain low-passed at |q| < k/2 and summed over +-8 widths gives its kink.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from energy import Model, ModelError
+
+from ._linear import blocks, dynamical_matrix
+from ._nls import ModelNLS, ModelSoliton, acoustic_directions, nls
+from ._soliton_measure import analytic_carrier, frequency_of, measure_snapshot, phasor
+
+KINDS = ("bright", "dark")
+#: below this width (sites) the envelope is too narrow for the weak-modulation ordering
+#: (the paper chain's MIN_WIDTH)
+MIN_WIDTH = 8.0
+#: the longest run picked by itself (the paper chain's MAX_T_END)
+MAX_T_END = 5e5
+#: a sech^2 kink of width w keeps 99% of its spectrum below 4.5 / w: k w >= 9 separates it
+#: (and the envelope) from the carrier's band-pass at k/2
+SEPARATION = 9.0
+
+
+def ring_wavenumber(k: float, N: int, kind: str = "bright") -> float:
+    """The wavenumber nearest ``k`` on which a ring of ``N`` sites carries the soliton:
+    2 pi m / N (bright), (2 m + 1) pi / N (black: the envelope changes sign across it)."""
+    if kind not in KINDS:
+        raise ModelError(f"kind must be one of {KINDS}, got {kind!r}")
+    offset = 0.0 if kind == "bright" else math.pi
+    m = round((k * N - offset) / (2 * math.pi))
+    out = (2 * math.pi * m + offset) / N
+    if not 0 < out < math.pi:
+        raise ModelError(f"no ring wavenumber near k = {k:g} for N = {N} (a {kind} soliton)")
+    return out
+
+
+def default_ring(width: float) -> int:
+    """A ring of at least 20 widths (and 256 sites): the tails (e^{-20}) never meet."""
+    return int(max(256, 2 * math.ceil(10 * width)))
+
+
+@dataclass(frozen=True)
+class RingSoliton:
+    """The predicted soliton on a ring of N sites.
+
+    Attributes
+    ----------
+    nls : ModelNLS
+        The NLS at the ring's k.
+    soliton : ModelSoliton
+        On an infinite chain (kind, amplitude, width, velocity, kink per field).
+    N : int
+    frequency : float
+        The soliton's carrier frequency on this ring (1/time): ``soliton.frequency`` moved
+        by the ring's compensating strain.
+    ring_strain : float
+        lam = -<|E|^2>: the uniform strain lam s that closes the ring.
+    """
+
+    nls: ModelNLS
+    soliton: ModelSoliton
+    N: int
+    frequency: float
+    ring_strain: float
+
+    @property
+    def k(self) -> float:
+        return self.nls.carrier.k
+
+    @property
+    def kind(self) -> str:
+        return self.soliton.kind
+
+    @property
+    def width(self) -> float:
+        return self.soliton.width
+
+    @property
+    def velocity(self) -> float:
+        return self.soliton.velocity
+
+    def kink_fields(self) -> list:
+        """Indices of the fields that carry a kink (acoustic, nonzero mean strain)."""
+        s = np.abs(self.nls.strain)
+        return [int(i) for i in np.nonzero(s > 1e-12 * max(1.0, float(s.max())))[0]]
+
+    def summary(self, fields) -> dict:
+        """velocity, width, amplitude, frequency and kink_<field> for the kink fields."""
+        s = self.soliton
+        out = {"velocity": s.velocity, "width": s.width, "amplitude": s.amplitude,
+               "frequency": self.frequency}
+        for i in self.kink_fields():
+            out[f"kink_{fields[i]}"] = float(s.kink[i])
+        return out
+
+    def notes(self) -> list:
+        """Sentences on where the envelope theory or its measurement is strained here."""
+        out = []
+        if self.width < MIN_WIDTH:
+            out.append(f"note: {self.width:.3g} sites is too narrow for the envelope theory; "
+                       "lower the amplitude")
+        if self.k * self.width < SEPARATION:
+            out.append(f"warning: the envelope spans k x width = {self.k * self.width:.2g} rad "
+                       f"of carrier phase (< {SEPARATION:g}): the envelope and the kink "
+                       "overlap the mean and the second harmonic in wavenumber, so their "
+                       "measurement (band and low pass at k/2) is not clean; a smaller "
+                       "amplitude (a wider envelope) or a larger k separates them")
+        return out
+
+    def carrier_signal(self, u, v) -> np.ndarray:
+        """The carrier field's band-passed analytic signal 2 E e^{i theta} in the state
+        (u, v) (``_soliton_measure.analytic_carrier``), shape (N,), complex."""
+        return analytic_carrier(u, v, self)
+
+    def envelope(self, xi) -> np.ndarray:
+        """|E| at distances ``xi`` (sites) from the centre (real: sech or tanh)."""
+        a, w = self.soliton.amplitude, self.width
+        xi = np.asarray(xi, dtype=float)
+        return a / 2 / np.cosh(xi / w) if self.kind == "bright" else a / 2 * np.tanh(xi / w)
+
+    def state(self, centre: float | None = None) -> tuple:
+        """(u, v), each shape (d, N): the soliton centred at site ``centre`` (N/2), t = 0."""
+        N, nl = self.N, self.nls
+        n = np.arange(N, dtype=float)
+        c = N / 2 if centre is None else float(centre)
+        xi = (n - c + N / 2) % N - N / 2
+        w, vg, Om = self.width, self.velocity, self.frequency
+        E = self.envelope(xi)
+        h = 1e-4 * w  # central difference: relative error (h / w)^2 = 1e-8
+        dE = (self.envelope(xi + h) - self.envelope(xi - h)) / (2 * h)
+        carrier = np.exp(1j * self.k * n)[None, :]
+        e = nl.carrier.e[:, None]
+        v2 = nl.second_harmonic[:, None]
+        u = 2 * np.real(E * e * carrier) + 2 * np.real(E**2 * v2 * carrier**2)
+        v = (2 * np.real((-vg * dE - 1j * Om * E) * e * carrier)
+             + 2 * np.real((-2 * vg * E * dE - 2j * Om * E**2) * v2 * carrier**2))
+        # a packet's polarisation follows its wavenumbers: e(k + p) = e + p e' + p^2 e''/2
+        # acts on the carrier field's envelopes (p -> -i d/dxi) as e - i e' d - e''/2 d^2
+        # (no part in the carrier field: e[field] = 1); without it a two-field packet
+        # sheds the other branch (diatomic FPUT, 13 sites: a width ripple of 1.4%, 0.1%
+        # with e' alone, < 5e-5 with e'' too)
+        d1, d2 = (x[:, None] for x in _polarisation_slope(nl))
+        h2, h3 = 1e-3 * w, 1e-2 * w  # stencils: (h/w)^2 relative, on 1/w^2 and 1/w^3 terms
+        E2 = (self.envelope(xi + h2) - 2 * E + self.envelope(xi - h2)) / h2**2
+        E3 = (self.envelope(xi + 2 * h3) - 2 * self.envelope(xi + h3)
+              + 2 * self.envelope(xi - h3) - self.envelope(xi - 2 * h3)) / (2 * h3**3)
+        V1, V2 = -vg * E2 - 1j * Om * dE, -vg * E3 - 1j * Om * E2  # d/dxi of the velocity
+        u = u + 2 * np.real((-1j * d1 * dE - d2 / 2 * E2) * carrier)
+        v = v + 2 * np.real((-1j * d1 * V1 - d2 / 2 * V2) * carrier)
+        u = u + nl.mean[:, None] * E**2
+        v = v - vg * nl.mean[:, None] * 2 * E * dE
+        s = nl.strain[:, None]
+        if np.any(s != 0):
+            mid = self.envelope(xi + 0.5) ** 2 + self.ring_strain  # between n and n + 1
+            strain = s * mid
+            U = np.concatenate([np.zeros((len(s), 1)), np.cumsum(strain, axis=1)[:, :-1]],
+                               axis=1)
+            u = u + U - U.mean(axis=1, keepdims=True) + _optical_per_strain(nl) * \
+                self.ring_strain
+            v = v - vg * (strain + np.roll(strain, 1, axis=1)) / 2
+        return np.ascontiguousarray(u), np.ascontiguousarray(v)
+
+
+def _polarisation_slope(nl: ModelNLS) -> tuple:
+    """(de/dk, d^2e/dk^2) of the carrier's polarisation (e[field] = 1), each shape (d,),
+    by central differences (step 1e-4: truncation 1e-8, round-off 1e-8 relative)."""
+    from ._linear import carrier
+
+    c = nl.carrier
+    h = min(1e-4, c.k / 3, (math.pi - c.k) / 3)
+    ep, em = (carrier(nl.model, c.k + s, c.branch).e for s in (h, -h))
+    ep, em = ep / ep[c.field], em / em[c.field]
+    return (ep - em) / (2 * h), (ep - 2 * c.e + em) / h**2
+
+
+def _optical_per_strain(nl: ModelNLS) -> np.ndarray:
+    """Optical mean displacement per unit lam of the uniform strain lam s, shape (d, 1):
+    -K(0)^+ (H12 + H22) N s_N (``_nls``: the optical fields' response to a strain)."""
+    model = nl.model
+    H = model.code.taylor(model.p)[0]
+    d = model.n_fields
+    _, H12, _, H22 = blocks(H, d)
+    Nd = acoustic_directions(model)
+    if not Nd.shape[1]:
+        return np.zeros((d, 1))
+    K0p = np.linalg.pinv(np.real(dynamical_matrix(H, 0.0)), rcond=1e-10, hermitian=True)
+    return (-K0p @ (H12 + H22) @ Nd @ (Nd.T @ nl.strain))[:, None]
+
+
+def ring_soliton(model: Model, k: float, amplitude: float, N: int | None = None,
+                 kind: str | None = None, branch=None) -> RingSoliton:
+    """The soliton of ``model``'s NLS at the ring wavenumber nearest ``k`` on N sites
+    (default :func:`default_ring` of its width).
+
+    Raises
+    ------
+    ModelError
+        No NLS at k, a kind that does not exist there (the message names the one that does),
+        or a ring shorter than 12 widths.
+    """
+    probe = nls(model, k, branch)
+    if probe.undefined:
+        raise ModelError(f"no soliton at k = {k:.6g}: {probe.undefined}")
+    exists = probe.soliton(amplitude).kind
+    if N is None:
+        N = default_ring(probe.soliton(amplitude).width)
+    if kind is not None and kind != exists:
+        raise ModelError(f"kind {kind}: the NLS at k = {k:.6g} has g = g2/g1 = {probe.g:.4g} "
+                         f"({'> 0' if probe.g > 0 else '< 0'}), so only {exists} solitons")
+    kr = ring_wavenumber(k, N, exists)
+    nl = nls(model, kr, probe.carrier.branch)
+    if nl.undefined:
+        raise ModelError(f"no soliton at the ring's k = {kr:.6g}: {nl.undefined}")
+    s = nl.soliton(amplitude)
+    if s.kind != exists:
+        raise ModelError(f"the ring's k = {kr:.6g} (N = {N}) has a {s.kind} soliton, k = "
+                         f"{k:.6g} a {exists} one (g changes sign between): a longer ring")
+    if 12 * s.width > N:
+        raise ModelError(f"N = {N} is too short for a soliton {s.width:.3g} sites wide (need "
+                         f"N >= 12 widths = {math.ceil(12 * s.width)})")
+    n = np.arange(N, dtype=float)
+    a, w = s.amplitude, s.width
+    xi = n + 0.5 - N / 2
+    E2 = (a / 2 / np.cosh(xi / w)) ** 2 if s.kind == "bright" else (a / 2 * np.tanh(
+        xi / w)) ** 2
+    lam = -float(E2.mean()) if np.any(nl.strain != 0) else 0.0
+    # the soliton's own turn (e^{i shift t}), and the ring's uniform strain through the
+    # mean flow's part of g2 (ModelSoliton: the black one's background has no strain)
+    shift = nl.g2 * a**2 / 8 if s.kind == "bright" else nl.g2 * a**2 / 4
+    frequency = nl.carrier.omega - shift - nl.parts["mean flow"] * lam
+    return RingSoliton(nls=nl, soliton=s, N=int(N), frequency=float(frequency),
+                       ring_strain=lam)
+
+
+@dataclass(frozen=True)
+class ModelSolitonRun:
+    """A model's soliton launched on a ring and tracked.
+
+    Attributes
+    ----------
+    predicted : RingSoliton
+        At the ring's k (``k_asked`` is what was asked).
+    N, t_end, dt, method : the run.
+    snapshots : tuple of ModelSnapshot, one per record (the first at t = 0).
+    frequency : float
+        Measured carrier frequency (1/time).
+    energy : ndarray, shape (n_snapshots,)
+        Total energy at each record.
+    fields : ndarray, shape (n_snapshots, d, N)
+        The recorded displacements, for the figure.
+    """
+
+    predicted: RingSoliton
+    k_asked: float
+    N: int
+    t_end: float
+    dt: float
+    method: str
+    snapshots: tuple
+    frequency: float
+    energy: np.ndarray = field(repr=False)
+    fields: np.ndarray = field(repr=False)
+
+    @property
+    def model(self) -> Model:
+        return self.predicted.nls.model
+
+    @property
+    def t(self) -> np.ndarray:
+        return np.array([s.t for s in self.snapshots])
+
+    def series(self, name: str) -> np.ndarray:
+        return np.array([getattr(s, name) for s in self.snapshots])
+
+    @property
+    def velocity(self) -> float:
+        """Least-squares slope of the unwrapped centre against time (sites per time)."""
+        return float(np.polyfit(self.t, self.series("centre"), 1)[0])
+
+    @property
+    def energy_drift(self) -> float:
+        """max |E(t) - E(0)| / |E(0)| over the records (E = 0 at rest)."""
+        return float(np.max(np.abs(self.energy - self.energy[0])) / abs(self.energy[0]))
+
+    def measured(self) -> dict:
+        """The counterparts of :meth:`RingSoliton.summary` (width, amplitude and kinks:
+        the median over the second half of the run, the settled soliton, which a ripple
+        of the launch's radiation crossing it at one record does not move), the radiation
+        and shape misfit at the end, the distance travelled in widths, the energy drift
+        and the drifts (end / start - 1) of width and amplitude."""
+        first, last = self.snapshots[0], self.snapshots[-1]
+        late = self.snapshots[len(self.snapshots) // 2:]
+        names = self.model.fields
+        out = {"velocity": self.velocity,
+               "width": float(np.median([s.width for s in late])),
+               "amplitude": float(np.median([s.amplitude for s in late])),
+               "frequency": self.frequency}
+        for i in self.predicted.kink_fields():
+            out[f"kink_{names[i]}"] = float(np.median([s.kink[i] for s in late]))
+        out.update({"radiation": last.radiation, "shape_misfit": last.shape_misfit,
+                    "travelled_widths": abs(last.centre - first.centre) / self.predicted.width,
+                    "energy_drift": self.energy_drift,
+                    "drift": {"width": last.width / first.width - 1,
+                              "amplitude": last.amplitude / first.amplitude - 1}})
+        if self.predicted.kind == "dark":
+            out["depth"] = last.depth
+        return out
+
+    def errors(self) -> dict:
+        """measured / predicted - 1 of each quantity of the prediction's summary."""
+        p = self.predicted.summary(self.model.fields)
+        m = self.measured()
+        return {key: (m[key] / p[key] - 1) if p[key] else math.nan for key in p}
+
+
+#: the narrowest soliton launched (sites): narrower, the envelope is no envelope
+MIN_LAUNCH_WIDTH = 2.0
+#: the band-pass at |q - k| < k/2 keeps the envelope's spectrum (sech(pi q w / 2)) to 1e-4
+#: of its peak where k w >= 6 (to 9% at k w = 2)
+MIN_SEPARATION = 6.0
+
+
+def _check_launch(model: Model, pred: RingSoliton):
+    """Refuse a launch the lattice cannot carry or the measurement cannot see, each with
+    its remedy."""
+    from ._reach import energy_not_real
+
+    if model.lossy and any(np.any(m != 0) for m in model.damping):
+        raise ModelError(f"model {model.describe()} has [dissipation]: its soliton decays, "
+                         "and the NLS it is measured against is lossless; give its damping "
+                         "parameters 0 with --param (flexmm soliton --model ... --param "
+                         "NAME=0) to launch the lossless one")
+    a, w = pred.soliton.amplitude, pred.width
+    why = energy_not_real(model, pred.k, a, pred.nls.carrier.branch)
+    if why is not None:
+        raise ModelError(why)
+    if w < MIN_LAUNCH_WIDTH:
+        raise ModelError(f"the {pred.kind} soliton of amplitude {a:g} is {w:.3g} sites wide "
+                         f"(< {MIN_LAUNCH_WIDTH:g}): no envelope; amplitude <= "
+                         f"{a * w / MIN_WIDTH:.3g} makes it {MIN_WIDTH:g} sites wide")
+    if pred.k * w < MIN_SEPARATION:
+        raise ModelError(f"k x width = {pred.k:.4g} x {w:.3g} = {pred.k * w:.3g} < "
+                         f"{MIN_SEPARATION:g}: the envelope's spectrum reaches the mean "
+                         "flow (q = 0), so the carrier cannot be told from it; a larger k or "
+                         f"an amplitude <= {a * pred.k * w / MIN_SEPARATION:.3g} (wider)")
+
+
+def simulate_soliton(model: Model, k: float, amplitude: float, kind: str | None = None, *,
+                     branch=None, N: int | None = None, travel: float = 20.0,
+                     t_end: float | None = None, snapshots: int = 21,
+                     method: str = "srkn11b", dt: float | None = None) -> ModelSolitonRun:
+    """Launch ``model``'s NLS soliton on a ring, integrate and track it.
+
+    Parameters
+    ----------
+    model : Model
+    k : float
+        Carrier wavenumber (rad/site), moved to the nearest :func:`ring_wavenumber`.
+    amplitude : float
+        The carrier's first-harmonic amplitude a in its field: at the peak (bright) or of
+        the background (dark).
+    kind : {"bright", "dark"}, optional
+        Default: the one the NLS has (bright where g > 0); the other is an error.
+    branch : int or str, optional
+        As :func:`numerics.models.nls`.
+    N : int, optional
+        Ring size; default :func:`default_ring` (20 widths, at least 256 sites).
+    travel : float
+        Run until the soliton has moved this many widths at v_g (unless ``t_end``).
+    snapshots : int
+        Records, t = 0 included.
+    method, dt
+        As :func:`numerics.models.simulate_model` (default dt: a fifth of the method's
+        stability limit).
+
+    Returns
+    -------
+    ModelSolitonRun
+    """
+    from ._exact import travelling_wave
+    from ._simulate import check_count, check_ring, simulate_model, snap_ring
+
+    if kind is not None and kind not in KINDS:
+        raise ModelError(f"kind must be one of {KINDS}, got {kind!r}")
+    probe = nls(model, k, branch)
+    if probe.undefined:
+        raise ModelError(f"no soliton at k = {k:.6g}: {probe.undefined}")
+    s0 = probe.soliton(amplitude)
+    N = default_ring(s0.width) if N is None else check_ring(N)
+    pred = ring_soliton(model, k, amplitude, N, kind, probe.carrier.branch)
+    _check_launch(model, pred)
+    snapshots = check_count("snapshots", snapshots, least=3)
+    if t_end is None:
+        if not (isinstance(travel, (int, float)) and math.isfinite(travel) and travel > 0):
+            raise ModelError(f"travel must be a number of widths > 0, got {travel!r}")
+        t_end = travel * pred.width / max(abs(pred.velocity), 1e-12)
+        if t_end > MAX_T_END:
+            raise ModelError(
+                f"the soliton moves at {pred.velocity:.3g} sites/time: {travel:g} widths "
+                f"take T = {t_end:.3g} (> {MAX_T_END:g}); give a shorter travel, or a larger "
+                "amplitude (its width shrinks as 1 / amplitude)")
+    if not (math.isfinite(t_end) and t_end > 0):
+        raise ModelError(f"t_end must be a finite time > 0, got {t_end!r}")
+    u, v = pred.state()
+    # the plane wave the segment runs compare with (their records are not used here)
+    wave = travelling_wave(model, snap_ring(pred.k, N)[0], amplitude, pred.nls.carrier.branch)
+    times = np.linspace(0.0, t_end, snapshots)
+    snaps, phases, fields, energy = [], [], [], []
+    centre, step = N / 2, None
+    for i, ti in enumerate(times):
+        if i:
+            run = simulate_model(model, wave.carrier.k, amplitude, N=N, t_end=ti - times[i - 1],
+                                 dt=dt, method=method, noise=0.0, records=1, wave=wave,
+                                 initial=(u, v))
+            u, v = run.state
+            step = run.dt
+            if not energy:
+                energy.append(float(run.energy[0]))
+            energy.append(float(run.energy[-1]))
+        guess = centre + (pred.velocity * (ti - times[i - 1]) if i else 0.0)
+        try:
+            snap = measure_snapshot(u, v, pred, float(ti), guess)
+        except ValueError:  # the fit's own error (a non-finite start): no soliton to fit
+            raise ModelError(f"at T = {ti:.4g} no {pred.kind} soliton is left to fit (it "
+                             "broke up or radiated away): lower the amplitude") from None
+        centre = snap.centre
+        snaps.append(snap)
+        phases.append(phasor(u, v, pred, centre, float(ti)))
+        fields.append(u.copy())
+    return ModelSolitonRun(predicted=pred, k_asked=float(k), N=N, t_end=float(t_end),
+                           dt=float(step), method=method, snapshots=tuple(snaps),
+                           frequency=frequency_of(times, phases, pred),
+                           energy=np.array(energy), fields=np.array(fields))
+
+
+def soliton_report(pred: RingSoliton, run: ModelSolitonRun | None = None) -> dict:
+    """The JSON of ``flexmm soliton --model``: kind, predicted, measured (None without a
+    run), errors, inputs and the run."""
+    model = pred.nls.model
+    out = {"model": model.name, "parameters": dict(model.params), "kind": pred.kind,
+           "k": pred.k, "branch": pred.nls.carrier.branch, "amplitude": pred.soliton.amplitude,
+           "g1": pred.nls.g1, "g2": pred.nls.g2,
+           "predicted": pred.summary(model.fields),
+           "measured": None if run is None else run.measured(),
+           "errors": None if run is None else run.errors()}
+    if run is not None:
+        out["run"] = {"N": run.N, "k_asked": run.k_asked, "k_ring": pred.k,
+                      "t_end": run.t_end, "dt": run.dt, "method": run.method,
+                      "snapshots": len(run.snapshots)}
+    return out
+
+
+__all__ = ["ring_wavenumber", "default_ring", "RingSoliton", "ring_soliton",
+           "ModelSolitonRun", "simulate_soliton", "soliton_report"]
