@@ -118,16 +118,20 @@ SHARE_PROBE_SECONDS = 0.2
 
 def cpu_share(seconds: float = SHARE_PROBE_SECONDS) -> float:
     """The share of one core a busy thread of this process gets now: CPU time over wall
-    time of a short spin, at most 1."""
+    time of a short spin, at most 1; the better of two halves (another process' burst of a
+    few time slices is not the machine's state: both halves slow means the cores are
+    shared)."""
     import time
 
-    w0, c0 = time.perf_counter(), time.process_time()
-    x = 0
-    while time.perf_counter() - w0 < seconds:
-        for i in range(2000):
-            x += i
-    wall = time.perf_counter() - w0
-    return min(1.0, max(time.process_time() - c0, 1e-3) / wall)
+    def spin(t):
+        w0, c0 = time.perf_counter(), time.process_time()
+        x = 0
+        while time.perf_counter() - w0 < t:
+            for i in range(2000):
+                x += i
+        return max(time.process_time() - c0, 1e-3) / (time.perf_counter() - w0)
+
+    return min(1.0, max(spin(seconds / 2), spin(seconds / 2)))
 
 
 def load_slowdown(workers: int) -> tuple[float, float, int]:
