@@ -285,7 +285,7 @@ def probe_model_cell(params) -> ModelCellCost:
     warmup = time.process_time() - t0
     first, row = theories()
     theory = first
-    if first < 0.5:  # a cheap cell: what the first call still loaded would dominate
+    if first < 2.0:  # what the first call still loaded (~0.5 s cold) would dominate
         theory, row = theories()
         warmup += max(first - theory, 0.0)
     run, t_end = 0.0, 0.0
