@@ -228,6 +228,10 @@ class ModelCellCost:
     probe: float
 
 
+#: CPU seconds a fresh worker process spends on its first cell of a model's map beyond the
+#: cell (imports, the model's generated module and compiled kernels): 3.0-4.0 s measured
+#: for fput and flexmm, NLS alone or with the exact theory (2-core VM, 2026-11-26)
+MODEL_WORKER_WARMUP_SECONDS = 3.5
 #: a probe run of the ring takes this many steps (~0.1 s for a two-field chain of 128
 #: sites): enough that the timer's resolution and a time slice lost to another process
 #: stay a few per cent of it
@@ -271,23 +275,28 @@ def probe_model_cell(params) -> ModelCellCost:
 
     w0 = time.perf_counter()
     rows, cols = params.grid_shape
-    values, k = params.cell(rows // 2, cols // 2)
+    # distinct cells (other parameter values cost a new model each): the middle, the
+    # corners; the first timed also loads what a cell's theories need once
+    picks = list(dict.fromkeys([(rows // 2, cols // 2), (0, 0), (rows - 1, cols - 1)]))
+    cells = [params.cell(i, j) for i, j in picks]
+    values, k = cells[0]
     model = params.lattice_model.with_params(**values)
 
-    def theories():
+    def theories(values, k):
         t0 = time.process_time()
-        row = map_cells(model, [({}, k)], params.amplitude, params.branch_value,
-                        exact=params.ring, simulate=False, N=params.N)[0]
+        row = map_cells(params.lattice_model, [(values, k)], params.amplitude,
+                        params.branch_value, exact=params.ring, simulate=False, N=params.N)[0]
         return time.process_time() - t0, row
 
     t0 = time.process_time()  # the NLS alone first: the imports a worker pays once
     map_cells(model, [({}, k)], params.amplitude, params.branch_value, N=params.N)
     warmup = time.process_time() - t0
-    first, row = theories()
-    theory = first
-    if first < 2.0:  # what the first call still loaded (~0.5 s cold) would dominate
-        theory, row = theories()
-        warmup += max(first - theory, 0.0)
+    first, row = theories(*cells[0])
+    times = [first]
+    if first < 2.0:  # cheap cells: what the first call still loaded (~0.5 s) would dominate
+        times = [theories(*c)[0] for c in cells[1:]] or [theories(*cells[0])[0]]
+        warmup += max(first - float(np.mean(times)), 0.0)
+    theory = float(np.mean(times))
     run, t_end = 0.0, 0.0
     if not params.theory_only:
         rate = row.get("peak_gain_exact", math.nan)
@@ -321,11 +330,15 @@ def estimate_model_map(params, workers: int, scheduler: str | None = None,
     cells = int(np.prod(params.grid_shape))
     theory = cells * cost.theory
     runs = 0.0 if params.theory_only else cells * params.seeds * cost.run
-    startup = (STARTUP_SECONDS["scheduler" if scheduler else "local"]
-               + WORKER_WARMUP_SECONDS + cost.warmup)
+    startup = STARTUP_SECONDS["scheduler" if scheduler else "local"]
+    # each worker's first cell, at once on every worker: its imports and compiled kernels
+    # (the client's probe has loaded some of them before, so at least what a fresh
+    # process pays)
+    warmup = max(cost.warmup, MODEL_WORKER_WARMUP_SECONDS)
     slowdown, load, cores = (1.0, float("nan"), 0) if scheduler else load_slowdown(workers)
     alone = 1.0 if scheduler else load_slowdown(1)[0]  # the client's start-up
-    total = startup * alone + (theory + runs) / workers * slowdown
+    total = startup * alone + (warmup + (theory + runs) / workers) * slowdown
+    startup += warmup
     return MapEstimate(total, startup, theory, runs, slowdown, load, cores, alone)
 
 
