@@ -228,10 +228,13 @@ class ModelCellCost:
     probe: float
 
 
-#: CPU seconds a fresh worker process spends on its first cell of a model's map beyond the
-#: cell (imports, the model's generated module and compiled kernels): 3.0-4.0 s measured
-#: for fput and flexmm, NLS alone or with the exact theory (2-core VM, 2026-11-26)
-MODEL_WORKER_WARMUP_SECONDS = 3.5
+#: CPU seconds a worker spends on its first cell of a model's map beyond the cell (imports,
+#: the model's generated module and kernels): a fresh process pays 3.0-4.0 s (fput and
+#: flexmm, NLS alone or with the exact theory; 2-core VM, 2026-11-26), a LocalCluster's
+#: worker less, having preloaded the imports while the client worked (a whole 2 x 2
+#: theory-only fput map takes 4.4-4.9 s): the middle. A simulated map's probe measures
+#: the runs' compile on top (the client has not run the ring before)
+MODEL_WORKER_WARMUP_SECONDS = 1.5
 #: a probe run of the ring takes this many steps (~0.1 s for a two-field chain of 128
 #: sites): enough that the timer's resolution and a time slice lost to another process
 #: stay a few per cent of it
