@@ -80,6 +80,7 @@ TEST_WORKERS ?= 2
 SERIAL_TESTS := tests/test_cluster_faults.py tests/test_faults.py tests/test_faults_cli.py \
 	tests/test_maps.py tests/test_tutorial.py tests/test_docs.py tests/test_models_exact.py \
 	tests/test_first_hour.py tests/test_threads.py tests/test_bench.py tests/test_gpu.py \
+	tests/test_gpu_models.py \
 	tests/test_scenes.py tests/test_figures.py tests/test_cli_help.py
 PYTEST_PARALLEL = $(VPY) -m pytest -q -n $(TEST_WORKERS) $(addprefix --ignore=,$(SERIAL_TESTS))
 PYTEST_SERIAL = $(VPY) -m pytest -q $(SERIAL_TESTS)
@@ -139,8 +140,9 @@ stress-quick: $(STAMP)
 stress-update:
 	$(MAKE) --no-print-directory stress BENCH_ARGS=--update
 
-# The GPU's cell kernel and maps against this machine's CPU cores -> bench/results_gpu.json;
-# without a GPU (or the gpu extra) one line says which is missing and nothing is written.
+# The GPU's cell kernel, every model's kernel (ps per site-evaluation) and maps against this
+# machine's CPU cores -> bench/results_gpu.json; without a GPU (or the gpu extra) one line
+# "no GPU: ..." says which is missing, nothing is written, exit 0.
 bench-gpu: $(STAMP)
 	command -v nvidia-smi >/dev/null && $(VPY) -m pip install -q -e '.[gpu]' || true
 	$(VPY) -m bench.gpu --update $(BENCH_ARGS)

@@ -1,7 +1,6 @@
 """GPU map cells against this machine's CPU cores -> bench/results_gpu.json (issue 34).
 
-Run by ``make bench-gpu`` on a machine with an NVIDIA GPU and the ``gpu`` extra. Without
-one it prints one line naming what is missing and writes nothing (exit 1).
+Run by ``make bench-gpu`` on a machine with an NVIDIA GPU and the ``gpu`` extra.
 
 Keys: ``device`` (the GPU's name), ``ps_per_site_evaluation`` (the cell kernel: wall time of
 one launch over chains x sites x force evaluations done), ``cells_per_s`` (the same launch),
@@ -9,7 +8,13 @@ one launch over chains x sites x force evaluations done), ``cells_per_s`` (the s
 through ``flexmm map --device gpu``), ``cpu_cores`` and ``map_64x64_cpu_wall_s`` (the same
 64 x 64 map through ``flexmm map`` on the CPU cores) and ``gpu_speedup`` (their ratio).
 The maps are measured, never estimated: a map the CLI cannot run on the GPU (no
-``--device`` yet) is null with the reason in ``notes``.
+``--device`` yet) is null with the reason in ``notes``. ``models``: every built-in model's
+own kernel (its generated site force, ``numerics.maps.simulate_model_cells_gpu``'s launch):
+``ps_per_site_evaluation`` and ``chains_per_s`` of one launch of MODEL_CHAINS chains (one
+cell's seeds, N = MODEL_N, T = MODEL_T, srkn11b at the model runs' step, its records'
+spectra included), or why a model has no number (a lossy model runs on the CPU).
+
+Without a GPU it prints one line starting "no GPU" and exits 0, writing nothing.
 
     python -m bench.gpu [--quick] [--out DIR | --update] [--skip-cpu-map]
 """
@@ -62,6 +67,51 @@ def kernel_rate(cells: int, N: int = 500, t_end: float = 5000.0) -> dict:
             "kernel_wall_s": wall}
 
 
+#: one launch of each model's kernel: chains (seeds of one cell), ring, run length
+MODEL_CHAINS, MODEL_N, MODEL_T = 2048, 256, 500.0
+
+
+def model_rates(chains: int = MODEL_CHAINS, N: int = MODEL_N, t_end: float = MODEL_T) -> dict:
+    """{model: {ps_per_site_evaluation, chains_per_s, ...} or {"note": why none}}: one
+    launch of ``chains`` chains of every built-in model at its default parameters, k the
+    ring mode nearest 0.3 pi, amplitude 0.05 (after a launch that compiles the kernel)."""
+    from energy import BUILTIN, ModelError, load_model
+    from numerics.lattice import get_method
+    from numerics.maps._gpu_models import DeviceChain, chain_start, launch_chains
+    from numerics.models import exact_gain_checked
+
+    evals = get_method("srkn11b").evaluations
+    out = {}
+    for name in sorted(BUILTIN):
+        model = load_model(name)
+        if model.lossy:
+            out[name] = {"note": "lossy: its runs are the CPU's damped steppers"}
+            continue
+        k = 2 * np.pi * round(0.15 * N) / N
+        try:
+            spec = exact_gain_checked(model, k, 0.05, None, N=N)
+        except ModelError as exc:
+            out[name] = {"note": f"no travelling wave at k = {k:.4g}: {exc}"}
+            continue
+
+        def chains_of(n, T, model=model, spec=spec, k=k):
+            return [DeviceChain(model, spec, T, *chain_start(model, k, 0.05, spec, N, T, s),
+                                seed=s) for s in range(n)]
+
+        launch_chains(chains_of(2, 5.0), N)  # compile
+        todo = chains_of(chains, t_end)
+        t0 = time.perf_counter()
+        res = launch_chains(todo, N)
+        wall = time.perf_counter() - t0
+        bad = int(sum(r[0] != 0 for r in res))
+        site_evals = sum(c.nsteps for c in todo) * evals * N
+        out[name] = {"ps_per_site_evaluation": wall / site_evals * 1e12,
+                     "chains_per_s": chains / wall, "wall_s": wall, "chains": chains,
+                     "N": N, "t_end": t_end, "dt": todo[0].dt, "fields": model.n_fields,
+                     "chains_left_range": bad}
+    return out
+
+
 def timed_map(n: int, device: str | None, out: Path, notes: list) -> float | None:
     cmd = [shutil.which("flexmm") or "flexmm", "map", *map_args(n), "--out", str(out)]
     if device:
@@ -88,11 +138,12 @@ def main(argv=None) -> int:
 
     ok, reason = gpu_status()
     if not ok or simulated():
-        print(f"bench.gpu: nothing measured, nothing written: {reason}")
-        return 1
+        print(f"no GPU: bench.gpu measured nothing and wrote nothing ({reason})")
+        return 0
     notes: list = []
     result = {"device": gpu_name(), "status": reason, "cpu_cores": os.cpu_count()}
     result.update(kernel_rate(512 if a.quick else 4096))
+    result["models"] = model_rates(256 if a.quick else MODEL_CHAINS)
     help_text = subprocess.run([shutil.which("flexmm") or "flexmm", "map", "--help"],
                                capture_output=True, text=True).stdout
     has_device = "--device" in help_text
@@ -120,6 +171,9 @@ def main(argv=None) -> int:
         v = result[k]
         print(f"{k:>24}: {v:.4g}" if isinstance(v, float) and math.isfinite(v) else
               f"{k:>24}: {v}")
+    for name, r in result["models"].items():
+        print(f"{name:>24}: " + (f"{r['ps_per_site_evaluation']:.4g} ps per site-evaluation"
+                                 if "note" not in r else r["note"]))
     print(f"wrote {out}")
     return 0
 

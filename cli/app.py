@@ -212,9 +212,9 @@ def _map_parser(sub, model_mode=False):
                    help="with --model: add the exact lattice theory per cell (harmonic "
                         "balance and Hill spectrum on the ring of --N sites; measured at "
                         "N = 256: 10-30 ms CPU a cell for fput, klein-gordon, sine-gordon, "
-                        "diatomic-fput, flexmm-rotation, ~0.6 s for flexmm, whose coupled "
-                        "harmonics take the dense eigenproblem: bench/README.md); the paper "
-                        "chain's maps have it already")
+                        "diatomic-fput, flexmm-rotation, ~0.2 s for flexmm, whose coupled "
+                        "harmonics take a pencil of the central ones: bench/README.md); the "
+                        "paper chain's maps have it already")
     p.add_argument("--t-end", dest="t_end", type=float, default=5000.0, help="run length, T")
     p.add_argument("--seeds", type=int, default=1, help="noise seeds per cell")
     p.add_argument("--out", default="out/map", help="folder of map.zarr")
@@ -421,11 +421,6 @@ def _dispatch(args, scenes) -> int:
                          "point.json with --out; try --model flexmm --param alpha=...)")
     if getattr(args, "model", None) is not None:
         from . import model_map, model_point, models
-
-        if getattr(args, "device", "cpu") != "cpu":
-            raise ValueError(f"--device {args.device}: a --model map runs its cells on the "
-                             "CPU, as Dask tasks (the GPU kernel is the paper chain's); "
-                             "drop --device")
 
         run = {"coefficients": models.run_coefficients, "point": model_point.run_point,
                "map": model_map.run_map, "soliton": models.run_soliton}[args.cmd]

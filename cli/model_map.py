@@ -102,6 +102,11 @@ def run_map(args) -> int:
         time_unit_s=units.seconds_per_T, length_unit_m=units.metres_per_site)
     check_output(args.out)
     log = (lambda *a: print(*a, file=sys.stderr)) if args.json else print
+    from numerics.maps import resolve_device
+
+    # before anything is written: a GPU asked where there is none is refused in one line
+    device = resolve_device(getattr(args, "device", "cpu"), params.theory_only, log,
+                            args.scheduler)
     n_workers = args.workers or (1 if args.scheduler else None)
     from numerics.maps import local_cores
 
@@ -112,7 +117,10 @@ def run_map(args) -> int:
         + (f", k = {k_fixed:g}" if k_fixed is not None else "")
         + f", amplitude {amp:g}; {'theories ' + ', '.join(params.theory_columns())}"
         + (f" and {seeds} run(s) per cell (N = {args.N}, T = "
-           + (f"{t_end:g})" if t_end is not None else "from each cell's exact rate)")
+           + (f"{t_end:g}" if t_end is not None else "from each cell's exact rate"
+              + (" and its peak time" if model.lossy else ""))
+           + ("; with losses: noise on the carrier field, until A(t) halves, T a cap)"
+              if model.lossy else ")")
            if simulated else "")
         + f" on {n_workers or local_cores()} worker(s)")
     log(f"units: {units.describe()} (the store's numbers in lattice units, the factors in "
@@ -125,7 +133,7 @@ def run_map(args) -> int:
 
     ds = run_engine(params, out, args.scheduler, args.workers,
                     log=with_wall(log, started, estimate.seconds), overwrite=args.overwrite,
-                    timeout=args.timeout)
+                    timeout=args.timeout, device=device)
     verdicts = [v for v in ds.data_vars if v.startswith("verdict_")
                 and (simulated or v != "verdict_simulated")]
     if all((ds[v].values < 0).all() for v in verdicts):
@@ -140,10 +148,13 @@ def run_map(args) -> int:
     png = out / "map.png"
     _plot_map(_as_words(ds, verdicts), png, model)
     files = [str(path), str(png)]
+    critical = _critical_rows(ds)
     if args.json:
         res = {"model": model.name, "parameters": dict(model.params), "amplitude": amp,
                "axes": {x[0]: list(map(float, x[1])), y[0]: list(map(float, y[1]))},
                "mi_share": mi, "files": files}
+        if critical:
+            res["critical_damping"] = critical
         u, _ = ModelUnits.json(units, {})
         if "k" in res["axes"]:  # the k axis, in rad/m too
             u["lattice"]["k"] = "rad/site"
@@ -162,6 +173,12 @@ def run_map(args) -> int:
         return 0
     for v, share in mi.items():
         print(f"MI share, {v.replace('verdict_', '')}: {share:.0%}")
+    for name, c in critical.items():
+        other = c["along"]
+        print(f"{name} (amplification {OBSERVABLE:g}x): " + ", ".join(
+            f"{other} {v:g}: " + ("-" if x is None else f"{x:.4g}")
+            for v, x in zip(c[other], c["value"]))
+              + ("" if all(x is not None for x in c["value"]) else f" ({c['reason']})"))
     print(f"wrote {path} and {png} (xarray: xr.open_zarr({str(path)!r}))")
     return 0
 
@@ -181,6 +198,21 @@ def _estimate(params, workers: int, scheduler, log):
     return est
 
 
+def _critical_rows(ds) -> dict:
+    """{critical_<damping>_<theory>: {"along": the other axis, its values, "value" (None
+    where none inside the axis), "reason"}} of a map over a damping axis (issue 42)."""
+    import math
+
+    out = {}
+    for name in sorted(n for n in ds.data_vars if n.startswith("critical_")):
+        var = ds[name]
+        other = var.dims[0]
+        out[name] = {"along": other, other: [float(v) for v in ds[other].values],
+                     "value": [float(v) if math.isfinite(v) else None for v in var.values],
+                     "reason": str(var.attrs.get("reason", ""))}
+    return out
+
+
 def _as_words(ds, verdicts):
     """The store's int8 verdicts as words (what the figure reads)."""
     import numpy as np
@@ -195,6 +227,11 @@ def _as_words(ds, verdicts):
 OBSERVABLE = 20.0
 
 
+#: the critical-damping curves of the other theories on a panel (its own: black)
+CRITICAL_COLOURS = {"semidiscrete": "#1a9850", "fourwave": "#5e3c99", "exact": "#b2182b",
+                    "simulated": "white"}
+
+
 def _plot_map(ds, path: Path, model):
     import matplotlib
 
@@ -206,7 +243,17 @@ def _plot_map(ds, path: Path, model):
     ydim, xdim = ds["verdict_semidiscrete"].dims
     x, y = ds[xdim].values, ds[ydim].values
 
+    critical = {str(ds[n].attrs["theory"]): ds[n] for n in ds.data_vars
+                if n.startswith("critical_")}
+    damping = next(iter(critical.values())).attrs["damping_axis"] if critical else None
+    # a damping axis over a decade or more: drawn in log scale (where MI hides, issue 42)
+    logs = {d for d, v in ((xdim, x), (ydim, y)) if d == damping and v.size > 1
+            and v.min() > 0 and v.max() >= 10 * v.min()}
+
     def edges(v, dim):
+        if dim in logs:
+            mid = np.sqrt(v[1:] * v[:-1]) if v.size > 1 else v
+            return np.concatenate([[v[0] ** 2 / mid[0]], mid, [v[-1] ** 2 / mid[-1]]])
         if v.size == 1:
             e = np.array([v[0] - 0.5, v[0] + 0.5])
         else:
@@ -224,8 +271,14 @@ def _plot_map(ds, path: Path, model):
     code = {**code, "no growth within T": 0, "undetermined": 2}
     fig, axes = plt.subplots(1, len(panels), figsize=(6 * len(panels), 4.5), squeeze=False)
     fixed = ", ".join(f"{p} = {v:g}" for p, v in model.params.items() if p not in (xdim, ydim))
+    runs_amplified = "observable_simulated" in ds  # a lossy model's runs (issue 42)
     for ax, (name, label) in zip(axes[0], panels):
         V = np.vectorize(lambda s: code.get(s, 2))(ds[name].values)
+        if name == "verdict_simulated" and runs_amplified:
+            # runs that stop once A(t) has halved: their rate rule reads the decay, so the
+            # panel shows what they measure, whether the sidebands grew 20x (-1: no run)
+            V = np.choose(np.asarray(ds["observable_simulated"].values, int) + 1, [2, 0, 1])
+            label = f"simulated with losses (orange: grew {OBSERVABLE:g}x)"
         ax.pcolormesh(edges(x, xdim), edges(y, ydim), V,
                       cmap=ListedColormap(["#3b4cc0", "#f2a134", "#bbbbbb"]),
                       vmin=-0.5, vmax=2.5, shading="flat")
@@ -235,13 +288,30 @@ def _plot_map(ds, path: Path, model):
             X, Y = np.meshgrid(x, y)
             seen = np.asarray(ds[amp].values, float) >= OBSERVABLE
             ax.scatter(X[seen], Y[seen], marker="x", color="black", s=30)
+        own = name.replace("verdict_", "")
+        for theory, crit in critical.items():  # the critical damping per value of the other
+            other = crit.dims[0]
+            vals = ds[other].values
+            xs, ys = (vals, crit.values) if other == xdim else (crit.values, vals)
+            mine = theory == own
+            ax.plot(xs, ys, "-o" if mine else "--", lw=2 if mine else 1,
+                    color="black" if mine else CRITICAL_COLOURS.get(theory, "0.3"),
+                    ms=3 if mine else 0, label=f"critical {damping}, {theory}"
+                    + (" (this panel)" if mine else ""))
+        if critical:
+            ax.legend(fontsize=6, loc="best")
+        for d, setter in ((xdim, ax.set_xscale), (ydim, ax.set_yscale)):
+            if d in logs:
+                setter("log")
         ax.set_xlabel(xdim + (" (rad/site)" if xdim == "k" else ""))
         ax.set_ylabel(ydim + (" (rad/site)" if ydim == "k" else ""))
         ax.set_title(f"{model.name}" + (f" ({fixed})" if fixed else "")  # all swept: none
                      + f", a = {ds.attrs['amplitude']:g}: {label}\n"
                      "orange MI, blue stable, grey undefined"
                      + (f"; x: amplification >= {OBSERVABLE:g}x (observable with losses)"
-                        if marked else ""), fontsize=9)
+                        if marked else "")
+                     + (f"\nline: critical {damping}, amplification {OBSERVABLE:g}x"
+                        if critical else ""), fontsize=9)
     fig.tight_layout()
     fig.savefig(path, dpi=120)
     plt.close(fig)

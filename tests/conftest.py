@@ -26,6 +26,24 @@ def green():
     return Material.paper("green")
 
 
+@pytest.fixture(scope="session")
+def fput_lossy():
+    """The text of a lossy FPUT model file (issue 42): the FPUT chain (quartic bonds, beta)
+    with viscous damping of each site, R = gamma u_t^2 / 2 (the carrier decays at
+    gamma / 2 on every k)."""
+    return """name = "fput-lossy"
+fields = ["u"]
+[parameters]
+beta = 1.0
+gamma = 0.01
+[energy]
+kinetic = "u_t**2/2"
+bond = "(u_next - u)**2/2 + beta*(u_next - u)**4/4"
+[dissipation]
+site = "gamma*u_t**2/2"
+"""
+
+
 @pytest.fixture
 def rng():
     """A fresh, seeded generator per test (tests never share random state)."""

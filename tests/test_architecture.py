@@ -169,6 +169,8 @@ BENCH_EXCEPTIONS = {
                                  "(stencil, the libm variant, the vectorised loops)",
     "numerics.maps._cells": "bench/gpu.py takes a map's step (map_step) as a map does",
     "numerics.maps._gpu": "bench/gpu.py reports the device's name and whether it simulates",
+    "numerics.maps._gpu_models": "bench/gpu.py times one launch of each model's kernel (its "
+                                 "chains started as a map's are)",
 }
 
 
@@ -336,3 +338,58 @@ def test_one_map_engine():
              "attrs", "identity", "other_map")
     for cls in (MapParameters, ModelMapParameters):
         assert all(hasattr(cls, a) for a in asked), cls
+
+
+# --- one stepper ------------------------------------------------------------------------------
+
+def _compiled_functions(path: Path):
+    """The functions of a file that Numba compiles by decorator (njit or jit, in any
+    spelling: ``@njit``, ``@numba.njit(...)``; nested ones too)."""
+    tree = ast.parse(path.read_text(), str(path))
+    jit = {"njit", "jit"}
+
+    def is_jit(node):
+        f = node.func if isinstance(node, ast.Call) else node
+        return (isinstance(f, ast.Name) and f.id in jit) or (
+            isinstance(f, ast.Attribute) and f.attr in jit)
+
+    for node in ast.walk(tree):
+        if isinstance(node, ast.FunctionDef) and any(is_jit(d) for d in node.decorator_list):
+            yield node
+
+
+def test_one_stepper():
+    """Every model's run steps in numerics.lattice (``ForceStepper``: the one SRKN and RK4
+    implementation for a compiled force): no compiled function in numerics/models takes a
+    time step or a number of steps, and the integrators' coefficients are written once,
+    in numerics/lattice/_integrators.py."""
+    from numerics.lattice import METHODS, get_method
+
+    # not a lattice: the damped NLS's sideband pair propagated exactly over piecewise-
+    # constant coefficients (cosh/sinh of each interval; a theory, no force, no state)
+    theory = {("_losses.py", "pairs")}
+    for path in sorted((ROOT / "numerics" / "models").rglob("*.py")):
+        for fn in _compiled_functions(path):
+            if (path.name, fn.name) in theory:
+                continue
+            args = {a.arg for a in fn.args.args}
+            assert not args & {"dt", "h", "nsteps", "steps"}, (
+                f"{path.name}: {fn.name}({', '.join(sorted(args))}) is a stepping loop: "
+                "steps live in numerics.lattice (ForceStepper)")
+    tree = ast.parse((ROOT / "numerics" / "models" / "_simulate.py").read_text())
+    imported = {a.name for node in ast.walk(tree) if isinstance(node, ast.ImportFrom)
+                and node.module == "numerics.lattice" for a in node.names}
+    assert "ForceStepper" in imported
+    # every SRKN coefficient other than 0, 1/2 and 1 appears in one file of the project
+    coefficients = {float(c) for m in METHODS for c in get_method(m).a + get_method(m).b
+                    if float(c) not in (0.0, 0.5, 1.0)}
+    shown = {c: f"{c!r}"[:12] for c in coefficients}  # 10 digits: no accidental match
+    owners = {}
+    for pkg in PROJECT:
+        for path in (ROOT / pkg).rglob("*.py"):
+            text = path.read_text()
+            for c, s in shown.items():
+                if s.lstrip("-") in text:
+                    owners.setdefault(c, set()).add(path.relative_to(ROOT).as_posix())
+    literal = {p for files in owners.values() for p in files}
+    assert literal == {"numerics/lattice/_integrators.py"}, sorted(literal)

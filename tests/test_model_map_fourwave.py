@@ -64,26 +64,14 @@ def test_a_store_without_the_four_wave_columns_is_refused(tmp_path, capsys):
         assert np.isfinite(ds["peak_gain_fourwave"].values).all()
 
 
-LOSSY = """name = "lossy-chain"
-fields = ["u"]
-[parameters]
-beta = 1.0
-gamma = 0.01
-[energy]
-kinetic = "u_t**2/2"
-bond = "(u_next - u)**2/2 + beta*(u_next - u)**4/4"
-[dissipation]
-site = "gamma*u_t**2/2"
-"""
-
-
-def test_a_lossy_map_stores_each_theory_s_amplification(tmp_path, capsys, monkeypatch):
+def test_a_lossy_map_stores_each_theory_s_amplification(tmp_path, capsys, monkeypatch,
+                                                       fput_lossy):
     """Issue 42 item 5: a map over a damping parameter and k of a lossy model stores
     amplification_<theory> per cell, and the figure marks the observable cells (>= 20x)."""
     from numerics.models import exact_amplification, four_wave_amplification, nls_amplification
 
     path = tmp_path / "chain.toml"
-    path.write_text(LOSSY)
+    path.write_text(fput_lossy)
     marks = []
 
     def savefig(fig, *a, **kw):

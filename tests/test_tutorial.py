@@ -20,3 +20,5 @@ def test_tutorial_notebook_executes(tmp_path):
     # a run's words are the run words (MI, no growth within T, undetermined), not "unstable"
     assert "exact lattice:     MI" in outputs and "simulation:        MI (measured" in outputs
     assert "unstable" not in outputs
+    # the paper's chain with losses: its cell asserts where the 20x is crossed
+    assert "critical gamma (20x): four-wave" in outputs

@@ -11,7 +11,16 @@ Runs          simulate -> Run, resume, initial_condition, noise_field, snap_wave
               cached_simulate, SIMULATOR_VERSION, source_hash
 Stepping      integrate, METHODS, Method, get_method, choose_step (dominant_frequency,
               ERROR_CONSTANTS, STABILITY_MARGIN), Stepper (a run's work arrays, advanced
-              chunk by chunk: map cells stop it early), check_time, blowup_message
+              chunk by chunk: map cells stop it early), check_time, blowup_message;
+              ForceStepper: the same methods for any lattice with a compiled force (every
+              model's run), with a linear damping (linear_damping, and its exact flows
+              local_flow, band_flow for the Strang splitting); deferred_interrupt,
+              steps_per_call: the run control's Ctrl-C between compiled calls of bounded
+              work, for any lattice's runs
+Fast forces   register_fast_force, fast_force, fast_forces, FastForce: a kernel that runs
+              instead of a model's generated force where the energy is the one it
+              implements (by content hash); flexmm_force, flexmm_rotation_force (FLEXMM_ROWS):
+              the fused kernel of eq. `norm` as such a force
 Kernel        FASTMATH, sincos_vers, site_acceleration: the site formula, for the torus;
               accel (a whole chain's force), numpy_accel, numpy_rk4 (the NumPy baseline
               the bench compares against)
@@ -40,11 +49,15 @@ from ._analysis import (GROWTH_THRESHOLD, U_REFERENCE, band_summary, carrier_amp
 from ._cache import cached_simulate
 from ._integrate import (BlowUpError, SimulationInterrupted, Stepper, blowup_message,
                          check_time, integrate)
+from ._fast_forces import (FLEXMM_ROWS, FastForce, fast_force, fast_forces, flexmm_force,
+                           flexmm_rotation_force, register_fast_force)
+from ._force_steppers import ForceStepper, band_flow, linear_damping, local_flow
 from ._integrators import METHODS, Method, get_method
 from ._baseline import numpy_accel, numpy_rk4
 from ._kernels import FASTMATH, TRIG_LIMIT, accel, sincos_vers, site_acceleration
 from ._model import (CASES, LatticeState, Material, check_case, discrete_omega_longitudinal,
                      discrete_omega_rotation, energy)
+from ._runcontrol import deferred_interrupt, steps_per_call
 from ._simulate import (RUN_REL_TOL, Run, initial_condition, noise_field, resume, simulate,
                         snap_wavenumber)
 from ._starts import STARTS, check_start, paper_start_undefined, register_start
@@ -60,7 +73,15 @@ def cuda_kernels():
     return _cuda
 
 
-__all__ = ["cuda_kernels", "TRIG_LIMIT", 
+def cuda_model_kernels():
+    """The CUDA kernel of any model's chains (``_cuda_models``: its generated site force
+    compiled for the device), imported on first use as :func:`cuda_kernels`."""
+    from . import _cuda_models
+
+    return _cuda_models
+
+
+__all__ = ["cuda_kernels", "cuda_model_kernels", "TRIG_LIMIT", 
     "Material", "LatticeState", "energy", "CASES", "discrete_omega_rotation",
     "discrete_omega_longitudinal", "simulate", "Run", "resume", "initial_condition",
     "snap_wavenumber", "STARTS", "register_start", "paper_start_undefined", "cached_simulate",
@@ -77,4 +98,10 @@ __all__ = ["cuda_kernels", "TRIG_LIMIT",
     "site_acceleration", "accel", "numpy_accel", "numpy_rk4", "U_REFERENCE",
     "shortest_run", "shortest_run_error", "RUN_REL_TOL", "VERDICT_WORDS", "Verdict",
     "simulated_verdict", "RunLength", "run_length", "T_CAP", "DECIDE_E_FOLDINGS",
+    # any lattice with a compiled force (numerics.models): the one SRKN / RK4 stepper
+    "ForceStepper", "local_flow", "band_flow", "linear_damping", "deferred_interrupt",
+    "steps_per_call",
+    # fast forces a model's run uses where its energy is the one they implement
+    "register_fast_force", "fast_force", "fast_forces", "FastForce", "flexmm_force",
+    "flexmm_rotation_force", "FLEXMM_ROWS",
 ]

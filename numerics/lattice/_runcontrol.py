@@ -56,6 +56,12 @@ def _steps_per_call(N, method, per_save):
     return max(1, min(per_save, int(_WORK_PER_CALL / (N * method.evaluations))))
 
 
+#: public names for any lattice's runs (numerics.models): Ctrl-C deferred to the end of a
+#: compiled call, and the steps of one call
+deferred_interrupt = _deferred_interrupt
+steps_per_call = _steps_per_call
+
+
 def _progress(total, enabled):
     try:
         from tqdm.auto import tqdm

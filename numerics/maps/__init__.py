@@ -17,13 +17,17 @@ Maps by sim.     MapParameters (what defines a map; ModelMapParameters: a lattic
 Their parts      cell_records, predict_cell, GROWTH_TOL, GROWTH_ERROR_CONSTANTS (a cell's
                  step accuracy), tri_state (gains -> verdicts), store_lock (one writer),
                  cells_done (what a store holds)
+With losses      critical_damping (where an amplification falls below 20x along a damping
+                 axis: a lossy model map's critical_<damping>_<theory>), damping_parameters
 Run time         estimate_map -> MapEstimate (start-up + cells at this machine's measured
                  speed, machine_speed, cached), slowed by the load average;
                  estimate_model_map (a model's map: one cell measured here,
                  probe_model_cell -> ModelCellCost); estimate_model_point (a model's
                  point after its exact theory -> PointEstimate)
 On a GPU         gpu_status (is there one, or what is missing), simulate_cells_gpu
-                 (simulate_cell for many cells in one launch), simulate_map_cells_gpu
+                 (simulate_cell for many cells in one launch), simulate_map_cells_gpu;
+                 simulate_model_cells_gpu (any model's cells, its generated force on the
+                 GPU); DEVICE_PATHS, register_device_path (each map kind's GPU path)
 """
 
 from ..theory import resonance_map  # the exact-map engine lives with the theory
@@ -42,7 +46,8 @@ from ._cells import (
                      simulate_cell,
 )
 from ._columns import theory_columns, tri_state
-from ._devices import DEVICES, resolve_device
+from ._critical import critical_damping, damping_parameters
+from ._devices import DEVICE_PATHS, DEVICES, register_device_path, resolve_device
 from ._estimate import (
                      MapEstimate,
                      ModelCellCost,
@@ -54,6 +59,7 @@ from ._estimate import (
                      probe_model_cell,
 )
 from ._gpu import gpu_status, simulate_cells_gpu, simulate_map_cells_gpu
+from ._gpu_models import simulate_model_cells_gpu
 from ._integrity import store_lock
 from ._model_params import MODE_KIND_CODES, VERDICT_CODES, ModelMapParameters, model_text
 from ._params import CRITERION, MapParameters, local_cores, parse_spec
@@ -83,5 +89,6 @@ __all__ = [
     "simulate_block", "CRITERION", "MapCellError", "local_cores", "MapEstimate",
     "estimate_map", "machine_speed", "ModelCellCost", "probe_model_cell", "estimate_model_map",
     "PointEstimate", "estimate_model_point",
-    "gpu_status", "simulate_cells_gpu", "simulate_map_cells_gpu",
+    "gpu_status", "simulate_cells_gpu", "simulate_map_cells_gpu", "simulate_model_cells_gpu",
+    "DEVICE_PATHS", "register_device_path", "critical_damping", "damping_parameters",
 ]

@@ -62,15 +62,68 @@ def device_attrs(device: str, scheduler: str | None) -> dict:
 GPU_BATCH_CELLS = 4096
 
 
-def run_gpu(params, path, todo, n_todo, progress, log, arrays):
-    """The GPU path of run_map: blocks in batches of about GPU_BATCH_CELLS cells; each
-    batch's theories on the CPU, its simulations in one launch, then each block written
-    (checksummed) as a worker's would be: an interrupted map keeps every batch written."""
-    from tqdm.auto import tqdm
-
+def _paper_rows(params, batch: list, log=print) -> list:
+    """The paper chain's blocks on the GPU: its theories on this CPU (``predict_block``),
+    its cells in one launch of the fused flexMM kernel (``simulate_map_cells_gpu``)."""
     from ._blocks import predict_block, simulated_row
     from ._gpu import simulate_map_cells_gpu
 
+    predicted = [predict_block(params, i, js) for i, js in batch]
+    sims = simulate_map_cells_gpu(params, [(i, j) for i, js in batch for j in js])
+    out = []
+    for (i, js), (rows, preds) in zip(batch, predicted):
+        for j, row, pred in zip(js, rows, preds):
+            row.update(simulated_row(sims[(i, j, "runs")], pred))
+        out.append((i, list(js), rows))
+    return out
+
+
+def _model_rows(params, batch: list, log=print) -> list:
+    """Any model's blocks on the GPU: its own kernel (the generated site force)."""
+    from ._gpu_models import model_rows_gpu
+
+    return model_rows_gpu(params, batch, log)
+
+
+#: the GPU path of each kind of map: rows(params, [(i, js), ...], log) -> [(i, js, rows)],
+#: the blocks' store rows with their theories and simulated columns. The paper flags' map
+#: (MapParameters) runs today's fused flexMM kernel; a model's map (ModelMapParameters,
+#: the paper chain's models included) its generated force's kernel
+DEVICE_PATHS: dict = {}
+
+
+def register_device_path(params_type: type, rows) -> None:
+    """Register ``rows`` as the GPU path of the maps of ``params_type`` (see DEVICE_PATHS)."""
+    DEVICE_PATHS[params_type] = rows
+
+
+def device_path(params):
+    """The GPU path of ``params``' map (``DEVICE_PATHS``), or ValueError in one line."""
+    for kind in type(params).__mro__:
+        if kind in DEVICE_PATHS:
+            return DEVICE_PATHS[kind]
+    raise ValueError(f"--device gpu: no GPU path for a map of {type(params).__name__}")
+
+
+def _register_builtin() -> None:
+    from ._model_params import ModelMapParameters
+    from ._params import MapParameters
+
+    register_device_path(MapParameters, _paper_rows)
+    register_device_path(ModelMapParameters, _model_rows)
+
+
+_register_builtin()
+
+
+def run_gpu(params, path, todo, n_todo, progress, log, arrays):
+    """The GPU path of run_map: blocks in batches of about GPU_BATCH_CELLS cells; each
+    batch's theories on the CPU, its simulations in one launch (the map's registered
+    ``device_path``), then each block written (checksummed) as a worker's would be: an
+    interrupted map keeps every batch written."""
+    from tqdm.auto import tqdm
+
+    rows_of = device_path(params)
     writer = _CellWriter(path)
     report = progress if callable(progress) else None  # as run_map's CPU path
     bar = tqdm(total=n_todo, unit="cell", desc="map (GPU)",
@@ -82,13 +135,8 @@ def run_gpu(params, path, todo, n_todo, progress, log, arrays):
             batch.append(block)
             if sum(len(js) for _, js in batch) < GPU_BATCH_CELLS and n + 1 < len(todo):
                 continue
-            predicted = [predict_block(params, i, js) for i, js in batch]
-            cells = [(i, j) for i, js in batch for j in js]
-            sims = simulate_map_cells_gpu(params, cells)
-            for (i, js), (rows, preds) in zip(batch, predicted):
-                for j, row, pred in zip(js, rows, preds):
-                    row.update(simulated_row(sims[(i, j, "runs")], pred))
-                _write_block(path, params, {"i": i, "js": list(js), "rows": rows,
+            for i, js, rows in rows_of(params, batch, log):
+                _write_block(path, params, {"i": i, "js": js, "rows": rows,
                                             "simulated": True}, arrays, writer)
                 bar.update(len(js))
                 if report is not None:

@@ -227,6 +227,12 @@ class ModelMapParameters:
         lossy model (``[dissipation]``, issue 42), none for a lossless one."""
         return self.theory_columns() if self.lattice_model.lossy else ()
 
+    def simulated_columns(self) -> tuple:
+        """The variables a simulated block writes (with ``done``): a lossy model's runs add
+        their amplification (``numerics.models.lossy_runs``)."""
+        return SIMULATED_COLUMNS + (LOSSY_SIMULATED_COLUMNS if self.lattice_model.lossy
+                                    else ())
+
     def flag_columns(self) -> dict:
         theory = ["g1", "g2", "k_simulated"] + [f"{kind}_{name}" for name in
                                                 self.theory_columns()
@@ -234,7 +240,53 @@ class ModelMapParameters:
         if "fourwave" in self.theory_columns():
             theory.append("mode_kind_fourwave")
         theory += [f"amplification_{name}" for name in self.amplified()]
-        return {"done": SIMULATED_COLUMNS, "done_predicted": tuple(sorted(theory))}
+        return {"done": self.simulated_columns(), "done_predicted": tuple(sorted(theory))}
+
+    def damping_axis(self) -> str | None:
+        """The map's damping axis: the rows' parameter where the model's [dissipation] uses
+        it, else the columns' (``_critical.damping_parameters``); None without one."""
+        from ._critical import damping_parameters
+
+        used = damping_parameters(self.lattice_model.lattice)
+        return next((a for a in self.dims if a in used), None)
+
+    def derived_variables(self, arrays: dict) -> dict:
+        """Variables computed from the finished cells (``run_map`` writes them after the
+        tasks): over a damping axis, ``critical_<damping>_<theory>`` per value of the other
+        axis, for each theory's amplification and, where cells were simulated, the runs'
+        (``critical_<damping>_simulated``): the damping where the amplification falls
+        below 20x (``_critical.critical_damping``), nan where it does not cross inside the
+        axis (the variable's ``reason`` attribute says why, per value)."""
+        from ._critical import THRESHOLD, critical_damping
+
+        axis = self.damping_axis()
+        if axis is None or not self.amplified():
+            return {}
+        along = self.dims.index(axis)
+        other = self.dims[1 - along]
+        damping, values = self.axis_values()[along], self.axis_values()[1 - along]
+        theories = list(self.amplified())
+        if "amplification_simulated" in arrays and np.any(arrays["done"]):
+            theories.append("simulated")
+        out = {}
+        for theory in theories:
+            amp = np.asarray(arrays[f"amplification_{theory}"], float)
+            done = np.asarray(arrays["done" if theory == "simulated" else "done_predicted"],
+                              bool)
+            amp = np.where(done, amp, np.nan)
+            crit, why = critical_damping(damping, amp if along == 0 else amp.T, THRESHOLD,
+                                         axis)
+            reason = "; ".join(f"{other} = {v:g}: {w}" for v, w in zip(values, why) if w)
+            out[f"critical_{axis}_{theory}"] = ((other,), crit, {
+                "long_name": f"critical {axis}: where the {theory} amplification falls below "
+                             f"{THRESHOLD:g}x for good along the {axis} axis (the sidebands "
+                             "are not observable above it)",
+                "damping_axis": axis, "theory": theory, "threshold": THRESHOLD,
+                "interpolation": "between the two cells that bracket the crossing: "
+                                 "ln(ln A) linear in ln of the damping (ln A where the "
+                                 "next cell is <= 1); no extrapolation",
+                "reason": reason or "every value crosses inside the axis"})
+        return out
 
     @property
     def task(self):
@@ -275,6 +327,8 @@ class ModelMapParameters:
                    theories=" ".join(self.theory_columns()))
         if self.amplified():  # a lossy model's store only (a lossless store's identity kept)
             out["amplification"] = " ".join(self.amplified())
+            if self.ring:  # the runs' columns (a theory-only --exact store has them empty)
+                out["amplification_runs"] = " ".join(LOSSY_SIMULATED_COLUMNS)
         out.update({f"param_{n}": v for n, v in self.parameters
                     if n not in (self.rows[0], self.cols[0])})
         # netCDF-safe (a user's to_netcdf of the opened store): no bools, no lists of text
@@ -314,9 +368,13 @@ class ModelMapParameters:
                     f"against {' '.join(self.theory_columns())}; a --theory-only map without "
                     "--exact has no exact columns to continue, a store made before the "
                     "four-wave columns none of those)")
-        if attrs.get("amplification", "") != " ".join(self.amplified()):
+        mine = self.attrs()
+        if any(attrs.get(n, "") != mine.get(n, "") for n in ("amplification",
+                                                            "amplification_runs")):
             return (f"a map of lossy model {name!r} made before its amplification columns "
-                    f"(amplification_<theory> of {' '.join(self.amplified())})")
+                    f"(amplification_<theory> of {' '.join(self.amplified())}"
+                    + (", and the runs' amplification_simulated" if self.ring else "")
+                    + ")")
         for unit in ("time_unit_s", "length_unit_m"):
             mine = getattr(self, unit)
             if mine is not None and attrs.get(unit) != mine:
@@ -335,8 +393,10 @@ class ModelMapParameters:
         dims = self.dims
         data = {}
         flags = self.flag_columns()
-        for name in (*flags["done_predicted"], *SIMULATED_COLUMNS):
-            if name == "mode_kind_fourwave":
+        for name in (*flags["done_predicted"], *flags["done"]):
+            if name == "observable_simulated":
+                data[name] = (dims, np.full(shape, -1, np.int8), dict(OBSERVABLE_ATTRS))
+            elif name == "mode_kind_fourwave":
                 data[name] = (dims, np.full(shape, MODE_KIND_CODES["undefined"], np.int8),
                               dict(MODE_KIND_ATTRS))
             elif name.startswith("verdict_"):
@@ -361,6 +421,13 @@ class ModelMapParameters:
 #: the variables a simulated block writes (with ``done``)
 SIMULATED_COLUMNS = ("verdict_simulated", "peak_gain_simulated", "growth", "growth_q",
                      "t_simulated")
+#: and a lossy model's runs (issue 42: launched as a point's, until A(t) halves)
+LOSSY_SIMULATED_COLUMNS = ("amplification_simulated", "amplification_time_simulated",
+                           "observable_simulated")
+#: the runs' observable flag: int8, -1 where no run (not simulated, or no travelling wave)
+OBSERVABLE_ATTRS = {
+    "long_name": f"the median seed's sidebands grew {GROWTH_THRESHOLD:g}x (issue 42)",
+    "flag_values": [-1, 0, 1], "flag_meanings": "no_run no yes"}
 _GAIN = {"units": "1/T (lattice time)"}
 VARIABLE_ATTRS = {
     "peak_gain_semidiscrete": {"long_name": "semi-discrete NLS peak growth rate", **_GAIN},
@@ -382,6 +449,13 @@ VARIABLE_ATTRS = {
         "bound": "upper: a faster rate would have grown past growth_threshold within "
                  "t_simulated; NaN where undetermined (grew, less than the threshold) or "
                  "undefined"},
+    "amplification_simulated": {
+        "long_name": "the median seed's max_t A(t) / A(0), A the largest ring mode that is "
+                     "not a carrier harmonic (the exact lossless wave launched with noise on "
+                     "the carrier field's positions, run until A(t) halves or its cap)",
+        "observable_from": GROWTH_THRESHOLD, "units": "1"},
+    "amplification_time_simulated": {"long_name": "when that seed's A(t) peaked",
+                                     "units": "T (lattice time)"},
     "g1": {"long_name": "d^2 omega/dk^2"},
     "g2": {"long_name": "NLS nonlinear coefficient (mean flow included)"},
     "k_simulated": {"long_name": "k snapped to 2 pi m / N where the ring is used",
@@ -404,12 +478,14 @@ def model_block(params: ModelMapParameters, i: int, js: list, simulate: bool = T
     rows = map_cells(params.lattice_model, [params.cell(i, j) for j in js], params.amplitude,
                      params.branch_value, exact=params.ring, simulate=simulate, N=params.N,
                      seeds=params.seeds, t_end=params.t_end)
-    keep = set(params.flag_columns()["done_predicted"]) | (
-        set(SIMULATED_COLUMNS) if simulate else set())
+    flags = params.flag_columns()
+    keep = set(flags["done_predicted"]) | (set(flags["done"]) if simulate else set())
     out = []
     for row in rows:
         out.append({n: (np.int8(VERDICT_CODES[v]) if n.startswith("verdict_") else
                         np.int8(MODE_KIND_CODES[v]) if n == "mode_kind_fourwave" else
+                        np.int8(-1 if not v == v else int(v)) if n == "observable_simulated"
+                        else
                         float(v) if v is not None else math.nan)
                     for n, v in row.items() if n in keep})
     return {"i": i, "js": list(js), "rows": out, "simulated": simulate}

@@ -171,9 +171,9 @@ def _open(path: Path, params: MapParameters, overwrite: bool = False, log=print)
     chunks each), and the checksums' verification has read every variable already."""
     import xarray as xr
 
-    def values(ds, raw=None):
-        return {n: (ds[n].values if raw is None else np.asarray(raw[n], ds[n].dtype))
-                for n in ds.data_vars}
+    def values(ds, raw=None):  # a derived variable (not a cell's) is read from the store
+        return {n: (ds[n].values if raw is None or n not in raw else
+                    np.asarray(raw[n], ds[n].dtype)) for n in ds.data_vars}
 
     # --overwrite replaces another map or an unreadable store; this map's store is resumed
     what, detail = _inspect(path, params) if path.exists() else ("none", None)
@@ -381,6 +381,16 @@ def run_map(params: MapParameters, out: Path, scheduler: str | None = None,
                        log, arrays, timeout)
         import zarr
 
+        derived = getattr(params, "derived_variables", lambda arrays: {})(arrays)
+        if derived:  # computed from the finished cells (a model map's critical damping)
+            import xarray as xr
+
+            group = zarr.open_group(str(path), mode="r", use_consolidated=False)
+            kept = dict(group.attrs)  # an xarray append puts the dataset's own attributes
+            xr.Dataset(derived).to_zarr(path, mode="a", zarr_format=2, consolidated=False)
+            zarr.open_group(str(path), mode="r+", use_consolidated=False).attrs.put(kept)
+            arrays.update({n: np.asarray(v[1]) for n, v in derived.items()})
+            ds = ds.assign({n: (v[0], np.asarray(v[1]), v[2]) for n, v in derived.items()})
         if todo and not params.theory_only:  # who simulated (the last run's cells)
             from ._devices import device_attrs
 

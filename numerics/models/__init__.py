@@ -17,11 +17,15 @@ simulate_model -> ModelRun              a ring of the model; .growth() -> Growth
 simulate_soliton -> ModelSolitonRun     its NLS soliton launched on a ring and tracked
                                         (ring_soliton: the prediction on that ring)
 lattice_force, lattice_energy           the compiled force and the model's energy
+run_force, energy_hash, FORCES          the force a run steps with: a registered fast force
+                                        (the fused flexMM kernel) where the energy is the
+                                        one it implements, else the generated one
 model_map                               MI map over two parameters, or a parameter and k
 map_cells                               the columns of a block of map cells (a run_map task)
 nls_amplification, four_wave_amplification, exact_amplification
                                         with [dissipation]: each theory's sidebands'
                                         amplification along the decaying carrier
+lossy_runs                              a lossy cell's runs and their amplification
 """
 
 from ._exact import (
@@ -32,6 +36,7 @@ from ._exact import (
                      ring_offsets,
                      travelling_wave,
 )
+from ._forces import FORCES, energy_hash, run_force
 from ._fourwave import FourWave, four_wave, pair_rates
 from ._linear import (
                      Carrier,
@@ -50,7 +55,7 @@ from ._losses import (
                      four_wave_amplification,
                      nls_amplification,
 )
-from ._map import map_cells, model_map, simulated_cell
+from ._map import lossy_runs, map_cells, model_map, simulated_cell
 from ._modes import classify_mode, ring_misses
 from ._nls import ModelNLS, ModelSoliton, acoustic_directions, nls
 from ._reach import amplitude_reach, energy_not_real, exact_gain_checked
@@ -86,4 +91,5 @@ __all__ = ["Carrier", "carrier", "branches", "branch_index", "check_rest_stable"
            "SeededRuns", "ModelRun", "Growth", "measure_growth", "check_ring", "compiled_force",
            "lattice_force", "lattice_energy", "snap_ring", "Amplified", "nls_amplification",
            "four_wave_amplification", "exact_amplification", "simulate_soliton",
-           "ModelSolitonRun", "RingSoliton", "ring_soliton", "soliton_report"]
+           "ModelSolitonRun", "RingSoliton", "ring_soliton", "soliton_report", "lossy_runs",
+           "FORCES", "energy_hash", "run_force"]

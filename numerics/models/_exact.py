@@ -44,7 +44,10 @@ each cluster of discs that can hold a growing mode centred at l = -1, 0, 1 is so
 Newton on its Schur complement, and the modes found are kept by the same weights as the
 dense eigenproblem's (argmax at |l| <= 1, < 1e-6 in the outer three harmonics). Where a
 cluster is too large (strong coupling, or a flat branch: flexmm), or Newton does not
-settle, that offset's dense eigenproblem at the same P. The fastest mode is computed again
+settle, the central harmonics' pencil at |l| <= P - 4 with the outer ones folded in, its
+growing eigenvalues refined by Newton at P, fastest first (``_strong``: flexmm's offsets
+at ~1/4 of the dense eigenproblem's cost); where that does not settle either, that
+offset's dense eigenproblem at the same P. The fastest mode is computed again
 at P + PERSIST_STEP (the truncation persistence rule of CONVENTIONS.md;
 ``HillSpectrum.truncations`` names both); where it moves by more than 1e-6 relative, the
 whole spectrum is the dense one at H + 4. tests/test_exact_gain_anchors.py holds the
@@ -515,37 +518,55 @@ class _Sidebands:
 
     def spectrum(self, offsets) -> HillSpectrum:
         from ._sidebands import sideband_modes
+        from ._strong import CENTRAL_MARGIN, strong_modes
 
         wave, P = self.wave, self.P
         offsets = np.atleast_1d(np.asarray(offsets, dtype=float))
-        d = wave.model.n_fields
-        k = wave.k
-        l_ = np.arange(-P, P + 1)
-        lam, vec, count = sideband_modes(self.Hh, self.masses, k, wave.omega, P, offsets,
-                                         self.floor, MAX_MODES, MAX_CLUSTER)
         gains = np.zeros(offsets.size)
         modes = np.zeros(offsets.size, int)
         offs = np.full(offsets.size, math.nan)
-        c = np.abs(vec) ** 2                                         # (Q, modes, n)
-        weight = c / np.maximum(c.sum(axis=-1, keepdims=True), 1e-300)
-        per_l = weight.reshape(offsets.size, MAX_MODES, 2 * P + 1, d).sum(axis=-1)
-        central = np.abs(l_[np.argmax(per_l, axis=-1)]) <= 1
-        outer = per_l[..., :3].sum(axis=-1) + per_l[..., -3:].sum(axis=-1)
-        have = np.arange(MAX_MODES)[None, :] < count[:, None]
-        re = np.where(have & central & (outer < 1e-6), lam.real, -np.inf)
-        best = np.argmax(re, axis=1)
-        for i in np.flatnonzero(re[np.arange(offsets.size), best] > self.floor):
-            gains[i] = re[i, best[i]]
-            w_best = per_l[i, best[i]]
-            modes[i] = int(l_[int(np.argmax(w_best))])
-            offs[i] = _sideband_offset(offsets[i], l_, k, w_best)
+        lam, vec, count = sideband_modes(self.Hh, self.masses, wave.k, wave.omega, P, offsets,
+                                         self.floor, MAX_MODES, MAX_CLUSTER)
+        self._keep(offsets, lam, vec, count, gains, modes, offs)
         dense = np.flatnonzero(count < 0)
+        Pc = P - CENTRAL_MARGIN
+        if dense.size and 2 <= Pc and P <= WORK_HARMONICS + PERSIST_STEP:
+            # the clusters chain (strong coupling): the central pencil, the rest folded in
+            # (it refines ~1.6 modes an offset, 4 at most at the bench points: more than
+            # MAX_MODES, that offset's dense eigenproblem)
+            lam, vec, count = strong_modes(self.Hh, self.masses, wave.k, wave.omega, P, Pc,
+                                           offsets[dense], self.floor, MAX_MODES)
+            sub = (gains[dense], modes[dense], offs[dense])
+            self._keep(offsets[dense], lam, vec, count, *sub)
+            gains[dense], modes[dense], offs[dense] = sub
+            dense = dense[count < 0]
         if dense.size:
             sub = _dense_growing(wave, offsets[dense], P)
             gains[dense], modes[dense] = sub.gain, sub.harmonic
             offs[dense] = sub.sideband_offset
         return HillSpectrum(wave=wave, offsets=offsets, gain=gains, harmonic=modes,
                             sideband_offset=offs, truncations=(P,))
+
+    def _keep(self, offsets, lam, vec, count, gains, modes, offs):
+        """The kept modes' rate, harmonic and sideband offset into gains, modes, offs at the
+        offsets with count >= 0 (the dense spectrum's rule: argmax weight at |l| <= 1, less
+        than 1e-6 of it in the outer three harmonics)."""
+        P, k, d = self.P, self.wave.k, self.wave.model.n_fields
+        l_ = np.arange(-P, P + 1)
+        width = lam.shape[1]
+        c = np.abs(vec) ** 2                                         # (Q, modes, n)
+        weight = c / np.maximum(c.sum(axis=-1, keepdims=True), 1e-300)
+        per_l = weight.reshape(offsets.size, width, 2 * P + 1, d).sum(axis=-1)
+        central = np.abs(l_[np.argmax(per_l, axis=-1)]) <= 1
+        outer = per_l[..., :3].sum(axis=-1) + per_l[..., -3:].sum(axis=-1)
+        have = np.arange(width)[None, :] < count[:, None]
+        re = np.where(have & central & (outer < 1e-6), lam.real, -np.inf)
+        best = np.argmax(re, axis=1)
+        grows = np.flatnonzero(re[np.arange(offsets.size), best] > self.floor)
+        gains[grows] = re[grows, best[grows]]
+        w_best = per_l[grows, best[grows]]                           # (grows, 2P + 1)
+        modes[grows] = l_[np.argmax(w_best, axis=1)]
+        offs[grows] = _sideband_offsets(offsets[grows], l_, k, w_best)
 
     def checked(self, offsets) -> HillSpectrum:
         """``spectrum``, its fastest mode checked at P + PERSIST_STEP harmonics: where it
@@ -562,6 +583,17 @@ class _Sidebands:
         P = self.wave.harmonics + 4
         return dataclasses.replace(_dense_spectrum(self.wave, offsets, P, False),
                                    truncations=(P,))
+
+
+def _sideband_offsets(q, l_, k, w_best):
+    """``_sideband_offset`` of many offsets q (shape (m,)) at once, w_best (m, 2P + 1)."""
+    kap = q[:, None] + l_[None, :] * k
+    dist = np.minimum(_wrap(kap - k), _wrap(kap + k))
+    near = dist <= np.pi / 4
+    side = np.where(near, w_best, 0).sum(axis=1) >= 0.1 * w_best.sum(axis=1)
+    j = np.argmax(np.where(near, w_best, -np.inf), axis=1)
+    out = dist[np.arange(q.size), j]
+    return np.where(side & near.any(axis=1), out, math.nan)
 
 
 def _sideband_offset(q, l_, k, w_best):

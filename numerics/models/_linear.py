@@ -194,14 +194,11 @@ def _damped_many(model: Model, kappas: np.ndarray) -> np.ndarray:
     L[:, d:, :d] = K * w2
     L[:, d:, d:] = -1j * C * w2
     w = np.linalg.eigvals(L)
-    out = np.empty((kappas.size, d), complex)
-    for i in range(kappas.size):
-        # the d roots of the forward waves: the largest real parts (an overdamped pair has
-        # Re omega = 0: the slower-decaying root of the pair)
-        order = np.lexsort((np.imag(w[i]), np.round(np.real(w[i]), 12)))[::-1][:d]
-        wi = w[i][order]
-        out[i] = wi[np.argsort(np.real(wi))]
-    return out
+    # the d roots of the forward waves: the largest real parts (an overdamped pair has
+    # Re omega = 0: the slower-decaying root of the pair), every kappa at once
+    order = np.lexsort((np.imag(w), np.round(np.real(w), 12)), axis=-1)[:, ::-1][:, :d]
+    wi = np.take_along_axis(w, order, axis=-1)
+    return np.take_along_axis(wi, np.argsort(np.real(wi), axis=-1), axis=-1)
 
 
 def damping_rates(model: Model, kappa) -> np.ndarray:

@@ -166,7 +166,8 @@ def simulated_cell(model: Model, k: float, amplitude: float, branch=None, *, N: 
     exact rate unless ``t_end``): verdict_exact, peak_gain_exact, verdict_simulated (MI,
     "no growth within T", "undetermined"; "undefined" without a travelling wave) and
     peak_gain_simulated (the seeds' median rate where MI; with no growth within T, the
-    bound ln(threshold) / T the rate lies below)."""
+    bound ln(threshold) / T the rate lies below); for a lossy model also the runs'
+    amplification columns (``lossy_runs``)."""
     from ._reach import exact_gain_checked
     from ._simulate import simulate_seeds
 
@@ -175,12 +176,23 @@ def simulated_cell(model: Model, k: float, amplitude: float, branch=None, *, N: 
     except ModelError:  # no travelling wave here: nothing to launch or measure from
         return {"verdict_exact": "undefined", "peak_gain_exact": None,
                 "verdict_simulated": "undefined", "peak_gain_simulated": None}
-    sim = simulate_seeds(model, k, amplitude, spec, branch=branch, N=N, seeds=seeds,
-                         t_end=t_end)
+    if model.lossy:  # issue 42: the runs' amplification, launched as a point's
+        from ._losses import exact_amplification
+
+        try:
+            peak = exact_amplification(model, k, amplitude, branch, N=N,
+                                       first=spec).amplification_time
+        except ModelError:  # no peak time: the cap from the exact rate alone
+            peak = None
+        sim, amp = lossy_runs(model, k, amplitude, spec, branch=branch, N=N, seeds=seeds,
+                              t_end=t_end, peak_time=peak)
+    else:
+        sim, amp = simulate_seeds(model, k, amplitude, spec, branch=branch, N=N,
+                                  seeds=seeds, t_end=t_end), {}
     rate = _simulated_rate(sim.verdict)
     return {"verdict_exact": spec.verdict, "peak_gain_exact": spec.peak_gain,
             "verdict_simulated": sim.verdict.word,
-            "peak_gain_simulated": rate if math.isfinite(rate) else None}
+            "peak_gain_simulated": rate if math.isfinite(rate) else None, **amp}
 
 
 def _simulated_rate(verdict) -> float:
@@ -238,26 +250,73 @@ def _cell_columns(model, k, amplitude, branch, *, exact, simulate, N, seeds, t_e
     if simulate:
         row.update(verdict_simulated="undefined", peak_gain_simulated=math.nan,
                    growth=math.nan, growth_q=math.nan, t_simulated=math.nan)
+        if lossy:
+            row.update(amplification_simulated=math.nan,
+                       amplification_time_simulated=math.nan, observable_simulated=math.nan)
     try:  # the energy not real along the wave: undefined, as without a travelling wave
         spec = exact_gain_checked(model, k, amplitude, branch, N=N)
     except ModelError:  # no travelling wave here: nothing to launch or measure from
         return row
     row.update(verdict_exact=spec.verdict, peak_gain_exact=spec.peak_gain)
+    peak_time = None
     if lossy:
         from ._losses import exact_amplification
 
-        row["amplification_exact"] = _amplification(
-            lambda: exact_amplification(model, k, amplitude, branch, N=N, first=spec))
+        try:
+            ex = exact_amplification(model, k, amplitude, branch, N=N, first=spec)
+            row["amplification_exact"], peak_time = ex.amplification, ex.amplification_time
+        except ModelError:
+            row["amplification_exact"] = math.nan
     if simulate:
-        sim = simulate_seeds(model, k, amplitude, spec, branch=branch, N=N, seeds=seeds,
-                             t_end=t_end)
+        if lossy:  # issue 42: launched as a point's, the runs' amplification
+            sim, amp = lossy_runs(model, k, amplitude, spec, branch=branch, N=N,
+                                  seeds=seeds, t_end=t_end, peak_time=peak_time)
+            row.update(amp)
+        else:
+            sim = simulate_seeds(model, k, amplitude, spec, branch=branch, N=N, seeds=seeds,
+                                 t_end=t_end)
         growth = [run.growth() for run in sim.runs]
         top = max(growth, key=lambda g: g.factor if math.isfinite(g.factor) else -1.0)
         row.update(verdict_simulated=sim.verdict.word,
                    peak_gain_simulated=_simulated_rate(sim.verdict),
                    growth=float(np.median([g.factor for g in growth])),
-                   growth_q=float(top.wavenumber), t_simulated=float(sim.t_end))
+                   growth_q=float(top.wavenumber), t_simulated=float(
+                       max(r.t[-1] for r in sim.runs) if lossy else sim.t_end))
     return row
+
+
+def lossy_runs(model: Model, k: float, amplitude: float, spec, *, branch=None,
+               N: int = 256, seeds: int = 1, t_end: float | None = None,
+               peak_time: float | None = None) -> tuple:
+    """Seeded runs of a lossy model's cell launched as issue 42 measures a run's
+    amplification (the exact wave of the lossless model plus noise on the carrier field's
+    positions, run until A(t) has fallen to half its maximum), as ``point --model
+    --simulate`` runs them, and the median seed's amplification.
+
+    The cap: ``t_end`` where given, else 1.5x the exact theory's peak time ``peak_time``
+    (its ``amplification_time``), at least ``run_length`` of the exact rate (the lossless
+    run's length; the cap alone where the theory has no finite peak time).
+
+    Returns
+    -------
+    (SeededRuns, dict)
+        The runs, and ``amplification_simulated`` (max_t A(t) / A(0)),
+        ``amplification_time_simulated``, ``observable_simulated`` (1.0 where the median
+        seed grew 20x, else 0.0) of the median seed.
+    """
+    from numerics.lattice import run_length
+
+    from ._simulate import simulate_seeds
+
+    if t_end is None and peak_time is not None and math.isfinite(peak_time):
+        t_end = max(run_length(spec.peak_gain).t_end, 1.5 * peak_time)
+    sim = simulate_seeds(model, k, amplitude, spec, branch=branch, N=N, seeds=seeds,
+                         t_end=t_end, noise_on="carrier", until_peak=True)
+    amps = sorted((r.amplification() for r in sim.runs), key=lambda a: a.amplification)
+    med = amps[len(amps) // 2]
+    return sim, {"amplification_simulated": float(med.amplification),
+                 "amplification_time_simulated": float(med.amplification_time),
+                 "observable_simulated": float(med.observable)}
 
 
 def _four_wave_columns(model, k, amplitude, branch, N) -> tuple:
@@ -325,7 +384,10 @@ def map_cells(model: Model, cells, amplitude: float, branch=None, *, exact: bool
         ``peak_gain_simulated`` (the seeds' median rate where MI; with "no growth within
         T" the upper bound ln(GROWTH_THRESHOLD) / T on the rate), ``growth`` (median
         growth factor), ``growth_q`` (wavenumber of the fastest mode of the seed that grew
-        most) and ``t_simulated``.
+        most) and ``t_simulated`` (the longest run); for a lossy model the runs are
+        launched as issue 42 measures an amplification (``lossy_runs``) and add
+        ``amplification_simulated``, ``amplification_time_simulated`` and
+        ``observable_simulated`` (1.0 or 0.0) of the median seed.
     """
     return [_map_cell(model.with_params(**values), k, amplitude, branch, exact=exact,
                       simulate=simulate, N=N, seeds=seeds, t_end=t_end)

@@ -198,13 +198,13 @@ def _schur(Kt, Om, lam, cidx, ridx, X, S, dS):
 
 
 @njit(**_KW)
-def _newton(Kt, Om, lam, cidx, ridx, scale, y, deflate):
+def _newton(Kt, Om, lam, cidx, ridx, scale, y, deflate, X):
     """Newton on det S(lambda) from ``lam`` (steps -1 / tr(S^{-1} S'), with ``deflate``
     the mirror root -conj(lambda) divided out) until a step is below TOL (quadratic
     convergence: the step after it is below round-off); the eigenvalue and its C part
-    into y. Returns (lambda, settled)."""
+    into y, T_RR^{-1} E_RC at it into X (shape (n_R, r_C): the eigenvector's rest is
+    -X y). Returns (lambda, settled)."""
     rc = cidx.size
-    X = np.empty((ridx.size, rc), np.complex128)
     S = np.empty((rc, rc), np.complex128)
     dS = np.empty((rc, rc), np.complex128)
     piv = np.empty(rc, np.int64)
@@ -431,9 +431,9 @@ def _offset(Kt, Om, lvec, cidx, ridx, lo, hi, floor, om, out_lam, out_vec):
     found = 0
     y = np.empty(rc, np.complex128)
     for s in range(ns):
-        lam, settled = _newton(Kt, Om, starts[s], cidx, ridx, scale, y, True)
+        lam, settled = _newton(Kt, Om, starts[s], cidx, ridx, scale, y, True, X)
         if not settled or not (lo - 0.5 * width <= lam.imag <= hi + 0.5 * width):
-            lam, settled = _newton(Kt, Om, starts[s], cidx, ridx, scale, y, False)
+            lam, settled = _newton(Kt, Om, starts[s], cidx, ridx, scale, y, False, X)
         if not settled:
             return -1
         if lam.real <= floor:
@@ -448,8 +448,7 @@ def _offset(Kt, Om, lvec, cidx, ridx, lo, hi, floor, om, out_lam, out_vec):
             continue
         if found >= out_lam.size:
             return -1
-        Sig, ok = _fold(Kt, Om, lam, cidx, ridx, X)
-        for a in range(rc):
+        for a in range(rc):  # X: T_RR^{-1} E_RC at lam, from Newton's last step
             out_vec[found, cidx[a]] = y[a]
         for a in range(nr):
             acc = 0j
