@@ -232,20 +232,21 @@ def _log(args):
     return (lambda *a: print(*a, file=sys.stderr)) if args.json else print
 
 
-def _estimate(model, k, args, spec, exact_cpu):
-    """The rest of a simulated point (``numerics.maps.estimate_model_point``: one run
-    measured here), said before the work; the PointEstimate."""
+def _estimate(model, k, args, spec):
+    """The runs of a simulated point and what follows them
+    (``numerics.maps.estimate_model_point``: one run measured here), said before them;
+    the PointEstimate."""
     from common.text import duration
     from numerics.lattice import run_length
     from numerics.maps import estimate_model_point
 
     t_end = args.t_end if args.t_end is not None else run_length(spec.peak_gain).t_end
     est = estimate_model_point(model, k, args.amplitude, branch_of(args), N=args.N,
-                               seeds=args.seeds, t_end=t_end, exact_seconds=exact_cpu,
-                               figure=bool(args.out), wave=spec.wave)
-    _log(args)(f"estimate: about {duration(est.seconds)} more (the other theories "
-               f"~{est.theories:.2g} s, {est.seeds} run(s) of T = {est.t_end:g} on N = "
-               f"{args.N} sites ~{est.seeds * est.run:.2g} s of CPU, measured here"
+                               seeds=args.seeds, t_end=t_end, figure=bool(args.out),
+                               wave=spec.wave)
+    _log(args)(f"estimate: about {duration(est.seconds)} more ({est.seeds} run(s) of T = "
+               f"{est.t_end:g} on N = {args.N} sites ~{est.seeds * est.run:.2g} s of CPU, "
+               "measured here"
                + (f"; the cores shared (load average {est.load:.1f} on {est.cores}): "
                   f"{est.slowdown:.1f}x slower, counted" if est.slowdown > 1 else "") + ")")
     return est
@@ -285,9 +286,7 @@ def run_point(args) -> int:
     ring_note = _ring_note(model, k, args.amplitude, branch_of(args), args.N,
                            out["semi-discrete NLS"])
     try:
-        exact_cpu = time.process_time()
         spec = exact_gain_checked(model, k, args.amplitude, branch_of(args), N=args.N)
-        exact_cpu = time.process_time() - exact_cpu
         out["exact lattice"] = _exact_row(spec)
     except Exception as exc:  # no travelling wave: the theory has no verdict here
         from energy import ModelError
@@ -296,10 +295,6 @@ def run_point(args) -> int:
         spec = None
         out["exact lattice"] = {"verdict": "undefined", "peak_gain": None,
                                 "reason": str(exc)}
-    estimate = None
-    if args.simulate and spec is not None:  # the long part: said before it starts
-        estimate = _estimate(model, k, args, spec, exact_cpu)
-        estimated_at = time.perf_counter()
     from numerics.models import four_wave
 
     fw = four_wave(model, k, args.amplitude, branch_of(args), N=args.N)
@@ -312,7 +307,10 @@ def run_point(args) -> int:
             raise ValueError(f"--simulate: {out['exact lattice']['reason']}")
     if model.lossy:
         _losses(model, k, args.amplitude, branch_of(args), args.N, out, spec, fw)
-    if args.simulate:
+    estimate = None
+    if args.simulate:  # the long part (its T known from the exact rate): said before
+        estimate = _estimate(model, k, args, spec)
+        estimated_at = time.perf_counter()
         out["simulated"] = _simulated_row(model, k, args, spec, start,
                                           out["exact lattice"].get("amplification_time"))
     from .model_figure import CURVES, theory_curves

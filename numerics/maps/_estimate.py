@@ -345,11 +345,6 @@ def estimate_model_map(params, workers: int, scheduler: str | None = None,
     return MapEstimate(total, startup, theory, runs, slowdown, load, cores, alone)
 
 
-#: a point's other theories (the infinite chain's exact theory that ``ring_misses`` scans,
-#: four-wave, curves) cost about this many times the ring's exact theory: 3.5 (a
-#: Klein-Gordon chain) to 12 (flexmm at k = 0.6, N = 128), measured on fput, flexmm and
-#: klein-gordon (2-core VM, 2026-11-26): the geometric middle, within 2x of either end
-OTHER_THEORIES_PER_EXACT = 7.0
 #: a point's figure and files (matplotlib's import and drawing), CPU seconds measured
 #: (0.65-0.7 s on the 2-core VM)
 POINT_FIGURE_SECONDS = 0.7
@@ -357,9 +352,10 @@ POINT_FIGURE_SECONDS = 0.7
 
 @dataclass(frozen=True)
 class PointEstimate:
-    """The rest of ``flexmm point --model --simulate`` once its exact theory is known
+    """The rest of ``flexmm point --model --simulate`` once its theories are done
     (``seconds``, wall) and its parts (CPU seconds, before the load's ``slowdown``):
-    the other theories, one run of ``t_end`` (measured), the figure."""
+    ``theories`` still to compute (as given), one run of ``t_end`` (measured), the
+    figure."""
 
     seconds: float
     theories: float
@@ -372,15 +368,13 @@ class PointEstimate:
 
 
 def estimate_model_point(model, k: float, amplitude: float, branch=None, *, N: int,
-                         seeds: int, t_end: float, exact_seconds: float,
+                         seeds: int, t_end: float, theories: float = 0.0,
                          figure: bool = True, wave=None) -> PointEstimate:
-    """The wall time a model point's remaining work takes after its exact theory (which
-    took ``exact_seconds`` of CPU): the other theories (OTHER_THEORIES_PER_EXACT times
-    it), ``seeds`` runs of ``t_end`` on the ring of ``N`` sites (one measured here,
-    :func:`probe_model_run`; its kernels stay compiled for the runs) and the figure,
-    slowed by the load."""
+    """The wall time of a model point's runs and what follows them: ``seeds`` runs of
+    ``t_end`` on the ring of ``N`` sites (one measured here, :func:`probe_model_run`; its
+    kernels stay compiled for the runs), ``theories`` CPU seconds still to compute and the
+    figure, slowed by the load."""
     run, _ = probe_model_run(model, k, amplitude, branch, N=N, t_end=t_end, wave=wave)
-    theories = OTHER_THEORIES_PER_EXACT * exact_seconds
     slowdown, load, cores = load_slowdown(1)
     total = (theories + seeds * run + (POINT_FIGURE_SECONDS if figure else 0.0)) * slowdown
     return PointEstimate(total, theories, run, int(seeds), float(t_end), slowdown, load,
@@ -389,4 +383,4 @@ def estimate_model_point(model, k: float, amplitude: float, branch=None, *, N: i
 
 __all__ = ["MapEstimate", "estimate_map", "machine_speed", "measure_speed", "load_slowdown",
            "ModelCellCost", "probe_model_cell", "probe_model_run", "estimate_model_map",
-           "PointEstimate", "estimate_model_point", "OTHER_THEORIES_PER_EXACT"]
+           "PointEstimate", "estimate_model_point"]
