@@ -26,8 +26,15 @@ or bench/ with --update). Reports the load average: the machine is shared.
   wave start, one worker) as `flexmm map` with the paper flags and with `--model flexmm`:
   wall and CPU time of each command (its worker processes included), and their ratio.
 
+- Issue 44's estimates: commands of the paper chain (simulated, theory-only, the paper
+  start's exact predictions) and of models (maps theory-only, with --exact, simulated; a
+  point --simulate), each a fresh process: the estimate it prints before the work against
+  the wall time it estimates, and their ratio (asked: within 2x both ways). --quick: the
+  2 x 2 theory-only fput map only.
+
     python -m bench.maps [--quick] [--update | --out DIR]
     python -m bench.maps --model-row     (issue 40's table alone, printed)
+    python -m bench.maps --estimates [--quick]   (issue 44's estimate rows, printed)
 """
 
 from __future__ import annotations
@@ -239,6 +246,84 @@ def print_model_row(res: dict):
           f"{res['model_over_paper_cpu']:.2f}x CPU (issue 40 asks <= 1.2x)")
 
 
+_PAPER = ["--alpha", "2.5", "--K-s", "0.01851", "--case", "coupled"]
+_FPUT = ["--model", "fput", "--param", "alpha=1"]
+#: issue 44 items 1-2: commands whose estimate line is checked against their wall time
+#: (name -> (argv, in the quick run))
+ESTIMATE_ROWS = {
+    "paper, simulated 3 x 3, travelling, N 128, T 2000, 1 worker": (_PAPER + [
+        "--K-theta", "0.012,0.016,0.020", "--k", "0.6,0.9,1.2", "--start", "travelling",
+        "--N", "128", "--amplitude", "0.1", "--t-end", "2000", "--workers", "1"], False),
+    "paper, theory-only 3 x 6, paper start (exact predictions), N 500": (_PAPER + [
+        "--delta", "-0.003,0,0.003", "--k", "0.5:1.5:6", "--amplitude", "0.02",
+        "--theory-only"], False),
+    "paper, simulated 2 x 4, paper start, N 500, T 1000": (_PAPER + [
+        "--delta", "-0.003,0.003", "--k", "0.5,0.8,1.1,1.4", "--amplitude", "0.02",
+        "--t-end", "1000"], False),
+    "paper, theory-only 4 x 8, travelling, N 256": (_PAPER + [
+        "--delta", "-0.003:0.003:4", "--k", "0.3:2.5:8", "--start", "travelling", "--N",
+        "256", "--amplitude", "0.05", "--theory-only"], False),
+    "model fput, theory-only 2 x 2": (_FPUT + [
+        "--param", "beta=0.8,1.6", "--k", "2.6,2.8", "--amplitude", "0.1", "--theory-only",
+        "--workers", "1"], True),
+    "model fput, theory-only --exact 4 x 8, N 128": (_FPUT + [
+        "--param", "beta=0.5:2:4", "--k", "0.3:3.0:8", "--amplitude", "0.1", "--theory-only",
+        "--exact", "--N", "128"], False),
+    "model flexmm, simulated 3 x 3, N 128, T 2000, 1 worker": ([
+        "--model", "flexmm", "--param", "K_theta=0.012,0.016,0.020", "--k", "0.6,0.9,1.2",
+        "--N", "128", "--amplitude", "0.1", "--t-end", "2000", "--seeds", "1",
+        "--workers", "1"], False),
+    "model flexmm, point --simulate, N 128, 4 seeds": ([
+        "--model", "flexmm", "--k", "0.6", "--amplitude", "0.1", "--N", "128", "--simulate"],
+        False),
+}
+
+
+def _seconds(text: str) -> float:
+    """'42 s', '17 min', '2.5 h' (``common.text.duration``) -> seconds."""
+    value, unit = text.split()
+    return float(value) * {"s": 1, "min": 60, "h": 3600}[unit]
+
+
+def estimates(quick: bool = False) -> dict:
+    """Each ESTIMATE_ROWS command (its quick ones with --quick), a fresh `flexmm` process:
+    the estimate it prints before the work against the wall time it claims to estimate (a
+    map: the whole command; a point: what follows its estimate line, its own "took"), and
+    their ratio (issue 44 asks 0.5 to 2)."""
+    import re
+    import subprocess
+    import sys
+
+    rows = {}
+    for name, (argv, in_quick) in ESTIMATE_ROWS.items():
+        if quick and not in_quick:
+            continue
+        cmd = "point" if "--simulate" in argv and "point" in name else "map"
+        with tempfile.TemporaryDirectory() as tmp:
+            load = os.getloadavg()[0]
+            t0 = time.perf_counter()
+            proc = subprocess.run([sys.executable, "-m", "cli", cmd, *argv, "--out",
+                                   str(Path(tmp) / "out")], capture_output=True, text=True,
+                                  env={**os.environ, "OMP_NUM_THREADS": "1"})
+            wall = time.perf_counter() - t0
+        if proc.returncode:
+            raise RuntimeError(f"{name}: exit {proc.returncode}: {proc.stderr[-500:]}")
+        said = re.search(r"about (\d+(?:\.\d+)? (?:s|min|h))", proc.stdout)
+        took = re.search(r"took (\d+(?:\.\d+)? (?:s|min|h)) after", proc.stdout)
+        estimate = _seconds(said.group(1))
+        actual = _seconds(took.group(1)) if cmd == "point" else wall
+        rows[name] = {"argv": [cmd, *argv], "estimate_s": estimate, "wall_s": actual,
+                      "wall_over_estimate": actual / estimate,
+                      "load_average_before": load}
+    return rows
+
+
+def print_estimates(rows: dict):
+    for name, r in rows.items():
+        print(f"{name}: estimated {r['estimate_s']:.0f} s, took {r['wall_s']:.1f} s: "
+              f"{r['wall_over_estimate']:.2f}x (load average {r['load_average_before']:.1f})")
+
+
 def main(quick=False, out=None):
     from bench.calibrate_growth import check_grid
 
@@ -276,9 +361,11 @@ def main(quick=False, out=None):
         res["map_64x64_run_map"] = map_64_run_map(N, T)
         res["cell_accuracy"] = check_grid()
     res["model_vs_paper_map"] = model_vs_paper_map()
+    res["estimates"] = estimates(quick)
     res["load_average_before_after"] = [load_before, os.getloadavg()]
     write_section("maps", res, quick, out)
     print_model_row(res["model_vs_paper_map"])
+    print_estimates(res["estimates"])
     print(f"per cell (N = {N}, T = {T:g}, {res['method']} dt = {res['dt']:.3g}): simulated "
           f"in {serial:.3f} s serially = {1 / serial:.1f} cells/s/core (RK4 at dt = 0.05 "
           f"{serial_rk4:.3f} s: {serial_rk4 / serial:.1f}x); its prediction {predict:.3f} s; "
@@ -313,7 +400,9 @@ def main(quick=False, out=None):
 if __name__ == "__main__":
     import sys
 
-    if "--model-row" in sys.argv:  # issue 40's table alone (printed, not written)
+    if "--estimates" in sys.argv:  # issue 44's estimate rows alone (printed, not written)
+        print_estimates(estimates("--quick" in sys.argv))
+    elif "--model-row" in sys.argv:  # issue 40's table alone (printed, not written)
         load = os.getloadavg()[0]
         print_model_row(model_vs_paper_map())
         print(f"load average before/after: {load:.1f} / {os.getloadavg()[0]:.1f} on "

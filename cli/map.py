@@ -47,6 +47,22 @@ def _as_option(message: str) -> str:
 
 
 
+def with_wall(log, started: float, estimate: float):
+    """``log``, whose "simulated/predicted N cells in X s" line (the cells' phase) also says
+    the command's wall time so far (since ``started``, perf_counter) and ``estimate`` (s,
+    what the estimate line said): the two numbers a user compares."""
+    import re
+    import time
+
+    def out(msg="", *a, **kw):
+        if re.match(r"(simulated|predicted) \d+ cells in ", str(msg)):
+            msg = (f"{msg}; the command so far {time.perf_counter() - started:.1f} s, "
+                   f"estimated {estimate:.0f} s")
+        return log(msg, *a, **kw)
+
+    return out
+
+
 def _mi_fraction(v: np.ndarray) -> float:
     """Share of MI among the cells a verdict decides (undetermined cells left out)."""
     decided = v >= 0
@@ -115,9 +131,12 @@ def _map_parameters(args):
 
 def run_map_command(args, log=print):
     """`flexmm map`: parse, check everything (nothing is written on bad input), run."""
+    import time
+
     from common.files import write_text
     from numerics.maps import resolve_device
 
+    started = time.perf_counter()  # the estimate is of the command's wall time
     params, k, cells = _map_parameters(args)
     check_output(args.out)  # a bad --out fails before the map is announced
     # a GPU asked where there is none fails here, in one line, before the work is announced
@@ -149,7 +168,7 @@ def run_map_command(args, log=print):
                          f"{_duration(CONFIRM_SECONDS)}); add --yes to run it, or use "
                          "fewer cells, seeds, a shorter --t-end or --theory-only")
     out = prepare_output(args.out)
-    ds = run_map(params, out, args.scheduler, args.workers, log=log,
+    ds = run_map(params, out, args.scheduler, args.workers, log=with_wall(log, started, est),
                  overwrite=args.overwrite, timeout=args.timeout, device=device)
     verdicts = [n for n in ds.data_vars if n.startswith("verdict_")]
     summary = {"cells": int(ds["done"].size), "simulated": int(ds["done"].values.sum()),

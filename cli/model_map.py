@@ -13,6 +13,9 @@ from .models import _emit, branch_of, load
 # ------------------------------------------------------------------ map
 def run_map(args) -> int:
     import sys
+    import time
+
+    started = time.perf_counter()  # the estimate is of the command's wall time
 
     import numpy as np
 
@@ -122,12 +125,15 @@ def run_map(args) -> int:
         + f" on {n_workers or local_cores()} worker(s)")
     log(f"units: {units.describe()} (the store's numbers in lattice units, the factors in "
         "its attributes time_unit_s and length_unit_m)")
+    estimate = _estimate(params, n_workers or local_cores(), args.scheduler, log)
     out = prepare_output(args.out, cache=False)
     path = out / "map.zarr"
     existed = path.exists()
-    ds = run_engine(params, out, args.scheduler, args.workers, log=log,
-                    overwrite=args.overwrite, timeout=args.timeout,
-                    device=device)
+    from .map import with_wall
+
+    ds = run_engine(params, out, args.scheduler, args.workers,
+                    log=with_wall(log, started, estimate.seconds), overwrite=args.overwrite,
+                    timeout=args.timeout, device=device)
     verdicts = [v for v in ds.data_vars if v.startswith("verdict_")
                 and (simulated or v != "verdict_simulated")]
     if all((ds[v].values < 0).all() for v in verdicts):
@@ -175,6 +181,21 @@ def run_map(args) -> int:
               + ("" if all(x is not None for x in c["value"]) else f" ({c['reason']})"))
     print(f"wrote {path} and {png} (xarray: xr.open_zarr({str(path)!r}))")
     return 0
+
+
+def _estimate(params, workers: int, scheduler, log):
+    """The map's wall time (a MapEstimate), estimated from one cell measured here (its
+    theories and, for a simulated map, a short run of its ring) and said before the work."""
+    from common.text import duration
+    from numerics.maps import estimate_model_map, probe_model_cell
+
+    cost = probe_model_cell(params)
+    est = estimate_model_map(params, workers, scheduler, cost)
+    measured = f"theories {cost.theory:.2g} s" + (
+        f", a run of T = {cost.t_end:g} {cost.run:.2g} s" if not params.theory_only else "")
+    log(f"estimate: about {duration(est.seconds)} ({est.describe()}; one cell measured here: "
+        f"{measured} of CPU) on {workers} worker(s)")
+    return est
 
 
 def _critical_rows(ds) -> dict:

@@ -87,8 +87,15 @@ def _simulated_row(model, k, args, spec, start, peak_time=None) -> dict:
         # lossless run's length
         from numerics.lattice import run_length
         t_end = max(run_length(spec.peak_gain).t_end, 1.5 * peak_time)
-    sim = simulate_seeds(model, k, args.amplitude, spec, branch=branch_of(args), N=args.N,
-                         seeds=seeds, t_end=t_end, start=start, **launch)
+    from tqdm.auto import tqdm
+
+    # progress over the runs (stderr, where it is a terminal: as the maps' bar)
+    with tqdm(total=float(seeds), unit="run", desc="point runs", disable=None,
+              bar_format="{l_bar}{bar}| {n:.1f}/{total:.0f} runs [{elapsed}<{remaining}]"
+              ) as bar:
+        sim = simulate_seeds(model, k, args.amplitude, spec, branch=branch_of(args),
+                             N=args.N, seeds=seeds, t_end=t_end, start=start,
+                             on_steps=lambda n, total: bar.update(n / total), **launch)
     v, rate, runs, t_end, length = sim.verdict, sim.rate, sim.runs, sim.t_end, sim.length
     # the JSON's verdict speaks the theories' three words (MI, stable, undefined: the
     # contract every theory's object keeps); the run's own word, which never claims more
@@ -218,7 +225,36 @@ def _ring_note(model, k, amplitude, branch, N, row) -> str | None:
             f"N = {N} carries none of it; --N above {math.ceil(2 * math.pi / edge)} does")
 
 
+def _log(args):
+    """Where a point's messages go: stdout, or stderr where stdout is the JSON."""
+    import sys
+
+    return (lambda *a: print(*a, file=sys.stderr)) if args.json else print
+
+
+def _estimate(model, k, args, spec):
+    """The runs of a simulated point and what follows them
+    (``numerics.maps.estimate_model_point``: one run measured here), said before them;
+    the PointEstimate."""
+    from common.text import duration
+    from numerics.lattice import run_length
+    from numerics.maps import estimate_model_point
+
+    t_end = args.t_end if args.t_end is not None else run_length(spec.peak_gain).t_end
+    est = estimate_model_point(model, k, args.amplitude, branch_of(args), N=args.N,
+                               seeds=args.seeds, t_end=t_end, figure=bool(args.out),
+                               wave=spec.wave)
+    _log(args)(f"estimate: about {duration(est.seconds)} more ({est.seeds} run(s) of T = "
+               f"{est.t_end:g} on N = {args.N} sites ~{est.seeds * est.run:.2g} s of CPU, "
+               "measured here"
+               + (f"; the cores shared (load average {est.load:.1f} on {est.cores}): "
+                  f"{est.slowdown:.1f}x slower, counted" if est.slowdown > 1 else "") + ")")
+    return est
+
+
 def run_point(args) -> int:
+    import time
+
     from common.output import strict_json
     from numerics.lattice import checks
     from numerics.models import exact_gain_checked, snap_ring
@@ -271,7 +307,10 @@ def run_point(args) -> int:
             raise ValueError(f"--simulate: {out['exact lattice']['reason']}")
     if model.lossy:
         _losses(model, k, args.amplitude, branch_of(args), args.N, out, spec, fw)
-    if args.simulate:
+    estimate = None
+    if args.simulate:  # the long part (its T known from the exact rate): said before
+        estimate = _estimate(model, k, args, spec)
+        estimated_at = time.perf_counter()
         out["simulated"] = _simulated_row(model, k, args, spec, start,
                                           out["exact lattice"].get("amplification_time"))
     from .model_figure import CURVES, theory_curves
@@ -294,6 +333,11 @@ def run_point(args) -> int:
                                                                        "simulated")}
         figure(folder / "point.png", model, out, curves, out["curves"].get("simulated"),
                getattr(args, "seeds", 1), args.simulate)
+    if estimate is not None:
+        from common.text import duration
+
+        _log(args)(f"took {duration(time.perf_counter() - estimated_at)} after the estimate "
+                   f"(estimated {duration(estimate.seconds)})")
     if args.json:
         _emit(out)
         return 0

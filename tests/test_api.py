@@ -68,6 +68,8 @@ def test_map_estimate_counts_start_up_cells_and_load(tmp_path, monkeypatch):
     """issue 36 item 2: the estimate is the command's wall time: start-up (cluster, imports,
     store) plus the cells at this machine's measured speed (cached once), slowed by the
     load average."""
+    import dataclasses
+
     from numerics.maps import MapParameters
     from numerics.maps import _estimate as e
 
@@ -83,9 +85,17 @@ def test_map_estimate_counts_start_up_cells_and_load(tmp_path, monkeypatch):
                       start="paper")
     est = e.estimate_map(p, 2)
     start = e.STARTUP_SECONDS["local"] + e.WORKER_WARMUP_SECONDS
-    assert est.startup == start and est.predict == pytest.approx(8 * 0.1)
-    assert est.simulate > 0 and est.seconds == pytest.approx(start + (0.8 + est.simulate) / 2)
-    import dataclasses
+    # issue 44 item 2: the client's theory columns are start-up too, and grow with the cells
+    assert est.startup > start
+    wider = e.estimate_map(dataclasses.replace(p, k=(0.5, 0.6, 0.8, 0.9, 1.1, 1.4)), 2)
+    assert wider.startup > est.startup
+    # a cell's prediction costs the reference cell's (0.1 s here), more at larger k N (its
+    # Bloch families): the grid's k straddle the reference's 0.73, so within 2x of it
+    assert 8 * 0.1 / 2 < est.predict < 8 * 0.1 * 2
+    far = e.estimate_map(dataclasses.replace(p, k=(2.0, 2.2, 2.4, 2.6)), 2)
+    assert far.predict > est.predict
+    assert est.simulate > 0 and est.seconds == pytest.approx(est.startup
+                                                             + (est.predict + est.simulate) / 2)
 
     theory = e.estimate_map(dataclasses.replace(p, theory_only=True), 2)
     assert theory.simulate == 0 and theory.seconds < est.seconds

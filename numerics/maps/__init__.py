@@ -20,7 +20,10 @@ Their parts      cell_records, predict_cell, GROWTH_TOL, GROWTH_ERROR_CONSTANTS 
 With losses      critical_damping (where an amplification falls below 20x along a damping
                  axis: a lossy model map's critical_<damping>_<theory>), damping_parameters
 Run time         estimate_map -> MapEstimate (start-up + cells at this machine's measured
-                 speed, machine_speed, cached), slowed by the load average
+                 speed, machine_speed, cached), slowed by the load average;
+                 estimate_model_map (a model's map: one cell measured here,
+                 probe_model_cell -> ModelCellCost); estimate_model_point (a model's
+                 point after its exact theory -> PointEstimate)
 On a GPU         gpu_status (is there one, or what is missing), simulate_cells_gpu
                  (simulate_cell for many cells in one launch), simulate_map_cells_gpu;
                  simulate_model_cells_gpu (any model's cells, its generated force on the
@@ -45,7 +48,16 @@ from ._cells import (
 from ._columns import theory_columns, tri_state
 from ._critical import critical_damping, damping_parameters
 from ._devices import DEVICE_PATHS, DEVICES, register_device_path, resolve_device
-from ._estimate import MapEstimate, estimate_map, machine_speed
+from ._estimate import (
+                     MapEstimate,
+                     ModelCellCost,
+                     PointEstimate,
+                     estimate_map,
+                     estimate_model_map,
+                     estimate_model_point,
+                     machine_speed,
+                     probe_model_cell,
+)
 from ._gpu import gpu_status, simulate_cells_gpu, simulate_map_cells_gpu
 from ._gpu_models import simulate_model_cells_gpu
 from ._integrity import store_lock
@@ -75,7 +87,8 @@ __all__ = [
     "cell_records", "predict_cell", "GROWTH_TOL", "GROWTH_ERROR_CONSTANTS", "tri_state",
     "store_lock", "cells_done",
     "simulate_block", "CRITERION", "MapCellError", "local_cores", "MapEstimate",
-    "estimate_map", "machine_speed",
+    "estimate_map", "machine_speed", "ModelCellCost", "probe_model_cell", "estimate_model_map",
+    "PointEstimate", "estimate_model_point",
     "gpu_status", "simulate_cells_gpu", "simulate_map_cells_gpu", "simulate_model_cells_gpu",
     "DEVICE_PATHS", "register_device_path", "critical_damping", "damping_parameters",
 ]

@@ -125,8 +125,9 @@ def run_gpu(params, path, todo, n_todo, progress, log, arrays):
 
     rows_of = device_path(params)
     writer = _CellWriter(path)
-    bar = tqdm(total=n_todo, unit="cell", disable=None if progress is None else not progress,
-               desc="map (GPU)")
+    report = progress if callable(progress) else None  # as run_map's CPU path
+    bar = tqdm(total=n_todo, unit="cell", desc="map (GPU)",
+               disable=True if report else None if progress is None else not progress)
     t0 = time.perf_counter()
     try:
         batch: list = []
@@ -138,6 +139,8 @@ def run_gpu(params, path, todo, n_todo, progress, log, arrays):
                 _write_block(path, params, {"i": i, "js": js, "rows": rows,
                                             "simulated": True}, arrays, writer)
                 bar.update(len(js))
+                if report is not None:
+                    report(len(js))
             batch = []
     finally:
         bar.close()

@@ -2,19 +2,24 @@
 
 The estimate is the whole command's wall time: a fixed start-up (the command's imports, the
 theory columns, the store, a LocalCluster's start and its workers' first imports, measured
-here), plus the cells' predictions and simulations over the workers. The cells' costs come
-from this machine's speed, measured once (one reference cell simulated and predicted,
-about 1 s) and cached in ``~/.cache/flexmm-mi/speed.json``; the load average at the start
-slows all of it down when the cores are shared.
+here), plus the cells' predictions and simulations over the workers. The paper chain's
+cells' costs come from this machine's speed, measured once (one reference cell simulated
+and predicted, about 1 s) and cached in ``~/.cache/flexmm-mi/speed.json``; a model's from
+one of its cells measured before the work (:func:`probe_model_cell`; a model point's runs:
+:func:`estimate_model_point`). Where the cores are shared, all of it slows down by the
+share of a core a busy process gets at the start (:func:`cpu_share`, 0.2 s).
 """
 
 from __future__ import annotations
 
 import json
+import math
 import os
 import platform
 from dataclasses import dataclass
 from pathlib import Path
+
+import numpy as np
 
 from common import paper
 
@@ -31,6 +36,26 @@ REFERENCE = dict(alpha=paper.ALPHA, K_s=paper.K_S, K_theta=paper.POINTS["blue"][
 #: a prediction for the travelling-wave start costs this share of the paper start's (no
 #: torus to find first: PREDICT_SECONDS in _params, 0.15 s against 0.35 s)
 TRAVELLING_SHARE = 0.15 / 0.35
+#: the reference cell's k (``measure_speed``'s carrier)
+REFERENCE_K = 0.73
+#: the theory columns (computed in the client, serially, before the tasks: the exact
+#: theory's stability_map over EXACT_OFFSETS per cell) cost about this many times the
+#: reference cell's prediction per cell: 0.03 s a cell against 0.19 s on the 2-core VM
+#: (travelling start, 32 and 128 cells; the paper start 0.012 s a cell), plus a fixed
+#: 0.25 s
+THEORY_COLUMNS_PER_CELL = 0.03 / 0.19
+THEORY_COLUMNS_FIXED = 0.25 / 0.19
+
+
+def _predict_scale(k, N: int, start: str) -> float:
+    """A cell's prediction cost over the reference cell's (N = 500, k = 0.73): its Bloch
+    families grow with k N. Measured on the 2-core VM (N = 128 .. 1000, k = 0.3 .. 2.5): the
+    travelling start's cost is linear in k N (at least a quarter of the reference's),
+    the paper start's (a torus found first) about its square root."""
+    x = np.asarray(k, float) * N / (REFERENCE_K * REFERENCE["N"])
+    if start == "travelling":
+        return float(np.mean(np.maximum(x, 0.25))) * TRAVELLING_SHARE
+    return float(np.mean(np.sqrt(x)))
 
 
 def _cache_file() -> Path:
@@ -87,15 +112,43 @@ def machine_speed(refresh: bool = False) -> dict:
     return speed
 
 
+#: wall seconds the share probe spins (the scheduler's time slices are ~4 ms: 50 of them)
+SHARE_PROBE_SECONDS = 0.2
+
+
+def cpu_share(seconds: float = SHARE_PROBE_SECONDS) -> float:
+    """The share of one core a busy thread of this process gets now: CPU time over wall
+    time of a short spin, at most 1; the better of two halves (another process' burst of a
+    few time slices is not the machine's state: both halves slow means the cores are
+    shared)."""
+    import time
+
+    def spin(t):
+        w0, c0 = time.perf_counter(), time.process_time()
+        x = 0
+        while time.perf_counter() - w0 < t:
+            for i in range(2000):
+                x += i
+        return max(time.process_time() - c0, 1e-3) / (time.perf_counter() - w0)
+
+    return min(1.0, max(spin(seconds / 2), spin(seconds / 2)))
+
+
 def load_slowdown(workers: int) -> tuple[float, float, int]:
     """(slowdown, load average, cores): how much slower the work runs because the cores
-    are shared: (load - 1 + workers) / cores, at least 1 (this command counts as 1 of the
-    load; its workers join it)."""
+    are shared, measured now (:func:`cpu_share`). Where a busy thread gets less than a
+    core, the cores are contended, and this command's processes (its workers are of its
+    session) share what one of them gets (Linux' autogroup gives each session a fair
+    part, whatever its thread count): ``workers / share``. Else, from the load average:
+    (load - 1 + workers) / cores, at least 1 (this command counts as 1 of the load)."""
     cores = os.cpu_count() or 1
     try:
         load = os.getloadavg()[0]
     except OSError:
         load = 0.0
+    share = cpu_share()
+    if share < 0.9:
+        return max(1.0, workers / share), load, cores
     return max(1.0, (max(load - 1.0, 0.0) + workers) / cores), load, cores
 
 
@@ -111,11 +164,13 @@ class MapEstimate:
     slowdown: float
     load: float
     cores: int
+    #: the start-up's slowdown: the client alone is busy then (``slowdown``: its workers)
+    startup_slowdown: float = 1.0
 
     def describe(self) -> str:
-        return (f"start-up ~{self.startup * self.slowdown:.0f} s included"
-                + (f"; load average {self.load:.1f} on {self.cores} cores counted"
-                   if self.slowdown > 1 else ""))
+        return (f"start-up ~{self.startup * self.startup_slowdown:.0f} s included"
+                + (f"; the cores shared (load average {self.load:.1f} on {self.cores}): "
+                   f"{self.slowdown:.1f}x slower, counted" if self.slowdown > 1 else ""))
 
 
 def estimate_map(params, workers: int, scheduler: str | None = None,
@@ -138,8 +193,8 @@ def estimate_map(params, workers: int, scheduler: str | None = None,
     workers = max(int(workers), 1)
     cells = len(params.k) * len(params.delta)
     scale_n = params.N / REFERENCE["N"]
-    predict = cells * speed["predict"] * max(scale_n, 1.0) * (
-        1.0 if params.start != "travelling" else TRAVELLING_SHARE)
+    predict = cells * speed["predict"] * _predict_scale(params.k_simulated, params.N,
+                                                        params.start)
     simulate = 0.0
     if not params.theory_only:
         method, dt = params.cell_step
@@ -147,10 +202,185 @@ def estimate_map(params, workers: int, scheduler: str | None = None,
         per_time = get_method(method).evaluations / dt / ref
         simulate = (cells * params.seeds * speed["simulate"] * per_time * scale_n
                     * params.t_end / REFERENCE["t_end"])
-    startup = STARTUP_SECONDS["scheduler" if scheduler else "local"] + WORKER_WARMUP_SECONDS
+    # the client's theory columns are part of the start-up: serial, before any task
+    columns = speed["predict"] * (THEORY_COLUMNS_FIXED + THEORY_COLUMNS_PER_CELL * cells)
+    startup = (STARTUP_SECONDS["scheduler" if scheduler else "local"] + WORKER_WARMUP_SECONDS
+               + columns)
     slowdown, load, cores = (1.0, float("nan"), 0) if scheduler else load_slowdown(workers)
-    total = (startup + (predict + simulate) / workers) * slowdown
-    return MapEstimate(total, startup, predict, simulate, slowdown, load, cores)
+    alone = 1.0 if scheduler else load_slowdown(1)[0]  # the client's start-up
+    total = startup * alone + (predict + simulate) / workers * slowdown
+    return MapEstimate(total, startup, predict, simulate, slowdown, load, cores, alone)
 
 
-__all__ = ["MapEstimate", "estimate_map", "machine_speed", "measure_speed", "load_slowdown"]
+@dataclass(frozen=True)
+class ModelCellCost:
+    """One cell of a model's map, measured on this machine (CPU seconds, one core).
+
+    ``theory``: its theories (the NLS; with the ring the exact lattice and four-wave
+    theories); ``run``: one seeded run of the ring over ``t_end`` (0 without runs);
+    ``warmup``: what a fresh process spends before its first cell (imports, the model's
+    compiled kernels); ``probe``: the wall time the measurement took."""
+
+    theory: float
+    run: float
+    t_end: float
+    warmup: float
+    probe: float
+
+
+#: CPU seconds a worker spends on its first cell of a model's map beyond the cell (imports,
+#: the model's generated module and kernels): a fresh process pays 3.0-4.0 s (fput and
+#: flexmm, NLS alone or with the exact theory; 2-core VM, 2026-11-26), a LocalCluster's
+#: worker less, having preloaded the imports while the client worked (a whole 2 x 2
+#: theory-only fput map takes 4.4-4.9 s): the middle. A simulated map's probe measures
+#: the runs' compile on top (the client has not run the ring before)
+MODEL_WORKER_WARMUP_SECONDS = 1.5
+#: a probe run of the ring takes this many steps (~0.1 s for a two-field chain of 128
+#: sites): enough that the timer's resolution and a time slice lost to another process
+#: stay a few per cent of it
+PROBE_STEPS = 4000
+
+
+def probe_model_run(model, k: float, amplitude: float, branch=None, *, N: int, t_end: float,
+                    wave=None) -> tuple[float, float]:
+    """(CPU seconds of one run of ``t_end`` on the ring of ``N`` sites, CPU seconds of the
+    first call's compile and load), measured: a short run (loads the kernels), then
+    PROBE_STEPS steps timed, scaled to ``t_end`` (the run's cost is its steps' force
+    evaluations; its 400 records are kept in the same proportion)."""
+    import time
+
+    from ..models import simulate_model, snap_ring, travelling_wave
+
+    if wave is None:
+        wave = travelling_wave(model, snap_ring(k, N)[0], amplitude, branch)
+    t0 = time.process_time()
+    first = simulate_model(model, k, amplitude, branch=branch, N=N, t_end=t_end / 1e4,
+                           wave=wave, records=2)
+    warm = time.process_time() - t0
+    probe_t = min(t_end, PROBE_STEPS * first.dt)
+    records = max(2, round(400 * probe_t / t_end))
+    t0 = time.process_time()
+    simulate_model(model, k, amplitude, branch=branch, N=N, t_end=probe_t, wave=wave,
+                   records=records)
+    run = (time.process_time() - t0) * t_end / probe_t
+    return run, max(warm - run / 1e4, 0.0)  # the first call ran 1e-4 of the run
+
+
+def probe_model_cell(params) -> ModelCellCost:
+    """One cell of the model map ``params`` (a ModelMapParameters), its middle one,
+    measured here: its theories as a task computes them, and, for a simulated map, a
+    short run of its ring (:func:`probe_model_run`; T as the task takes it: ``t_end`` or
+    ``run_length`` of the cell's exact rate)."""
+    import time
+
+    from ..lattice import run_length
+    from ..models import map_cells
+
+    w0 = time.perf_counter()
+    rows, cols = params.grid_shape
+    # distinct cells (other parameter values cost a new model each): the middle, the
+    # corners; the first timed also loads what a cell's theories need once
+    picks = list(dict.fromkeys([(rows // 2, cols // 2), (0, 0), (rows - 1, cols - 1)]))
+    cells = [params.cell(i, j) for i, j in picks]
+    values, k = cells[0]
+    model = params.lattice_model.with_params(**values)
+
+    def theories(values, k):
+        t0 = time.process_time()
+        row = map_cells(params.lattice_model, [(values, k)], params.amplitude,
+                        params.branch_value, exact=params.ring, simulate=False, N=params.N)[0]
+        return time.process_time() - t0, row
+
+    t0 = time.process_time()  # the NLS alone first: the imports a worker pays once
+    map_cells(model, [({}, k)], params.amplitude, params.branch_value, N=params.N)
+    warmup = time.process_time() - t0
+    first, row = theories(*cells[0])
+    times = [first]
+    if first < 2.0:  # cheap cells: what the first call still loaded (~0.5 s) would dominate
+        times = [theories(*c)[0] for c in cells[1:]] or [theories(*cells[0])[0]]
+        warmup += max(first - float(np.mean(times)), 0.0)
+    theory = float(np.mean(times))
+    run, t_end = 0.0, 0.0
+    if not params.theory_only:
+        rate = row.get("peak_gain_exact", math.nan)
+        t_end = float(params.t_end) if params.t_end is not None else run_length(rate).t_end
+        from energy import ModelError
+
+        try:
+            run, compile_s = probe_model_run(model, k, params.amplitude, params.branch_value,
+                                             N=params.N, t_end=t_end)
+            warmup += compile_s
+        except (ModelError, FloatingPointError):  # no wave at the middle cell to run
+            run = 0.0
+    return ModelCellCost(theory, run, t_end, warmup, time.perf_counter() - w0)
+
+
+def estimate_model_map(params, workers: int, scheduler: str | None = None,
+                       cost: ModelCellCost | None = None) -> MapEstimate:
+    """Wall time of ``flexmm map --model`` for ``params`` (a ModelMapParameters) on
+    ``workers``: the start-up (as the paper chain's, plus each worker's warm-up), and every
+    cell at the measured cost of one (:func:`probe_model_cell`; measured when not given),
+    over the workers, slowed by the load.
+
+    Returns
+    -------
+    MapEstimate
+        ``predict``: the cells' theories, ``simulate``: their runs (CPU seconds, summed
+        over the cells).
+    """
+    cost = cost or probe_model_cell(params)
+    workers = max(int(workers), 1)
+    cells = int(np.prod(params.grid_shape))
+    theory = cells * cost.theory
+    runs = 0.0 if params.theory_only else cells * params.seeds * cost.run
+    startup = STARTUP_SECONDS["scheduler" if scheduler else "local"]
+    # each worker's first cell, at once on every worker: its imports and compiled kernels
+    # (the client's probe has loaded some of them before, so at least what a fresh
+    # process pays)
+    warmup = max(cost.warmup, MODEL_WORKER_WARMUP_SECONDS)
+    slowdown, load, cores = (1.0, float("nan"), 0) if scheduler else load_slowdown(workers)
+    alone = 1.0 if scheduler else load_slowdown(1)[0]  # the client's start-up
+    total = startup * alone + (warmup + (theory + runs) / workers) * slowdown
+    startup += warmup
+    return MapEstimate(total, startup, theory, runs, slowdown, load, cores, alone)
+
+
+#: a point's figure and files (matplotlib's import and drawing), CPU seconds measured
+#: (0.65-0.7 s on the 2-core VM)
+POINT_FIGURE_SECONDS = 0.7
+
+
+@dataclass(frozen=True)
+class PointEstimate:
+    """The rest of ``flexmm point --model --simulate`` once its theories are done
+    (``seconds``, wall) and its parts (CPU seconds, before the load's ``slowdown``):
+    ``theories`` still to compute (as given), one run of ``t_end`` (measured), the
+    figure."""
+
+    seconds: float
+    theories: float
+    run: float
+    seeds: int
+    t_end: float
+    slowdown: float
+    load: float
+    cores: int
+
+
+def estimate_model_point(model, k: float, amplitude: float, branch=None, *, N: int,
+                         seeds: int, t_end: float, theories: float = 0.0,
+                         figure: bool = True, wave=None) -> PointEstimate:
+    """The wall time of a model point's runs and what follows them: ``seeds`` runs of
+    ``t_end`` on the ring of ``N`` sites (one measured here, :func:`probe_model_run`; its
+    kernels stay compiled for the runs), ``theories`` CPU seconds still to compute and the
+    figure, slowed by the load."""
+    run, _ = probe_model_run(model, k, amplitude, branch, N=N, t_end=t_end, wave=wave)
+    slowdown, load, cores = load_slowdown(1)
+    total = (theories + seeds * run + (POINT_FIGURE_SECONDS if figure else 0.0)) * slowdown
+    return PointEstimate(total, theories, run, int(seeds), float(t_end), slowdown, load,
+                         cores)
+
+
+__all__ = ["MapEstimate", "estimate_map", "machine_speed", "measure_speed", "load_slowdown",
+           "ModelCellCost", "probe_model_cell", "probe_model_run", "estimate_model_map",
+           "PointEstimate", "estimate_model_point"]

@@ -440,7 +440,15 @@ VARIABLE_ATTRS = {
                      "decaying carrier (inf: the carrier is not damped and a mode grows)",
         "observable_from": GROWTH_THRESHOLD, "units": "1"} for t in ("semidiscrete", "exact",
                                                                "fourwave")},
-    "peak_gain_simulated": {"long_name": "the seeds' median measured rate where MI", **_GAIN},
+    "peak_gain_simulated": {
+        "long_name": "the seeds' median measured rate where MI; where no growth within T "
+                     "(verdict_simulated 0), the upper bound ln(growth_threshold) / "
+                     "t_simulated on the rate", **_GAIN,
+        # which cells hold a bound, not a measurement: those the runs call stable
+        "bound_where": "verdict_simulated == 0",
+        "bound": "upper: a faster rate would have grown past growth_threshold within "
+                 "t_simulated; NaN where undetermined (grew, less than the threshold) or "
+                 "undefined"},
     "amplification_simulated": {
         "long_name": "the median seed's max_t A(t) / A(0), A the largest ring mode that is "
                      "not a carrier harmonic (the exact lossless wave launched with noise on "

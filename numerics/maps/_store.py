@@ -340,7 +340,9 @@ def run_map(params: MapParameters, out: Path, scheduler: str | None = None,
             workers: int | None = None, progress: bool | None = None, log=print,
             overwrite: bool = False, timeout: float = 20.0, device: str = "cpu"):
     """Compute (or resume) ``OUT/map.zarr``; returns the dataset (loaded). One writer at a
-    time (``OUT/map.zarr.lock``); ``timeout``: seconds to reach ``scheduler``. ``device``
+    time (``OUT/map.zarr.lock``); ``timeout``: seconds to reach ``scheduler``. ``progress``:
+    a bar on stderr (None: where it is a terminal), or a callable given each finished
+    block's number of cells. ``device``
     "gpu" (or "auto" where a GPU is usable) simulates the cells on the GPU in batches
     (``simulate_map_cells_gpu``; the theories on this CPU), with the same store, checksums
     and resume as on the CPU."""
@@ -424,8 +426,9 @@ def _run_tasks(params, path, todo, n_todo, scheduler, workers, progress, log, ar
 
     client, cluster = connect(scheduler, workers, timeout)
     writer = _CellWriter(path)
-    bar = tqdm(total=n_todo, unit="cell", disable=None if progress is None else not progress,
-               desc="map")
+    report = progress if callable(progress) else None
+    bar = tqdm(total=n_todo, unit="cell", desc="map",
+               disable=True if report else None if progress is None else not progress)
     t0 = time.perf_counter()
     address = scheduler or "of this machine's LocalCluster"
     watch = Watchdog(client, scheduler or getattr(cluster, "scheduler_address", "local"),
@@ -481,6 +484,8 @@ def _run_tasks(params, path, todo, n_todo, scheduler, workers, progress, log, ar
                         f"{str(exc).splitlines()[0] if str(exc) else ''}; {kept()}") from None
                 _write_block(path, params, result, arrays, writer)
                 bar.update(len(result["js"]))
+                if report is not None:
+                    report(len(result["js"]))
     finally:
         bar.close()
         from ._cluster import close

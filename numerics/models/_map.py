@@ -165,7 +165,8 @@ def simulated_cell(model: Model, k: float, amplitude: float, branch=None, *, N: 
     runs from its exact wave, as ``point --model --simulate`` does (``run_length`` of the
     exact rate unless ``t_end``): verdict_exact, peak_gain_exact, verdict_simulated (MI,
     "no growth within T", "undetermined"; "undefined" without a travelling wave) and
-    peak_gain_simulated (the seeds' median rate where MI); for a lossy model also the runs'
+    peak_gain_simulated (the seeds' median rate where MI; with no growth within T, the
+    bound ln(threshold) / T the rate lies below); for a lossy model also the runs'
     amplification columns (``lossy_runs``)."""
     from ._reach import exact_gain_checked
     from ._simulate import simulate_seeds
@@ -188,9 +189,22 @@ def simulated_cell(model: Model, k: float, amplitude: float, branch=None, *, N: 
     else:
         sim, amp = simulate_seeds(model, k, amplitude, spec, branch=branch, N=N,
                                   seeds=seeds, t_end=t_end), {}
+    rate = _simulated_rate(sim.verdict)
     return {"verdict_exact": spec.verdict, "peak_gain_exact": spec.peak_gain,
             "verdict_simulated": sim.verdict.word,
-            "peak_gain_simulated": sim.rate if sim.verdict.word == "MI" else None, **amp}
+            "peak_gain_simulated": rate if math.isfinite(rate) else None, **amp}
+
+
+def _simulated_rate(verdict) -> float:
+    """The runs' rate as a map stores it: the seeds' median measured rate where MI; where
+    there was no growth within T, the bound ln(threshold) / T below which the rate lies
+    (a faster one would have grown past the threshold: ``Verdict.slowest_visible``);
+    NaN where undetermined (it grew, but less than the threshold) or undefined."""
+    if verdict.word == "MI":
+        return float(verdict.rate)
+    if verdict.word == "no growth within T":
+        return float(verdict.slowest_visible)
+    return math.nan
 
 
 def _map_cell(model: Model, k: float, amplitude: float, branch=None, *, exact: bool = False,
@@ -264,7 +278,7 @@ def _cell_columns(model, k, amplitude, branch, *, exact, simulate, N, seeds, t_e
         growth = [run.growth() for run in sim.runs]
         top = max(growth, key=lambda g: g.factor if math.isfinite(g.factor) else -1.0)
         row.update(verdict_simulated=sim.verdict.word,
-                   peak_gain_simulated=sim.rate if sim.verdict.word == "MI" else math.nan,
+                   peak_gain_simulated=_simulated_rate(sim.verdict),
                    growth=float(np.median([g.factor for g in growth])),
                    growth_q=float(top.wavenumber), t_simulated=float(
                        max(r.t[-1] for r in sim.runs) if lossy else sim.t_end))
@@ -367,7 +381,8 @@ def map_cells(model: Model, cells, amplitude: float, branch=None, *, exact: bool
         carrier is not damped and a mode grows; nan without a theory); with
         ``simulate``
         ``verdict_simulated`` (MI, "no growth within T", "undetermined", "undefined"),
-        ``peak_gain_simulated`` (the seeds' median rate where MI), ``growth`` (median
+        ``peak_gain_simulated`` (the seeds' median rate where MI; with "no growth within
+        T" the upper bound ln(GROWTH_THRESHOLD) / T on the rate), ``growth`` (median
         growth factor), ``growth_q`` (wavenumber of the fastest mode of the seed that grew
         most) and ``t_simulated`` (the longest run); for a lossy model the runs are
         launched as issue 42 measures an amplification (``lossy_runs``) and add

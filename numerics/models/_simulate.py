@@ -165,7 +165,8 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
                    method: str = "srkn11b", start: str = "exact", noise: float = NOISE,
                    seed: int = 0, records: int = 400, expected_gain: float | None = None,
                    wave=None, until_peak: bool = False,
-                   noise_on: str = "all", initial=None, force: str = "auto") -> ModelRun:
+                   noise_on: str = "all", initial=None, force: str = "auto",
+                   on_steps=None) -> ModelRun:
     """Run the ring of ``model`` from a plane wave at ``k`` (snapped to the ring) with
     first harmonic ``amplitude`` in its carrier field, plus seeded noise.
 
@@ -184,7 +185,8 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
     ``force="generated"``: the force generated from the energy even where a fast force
     is registered for it ("auto", the default: the fused flexMM kernel for the paper
     chain's energy, ``numerics.lattice.register_fast_force``); ``ModelRun.force`` says
-    which ran.
+    which ran. ``on_steps(n, nsteps)``: called after every stretch of ``n`` of the run's
+    ``nsteps`` steps (a progress bar).
     """
     from common.signals import signal_number
     from numerics.lattice import (
@@ -307,6 +309,7 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
     try:
         with deferred_interrupt() as interrupted:
             while done < nsteps:
+                before = done
                 target = min(done + every, nsteps)
                 while done < target:
                     n = min(per_call, target - done)
@@ -320,6 +323,8 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
                     if interrupted() and done < nsteps:
                         raise _Stop(interrupted())
                 record(done * dt)
+                if on_steps is not None:
+                    on_steps(done - before, nsteps)
                 if until_peak:
                     a = float(np.max(spec[-1][modes]))
                     top = max(top, a)
