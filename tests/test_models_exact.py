@@ -446,3 +446,28 @@ def test_a_simulated_model_map_is_stored_and_resumes(tmp_path, capsys):
     other = [a if a != "beta=0.8,1.6" else "beta=0.8,1.7" for a in argv]
     assert main(other) == 2
     assert "holds a map of model 'fput' with other parameters" in capsys.readouterr().err
+
+
+def test_the_travelling_wave_stays_on_the_carriers_branch_near_a_resonance():
+    """flexmm at k = 2 pi 18/128: 2 omega(k) lies near the U branch at 2k. Started from the
+    linear wave, the harmonic balance at a >= 0.08 lands on another family (measured:
+    omega +8% at a = 0.08, then -0.146 at 0.09, a Hill 'gain' of 0.19 and a crash naming
+    it); continued from small amplitude it stays on the carrier's: its frequency falls
+    smoothly with a (no jump: second differences a fraction of the first), and the exact
+    theory answers there."""
+    from numerics.models import carrier, classify_mode, travelling_wave
+
+    model = load_model("flexmm")
+    k = 2 * math.pi * 18 / 128
+    w0 = carrier(model, k).omega
+    amps = np.arange(0.05, 0.125, 0.01)
+    om = np.array([travelling_wave(model, k, a).omega for a in amps])
+    assert np.all(np.diff(om) < 0) and np.all(om > 0.9 * w0)
+    # a family's curvature: second differences ~0.1 of the first (measured 0.11); the
+    # jump to the other family was 0.03, ten times the first differences
+    second = np.abs(np.diff(om, 2))
+    assert np.max(second) < 0.3 * np.max(np.abs(np.diff(om)))
+    spec = exact_gain(model, k, 0.1, N=128)
+    assert 0 < spec.peak_gain < 0.1  # the other family's 0.19 is not this wave's
+    assert classify_mode(spec)["mode_kind"] in ("sidebands", "backward", "parametric",
+                                                "resonance")

@@ -193,6 +193,33 @@ def _contract(T, x):
     return np.einsum("ijm,m->ij", T, x)
 
 
+def _harmonic_ratio(H, M, k, w, e, v2) -> float:
+    """sqrt of the energy of the second harmonic's response v2 over the carrier's e."""
+    K1, K2 = dynamical_matrix(H, k), dynamical_matrix(H, 2 * k)
+    e1 = np.real(e.conj() @ K1 @ e + w**2 * e.conj() @ M @ e)
+    e2 = np.real(v2.conj() @ K2 @ v2 + (2 * w) ** 2 * v2.conj() @ M @ v2)
+    return math.sqrt(abs(e2) / e1) if e1 > 0 else math.inf
+
+
+def second_harmonic_size(model: Model, k: float, a: float, branch=None) -> float:
+    """The carrier's second harmonic at amplitude a, to O(a^2), against its first
+    harmonic (square root of their energies' ratio; inf at a resonance): small for a
+    weakly nonlinear wave, O(1) where 2 omega(k) meets a branch at 2k."""
+    H, T, _ = model.code.taylor(model.p)
+    d = model.n_fields
+    M = np.diag(np.asarray(model.masses, float))
+    c = carrier(model, k, branch)
+    X1 = np.concatenate([c.e, np.exp(1j * k) * c.e])
+    P2 = np.hstack([np.eye(d), np.eye(d) * np.exp(-2j * k)])
+    D2 = dynamical_matrix(H, 2 * k) - (2 * c.omega) ** 2 * M
+    f2 = -P2 @ np.einsum("ibc,b,c->i", T, X1, X1) / 2
+    try:
+        v2 = np.linalg.solve(D2, f2)
+    except np.linalg.LinAlgError:
+        return math.inf
+    return a / 2 * _harmonic_ratio(H, M, k, c.omega, c.e, v2)
+
+
 def _plane_wave(model: Model, k: float, a: float, branch):
     """The carrier to O(a^2): (Carrier, Omega, x1, x2, x0) with x_h the cell's (u_n,
     u_{n+1}) harmonic h; or a reason string where the expansion fails."""
@@ -218,10 +245,7 @@ def _plane_wave(model: Model, k: float, a: float, branch):
     v2 = np.linalg.lstsq(D2, f2, rcond=None)[0]
     # near (not at) that resonance the second harmonic is no longer slaved: its energy
     # against the first harmonic's, as DRIVEN_MAX measures a pair's driven waves
-    K1, K2 = dynamical_matrix(H, k), dynamical_matrix(H, 2 * k)
-    e1 = np.real(e.conj() @ K1 @ e + w**2 * e.conj() @ M @ e)
-    e2 = np.real(v2.conj() @ K2 @ v2 + (2 * w) ** 2 * v2.conj() @ M @ v2)
-    size = a / 2 * math.sqrt(abs(e2) / e1) if e1 > 0 else math.inf
+    size = a / 2 * _harmonic_ratio(H, M, k, w, e, v2)
     if size > DRIVEN_MAX:
         return (f"second harmonic near resonance with a branch at 2k = {2 * k:.6g}: its energy "
                 f"{size**2:.3g} x the carrier's at amplitude {a:.6g}; the four-wave ordering "

@@ -79,7 +79,9 @@ def classify_mode(spectrum) -> dict:
     _, lams = hill_spectrum(wave, [q], return_eigenvalues=True)
     lam = lams[0][int(np.argmax(lams[0].real))]
     best = None
-    for l in range(-1, 4):
+    # the pair's harmonics l: both frequencies positive for l in (nu / Omega, nu / Omega + 2)
+    l0 = int(math.floor(lam.imag / Omega)) if Omega > 0 else 0
+    for l in range(l0 - 1, l0 + 4):
         phi, phi2 = l * Omega - lam.imag, lam.imag - (l - 2) * Omega
         if phi <= 0 or phi2 <= 0:
             continue
@@ -89,6 +91,9 @@ def classify_mode(spectrum) -> dict:
         miss = max(abs(w1[b1] - phi), abs(w2[b2] - phi2))
         if best is None or miss < best[0]:
             best = (miss, kap, phi, b1, kap2, phi2, b2)
+    if best is None:  # no pair of positive frequencies (a wave with Omega <= 0): unnamed
+        return {"mode_kind": "resonance", "mode_waves": [],
+                "fastest_offset": float(abs(_wrap(q)))}
     miss, kap, phi, b1, kap2, phi2, b2 = best
     tol = max(0.02 * Omega, 10 * float(lam.real))
     waves = [{"branch": b1, "wavenumber": kap, "frequency": float(phi),
