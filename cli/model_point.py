@@ -87,7 +87,8 @@ def _simulated_row(model, k, args, spec, start, peak_time=None) -> dict:
         # lossless run's length
         from numerics.lattice import run_length
         t_end = max(run_length(spec.peak_gain).t_end, 1.5 * peak_time)
-    from tqdm.auto import tqdm
+    from common.progress import progress_class
+    tqdm = progress_class()
 
     # progress over the runs (stderr, where it is a terminal: as the maps' bar)
     with tqdm(total=float(seeds), unit="run", desc="point runs", disable=None,

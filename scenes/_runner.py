@@ -53,7 +53,8 @@ class Context:
     def progress(self, items, desc: str):
         """``items`` with a progress bar (tqdm) on a terminal, silent when stderr is not
         one: the steps of a scene that can pass 10 s."""
-        from tqdm.auto import tqdm
+        from common.progress import progress_class
+        tqdm = progress_class()
 
         return tqdm(items, desc=desc, leave=False, disable=None, unit="step")
 

@@ -233,3 +233,24 @@ def test_a_gain_that_vanishes_with_the_amplitude_is_explained(capsys):
     out = capsys.readouterr().out
     assert code == 0
     assert "has no growing sideband at amplitude 0.04 but has one at 0.01" in out
+
+
+def test_progress_bars_need_no_widgets(monkeypatch):
+    """Without ipywidgets (the docs build's kernel) the bar is tqdm's terminal one, so a
+    notebook shows no 'IProgress not found' warning naming the build machine's path;
+    with it, tqdm.auto's choice."""
+    import builtins
+
+    import tqdm.std
+
+    from common.progress import progress_class
+
+    real = builtins.__import__
+
+    def no_widgets(name, *args, **kwargs):
+        if name == "ipywidgets":
+            raise ImportError(name)
+        return real(name, *args, **kwargs)
+
+    monkeypatch.setattr(builtins, "__import__", no_widgets)
+    assert progress_class() is tqdm.std.tqdm

@@ -33,3 +33,4 @@ def test_the_theory_entry_points_are_limited():
 
     for fn in (predict_growth, resonance_map, stability_map, mi_gain):
         assert hasattr(fn, "__wrapped__"), fn.__name__
+

@@ -64,7 +64,8 @@ steps_per_call = _steps_per_call
 
 def _progress(total, enabled):
     try:
-        from tqdm.auto import tqdm
+        from common.progress import progress_class
+        tqdm = progress_class()
     except ImportError:  # pragma: no cover - tqdm is a dependency
         return None
     # disable=None: silent when stderr is not a terminal

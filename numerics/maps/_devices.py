@@ -121,7 +121,8 @@ def run_gpu(params, path, todo, n_todo, progress, log, arrays):
     batch's theories on the CPU, its simulations in one launch (the map's registered
     ``device_path``), then each block written (checksummed) as a worker's would be: an
     interrupted map keeps every batch written."""
-    from tqdm.auto import tqdm
+    from common.progress import progress_class
+    tqdm = progress_class()
 
     rows_of = device_path(params)
     writer = _CellWriter(path)

@@ -420,7 +420,9 @@ class MapCellError(ValueError):
 def _run_tasks(params, path, todo, n_todo, scheduler, workers, progress, log, arrays=None,
                timeout=20.0):
     from dask.distributed import as_completed
-    from tqdm.auto import tqdm
+
+    from common.progress import progress_class
+    tqdm = progress_class()
 
     from ._cluster import ClusterLost, Watchdog, connect
 

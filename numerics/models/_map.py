@@ -93,7 +93,8 @@ def model_map(model: Model, x: tuple, y: tuple, amplitude: float, k: float | Non
     ex_peak = np.full(shape, np.nan)
     extra: dict = {}
     done = done or {}
-    from tqdm.auto import tqdm
+    from common.progress import progress_class
+    tqdm = progress_class()
 
     bar = tqdm(total=verdict.size, unit="cell", desc="model map",
                disable=None if progress is None else not progress)
