@@ -1,5 +1,6 @@
 """Losses (issue 42): the [dissipation] table, damping rates, damped runs and theories."""
 
+import json
 import math
 
 import numpy as np
@@ -466,3 +467,22 @@ def test_four_wave_amplification_takes_only_the_offsets_it_needs(name, params, k
     want = along_decay(every_offset, a, rates0.ravel()[live], G.ravel()[live],
                        got.carrier_damping)
     assert (got.amplification, got.amplification_time) == want[:2]
+
+
+def test_a_lossy_runs_verdict_is_its_amplification(tmp_path, capsys, fput_lossy):
+    """Runs that stop once A(t) has halved (a lossy point's launch) are judged by how far
+    the sidebands grew, max over t of A(t) / A(0), not end over start: the sidebands that
+    grew ~59x by t ~ 170 are MI, not 'no growth within T', and T is how long they ran
+    (a new user's report: the table said both)."""
+    from cli.app import main
+
+    path = tmp_path / "fput-lossy.toml"
+    path.write_text(fput_lossy)
+    assert main(["point", "--model", str(path), "--param", "gamma=0.012", "--k", "2.5",
+                 "--amplitude", "0.2", "--N", "64", "--simulate", "--seeds", "1",
+                 "--json"]) == 0
+    sim = json.loads(capsys.readouterr().out)["simulated"]
+    assert sim["amplification"] > 20 and sim["observable"]
+    assert sim["verdict"] == "MI" and sim["simulation_verdict"] == "MI"
+    assert sim["growth"] == [pytest.approx(sim["amplification"])]
+    assert "energy_drift" not in sim and sim["energy_balance"] < 1e-3

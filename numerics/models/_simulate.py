@@ -391,5 +391,12 @@ def simulate_seeds(model: Model, k: float, amplitude: float, spec, *, branch=Non
     growth = [r.growth() for r in runs]
     rates = [g.rate for g in growth if g.verdict == "unstable"]
     rate = float(np.median(rates)) if rates else math.nan
+    if model.lossy and run.get("until_peak"):
+        # with losses growth is transient and these runs stop once A(t) has halved: their
+        # factor is the amplification (max over t of A(t) / A(0)), not end over start,
+        # and T is how long they ran
+        factors = [r.amplification().amplification for r in runs]
+        T_run = max(float(r.t[-1]) for r in runs)
+        return SeededRuns(simulated_verdict(factors, T_run, rate), rate, runs, T_run, length)
     return SeededRuns(simulated_verdict([g.factor for g in growth], T, rate), rate, runs, T,
                       length)
