@@ -62,6 +62,34 @@ def with_units(report: dict, units) -> dict:
     return out
 
 
+def _estimate(args, model, branch) -> None:
+    """Say what the run will cost before it starts (one short run of the ring measured
+    here, ``numerics.maps.estimate_model_point``): a soliton a few hundred sites wide needs
+    a ring of thousands and a long T, minutes of silence otherwise."""
+    import sys
+
+    from common.text import duration
+    from energy import ModelError
+    from numerics.maps import estimate_model_point
+    from numerics.models import ring_soliton
+
+    try:
+        pred = ring_soliton(model, args.k, args.amplitude, N=args.N, kind=args.kind,
+                            branch=branch)
+        t_end = args.travel * pred.width / max(abs(pred.velocity), 1e-12)
+        if not math.isfinite(t_end):
+            return
+        est = estimate_model_point(model, pred.k, args.amplitude, pred.nls.carrier.branch,
+                                   N=pred.N, seeds=1, t_end=t_end, figure=bool(args.out))
+    except ModelError:
+        return  # what the run refuses, it says itself in one line
+    hint = ("; a larger --amplitude narrows the soliton (width ~ 1/amplitude): a shorter "
+            "ring and run" if est.seconds > 60 else "")
+    print(f"estimate: about {duration(est.seconds)} (a ring of N = {pred.N} sites, soliton "
+          f"{pred.width:.3g} sites wide, T = {t_end:.4g} for {args.travel:g} widths; one run "
+          f"measured here){hint}", file=sys.stderr if args.json else sys.stdout, flush=True)
+
+
 def run_model_soliton(args, model, units, branch) -> dict:
     """Predict (and with --simulate, run) the soliton; print; write --out. Returns the
     report (``numerics.models.soliton_report``)."""
@@ -80,6 +108,7 @@ def run_model_soliton(args, model, units, branch) -> dict:
         checks.real("--travel", args.travel, 0.0, 1000.0)
         if args.N is not None:
             checks.integer("--N", args.N, 16, 10**6)
+        _estimate(args, model, branch)
         run = simulate_soliton(model, args.k, args.amplitude, args.kind, branch=branch,
                                N=args.N, travel=args.travel)
         pred = run.predicted

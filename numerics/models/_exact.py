@@ -233,6 +233,12 @@ def _connected(model, k, a, branch, harmonics, direct):
         except ModelError:
             prev = None
         if prev is None or not prev.omega > 0:
+            shift = abs(direct.omega - direct.carrier.omega) / direct.carrier.omega
+            if direct.omega > 0 and shift < SHIFT_CHECK:
+                # no other family seen, and the direct wave's frequency is the linear
+                # one's: it stands (a long acoustic wave whose small-amplitude balance
+                # misses the residual test)
+                return direct
             done = a * (j - 1) / CONTINUATION_STEPS
             raise ModelError(
                 f"model {model.describe()}: no travelling wave of amplitude {a:g} at k = "
