@@ -106,7 +106,8 @@ def build_parser(model_mode: bool = False):
     _point_parser(sub, model_mode)
     _map_parser(sub, model_mode)
     _soliton_parser(sub, model_mode)
-    ms = _sub(sub, "models", "list the built-in lattice models: fields, parameters, what")
+    ms = _sub(sub, "models", "list the built-in lattice models: their fields, parameters and "
+              "what each describes")
     ms.add_argument("--json", action="store_true", help="one JSON object on stdout")
     return p
 
@@ -215,7 +216,10 @@ def _map_parser(sub, model_mode=False):
                         "diatomic-fput, flexmm-rotation, ~0.2 s for flexmm, whose coupled "
                         "harmonics take a pencil of the central ones: bench/README.md); the "
                         "paper chain's maps have it already")
-    p.add_argument("--t-end", dest="t_end", type=float, default=5000.0, help="run length, T")
+    p.add_argument("--t-end", dest="t_end", type=float, default=5000.0,
+                   help="run length, T (paper chain: 5000 by default; with --model, "
+                        "given: every cell's T, else each cell's from its exact rate as "
+                        "`point` chooses)")
     p.add_argument("--seeds", type=int, default=1, help="noise seeds per cell")
     p.add_argument("--out", default="out/map", help="folder of map.zarr")
     p.add_argument("--overwrite", action="store_true",
