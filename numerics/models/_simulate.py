@@ -160,6 +160,13 @@ class ModelRun:
         return measure_growth(self)
 
 
+#: ``until_peak`` stops a run once A(t) has risen this much (sqrt(20), the runs' own
+#: boundary of "no growth") and fallen to half its top: a launch transient (a new user's
+#: damped chain rose 2.4x by t = 52, fell, and the sidebands peaked near t = 1700) is not
+#: the sidebands' peak
+PEAK_RISE = math.sqrt(20.0)
+
+
 def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: int = 256,
                    t_end: float | None = None, dt: float | None = None,
                    method: str = "srkn11b", start: str = "exact", noise: float = NOISE,
@@ -178,8 +185,8 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
     A model with [dissipation] runs with its damping force -M^-1 dR/dv: ``rk4`` takes it
     in every stage; an SRKN method is wrapped in a Strang splitting (the damping flow's
     exact half steps around each symplectic step: order 2). ``until_peak``: stop once
-    the sidebands' amplitude A(t) (``sideband_amplitude``) has risen 2x and fallen to half
-    its maximum (else ``t_end`` is the cap). ``noise_on="carrier"``: the noise on the
+    the sidebands' amplitude A(t) (``sideband_amplitude``) has risen ``PEAK_RISE`` (sqrt 20)
+    times and fallen to half its maximum (else ``t_end`` is the cap). ``noise_on="carrier"``: the noise on the
     carrier field's positions only (the amplification's launch, issue 42). ``initial``:
     (u, v), each shape (d, N), the state to start from instead of ``start`` (noise added).
     ``force="generated"``: the force generated from the energy even where a fast force
@@ -328,7 +335,7 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
                 if until_peak:
                     a = float(np.max(spec[-1][modes]))
                     top = max(top, a)
-                    if top >= 2 * a0 and a <= top / 2:
+                    if top >= PEAK_RISE * a0 and a <= top / 2:
                         peaked = True
                         break
             if interrupted():  # at the last record: the run is whole, and says it stopped
