@@ -274,6 +274,10 @@ def run_point(args) -> int:
     if args.out:
         from common.output import check_output
         check_output(args.out, cache=False)
+    if args.simulate:  # said before anything that takes time
+        _log(args)(f"point: the theories, then an estimate of the {args.seeds} run(s) "
+                   "(a model's first run compiles its force for this machine, once: "
+                   "seconds to tens of seconds)")
     co = _coefficients_or_undefined(model, k, args.amplitude, branch_of(args))
     out = {"model": model.name, "parameters": dict(model.params), "k": co["k"],
            "k_requested": float(args.k), "N": args.N, "amplitude": co["amplitude"],

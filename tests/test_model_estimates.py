@@ -34,9 +34,11 @@ def test_a_simulated_model_point_prints_its_estimate_and_wall(tmp_path, capsys):
                 "--k", "2.5", "--amplitude", "0.1", "--N", "32", "--simulate", "--seeds", "2",
                 "--t-end", "300"]) == 0
     out = _lines(capsys.readouterr().out)
-    assert out[0].startswith("estimate: about ") and "2 run(s) of T = 300 on N = 32" in out[0]
-    assert out[1].startswith("took ") and "after the estimate (estimated " in out[1]
-    assert out[2].startswith("model:")
+    # the first line before any work (the theories, a first compile), then the estimate
+    assert out[0].startswith("point: the theories, then an estimate of the 2 run(s)")
+    assert out[1].startswith("estimate: about ") and "2 run(s) of T = 300 on N = 32" in out[1]
+    assert out[2].startswith("took ") and "after the estimate (estimated " in out[2]
+    assert out[3].startswith("model:")
 
 
 def test_a_model_map_reports_progress_for_every_cell(tmp_path):
