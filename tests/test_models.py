@@ -395,3 +395,28 @@ def test_branch_by_index_and_by_field_name_one_field(tmp_path):
     e = carrier(m, 1.0, 0).e
     assert m.masses[0] * abs(e[0]) ** 2 > m.masses[1] * abs(e[1]) ** 2
     assert abs(e[1]) > abs(e[0])
+
+
+def test_model_map_counts_nls_bands_no_ring_offset_samples(tmp_path):
+    """A model map set the infinite chain's NLS verdict beside the ring's: where the NLS
+    band 0 < q < a sqrt(g2/g1) is narrower than the ring's smallest offset 2 pi / N, no
+    ring offset samples it. The map counts those cells (walkthrough of issue 44: 78% MI
+    semi-discrete against 44% exact, unexplained); the count is checked against the NLS's
+    own band edge per cell."""
+    N, a = 64, 0.2
+    code, _, err, data = _flexmm("map", "--model", "fput", "--param", "alpha=0", "--param",
+                                 "beta=1:1.5:2", "--k", "0.2:1.2:2", "--amplitude", str(a),
+                                 "--N", str(N), "--theory-only", "--exact", "--workers", "1",
+                                 "--out", str(tmp_path / "m"), "--json")
+    assert code == 0, err
+    u = data["nls_band_unsampled"]
+    assert u["ring_smallest_offset"] == pytest.approx(2 * math.pi / N)
+    want = 0
+    for beta in data["axes"]["beta"]:
+        m = load_model("fput", alpha=0.0, beta=beta)
+        for k in data["axes"]["k"]:
+            r = nls(m, k)
+            want += r.verdict == "MI" and r.band_edge(a) <= 2 * math.pi / N
+    assert want >= 1  # k = 0.2: the band edge is ~0.07 < 0.098
+    assert u["cells"] == want and u["of"] == 4
+    assert set(u["ring_not_MI"]) == {"exact", "fourwave"}
