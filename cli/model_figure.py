@@ -170,7 +170,9 @@ def figure(path, model, out, curves, measured, seeds, simulate):
     tops = []
     for name, c in curves.items():
         y = np.array([np.nan if v is None else v for v in c["curve"]], float)
-        ax.plot(c["offset"], y, styles.get(name, "C0-"), lw=1, label=f"{name} (theory)")
+        label = f"{name} (theory" + (f"; {len(c['copy_of'])} Hill copies +-q + l k left out"
+                                     if c.get("copy_of") else "") + ")"
+        ax.plot(c["offset"], y, styles.get(name, "C0-"), lw=1, label=label)
         if np.any(np.isfinite(y)):
             tops.append(float(np.nanmax(y)))
     if measured:
