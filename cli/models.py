@@ -21,8 +21,10 @@ def add_model_args(p, json_help="print one JSON object on stdout and nothing els
                         "defaults")
     g.add_argument("--branch", default=None, metavar="INDEX|FIELD",
                    help="dispersion branch: index (0 = lowest frequency at k) or the field "
-                        "that dominates it (default: the model's branch field, else 0; for "
-                        "flexmm the rotational branch theta)")
+                        "that carries most of its kinetic energy (default: the model's branch "
+                        "field, else 0; for flexmm the rotational branch theta). The "
+                        "amplitude a measures that field (an index: the model's branch "
+                        "field, else the branch's most energetic field)")
     g.add_argument("--json", action="store_true", help=json_help)
     g.add_argument("--time-unit", dest="time_unit", type=float, metavar="SECONDS",
                    help="with --model: seconds per unit of the model's time; rates are then "
