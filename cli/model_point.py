@@ -288,6 +288,8 @@ def run_point(args) -> int:
     out = {"model": model.name, "parameters": dict(model.params), "k": co["k"],
            "k_requested": float(args.k), "N": args.N, "amplitude": co["amplitude"],
            "branch": co["branch"], "field": co["field"]}
+    if co.get("field_rule"):  # why a measures that field (one rule for index and name)
+        out["field_rule"] = co["field_rule"]
     cont = _continuum(model, k, args.amplitude)
     if cont is not None:
         out["continuum NLS"] = cont
