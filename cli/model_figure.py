@@ -21,10 +21,79 @@ def _curve(offset, gain) -> dict:
             "curve": [g if math.isfinite(g) else None for g in gain.tolist()]}
 
 
-def theory_curves(model, k, amplitude, branch, N, spec, fw) -> dict:
+def _wrap(x: float) -> float:
+    """x wrapped to (-pi, pi]."""
+    return -((-x + math.pi) % (2 * math.pi) - math.pi)
+
+
+def hill_copies(offsets, gain, k, own=None) -> dict:
+    """Which unstable Hill offsets are copies of another: a Floquet mode at offset q is
+    also an eigenvector at +-q + l k (its harmonics relabelled), with the same eigenvalue,
+    so an exact gain curve over q shows each mode once per copy.
+
+    The band holding ``own`` (the fastest mode's own offset, ``classify_mode``'s) is kept
+    first, then the other bands from the carrier outwards; an unstable offset is a copy
+    where +-q + l k (|l| <= 3) lands within half a grid step of a kept offset whose gain
+    agrees to 2% (copies hold one eigenvalue; Hill's truncation at J harmonics, whose
+    window a copy shifts by l, moves it by far less).
+
+    Returns
+    -------
+    dict
+        ``copy``: bool array, shape (n,), the offsets that are copies; ``copy_of``: the
+        kept offset each copy repeats, in offset order; ``gain``: the gain with each kept
+        offset at the largest of its copies' (one eigenvalue; they differ in rounding),
+        so the curve's peak stays the spectrum's peak gain.
+    """
+    q, g = np.asarray(offsets, float), np.nan_to_num(np.asarray(gain, float), nan=0.0)
+    grows = g > 0
+    copy = np.zeros(q.size, bool)
+    copy_of = []
+    if not grows.any():
+        return {"copy": copy, "copy_of": copy_of, "gain": g}
+    g = g.copy()
+    step = float(np.min(np.diff(np.sort(q)))) if q.size > 1 else 1e-9
+    edges = np.flatnonzero(np.diff(np.concatenate([[0], grows.astype(int), [0]])))
+    bands = [np.arange(a, b) for a, b in zip(edges[::2], edges[1::2])]
+    if own is not None:  # the fastest mode's own band first
+        bands.sort(key=lambda idx: 0 if np.min(np.abs(q[idx] - own)) <= step / 2 else 1)
+    kept = []
+    for idx in bands:
+        for i in idx:
+            match = next((j for j in kept if abs(g[i] - g[j]) <= 0.02 * max(g[i], g[j])
+                          and any(abs(_wrap(q[i] - s * q[j] - ell * k)) <= step / 2
+                                  for s in (1, -1) for ell in range(-3, 4))), None)
+            if match is None:
+                kept.append(i)
+            else:
+                copy[i] = True
+                copy_of.append((float(q[i]), float(q[match])))
+                g[match] = max(g[match], g[i])
+    copy_of.sort()
+    return {"copy": copy, "copy_of": [list(c) for c in copy_of], "gain": g}
+
+
+def exact_curve(spec, k, own=None) -> dict:
+    """The exact lattice's curve over the ring's offsets, each mode at its own offset
+    once: its copies (``hill_copies``) are left out of the curve and listed in
+    ``copy_of`` as [copy offset, kept offset] pairs."""
+    cp = hill_copies(spec.offsets, spec.gain, k, own)
+    keep = ~cp["copy"]
+    gain = np.where(np.isfinite(spec.gain), cp["gain"], np.nan)  # NaN stays unknown
+    out = _curve(np.asarray(spec.offsets)[keep], gain[keep])
+    out["copy_of"] = cp["copy_of"]
+    if cp["copy_of"]:
+        out["note"] = (f"{len(cp['copy_of'])} unstable offset(s) left out: copies +-q + l k "
+                       "of a mode shown at its own offset (copy_of: [copy, kept] pairs); "
+                       "one Floquet mode, one rate")
+    return out
+
+
+def theory_curves(model, k, amplitude, branch, N, spec, fw, own=None) -> dict:
     """{theory: {"offset": [...], "curve": [...]}}: the semi-discrete NLS on a fine grid
     of its band, the exact lattice (``spec``, a HillSpectrum on the ring, may be None) and
-    the four-wave theory (``fw``, a FourWave) at the ring's offsets."""
+    the four-wave theory (``fw``, a FourWave) at the ring's offsets. ``own``: the exact
+    fastest mode's own Hill offset, whose band is kept where copies repeat it."""
     from energy import ModelError
     from numerics.models import nls
 
@@ -41,7 +110,7 @@ def theory_curves(model, k, amplitude, branch, N, spec, fw) -> dict:
     except ModelError:
         pass  # at k = pi: no NLS, said in its row
     if spec is not None:
-        out["exact lattice"] = _curve(spec.offsets, spec.gain)
+        out["exact lattice"] = exact_curve(spec, k, own)
     if not fw.undefined:
         rates = np.max(np.nan_to_num(fw.rates, nan=0.0), axis=1) if fw.rates.size else \
             np.zeros(fw.offsets.size)
@@ -101,7 +170,9 @@ def figure(path, model, out, curves, measured, seeds, simulate):
     tops = []
     for name, c in curves.items():
         y = np.array([np.nan if v is None else v for v in c["curve"]], float)
-        ax.plot(c["offset"], y, styles.get(name, "C0-"), lw=1, label=f"{name} (theory)")
+        label = f"{name} (theory" + (f"; {len(c['copy_of'])} Hill copies +-q + l k left out"
+                                     if c.get("copy_of") else "") + ")"
+        ax.plot(c["offset"], y, styles.get(name, "C0-"), lw=1, label=label)
         if np.any(np.isfinite(y)):
             tops.append(float(np.nanmax(y)))
     if measured:

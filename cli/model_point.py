@@ -49,6 +49,16 @@ def _exact_row(spec) -> dict:
     return row
 
 
+def _own_offset(row, k):
+    """The exact fastest mode's own Hill offset |q| (its first wave at k + q), not a
+    copy's; None where the mode is unnamed."""
+    waves = row.get("mode_waves") or []
+    if not waves:
+        return None
+    q = waves[0]["wavenumber"] - k
+    return abs(-((-q + math.pi) % (2 * math.pi) - math.pi))
+
+
 def _waves(row) -> str:
     return " and ".join(f"branch {w['branch']} ({w['field']}) at {w['wavenumber']:.4g}"
                         for w in row.get("mode_waves", []))
@@ -282,6 +292,8 @@ def run_point(args) -> int:
     out = {"model": model.name, "parameters": dict(model.params), "k": co["k"],
            "k_requested": float(args.k), "N": args.N, "amplitude": co["amplitude"],
            "branch": co["branch"], "field": co["field"]}
+    if co.get("field_rule"):  # why a measures that field (one rule for index and name)
+        out["field_rule"] = co["field_rule"]
     cont = _continuum(model, k, args.amplitude)
     if cont is not None:
         out["continuum NLS"] = cont
@@ -323,7 +335,7 @@ def run_point(args) -> int:
 
     out["curves"] = {"description": CURVES,
                      **theory_curves(model, k, args.amplitude, branch_of(args), args.N,
-                                     spec, fw)}
+                                     spec, fw, _own_offset(out["exact lattice"], k))}
     if args.simulate:
         out["curves"]["simulated"] = out["simulated"].pop("curve")
     out = strict_json(add_units(out, units))

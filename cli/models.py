@@ -21,8 +21,10 @@ def add_model_args(p, json_help="print one JSON object on stdout and nothing els
                         "defaults")
     g.add_argument("--branch", default=None, metavar="INDEX|FIELD",
                    help="dispersion branch: index (0 = lowest frequency at k) or the field "
-                        "that dominates it (default: the model's branch field, else 0; for "
-                        "flexmm the rotational branch theta)")
+                        "that carries most of its kinetic energy (default: the model's branch "
+                        "field, else 0; for flexmm the rotational branch theta). The "
+                        "amplitude a measures that field (an index: the model's branch "
+                        "field, else the branch's most energetic field)")
     g.add_argument("--json", action="store_true", help=json_help)
     g.add_argument("--time-unit", dest="time_unit", type=float, metavar="SECONDS",
                    help="with --model: seconds per unit of the model's time; rates are then "
@@ -151,20 +153,23 @@ def run_coefficients(args) -> int:
     print(f"model:    {model.describe()}")
     print(f"carrier:  k = {_fmt(co['k'])} rad/site{units.si(co['k'], 'wavenumber')} on branch "
           f"{co['branch']} (field {co['field']}), amplitude a = {_fmt(co['amplitude'])} "
-          f"({co['field']} = a cos(k n - omega t) + harmonics + mean)")
+          f"({co['field']} = a cos(k n - omega t) + harmonics + mean; a measures "
+          f"{co['field']}: {co['field_rule']})")
     print(f"units:    {units.describe()}")
     parts = co["g2_parts"]
     rows = [("omega (1/time)", co["omega"], "omega"),
             ("group velocity (site/time)", co["group_velocity"], "group_velocity"),
-            ("g1 = d^2 omega/dk^2", co["g1"], None), ("g2", co["g2"], None)]
+            ("g1 = d^2 omega/dk^2 (site^2/time)", co["g1"], "g1"),
+            ("g2 (1/(time amplitude^2))", co["g2"], "g2")]
     rows += [(f"  of which {p}", v, None) for p, v in parts.items()]
-    rows += [("g = g2/g1", co["g"], None)]
+    rows += [("g = g2/g1 (1/(site^2 amplitude^2))", co["g"], None)]
+    W = 35  # the longest label: g = g2/g1 with its unit
     for name, v, key in rows:
-        print(f"{name:<26} {_fmt(v):>14}" + (units.si(v, kind_of[key]) if key else ""))
+        print(f"{name:<{W}} {_fmt(v):>14}" + (units.si(v, kind_of[key]) if key else ""))
     verdict = co["verdict"]
     if verdict != "undefined":
         verdict += " (focusing)" if verdict == "MI" else " (defocusing)"
-    print(f"{'verdict (semi-discrete NLS)':<26} {verdict:>14}")
+    print(f"{'verdict (semi-discrete NLS)':<{W}} {verdict:>14}")
     for name, key in (("peak gain (1/time)", "peak_gain"),
                       ("e-folding time (time)", "e_folding_time"),
                       ("fastest offset (rad/site)", "fastest_offset"),
@@ -172,14 +177,14 @@ def run_coefficients(args) -> int:
                       ("frequency shift (1/time)", "frequency_shift"),
                       ("carrier damping (1/time)", "carrier_damping")):
         if key in co:
-            print(f"{name:<26} {_fmt(co[key]):>14}{units.si(co[key], kind_of[key])}")
+            print(f"{name:<{W}} {_fmt(co[key]):>14}{units.si(co[key], kind_of[key])}")
     for f in model.fields:
-        print(f"{f + ': 2k harmonic, mean':<26} {_fmt(co['second_harmonic'][f]):>14} "
+        print(f"{f + ': 2k harmonic, mean':<{W}} {_fmt(co['second_harmonic'][f]):>14} "
               f"{_fmt(co['mean'][f]):>12}  (mean strain {_fmt(co['mean_strain'][f])})")
     fw = co["four_wave"]
     waves = " and ".join(f"branch {w['branch']} ({w['field']}) at {w['wavenumber']:.4g}"
                          for w in fw["mode_waves"])
-    print(f"{'four-wave':<26} {fw['verdict']:>14}  peak gain {_fmt(fw['peak_gain'])}"
+    print(f"{'four-wave':<{W}} {fw['verdict']:>14}  peak gain {_fmt(fw['peak_gain'])}"
           + (f", {fw['mode_kind']} ({waves}), offset {_fmt(fw['fastest_offset'], 4)}"
              if fw["verdict"] == "MI" else ""))
     if co["reason"]:

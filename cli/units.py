@@ -14,10 +14,14 @@ from .coefficients import Units
 #: what each kind of number is in: (lattice unit, SI unit)
 KINDS = {"rate": ("1/time", "1/s"), "time": ("time", "s"),
          "wavenumber": ("rad/site", "rad/m"), "velocity": ("site/time", "m/s"),
-         "length": ("site", "m")}
+         "length": ("site", "m"),
+         # the NLS's coefficients: g1 = d^2 omega/dk^2; g2 multiplies |a|^2, a in the
+         # carrier field's own unit (length or angle: the model's), never converted
+         "dispersion": ("site^2/time", "m^2/s"),
+         "nonlinearity": ("1/(time amplitude^2)", "1/(s amplitude^2)")}
 
 #: the keys of the commands' JSON whose numbers carry a unit, by kind (every other number
-#: is a ratio, a count or a coefficient of the NLS, whose units the model's own define)
+#: is a ratio or a count; g = g2/g1 and g2's parts are in g2's units over g1's)
 KEYS = {
     "rate": ("peak_gain", "ring_peak_gain", "modulational_gain", "carrier_damping", "omega",
              "omega_linear", "frequency_shift", "frequency", "slowest_visible_rate"),
@@ -25,6 +29,8 @@ KEYS = {
     "wavenumber": ("k", "k_requested", "fastest_offset", "band_edge", "wavenumber"),
     "velocity": ("group_velocity", "velocity"),
     "length": ("width",),
+    "dispersion": ("g1",),
+    "nonlinearity": ("g2",),
 }
 _KIND_OF = {key: kind for kind, keys in KEYS.items() for key in keys}
 
@@ -50,7 +56,9 @@ class ModelUnits(Units):
         t, a = self.seconds_per_T, self.metres_per_site
         return {"rate": 1 / t if t else None, "time": t,
                 "wavenumber": 1 / a if a else None,
-                "velocity": a / t if a and t else None, "length": a}[kind]
+                "velocity": a / t if a and t else None, "length": a,
+                "dispersion": a * a / t if a and t else None,
+                "nonlinearity": 1 / t if t else None}[kind]
 
     def si(self, x: float | None, kind: str) -> str:
         """`` = VALUE UNIT`` of a lattice number in SI ('' where not given, or not finite)."""

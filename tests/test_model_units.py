@@ -134,3 +134,21 @@ def test_units_options_need_a_model(capsys):
     out = capsys.readouterr().out
     assert "SI from --physical: 1 T = sqrt(m/k_l) = " in out
     assert math.isfinite(float(out.split("1 T = sqrt(m/k_l) = ")[1].split()[0]))
+
+
+def test_nls_coefficients_carry_their_units(capsys):
+    """g1 = d^2 omega/dk^2 is in site^2/time (m^2/s: L^2 / T); g2 multiplies |a|^2 in
+    1/time, a in the carrier field's own unit, which no option converts (1/s: 1 / T)."""
+    co = _json(["coefficients", *FPUT, "--k", "2.5", "--amplitude", "0.1", "--json", *UNITS],
+               capsys)
+    u, si = co["units"], co["si"]
+    assert u["lattice"]["g1"] == "site^2/time" and u["si"]["g1"] == "m^2/s"
+    assert u["lattice"]["g2"] == "1/(time amplitude^2)"
+    assert si["g1"] == pytest.approx(co["g1"] * L**2 / T, rel=1e-12)
+    assert si["g2"] == pytest.approx(co["g2"] / T, rel=1e-12)
+    assert cli(["coefficients", *FPUT, "--k", "2.5", "--amplitude", "0.1", *UNITS]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    g1 = next(s for s in lines if s.startswith("g1 = d^2 omega/dk^2 (site^2/time)"))
+    assert g1.endswith(" m^2/s")
+    assert any(s.startswith("g2 (1/(time amplitude^2))") and s.endswith("1/(s amplitude^2)")
+               for s in lines)

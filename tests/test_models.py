@@ -351,3 +351,72 @@ def test_cli_model_errors_are_one_line():
                          "no parameter 'gamma'")):
         code, out, err, _ = _flexmm(*argv)
         assert code == 2 and words in err and len(err.strip().splitlines()) == 1, err
+
+
+_LIGHT_SITE = """name = "light-site"
+fields = ["u", "v"]
+[parameters]
+m = 0.1
+alpha = 0.0
+beta = 1.0
+kappa = 0.3
+lam = 1.0
+[energy]
+kinetic = "u_t**2/2 + m*v_t**2/2"
+bond = "(u_next - u)**2/2 + alpha*(u_next - u)**3/3 + beta*(u_next - u)**4/4"
+site = "kappa*(v - u)**2/2 + lam*(v - u)**4/4"
+"""
+
+
+def test_branch_by_index_and_by_field_name_one_field(tmp_path):
+    """A light site mass (m = 0.1) on an FPUT chain, no branch field: at k = 1 the lower
+    branch's v displacement is the larger (|e_v| 1.26 |e_u|) but u carries 84% of its
+    kinetic energy, the weight --branch u names a branch by. --branch 0 and --branch u
+    must then be one carrier: the same field measured by a, the same g2 (walkthrough of
+    issue 44: they said field v, g2 -5.2 and field u, g2 -7.1 for one branch)."""
+    path = tmp_path / "light.toml"
+    path.write_text(_LIGHT_SITE)
+    rows = {}
+    for b in ("0", "1", "u", "v"):
+        code, _, err, data = _flexmm("coefficients", "--model", str(path), "--k", "1.0",
+                                     "--amplitude", "0.1", "--branch", b, "--json")
+        assert code == 0, err
+        rows[b] = data
+    for index in ("0", "1"):
+        field = rows[index]["field"]
+        named = rows[field]
+        assert named["branch"] == int(index)
+        assert named["g2"] == pytest.approx(rows[index]["g2"], rel=1e-12)
+        assert "kinetic energy" in rows[index]["field_rule"]
+        assert named["field_rule"] == f"--branch {field} names the field"
+    assert rows["0"]["field"] == "u" and rows["1"]["field"] == "v"
+    # the kinetic shares themselves, from the eigenvector (independent of the rule)
+    m = load_model(str(path))
+    e = carrier(m, 1.0, 0).e
+    assert m.masses[0] * abs(e[0]) ** 2 > m.masses[1] * abs(e[1]) ** 2
+    assert abs(e[1]) > abs(e[0])
+
+
+def test_model_map_counts_nls_bands_no_ring_offset_samples(tmp_path):
+    """A model map set the infinite chain's NLS verdict beside the ring's: where the NLS
+    band 0 < q < a sqrt(g2/g1) is narrower than the ring's smallest offset 2 pi / N, no
+    ring offset samples it. The map counts those cells (walkthrough of issue 44: 78% MI
+    semi-discrete against 44% exact, unexplained); the count is checked against the NLS's
+    own band edge per cell."""
+    N, a = 64, 0.2
+    code, _, err, data = _flexmm("map", "--model", "fput", "--param", "alpha=0", "--param",
+                                 "beta=1:1.5:2", "--k", "0.2:1.2:2", "--amplitude", str(a),
+                                 "--N", str(N), "--theory-only", "--exact", "--workers", "1",
+                                 "--out", str(tmp_path / "m"), "--json")
+    assert code == 0, err
+    u = data["nls_band_unsampled"]
+    assert u["ring_smallest_offset"] == pytest.approx(2 * math.pi / N)
+    want = 0
+    for beta in data["axes"]["beta"]:
+        m = load_model("fput", alpha=0.0, beta=beta)
+        for k in data["axes"]["k"]:
+            r = nls(m, k)
+            want += r.verdict == "MI" and r.band_edge(a) <= 2 * math.pi / N
+    assert want >= 1  # k = 0.2: the band edge is ~0.07 < 0.098
+    assert u["cells"] == want and u["of"] == 4
+    assert set(u["ring_not_MI"]) == {"exact", "fourwave"}

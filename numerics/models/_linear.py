@@ -152,13 +152,29 @@ def carrier(model: Model, k: float, branch=None) -> Carrier:
 
 def field_of(model: Model, e: np.ndarray, name: str | None = None) -> int:
     """The field that carries the wave's amplitude: the field that named the branch (or the
-    model's branch field) if it moves, else the largest component."""
+    model's branch field) if it moves, else the field with most of the wave's kinetic
+    energy m_f |e_f|^2 -- the weight ``branch_index`` names a branch by, so that
+    ``--branch INDEX`` and ``--branch FIELD`` give one field for one branch (a heavy field
+    can carry most of the energy with the smaller displacement)."""
     name = name or model.lattice.branch
     if name is not None:
         f = model.fields.index(name)
         if abs(e[f]) > 1e-8 * np.max(np.abs(e)):
             return f
-    return int(np.argmax(np.abs(e)))
+    return int(np.argmax(np.asarray(model.masses, float) * np.abs(e) ** 2))
+
+
+def field_rule(model: Model, branch=None, field: int | None = None) -> str:
+    """Why the amplitude a measures the field it does (``field``, ``carrier``'s): a line
+    for the outputs."""
+    name = branch if isinstance(branch, str) and not branch.isdigit() else None
+    named = name or model.lattice.branch
+    if named is not None and (field is None or model.fields[field] == named):
+        return (f"--branch {name} names the field" if name else
+                f"the model's branch field {named}")
+    if model.n_fields == 1:
+        return "the model's only field"
+    return "the field with most of the wave's kinetic energy m |e|^2"
 
 
 def damping_matrix(model: Model, kappa: float) -> np.ndarray:

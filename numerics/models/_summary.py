@@ -6,7 +6,7 @@ import math
 
 from energy import Model, ModelError
 
-from ._linear import carrier_damping
+from ._linear import carrier_damping, field_rule
 from ._nls import nls
 
 #: The NLS's own frequency shift beyond this share of omega is outside the weakly nonlinear
@@ -22,7 +22,7 @@ def model_coefficients(model: Model, k: float, amplitude: float, branch=None) ->
     """The semi-discrete NLS of ``model`` at carrier ``k`` and amplitude ``a``.
 
     Returns a JSON-ready dict: ``model``, ``parameters``, ``k``, ``amplitude``, ``branch``
-    (index), ``field`` (the amplitude's field), ``omega``, ``group_velocity``, ``g1``,
+    (index), ``field`` (the amplitude's field), ``field_rule`` (why that field), ``omega``, ``group_velocity``, ``g1``,
     ``g2``, ``g2_parts``, ``g``, ``verdict`` ("MI", "stable", "undefined"), ``reason``,
     ``peak_gain`` (1/time), ``e_folding_time``, ``fastest_offset``, ``band_edge`` (rad/site),
     ``second_harmonic`` / ``mean`` / ``mean_strain`` (amplitude per field at this a),
@@ -45,6 +45,7 @@ def model_coefficients(model: Model, k: float, amplitude: float, branch=None) ->
     return {
         "model": model.name, "parameters": dict(model.params), "k": float(k),
         "amplitude": a, "branch": c.branch, "field": fields[c.field],
+        "field_rule": field_rule(model, branch, c.field),
         "omega": c.omega, "group_velocity": c.group_velocity, "g1": c.g1,
         "g2": _num(r.g2), "g2_parts": {p: _num(v) for p, v in r.parts.items()},
         "g": _num(r.g), "verdict": r.verdict, "reason": r.undefined,
