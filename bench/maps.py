@@ -507,7 +507,8 @@ if __name__ == "__main__":
         load = os.getloadavg()[0]
         row = model_vs_paper_map()
         print_model_row(row)
-        print_model_layouts(model_map_layouts("--quick" in sys.argv))
+        layouts = model_map_layouts("--quick" in sys.argv)
+        print_model_layouts(layouts)
         if "--fput-32" in sys.argv:  # the 32 x 32 fput map (minutes), into results.json
             fput = fput_map_32(row)
             print_fput_32(fput)
@@ -518,7 +519,8 @@ if __name__ == "__main__":
 
                 here = output_dir(update=True)
                 section = json.loads(results_path(False, here).read_text()).get("maps", {})
-                section.update(fput_map_32x32=fput, model_vs_paper_map=row)
+                section.update(fput_map_32x32=fput, model_vs_paper_map=row,
+                               model_map_workers=layouts)
                 write_sections({"maps": section}, False, here)
         print(f"load average before/after: {load:.1f} / {os.getloadavg()[0]:.1f} on "
               f"{os.cpu_count()} cores")
