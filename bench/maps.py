@@ -24,7 +24,10 @@ or bench/ with --update). Reports the load average: the machine is shared.
 
 - Issue 40's table: the same 3 x 3 map of case II (N 128, amplitude 0.1, T 2000, exact
   wave start, one worker) as `flexmm map` with the paper flags and with `--model flexmm`:
-  wall and CPU time of each command (its worker processes included), and their ratio.
+  wall and CPU time of each command (its worker processes included), and their ratio; a
+  model map's task phase on 2 workers against 1 (2 x 8 flexmm cells; 2 x 4, T 500 with
+  --quick); the 32 x 32 simulated fput map (N 128, T 2000, one seed) with its cells per
+  second (``--model-row --fput-32`` only: minutes).
 
 - Issue 44's estimates: commands of the paper chain (simulated, theory-only, the paper
   start's exact predictions) and of models (maps theory-only, with --exact, simulated; a
@@ -33,7 +36,9 @@ or bench/ with --update). Reports the load average: the machine is shared.
   2 x 2 theory-only fput map only.
 
     python -m bench.maps [--quick] [--update | --out DIR]
-    python -m bench.maps --model-row     (issue 40's table alone, printed)
+    python -m bench.maps --model-row [--quick] [--fput-32 [--update]]
+        (issue 40's rows alone, printed: the table, the model map on 2 workers against 1;
+        the 32 x 32 fput map with --fput-32, written into bench/results.json with --update)
     python -m bench.maps --estimates [--quick]   (issue 44's estimate rows, printed)
 """
 
@@ -48,6 +53,14 @@ from pathlib import Path
 
 import numpy as np
 
+from bench.model_maps import (  # issue 40's rows (their own module)
+    fput_map_32,
+    model_map_layouts,
+    model_vs_paper_map,
+    print_fput_32,
+    print_model_layouts,
+    print_model_row,
+)
 from bench.simulator import arguments, machine, write_section
 from common import paper
 from numerics import Material, maps
@@ -198,54 +211,6 @@ def map_64_run_map(N, T):
             "predicted_undetermined_cells": agree.get("predicted_undetermined_cells")}
 
 
-#: issue 40's table: the same 3 x 3 map of the paper's case II (N 128, amplitude 0.1,
-#: T 2000, exact wave start) through the paper flags and as the built-in model flexmm,
-#: both on one worker of the one map engine
-MODEL_ROW = {
-    "paper flags": ["--alpha", "2.5", "--K-s", "0.01851", "--case", "coupled", "--K-theta",
-                    "0.012,0.016,0.020", "--k", "0.6,0.9,1.2", "--start", "travelling"],
-    "--model flexmm": ["--model", "flexmm", "--param", "K_theta=0.012,0.016,0.020", "--k",
-                       "0.6,0.9,1.2", "--seeds", "1"],
-}
-
-
-def model_vs_paper_map(workers: int = 1) -> dict:
-    """Wall and CPU time (the command and its worker processes) of issue 40's two map
-    commands, each a fresh `flexmm map` process into a fresh folder; the ratio model /
-    paper flags (the issue asks for at most 1.2)."""
-    import resource
-    import subprocess
-    import sys
-
-    common = ["--N", "128", "--amplitude", "0.1", "--t-end", "2000", "--workers",
-              str(workers)]
-    out = {}
-    for name, argv in MODEL_ROW.items():
-        with tempfile.TemporaryDirectory() as tmp:
-            before = resource.getrusage(resource.RUSAGE_CHILDREN)
-            t0 = time.perf_counter()
-            proc = subprocess.run([sys.executable, "-m", "cli", "map", *argv, *common,
-                                   "--out", str(Path(tmp) / "map")], capture_output=True,
-                                  text=True, env={**os.environ, "OMP_NUM_THREADS": "1"})
-            wall = time.perf_counter() - t0
-            after = resource.getrusage(resource.RUSAGE_CHILDREN)
-        if proc.returncode:
-            raise RuntimeError(f"{name}: exit {proc.returncode}: {proc.stderr[-500:]}")
-        cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
-        out[name] = {"wall_s": wall, "cpu_s": cpu, "argv": argv + common}
-    out["model_over_paper_wall"] = out["--model flexmm"]["wall_s"] / out["paper flags"]["wall_s"]
-    out["model_over_paper_cpu"] = out["--model flexmm"]["cpu_s"] / out["paper flags"]["cpu_s"]
-    return out
-
-
-def print_model_row(res: dict):
-    for name in MODEL_ROW:
-        print(f"3 x 3 map, {name}: {res[name]['wall_s']:.1f} s wall, "
-              f"{res[name]['cpu_s']:.1f} s CPU")
-    print(f"--model flexmm / paper flags: {res['model_over_paper_wall']:.2f}x wall, "
-          f"{res['model_over_paper_cpu']:.2f}x CPU (issue 40 asks <= 1.2x)")
-
-
 _PAPER = ["--alpha", "2.5", "--K-s", "0.01851", "--case", "coupled"]
 _FPUT = ["--model", "fput", "--param", "alpha=1"]
 #: issue 44 items 1-2: commands whose estimate line is checked against their wall time
@@ -361,10 +326,12 @@ def main(quick=False, out=None):
         res["map_64x64_run_map"] = map_64_run_map(N, T)
         res["cell_accuracy"] = check_grid()
     res["model_vs_paper_map"] = model_vs_paper_map()
+    res["model_map_workers"] = model_map_layouts(quick)
     res["estimates"] = estimates(quick)
     res["load_average_before_after"] = [load_before, os.getloadavg()]
     write_section("maps", res, quick, out)
     print_model_row(res["model_vs_paper_map"])
+    print_model_layouts(res["model_map_workers"])
     print_estimates(res["estimates"])
     print(f"per cell (N = {N}, T = {T:g}, {res['method']} dt = {res['dt']:.3g}): simulated "
           f"in {serial:.3f} s serially = {1 / serial:.1f} cells/s/core (RK4 at dt = 0.05 "
@@ -402,9 +369,25 @@ if __name__ == "__main__":
 
     if "--estimates" in sys.argv:  # issue 44's estimate rows alone (printed, not written)
         print_estimates(estimates("--quick" in sys.argv))
-    elif "--model-row" in sys.argv:  # issue 40's table alone (printed, not written)
+    elif "--model-row" in sys.argv:  # issue 40's rows alone (printed, not written)
         load = os.getloadavg()[0]
-        print_model_row(model_vs_paper_map())
+        row = model_vs_paper_map()
+        print_model_row(row)
+        layouts = model_map_layouts("--quick" in sys.argv)
+        print_model_layouts(layouts)
+        if "--fput-32" in sys.argv:  # the 32 x 32 fput map (minutes), into results.json
+            fput = fput_map_32(row)
+            print_fput_32(fput)
+            if "--update" in sys.argv:  # into the committed maps section, its rest kept
+                import json
+
+                from bench.simulator import output_dir, results_path, write_sections
+
+                here = output_dir(update=True)
+                section = json.loads(results_path(False, here).read_text()).get("maps", {})
+                section.update(fput_map_32x32=fput, model_vs_paper_map=row,
+                               model_map_workers=layouts)
+                write_sections({"maps": section}, False, here)
         print(f"load average before/after: {load:.1f} / {os.getloadavg()[0]:.1f} on "
               f"{os.cpu_count()} cores")
     else:

@@ -116,3 +116,19 @@ def test_one_cell_of_a_model_map_is_measured_here():
         "fput", ("beta", [0.8, 1.6]), ("k", [2.6, 2.8]), 0.1, params={"alpha": 1.0},
         theory_only=True))
     assert theory_only.run == 0 and theory_only.t_end == 0
+
+
+def test_a_run_without_its_energy_records_the_same_run():
+    """A map cell's runs skip the energy (its kernel compiles in every worker and no column
+    uses it): the records the cell's columns come from are the same to the last bit, the
+    energy NaN."""
+    from energy import load_model
+    from numerics.models import simulate_model
+
+    model = load_model("fput", alpha=1.0, beta=1.5)
+    with_e, without = (simulate_model(model, 2.5, 0.1, N=32, t_end=50.0, records=20,
+                                      energy=e) for e in (True, False))
+    assert (with_e.spectrum == without.spectrum).all()
+    assert (with_e.deviation == without.deviation).all() and (with_e.t == without.t).all()
+    assert with_e.growth() == without.growth()
+    assert math.isfinite(with_e.energy_drift) and math.isnan(without.energy_drift)

@@ -33,6 +33,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from ._fast_forces import flexmm_force, flexmm_rotation_force
 from ._integrators import Method
 
 _FAST = {"contract"}
@@ -179,6 +180,59 @@ def linear_damping(v, args, out):
             out[a, n] -= minv[a] * f
 
 
+# srkn_force_steps takes its force as an argument, which Numba compiles in every process
+# (no disk cache for a function of a function: ~1.3 s, in each map worker): the paper
+# chain's fused forces get the same loop written out around a direct call, cached on disk;
+# lossless runs only (no flow). tests/test_force_steppers.py: bit for bit the same states.
+@njit(cache=True, nogil=True, fastmath=_FAST, boundscheck=False)
+def _srkn_flexmm_steps(u, v, p, S, acc, A, B, dt, nsteps):
+    """``srkn_force_steps(flexmm_force, no_flow, (), ...)``, cached on disk."""
+    d, N = u.shape
+    for step in range(nsteps):
+        for j in range(B.size):
+            hb = B[j] * dt
+            for a in range(d):
+                for n in range(N):
+                    v[a, n] += hb * acc[a, n]
+            if A[j] != 0.0:
+                ha = A[j] * dt
+                for a in range(d):
+                    for n in range(N):
+                        u[a, n] += ha * v[a, n]
+                flexmm_force(u, p, acc, S)
+        if not np.isfinite(u[0, 0]):
+            return step
+    return nsteps
+
+
+@njit(cache=True, nogil=True, fastmath=_FAST, boundscheck=False)
+def _srkn_flexmm_rotation_steps(u, v, p, S, acc, A, B, dt, nsteps):
+    """``srkn_force_steps(flexmm_rotation_force, no_flow, (), ...)``, cached on disk."""
+    d, N = u.shape
+    for step in range(nsteps):
+        for j in range(B.size):
+            hb = B[j] * dt
+            for a in range(d):
+                for n in range(N):
+                    v[a, n] += hb * acc[a, n]
+            if A[j] != 0.0:
+                ha = A[j] * dt
+                for a in range(d):
+                    for n in range(N):
+                        u[a, n] += ha * v[a, n]
+                flexmm_rotation_force(u, p, acc, S)
+        if not np.isfinite(u[0, 0]):
+            return step
+    return nsteps
+
+
+#: force -> its SRKN loop compiled for it and cached on disk (lossless runs): the
+#: registered fast forces of the paper chain; any other force compiles
+#: ``srkn_force_steps`` in each process
+_CACHED_SRKN = {flexmm_force: _srkn_flexmm_steps,
+                flexmm_rotation_force: _srkn_flexmm_rotation_steps}
+
+
 class ForceStepper:
     """One run's stepping of a lattice with a compiled force: its state, work arrays and
     method; ``advance(n)`` does n steps (the run control calls it chunk by chunk).
@@ -227,6 +281,12 @@ class ForceStepper:
     def advance(self, nsteps: int) -> int:
         """Advance ``nsteps`` steps; returns the number completed while finite."""
         if self.method.kind == "srkn":
+            cached = _CACHED_SRKN.get(self.force) if self.flow is None else None
+            if cached is not None:
+                done = cached(self.u, self.v, self.p, self.S, self.acc, self.A, self.B,
+                              self.dt, nsteps)
+                self.evaluations += done * self.method.evaluations
+                return int(done)
             fl, args = self.flow if self.flow is not None else (no_flow, ())
             done = srkn_force_steps(self.force, fl, args, self.u, self.v, self.p, self.S,
                                     self.acc, self.A, self.B, self.dt, nsteps)

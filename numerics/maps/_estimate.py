@@ -242,11 +242,12 @@ PROBE_STEPS = 4000
 
 
 def probe_model_run(model, k: float, amplitude: float, branch=None, *, N: int, t_end: float,
-                    wave=None) -> tuple[float, float]:
+                    wave=None, energy: bool = True) -> tuple[float, float]:
     """(CPU seconds of one run of ``t_end`` on the ring of ``N`` sites, CPU seconds of the
     first call's compile and load), measured: a short run (loads the kernels), then
     PROBE_STEPS steps timed, scaled to ``t_end`` (the run's cost is its steps' force
-    evaluations; its 400 records are kept in the same proportion)."""
+    evaluations; its 400 records are kept in the same proportion). ``energy``: whether the
+    runs record the energy (a point's do; a map cell's do not, ``simulate_model``)."""
     import time
 
     from ..models import simulate_model, snap_ring, travelling_wave
@@ -255,13 +256,13 @@ def probe_model_run(model, k: float, amplitude: float, branch=None, *, N: int, t
         wave = travelling_wave(model, snap_ring(k, N)[0], amplitude, branch)
     t0 = time.process_time()
     first = simulate_model(model, k, amplitude, branch=branch, N=N, t_end=t_end / 1e4,
-                           wave=wave, records=2)
+                           wave=wave, records=2, energy=energy)
     warm = time.process_time() - t0
     probe_t = min(t_end, PROBE_STEPS * first.dt)
     records = max(2, round(400 * probe_t / t_end))
     t0 = time.process_time()
     simulate_model(model, k, amplitude, branch=branch, N=N, t_end=probe_t, wave=wave,
-                   records=records)
+                   records=records, energy=energy)
     run = (time.process_time() - t0) * t_end / probe_t
     return run, max(warm - run / 1e4, 0.0)  # the first call ran 1e-4 of the run
 
@@ -308,7 +309,7 @@ def probe_model_cell(params) -> ModelCellCost:
 
         try:
             run, compile_s = probe_model_run(model, k, params.amplitude, params.branch_value,
-                                             N=params.N, t_end=t_end)
+                                             N=params.N, t_end=t_end, energy=False)
             warmup += compile_s
         except (ModelError, FloatingPointError):  # no wave at the middle cell to run
             run = 0.0

@@ -271,9 +271,17 @@ def _scaled_start(start, car, a, H):
     return car.omega + (start.omega - car.omega) * r**2, c0
 
 
-def _travelling_wave(model, k, amplitude, branch, harmonics, start=None):
+def _least_squares(*args, **kwargs):
+    """scipy's least_squares, imported on the first call: the fallback where Newton does
+    not settle (importing scipy.optimize costs ~0.8 s, in every process that finds a wave:
+    each map worker)."""
     from scipy.optimize import least_squares
 
+    return least_squares(*args, **kwargs)
+
+
+def _travelling_wave(model, k, amplitude, branch, harmonics, start=None):
+    least_squares = _least_squares
     a = float(amplitude)
     if not (math.isfinite(a) and a > 0):
         raise ModelError(f"amplitude must be a finite number > 0, got {amplitude!r}")

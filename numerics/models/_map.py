@@ -271,11 +271,14 @@ def _cell_columns(model, k, amplitude, branch, *, exact, simulate, N, seeds, t_e
     if simulate:
         if lossy:  # issue 42: launched as a point's, the runs' amplification
             sim, amp = lossy_runs(model, k, amplitude, spec, branch=branch, N=N,
-                                  seeds=seeds, t_end=t_end, peak_time=peak_time)
+                                  seeds=seeds, t_end=t_end, peak_time=peak_time,
+                                  energy=False)
             row.update(amp)
         else:
+            # energy=False: a cell's columns do not use the runs' energy, whose kernel
+            # (compiled in every worker, no disk cache) would cost more than the cell
             sim = simulate_seeds(model, k, amplitude, spec, branch=branch, N=N, seeds=seeds,
-                                 t_end=t_end)
+                                 t_end=t_end, energy=False)
         growth = [run.growth() for run in sim.runs]
         top = max(growth, key=lambda g: g.factor if math.isfinite(g.factor) else -1.0)
         row.update(verdict_simulated=sim.verdict.word,
@@ -288,7 +291,7 @@ def _cell_columns(model, k, amplitude, branch, *, exact, simulate, N, seeds, t_e
 
 def lossy_runs(model: Model, k: float, amplitude: float, spec, *, branch=None,
                N: int = 256, seeds: int = 1, t_end: float | None = None,
-               peak_time: float | None = None) -> tuple:
+               peak_time: float | None = None, energy: bool = True) -> tuple:
     """Seeded runs of a lossy model's cell launched as issue 42 measures a run's
     amplification (the exact wave of the lossless model plus noise on the carrier field's
     positions, run until A(t) has fallen to half its maximum), as ``point --model
@@ -297,6 +300,7 @@ def lossy_runs(model: Model, k: float, amplitude: float, spec, *, branch=None,
     The cap: ``t_end`` where given, else 1.5x the exact theory's peak time ``peak_time``
     (its ``amplification_time``), at least ``run_length`` of the exact rate (the lossless
     run's length; the cap alone where the theory has no finite peak time).
+    ``energy=False``: the runs record no energy (``simulate_model``; a map cell's).
 
     Returns
     -------
@@ -312,7 +316,7 @@ def lossy_runs(model: Model, k: float, amplitude: float, spec, *, branch=None,
     if t_end is None and peak_time is not None and math.isfinite(peak_time):
         t_end = max(run_length(spec.peak_gain).t_end, 1.5 * peak_time)
     sim = simulate_seeds(model, k, amplitude, spec, branch=branch, N=N, seeds=seeds,
-                         t_end=t_end, noise_on="carrier", until_peak=True)
+                         t_end=t_end, noise_on="carrier", until_peak=True, energy=energy)
     amps = sorted((r.amplification() for r in sim.runs), key=lambda a: a.amplification)
     med = amps[len(amps) // 2]
     return sim, {"amplification_simulated": float(med.amplification),

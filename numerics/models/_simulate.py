@@ -173,7 +173,7 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
                    seed: int = 0, records: int = 400, expected_gain: float | None = None,
                    wave=None, until_peak: bool = False,
                    noise_on: str = "all", initial=None, force: str = "auto",
-                   on_steps=None) -> ModelRun:
+                   on_steps=None, energy: bool = True) -> ModelRun:
     """Run the ring of ``model`` from a plane wave at ``k`` (snapped to the ring) with
     first harmonic ``amplitude`` in its carrier field, plus seeded noise.
 
@@ -193,7 +193,10 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
     is registered for it ("auto", the default: the fused flexMM kernel for the paper
     chain's energy, ``numerics.lattice.register_fast_force``); ``ModelRun.force`` says
     which ran. ``on_steps(n, nsteps)``: called after every stretch of ``n`` of the run's
-    ``nsteps`` steps (a progress bar).
+    ``nsteps`` steps (a progress bar). ``energy=False``: the total energy is not recorded
+    (``ModelRun.energy`` NaN, its drift NaN): a map cell's columns do not use it, and the
+    model's energy kernel (compiled per process, no disk cache: ~1.3 s) is then never
+    compiled.
     """
     from common.signals import signal_number
     from numerics.lattice import (
@@ -265,7 +268,7 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
         v = np.ascontiguousarray(v + noise * amplitude * wave.omega * rng.standard_normal(
             (d, N)))
     kernel, p_force, rows, force_label = run_force(model, force)
-    energy = _kernels(model).energy
+    energy_of = _kernels(model).energy if energy else None
     p = np.asarray(model.p, float)
     masses = np.asarray(model.masses, float)
     x = np.empty(2 * d)
@@ -288,7 +291,7 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
         ts.append(t)
         spec.append(np.sqrt(np.sum(np.abs(np.fft.fft(delta, axis=1)) ** 2, axis=0)) / N)
         dev.append(float(np.sqrt(np.mean(delta**2))))
-        en.append(energy(u, v, p, masses, x))
+        en.append(energy_of(u, v, p, masses, x) if energy_of is not None else math.nan)
         if lossy:
             diss.append(2 * rayleigh(model, v, (S_d, B_d)))
 

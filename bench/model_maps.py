@@ -1,0 +1,158 @@
+"""Issue 40's rows of ``bench.maps``: the same 3 x 3 map of the paper's case II through the
+paper flags and as the built-in model flexmm (wall, CPU, ratio), a model map's task phase on
+2 workers against 1, and the 32 x 32 simulated fput map with its cells per second. Run
+through ``python -m bench.maps --model-row [--quick] [--fput-32 [--update]]`` (the first two
+also in ``bench.maps``' full and quick runs); bench/README.md has the numbers."""
+
+from __future__ import annotations
+
+import os
+import shutil
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+from numerics import maps
+
+#: issue 40's table: the same 3 x 3 map of the paper's case II (N 128, amplitude 0.1,
+#: T 2000, exact wave start) through the paper flags and as the built-in model flexmm,
+#: both on one worker of the one map engine
+MODEL_ROW = {
+    "paper flags": ["--alpha", "2.5", "--K-s", "0.01851", "--case", "coupled", "--K-theta",
+                    "0.012,0.016,0.020", "--k", "0.6,0.9,1.2", "--start", "travelling"],
+    "--model flexmm": ["--model", "flexmm", "--param", "K_theta=0.012,0.016,0.020", "--k",
+                       "0.6,0.9,1.2", "--seeds", "1"],
+}
+
+
+def model_vs_paper_map(workers: int = 1) -> dict:
+    """Wall and CPU time (the command and its worker processes) of issue 40's two map
+    commands, each a fresh `flexmm map` process into a fresh folder; the ratio model /
+    paper flags (the issue asks for at most 1.2)."""
+    import resource
+    import subprocess
+    import sys
+
+    common = ["--N", "128", "--amplitude", "0.1", "--t-end", "2000", "--workers",
+              str(workers)]
+    out = {}
+    for name, argv in MODEL_ROW.items():
+        with tempfile.TemporaryDirectory() as tmp:
+            before = resource.getrusage(resource.RUSAGE_CHILDREN)
+            t0 = time.perf_counter()
+            proc = subprocess.run([sys.executable, "-m", "cli", "map", *argv, *common,
+                                   "--out", str(Path(tmp) / "map")], capture_output=True,
+                                  text=True, env={**os.environ, "OMP_NUM_THREADS": "1"})
+            wall = time.perf_counter() - t0
+            after = resource.getrusage(resource.RUSAGE_CHILDREN)
+        if proc.returncode:
+            raise RuntimeError(f"{name}: exit {proc.returncode}: {proc.stderr[-500:]}")
+        cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+        out[name] = {"wall_s": wall, "cpu_s": cpu, "argv": argv + common}
+    out["model_over_paper_wall"] = out["--model flexmm"]["wall_s"] / out["paper flags"]["wall_s"]
+    out["model_over_paper_cpu"] = out["--model flexmm"]["cpu_s"] / out["paper flags"]["cpu_s"]
+    return out
+
+
+def print_model_layouts(res: dict):
+    t = res["task_phase_s"]
+    print(f"model map ({res['cells']} cells, flexmm, N {res['N']}, T {res['t_end']:g}), "
+          f"task phase: 1 worker {t['1 worker(s)']:.1f} s, 2 workers {t['2 worker(s)']:.1f} s"
+          f" -> {res['speedup_2_workers_task_phase']:.2f}x (issue 40 asks >= 1.8x)")
+
+
+def print_fput_32(res: dict):
+    print(f"fput 32 x 32 map (N 128, T 2000, one seed, {res['workers']} workers): "
+          f"{res['wall_s']:.0f} s wall, {res['cpu_s']:.0f} s CPU, {res['cells_per_s']:.2f} "
+          f"cells/s ({res['cells_per_s_task_phase']:.2f} in its task phase); the paper "
+          f"flags' 3 x 3 map {res.get('paper_flags_3x3_cells_per_s', float('nan')):.2f} "
+          "cells/s (one worker, start-up included)")
+
+
+def print_model_row(res: dict):
+    for name in MODEL_ROW:
+        print(f"3 x 3 map, {name}: {res[name]['wall_s']:.1f} s wall, "
+              f"{res[name]['cpu_s']:.1f} s CPU")
+    print(f"--model flexmm / paper flags: {res['model_over_paper_wall']:.2f}x wall, "
+          f"{res['model_over_paper_cpu']:.2f}x CPU (issue 40 asks <= 1.2x)")
+
+
+def model_map_layouts(quick: bool = False) -> dict:
+    """Issue 40: a model map's task phase (``run_map``'s own "simulated n cells in x s")
+    on a LocalCluster of 2 worker processes against 1, each warmed up first (its kernels
+    loaded by a one-cell task), fresh stores: the flexmm model, K_theta x k = 2 x 8 cells
+    (2 x 4, T 500 with --quick), N 128, amplitude 0.1, T 2000, one seed, one cell a task
+    (the issue asks >= 1.8x)."""
+    from dask.distributed import Client, LocalCluster
+
+    k = np.linspace(0.4, 1.5, 4 if quick else 8)
+    T = 500.0 if quick else 2000.0
+    params = maps.ModelMapParameters.from_model(
+        "flexmm", ("K_theta", [0.012, 0.020]), ("k", list(k)), 0.1, N=128, seeds=1,
+        t_end=T, block=1)
+    tiny = maps.ModelMapParameters.from_model(
+        "flexmm", ("K_theta", [0.016]), ("k", [0.6]), 0.1, N=128, seeds=1, t_end=20.0)
+    tasks, walls = {}, {}
+    for workers in (1, 2):
+        d = Path(tempfile.mkdtemp())
+        try:
+            with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                              dashboard_address=":0", silence_logs=40) as cluster, \
+                    Client(cluster) as client:
+                for w in client.scheduler_info()["workers"]:  # each worker's first cell
+                    client.submit(tiny.task, tiny, 0, [0], True, workers=[w],
+                                  pure=False).result()
+                said = []
+                t0 = time.perf_counter()
+                maps.run_map(params, d, scheduler=cluster.scheduler_address, progress=False,
+                             log=said.append)
+                walls[workers] = time.perf_counter() - t0
+                tasks[workers] = float(said[-1].rsplit(" in ", 1)[1].split()[0])
+        finally:
+            shutil.rmtree(d, ignore_errors=True)
+    return {"cells": int(np.prod(params.grid_shape)), "N": 128, "t_end": T,
+            "task_phase_s": {f"{w} worker(s)": t for w, t in tasks.items()},
+            "run_map_wall_s": {f"{w} worker(s)": t for w, t in walls.items()},
+            "speedup_2_workers_task_phase": tasks[1] / tasks[2],
+            "load_average": os.getloadavg()[0]}
+
+
+#: issue 40: the 32 x 32 simulated fput map (N 128, T 2000, one seed) on this machine's
+#: default workers
+FPUT_32 = ["--model", "fput", "--param", "alpha=0.5", "--param", "beta=0.5:2:32", "--k",
+           "0.5:3:32", "--N", "128", "--amplitude", "0.1", "--t-end", "2000", "--seeds", "1"]
+
+
+def fput_map_32(paper_row: dict | None = None) -> dict:
+    """The 32 x 32 fput map as a user runs it (a fresh `flexmm map` process, its default
+    workers): wall and CPU time, cells per second over the command and over its task
+    phase; beside it the paper flags' 3 x 3 map of ``paper_row`` (``model_vs_paper_map``,
+    the same N and T, one worker) in cells per second."""
+    import re
+    import resource
+    import subprocess
+    import sys
+
+    with tempfile.TemporaryDirectory() as tmp:
+        load = os.getloadavg()[0]
+        before = resource.getrusage(resource.RUSAGE_CHILDREN)
+        t0 = time.perf_counter()
+        proc = subprocess.run([sys.executable, "-m", "cli", "map", *FPUT_32, "--out",
+                               str(Path(tmp) / "map")], capture_output=True, text=True,
+                              env={**os.environ, "OMP_NUM_THREADS": "1"})
+        wall = time.perf_counter() - t0
+        after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    if proc.returncode:
+        raise RuntimeError(f"fput 32 x 32: exit {proc.returncode}: {proc.stderr[-500:]}")
+    task = float(re.search(r"simulated (\d+) cells in (\d+(?:\.\d+)?) s",
+                           proc.stdout).group(2))
+    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    out = {"argv": FPUT_32, "cells": 32 * 32, "wall_s": wall, "cpu_s": cpu,
+           "task_phase_s": task, "cells_per_s": 1024 / wall,
+           "cells_per_s_task_phase": 1024 / task, "workers": maps.local_cores(),
+           "load_average_before": load}
+    if paper_row is not None:
+        out["paper_flags_3x3_cells_per_s"] = 9 / paper_row["paper flags"]["wall_s"]
+    return out
