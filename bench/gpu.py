@@ -16,7 +16,11 @@ spectra included), or why a model has no number (a lossy model runs on the CPU).
 
 Without a GPU it prints one line starting "no GPU" and exits 0, writing nothing.
 
-    python -m bench.gpu [--quick] [--out DIR | --update] [--skip-cpu-map]
+Each stage's numbers are written as soon as it ends (a run cut off by a time limit keeps
+what it measured; the stages not reached are null, said in ``notes``). ``versions``: numba,
+numba-cuda and numpy, as measured.
+
+    python -m bench.gpu [--quick] [--out DIR | --update] [--skip-cpu-map] [--maps 64,512]
 """
 
 from __future__ import annotations
@@ -126,6 +130,19 @@ def timed_map(n: int, device: str | None, out: Path, notes: list) -> float | Non
     return wall
 
 
+def versions() -> dict:
+    """numba, numba-cuda and numpy as imported (None where absent)."""
+    from importlib.metadata import PackageNotFoundError, version
+
+    got = {}
+    for name in ("numba", "numba-cuda", "numpy", "llvmlite"):
+        try:
+            got[name] = version(name)
+        except PackageNotFoundError:
+            got[name] = None
+    return got
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true", help="kernel only, 512 chains")
@@ -133,6 +150,8 @@ def main(argv=None) -> int:
     ap.add_argument("--update", action="store_true", help="write bench/results_gpu.json")
     ap.add_argument("--skip-cpu-map", action="store_true",
                     help="no CPU map (minutes): no map_64x64_cpu_wall_s, no gpu_speedup")
+    ap.add_argument("--maps", default="64,512",
+                    help="which GPU maps to time (64 and/or 512 cells a side)")
     a = ap.parse_args(argv)
     from numerics.maps._gpu import gpu_name, gpu_status, simulated
 
@@ -141,31 +160,45 @@ def main(argv=None) -> int:
         print(f"no GPU: bench.gpu measured nothing and wrote nothing ({reason})")
         return 0
     notes: list = []
-    result = {"device": gpu_name(), "status": reason, "cpu_cores": os.cpu_count()}
+    result = {"device": gpu_name(), "status": reason, "cpu_cores": os.cpu_count(),
+              "versions": versions(), "notes": notes, "map_64x64_wall_s": None,
+              "map_512x512_wall_s": None, "map_64x64_cpu_wall_s": None, "gpu_speedup": None,
+              "ps_per_site_evaluation": None, "cells_per_s": None, "models": {}}
+    out = HERE / "results_gpu.json" if a.update else Path(a.out) / "results_gpu.json"
+    out.parent.mkdir(parents=True, exist_ok=True)
+
+    def save(stage: str) -> None:
+        result["last_stage"] = stage
+        out.write_text(json.dumps(result, indent=2, sort_keys=True) + "\n")
+        print(f"[bench.gpu] {stage} done, saved {out}", flush=True)
+
+    save("start")
     result.update(kernel_rate(512 if a.quick else 4096))
+    save("kernel")
     result["models"] = model_rates(256 if a.quick else MODEL_CHAINS)
+    save("models")
     help_text = subprocess.run([shutil.which("flexmm") or "flexmm", "map", "--help"],
                                capture_output=True, text=True).stdout
     has_device = "--device" in help_text
+    sizes = [int(n) for n in a.maps.split(",") if n.strip()]
     with tempfile.TemporaryDirectory() as tmp:
         tmp = Path(tmp)
         for n in (64, 512):
             key = f"map_{n}x{n}_wall_s"
-            if a.quick or not has_device:
-                result[key] = None
+            if a.quick or not has_device or n not in sizes:
                 if not has_device:
                     notes.append(f"{key}: flexmm map has no --device option yet")
+                elif n not in sizes and not a.quick:
+                    notes.append(f"{key}: not run (--maps {a.maps})")
                 continue
             result[key] = timed_map(n, "gpu", tmp / f"gpu{n}", notes)
-        result["map_64x64_cpu_wall_s"] = (None if a.quick or a.skip_cpu_map else
-                                          timed_map(64, "cpu" if has_device else None,
-                                                    tmp / "cpu64", notes))
+            save(key)
+        if not (a.quick or a.skip_cpu_map):
+            result["map_64x64_cpu_wall_s"] = timed_map(64, "cpu" if has_device else None,
+                                                       tmp / "cpu64", notes)
     g, c = result["map_64x64_wall_s"], result["map_64x64_cpu_wall_s"]
     result["gpu_speedup"] = c / g if g and c else None
-    result["notes"] = notes
-    out = HERE / "results_gpu.json" if a.update else Path(a.out) / "results_gpu.json"
-    out.parent.mkdir(parents=True, exist_ok=True)
-    out.write_text(json.dumps(result, indent=2, sort_keys=True) + "\n")
+    save("done")
     for k in ("device", "ps_per_site_evaluation", "cells_per_s", "map_64x64_wall_s",
               "map_512x512_wall_s", "map_64x64_cpu_wall_s", "gpu_speedup"):
         v = result[k]
