@@ -21,6 +21,7 @@ what it measured; the stages not reached are null, said in ``notes``). ``version
 numba-cuda and numpy, as measured.
 
     python -m bench.gpu [--quick] [--out DIR | --update] [--skip-cpu-map] [--maps 64,512]
+                        [--resume]
 """
 
 from __future__ import annotations
@@ -116,13 +117,18 @@ def model_rates(chains: int = MODEL_CHAINS, N: int = MODEL_N, t_end: float = MOD
     return out
 
 
-def timed_map(n: int, device: str | None, out: Path, notes: list) -> float | None:
+def timed_map(n: int, device: str | None, out: Path, notes: list,
+              logs: Path | None = None) -> float | None:
+    """Wall seconds of one ``flexmm map`` of n x n cells (None, with the reason in
+    ``notes``, where it fails); its output saved in ``logs``/map_<n>_<device>.log."""
     cmd = [shutil.which("flexmm") or "flexmm", "map", *map_args(n), "--out", str(out)]
     if device:
         cmd += ["--device", device]
     t0 = time.perf_counter()
     res = subprocess.run(cmd, capture_output=True, text=True)
     wall = time.perf_counter() - t0
+    if logs is not None:
+        (logs / f"map_{n}_{device or 'cpu'}.log").write_text(res.stdout + res.stderr)
     if res.returncode:
         notes.append(f"{n}x{n} map on {device or 'cpu'}: exit {res.returncode}: "
                      + (res.stderr.strip().splitlines() or ["?"])[-1])
@@ -150,6 +156,8 @@ def main(argv=None) -> int:
     ap.add_argument("--update", action="store_true", help="write bench/results_gpu.json")
     ap.add_argument("--skip-cpu-map", action="store_true",
                     help="no CPU map (minutes): no map_64x64_cpu_wall_s, no gpu_speedup")
+    ap.add_argument("--resume", action="store_true",
+                    help="keep the stages a results_gpu.json of the same GPU already has")
     ap.add_argument("--maps", default="64,512",
                     help="which GPU maps to time (64 and/or 512 cells a side)")
     a = ap.parse_args(argv)
@@ -166,6 +174,13 @@ def main(argv=None) -> int:
               "ps_per_site_evaluation": None, "cells_per_s": None, "models": {}}
     out = HERE / "results_gpu.json" if a.update else Path(a.out) / "results_gpu.json"
     out.parent.mkdir(parents=True, exist_ok=True)
+    if a.resume and out.exists():
+        old = json.loads(out.read_text())
+        if old.get("device") == result["device"]:
+            kept = {k: v for k, v in old.items() if v not in (None, {}, [])
+                    and k not in ("status", "versions", "notes", "last_stage", "gpu_speedup")}
+            result.update(kept)
+            print(f"[bench.gpu] resuming {out}: kept {', '.join(sorted(kept))}", flush=True)
 
     def save(stage: str) -> None:
         result["last_stage"] = stage
@@ -173,10 +188,12 @@ def main(argv=None) -> int:
         print(f"[bench.gpu] {stage} done, saved {out}", flush=True)
 
     save("start")
-    result.update(kernel_rate(512 if a.quick else 4096))
-    save("kernel")
-    result["models"] = model_rates(256 if a.quick else MODEL_CHAINS)
-    save("models")
+    if result["ps_per_site_evaluation"] is None:
+        result.update(kernel_rate(512 if a.quick else 4096))
+        save("kernel")
+    if not result["models"]:
+        result["models"] = model_rates(256 if a.quick else MODEL_CHAINS)
+        save("models")
     help_text = subprocess.run([shutil.which("flexmm") or "flexmm", "map", "--help"],
                                capture_output=True, text=True).stdout
     has_device = "--device" in help_text
@@ -185,17 +202,20 @@ def main(argv=None) -> int:
         tmp = Path(tmp)
         for n in (64, 512):
             key = f"map_{n}x{n}_wall_s"
+            if result[key] is not None:
+                continue
             if a.quick or not has_device or n not in sizes:
                 if not has_device:
                     notes.append(f"{key}: flexmm map has no --device option yet")
                 elif n not in sizes and not a.quick:
                     notes.append(f"{key}: not run (--maps {a.maps})")
                 continue
-            result[key] = timed_map(n, "gpu", tmp / f"gpu{n}", notes)
+            result[key] = timed_map(n, "gpu", tmp / f"gpu{n}", notes, out.parent)
             save(key)
-        if not (a.quick or a.skip_cpu_map):
+        if not (a.quick or a.skip_cpu_map or result["map_64x64_cpu_wall_s"] is not None):
             result["map_64x64_cpu_wall_s"] = timed_map(64, "cpu" if has_device else None,
-                                                       tmp / "cpu64", notes)
+                                                       tmp / "cpu64", notes, out.parent)
+            save("map_64x64_cpu_wall_s")
     g, c = result["map_64x64_wall_s"], result["map_64x64_cpu_wall_s"]
     result["gpu_speedup"] = c / g if g and c else None
     save("done")

@@ -172,8 +172,10 @@ import json, sys, tempfile
 from common import paper
 from numerics.maps import MapParameters, run_map
 p = MapParameters(case="rotation", alpha=paper.ALPHA, K_s=paper.K_S, delta=(0.003,),
-                  k=(1.4,), amplitude=0.05, N=16, t_end=20.0, block=1)
-ds = run_map(p, tempfile.mkdtemp(), progress=False, log=lambda *a: None, device="gpu")
+                  k=(1.4, 2.0), amplitude=0.05, N=16, t_end=20.0, block=1)
+workers = int(sys.argv[1]) if sys.argv[1:] and sys.argv[1] else None
+ds = run_map(p, tempfile.mkdtemp(), progress=False, log=lambda *a: None, device="gpu",
+             workers=workers)
 out = {n: ds[n].values.tolist() for n in ("growth", "verdict_simulated", "done",
                                           "growth_log_ratio")}
 out["attrs"] = {n: ds.attrs[n] for n in ("device", "device_name")}
@@ -181,21 +183,23 @@ print(json.dumps(out))
 """
 
 
-def test_a_map_on_the_gpu_is_the_map_on_the_cpu(tmp_path):
+@pytest.mark.parametrize("workers", ["", "2"])
+def test_a_map_on_the_gpu_is_the_map_on_the_cpu(tmp_path, workers):
     """run_map(device="gpu") under the CUDA simulator: the same store as the CPU's map (the
-    theories, the simulated columns to the kernels' bound, every cell done)."""
+    theories, the simulated columns to the kernels' bound, every cell done), with the
+    theories in the GPU's process (a small map) and on two CPU workers."""
     from common import paper
     from numerics.maps import MapParameters, run_map
 
     env = dict(os.environ, NUMBA_ENABLE_CUDASIM="1")
-    res = subprocess.run([sys.executable, "-c", MAP_SCRIPT], env=env, capture_output=True,
-                         text=True, timeout=900)
+    res = subprocess.run([sys.executable, "-c", MAP_SCRIPT, workers], env=env,
+                         capture_output=True, text=True, timeout=900)
     assert res.returncode == 0, res.stderr[-3000:]
     gpu = json.loads(res.stdout.splitlines()[-1])
     p = MapParameters(case="rotation", alpha=paper.ALPHA, K_s=paper.K_S, delta=(0.003,),
-                      k=(1.4,), amplitude=0.05, N=16, t_end=20.0, block=1)
+                      k=(1.4, 2.0), amplitude=0.05, N=16, t_end=20.0, block=1)
     cpu = run_map(p, tmp_path, workers=1, progress=False, log=lambda *a: None)
-    assert gpu["done"] == [[True]] and cpu["done"].values.tolist() == [[True]]
+    assert gpu["done"] == [[True, True]] and cpu["done"].values.tolist() == [[True, True]]
     assert gpu["attrs"] == {"device": "gpu", "device_name": "CUDA simulator"}
     assert cpu.attrs["device"] == "cpu"
     assert gpu["verdict_simulated"] == cpu["verdict_simulated"].values.tolist()

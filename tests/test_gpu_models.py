@@ -218,7 +218,9 @@ import json, sys, tempfile
 from numerics.maps import ModelMapParameters, run_map
 p = ModelMapParameters.from_model("fput", ("beta", [1.0]), ("k", [1.2, 2.4]), 0.1,
                                   N=16, t_end=6.0, block=1)
-ds = run_map(p, tempfile.mkdtemp(), progress=False, log=lambda *a: None, device="gpu")
+workers = int(sys.argv[1]) if sys.argv[1:] and sys.argv[1] else None
+ds = run_map(p, tempfile.mkdtemp(), progress=False, log=lambda *a: None, device="gpu",
+             workers=workers)
 out = {n: ds[n].values.tolist() for n in ("growth", "verdict_simulated", "done",
                                           "verdict_exact", "peak_gain_exact", "t_simulated")}
 out["attrs"] = {n: ds.attrs[n] for n in ("device", "device_name")}
@@ -226,12 +228,14 @@ print(json.dumps(out))
 """
 
 
-def test_a_model_map_on_the_gpu_is_the_map_on_the_cpu(tmp_path):
+@pytest.mark.parametrize("workers", ["", "2"])
+def test_a_model_map_on_the_gpu_is_the_map_on_the_cpu(tmp_path, workers):
     """run_map(device="gpu") of a model map under the CUDA simulator: the CPU map's store
-    (theories equal, runs to the default noise's bound, every cell done)."""
+    (theories equal, runs to the default noise's bound, every cell done), with the
+    theories in the GPU's process (a small map) and on two CPU workers."""
     from numerics.maps import ModelMapParameters, run_map
 
-    gpu = run_simulated(MAP_SCRIPT, "")
+    gpu = run_simulated(MAP_SCRIPT, workers)
     p = ModelMapParameters.from_model("fput", ("beta", [1.0]), ("k", [1.2, 2.4]), 0.1,
                                       N=16, t_end=6.0, block=1)
     cpu = run_map(p, tmp_path, workers=1, progress=False, log=lambda *a: None)

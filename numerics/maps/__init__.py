@@ -27,7 +27,8 @@ Run time         estimate_map -> MapEstimate (start-up + cells at this machine's
 On a GPU         gpu_status (is there one, or what is missing), simulate_cells_gpu
                  (simulate_cell for many cells in one launch), simulate_map_cells_gpu;
                  simulate_model_cells_gpu (any model's cells, its generated force on the
-                 GPU); DEVICE_PATHS, register_device_path (each map kind's GPU path)
+                 GPU); DEVICE_PATHS, DevicePath, register_device_path (each map kind's GPU
+                 path: its theories on the CPU workers, its runs in one launch)
 """
 
 from ..theory import resonance_map  # the exact-map engine lives with the theory
@@ -47,7 +48,7 @@ from ._cells import (
 )
 from ._columns import theory_columns, tri_state
 from ._critical import critical_damping, damping_parameters
-from ._devices import DEVICE_PATHS, DEVICES, register_device_path, resolve_device
+from ._devices import DEVICE_PATHS, DEVICES, DevicePath, register_device_path, resolve_device
 from ._estimate import (
                      MapEstimate,
                      ModelCellCost,
@@ -90,5 +91,5 @@ __all__ = [
     "estimate_map", "machine_speed", "ModelCellCost", "probe_model_cell", "estimate_model_map",
     "PointEstimate", "estimate_model_point",
     "gpu_status", "simulate_cells_gpu", "simulate_map_cells_gpu", "simulate_model_cells_gpu",
-    "DEVICE_PATHS", "register_device_path", "critical_damping", "damping_parameters",
+    "DEVICE_PATHS", "DevicePath", "register_device_path", "critical_damping", "damping_parameters",
 ]

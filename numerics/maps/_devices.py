@@ -4,6 +4,8 @@ of ``run_map``, which writes each block into the store as a Dask worker's would 
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
+from dataclasses import dataclass
 
 from ._store import _CellWriter, _write_block
 
@@ -62,42 +64,77 @@ def device_attrs(device: str, scheduler: str | None) -> dict:
 GPU_BATCH_CELLS = 4096
 
 
-def _paper_rows(params, batch: list, log=print) -> list:
-    """The paper chain's blocks on the GPU: its theories on this CPU (``predict_block``),
-    its cells in one launch of the fused flexMM kernel (``simulate_map_cells_gpu``)."""
-    from ._blocks import predict_block, simulated_row
+def _paper_rows(params, batch: list, theories: list, log=print) -> list:
+    """The paper chain's blocks on the GPU: its theories (``predict_block``, computed on the
+    CPU workers) and its cells in one launch of the fused flexMM kernel
+    (``simulate_map_cells_gpu``)."""
+    from ._blocks import simulated_row
     from ._gpu import simulate_map_cells_gpu
 
-    predicted = [predict_block(params, i, js) for i, js in batch]
     sims = simulate_map_cells_gpu(params, [(i, j) for i, js in batch for j in js])
     out = []
-    for (i, js), (rows, preds) in zip(batch, predicted):
+    for (i, js), (rows, preds) in zip(batch, theories):
         for j, row, pred in zip(js, rows, preds):
             row.update(simulated_row(sims[(i, j, "runs")], pred))
         out.append((i, list(js), rows))
     return out
 
 
-def _model_rows(params, batch: list, log=print) -> list:
+def _model_rows(params, batch: list, theories: list, log=print) -> list:
     """Any model's blocks on the GPU: its own kernel (the generated site force)."""
     from ._gpu_models import model_rows_gpu
 
-    return model_rows_gpu(params, batch, log)
+    return model_rows_gpu(params, batch, log, theories=theories)
 
 
-#: the GPU path of each kind of map: rows(params, [(i, js), ...], log) -> [(i, js, rows)],
-#: the blocks' store rows with their theories and simulated columns. The paper flags' map
-#: (MapParameters) runs today's fused flexMM kernel; a model's map (ModelMapParameters,
-#: the paper chain's models included) its generated force's kernel
+def _paper_theories(params, i: int, js: list):
+    from ._blocks import predict_block
+
+    return predict_block(params, i, js)
+
+
+def _model_theories(params, i: int, js: list):
+    from ._gpu_models import model_theories
+
+    return model_theories(params, i, js)
+
+
+@dataclass(frozen=True)
+class DevicePath:
+    """A map kind's GPU path: ``theories(params, i, js)``, a block's theories on a CPU (a
+    task of the CPU workers: module-level, its result picklable), and
+    ``rows(params, batch, theories, log)`` -> [(i, js, rows)], the blocks' store rows with
+    their simulated columns from one GPU launch."""
+
+    theories: Callable
+    rows: Callable
+
+
+#: the GPU path of each kind of map (a DevicePath). The paper flags' map (MapParameters)
+#: runs today's fused flexMM kernel; a model's map (ModelMapParameters, the paper chain's
+#: models included) its generated force's kernel
 DEVICE_PATHS: dict = {}
 
 
-def register_device_path(params_type: type, rows) -> None:
-    """Register ``rows`` as the GPU path of the maps of ``params_type`` (see DEVICE_PATHS)."""
-    DEVICE_PATHS[params_type] = rows
+def register_device_path(params_type: type, rows, theories=None) -> None:
+    """Register the GPU path of the maps of ``params_type`` (see DEVICE_PATHS and
+    DevicePath). Without ``theories``, ``rows(params, batch, log)`` computes the blocks'
+    theories itself, in this process."""
+    if theories is None:
+        plain = rows
+
+        def rows(params, batch, theories, log=print):  # noqa: ARG001
+            return plain(params, batch, log)
+
+        theories = _none_theories
+    DEVICE_PATHS[params_type] = DevicePath(theories, rows)
 
 
-def device_path(params):
+def _none_theories(params, i, js):  # noqa: ARG001 - a path whose rows compute them
+    return None
+
+
+def device_path(params) -> DevicePath:
     """The GPU path of ``params``' map (``DEVICE_PATHS``), or ValueError in one line."""
     for kind in type(params).__mro__:
         if kind in DEVICE_PATHS:
@@ -109,40 +146,79 @@ def _register_builtin() -> None:
     from ._model_params import ModelMapParameters
     from ._params import MapParameters
 
-    register_device_path(MapParameters, _paper_rows)
-    register_device_path(ModelMapParameters, _model_rows)
+    register_device_path(MapParameters, _paper_rows, _paper_theories)
+    register_device_path(ModelMapParameters, _model_rows, _model_theories)
 
 
 _register_builtin()
 
 
-def run_gpu(params, path, todo, n_todo, progress, log, arrays):
-    """The GPU path of run_map: blocks in batches of about GPU_BATCH_CELLS cells; each
-    batch's theories on the CPU, its simulations in one launch (the map's registered
-    ``device_path``), then each block written (checksummed) as a worker's would be: an
-    interrupted map keeps every batch written."""
+#: a GPU map computes its blocks' theories on CPU workers (a LocalCluster) from this many
+#: cells to do, unless ``workers`` says otherwise: a cell's theories cost ~0.1-0.3 s on
+#: one core against ~1 ms of GPU time, so on one core they, not the GPU, set the pace
+#: (measured: a 64 x 64 paper map, 4096 cells, 2 s on an H200, ~18 min of theories)
+GPU_CLUSTER_MIN_CELLS = 32
+
+
+def run_gpu(params, path, todo, n_todo, progress, log, arrays, workers=None, timeout=20.0):
+    """The GPU path of run_map: blocks in batches of about GPU_BATCH_CELLS cells; the
+    blocks' theories as tasks of this machine's CPU workers (a LocalCluster of ``workers``
+    processes, all submitted at once so that they run while the GPU simulates; in this
+    process for one worker or a small map, see GPU_CLUSTER_MIN_CELLS), each batch's
+    simulations in one launch (the map's registered ``device_path``), then each block
+    written (checksummed) as a worker's would be: an interrupted map keeps every batch
+    written."""
     from common.progress import progress_class
     tqdm = progress_class()
 
-    rows_of = device_path(params)
+    from ._params import local_cores
+
+    device = device_path(params)
+    n_workers = workers or local_cores()
+    on_cluster = n_workers > 1 and (workers is not None or n_todo >= GPU_CLUSTER_MIN_CELLS)
     writer = _CellWriter(path)
     report = progress if callable(progress) else None  # as run_map's CPU path
     bar = tqdm(total=n_todo, unit="cell", desc="map (GPU)",
                disable=True if report else None if progress is None else not progress)
     t0 = time.perf_counter()
+    client = cluster = None
     try:
+        if on_cluster:
+            from ._cluster import connect
+
+            client, cluster = connect(None, n_workers, timeout)
+            # in the order the batches need them: dask runs the highest priority first
+            futures = [client.submit(device.theories, params, i, js, pure=False, retries=1,
+                                     priority=len(todo) - rank)
+                       for rank, (i, js) in enumerate(todo)]
+            log(f"device gpu: the cells' theories on {n_workers} CPU workers, their "
+                "simulations on the GPU")
+
+            def theories_of(first, batch):
+                return client.gather(futures[first:first + len(batch)])
+        else:
+            def theories_of(first, batch):
+                return [device.theories(params, i, js) for i, js in batch]
+
         batch: list = []
+        first = 0
         for n, block in enumerate(todo):
             batch.append(block)
             if sum(len(js) for _, js in batch) < GPU_BATCH_CELLS and n + 1 < len(todo):
                 continue
-            for i, js, rows in rows_of(params, batch, log):
+            theories = theories_of(first, batch)
+            for i, js, rows in device.rows(params, batch, theories, log):
                 _write_block(path, params, {"i": i, "js": js, "rows": rows,
                                             "simulated": True}, arrays, writer)
                 bar.update(len(js))
                 if report is not None:
                     report(len(js))
+            first += len(batch)
             batch = []
     finally:
         bar.close()
+        if client is not None:
+            from ._cluster import close
+
+            close(client, cluster)
     log(f"simulated {n_todo} cells on the GPU in {time.perf_counter() - t0:.1f} s")

@@ -328,22 +328,33 @@ def _wave_of(params, values: dict, k: float, peak_gain: float):
         return exc
 
 
-def model_rows_gpu(params, batch: list, log=print) -> list:
-    """A model map's blocks [(i, js), ...] as ``model_block`` writes them, simulated: the
-    theories of every cell on this CPU (``model_block(simulate=False)``), the runs of all
-    of them in one GPU launch; returns [(i, js, rows)] with the store's codes."""
-    from ._model_params import SIMULATED_COLUMNS, VERDICT_CODES, model_block
+def model_theories(params, i: int, js: list) -> tuple:
+    """A model map's block (i, js) before its runs, on a CPU: (``model_block``'s theory
+    columns, each cell's wave for its runs, ``_wave_of``)."""
+    from ._model_params import model_block
 
-    theory = [model_block(params, i, js, simulate=False) for i, js in batch]
+    block = model_block(params, i, js, simulate=False)
+    specs = [_wave_of(params, *params.cell(i, j), row.get("peak_gain_exact", math.nan))
+             for j, row in zip(js, block["rows"])]
+    return block, specs
+
+
+def model_rows_gpu(params, batch: list, log=print, theories: list | None = None) -> list:
+    """A model map's blocks [(i, js), ...] as ``model_block`` writes them, simulated: the
+    theories of every cell (``theories``, :func:`model_theories` of each block, or computed
+    here), the runs of all of them in one GPU launch; returns [(i, js, rows)] with the
+    store's codes."""
+    from ._model_params import SIMULATED_COLUMNS, VERDICT_CODES
+
+    if theories is None:
+        theories = [model_theories(params, i, js) for i, js in batch]
     cells = [params.cell(i, j) for i, js in batch for j in js]
-    rows = [row for block in theory for row in block["rows"]]
-    specs = [_wave_of(params, values, k, row.get("peak_gain_exact", math.nan))
-             for (values, k), row in zip(cells, rows)]
+    specs = [spec for _, block_specs in theories for spec in block_specs]
     sims = simulate_model_cells_gpu(params.lattice_model, cells, params.amplitude,
                                     params.branch_value, N=params.N, seeds=params.seeds,
                                     t_end=params.t_end, specs=specs, log=log)
     out, n = [], 0
-    for (i, js), block in zip(batch, theory):
+    for (i, js), (block, _) in zip(batch, theories):
         rows = []
         for row in block["rows"]:
             sim = sims[n]
@@ -358,5 +369,5 @@ def model_rows_gpu(params, batch: list, log=print) -> list:
     return out
 
 
-__all__ = ["simulate_model_cells_gpu", "model_rows_gpu", "chain_start", "launch_chains",
+__all__ = ["simulate_model_cells_gpu", "model_rows_gpu", "model_theories", "chain_start", "launch_chains",
            "DeviceChain", "UNDEFINED_ROW"]

@@ -375,7 +375,8 @@ def run_map(params: MapParameters, out: Path, scheduler: str | None = None,
         if todo and device == "gpu":
             from ._devices import run_gpu
 
-            run_gpu(params, path, todo, n_cells - n_done, progress, log, arrays)
+            run_gpu(params, path, todo, n_cells - n_done, progress, log, arrays, workers,
+                    timeout)
         elif todo:
             _run_tasks(params, path, todo, n_cells - n_done, scheduler, workers, progress,
                        log, arrays, timeout)
