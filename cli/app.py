@@ -247,6 +247,20 @@ def _map_parser(sub, model_mode=False):
                   "one parameter and --k SPEC, or two parameters at one --k; the others "
                   "keep their defaults")
     _material_args(p, map_=True, case=True, model_mode=model_mode)
+    if model_mode:  # a model's map may sweep the carrier's amplitude
+        amp = next(a for a in p._actions if a.dest == "amplitude")
+        amp.type = _number_or_spec
+        amp.metavar = "AMPLITUDE|SPEC"
+        amp.help = (AMPLITUDE_HELP + "; with --model a SPEC (v1,v2,... or start:stop:num) "
+                    "makes it a map axis (with --k or one --param NAME=SPEC)")
+
+
+def _number_or_spec(text: str):
+    """--amplitude of a model's map: a number, or the SPEC of an axis (read by the map)."""
+    try:
+        return float(text)
+    except ValueError:
+        return text
 
 
 #: what float() reads after a minus sign and argparse takes for an option (``--t-end -inf``)

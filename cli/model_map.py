@@ -37,11 +37,21 @@ def run_map(args) -> int:
             k_axis = vals
         else:
             k_fixed = float(vals[0])
-    named = list(axes.items()) + ([("k", k_axis)] if k_axis is not None else [])
+    amp, amp_axis = args.amplitude, None
+    if isinstance(amp, str):  # a SPEC (the parser keeps what is not one number)
+        vals = parse_spec(amp, "--amplitude")
+        if not np.all(np.isfinite(vals)) or vals.min() <= 0:
+            raise ValueError(f"--amplitude must be > 0, got {amp!r}")
+        amp, amp_axis = (None, vals) if vals.size > 1 else (float(vals[0]), None)
+    named = (list(axes.items()) + ([("k", k_axis)] if k_axis is not None else [])
+             + ([("amplitude", amp_axis)] if amp_axis is not None else []))
     if len(named) != 2:
-        raise ValueError(f"a model map sweeps two axes: --k SPEC and/or --param NAME=SPEC "
-                         f"(SPEC v1,v2,... or start:stop:num); got {len(named)}: "
-                         f"{', '.join(n for n, _ in named) or 'none'}")
+        raise ValueError(f"a model map sweeps two axes among --k SPEC, --amplitude SPEC and "
+                         f"--param NAME=SPEC (SPEC v1,v2,... or start:stop:num); got "
+                         f"{len(named)}: {', '.join(n for n, _ in named) or 'none'}")
+    if amp_axis is not None and "amplitude" in model.params:
+        raise ValueError("--amplitude SPEC: the model has a parameter named 'amplitude' too; "
+                         "rename it in the model file to sweep the carrier's amplitude")
     if k_axis is None and k_fixed is None:
         raise ValueError("--k: give the carrier wavenumber (one value, or a SPEC to sweep)")
     simulated = not getattr(args, "theory_only", False)
@@ -56,8 +66,7 @@ def run_map(args) -> int:
     if simulated and args.exact:
         raise ValueError("--exact: a simulated model map has the exact lattice theory "
                          "per cell already")
-    amp = args.amplitude
-    if check_value("--amplitude", amp) <= 0:
+    if amp is not None and check_value("--amplitude", amp) <= 0:
         raise ValueError(f"--amplitude must be > 0, got {amp!r}")
     ring = args.exact or simulated  # the ring the exact theory and the runs use
     if ring:
@@ -83,8 +92,11 @@ def run_map(args) -> int:
         raise ValueError(f"--block must be an integer in [1, 1000000], got {args.block!r}")
     if not (args.timeout > 0 and np.isfinite(args.timeout)):
         raise ValueError(f"--timeout must be a finite time > 0, got {args.timeout!r}")
-    # rows: the parameter (or the first one); columns: k where k is an axis
-    y, x = (named[1], named[0]) if named[0][0] == "k" else (named[0], named[1])
+    # columns: k where k is an axis, else the amplitude, else the second parameter;
+    # rows: the other axis
+    x = next((a for a in named if a[0] == "k"), None) or next(
+        (a for a in named if a[0] == "amplitude"), named[1])
+    y = next(a for a in named if a is not x)
     from numerics.models import branch_index, snap_ring
 
     k0 = x[1][0] if x[0] == "k" else k_fixed
@@ -97,7 +109,7 @@ def run_map(args) -> int:
                 raise ValueError(f"--k: {exc}") from None
     params = ModelMapParameters(
         model=args.model, text=model_text(args.model), parameters=tuple(model.params.items()),
-        rows=y, cols=x, amplitude=float(amp), k=k_fixed,
+        rows=y, cols=x, amplitude=None if amp is None else float(amp), k=k_fixed,
         branch=None if args.branch is None else str(args.branch), exact=bool(args.exact),
         theory_only=not simulated, N=args.N, seeds=seeds, t_end=t_end, block=args.block,
         time_unit_s=units.seconds_per_T, length_unit_m=units.metres_per_site)
@@ -116,7 +128,8 @@ def run_map(args) -> int:
     log(f"map of {model.name}" + (f" ({fixed})" if fixed else "")
         + f": {y[0]} x {x[0]} = {len(y[1])} x {len(x[1])} cells"
         + (f", k = {k_fixed:g}" if k_fixed is not None else "")
-        + f", amplitude {amp:g}; {'theories ' + ', '.join(params.theory_columns())}"
+        + (f", amplitude {amp:g}" if amp is not None else "")
+        + f"; {'theories ' + ', '.join(params.theory_columns())}"
         + (f" and {seeds} run(s) per cell (N = {args.N}, T = "
            + (f"{t_end:g}" if t_end is not None else "from each cell's exact rate"
               + (" and its peak time" if model.lossy else ""))
@@ -219,7 +232,7 @@ def _critical_rows(ds) -> dict:
     return out
 
 
-def _unsampled(ds, amplitude: float, N: int, verdicts) -> dict | None:
+def _unsampled(ds, amplitude: float | None, N: int, verdicts) -> dict | None:
     """The cells where the semi-discrete NLS (the infinite chain) finds MI in a band of
     offsets 0 < |q| < a sqrt(g2/g1) narrower than the ring's smallest offset 2 pi / N: no
     ring offset samples it, so the ring's theories (exact, four-wave on the ring) and runs
@@ -232,6 +245,8 @@ def _unsampled(ds, amplitude: float, N: int, verdicts) -> dict | None:
     if not rings or not {"verdict_semidiscrete", "g1", "g2"} <= set(ds.data_vars):
         return None
     mi = ds["verdict_semidiscrete"].values == 1
+    if amplitude is None:  # an axis: each cell's own
+        amplitude = ds["amplitude"].broadcast_like(ds["g1"]).transpose(*ds["g1"].dims).values
     with np.errstate(invalid="ignore", divide="ignore"):
         edge = amplitude * np.sqrt(ds["g2"].values / ds["g1"].values)  # docs/models.md
     smallest = 2 * math.pi / N
@@ -345,7 +360,8 @@ def _plot_map(ds, path: Path, model):
         ax.set_xlabel(xdim + (" (rad/site)" if xdim == "k" else ""))
         ax.set_ylabel(ydim + (" (rad/site)" if ydim == "k" else ""))
         ax.set_title(f"{model.name}" + (f" ({fixed})" if fixed else "")  # all swept: none
-                     + f", a = {ds.attrs['amplitude']:g}: {label}\n"
+                     + (f", a = {ds.attrs['amplitude']:g}" if "amplitude" not in ds.dims
+                        else "") + f": {label}\n"
                      "orange MI, blue stable, grey undefined"
                      + (f"; x: amplification >= {OBSERVABLE:g}x (observable with losses)"
                         if marked else "")

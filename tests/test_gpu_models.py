@@ -216,9 +216,12 @@ def test_what_fits_a_block(d, nf, N, fits):
 MAP_SCRIPT = """
 import json, sys, tempfile
 from numerics.maps import ModelMapParameters, run_map
-p = ModelMapParameters.from_model("fput", ("beta", [1.0]), ("k", [1.2, 2.4]), 0.1,
-                                  N=16, t_end=6.0, block=1)
-workers = int(sys.argv[1]) if sys.argv[1:] and sys.argv[1] else None
+how = sys.argv[1].split() if sys.argv[1:] else []
+workers = int(how[0]) if how and how[0].isdigit() else None
+rows, a = ((("amplitude", [0.05, 0.1]), None) if sys.argv[1].endswith("amplitude")
+           else (("beta", [1.0]), 0.1))
+p = ModelMapParameters.from_model("fput", rows, ("k", [1.2, 2.4]), a, N=16, t_end=6.0,
+                                  block=1)
 ds = run_map(p, tempfile.mkdtemp(), progress=False, log=lambda *a: None, device="gpu",
              workers=workers)
 out = {n: ds[n].values.tolist() for n in ("growth", "verdict_simulated", "done",
@@ -228,18 +231,22 @@ print(json.dumps(out))
 """
 
 
-@pytest.mark.parametrize("workers", ["", "2"])
-def test_a_model_map_on_the_gpu_is_the_map_on_the_cpu(tmp_path, workers):
+@pytest.mark.parametrize("how", ["", "2", " amplitude"])
+def test_a_model_map_on_the_gpu_is_the_map_on_the_cpu(tmp_path, how):
     """run_map(device="gpu") of a model map under the CUDA simulator: the CPU map's store
     (theories equal, runs to the default noise's bound, every cell done), with the
-    theories in the GPU's process (a small map) and on two CPU workers."""
+    theories in the GPU's process (a small map), on two CPU workers, and over an
+    amplitude axis (one launch per amplitude)."""
     from numerics.maps import ModelMapParameters, run_map
 
-    gpu = run_simulated(MAP_SCRIPT, workers)
-    p = ModelMapParameters.from_model("fput", ("beta", [1.0]), ("k", [1.2, 2.4]), 0.1,
-                                      N=16, t_end=6.0, block=1)
+    gpu = run_simulated(MAP_SCRIPT, how)
+    rows, a = ((("amplitude", [0.05, 0.1]), None) if how.endswith("amplitude")
+               else (("beta", [1.0]), 0.1))
+    p = ModelMapParameters.from_model("fput", rows, ("k", [1.2, 2.4]), a, N=16, t_end=6.0,
+                                      block=1)
     cpu = run_map(p, tmp_path, workers=1, progress=False, log=lambda *a: None)
-    assert gpu["done"] == [[True, True]] and cpu["done"].values.tolist() == [[True, True]]
+    shape = [[True, True]] * len(rows[1])
+    assert gpu["done"] == shape and cpu["done"].values.tolist() == shape
     assert gpu["attrs"] == {"device": "gpu", "device_name": "CUDA simulator"}
     for name in ("verdict_simulated", "verdict_exact", "t_simulated", "peak_gain_exact"):
         assert gpu[name] == cpu[name].values.tolist(), name

@@ -282,18 +282,18 @@ def probe_model_cell(params) -> ModelCellCost:
     # distinct cells (other parameter values cost a new model each): the middle, the
     # corners; the first timed also loads what a cell's theories need once
     picks = list(dict.fromkeys([(rows // 2, cols // 2), (0, 0), (rows - 1, cols - 1)]))
-    cells = [params.cell(i, j) for i, j in picks]
-    values, k = cells[0]
+    cells = [(*params.cell(i, j), params.amplitude_at(i, j)) for i, j in picks]
+    values, k, amplitude = cells[0]
     model = params.lattice_model.with_params(**values)
 
-    def theories(values, k):
+    def theories(values, k, amplitude):
         t0 = time.process_time()
-        row = map_cells(params.lattice_model, [(values, k)], params.amplitude,
-                        params.branch_value, exact=params.ring, simulate=False, N=params.N)[0]
+        row = map_cells(params.lattice_model, [(values, k)], amplitude, params.branch_value,
+                        exact=params.ring, simulate=False, N=params.N)[0]
         return time.process_time() - t0, row
 
     t0 = time.process_time()  # the NLS alone first: the imports a worker pays once
-    map_cells(model, [({}, k)], params.amplitude, params.branch_value, N=params.N)
+    map_cells(model, [({}, k)], amplitude, params.branch_value, N=params.N)
     warmup = time.process_time() - t0
     first, row = theories(*cells[0])
     times = [first]
@@ -308,7 +308,7 @@ def probe_model_cell(params) -> ModelCellCost:
         from energy import ModelError
 
         try:
-            run, compile_s = probe_model_run(model, k, params.amplitude, params.branch_value,
+            run, compile_s = probe_model_run(model, k, amplitude, params.branch_value,
                                              N=params.N, t_end=t_end, energy=False)
             warmup += compile_s
         except (ModelError, FloatingPointError):  # no wave at the middle cell to run

@@ -309,7 +309,7 @@ class _Exact:
     peak_gain: float
 
 
-def _wave_of(params, values: dict, k: float, peak_gain: float):
+def _wave_of(params, values: dict, k: float, peak_gain: float, amplitude: float):
     """A cell's runs' start without its exact theory again: the theory column's peak gain
     (run_length's input) and the travelling wave on the ring (``exact_gain``'s own: the
     harmonic balance at k snapped to the ring), or None (computed by
@@ -322,7 +322,7 @@ def _wave_of(params, values: dict, k: float, peak_gain: float):
         return None
     model = params.lattice_model.with_params(**values)
     try:
-        return _Exact(travelling_wave(model, snap_ring(k, params.N)[0], params.amplitude,
+        return _Exact(travelling_wave(model, snap_ring(k, params.N)[0], amplitude,
                                       params.branch_value), float(peak_gain))
     except ModelError as exc:
         return exc
@@ -334,8 +334,8 @@ def model_theories(params, i: int, js: list) -> tuple:
     from ._model_params import model_block
 
     block = model_block(params, i, js, simulate=False)
-    specs = [_wave_of(params, *params.cell(i, j), row.get("peak_gain_exact", math.nan))
-             for j, row in zip(js, block["rows"])]
+    specs = [_wave_of(params, *params.cell(i, j), row.get("peak_gain_exact", math.nan),
+                      params.amplitude_at(i, j)) for j, row in zip(js, block["rows"])]
     return block, specs
 
 
@@ -348,11 +348,17 @@ def model_rows_gpu(params, batch: list, log=print, theories: list | None = None)
 
     if theories is None:
         theories = [model_theories(params, i, js) for i, js in batch]
-    cells = [params.cell(i, j) for i, js in batch for j in js]
+    where = [(i, j) for i, js in batch for j in js]
     specs = [spec for _, block_specs in theories for spec in block_specs]
-    sims = simulate_model_cells_gpu(params.lattice_model, cells, params.amplitude,
-                                    params.branch_value, N=params.N, seeds=params.seeds,
-                                    t_end=params.t_end, specs=specs, log=log)
+    sims: list = [None] * len(where)
+    for amplitude, ns in params.by_amplitude(where):  # one launch per amplitude
+        got = simulate_model_cells_gpu(params.lattice_model,
+                                       [params.cell(*where[n]) for n in ns], amplitude,
+                                       params.branch_value, N=params.N, seeds=params.seeds,
+                                       t_end=params.t_end, specs=[specs[n] for n in ns],
+                                       log=log)
+        for n, sim in zip(ns, got):
+            sims[n] = sim
     out, n = [], 0
     for (i, js), (block, _) in zip(batch, theories):
         rows = []

@@ -49,6 +49,8 @@ MODE_KIND_ATTRS = {
 #: T = 2000 0.4-0.5 s once compiled. Other models and rings differ (a one-field chain's
 #: Hill problem is smaller): an order of magnitude, not a measurement of this map
 CELL_SECONDS = {"nls": 0.01, "exact": 3.0, "run": 0.25}
+#: the map axis of the carrier's amplitude (beside "k" and the model's parameters)
+AXIS_AMPLITUDE = "amplitude"
 
 
 @functools.cache
@@ -81,7 +83,8 @@ class ModelMapParameters:
     ``model`` is a built-in name or a model file's path; ``text`` its file's text (what the
     workers load); ``parameters`` every parameter's value, as (name, value) pairs (an axis'
     entry is its default, unused). ``rows`` and ``cols`` are (name, values): the axes, a
-    parameter or ``"k"``; ``k`` the carrier when neither axis is k. ``t_end`` None: each
+    parameter, ``"k"`` or ``"amplitude"``; ``k`` the carrier when neither axis is k;
+    ``amplitude`` the carrier's amplitude, None where it is an axis. ``t_end`` None: each
     cell's runs last ``run_length`` of its exact rate.
     """
 
@@ -90,7 +93,7 @@ class ModelMapParameters:
     parameters: tuple
     rows: tuple
     cols: tuple
-    amplitude: float
+    amplitude: float | None
     k: float | None = None
     branch: str | None = None
     exact: bool = False
@@ -114,6 +117,9 @@ class ModelMapParameters:
             values = checks.real_values(f"{name} ({axis})", tuple(np.ravel(values)))
             if axis == "k" and any(not 0 < v <= math.pi for v in values):
                 raise ValueError(f"k must be in (0, pi], got {min(values):g}..{max(values):g}")
+            if axis == AXIS_AMPLITUDE and any(not v > 0 for v in values):
+                raise ValueError(f"amplitude must be > 0, got {min(values):g}..."
+                                 f"{max(values):g}")
             object.__setattr__(self, name, (axis, values))
         if self.rows[0] == self.cols[0]:
             raise ValueError(f"the two map axes must differ, got {self.rows[0]!r} twice")
@@ -121,14 +127,27 @@ class ModelMapParameters:
             raise ValueError("give k (the carrier) when neither map axis is 'k'")
         if self.k is not None:
             checks.real("k", self.k, 0.0, math.pi, high_open=False)
-        checks.positive("amplitude", self.amplitude)
         object.__setattr__(self, "parameters", tuple(
             (str(n), checks.real(f"parameter {n}", v)) for n, v in self.parameters))
         names = {n for n, _ in self.parameters}
+        if AXIS_AMPLITUDE in (self.rows[0], self.cols[0]):
+            if AXIS_AMPLITUDE in names:
+                raise ValueError(f"map axis {AXIS_AMPLITUDE!r} is ambiguous: the model has a "
+                                 f"parameter named {AXIS_AMPLITUDE!r}; rename it in the model "
+                                 "file to sweep one of them")
+            if self.amplitude is not None:
+                raise ValueError(f"amplitude is a map axis: give amplitude=None, not "
+                                 f"{self.amplitude!r}")
+        elif self.amplitude is None:
+            raise ValueError("amplitude: give the carrier's amplitude (> 0), or make "
+                             f"{AXIS_AMPLITUDE!r} one of the map's axes")
+        else:
+            checks.positive("amplitude", self.amplitude)
         for axis in (self.rows[0], self.cols[0]):
-            if axis != "k" and axis not in names:
-                raise ValueError(f"map axis {axis!r} is neither 'k' nor a parameter of the "
-                                 f"model ({', '.join(sorted(names)) or 'none'})")
+            if axis not in ("k", AXIS_AMPLITUDE) and axis not in names:
+                raise ValueError(f"map axis {axis!r} is neither 'k', 'amplitude' nor a "
+                                 f"parameter of the model "
+                                 f"({', '.join(sorted(names)) or 'none'})")
         for flag in ("exact", "theory_only"):
             if not isinstance(getattr(self, flag), (bool, np.bool_)):
                 raise TypeError(f"{flag} must be True or False, got {getattr(self, flag)!r}")
@@ -175,10 +194,29 @@ class ModelMapParameters:
         return self.exact or not self.theory_only
 
     def cell(self, i: int, j: int) -> tuple[dict, float]:
-        """(the parameter values of the axes, k) at cell (i, j)."""
+        """(the parameter values of the axes, k) at cell (i, j); its amplitude:
+        :meth:`amplitude_at`."""
         at = {self.rows[0]: self.rows[1][i], self.cols[0]: self.cols[1][j]}
         k = at.pop("k", self.k)
+        at.pop(AXIS_AMPLITUDE, None)
         return at, float(k)
+
+    def amplitude_at(self, i: int, j: int) -> float:
+        """The carrier's amplitude at cell (i, j): the amplitude axis' value, or the map's."""
+        if self.rows[0] == AXIS_AMPLITUDE:
+            return float(self.rows[1][i])
+        if self.cols[0] == AXIS_AMPLITUDE:
+            return float(self.cols[1][j])
+        return float(self.amplitude)
+
+    def by_amplitude(self, cells: list) -> list:
+        """[(amplitude, [n, ...]), ...]: the positions n in ``cells`` (a list of (i, j))
+        grouped by their cells' amplitude, in the order of first appearance (what takes one
+        amplitude for many cells, ``map_cells`` and the GPU's launch, runs per group)."""
+        groups: dict = {}
+        for n, (i, j) in enumerate(cells):
+            groups.setdefault(self.amplitude_at(i, j), []).append(n)
+        return list(groups.items())
 
     def undefined_reason(self) -> str:
         """Why the first cell has no verdict (the semi-discrete NLS's reason)."""
@@ -316,7 +354,9 @@ class ModelMapParameters:
                             "time_unit_s", "length_unit_m")}
         out.update(model=self.lattice_model.name, model_file=self.text,
                    model_hash=self.lattice_model.lattice.content_hash,
-                   axes=f"{self.rows[0]} {self.cols[0]}", branch="" if self.branch is None
+                   axes=f"{self.rows[0]} {self.cols[0]}",
+                   amplitude="" if self.amplitude is None else float(self.amplitude),
+                   branch="" if self.branch is None
                    else str(self.branch), k="" if self.k is None else float(self.k),
                    t_end=("run_length of each cell's exact rate" if self.t_end is None
                           else float(self.t_end)),
@@ -475,9 +515,13 @@ def model_block(params: ModelMapParameters, i: int, js: list, simulate: bool = T
     from ._blocks import keep_freed_memory
 
     keep_freed_memory()
-    rows = map_cells(params.lattice_model, [params.cell(i, j) for j in js], params.amplitude,
-                     params.branch_value, exact=params.ring, simulate=simulate, N=params.N,
-                     seeds=params.seeds, t_end=params.t_end)
+    rows: list = [None] * len(js)
+    for amplitude, ns in params.by_amplitude([(i, j) for j in js]):
+        got = map_cells(params.lattice_model, [params.cell(i, js[n]) for n in ns], amplitude,
+                        params.branch_value, exact=params.ring, simulate=simulate,
+                        N=params.N, seeds=params.seeds, t_end=params.t_end)
+        for n, row in zip(ns, got):
+            rows[n] = row
     flags = params.flag_columns()
     keep = set(flags["done_predicted"]) | (set(flags["done"]) if simulate else set())
     out = []
