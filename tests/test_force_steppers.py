@@ -5,6 +5,10 @@ splitting against exact solutions of a linear chain, and a blow-up reported as s
 from __future__ import annotations
 
 import math
+import os
+import re
+import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -144,3 +148,29 @@ def test_the_fused_forces_cached_srkn_loop_is_the_generic_one_bit_for_bit(case, 
     (u1, v1, e1), (u2, v2, e2) = runs
     assert np.array_equal(u1, u2) and np.array_equal(v1, v2) and e1 == e2
     assert np.max(np.abs(u1 - u0)) > 1e-3  # the state moved: the comparison means something
+
+
+def test_the_fused_forces_srkn_loops_load_from_numbas_disk_cache(tmp_path):
+    """Why those loops exist: a second process loads them from Numba's disk cache instead
+    of compiling them (a loop built as a closure over its force, or called with the force
+    as a value, compiles anew in every process). Two fresh processes on an empty cache
+    folder; Numba's cache log (NUMBA_DEBUG_CACHE) says what each saved and loaded."""
+    script = (
+        "import numpy as np\n"
+        "from numerics.lattice import (ForceStepper, flexmm_force, flexmm_rotation_force,\n"
+        "                              get_method)\n"
+        "p = np.array([6.25, 0.01851, 0.016])\n"
+        "for f, d in ((flexmm_force, 2), (flexmm_rotation_force, 1)):\n"
+        "    u, v = 0.1 * np.ones((d, 16)), np.zeros((d, 16))\n"
+        "    ForceStepper(f, p, 3, u, v, get_method('verlet'), 0.05).advance(3)\n")
+    env = dict(os.environ, NUMBA_DEBUG_CACHE="1", NUMBA_CACHE_DIR=str(tmp_path))
+    logs = []
+    for _ in range(2):
+        out = subprocess.run([sys.executable, "-c", script], env=env, capture_output=True,
+                             text=True, timeout=300, check=True)
+        logs.append(out.stdout + out.stderr)
+    for loop in ("_srkn_flexmm_steps", "_srkn_flexmm_rotation_steps"):
+        saved = re.compile(rf"data saved to .*\.{loop}-")
+        loaded = re.compile(rf"data loaded from .*\.{loop}-")
+        assert saved.search(logs[0]), (loop, logs[0][-2000:])
+        assert loaded.search(logs[1]) and not saved.search(logs[1]), (loop, logs[1][-2000:])

@@ -29,7 +29,9 @@ Analysis      spectrum, mode, harmonic_bins, sideband_to_carrier, stability_verd
               linear_stage (LINEAR_STAGE_RULE: its rule in words), growth_rates,
               band_summary, spectrum_growth, forced_second_harmonic,
               carrier_amplitude, carrier_frequency; the growth criterion GROWTH_THRESHOLD
-              and :func:`grows_beyond_threshold`
+              and :func:`grows_beyond_threshold`; fit_soliton_profile -> ProfileFit (the
+              sech^2 fit of a soliton's intensity on a ring, RADIATION_WINDOW), for the
+              paper chain's and every model's soliton measurement
 Verdicts      simulated_verdict -> Verdict ("MI", "no growth within T", "undetermined":
               VERDICT_WORDS), run_length -> RunLength (T from the fastest predicted
               rate, within T_CAP)
@@ -55,6 +57,7 @@ from ._force_steppers import ForceStepper, band_flow, linear_damping, local_flow
 from ._integrators import METHODS, Method, get_method
 from ._baseline import numpy_accel, numpy_rk4
 from ._kernels import FASTMATH, TRIG_LIMIT, accel, sincos_vers, site_acceleration
+from ._profile_fit import RADIATION_WINDOW, ProfileFit, fit_soliton_profile
 from ._model import (CASES, LatticeState, Material, check_case, discrete_omega_longitudinal,
                      discrete_omega_rotation, energy)
 from ._runcontrol import deferred_interrupt, steps_per_call
@@ -104,4 +107,6 @@ __all__ = ["cuda_kernels", "cuda_model_kernels", "TRIG_LIMIT",
     # fast forces a model's run uses where its energy is the one they implement
     "register_fast_force", "fast_force", "fast_forces", "FastForce", "flexmm_force",
     "flexmm_rotation_force", "FLEXMM_ROWS",
+    # the soliton measurement of the paper chain (theory) and of any model (models)
+    "fit_soliton_profile", "ProfileFit", "RADIATION_WINDOW",
 ]

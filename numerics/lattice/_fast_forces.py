@@ -17,8 +17,7 @@ from dataclasses import dataclass
 
 from numba import njit
 
-from ._kernels import FASTMATH, TRIG_LIMIT, _acc, _sincosvers
-from ._kernels_libm import accel_libm
+from ._kernels import FASTMATH, _accel_passes
 
 #: work rows of the fused kernel's force: sin, cos and 1 - cos of theta
 FLEXMM_ROWS = 3
@@ -26,37 +25,13 @@ FLEXMM_ROWS = 3
 
 @njit(inline="always", fastmath=FASTMATH)
 def _flexmm_force(u, p, out, S, coupled):
-    """``accel``'s two passes (sin, cos and 1 - cos of every theta, then the stencil)
-    written out in one function: calls into ``accel`` and its stencil, two compiled
-    functions of their own, cost 0.5 ns a site of 2.7 (measured at N = 128); inlined, the
-    force is as fast as the generated one. The libm reference where some |theta| is beyond
-    TRIG_LIMIT or not finite, as ``accel``."""
-    th, s, c, v = u[0], S[0], S[1], S[2]
-    # case I: U and aU stand in for arrays that _acc and accel_libm touch only when coupled
+    """``accel``'s passes (``_kernels._accel_passes``, inlined) on the force's layout:
+    u = (theta, U), p = (alpha^2, K_s, K_theta), S = (sin, cos, 1 - cos)."""
+    # case I: U and aU stand in for arrays that the passes touch only when coupled
     # (no allocation per call: np.empty(0) twice cost 0.25 ns a site at N = 128)
     U = u[1] if coupled else u[0]
-    ath = out[0]
     aU = out[1] if coupled else out[0]
-    a2, Ks, Kt = p[0], p[1], p[2]
-    n = th.size
-    near = True
-    for i in range(n):
-        x = th[i]
-        near &= abs(x) <= TRIG_LIMIT  # NaN compares false
-        s[i], c[i], v[i] = _sincosvers(x)
-    if not near:
-        accel_libm(th, U, coupled, a2, Ks, Kt, s, c, v, ath, aU)
-        return
-    if coupled:
-        for i in range(1, n - 1):
-            ath[i], aU[i] = _acc(i, i - 1, i + 1, th, U, s, c, v, True, a2, Ks, Kt)
-        ath[0], aU[0] = _acc(0, n - 1, 1, th, U, s, c, v, True, a2, Ks, Kt)
-        ath[n - 1], aU[n - 1] = _acc(n - 1, n - 2, 0, th, U, s, c, v, True, a2, Ks, Kt)
-    else:
-        for i in range(1, n - 1):
-            ath[i] = _acc(i, i - 1, i + 1, th, U, s, c, v, False, a2, Ks, Kt)[0]
-        ath[0] = _acc(0, n - 1, 1, th, U, s, c, v, False, a2, Ks, Kt)[0]
-        ath[n - 1] = _acc(n - 1, n - 2, 0, th, U, s, c, v, False, a2, Ks, Kt)[0]
+    _accel_passes(u[0], U, coupled, p[0], p[1], p[2], S[0], S[1], S[2], out[0], aU)
 
 
 @njit(cache=True, nogil=True, fastmath=FASTMATH, boundscheck=False, error_model="numpy")

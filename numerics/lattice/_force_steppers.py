@@ -49,7 +49,9 @@ def no_damping(v, args, out):
     """No velocity-dependent force (a lossless lattice)."""
 
 
-@njit(cache=False, nogil=True, fastmath=_FAST, boundscheck=False)
+# inline="always": called from another compiled function (the cached loops below), its
+# body is inlined there; called from Python, it is compiled as any function of functions
+@njit(inline="always", cache=False, nogil=True, fastmath=_FAST, boundscheck=False)
 def srkn_force_steps(force, flow, flow_args, u, v, p, S, acc, A, B, dt, nsteps):
     """``nsteps`` steps of the symplectic RKN method (A, B) (BAB: kick B[0], drift A[0],
     kick B[1], ...; A[-1] = 0), each between two ``flow(v, flow_args)``.
@@ -181,49 +183,24 @@ def linear_damping(v, args, out):
 
 
 # srkn_force_steps takes its force as an argument, which Numba compiles in every process
-# (no disk cache for a function of a function: ~1.3 s, in each map worker): the paper
-# chain's fused forces get the same loop written out around a direct call, cached on disk;
-# lossless runs only (no flow). tests/test_force_steppers.py: bit for bit the same states.
+# (no disk cache for a function of a function: ~1.3 s, in each map worker). The paper
+# chain's fused forces get the same loop (``srkn_force_steps``, inlined) around a direct call to
+# a *global* force, cached on disk; lossless runs only (no flow). Written out, not made by
+# a factory: a closure over the force recompiles in each process (Numba keys its cache on
+# the pickled closure cells, a dispatcher's pickle holds a per-process id), and a
+# dispatcher passed as a value cannot be cached ("dynamic globals").
+# tests/test_force_steppers.py: bit for bit the states of the generic loop.
 @njit(cache=True, nogil=True, fastmath=_FAST, boundscheck=False)
 def _srkn_flexmm_steps(u, v, p, S, acc, A, B, dt, nsteps):
     """``srkn_force_steps(flexmm_force, no_flow, (), ...)``, cached on disk."""
-    d, N = u.shape
-    for step in range(nsteps):
-        for j in range(B.size):
-            hb = B[j] * dt
-            for a in range(d):
-                for n in range(N):
-                    v[a, n] += hb * acc[a, n]
-            if A[j] != 0.0:
-                ha = A[j] * dt
-                for a in range(d):
-                    for n in range(N):
-                        u[a, n] += ha * v[a, n]
-                flexmm_force(u, p, acc, S)
-        if not np.isfinite(u[0, 0]):
-            return step
-    return nsteps
+    return srkn_force_steps(flexmm_force, no_flow, (), u, v, p, S, acc, A, B, dt, nsteps)
 
 
 @njit(cache=True, nogil=True, fastmath=_FAST, boundscheck=False)
 def _srkn_flexmm_rotation_steps(u, v, p, S, acc, A, B, dt, nsteps):
     """``srkn_force_steps(flexmm_rotation_force, no_flow, (), ...)``, cached on disk."""
-    d, N = u.shape
-    for step in range(nsteps):
-        for j in range(B.size):
-            hb = B[j] * dt
-            for a in range(d):
-                for n in range(N):
-                    v[a, n] += hb * acc[a, n]
-            if A[j] != 0.0:
-                ha = A[j] * dt
-                for a in range(d):
-                    for n in range(N):
-                        u[a, n] += ha * v[a, n]
-                flexmm_rotation_force(u, p, acc, S)
-        if not np.isfinite(u[0, 0]):
-            return step
-    return nsteps
+    return srkn_force_steps(flexmm_rotation_force, no_flow, (), u, v, p, S, acc, A, B, dt,
+                            nsteps)
 
 
 #: force -> its SRKN loop compiled for it and cached on disk (lossless runs): the

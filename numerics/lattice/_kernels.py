@@ -116,10 +116,22 @@ sincos_vers = _sincosvers
 site_acceleration = _acc
 
 
-@njit(cache=True, fastmath=_FAST, boundscheck=False)
-def _stencil(th, U, coupled, a2, Ks, Kt, s, c, v, ath, aU):
+@njit(inline="always", fastmath=_FAST)
+def _accel_passes(th, U, coupled, a2, Ks, Kt, s, c, v, ath, aU):
+    """A whole chain's force in two passes: sin, cos and 1 - cos of every theta into
+    ``s, c, v``, then the stencil (``_acc``) into ``ath`` and ``aU``; the libm reference
+    where some |theta| is beyond TRIG_LIMIT or not finite. Inlined into ``accel`` and into
+    the fused force of ``_fast_forces`` (a call into a compiled stencil costs 0.5 ns a site
+    of 2.7, measured at N = 128). In case "rotation" ``U`` and ``aU`` are never touched."""
     n = th.size
-    if coupled:
+    near = True
+    for i in range(n):
+        x = th[i]
+        near &= abs(x) <= TRIG_LIMIT  # NaN compares false
+        s[i], c[i], v[i] = _sincosvers(x)
+    if not near:
+        accel_libm(th, U, coupled, a2, Ks, Kt, s, c, v, ath, aU)
+    elif coupled:
         for i in range(1, n - 1):
             ath[i], aU[i] = _acc(i, i - 1, i + 1, th, U, s, c, v, True, a2, Ks, Kt)
         ath[0], aU[0] = _acc(0, n - 1, 1, th, U, s, c, v, True, a2, Ks, Kt)
@@ -138,14 +150,7 @@ def accel(th, U, coupled, a2, Ks, Kt, s, c, v, ath, aU):
     ``s, c, v`` receive sin, cos, 1 - cos of theta. Uses the libm reference when some
     |theta| exceeds TRIG_LIMIT (or is not finite).
     """
-    bad = 0
-    for i in range(th.size):
-        bad += _bad(th[i])
-        s[i], c[i], v[i] = _sincosvers(th[i])
-    if bad:
-        accel_libm(th, U, coupled, a2, Ks, Kt, s, c, v, ath, aU)
-        return
-    _stencil(th, U, coupled, a2, Ks, Kt, s, c, v, ath, aU)
+    _accel_passes(th, U, coupled, a2, Ks, Kt, s, c, v, ath, aU)
 
 
 # --- RK4: four fused passes per step -------------------------------------------------------

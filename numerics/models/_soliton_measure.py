@@ -1,24 +1,23 @@
 """What a state of any model's lattice shows of its NLS soliton (``_soliton_run``): the
 carrier field's analytic signal z = u + i u_dot / Omega band-passed at |q - k| < k/2
 (2 E e^{i theta}: the mean at q = 0 and the second harmonic at 2k outside), |z|^2 fitted
-by a^2 sech^2 (bright) or a^2 (1 - D sech^2) (dark) for centre, amplitude and width; its
+by a^2 sech^2 (bright) or a^2 (1 - D sech^2) (dark) for centre, amplitude, width and D
+(``numerics.lattice.fit_soliton_profile``, the paper chain's fit too); its
 demodulated phase for the frequency; each acoustic field's strain low-passed at |q| < k/2
 and summed over +-8 widths for its kink. As the paper chain's ``_soliton_measure``.
 """
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ..lattice import RADIATION_WINDOW, fit_soliton_profile
+
 if TYPE_CHECKING:  # the prediction's type only: _soliton_run imports this module
     from ._soliton_run import RingSoliton
-
-#: half-width (in soliton widths) of the window counted as the soliton
-RADIATION_WINDOW = 6.0
 
 
 @dataclass(frozen=True)
@@ -53,46 +52,6 @@ def analytic_carrier(u, v, pred: RingSoliton) -> np.ndarray:
     return np.fft.ifft(np.where(near, z, 0))
 
 
-def _fit(amp2, kind, c0, w0, N):
-    """Least-squares fit of |2E|^2 near c0: (centre, amplitude, width, depth, radiation,
-    shape misfit)."""
-    from scipy.optimize import least_squares
-
-    n = np.arange(N, dtype=float)
-    d = _ring_distance(n, c0, N)
-    win = np.abs(d) < (6 if kind == "bright" else 8) * w0
-    scale = float(np.max(amp2))  # O(1) numbers: least_squares' tolerances are absolute
-    x, y = d[win], amp2[win] / scale
-    if kind == "bright":
-        def model(p):
-            return p[1] ** 2 / np.cosh((x - p[0]) / p[2]) ** 2
-        p0 = [x[np.argmax(y)], math.sqrt(y.max()), w0]
-    else:
-        def model(p):
-            return p[1] ** 2 * (1 - p[3] / np.cosh((x - p[0]) / p[2]) ** 2)
-        far = np.abs(d) > 8 * w0
-        bg = math.sqrt(np.median(amp2[far] / scale)) if far.any() else 1.0
-        p0 = [x[np.argmin(y)], bg, w0, 1.0 - y.min() / bg**2]
-    p = least_squares(lambda p: model(p) - y, p0, xtol=1e-12, ftol=1e-12, gtol=1e-12).x
-    amp, width = abs(float(p[1])) * math.sqrt(scale), abs(float(p[2]))
-    centre = c0 + float(p[0])
-    dd = _ring_distance(n, centre, N)
-    if kind == "bright":
-        full = amp**2 / np.cosh(dd / width) ** 2
-        own = full
-    else:
-        full = amp**2 * (1 - p[3] / np.cosh(dd / width) ** 2)
-        own = amp**2 - full
-    off = np.abs(amp2 - full)
-    core = np.abs(dd) <= RADIATION_WINDOW * width
-    content = float(np.sum(np.abs(own)))
-    share = max(1 - core.mean(), 1e-12)
-    radiation = float(np.sum(off[~core]) / content / share) if (~core).any() else math.nan
-    misfit = float(np.sum(off[core]) / content)
-    depth = 0.0 if kind == "bright" else float(p[3])
-    return centre, amp, width, depth, radiation, misfit
-
-
 def _kinks(u, pred: RingSoliton, centre, width):
     """Each kink field's step: its strain low-passed at |q| < k/2 (the harmonics out),
     summed over +-8 widths, minus the background strain over the window."""
@@ -113,11 +72,12 @@ def _kinks(u, pred: RingSoliton, centre, width):
 def measure_snapshot(u, v, pred: RingSoliton, t: float,
                      centre_guess: float) -> ModelSnapshot:
     """Fit the soliton in the state (u, v) (each shape (d, N))."""
-    N = u.shape[1]
     z = analytic_carrier(u, v, pred)
-    c, a, w, depth, rad, misfit = _fit(np.abs(z) ** 2, pred.kind, centre_guess, pred.width, N)
-    return ModelSnapshot(t=float(t), centre=c, amplitude=a, width=w, depth=depth,
-                         kink=_kinks(u, pred, c, w), radiation=rad, shape_misfit=misfit)
+    fit = fit_soliton_profile(np.abs(z) ** 2, pred.kind, centre_guess, pred.width)
+    return ModelSnapshot(t=float(t), centre=fit.centre, amplitude=fit.amplitude,
+                         width=fit.width, depth=fit.dip,
+                         kink=_kinks(u, pred, fit.centre, fit.width),
+                         radiation=fit.radiation, shape_misfit=fit.shape_misfit)
 
 
 def phasor(u, v, pred, centre, t):

@@ -5,12 +5,11 @@ them beside the prediction. Conventions as in ``_soliton``.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..lattice import LatticeState
+from ..lattice import RADIATION_WINDOW, LatticeState, fit_soliton_profile
 from ._soliton import Soliton
 
 
@@ -33,53 +32,8 @@ class Snapshot:
     shape_misfit: float
 
 
-#: half-width (in soliton widths) of the window that counts as the soliton
-RADIATION_WINDOW = 6.0
-
-
 def _ring_distance(n, c, N):
     return (n - c + N / 2) % N - N / 2
-
-
-def _fit_profile(amp2, kind, c0, w0, N):
-    """Least-squares fit of the intensity |2E|^2 near c0: (centre, amplitude, width, depth)."""
-    from scipy.optimize import least_squares
-
-    n = np.arange(N, dtype=float)
-    d = _ring_distance(n, c0, N)
-    win = np.abs(d) < (6 if kind == "bright" else 8) * w0
-    scale = float(np.max(amp2))  # fit O(1) numbers: least_squares' tolerances are absolute
-    x, y = d[win], amp2[win] / scale
-    if kind == "bright":
-        def model(p):
-            return p[1] ** 2 / np.cosh((x - p[0]) / p[2]) ** 2
-        p0 = [x[np.argmax(y)], math.sqrt(y.max()), w0]
-    else:
-        def model(p):
-            return p[1] ** 2 * (1 - p[3] / np.cosh((x - p[0]) / p[2]) ** 2)
-        far = np.abs(d) > 8 * w0
-        bg = math.sqrt(np.median(amp2[far] / scale)) if far.any() else 1.0
-        p0 = [x[np.argmin(y)], bg, w0, 1.0 - y.min() / bg**2]
-    res = least_squares(lambda p: model(p) - y, p0, xtol=1e-12, ftol=1e-12, gtol=1e-12)
-    p = res.x
-    p[1] *= math.sqrt(scale)
-    centre = c0 + p[0]
-    fit_full = np.zeros(N)
-    dd = _ring_distance(n, centre, N)
-    if kind == "bright":
-        fit_full = p[1] ** 2 / np.cosh(dd / p[2]) ** 2
-        soliton_part = fit_full
-    else:
-        fit_full = p[1] ** 2 * (1 - p[3] / np.cosh(dd / p[2]) ** 2)
-        soliton_part = p[1] ** 2 - fit_full
-    off = np.abs(amp2 - fit_full)
-    core = np.abs(dd) <= RADIATION_WINDOW * abs(p[2])
-    content = np.sum(np.abs(soliton_part))
-    share = max(1 - core.mean(), 1e-12)  # the part of the ring outside the window
-    radiation = float(np.sum(off[~core]) / content / share) if (~core).any() else float("nan")
-    misfit = float(np.sum(off[core]) / content)
-    depth = 0.0 if kind == "bright" else float(1 - p[3])
-    return centre, abs(float(p[1])), abs(float(p[2])), depth, radiation, misfit
 
 
 def _kink(state, sol, centre, width):
@@ -100,12 +54,12 @@ def _kink(state, sol, centre, width):
 def measure_state(state: LatticeState, sol: Soliton, t: float, centre_guess: float) -> Snapshot:
     """Fit the soliton in one state (intensity |2E|^2 = theta^2 + (theta_dot/omega_s)^2)."""
     amp2 = state.theta**2 + (state.theta_dot / sol.frequency) ** 2
-    c, a, w, depth, rad, misfit = _fit_profile(amp2, sol.kind, centre_guess, sol.width,
-                                               state.N)
+    fit = fit_soliton_profile(amp2, sol.kind, centre_guess, sol.width)
     # unwrap: the ring distance keeps the centre continuous across the seam
-    kink = _kink(state, sol, c, w) if sol.case == "coupled" else 0.0
-    return Snapshot(t=t, centre=c, amplitude=a, width=w, depth=depth, kink_height=kink,
-                    radiation=rad, shape_misfit=misfit)
+    kink = _kink(state, sol, fit.centre, fit.width) if sol.case == "coupled" else 0.0
+    return Snapshot(t=t, centre=fit.centre, amplitude=fit.amplitude, width=fit.width,
+                    depth=fit.depth, kink_height=kink, radiation=fit.radiation,
+                    shape_misfit=fit.shape_misfit)
 
 
 @dataclass(frozen=True)
