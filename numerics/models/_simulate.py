@@ -285,8 +285,10 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
     stepper = ForceStepper(kernel, p_force, rows, u, v, meth, dt,
                            damping=damping, flow=flow)
 
+    wave_at = wave.ring_profile(N, k_ring)  # wave.profile on the ring, for many t
+
     def record(t):
-        U = wave.profile(k_ring * np.arange(N) - wave.omega * t)
+        U = wave_at(t)
         delta = u - U
         ts.append(t)
         spec.append(np.sqrt(np.sum(np.abs(np.fft.fft(delta, axis=1)) ** 2, axis=0)) / N)
