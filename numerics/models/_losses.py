@@ -33,6 +33,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from common.threads import one_blas_thread
 from energy import Model, ModelError
 
 #: amplification a theory calls observable (the runs' threshold)
@@ -194,7 +195,8 @@ def _unbounded(Gamma: float, net0: float, offset: float) -> Amplified:
 
 
 def along_decay(gain_at, a0: float, gain0, G, Gamma: float, *, ratio: float = 0.5,
-                most: int = 10, steps: int = 4000, linear_tol: float | None = 1e-3):
+                most: int = 10, steps: int = 4000, linear_tol: float | None = 1e-3,
+                positions=None):
     """(amplification, time, column, samples) of modes whose growth rates at carrier
     amplitude a are ``gain_at(a, cols)`` (an array over the columns ``cols``; ``gain0``
     the rates at a0, every column),
@@ -214,55 +216,51 @@ def along_decay(gain_at, a0: float, gain0, G, Gamma: float, *, ratio: float = 0.
     each the same amplification to the last bit; a synthetic gain with a curvature of
     4e-4 sigma0^2 stops at 3 and lands 2.2% low in log (9 samples: 5.4% high;
     tests/test_dissipation.py)."""
+    from ._losses_sampling import Samples, coarse_columns, refine_columns
+
     gain0 = np.asarray(gain0, float)
     G = np.broadcast_to(np.asarray(G, float), gain0.shape)
-    S = [(1.0, gain0 ** 2)]
-    s = 1.0
-    g = gain0
-    while len(S) < most:
-        s *= ratio
-        # a band shrinks as the carrier weakens: only the columns that grew net of their
-        # damping at the last sample are computed at the next (the others are taken 0:
-        # they only decay from there, which leaves the maximum over t unchanged)
-        cols = np.flatnonzero(g > G)
-        g = np.zeros_like(gain0)
-        g[cols] = np.asarray(gain_at(a0 * math.sqrt(s), cols), float)
-        S.append((s, g ** 2))
-        if not np.any(g > G):
-            break
-        if linear_tol is not None and len(S) >= 3:
-            live = g > G
-            (s1, y1), (s2, y2), (s3, y3) = S[-3:]
-            line = y1 + (y3 - y1) * (s2 - s1) / (s3 - s1)
-            if np.all(np.abs(line - y2)[live] <= linear_tol * np.max(S[0][1])):
-                break
-    S.sort(key=lambda x: x[0])
-    s_arr = np.array([x[0] for x in S])
-    g2 = np.array([x[1] for x in S])  # (samples, cols)
+    samples = Samples(gain_at, a0, gain0, G, ratio, most, linear_tol)
     # time: the horizon of the gain at t = 0 against the carrier's damping
     t_end = _horizon(float(np.max(gain0)), Gamma)
     t = np.linspace(0.0, t_end, steps + 1)
     s_t = np.exp(-2 * Gamma * t)
-    best, i, j = _integrate(s_arr, g2, s_t, t, G)
-    return math.exp(min(best, 700.0)), float(t[i]), int(j), len(S)
+    if positions is None:
+        samples.complete(np.arange(gain0.size))
+    else:  # coarse to fine (``_losses_sampling``)
+        positions = np.asarray(positions, int)
+        coarse = coarse_columns(positions)
+        samples.complete(coarse)
+        if coarse.size < gain0.size:
+            s_arr, g2 = samples.arrays(coarse)
+            log_amp = _integrate(s_arr, g2, s_t, t, G[coarse], per_column=True)[3]
+            samples.complete(refine_columns(positions, coarse, log_amp))
+    cols = np.flatnonzero(samples.done)
+    s_arr, g2 = samples.arrays(cols)
+    best, i, j = _integrate(s_arr, g2, s_t, t, G[cols])
+    return math.exp(min(best, 700.0)), float(t[i]), int(cols[j]), len(samples.s)
 
 
-def _integrate(s_arr, g2, s_t, t, G):
+def _integrate(s_arr, g2, s_t, t, G, per_column=False):
     """(max log amplification, its time index, its column) of the rates
     sqrt(sigma^2) - G along the carrier's s_t (sigma^2 as ``_piecewise``), integrated by
     the trapezoid rule on t: the same arithmetic as ``_piecewise`` and a cumsum over all
     columns at once, compiled, one column at a time (no (times, cols) arrays: ~10x
     faster, the same numbers to the last bit; ties to the first in row-major order, as
-    argmax)."""
+    argmax). ``per_column``: also each column's own largest (array, 0 where it never
+    grows)."""
     n = s_arr.size
     pos = g2 > 0
     lo = np.where(pos.any(axis=0), np.argmax(pos, axis=0), n - 1)
     j = np.clip(np.searchsorted(s_arr, s_t), 1, n - 1) if n > 1 else np.zeros(s_t.size, int)
     lo_j = np.maximum(j - 1, 0)
     w = (s_t - s_arr[lo_j]) / np.where(j != lo_j, s_arr[j] - s_arr[lo_j], 1.0)
+    colbest = np.zeros(g2.shape[1])
     best, i, col = _integrate_compiled()(
         np.ascontiguousarray(g2.T), s_arr, s_t, np.diff(t), np.ascontiguousarray(G, float),
-        lo.astype(np.int64), j.astype(np.int64), lo_j.astype(np.int64), w)
+        lo.astype(np.int64), j.astype(np.int64), lo_j.astype(np.int64), w, colbest)
+    if per_column:
+        return float(best), int(i), int(col), colbest
     return float(best), int(i), int(col)
 
 
@@ -275,7 +273,7 @@ def _integrate_compiled():
         import numba
 
         @numba.njit(cache=True, error_model="numpy", boundscheck=False)
-        def integrate(g2t, s_arr, s_t, dt, G, lo, j, lo_j, w):
+        def integrate(g2t, s_arr, s_t, dt, G, lo, j, lo_j, w, colbest):
             n = s_arr.size
             best, bi, bj = 0.0, 0, 0  # row 0: every column at 0
             for c in range(g2t.shape[0]):
@@ -298,6 +296,8 @@ def _integrate_compiled():
                     rate = math.sqrt(max(sig2, 0.0)) - G[c]
                     if i > 0:
                         acc = acc + dt[i - 1] * (rate + prev) / 2
+                        if acc > colbest[c]:
+                            colbest[c] = acc
                         if acc > best or (acc == best and (i < bi or (i == bi and c < bj))):
                             best, bi, bj = acc, i, c
                     prev = rate
@@ -341,7 +341,7 @@ def exact_amplification(model: Model, k: float, amplitude: float, branch=None, *
     of their damping at t = 0, each damped as the carrier branch's sidebands (a mode of
     other branches is damped at their rates: this is then approximate). ``first``: ``exact_gain`` at a0 on this
     ring, where already computed."""
-    from ._exact import exact_gain, hill_spectrum, travelling_wave
+    from ._exact import exact_gain
     from ._linear import carrier_damping
 
     if first is None:
@@ -360,15 +360,8 @@ def exact_amplification(model: Model, k: float, amplitude: float, branch=None, *
     live = np.flatnonzero(net0 > 0)
     qk = q[live]
 
-    waves = [first.wave]
-
-    def gain_at(a, cols):
-        # the amplitudes fall in turn: each wave's harmonic balance starts from the last
-        waves.append(travelling_wave(model, c.k, a, c.branch, start=waves[-1]))
-        return hill_spectrum(waves[-1], qk[cols]).gain
-
-    amp, t, j, _ = along_decay(gain_at, amplitude, gain0[live], G[live], Gamma, ratio=ratio,
-                               most=most)
+    amp, t, j, _ = _exact_along_decay(first, model, c, q[live], live, amplitude,
+                                      gain0[live], G[live], Gamma, ratio, most)
     return Amplified(Gamma, amp, t, float(qk[j]), amp >= OBSERVABLE, top)
 
 
@@ -405,7 +398,13 @@ def four_wave_amplification(model: Model, k: float, amplitude: float, branch=Non
     live = net0.ravel() > 0
     live_q = np.flatnonzero(live) // rates0.shape[1]  # the offset (row) of each live pair
 
+    from ._losses_fourwave import rates_at
+
+    closed = rates_at(model, first, live_q, np.flatnonzero(live) % rates0.shape[1])
+
     def gain_at(a, cols):
+        if closed is not None:  # the kernel's exact scaling in a^2 (``_losses_fourwave``)
+            return closed((a / amplitude) ** 2)[cols]
         # the pairs' rates at a only at the offsets of the columns asked (a rate at q
         # depends on q alone: the same numbers as four_wave's over every offset), at
         # ``first``'s offsets (the infinite chain's refined ones included)
@@ -420,3 +419,41 @@ def four_wave_amplification(model: Model, k: float, amplitude: float, branch=Non
     amp, t, j, _ = along_decay(gain_at, amplitude, rates0.ravel()[live], G.ravel()[live],
                                Gamma, ratio=ratio, most=most)
     return Amplified(Gamma, amp, t, float(col_q[live][j]), amp >= OBSERVABLE, top)
+
+
+@one_blas_thread
+def _exact_along_decay(first, model, c, qk, positions, amplitude, gain0, G, Gamma, ratio,
+                       most):
+    """``along_decay`` of the exact theory's live ring offsets ``qk`` (ring indices
+    ``positions``: coarse to fine, ``_losses_sampling``): at each lower amplitude one
+    travelling wave (its harmonic balance started from the last, scaled) and one Hill
+    engine (the Hessian's harmonics once), asked for the coarse columns, then for the
+    refined ones. Each amplitude's spectrum is ``hill_spectrum``'s: the P + 4 check at
+    its fastest offset; a later call checks again only where it holds a faster offset
+    than the first (today's check, at the fastest offset of every column), and where the
+    first call's check failed it takes the dense spectrum at H + 4 as that one did."""
+    from ._exact import _Sidebands, hill_spectrum, travelling_wave
+
+    waves = [first.wave]
+    at = {}  # a -> [engine, its first call's top gain, dense]
+
+    def gain_at(a, cols):
+        q = qk[cols]
+        if a not in at:
+            # the amplitudes fall in turn: each wave's harmonic balance starts from the last
+            waves.append(travelling_wave(model, c.k, a, c.branch, start=waves[-1]))
+            engine = _Sidebands(waves[-1])
+            spec = engine.checked(q)
+            at[a] = [engine, spec.peak_gain, len(spec.truncations) == 1]
+            return spec.gain
+        engine, top, dense = at[a]
+        if dense:
+            return hill_spectrum(engine.wave, q, harmonics=engine.wave.harmonics + 4).gain
+        spec = engine.spectrum(q)
+        if spec.peak_gain > top:  # a faster offset than the first call's: checked here
+            spec = engine.checked(q)
+            at[a][1] = spec.peak_gain
+        return spec.gain
+
+    return along_decay(gain_at, amplitude, gain0, G, Gamma, ratio=ratio, most=most,
+                       positions=positions)

@@ -1,0 +1,121 @@
+"""The samples ``along_decay`` integrates (issue 42): each column's gain at the carrier
+amplitudes s = (a / a0)^2 = 1, ratio, ratio^2, ..., and which columns it computes.
+
+A column is computed at a sample only where it grew net of its damping at the one before
+(below, it only decays: the maximum over t is reached before). Sampling stops where no
+computed column grows at the last sample, or the last three samples of every growing
+column lie on a line in s (``linear_tol`` of the largest sigma^2 at s = 1), or at ``most``
+samples.
+
+Coarse to fine (``positions``, the exact theory's ring offsets, where a lower amplitude's
+Hill spectrum costs per offset): the samples are first computed on every other column of
+each run of adjacent offsets (and each run's ends), then on the columns between whose
+amplification can reach the largest found: an in-between column's log amplification is
+taken to be at most the larger of its two neighbours' plus a slack, the larger of their
+difference and half the neighbours' second differences (four times the midpoint error of
+a smooth profile, |f''| h^2 / 2 with f'' from the coarse second difference / 4). The
+answer (amplification, time, offset) is today's, to the bit, whenever its column is
+computed; the refined columns then take part in the stop rule, so sampling goes on where
+they still grow or curve (the samples stop at or before today's, and only where every
+computed column lies on a line).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+#: the coarse columns' spacing (every STRIDE-th column of a run of adjacent offsets)
+STRIDE = 3
+
+
+class Samples:
+    """The samples of ``along_decay``: ``s`` (descending from 1) and ``g`` (one row of
+    rates per sample over every column, 0 where not computed), ``done`` the columns whose
+    samples are complete."""
+
+    def __init__(self, gain_at, a0, gain0, G, ratio, most, linear_tol):
+        self.gain_at, self.a0, self.G = gain_at, a0, G
+        self.ratio, self.most, self.linear_tol = ratio, most, linear_tol
+        self.s = [1.0]
+        self.g = [np.asarray(gain0, float)]
+        self.top2 = float(np.max(self.g[0] ** 2)) if self.g[0].size else 0.0
+        self.done = np.zeros(self.g[0].size, bool)
+
+    def _compute(self, i, cols):
+        if cols.size:
+            self.g[i][cols] = np.asarray(self.gain_at(self.a0 * math.sqrt(self.s[i]), cols),
+                                         float)
+
+    def complete(self, cols) -> None:
+        """Bring ``cols`` up to date on the samples taken, in order, then sample on while
+        the stop rule over every complete column says so."""
+        cols = np.asarray(cols, int)
+        cols = cols[~self.done[cols]]
+        for i in range(1, len(self.s)):
+            self._compute(i, cols[self.g[i - 1][cols] > self.G[cols]])
+        self.done[cols] = True
+        while not self._stopped():
+            s = self.s[-1] * self.ratio
+            grew = np.flatnonzero(self.done & (self.g[-1] > self.G))
+            self.s.append(s)
+            self.g.append(np.zeros_like(self.g[0]))
+            self._compute(len(self.s) - 1, grew)
+
+    def _stopped(self) -> bool:
+        if len(self.s) == 1:
+            return self.most <= 1
+        if len(self.s) >= self.most:
+            return True
+        live = self.done & (self.g[-1] > self.G)
+        if not live.any():
+            return True
+        if self.linear_tol is not None and len(self.s) >= 3:
+            (s1, s2, s3), (y1, y2, y3) = self.s[-3:], [g**2 for g in self.g[-3:]]
+            line = y1 + (y3 - y1) * (s2 - s1) / (s3 - s1)
+            return bool(np.all(np.abs(line - y2)[live] <= self.linear_tol * self.top2))
+        return False
+
+    def arrays(self, cols):
+        """(s ascending, sigma^2 of ``cols`` per sample (samples, len(cols)))."""
+        order = np.argsort(self.s, kind="stable")
+        return (np.asarray(self.s)[order], np.array([self.g[i][cols] ** 2 for i in order]))
+
+
+def coarse_columns(positions: np.ndarray, stride: int = STRIDE) -> np.ndarray:
+    """Every ``stride``-th column of each run of adjacent ``positions`` (ascending
+    integers) from its first, and each run's last: the indices of the coarse columns."""
+    n = positions.size
+    if n <= 2 * stride:
+        return np.arange(n)
+    start = np.r_[True, np.diff(positions) != 1]
+    run_start = np.maximum.accumulate(np.where(start, np.arange(n), 0))
+    end = np.r_[start[1:], True]
+    return np.flatnonzero(((np.arange(n) - run_start) % stride == 0) | end)
+
+
+def refine_columns(positions: np.ndarray, coarse: np.ndarray, log_amp: np.ndarray):
+    """The in-between columns whose log amplification may reach the coarse columns'
+    largest (module docstring): those of each interval between two coarse neighbours
+    where the larger end plus the slack reaches it; ``log_amp`` the coarse columns' (same
+    order as ``coarse``)."""
+    if coarse.size == positions.size:
+        return np.zeros(0, int)
+    x = positions[coarse].astype(float)
+    y = np.asarray(log_amp, float)
+    best = float(np.max(y))
+    # |f''| at each coarse column from its coarse neighbours in the same run (0 at ends)
+    curv = np.zeros(x.size)
+    same = np.diff(coarse) == np.diff(positions[coarse])  # no gap between: one run
+    if x.size >= 3:
+        slope = np.diff(y) / np.diff(x)
+        inner = same[:-1] & same[1:]
+        curv[1:-1] = np.where(inner, np.abs(2 * np.diff(slope) / (x[2:] - x[:-2])), 0.0)
+    out = []
+    for i in np.flatnonzero(same & (np.diff(coarse) > 1)):  # an interval with columns inside
+        h = x[i + 1] - x[i]
+        slack = max(abs(y[i + 1] - y[i]), max(curv[i], curv[i + 1]) * h * h / 2)
+        if max(y[i], y[i + 1]) + slack >= best:
+            out.extend(range(coarse[i] + 1, coarse[i + 1]))
+    return np.asarray(out, int)
