@@ -33,7 +33,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from common.threads import one_blas_thread
 from energy import Model, ModelError
 
 #: amplification a theory calls observable (the runs' threshold)
@@ -72,8 +71,21 @@ def integrate_pairs(P, Q, psi0, Gamma, G, q, t_end, steps=4000, carrier_decays=T
     """|(x, y)(t)| / |(x, y)(0)| of the linearised damped NLS per offset q: array
     (steps + 1, len(q)), and the times. The carrier psi0 e^{-Gamma t} (constant where
     ``carrier_decays`` is False); start on the growing eigenvector at t = 0."""
+    q2, G, x, y, h, a2 = _pairs_start(P, Q, psi0, Gamma, G, q, t_end, steps, carrier_decays)
+    t = np.linspace(0.0, t_end, steps + 1)
+    # one row per offset (the kernel walks each offset's steps in order), returned as
+    # (steps + 1, len(q)) by a transposed view
+    out = np.empty((q2.size, steps + 1))
+    out[:, 0] = 1.0
+    _pairs_compiled()(float(P), float(Q), a2, G, q2, h, x, y, out)
+    return out.T, t
+
+
+def _pairs_start(P, Q, psi0, Gamma, G, q, t_end, steps, carrier_decays=True):
+    """(q^2, G, x, y, h, a2) of ``integrate_pairs``: the growing eigenvector at t = 0 per
+    offset, the step and the carrier's psi0^2 e^{-2 Gamma t} at each step's midpoint."""
     q = np.atleast_1d(np.asarray(q, float))
-    G = np.broadcast_to(np.asarray(G, float), q.shape)
+    G = np.ascontiguousarray(np.broadcast_to(np.asarray(G, float), q.shape), dtype=float)
     q2 = q * q
     b = P * q2
     c0 = 2 * Q * psi0**2 - P * q2
@@ -82,55 +94,74 @@ def integrate_pairs(P, Q, psi0, Gamma, G, q, t_end, steps=4000, carrier_decays=T
     x = np.where(s0 > 0, b, 1.0)
     y = np.where(s0 > 0, s0, 0.0)
     n0 = np.hypot(x, y)
-    x, y = x / n0, y / n0
     h = t_end / steps
-    t = np.linspace(0.0, t_end, steps + 1)
-    # one row per offset (the kernel walks each offset's steps in order), returned as
-    # (steps + 1, len(q)) by a transposed view
-    out = np.empty((q.size, steps + 1))
-    out[:, 0] = 1.0
-    # the carrier at each step's midpoint
     tm = (np.arange(steps) + 0.5) * h
     a2 = psi0**2 * (np.exp(-2 * Gamma * tm) if carrier_decays else np.ones(steps))
-    _pairs_compiled()(float(P), float(Q), a2, np.ascontiguousarray(G, dtype=float), q2, h,
-                      x, y, out)
-    return out.T, t
+    return q2, G, x / n0, y / n0, h, a2
 
 
-_PAIRS = []
+def _pairs_best(P, Q, psi0, Gamma, G, q, t_end, steps):
+    """Per offset of ``integrate_pairs``: its largest |(x, y)(t)| / |(x, y)(0)| and the
+    first step index that reaches it, without the (steps + 1, len(q)) array (the same
+    numbers: the same kernel, its writes replaced by the running maximum)."""
+    q2, G, x, y, h, a2 = _pairs_start(P, Q, psi0, Gamma, G, q, t_end, steps)
+    best = np.ones(q2.size)
+    first = np.zeros(q2.size, np.int64)
+    _pairs_compiled(best=True)(float(P), float(Q), a2, G, q2, h, x, y, best, first)
+    return best, first
 
 
-def _pairs_compiled():
+_PAIRS = {}
+
+
+def _pairs_compiled(best=False):
     """The steps of ``integrate_pairs``, compiled (cached on disk): per offset, the
     product in order of each step's exp(h [[-G, b], [c, -G]]) = e^{-G h} [[ch, b sh/l],
     [c sh/l, ch]], l = sqrt(b c), b = P q^2, c = 2 Q a(t)^2 - b (cosh, sinh where b c > 0;
-    cos, sin where b c < 0: l is real or imaginary)."""
-    if not _PAIRS:
+    cos, sin where b c < 0: l is real or imaginary). ``best``: each offset's running
+    maximum and its first step instead of every step (``_pairs_best``)."""
+    if best not in _PAIRS:
         import numba
 
-        @numba.njit(cache=True, error_model="numpy", boundscheck=False)
-        def pairs(P, Q, a2, G, q2, h, x, y, out):
-            for j in range(q2.size):
-                b = P * q2[j]
-                e = math.exp(-G[j] * h)
-                xj, yj = x[j], y[j]
-                for i in range(a2.size):
-                    c = 2 * Q * a2[i] - b
-                    bc = b * c
-                    r = math.sqrt(abs(bc))
-                    rh = r * h
-                    if bc > 0:
-                        ch, sh = math.cosh(rh), math.sinh(rh)
-                    else:
-                        ch, sh = math.cos(rh), math.sin(rh)
-                    shl = sh / r if rh > 1e-12 else h
-                    xj, yj = e * ch * xj + e * b * shl * yj, e * c * shl * xj + e * ch * yj
-                    # sqrt of the sum (2/3 of hypot's time), hypot where it would overflow
-                    r2 = xj * xj + yj * yj
-                    out[j, i + 1] = math.sqrt(r2) if r2 < 1e300 else math.hypot(xj, yj)
+        @numba.njit(cache=True, error_model="numpy", boundscheck=False, inline="always")
+        def step(P, Q, a2i, b, e, h, xj, yj):
+            c = 2 * Q * a2i - b
+            bc = b * c
+            r = math.sqrt(abs(bc))
+            rh = r * h
+            if bc > 0:
+                ch, sh = math.cosh(rh), math.sinh(rh)
+            else:
+                ch, sh = math.cos(rh), math.sin(rh)
+            shl = sh / r if rh > 1e-12 else h
+            xj, yj = e * ch * xj + e * b * shl * yj, e * c * shl * xj + e * ch * yj
+            # sqrt of the sum (2/3 of hypot's time), hypot where it would overflow
+            r2 = xj * xj + yj * yj
+            return xj, yj, (math.sqrt(r2) if r2 < 1e300 else math.hypot(xj, yj))
 
-        _PAIRS.append(pairs)
-    return _PAIRS[0]
+        if best:
+            @numba.njit(cache=True, error_model="numpy", boundscheck=False)
+            def pairs(P, Q, a2, G, q2, h, x, y, top, first):
+                for j in range(q2.size):
+                    b = P * q2[j]
+                    e = math.exp(-G[j] * h)
+                    xj, yj = x[j], y[j]
+                    for i in range(a2.size):
+                        xj, yj, n = step(P, Q, a2[i], b, e, h, xj, yj)
+                        if n > top[j]:
+                            top[j], first[j] = n, i + 1
+        else:
+            @numba.njit(cache=True, error_model="numpy", boundscheck=False)
+            def pairs(P, Q, a2, G, q2, h, x, y, out):
+                for j in range(q2.size):
+                    b = P * q2[j]
+                    e = math.exp(-G[j] * h)
+                    xj, yj = x[j], y[j]
+                    for i in range(a2.size):
+                        xj, yj, out[j, i + 1] = step(P, Q, a2[i], b, e, h, xj, yj)
+
+        _PAIRS[best] = pairs
+    return _PAIRS[best]
 
 
 def _horizon(rate0: float, Gamma: float) -> float:
@@ -142,12 +173,13 @@ def _horizon(rate0: float, Gamma: float) -> float:
 
 
 def nls_amplification(model: Model, k: float, amplitude: float, branch=None, *,
-                      offsets: int = 200, steps: int = 1000) -> Amplified:
-    """The damped semi-discrete NLS's amplification (module docstring)."""
+                      offsets: int = 200, steps: int = 1000, first=None) -> Amplified:
+    """The damped semi-discrete NLS's amplification (module docstring). ``first``: the
+    point's ``nls(model, k, branch)``, where already computed."""
     from ._linear import carrier_damping
     from ._nls import nls
 
-    r = nls(model, k, branch)
+    r = nls(model, k, branch) if first is None else first
     c = r.carrier
     Gamma = max(carrier_damping(model, c.k, c.branch), 0.0) + 0.0  # -0.0 at zero damping
     P, Q = c.g1 / 2, r.g2
@@ -164,10 +196,34 @@ def nls_amplification(model: Model, k: float, amplitude: float, branch=None, *,
     if Gamma <= 0:  # the lossless limit: a constant carrier, growth never stops
         return _unbounded(Gamma, net0, float(q[int(np.argmax(rate0 - G))]))
     t_end = _horizon(float(np.max(rate0)), Gamma)
-    amp, t = integrate_pairs(P, Q, psi0, Gamma, G, q, t_end, steps)
-    i, j = _first_max(amp)
-    best = float(amp[i, j])
+    i, j, best = _nls_first_max(P, Q, psi0, Gamma, G, q, t_end, steps)
+    t = np.linspace(0.0, t_end, steps + 1)
     return Amplified(Gamma, best, float(t[i]), float(q[j]), best >= OBSERVABLE, net0)
+
+
+def _nls_first_max(P, Q, psi0, Gamma, G, q, t_end, steps):
+    """(i, j, value) of the first largest of ``integrate_pairs``' array in row-major order
+    (``_first_max``), its offsets coarse to fine (``_losses_sampling``: every third, then
+    those between whose log amplification may reach the largest; the NLS's is smooth in
+    q, one band): the same numbers wherever the largest's offset is computed."""
+    from ._losses_sampling import coarse_columns, refine_columns
+
+    top, first = np.ones(q.size), np.zeros(q.size, np.int64)
+    done = np.zeros(q.size, bool)
+
+    def run(cols):
+        top[cols], first[cols] = _pairs_best(P, Q, psi0, Gamma, G[cols], q[cols], t_end,
+                                             steps)
+        done[cols] = True
+
+    where = np.arange(q.size)
+    coarse = coarse_columns(where)
+    run(coarse)
+    run(refine_columns(where, coarse, np.log(top[coarse])))
+    cols = np.flatnonzero(done)
+    ties = cols[top[cols] == top[cols].max()]
+    i = int(first[ties].min())
+    return i, int(ties[first[ties] == i].min()), float(top[ties[0]])
 
 
 def _first_max(amp) -> tuple[int, int]:
@@ -360,8 +416,10 @@ def exact_amplification(model: Model, k: float, amplitude: float, branch=None, *
     live = np.flatnonzero(net0 > 0)
     qk = q[live]
 
-    amp, t, j, _ = _exact_along_decay(first, model, c, q[live], live, amplitude,
-                                      gain0[live], G[live], Gamma, ratio, most)
+    from ._losses_sampling import exact_along_decay
+
+    amp, t, j, _ = exact_along_decay(first, model, c, q[live], live, amplitude,
+                                     gain0[live], G[live], Gamma, ratio, most)
     return Amplified(Gamma, amp, t, float(qk[j]), amp >= OBSERVABLE, top)
 
 
@@ -419,41 +477,3 @@ def four_wave_amplification(model: Model, k: float, amplitude: float, branch=Non
     amp, t, j, _ = along_decay(gain_at, amplitude, rates0.ravel()[live], G.ravel()[live],
                                Gamma, ratio=ratio, most=most)
     return Amplified(Gamma, amp, t, float(col_q[live][j]), amp >= OBSERVABLE, top)
-
-
-@one_blas_thread
-def _exact_along_decay(first, model, c, qk, positions, amplitude, gain0, G, Gamma, ratio,
-                       most):
-    """``along_decay`` of the exact theory's live ring offsets ``qk`` (ring indices
-    ``positions``: coarse to fine, ``_losses_sampling``): at each lower amplitude one
-    travelling wave (its harmonic balance started from the last, scaled) and one Hill
-    engine (the Hessian's harmonics once), asked for the coarse columns, then for the
-    refined ones. Each amplitude's spectrum is ``hill_spectrum``'s: the P + 4 check at
-    its fastest offset; a later call checks again only where it holds a faster offset
-    than the first (today's check, at the fastest offset of every column), and where the
-    first call's check failed it takes the dense spectrum at H + 4 as that one did."""
-    from ._exact import _Sidebands, hill_spectrum, travelling_wave
-
-    waves = [first.wave]
-    at = {}  # a -> [engine, its first call's top gain, dense]
-
-    def gain_at(a, cols):
-        q = qk[cols]
-        if a not in at:
-            # the amplitudes fall in turn: each wave's harmonic balance starts from the last
-            waves.append(travelling_wave(model, c.k, a, c.branch, start=waves[-1]))
-            engine = _Sidebands(waves[-1])
-            spec = engine.checked(q)
-            at[a] = [engine, spec.peak_gain, len(spec.truncations) == 1]
-            return spec.gain
-        engine, top, dense = at[a]
-        if dense:
-            return hill_spectrum(engine.wave, q, harmonics=engine.wave.harmonics + 4).gain
-        spec = engine.spectrum(q)
-        if spec.peak_gain > top:  # a faster offset than the first call's: checked here
-            spec = engine.checked(q)
-            at[a][1] = spec.peak_gain
-        return spec.gain
-
-    return along_decay(gain_at, amplitude, gain0, G, Gamma, ratio=ratio, most=most,
-                       positions=positions)

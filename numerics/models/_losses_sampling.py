@@ -26,6 +26,8 @@ import math
 
 import numpy as np
 
+from common.threads import one_blas_thread
+
 #: the coarse columns' spacing (every STRIDE-th column of a run of adjacent offsets)
 STRIDE = 3
 
@@ -119,3 +121,42 @@ def refine_columns(positions: np.ndarray, coarse: np.ndarray, log_amp: np.ndarra
         if max(y[i], y[i + 1]) + slack >= best:
             out.extend(range(coarse[i] + 1, coarse[i + 1]))
     return np.asarray(out, int)
+
+
+@one_blas_thread
+def exact_along_decay(first, model, c, qk, positions, amplitude, gain0, G, Gamma, ratio,
+                       most):
+    """``along_decay`` of the exact theory's live ring offsets ``qk`` (ring indices
+    ``positions``: coarse to fine, ``_losses_sampling``): at each lower amplitude one
+    travelling wave (its harmonic balance started from the last, scaled) and one Hill
+    engine (the Hessian's harmonics once), asked for the coarse columns, then for the
+    refined ones. Each amplitude's spectrum is ``hill_spectrum``'s: the P + 4 check at
+    its fastest offset; a later call checks again only where it holds a faster offset
+    than the first (today's check, at the fastest offset of every column), and where the
+    first call's check failed it takes the dense spectrum at H + 4 as that one did."""
+    from ._exact import _Sidebands, hill_spectrum, travelling_wave
+    from ._losses import along_decay
+
+    waves = [first.wave]
+    at = {}  # a -> [engine, its first call's top gain, dense]
+
+    def gain_at(a, cols):
+        q = qk[cols]
+        if a not in at:
+            # the amplitudes fall in turn: each wave's harmonic balance starts from the last
+            waves.append(travelling_wave(model, c.k, a, c.branch, start=waves[-1]))
+            engine = _Sidebands(waves[-1])
+            spec = engine.checked(q)
+            at[a] = [engine, spec.peak_gain, len(spec.truncations) == 1]
+            return spec.gain
+        engine, top, dense = at[a]
+        if dense:
+            return hill_spectrum(engine.wave, q, harmonics=engine.wave.harmonics + 4).gain
+        spec = engine.spectrum(q)
+        if spec.peak_gain > top:  # a faster offset than the first call's: checked here
+            spec = engine.checked(q)
+            at[a][1] = spec.peak_gain
+        return spec.gain
+
+    return along_decay(gain_at, amplitude, gain0, G, Gamma, ratio=ratio, most=most,
+                       positions=positions)
