@@ -37,6 +37,9 @@ from energy import Model, ModelError
 
 #: amplification a theory calls observable (the runs' threshold)
 OBSERVABLE = 20.0
+#: the damped NLS's coarse offsets: every NLS_STRIDE-th of its 200 (one band, its
+#: amplification smooth in q)
+NLS_STRIDE = 5
 
 
 @dataclass(frozen=True)
@@ -61,10 +64,27 @@ class Amplified:
 
 def sideband_damping(model: Model, k: float, q, branch: int) -> np.ndarray:
     """G_q: the mean amplitude decay rate of the sidebands k + q and k - q on the branch."""
+    up, down = side_rates(model, k, q)
+    return 0.5 * (up[:, branch] + down[:, branch])
+
+
+_SIDE = []  # the last (weak reference to the model, k, q, rates): the exact and four-wave
+#             theories of a point ask for the same ring offsets
+
+
+def side_rates(model: Model, k: float, q) -> tuple[np.ndarray, np.ndarray]:
+    """(Gamma_b(k + q), Gamma_b(k - q)), each (len(q), d): one ``damping_rates`` call."""
+    import weakref
+
     from ._linear import damping_rates
 
     q = np.atleast_1d(np.asarray(q, float))
-    return 0.5 * (damping_rates(model, k + q)[:, branch] + damping_rates(model, k - q)[:, branch])
+    if _SIDE and _SIDE[0]() is model and _SIDE[1] == k and np.array_equal(_SIDE[2], q):
+        return _SIDE[3]
+    both = damping_rates(model, np.concatenate([k + q, k - q]))
+    out = (both[:q.size], both[q.size:])
+    _SIDE[:] = [weakref.ref(model), k, q.copy(), out]
+    return out
 
 
 def integrate_pairs(P, Q, psi0, Gamma, G, q, t_end, steps=4000, carrier_decays=True):
@@ -203,7 +223,7 @@ def nls_amplification(model: Model, k: float, amplitude: float, branch=None, *,
 
 def _nls_first_max(P, Q, psi0, Gamma, G, q, t_end, steps):
     """(i, j, value) of the first largest of ``integrate_pairs``' array in row-major order
-    (``_first_max``), its offsets coarse to fine (``_losses_sampling``: every third, then
+    (``_first_max``), its offsets coarse to fine (``_losses_sampling``: every fifth, then
     those between whose log amplification may reach the largest; the NLS's is smooth in
     q, one band): the same numbers wherever the largest's offset is computed."""
     from ._losses_sampling import coarse_columns, refine_columns
@@ -217,7 +237,7 @@ def _nls_first_max(P, Q, psi0, Gamma, G, q, t_end, steps):
         done[cols] = True
 
     where = np.arange(q.size)
-    coarse = coarse_columns(where)
+    coarse = coarse_columns(where, NLS_STRIDE)
     run(coarse)
     run(refine_columns(where, coarse, np.log(top[coarse])))
     cols = np.flatnonzero(done)
@@ -430,7 +450,7 @@ def four_wave_amplification(model: Model, k: float, amplitude: float, branch=Non
     b1, b2) at its rate at a(t), damped at the mean of its two waves' rates
     (Gamma_b1(k + q) + Gamma_b2(k - q)) / 2 (``along_decay``)."""
     from ._fourwave import _kernel, four_wave
-    from ._linear import carrier_damping, damping_rates
+    from ._linear import carrier_damping
 
     if first is None:
         first = four_wave(model, k, amplitude, branch, N=N)
@@ -442,7 +462,7 @@ def four_wave_amplification(model: Model, k: float, amplitude: float, branch=Non
     q = np.asarray(first.offsets, float)
     rates0 = np.nan_to_num(np.asarray(first.rates, float), nan=0.0)  # (n, m)
     if model.lossy:
-        up, down = damping_rates(model, first.k + q), damping_rates(model, first.k - q)
+        up, down = side_rates(model, first.k, q)
         G = np.array([0.5 * (up[:, b1] + down[:, b2]) for b1, b2 in first.pairs]).T
     else:
         G = np.zeros_like(rates0)
