@@ -594,7 +594,7 @@ def test_coarse_to_fine_offsets_find_the_largest():
     rng = np.random.default_rng(7)
     refined = []
     for _ in range(300):
-        n = int(rng.integers(5, 120))
+        n = int(rng.integers(30, 120))
         positions = np.sort(rng.choice(np.arange(3 * n), n, replace=False)) if \
             rng.random() < 0.3 else np.arange(n) + 5
         x = positions.astype(float)

@@ -20,7 +20,10 @@ Exact lattice theory along the decaying carrier: the Hill gain sigma(q, a) of th
 travelling wave (``exact_gain``, a black box) at a few amplitudes (``along_decay``:
 s = (a/a0)^2 halved until nothing grows, sigma^2 piecewise linear in s), minus G_q,
 integrated in time per ring offset: amplification = max over q and t of
-exp(int_0^t (sigma(q, a(s)) - G_q) ds). The four-wave theory the same way, per pair.
+exp(int_0^t (sigma(q, a(s)) - G_q) ds). The lower amplitudes' spectra are computed coarse
+to fine over the offsets (``_losses_sampling``). The four-wave theory the same way, per
+pair, its rates at the lower amplitudes in closed form (``_losses_fourwave``: the kernel
+is a polynomial in a^2).
 
 The lossless limit (Gamma = 0): the carrier keeps its amplitude and a growing mode grows
 without end: amplification inf at time inf, observable where MI (``_unbounded``).
@@ -39,7 +42,7 @@ from energy import Model, ModelError
 OBSERVABLE = 20.0
 #: the damped NLS's coarse offsets: every NLS_STRIDE-th of its 200 (one band, its
 #: amplification smooth in q)
-NLS_STRIDE = 5
+NLS_STRIDE = 8
 
 
 @dataclass(frozen=True)
@@ -223,7 +226,7 @@ def nls_amplification(model: Model, k: float, amplitude: float, branch=None, *,
 
 def _nls_first_max(P, Q, psi0, Gamma, G, q, t_end, steps):
     """(i, j, value) of the first largest of ``integrate_pairs``' array in row-major order
-    (``_first_max``), its offsets coarse to fine (``_losses_sampling``: every fifth, then
+    (``_first_max``), its offsets coarse to fine (``_losses_sampling``: every eighth, then
     those between whose log amplification may reach the largest; the NLS's is smooth in
     q, one band): the same numbers wherever the largest's offset is computed."""
     from ._losses_sampling import coarse_columns, refine_columns
@@ -291,7 +294,12 @@ def along_decay(gain_at, a0: float, gain0, G, Gamma: float, *, ratio: float = 0.
     Klein-Gordon with site damping 4 instead of 5, the paper's blue point 6 (unchanged),
     each the same amplification to the last bit; a synthetic gain with a curvature of
     4e-4 sigma0^2 stops at 3 and lands 2.2% low in log (9 samples: 5.4% high;
-    tests/test_dissipation.py)."""
+    tests/test_dissipation.py).
+
+    ``positions`` (integers, one per column, adjacent where the columns' offsets are):
+    the lower amplitudes computed coarse to fine (``_losses_sampling``), the columns
+    between the coarse ones only where their amplification may reach the largest; None:
+    every column. ``column`` indexes every column either way."""
     from ._losses_sampling import Samples, coarse_columns, refine_columns
 
     gain0 = np.asarray(gain0, float)

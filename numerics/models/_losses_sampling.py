@@ -7,17 +7,21 @@ computed column grows at the last sample, or the last three samples of every gro
 column lie on a line in s (``linear_tol`` of the largest sigma^2 at s = 1), or at ``most``
 samples.
 
-Coarse to fine (``positions``, the exact theory's ring offsets, where a lower amplitude's
-Hill spectrum costs per offset): the samples are first computed on every other column of
-each run of adjacent offsets (and each run's ends), then on the columns between whose
-amplification can reach the largest found: an in-between column's log amplification is
-taken to be at most the larger of its two neighbours' plus a slack, the larger of their
-difference and half the neighbours' second differences (four times the midpoint error of
-a smooth profile, |f''| h^2 / 2 with f'' from the coarse second difference / 4). The
-answer (amplification, time, offset) is today's, to the bit, whenever its column is
-computed; the refined columns then take part in the stop rule, so sampling goes on where
-they still grow or curve (the samples stop at or before today's, and only where every
-computed column lies on a line).
+Coarse to fine (``positions``: the exact theory's ring offsets, where a lower amplitude's
+Hill spectrum costs per offset, and the damped NLS's offsets): the samples are first
+computed on every STRIDE-th column of each run of adjacent offsets (and each run's last),
+then on the columns of each interval between two coarse neighbours whose log
+amplification can reach the largest found: at most the larger end plus four times the
+midpoint error of a smooth profile, |f''| h^2 / 2, f'' the larger of the two ends'
+coarse second differences (divided). A mode switching along q makes a convex kink (the
+gain is a maximum over modes): it hides no peak, and its large second difference only
+refines its neighbours. Measured: no miss on 3000 random profiles (sums of bumps >= 3
+columns wide), 10% of the in-between columns refined (tests/test_dissipation.py). The
+answer (amplification, time, offset) is the every-column one, to the bit, whenever its
+column is computed (at 11 points of fput, Klein-Gordon and flexmm-lossy; where two
+offsets tie to round-off, 1e-15, either may be named); the refined columns take part in
+the stop rule, so sampling goes on where they still grow or curve (the samples stop at
+or before the every-column ones, and only where every computed column lies on a line).
 """
 
 from __future__ import annotations
@@ -89,7 +93,7 @@ def coarse_columns(positions: np.ndarray, stride: int = STRIDE) -> np.ndarray:
     """Every ``stride``-th column of each run of adjacent ``positions`` (ascending
     integers) from its first, and each run's last: the indices of the coarse columns."""
     n = positions.size
-    if n <= 2 * stride:
+    if n <= 8 * stride:  # few columns: the second call costs more than it saves
         return np.arange(n)
     start = np.r_[True, np.diff(positions) != 1]
     run_start = np.maximum.accumulate(np.where(start, np.arange(n), 0))
