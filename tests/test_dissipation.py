@@ -233,8 +233,9 @@ site = "gamma*u_t**2/2"
 
 # measured (N = 64, noise 1e-6 on the carrier field, until A(t) halves): the semi-discrete
 # NLS, four-wave, exact theories and the run's amplification
-#   FPUT k 2.5, a 0.2:  gamma 0.012: 252, 202, 146, run 50.1 (t 168); gamma 0.03: 5.8,
-#                       4.8, 4.6, run 1.8
+#   FPUT k 2.5, a 0.2:  gamma 0.012: 252, 160, 146, run 50.1 (t 168); gamma 0.03: 5.8,
+#                       4.7, 4.6, run 1.8 (four-wave 202 and 4.8 before issue 42's cost
+#                       work: its kernel's round-off had read as growth)
 #   KG   k 2.0, a 0.4:  gamma 0.004: 131, 113, 103, run 28.6 (t 646); gamma 0.01: 4.5,
 #                       4.3, 4.1, run 1.25
 # the noisy run's amplification is 0.28-0.39 of the exact theory's (the noise's projection
