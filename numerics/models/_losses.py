@@ -71,8 +71,9 @@ def sideband_damping(model: Model, k: float, q, branch: int) -> np.ndarray:
     return 0.5 * (up[:, branch] + down[:, branch])
 
 
-_SIDE = []  # the last (weak reference to the model, k, q, rates): the exact and four-wave
-#             theories of a point ask for the same ring offsets
+# the last (weak reference to the model, k, q, rates), one tuple (read and replaced whole,
+# safe across threads): the exact and four-wave theories of a point ask the same offsets
+_SIDE = [None]
 
 
 def side_rates(model: Model, k: float, q) -> tuple[np.ndarray, np.ndarray]:
@@ -82,11 +83,13 @@ def side_rates(model: Model, k: float, q) -> tuple[np.ndarray, np.ndarray]:
     from ._linear import damping_rates
 
     q = np.atleast_1d(np.asarray(q, float))
-    if _SIDE and _SIDE[0]() is model and _SIDE[1] == k and np.array_equal(_SIDE[2], q):
-        return _SIDE[3]
+    last = _SIDE[0]
+    if last is not None and last[0]() is model and last[1] == k and np.array_equal(last[2], q):
+        return last[3]
     both = damping_rates(model, np.concatenate([k + q, k - q]))
+    both.flags.writeable = False  # shared with the next caller: read only
     out = (both[:q.size], both[q.size:])
-    _SIDE[:] = [weakref.ref(model), k, q.copy(), out]
+    _SIDE[0] = (weakref.ref(model), k, q.copy(), out)
     return out
 
 
