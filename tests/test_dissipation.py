@@ -609,3 +609,29 @@ def test_coarse_to_fine_offsets_find_the_largest():
         refined.append(fine.size / max(n - coarse.size, 1))
     # and it refines few: the point is to skip most in-between columns
     assert np.median(refined) < 0.5
+
+
+def test_damped_nls_coarse_to_fine_is_the_every_offset_maximum():
+    # the damped NLS's offsets coarse to fine (issue 42, cost) against the whole
+    # (steps + 1, offsets) array's first largest: the same step, offset and value, to the
+    # bit, over NLS bands of random shape and damping (constant and q-dependent)
+    from numerics.models._losses import NLS_STRIDE, _first_max, _horizon, integrate_pairs
+    from numerics.models._losses_sampling import nls_first_max
+
+    rng = np.random.default_rng(11)
+    between = 0
+    for _ in range(12):
+        P = rng.choice([-1, 1]) * rng.uniform(0.1, 1.0)
+        Q = np.sign(P) * rng.uniform(0.5, 3.0)
+        psi0 = rng.uniform(0.02, 0.2)
+        edge = math.sqrt(2 * Q / P) * psi0
+        q = np.linspace(edge / 200, edge, 200, endpoint=False)
+        rate0 = abs(P) * q * np.sqrt(np.maximum((2 * Q / P) * psi0**2 - q**2, 0))
+        G = rng.uniform(0.01, 0.3) * rate0.max() * (1 + rng.uniform(0, 2) * (q / edge) ** 2)
+        Gamma = rng.uniform(0.02, 0.2) * rate0.max()
+        t_end = _horizon(float(rate0.max()), Gamma)
+        amp, t = integrate_pairs(P, Q, psi0, Gamma, G, q, t_end, 1000)
+        i, j = _first_max(amp)
+        assert nls_first_max(P, Q, psi0, Gamma, G, q, t_end, 1000) == (i, j, float(amp[i, j]))
+        between += j % NLS_STRIDE != 0 and j != q.size - 1
+    assert between >= 6  # the largest mostly sits between coarse offsets: refined there

@@ -222,34 +222,11 @@ def nls_amplification(model: Model, k: float, amplitude: float, branch=None, *,
     if Gamma <= 0:  # the lossless limit: a constant carrier, growth never stops
         return _unbounded(Gamma, net0, float(q[int(np.argmax(rate0 - G))]))
     t_end = _horizon(float(np.max(rate0)), Gamma)
-    i, j, best = _nls_first_max(P, Q, psi0, Gamma, G, q, t_end, steps)
+    from ._losses_sampling import nls_first_max
+
+    i, j, best = nls_first_max(P, Q, psi0, Gamma, G, q, t_end, steps)
     t = np.linspace(0.0, t_end, steps + 1)
     return Amplified(Gamma, best, float(t[i]), float(q[j]), best >= OBSERVABLE, net0)
-
-
-def _nls_first_max(P, Q, psi0, Gamma, G, q, t_end, steps):
-    """(i, j, value) of the first largest of ``integrate_pairs``' array in row-major order
-    (``_first_max``), its offsets coarse to fine (``_losses_sampling``: every eighth, then
-    those between whose log amplification may reach the largest; the NLS's is smooth in
-    q, one band): the same numbers wherever the largest's offset is computed."""
-    from ._losses_sampling import coarse_columns, refine_columns
-
-    top, first = np.ones(q.size), np.zeros(q.size, np.int64)
-    done = np.zeros(q.size, bool)
-
-    def run(cols):
-        top[cols], first[cols] = _pairs_best(P, Q, psi0, Gamma, G[cols], q[cols], t_end,
-                                             steps)
-        done[cols] = True
-
-    where = np.arange(q.size)
-    coarse = coarse_columns(where, NLS_STRIDE)
-    run(coarse)
-    run(refine_columns(where, coarse, np.log(top[coarse])))
-    cols = np.flatnonzero(done)
-    ties = cols[top[cols] == top[cols].max()]
-    i = int(first[ties].min())
-    return i, int(ties[first[ties] == i].min()), float(top[ties[0]])
 
 
 def _first_max(amp) -> tuple[int, int]:

@@ -127,6 +127,31 @@ def refine_columns(positions: np.ndarray, coarse: np.ndarray, log_amp: np.ndarra
     return np.asarray(out, int)
 
 
+def nls_first_max(P, Q, psi0, Gamma, G, q, t_end, steps):
+    """(i, j, value) of the first largest of ``integrate_pairs``' array in row-major order
+    (``_first_max``), its offsets coarse to fine (``_losses_sampling``: every eighth, then
+    those between whose log amplification may reach the largest; the NLS's is smooth in
+    q, one band): the same numbers wherever the largest's offset is computed."""
+    from ._losses import NLS_STRIDE, _pairs_best
+
+    top, first = np.ones(q.size), np.zeros(q.size, np.int64)
+    done = np.zeros(q.size, bool)
+
+    def run(cols):
+        top[cols], first[cols] = _pairs_best(P, Q, psi0, Gamma, G[cols], q[cols], t_end,
+                                             steps)
+        done[cols] = True
+
+    where = np.arange(q.size)
+    coarse = coarse_columns(where, NLS_STRIDE)
+    run(coarse)
+    run(refine_columns(where, coarse, np.log(top[coarse])))
+    cols = np.flatnonzero(done)
+    ties = cols[top[cols] == top[cols].max()]
+    i = int(first[ties].min())
+    return i, int(ties[first[ties] == i].min()), float(top[ties[0]])
+
+
 @one_blas_thread
 def exact_along_decay(first, model, c, qk, positions, amplitude, gain0, G, Gamma, ratio,
                       most):
