@@ -253,9 +253,9 @@ def losses_cost(t_end=500.0, N=256, reps=7) -> dict:
     def theories(m, k, a, lossy):
         e = exact_gain(m, k, a, N=N)
         f = four_wave(m, k, a, N=N)
-        nls(m, k)
+        r = nls(m, k)
         if lossy:
-            nls_amplification(m, k, a)
+            nls_amplification(m, k, a, first=r)
             four_wave_amplification(m, k, a, N=N, first=f)
             return exact_amplification(m, k, a, N=N, first=e)
         return e

@@ -20,7 +20,10 @@ Exact lattice theory along the decaying carrier: the Hill gain sigma(q, a) of th
 travelling wave (``exact_gain``, a black box) at a few amplitudes (``along_decay``:
 s = (a/a0)^2 halved until nothing grows, sigma^2 piecewise linear in s), minus G_q,
 integrated in time per ring offset: amplification = max over q and t of
-exp(int_0^t (sigma(q, a(s)) - G_q) ds). The four-wave theory the same way, per pair.
+exp(int_0^t (sigma(q, a(s)) - G_q) ds). The lower amplitudes' spectra are computed coarse
+to fine over the offsets (``_losses_sampling``). The four-wave theory the same way, per
+pair, its rates at the lower amplitudes in closed form (``_losses_fourwave``: the kernel
+is a polynomial in a^2).
 
 The lossless limit (Gamma = 0): the carrier keeps its amplitude and a growing mode grows
 without end: amplification inf at time inf, observable where MI (``_unbounded``).
@@ -37,6 +40,9 @@ from energy import Model, ModelError
 
 #: amplification a theory calls observable (the runs' threshold)
 OBSERVABLE = 20.0
+#: the damped NLS's coarse offsets: every NLS_STRIDE-th of its 200 (one band, its
+#: amplification smooth in q)
+NLS_STRIDE = 8
 
 
 @dataclass(frozen=True)
@@ -61,18 +67,51 @@ class Amplified:
 
 def sideband_damping(model: Model, k: float, q, branch: int) -> np.ndarray:
     """G_q: the mean amplitude decay rate of the sidebands k + q and k - q on the branch."""
+    up, down = side_rates(model, k, q)
+    return 0.5 * (up[:, branch] + down[:, branch])
+
+
+# the last (weak reference to the model, k, q, rates), one tuple (read and replaced whole,
+# safe across threads): the exact and four-wave theories of a point ask the same offsets
+_SIDE = [None]
+
+
+def side_rates(model: Model, k: float, q) -> tuple[np.ndarray, np.ndarray]:
+    """(Gamma_b(k + q), Gamma_b(k - q)), each (len(q), d): one ``damping_rates`` call."""
+    import weakref
+
     from ._linear import damping_rates
 
     q = np.atleast_1d(np.asarray(q, float))
-    return 0.5 * (damping_rates(model, k + q)[:, branch] + damping_rates(model, k - q)[:, branch])
+    last = _SIDE[0]
+    if last is not None and last[0]() is model and last[1] == k and np.array_equal(last[2], q):
+        return last[3]
+    both = damping_rates(model, np.concatenate([k + q, k - q]))
+    both.flags.writeable = False  # shared with the next caller: read only
+    out = (both[:q.size], both[q.size:])
+    _SIDE[0] = (weakref.ref(model), k, q.copy(), out)
+    return out
 
 
 def integrate_pairs(P, Q, psi0, Gamma, G, q, t_end, steps=4000, carrier_decays=True):
     """|(x, y)(t)| / |(x, y)(0)| of the linearised damped NLS per offset q: array
     (steps + 1, len(q)), and the times. The carrier psi0 e^{-Gamma t} (constant where
     ``carrier_decays`` is False); start on the growing eigenvector at t = 0."""
+    q2, G, x, y, h, a2 = _pairs_start(P, Q, psi0, Gamma, G, q, t_end, steps, carrier_decays)
+    t = np.linspace(0.0, t_end, steps + 1)
+    # one row per offset (the kernel walks each offset's steps in order), returned as
+    # (steps + 1, len(q)) by a transposed view
+    out = np.empty((q2.size, steps + 1))
+    out[:, 0] = 1.0
+    _pairs_compiled()(float(P), float(Q), a2, G, q2, h, x, y, out)
+    return out.T, t
+
+
+def _pairs_start(P, Q, psi0, Gamma, G, q, t_end, steps, carrier_decays=True):
+    """(q^2, G, x, y, h, a2) of ``integrate_pairs``: the growing eigenvector at t = 0 per
+    offset, the step and the carrier's psi0^2 e^{-2 Gamma t} at each step's midpoint."""
     q = np.atleast_1d(np.asarray(q, float))
-    G = np.broadcast_to(np.asarray(G, float), q.shape)
+    G = np.ascontiguousarray(np.broadcast_to(np.asarray(G, float), q.shape), dtype=float)
     q2 = q * q
     b = P * q2
     c0 = 2 * Q * psi0**2 - P * q2
@@ -81,55 +120,74 @@ def integrate_pairs(P, Q, psi0, Gamma, G, q, t_end, steps=4000, carrier_decays=T
     x = np.where(s0 > 0, b, 1.0)
     y = np.where(s0 > 0, s0, 0.0)
     n0 = np.hypot(x, y)
-    x, y = x / n0, y / n0
     h = t_end / steps
-    t = np.linspace(0.0, t_end, steps + 1)
-    # one row per offset (the kernel walks each offset's steps in order), returned as
-    # (steps + 1, len(q)) by a transposed view
-    out = np.empty((q.size, steps + 1))
-    out[:, 0] = 1.0
-    # the carrier at each step's midpoint
     tm = (np.arange(steps) + 0.5) * h
     a2 = psi0**2 * (np.exp(-2 * Gamma * tm) if carrier_decays else np.ones(steps))
-    _pairs_compiled()(float(P), float(Q), a2, np.ascontiguousarray(G, dtype=float), q2, h,
-                      x, y, out)
-    return out.T, t
+    return q2, G, x / n0, y / n0, h, a2
 
 
-_PAIRS = []
+def _pairs_best(P, Q, psi0, Gamma, G, q, t_end, steps):
+    """Per offset of ``integrate_pairs``: its largest |(x, y)(t)| / |(x, y)(0)| and the
+    first step index that reaches it, without the (steps + 1, len(q)) array (the same
+    numbers: the same kernel, its writes replaced by the running maximum)."""
+    q2, G, x, y, h, a2 = _pairs_start(P, Q, psi0, Gamma, G, q, t_end, steps)
+    best = np.ones(q2.size)
+    first = np.zeros(q2.size, np.int64)
+    _pairs_compiled(best=True)(float(P), float(Q), a2, G, q2, h, x, y, best, first)
+    return best, first
 
 
-def _pairs_compiled():
+_PAIRS = {}
+
+
+def _pairs_compiled(best=False):
     """The steps of ``integrate_pairs``, compiled (cached on disk): per offset, the
     product in order of each step's exp(h [[-G, b], [c, -G]]) = e^{-G h} [[ch, b sh/l],
     [c sh/l, ch]], l = sqrt(b c), b = P q^2, c = 2 Q a(t)^2 - b (cosh, sinh where b c > 0;
-    cos, sin where b c < 0: l is real or imaginary)."""
-    if not _PAIRS:
+    cos, sin where b c < 0: l is real or imaginary). ``best``: each offset's running
+    maximum and its first step instead of every step (``_pairs_best``)."""
+    if best not in _PAIRS:
         import numba
 
-        @numba.njit(cache=True, error_model="numpy", boundscheck=False)
-        def pairs(P, Q, a2, G, q2, h, x, y, out):
-            for j in range(q2.size):
-                b = P * q2[j]
-                e = math.exp(-G[j] * h)
-                xj, yj = x[j], y[j]
-                for i in range(a2.size):
-                    c = 2 * Q * a2[i] - b
-                    bc = b * c
-                    r = math.sqrt(abs(bc))
-                    rh = r * h
-                    if bc > 0:
-                        ch, sh = math.cosh(rh), math.sinh(rh)
-                    else:
-                        ch, sh = math.cos(rh), math.sin(rh)
-                    shl = sh / r if rh > 1e-12 else h
-                    xj, yj = e * ch * xj + e * b * shl * yj, e * c * shl * xj + e * ch * yj
-                    # sqrt of the sum (2/3 of hypot's time), hypot where it would overflow
-                    r2 = xj * xj + yj * yj
-                    out[j, i + 1] = math.sqrt(r2) if r2 < 1e300 else math.hypot(xj, yj)
+        @numba.njit(cache=True, error_model="numpy", boundscheck=False, inline="always")
+        def step(P, Q, a2i, b, e, h, xj, yj):
+            c = 2 * Q * a2i - b
+            bc = b * c
+            r = math.sqrt(abs(bc))
+            rh = r * h
+            if bc > 0:
+                ch, sh = math.cosh(rh), math.sinh(rh)
+            else:
+                ch, sh = math.cos(rh), math.sin(rh)
+            shl = sh / r if rh > 1e-12 else h
+            xj, yj = e * ch * xj + e * b * shl * yj, e * c * shl * xj + e * ch * yj
+            # sqrt of the sum (2/3 of hypot's time), hypot where it would overflow
+            r2 = xj * xj + yj * yj
+            return xj, yj, (math.sqrt(r2) if r2 < 1e300 else math.hypot(xj, yj))
 
-        _PAIRS.append(pairs)
-    return _PAIRS[0]
+        if best:
+            @numba.njit(cache=True, error_model="numpy", boundscheck=False)
+            def pairs(P, Q, a2, G, q2, h, x, y, top, first):
+                for j in range(q2.size):
+                    b = P * q2[j]
+                    e = math.exp(-G[j] * h)
+                    xj, yj = x[j], y[j]
+                    for i in range(a2.size):
+                        xj, yj, n = step(P, Q, a2[i], b, e, h, xj, yj)
+                        if n > top[j]:
+                            top[j], first[j] = n, i + 1
+        else:
+            @numba.njit(cache=True, error_model="numpy", boundscheck=False)
+            def pairs(P, Q, a2, G, q2, h, x, y, out):
+                for j in range(q2.size):
+                    b = P * q2[j]
+                    e = math.exp(-G[j] * h)
+                    xj, yj = x[j], y[j]
+                    for i in range(a2.size):
+                        xj, yj, out[j, i + 1] = step(P, Q, a2[i], b, e, h, xj, yj)
+
+        _PAIRS[best] = pairs
+    return _PAIRS[best]
 
 
 def _horizon(rate0: float, Gamma: float) -> float:
@@ -141,12 +199,13 @@ def _horizon(rate0: float, Gamma: float) -> float:
 
 
 def nls_amplification(model: Model, k: float, amplitude: float, branch=None, *,
-                      offsets: int = 200, steps: int = 1000) -> Amplified:
-    """The damped semi-discrete NLS's amplification (module docstring)."""
+                      offsets: int = 200, steps: int = 1000, first=None) -> Amplified:
+    """The damped semi-discrete NLS's amplification (module docstring). ``first``: the
+    point's ``nls(model, k, branch)``, where already computed."""
     from ._linear import carrier_damping
     from ._nls import nls
 
-    r = nls(model, k, branch)
+    r = nls(model, k, branch) if first is None else first
     c = r.carrier
     Gamma = max(carrier_damping(model, c.k, c.branch), 0.0) + 0.0  # -0.0 at zero damping
     P, Q = c.g1 / 2, r.g2
@@ -163,9 +222,10 @@ def nls_amplification(model: Model, k: float, amplitude: float, branch=None, *,
     if Gamma <= 0:  # the lossless limit: a constant carrier, growth never stops
         return _unbounded(Gamma, net0, float(q[int(np.argmax(rate0 - G))]))
     t_end = _horizon(float(np.max(rate0)), Gamma)
-    amp, t = integrate_pairs(P, Q, psi0, Gamma, G, q, t_end, steps)
-    i, j = _first_max(amp)
-    best = float(amp[i, j])
+    from ._losses_sampling import nls_first_max
+
+    i, j, best = nls_first_max(P, Q, psi0, Gamma, G, q, t_end, steps)
+    t = np.linspace(0.0, t_end, steps + 1)
     return Amplified(Gamma, best, float(t[i]), float(q[j]), best >= OBSERVABLE, net0)
 
 
@@ -194,7 +254,8 @@ def _unbounded(Gamma: float, net0: float, offset: float) -> Amplified:
 
 
 def along_decay(gain_at, a0: float, gain0, G, Gamma: float, *, ratio: float = 0.5,
-                most: int = 10, steps: int = 4000, linear_tol: float | None = 1e-3):
+                most: int = 10, steps: int = 4000, linear_tol: float | None = 1e-3,
+                positions=None):
     """(amplification, time, column, samples) of modes whose growth rates at carrier
     amplitude a are ``gain_at(a, cols)`` (an array over the columns ``cols``; ``gain0``
     the rates at a0, every column),
@@ -213,56 +274,57 @@ def along_decay(gain_at, a0: float, gain0, G, Gamma: float, *, ratio: float = 0.
     Klein-Gordon with site damping 4 instead of 5, the paper's blue point 6 (unchanged),
     each the same amplification to the last bit; a synthetic gain with a curvature of
     4e-4 sigma0^2 stops at 3 and lands 2.2% low in log (9 samples: 5.4% high;
-    tests/test_dissipation.py)."""
+    tests/test_dissipation.py).
+
+    ``positions`` (integers, one per column, adjacent where the columns' offsets are):
+    the lower amplitudes computed coarse to fine (``_losses_sampling``), the columns
+    between the coarse ones only where their amplification may reach the largest; None:
+    every column. ``column`` indexes every column either way."""
+    from ._losses_sampling import Samples, coarse_columns, refine_columns
+
     gain0 = np.asarray(gain0, float)
     G = np.broadcast_to(np.asarray(G, float), gain0.shape)
-    S = [(1.0, gain0 ** 2)]
-    s = 1.0
-    g = gain0
-    while len(S) < most:
-        s *= ratio
-        # a band shrinks as the carrier weakens: only the columns that grew net of their
-        # damping at the last sample are computed at the next (the others are taken 0:
-        # they only decay from there, which leaves the maximum over t unchanged)
-        cols = np.flatnonzero(g > G)
-        g = np.zeros_like(gain0)
-        g[cols] = np.asarray(gain_at(a0 * math.sqrt(s), cols), float)
-        S.append((s, g ** 2))
-        if not np.any(g > G):
-            break
-        if linear_tol is not None and len(S) >= 3:
-            live = g > G
-            (s1, y1), (s2, y2), (s3, y3) = S[-3:]
-            line = y1 + (y3 - y1) * (s2 - s1) / (s3 - s1)
-            if np.all(np.abs(line - y2)[live] <= linear_tol * np.max(S[0][1])):
-                break
-    S.sort(key=lambda x: x[0])
-    s_arr = np.array([x[0] for x in S])
-    g2 = np.array([x[1] for x in S])  # (samples, cols)
+    samples = Samples(gain_at, a0, gain0, G, ratio, most, linear_tol)
     # time: the horizon of the gain at t = 0 against the carrier's damping
     t_end = _horizon(float(np.max(gain0)), Gamma)
     t = np.linspace(0.0, t_end, steps + 1)
     s_t = np.exp(-2 * Gamma * t)
-    best, i, j = _integrate(s_arr, g2, s_t, t, G)
-    return math.exp(min(best, 700.0)), float(t[i]), int(j), len(S)
+    if positions is None:
+        samples.complete(np.arange(gain0.size))
+    else:  # coarse to fine (``_losses_sampling``)
+        positions = np.asarray(positions, int)
+        coarse = coarse_columns(positions)
+        samples.complete(coarse)
+        if coarse.size < gain0.size:
+            s_arr, g2 = samples.arrays(coarse)
+            log_amp = _integrate(s_arr, g2, s_t, t, G[coarse], per_column=True)[3]
+            samples.complete(refine_columns(positions, coarse, log_amp))
+    cols = np.flatnonzero(samples.done)
+    s_arr, g2 = samples.arrays(cols)
+    best, i, j = _integrate(s_arr, g2, s_t, t, G[cols])
+    return math.exp(min(best, 700.0)), float(t[i]), int(cols[j]), len(samples.s)
 
 
-def _integrate(s_arr, g2, s_t, t, G):
+def _integrate(s_arr, g2, s_t, t, G, per_column=False):
     """(max log amplification, its time index, its column) of the rates
     sqrt(sigma^2) - G along the carrier's s_t (sigma^2 as ``_piecewise``), integrated by
     the trapezoid rule on t: the same arithmetic as ``_piecewise`` and a cumsum over all
     columns at once, compiled, one column at a time (no (times, cols) arrays: ~10x
     faster, the same numbers to the last bit; ties to the first in row-major order, as
-    argmax)."""
+    argmax). ``per_column``: also each column's own largest (array, 0 where it never
+    grows)."""
     n = s_arr.size
     pos = g2 > 0
     lo = np.where(pos.any(axis=0), np.argmax(pos, axis=0), n - 1)
     j = np.clip(np.searchsorted(s_arr, s_t), 1, n - 1) if n > 1 else np.zeros(s_t.size, int)
     lo_j = np.maximum(j - 1, 0)
     w = (s_t - s_arr[lo_j]) / np.where(j != lo_j, s_arr[j] - s_arr[lo_j], 1.0)
+    colbest = np.zeros(g2.shape[1])
     best, i, col = _integrate_compiled()(
         np.ascontiguousarray(g2.T), s_arr, s_t, np.diff(t), np.ascontiguousarray(G, float),
-        lo.astype(np.int64), j.astype(np.int64), lo_j.astype(np.int64), w)
+        lo.astype(np.int64), j.astype(np.int64), lo_j.astype(np.int64), w, colbest)
+    if per_column:
+        return float(best), int(i), int(col), colbest
     return float(best), int(i), int(col)
 
 
@@ -275,7 +337,7 @@ def _integrate_compiled():
         import numba
 
         @numba.njit(cache=True, error_model="numpy", boundscheck=False)
-        def integrate(g2t, s_arr, s_t, dt, G, lo, j, lo_j, w):
+        def integrate(g2t, s_arr, s_t, dt, G, lo, j, lo_j, w, colbest):
             n = s_arr.size
             best, bi, bj = 0.0, 0, 0  # row 0: every column at 0
             for c in range(g2t.shape[0]):
@@ -298,6 +360,8 @@ def _integrate_compiled():
                     rate = math.sqrt(max(sig2, 0.0)) - G[c]
                     if i > 0:
                         acc = acc + dt[i - 1] * (rate + prev) / 2
+                        if acc > colbest[c]:
+                            colbest[c] = acc
                         if acc > best or (acc == best and (i < bi or (i == bi and c < bj))):
                             best, bi, bj = acc, i, c
                     prev = rate
@@ -341,7 +405,7 @@ def exact_amplification(model: Model, k: float, amplitude: float, branch=None, *
     of their damping at t = 0, each damped as the carrier branch's sidebands (a mode of
     other branches is damped at their rates: this is then approximate). ``first``: ``exact_gain`` at a0 on this
     ring, where already computed."""
-    from ._exact import exact_gain, hill_spectrum, travelling_wave
+    from ._exact import exact_gain
     from ._linear import carrier_damping
 
     if first is None:
@@ -360,15 +424,10 @@ def exact_amplification(model: Model, k: float, amplitude: float, branch=None, *
     live = np.flatnonzero(net0 > 0)
     qk = q[live]
 
-    waves = [first.wave]
+    from ._losses_sampling import exact_along_decay
 
-    def gain_at(a, cols):
-        # the amplitudes fall in turn: each wave's harmonic balance starts from the last
-        waves.append(travelling_wave(model, c.k, a, c.branch, start=waves[-1]))
-        return hill_spectrum(waves[-1], qk[cols]).gain
-
-    amp, t, j, _ = along_decay(gain_at, amplitude, gain0[live], G[live], Gamma, ratio=ratio,
-                               most=most)
+    amp, t, j, _ = exact_along_decay(first, model, c, q[live], live, amplitude,
+                                     gain0[live], G[live], Gamma, ratio, most)
     return Amplified(Gamma, amp, t, float(qk[j]), amp >= OBSERVABLE, top)
 
 
@@ -379,7 +438,7 @@ def four_wave_amplification(model: Model, k: float, amplitude: float, branch=Non
     b1, b2) at its rate at a(t), damped at the mean of its two waves' rates
     (Gamma_b1(k + q) + Gamma_b2(k - q)) / 2 (``along_decay``)."""
     from ._fourwave import _kernel, four_wave
-    from ._linear import carrier_damping, damping_rates
+    from ._linear import carrier_damping
 
     if first is None:
         first = four_wave(model, k, amplitude, branch, N=N)
@@ -391,7 +450,7 @@ def four_wave_amplification(model: Model, k: float, amplitude: float, branch=Non
     q = np.asarray(first.offsets, float)
     rates0 = np.nan_to_num(np.asarray(first.rates, float), nan=0.0)  # (n, m)
     if model.lossy:
-        up, down = damping_rates(model, first.k + q), damping_rates(model, first.k - q)
+        up, down = side_rates(model, first.k, q)
         G = np.array([0.5 * (up[:, b1] + down[:, b2]) for b1, b2 in first.pairs]).T
     else:
         G = np.zeros_like(rates0)
@@ -405,7 +464,13 @@ def four_wave_amplification(model: Model, k: float, amplitude: float, branch=Non
     live = net0.ravel() > 0
     live_q = np.flatnonzero(live) // rates0.shape[1]  # the offset (row) of each live pair
 
+    from ._losses_fourwave import rates_at
+
+    closed = rates_at(model, first, live_q, np.flatnonzero(live) % rates0.shape[1])
+
     def gain_at(a, cols):
+        if closed is not None:  # the kernel's exact scaling in a^2 (``_losses_fourwave``)
+            return closed((a / amplitude) ** 2)[cols]
         # the pairs' rates at a only at the offsets of the columns asked (a rate at q
         # depends on q alone: the same numbers as four_wave's over every offset), at
         # ``first``'s offsets (the infinite chain's refined ones included)

@@ -234,7 +234,7 @@ def _cell_columns(model, k, amplitude, branch, *, exact, simulate, N, seeds, t_e
         from ._losses import nls_amplification
 
         row["amplification_semidiscrete"] = _amplification(
-            lambda: nls_amplification(model, k, amplitude, branch)) if row["carrier"] \
+            lambda: nls_amplification(model, k, amplitude, branch, first=r)) if row["carrier"] \
             else math.nan
     if not (exact or simulate):
         row["k_simulated"] = float(k)
