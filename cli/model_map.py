@@ -317,7 +317,8 @@ def _plot_map(ds, path: Path, model):
         return np.clip(e, 0.0, np.pi) if dim == "k" else e
 
     code = {"stable": 0, "MI": 1, "undefined": 2}
-    panels = [(v, label) for v, label in (("verdict_semidiscrete", "semi-discrete NLS"),
+    panels = [(v, label) for v, label in (("verdict_paper", "the paper's continuum NLS"),
+                                          ("verdict_semidiscrete", "semi-discrete NLS"),
                                           ("verdict_fourwave", "four-wave"),
                                           ("verdict_exact", "exact lattice"),
                                           ("verdict_simulated", "simulated (MI: grew 20x)"))

@@ -10,25 +10,6 @@ from .models import _emit, _fmt, branch_of, load
 
 
 # ------------------------------------------------------------------ point
-def _continuum(model, k, amplitude):
-    """The paper's continuum NLS where the model is the paper's chain (flexmm: case II,
-    flexmm-rotation: case I), else None: other models have the semi-discrete NLS only."""
-    from energy import builtin
-
-    case = {"flexmm": "coupled", "flexmm-rotation": "rotation"}.get(model.name)
-    if case is None or model.lattice.content_hash != builtin(model.name).content_hash:
-        return None
-    from generated import coefficients as c
-
-    p = (k, model.params["alpha"], model.params["K_s"], model.params["K_theta"])
-    g1, g2 = float(c.g1(*p)), float(getattr(c, f"g2_{case}")(*p))
-    if not (math.isfinite(g1) and math.isfinite(g2)) or g1 == 0:
-        return {"verdict": "undefined", "peak_gain": None, "g1": None, "g2": None}
-    mi = g2 / g1 > 0
-    return {"verdict": "MI" if mi else "stable",
-            "peak_gain": abs(g2) * amplitude**2 / 4 if mi else 0.0, "g1": g1, "g2": g2}
-
-
 def _start_of(args) -> str:
     start = getattr(args, "start", None)
     if start == "paper":
@@ -294,9 +275,10 @@ def run_point(args) -> int:
            "branch": co["branch"], "field": co["field"]}
     if co.get("field_rule"):  # why a measures that field (one rule for index and name)
         out["field_rule"] = co["field_rule"]
-    cont = _continuum(model, k, args.amplitude)
-    if cont is not None:
-        out["continuum NLS"] = cont
+    from numerics.models import extra_theories
+
+    for extra in extra_theories(model):  # the paper chain's continuum NLS, say
+        out[extra.label] = extra.row(model, k, args.amplitude)
     out["semi-discrete NLS"] = {"verdict": co["verdict"], "peak_gain": co["peak_gain"],
                                 "fastest_offset": co["fastest_offset"],
                                 "band_edge": co["band_edge"], "g1": co["g1"], "g2": co["g2"],

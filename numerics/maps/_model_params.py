@@ -258,12 +258,19 @@ class ModelMapParameters:
 
     def theory_columns(self) -> tuple:
         """The theories of this map's cells, as variable names' suffixes."""
-        return ("semidiscrete", "exact", "fourwave") if self.ring else ("semidiscrete",)
+        from numerics.models import extra_theories
+
+        own = ("semidiscrete", "exact", "fourwave") if self.ring else ("semidiscrete",)
+        # what only this model has (the paper chain's continuum NLS: ``paper``)
+        return own + tuple(dict.fromkeys(e.column for e in
+                                         extra_theories(self.lattice_model)))
 
     def amplified(self) -> tuple:
         """The theories whose amplification a cell stores: each of ``theory_columns`` for a
         lossy model (``[dissipation]``, issue 42), none for a lossless one."""
-        return self.theory_columns() if self.lattice_model.lossy else ()
+        own = ("semidiscrete", "exact", "fourwave")  # an extra theory has no losses
+        return (tuple(t for t in self.theory_columns() if t in own)
+                if self.lattice_model.lossy else ())
 
     def simulated_columns(self) -> tuple:
         """The variables a simulated block writes (with ``done``): a lossy model's runs add
@@ -471,6 +478,8 @@ OBSERVABLE_ATTRS = {
 _GAIN = {"units": "1/T (lattice time)"}
 VARIABLE_ATTRS = {
     "peak_gain_semidiscrete": {"long_name": "semi-discrete NLS peak growth rate", **_GAIN},
+    "peak_gain_paper": {"long_name": "the paper's continuum NLS peak growth rate, |g2| a^2 / 4 "
+                                     "(eq. g_i; the paper chain's models only)", **_GAIN},
     "peak_gain_exact": {"long_name": "exact lattice theory's peak growth rate on the ring",
                         **_GAIN},
     "peak_gain_fourwave": {"long_name": "four-wave theory's fastest pair's rate on the ring",

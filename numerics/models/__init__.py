@@ -26,6 +26,9 @@ nls_amplification, four_wave_amplification, exact_amplification
                                         with [dissipation]: each theory's sidebands'
                                         amplification along the decaying carrier
 lossy_runs                              a lossy cell's runs and their amplification
+extra_theories, register_extra_theory   theories only some models have (the paper chain's
+                                        continuum NLS), registered by content, not named
+                                        by the commands
 """
 
 from ._exact import (
@@ -36,6 +39,7 @@ from ._exact import (
                      ring_offsets,
                      travelling_wave,
 )
+from ._extras import ExtraTheory, extra_theories, register_extra_theory
 from ._forces import FORCES, energy_hash, run_force
 from ._fourwave import FourWave, four_wave, pair_rates
 from ._linear import (
@@ -92,4 +96,5 @@ __all__ = ["Carrier", "carrier", "branches", "branch_index", "check_rest_stable"
            "lattice_force", "lattice_energy", "snap_ring", "Amplified", "nls_amplification",
            "four_wave_amplification", "exact_amplification", "simulate_soliton",
            "ModelSolitonRun", "RingSoliton", "ring_soliton", "soliton_report", "lossy_runs",
-           "FORCES", "energy_hash", "run_force"]
+           "FORCES", "energy_hash", "run_force", "ExtraTheory", "extra_theories",
+           "register_extra_theory"]

@@ -229,6 +229,13 @@ def _cell_columns(model, k, amplitude, branch, *, exact, simulate, N, seeds, t_e
                    g1=r.g1, g2=r.g2, reason=r.undefined or "", carrier=True)
     except ModelError as exc:  # e.g. no carrier on this branch at these values
         row["reason"] = str(exc)
+    from ._extras import extra_theories
+
+    for extra in extra_theories(model):  # the paper chain's continuum NLS, say
+        got = extra.row(model, k, amplitude)
+        row[f"verdict_{extra.column}"] = got["verdict"]
+        row[f"peak_gain_{extra.column}"] = (math.nan if got["peak_gain"] is None
+                                            else float(got["peak_gain"]))
     lossy = model.lossy
     if lossy:  # issue 42: the sidebands' amplification along the decaying carrier
         from ._losses import nls_amplification
