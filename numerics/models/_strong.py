@@ -35,7 +35,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from ._sidebands import _fold, _lu, _lu_solve, _newton, _small_pencil
+from ._sidebands import STEPS, TOL, _fold, _lu, _lu_solve, _newton, _schur, _small_pencil
 
 _KW = dict(cache=True, nogil=True, error_model="numpy", boundscheck=False)
 
@@ -79,6 +79,38 @@ def _kept(vec, P, d):
         tot += w
     outer = per_l[0] + per_l[1] + per_l[2] + per_l[-1] + per_l[-2] + per_l[-3]
     return abs(np.argmax(per_l) - P) <= 1 and outer < 1e-6 * tot
+
+
+@njit(**_KW)
+def _newton_past(Kt, Om, lam, cidx, ridx, scale, X, known):
+    """Newton on det S(lambda) from ``lam`` with the root ``known`` divided out (Maehly, as
+    ``_sidebands._newton`` divides out a growing iterate's mirror): the second root of a
+    pair the frozen pencil placed off the axis. Returns (lambda, settled)."""
+    rc = cidx.size
+    S = np.empty((rc, rc), np.complex128)
+    dS = np.empty((rc, rc), np.complex128)
+    piv = np.empty(rc, np.int64)
+    for _ in range(STEPS):
+        if not _schur(Kt, Om, lam, cidx, ridx, X, S, dS):
+            return lam, False
+        if not _lu(S, piv):
+            return lam, True  # exactly singular: an eigenvalue
+        _lu_solve(S, piv, dS)
+        tr = 0j
+        for a in range(rc):
+            tr += dS[a, a]
+        if lam == known:
+            return lam, False
+        tr -= 1.0 / (lam - known)
+        if lam.real > 1e-9 * scale:
+            tr -= 1.0 / (2.0 * lam.real)
+        if tr == 0:
+            return lam, False
+        step = -1.0 / tr
+        lam += step
+        if abs(step) <= TOL * (abs(lam) + scale):
+            return lam, True
+    return lam, False
 
 
 @njit(**_KW)
@@ -183,10 +215,25 @@ def strong_modes(Hh, masses, k, omega, P, Pc, offsets, floor, max_modes):
                 bad = True
                 break
             if lam.real <= floor:
-                if starts[s].real > 1e-3 * omega:  # a clearly growing start lost: unsure
+                if starts[s].real <= 1e-3 * omega:
+                    continue
+                # a clearly growing start ended on the axis: the frozen fold may have split
+                # a pair the whole pencil keeps on the axis. Its partner, Newton from the
+                # same start with the root found divided out: a second root on the axis as
+                # near the start accounts for the pair (no growth there); a growing one is
+                # a mode; anything else, unsure (the dense eigenproblem)
+                near = 4 * max(abs(lam - starts[s]), starts[s].real)
+                lam2, settled = _newton_past(K, Om, starts[s], cidx, ridx, scale, X, lam)
+                if (not settled or abs(lam2 - starts[s]) > near
+                        or abs(lam2 - lam) <= 1e-6 * (abs(lam) + scale)):
                     bad = True
                     break
-                continue
+                if lam2.real <= floor:
+                    continue
+                lam, settled = _newton(K, Om, lam2, cidx, ridx, scale, y, True, X)
+                if not settled or lam.real <= floor:
+                    bad = True
+                    break
             dup = False
             for f in range(found):
                 if abs(lam_out[iq, f] - lam) <= 1e-9 * (abs(lam) + scale):
