@@ -124,6 +124,45 @@ def _newton_past(Kt, Om, lam, cidx, ridx, scale, X, known):
 
 
 @njit(**_KW)
+def _refine(K, Om, lam, v, scale):
+    """Nonlinear inverse iteration on the whole pencil T(lambda) = (lambda - i Omega)^2 + K
+    (Ruhe's: w = T^{-1} T' v, lambda -= 1 / (v^* w), v = w / |w|; quadratic, Newton on det T
+    for one coordinate) from ``lam`` and the frozen pencil's eigenvector ``v`` (unit norm,
+    updated in place), until a step is below TOL, as ``_sidebands._newton``. One LAPACK
+    solve of n x n a step, against the Schur complement's two solves and two products.
+    Returns (lambda, settled)."""
+    n = Om.size
+    T = np.empty((n, n), np.complex128)
+    rhs = np.empty(n, np.complex128)
+    for _ in range(STEPS):
+        for a in range(n):
+            for b in range(n):
+                T[a, b] = K[a, b]
+            z = lam - 1j * Om[a]
+            T[a, a] += z * z
+            rhs[a] = 2 * z * v[a]
+        try:
+            w = np.linalg.solve(T, rhs)
+        except Exception:  # exactly singular: lam is an eigenvalue, v not yet its vector
+            return lam, False
+        vw = 0j
+        nrm = 0.0
+        for a in range(n):
+            vw += np.conj(v[a]) * w[a]
+            nrm += abs(w[a]) ** 2
+        if vw == 0 or not nrm > 0:
+            return lam, False
+        step = -1.0 / vw
+        lam += step
+        nrm = np.sqrt(nrm)
+        for a in range(n):
+            v[a] = w[a] / nrm
+        if abs(step) <= TOL * (abs(lam) + scale):
+            return lam, True
+    return lam, False
+
+
+@njit(**_KW)
 def strong_modes(Hh, masses, k, omega, P, Pc, offsets, floor, max_modes):
     """For each offset: the growing eigenvalues Newton reaches from the central frozen
     pencil's growing (or colliding) eigenvalues, with their eigenvectors in the
@@ -155,7 +194,9 @@ def strong_modes(Hh, masses, k, omega, P, Pc, offsets, floor, max_modes):
     eq = np.empty(nl, np.complex128)
     K = np.empty((n, n), np.complex128)
     X = np.empty((nr, rc), np.complex128)
+    X0 = np.empty((nr, rc), np.complex128)
     y = np.empty(rc, np.complex128)
+    v = np.empty(n, np.complex128)
     scale = omega
     lvec = np.empty(rc, np.int64)
     for a in range(rc):
@@ -181,6 +222,7 @@ def strong_modes(Hh, masses, k, omega, P, Pc, offsets, floor, max_modes):
         if not ok:
             count[iq] = -1
             continue
+        X0[:, :] = X  # the fold's T_RR(0)^{-1} K_RC: the frozen eigenvectors' rest
         lam0 = _small_pencil(K, Om, cidx, Sig)
         # starts: each growing frozen eigenvalue; each pair close on the axis, from between
         starts = np.empty(lam0.size * 2, np.complex128)
@@ -218,8 +260,25 @@ def strong_modes(Hh, masses, k, omega, P, Pc, offsets, floor, max_modes):
                 break
             if not _central(K, Om, cidx, Sig, starts[s], lvec, P, sq, F, piv, B):
                 continue
-            lam, settled = _newton(K, Om, starts[s], cidx, ridx, scale, y, True, X)
-            if not settled or lam.real < -floor:
+            # the whole eigenvector from the frozen one (B: its C part), refined on the
+            # whole pencil; Newton on the Schur complement where that does not settle
+            nrm = 0.0
+            for a in range(rc):
+                v[cidx[a]] = B[a, 0]
+            for a in range(nr):
+                acc = 0j
+                for b in range(rc):
+                    acc += X0[a, b] * B[b, 0]
+                v[ridx[a]] = -acc
+            for a in range(n):
+                nrm += abs(v[a]) ** 2
+            for a in range(n):
+                v[a] /= np.sqrt(nrm)
+            lam, settled = _refine(K, Om, starts[s], v, scale)
+            whole = settled and lam.real >= -floor
+            if not whole:
+                lam, settled = _newton(K, Om, starts[s], cidx, ridx, scale, y, True, X)
+            if not whole and (not settled or lam.real < -floor):
                 lam, settled = _newton(K, Om, starts[s], cidx, ridx, scale, y, False, X)
             if not settled:
                 bad = True
@@ -241,6 +300,7 @@ def strong_modes(Hh, masses, k, omega, P, Pc, offsets, floor, max_modes):
                 if lam2.real <= floor:
                     continue
                 lam, settled = _newton(K, Om, lam2, cidx, ridx, scale, y, True, X)
+                whole = False
                 if not settled or lam.real <= floor:
                     bad = True
                     break
@@ -253,13 +313,17 @@ def strong_modes(Hh, masses, k, omega, P, Pc, offsets, floor, max_modes):
             if found >= max_modes:
                 bad = True
                 break
-            for a in range(rc):  # X: T_RR^{-1} K_RC at lam, from Newton's last step
-                vec_out[iq, found, cidx[a]] = y[a] * sq[cidx[a] % d]
-            for a in range(nr):
-                acc = 0j
-                for b in range(rc):
-                    acc += X[a, b] * y[b]
-                vec_out[iq, found, ridx[a]] = -acc * sq[ridx[a] % d]
+            if whole:
+                for a in range(n):
+                    vec_out[iq, found, a] = v[a] * sq[a % d]
+            else:
+                for a in range(rc):  # X: T_RR^{-1} K_RC at lam, from Newton's last step
+                    vec_out[iq, found, cidx[a]] = y[a] * sq[cidx[a] % d]
+                for a in range(nr):
+                    acc = 0j
+                    for b in range(rc):
+                        acc += X[a, b] * y[b]
+                    vec_out[iq, found, ridx[a]] = -acc * sq[ridx[a] % d]
             lam_out[iq, found] = lam
             moved = max(moved, abs(lam - starts[s]))
             if lam.real > kept and _kept(vec_out[iq, found], P, d):
