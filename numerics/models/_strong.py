@@ -9,15 +9,19 @@ S(lambda) = T_CC(lambda) - K_CR T_RR(lambda)^{-1} K_RC. With the fold frozen at
 lambda = 0 (the centre of the modes a kept mode can be: centred at l = -1, 0, 1), the
 2 r_C eigenvalues of the frozen C pencil place the central spectrum at once (LAPACK on
 2 r_C = 2 d (2 P_C + 1), against 2 n for the dense one); each of them that grows and
-whose eigenvector is heaviest at |l| <= 2 (one inverse-iteration step) is
-the start of Newton on det S (``_sidebands._newton``: exact, the mirror root
--conj(lambda) divided out), and the eigenvector (S's null vector, the rest
--T_RR^{-1} K_RC y_C) gives the weights the kept modes are chosen by, as the dense
-eigenproblem's do. A pair of the frozen eigenvalues close on the imaginary axis (a
-collision the frozen fold may place just apart) starts Newton too, from between them.
+whose eigenvector is heaviest at |l| <= 2 (one inverse-iteration step) is refined
+on the whole pencil at P, exact: nonlinear inverse iteration (``_refine``) from it and
+its eigenvector (the C part from that step, the rest -T_RR(0)^{-1} K_RC y_C), whose
+eigenvector gives the weights the kept modes are chosen by, as the dense eigenproblem's
+do; where it does not settle, Newton on det S (``_sidebands._newton``: the mirror root
+-conj(lambda) divided out, the eigenvector S's null vector and the rest
+-T_RR^{-1} K_RC y_C). A step of the inverse iteration is one LAPACK solve of n x n, one
+of Newton's on S two solves and two products (halves the refinement's cost). A pair of
+the frozen eigenvalues close on the imaginary axis (a collision the frozen fold may place
+just apart) is a start too, from between them.
 Only the fastest kept mode matters: the starts go fastest first, and once a kept mode is
 refined, a start whose rate cannot reach it (its frozen rate, or half its pair's gap,
-plus 10x the largest move Newton made from a start at this offset) is left.
+plus 10x the largest move a refined start made at this offset) is left.
 
 Not a certificate, as the clusters of ``_sidebands`` are: a growing mode the frozen
 pencil moved off (its fold is frozen at 0 while the mode sits near +-2 omega) would be
