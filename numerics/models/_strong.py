@@ -61,30 +61,12 @@ CENTRAL_MARGIN = 5
 
 
 @njit(**_KW)
-def _central(K, Om, cidx, Sig, lam, lvec, P, sq, F, piv, B):
-    """Whether the frozen pencil's eigenvector at ``lam`` (one inverse-iteration step) has
-    its largest weight at |l| <= 2: a kept mode's (|l| <= 1 at P) with a harmonic's margin
-    (the frozen pencil's weights are close to the exact ones, not equal)."""
-    rc = cidx.size
-    for a in range(rc):
-        for b in range(rc):
-            F[a, b] = K[cidx[a], cidx[b]] - Sig[a, b]
-        z = lam - 1j * Om[cidx[a]]
-        F[a, a] += z * z
-        B[a, 0] = 1.0
-    if not _lu(F, piv):
-        return True
-    _lu_solve(F, piv, B)
-    per_l = np.zeros(2 * P + 1)
-    for a in range(rc):
-        per_l[lvec[a] + P] += abs(B[a, 0] * sq[cidx[a] % sq.size]) ** 2
-    return abs(np.argmax(per_l) - P) <= 2
-
-
-@njit(**_KW)
 def _kept(vec, P, d):
     """The dense spectrum's rule (``_exact``): largest weight at |l| <= 1, less than 1e-6
-    of it in the outer three harmonics."""
+    of it in the outer three harmonics; here with a margin (the central weight 1e-6 over
+    any other): where two harmonics tie (a mode its own mirror image one or two harmonics
+    over, as at q = pi - k on a ring), round-off decides the rule, and a mode the caller's
+    rule may drop must not stop the search for the next one."""
     per_l = np.zeros(2 * P + 1)
     tot = 0.0
     for i in range(vec.size):
@@ -92,7 +74,12 @@ def _kept(vec, P, d):
         per_l[i // d] += w
         tot += w
     outer = per_l[0] + per_l[1] + per_l[2] + per_l[-1] + per_l[-2] + per_l[-3]
-    return abs(np.argmax(per_l) - P) <= 1 and outer < 1e-6 * tot
+    centre = max(per_l[P - 1], per_l[P], per_l[P + 1])
+    rest = 0.0
+    for li in range(2 * P + 1):
+        if abs(li - P) > 1:
+            rest = max(rest, per_l[li])
+    return centre > (1 + 1e-6) * rest and outer < 1e-6 * tot
 
 
 @njit(**_KW)
@@ -167,10 +154,119 @@ def _refine(K, Om, lam, v, scale):
 
 
 @njit(**_KW)
+def _pencil_at(Hh, sq, k, P, q, ed, eq, K):
+    """K(q) of the scaled pencil into ``K`` (``_exact``'s dense pencil, scaled by
+    M^{-1/2})."""
+    d = sq.size
+    nl = 2 * P + 1
+    for li in range(nl):
+        eq[li] = np.exp(1j * (q + (li - P) * k))
+    for li in range(nl):
+        el = np.conj(eq[li])
+        for hi_ in range(nl):
+            s = li - hi_ + 2 * P
+            eh = eq[hi_]
+            for a in range(d):
+                for b in range(d):
+                    val = (Hh[s, a, b] + Hh[s, a, d + b] * eh + Hh[s, d + a, b] * el
+                           + Hh[s, d + a, d + b] * ed[s])
+                    K[li * d + a, hi_ * d + b] = val * sq[a] * sq[b]
+
+
+@njit(**_KW)
+def _frozen_starts(K, Om, cidx, ridx, lvec, P, sq, omega, starts, gaps, larg, vecs):
+    """The frozen pencil's starts at one offset: each growing eigenvalue, and each pair
+    close on the axis from between them (half their gap into ``gaps``); for each, its
+    eigenvector (one inverse-iteration step on the frozen pencil, the rest
+    -T_RR(0)^{-1} K_RC y_C: whole, into ``vecs``) and its heaviest harmonic (``larg``,
+    over the C part: 0 where the step is singular). Returns how many; -1 where the fold
+    is singular."""
+    rc, nr = cidx.size, ridx.size
+    X = np.empty((nr, rc), np.complex128)
+    Sig, ok = _fold(K, Om, 0j, cidx, ridx, X)
+    if not ok:
+        return -1
+    lam0 = _small_pencil(K, Om, cidx, Sig)
+    ns = 0
+    for s in range(lam0.size):
+        if lam0[s].real > 1e-9 * omega:
+            starts[ns] = lam0[s]
+            gaps[ns] = 0.0
+            ns += 1
+    order = np.argsort(lam0.imag)
+    for t in range(lam0.size - 1):
+        a0, b0 = lam0[order[t]], lam0[order[t + 1]]
+        if abs(a0.real) > 1e-9 * omega or abs(b0.real) > 1e-9 * omega:
+            continue
+        gap = b0.imag - a0.imag
+        if gap < 1e-2 * omega and ns < starts.size:
+            starts[ns] = 0.5 * (a0 + b0) + 0.5 * gap
+            gaps[ns] = 0.5 * gap
+            ns += 1
+    F = np.empty((rc, rc), np.complex128)
+    B = np.empty((rc, 1), np.complex128)
+    piv = np.empty(rc, np.int64)
+    per_l = np.empty(2 * P + 1)
+    for s in range(ns):
+        for a in range(rc):
+            for b in range(rc):
+                F[a, b] = K[cidx[a], cidx[b]] - Sig[a, b]
+            z = starts[s] - 1j * Om[cidx[a]]
+            F[a, a] += z * z
+            B[a, 0] = 1.0
+        if _lu(F, piv):
+            _lu_solve(F, piv, B)
+            per_l[:] = 0.0
+            for a in range(rc):
+                per_l[lvec[a] + P] += abs(B[a, 0] * sq[cidx[a] % sq.size]) ** 2
+            larg[s] = np.argmax(per_l) - P
+        else:
+            larg[s] = 0
+        for a in range(rc):
+            vecs[s, cidx[a]] = B[a, 0]
+        for a in range(nr):
+            acc = 0j
+            for b in range(rc):
+                acc += X[a, b] * B[b, 0]
+            vecs[s, ridx[a]] = -acc
+    return ns
+
+
+@njit(**_KW)
+def _neighbours(offsets, k):
+    """For each offset t and sign sigma (+1, -1): the index j of the offset s with
+    t = s' + sigma k (mod 2 pi), s' = s or -s (``mirror``), or -1. A mode at s' is one at
+    s' + sigma k, one harmonic over and i sigma omega lower; at -s, its mirror image
+    (lambda -> conj(lambda), l -> -l): the real lattice."""
+    Q = offsets.size
+    nb = np.full((Q, 2), -1, np.int64)
+    mirror = np.zeros((Q, 2), np.bool_)
+    for i in range(Q):
+        for c in range(2):
+            sigma = 1.0 if c == 0 else -1.0
+            x = (offsets[i] - sigma * k) % (2 * np.pi)
+            mir = x > np.pi
+            if mir:
+                x = 2 * np.pi - x
+            for j in range(Q):
+                if j != i and abs(offsets[j] - x) <= 1e-9:
+                    nb[i, c] = j
+                    mirror[i, c] = mir
+                    break
+    return nb, mirror
+
+
+@njit(**_KW)
 def strong_modes(Hh, masses, k, omega, P, Pc, offsets, floor, max_modes):
-    """For each offset: the growing eigenvalues Newton reaches from the central frozen
-    pencil's growing (or colliding) eigenvalues, with their eigenvectors in the
-    harmonics' coordinates (field-major inside a harmonic, as ``_exact``'s dense pencil).
+    """For each offset: the growing eigenvalues refined from the central frozen pencil's
+    growing (or colliding) eigenvalues, with their eigenvectors in the harmonics'
+    coordinates (field-major inside a harmonic, as ``_exact``'s dense pencil).
+
+    Where the offsets q - k and q + k (mod 2 pi, up to sign: a ring's, k on it) are asked
+    too, the frozen pencil is solved at about half of the offsets (sources): an offset
+    that is none takes both neighbouring sources' starts, moved one harmonic over (the
+    pencil at q + k is the one at q, shifted: translation along the wave), each refined
+    at its own offset as any other.
 
     Returns lam (Q, max_modes) complex, vec (Q, max_modes, n) complex, count (Q,) int:
     -1 where the offset needs the dense eigenproblem.
@@ -198,55 +294,104 @@ def strong_modes(Hh, masses, k, omega, P, Pc, offsets, floor, max_modes):
     eq = np.empty(nl, np.complex128)
     K = np.empty((n, n), np.complex128)
     X = np.empty((nr, rc), np.complex128)
-    X0 = np.empty((nr, rc), np.complex128)
     y = np.empty(rc, np.complex128)
     v = np.empty(n, np.complex128)
     scale = omega
     lvec = np.empty(rc, np.int64)
     for a in range(rc):
         lvec[a] = cidx[a] // d - P
-    F = np.empty((rc, rc), np.complex128)
-    B = np.empty((rc, 1), np.complex128)
-    piv = np.empty(rc, np.int64)
+    width = 4 * rc
+    # sources: every other offset along each chain of neighbours (2-coloured), so that an
+    # offset that is none has both neighbours sources: a mode kept at it (|l| <= 1) is
+    # centred at |l| <= 1 at one of them (at l = 0 at q + l k). Measured: one source only
+    # (a third of the offsets) misses flexmm's fastest mode at one bench offset (its start
+    # from a source where it sits at l = 2, as the frozen pencil at |l| <= P - 6 misses it)
+    nb, mirror = _neighbours(offsets, k)
+    colour = np.full(Q, -1, np.int64)
+    stack = np.empty(Q, np.int64)
+    for i0 in range(Q):
+        if colour[i0] >= 0:
+            continue
+        colour[i0] = 1
+        top = 0
+        stack[top] = i0
+        top += 1
+        while top > 0:
+            top -= 1
+            i = stack[top]
+            for e in range(2):
+                j = nb[i, e]
+                if j >= 0 and colour[j] < 0:
+                    colour[j] = 1 - colour[i]
+                    stack[top] = j
+                    top += 1
+    source = colour == 1
+    for i in range(Q):
+        if not source[i]:
+            for e in range(2):
+                if nb[i, e] < 0 or not source[nb[i, e]]:
+                    source[i] = True
+    slot = np.full(Q, -1, np.int64)
+    nsrc = 0
+    for i in range(Q):
+        if source[i]:
+            slot[i] = nsrc
+            nsrc += 1
+    s_starts = np.zeros((nsrc, width), np.complex128)
+    s_gaps = np.zeros((nsrc, width))
+    s_larg = np.zeros((nsrc, width), np.int64)
+    s_vecs = np.zeros((nsrc, width, n), np.complex128)
+    s_count = np.zeros(nsrc, np.int64)
+    for i in range(Q):
+        if source[i]:
+            _pencil_at(Hh, sq, k, P, offsets[i], ed, eq, K)
+            j = slot[i]
+            s_count[j] = _frozen_starts(K, Om, cidx, ridx, lvec, P, sq, omega, s_starts[j],
+                                        s_gaps[j], s_larg[j], s_vecs[j])
+    starts = np.empty(3 * width, np.complex128)
+    gaps = np.empty(3 * width)
+    larg = np.empty(3 * width, np.int64)
+    vecs = np.empty((3 * width, n), np.complex128)
     for iq in range(Q):
-        q = offsets[iq]
-        for li in range(nl):
-            eq[li] = np.exp(1j * (q + (li - P) * k))
-        for li in range(nl):
-            el = np.conj(eq[li])
-            for hi_ in range(nl):
-                s = li - hi_ + 2 * P
-                eh = eq[hi_]
-                for a in range(d):
-                    for b in range(d):
-                        val = (Hh[s, a, b] + Hh[s, a, d + b] * eh + Hh[s, d + a, b] * el
-                               + Hh[s, d + a, d + b] * ed[s])
-                        K[li * d + a, hi_ * d + b] = val * sq[a] * sq[b]
-        Sig, ok = _fold(K, Om, 0j, cidx, ridx, X)
-        if not ok:
+        _pencil_at(Hh, sq, k, P, offsets[iq], ed, eq, K)
+        # this offset's starts: its own where it is a source, else its neighbours'
+        ns = 0
+        for c in range(3):
+            if source[iq]:
+                if c != 2:
+                    continue
+                j, sigma, mir = slot[iq], 0, False
+            else:
+                if c == 2 or nb[iq, c] < 0 or not source[nb[iq, c]]:
+                    continue
+                j, sigma, mir = slot[nb[iq, c]], 1 - 2 * c, mirror[iq, c]
+            if s_count[j] < 0:
+                ns = -1
+                break
+            for s in range(s_count[j]):
+                lam = s_starts[j, s]
+                lq = s_larg[j, s]
+                if mir:  # the mirror image at -q: conj(lambda), harmonic l -> -l
+                    lam = np.conj(lam)
+                    lq = -lq
+                starts[ns] = lam - 1j * sigma * omega
+                gaps[ns] = s_gaps[j, s]
+                larg[ns] = lq - sigma
+                for li in range(nl):  # c_t[l] = c'[l + sigma], c'[l] = conj(c_s[-l]) mirrored
+                    ls = li - P + sigma
+                    if abs(ls) > P:
+                        for a in range(d):
+                            vecs[ns, li * d + a] = 0.0
+                        continue
+                    if mir:
+                        ls = -ls
+                    for a in range(d):
+                        val = s_vecs[j, s, (ls + P) * d + a]
+                        vecs[ns, li * d + a] = np.conj(val) if mir else val
+                ns += 1
+        if ns < 0:
             count[iq] = -1
             continue
-        X0[:, :] = X  # the fold's T_RR(0)^{-1} K_RC: the frozen eigenvectors' rest
-        lam0 = _small_pencil(K, Om, cidx, Sig)
-        # starts: each growing frozen eigenvalue; each pair close on the axis, from between
-        starts = np.empty(lam0.size * 2, np.complex128)
-        gaps = np.empty(lam0.size * 2)
-        ns = 0
-        for s in range(lam0.size):
-            if lam0[s].real > 1e-9 * omega:
-                starts[ns] = lam0[s]
-                gaps[ns] = 0.0
-                ns += 1
-        order = np.argsort(lam0.imag)
-        for t in range(lam0.size - 1):
-            a0, b0 = lam0[order[t]], lam0[order[t + 1]]
-            if abs(a0.real) > 1e-9 * omega or abs(b0.real) > 1e-9 * omega:
-                continue
-            gap = b0.imag - a0.imag
-            if gap < 1e-2 * omega and ns < starts.size:
-                starts[ns] = 0.5 * (a0 + b0) + 0.5 * gap
-                gaps[ns] = 0.5 * gap
-                ns += 1
         # fastest first: once a kept mode is refined, a start whose rate cannot reach it
         # (its frozen rate, or half its pair's gap, plus 10x the largest move a refined
         # start made at this offset) is left
@@ -262,19 +407,13 @@ def strong_modes(Hh, masses, k, omega, P, Pc, offsets, floor, max_modes):
             s = first[t]
             if kept > 0 and reach[s] + gaps[s] + 10 * moved < kept:
                 break
-            if not _central(K, Om, cidx, Sig, starts[s], lvec, P, sq, F, piv, B):
-                continue
-            # the whole eigenvector from the frozen one (B: its C part), refined on the
-            # whole pencil; Newton on the Schur complement where that does not settle
+            if abs(larg[s]) > 2:
+                continue  # its frozen eigenvector is heaviest off the centre: not kept
+            # the whole frozen eigenvector refined on the whole pencil; Newton on the
+            # Schur complement where that does not settle
             nrm = 0.0
-            for a in range(rc):
-                v[cidx[a]] = B[a, 0]
-            for a in range(nr):
-                acc = 0j
-                for b in range(rc):
-                    acc += X0[a, b] * B[b, 0]
-                v[ridx[a]] = -acc
             for a in range(n):
+                v[a] = vecs[s, a]
                 nrm += abs(v[a]) ** 2
             for a in range(n):
                 v[a] /= np.sqrt(nrm)
