@@ -38,6 +38,10 @@ within 4x the first one's distance from the start: the pair is accounted for) or
 growing mode (kept as any other). Where Newton does not settle, or the partner is neither,
 the caller solves that offset densely (stiff-hinge's bench point: 24 of 128 ring offsets
 before this check, none with it).
+
+On a ring the frozen pencil is solved at half of the offsets: the pencil at q + k is the
+one at q shifted one harmonic (``strong_modes``), so an offset between two sources takes
+their starts, translated; each is refined at its own offset as any other.
 """
 
 from __future__ import annotations
