@@ -335,19 +335,25 @@ def strong_modes(Hh, masses, k, omega, P, Pc, offsets, floor, max_modes):
             for e in range(2):
                 if nb[i, e] < 0 or not source[nb[i, e]]:
                     source[i] = True
+    # stored: the sources an offset that is none takes starts from; every other offset
+    # (each on the infinite chain's grid, where q +- k are not offsets) solves its own in
+    # the last slot as it comes
     slot = np.full(Q, -1, np.int64)
     nsrc = 0
     for i in range(Q):
-        if source[i]:
-            slot[i] = nsrc
-            nsrc += 1
-    s_starts = np.zeros((nsrc, width), np.complex128)
-    s_gaps = np.zeros((nsrc, width))
-    s_larg = np.zeros((nsrc, width), np.int64)
-    s_vecs = np.zeros((nsrc, width, n), np.complex128)
-    s_count = np.zeros(nsrc, np.int64)
+        if not source[i]:
+            for e in range(2):
+                j = nb[i, e]
+                if slot[j] < 0:
+                    slot[j] = nsrc
+                    nsrc += 1
+    s_starts = np.zeros((nsrc + 1, width), np.complex128)
+    s_gaps = np.zeros((nsrc + 1, width))
+    s_larg = np.zeros((nsrc + 1, width), np.int64)
+    s_vecs = np.zeros((nsrc + 1, width, n), np.complex128)
+    s_count = np.zeros(nsrc + 1, np.int64)
     for i in range(Q):
-        if source[i]:
+        if slot[i] >= 0:
             _pencil_at(Hh, sq, k, P, offsets[i], ed, eq, K)
             j = slot[i]
             s_count[j] = _frozen_starts(K, Om, cidx, ridx, lvec, P, sq, omega, s_starts[j],
@@ -365,6 +371,10 @@ def strong_modes(Hh, masses, k, omega, P, Pc, offsets, floor, max_modes):
                 if c != 2:
                     continue
                 j, sigma, mir = slot[iq], 0, False
+                if j < 0:
+                    j = nsrc
+                    s_count[j] = _frozen_starts(K, Om, cidx, ridx, lvec, P, sq, omega,
+                                                s_starts[j], s_gaps[j], s_larg[j], s_vecs[j])
             else:
                 if c == 2 or nb[iq, c] < 0 or not source[nb[iq, c]]:
                     continue
