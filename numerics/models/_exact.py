@@ -44,7 +44,7 @@ each cluster of discs that can hold a growing mode centred at l = -1, 0, 1 is so
 Newton on its Schur complement, and the modes found are kept by the same weights as the
 dense eigenproblem's (argmax at |l| <= 1, < 1e-6 in the outer three harmonics). Where a
 cluster is too large (strong coupling, or a flat branch: flexmm), or Newton does not
-settle, the central harmonics' pencil at |l| <= P - 4 with the outer ones folded in, its
+settle, the central harmonics' pencil at |l| <= P - 5 with the outer ones folded in, its
 growing eigenvalues refined by Newton at P, fastest first (``_strong``: flexmm's offsets
 at ~1/4 of the dense eigenproblem's cost); where that does not settle either, that
 offset's dense eigenproblem at the same P. The fastest mode is computed again
