@@ -57,6 +57,7 @@ implementation before this one (dense ``eig`` at H + 4 per offset) to 1e-6 relat
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 from dataclasses import dataclass
 
@@ -293,15 +294,25 @@ def _least_squares(*args, **kwargs):
     return least_squares(*args, **kwargs)
 
 
-def _travelling_wave(model, k, amplitude, branch, harmonics, start=None):
+def _travelling_wave(model, k, amplitude, branch, harmonics, start=None, fast=None):
+    """``travelling_wave`` without its family check. ``fast``: a dict kept across the
+    calls of one carrier (``continued_wave``): the carrier, the acoustic directions and
+    the collocation's linear maps (``_collocation``) computed once."""
     least_squares = _least_squares
     a = float(amplitude)
     if not (math.isfinite(a) and a > 0):
         raise ModelError(f"amplitude must be a finite number > 0, got {amplitude!r}")
-    car = carrier(model, k, branch)
+    if fast is None:
+        car = carrier(model, k, branch)
+        masses = np.asarray(model.masses, float)
+        acoustic = acoustic_directions(model)
+    else:
+        if "car" not in fast:
+            fast.update(car=carrier(model, k, branch), acoustic=acoustic_directions(model),
+                        masses=np.asarray(model.masses, float))
+        car, acoustic, masses = fast["car"], fast["acoustic"], fast["masses"]
     d = model.n_fields
-    masses = np.asarray(model.masses, float)
-    acoustic = acoustic_directions(model)
+    solve = _solve if fast is None else _solve_fast
     H = harmonics or 8
     if start is not None:
         omega0, c0 = _scaled_start(start, car, a, H)
@@ -311,7 +322,7 @@ def _travelling_wave(model, k, amplitude, branch, harmonics, start=None):
         c0[:, H - 1] = np.conj(c0[:, H + 1])
         omega0 = car.omega
     while True:
-        wave = _solve(model, car, a, masses, acoustic, H, c0, omega0, least_squares)
+        wave = solve(model, car, a, masses, acoustic, H, c0, omega0, least_squares)
         tail = np.max(np.abs(wave.coefficients[:, [0, -1]])) / a
         if harmonics or tail < 1e-13 or H >= 32:
             break
@@ -418,6 +429,47 @@ def _solve(model, car, a, masses, acoustic, H, c0, omega0, least_squares):
     res = float(np.max(np.abs(residual(x)))) if np.all(np.isfinite(x)) else math.inf
     return TravellingWave(model=model, carrier=car, amplitude=a, omega=float(omega),
                           coefficients=c, residual=res)
+
+
+def _solve_fast(model, car, a, masses, acoustic, H, c0, omega0, least_squares):
+    """``_solve``'s equations from their linear maps (``_collocation``: no per-call
+    assembly), the converged residual not computed again: the same wave to round-off
+    (tests/test_models_exact.py), at ~1/3 of the time of a solve from a near start."""
+    from ._collocation import collocation
+
+    d = model.n_fields
+    optical, free = _pack_layout(d, H, car.field, acoustic)
+    scale = float(np.max(masses)) * omega0**2 * a
+    n_opt = optical.shape[1]
+    residual, jacobian = collocation(d, H, car.k, car.field, optical, free).equations(
+        model, masses, a, scale)
+    parts0 = np.stack([np.real(c0[:, H + 1:]), np.imag(c0[:, H + 1:])], axis=-1)
+    x0 = np.concatenate([[omega0], optical.T @ np.real(c0[:, H]), parts0[free]])
+    x = _gauss_newton(residual, jacobian, x0)
+    if x is None:
+        x = least_squares(residual, x0, method="lm", xtol=1e-15, ftol=1e-15, gtol=1e-15,
+                          max_nfev=200 * (x0.size + 1)).x
+        residual(x)
+    parts = np.zeros((d, H, 2))
+    parts[free] = x[1 + n_opt:]
+    parts[car.field, 0] = (a / 2, 0.0)
+    c = np.zeros((d, 2 * H + 1), complex)
+    c[:, H] = optical @ x[1:1 + n_opt]
+    c[:, H + 1:] = parts[..., 0] + 1j * parts[..., 1]
+    c[:, :H] = np.conj(c[:, H + 1:][:, ::-1])
+    # the residual of x is the last one computed (Newton's, or the line above's)
+    res = float(np.max(np.abs(residual.last))) if np.all(np.isfinite(x)) else math.inf
+    return TravellingWave(model=model, carrier=car, amplitude=a, omega=float(x[0]),
+                          coefficients=c, residual=res)
+
+
+def continued_wave(model: Model, car: Carrier, amplitude: float, start: TravellingWave,
+                   fast: dict) -> TravellingWave:
+    """``travelling_wave(model, car.k, amplitude, car.branch, start=start)`` by the fast
+    solve (``_solve_fast``): the lower amplitudes of a damped point
+    (``_losses_sampling``), ``fast`` one dict per carrier. The caller holds the BLAS
+    threads (``one_blas_thread``)."""
+    return _travelling_wave(model, car.k, amplitude, car.branch, None, start, fast)
 
 
 def _gauss_newton(residual, jacobian, x0, steps=40):
@@ -551,13 +603,30 @@ def _hessian_harmonics(wave: TravellingWave, P: int):
     """Hhat_s, s = -2P..2P, of the cell Hessian along the wave: shape (4P + 1, 2d, 2d)."""
     model = wave.model
     d = model.n_fields
-    M = max(128, 8 * P + 8, 4 * wave.harmonics + 8)
-    xi = _grid(M)
-    x = np.concatenate([wave.profile(xi), wave.profile(xi + wave.k)])
+    M, here, there, E = _hessian_bases(wave.harmonics, P, wave.k)
+    c = wave.coefficients
+    # the wave's profile at xi and xi + k (``TravellingWave.profile``'s arithmetic)
+    x = np.concatenate([np.real(np.tensordot(c, here, axes=(1, 0))),
+                        np.real(np.tensordot(c, there, axes=(1, 0)))])
     Hs = np.empty((2 * d, 2 * d, M))
     model.code.cell_hessian_into(x, model.p, Hs)
+    return np.einsum("abm,sm->sab", Hs, E) / M
+
+
+@functools.lru_cache(maxsize=64)
+def _hessian_bases(H: int, P: int, k: float):
+    """(M, e^{i h xi}, e^{i h (xi + k)}, e^{-i s xi}) of ``_hessian_harmonics``: they do
+    not depend on the amplitude, so a damped point's waves at its lower amplitudes share
+    them (kept, read only, the 64 latest: thread safe)."""
+    M = max(128, 8 * P + 8, 4 * H + 8)
+    xi = _grid(M)
+    h = np.arange(-H, H + 1)
     s = np.arange(-2 * P, 2 * P + 1)
-    return np.einsum("abm,sm->sab", Hs, np.exp(-1j * s[:, None] * xi[None, :])) / M
+    out = (np.exp(1j * h[:, None] * xi), np.exp(1j * h[:, None] * (xi + k)),
+           np.exp(-1j * s[:, None] * xi[None, :]))
+    for arr in out:
+        arr.flags.writeable = False
+    return (M, *out)
 
 
 @one_blas_thread

@@ -167,18 +167,19 @@ def exact_along_decay(first, model, c, qk, positions, amplitude, gain0, G, Gamma
     it in the outer three harmonics). Else as ``hill_spectrum``: the P + 4 check at the
     fastest offset asked (again in a later call only where it holds a faster one), the
     dense spectrum at H + 4 where it fails."""
-    from ._exact import _Sidebands, hill_spectrum, travelling_wave
+    from ._exact import _Sidebands, continued_wave, hill_spectrum
     from ._losses import along_decay
 
     persisted = len(first.truncations) == 2
     waves = [first.wave]
     at = {}  # a -> [engine, its first call's top gain, dense]
+    fast = {}  # the wave solve's set-up, once for every amplitude (``continued_wave``)
 
     def gain_at(a, cols):
         q = qk[cols]
         if a not in at:
             # the amplitudes fall in turn: each wave's harmonic balance starts from the last
-            waves.append(travelling_wave(model, c.k, a, c.branch, start=waves[-1]))
+            waves.append(continued_wave(model, c, a, waves[-1], fast))
             engine = _Sidebands(waves[-1])
             spec = engine.spectrum(q) if persisted else engine.checked(q)
             at[a] = [engine, spec.peak_gain, len(spec.truncations) == 1 and not persisted]
