@@ -93,6 +93,25 @@ def side_rates(model: Model, k: float, q) -> tuple[np.ndarray, np.ndarray]:
     return out
 
 
+# the last (weak reference to the model, k, branch, Gamma): a point's three theories ask
+# the carrier's damping in turn (one tuple, read and replaced whole: safe across threads)
+_GAMMA = [None]
+
+
+def _carrier_damping(model: Model, k: float, branch) -> float:
+    """``carrier_damping(model, k, branch)``, the point's last answer kept."""
+    import weakref
+
+    from ._linear import carrier_damping
+
+    last = _GAMMA[0]
+    if last is not None and last[0]() is model and last[1] == k and last[2] == branch:
+        return last[3]
+    value = carrier_damping(model, k, branch)
+    _GAMMA[0] = (weakref.ref(model), k, branch, value)
+    return value
+
+
 def integrate_pairs(P, Q, psi0, Gamma, G, q, t_end, steps=4000, carrier_decays=True):
     """|(x, y)(t)| / |(x, y)(0)| of the linearised damped NLS per offset q: array
     (steps + 1, len(q)), and the times. The carrier psi0 e^{-Gamma t} (constant where
@@ -133,8 +152,22 @@ def _pairs_best(P, Q, psi0, Gamma, G, q, t_end, steps):
     q2, G, x, y, h, a2 = _pairs_start(P, Q, psi0, Gamma, G, q, t_end, steps)
     best = np.ones(q2.size)
     first = np.zeros(q2.size, np.int64)
-    _pairs_compiled(best=True)(float(P), float(Q), a2, G, q2, h, x, y, best, first)
+    # where an offset's maximum is final: each step is e^{-G h} exp(h [[0, b], [c, 0]]),
+    # whose 2-norm is at most e^{h mu}, mu = |b + c| / 2 - G = |Q| a2 - G (the
+    # logarithmic norm); from the first step after which |Q| a2 <= G at every later one
+    # (``calm``) no step lengthens (x, y), so once |(x, y)| is below the running maximum
+    # (by more than the steps' round-off, ``_CALM_MARGIN``) the maximum and its first
+    # step are the ones the whole horizon gives, and the offset stops there
+    later = np.maximum.accumulate(a2[::-1])[::-1]          # max of a2 over the later steps
+    calm = np.searchsorted(-later, -G / max(abs(float(Q)), 1e-300), side="left")
+    _pairs_compiled(best=True)(float(P), float(Q), a2, G, q2, h, x, y, best, first,
+                               calm.astype(np.int64))
     return best, first
+
+
+#: the relative round-off allowed to the remaining steps of an offset that stops early
+#: (``_pairs_best``): ~1e-13 after 1000 steps of a few ulp each; 1e-9 of margin
+_CALM_MARGIN = 1e-9
 
 
 _PAIRS = {}
@@ -145,7 +178,8 @@ def _pairs_compiled(best=False):
     product in order of each step's exp(h [[-G, b], [c, -G]]) = e^{-G h} [[ch, b sh/l],
     [c sh/l, ch]], l = sqrt(b c), b = P q^2, c = 2 Q a(t)^2 - b (cosh, sinh where b c > 0;
     cos, sin where b c < 0: l is real or imaginary). ``best``: each offset's running
-    maximum and its first step instead of every step (``_pairs_best``)."""
+    maximum and its first step instead of every step, each offset stopped where its
+    maximum is final (``_pairs_best``)."""
     if best not in _PAIRS:
         import numba
 
@@ -167,7 +201,8 @@ def _pairs_compiled(best=False):
 
         if best:
             @numba.njit(cache=True, error_model="numpy", boundscheck=False)
-            def pairs(P, Q, a2, G, q2, h, x, y, top, first):
+            def pairs(P, Q, a2, G, q2, h, x, y, top, first, calm):
+                grow = 1.0 + _CALM_MARGIN
                 for j in range(q2.size):
                     b = P * q2[j]
                     e = math.exp(-G[j] * h)
@@ -176,6 +211,8 @@ def _pairs_compiled(best=False):
                         xj, yj, n = step(P, Q, a2[i], b, e, h, xj, yj)
                         if n > top[j]:
                             top[j], first[j] = n, i + 1
+                        elif i + 1 >= calm[j] and n * grow < top[j]:
+                            break  # no later step lengthens (x, y): the maximum is final
         else:
             @numba.njit(cache=True, error_model="numpy", boundscheck=False)
             def pairs(P, Q, a2, G, q2, h, x, y, out):
@@ -202,12 +239,11 @@ def nls_amplification(model: Model, k: float, amplitude: float, branch=None, *,
                       offsets: int = 200, steps: int = 1000, first=None) -> Amplified:
     """The damped semi-discrete NLS's amplification (module docstring). ``first``: the
     point's ``nls(model, k, branch)``, where already computed."""
-    from ._linear import carrier_damping
     from ._nls import nls
 
     r = nls(model, k, branch) if first is None else first
     c = r.carrier
-    Gamma = max(carrier_damping(model, c.k, c.branch), 0.0) + 0.0  # -0.0 at zero damping
+    Gamma = max(_carrier_damping(model, c.k, c.branch), 0.0) + 0.0  # -0.0 at zero damping
     P, Q = c.g1 / 2, r.g2
     psi0 = amplitude / 2
     if r.undefined or not (np.isfinite(Q) and P * Q > 0):  # defocusing: no band
@@ -406,12 +442,11 @@ def exact_amplification(model: Model, k: float, amplitude: float, branch=None, *
     other branches is damped at their rates: this is then approximate). ``first``: ``exact_gain`` at a0 on this
     ring, where already computed."""
     from ._exact import exact_gain
-    from ._linear import carrier_damping
 
     if first is None:
         first = exact_gain(model, k, amplitude, branch, N=N)
     c = first.wave.carrier
-    Gamma = max(carrier_damping(model, c.k, c.branch), 0.0) + 0.0  # -0.0 at zero damping
+    Gamma = max(_carrier_damping(model, c.k, c.branch), 0.0) + 0.0  # -0.0 at zero damping
     q = np.asarray(first.offsets, float)
     gain0 = np.asarray(first.gain, float)
     G = sideband_damping(model, c.k, q, c.branch) if model.lossy else np.zeros(q.size)
@@ -438,11 +473,10 @@ def four_wave_amplification(model: Model, k: float, amplitude: float, branch=Non
     b1, b2) at its rate at a(t), damped at the mean of its two waves' rates
     (Gamma_b1(k + q) + Gamma_b2(k - q)) / 2 (``along_decay``)."""
     from ._fourwave import _kernel, four_wave
-    from ._linear import carrier_damping
 
     if first is None:
         first = four_wave(model, k, amplitude, branch, N=N)
-    Gamma = max(carrier_damping(model, first.k, first.branch), 0.0) + 0.0  # -0.0 at zero damping
+    Gamma = max(_carrier_damping(model, first.k, first.branch), 0.0) + 0.0  # -0.0 at zero damping
     if first.undefined:  # no rate, no amplification: the reason instead (issue 43)
         raise ModelError(first.undefined)
     if not first.gain > 0:
