@@ -635,3 +635,22 @@ def test_damped_nls_coarse_to_fine_is_the_every_offset_maximum():
         assert nls_first_max(P, Q, psi0, Gamma, G, q, t_end, 1000) == (i, j, float(amp[i, j]))
         between += j % NLS_STRIDE != 0 and j != q.size - 1
     assert between >= 6  # the largest mostly sits between coarse offsets: refined there
+
+
+def test_side_rates_kept_per_wavenumber_are_one_calls(cache):
+    # the sidebands' damping rates are kept per wavenumber across a point's theories
+    # (issue 42, cost): overlapping offset sets, another model between, each answer the
+    # same numbers, to the bit, as one damping_rates call over its own wavenumbers
+    from numerics.models import damping_rates
+    from numerics.models._losses import side_rates
+
+    m1 = load_model(_chain(site="gamma*u_t**2/2", bond="eta*(u_next_t - u_t)**2/2"),
+                    eta=0.02)
+    m2 = load_model(parse_model(KG_LOSSY), gamma=0.004)
+    sets = [(m1, 2.5, np.linspace(0.01, 1.0, 40)), (m1, 2.5, np.linspace(0.5, 2.0, 25)),
+            (m2, 2.0, np.linspace(0.01, 1.0, 40)), (m1, 2.5, np.linspace(0.01, 1.0, 40)),
+            (m1, 1.0, np.linspace(0.01, 1.0, 40)[::-1])]
+    for model, k, q in sets:
+        up, down = side_rates(model, k, q)
+        assert np.array_equal(up, damping_rates(model, k + q))
+        assert np.array_equal(down, damping_rates(model, k - q))

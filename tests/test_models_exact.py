@@ -77,6 +77,35 @@ def test_a_wave_started_from_another_amplitude_is_the_same_wave(name, params, k,
         travelling_wave(model, k, a, branch, start=other)
 
 
+@pytest.mark.parametrize("name, params, k, a, branch", [
+    ("fput", dict(alpha=0.5, beta=1.0), 2.0, 0.2, None),
+    ("klein-gordon", dict(alpha=0.5), 1.2, 0.3, None),
+    ("sine-gordon", {}, 0.8, 0.6, None),
+    ("diatomic-fput", dict(alpha=0.3), 1.0, 0.1, 1),
+    ("flexmm", {}, 0.81681, 0.028, None),
+    # strongly nonlinear: the harmonics reach H = 8, the truncation doubles (H = 32)
+    ("fput", dict(alpha=0.51, beta=1.91), 0.70, 0.24, None),
+])
+def test_the_lower_amplitudes_fast_solve_is_the_same_wave_to_the_bit(name, params, k, a,
+                                                                     branch):
+    """``continued_wave`` (a damped point's lower amplitudes, issue 42: the set-up once
+    per carrier, ``_collocation``'s tables) computes ``_solve``'s residual and Jacobian
+    operation for operation, so Newton takes the same steps: the same wave, bit for bit,
+    as ``travelling_wave(start=)`` (anything less moves which of two offsets that tie to
+    round-off a damped point names)."""
+    from numerics.models._exact import continued_wave
+
+    model = _model(name, **params)
+    top = travelling_wave(model, k, a, branch)
+    fast, slow, at = {}, top, top
+    for f in (0.5, 0.25, 0.125):
+        slow = travelling_wave(model, k, f * a, branch, start=slow)
+        at = continued_wave(model, top.carrier, f * a, at, fast)
+        assert np.array_equal(at.coefficients, slow.coefficients)
+        assert (at.omega, at.residual, at.harmonics) == (slow.omega, slow.residual,
+                                                         slow.harmonics)
+
+
 def test_a_vanishing_wave_has_the_linear_spectrum():
     """At a -> 0 the Hill eigenvalues are i (l omega +- omega_b(q + l k)), all neutral."""
     model = _model("diatomic-fput", alpha=0.4)

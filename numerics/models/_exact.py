@@ -687,7 +687,10 @@ class _Sidebands:
         self.masses = np.asarray(wave.model.masses, float)
         self.floor = GAIN_FLOOR * max(wave.omega, 1e-300)
 
-    def spectrum(self, offsets) -> HillSpectrum:
+    def spectrum(self, offsets, gains_only=False) -> HillSpectrum:
+        """The spectrum at ``offsets``; ``gains_only``: the rates alone (harmonic 0 and
+        sideband offset nan where the compiled path keeps a mode: a damped point's lower
+        amplitudes, ``_losses_sampling``)."""
         from ._sidebands import sideband_modes
         from ._strong import CENTRAL_MARGIN, strong_modes
 
@@ -698,7 +701,7 @@ class _Sidebands:
         offs = np.full(offsets.size, math.nan)
         lam, vec, count = sideband_modes(self.Hh, self.masses, wave.k, wave.omega, P, offsets,
                                          self.floor, MAX_MODES, MAX_CLUSTER)
-        self._keep(offsets, lam, vec, count, gains, modes, offs)
+        self._keep(offsets, lam, vec, count, gains, modes, offs, gains_only)
         dense = np.flatnonzero(count < 0)
         Pc = P - CENTRAL_MARGIN
         if dense.size and 2 <= Pc and P <= WORK_HARMONICS + PERSIST_STEP:
@@ -718,7 +721,7 @@ class _Sidebands:
         return HillSpectrum(wave=wave, offsets=offsets, gain=gains, harmonic=modes,
                             sideband_offset=offs, truncations=(P,))
 
-    def _keep(self, offsets, lam, vec, count, gains, modes, offs):
+    def _keep(self, offsets, lam, vec, count, gains, modes, offs, gains_only=False):
         """The kept modes' rate, harmonic and sideband offset into gains, modes, offs at the
         offsets with count >= 0 (the dense spectrum's rule: argmax weight at |l| <= 1, less
         than 1e-6 of it in the outer three harmonics)."""
@@ -735,6 +738,8 @@ class _Sidebands:
         best = np.argmax(re, axis=1)
         grows = np.flatnonzero(re[np.arange(offsets.size), best] > self.floor)
         gains[grows] = re[grows, best[grows]]
+        if gains_only:
+            return
         w_best = per_l[grows, best[grows]]                           # (grows, 2P + 1)
         modes[grows] = l_[np.argmax(w_best, axis=1)]
         offs[grows] = _sideband_offsets(offsets[grows], l_, k, w_best)

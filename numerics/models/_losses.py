@@ -71,26 +71,34 @@ def sideband_damping(model: Model, k: float, q, branch: int) -> np.ndarray:
     return 0.5 * (up[:, branch] + down[:, branch])
 
 
-# the last (weak reference to the model, k, q, rates), one tuple (read and replaced whole,
-# safe across threads): the exact and four-wave theories of a point ask the same offsets
+# (weak reference to the model, {kappa: Gamma_b(kappa) row}): the rates a point's theories
+# asked, one tuple (read and replaced whole, safe across threads): the NLS's, the
+# four-wave's and the exact theory's offsets each computed once, in one call per new set
 _SIDE = [None]
+#: the most rates kept for one model
+SIDE_KEPT = 4096
 
 
 def side_rates(model: Model, k: float, q) -> tuple[np.ndarray, np.ndarray]:
-    """(Gamma_b(k + q), Gamma_b(k - q)), each (len(q), d): one ``damping_rates`` call."""
+    """(Gamma_b(k + q), Gamma_b(k - q)), each (len(q), d): one ``damping_rates`` call for
+    the wavenumbers not asked before (a row depends on its wavenumber alone: the same
+    numbers as one call for all)."""
     import weakref
 
     from ._linear import damping_rates
 
     q = np.atleast_1d(np.asarray(q, float))
+    kap = np.concatenate([k + q, k - q]).tolist()
     last = _SIDE[0]
-    if last is not None and last[0]() is model and last[1] == k and np.array_equal(last[2], q):
-        return last[3]
-    both = damping_rates(model, np.concatenate([k + q, k - q]))
-    both.flags.writeable = False  # shared with the next caller: read only
-    out = (both[:q.size], both[q.size:])
-    _SIDE[0] = (weakref.ref(model), k, q.copy(), out)
-    return out
+    known = last[1] if last is not None and last[0]() is model else {}
+    missing = list(dict.fromkeys(x for x in kap if x not in known))
+    if missing:
+        rows = damping_rates(model, np.array(missing))
+        known = dict(known) if len(known) + len(missing) <= SIDE_KEPT else {}
+        known.update(zip(missing, rows))
+        _SIDE[0] = (weakref.ref(model), known)
+    both = np.array([known[x] for x in kap], float).reshape(len(kap), model.n_fields)
+    return both[:q.size], both[q.size:]
 
 
 # the last (weak reference to the model, k, branch, Gamma): a point's three theories ask

@@ -181,13 +181,13 @@ def exact_along_decay(first, model, c, qk, positions, amplitude, gain0, G, Gamma
             # the amplitudes fall in turn: each wave's harmonic balance starts from the last
             waves.append(continued_wave(model, c, a, waves[-1], fast))
             engine = _Sidebands(waves[-1])
-            spec = engine.spectrum(q) if persisted else engine.checked(q)
+            spec = engine.spectrum(q, gains_only=True) if persisted else engine.checked(q)
             at[a] = [engine, spec.peak_gain, len(spec.truncations) == 1 and not persisted]
             return spec.gain
         engine, top, dense = at[a]
         if dense:
             return hill_spectrum(engine.wave, q, harmonics=engine.wave.harmonics + 4).gain
-        spec = engine.spectrum(q)
+        spec = engine.spectrum(q, gains_only=persisted)
         if not persisted and spec.peak_gain > top:  # a faster offset: checked here
             spec = engine.checked(q)
             at[a][1] = spec.peak_gain
