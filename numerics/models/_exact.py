@@ -307,8 +307,10 @@ def _travelling_wave(model, k, amplitude, branch, harmonics, start=None, fast=No
         masses = np.asarray(model.masses, float)
         acoustic = acoustic_directions(model)
     else:
-        if "car" not in fast:
-            fast.update(car=carrier(model, k, branch), acoustic=acoustic_directions(model),
+        if "acoustic" not in fast:
+            if "car" not in fast:
+                fast["car"] = carrier(model, k, branch)
+            fast.update(acoustic=acoustic_directions(model),
                         masses=np.asarray(model.masses, float))
         car, acoustic, masses = fast["car"], fast["acoustic"], fast["masses"]
     d = model.n_fields

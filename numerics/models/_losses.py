@@ -81,43 +81,38 @@ SIDE_KEPT = 4096
 
 def side_rates(model: Model, k: float, q) -> tuple[np.ndarray, np.ndarray]:
     """(Gamma_b(k + q), Gamma_b(k - q)), each (len(q), d): one ``damping_rates`` call for
-    the wavenumbers not asked before (a row depends on its wavenumber alone: the same
-    numbers as one call for all)."""
+    the wavenumbers not asked before, the carrier's k among them (a row depends on its
+    wavenumber alone: the same numbers as one call for all)."""
+    q = np.atleast_1d(np.asarray(q, float))
+    both = _rates_at(model, [float(k)] + np.concatenate([k + q, k - q]).tolist())[1:]
+    return both[:q.size], both[q.size:]
+
+
+def _rates_at(model: Model, kappas: list) -> np.ndarray:
+    """``damping_rates(model, kappas)``, shape (len(kappas), d), from the rates kept."""
     import weakref
 
     from ._linear import damping_rates
 
-    q = np.atleast_1d(np.asarray(q, float))
-    kap = np.concatenate([k + q, k - q]).tolist()
     last = _SIDE[0]
     known = last[1] if last is not None and last[0]() is model else {}
-    missing = list(dict.fromkeys(x for x in kap if x not in known))
+    missing = list(dict.fromkeys(x for x in kappas if x not in known))
     if missing:
         rows = damping_rates(model, np.array(missing))
         known = dict(known) if len(known) + len(missing) <= SIDE_KEPT else {}
         known.update(zip(missing, rows))
         _SIDE[0] = (weakref.ref(model), known)
-    both = np.array([known[x] for x in kap], float).reshape(len(kap), model.n_fields)
-    return both[:q.size], both[q.size:]
-
-
-# the last (weak reference to the model, k, branch, Gamma): a point's three theories ask
-# the carrier's damping in turn (one tuple, read and replaced whole: safe across threads)
-_GAMMA = [None]
+    return np.array([known[x] for x in kappas], float).reshape(len(kappas), model.n_fields)
 
 
 def _carrier_damping(model: Model, k: float, branch) -> float:
-    """``carrier_damping(model, k, branch)``, the point's last answer kept."""
-    import weakref
+    """``carrier_damping(model, k, branch)`` (Gamma of the carrier's branch) from the
+    rates kept: a point's theories ask it after their sidebands' rates, which hold it."""
+    from ._linear import branch_index
 
-    from ._linear import carrier_damping
-
-    last = _GAMMA[0]
-    if last is not None and last[0]() is model and last[1] == k and last[2] == branch:
-        return last[3]
-    value = carrier_damping(model, k, branch)
-    _GAMMA[0] = (weakref.ref(model), k, branch, value)
-    return value
+    if not model.lossy:
+        return 0.0
+    return float(_rates_at(model, [float(k)])[0][branch_index(model, k, branch)])
 
 
 def integrate_pairs(P, Q, psi0, Gamma, G, q, t_end, steps=4000, carrier_decays=True):
@@ -251,16 +246,18 @@ def nls_amplification(model: Model, k: float, amplitude: float, branch=None, *,
 
     r = nls(model, k, branch) if first is None else first
     c = r.carrier
-    Gamma = max(_carrier_damping(model, c.k, c.branch), 0.0) + 0.0  # -0.0 at zero damping
     P, Q = c.g1 / 2, r.g2
     psi0 = amplitude / 2
+    # the sidebands' rates first: their call holds the carrier's (``side_rates``)
     if r.undefined or not (np.isfinite(Q) and P * Q > 0):  # defocusing: no band
         q = np.array([1e-3])
-        return Amplified(Gamma, 1.0, 0.0, math.nan, False, -float(
-            sideband_damping(model, c.k, q, c.branch)[0]))
+        G1 = float(sideband_damping(model, c.k, q, c.branch)[0])
+        Gamma = max(_carrier_damping(model, c.k, c.branch), 0.0) + 0.0  # -0.0: no damping
+        return Amplified(Gamma, 1.0, 0.0, math.nan, False, -G1)
     edge = math.sqrt(2 * Q / P) * psi0  # band edge of the carrier at t = 0
     q = np.linspace(edge / offsets, edge, offsets, endpoint=False)
     G = sideband_damping(model, c.k, q, c.branch)
+    Gamma = max(_carrier_damping(model, c.k, c.branch), 0.0) + 0.0  # -0.0 at zero damping
     rate0 = abs(P) * q * np.sqrt(np.maximum(q**2 * 0 + (2 * Q / P) * psi0**2 - q**2, 0))
     net0 = float(np.max(rate0 - G))
     if Gamma <= 0:  # the lossless limit: a constant carrier, growth never stops
@@ -454,10 +451,10 @@ def exact_amplification(model: Model, k: float, amplitude: float, branch=None, *
     if first is None:
         first = exact_gain(model, k, amplitude, branch, N=N)
     c = first.wave.carrier
-    Gamma = max(_carrier_damping(model, c.k, c.branch), 0.0) + 0.0  # -0.0 at zero damping
     q = np.asarray(first.offsets, float)
     gain0 = np.asarray(first.gain, float)
     G = sideband_damping(model, c.k, q, c.branch) if model.lossy else np.zeros(q.size)
+    Gamma = max(_carrier_damping(model, c.k, c.branch), 0.0) + 0.0  # -0.0 at zero damping
     net0 = gain0 - G
     top = float(np.max(net0)) if q.size else 0.0
     if first.peak_gain <= 0 or top <= 0:
@@ -484,18 +481,19 @@ def four_wave_amplification(model: Model, k: float, amplitude: float, branch=Non
 
     if first is None:
         first = four_wave(model, k, amplitude, branch, N=N)
-    Gamma = max(_carrier_damping(model, first.k, first.branch), 0.0) + 0.0  # -0.0 at zero damping
     if first.undefined:  # no rate, no amplification: the reason instead (issue 43)
         raise ModelError(first.undefined)
     if not first.gain > 0:
+        Gamma = max(_carrier_damping(model, first.k, first.branch), 0.0) + 0.0
         return Amplified(Gamma, 1.0, 0.0, math.nan, False, 0.0)
     q = np.asarray(first.offsets, float)
     rates0 = np.nan_to_num(np.asarray(first.rates, float), nan=0.0)  # (n, m)
-    if model.lossy:
+    if model.lossy:  # the sidebands' rates first: their call holds the carrier's
         up, down = side_rates(model, first.k, q)
         G = np.array([0.5 * (up[:, b1] + down[:, b2]) for b1, b2 in first.pairs]).T
     else:
         G = np.zeros_like(rates0)
+    Gamma = max(_carrier_damping(model, first.k, first.branch), 0.0) + 0.0  # -0.0 at zero damping
     net0 = rates0 - G
     top = float(np.max(net0))
     col_q = np.repeat(q, rates0.shape[1])

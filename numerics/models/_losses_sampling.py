@@ -168,12 +168,17 @@ def exact_along_decay(first, model, c, qk, positions, amplitude, gain0, G, Gamma
     fastest offset asked (again in a later call only where it holds a faster one), the
     dense spectrum at H + 4 where it fails."""
     from ._exact import _Sidebands, continued_wave, hill_spectrum
+    from ._linear import field_of
     from ._losses import along_decay
 
     persisted = len(first.truncations) == 2
     waves = [first.wave]
     at = {}  # a -> [engine, its first call's top gain, dense]
     fast = {}  # the wave solve's set-up, once for every amplitude (``continued_wave``)
+    if field_of(model, c.e) == c.field:
+        # ``carrier(model, c.k, c.branch)`` is c itself (the same eigenproblem; the
+        # field, the only thing a branch given by field name could change, the same)
+        fast["car"] = c
 
     def gain_at(a, cols):
         q = qk[cols]
