@@ -654,3 +654,37 @@ def test_side_rates_kept_per_wavenumber_are_one_calls(cache):
         up, down = side_rates(model, k, q)
         assert np.array_equal(up, damping_rates(model, k + q))
         assert np.array_equal(down, damping_rates(model, k - q))
+
+
+def test_along_decays_columns_stop_where_their_rate_stays_negative():
+    # a column of the compiled quadrature stops once its rate is negative for good
+    # (issue 42, cost: _calm, sigma^2 linear between cold samples): the largest, its
+    # place and every column's own largest as the whole horizon's array form gives them,
+    # to the bit, on random samples where most columns do stop early
+    from numerics.models._losses import _calm, _integrate, _piecewise
+
+    rng = np.random.default_rng(11)
+    stopped = total = 0
+    for _ in range(80):
+        n, cols = int(rng.integers(1, 8)), int(rng.integers(1, 60))
+        s_arr = np.sort(0.5 ** np.arange(n))
+        g2 = np.maximum(rng.uniform(-0.3, 1, (n, cols)) * np.linspace(0.1, 1, n)[:, None], 0)
+        G = rng.uniform(0, 0.8, cols)
+        t = np.linspace(0, rng.uniform(5, 80), 2001)
+        s_t = np.exp(-2 * rng.uniform(0.01, 0.2) * t)
+        rate = np.sqrt(np.maximum(_piecewise(s_arr, g2, s_t), 0.0)) - G[None, :]
+        log_amp = np.concatenate([np.zeros((1, cols)), np.cumsum(
+            np.diff(t)[:, None] * (rate[1:] + rate[:-1]) / 2, axis=0)])
+        i, j = np.unravel_index(int(np.argmax(log_amp)), log_amp.shape)
+        got = _integrate(s_arr, g2, s_t, t, G, per_column=True)
+        assert got[:3] == (float(log_amp[i, j]), int(i), int(j))
+        assert np.array_equal(got[3], log_amp.max(axis=0))
+        # how many columns the stop rule cuts short (before the horizon's last time)
+        pos = g2 > 0
+        lo = np.where(pos.any(axis=0), np.argmax(pos, axis=0), n - 1)
+        cold, s_hot, ok = _calm(s_arr, g2, G, lo)
+        sig2 = _piecewise(s_arr, g2, s_t)
+        early = ok[None, :] & (sig2 <= cold) & (s_t[:, None] < s_hot)
+        stopped += int(early[:-1].any(axis=0).sum())
+        total += cols
+    assert stopped > total / 3, (stopped, total)  # the rule is exercised

@@ -361,12 +361,35 @@ def _integrate(s_arr, g2, s_t, t, G, per_column=False):
     lo_j = np.maximum(j - 1, 0)
     w = (s_t - s_arr[lo_j]) / np.where(j != lo_j, s_arr[j] - s_arr[lo_j], 1.0)
     colbest = np.zeros(g2.shape[1])
+    G = np.ascontiguousarray(G, float)
     best, i, col = _integrate_compiled()(
-        np.ascontiguousarray(g2.T), s_arr, s_t, np.diff(t), np.ascontiguousarray(G, float),
-        lo.astype(np.int64), j.astype(np.int64), lo_j.astype(np.int64), w, colbest)
+        np.ascontiguousarray(g2.T), s_arr, s_t, np.diff(t), G,
+        lo.astype(np.int64), j.astype(np.int64), lo_j.astype(np.int64), w, colbest,
+        *_calm(s_arr, g2, G, lo))
     if per_column:
         return float(best), int(i), int(col), colbest
     return float(best), int(i), int(col)
+
+
+def _calm(s_arr, g2, G, lo):
+    """Where a column of ``_integrate`` stops (its rate negative from then on: its log
+    amplification only falls, its maximum and the largest's place are final): its sigma^2
+    below ``cold`` = G^2 less 1e-12 of the column's scale (the interpolation's round-off)
+    at the time, every sample below it cold (``s_hot``: the lowest sample that is not),
+    and the line below the lowest positive sample cold at s = 0 (``ok``); sigma^2 is
+    linear between those points, so it stays below G^2."""
+    n = s_arr.size
+    scale = np.maximum(G * G, np.max(g2, axis=0, initial=0.0))
+    cold = G * G - 1e-12 * scale
+    s_hot = np.min(np.where(g2 > cold[None, :], s_arr[:, None], np.inf), axis=0,
+                   initial=np.inf)
+    cols = np.arange(g2.shape[1])
+    b = np.minimum(lo + 1, n - 1)
+    a = np.where(b == lo, np.maximum(lo - 1, 0), lo)
+    ds = s_arr[b] - s_arr[a]
+    slope = np.where(ds != 0, (g2[b, cols] - g2[a, cols]) / np.where(ds != 0, ds, 1.0), 0.0)
+    ok = (g2[b, cols] - slope * s_arr[b] <= cold) & (G > 0)
+    return cold, s_hot, ok
 
 
 _INTEGRATE = []
@@ -378,7 +401,7 @@ def _integrate_compiled():
         import numba
 
         @numba.njit(cache=True, error_model="numpy", boundscheck=False)
-        def integrate(g2t, s_arr, s_t, dt, G, lo, j, lo_j, w, colbest):
+        def integrate(g2t, s_arr, s_t, dt, G, lo, j, lo_j, w, colbest, cold, s_hot, ok):
             n = s_arr.size
             best, bi, bj = 0.0, 0, 0  # row 0: every column at 0
             for c in range(g2t.shape[0]):
@@ -406,6 +429,8 @@ def _integrate_compiled():
                         if acc > best or (acc == best and (i < bi or (i == bi and c < bj))):
                             best, bi, bj = acc, i, c
                     prev = rate
+                    if ok[c] and sig2 <= cold[c] and s_t[i] < s_hot[c]:
+                        break  # the rate stays negative (``_calm``): nothing more to find
             return best, bi, bj
 
         _INTEGRATE.append(integrate)
