@@ -23,9 +23,10 @@
   row) and on the infinite chain (``coefficients``' row), best of REPEATS each. The
   issue's bar: the four-wave row within 20x the NLS row.
 - A damped point against its lossless twin (``losses_cost``, issue 42): the theories'
-  rows (NLS, four-wave, exact on a ring of 256) with and without the amplification along
-  the decaying carrier, and a run of the same length (site damping: the exact flow per
-  site; bond damping: per ring mode). The issue's bar: within 2x the lossless twin.
+  rows (NLS, four-wave, exact on the point's ring: 256, and 64 for a small Klein-Gordon
+  ring) with and without the amplification along the decaying carrier, and a run of the
+  same length (site damping: the exact flow per site; bond damping: per ring mode). The
+  issue's bar: within 2x the lossless twin.
 Writes the "models" section of results.json (results_quick.json with --quick).
 
     python -m bench.models [--quick] [--update | --out DIR]
@@ -228,20 +229,43 @@ bond = "(u_next - u)**2/2 + beta*(u_next - u)**4/4"
 bond = "eta*(u_next_t - u_t)**2/2"
 """
 
-#: (label, lossless twin, lossy model, k, a): the paper's blue point (case II, a = 2 eps
-#: A0 with A0 = 1.4) with weak damping, FPUT with bond damping (the per-mode flow)
+KG_SITE = """name = "kg-lossy"
+fields = ["u"]
+[parameters]
+C = 1.0
+omega0 = 1.0
+beta = 1.0
+gamma = 0.001
+[energy]
+kinetic = "u_t**2/2"
+bond = "C*(u_next - u)**2/2"
+site = "omega0**2*u**2/2 + beta*u**4/4"
+[dissipation]
+site = "gamma*u_t**2/2"
+"""
+
+#: (label, lossless twin, lossy model, k, a, ring N): the paper's blue point (case II,
+#: a = 2 eps A0 with A0 = 1.4) with weak damping, FPUT with bond damping (the per-mode
+#: flow), and the cheap Klein-Gordon chain (phi^4, the built-in klein-gordon's energy)
+#: with site damping on a large and a small ring: there the damped theories' extra
+#: samples weigh most against the lossless point
 LOSS_POINTS = (("flexmm blue, gamma 1e-4", ("flexmm", {}),
-                ("flexmm-lossy", dict(gamma_theta=1e-4, gamma_U=1e-4)), 0.81681, 0.028),
+                ("flexmm-lossy", dict(gamma_theta=1e-4, gamma_U=1e-4)), 0.81681, 0.028,
+                256),
                ("fput bond eta 0.004", ("fput", dict(alpha=0.0, beta=1.0)),
-                (FPUT_BOND, {}), 2.5, 0.2))
+                (FPUT_BOND, {}), 2.5, 0.2, 256),
+               ("klein-gordon site gamma 0.001", ("klein-gordon", {}), (KG_SITE, {}), 2.0,
+                0.4, 256),
+               ("klein-gordon site gamma 0.004, N 64", ("klein-gordon", {}),
+                (KG_SITE, dict(gamma=0.004)), 2.0, 0.4, 64))
 
 
-def losses_cost(t_end=500.0, N=256, reps=7) -> dict:
+def losses_cost(t_end=500.0, reps=7) -> dict:
     """CPU seconds (``time.process_time``: every part runs on one thread, and on a shared
     machine the wall clock counts the others' work) of a damped point against its
     lossless twin: the theories (with the amplifications) and a run of ``t_end`` (no
-    early stop), each after a warm-up call; the lossless and the lossy point alternate
-    within each of ``reps`` rounds, best of ``reps``."""
+    early stop), each after a warm-up call, on the point's ring; the lossless and the
+    lossy point alternate within each of ``reps`` rounds, best of ``reps``."""
     from energy import parse_model
     from numerics.models import (
         exact_amplification,
@@ -250,7 +274,7 @@ def losses_cost(t_end=500.0, N=256, reps=7) -> dict:
         nls_amplification,
     )
 
-    def theories(m, k, a, lossy):
+    def theories(m, k, a, lossy, N):
         e = exact_gain(m, k, a, N=N)
         f = four_wave(m, k, a, N=N)
         r = nls(m, k)
@@ -261,20 +285,20 @@ def losses_cost(t_end=500.0, N=256, reps=7) -> dict:
         return e
 
     out = {}
-    for label, (plain, pp), (lossy, lp), k, a in LOSS_POINTS:
+    for label, (plain, pp), (lossy, lp), k, a, N in LOSS_POINTS:
         m0 = load_model(plain).with_params(**pp) if pp else load_model(plain)
         m1 = load_model(parse_model(lossy) if "\n" in lossy else lossy)
         m1 = m1.with_params(**lp) if lp else m1
         twins = (("lossless", m0, False), ("lossy", m1, True))
         for _, m, is_lossy in twins:
-            theories(m, k, a, is_lossy)  # warm-up: imports, generated module, JIT
+            theories(m, k, a, is_lossy, N)  # warm-up: imports, generated module, JIT
             simulate_model(m, k, a, N=N, t_end=10.0)
         times = {f"{key}_{part}": [] for key, _, _ in twins for part in ("theory_s", "run_s")}
         row = {}
         for _ in range(reps):
             for key, m, is_lossy in twins:
                 t0 = time.process_time()
-                th = theories(m, k, a, is_lossy)
+                th = theories(m, k, a, is_lossy, N)
                 t1 = time.process_time()
                 simulate_model(m, k, a, N=N, t_end=t_end)
                 times[f"{key}_theory_s"].append(t1 - t0)
