@@ -297,6 +297,9 @@ def losses_cost(t_end=500.0, reps=7) -> dict:
         row = {}
         for _ in range(reps):
             for key, m, is_lossy in twins:
+                # a fresh model object each round: nothing a theory keeps for its model
+                # (the sidebands' damping rates) carries over from the round before
+                m = m.with_params()
                 t0 = time.process_time()
                 th = theories(m, k, a, is_lossy, N)
                 t1 = time.process_time()

@@ -81,9 +81,14 @@ class Collocation:
                 return []
             return [np.real(np.dot(opt_t, X.reshape(d, -1)).reshape((n_opt,) + X.shape[1:]))]
 
+        # Newton asks the Jacobian at the x whose residual it just computed: the
+        # coefficients and fields of that x are kept for it (the same values)
+        at = [None, None, None, None, None]
+
         def residual(x):
             omega, c = x[0], unpack(x)
             U0, Up, Um = np.real(c @ B0), np.real(c @ Bp), np.real(c @ Bm)
+            at[:] = [x.copy(), c, U0, Up, Um]
             code.cell_gradient_into(np.concatenate([U0, Up]), p, g_here)
             code.cell_gradient_into(np.concatenate([Um, U0]), p, g_back)
             R = m_col * omega**2 * np.real((c * m2) @ B0) + g_here[:d] + g_back[d:]
@@ -95,10 +100,14 @@ class Collocation:
             return out
 
         def jacobian(x):
-            omega, c = x[0], unpack(x)
-            U0 = np.real(c @ B0)
-            code.cell_hessian_into(np.concatenate([U0, np.real(c @ Bp)]), p, Hf)
-            code.cell_hessian_into(np.concatenate([np.real(c @ Bm), U0]), p, Hb)
+            omega = x[0]
+            if at[0] is not None and np.array_equal(at[0], x):
+                c, U0, Up, Um = at[1:]
+            else:
+                c = unpack(x)
+                U0, Up, Um = np.real(c @ B0), np.real(c @ Bp), np.real(c @ Bm)
+            code.cell_hessian_into(np.concatenate([U0, Up]), p, Hf)
+            code.cell_hessian_into(np.concatenate([Um, U0]), p, Hb)
             Ff, Fb = np.fft.fft(Hf, axis=-1) / M, np.fft.fft(Hb, axis=-1) / M
             Fs, Bs = Ff[..., sidx], Fb[..., sidx]                   # (2d, 2d, l, h)
             J = (Fs[:d, :d] + Bs[d:, d:]).transpose(2, 3, 0, 1) \

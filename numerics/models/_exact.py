@@ -607,9 +607,9 @@ def _hessian_harmonics(wave: TravellingWave, P: int):
     d = model.n_fields
     M, here, there, E = _hessian_bases(wave.harmonics, P, wave.k)
     c = wave.coefficients
-    # the wave's profile at xi and xi + k (``TravellingWave.profile``'s arithmetic)
-    x = np.concatenate([np.real(np.tensordot(c, here, axes=(1, 0))),
-                        np.real(np.tensordot(c, there, axes=(1, 0)))])
+    # the wave's profile at xi and xi + k (``TravellingWave.profile``'s arithmetic: its
+    # tensordot over the harmonics is this dot)
+    x = np.concatenate([np.real(np.dot(c, here)), np.real(np.dot(c, there))])
     Hs = np.empty((2 * d, 2 * d, M))
     model.code.cell_hessian_into(x, model.p, Hs)
     return np.einsum("abm,sm->sab", Hs, E) / M
