@@ -94,6 +94,9 @@ def _rates_at(model: Model, kappas: list) -> np.ndarray:
 
     from ._linear import damping_rates
 
+    if not all(math.isfinite(x) for x in kappas):  # nan is no key: asked as it is
+        return damping_rates(model, np.array(kappas, float)).reshape(len(kappas),
+                                                                     model.n_fields)
     last = _SIDE[0]
     known = last[1] if last is not None and last[0]() is model else {}
     missing = list(dict.fromkeys(x for x in kappas if x not in known))
