@@ -23,7 +23,7 @@ integrated in time per ring offset: amplification = max over q and t of
 exp(int_0^t (sigma(q, a(s)) - G_q) ds). The lower amplitudes' spectra are computed coarse
 to fine over the offsets (``_losses_sampling``). The four-wave theory the same way, per
 pair, its rates at the lower amplitudes in closed form (``_losses_fourwave``: the kernel
-is a polynomial in a^2).
+is a polynomial in a^2). The damping rates kept per wavenumber: ``_losses_rates``.
 
 The lossless limit (Gamma = 0): the carrier keeps its amplitude and a growing mode grows
 without end: amplification inf at time inf, observable where MI (``_unbounded``).
@@ -37,6 +37,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from energy import Model, ModelError
+
+from ._losses_rates import _carrier_damping, side_rates, sideband_damping
 
 #: amplification a theory calls observable (the runs' threshold)
 OBSERVABLE = 20.0
@@ -63,59 +65,6 @@ class Amplified:
         return {"carrier_damping": self.carrier_damping, "amplification": self.amplification,
                 "amplification_time": self.amplification_time,
                 "observable": self.observable}
-
-
-def sideband_damping(model: Model, k: float, q, branch: int) -> np.ndarray:
-    """G_q: the mean amplitude decay rate of the sidebands k + q and k - q on the branch."""
-    up, down = side_rates(model, k, q)
-    return 0.5 * (up[:, branch] + down[:, branch])
-
-
-# (weak reference to the model, {kappa: Gamma_b(kappa) row}): the rates a point's theories
-# asked, one tuple (read and replaced whole, safe across threads): the NLS's, the
-# four-wave's and the exact theory's offsets each computed once, in one call per new set
-_SIDE = [None]
-#: the most rates kept for one model
-SIDE_KEPT = 4096
-
-
-def side_rates(model: Model, k: float, q) -> tuple[np.ndarray, np.ndarray]:
-    """(Gamma_b(k + q), Gamma_b(k - q)), each (len(q), d): one ``damping_rates`` call for
-    the wavenumbers not asked before, the carrier's k among them (a row depends on its
-    wavenumber alone: the same numbers as one call for all)."""
-    q = np.atleast_1d(np.asarray(q, float))
-    both = _rates_at(model, [float(k)] + np.concatenate([k + q, k - q]).tolist())[1:]
-    return both[:q.size], both[q.size:]
-
-
-def _rates_at(model: Model, kappas: list) -> np.ndarray:
-    """``damping_rates(model, kappas)``, shape (len(kappas), d), from the rates kept."""
-    import weakref
-
-    from ._linear import damping_rates
-
-    if not all(math.isfinite(x) for x in kappas):  # nan is no key: asked as it is
-        return damping_rates(model, np.array(kappas, float)).reshape(len(kappas),
-                                                                     model.n_fields)
-    last = _SIDE[0]
-    known = last[1] if last is not None and last[0]() is model else {}
-    missing = list(dict.fromkeys(x for x in kappas if x not in known))
-    if missing:
-        rows = damping_rates(model, np.array(missing))
-        known = dict(known) if len(known) + len(missing) <= SIDE_KEPT else {}
-        known.update(zip(missing, rows))
-        _SIDE[0] = (weakref.ref(model), known)
-    return np.array([known[x] for x in kappas], float).reshape(len(kappas), model.n_fields)
-
-
-def _carrier_damping(model: Model, k: float, branch) -> float:
-    """``carrier_damping(model, k, branch)`` (Gamma of the carrier's branch) from the
-    rates kept: a point's theories ask it after their sidebands' rates, which hold it."""
-    from ._linear import branch_index
-
-    if not model.lossy:
-        return 0.0
-    return float(_rates_at(model, [float(k)])[0][branch_index(model, k, branch)])
 
 
 def integrate_pairs(P, Q, psi0, Gamma, G, q, t_end, steps=4000, carrier_decays=True):

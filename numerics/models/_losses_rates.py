@@ -1,0 +1,67 @@
+"""The sidebands' and the carrier's damping rates of a damped point (issue 42), kept per
+wavenumber: a point's theories (the damped NLS, the four-wave and the exact theory along
+the decaying carrier) ask the rates at their offsets k +- q and at the carrier's k; each
+wavenumber's rates are computed once, in one ``damping_rates`` call per new set (a row
+depends on its wavenumber alone: the same numbers as one call over all of them).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from energy import Model
+
+
+def sideband_damping(model: Model, k: float, q, branch: int) -> np.ndarray:
+    """G_q: the mean amplitude decay rate of the sidebands k + q and k - q on the branch."""
+    up, down = side_rates(model, k, q)
+    return 0.5 * (up[:, branch] + down[:, branch])
+
+
+# (weak reference to the model, {kappa: Gamma_b(kappa) row}): the rates a point's theories
+# asked, one tuple (read and replaced whole, safe across threads): the NLS's, the
+# four-wave's and the exact theory's offsets each computed once, in one call per new set
+_SIDE = [None]
+#: the most rates kept for one model
+SIDE_KEPT = 4096
+
+
+def side_rates(model: Model, k: float, q) -> tuple[np.ndarray, np.ndarray]:
+    """(Gamma_b(k + q), Gamma_b(k - q)), each (len(q), d): one ``damping_rates`` call for
+    the wavenumbers not asked before, the carrier's k among them (a row depends on its
+    wavenumber alone: the same numbers as one call for all)."""
+    q = np.atleast_1d(np.asarray(q, float))
+    both = _rates_at(model, [float(k)] + np.concatenate([k + q, k - q]).tolist())[1:]
+    return both[:q.size], both[q.size:]
+
+
+def _rates_at(model: Model, kappas: list) -> np.ndarray:
+    """``damping_rates(model, kappas)``, shape (len(kappas), d), from the rates kept."""
+    import weakref
+
+    from ._linear import damping_rates
+
+    if not all(math.isfinite(x) for x in kappas):  # nan is no key: asked as it is
+        return damping_rates(model, np.array(kappas, float)).reshape(len(kappas),
+                                                                     model.n_fields)
+    last = _SIDE[0]
+    known = last[1] if last is not None and last[0]() is model else {}
+    missing = list(dict.fromkeys(x for x in kappas if x not in known))
+    if missing:
+        rows = damping_rates(model, np.array(missing))
+        known = dict(known) if len(known) + len(missing) <= SIDE_KEPT else {}
+        known.update(zip(missing, rows))
+        _SIDE[0] = (weakref.ref(model), known)
+    return np.array([known[x] for x in kappas], float).reshape(len(kappas), model.n_fields)
+
+
+def _carrier_damping(model: Model, k: float, branch) -> float:
+    """``carrier_damping(model, k, branch)`` (Gamma of the carrier's branch) from the
+    rates kept: a point's theories ask it after their sidebands' rates, which hold it."""
+    from ._linear import branch_index
+
+    if not model.lossy:
+        return 0.0
+    return float(_rates_at(model, [float(k)])[0][branch_index(model, k, branch)])
