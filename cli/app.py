@@ -233,7 +233,9 @@ def _map_parser(sub, model_mode=False):
                    help="seconds to reach --scheduler and see it answer as a Dask scheduler")
     p.add_argument("--theory-only", action="store_true",
                    help="the theories' verdicts only: no simulation")
-    p.add_argument("--block", type=int, default=4, help="cells per task")
+    p.add_argument("--block", type=int, default=4,
+                   help="cells per task (with --model: default 4 for a simulated map, a row "
+                        "up to 64 cells for --theory-only, a store's own when resuming)")
     p.add_argument("--device", choices=("cpu", "gpu", "auto"), default="cpu",
                    help="where the cells' simulations run: cpu (a Dask cluster, default), "
                         "gpu (this machine's CUDA GPU, batches of cells in one launch; needs "

@@ -99,3 +99,21 @@ def test_the_parameters_refuse_an_ambiguous_amplitude():
         ModelMapParameters.from_model("fput", ("amplitude", [0.0, 0.2]), ("k", [1.0]), None)
     with pytest.raises(ValueError, match="give the carrier's amplitude"):
         ModelMapParameters.from_model("fput", ("beta", [1.0]), ("k", [1.0]), None)
+
+
+def test_a_theory_map_takes_a_row_per_task_and_a_resumed_map_its_stores_block(tmp_path):
+    """--block's default: a theory-only map a row per task (up to 64 cells; its cells are
+    cheap, the client's writes per block are not), a simulated one 4, and a map resumed in
+    a folder whose store has another block keeps the store's (its chunks)."""
+    import zarr
+
+    out = tmp_path / "m"
+    base = ["map", "--model", "fput", "--param", "beta=0.5,1.0", "--k", "0.5:3.0:6",
+            "--amplitude", "0.1", "--theory-only", "--workers", "1", "--out", str(out)]
+    assert cli(base) == 0
+    assert zarr.open_group(str(out / "map.zarr"), mode="r").attrs["block"] == 6
+    other = tmp_path / "b"
+    argv = [a if a != str(out) else str(other) for a in base]
+    assert cli(argv + ["--block", "2"]) == 0
+    assert cli(argv) == 0  # the same map again: resumed (nothing to do), not refused
+    assert zarr.open_group(str(other / "map.zarr"), mode="r").attrs["block"] == 2
