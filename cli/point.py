@@ -254,7 +254,8 @@ def _table(rows, units=None) -> str:
             "half-gain edge q - k")
     cells = [head] + [(r[0], r[1], f"{r[2]:.4g}" if math.isfinite(r[2]) else "-",
                        f"{1 / r[2]:.4g}" if math.isfinite(r[2]) and r[2] > 0 else "-",
-                       f"{r[3]:.4g}", f"{r[4]:.4g}") for r in rows]
+                       *(f"{v:.4g}" if math.isfinite(v) else "-" for v in r[3:5]))
+             for r in rows]
     widths = [max(len(c[i]) for c in cells) for i in range(len(head))]
     lines = ["  ".join(c.ljust(w) for c, w in zip(row, widths)) for row in cells]
     lines.insert(1, "  ".join("-" * w for w in widths))

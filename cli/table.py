@@ -3,6 +3,8 @@ generated module only, no SymPy work)."""
 
 from __future__ import annotations
 
+import math
+
 from common import paper
 from numerics import Material, nls_summary
 
@@ -28,7 +30,9 @@ def format_table(A0: float = paper.A0) -> str:
              f"{paper.K_S}, A0 = {A0}; K in NLS units, sideband offset eps*K)", ""]
     table = [list(COLUMNS)]
     for r in rows(A0):
-        table.append([r[c] if isinstance(r[c], str) else f"{r[c]:.5g}" for c in COLUMNS])
+        # "-" where a value does not exist (K_c, K_m of a stable point), as `coefficients`
+        table.append([r[c] if isinstance(r[c], str) else
+                      f"{r[c]:.5g}" if math.isfinite(r[c]) else "-" for c in COLUMNS])
     widths = [max(len(row[i]) for row in table) for i in range(len(COLUMNS))]
     for j, row in enumerate(table):
         lines.append("  ".join(cell.rjust(w) for cell, w in zip(row, widths)))
