@@ -461,6 +461,27 @@ def _offset(Kt, Om, lvec, cidx, ridx, lo, hi, floor, om, out_lam, out_vec):
 
 
 @njit(**_KW)
+def _pencil_at(Hh, sq, k, P, q, ed, eq, K):
+    """K(q) of the scaled pencil into ``K`` (``_exact``'s dense pencil, scaled by
+    M^{-1/2}; ``eq`` gets the copies' phases e^{i (q + l k)}): the spectrum's per-offset
+    blocks and the strong-coupling path's pencils."""
+    d = sq.size
+    nl = 2 * P + 1
+    for li in range(nl):
+        eq[li] = np.exp(1j * (q + (li - P) * k))
+    for li in range(nl):
+        el = np.conj(eq[li])
+        for hi_ in range(nl):
+            s = li - hi_ + 2 * P
+            eh = eq[hi_]
+            for a in range(d):
+                for b in range(d):
+                    val = (Hh[s, a, b] + Hh[s, a, d + b] * eh + Hh[s, d + a, b] * el
+                           + Hh[s, d + a, d + b] * ed[s])
+                    K[li * d + a, hi_ * d + b] = val * sq[a] * sq[b]
+
+
+@njit(**_KW)
 def sideband_modes(Hh, masses, k, omega, P, offsets, floor, max_modes, max_cluster):
     """For each offset: the growing eigenvalues of every cluster that can hold a mode
     centred at l = -1, 0, 1 (module docstring), with their eigenvectors in the harmonics'
@@ -503,19 +524,8 @@ def sideband_modes(Hh, masses, k, omega, P, offsets, floor, max_modes, max_clust
     Kt = np.empty((n, n), np.complex128)
     for iq in range(Q):
         q = offsets[iq]
-        for li in range(nl):
-            eq[li] = np.exp(1j * (q + (li - P) * k))
         # L(q), scaled: block (l, h) = A + B e^{i th_h} + C e^{-i th_l} + D e^{-i (l-h) k}
-        for li in range(nl):
-            el = np.conj(eq[li])
-            for hi_ in range(nl):
-                s = li - hi_ + 2 * P
-                eh = eq[hi_]
-                for a in range(d):
-                    for b in range(d):
-                        val = (Hh[s, a, b] + Hh[s, a, d + b] * eh + Hh[s, d + a, b] * el
-                               + Hh[s, d + a, d + b] * ed[s])
-                        K[li * d + a, hi_ * d + b] = val * sq[a] * sq[b]
+        _pencil_at(Hh, sq, k, P, q, ed, eq, K)
         if d == 1:  # the diagonal "blocks" are numbers: no rotation
             for i in range(n):
                 w2[i] = K[i, i].real

@@ -49,7 +49,17 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from ._sidebands import STEPS, TOL, _fold, _lu, _lu_solve, _newton, _schur, _small_pencil
+from ._sidebands import (
+    STEPS,
+    TOL,
+    _fold,
+    _lu,
+    _lu_solve,
+    _newton,
+    _pencil_at,
+    _schur,
+    _small_pencil,
+)
 
 _KW = dict(cache=True, nogil=True, error_model="numpy", boundscheck=False)
 
@@ -155,26 +165,6 @@ def _refine(K, Om, lam, v, scale):
         if abs(step) <= TOL * (abs(lam) + scale):
             return lam, True
     return lam, False
-
-
-@njit(**_KW)
-def _pencil_at(Hh, sq, k, P, q, ed, eq, K):
-    """K(q) of the scaled pencil into ``K`` (``_exact``'s dense pencil, scaled by
-    M^{-1/2})."""
-    d = sq.size
-    nl = 2 * P + 1
-    for li in range(nl):
-        eq[li] = np.exp(1j * (q + (li - P) * k))
-    for li in range(nl):
-        el = np.conj(eq[li])
-        for hi_ in range(nl):
-            s = li - hi_ + 2 * P
-            eh = eq[hi_]
-            for a in range(d):
-                for b in range(d):
-                    val = (Hh[s, a, b] + Hh[s, a, d + b] * eh + Hh[s, d + a, b] * el
-                           + Hh[s, d + a, d + b] * ed[s])
-                    K[li * d + a, hi_ * d + b] = val * sq[a] * sq[b]
 
 
 @njit(**_KW)
