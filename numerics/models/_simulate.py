@@ -29,7 +29,15 @@ from energy import Model, ModelError
 # from here (the package's __init__, _reach)
 from ._compiled import _kernels, compiled_force, lattice_energy, lattice_force  # noqa: F401
 from ._damping import damping_flow, rayleigh
-from ._growth import Amplification, Growth, _sideband_modes, measure_amplification, measure_growth
+from ._growth import (
+    SATURATION,
+    Amplification,
+    Growth,
+    _lower_keep,
+    _sideband_modes,
+    measure_amplification,
+    measure_growth,
+)
 
 #: noise relative to the amplitude: 16 e-foldings fit below SATURATION
 NOISE = 1e-8
@@ -160,6 +168,16 @@ class ModelRun:
         return measure_growth(self)
 
 
+def saturation_time(rate: float, noise: float = NOISE) -> float:
+    """About when a run with ``until_saturated`` stops: its fastest mode, ``rate`` (1/time),
+    grown from the noise (``noise`` of the amplitude) to ``SATURATION`` of the amplitude,
+    ln(SATURATION / noise) / rate; inf where nothing grows (the run goes to T). For a
+    map's estimate: the noise spreads over the modes, so the stop comes a little later."""
+    if not (math.isfinite(rate) and rate > 0 and noise > 0):
+        return math.inf
+    return math.log(SATURATION / noise) / rate
+
+
 #: ``until_peak`` stops a run once A(t) has risen this much (sqrt(20), the runs' own
 #: boundary of "no growth") and fallen to half its top: a launch transient (a new user's
 #: damped chain rose 2.4x by t = 52, fell, and the sidebands peaked near t = 1700) is not
@@ -173,7 +191,8 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
                    seed: int = 0, records: int = 400, expected_gain: float | None = None,
                    wave=None, until_peak: bool = False,
                    noise_on: str = "all", initial=None, force: str = "auto",
-                   on_steps=None, energy: bool = True) -> ModelRun:
+                   on_steps=None, energy: bool = True,
+                   until_saturated: bool = False) -> ModelRun:
     """Run the ring of ``model`` from a plane wave at ``k`` (snapped to the ring) with
     first harmonic ``amplitude`` in its carrier field, plus seeded noise.
 
@@ -196,7 +215,11 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
     ``nsteps`` steps (a progress bar). ``energy=False``: the total energy is not recorded
     (``ModelRun.energy`` NaN, its drift NaN): a map cell's columns do not use it, and the
     model's energy kernel (compiled per process, no disk cache: ~1.3 s) is then never
-    compiled.
+    compiled. ``until_saturated``: stop at the record where the sidebands (every carrier
+    harmonic left out) reach ``SATURATION`` of the amplitude (``saturation_record``): the
+    linear stage has ended there, so ``growth()`` is that of the whole run, bit for bit (a
+    map cell's run: an MI cell stops there, a stable one runs T); ``t_end`` is then the
+    last record's time.
     """
     from common.signals import signal_number
     from numerics.lattice import (
@@ -309,6 +332,10 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
     record(0.0)
     done = 0
     peaked = None
+    saturated = False
+    if until_saturated:
+        lower = _lower_keep(N, int(round(k_ring * N / (2 * math.pi))), wave.harmonics)
+        level = SATURATION * float(amplitude)
     if until_peak:
         modes = _sideband_modes(N, int(round(k_ring * N / (2 * math.pi))), wave.harmonics)
         a0 = float(np.max(spec[0][modes]))
@@ -337,6 +364,10 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
                 record(done * dt)
                 if on_steps is not None:
                     on_steps(done - before, nsteps)
+                if until_saturated and math.sqrt(2 * float(np.sum(
+                        spec[-1][lower] ** 2))) > level:  # saturation_record's reading
+                    saturated = True
+                    break
                 if until_peak:
                     a = float(np.max(spec[-1][modes]))
                     top = max(top, a)
@@ -359,7 +390,7 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
             f"{t_end:g}; exc.run keeps {len(ts)} records (to t = {ts[-1]:g}), exc.state "
             "the state at exc.time", run=kept, state=(u.copy(), v.copy()), time=done * dt,
             remaining=(nsteps - done) * dt, dt=dt, signum=signum) from None
-    return run_so_far(float(ts[-1]) if until_peak else float(t_end))
+    return run_so_far(float(ts[-1]) if until_peak or saturated else float(t_end))
 
 
 @dataclass(frozen=True)
