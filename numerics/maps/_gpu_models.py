@@ -345,7 +345,7 @@ def _wave_of(params, values: dict, k: float, peak_gain: float, amplitude: float)
 def model_theories(params, i: int, js: list) -> tuple:
     """A model map's block (i, js) before its runs, on a CPU: (``model_block``'s theory
     columns, each cell's wave for its runs, ``_wave_of``)."""
-    from ._model_params import model_block
+    from ._model_columns import model_block
 
     block = model_block(params, i, js, simulate=False)
     specs = [_wave_of(params, *params.cell(i, j), row.get("peak_gain_exact", math.nan),
@@ -358,7 +358,7 @@ def model_rows_gpu(params, batch: list, log=print, theories: list | None = None)
     theories of every cell (``theories``, :func:`model_theories` of each block, or computed
     here), the runs of all of them in one GPU launch; returns [(i, js, rows)] with the
     store's codes."""
-    from ._model_params import SIMULATED_COLUMNS, VERDICT_CODES
+    from ._model_columns import SIMULATED_COLUMNS, VERDICT_CODES
 
     if theories is None:
         theories = [model_theories(params, i, js) for i, js in batch]
