@@ -38,7 +38,14 @@ import numpy as np
 
 from energy import Model, ModelError
 
-from ._losses_rates import _carrier_damping, side_rates, sideband_damping
+from ._losses_rates import (
+    NET_SLACK,
+    SidebandDamping,
+    _carrier_damping,
+    largest_net,
+    side_rates,
+    sideband_damping,
+)
 
 #: amplification a theory calls observable (the runs' threshold)
 OBSERVABLE = 20.0
@@ -208,16 +215,25 @@ def nls_amplification(model: Model, k: float, amplitude: float, branch=None, *,
         return Amplified(Gamma, 1.0, 0.0, math.nan, False, -G1)
     edge = math.sqrt(2 * Q / P) * psi0  # band edge of the carrier at t = 0
     q = np.linspace(edge / offsets, edge, offsets, endpoint=False)
-    G = sideband_damping(model, c.k, q, c.branch)
+    from ._losses_sampling import coarse_columns, nls_first_max
+
+    # the sidebands' rates where the integration and the net rate at t = 0 need them
+    # (``SidebandDamping``): the coarse offsets first, their call holding the carrier's
+    G = SidebandDamping(model, c.k, q, c.branch)
+    coarse = coarse_columns(np.arange(q.size), NLS_STRIDE)
+    G[coarse]
     Gamma = max(_carrier_damping(model, c.k, c.branch), 0.0) + 0.0  # -0.0 at zero damping
     rate0 = abs(P) * q * np.sqrt(np.maximum(q**2 * 0 + (2 * Q / P) * psi0**2 - q**2, 0))
-    net0 = float(np.max(rate0 - G))
+    # where the net rate at t = 0 may be the largest (``largest_net``), in one call: the
+    # refined offsets near the amplification's peak mostly among them
+    G[np.flatnonzero(rate0 >= np.max(rate0[coarse] - G[coarse])
+                     - NET_SLACK * float(np.max(rate0)))]
     if Gamma <= 0:  # the lossless limit: a constant carrier, growth never stops
-        return _unbounded(Gamma, net0, float(q[int(np.argmax(rate0 - G))]))
+        net = rate0 - G.all()
+        return _unbounded(Gamma, float(np.max(net)), float(q[int(np.argmax(net))]))
     t_end = _horizon(float(np.max(rate0)), Gamma)
-    from ._losses_sampling import nls_first_max
-
     i, j, best = nls_first_max(P, Q, psi0, Gamma, G, q, t_end, steps)
+    net0 = largest_net(rate0, G)
     t = np.linspace(0.0, t_end, steps + 1)
     return Amplified(Gamma, best, float(t[i]), float(q[j]), best >= OBSERVABLE, net0)
 
@@ -430,7 +446,7 @@ def exact_amplification(model: Model, k: float, amplitude: float, branch=None, *
     c = first.wave.carrier
     q = np.asarray(first.offsets, float)
     gain0 = np.asarray(first.gain, float)
-    G = sideband_damping(model, c.k, q, c.branch) if model.lossy else np.zeros(q.size)
+    G = _growing_first(model, c.k, q, c.branch, gain0)
     Gamma = max(_carrier_damping(model, c.k, c.branch), 0.0) + 0.0  # -0.0 at zero damping
     net0 = gain0 - G
     top = float(np.max(net0)) if q.size else 0.0
@@ -446,6 +462,22 @@ def exact_amplification(model: Model, k: float, amplitude: float, branch=None, *
     amp, t, j, _ = exact_along_decay(first, model, c, q[live], live, amplitude,
                                      gain0[live], G[live], Gamma, ratio, most)
     return Amplified(Gamma, amp, t, float(qk[j]), amp >= OBSERVABLE, top)
+
+
+def _growing_first(model, k, q, branch, gain0):
+    """G_q at the offsets q (zeros without [dissipation]), computed first where the gain
+    ``gain0`` is > 0: where one of those grows net of its damping, the largest net rate
+    and every offset that grows are among them (the damping rates are >= 0:
+    ``largest_net``), and the others' rates are not needed: inf (they never grow)."""
+    if not model.lossy:
+        return np.zeros(q.size)
+    G = SidebandDamping(model, k, q, branch)
+    grow = np.flatnonzero(gain0 > 0)
+    if grow.size and np.max(gain0[grow] - G[grow]) > 0:
+        out = np.full(q.size, np.inf)
+        out[grow] = G.values[grow]
+        return out
+    return G.all()
 
 
 def four_wave_amplification(model: Model, k: float, amplitude: float, branch=None, *,
@@ -466,8 +498,16 @@ def four_wave_amplification(model: Model, k: float, amplitude: float, branch=Non
     q = np.asarray(first.offsets, float)
     rates0 = np.nan_to_num(np.asarray(first.rates, float), nan=0.0)  # (n, m)
     if model.lossy:  # the sidebands' rates first: their call holds the carrier's
-        up, down = side_rates(model, first.k, q)
-        G = np.array([0.5 * (up[:, b1] + down[:, b2]) for b1, b2 in first.pairs]).T
+        G = np.full(rates0.shape, np.inf)  # a row that grows nowhere: no net growth
+        rows = np.flatnonzero(np.any(rates0 > 0, axis=1))
+        if not rows.size:
+            rows = np.arange(q.size)
+        while True:
+            up, down = side_rates(model, first.k, q[rows])
+            G[rows] = np.array([0.5 * (up[:, b1] + down[:, b2]) for b1, b2 in first.pairs]).T
+            if rows.size == q.size or np.max(rates0 - G) > 0:
+                break  # the largest net rate is a growing row's (``_growing_first``)
+            rows = np.arange(q.size)
     else:
         G = np.zeros_like(rates0)
     Gamma = max(_carrier_damping(model, first.k, first.branch), 0.0) + 0.0  # -0.0 at zero damping
