@@ -446,7 +446,7 @@ def exact_amplification(model: Model, k: float, amplitude: float, branch=None, *
     c = first.wave.carrier
     q = np.asarray(first.offsets, float)
     gain0 = np.asarray(first.gain, float)
-    G = _growing_first(model, c.k, q, c.branch, gain0)
+    G = sideband_damping(model, c.k, q, c.branch) if model.lossy else np.zeros(q.size)
     Gamma = max(_carrier_damping(model, c.k, c.branch), 0.0) + 0.0  # -0.0 at zero damping
     net0 = gain0 - G
     top = float(np.max(net0)) if q.size else 0.0
@@ -462,22 +462,6 @@ def exact_amplification(model: Model, k: float, amplitude: float, branch=None, *
     amp, t, j, _ = exact_along_decay(first, model, c, q[live], live, amplitude,
                                      gain0[live], G[live], Gamma, ratio, most)
     return Amplified(Gamma, amp, t, float(qk[j]), amp >= OBSERVABLE, top)
-
-
-def _growing_first(model, k, q, branch, gain0):
-    """G_q at the offsets q (zeros without [dissipation]), computed first where the gain
-    ``gain0`` is > 0: where one of those grows net of its damping, the largest net rate
-    and every offset that grows are among them (the damping rates are >= 0:
-    ``largest_net``), and the others' rates are not needed: inf (they never grow)."""
-    if not model.lossy:
-        return np.zeros(q.size)
-    G = SidebandDamping(model, k, q, branch)
-    grow = np.flatnonzero(gain0 > 0)
-    if grow.size and np.max(gain0[grow] - G[grow]) > 0:
-        out = np.full(q.size, np.inf)
-        out[grow] = G.values[grow]
-        return out
-    return G.all()
 
 
 def four_wave_amplification(model: Model, k: float, amplitude: float, branch=None, *,
@@ -498,16 +482,8 @@ def four_wave_amplification(model: Model, k: float, amplitude: float, branch=Non
     q = np.asarray(first.offsets, float)
     rates0 = np.nan_to_num(np.asarray(first.rates, float), nan=0.0)  # (n, m)
     if model.lossy:  # the sidebands' rates first: their call holds the carrier's
-        G = np.full(rates0.shape, np.inf)  # a row that grows nowhere: no net growth
-        rows = np.flatnonzero(np.any(rates0 > 0, axis=1))
-        if not rows.size:
-            rows = np.arange(q.size)
-        while True:
-            up, down = side_rates(model, first.k, q[rows])
-            G[rows] = np.array([0.5 * (up[:, b1] + down[:, b2]) for b1, b2 in first.pairs]).T
-            if rows.size == q.size or np.max(rates0 - G) > 0:
-                break  # the largest net rate is a growing row's (``_growing_first``)
-            rows = np.arange(q.size)
+        up, down = side_rates(model, first.k, q)
+        G = np.array([0.5 * (up[:, b1] + down[:, b2]) for b1, b2 in first.pairs]).T
     else:
         G = np.zeros_like(rates0)
     Gamma = max(_carrier_damping(model, first.k, first.branch), 0.0) + 0.0  # -0.0 at zero damping
