@@ -38,14 +38,7 @@ import numpy as np
 
 from energy import Model, ModelError
 
-from ._losses_rates import (
-    NET_SLACK,
-    SidebandDamping,
-    _carrier_damping,
-    largest_net,
-    side_rates,
-    sideband_damping,
-)
+from ._losses_rates import _carrier_damping, side_rates, sideband_damping
 
 #: amplification a theory calls observable (the runs' threshold)
 OBSERVABLE = 20.0
@@ -215,25 +208,16 @@ def nls_amplification(model: Model, k: float, amplitude: float, branch=None, *,
         return Amplified(Gamma, 1.0, 0.0, math.nan, False, -G1)
     edge = math.sqrt(2 * Q / P) * psi0  # band edge of the carrier at t = 0
     q = np.linspace(edge / offsets, edge, offsets, endpoint=False)
-    from ._losses_sampling import coarse_columns, nls_first_max
-
-    # the sidebands' rates where the integration and the net rate at t = 0 need them
-    # (``SidebandDamping``): the coarse offsets first, their call holding the carrier's
-    G = SidebandDamping(model, c.k, q, c.branch)
-    coarse = coarse_columns(np.arange(q.size), NLS_STRIDE)
-    G[coarse]
+    G = sideband_damping(model, c.k, q, c.branch)
     Gamma = max(_carrier_damping(model, c.k, c.branch), 0.0) + 0.0  # -0.0 at zero damping
     rate0 = abs(P) * q * np.sqrt(np.maximum(q**2 * 0 + (2 * Q / P) * psi0**2 - q**2, 0))
-    # where the net rate at t = 0 may be the largest (``largest_net``), in one call: the
-    # refined offsets near the amplification's peak mostly among them
-    G[np.flatnonzero(rate0 >= np.max(rate0[coarse] - G[coarse])
-                     - NET_SLACK * float(np.max(rate0)))]
+    net0 = float(np.max(rate0 - G))
     if Gamma <= 0:  # the lossless limit: a constant carrier, growth never stops
-        net = rate0 - G.all()
-        return _unbounded(Gamma, float(np.max(net)), float(q[int(np.argmax(net))]))
+        return _unbounded(Gamma, net0, float(q[int(np.argmax(rate0 - G))]))
     t_end = _horizon(float(np.max(rate0)), Gamma)
+    from ._losses_sampling import nls_first_max
+
     i, j, best = nls_first_max(P, Q, psi0, Gamma, G, q, t_end, steps)
-    net0 = largest_net(rate0, G)
     t = np.linspace(0.0, t_end, steps + 1)
     return Amplified(Gamma, best, float(t[i]), float(q[j]), best >= OBSERVABLE, net0)
 
