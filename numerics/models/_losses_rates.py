@@ -53,12 +53,12 @@ def _rates_at(model: Model, kappas) -> np.ndarray:
     hit = keys[at] == kap if keys.size else np.zeros(kap.size, bool)
     if not hit.all():
         missing = np.unique(kap[~hit])
-        new = damping_rates(model, missing)
-        if keys.size + missing.size > SIDE_KEPT:
-            keys, rows = missing, new
+        if keys.size + missing.size > SIDE_KEPT:  # afresh: this call's wavenumbers alone
+            keys = np.unique(kap)
+            rows = damping_rates(model, keys)
         else:
             keys = np.concatenate([keys, missing])
-            rows = np.concatenate([rows, new])
+            rows = np.concatenate([rows, damping_rates(model, missing)])
             order = np.argsort(keys, kind="stable")
             keys, rows = keys[order], rows[order]
         _SIDE[0] = (weakref.ref(model), keys, rows)
