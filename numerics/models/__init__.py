@@ -39,7 +39,14 @@ from ._exact import (
                      ring_offsets,
                      travelling_wave,
 )
-from ._extras import ExtraTheory, extra_theories, register_extra_theory
+from ._extras import (
+                     ExtraStart,
+                     ExtraTheory,
+                     extra_starts,
+                     extra_theories,
+                     register_extra_start,
+                     register_extra_theory,
+)
 from ._forces import FORCES, energy_hash, run_force
 from ._fourwave import FourWave, four_wave, pair_rates
 from ._growth import saturation_record
@@ -100,4 +107,4 @@ __all__ = ["Carrier", "carrier", "branches", "branch_index", "check_rest_stable"
            "four_wave_amplification", "exact_amplification", "simulate_soliton",
            "ModelSolitonRun", "RingSoliton", "ring_soliton", "soliton_report", "lossy_runs",
            "FORCES", "energy_hash", "run_force", "ExtraTheory", "extra_theories",
-           "register_extra_theory"]
+           "register_extra_theory", "ExtraStart", "extra_starts", "register_extra_start"]
