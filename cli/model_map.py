@@ -56,10 +56,9 @@ def run_map(args) -> int:
         raise ValueError("--k: give the carrier wavenumber (one value, or a SPEC to sweep)")
     simulated = not getattr(args, "theory_only", False)
     given = getattr(args, "given", ())
-    unused = sorted(set(given) & {"--yes", "--start"})
-    if unused:
-        raise ValueError(f"{', '.join(unused)}: a --model map's cells start from the exact "
-                         "wave (they act on the paper chain's maps); drop them")
+    if "--yes" in given:
+        raise ValueError("--yes: it acts on the paper chain's maps; drop it")
+    start = _start_of(args, model, simulated) if "--start" in given else "exact"
     if not simulated and ("--seeds" in given or "--t-end" in given):
         raise ValueError("--seeds and --t-end act on a simulated model map: drop them, or "
                          "--theory-only")
@@ -113,13 +112,17 @@ def run_map(args) -> int:
         branch=None if args.branch is None else str(args.branch), exact=bool(args.exact),
         theory_only=not simulated, N=args.N, seeds=seeds, t_end=t_end,
         block=args.block if "--block" in given else _default_block(args.out, simulated, x),
-        time_unit_s=units.seconds_per_T, length_unit_m=units.metres_per_site)
+        time_unit_s=units.seconds_per_T, length_unit_m=units.metres_per_site, start=start)
     check_output(args.out)
     log = (lambda *a: print(*a, file=sys.stderr)) if args.json else print
     from numerics.maps import resolve_device
 
     # before anything is written: a GPU asked where there is none is refused in one line
-    device = resolve_device(getattr(args, "device", "cpu"), params.theory_only, log,
+    asked = getattr(args, "device", "cpu")
+    if start != "exact" and asked == "gpu":
+        raise ValueError(f"--device gpu: the GPU launches the exact wave; a --start {start} "
+                         "map runs on the CPU (--device cpu)")
+    device = resolve_device("cpu" if start != "exact" else asked, params.theory_only, log,
                             args.scheduler)
     n_workers = args.workers or (1 if args.scheduler else None)
     from numerics.maps import local_cores
@@ -132,7 +135,8 @@ def run_map(args) -> int:
         + (f", amplitude {amp:g}" if amp is not None else "")
         + f"; {'theories ' + ', '.join(params.theory_columns())}"
         + (f" and {seeds} run(s) per cell (N = {args.N}, T = "
-           + (f"{t_end:g}" if t_end is not None else "from each cell's exact rate"
+           + (f"{t_end:g}" if t_end is not None else "from each cell's "
+              + ("exact" if start == "exact" else f"{start}-start theory's") + " rate"
               + (" and its peak time" if model.lossy else ""))
            + ("; with losses: noise on the carrier field, until A(t) halves, T a cap)"
               if model.lossy else ")")
@@ -140,6 +144,13 @@ def run_map(args) -> int:
         + f" on {n_workers or local_cores()} worker(s)")
     log(f"units: {units.describe()} (the store's numbers in lattice units, the factors in "
         "its attributes time_unit_s and length_unit_m)")
+    if start != "exact":
+        from numerics.models import extra_starts
+
+        launched = extra_starts(model)[start]
+        log(f"start: {launched.describe}, with its own noise"
+            + (", the runs' T from its theory's rate" if t_end is None else "")
+            + f"; its theory: {launched.column} (Hill's method about that state)")
     estimate = _estimate(params, n_workers or local_cores(), args.scheduler, log)
     out = prepare_output(args.out, cache=False)
     path = out / "map.zarr"
@@ -222,6 +233,27 @@ def _default_block(out, simulated: bool, cols) -> int:
     if isinstance(stored, int) and stored >= 1:
         return stored
     return 4 if simulated else min(len(cols[1]), THEORY_BLOCK)
+
+
+def _start_of(args, model, simulated: bool) -> str:
+    """--start of a model map: travelling (the exact wave, "exact"), or a start the model
+    registers (``numerics.models.extra_starts``: paper, eq. IC, for the paper chain's
+    models), for a simulated map or --exact (its theory and runs use the ring)."""
+    from numerics.models import extra_starts
+
+    start = args.start
+    if start in (None, "travelling"):
+        return "exact"
+    if start not in extra_starts(model):
+        raise ValueError(f"--start {start}: a map of model {model.name} starts from the exact "
+                         "wave (--start travelling, the default)" + (
+                             "; the paper's start (eq. IC) belongs to the paper chain's "
+                             "energy, lossless (flexmm, flexmm-rotation)"
+                             if start == "paper" else ""))
+    if not (simulated or args.exact):
+        raise ValueError(f"--start {start}: its theory and runs use the ring: a simulated "
+                         "map, or --theory-only --exact")
+    return start
 
 
 def _estimate(params, workers: int, scheduler, log):
@@ -343,6 +375,8 @@ def _plot_map(ds, path: Path, model):
                                           ("verdict_semidiscrete", "semi-discrete NLS"),
                                           ("verdict_fourwave", "four-wave"),
                                           ("verdict_exact", "exact lattice"),
+                                          ("verdict_paper_start",
+                                           "exact lattice, paper start (eq. IC)"),
                                           ("verdict_simulated", "simulated (MI: grew 20x)"))
               if v in ds]
     code = {**code, "no growth within T": 0, "undetermined": 2}
@@ -399,6 +433,6 @@ def _plot_map(ds, path: Path, model):
                 setter("log")
         ax.set_xlabel(xdim + (" (rad/site)" if xdim == "k" else ""))
         ax.set_ylabel(ydim + (" (rad/site)" if ydim == "k" else ""))
-        ax.set_title(label, fontsize=10)
+        ax.set_title(label + (" (x: observable)" if marked else ""), fontsize=10)
     fig.savefig(path)
     plt.close(fig)

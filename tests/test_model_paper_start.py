@@ -105,3 +105,51 @@ def test_the_paper_start_refused_in_one_line(argv, words, capsys):
     code = main(["point", *argv, "--start", "paper", "--N", "64"])
     err = capsys.readouterr().err
     assert code == 2 and words in err and len(err.strip().splitlines()) == 1, err
+
+
+def test_a_model_map_from_the_paper_start(tmp_path):
+    """``ModelMapParameters(start="paper")``: each cell's runs from eq. IC and its theory's
+    columns, equal to ``map_cells(start="paper")`` cell by cell (the same function on a
+    worker: to the bit); the store says its start, and a map of the exact wave's runs is
+    another map."""
+    from numerics.maps import ModelMapParameters, run_map
+    from numerics.models import map_cells
+
+    ks = [2 * np.pi * 8 / 64, 2 * np.pi * 13 / 64]
+    p = ModelMapParameters.from_model("flexmm", ("K_theta", [0.016]), ("k", ks), 0.03,
+                                      N=64, seeds=1, t_end=1500.0, start="paper")
+    assert "paper_start" in p.theory_columns()
+    ds = run_map(p, tmp_path / "a", workers=1, progress=False, log=lambda *a: None)
+    assert ds.attrs["start"] == "paper"
+    rows = map_cells(load_model("flexmm", K_theta=0.016), [({}, k) for k in ks], 0.03,
+                     exact=True, simulate=True, N=64, seeds=1, t_end=1500.0, start="paper")
+    codes = {"MI": 1, "stable": 0, "no growth within T": 0}
+    for j, row in enumerate(rows):
+        for name in ("peak_gain_paper_start", "peak_gain_simulated", "growth"):
+            assert float(ds[name].values[0, j]) == pytest.approx(row[name], rel=1e-12,
+                                                                 nan_ok=True), name
+        assert int(ds["verdict_paper_start"].values[0, j]) == codes.get(
+            row["verdict_paper_start"], -1)
+    assert rows[0]["verdict_paper_start"] == "MI" and rows[0]["verdict_simulated"] == "MI"
+    exact = ModelMapParameters.from_model("flexmm", ("K_theta", [0.016]), ("k", ks), 0.03,
+                                          N=64, seeds=1, t_end=1500.0)
+    with pytest.raises(ValueError, match="whose runs start from 'paper'"):
+        run_map(exact, tmp_path / "a", workers=1, progress=False, log=lambda *a: None)
+
+
+@pytest.mark.parametrize("argv,words", [
+    (["--model", "fput", "--param", "beta=1,2"], "starts from the exact wave"),
+    (["--model", "flexmm", "--param", "K_theta=0.01,0.02", "--theory-only"],
+     "use the ring"),
+    (["--model", "flexmm", "--param", "K_theta=0.01,0.02", "--device", "gpu"],
+     "the GPU launches the exact wave"),
+])
+def test_a_model_map_from_the_paper_start_refused_in_one_line(argv, words, tmp_path,
+                                                                capsys):
+    from cli.app import main
+
+    code = main(["map", *argv, "--k", "0.5,0.8", "--N", "64", "--amplitude", "0.03",
+                 "--start", "paper", "--out", str(tmp_path / "m")])
+    err = capsys.readouterr().err
+    assert code == 2 and words in err and len(err.strip().splitlines()) == 1, err
+    assert not (tmp_path / "m").exists()  # refused before anything was written

@@ -289,7 +289,8 @@ def probe_model_cell(params) -> ModelCellCost:
     def theories(values, k, amplitude):
         t0 = time.process_time()
         row = map_cells(params.lattice_model, [(values, k)], amplitude, params.branch_value,
-                        exact=params.ring, simulate=False, N=params.N)[0]
+                        exact=params.ring, simulate=False, N=params.N,
+                        start=getattr(params, "start", "exact"))[0]
         return time.process_time() - t0, row
 
     t0 = time.process_time()  # the NLS alone first: the imports a worker pays once
@@ -303,7 +304,9 @@ def probe_model_cell(params) -> ModelCellCost:
     theory = float(np.mean(times))
     run, t_end = 0.0, 0.0
     if not params.theory_only:
-        rate = row.get("peak_gain_exact", math.nan)
+        start = getattr(params, "start", "exact")  # the runs' T follows their start's theory
+        rate = row.get("peak_gain_exact" if start == "exact" else f"peak_gain_{start}_start",
+                       math.nan)
         t_end = float(params.t_end) if params.t_end is not None else run_length(rate).t_end
         from energy import ModelError
 

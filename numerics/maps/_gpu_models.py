@@ -28,9 +28,12 @@ import numpy as np
 
 
 def _default(name: str):
-    """``simulate_model``'s default of ``name`` (records, noise): one value on both devices."""
-    from numerics.models import simulate_model
+    """``simulate_model``'s default of ``name`` (records, noise: of its exact start, the
+    GPU's): one value on both devices."""
+    from numerics.models import NOISE, simulate_model
 
+    if name == "noise":  # simulate_model's None: its start's own, NOISE for the exact wave
+        return NOISE
     return inspect.signature(simulate_model).parameters[name].default
 
 
@@ -360,6 +363,9 @@ def model_rows_gpu(params, batch: list, log=print, theories: list | None = None)
     store's codes."""
     from ._model_columns import SIMULATED_COLUMNS, VERDICT_CODES
 
+    if params.start != "exact":
+        raise ValueError(f"the GPU launches the exact wave; a map whose runs start from "
+                         f"{params.start!r} runs on the CPU")
     if theories is None:
         theories = [model_theories(params, i, js) for i, js in batch]
     where = [(i, j) for i, js in batch for j in js]

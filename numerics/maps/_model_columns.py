@@ -52,6 +52,9 @@ VARIABLE_ATTRS = {
                         **_GAIN},
     "peak_gain_fourwave": {"long_name": "four-wave theory's fastest pair's rate on the ring",
                            **_GAIN},
+    "peak_gain_paper_start": {"long_name": "Hill's method about the state eq. IC launches "
+                                           "(the runs' start; the paper chain's models), "
+                                           "peak rate on the ring", **_GAIN},
     **{f"amplification_{t}": {
         "long_name": f"{t} theory's largest amplification of the sidebands along the "
                      "decaying carrier (inf: the carrier is not damped and a mode grows)",
@@ -98,7 +101,8 @@ def model_block(params: ModelMapParameters, i: int, js: list, simulate: bool = T
     for amplitude, ns in params.by_amplitude([(i, j) for j in js]):
         got = map_cells(params.lattice_model, [params.cell(i, js[n]) for n in ns], amplitude,
                         params.branch_value, exact=params.ring, simulate=simulate,
-                        N=params.N, seeds=params.seeds, t_end=params.t_end)
+                        N=params.N, seeds=params.seeds, t_end=params.t_end,
+                        start=params.start)
         for n, row in zip(ns, got):
             rows[n] = row
     flags = params.flag_columns()

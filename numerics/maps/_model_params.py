@@ -99,6 +99,9 @@ class ModelMapParameters:
     #: store's numbers stay in lattice units; these say how to convert them)
     time_unit_s: float | None = None
     length_unit_m: float | None = None
+    #: where the runs start: "exact" (the exact wave), or a start the model registers
+    #: (``numerics.models.extra_starts``: "paper", eq. IC, for the paper chain's energy)
+    start: str = "exact"
 
     def __post_init__(self):
         from ..lattice import checks
@@ -153,6 +156,16 @@ class ModelMapParameters:
         for unit in ("time_unit_s", "length_unit_m"):
             if getattr(self, unit) is not None:
                 object.__setattr__(self, unit, checks.positive(unit, getattr(self, unit)))
+        if self.start != "exact":
+            from numerics.models import extra_starts
+
+            theirs = extra_starts(self.lattice_model)
+            if self.start not in theirs:
+                raise ValueError(f"start must be one of {', '.join(('exact', *theirs))} for "
+                                 f"model {self.lattice_model.name}, got {self.start!r}")
+            if not self.ring:
+                raise ValueError(f"start {self.start!r}: its runs and its theory use the "
+                                 "ring: a simulated map, or exact=True")
 
     @classmethod
     def from_model(cls, model: str, rows: tuple, cols: tuple, amplitude: float,
@@ -254,6 +267,10 @@ class ModelMapParameters:
         from numerics.models import extra_theories
 
         own = ("semidiscrete", "exact", "fourwave") if self.ring else ("semidiscrete",)
+        if self.start != "exact":  # the theory of the state the runs start in
+            from numerics.models import extra_starts
+
+            own += (extra_starts(self.lattice_model)[self.start].column,)
         # what only this model has (the paper chain's continuum NLS: ``paper``)
         return own + tuple(dict.fromkeys(e.column for e in
                                          extra_theories(self.lattice_model)))
@@ -351,7 +368,7 @@ class ModelMapParameters:
         parameter, the amplitude, N, T, seeds, the method and step of the runs."""
         out = {n: v for n, v in asdict(self).items()
                if n not in ("rows", "cols", "parameters", "text", "k", "branch", "t_end",
-                            "time_unit_s", "length_unit_m")}
+                            "time_unit_s", "length_unit_m", "start")}
         out.update(model=self.lattice_model.name, model_file=self.text,
                    model_hash=self.lattice_model.lattice.content_hash,
                    axes=f"{self.rows[0]} {self.cols[0]}",
@@ -365,6 +382,8 @@ class ModelMapParameters:
                         "highest frequency, rounded so that the steps fill T",
                    growth_threshold=GROWTH_THRESHOLD, map_of="model",
                    theories=" ".join(self.theory_columns()))
+        if self.start != "exact":  # a store of the exact wave's runs keeps its identity
+            out["start"] = self.start
         if self.amplified():  # a lossy model's store only (a lossless store's identity kept)
             out["amplification"] = " ".join(self.amplified())
             if self.ring:  # the runs' columns (a theory-only --exact store has them empty)
@@ -403,6 +422,9 @@ class ModelMapParameters:
             return (f"a map of model {name!r} whose energy differs from this one's "
                     f"(content hash {str(attrs.get('model_hash'))[:12]} against "
                     f"{mine[:12]}: the model file changed)")
+        if attrs.get("start", "exact") != self.start:
+            return (f"a map of model {name!r} whose runs start from "
+                    f"{attrs.get('start', 'exact')!r}, not {self.start!r}")
         if attrs.get("theories") != " ".join(self.theory_columns()):
             return (f"a map of model {name!r} of other theories ({attrs.get('theories')} "
                     f"against {' '.join(self.theory_columns())}; a --theory-only map without "

@@ -72,6 +72,7 @@ from ._modes import classify_mode, ring_misses
 from ._nls import ModelNLS, ModelSoliton, acoustic_directions, nls
 from ._reach import amplitude_reach, energy_not_real, exact_gain_checked
 from ._simulate import (
+                     NOISE,
                      Growth,
                      ModelRun,
                      SeededRuns,
@@ -101,7 +102,7 @@ __all__ = ["Carrier", "carrier", "branches", "branch_index", "check_rest_stable"
            "travelling_wave", "hill_spectrum", "exact_gain", "exact_gain_checked",
            "energy_not_real", "amplitude_reach", "FourWave", "four_wave", "pair_rates",
            "classify_mode", "ring_misses", "ring_offsets", "simulate_model", "simulate_seeds",
-           "SeededRuns", "ModelRun", "Growth", "measure_growth", "saturation_record",
+           "SeededRuns", "ModelRun", "NOISE", "Growth", "measure_growth", "saturation_record",
            "saturation_time", "check_ring", "compiled_force",
            "lattice_force", "lattice_energy", "snap_ring", "Amplified", "nls_amplification",
            "four_wave_amplification", "exact_amplification", "simulate_soliton",

@@ -114,6 +114,11 @@ class ExtraStart:
     noise: float
     theory: Callable
 
+    @property
+    def column(self) -> str:
+        """Its theory's map variables: ``verdict_<column>``, ``peak_gain_<column>``."""
+        return f"{self.name}_start"
+
 
 _STARTS: list = []
 

@@ -210,14 +210,35 @@ def _simulated_rate(verdict) -> float:
 
 def _map_cell(model: Model, k: float, amplitude: float, branch=None, *, exact: bool = False,
               simulate: bool = False, N: int = 256, seeds: int = 1,
-              t_end: float | None = None) -> dict:
+              t_end: float | None = None, start: str = "exact") -> dict:
     from common.threads import one_blas_thread
 
     return one_blas_thread(_cell_columns)(model, k, amplitude, branch, exact=exact,
-                                          simulate=simulate, N=N, seeds=seeds, t_end=t_end)
+                                          simulate=simulate, N=N, seeds=seeds, t_end=t_end,
+                                          start=start)
 
 
-def _cell_columns(model, k, amplitude, branch, *, exact, simulate, N, seeds, t_end):
+def _start_columns(model, k, amplitude, N, start) -> tuple:
+    """A registered start's theory at the cell: ({verdict_<col>, peak_gain_<col>}, its
+    rate for the runs' T (0 where the theory is undefined: T's default), whether the start
+    has a state here (eq. IC has none where its frequency is not real: no run))."""
+    from ._extras import extra_starts
+
+    launched = extra_starts(model)[start]
+    col = launched.column
+    try:
+        launched.state(model, k, amplitude, N)
+    except ModelError:
+        return {f"verdict_{col}": "undefined", f"peak_gain_{col}": math.nan}, 0.0, False
+    th = launched.theory(model, k, amplitude, N)
+    gain = th["peak_gain"]
+    return ({f"verdict_{col}": th["verdict"],
+             f"peak_gain_{col}": math.nan if gain is None else float(gain)},
+            gain or 0.0, True)
+
+
+def _cell_columns(model, k, amplitude, branch, *, exact, simulate, N, seeds, t_end,
+                  start="exact"):
     from ._reach import exact_gain_checked
     from ._simulate import simulate_seeds, snap_ring
 
@@ -266,6 +287,11 @@ def _cell_columns(model, k, amplitude, branch, *, exact, simulate, N, seeds, t_e
     except ModelError:  # no travelling wave here: nothing to launch or measure from
         return row
     row.update(verdict_exact=spec.verdict, peak_gain_exact=spec.peak_gain)
+    start_gain, launch_ok = None, True
+    if start != "exact":  # the runs' own start (eq. IC) and its theory
+        cols, start_gain, launch_ok = _start_columns(model, row["k_simulated"], amplitude, N,
+                                                     start)
+        row.update(cols)
     peak_time = None
     if lossy:
         from ._losses import exact_amplification
@@ -286,8 +312,11 @@ def _cell_columns(model, k, amplitude, branch, *, exact, simulate, N, seeds, t_e
             # (compiled in every worker, no disk cache) would cost more than the cell;
             # until_saturated: a run stops where its linear stage has ended (the growth it
             # measures is the whole run's, bit for bit): an MI cell no longer runs all of T
+            if not launch_ok:  # eq. IC has no state here: nothing to run
+                return row
             sim = simulate_seeds(model, k, amplitude, spec, branch=branch, N=N, seeds=seeds,
-                                 t_end=t_end, energy=False, until_saturated=True)
+                                 t_end=t_end, energy=False, until_saturated=True,
+                                 start=start, gain=start_gain)
         growth = [run.growth() for run in sim.runs]
         top = max(growth, key=lambda g: g.factor if math.isfinite(g.factor) else -1.0)
         row.update(verdict_simulated=sim.verdict.word,
@@ -363,7 +392,7 @@ def _amplification(f) -> float:
 
 def map_cells(model: Model, cells, amplitude: float, branch=None, *, exact: bool = False,
               simulate: bool = False, N: int = 256, seeds: int = 1,
-              t_end: float | None = None) -> list:
+              t_end: float | None = None, start: str = "exact") -> list:
     """The columns of a block of map cells (what one task of ``numerics.maps.run_map``
     computes), on one BLAS thread.
 
@@ -380,6 +409,11 @@ def map_cells(model: Model, cells, amplitude: float, branch=None, *, exact: bool
     simulate : bool
         Also ``seeds`` runs of the ring from the exact wave (``simulate_seeds``; T is
         ``run_length`` of the exact rate unless ``t_end``); implies ``exact``.
+    start : str
+        Where the runs start: "exact" (the exact wave), or a start the model registers
+        (``extra_starts``: "paper", eq. IC, for the paper chain's energy); then, on the
+        ring, its theory's ``verdict_<start>_start`` and ``peak_gain_<start>_start``, and
+        the runs' T from that theory's rate.
 
     Returns
     -------
@@ -406,5 +440,5 @@ def map_cells(model: Model, cells, amplitude: float, branch=None, *, exact: bool
         ``observable_simulated`` (1.0 or 0.0) of the median seed.
     """
     return [_map_cell(model.with_params(**values), k, amplitude, branch, exact=exact,
-                      simulate=simulate, N=N, seeds=seeds, t_end=t_end)
+                      simulate=simulate, N=N, seeds=seeds, t_end=t_end, start=start)
             for values, k in cells]
