@@ -116,12 +116,24 @@ def machine_speed(refresh: bool = False) -> dict:
 SHARE_PROBE_SECONDS = 0.2
 
 
+#: (when, seconds, share) of the last probe: a command's estimates (its workers' slowdown
+#: and its own) read one probe, not one each (0.2 s of spinning apiece)
+_LAST_SHARE: list = [None]
+#: how long a probe stands for the machine's state (seconds)
+SHARE_REUSE_SECONDS = 2.0
+
+
 def cpu_share(seconds: float = SHARE_PROBE_SECONDS) -> float:
     """The share of one core a busy thread of this process gets now: CPU time over wall
     time of a short spin, at most 1; the better of two halves (another process' burst of a
     few time slices is not the machine's state: both halves slow means the cores are
-    shared)."""
+    shared). A probe of the same length within SHARE_REUSE_SECONDS is reused."""
     import time
+
+    last = _LAST_SHARE[0]
+    if last is not None and last[1] == seconds and time.monotonic() - last[0] < \
+            SHARE_REUSE_SECONDS:
+        return last[2]
 
     def spin(t):
         w0, c0 = time.perf_counter(), time.process_time()
@@ -131,7 +143,9 @@ def cpu_share(seconds: float = SHARE_PROBE_SECONDS) -> float:
                 x += i
         return max(time.process_time() - c0, 1e-3) / (time.perf_counter() - w0)
 
-    return min(1.0, max(spin(seconds / 2), spin(seconds / 2)))
+    share = min(1.0, max(spin(seconds / 2), spin(seconds / 2)))
+    _LAST_SHARE[0] = (time.monotonic(), seconds, share)
+    return share
 
 
 def load_slowdown(workers: int) -> tuple[float, float, int]:
