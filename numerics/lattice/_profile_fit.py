@@ -59,7 +59,7 @@ class ProfileFit:
         return 0.0 if self.kind == "bright" else 1 - self.dip
 
 
-def _ring_distance(n, c, N):
+def ring_distance(n, c, N):
     """Signed distance from c to the sites n on a ring of N sites, in [-N/2, N/2)."""
     return (n - c + N / 2) % N - N / 2
 
@@ -109,7 +109,7 @@ def fit_soliton_profile(intensity, kind: str, centre_guess: float, width_guess: 
     N = amp2.size
     c0, w0 = centre_guess, width_guess
     n = np.arange(N, dtype=float)
-    d = _ring_distance(n, c0, N)
+    d = ring_distance(n, c0, N)
     win = np.abs(d) < (6 if kind == "bright" else 8) * w0
     scale = float(np.max(amp2))  # O(1) numbers: least_squares' tolerances are absolute
     x, y = d[win], amp2[win] / scale
@@ -126,7 +126,7 @@ def fit_soliton_profile(intensity, kind: str, centre_guess: float, width_guess: 
     p = least_squares(lambda p: model(p) - y, p0, xtol=1e-12, ftol=1e-12, gtol=1e-12).x
     amp, width = abs(float(p[1])) * math.sqrt(scale), abs(float(p[2]))
     centre = c0 + float(p[0])
-    dd = _ring_distance(n, centre, N)
+    dd = ring_distance(n, centre, N)
     if kind == "bright":
         full = amp**2 / np.cosh(dd / width) ** 2
         own = full

@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..lattice import RADIATION_WINDOW, fit_soliton_profile
+from ..lattice import RADIATION_WINDOW, fit_soliton_profile, ring_distance
 
 if TYPE_CHECKING:  # the prediction's type only: _soliton_run imports this module
     from ._soliton_run import RingSoliton
@@ -37,10 +37,6 @@ class ModelSnapshot:
     shape_misfit: float
 
 
-def _ring_distance(n, c, N):
-    return (n - c + N / 2) % N - N / 2
-
-
 def analytic_carrier(u, v, pred: RingSoliton) -> np.ndarray:
     """z = u + i v / Omega of the carrier field, band-passed at |q - k| < k/2:
     2 E e^{i theta}."""
@@ -58,7 +54,7 @@ def _kinks(u, pred: RingSoliton, centre, width):
     d, N = u.shape
     out = np.zeros(d)
     q = 2 * np.pi * np.fft.rfftfreq(N)
-    dist = _ring_distance(np.arange(N) + 0.5, centre, N)
+    dist = ring_distance(np.arange(N) + 0.5, centre, N)
     win = np.abs(dist) < 8 * width
     for i in pred.kink_fields():
         s_hat = np.fft.rfft(np.roll(u[i], -1) - u[i])
@@ -88,7 +84,7 @@ def phasor(u, v, pred, centre, t):
     r = analytic_carrier(u, v, pred) * np.exp(-1j * (pred.k * n - pred.frequency * t))
     if pred.kind == "bright":
         return r
-    far = np.abs(_ring_distance(n, centre, N)) > 6 * pred.width
+    far = np.abs(ring_distance(n, centre, N)) > 6 * pred.width
     return np.where(far, r, 0)
 
 

@@ -9,7 +9,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..lattice import RADIATION_WINDOW, LatticeState, fit_soliton_profile
+from ..lattice import RADIATION_WINDOW, LatticeState, fit_soliton_profile, ring_distance
 from ._soliton import Soliton
 
 
@@ -32,10 +32,6 @@ class Snapshot:
     shape_misfit: float
 
 
-def _ring_distance(n, c, N):
-    return (n - c + N / 2) % N - N / 2
-
-
 def _kink(state, sol, centre, width):
     """U across the soliton: the low-passed strain (|q| < k/2 drops the second harmonic)
     summed over +-8 widths, minus the background strain times the window."""
@@ -45,7 +41,7 @@ def _kink(state, sol, centre, width):
     q = 2 * np.pi * np.fft.rfftfreq(N)
     s_hat[q > sol.k / 2] = 0
     strain = np.fft.irfft(s_hat, N)
-    d = _ring_distance(np.arange(N) + 0.5, centre, N)
+    d = ring_distance(np.arange(N) + 0.5, centre, N)
     win = np.abs(d) < 8 * width
     bg = np.median(strain[~win]) if (~win).any() else 0.0
     return float(np.sum(strain[win] - bg))
@@ -144,7 +140,7 @@ def carrier_phasor(state, sol, centre, t):
     if sol.kind == "bright":
         return r
     # dark: keep the background, far from the dip (the phase jumps across it)
-    far = np.abs(_ring_distance(n, centre, state.N)) > 6 * sol.width
+    far = np.abs(ring_distance(n, centre, state.N)) > 6 * sol.width
     return np.where(far, r, 0)
 
 
