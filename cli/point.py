@@ -250,12 +250,23 @@ def _why_no_gain(res, mat, case, amplitude) -> str | None:
 
 
 def _table(rows, units=None) -> str:
+    """The theories' table in lattice units and, with --physical (``units`` with seconds
+    and metres), the same rates, times and offsets in 1/s, s and rad/m beside them."""
+    def num(v, f=1.0):
+        return f"{v * f:.4g}" if math.isfinite(v) else "-"
+
+    def efold(rate, f=1.0):
+        return f"{f / rate:.4g}" if math.isfinite(rate) and rate > 0 else "-"
+
+    s = getattr(units, "seconds_per_T", None)
+    a = getattr(units, "metres_per_site", None)
     head = ("theory", "verdict", "peak gain (1/T)", "e-folding (T)", "at q - k (rad/site)",
-            "half-gain edge q - k")
-    cells = [head] + [(r[0], r[1], f"{r[2]:.4g}" if math.isfinite(r[2]) else "-",
-                       f"{1 / r[2]:.4g}" if math.isfinite(r[2]) and r[2] > 0 else "-",
-                       *(f"{v:.4g}" if math.isfinite(v) else "-" for v in r[3:5]))
-             for r in rows]
+            "half-gain edge q - k") + (("peak gain (1/s)", "e-folding (s)") if s else ()) \
+        + (("at q - k (rad/m)",) if a else ())
+    cells = [head] + [(r[0], r[1], num(r[2]), efold(r[2]), num(r[3]), num(r[4]))
+                      + ((num(r[2], 1 / s), efold(r[2], s)) if s else ())
+                      + ((num(r[3], 1 / a),) if a else ())
+                      for r in rows]
     widths = [max(len(c[i]) for c in cells) for i in range(len(head))]
     lines = ["  ".join(c.ljust(w) for c, w in zip(row, widths)) for row in cells]
     lines.insert(1, "  ".join("-" * w for w in widths))

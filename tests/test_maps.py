@@ -253,6 +253,23 @@ def test_point_physical_units_and_bad_input(capsys):
     assert cli(["point", "--alpha", "2.5", "--k", "0.9", "--case", "coupled"]) == 2
 
 
+def test_point_physical_table_gives_rates_in_per_second(capsys):
+    """--physical promises rates in 1/s and k in rad/m: the table carries them beside the
+    lattice units (1 T = sqrt(m/k_l) = 1 ms, a = 2 cm: 1/s = 1000 x 1/T)."""
+    assert cli(["point", "--physical", "0.01,2e-6,0.02,1e4,185,1", "--k", "1.0", "--case",
+                "rotation", "--N", "128"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    head = next(i for i, line in enumerate(lines) if line.startswith("theory "))
+    cols = [c.strip() for c in lines[head].split("  ") if c.strip()]
+    assert cols[-3:] == ["peak gain (1/s)", "e-folding (s)", "at q - k (rad/m)"]
+    row = lines[head + 2].split()  # the paper NLS: "paper NLS MI gain efold offset ..."
+    gain_T, efold_T, offset, gain_s, efold_s, offset_m = (
+        float(row[i]) for i in (3, 4, 5, 7, 8, 9))
+    assert gain_s == pytest.approx(gain_T * 1000, rel=1e-3)
+    assert efold_s == pytest.approx(efold_T / 1000, rel=1e-3)
+    assert offset_m == pytest.approx(offset / 0.02, rel=1e-3)
+
+
 def test_map_parameters_take_a_material_and_carry_K_theta_unchanged(tmp_path):
     # material= and K_theta= as given: each row's cells and theories use the typed K_theta
     # (0.003 is one whose K_s - (K_s - K_theta) round trip is off by an ulp); the stored
