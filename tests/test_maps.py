@@ -245,6 +245,17 @@ def test_map_refuses_a_long_run_without_yes_and_names_overwrite(tmp_path, capsys
     assert cli(base + ["--theory-only", "--amplitude", "0.03", "--overwrite"]) == 0
 
 
+def test_a_simulated_maps_last_line_says_what_was_written_where(tmp_path, capsys):
+    """The agreement lines come before it: what was written, and where, is the last line."""
+    assert cli(["map", "--alpha", "2.5", "--K-s", "0.01851", "--delta", "0.003", "--k",
+                "0.5,1.0", "--case", "rotation", "--N", "64", "--t-end", "1000",
+                "--workers", "1", "--out", str(tmp_path)]) == 0
+    lines = capsys.readouterr().out.strip().splitlines()
+    assert any(ln.startswith("theory verdicts that agree") for ln in lines)
+    assert lines[-1] == (f"wrote {tmp_path / 'map.zarr'}, {tmp_path / 'map.png'}, "
+                         f"{tmp_path / 'summary.json'}")
+
+
 def test_point_physical_units_and_bad_input(capsys):
     assert cli(["point", "--physical", "1,0.1,1,1,0.03,0.005", "--k", "0.9",
                 "--case", "coupled"]) == 0
