@@ -420,3 +420,12 @@ def test_model_map_counts_nls_bands_no_ring_offset_samples(tmp_path):
     assert want >= 1  # k = 0.2: the band edge is ~0.07 < 0.098
     assert u["cells"] == want and u["of"] == 4
     assert set(u["ring_not_MI"]) == {"exact", "fourwave"}
+    # the store carries it: the count in its attributes, which cells in a variable
+    import xarray as xr
+
+    ds = xr.open_zarr(tmp_path / "m" / "map.zarr")
+    assert ds.attrs["nls_band_unsampled_cells"] == want
+    assert f"{want} of 4 cells" in ds.attrs["nls_band_unsampled_note"]
+    flag = ds["nls_band_unsampled"]
+    assert int((flag == 1).sum()) == want and not (flag < 0).any()
+    assert flag.attrs["ring_not_MI_exact"] == u["ring_not_MI"]["exact"]
