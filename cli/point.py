@@ -116,6 +116,13 @@ def _rows(res) -> list:
     return rows
 
 
+#: the predicted sidebands' size, over the carrier's, from which a run's own nonlinearity
+#: can slow their growth: measured at the README's point (alpha 2, K_s 0.03, K_theta 0.02,
+#: k 1.2, a 0.04, case II) the run is 2% below the linear prediction at 0.03 and 2.1x at
+#: 0.24; at the blue point (case II, travelling, N 250) 0.1% at 0.03, 3% at 0.1, 11% at 0.24
+SATURATION_ONSET = 0.03
+
+
 def _log_growth(log, res):
     """The predicted (and measured) growth factor per seed, and what it means."""
     t_end, pred = res.t_end, res.prediction
@@ -130,6 +137,13 @@ def _log_growth(log, res):
            if res.growths is not None else "")
         + ("" if pred.linear else " (the prediction leaves the linear stage: MI, the "
            "factor an upper bound)"))
+    reach = max((float(np.max(r)) for r in pred.ratio.values() if np.size(r)), default=0.0)
+    if pred.linear and reach > SATURATION_ONSET:
+        log(f"note: the predicted factors are the linear stage's: by T = {t_end:g} the "
+            f"predicted sidebands reach {reach:.2g} of the carrier's amplitude (seed 0); "
+            "from a few % of it on, the run's own nonlinearity slows their growth and "
+            "depletes the carrier, so a run measures less: there the prediction is an "
+            "upper bound")
     if (np.median(predicted) > GROWTH_THRESHOLD
             and not grows_beyond_threshold(pred.rate, t_end)):
         log(f"note: no Hill mode grows fast enough for {GROWTH_THRESHOLD:g}x within T "
