@@ -147,24 +147,40 @@ def ring_misses(model: Model, k: float, amplitude: float, branch=None, *, N: int
             order = np.argsort(q)
             q, g = q[order], g[order]
     grows = g > 0
-    out = []
+    out, sampled = [], []
     edges = np.flatnonzero(np.diff(np.concatenate([[0], grows.astype(int), [0]])))
     for start, stop in zip(edges[::2], edges[1::2]):
         lo = _edge(chain.wave, q[start], q[start - 1] if start > 0 else None)
         hi = _edge(chain.wave, q[stop - 1], q[stop] if stop < q.size else None)
+        j = np.arange(math.ceil(lo * N / (2 * math.pi)), math.floor(hi * N / (2 * math.pi)) + 1)
+        if j.size:
+            sampled.append((lo, hi))
+            continue
         # a mode shows at Hill offsets q + l k too (its copies): one band per mode
         mid = (lo + hi) / 2
         if any(_same_mode(mid, (b["band"][0] + b["band"][1]) / 2, k_ring, hi - lo)
                for b in out):
             continue
-        j = np.arange(math.ceil(lo * N / (2 * math.pi)), math.floor(hi * N / (2 * math.pi)) + 1)
-        record = {"band": (lo, hi), "peak_gain": float(np.max(g[start:stop])), "N": None}
-        if not j.size:
-            record["N"] = next((n for n in range(N + 1, 64 * N) if
-                                math.floor(hi * n / (2 * math.pi))
-                                >= math.ceil(lo * n / (2 * math.pi))), None)
-        out.append(record)
-    return [b for b in out if b["N"] is not None]
+        out.append({"band": (lo, hi), "peak_gain": float(np.max(g[start:stop])),
+                    "N": next((n for n in range(N + 1, 64 * N) if
+                               math.floor(hi * n / (2 * math.pi))
+                               >= math.ceil(lo * n / (2 * math.pi))), None)})
+    # Hill's spectrum at +-q + l k is the one at q: a piece between two ring offsets of a
+    # band that is a copy of a band the ring samples is that band's mode, which the ring
+    # shows (at k = pi on 64 sites the sidebands' copies near pi - q read as 13 bands)
+    return [b for b in out if b["N"] is not None
+            and not any(_copy_inside(b["band"], s, k_ring) for s in sampled)]
+
+
+def _copy_inside(band, other, k) -> bool:
+    """Whether a copy +-q + l k (mod 2 pi) of ``band``'s centre lies in the band ``other``
+    (offsets |q| in [0, pi]), within half of ``band``'s width."""
+    mid, half = (band[0] + band[1]) / 2, (band[1] - band[0]) / 2
+    for l in range(-3, 4):
+        m = abs(float(_wrap(mid - l * k)))
+        if other[0] - half <= m <= other[1] + half:
+            return True
+    return False
 
 
 def _same_mode(q1, q2, k, width):
