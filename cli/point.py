@@ -219,6 +219,8 @@ def run_point(args, log=print) -> dict:
             log(f"{n}: {t['reason']}")
     if (why := _why_no_gain(res, mat, args.case, amplitude)) is not None:
         log(why)
+    if (unsampled := _ring_note(res)) is not None:
+        log(unsampled)
     if res.simulated is not None:
         log(f"simulated verdict: {res.simulated['text']}")
     if res.simulated is not None and "no_rate" in res.simulated:
@@ -232,6 +234,30 @@ def run_point(args, log=print) -> dict:
         write_text(out / "point.json", json.dumps(strict_json(result), indent=2) + "\n")
         log(f"wrote {out / 'point.json'} and {out / 'point.png'}")
     return result
+
+
+def _ring_note(res) -> str | None:
+    """Where the exact theory's band (the infinite chain's) holds no offset 2 pi j / N of
+    the ring, one line: no ring mode grows, so a run of N sites cannot show that MI (as
+    ``point --model`` says with ``ring_misses``); with the N that samples it."""
+    ex = res.theories.get(res.exact_theory)
+    if not ex or ex["verdict"] != "MI":
+        return None
+    Q, c = np.asarray(ex["offset"], float), np.asarray(ex["curve"], float)
+    grows = np.isfinite(c) & (c > 0)
+    if not grows.any():
+        return None
+    lo, hi = float(Q[grows].min()), float(Q[grows].max())
+    ring = 2 * np.pi * np.arange(1, res.N // 2 + 1) / res.N
+    if np.any(np.interp(ring, Q, np.where(grows, c, 0.0)) > 0):
+        return None
+    n = next((n for n in range(res.N + 1, 64 * res.N)
+              if math.floor(hi * n / (2 * math.pi)) >= math.ceil(lo * n / (2 * math.pi))),
+             None)
+    return (f"note: the band of the '{res.exact_theory}' theory (offsets {lo:.3g} to "
+            f"{hi:.3g} rad/site, the infinite chain's) holds no offset 2 pi j / N of the ring of N = {res.N} (the smallest "
+            f"{2 * math.pi / res.N:.3g}): no ring mode grows, so a run shows no MI here"
+            + (f"; N = {n} samples it (k snaps to 2 pi m / N)" if n else ""))
 
 
 def _why_no_gain(res, mat, case, amplitude) -> str | None:

@@ -256,6 +256,19 @@ def test_a_simulated_maps_last_line_says_what_was_written_where(tmp_path, capsys
                          f"{tmp_path / 'summary.json'}")
 
 
+def test_point_says_when_the_ring_samples_none_of_the_band(capsys):
+    """k = 1, case I of the --physical example: the exact band (offsets < 0.037) lies below
+    the smallest offset 2 pi / 128 = 0.049 of a ring of 128 sites, which therefore cannot
+    grow (a run: 'no growth within T' beside three MI theories); 180 sites sample it."""
+    base = ["point", "--physical", "0.01,2e-6,0.02,1e4,185,1", "--k", "1.0", "--case",
+            "rotation"]
+    assert cli(base + ["--N", "128"]) == 0
+    note = [ln for ln in capsys.readouterr().out.splitlines() if "holds no offset" in ln]
+    assert len(note) == 1 and "N = 128" in note[0] and "N = 172 samples it" in note[0]
+    assert cli(base + ["--N", "180"]) == 0
+    assert "holds no offset" not in capsys.readouterr().out
+
+
 def test_point_physical_units_and_bad_input(capsys):
     assert cli(["point", "--physical", "1,0.1,1,1,0.03,0.005", "--k", "0.9",
                 "--case", "coupled"]) == 0
