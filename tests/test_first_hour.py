@@ -267,3 +267,17 @@ def test_progress_bars_need_no_widgets(monkeypatch):
 
     monkeypatch.setattr(builtins, "__import__", no_widgets)
     assert progress_class() is tqdm.std.tqdm
+
+
+@pytest.mark.parametrize("cmd, extra, writes", [
+    ("coefficients", [], None), ("point", ["--case", "coupled"], "point.json"),
+    ("soliton", ["--case", "coupled"], "soliton.json")])
+def test_json_without_a_model_names_the_command_and_what_it_writes(cmd, extra, writes,
+                                                                    capsys):
+    """--json acts on --model commands: the refusal names this command's own way (not
+    `point`'s for every command)."""
+    assert cli([cmd, "--alpha", "2.0", "--K-s", "0.03", "--K-theta", "0.02", "--k", "1.2",
+                *extra, "--json"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and f"try {cmd} --model flexmm" in err
+    assert (f"writes {writes} with --out" in err) if writes else "writes" not in err
