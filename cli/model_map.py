@@ -5,6 +5,7 @@ per cell, the exact and four-wave theories with --exact, runs of the ring per ce
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 from .models import _emit, branch_of, load
@@ -32,6 +33,8 @@ def run_map(args) -> int:
     k_fixed = None
     if args.k is not None:
         vals = parse_spec(args.k, "--k")
+        if not np.all((vals > 0) & (vals <= math.pi)):  # named as the option, before work
+            raise ValueError(f"--k must be in (0, pi], got {args.k!r}")
         if vals.size > 1:
             k_axis = vals
         else:
@@ -241,7 +244,6 @@ def _estimate(params, workers: int, scheduler, log):
 def _critical_rows(ds) -> dict:
     """{critical_<damping>_<theory>: {"along": the other axis, its values, "value" (None
     where none inside the axis), "reason"}} of a map over a damping axis (issue 42)."""
-    import math
 
     out = {}
     for name in sorted(n for n in ds.data_vars if n.startswith("critical_")):

@@ -465,3 +465,16 @@ def test_point_names_only_bands_the_ring_misses_in_its_own_units(capsys, monkeyp
     assert cli(["point", "--model", "fput", "--k", "1", "--N", "4"]) == 2
     err = capsys.readouterr().err
     assert err.startswith("flexmm: error: --N: N must be an integer in [8, ")
+
+
+@pytest.mark.parametrize("k", ["0:2:2", "3.2", "0.5,4"])
+def test_model_map_names_k_out_of_range(k, tmp_path, capsys):
+    """A theory-only map has no ring to snap k on: its --k is still checked, named as the
+    option, before anything is written."""
+    from cli.app import main as cli
+
+    assert cli(["map", "--model", "fput", "--param", "beta=1:2:2", "--k", k,
+                "--theory-only", "--out", str(tmp_path / "m")]) == 2
+    err = capsys.readouterr().err
+    assert err == f"flexmm: error: --k must be in (0, pi], got {k!r}\n"
+    assert not (tmp_path / "m").exists()
