@@ -263,7 +263,9 @@ def soliton_figure(sol, run=None):
     axes[0].plot(xs, -env, "C3-", lw=1.2)
     axes[0].set(xlabel="site from the centre $n - n_c$", ylabel=r"$\theta_n$ (rad)",
                 title=f"(a) {sol.kind} soliton: profile", xlim=(-span, span))
-    axes[0].legend(fontsize=7, loc="lower right")
+    if sol.kind == "bright":  # room above the peak for the legend
+        axes[0].set_ylim(-1.1 * env.max(), 1.6 * env.max())
+    axes[0].legend(fontsize=7, loc="upper right" if sol.kind == "bright" else "lower right")
     ax = axes[1]
     if sol.case == "coupled":
         if run is not None:  # on the ring, as launched (its uniform strain included)
