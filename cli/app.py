@@ -438,8 +438,12 @@ def _dispatch(args, scenes) -> int:
 
         return run_models(args)
     if getattr(args, "json", False) and getattr(args, "model", None) is None:
-        raise ValueError("--json: for --model commands (the paper chain's point writes "
-                         "point.json with --out; try --model flexmm --param alpha=...)")
+        # what the paper chain's own command writes instead (with --out), if anything
+        writes = {"point": "point.json", "soliton": "soliton.json",
+                  "map": "summary.json"}.get(args.cmd)
+        raise ValueError("--json: for --model commands (" + (
+            f"the paper chain's {args.cmd} writes {writes} with --out; " if writes else "")
+            + f"try {args.cmd} --model flexmm --param alpha=...)")
     if getattr(args, "model", None) is not None:
         from . import model_map, model_point, models
 

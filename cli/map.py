@@ -191,7 +191,6 @@ def run_map_command(args, log=print):
             + "; ".join(f"{n} {100 * summary['mi_fraction'][n]:.0f}% of cells"
                         + (f" ({und[n]} undetermined, left out)" if und[n] else "")
                         for n in MAP_COLUMNS if n in summary["mi_fraction"]))
-    log(f"wrote {out / 'map.zarr'}, {out / 'map.png'}, {out / 'summary.json'}")
     if summary["simulated"]:
         ag = summary["agreement_with_simulation_percent"]
         log(f"theory verdicts that agree with the simulation (marginal: the theory's growth "
@@ -201,5 +200,6 @@ def run_map_command(args, log=print):
             log(f"predicted growth within 2x of the measured one in "
                 f"{ag['predicted_growth_within_2x']:.0f}% of the "
                 f"{ag['predicted_growth_cells']} cells that grew 2x to 1000x")
+    log(f"wrote {out / 'map.zarr'}, {out / 'map.png'}, {out / 'summary.json'}")  # last
     return ds
 

@@ -178,6 +178,15 @@ def figure(path, model, out, curves, measured, seeds, simulate):
             tops.append(float(np.nanmax(y)))
     if measured:
         tops.append(float(np.max(measured["sigma_by_offset"])))
+    # with losses a sideband grows where its rate beats its damping (near k: the carrier's)
+    damping = next((out[n]["carrier_damping"] for n in ("exact lattice", "semi-discrete NLS")
+                    if isinstance(out.get(n, {}).get("carrier_damping"), (int, float))
+                    and out[n]["carrier_damping"] > 0), None)
+    if damping is not None:
+        ax.axhline(damping, color="0.4", lw=0.8, ls="-.",
+                   label=f"carrier damping {damping:.3g} (losses: a sideband near k grows "
+                         "only above it)")
+        tops.append(damping)
     top = max([v for v in tops if math.isfinite(v)], default=0.0)
     missing = [f"{n}: {out[n]['reason']}" for n in ("semi-discrete NLS", "exact lattice",
                                                     "four-wave", "exact lattice, paper start")

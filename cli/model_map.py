@@ -33,6 +33,8 @@ def run_map(args) -> int:
     k_fixed = None
     if args.k is not None:
         vals = parse_spec(args.k, "--k")
+        if not np.all((vals > 0) & (vals <= math.pi)):  # named as the option, before work
+            raise ValueError(f"--k must be in (0, pi], got {args.k!r}")
         if vals.size > 1:
             k_axis = vals
         else:
@@ -175,7 +177,7 @@ def run_map(args) -> int:
     _plot_map(_as_words(ds, verdicts), png, model)
     files = [str(path), str(png)]
     critical = _critical_rows(ds)
-    unsampled = _unsampled(ds, amp, args.N, verdicts)
+    unsampled = _unsampled(ds)
     if args.json:
         res = {"model": model.name, "parameters": dict(model.params), "amplitude": amp,
                "axes": {x[0]: list(map(float, x[1])), y[0]: list(map(float, y[1]))},
@@ -274,7 +276,6 @@ def _estimate(params, workers: int, scheduler, log):
 def _critical_rows(ds) -> dict:
     """{critical_<damping>_<theory>: {"along": the other axis, its values, "value" (None
     where none inside the axis), "reason"}} of a map over a damping axis (issue 42)."""
-    import math
 
     out = {}
     for name in sorted(n for n in ds.data_vars if n.startswith("critical_")):
@@ -286,39 +287,31 @@ def _critical_rows(ds) -> dict:
     return out
 
 
-def _unsampled(ds, amplitude: float | None, N: int, verdicts) -> dict | None:
+def _unsampled(ds) -> dict | None:
     """The cells where the semi-discrete NLS (the infinite chain) finds MI in a band of
     offsets 0 < |q| < a sqrt(g2/g1) narrower than the ring's smallest offset 2 pi / N: no
     ring offset samples it, so the ring's theories (exact, four-wave on the ring) and runs
-    cannot show that MI -- ``flexmm point`` lists the same as ``ring_misses``. ``verdicts``:
-    the store's verdict columns in this map. None where it has no ring theory."""
-    import numpy as np
-
-    rings = [v for v in ("verdict_exact", "verdict_fourwave", "verdict_simulated")
-             if v in verdicts]
-    if not rings or not {"verdict_semidiscrete", "g1", "g2"} <= set(ds.data_vars):
+    cannot show that MI -- ``flexmm point`` lists the same as ``ring_misses``. Read from
+    the store's ``nls_band_unsampled`` (``ModelMapParameters.unsampled_band``); None where
+    the map has no ring theory."""
+    if "nls_band_unsampled" not in ds.data_vars:
         return None
-    mi = ds["verdict_semidiscrete"].values == 1
-    if amplitude is None:  # an axis: each cell's own
-        amplitude = ds["amplitude"].broadcast_like(ds["g1"]).transpose(*ds["g1"].dims).values
-    with np.errstate(invalid="ignore", divide="ignore"):
-        edge = amplitude * np.sqrt(ds["g2"].values / ds["g1"].values)  # docs/models.md
-    smallest = 2 * math.pi / N
-    below = mi & np.isfinite(edge) & (edge <= smallest)
-    return {"cells": int(below.sum()), "of": int(below.size),
-            "ring_smallest_offset": smallest,
-            "widest_band_edge": float(np.max(edge[below])) if below.any() else None,
-            "ring_not_MI": {v.replace("verdict_", ""): int((below & (ds[v].values != 1)).sum())
-                            for v in rings}}
+    a = ds["nls_band_unsampled"].attrs
+    edge = a.get("widest_band_edge")
+    return {"cells": int(a["cells"]), "of": int(a["of"]),
+            "ring_smallest_offset": float(a["ring_smallest_offset"]),
+            "widest_band_edge": float(edge) if isinstance(edge, (int, float)) else None,
+            "ring_not_MI": {n.removeprefix("ring_not_MI_"): int(v) for n, v in a.items()
+                            if n.startswith("ring_not_MI_")}}
 
 
 def _unsampled_text(u: dict, N: int) -> str:
     return (f"{u['cells']} of {u['of']} cells: the semi-discrete NLS band (edge a "
             f"sqrt(g2/g1) <= {u['widest_band_edge']:.3g} rad/site) lies below the ring's "
             f"smallest offset 2 pi / N = {u['ring_smallest_offset']:.4g} (N = {N}): no ring "
-            "offset samples it (there the ring's verdicts are not MI in "
-            + ", ".join(f"{n} ({v})" for v, n in u["ring_not_MI"].items())
-            + "); a larger --N samples it")
+            "offset samples it (cells there the ring calls not MI: "
+            + ", ".join(f"{name} {n}" for name, n in u["ring_not_MI"].items())
+            + "); a larger --N samples it; the store's nls_band_unsampled marks them")
 
 
 def _as_words(ds, verdicts):

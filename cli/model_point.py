@@ -63,8 +63,12 @@ def _ring_misses(model, k, amplitude, branch, N) -> list:
             for b in ring_misses(model, k, amplitude, branch, N=N)]
 
 
+#: the infinite chain's unsampled bands a point's text lists in full (the fastest ones)
+MISSES_SHOWN = 3
+
+
 def _miss_text(b, N) -> str:
-    return (f"the infinite chain grows at {b['peak_gain']:.3g} /T in the band of offsets "
+    return (f"the infinite chain grows at {b['peak_gain']:.3g} /time in the band of offsets "
             f"{b['band'][0]:.4g} to {b['band'][1]:.4g} rad/site, which no offset 2 pi j / N "
             f"of the ring of N = {N} samples: N = {b['N']} does (k snaps to 2 pi m / N)")
 
@@ -271,6 +275,12 @@ def run_point(args) -> int:
     if args.t_end is not None and not args.simulate:
         raise ValueError("--t-end acts with --simulate only")
     start = _start_of(args, model)
+    from numerics.models import check_ring
+
+    try:  # the ring's size, named as the option (as `map --model` does)
+        check_ring(args.N)
+    except ValueError as exc:
+        raise ValueError(f"--N: {exc}") from None
     k, _ = snap_ring(args.k, args.N)
     launched = None  # a start the model registers (eq. IC): checked before any work
     if start not in ("exact", "linear"):
@@ -435,8 +445,15 @@ def run_point(args) -> int:
             print(f"note: {sim['note']}")
     if ring_note:
         print(f"note: {ring_note}")
-    for m in misses:
+    # the fastest few in full; near the zone boundary a small ring can miss a dozen bands
+    shown = sorted(misses, key=lambda m: -m["peak_gain"])[:MISSES_SHOWN]
+    for m in sorted(shown, key=lambda m: m["band"][0]):
         print(f"note: {_miss_text(m, args.N)}")
+    if len(misses) > len(shown):
+        rest = [m for m in misses if m not in shown]
+        print(f"note: {len(rest)} more such bands, growing at up to "
+              f"{max(m['peak_gain'] for m in rest):.3g} /time (all in ring_misses: --json, "
+              f"or point.json with --out); N = {min(m['N'] for m in misses)} samples one")
     for w in co["warnings"]:
         print(f"note: {w}")
     if args.out:

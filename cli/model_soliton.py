@@ -190,7 +190,9 @@ def _figure(path, pred, run, model):
     axes[0].plot(xs, -env, "C3-", lw=1.2)
     axes[0].set(xlabel="site from the centre", ylabel=fields[f],
                 title=f"(a) {pred.kind} soliton: profile", xlim=(-span, span))
-    axes[0].legend(fontsize=7, loc="lower right")
+    if pred.kind == "bright":  # room above the peak for the legend
+        axes[0].set_ylim(-1.1 * env.max(), 1.6 * env.max())
+    axes[0].legend(fontsize=7, loc="upper right" if pred.kind == "bright" else "lower right")
     ax = axes[1]
     kinks = pred.kink_fields()
     q = 2 * np.pi * np.fft.rfftfreq(N)

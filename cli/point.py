@@ -116,6 +116,13 @@ def _rows(res) -> list:
     return rows
 
 
+#: the predicted sidebands' size, over the carrier's, from which a run's own nonlinearity
+#: can slow their growth: measured at the README's point (alpha 2, K_s 0.03, K_theta 0.02,
+#: k 1.2, a 0.04, case II) the run is 2% below the linear prediction at 0.03 and 2.1x at
+#: 0.24; at the blue point (case II, travelling, N 250) 0.1% at 0.03, 3% at 0.1, 11% at 0.24
+SATURATION_ONSET = 0.03
+
+
 def _log_growth(log, res):
     """The predicted (and measured) growth factor per seed, and what it means."""
     t_end, pred = res.t_end, res.prediction
@@ -130,6 +137,13 @@ def _log_growth(log, res):
            if res.growths is not None else "")
         + ("" if pred.linear else " (the prediction leaves the linear stage: MI, the "
            "factor an upper bound)"))
+    reach = max((float(np.max(r)) for r in pred.ratio.values() if np.size(r)), default=0.0)
+    if pred.linear and reach > SATURATION_ONSET:
+        log(f"note: the predicted factors are the linear stage's: by T = {t_end:g} the "
+            f"predicted sidebands reach {reach:.2g} of the carrier's amplitude (seed 0); "
+            "from a few % of it on, the run's own nonlinearity slows their growth and "
+            "depletes the carrier, so a run measures less: there the prediction is an "
+            "upper bound")
     if (np.median(predicted) > GROWTH_THRESHOLD
             and not grows_beyond_threshold(pred.rate, t_end)):
         log(f"note: no Hill mode grows fast enough for {GROWTH_THRESHOLD:g}x within T "
@@ -205,6 +219,8 @@ def run_point(args, log=print) -> dict:
             log(f"{n}: {t['reason']}")
     if (why := _why_no_gain(res, mat, args.case, amplitude)) is not None:
         log(why)
+    if (unsampled := _ring_note(res)) is not None:
+        log(unsampled)
     if res.simulated is not None:
         log(f"simulated verdict: {res.simulated['text']}")
     if res.simulated is not None and "no_rate" in res.simulated:
@@ -218,6 +234,30 @@ def run_point(args, log=print) -> dict:
         write_text(out / "point.json", json.dumps(strict_json(result), indent=2) + "\n")
         log(f"wrote {out / 'point.json'} and {out / 'point.png'}")
     return result
+
+
+def _ring_note(res) -> str | None:
+    """Where the exact theory's band (the infinite chain's) holds no offset 2 pi j / N of
+    the ring, one line: no ring mode grows, so a run of N sites cannot show that MI (as
+    ``point --model`` says with ``ring_misses``); with the N that samples it."""
+    ex = res.theories.get(res.exact_theory)
+    if not ex or ex["verdict"] != "MI":
+        return None
+    Q, c = np.asarray(ex["offset"], float), np.asarray(ex["curve"], float)
+    grows = np.isfinite(c) & (c > 0)
+    if not grows.any():
+        return None
+    lo, hi = float(Q[grows].min()), float(Q[grows].max())
+    ring = 2 * np.pi * np.arange(1, res.N // 2 + 1) / res.N
+    if np.any(np.interp(ring, Q, np.where(grows, c, 0.0)) > 0):
+        return None
+    n = next((n for n in range(res.N + 1, 64 * res.N)
+              if math.floor(hi * n / (2 * math.pi)) >= math.ceil(lo * n / (2 * math.pi))),
+             None)
+    return (f"note: the band of the '{res.exact_theory}' theory (offsets {lo:.3g} to "
+            f"{hi:.3g} rad/site, the infinite chain's) holds no offset 2 pi j / N of the ring of N = {res.N} (the smallest "
+            f"{2 * math.pi / res.N:.3g}): no ring mode grows, so a run shows no MI here"
+            + (f"; N = {n} samples it (k snaps to 2 pi m / N)" if n else ""))
 
 
 def _why_no_gain(res, mat, case, amplitude) -> str | None:
@@ -250,12 +290,23 @@ def _why_no_gain(res, mat, case, amplitude) -> str | None:
 
 
 def _table(rows, units=None) -> str:
+    """The theories' table in lattice units and, with --physical (``units`` with seconds
+    and metres), the same rates, times and offsets in 1/s, s and rad/m beside them."""
+    def num(v, f=1.0):
+        return f"{v * f:.4g}" if math.isfinite(v) else "-"
+
+    def efold(rate, f=1.0):
+        return f"{f / rate:.4g}" if math.isfinite(rate) and rate > 0 else "-"
+
+    s = getattr(units, "seconds_per_T", None)
+    a = getattr(units, "metres_per_site", None)
     head = ("theory", "verdict", "peak gain (1/T)", "e-folding (T)", "at q - k (rad/site)",
-            "half-gain edge q - k")
-    cells = [head] + [(r[0], r[1], f"{r[2]:.4g}" if math.isfinite(r[2]) else "-",
-                       f"{1 / r[2]:.4g}" if math.isfinite(r[2]) and r[2] > 0 else "-",
-                       *(f"{v:.4g}" if math.isfinite(v) else "-" for v in r[3:5]))
-             for r in rows]
+            "half-gain edge q - k") + (("peak gain (1/s)", "e-folding (s)") if s else ()) \
+        + (("at q - k (rad/m)",) if a else ())
+    cells = [head] + [(r[0], r[1], num(r[2]), efold(r[2]), num(r[3]), num(r[4]))
+                      + ((num(r[2], 1 / s), efold(r[2], s)) if s else ())
+                      + ((num(r[3], 1 / a),) if a else ())
+                      for r in rows]
     widths = [max(len(c[i]) for c in cells) for i in range(len(head))]
     lines = ["  ".join(c.ljust(w) for c, w in zip(row, widths)) for row in cells]
     lines.insert(1, "  ".join("-" * w for w in widths))

@@ -186,15 +186,19 @@ def map_figure(ds, ax=None):
         fig = ax.figure
     k, d = ds["k"].values, ds["delta"].values
     done = ds["done"].values
-    shown, what = "verdict_simulated", "simulated"
+    shown, what, mi, stable = "verdict_simulated", "simulated", "", ""
     if not done.any() and "verdict_predicted" in ds and "done_predicted" in ds:
-        shown, what = "verdict_predicted", f"predicted growth > {ds.attrs.get('growth_threshold', 20):g}x"
+        # a cell's predicted verdict: MI where its growth factor passes the threshold
+        # (numerics.maps' verdict_predicted), stable where it does not
+        threshold = ds.attrs.get("growth_threshold", 20)
+        shown, what = "verdict_predicted", "predicted"
+        mi, stable = f" (grows > {threshold:g}x)", f" (grows <= {threshold:g}x)"
         done = ds["done_predicted"].values & (ds["verdict_predicted"].values >= 0)
     background = np.where(done, np.where(ds[shown].values == 1, 1.0, -1.0), np.nan)
     verdict_image(ax, k, d, background)
     handles = [Patch(facecolor=c, edgecolor="k", label=lab)
-               for c, lab, present in (("white", f"{what}: MI", background > 0),
-                                       ("black", f"{what}: stable", background < 0),
+               for c, lab, present in (("white", f"{what}: MI{mi}", background > 0),
+                                       ("black", f"{what}: stable{stable}", background < 0),
                                        ("0.6", "not done or undetermined",
                                         np.isnan(background))) if present.any()]
     notes = []
@@ -259,7 +263,9 @@ def soliton_figure(sol, run=None):
     axes[0].plot(xs, -env, "C3-", lw=1.2)
     axes[0].set(xlabel="site from the centre $n - n_c$", ylabel=r"$\theta_n$ (rad)",
                 title=f"(a) {sol.kind} soliton: profile", xlim=(-span, span))
-    axes[0].legend(fontsize=7, loc="lower right")
+    if sol.kind == "bright":  # room above the peak for the legend
+        axes[0].set_ylim(-1.1 * env.max(), 1.6 * env.max())
+    axes[0].legend(fontsize=7, loc="upper right" if sol.kind == "bright" else "lower right")
     ax = axes[1]
     if sol.case == "coupled":
         if run is not None:  # on the ring, as launched (its uniform strain included)

@@ -45,6 +45,11 @@ def test_a_runs_verdict_is_never_a_bare_stable():
     assert none.word == "no growth within T"
     assert none.slowest_visible == pytest.approx(math.log(20) / 20000)
     assert "a rate below 0.00015 /T cannot show" in str(none)
+    # a model's time is its file's: its runs' words say /time, as its tables say 1/time
+    assert "a rate below 0.00015 /time cannot show" in str(
+        simulated_verdict([1.2, 1.5], 20000.0, time_name="time"))
+    assert "(measured rate 0.00049 /time)" in str(
+        simulated_verdict([50.0, 60.0, 3.0], 20000.0, 4.9e-4, time_name="time"))
     grew = simulated_verdict([6.77, 10.2, 6.06, 10.7], 20000.0)  # issue 36's material
     assert grew.word == "undetermined" and "longer --t-end" in str(grew)
     assert simulated_verdict([], 100.0).word == "undetermined"

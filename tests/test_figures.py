@@ -222,6 +222,24 @@ def _map_dataset(n_delta, n_k, seed=0):
                "amplitude": 0.02, "N": 500, "t_end": 1000.0, "growth_threshold": 20.0})
 
 
+def test_a_theory_only_maps_legend_says_what_its_colours_mean():
+    """A theory-only map colours the cells by the predicted verdict: MI where the predicted
+    growth passes 20x, stable where it does not (the legend said 'predicted growth > 20x:
+    stable' for the black cells)."""
+    from cli.map import plot_map
+
+    ds = _map_dataset(3, 3, seed=1)
+    ds["done"] = ds["done"] & False
+    ds["done_predicted"] = ds["done"] | True
+    ds["verdict_predicted"] = (("delta", "k"), np.array([[1, 0, 1], [0, 1, 0], [1, 1, 0]],
+                                                        np.int8))
+    fig = plot_map(ds)
+    labels = [t.get_text() for leg in fig.legends + [a.get_legend() for a in fig.axes]
+              if leg is not None for t in leg.get_texts()]
+    assert "predicted: MI (grows > 20x)" in labels
+    assert "predicted: stable (grows <= 20x)" in labels
+
+
 SHAPES = ([(1, n) for n in range(1, 7)] + [(n, 1) for n in range(1, 7)]
           + [(2, 4), (3, 5), (6, 2)])
 

@@ -323,3 +323,17 @@ def test_a_near_resonant_second_harmonic_leaves_the_four_wave_theory_undefined()
     rate = pair_rates(model, 2.5, 0.05, offsets=qs)[0]
     # round-off (measured ~1e-14) passes; the rate before the fix was 9.2e-3 at every q
     assert np.all(np.nan_to_num(rate[:, 0]) < 1e-9)
+
+
+def test_sidebands_moved_by_the_carriers_own_shift_are_sidebands():
+    """fput alpha 1, beta 1.5 at k 2.45 (2 pi 25 / 64), a 0.1: the exact fastest mode's two
+    waves (k +- 0.098) sit 0.041-0.042 above the linear branch, which is the carrier's own
+    nonlinear shift Omega - omega(k) = 0.039 (2% of Omega): a pair locked to the carrier,
+    named sidebands (it was called a resonance, with the sidebands' wavenumbers beside)."""
+    model = load_model("fput", alpha=1.0, beta=1.5)
+    k = 2 * math.pi * 25 / 64
+    ex = exact_gain(model, k, 0.1, N=64)
+    label = classify_mode(ex)
+    assert label["mode_kind"] == "sidebands"
+    assert sorted(w["wavenumber"] for w in label["mode_waves"]) == pytest.approx(
+        [k - 2 * math.pi / 64, k + 2 * math.pi / 64])

@@ -245,12 +245,53 @@ def test_map_refuses_a_long_run_without_yes_and_names_overwrite(tmp_path, capsys
     assert cli(base + ["--theory-only", "--amplitude", "0.03", "--overwrite"]) == 0
 
 
+def test_a_simulated_maps_last_line_says_what_was_written_where(tmp_path, capsys):
+    """The agreement lines come before it: what was written, and where, is the last line."""
+    assert cli(["map", "--alpha", "2.5", "--K-s", "0.01851", "--delta", "0.003", "--k",
+                "0.5,1.0", "--case", "rotation", "--N", "64", "--t-end", "1000",
+                "--workers", "1", "--out", str(tmp_path)]) == 0
+    lines = capsys.readouterr().out.strip().splitlines()
+    assert any(ln.startswith("theory verdicts that agree") for ln in lines)
+    assert lines[-1] == (f"wrote {tmp_path / 'map.zarr'}, {tmp_path / 'map.png'}, "
+                         f"{tmp_path / 'summary.json'}")
+
+
+def test_point_says_when_the_ring_samples_none_of_the_band(capsys):
+    """k = 1, case I of the --physical example: the exact band (offsets < 0.037) lies below
+    the smallest offset 2 pi / 128 = 0.049 of a ring of 128 sites, which therefore cannot
+    grow (a run: 'no growth within T' beside three MI theories); 180 sites sample it."""
+    base = ["point", "--physical", "0.01,2e-6,0.02,1e4,185,1", "--k", "1.0", "--case",
+            "rotation"]
+    assert cli(base + ["--N", "128"]) == 0
+    note = [ln for ln in capsys.readouterr().out.splitlines() if "holds no offset" in ln]
+    assert len(note) == 1 and "N = 128" in note[0] and "N = 172 samples it" in note[0]
+    assert cli(base + ["--N", "180"]) == 0
+    assert "holds no offset" not in capsys.readouterr().out
+
+
 def test_point_physical_units_and_bad_input(capsys):
     assert cli(["point", "--physical", "1,0.1,1,1,0.03,0.005", "--k", "0.9",
                 "--case", "coupled"]) == 0
     assert cli(["point", "--physical", "1,2,3", "--k", "0.9", "--case", "coupled"]) == 2
     assert "six numbers" in capsys.readouterr().err
     assert cli(["point", "--alpha", "2.5", "--k", "0.9", "--case", "coupled"]) == 2
+
+
+def test_point_physical_table_gives_rates_in_per_second(capsys):
+    """--physical promises rates in 1/s and k in rad/m: the table carries them beside the
+    lattice units (1 T = sqrt(m/k_l) = 1 ms, a = 2 cm: 1/s = 1000 x 1/T)."""
+    assert cli(["point", "--physical", "0.01,2e-6,0.02,1e4,185,1", "--k", "1.0", "--case",
+                "rotation", "--N", "128"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    head = next(i for i, line in enumerate(lines) if line.startswith("theory "))
+    cols = [c.strip() for c in lines[head].split("  ") if c.strip()]
+    assert cols[-3:] == ["peak gain (1/s)", "e-folding (s)", "at q - k (rad/m)"]
+    row = lines[head + 2].split()  # the paper NLS: "paper NLS MI gain efold offset ..."
+    gain_T, efold_T, offset, gain_s, efold_s, offset_m = (
+        float(row[i]) for i in (3, 4, 5, 7, 8, 9))
+    assert gain_s == pytest.approx(gain_T * 1000, rel=1e-3)
+    assert efold_s == pytest.approx(efold_T / 1000, rel=1e-3)
+    assert offset_m == pytest.approx(offset / 0.02, rel=1e-3)
 
 
 def test_map_parameters_take_a_material_and_carry_K_theta_unchanged(tmp_path):

@@ -75,8 +75,10 @@ def test_a_lossy_map_stores_each_theory_s_amplification(tmp_path, capsys, monkey
     marks = []
 
     def savefig(fig, *a, **kw):
+        # what the panels share is said once above them (the figure's suptitle)
+        shared = fig.get_suptitle()
         for ax in fig.axes:
-            title = ax.get_title()
+            title = shared + " | " + ax.get_title()
             n = sum(len(c.get_offsets()) for c in ax.collections[1:])
             marks.append((title, n))
 

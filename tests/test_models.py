@@ -420,3 +420,61 @@ def test_model_map_counts_nls_bands_no_ring_offset_samples(tmp_path):
     assert want >= 1  # k = 0.2: the band edge is ~0.07 < 0.098
     assert u["cells"] == want and u["of"] == 4
     assert set(u["ring_not_MI"]) == {"exact", "fourwave"}
+    # the store carries it: the count in its attributes, which cells in a variable
+    import xarray as xr
+
+    ds = xr.open_zarr(tmp_path / "m" / "map.zarr")
+    assert ds.attrs["nls_band_unsampled_cells"] == want
+    assert f"{want} of 4 cells" in ds.attrs["nls_band_unsampled_note"]
+    flag = ds["nls_band_unsampled"]
+    assert int((flag == 1).sum()) == want and not (flag < 0).any()
+    assert flag.attrs["ring_not_MI_exact"] == u["ring_not_MI"]["exact"]
+
+
+def test_point_names_only_bands_the_ring_misses_in_its_own_units(capsys, monkeypatch):
+    """At k = pi on 64 sites the ring samples the sidebands (offsets 0.1-0.39); their Hill
+    copies near pi - q, between ring offsets, are that mode, not 13 missed bands (as
+    point printed before). A band the ring does miss (a weak sine-Gordon wave's, offsets
+    below 0.022 on 128 sites) is said in the model's units (/time, not the paper chain's
+    /T); past 3 such bands the text gives the fastest 3 and counts the rest; a bad --N is
+    named."""
+    import json
+
+    import numerics.models
+    from cli.app import main as cli
+
+    argv = ["point", "--model", "fput", "--k", "3.14159265", "--N", "64", "--amplitude",
+            "0.1", "--json"]
+    assert cli(argv) == 0
+    res = json.loads(capsys.readouterr().out)
+    assert res["exact lattice"]["verdict"] == "MI" and res["ring_misses"] == []
+    sg = ["point", "--model", "sine-gordon", "--param", "C=1.901", "--param", "omega0=1.092",
+          "--k", "0.335", "--amplitude", "0.05", "--N", "128"]
+    assert cli(sg) == 0
+    notes = [ln for ln in capsys.readouterr().out.splitlines()
+             if ln.startswith("note: the infinite chain grows")]
+    assert len(notes) == 1 and "/time in the band of offsets" in notes[0]
+    fake = [{"band": (0.1 * i, 0.1 * i + 0.01), "peak_gain": 0.001 * i, "N": 100 + i}
+            for i in range(1, 6)]
+    monkeypatch.setattr(numerics.models, "ring_misses", lambda *a, **k: fake)
+    assert cli(sg) == 0
+    out = capsys.readouterr().out
+    assert out.count("note: the infinite chain grows") == 3 and "at 0.005 /time" in out
+    assert "note: 2 more such bands, growing at up to 0.002 /time" in out
+    assert "N = 101 samples one" in out
+    assert cli(["point", "--model", "fput", "--k", "1", "--N", "4"]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("flexmm: error: --N: N must be an integer in [8, ")
+
+
+@pytest.mark.parametrize("k", ["0:2:2", "3.2", "0.5,4"])
+def test_model_map_names_k_out_of_range(k, tmp_path, capsys):
+    """A theory-only map has no ring to snap k on: its --k is still checked, named as the
+    option, before anything is written."""
+    from cli.app import main as cli
+
+    assert cli(["map", "--model", "fput", "--param", "beta=1:2:2", "--k", k,
+                "--theory-only", "--out", str(tmp_path / "m")]) == 2
+    err = capsys.readouterr().err
+    assert err == f"flexmm: error: --k must be in (0, pi], got {k!r}\n"
+    assert not (tmp_path / "m").exists()

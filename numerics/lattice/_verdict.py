@@ -90,14 +90,18 @@ class Verdict:
     growth: tuple
     slowest_visible: float
     reason: str = ""
+    #: the lattice time's name in the text: "T" (the paper chain's), "time" for a model,
+    #: whose file sets its time unit
+    time_name: str = "T"
 
     def __str__(self) -> str:
+        per = f"/{self.time_name}"
         if self.word == "MI":
-            return "MI" + (f" (measured rate {self.rate:.4g} /T)" if math.isfinite(self.rate)
+            return "MI" + (f" (measured rate {self.rate:.4g} {per})" if math.isfinite(self.rate)
                            else f" (grew {_factors(self.growth)} within T = {self.t_end:g})")
         if self.word == "no growth within T":
             return (f"no growth within T = {self.t_end:g} (a rate below "
-                    f"{self.slowest_visible:.2g} /T cannot show)")
+                    f"{self.slowest_visible:.2g} {per} cannot show)")
         return f"undetermined ({self.reason})"
 
     def to_dict(self) -> dict:
@@ -115,7 +119,7 @@ def _factors(g) -> str:
 
 
 def simulated_verdict(growth, t_end: float, rate: float = float("nan"),
-                      threshold: float = GROWTH_THRESHOLD) -> Verdict:
+                      threshold: float = GROWTH_THRESHOLD, time_name: str = "T") -> Verdict:
     """The verdict of a simulation from its measured growth factors.
 
     Parameters
@@ -129,6 +133,8 @@ def simulated_verdict(growth, t_end: float, rate: float = float("nan"),
         The measured peak rate (1/T), NaN where no linear stage gave one.
     threshold : float
         Growth that counts as MI (GROWTH_THRESHOLD, 20).
+    time_name : str
+        The lattice time's name in the verdict's text ("T"; "time" for a model).
 
     Returns
     -------
@@ -140,15 +146,16 @@ def simulated_verdict(growth, t_end: float, rate: float = float("nan"),
     g = tuple(float(x) for x in growth)
     low = slowest_visible_rate(t_end, threshold)
     if not g or not all(math.isfinite(x) for x in g):
-        return Verdict("undetermined", t_end, rate, g, low, "no growth factor from the run")
+        return Verdict("undetermined", t_end, rate, g, low, "no growth factor from the run",
+                       time_name)
     if sum(x > threshold for x in g) * 2 > len(g):
-        return Verdict("MI", t_end, rate, g, low)
+        return Verdict("MI", t_end, rate, g, low, time_name=time_name)
     med = float(np.median(g))
     if med <= math.sqrt(threshold):
-        return Verdict("no growth within T", t_end, rate, g, low)
+        return Verdict("no growth within T", t_end, rate, g, low, time_name=time_name)
     return Verdict("undetermined", t_end, rate, g, low,
                    f"grew {_factors(g)} within T = {t_end:g}: more than noise, less than the "
-                   f"{threshold:g}x that decides; a longer --t-end decides")
+                   f"{threshold:g}x that decides; a longer --t-end decides", time_name)
 
 
 __all__ = ["VERDICT_WORDS", "DECIDE_E_FOLDINGS", "MEASURE_E_FOLDINGS", "T_MIN", "T_CAP",

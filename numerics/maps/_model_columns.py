@@ -76,8 +76,10 @@ VARIABLE_ATTRS = {
         "observable_from": GROWTH_THRESHOLD, "units": "1"},
     "amplification_time_simulated": {"long_name": "when that seed's A(t) peaked",
                                      "units": "T (lattice time)"},
-    "g1": {"long_name": "d^2 omega/dk^2"},
-    "g2": {"long_name": "NLS nonlinear coefficient (mean flow included)"},
+    "g1": {"long_name": "d^2 omega/dk^2", "units": "site^2/T (lattice time)"},
+    "g2": {"long_name": "NLS nonlinear coefficient (mean flow included)",
+           "units": "1/(T amplitude^2) (lattice time; the amplitude in the carrier "
+                    "field's own unit)"},
     "k_simulated": {"long_name": "k snapped to 2 pi m / N where the ring is used",
                     "units": "rad per site"},
     "growth": {"long_name": "the seeds' median growth factor of the sidebands", "units": "1"},

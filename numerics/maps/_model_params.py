@@ -314,16 +314,16 @@ class ModelMapParameters:
         axis (the variable's ``reason`` attribute says why, per value)."""
         from ._critical import THRESHOLD, critical_damping
 
+        out = self.unsampled_band(arrays)
         axis = self.damping_axis()
         if axis is None or not self.amplified():
-            return {}
+            return out
         along = self.dims.index(axis)
         other = self.dims[1 - along]
         damping, values = self.axis_values()[along], self.axis_values()[1 - along]
         theories = list(self.amplified())
         if "amplification_simulated" in arrays and np.any(arrays["done"]):
             theories.append("simulated")
-        out = {}
         for theory in theories:
             amp = np.asarray(arrays[f"amplification_{theory}"], float)
             done = np.asarray(arrays["done" if theory == "simulated" else "done_predicted"],
@@ -342,6 +342,56 @@ class ModelMapParameters:
                                  "next cell is <= 1); no extrapolation",
                 "reason": reason or "every value crosses inside the axis"})
         return out
+
+    def unsampled_band(self, arrays: dict) -> dict:
+        """``nls_band_unsampled`` (int8 per cell: 1 where the semi-discrete NLS finds MI in
+        a band of offsets 0 < |q| <= a sqrt(g2/g1) that lies below the ring's smallest
+        offset 2 pi / N, so that no ring offset samples it and the ring's theories and runs
+        cannot show that MI; 0 elsewhere; -1 where the cell has no theory yet), with the
+        count in its attributes and in the store's (``nls_band_unsampled_cells``, what
+        ``flexmm map --model`` prints). Empty for a map without the ring (theory-only
+        without ``exact``)."""
+        if not self.ring or not {"verdict_semidiscrete", "g1", "g2"} <= set(arrays):
+            return {}
+        rings = [t for t in ("exact", "fourwave") if f"verdict_{t}" in arrays]
+        if not self.theory_only and "verdict_simulated" in arrays:
+            rings.append("simulated")
+        shape = self.grid_shape
+        amplitude = np.array([[self.amplitude_at(i, j) for j in range(shape[1])]
+                              for i in range(shape[0])])
+        g1, g2 = np.asarray(arrays["g1"], float), np.asarray(arrays["g2"], float)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            edge = amplitude * np.sqrt(g2 / g1)  # the NLS band edge (docs/models.md)
+        smallest = 2 * math.pi / self.N
+        done = np.asarray(arrays["done_predicted"], bool)
+        below = (done & (np.asarray(arrays["verdict_semidiscrete"]) == MI)
+                 & np.isfinite(edge) & (edge <= smallest))
+        flag = np.where(done, below, -1).astype(np.int8)
+        not_mi = {t: int((below & (np.asarray(arrays[f"verdict_{t}"]) != MI)).sum())
+                  for t in rings}
+        attrs = {
+            "long_name": "the semi-discrete NLS's MI band lies below the ring's smallest "
+                         "offset 2 pi / N: no ring offset samples it",
+            "flag_values": [-1, 0, 1], "flag_meanings": "not_computed sampled unsampled",
+            "cells": int(below.sum()), "of": int(below.size),
+            "ring_smallest_offset": smallest,
+            "widest_band_edge": float(np.max(edge[below])) if below.any() else "none",
+            **{f"ring_not_MI_{t}": n for t, n in not_mi.items()},
+            "remedy": "a larger N (--N) samples the band"}
+        return {"nls_band_unsampled": (self.dims, flag, attrs)}
+
+    def derived_attrs(self, derived: dict) -> dict:
+        """The store's attributes from the derived variables: the count of cells whose NLS
+        band no ring offset samples (``nls_band_unsampled_cells``, of how many)."""
+        if "nls_band_unsampled" not in derived:
+            return {}
+        a = derived["nls_band_unsampled"][2]
+        return {"nls_band_unsampled_cells": a["cells"],
+                "nls_band_unsampled_note": (
+                    f"{a['cells']} of {a['of']} cells: the semi-discrete NLS's MI band lies "
+                    f"below the ring's smallest offset 2 pi / N = "
+                    f"{a['ring_smallest_offset']:.4g}, which no ring offset samples "
+                    "(variable nls_band_unsampled)")}
 
     @property
     def task(self):

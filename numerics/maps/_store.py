@@ -169,10 +169,13 @@ def run_map(params: MapParameters, out: Path, scheduler: str | None = None,
 
             group = zarr.open_group(str(path), mode="r", use_consolidated=False)
             kept = dict(group.attrs)  # an xarray append puts the dataset's own attributes
+            # and the store's own from them (a model map's count of unsampled NLS bands)
+            kept.update(getattr(params, "derived_attrs", lambda derived: {})(derived))
             xr.Dataset(derived).to_zarr(path, mode="a", zarr_format=2, consolidated=False)
             zarr.open_group(str(path), mode="r+", use_consolidated=False).attrs.put(kept)
             arrays.update({n: np.asarray(v[1]) for n, v in derived.items()})
             ds = ds.assign({n: (v[0], np.asarray(v[1]), v[2]) for n, v in derived.items()})
+            ds.attrs.update(kept)
         if todo and not params.theory_only:  # who simulated (the last run's cells)
             from ._devices import device_attrs
 

@@ -62,8 +62,9 @@ def classify_mode(spectrum) -> dict:
     -------
     dict
         ``mode_kind`` ('sidebands', 'backward', 'parametric', 'resonance' where a wave is
-        no linear wave within max(2% Omega, 10 rates) -- a harmonic resonant with a branch
-        -- or 'none'), ``mode_waves`` [{branch, wavenumber, frequency, field}] x 2 and
+        no linear wave within max(2% Omega, 10 rates), nor a linear wave moved by the
+        carrier's own frequency shift Omega - omega(k) (as a pair locked to the carrier
+        is) -- a harmonic resonant with a branch -- or 'none'), ``mode_waves`` [{branch, wavenumber, frequency, field}] x 2 and
         ``fastest_offset``, the pair's own offset (from k, or from k - pi for a backward
         pair), not a copy's.
     """
@@ -79,6 +80,11 @@ def classify_mode(spectrum) -> dict:
     _, lams = hill_spectrum(wave, [q], return_eigenvalues=True)
     lam = lams[0][int(np.argmax(lams[0].real))]
     best = None
+    # the carrier's own nonlinear frequency shift: a pair locked to it (sidebands, a
+    # backward pair) sits that far off the linear branches, each wave by the same amount
+    # (their frequencies sum to 2 Omega); fput alpha 1, beta 1.5 at k 2.45, a 0.1 on 64
+    # sites: both waves 0.041 off, the shift 0.039 (2% of Omega), called a resonance before
+    shift = Omega - float(branches(model, [k])[0][wave.carrier.branch])
     # the pair's harmonics l: both frequencies positive for l in (nu / Omega, nu / Omega + 2)
     l0 = int(math.floor(lam.imag / Omega)) if Omega > 0 else 0
     for l in range(l0 - 1, l0 + 4):
@@ -87,8 +93,11 @@ def classify_mode(spectrum) -> dict:
             continue
         kap, kap2 = float(_wrap(q + l * k)), float(_wrap(2 * k - q - l * k))
         w1, w2 = branches(model, [kap, kap2])
-        b1, b2 = int(np.nanargmin(np.abs(w1 - phi))), int(np.nanargmin(np.abs(w2 - phi2)))
-        miss = max(abs(w1[b1] - phi), abs(w2[b2] - phi2))
+        miss, b1, b2 = min(
+            (max(abs(w1[i] + s - phi), abs(w2[j] + s - phi2)), i, j)
+            for s in (0.0, shift) if math.isfinite(s)
+            for i in [int(np.nanargmin(np.abs(w1 + s - phi)))]
+            for j in [int(np.nanargmin(np.abs(w2 + s - phi2)))])
         if best is None or miss < best[0]:
             best = (miss, kap, phi, b1, kap2, phi2, b2)
     if best is None:  # no pair of positive frequencies (a wave with Omega <= 0): unnamed
@@ -147,24 +156,40 @@ def ring_misses(model: Model, k: float, amplitude: float, branch=None, *, N: int
             order = np.argsort(q)
             q, g = q[order], g[order]
     grows = g > 0
-    out = []
+    out, sampled = [], []
     edges = np.flatnonzero(np.diff(np.concatenate([[0], grows.astype(int), [0]])))
     for start, stop in zip(edges[::2], edges[1::2]):
         lo = _edge(chain.wave, q[start], q[start - 1] if start > 0 else None)
         hi = _edge(chain.wave, q[stop - 1], q[stop] if stop < q.size else None)
+        j = np.arange(math.ceil(lo * N / (2 * math.pi)), math.floor(hi * N / (2 * math.pi)) + 1)
+        if j.size:
+            sampled.append((lo, hi))
+            continue
         # a mode shows at Hill offsets q + l k too (its copies): one band per mode
         mid = (lo + hi) / 2
         if any(_same_mode(mid, (b["band"][0] + b["band"][1]) / 2, k_ring, hi - lo)
                for b in out):
             continue
-        j = np.arange(math.ceil(lo * N / (2 * math.pi)), math.floor(hi * N / (2 * math.pi)) + 1)
-        record = {"band": (lo, hi), "peak_gain": float(np.max(g[start:stop])), "N": None}
-        if not j.size:
-            record["N"] = next((n for n in range(N + 1, 64 * N) if
-                                math.floor(hi * n / (2 * math.pi))
-                                >= math.ceil(lo * n / (2 * math.pi))), None)
-        out.append(record)
-    return [b for b in out if b["N"] is not None]
+        out.append({"band": (lo, hi), "peak_gain": float(np.max(g[start:stop])),
+                    "N": next((n for n in range(N + 1, 64 * N) if
+                               math.floor(hi * n / (2 * math.pi))
+                               >= math.ceil(lo * n / (2 * math.pi))), None)})
+    # Hill's spectrum at +-q + l k is the one at q: a piece between two ring offsets of a
+    # band that is a copy of a band the ring samples is that band's mode, which the ring
+    # shows (at k = pi on 64 sites the sidebands' copies near pi - q read as 13 bands)
+    return [b for b in out if b["N"] is not None
+            and not any(_copy_inside(b["band"], s, k_ring) for s in sampled)]
+
+
+def _copy_inside(band, other, k) -> bool:
+    """Whether a copy +-q + l k (mod 2 pi) of ``band``'s centre lies in the band ``other``
+    (offsets |q| in [0, pi]), within half of ``band``'s width."""
+    mid, half = (band[0] + band[1]) / 2, (band[1] - band[0]) / 2
+    for l in range(-3, 4):
+        m = abs(float(_wrap(mid - l * k)))
+        if other[0] - half <= m <= other[1] + half:
+            return True
+    return False
 
 
 def _same_mode(q1, q2, k, width):

@@ -466,6 +466,8 @@ def simulate_seeds(model: Model, k: float, amplitude: float, spec, *, branch=Non
         # and T is how long they ran
         factors = [r.amplification().amplification for r in runs]
         T_run = max(float(r.t[-1]) for r in runs)
-        return SeededRuns(simulated_verdict(factors, T_run, rate), rate, runs, T_run, length)
-    return SeededRuns(simulated_verdict([g.factor for g in growth], T, rate), rate, runs, T,
+        return SeededRuns(simulated_verdict(factors, T_run, rate, time_name="time"), rate,
+                          runs, T_run, length)
+    return SeededRuns(simulated_verdict([g.factor for g in growth], T, rate,
+                                        time_name="time"), rate, runs, T,
                       length)
