@@ -1,5 +1,6 @@
 """A model map's variables: the verdict words' int8 codes, each variable's attributes,
-and the task a worker runs on a block of cells (:func:`model_block`), for
+the task a worker runs on a block of cells (:func:`model_block`) and the cells whose NLS
+band no ring offset samples (:func:`unsampled_band`), for
 ``_model_params.ModelMapParameters``."""
 
 from __future__ import annotations
@@ -120,6 +121,44 @@ def model_block(params: ModelMapParameters, i: int, js: list, simulate: bool = T
     return {"i": i, "js": list(js), "rows": out, "simulated": simulate}
 
 
-__all__ = ["model_block", "VERDICT_CODES", "MODE_KIND_CODES", "MODE_KIND_ATTRS",
-           "MODEL_VERDICT_ATTRS", "SIMULATED_COLUMNS", "LOSSY_SIMULATED_COLUMNS",
+def unsampled_band(params: ModelMapParameters, arrays: dict) -> dict:
+    """``nls_band_unsampled`` (int8 per cell: 1 where the semi-discrete NLS finds MI in
+    a band of offsets 0 < |q| <= a sqrt(g2/g1) that lies below the ring's smallest
+    offset 2 pi / N, so that no ring offset samples it and the ring's theories and runs
+    cannot show that MI; 0 elsewhere; -1 where the cell has no theory yet), with the
+    count in its attributes and in the store's (``nls_band_unsampled_cells``, what
+    ``flexmm map --model`` prints). Empty for a map without the ring (theory-only
+    without ``exact``)."""
+    if not params.ring or not {"verdict_semidiscrete", "g1", "g2"} <= set(arrays):
+        return {}
+    rings = [t for t in ("exact", "fourwave") if f"verdict_{t}" in arrays]
+    if not params.theory_only and "verdict_simulated" in arrays:
+        rings.append("simulated")
+    shape = params.grid_shape
+    amplitude = np.array([[params.amplitude_at(i, j) for j in range(shape[1])]
+                          for i in range(shape[0])])
+    g1, g2 = np.asarray(arrays["g1"], float), np.asarray(arrays["g2"], float)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        edge = amplitude * np.sqrt(g2 / g1)  # the NLS band edge (docs/models.md)
+    smallest = 2 * math.pi / params.N
+    done = np.asarray(arrays["done_predicted"], bool)
+    below = (done & (np.asarray(arrays["verdict_semidiscrete"]) == MI)
+             & np.isfinite(edge) & (edge <= smallest))
+    flag = np.where(done, below, -1).astype(np.int8)
+    not_mi = {t: int((below & (np.asarray(arrays[f"verdict_{t}"]) != MI)).sum())
+              for t in rings}
+    attrs = {
+        "long_name": "the semi-discrete NLS's MI band lies below the ring's smallest "
+                     "offset 2 pi / N: no ring offset samples it",
+        "flag_values": [-1, 0, 1], "flag_meanings": "not_computed sampled unsampled",
+        "cells": int(below.sum()), "of": int(below.size),
+        "ring_smallest_offset": smallest,
+        "widest_band_edge": float(np.max(edge[below])) if below.any() else "none",
+        **{f"ring_not_MI_{t}": n for t, n in not_mi.items()},
+        "remedy": "a larger N (--N) samples the band"}
+    return {"nls_band_unsampled": (params.dims, flag, attrs)}
+
+
+__all__ = ["model_block", "unsampled_band", "VERDICT_CODES", "MODE_KIND_CODES",
+           "MODE_KIND_ATTRS", "MODEL_VERDICT_ATTRS", "SIMULATED_COLUMNS", "LOSSY_SIMULATED_COLUMNS",
            "OBSERVABLE_ATTRS", "VARIABLE_ATTRS"]

@@ -33,6 +33,7 @@ from ._model_columns import (
     VARIABLE_ATTRS,
     VERDICT_CODES,
     model_block,
+    unsampled_band,
 )
 from ._params import DEFAULT_BLOCK
 
@@ -344,41 +345,8 @@ class ModelMapParameters:
         return out
 
     def unsampled_band(self, arrays: dict) -> dict:
-        """``nls_band_unsampled`` (int8 per cell: 1 where the semi-discrete NLS finds MI in
-        a band of offsets 0 < |q| <= a sqrt(g2/g1) that lies below the ring's smallest
-        offset 2 pi / N, so that no ring offset samples it and the ring's theories and runs
-        cannot show that MI; 0 elsewhere; -1 where the cell has no theory yet), with the
-        count in its attributes and in the store's (``nls_band_unsampled_cells``, what
-        ``flexmm map --model`` prints). Empty for a map without the ring (theory-only
-        without ``exact``)."""
-        if not self.ring or not {"verdict_semidiscrete", "g1", "g2"} <= set(arrays):
-            return {}
-        rings = [t for t in ("exact", "fourwave") if f"verdict_{t}" in arrays]
-        if not self.theory_only and "verdict_simulated" in arrays:
-            rings.append("simulated")
-        shape = self.grid_shape
-        amplitude = np.array([[self.amplitude_at(i, j) for j in range(shape[1])]
-                              for i in range(shape[0])])
-        g1, g2 = np.asarray(arrays["g1"], float), np.asarray(arrays["g2"], float)
-        with np.errstate(invalid="ignore", divide="ignore"):
-            edge = amplitude * np.sqrt(g2 / g1)  # the NLS band edge (docs/models.md)
-        smallest = 2 * math.pi / self.N
-        done = np.asarray(arrays["done_predicted"], bool)
-        below = (done & (np.asarray(arrays["verdict_semidiscrete"]) == MI)
-                 & np.isfinite(edge) & (edge <= smallest))
-        flag = np.where(done, below, -1).astype(np.int8)
-        not_mi = {t: int((below & (np.asarray(arrays[f"verdict_{t}"]) != MI)).sum())
-                  for t in rings}
-        attrs = {
-            "long_name": "the semi-discrete NLS's MI band lies below the ring's smallest "
-                         "offset 2 pi / N: no ring offset samples it",
-            "flag_values": [-1, 0, 1], "flag_meanings": "not_computed sampled unsampled",
-            "cells": int(below.sum()), "of": int(below.size),
-            "ring_smallest_offset": smallest,
-            "widest_band_edge": float(np.max(edge[below])) if below.any() else "none",
-            **{f"ring_not_MI_{t}": n for t, n in not_mi.items()},
-            "remedy": "a larger N (--N) samples the band"}
-        return {"nls_band_unsampled": (self.dims, flag, attrs)}
+        """``nls_band_unsampled`` of this map's cells (``_model_columns.unsampled_band``)."""
+        return unsampled_band(self, arrays)
 
     def derived_attrs(self, derived: dict) -> dict:
         """The store's attributes from the derived variables: the count of cells whose NLS
