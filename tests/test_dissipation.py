@@ -120,6 +120,51 @@ def test_damping_rates_equal_the_closed_forms(cache):
     assert not damping_rates(lossless, k).any() and carrier_damping(lossless, 1.0) == 0
 
 
+_TWO_CHAINS = """name = "two-chains"
+fields = ["u", "v"]
+[parameters]
+C = 1.0
+omega0 = 1.0
+beta = 1.0
+gamma = 0.01
+eta = 0.0
+[energy]
+kinetic = "u_t**2/2 + v_t**2/2"
+bond = "C*(u_next - u)**2/2 + 25*(v_next - v)**2/2"
+site = "omega0**2*u**2/2 + beta*u**4/4 + 100*v**2/2"
+[dissipation]
+site = "gamma*u_t**2/2 + gamma*v_t**2/2"
+bond = "eta*(u_next_t - u_t)**2/2"
+"""
+
+
+@pytest.mark.parametrize("gamma, eta", [(0.01, 0.0), (0.0, 0.05), (0.3, 0.2), (3.0, 0.0),
+                                        (0.0, 0.0)])
+def test_one_field_rates_in_closed_form_equal_the_eigenvalue_route(cache, gamma, eta):
+    # a one-field model's damped frequencies come from the roots of its scalar quadratic
+    # (issue 42, cost); a two-field model goes through the batched eigenvalue problem of
+    # the companion matrix. Two uncoupled chains, the second stiff (omega >= 10, above
+    # the first's band): the first branch is the one-field chain, by the eigenvalue route.
+    # Underdamped, strong and overdamped (gamma 3: gamma^2 > 4 omega0^2 near k = 0, Re
+    # omega = 0, the slower root), and zero damping. 1e-13 of |omega|: LAPACK's backward
+    # error on a 4 x 4 companion matrix is a few ulp of its norm (~1e-15 |omega|^2 / |omega|)
+    from numerics.models import damped_frequencies, damping_rates
+
+    one = load_model(parse_model(KG_CHAIN, "kg.toml"), gamma=gamma, eta=eta)
+    two = load_model(parse_model(_TWO_CHAINS, "two.toml"), gamma=gamma, eta=eta)
+    k = np.concatenate([np.linspace(-np.pi, np.pi, 41), [1e-9, 0.0]])
+    w1 = np.array([damped_frequencies(one, x)[0] for x in k])
+    w2 = np.array([damped_frequencies(two, x)[0] for x in k])
+    scale = np.abs(w2)
+    assert np.all(np.abs(w1 - w2) <= 1e-13 * scale), np.max(np.abs(w1 - w2) / scale)
+    r1, r2 = damping_rates(one, k)[:, 0], damping_rates(two, k)[:, 0]
+    assert np.all(np.abs(r1 - r2) <= 1e-13 * scale)
+    if gamma == 3.0:
+        assert np.any(w1.real == 0) and np.all(r1 > 0)  # overdamped near k = 0: met
+    if gamma == eta == 0.0:
+        assert not r1.any()
+
+
 def test_coefficients_print_the_carrier_damping():
     from numerics.models import model_coefficients
 
