@@ -6,12 +6,12 @@ acoustic directions, the grid's phase tables) and each call's assembly. Here the
 that depend on the layout alone (fields, H, k, the carrier field, the acoustic
 directions; not the amplitude, not the model's parameters) are built once and kept
 (least recently used), and the residual and its Jacobian are ``_exact._solve``'s,
-operation for operation, with fewer calls: the same floating-point values, so Newton
-takes the same steps to the same wave, to the bit (tests/test_models_exact.py). A
-Jacobian assembled from linear maps of the unknowns costs a quarter of this one's, but
-equal only to round-off: it moves the converged wave by ~1e-13 of the paper chain's and
-with it which of two ring offsets that tie to round-off (one mode seen from two
-harmonics) a damped point names, so it is not used.
+operation for operation, with fewer calls. The solve keeps the start's Jacobian
+(``chord_newton``: one Jacobian and its pseudo-inverse a wave instead of two Jacobians
+and two least-squares solves): the same wave as ``_solve``'s to round-off (6e-14 of the
+amplitude for flexmm, 1e-16 for one field; tests/test_models_exact.py), which may name
+the other of two ring offsets that tie to round-off at a damped point (either is right:
+tests/test_dissipation.py).
 """
 
 from __future__ import annotations
@@ -135,6 +135,36 @@ class Collocation:
 
         residual.last = None
         return residual, jacobian
+
+
+def chord_newton(residual, jacobian, x0, steps=12):
+    """Newton's method with the start's Jacobian kept (the chord method): the lower
+    amplitudes of a damped point start from the last wave scaled, ~1e-5 of their
+    residual's scale away, where the chord converges linearly at a rate of that order, so
+    one Jacobian and its pseudo-inverse serve every step (Newton took two Jacobians and
+    two least-squares solves for the same round-off). Stops as ``_exact._gauss_newton``:
+    a residual below 1e-14, or one that no longer falls by 4 once below 1e-11 (round-off);
+    None where it does not converge so (the caller solves by Gauss-Newton instead)."""
+    x = x0.copy()
+    r = residual(x)
+    best = float(np.max(np.abs(r)))
+    if not np.isfinite(best):
+        return None
+    if best < 1e-14:
+        return x
+    step = np.linalg.pinv(jacobian(x))  # the least-squares solution of each step
+    for _ in range(steps):
+        x = x - step @ r
+        r = residual(x)
+        now = float(np.max(np.abs(r)))
+        if not np.isfinite(now):
+            return None
+        if now < 1e-14:
+            return x
+        if now >= best / 4:  # round-off, or too far for the chord
+            return x if best < 1e-11 and now < 2 * best else None
+        best = now
+    return None
 
 
 @functools.lru_cache(maxsize=64)
