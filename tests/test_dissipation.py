@@ -587,8 +587,8 @@ FPUT_CHAIN = CHAIN.replace("gamma = 0.01", "gamma = 0.0") + \
 # round-off both, either of which a change of round-off may name (measured at commit
 # 9a4e655: 1.3e-14, 1.8e-14 and 2.4e-15 of it at the three flexmm-lossy points, one mode
 # seen from two harmonics; 1.7e-15 at FPUT gamma 0.012, 2.7e-15 and 1.4e-14 at the
-# Klein-Gordon points: two offsets whose spectra are equal, q and k - q apart by the
-# carrier's harmonic)
+# Klein-Gordon points: q and k - q, or -(k + q) mod 2 pi, one Floquet mode labelled from
+# a neighbouring harmonic)
 TODAY = [
     ("fput", dict(gamma=0.012), 2.5, 0.2, 64, (146.48572694089202, 136.55912351859897,
                                                (1.7671458676442586, 2.061670178918302)),
