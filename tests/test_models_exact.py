@@ -86,13 +86,15 @@ def test_a_wave_started_from_another_amplitude_is_the_same_wave(name, params, k,
     # strongly nonlinear: the harmonics reach H = 8, the truncation doubles (H = 32)
     ("fput", dict(alpha=0.51, beta=1.91), 0.70, 0.24, None),
 ])
-def test_the_lower_amplitudes_fast_solve_is_the_same_wave_to_the_bit(name, params, k, a,
-                                                                     branch):
+def test_the_lower_amplitudes_fast_solve_is_the_same_wave_to_round_off(name, params, k, a,
+                                                                      branch):
     """``continued_wave`` (a damped point's lower amplitudes, issue 42: the set-up once
-    per carrier, ``_collocation``'s tables) computes ``_solve``'s residual and Jacobian
-    operation for operation, so Newton takes the same steps: the same wave, bit for bit,
-    as ``travelling_wave(start=)`` (anything less moves which of two offsets that tie to
-    round-off a damped point names)."""
+    per carrier, ``_collocation``'s tables, the chord method: the start's Jacobian kept)
+    solves ``_solve``'s equations by other steps to the same round-off: the same wave
+    as ``travelling_wave(start=)`` to 2e-13 of its amplitude (both stop at a residual of
+    1e-14 of m omega^2 a or where round-off stalls it; measured: 6e-14 for flexmm, whose
+    two fields' scales differ by ~30, 7e-16 for the one-field and diatomic chains), omega
+    to 1e-13 relative (measured 2e-15), the same truncation."""
     from numerics.models._exact import continued_wave
 
     model = _model(name, **params)
@@ -101,9 +103,10 @@ def test_the_lower_amplitudes_fast_solve_is_the_same_wave_to_the_bit(name, param
     for f in (0.5, 0.25, 0.125):
         slow = travelling_wave(model, k, f * a, branch, start=slow)
         at = continued_wave(model, top.carrier, f * a, at, fast)
-        assert np.array_equal(at.coefficients, slow.coefficients)
-        assert (at.omega, at.residual, at.harmonics) == (slow.omega, slow.residual,
-                                                         slow.harmonics)
+        assert at.harmonics == slow.harmonics
+        assert np.max(np.abs(at.coefficients - slow.coefficients)) <= 2e-13 * f * a
+        assert at.omega == pytest.approx(slow.omega, rel=1e-13)
+        assert at.residual < 1e-13 and slow.residual < 1e-13
 
 
 def test_a_vanishing_wave_has_the_linear_spectrum():

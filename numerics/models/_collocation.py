@@ -6,12 +6,12 @@ acoustic directions, the grid's phase tables) and each call's assembly. Here the
 that depend on the layout alone (fields, H, k, the carrier field, the acoustic
 directions; not the amplitude, not the model's parameters) are built once and kept
 (least recently used), and the residual and its Jacobian are ``_exact._solve``'s,
-operation for operation, with fewer calls: the same floating-point values, so Newton
-takes the same steps to the same wave, to the bit (tests/test_models_exact.py). A
-Jacobian assembled from linear maps of the unknowns costs a quarter of this one's, but
-equal only to round-off: it moves the converged wave by ~1e-13 of the paper chain's and
-with it which of two ring offsets that tie to round-off (one mode seen from two
-harmonics) a damped point names, so it is not used.
+operation for operation, with fewer calls. The solve keeps the start's Jacobian
+(``chord_newton``: one Jacobian and its pseudo-inverse a wave instead of two Jacobians
+and two least-squares solves): the same wave as ``_solve``'s to round-off (6e-14 of the
+amplitude for flexmm, 1e-16 for one field; tests/test_models_exact.py), which may name
+the other of two ring offsets that tie to round-off at a damped point (either is right:
+tests/test_dissipation.py).
 """
 
 from __future__ import annotations
@@ -39,7 +39,12 @@ class Collocation:
         self.Bm = self.B0 * np.exp(-1j * h * k)[:, None]
         self.sidx = (h[:, None] - h[None, :]) % M
         self.ph = np.exp(1j * h * k)[None, :, None, None]
-        for arr in (self.E, self.B0, self.Bp, self.Bm, self.sidx, self.ph, optical, free):
+        # a cell's fields at (n, n + 1) and at (n - 1, n) side by side, (2d, 2M): the cell
+        # functions in one call each (elementwise: the same values as two calls)
+        self.B_cell = np.concatenate([self.B0, self.Bm], axis=1)
+        self.B_next = np.concatenate([self.Bp, self.B0], axis=1)
+        for arr in (self.E, self.B0, self.Bp, self.Bm, self.sidx, self.ph, optical, free,
+                    self.B_cell, self.B_next):
             arr.flags.writeable = False
 
     def equations(self, model, masses, a, scale):
@@ -48,12 +53,11 @@ class Collocation:
         of a converged x reads it instead of computing it again)."""
         d, M, H, h = self.d, self.M, self.H, self.h
         optical, n_opt, free, field = self.optical, self.n_opt, self.free, self.field
-        B0, Bp, Bm, E, sidx, ph = self.B0, self.Bp, self.Bm, self.E, self.sidx, self.ph
+        B0, E, sidx, ph = self.B0, self.E, self.sidx, self.ph
+        B_cell, B_next = self.B_cell, self.B_next
         code, p = model.code, model.p
-        g_here = np.empty((2 * d, M))
-        g_back = np.empty((2 * d, M))
-        Hf = np.empty((2 * d, 2 * d, M))
-        Hb = np.empty((2 * d, 2 * d, M))
+        g = np.empty((2 * d, 2 * M))
+        Hc = np.empty((2 * d, 2 * d, 2 * M))
         m2 = -(h**2)
         h2 = h**2
         diag = np.arange(2 * H + 1)
@@ -83,15 +87,18 @@ class Collocation:
 
         # Newton asks the Jacobian at the x whose residual it just computed: the
         # coefficients and fields of that x are kept for it (the same values)
-        at = [None, None, None, None, None]
+        at = [None, None, None]
+
+        def fields(c):
+            # columns :M the cell (n, n + 1), M: the cell (n - 1, n), on the grid
+            return np.concatenate([np.real(c @ B_cell), np.real(c @ B_next)])
 
         def residual(x):
             omega, c = x[0], unpack(x)
-            U0, Up, Um = np.real(c @ B0), np.real(c @ Bp), np.real(c @ Bm)
-            at[:] = [x.copy(), c, U0, Up, Um]
-            code.cell_gradient_into(np.concatenate([U0, Up]), p, g_here)
-            code.cell_gradient_into(np.concatenate([Um, U0]), p, g_back)
-            R = m_col * omega**2 * np.real((c * m2) @ B0) + g_here[:d] + g_back[d:]
+            U = fields(c)
+            at[:] = [x.copy(), c, U]
+            code.cell_gradient_into(U, p, g)
+            R = m_col * omega**2 * np.real((c * m2) @ B0) + g[:d, :M] + g[d:, M:]
             R_hat = R @ E.T
             pos = R_hat[:, H + 1:]
             out = np.concatenate(mean_rows(R_hat[:, H]) + [np.real(pos).reshape(-1),
@@ -102,13 +109,13 @@ class Collocation:
         def jacobian(x):
             omega = x[0]
             if at[0] is not None and np.array_equal(at[0], x):
-                c, U0, Up, Um = at[1:]
+                c, U = at[1:]
             else:
                 c = unpack(x)
-                U0, Up, Um = np.real(c @ B0), np.real(c @ Bp), np.real(c @ Bm)
-            code.cell_hessian_into(np.concatenate([U0, Up]), p, Hf)
-            code.cell_hessian_into(np.concatenate([Um, U0]), p, Hb)
-            Ff, Fb = np.fft.fft(Hf, axis=-1) / M, np.fft.fft(Hb, axis=-1) / M
+                U = fields(c)
+            code.cell_hessian_into(U, p, Hc)
+            F = np.fft.fft(Hc.reshape(2 * d, 2 * d, 2, M), axis=-1) / M
+            Ff, Fb = F[:, :, 0], F[:, :, 1]
             Fs, Bs = Ff[..., sidx], Fb[..., sidx]                   # (2d, 2d, l, h)
             J = (Fs[:d, :d] + Bs[d:, d:]).transpose(2, 3, 0, 1) \
                 + Fs[:d, d:].transpose(2, 3, 0, 1) * ph \
@@ -135,6 +142,36 @@ class Collocation:
 
         residual.last = None
         return residual, jacobian
+
+
+def chord_newton(residual, jacobian, x0, steps=12):
+    """Newton's method with the start's Jacobian kept (the chord method): the lower
+    amplitudes of a damped point start from the last wave scaled, ~1e-5 of their
+    residual's scale away, where the chord converges linearly at a rate of that order, so
+    one Jacobian and its pseudo-inverse serve every step (Newton took two Jacobians and
+    two least-squares solves for the same round-off). Stops as ``_exact._gauss_newton``:
+    a residual below 1e-14, or one that no longer falls by 4 once below 1e-11 (round-off);
+    None where it does not converge so (the caller solves by Gauss-Newton instead)."""
+    x = x0.copy()
+    r = residual(x)
+    best = float(np.max(np.abs(r)))
+    if not np.isfinite(best):
+        return None
+    if best < 1e-14:
+        return x
+    step = np.linalg.pinv(jacobian(x))  # the least-squares solution of each step
+    for _ in range(steps):
+        x = x - step @ r
+        r = residual(x)
+        now = float(np.max(np.abs(r)))
+        if not np.isfinite(now):
+            return None
+        if now < 1e-14:
+            return x
+        if now >= best / 4:  # round-off, or too far for the chord
+            return x if best < 1e-11 and now < 2 * best else None
+        best = now
+    return None
 
 
 @functools.lru_cache(maxsize=64)

@@ -435,9 +435,10 @@ def _solve(model, car, a, masses, acoustic, H, c0, omega0, least_squares):
 
 def _solve_fast(model, car, a, masses, acoustic, H, c0, omega0, least_squares):
     """``_solve``'s equations from their linear maps (``_collocation``: no per-call
-    assembly), the converged residual not computed again: the same wave to round-off
-    (tests/test_models_exact.py), at ~1/3 of the time of a solve from a near start."""
-    from ._collocation import collocation
+    assembly), by the chord method (``chord_newton``: the start's Jacobian kept; Gauss-
+    Newton where it does not converge), the converged residual not computed again: the
+    same wave to round-off (tests/test_models_exact.py)."""
+    from ._collocation import chord_newton, collocation
 
     d = model.n_fields
     optical, free = _pack_layout(d, H, car.field, acoustic)
@@ -447,7 +448,9 @@ def _solve_fast(model, car, a, masses, acoustic, H, c0, omega0, least_squares):
         model, masses, a, scale)
     parts0 = np.stack([np.real(c0[:, H + 1:]), np.imag(c0[:, H + 1:])], axis=-1)
     x0 = np.concatenate([[omega0], optical.T @ np.real(c0[:, H]), parts0[free]])
-    x = _gauss_newton(residual, jacobian, x0)
+    x = chord_newton(residual, jacobian, x0)
+    if x is None:
+        x = _gauss_newton(residual, jacobian, x0)
     if x is None:
         x = least_squares(residual, x0, method="lm", xtol=1e-15, ftol=1e-15, gtol=1e-15,
                           max_nfev=200 * (x0.size + 1)).x
