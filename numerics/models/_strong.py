@@ -49,6 +49,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from ._real_gauge import frozen_real, real_gauge
 from ._sidebands import (
     STEPS,
     TOL,
@@ -177,10 +178,16 @@ def _frozen_starts(K, Om, cidx, ridx, lvec, P, sq, omega, starts, gaps, larg, ve
     is singular."""
     rc, nr = cidx.size, ridx.size
     X = np.empty((nr, rc), np.complex128)
-    Sig, ok = _fold(K, Om, 0j, cidx, ridx, X)
+    g = np.empty(K.shape[0], np.complex128)
+    ok = False
+    if real_gauge(K, g):  # in real arithmetic (``_real_gauge``): ~1/3 of the cost
+        Sig = np.empty((rc, rc), np.complex128)
+        lam0, ok = frozen_real(K, Om, cidx, ridx, g, X, Sig)
     if not ok:
-        return -1
-    lam0 = _small_pencil(K, Om, cidx, Sig)
+        Sig, ok = _fold(K, Om, 0j, cidx, ridx, X)
+        if not ok:
+            return -1
+        lam0 = _small_pencil(K, Om, cidx, Sig)
     ns = 0
     for s in range(lam0.size):
         if lam0[s].real > 1e-9 * omega:
