@@ -214,11 +214,14 @@ def travelling_wave(model: Model, k: float, amplitude: float, branch=None, *,
     """
     from ._fourwave import second_harmonic_size
 
-    wave = _travelling_wave(model, k, amplitude, branch, harmonics, start)
+    # the collocation's set-up once for the direct solve and the continuation's steps
+    # (``_solve_fast``: the same values, to the bit)
+    fast = {}
+    wave = _travelling_wave(model, k, amplitude, branch, harmonics, start, fast)
     shift = (wave.omega - wave.carrier.omega) / wave.carrier.omega
     if start is None and not (abs(shift) < SHIFT_CHECK and second_harmonic_size(
             model, wave.k, float(amplitude), branch) < HARMONIC_CHECK):
-        return _connected(model, k, float(amplitude), branch, harmonics, wave)
+        return _connected(model, k, float(amplitude), branch, harmonics, wave, fast)
     return wave
 
 
@@ -234,16 +237,21 @@ SHIFT_CHECK, HARMONIC_CHECK = 0.05, 0.3
 CONTINUATION_STEPS = 4
 
 
-def _connected(model, k, a, branch, harmonics, direct):
+def _connected(model, k, a, branch, harmonics, direct, fast=None):
     """The wave at amplitude a continued from small amplitude (each step's harmonic
     balance started from the previous wave): the one on the carrier's branch. ``direct``
     where it is the same wave; a one-line ModelError where the continuation loses the
-    branch (its harmonic balance fails: the family folds near a harmonic's resonance)."""
+    branch (its harmonic balance fails: the family folds near a harmonic's resonance).
+    ``fast``: the direct solve's set-up (``_travelling_wave``). A step after the first
+    starts at the previous wave's truncation (its tail test, and the doubling where the
+    tail is not yet below 1e-13, as from H = 8: the same wave to the tail's 1e-13), not
+    at H = 8 again: one solve a step instead of two."""
     prev = None
     for j in range(1, CONTINUATION_STEPS + 1):
         aj = a * j / CONTINUATION_STEPS
         try:
-            prev = _travelling_wave(model, k, aj, branch, harmonics, prev)
+            prev = _travelling_wave(model, k, aj, branch, harmonics, prev, fast,
+                                    first=None if prev is None else prev.harmonics)
         except ModelError:
             prev = None
         if prev is None or not prev.omega > 0:
@@ -294,10 +302,13 @@ def _least_squares(*args, **kwargs):
     return least_squares(*args, **kwargs)
 
 
-def _travelling_wave(model, k, amplitude, branch, harmonics, start=None, fast=None):
+def _travelling_wave(model, k, amplitude, branch, harmonics, start=None, fast=None,
+                     first=None):
     """``travelling_wave`` without its family check. ``fast``: a dict kept across the
     calls of one carrier (``continued_wave``): the carrier, the acoustic directions and
-    the collocation's linear maps (``_collocation``) computed once."""
+    the collocation's linear maps (``_collocation``) computed once. ``first``: the first
+    truncation H tried where ``harmonics`` is None (default 8; doubled while the tail is
+    above 1e-13 of the amplitude, up to 32)."""
     least_squares = _least_squares
     a = float(amplitude)
     if not (math.isfinite(a) and a > 0):
@@ -315,7 +326,7 @@ def _travelling_wave(model, k, amplitude, branch, harmonics, start=None, fast=No
         car, acoustic, masses = fast["car"], fast["acoustic"], fast["masses"]
     d = model.n_fields
     solve = _solve if fast is None else _solve_fast
-    H = harmonics or 8
+    H = harmonics or first or 8
     if start is not None:
         omega0, c0 = _scaled_start(start, car, a, H)
     else:
