@@ -246,9 +246,14 @@ def _connected(model, k, a, branch, harmonics, direct, fast=None):
     starts at the previous wave's truncation (its tail test, and the doubling where the
     tail is not yet below 1e-13, as from H = 8: the same wave to the tail's 1e-13), not
     at H = 8 again: one solve a step instead of two."""
+    # the steps' least squares by QR, the steps before the last converged to 1e-11 (each
+    # only the next one's start): a check, its wave returned only where it is another
+    # family than ``direct`` (then the same wave to round-off)
+    fast = dict(fast or {}, qr=True)
     prev = None
     for j in range(1, CONTINUATION_STEPS + 1):
         aj = a * j / CONTINUATION_STEPS
+        fast["done"] = 1e-14 if j == CONTINUATION_STEPS else 1e-11
         try:
             prev = _travelling_wave(model, k, aj, branch, harmonics, prev, fast,
                                     first=None if prev is None else prev.harmonics)
@@ -326,6 +331,7 @@ def _travelling_wave(model, k, amplitude, branch, harmonics, start=None, fast=No
         car, acoustic, masses = fast["car"], fast["acoustic"], fast["masses"]
     d = model.n_fields
     solve = _solve if fast is None else _solve_fast
+    kw = {} if fast is None else {"qr": bool(fast.get("qr")), "done": fast.get("done", 1e-14)}
     H = harmonics or first or 8
     if start is not None:
         omega0, c0 = _scaled_start(start, car, a, H)
@@ -335,7 +341,7 @@ def _travelling_wave(model, k, amplitude, branch, harmonics, start=None, fast=No
         c0[:, H - 1] = np.conj(c0[:, H + 1])
         omega0 = car.omega
     while True:
-        wave = solve(model, car, a, masses, acoustic, H, c0, omega0, least_squares)
+        wave = solve(model, car, a, masses, acoustic, H, c0, omega0, least_squares, **kw)
         tail = np.max(np.abs(wave.coefficients[:, [0, -1]])) / a
         if harmonics or tail < 1e-13 or H >= 32:
             break
@@ -444,10 +450,12 @@ def _solve(model, car, a, masses, acoustic, H, c0, omega0, least_squares):
                           coefficients=c, residual=res)
 
 
-def _solve_fast(model, car, a, masses, acoustic, H, c0, omega0, least_squares):
+def _solve_fast(model, car, a, masses, acoustic, H, c0, omega0, least_squares, qr=False,
+                done=1e-14):
     """``_solve``'s equations from their linear maps (``_collocation``: no per-call
     assembly), the converged residual not computed again: the same wave to round-off
-    (tests/test_models_exact.py), at ~1/3 of the time of a solve from a near start."""
+    (tests/test_models_exact.py), at ~1/3 of the time of a solve from a near start.
+    ``qr``, ``done``: ``_gauss_newton``'s."""
     from ._collocation import collocation
 
     d = model.n_fields
@@ -458,7 +466,7 @@ def _solve_fast(model, car, a, masses, acoustic, H, c0, omega0, least_squares):
         model, masses, a, scale)
     parts0 = np.stack([np.real(c0[:, H + 1:]), np.imag(c0[:, H + 1:])], axis=-1)
     x0 = np.concatenate([[omega0], optical.T @ np.real(c0[:, H]), parts0[free]])
-    x = _gauss_newton(residual, jacobian, x0)
+    x = _gauss_newton(residual, jacobian, x0, qr=qr, done=done)
     if x is None:
         x = least_squares(residual, x0, method="lm", xtol=1e-15, ftol=1e-15, gtol=1e-15,
                           max_nfev=200 * (x0.size + 1)).x
@@ -485,24 +493,44 @@ def continued_wave(model: Model, car: Carrier, amplitude: float, start: Travelli
     return _travelling_wave(model, car.k, amplitude, car.branch, None, start, fast)
 
 
-def _gauss_newton(residual, jacobian, x0, steps=40):
+def _gauss_newton(residual, jacobian, x0, steps=40, qr=False, done=1e-14):
     """Gauss-Newton until the residual is round-off (None where it does not settle: the
-    caller falls back to scipy's least squares)."""
+    caller falls back to scipy's least squares). ``qr``: each step's least squares by
+    Householder QR (~1/4 of ``lstsq``'s SVD on the 64 x 63 systems of H = 16), the SVD
+    where R is near singular (a fold: lstsq's cut-off then matters); the same solution,
+    other round-off: used by the continuation's checks (``_connected``). ``done``: the
+    residual it stops at (round-off by default; the continuation's steps before the
+    last stop at 1e-11, 100x below RESIDUAL_TOL: each is only the next one's start)."""
     x = x0.copy()
     r = residual(x)
     start = best = np.max(np.abs(r))
     for _ in range(steps):
         if not (np.isfinite(best) and best < 1e6 * max(start, 1e-3)):
             return None
-        if best < 1e-14:
+        if best < done:
             return x
-        x = x + np.linalg.lstsq(jacobian(x), -r, rcond=None)[0]
+        J = jacobian(x)
+        step = _qr_step(J, r) if qr else None
+        if step is None:
+            step = np.linalg.lstsq(J, -r, rcond=None)[0]
+        x = x + step
         r = residual(x)
         now = np.max(np.abs(r))
         if best < 1e-11 and now >= best / 4:
             return x if now < 2 * best else None  # round-off: the last step changed nothing
         best = now
     return x if best < RESIDUAL_TOL else None
+
+
+def _qr_step(J, r):
+    """The least-squares step -J^+ r by QR (J of full column rank), or None where R's
+    diagonal spans more than 1e10 (near rank-deficient: ``lstsq`` decides)."""
+    Q, R = np.linalg.qr(J)
+    diag = np.abs(np.diagonal(R))
+    if not diag.size or not diag.min() > 1e-10 * diag.max():
+        return None
+    step = np.linalg.solve(R, -(Q.T @ r))
+    return step if np.all(np.isfinite(step)) else None
 
 
 @dataclass(frozen=True)
