@@ -46,12 +46,17 @@ dense eigenproblem's (argmax at |l| <= 1, < 1e-6 in the outer three harmonics). 
 cluster is too large (strong coupling, or a flat branch: flexmm), or Newton does not
 settle, the central harmonics' pencil at |l| <= P - 5 with the outer ones folded in, its
 growing eigenvalues refined by Newton at P, fastest first (``_strong``: flexmm's offsets
-at ~1/4 of the dense eigenproblem's cost); where that does not settle either, that
+at ~1/4 of the dense eigenproblem's cost; that pencil in real arithmetic where a diagonal
+phase makes the Hill matrix real, every built-in model's wave: ``_real_gauge``, ~1/3 of
+the complex eigensolver's cost); where that does not settle either, that
 offset's dense eigenproblem at the same P. The fastest mode is computed again
 at P + PERSIST_STEP (the truncation persistence rule of CONVENTIONS.md;
 ``HillSpectrum.truncations`` names both); where it moves by more than 1e-6 relative, the
 whole spectrum is the dense one at H + 4. tests/test_exact_gain_anchors.py holds the
 implementation before this one (dense ``eig`` at H + 4 per offset) to 1e-6 relative.
+Where the wave's second harmonic is large (``HARMONIC_CHECK``: every flexmm carrier) the
+continuation from small amplitude (``_connected``) gives the wave, the harmonic balance
+from the linear wave solved only where the continuation loses the branch.
 """
 
 from __future__ import annotations
@@ -208,6 +213,11 @@ def travelling_wave(model: Model, k: float, amplitude: float, branch=None, *,
     truncation H = 8 (doubled as without) and residual test, so the same wave to
     round-off).
 
+    Without ``start``, a wave far from the linear one (frequency shift over
+    ``SHIFT_CHECK``, second harmonic over ``HARMONIC_CHECK`` of the first) is the one
+    continued from small amplitude (``_connected``): the carrier's family, where the
+    harmonic balance from the linear wave can land on another.
+
     Raises ModelError where none is found (a resonance with another harmonic, an
     amplitude beyond the branch's nonlinear range): said in one line. Small dense algebra:
     on one BLAS thread (``common.threads``).
@@ -217,11 +227,19 @@ def travelling_wave(model: Model, k: float, amplitude: float, branch=None, *,
     # the collocation's set-up once for the direct solve and the continuation's steps
     # (``_solve_fast``: the same values, to the bit)
     fast = {}
+    a = float(amplitude)
+    size = math.nan
+    if start is None and math.isfinite(a) and a > 0:
+        fast["car"] = carrier(model, k, branch)
+        size = second_harmonic_size(model, fast["car"].k, a, branch)
+        if size >= HARMONIC_CHECK:
+            # the continuation decides, whatever the direct solve finds: that solve only
+            # where the continuation loses the branch (``_connected``)
+            return _connected(model, k, a, branch, harmonics, None, fast)
     wave = _travelling_wave(model, k, amplitude, branch, harmonics, start, fast)
     shift = (wave.omega - wave.carrier.omega) / wave.carrier.omega
-    if start is None and not (abs(shift) < SHIFT_CHECK and second_harmonic_size(
-            model, wave.k, float(amplitude), branch) < HARMONIC_CHECK):
-        return _connected(model, k, float(amplitude), branch, harmonics, wave, fast)
+    if start is None and not (abs(shift) < SHIFT_CHECK and size < HARMONIC_CHECK):
+        return _connected(model, k, a, branch, harmonics, wave, fast)
     return wave
 
 
@@ -245,10 +263,16 @@ def _connected(model, k, a, branch, harmonics, direct, fast=None):
     ``fast``: the direct solve's set-up (``_travelling_wave``). A step after the first
     starts at the previous wave's truncation (its tail test, and the doubling where the
     tail is not yet below 1e-13, as from H = 8: the same wave to the tail's 1e-13), not
-    at H = 8 again: one solve a step instead of two."""
+    at H = 8 again: one solve a step instead of two.
+
+    ``direct`` None (the continuation asked before the direct solve: a large second
+    harmonic): the direct solve is done only where the continuation loses the branch;
+    else the continued wave is returned, which is ``direct`` to round-off where they are
+    one family and the wave returned before where they are not. (Before, a direct solve
+    that failed raised even where the continuation found the carrier's wave.)"""
+    base = fast
     # the steps' least squares by QR, the steps before the last converged to 1e-11 (each
-    # only the next one's start): a check, its wave returned only where it is another
-    # family than ``direct`` (then the same wave to round-off)
+    # only the next one's start)
     fast = dict(fast or {}, qr=True)
     prev = None
     for j in range(1, CONTINUATION_STEPS + 1):
@@ -260,6 +284,8 @@ def _connected(model, k, a, branch, harmonics, direct, fast=None):
         except ModelError:
             prev = None
         if prev is None or not prev.omega > 0:
+            if direct is None:
+                direct = _travelling_wave(model, k, a, branch, harmonics, None, base)
             shift = abs(direct.omega - direct.carrier.omega) / direct.carrier.omega
             if direct.omega > 0 and shift < SHIFT_CHECK:
                 # no other family seen, and the direct wave's frequency is the linear
@@ -274,9 +300,9 @@ def _connected(model, k, a, branch, harmonics, direct, fast=None):
                 f"resonance with a branch); the harmonic balance from the linear wave finds "
                 f"another family (frequency {direct.omega:.4g}, linear {direct.carrier.omega:.4g})"
                 "; try an amplitude below it")
-    if abs(prev.omega - direct.omega) <= 1e-8 * abs(direct.carrier.omega):
-        return direct
-    return prev
+    if direct is None or abs(prev.omega - direct.omega) > 1e-8 * abs(direct.carrier.omega):
+        return prev
+    return direct
 
 
 def _scaled_start(start, car, a, H):
