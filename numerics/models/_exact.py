@@ -794,7 +794,9 @@ class _Sidebands:
         than 1e-6 of it in the outer three harmonics)."""
         P, k, d = self.P, self.wave.k, self.wave.model.n_fields
         l_ = np.arange(-P, P + 1)
-        width = lam.shape[1]
+        # the slots that hold a mode anywhere (flexmm: <= 4 of MAX_MODES): the same values
+        width = max(int(count.max(initial=0)), 1)
+        lam, vec = lam[:, :width], vec[:, :width]
         c = np.abs(vec) ** 2                                         # (Q, modes, n)
         weight = c / np.maximum(c.sum(axis=-1, keepdims=True), 1e-300)
         per_l = weight.reshape(offsets.size, width, 2 * P + 1, d).sum(axis=-1)
@@ -995,7 +997,8 @@ def exact_gain(model: Model, k: float, amplitude: float, branch=None, *, N: int 
 
     i = int(np.argmax(spec.gain))
     lo, hi = q[max(i - 1, 0)], q[min(i + 1, q.size - 1)]
-    best = minimize_scalar(lambda x: -engine.spectrum([x]).gain[0], bounds=(lo, hi),
+    best = minimize_scalar(lambda x: -engine.spectrum([x], gains_only=True).gain[0],
+                           bounds=(lo, hi),
                            method="bounded", options={"xatol": 1e-6 * (hi - lo)})
     extra = engine.checked(np.array([best.x]))
     if len(extra.truncations) != 2:  # the peak did not persist: the old dense way
