@@ -140,8 +140,9 @@ def _experiment_args(p):
     p.add_argument("--amplitude", type=float, default=paper.AMPLITUDE, help=AMPLITUDE_HELP)
     p.add_argument("--start", choices=("paper", "travelling", "linear"), default=None,
                    help="initial state: paper (default for the paper chain): eq. IC of the "
-                        "paper (U at rest); travelling (default with --model): the exact "
-                        "travelling wave; linear (--model only): the linear plane wave")
+                        "paper (U at rest; with --model, points of the paper chain's models "
+                        "flexmm and flexmm-rotation); travelling (default with --model): the "
+                        "exact travelling wave; linear (--model only): the linear plane wave")
     p.add_argument("--N", type=int, default=500, help="sites of the periodic chain; k is "
                    "snapped to the nearest 2 pi m / N")
 

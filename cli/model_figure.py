@@ -166,7 +166,8 @@ def figure(path, model, out, curves, measured, seeds, simulate):
         ax.errorbar(measured["offset"], measured["sigma_by_offset"],
                     yerr=measured["std_by_offset"], fmt=".", ms=3, lw=0.5,
                     label=f"simulated ({measured['seeds']} of {seeds} seeds unstable)")
-    styles = {"semi-discrete NLS": "k--", "exact lattice": "C3-", "four-wave": "C2:"}
+    styles = {"semi-discrete NLS": "k--", "exact lattice": "C3-", "four-wave": "C2:",
+              "exact lattice, paper start": "C1-."}
     tops = []
     for name, c in curves.items():
         y = np.array([np.nan if v is None else v for v in c["curve"]], float)
@@ -179,7 +180,7 @@ def figure(path, model, out, curves, measured, seeds, simulate):
         tops.append(float(np.max(measured["sigma_by_offset"])))
     top = max([v for v in tops if math.isfinite(v)], default=0.0)
     missing = [f"{n}: {out[n]['reason']}" for n in ("semi-discrete NLS", "exact lattice",
-                                                    "four-wave")
+                                                    "four-wave", "exact lattice, paper start")
                if n in out and out[n].get("reason") and n not in curves]
     if simulate and not measured:
         missing.append("simulated: no run grew (" + out["simulated"]["text"] + ")"

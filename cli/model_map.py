@@ -346,9 +346,26 @@ def _plot_map(ds, path: Path, model):
                                           ("verdict_simulated", "simulated (MI: grew 20x)"))
               if v in ds]
     code = {**code, "no growth within T": 0, "undetermined": 2}
-    fig, axes = plt.subplots(1, len(panels), figsize=(6 * len(panels), 4.5), squeeze=False)
+    # one row of panels, what they share said once above them; fixed margins (a tight
+    # layout measures every text first: a third of the drawing's time, measured)
+    import textwrap
+
+    width = max(4.2 * len(panels), 6.0)
     fixed = ", ".join(f"{p} = {v:g}" for p, v in model.params.items() if p not in (xdim, ydim))
     runs_amplified = "observable_simulated" in ds  # a lossy model's runs (issue 42)
+    marks = any(n.replace("verdict_", "amplification_") in ds for n, _ in panels)
+    title = textwrap.wrap(
+        f"{model.name}" + (f" ({fixed})" if fixed else "")  # all swept: none
+        + (f", a = {ds.attrs['amplitude']:g}" if "amplitude" not in ds.dims else "")
+        + ": orange MI, blue stable, grey undefined"
+        + (f"; x: amplification >= {OBSERVABLE:g}x (observable with losses)" if marks else "")
+        + (f"; line: critical {damping}, amplification {OBSERVABLE:g}x" if critical else ""),
+        int(width * 14))  # ~14 characters of 10-point text an inch
+    height = 4.2 + 0.18 * len(title)
+    fig, axes = plt.subplots(1, len(panels), figsize=(width, height), squeeze=False, dpi=100)
+    fig.subplots_adjust(left=0.9 / width, right=1 - 0.2 / width, bottom=0.6 / height,
+                        top=1 - (0.45 + 0.18 * len(title)) / height, wspace=0.32)
+    fig.suptitle("\n".join(title), fontsize=10)
     for ax, (name, label) in zip(axes[0], panels):
         V = np.vectorize(lambda s: code.get(s, 2))(ds[name].values)
         if name == "verdict_simulated" and runs_amplified:
@@ -382,14 +399,6 @@ def _plot_map(ds, path: Path, model):
                 setter("log")
         ax.set_xlabel(xdim + (" (rad/site)" if xdim == "k" else ""))
         ax.set_ylabel(ydim + (" (rad/site)" if ydim == "k" else ""))
-        ax.set_title(f"{model.name}" + (f" ({fixed})" if fixed else "")  # all swept: none
-                     + (f", a = {ds.attrs['amplitude']:g}" if "amplitude" not in ds.dims
-                        else "") + f": {label}\n"
-                     "orange MI, blue stable, grey undefined"
-                     + (f"; x: amplification >= {OBSERVABLE:g}x (observable with losses)"
-                        if marked else "")
-                     + (f"\nline: critical {damping}, amplification {OBSERVABLE:g}x"
-                        if critical else ""), fontsize=9)
-    fig.tight_layout()
-    fig.savefig(path, dpi=120)
+        ax.set_title(label, fontsize=10)
+    fig.savefig(path)
     plt.close(fig)

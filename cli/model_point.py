@@ -10,13 +10,22 @@ from .models import _emit, _fmt, branch_of, load
 
 
 # ------------------------------------------------------------------ point
-def _start_of(args) -> str:
+def _start_of(args, model) -> str:
+    """The run's start: "exact" (--start travelling, the default), "linear", or a start the
+    model registers (``numerics.models.extra_starts``: "paper", eq. IC, for the paper
+    chain's energy)."""
+    from numerics.models import extra_starts
+
     start = getattr(args, "start", None)
-    if start == "paper":
-        raise ValueError("--start paper: the paper's start (eq. IC) is for the paper chain "
-                         "(no --model); with --model: travelling (the exact wave, default) "
-                         "or linear (the linear plane wave)")
-    return "linear" if start == "linear" else "exact"
+    if start in (None, "travelling"):
+        return "exact"
+    if start == "linear" or start in extra_starts(model):
+        return start
+    raise ValueError(f"--start {start}: model {model.name} has no such start; it starts "
+                     "from travelling (the exact wave, default) or linear (the linear plane "
+                     "wave)" + ("; the paper's start (eq. IC) belongs to the paper chain's "
+                                "energy, lossless (flexmm, flexmm-rotation)"
+                                if start == "paper" else ""))
 
 
 def _exact_row(spec) -> dict:
@@ -60,7 +69,7 @@ def _miss_text(b, N) -> str:
             f"of the ring of N = {N} samples: N = {b['N']} does (k snaps to 2 pi m / N)")
 
 
-def _simulated_row(model, k, args, spec, start, peak_time=None) -> dict:
+def _simulated_row(model, k, args, spec, start, peak_time=None, gain=None) -> dict:
     """Seeded runs of the ring from the exact wave (or the linear one) and the verdict
     ``numerics.lattice.simulated_verdict`` gives their growth factors, as for the paper's
     chain: MI, 'no growth within T' or 'undetermined'."""
@@ -86,7 +95,7 @@ def _simulated_row(model, k, args, spec, start, peak_time=None) -> dict:
               bar_format="{l_bar}{bar}| {n:.1f}/{total:.0f} runs [{elapsed}<{remaining}]"
               ) as bar:
         sim = simulate_seeds(model, k, args.amplitude, spec, branch=branch_of(args),
-                             N=args.N, seeds=seeds, t_end=t_end, start=start,
+                             N=args.N, seeds=seeds, t_end=t_end, start=start, gain=gain,
                              on_steps=lambda n, total: bar.update(n / total), **launch)
     v, rate, runs, t_end, length = sim.verdict, sim.rate, sim.runs, sim.t_end, sim.length
     # the JSON's verdict speaks the theories' three words (MI, stable, undefined: the
@@ -225,7 +234,7 @@ def _log(args):
     return (lambda *a: print(*a, file=sys.stderr)) if args.json else print
 
 
-def _estimate(model, k, args, spec):
+def _estimate(model, k, args, spec, gain=None):
     """The runs of a simulated point and what follows them
     (``numerics.maps.estimate_model_point``: one run measured here), said before them;
     the PointEstimate."""
@@ -233,7 +242,8 @@ def _estimate(model, k, args, spec):
     from numerics.lattice import run_length
     from numerics.maps import estimate_model_point
 
-    t_end = args.t_end if args.t_end is not None else run_length(spec.peak_gain).t_end
+    t_end = args.t_end if args.t_end is not None else run_length(
+        spec.peak_gain if gain is None else gain).t_end
     est = estimate_model_point(model, k, args.amplitude, branch_of(args), N=args.N,
                                seeds=args.seeds, t_end=t_end, figure=bool(args.out),
                                wave=spec.wave)
@@ -260,8 +270,20 @@ def run_point(args) -> int:
     checks.real("--amplitude", args.amplitude, 0.0, None)
     if args.t_end is not None and not args.simulate:
         raise ValueError("--t-end acts with --simulate only")
-    start = _start_of(args)
+    start = _start_of(args, model)
     k, _ = snap_ring(args.k, args.N)
+    launched = None  # a start the model registers (eq. IC): checked before any work
+    if start not in ("exact", "linear"):
+        from energy import ModelError
+        from numerics.models import extra_starts
+
+        launched = extra_starts(model)[start]
+        try:
+            launched.state(model, k, args.amplitude, args.N)
+        except ModelError as exc:  # the API's start names, said as the options are
+            why = str(exc).replace("use start 'exact' or 'linear'",
+                                   "use --start travelling or linear")
+            raise ValueError(f"--start {start}: {why}") from None
     if args.out:
         from common.output import check_output
         check_output(args.out, cache=False)
@@ -302,6 +324,13 @@ def run_point(args) -> int:
     misses = [] if spec is None else _ring_misses(model, k, args.amplitude, branch_of(args),
                                                   args.N)
     out["ring_misses"] = misses
+    start_curve, start_gain, start_label = None, None, None
+    if launched is not None:  # the theory of the state this start launches
+        row = launched.theory(model, k, args.amplitude, args.N)
+        start_curve = row.pop("curve", None)
+        start_label = row.pop("label")
+        out[start_label] = row
+        start_gain = row["peak_gain"] or 0.0
     if args.simulate:
         if spec is None:
             raise ValueError(f"--simulate: {out['exact lattice']['reason']}")
@@ -309,15 +338,20 @@ def run_point(args) -> int:
         _losses(model, k, args.amplitude, branch_of(args), args.N, out, spec, fw)
     estimate = None
     if args.simulate:  # the long part (its T known from the exact rate): said before
-        estimate = _estimate(model, k, args, spec)
+        estimate = _estimate(model, k, args, spec, start_gain)
         estimated_at = time.perf_counter()
         out["simulated"] = _simulated_row(model, k, args, spec, start,
-                                          out["exact lattice"].get("amplification_time"))
+                                          out["exact lattice"].get("amplification_time"),
+                                          gain=start_gain)
     from .model_figure import CURVES, theory_curves
 
     out["curves"] = {"description": CURVES,
                      **theory_curves(model, k, args.amplitude, branch_of(args), args.N,
                                      spec, fw, _own_offset(out["exact lattice"], k))}
+    if start_curve is not None:
+        from .model_figure import _curve
+
+        out["curves"][start_label] = _curve(*start_curve)
     if args.simulate:
         out["curves"]["simulated"] = out["simulated"].pop("curve")
     out = strict_json(add_units(out, units))
@@ -347,17 +381,18 @@ def run_point(args) -> int:
           + (f"; k{units.si(co['k'], 'wavenumber')}" if units.metres_per_site else ""))
     print(f"units:    {units.describe()}")
     rate_f, k_f = units.factor("rate"), units.factor("wavenumber")
-    print(f"{'theory':<20} {'verdict':>19} {'peak gain (1/time)':>19} {'at offset':>10}"
+    w = max(20, len(start_label or ""))  # the names' column
+    print(f"{'theory':<{w}} {'verdict':>19} {'peak gain (1/time)':>19} {'at offset':>10}"
           + (f" {'peak gain (1/s)':>16} {'e-folding (s)':>14}" if rate_f else "")
           + (f" {'offset (rad/m)':>15}" if k_f else ""))
     for name in ("continuum NLS", "semi-discrete NLS", "four-wave", "exact lattice",
-                 "simulated"):
+                 *([start_label] if start_label else []), "simulated"):
         if name in out:
             t = out[name]
             word = t.get("simulation_verdict", t["verdict"])  # a run says what T shows
             gain = t["peak_gain"] if word == "MI" or name != "simulated" else None
             off = t.get("fastest_offset")
-            print(f"{name:<20} {word:>19} {_fmt(gain, 4):>19} {_fmt(off, 4):>10}"
+            print(f"{name:<{w}} {word:>19} {_fmt(gain, 4):>19} {_fmt(off, 4):>10}"
                   + (f" {_fmt(_times(gain, rate_f), 4):>16} "
                      f"{_fmt(_times(_inverse(gain), units.seconds_per_T), 4):>14}"
                      if rate_f else "")
@@ -378,6 +413,8 @@ def run_point(args) -> int:
         print(f"four-wave undefined: {fw['reason']}")
     if fw["verdict"] == "MI":
         print(f"four-wave: the fastest pair is {fw['mode_kind']} ({_waves(fw)})")
+    if start_label and out[start_label].get("reason"):
+        print(f"{start_label} undefined: {out[start_label]['reason']}")
     if "simulated" in out:
         sim = out["simulated"]
         drift = (f"energy balance error {sim['energy_balance']:.1g} (dE/dt = -2R)"
@@ -386,8 +423,9 @@ def run_point(args) -> int:
         if "amplification" in sim:  # with losses growth is transient: say the factor first
             text = (f"the sidebands grew {sim['amplification']:.4g}x by t = "
                     f"{sim['amplification_time']:.4g} (the rate rule over the run: {text})")
-        print(f"simulated: {text}; {sim['seeds']} seed(s) from the "
-              f"{'exact travelling' if start == 'exact' else 'linear plane'} wave, {drift}")
+        origin = (launched.describe if launched is not None else
+                  f"the {'exact travelling' if start == 'exact' else 'linear plane'} wave")
+        print(f"simulated: {text}; {sim['seeds']} seed(s) from {origin}, {drift}")
         if "peaked" in sim:
             print("simulated with losses: noise on the carrier field's positions; the runs "
                   f"went on to t = {sim['t_end']:.4g}, " + (

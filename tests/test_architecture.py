@@ -77,7 +77,9 @@ ALLOWED = {
     # the one map engine takes any model (ModelMapParameters): models sit below it
     "numerics.maps": {"common", "generated", "energy", "numerics.lattice", "numerics.theory",
                       "numerics.models"},
-    "numerics.models": {"common", "generated", "energy", "numerics.lattice"},
+    # the paper chain's models register the paper engine's theory of its eq. IC start
+    # (numerics.models._extras): the paper chain's theory sits below any model's
+    "numerics.models": {"common", "generated", "energy", "numerics.lattice", "numerics.theory"},
     "numerics": {"numerics.lattice", "numerics.theory", "numerics.maps"},
     # any model's figures (four-wave-pairs) read models from energy and numerics.models
     "scenes": {"common", "derivation", "generated", "energy", "numerics", "numerics.lattice",

@@ -688,3 +688,21 @@ def test_along_decays_columns_stop_where_their_rate_stays_negative():
         stopped += int(early[:-1].any(axis=0).sum())
         total += cols
     assert stopped > total / 3, (stopped, total)  # the rule is exercised
+
+
+def test_side_rates_kept_past_their_limit_are_one_calls(cache):
+    # past SIDE_KEPT wavenumbers the rates kept start afresh (issue 42, cost): a call that
+    # mixes rates kept with more new ones than fit still answers every wavenumber it asked,
+    # the same numbers, to the bit, as one damping_rates call (a model's own rates: another
+    # model's never leak in)
+    from numerics.models import damping_rates
+    from numerics.models._losses import side_rates
+
+    m1 = load_model(parse_model(KG_LOSSY), gamma=0.004)
+    m2 = load_model(parse_model(KG_LOSSY), gamma=0.01)
+    small = np.linspace(0.01, 0.5, 100)
+    big = np.concatenate([small, np.linspace(0.5005, 3.0, 2100)])  # 4401 wavenumbers
+    for model, q in [(m1, small), (m1, big), (m1, small), (m2, small), (m1, big[::-1])]:
+        up, down = side_rates(model, 2.0, q)
+        assert np.array_equal(up, damping_rates(model, 2.0 + q))
+        assert np.array_equal(down, damping_rates(model, 2.0 - q))

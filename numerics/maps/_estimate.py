@@ -275,7 +275,7 @@ def probe_model_cell(params) -> ModelCellCost:
     import time
 
     from ..lattice import run_length
-    from ..models import map_cells
+    from ..models import map_cells, saturation_time
 
     w0 = time.perf_counter()
     rows, cols = params.grid_shape
@@ -311,6 +311,9 @@ def probe_model_cell(params) -> ModelCellCost:
             run, compile_s = probe_model_run(model, k, amplitude, params.branch_value,
                                              N=params.N, t_end=t_end, energy=False)
             warmup += compile_s
+            # a cell's run stops once its linear stage saturated (until_saturated): the
+            # middle cell's exact rate says about when
+            run *= min(1.0, saturation_time(rate) / t_end) if t_end > 0 else 1.0
         except (ModelError, FloatingPointError):  # no wave at the middle cell to run
             run = 0.0
     return ModelCellCost(theory, run, t_end, warmup, time.perf_counter() - w0)

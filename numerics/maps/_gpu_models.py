@@ -164,8 +164,18 @@ def _growth(chain: DeviceChain, N: int, amplitude: float, half: np.ndarray) -> t
                                    t, full)), t, full
 
 
-def _cell_row(growth: list, t_end: float) -> dict:
-    """The simulated columns of a cell from its seeds' growth (``map_cells``' rule)."""
+def _read_to(t, spectrum, chain_wave, N: int, amplitude: float, t_end: float) -> float:
+    """How far ``map_cells`` would have run this chain: to the record where its linear
+    stage saturated (``simulate_model(until_saturated=True)``), else T."""
+    from numerics.models import saturation_record
+
+    s = saturation_record(spectrum, N, chain_wave.k, chain_wave.harmonics, amplitude)
+    return float(t_end) if s is None else float(t[s])
+
+
+def _cell_row(growth: list, t_end: float, read_to=None) -> dict:
+    """The simulated columns of a cell from its seeds' growth (``map_cells``' rule);
+    ``read_to`` each seed's run length (default ``t_end``)."""
     from numerics.lattice import simulated_verdict
 
     rates = [g.rate for g in growth if g.verdict == "unstable"]
@@ -175,7 +185,8 @@ def _cell_row(growth: list, t_end: float) -> dict:
     return {"verdict_simulated": verdict.word,
             "peak_gain_simulated": rate if verdict.word == "MI" else math.nan,
             "growth": float(np.median([g.factor for g in growth])),
-            "growth_q": float(top.wavenumber), "t_simulated": float(t_end)}
+            "growth_q": float(top.wavenumber),
+            "t_simulated": float(t_end if read_to is None else max(read_to))}
 
 
 UNDEFINED_ROW = {"verdict_simulated": "undefined", "peak_gain_simulated": math.nan,
@@ -261,9 +272,10 @@ def simulate_model_cells_gpu(model, cells, amplitude: float, branch=None, *, N: 
         T = float(t_end) if t_end is not None else run_length(spec.peak_gain).t_end
         if why_cpu is not None:
             sim = simulate_seeds(m, k, amplitude, spec, branch=branch, N=N, seeds=seeds,
-                                 t_end=T, noise=noise)
+                                 t_end=T, noise=noise, until_saturated=True)
             growth = [r.growth() for r in sim.runs]
-            rows[c] = dict(_cell_row(growth, T), growth_runs=growth, device="cpu")
+            rows[c] = dict(_cell_row(growth, T, [r.t_end for r in sim.runs]),
+                           growth_runs=growth, device="cpu")
             if records:
                 rows[c]["records"] = [(r.t, r.spectrum) for r in sim.runs]
             continue
@@ -282,18 +294,20 @@ def simulate_model_cells_gpu(model, cells, amplitude: float, branch=None, *, N: 
             again += 1
             run = simulate_model(ch.model, ch.spec.wave.k, amplitude, branch=branch, N=N,
                                  t_end=ch.t_end, seed=ch.seed, wave=ch.spec.wave,
-                                 noise=noise)
+                                 noise=noise, until_saturated=True)
             per_cell.setdefault(ch.cell, []).append((run.growth(), run.t, run.spectrum,
-                                                     "cpu"))
+                                                     "cpu", run.t_end))
         else:
-            per_cell.setdefault(ch.cell, []).append((*_growth(ch, N, amplitude, half), "gpu"))
+            g, t, full = _growth(ch, N, amplitude, half)
+            per_cell.setdefault(ch.cell, []).append(
+                (g, t, full, "gpu", _read_to(t, full, ch.spec.wave, N, amplitude, ch.t_end)))
     if again:
         log(f"model {model.name}: {again} of {len(chains)} runs left the GPU's range (a "
             "position beyond the polynomial sin/cos's or not finite): run again on the CPU")
     for c, runs in per_cell.items():
         growth = [r[0] for r in runs]
         where = {r[3] for r in runs}
-        rows[c] = dict(_cell_row(growth, t_of[c]), growth_runs=growth,
+        rows[c] = dict(_cell_row(growth, t_of[c], [r[4] for r in runs]), growth_runs=growth,
                        device="gpu" if where == {"gpu"} else "cpu" if where == {"cpu"}
                        else "gpu+cpu")
         if records:
@@ -331,7 +345,7 @@ def _wave_of(params, values: dict, k: float, peak_gain: float, amplitude: float)
 def model_theories(params, i: int, js: list) -> tuple:
     """A model map's block (i, js) before its runs, on a CPU: (``model_block``'s theory
     columns, each cell's wave for its runs, ``_wave_of``)."""
-    from ._model_params import model_block
+    from ._model_columns import model_block
 
     block = model_block(params, i, js, simulate=False)
     specs = [_wave_of(params, *params.cell(i, j), row.get("peak_gain_exact", math.nan),
@@ -344,7 +358,7 @@ def model_rows_gpu(params, batch: list, log=print, theories: list | None = None)
     theories of every cell (``theories``, :func:`model_theories` of each block, or computed
     here), the runs of all of them in one GPU launch; returns [(i, js, rows)] with the
     store's codes."""
-    from ._model_params import SIMULATED_COLUMNS, VERDICT_CODES
+    from ._model_columns import SIMULATED_COLUMNS, VERDICT_CODES
 
     if theories is None:
         theories = [model_theories(params, i, js) for i, js in batch]

@@ -9,7 +9,7 @@ Dims are the map's two axes, named by the parameter's own name, or ``k`` (rows f
 parameter, then k when k is an axis). A task (:func:`model_block`) computes its cells with
 ``numerics.models.map_cells``: the semi-discrete NLS per cell, the exact lattice theory and
 the four-wave theory on the ring of N sites (``exact``, or a simulated map), and the seeded
-runs from the exact wave.
+runs from the exact wave; its variables' codes and attributes are ``_model_columns``'.
 The model travels to the workers as its file text and is loaded there once per process.
 """
 
@@ -22,27 +22,20 @@ from dataclasses import asdict, dataclass
 import numpy as np
 
 from ..lattice import GROWTH_THRESHOLD
-from ._columns import MI, STABLE, STORE_FORMAT, UNDETERMINED, VERDICT_ATTRS
+from ._columns import MI, STORE_FORMAT, UNDETERMINED
+from ._model_columns import (
+    LOSSY_SIMULATED_COLUMNS,
+    MODE_KIND_ATTRS,
+    MODE_KIND_CODES,
+    MODEL_VERDICT_ATTRS,
+    OBSERVABLE_ATTRS,
+    SIMULATED_COLUMNS,
+    VARIABLE_ATTRS,
+    VERDICT_CODES,
+    model_block,
+)
 from ._params import DEFAULT_BLOCK
 
-#: a model's verdict words (``numerics.models``) -> the store's int8 codes
-VERDICT_CODES = {"MI": MI, "stable": STABLE, "no growth within T": STABLE,
-                 "undetermined": UNDETERMINED, "undefined": UNDETERMINED}
-#: the mapping, stored with each verdict variable
-MODEL_VERDICT_ATTRS = {**VERDICT_ATTRS, "verdict_words": (
-    "MI -> 1 (MI); stable, 'no growth within T' -> 0 (stable); undefined (no carrier or no "
-    "travelling wave at the cell), undetermined (a run grew, but less than the threshold) "
-    "-> -1 (undetermined)")}
-#: the four-wave theory's fastest pair (``FourWave.mode_kind``) -> the store's int8 codes
-MODE_KIND_CODES = {"undefined": -1, "none": 0, "sidebands": 1, "backward": 2,
-                   "parametric": 3}
-#: the mapping, stored with ``mode_kind_fourwave``
-MODE_KIND_ATTRS = {
-    "long_name": "four-wave theory's fastest pair", "flag_values": [-1, 0, 1, 2, 3],
-    "flag_meanings": "undefined none sidebands backward parametric",
-    "mode_kinds": "-1 undefined (no theory), 0 none (stable), 1 sidebands (k +- q on the "
-                  "carrier's branch, q <= pi/2), 2 backward (q > pi/2), 3 parametric (a "
-                  "pair on other branches)"}
 #: rough seconds per cell on one core (the resume message's estimate): the NLS, the exact
 #: theory on a ring of 128 sites, one run of T = 1000 on 128 sites; measured serially for
 #: flexmm (k 0.6 .. 1.2, a = 0.1) on the 2-core VM at load ~4: exact 2-5 s, a run of
@@ -463,85 +456,6 @@ class ModelMapParameters:
                   for n, v in self.store_coords().items()}
         return xr.Dataset(data, coords=coords, attrs={**self.attrs(),
                                                        "store_format": STORE_FORMAT})
-
-
-#: the variables a simulated block writes (with ``done``)
-SIMULATED_COLUMNS = ("verdict_simulated", "peak_gain_simulated", "growth", "growth_q",
-                     "t_simulated")
-#: and a lossy model's runs (issue 42: launched as a point's, until A(t) halves)
-LOSSY_SIMULATED_COLUMNS = ("amplification_simulated", "amplification_time_simulated",
-                           "observable_simulated")
-#: the runs' observable flag: int8, -1 where no run (not simulated, or no travelling wave)
-OBSERVABLE_ATTRS = {
-    "long_name": f"the median seed's sidebands grew {GROWTH_THRESHOLD:g}x (issue 42)",
-    "flag_values": [-1, 0, 1], "flag_meanings": "no_run no yes"}
-_GAIN = {"units": "1/T (lattice time)"}
-VARIABLE_ATTRS = {
-    "peak_gain_semidiscrete": {"long_name": "semi-discrete NLS peak growth rate", **_GAIN},
-    "peak_gain_paper": {"long_name": "the paper's continuum NLS peak growth rate, |g2| a^2 / 4 "
-                                     "(eq. g_i; the paper chain's models only)", **_GAIN},
-    "peak_gain_exact": {"long_name": "exact lattice theory's peak growth rate on the ring",
-                        **_GAIN},
-    "peak_gain_fourwave": {"long_name": "four-wave theory's fastest pair's rate on the ring",
-                           **_GAIN},
-    **{f"amplification_{t}": {
-        "long_name": f"{t} theory's largest amplification of the sidebands along the "
-                     "decaying carrier (inf: the carrier is not damped and a mode grows)",
-        "observable_from": GROWTH_THRESHOLD, "units": "1"} for t in ("semidiscrete", "exact",
-                                                               "fourwave")},
-    "peak_gain_simulated": {
-        "long_name": "the seeds' median measured rate where MI; where no growth within T "
-                     "(verdict_simulated 0), the upper bound ln(growth_threshold) / "
-                     "t_simulated on the rate", **_GAIN,
-        # which cells hold a bound, not a measurement: those the runs call stable
-        "bound_where": "verdict_simulated == 0",
-        "bound": "upper: a faster rate would have grown past growth_threshold within "
-                 "t_simulated; NaN where undetermined (grew, less than the threshold) or "
-                 "undefined"},
-    "amplification_simulated": {
-        "long_name": "the median seed's max_t A(t) / A(0), A the largest ring mode that is "
-                     "not a carrier harmonic (the exact lossless wave launched with noise on "
-                     "the carrier field's positions, run until A(t) halves or its cap)",
-        "observable_from": GROWTH_THRESHOLD, "units": "1"},
-    "amplification_time_simulated": {"long_name": "when that seed's A(t) peaked",
-                                     "units": "T (lattice time)"},
-    "g1": {"long_name": "d^2 omega/dk^2"},
-    "g2": {"long_name": "NLS nonlinear coefficient (mean flow included)"},
-    "k_simulated": {"long_name": "k snapped to 2 pi m / N where the ring is used",
-                    "units": "rad per site"},
-    "growth": {"long_name": "the seeds' median growth factor of the sidebands", "units": "1"},
-    "growth_q": {"long_name": "wavenumber of the fastest mode (seed that grew most)",
-                 "units": "rad per site"},
-    "t_simulated": {"long_name": "the runs' length T", "units": "T (lattice time)"},
-}
-
-
-def model_block(params: ModelMapParameters, i: int, js: list, simulate: bool = True) -> dict:
-    """The cells (i, j), j in ``js``, of a model's map (runs on a worker): their theories
-    and, unless ``simulate`` is False, their runs, as the store's rows."""
-    from numerics.models import map_cells
-
-    from ._blocks import keep_freed_memory
-
-    keep_freed_memory()
-    rows: list = [None] * len(js)
-    for amplitude, ns in params.by_amplitude([(i, j) for j in js]):
-        got = map_cells(params.lattice_model, [params.cell(i, js[n]) for n in ns], amplitude,
-                        params.branch_value, exact=params.ring, simulate=simulate,
-                        N=params.N, seeds=params.seeds, t_end=params.t_end)
-        for n, row in zip(ns, got):
-            rows[n] = row
-    flags = params.flag_columns()
-    keep = set(flags["done_predicted"]) | (set(flags["done"]) if simulate else set())
-    out = []
-    for row in rows:
-        out.append({n: (np.int8(VERDICT_CODES[v]) if n.startswith("verdict_") else
-                        np.int8(MODE_KIND_CODES[v]) if n == "mode_kind_fourwave" else
-                        np.int8(-1 if not v == v else int(v)) if n == "observable_simulated"
-                        else
-                        float(v) if v is not None else math.nan)
-                    for n, v in row.items() if n in keep})
-    return {"i": i, "js": list(js), "rows": out, "simulated": simulate}
 
 
 __all__ = ["ModelMapParameters", "model_block", "model_text", "VERDICT_CODES",

@@ -39,9 +39,17 @@ from ._exact import (
                      ring_offsets,
                      travelling_wave,
 )
-from ._extras import ExtraTheory, extra_theories, register_extra_theory
+from ._extras import (
+                     ExtraStart,
+                     ExtraTheory,
+                     extra_starts,
+                     extra_theories,
+                     register_extra_start,
+                     register_extra_theory,
+)
 from ._forces import FORCES, energy_hash, run_force
 from ._fourwave import FourWave, four_wave, pair_rates
+from ._growth import saturation_record
 from ._linear import (
                      Carrier,
                      branch_index,
@@ -72,6 +80,7 @@ from ._simulate import (
                      lattice_energy,
                      lattice_force,
                      measure_growth,
+                     saturation_time,
                      simulate_model,
                      simulate_seeds,
                      snap_ring,
@@ -92,9 +101,10 @@ __all__ = ["Carrier", "carrier", "branches", "branch_index", "check_rest_stable"
            "travelling_wave", "hill_spectrum", "exact_gain", "exact_gain_checked",
            "energy_not_real", "amplitude_reach", "FourWave", "four_wave", "pair_rates",
            "classify_mode", "ring_misses", "ring_offsets", "simulate_model", "simulate_seeds",
-           "SeededRuns", "ModelRun", "Growth", "measure_growth", "check_ring", "compiled_force",
+           "SeededRuns", "ModelRun", "Growth", "measure_growth", "saturation_record",
+           "saturation_time", "check_ring", "compiled_force",
            "lattice_force", "lattice_energy", "snap_ring", "Amplified", "nls_amplification",
            "four_wave_amplification", "exact_amplification", "simulate_soliton",
            "ModelSolitonRun", "RingSoliton", "ring_soliton", "soliton_report", "lossy_runs",
            "FORCES", "energy_hash", "run_force", "ExtraTheory", "extra_theories",
-           "register_extra_theory"]
+           "register_extra_theory", "ExtraStart", "extra_starts", "register_extra_start"]

@@ -89,6 +89,28 @@ def _sideband_modes(N: int, m: int, H: int) -> np.ndarray:
     return np.array([j not in harm for j in range(N)])
 
 
+def _lower_keep(N: int, m: int, H: int) -> np.ndarray:
+    """The modes 0 < j <= N/2 that are no harmonic of the carrier (|h| <= H): a subset of
+    the modes ``measure_growth`` sums (it leaves out only the harmonics that drift)."""
+    return _sideband_modes(N, m, H) & (np.arange(N) <= N // 2) & (np.arange(N) > 0)
+
+
+def saturation_record(spectrum: np.ndarray, N: int, k: float, H: int,
+                      amplitude: float) -> int | None:
+    """The first record whose sidebands, every carrier harmonic (up to the H-th) left out,
+    have an rms above ``SATURATION`` x ``amplitude``; None where none has.
+
+    ``measure_growth`` sums these modes and perhaps some harmonics, so its linear stage has
+    ended by this record: a run stopped here (``simulate_model(until_saturated=True)``, a
+    map cell's run) measures the same growth, bit for bit, as the whole run."""
+    m = int(round(k * N / (2 * math.pi)))
+    keep = _lower_keep(N, m, H)
+    spec = np.asarray(spectrum)
+    rms = np.sqrt(2 * np.sum(spec[:, keep] ** 2, axis=1))
+    over = np.nonzero(rms > SATURATION * amplitude)[0]
+    return int(over[0]) if over.size else None
+
+
 def sideband_amplitude(spectrum: np.ndarray, N: int, k: float, H: int) -> np.ndarray:
     """A(t): the largest |FFT| / N over the ring modes that are not carrier harmonics
     (up to the H-th)."""
@@ -116,7 +138,11 @@ def measure_growth(run: ModelRun) -> Growth:
     size = np.max(np.abs(run.wave.coefficients), axis=0)[H:]  # |c_h|, h = 0..H
     others = np.array([j not in (0, m % N, (-m) % N) for j in range(N)])
     floor = float(np.median(run.spectrum[0, others]))
-    phase = float(np.max(run.spectrum[:, m % N])) / max(size[1], 1e-300)
+    # read up to the saturation (``saturation_record``): after it the carrier's own mode is
+    # no phase drift, and a run stopped there reads the same records
+    stop = saturation_record(run.spectrum, N, run.k, H, run.amplitude)
+    last = len(run.t) if stop is None else stop + 1
+    phase = float(np.max(run.spectrum[:last, m % N])) / max(size[1], 1e-300)
     harmonics = {0, m % N, (-m) % N} | {
         (s * h * m) % N for h in range(2, H + 1) for s in (1, -1)
         if h * phase * size[h] > 0.1 * floor}

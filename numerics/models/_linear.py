@@ -191,22 +191,43 @@ def damped_frequencies(model: Model, kappa: float) -> np.ndarray:
     return _damped_many(model, np.array([float(kappa)]))[0]
 
 
-def _damped_many(model: Model, kappas: np.ndarray) -> np.ndarray:
-    """damped_frequencies at every kappa of a 1-d array, shape (n, d): one batched
-    eigenvalue call."""
+# (weak reference to the model, its ``_damped_setup``): the last model's, one tuple (read
+# and replaced whole, safe across threads)
+_SETUP = [None]
+
+
+def _damped_setup(model: Model):
+    """The kappa-independent parts of ``_damped_many`` (the Taylor and damping blocks, the
+    mass weights): computed once per model object, since a damped point's theories ask
+    its rates several times (the same arrays, so the same numbers)."""
+    import weakref
+
+    last = _SETUP[0]
+    if last is not None and last[0]() is model:
+        return last[1]
     H = model.code.taylor(model.p)[0]
     S, B = model.damping
     m = model.masses
     s = 1 / np.sqrt(m)
     d = len(m)
-    z = np.exp(1j * kappas)[:, None, None]
     Hb = blocks(H, d)
     Bb = blocks(B, d)
-    K = (Hb[0] + Hb[3]).astype(complex) + Hb[1] * z + Hb[2] / z
-    C = (S + Bb[0] + Bb[3]).astype(complex) + Bb[1] * z + Bb[2] / z
-    w2 = s[None, :, None] * s[None, None, :]
+    setup = (d, (Hb[0] + Hb[3]).astype(complex), Hb[1], Hb[2],
+             (S + Bb[0] + Bb[3]).astype(complex), Bb[1], Bb[2],
+             s[None, :, None] * s[None, None, :], np.eye(d))
+    _SETUP[0] = (weakref.ref(model), setup)
+    return setup
+
+
+def _damped_many(model: Model, kappas: np.ndarray) -> np.ndarray:
+    """damped_frequencies at every kappa of a 1-d array, shape (n, d): one batched
+    eigenvalue call."""
+    d, K0, K12, K21, C0, C12, C21, w2, eye = _damped_setup(model)
+    z = np.exp(1j * kappas)[:, None, None]
+    K = K0 + K12 * z + K21 / z
+    C = C0 + C12 * z + C21 / z
     L = np.zeros((kappas.size, 2 * d, 2 * d), complex)
-    L[:, :d, d:] = np.eye(d)
+    L[:, :d, d:] = eye
     L[:, d:, :d] = K * w2
     L[:, d:, d:] = -1j * C * w2
     w = np.linalg.eigvals(L)

@@ -7,8 +7,6 @@ depends on its wavenumber alone: the same numbers as one call over all of them).
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
 from energy import Model
@@ -20,9 +18,10 @@ def sideband_damping(model: Model, k: float, q, branch: int) -> np.ndarray:
     return 0.5 * (up[:, branch] + down[:, branch])
 
 
-# (weak reference to the model, {kappa: Gamma_b(kappa) row}): the rates a point's theories
-# asked, one tuple (read and replaced whole, safe across threads): the NLS's, the
-# four-wave's and the exact theory's offsets each computed once, in one call per new set
+# (weak reference to the model, kappas kept (ascending, unique), their rows): the rates a
+# point's theories asked, one tuple (read and replaced whole, safe across threads): the
+# NLS's, the four-wave's and the exact theory's offsets each computed once, in one call
+# per new set
 _SIDE = [None]
 #: the most rates kept for one model
 SIDE_KEPT = 4096
@@ -33,28 +32,38 @@ def side_rates(model: Model, k: float, q) -> tuple[np.ndarray, np.ndarray]:
     the wavenumbers not asked before, the carrier's k among them (a row depends on its
     wavenumber alone: the same numbers as one call for all)."""
     q = np.atleast_1d(np.asarray(q, float))
-    both = _rates_at(model, [float(k)] + np.concatenate([k + q, k - q]).tolist())[1:]
+    both = _rates_at(model, np.concatenate([[float(k)], k + q, k - q]))[1:]
     return both[:q.size], both[q.size:]
 
 
-def _rates_at(model: Model, kappas: list) -> np.ndarray:
-    """``damping_rates(model, kappas)``, shape (len(kappas), d), from the rates kept."""
+def _rates_at(model: Model, kappas) -> np.ndarray:
+    """``damping_rates(model, kappas)``, shape (len(kappas), d), from the rates kept (a
+    wavenumber is found by equality, as a dict key: 0.0 and -0.0 are one)."""
     import weakref
 
     from ._linear import damping_rates
 
-    if not all(math.isfinite(x) for x in kappas):  # nan is no key: asked as it is
-        return damping_rates(model, np.array(kappas, float)).reshape(len(kappas),
-                                                                     model.n_fields)
+    kap = np.asarray(kappas, float).ravel()
+    if not np.all(np.isfinite(kap)):  # nan is no key: asked as it is
+        return damping_rates(model, kap).reshape(kap.size, model.n_fields)
     last = _SIDE[0]
-    known = last[1] if last is not None and last[0]() is model else {}
-    missing = list(dict.fromkeys(x for x in kappas if x not in known))
-    if missing:
-        rows = damping_rates(model, np.array(missing))
-        known = dict(known) if len(known) + len(missing) <= SIDE_KEPT else {}
-        known.update(zip(missing, rows))
-        _SIDE[0] = (weakref.ref(model), known)
-    return np.array([known[x] for x in kappas], float).reshape(len(kappas), model.n_fields)
+    keys, rows = (last[1], last[2]) if last is not None and last[0]() is model else \
+        (np.zeros(0), np.zeros((0, model.n_fields)))
+    at = np.minimum(np.searchsorted(keys, kap), max(keys.size - 1, 0))
+    hit = keys[at] == kap if keys.size else np.zeros(kap.size, bool)
+    if not hit.all():
+        missing = np.unique(kap[~hit])
+        if keys.size + missing.size > SIDE_KEPT:  # afresh: this call's wavenumbers alone
+            keys = np.unique(kap)
+            rows = damping_rates(model, keys)
+        else:
+            keys = np.concatenate([keys, missing])
+            rows = np.concatenate([rows, damping_rates(model, missing)])
+            order = np.argsort(keys, kind="stable")
+            keys, rows = keys[order], rows[order]
+        _SIDE[0] = (weakref.ref(model), keys, rows)
+        at = np.searchsorted(keys, kap)
+    return rows[at].reshape(kap.size, model.n_fields)
 
 
 def _carrier_damping(model: Model, k: float, branch) -> float:
@@ -65,3 +74,4 @@ def _carrier_damping(model: Model, k: float, branch) -> float:
     if not model.lossy:
         return 0.0
     return float(_rates_at(model, [float(k)])[0][branch_index(model, k, branch)])
+

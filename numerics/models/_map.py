@@ -189,7 +189,7 @@ def simulated_cell(model: Model, k: float, amplitude: float, branch=None, *, N: 
                               t_end=t_end, peak_time=peak)
     else:
         sim, amp = simulate_seeds(model, k, amplitude, spec, branch=branch, N=N,
-                                  seeds=seeds, t_end=t_end), {}
+                                  seeds=seeds, t_end=t_end, until_saturated=True), {}
     rate = _simulated_rate(sim.verdict)
     return {"verdict_exact": spec.verdict, "peak_gain_exact": spec.peak_gain,
             "verdict_simulated": sim.verdict.word,
@@ -283,16 +283,19 @@ def _cell_columns(model, k, amplitude, branch, *, exact, simulate, N, seeds, t_e
             row.update(amp)
         else:
             # energy=False: a cell's columns do not use the runs' energy, whose kernel
-            # (compiled in every worker, no disk cache) would cost more than the cell
+            # (compiled in every worker, no disk cache) would cost more than the cell;
+            # until_saturated: a run stops where its linear stage has ended (the growth it
+            # measures is the whole run's, bit for bit): an MI cell no longer runs all of T
             sim = simulate_seeds(model, k, amplitude, spec, branch=branch, N=N, seeds=seeds,
-                                 t_end=t_end, energy=False)
+                                 t_end=t_end, energy=False, until_saturated=True)
         growth = [run.growth() for run in sim.runs]
         top = max(growth, key=lambda g: g.factor if math.isfinite(g.factor) else -1.0)
         row.update(verdict_simulated=sim.verdict.word,
                    peak_gain_simulated=_simulated_rate(sim.verdict),
                    growth=float(np.median([g.factor for g in growth])),
                    growth_q=float(top.wavenumber), t_simulated=float(
-                       max(r.t[-1] for r in sim.runs) if lossy else sim.t_end))
+                       max(r.t[-1] for r in sim.runs) if lossy else max(
+                           r.t_end for r in sim.runs)))
     return row
 
 
@@ -396,7 +399,8 @@ def map_cells(model: Model, cells, amplitude: float, branch=None, *, exact: bool
         ``peak_gain_simulated`` (the seeds' median rate where MI; with "no growth within
         T" the upper bound ln(GROWTH_THRESHOLD) / T on the rate), ``growth`` (median
         growth factor), ``growth_q`` (wavenumber of the fastest mode of the seed that grew
-        most) and ``t_simulated`` (the longest run); for a lossy model the runs are
+        most) and ``t_simulated`` (the longest run: a run stops at the record where its
+        linear stage has saturated, ``saturation_record``, else runs T); for a lossy model the runs are
         launched as issue 42 measures an amplification (``lossy_runs``) and add
         ``amplification_simulated``, ``amplification_time_simulated`` and
         ``observable_simulated`` (1.0 or 0.0) of the median seed.

@@ -11,7 +11,9 @@ adds its damping (``_damping``).
 
 Start. ``start="exact"`` (default) launches the exact travelling wave (harmonic balance,
 ``travelling_wave``) plus seeded noise; ``start="linear"`` the linear plane wave, which
-leaves free second-harmonic and mean-flow waves beside the carrier.
+leaves free second-harmonic and mean-flow waves beside the carrier; a start registered by
+the model (``_extras``: ``"paper"``, eq. `IC`, for the paper chain's energy) its own state
+and noise. The growth is measured against the exact wave in every case.
 
 Measurement: ``_growth`` (``ModelRun.growth``, ``ModelRun.amplification``).
 """
@@ -29,7 +31,15 @@ from energy import Model, ModelError
 # from here (the package's __init__, _reach)
 from ._compiled import _kernels, compiled_force, lattice_energy, lattice_force  # noqa: F401
 from ._damping import damping_flow, rayleigh
-from ._growth import Amplification, Growth, _sideband_modes, measure_amplification, measure_growth
+from ._growth import (
+    SATURATION,
+    Amplification,
+    Growth,
+    _lower_keep,
+    _sideband_modes,
+    measure_amplification,
+    measure_growth,
+)
 
 #: noise relative to the amplitude: 16 e-foldings fit below SATURATION
 NOISE = 1e-8
@@ -160,6 +170,16 @@ class ModelRun:
         return measure_growth(self)
 
 
+def saturation_time(rate: float, noise: float = NOISE) -> float:
+    """About when a run with ``until_saturated`` stops: its fastest mode, ``rate`` (1/time),
+    grown from the noise (``noise`` of the amplitude) to ``SATURATION`` of the amplitude,
+    ln(SATURATION / noise) / rate; inf where nothing grows (the run goes to T). For a
+    map's estimate: the noise spreads over the modes, so the stop comes a little later."""
+    if not (math.isfinite(rate) and rate > 0 and noise > 0):
+        return math.inf
+    return math.log(SATURATION / noise) / rate
+
+
 #: ``until_peak`` stops a run once A(t) has risen this much (sqrt(20), the runs' own
 #: boundary of "no growth") and fallen to half its top: a launch transient (a new user's
 #: damped chain rose 2.4x by t = 52, fell, and the sidebands peaked near t = 1700) is not
@@ -169,13 +189,17 @@ PEAK_RISE = math.sqrt(20.0)
 
 def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: int = 256,
                    t_end: float | None = None, dt: float | None = None,
-                   method: str = "srkn11b", start: str = "exact", noise: float = NOISE,
+                   method: str = "srkn11b", start: str = "exact", noise: float | None = None,
                    seed: int = 0, records: int = 400, expected_gain: float | None = None,
                    wave=None, until_peak: bool = False,
                    noise_on: str = "all", initial=None, force: str = "auto",
-                   on_steps=None, energy: bool = True) -> ModelRun:
+                   on_steps=None, energy: bool = True,
+                   until_saturated: bool = False) -> ModelRun:
     """Run the ring of ``model`` from a plane wave at ``k`` (snapped to the ring) with
-    first harmonic ``amplitude`` in its carrier field, plus seeded noise.
+    first harmonic ``amplitude`` in its carrier field, plus seeded noise (``noise`` of the
+    amplitude, None: NOISE). ``start``: "exact" (the exact travelling wave), "linear", or a
+    start the model registers (``extra_starts``: "paper", eq. `IC`, for the paper chain's
+    energy, with its own noise law, b0 ~ U[-noise, noise], None: the paper's 1e-3).
 
     ``t_end`` None: ``numerics.lattice.run_length`` of ``expected_gain`` (default: the
     exact theory's on this ring), as for the paper's chain: 9 e-foldings within
@@ -196,7 +220,11 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
     ``nsteps`` steps (a progress bar). ``energy=False``: the total energy is not recorded
     (``ModelRun.energy`` NaN, its drift NaN): a map cell's columns do not use it, and the
     model's energy kernel (compiled per process, no disk cache: ~1.3 s) is then never
-    compiled.
+    compiled. ``until_saturated``: stop at the record where the sidebands (every carrier
+    harmonic left out) reach ``SATURATION`` of the amplitude (``saturation_record``): the
+    linear stage has ended there, so ``growth()`` is that of the whole run, bit for bit (a
+    map cell's run: an MI cell stops there, a stable one runs T); ``t_end`` is then the
+    last record's time.
     """
     from common.signals import signal_number
     from numerics.lattice import (
@@ -218,10 +246,22 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
     if meth.kind not in ("srkn", "rk4"):
         raise ModelError(f"method {method!r} is not a fixed-step method; choose one of "
                          "srkn11b, srkn6b, kahanli8, verlet, rk4")
-    if start not in STARTS:
-        raise ModelError(f"start must be one of {', '.join(STARTS)}, got {start!r}")
+    extra = None
+    if start not in STARTS:  # a start only some models have (the paper's eq. IC)
+        from ._extras import extra_starts
+
+        theirs = extra_starts(model)
+        extra = theirs.get(start)
+        if extra is None:
+            raise ModelError(
+                f"start must be one of {', '.join((*STARTS, *theirs))} for model "
+                f"{model.describe()}, got {start!r}" + (
+                    " (start 'paper', the paper's eq. IC, belongs to the paper chain's "
+                    "energy, lossless)" if start == "paper" else ""))
     if force not in FORCES:
         raise ModelError(f"force must be one of {', '.join(FORCES)}, got {force!r}")
+    if noise is None:  # the start's own: 1e-8 of the amplitude, the paper's b0 for eq. IC
+        noise = extra.noise if extra is not None else NOISE
     if isinstance(noise, bool) or not (isinstance(noise, (int, float)) and math.isfinite(
             noise) and noise >= 0):
         raise ModelError(f"noise must be a finite number >= 0, got {noise!r}")
@@ -231,6 +271,8 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
     if wave is None:
         wave = travelling_wave(model, k_ring, amplitude, branch)
     if t_end is None:
+        if expected_gain is None and extra is not None:  # the launched state's theory
+            expected_gain = extra.theory(model, k_ring, amplitude, N)["peak_gain"] or 0.0
         if expected_gain is None:
             from ._exact import hill_spectrum
             expected_gain = hill_spectrum(wave, ring_offsets(N)).peak_gain
@@ -254,6 +296,10 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
         w0 = wave.carrier.omega
         u = amplitude * np.real(e * np.exp(1j * xi))
         v = amplitude * w0 * np.real(-1j * e * np.exp(1j * xi))
+    added = noise  # the noise added below: an extra start's own law is in its state
+    if extra is not None and initial is None:
+        u, v = extra.state(model, k_ring, amplitude, N, noise, seed)
+        added = 0.0
     if initial is not None:
         u, v = (np.array(x, dtype=float).reshape(d, N) for x in initial)
     if noise_on not in ("all", "carrier"):
@@ -261,12 +307,14 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
     if noise_on == "carrier":
         kick = np.zeros((d, N))
         kick[wave.carrier.field] = rng.standard_normal(N)
-        u = np.ascontiguousarray(u + noise * amplitude * kick)
+        u = np.ascontiguousarray(u + added * amplitude * kick)
         v = np.ascontiguousarray(v)
-    else:
-        u = np.ascontiguousarray(u + noise * amplitude * rng.standard_normal((d, N)))
-        v = np.ascontiguousarray(v + noise * amplitude * wave.omega * rng.standard_normal(
+    elif added:
+        u = np.ascontiguousarray(u + added * amplitude * rng.standard_normal((d, N)))
+        v = np.ascontiguousarray(v + added * amplitude * wave.omega * rng.standard_normal(
             (d, N)))
+    else:
+        u, v = np.ascontiguousarray(u, float), np.ascontiguousarray(v, float)
     kernel, p_force, rows, force_label = run_force(model, force)
     energy_of = _kernels(model).energy if energy else None
     p = np.asarray(model.p, float)
@@ -309,6 +357,10 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
     record(0.0)
     done = 0
     peaked = None
+    saturated = False
+    if until_saturated:
+        lower = _lower_keep(N, int(round(k_ring * N / (2 * math.pi))), wave.harmonics)
+        level = SATURATION * float(amplitude)
     if until_peak:
         modes = _sideband_modes(N, int(round(k_ring * N / (2 * math.pi))), wave.harmonics)
         a0 = float(np.max(spec[0][modes]))
@@ -337,6 +389,10 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
                 record(done * dt)
                 if on_steps is not None:
                     on_steps(done - before, nsteps)
+                if until_saturated and math.sqrt(2 * float(np.sum(
+                        spec[-1][lower] ** 2))) > level:  # saturation_record's reading
+                    saturated = True
+                    break
                 if until_peak:
                     a = float(np.max(spec[-1][modes]))
                     top = max(top, a)
@@ -359,7 +415,7 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
             f"{t_end:g}; exc.run keeps {len(ts)} records (to t = {ts[-1]:g}), exc.state "
             "the state at exc.time", run=kept, state=(u.copy(), v.copy()), time=done * dt,
             remaining=(nsteps - done) * dt, dt=dt, signum=signum) from None
-    return run_so_far(float(ts[-1]) if until_peak else float(t_end))
+    return run_so_far(float(ts[-1]) if until_peak or saturated else float(t_end))
 
 
 @dataclass(frozen=True)
@@ -387,16 +443,17 @@ class SeededRuns:
 
 def simulate_seeds(model: Model, k: float, amplitude: float, spec, *, branch=None,
                    N: int = 256, seeds: int = 1, t_end: float | None = None,
-                   start: str = "exact", **run) -> SeededRuns:
+                   start: str = "exact", gain: float | None = None, **run) -> SeededRuns:
     """``seeds`` runs of the ring from ``spec``'s exact wave (``exact_gain`` on this ring)
     and their verdict: one rule for a point and a map cell. T is ``run_length`` of the
-    exact rate unless ``t_end`` is given. ``run``: more keywords of ``simulate_model``
-    (``noise_on``, ``until_peak``: a lossy point's launch, issue 42)."""
+    exact rate (``gain``: of this rate instead, the theory of another ``start``'s state)
+    unless ``t_end`` is given. ``run``: more keywords of ``simulate_model`` (``noise_on``,
+    ``until_peak``: a lossy point's launch, issue 42)."""
     from numerics.lattice import run_length, simulated_verdict
 
     if isinstance(seeds, bool) or not isinstance(seeds, (int, np.integer)) or seeds < 1:
         raise ModelError(f"seeds must be an integer >= 1, got {seeds!r}")
-    length = run_length(spec.peak_gain) if t_end is None else None
+    length = run_length(spec.peak_gain if gain is None else gain) if t_end is None else None
     T = float(t_end) if t_end is not None else length.t_end
     runs = [simulate_model(model, k, amplitude, branch=branch, N=N, t_end=T, start=start,
                            seed=s, wave=spec.wave, **run) for s in range(int(seeds))]

@@ -1,0 +1,235 @@
+"""The map store opened: an existing one verified (its attributes, coordinates and every
+cell's checksum; what is damaged repaired or marked to run again) or a new one written
+beside and renamed into place. ``_store.run_map`` calls :func:`_open`."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from ._columns import STORE_FORMAT
+from ._integrity import CHECKSUM, unsound_chunks
+from ._params import MapParameters
+
+
+def _write_new(path: Path, ds, params: MapParameters):
+    """Write ``ds`` as the store at ``path``, beside and renamed into place: a failed
+    write (disk full, Ctrl-C) leaves the previous store or none, never half of one."""
+    import shutil
+
+    chunks = (1, min(params.block, params.grid_shape[1]))  # one chunk per task block
+    tmp = path.with_name(f".{path.name}.partial")
+    old = path.with_name(f".{path.name}.old")
+    for p in (tmp, old):
+        if p.exists():
+            shutil.rmtree(p)
+    try:
+        # consolidated metadata, so that a user's xr.open_zarr(path) opens it without a
+        # warning (region writes touch chunks only, so it stays valid)
+        ds.to_zarr(tmp, mode="w", consolidated=True, zarr_format=2,
+                   encoding={n: {"chunks": chunks} for n in ds.data_vars})
+        if path.exists():
+            path.rename(old)
+        tmp.rename(path)
+    finally:
+        for p in (tmp, old):
+            if p.exists():
+                shutil.rmtree(p, ignore_errors=True)
+
+
+def open_or_create(path: Path, params: MapParameters, overwrite: bool = False, log=print):
+    """The store's dataset: an existing one with the same parameters (to resume; its
+    checksums verified and what is damaged repaired or marked for simulation again), or a
+    new one with the theory columns filled in (``overwrite``: replace a store that holds
+    another map, or an unreadable one)."""
+    return _open(path, params, overwrite, log)[0]
+
+
+
+
+def _attrs_hold(attrs: dict, params: MapParameters) -> bool:
+    return (attrs.get("store_format") == STORE_FORMAT
+            and all(attrs.get(n) == v for n, v in params.identity().items()))
+
+
+def _inspect(path: Path, params: MapParameters):
+    """What the store at ``path`` is, read piece by piece (a damaged piece named, never
+    taken for another map): ("this", [damaged names]) when its attributes are this map's and
+    its coordinates are this grid's or damaged; ("other", finished) when it holds another
+    map (``finished``: cells done or predicted, None if unreadable); ("unreadable", why)
+    when which map it holds cannot be read."""
+    import json
+
+    import zarr
+
+    try:
+        group = zarr.open_group(str(path), mode="r", use_consolidated=False)
+        attrs = dict(group.attrs)
+    except Exception as exc:  # a missing or garbled .zgroup/.zattrs
+        first = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+        return "unreadable", f".zgroup/.zattrs ({first[:100]})"
+
+    def finished():
+        try:
+            if any(unsound_chunks(path / f) for f in ("done", "done_predicted")):
+                return None
+            return int(sum(np.asarray(group[f][...]).sum() for f in ("done", "done_predicted")
+                           if f in group))
+        except Exception:  # unreadable flags: unknown
+            return None
+
+    if not _attrs_hold(attrs, params):
+        return "other", finished()
+    damaged = []
+    for name, values in params.store_coords().items():
+        want = np.asarray(values, float)
+        if name == "K_theta" and not (path / name).exists():  # written before it was stored
+            damaged.append("K_theta (absent: written before it was a coordinate)")
+            continue
+        try:
+            arr = group[name]
+            whole = arr.nchunks_initialized == arr.nchunks
+            if unsound_chunks(path / name):
+                raise ValueError("a chunk's Blosc header does not match its file")
+            got = np.asarray(arr[...], float)
+        except Exception:  # missing metadata, a chunk that does not decode
+            damaged.append(name)
+            continue
+        if not whole:
+            damaged.append(name)
+        elif not np.array_equal(got, want):
+            return "other", finished()
+    shape = params.grid_shape
+    for name in empty_dataset_names(params):
+        try:
+            arr = group[name]
+            if tuple(arr.shape) != shape:
+                raise ValueError
+        except Exception:  # a variable's metadata missing or garbled
+            damaged.append(name)
+    try:
+        meta = json.loads((path / ".zmetadata").read_text())["metadata"]
+        if not isinstance(meta, dict):
+            raise ValueError
+    except Exception:  # what xr.open_zarr reads first
+        damaged.append(".zmetadata")
+    return "this", damaged
+
+
+def _stored_attrs(path: Path) -> dict:
+    """The store's attributes, or {} where they cannot be read."""
+    import zarr
+
+    try:
+        return dict(zarr.open_group(str(path), mode="r", use_consolidated=False).attrs)
+    except Exception:  # unreadable: the caller names the map without them
+        return {}
+
+
+def empty_dataset_names(params: MapParameters) -> list:
+    """The data variables a store of ``params`` holds."""
+    flags = params.flag_columns()
+    return sorted({*(n for cols in flags.values() for n in cols), *flags, CHECKSUM,
+                   *params.theory_names()})
+
+
+def _open(path: Path, params: MapParameters, overwrite: bool = False, log=print):
+    """``open_or_create``'s dataset (lazy) and its variables' values in memory, the store
+    read once: on a 64 x 64 map each full read costs ~6 s (zarr reads 22 variables of 1 024
+    chunks each), and the checksums' verification has read every variable already."""
+    import xarray as xr
+
+    def values(ds, raw=None):  # a derived variable (not a cell's) is read from the store
+        return {n: (ds[n].values if raw is None or n not in raw else
+                    np.asarray(raw[n], ds[n].dtype)) for n in ds.data_vars}
+
+    # --overwrite replaces another map or an unreadable store; this map's store is resumed
+    what, detail = _inspect(path, params) if path.exists() else ("none", None)
+    if what == "unreadable" and not overwrite:
+        raise ValueError(f"{path}: damaged: {detail}; which map it holds cannot be read, so "
+                         "nothing in it can be trusted; replace it with --overwrite, or "
+                         "choose another --out")
+    if what == "other" and detail != 0 and not overwrite:
+        raise ValueError(f"{path} holds {params.other_map(_stored_attrs(path))}; replace it "
+                         "with --overwrite, or choose another --out")
+    if what == "other" and detail == 0:  # no finished cell: nothing is lost by replacing it
+        log(f"note: {path} held another map with no finished cell (every cell failed, "
+            "or none ran): replaced")
+    if what == "this":
+        if detail:
+            log(f"{path}: damaged: {', '.join(detail)}; rebuilt from this map's parameters, "
+                "keeping every cell whose data and checksum survive")
+            ds, raw = _verified(path, None, params, log, rebuild=True)
+            return ds, values(ds, raw)
+        ds = xr.open_zarr(path, consolidated=False, chunks=None)
+        ds, raw = _verified(path, ds, params, log)
+        return ds, values(ds, raw)  # raw None: rewritten, read afresh
+    ds = params.new_dataset()
+    _write_new(path, ds, params)
+    ds = xr.open_zarr(path, consolidated=False, chunks=None)
+    return ds, values(ds)
+
+
+def _verified(path: Path, ds, params: MapParameters, log, rebuild: bool = False):
+    """(ds, raw): ``ds`` if every cell matches its checksum, with the values read to check
+    them (None when the store was rewritten); else (or ``rebuild``: its metadata is
+    damaged) the store rewritten with the damaged cells' theory recomputed and their
+    simulations marked not done (named). A theory column that cannot be read is taken
+    from the recomputed theories (it is what they give), so the cells' own data decide."""
+    import xarray as xr
+
+    from ._integrity import CHECKSUM, cell_checksums, describe_cells, read_raw
+
+    shape = params.grid_shape
+    rows, cols = params.axis_values()
+    theory_set = params.theory_names()
+    names = [n for n in empty_dataset_names(params) if n != CHECKSUM]
+    fresh = None
+    raw, unreadable = {}, np.zeros(shape, bool)
+    recomputed, theory_lost = [], np.zeros(shape, bool)
+    for name in names + [CHECKSUM]:
+        got, bad_cells = read_raw(path, [name], shape)
+        if name in theory_set and (name not in got or bad_cells.any()):
+            if fresh is None:
+                fresh = params.new_dataset()
+            value = np.asarray(got.get(name, fresh[name].values))
+            got = {name: np.where(bad_cells, fresh[name].values, value).astype(
+                fresh[name].dtype)}
+            recomputed.append(name)
+            theory_lost |= bad_cells
+            bad_cells = np.zeros(shape, bool)
+        raw.update(got)
+        unreadable |= bad_cells
+    if recomputed:
+        log(f"{path}: damaged: {', '.join(recomputed)} at {int(theory_lost.sum())} of "
+            f"{theory_lost.size} cells ({describe_cells(theory_lost, rows, cols, params.dims)})"
+            ": recomputed from the map's parameters; the cells' simulations are kept where "
+            "their checksums hold")
+    if CHECKSUM in raw and all(n in raw for n in names):
+        bad = unreadable | (cell_checksums({n: raw[n] for n in names})
+                            != raw[CHECKSUM].astype(np.uint64))
+    else:
+        bad = np.ones(shape, bool)
+    if not bad.any() and not rebuild and fresh is None:
+        return ds, raw
+    if bad.any():
+        log(f"{path}: {int(bad.sum())} of {bad.size} cells fail their checksum or cannot be "
+            f"read ({describe_cells(bad, rows, cols, params.dims)}): their theories are "
+            "recomputed and their simulations run again")
+    if fresh is None:
+        fresh = params.new_dataset()
+    for flag, columns in params.flag_columns().items():
+        done = np.asarray(raw.get(flag, np.zeros(shape, bool)), bool) & ~bad
+        for name in columns + (flag,):
+            if name in raw:
+                kept = np.where(done, raw[name].astype(fresh[name].dtype), fresh[name].values)
+                fresh[name] = (fresh[name].dims, kept, fresh[name].attrs)
+    fresh[CHECKSUM] = (fresh[CHECKSUM].dims,
+                       cell_checksums({n: fresh[n].values for n in fresh.data_vars}),
+                       fresh[CHECKSUM].attrs)
+    _write_new(path, fresh, params)
+    return xr.open_zarr(path, consolidated=False, chunks=None), None
+
+
+__all__ = ["open_or_create", "empty_dataset_names"]
