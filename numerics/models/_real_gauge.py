@@ -50,12 +50,12 @@ def real_gauge(K, g):
     component). True where the gauge holds: max |Im| <= GAUGE_TOL max |K|."""
     n = K.shape[0]
     intree = np.zeros(n, np.bool_)
-    best = np.zeros(n)
+    best = np.zeros(n)  # |K|^2: the same tree as |K|, without a square root per entry
     parent = np.full(n, -1, np.int64)
     big = 0.0
     for a in range(n):
         for b in range(n):
-            big = max(big, abs(K[a, b]))
+            big = max(big, K[a, b].real ** 2 + K[a, b].imag ** 2)
     for _ in range(n):
         j, w = -1, -1.0
         for a in range(n):
@@ -68,14 +68,15 @@ def real_gauge(K, g):
             g[j] = 1.0
         intree[j] = True
         for a in range(n):
-            if not intree[a] and abs(K[j, a]) > best[a]:
-                best[a] = abs(K[j, a])
+            m2 = K[j, a].real ** 2 + K[j, a].imag ** 2
+            if not intree[a] and m2 > best[a]:
+                best[a] = m2
                 parent[a] = j
     worst = 0.0
     for a in range(n):
         for b in range(n):
             worst = max(worst, abs((np.conj(g[a]) * K[a, b] * g[b]).imag))
-    return worst <= GAUGE_TOL * big
+    return worst <= GAUGE_TOL * np.sqrt(big)
 
 
 @njit(**_KW)
