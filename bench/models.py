@@ -31,6 +31,8 @@ Writes the "models" section of results.json (results_quick.json with --quick).
 
     python -m bench.models [--quick] [--update | --out DIR]
     python -m bench.models --losses-only [--update | --out DIR]   (the losses_cost row alone)
+    python -m bench.models --exact-only [--quick] [--update | --out DIR]
+                                           (the exact_against_runs rows alone)
 """
 
 from __future__ import annotations
@@ -447,6 +449,34 @@ def losses_only(argv):
     write_sections({"models": models}, quick, out)
 
 
+def exact_only(argv):
+    """The exact theory against one run alone (``python -m bench.models --exact-only
+    [--quick] [--update | --out DIR]``): ``exact_against_runs`` printed and put into the
+    "models" section's ``exact_against_runs`` entry, the rest of the section kept (with the
+    load average it ran at)."""
+    import json
+
+    from bench.simulator import results_path, write_sections
+
+    quick, out = arguments(__doc__, argv)
+    against = exact_against_runs(quick)
+    print("exact_gain against one seeded run (CPU s, N = 256; goal: ratio <= 0.1):")
+    for name, r in against.items():
+        if "error" in r:
+            print(f"  {name:<18} {r['error']}")
+            continue
+        print(f"  {name:<18} ring {r['exact_ring_cpu_s']:.4f} s, chain "
+              f"{r['exact_chain_cpu_s']:.4f} s, run {r['run_cpu_s']:.3f} s "
+              f"(T = {r['run_t_end']:g}): ring/run {r['ring_over_run']:.3f}, chain/run "
+              f"{r['chain_over_run']:.3f}")
+    path = results_path(quick, out)
+    models = json.loads(path.read_text()).get("models", {}) if path.exists() else {}
+    models["exact_against_runs"] = against
+    models["exact_load_average"] = list(os.getloadavg())
+    write_sections({"models": models}, quick, out)
+    return against
+
+
 if __name__ == "__main__":
     import sys
 
@@ -454,5 +484,7 @@ if __name__ == "__main__":
         force_only()
     elif "--losses-only" in sys.argv:
         losses_only([a for a in sys.argv[1:] if a != "--losses-only"])
+    elif "--exact-only" in sys.argv:
+        exact_only([a for a in sys.argv[1:] if a != "--exact-only"])
     else:
         main(*arguments(__doc__))

@@ -46,12 +46,17 @@ dense eigenproblem's (argmax at |l| <= 1, < 1e-6 in the outer three harmonics). 
 cluster is too large (strong coupling, or a flat branch: flexmm), or Newton does not
 settle, the central harmonics' pencil at |l| <= P - 5 with the outer ones folded in, its
 growing eigenvalues refined by Newton at P, fastest first (``_strong``: flexmm's offsets
-at ~1/4 of the dense eigenproblem's cost); where that does not settle either, that
+at ~1/4 of the dense eigenproblem's cost; that pencil in real arithmetic where a diagonal
+phase makes the Hill matrix real, every built-in model's wave: ``_real_gauge``, ~1/3 of
+the complex eigensolver's cost); where that does not settle either, that
 offset's dense eigenproblem at the same P. The fastest mode is computed again
 at P + PERSIST_STEP (the truncation persistence rule of CONVENTIONS.md;
 ``HillSpectrum.truncations`` names both); where it moves by more than 1e-6 relative, the
 whole spectrum is the dense one at H + 4. tests/test_exact_gain_anchors.py holds the
 implementation before this one (dense ``eig`` at H + 4 per offset) to 1e-6 relative.
+Where the wave's second harmonic is large (``HARMONIC_CHECK``: every flexmm carrier) the
+continuation from small amplitude (``_connected``) gives the wave, the harmonic balance
+from the linear wave solved only where the continuation loses the branch.
 """
 
 from __future__ import annotations
@@ -208,17 +213,33 @@ def travelling_wave(model: Model, k: float, amplitude: float, branch=None, *,
     truncation H = 8 (doubled as without) and residual test, so the same wave to
     round-off).
 
+    Without ``start``, a wave far from the linear one (frequency shift over
+    ``SHIFT_CHECK``, second harmonic over ``HARMONIC_CHECK`` of the first) is the one
+    continued from small amplitude (``_connected``): the carrier's family, where the
+    harmonic balance from the linear wave can land on another.
+
     Raises ModelError where none is found (a resonance with another harmonic, an
     amplitude beyond the branch's nonlinear range): said in one line. Small dense algebra:
     on one BLAS thread (``common.threads``).
     """
     from ._fourwave import second_harmonic_size
 
-    wave = _travelling_wave(model, k, amplitude, branch, harmonics, start)
+    # the collocation's set-up once for the direct solve and the continuation's steps
+    # (``_solve_fast``: the same values, to the bit)
+    fast = {}
+    a = float(amplitude)
+    size = math.nan
+    if start is None and math.isfinite(a) and a > 0:
+        fast["car"] = carrier(model, k, branch)
+        size = second_harmonic_size(model, fast["car"].k, a, branch)
+        if size >= HARMONIC_CHECK:
+            # the continuation decides, whatever the direct solve finds: that solve only
+            # where the continuation loses the branch (``_connected``)
+            return _connected(model, k, a, branch, harmonics, None, fast)
+    wave = _travelling_wave(model, k, amplitude, branch, harmonics, start, fast)
     shift = (wave.omega - wave.carrier.omega) / wave.carrier.omega
-    if start is None and not (abs(shift) < SHIFT_CHECK and second_harmonic_size(
-            model, wave.k, float(amplitude), branch) < HARMONIC_CHECK):
-        return _connected(model, k, float(amplitude), branch, harmonics, wave)
+    if start is None and not (abs(shift) < SHIFT_CHECK and size < HARMONIC_CHECK):
+        return _connected(model, k, a, branch, harmonics, wave, fast)
     return wave
 
 
@@ -234,19 +255,37 @@ SHIFT_CHECK, HARMONIC_CHECK = 0.05, 0.3
 CONTINUATION_STEPS = 4
 
 
-def _connected(model, k, a, branch, harmonics, direct):
+def _connected(model, k, a, branch, harmonics, direct, fast=None):
     """The wave at amplitude a continued from small amplitude (each step's harmonic
     balance started from the previous wave): the one on the carrier's branch. ``direct``
     where it is the same wave; a one-line ModelError where the continuation loses the
-    branch (its harmonic balance fails: the family folds near a harmonic's resonance)."""
+    branch (its harmonic balance fails: the family folds near a harmonic's resonance).
+    ``fast``: the direct solve's set-up (``_travelling_wave``). A step after the first
+    starts at the previous wave's truncation (its tail test, and the doubling where the
+    tail is not yet below 1e-13, as from H = 8: the same wave to the tail's 1e-13), not
+    at H = 8 again: one solve a step instead of two.
+
+    ``direct`` None (the continuation asked before the direct solve: a large second
+    harmonic): the direct solve is done only where the continuation loses the branch;
+    else the continued wave is returned, which is ``direct`` to round-off where they are
+    one family and the wave returned before where they are not. (Before, a direct solve
+    that failed raised even where the continuation found the carrier's wave.)"""
+    base = fast
+    # the steps' least squares by QR, the steps before the last converged to 1e-11 (each
+    # only the next one's start)
+    fast = dict(fast or {}, qr=True)
     prev = None
     for j in range(1, CONTINUATION_STEPS + 1):
         aj = a * j / CONTINUATION_STEPS
+        fast["done"] = 1e-14 if j == CONTINUATION_STEPS else 1e-11
         try:
-            prev = _travelling_wave(model, k, aj, branch, harmonics, prev)
+            prev = _travelling_wave(model, k, aj, branch, harmonics, prev, fast,
+                                    first=None if prev is None else prev.harmonics)
         except ModelError:
             prev = None
         if prev is None or not prev.omega > 0:
+            if direct is None:
+                direct = _travelling_wave(model, k, a, branch, harmonics, None, base)
             shift = abs(direct.omega - direct.carrier.omega) / direct.carrier.omega
             if direct.omega > 0 and shift < SHIFT_CHECK:
                 # no other family seen, and the direct wave's frequency is the linear
@@ -261,9 +300,9 @@ def _connected(model, k, a, branch, harmonics, direct):
                 f"resonance with a branch); the harmonic balance from the linear wave finds "
                 f"another family (frequency {direct.omega:.4g}, linear {direct.carrier.omega:.4g})"
                 "; try an amplitude below it")
-    if abs(prev.omega - direct.omega) <= 1e-8 * abs(direct.carrier.omega):
-        return direct
-    return prev
+    if direct is None or abs(prev.omega - direct.omega) > 1e-8 * abs(direct.carrier.omega):
+        return prev
+    return direct
 
 
 def _scaled_start(start, car, a, H):
@@ -294,10 +333,13 @@ def _least_squares(*args, **kwargs):
     return least_squares(*args, **kwargs)
 
 
-def _travelling_wave(model, k, amplitude, branch, harmonics, start=None, fast=None):
+def _travelling_wave(model, k, amplitude, branch, harmonics, start=None, fast=None,
+                     first=None):
     """``travelling_wave`` without its family check. ``fast``: a dict kept across the
     calls of one carrier (``continued_wave``): the carrier, the acoustic directions and
-    the collocation's linear maps (``_collocation``) computed once."""
+    the collocation's linear maps (``_collocation``) computed once. ``first``: the first
+    truncation H tried where ``harmonics`` is None (default 8; doubled while the tail is
+    above 1e-13 of the amplitude, up to 32)."""
     least_squares = _least_squares
     a = float(amplitude)
     if not (math.isfinite(a) and a > 0):
@@ -315,7 +357,8 @@ def _travelling_wave(model, k, amplitude, branch, harmonics, start=None, fast=No
         car, acoustic, masses = fast["car"], fast["acoustic"], fast["masses"]
     d = model.n_fields
     solve = _solve if fast is None else _solve_fast
-    H = harmonics or 8
+    kw = {} if fast is None else {"qr": bool(fast.get("qr")), "done": fast.get("done", 1e-14)}
+    H = harmonics or first or 8
     if start is not None:
         omega0, c0 = _scaled_start(start, car, a, H)
     else:
@@ -324,7 +367,7 @@ def _travelling_wave(model, k, amplitude, branch, harmonics, start=None, fast=No
         c0[:, H - 1] = np.conj(c0[:, H + 1])
         omega0 = car.omega
     while True:
-        wave = solve(model, car, a, masses, acoustic, H, c0, omega0, least_squares)
+        wave = solve(model, car, a, masses, acoustic, H, c0, omega0, least_squares, **kw)
         tail = np.max(np.abs(wave.coefficients[:, [0, -1]])) / a
         if harmonics or tail < 1e-13 or H >= 32:
             break
@@ -433,11 +476,13 @@ def _solve(model, car, a, masses, acoustic, H, c0, omega0, least_squares):
                           coefficients=c, residual=res)
 
 
-def _solve_fast(model, car, a, masses, acoustic, H, c0, omega0, least_squares):
+def _solve_fast(model, car, a, masses, acoustic, H, c0, omega0, least_squares, qr=False,
+                done=1e-14):
     """``_solve``'s equations from their linear maps (``_collocation``: no per-call
     assembly), by the chord method (``chord_newton``: the start's Jacobian kept; Gauss-
     Newton where it does not converge), the converged residual not computed again: the
-    same wave to round-off (tests/test_models_exact.py)."""
+    same wave to round-off (tests/test_models_exact.py). ``qr``, ``done``: the Gauss-Newton
+    fallback's (``_gauss_newton``)."""
     from ._collocation import chord_newton, collocation
 
     d = model.n_fields
@@ -450,7 +495,7 @@ def _solve_fast(model, car, a, masses, acoustic, H, c0, omega0, least_squares):
     x0 = np.concatenate([[omega0], optical.T @ np.real(c0[:, H]), parts0[free]])
     x = chord_newton(residual, jacobian, x0)
     if x is None:
-        x = _gauss_newton(residual, jacobian, x0)
+        x = _gauss_newton(residual, jacobian, x0, qr=qr, done=done)
     if x is None:
         x = least_squares(residual, x0, method="lm", xtol=1e-15, ftol=1e-15, gtol=1e-15,
                           max_nfev=200 * (x0.size + 1)).x
@@ -477,24 +522,44 @@ def continued_wave(model: Model, car: Carrier, amplitude: float, start: Travelli
     return _travelling_wave(model, car.k, amplitude, car.branch, None, start, fast)
 
 
-def _gauss_newton(residual, jacobian, x0, steps=40):
+def _gauss_newton(residual, jacobian, x0, steps=40, qr=False, done=1e-14):
     """Gauss-Newton until the residual is round-off (None where it does not settle: the
-    caller falls back to scipy's least squares)."""
+    caller falls back to scipy's least squares). ``qr``: each step's least squares by
+    Householder QR (~1/4 of ``lstsq``'s SVD on the 64 x 63 systems of H = 16), the SVD
+    where R is near singular (a fold: lstsq's cut-off then matters); the same solution,
+    other round-off: used by the continuation's checks (``_connected``). ``done``: the
+    residual it stops at (round-off by default; the continuation's steps before the
+    last stop at 1e-11, 100x below RESIDUAL_TOL: each is only the next one's start)."""
     x = x0.copy()
     r = residual(x)
     start = best = np.max(np.abs(r))
     for _ in range(steps):
         if not (np.isfinite(best) and best < 1e6 * max(start, 1e-3)):
             return None
-        if best < 1e-14:
+        if best < done:
             return x
-        x = x + np.linalg.lstsq(jacobian(x), -r, rcond=None)[0]
+        J = jacobian(x)
+        step = _qr_step(J, r) if qr else None
+        if step is None:
+            step = np.linalg.lstsq(J, -r, rcond=None)[0]
+        x = x + step
         r = residual(x)
         now = np.max(np.abs(r))
         if best < 1e-11 and now >= best / 4:
             return x if now < 2 * best else None  # round-off: the last step changed nothing
         best = now
     return x if best < RESIDUAL_TOL else None
+
+
+def _qr_step(J, r):
+    """The least-squares step -J^+ r by QR (J of full column rank), or None where R's
+    diagonal spans more than 1e10 (near rank-deficient: ``lstsq`` decides)."""
+    Q, R = np.linalg.qr(J)
+    diag = np.abs(np.diagonal(R))
+    if not diag.size or not diag.min() > 1e-10 * diag.max():
+        return None
+    step = np.linalg.solve(R, -(Q.T @ r))
+    return step if np.all(np.isfinite(step)) else None
 
 
 @dataclass(frozen=True)
@@ -732,7 +797,9 @@ class _Sidebands:
         than 1e-6 of it in the outer three harmonics)."""
         P, k, d = self.P, self.wave.k, self.wave.model.n_fields
         l_ = np.arange(-P, P + 1)
-        width = lam.shape[1]
+        # the slots that hold a mode anywhere (flexmm: <= 4 of MAX_MODES): the same values
+        width = max(int(count.max(initial=0)), 1)
+        lam, vec = lam[:, :width], vec[:, :width]
         c = np.abs(vec) ** 2                                         # (Q, modes, n)
         weight = c / np.maximum(c.sum(axis=-1, keepdims=True), 1e-300)
         per_l = weight.reshape(offsets.size, width, 2 * P + 1, d).sum(axis=-1)
@@ -933,7 +1000,8 @@ def exact_gain(model: Model, k: float, amplitude: float, branch=None, *, N: int 
 
     i = int(np.argmax(spec.gain))
     lo, hi = q[max(i - 1, 0)], q[min(i + 1, q.size - 1)]
-    best = minimize_scalar(lambda x: -engine.spectrum([x]).gain[0], bounds=(lo, hi),
+    best = minimize_scalar(lambda x: -engine.spectrum([x], gains_only=True).gain[0],
+                           bounds=(lo, hi),
                            method="bounded", options={"xatol": 1e-6 * (hi - lo)})
     extra = engine.checked(np.array([best.x]))
     if len(extra.truncations) != 2:  # the peak did not persist: the old dense way

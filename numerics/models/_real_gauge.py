@@ -1,0 +1,187 @@
+"""The frozen pencil of ``_strong`` in real arithmetic, where a diagonal phase makes the Hill
+pencil real (issue 41: the frozen pencil's eigenvalues were ~90% of flexmm's exact theory).
+
+At offset q the scaled pencil is T(lambda) = (lambda - i Omega)^2 + K(q), K Hermitian,
+Omega = diag(l omega) (``_sidebands``). Where a diagonal unitary G (phases g_a) makes
+R = G^* K G real (R_ab = conj(g_a) K_ab g_b), G commutes with Omega, and with lambda = i mu
+
+    G^* T(i mu) G = R - (mu - Omega)^2,
+
+a real pencil in mu: its eigenvalues are real (lambda on the imaginary axis) or come in
+conjugate pairs (lambda and -conj(lambda), the Hamiltonian pair), and its linearisation
+mu [y; x] = [[Omega, I], [A, Omega]] [y; x] (x = (mu - Omega) y) is real: LAPACK's dgeev
+on it costs ~1/3 of zgeev's on the complex companion matrix (measured, 44 x 44: 0.25 ms
+against 0.74 ms). The fold is gauge covariant (Sigma = G_C Sigma_R G_C^*, with
+Sigma_R = R_CR (R_RR - Omega_R^2)^{-1} R_RC), so the whole frozen pencil is real.
+
+When a gauge exists. The phases of a spanning tree of K's entries fix G (the heaviest
+entries first, Prim's tree: g_b = g_a conj(K_ab) / |K_ab| makes R_ab = |K_ab| > 0); the
+other entries must then come out real, checked: |Im R| <= GAUGE_TOL max |K|. A wave with
+a reflection symmetry (each field even or odd in xi after a shift: every built-in model's,
+measured at 5 offsets of 13 points of seven models, |Im R| <= 5e-16 max |K|) has one; where
+the check fails, the caller solves the complex pencil as before. Dropping Im R (at most
+GAUGE_TOL of the matrix) moves the frozen eigenvalues, which are starts refined on the
+exact complex pencil (``_strong._refine``), by far less than the frozen fold's own error.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit, types
+from numba.np.linalg import _LAPACK
+
+#: |Im R| over max |K| below which the gauged pencil is taken as real (round-off is
+#: ~5e-16 at P = 10: the margin is 200x; a wave without the symmetry has O(1) there)
+GAUGE_TOL = 1e-13
+
+_KW = dict(cache=True, nogil=True, error_model="numpy", boundscheck=False)
+
+# LAPACK's dgeev as numba's own np.linalg.eigvals calls it (numba pinned in pyproject.toml):
+# numba's eigvals of a real matrix raises where an eigenvalue is complex, which is the case
+# that matters here. An external symbol resolved at load time, so the module stays cached.
+_dgeev = _LAPACK().numba_ez_rgeev(types.float64)
+_DOUBLE, _NO_VECTORS = ord("d"), ord("N")
+
+
+@njit(**_KW)
+def real_gauge(K, g):
+    """Phases ``g`` (into it, shape (n,)) with conj(g_a) K_ab g_b real for every entry, by
+    Prim's maximum spanning tree over |K_ab| (a new root, phase 1, for each connected
+    component). True where the gauge holds: max |Im| <= GAUGE_TOL max |K|."""
+    n = K.shape[0]
+    intree = np.zeros(n, np.bool_)
+    best = np.zeros(n)  # |K|^2: the same tree as |K|, without a square root per entry
+    parent = np.full(n, -1, np.int64)
+    big = 0.0
+    for a in range(n):
+        for b in range(n):
+            big = max(big, K[a, b].real ** 2 + K[a, b].imag ** 2)
+    for _ in range(n):
+        j, w = -1, -1.0
+        for a in range(n):
+            if not intree[a] and best[a] > w:
+                j, w = a, best[a]
+        p = parent[j]
+        if p >= 0 and w > 0:
+            g[j] = g[p] * np.conj(K[p, j]) / abs(K[p, j])
+        else:
+            g[j] = 1.0
+        intree[j] = True
+        for a in range(n):
+            m2 = K[j, a].real ** 2 + K[j, a].imag ** 2
+            if not intree[a] and m2 > best[a]:
+                best[a] = m2
+                parent[a] = j
+    worst = 0.0
+    for a in range(n):
+        for b in range(n):
+            worst = max(worst, abs((np.conj(g[a]) * K[a, b] * g[b]).imag))
+    return worst <= GAUGE_TOL * np.sqrt(big)
+
+
+@njit(**_KW)
+def frozen_real(K, Om, cidx, ridx, g, X, Sig):
+    """The frozen pencil at lambda = 0 in the gauge ``g`` (``real_gauge``): its 2 r_C
+    eigenvalues lambda (returned), the fold Sigma (into ``Sig``) and T_RR(0)^{-1} K_RC
+    (into ``X``), both back in the pencil's own coordinates, as ``_sidebands._fold`` gives
+    them. Returns (lambda, ok): ok False where T_RR(0) is singular or dgeev fails."""
+    rc, nr = cidx.size, ridx.size
+    # R_RR - Omega_R^2 and R_RC, real
+    T = np.empty((nr, nr))
+    Y = np.empty((nr, rc))
+    for a in range(nr):
+        ia = ridx[a]
+        ga = np.conj(g[ia])
+        for b in range(nr):
+            T[a, b] = (ga * K[ia, ridx[b]] * g[ridx[b]]).real
+        T[a, a] -= Om[ia] * Om[ia]
+        for b in range(rc):
+            Y[a, b] = (ga * K[ia, cidx[b]] * g[cidx[b]]).real
+    lam = np.empty(2 * rc, np.complex128)
+    if nr:
+        piv = np.empty(nr, np.int64)
+        if not _lu_real(T, piv):
+            return lam, False
+        _lu_solve_real(T, piv, Y)
+    # L^T with L = [[Omega_C, I], [A, Omega_C]], A = R_CC - R_CR Y (same eigenvalues)
+    m = 2 * rc
+    L = np.zeros((m, m))
+    for a in range(rc):
+        ca = cidx[a]
+        ga = np.conj(g[ca])
+        for b in range(rc):
+            s = 0.0
+            for c in range(nr):
+                s += (ga * K[ca, ridx[c]] * g[ridx[c]]).real * Y[c, b]
+            Sig[a, b] = g[ca] * s * np.conj(g[cidx[b]])
+            L[b, rc + a] = (ga * K[ca, cidx[b]] * g[cidx[b]]).real - s
+        L[a, a] = Om[ca]
+        L[rc + a, a] = 1.0
+        L[rc + a, rc + a] = Om[ca]
+    for a in range(nr):
+        for b in range(rc):
+            X[a, b] = g[ridx[a]] * Y[a, b] * np.conj(g[cidx[b]])
+    wr = np.empty(m)
+    wi = np.empty(m)
+    vl = np.empty(1)
+    vr = np.empty(1)
+    info = _dgeev(_DOUBLE, _NO_VECTORS, _NO_VECTORS, m, L.ctypes, m, wr.ctypes, wi.ctypes,
+                  vl.ctypes, 1, vr.ctypes, 1)
+    for s in range(m):
+        lam[s] = complex(-wi[s], wr[s])  # lambda = i mu
+    # keep the arrays alive past the LAPACK call (``.ctypes`` does not)
+    ok = info == 0 and L.size + wr.size + wi.size + vl.size + vr.size > 0
+    return lam, ok
+
+
+@njit(**_KW)
+def _lu_real(A, piv):
+    """In-place LU with partial pivoting of a real square matrix; False if singular."""
+    n = A.shape[0]
+    for j in range(n):
+        p = j
+        big = abs(A[j, j])
+        for i in range(j + 1, n):
+            if abs(A[i, j]) > big:
+                big = abs(A[i, j])
+                p = i
+        piv[j] = p
+        if big == 0.0:
+            return False
+        if p != j:
+            for c in range(n):
+                t = A[j, c]
+                A[j, c] = A[p, c]
+                A[p, c] = t
+        inv = 1.0 / A[j, j]
+        for i in range(j + 1, n):
+            f = A[i, j] * inv
+            A[i, j] = f
+            if f != 0:
+                for c in range(j + 1, n):
+                    A[i, c] -= f * A[j, c]
+    return True
+
+
+@njit(**_KW)
+def _lu_solve_real(A, piv, B):
+    """Solves A X = B in place (B, shape (n, m)) with ``_lu_real``'s factors."""
+    n, m = B.shape
+    for j in range(n):
+        p = piv[j]
+        if p != j:
+            for c in range(m):
+                t = B[j, c]
+                B[j, c] = B[p, c]
+                B[p, c] = t
+    for c in range(m):
+        for i in range(n):
+            s = B[i, c]
+            for k in range(i):
+                s -= A[i, k] * B[k, c]
+            B[i, c] = s
+        for i in range(n - 1, -1, -1):
+            s = B[i, c]
+            for k in range(i + 1, n):
+                s -= A[i, k] * B[k, c]
+            B[i, c] = s / A[i, i]
