@@ -123,14 +123,22 @@ def _rows(res) -> list:
 SATURATION_ONSET = 0.03
 
 
-def _log_growth(log, res):
+def _seconds(units, t_end: float) -> str:
+    """`` (= 100 s)`` beside a run length in T with --physical ('' without)."""
+    s = getattr(units, "seconds_per_T", None)
+    return f" (= {t_end * s:.4g} s)" if s else ""
+
+
+def _log_growth(log, res, units=None):
     """The predicted (and measured) growth factor per seed, and what it means."""
     t_end, pred = res.t_end, res.prediction
     if pred is None:
-        log(f"growth factor within T = {t_end:g}: no prediction ({res.predicted['reason']})")
+        log(f"growth factor within T = {t_end:g}{_seconds(units, t_end)}: no prediction "
+            f"({res.predicted['reason']})")
         return
     predicted = res.predicted["growth"]
-    log(f"growth factor within T = {t_end:g} (the largest non-carrier component over the "
+    log(f"growth factor within T = {t_end:g}{_seconds(units, t_end)} (the largest "
+        "non-carrier component over the "
         f"carrier, per seed): predicted "
         + ", ".join(f"{g:.3g}x" for g in predicted)
         + ("; measured " + ", ".join(f"{g['growth']:.3g}x" for g in res.growths)
@@ -211,7 +219,7 @@ def run_point(args, log=print) -> dict:
                                 "metres_per_site": units.metres_per_site})
     rows = _rows(res)
     log("")
-    _log_growth(log, res)
+    _log_growth(log, res, units)
     _log_verdicts(log, res, args)
     log(_table(rows, units))
     for n, t in res.theories.items():

@@ -283,6 +283,7 @@ def test_point_physical_table_gives_rates_in_per_second(capsys):
     assert cli(["point", "--physical", "0.01,2e-6,0.02,1e4,185,1", "--k", "1.0", "--case",
                 "rotation", "--N", "128"]) == 0
     lines = capsys.readouterr().out.splitlines()
+    assert any(ln.startswith("growth factor within T = 100000 (= 100 s)") for ln in lines)
     head = next(i for i, line in enumerate(lines) if line.startswith("theory "))
     cols = [c.strip() for c in lines[head].split("  ") if c.strip()]
     assert cols[-3:] == ["peak gain (1/s)", "e-folding (s)", "at q - k (rad/m)"]
