@@ -1,11 +1,11 @@
-"""The travelling wave's collocation equations (``_exact._solve``), set up once per layout.
+"""The travelling wave's collocation equations (``_wave._solve``), set up once per layout.
 
 A damped point (issue 42) solves the wave of one carrier at several amplitudes, each from
 a near start in two Newton steps: most of such a solve was its set-up (the carrier, the
 acoustic directions, the grid's phase tables) and each call's assembly. Here the tables
 that depend on the layout alone (fields, H, k, the carrier field, the acoustic
 directions; not the amplitude, not the model's parameters) are built once and kept
-(least recently used), and the residual and its Jacobian are ``_exact._solve``'s,
+(least recently used), and the residual and its Jacobian are ``_wave._solve``'s,
 operation for operation, with fewer calls. The solve keeps the start's Jacobian
 (``chord_newton``: one Jacobian and its pseudo-inverse a wave instead of two Jacobians
 and two least-squares solves): the same wave as ``_solve``'s to round-off (6e-14 of the
@@ -32,7 +32,7 @@ class Collocation:
         h = np.arange(-H, H + 1)
         self.d, self.H, self.M, self.k, self.field = d, H, M, k, field
         self.optical, self.free, self.n_opt, self.h = optical, free, optical.shape[1], h
-        # ``_exact._solve``'s expressions, evaluated once
+        # ``_wave._solve``'s expressions, evaluated once
         self.E = np.exp(-1j * h[:, None] * xi[None, :]) / M
         self.B0 = np.exp(1j * h[:, None] * xi[None, :])
         self.Bp = self.B0 * np.exp(1j * h * k)[:, None]
@@ -48,7 +48,7 @@ class Collocation:
             arr.flags.writeable = False
 
     def equations(self, model, masses, a, scale):
-        """(residual(x), jacobian(x)) of ``_exact._solve`` at amplitude a and ``scale``,
+        """(residual(x), jacobian(x)) of ``_wave._solve`` at amplitude a and ``scale``,
         the same values. ``residual`` keeps its last value in ``last`` (the caller's check
         of a converged x reads it instead of computing it again)."""
         d, M, H, h = self.d, self.M, self.H, self.h
@@ -149,7 +149,7 @@ def chord_newton(residual, jacobian, x0, steps=12):
     amplitudes of a damped point start from the last wave scaled, ~1e-5 of their
     residual's scale away, where the chord converges linearly at a rate of that order, so
     one Jacobian and its pseudo-inverse serve every step (Newton took two Jacobians and
-    two least-squares solves for the same round-off). Stops as ``_exact._gauss_newton``:
+    two least-squares solves for the same round-off). Stops as ``_wave._gauss_newton``:
     a residual below 1e-14, or one that no longer falls by 4 once below 1e-11 (round-off);
     None where it does not converge so (the caller solves by Gauss-Newton instead)."""
     x = x0.copy()

@@ -1,0 +1,522 @@
+"""The exact travelling plane wave of any model by harmonic balance (the exact lattice
+theory's first half; its Hill spectrum: ``_exact``).
+
+
+Travelling wave. Every field is a 2 pi-periodic function of xi = k n - omega t,
+u_j(n, t) = U_j(xi) = sum_{|h| <= H} c_{j,h} e^{i h xi} (a general Fourier ansatz, cos and
+sin in every field: no parity is assumed). With W(x), x = (u_n, u_{n+1}), the cell energy,
+the lattice's equations of motion become
+
+    m_j omega^2 U_j''(xi) = -[d_j W(U(xi), U(xi + k)) + d_{d+j} W(U(xi - k), U(xi))],
+
+solved by collocation at M points with the carrier's first harmonic fixed,
+c_{f,1} = a / 2 (u_f = a cos xi + harmonics + mean: the ``amplitude`` of every command),
+for omega and every other coefficient. The means along the acoustic directions (uniform
+translations, a symmetry of W) are a gauge and set to 0: the ring's wave has no mean
+strain. One equation is redundant (the phase of the wave: the residual is orthogonal to
+U' for any U), so the system is solved in the least-squares sense and its residual
+checked to be round-off.
+
+How it is computed: Gauss-Newton on the collocation equations with their exact Jacobian,
+the DFT of the generated cell Hessian along the wave (least squares with finite
+differences where Newton does not settle). Where the wave's second harmonic is large
+(``HARMONIC_CHECK``: every flexmm carrier) the continuation from small amplitude
+(``_connected``) gives the wave, the harmonic balance from the linear wave solved only
+where the continuation loses the branch.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from common.threads import one_blas_thread
+from energy import Model, ModelError
+
+from ._linear import Carrier, carrier
+from ._nls import acoustic_directions
+
+RESIDUAL_TOL = 1e-9
+#: A growth rate below this fraction of omega is round-off of the eigensolver: at a
+#: commensurate k (k = 2 pi p / r) a mode appears in several harmonics and its eigenvalues
+
+
+@dataclass(frozen=True)
+class TravellingWave:
+    """The exact travelling plane wave u_j(n, t) = sum_h c[j, h] e^{i h (k n - omega t)}.
+
+    Attributes
+    ----------
+    model : Model
+    carrier : Carrier
+        The linear carrier it continues (k, branch, field, linear omega).
+    amplitude : float
+        a: the carrier field's first harmonic is a cos(k n - omega t).
+    omega : float
+        The wave's frequency (1/time, lattice units); ``omega - carrier.omega`` its
+        nonlinear shift.
+    coefficients : ndarray, shape (d, 2 H + 1), complex
+        c[j, h + H] for h = -H..H.
+    residual : float
+        Largest collocation residual over m omega^2 a (round-off when converged).
+    """
+
+    model: Model
+    carrier: Carrier
+    amplitude: float
+    omega: float
+    coefficients: np.ndarray
+    residual: float
+
+    @property
+    def k(self) -> float:
+        return self.carrier.k
+
+    @property
+    def harmonics(self) -> int:
+        return (self.coefficients.shape[1] - 1) // 2
+
+    def profile(self, xi) -> np.ndarray:
+        """U_j(xi), shape (d,) + xi.shape."""
+        xi = np.asarray(xi, dtype=float)
+        h = np.arange(-self.harmonics, self.harmonics + 1)
+        return np.real(np.tensordot(self.coefficients, np.exp(1j * h[:, None] * xi.ravel()),
+                                    axes=(1, 0))).reshape((-1,) + xi.shape)
+
+    def ring_profile(self, N: int, k: float | None = None):
+        """A function t -> U_j(k n - omega t) on the ring's N sites, shape (d, N): the
+        same as ``profile`` (to round-off, ~1e-16 of the amplitude) at a fraction of its
+        cost for many t (a run's records): the sites' harmonics e^{i h k n} once, then
+        2H + 1 phases per t. ``k``: the ring's (default the wave's)."""
+        h = np.arange(-self.harmonics, self.harmonics + 1)
+        basis = np.exp(1j * h[:, None] * ((self.k if k is None else k) * np.arange(N)))
+        c, w = self.coefficients, self.omega
+
+        def at(t: float) -> np.ndarray:
+            return np.real((c * np.exp(-1j * h * (w * t))) @ basis)
+        return at
+
+    def slope(self, xi) -> np.ndarray:
+        """U_j'(xi)."""
+        xi = np.asarray(xi, dtype=float)
+        h = np.arange(-self.harmonics, self.harmonics + 1)
+        return np.real(np.tensordot(self.coefficients * (1j * h),
+                                    np.exp(1j * h[:, None] * xi.ravel()),
+                                    axes=(1, 0))).reshape((-1,) + xi.shape)
+
+    def state(self, N: int, t: float = 0.0):
+        """(u, v) of the wave on a ring of N sites at time t, each shape (d, N)."""
+        xi = self.k * np.arange(N) - self.omega * t
+        return self.profile(xi), -self.omega * self.slope(xi)
+
+    def harmonic_amplitudes(self) -> np.ndarray:
+        """2 |c[j, h]| for h = 0..H (the mean as |c_0|), shape (d, H + 1)."""
+        H = self.harmonics
+        out = 2 * np.abs(self.coefficients[:, H:])
+        out[:, 0] /= 2
+        return out
+
+
+def _wrap(x):
+    """|x| wrapped to [0, pi]."""
+    return np.abs((np.asarray(x) + np.pi) % (2 * np.pi) - np.pi)
+
+
+def _grid(M):
+    return 2 * np.pi * np.arange(M) / M
+
+
+def _fields_at(c, xi, shift=0.0):
+    """U(xi + shift) from coefficients c (d, 2H + 1)."""
+    H = (c.shape[1] - 1) // 2
+    h = np.arange(-H, H + 1)
+    return np.real(c @ np.exp(1j * h[:, None] * (xi[None, :] + shift)))
+
+
+def _force(model: Model, c, xi, k):
+    """F_j(xi) = -[d_j W(U(xi), U(xi + k)) + d_{d+j} W(U(xi - k), U(xi))], shape (d, M)."""
+    d = model.n_fields
+    U0, Up, Um = _fields_at(c, xi), _fields_at(c, xi, k), _fields_at(c, xi, -k)
+    g_here = np.empty((2 * d, xi.size))
+    g_back = np.empty((2 * d, xi.size))
+    model.code.cell_gradient_into(np.concatenate([U0, Up]), model.p, g_here)
+    model.code.cell_gradient_into(np.concatenate([Um, U0]), model.p, g_back)
+    return -(g_here[:d] + g_back[d:])
+
+
+def _pack_layout(d, H, field, acoustic):
+    """Which unknowns are free: (complement basis of the acoustic directions, mask of the
+    free Re/Im parts of c[j, h], h = 1..H)."""
+    if acoustic.shape[1]:
+        q, _ = np.linalg.qr(np.concatenate([acoustic, np.eye(d)], axis=1))
+        optical = q[:, acoustic.shape[1]:d]
+    else:
+        optical = np.eye(d)
+    free = np.ones((d, H, 2), bool)
+    free[field, 0, :] = False  # c[f, 1] = a / 2, real: the amplitude and the phase
+    return optical, free
+
+
+@one_blas_thread
+def travelling_wave(model: Model, k: float, amplitude: float, branch=None, *,
+                    harmonics: int | None = None,
+                    start: TravellingWave | None = None) -> TravellingWave:
+    """The exact travelling plane wave of ``model`` on ``branch`` at wavenumber ``k`` whose
+    carrier field has first harmonic ``amplitude`` cos(k n - omega t).
+
+    ``start``: a wave of the same model, k and branch at another amplitude a1 (the
+    harmonic balance starts from it, each harmonic h scaled by (a / a1)^|h|, the mean and
+    the nonlinear frequency shift by (a / a1)^2, the lowest orders of a weakly nonlinear
+    wave, instead of from the linear wave: fewer Newton steps; the same equations,
+    truncation H = 8 (doubled as without) and residual test, so the same wave to
+    round-off).
+
+    Without ``start``, a wave far from the linear one (frequency shift over
+    ``SHIFT_CHECK``, second harmonic over ``HARMONIC_CHECK`` of the first) is the one
+    continued from small amplitude (``_connected``): the carrier's family, where the
+    harmonic balance from the linear wave can land on another.
+
+    Raises ModelError where none is found (a resonance with another harmonic, an
+    amplitude beyond the branch's nonlinear range): said in one line. Small dense algebra:
+    on one BLAS thread (``common.threads``).
+    """
+    from ._fourwave import second_harmonic_size
+
+    # the collocation's set-up once for the direct solve and the continuation's steps
+    # (``_solve_fast``: the same values, to the bit)
+    fast = {}
+    a = float(amplitude)
+    size = math.nan
+    if start is None and math.isfinite(a) and a > 0:
+        fast["car"] = carrier(model, k, branch)
+        size = second_harmonic_size(model, fast["car"].k, a, branch)
+        if size >= HARMONIC_CHECK:
+            # the continuation decides, whatever the direct solve finds: that solve only
+            # where the continuation loses the branch (``_connected``)
+            return _connected(model, k, a, branch, harmonics, None, fast)
+    wave = _travelling_wave(model, k, amplitude, branch, harmonics, start, fast)
+    shift = (wave.omega - wave.carrier.omega) / wave.carrier.omega
+    if start is None and not (abs(shift) < SHIFT_CHECK and size < HARMONIC_CHECK):
+        return _connected(model, k, a, branch, harmonics, wave, fast)
+    return wave
+
+
+#: A wave whose frequency is this far (relative) from the linear one, or whose second
+#: harmonic (weakly nonlinear estimate, ``second_harmonic_size``) is this large against
+#: its first, is checked against the wave continued from small amplitude: near a
+#: harmonic's resonance the harmonic balance started from the linear wave can land on
+#: another family (the flexmm chain at k = 2 pi 18/128: omega +0.3% at a = 0.07 where the
+#: family's is -3.6%, then -0.146 at 0.09: its second harmonic 19x the first at a 0.07).
+#: Elsewhere no extra solve (FPUT at a = 0.1: 0.19 at k = 0.5, 0.003-0.09 at k >= 1).
+SHIFT_CHECK, HARMONIC_CHECK = 0.05, 0.3
+#: continuation steps from a / CONTINUATION_STEPS to a
+CONTINUATION_STEPS = 4
+
+
+def _connected(model, k, a, branch, harmonics, direct, fast=None):
+    """The wave at amplitude a continued from small amplitude (each step's harmonic
+    balance started from the previous wave): the one on the carrier's branch. ``direct``
+    where it is the same wave; a one-line ModelError where the continuation loses the
+    branch (its harmonic balance fails: the family folds near a harmonic's resonance).
+    ``fast``: the direct solve's set-up (``_travelling_wave``). A step after the first
+    starts at the previous wave's truncation (its tail test, and the doubling where the
+    tail is not yet below 1e-13, as from H = 8: the same wave to the tail's 1e-13), not
+    at H = 8 again: one solve a step instead of two.
+
+    ``direct`` None (the continuation asked before the direct solve: a large second
+    harmonic): the direct solve is done only where the continuation loses the branch;
+    else the continued wave is returned, which is ``direct`` to round-off where they are
+    one family and the wave returned before where they are not. (Before, a direct solve
+    that failed raised even where the continuation found the carrier's wave.)"""
+    base = fast
+    # the steps' least squares by QR, the steps before the last converged to 1e-11 (each
+    # only the next one's start)
+    fast = dict(fast or {}, qr=True)
+    prev = None
+    for j in range(1, CONTINUATION_STEPS + 1):
+        aj = a * j / CONTINUATION_STEPS
+        fast["done"] = 1e-14 if j == CONTINUATION_STEPS else 1e-11
+        try:
+            prev = _travelling_wave(model, k, aj, branch, harmonics, prev, fast,
+                                    first=None if prev is None else prev.harmonics)
+        except ModelError:
+            prev = None
+        if prev is None or not prev.omega > 0:
+            if direct is None:
+                direct = _travelling_wave(model, k, a, branch, harmonics, None, base)
+            shift = abs(direct.omega - direct.carrier.omega) / direct.carrier.omega
+            if direct.omega > 0 and shift < SHIFT_CHECK:
+                # no other family seen, and the direct wave's frequency is the linear
+                # one's: it stands (a long acoustic wave whose small-amplitude balance
+                # misses the residual test)
+                return direct
+            done = a * (j - 1) / CONTINUATION_STEPS
+            raise ModelError(
+                f"model {model.describe()}: no travelling wave of amplitude {a:g} at k = "
+                f"{k:.6g} on the carrier's branch: continued from the linear wave it is lost "
+                f"between a = {done:.3g} and {aj:.3g} (its family folds, a harmonic near "
+                f"resonance with a branch); the harmonic balance from the linear wave finds "
+                f"another family (frequency {direct.omega:.4g}, linear {direct.carrier.omega:.4g})"
+                "; try an amplitude below it")
+    if direct is None or abs(prev.omega - direct.omega) > 1e-8 * abs(direct.carrier.omega):
+        return prev
+    return direct
+
+
+def _scaled_start(start, car, a, H):
+    """(omega, coefficients at H harmonics) of ``start`` moved to amplitude a: the first
+    guess of ``_travelling_wave`` (``travelling_wave``'s ``start``)."""
+    if (start.coefficients.shape[0] != car.e.size or start.carrier.branch != car.branch or abs(start.k - car.k) > 1e-12
+            or not np.isfinite(start.omega)):
+        raise ModelError(f"start must be a wave of the model at the same k ({car.k:.6g}) "
+                         f"and branch "
+                         f"({car.branch}), got k = {start.k:.6g}, branch "
+                         f"{start.carrier.branch}")
+    r = a / start.amplitude
+    H1 = start.harmonics
+    c0 = np.zeros((start.coefficients.shape[0], 2 * H + 1), complex)
+    m = min(H, H1)
+    h = np.arange(-m, m + 1)
+    c0[:, H - m:H + m + 1] = (start.coefficients[:, H1 - m:H1 + m + 1]
+                              * r ** np.where(h == 0, 2, np.abs(h)))
+    return car.omega + (start.omega - car.omega) * r**2, c0
+
+
+def _least_squares(*args, **kwargs):
+    """scipy's least_squares, imported on the first call: the fallback where Newton does
+    not settle (importing scipy.optimize costs ~0.8 s, in every process that finds a wave:
+    each map worker)."""
+    from scipy.optimize import least_squares
+
+    return least_squares(*args, **kwargs)
+
+
+def _travelling_wave(model, k, amplitude, branch, harmonics, start=None, fast=None,
+                     first=None):
+    """``travelling_wave`` without its family check. ``fast``: a dict kept across the
+    calls of one carrier (``continued_wave``): the carrier, the acoustic directions and
+    the collocation's linear maps (``_collocation``) computed once. ``first``: the first
+    truncation H tried where ``harmonics`` is None (default 8; doubled while the tail is
+    above 1e-13 of the amplitude, up to 32)."""
+    least_squares = _least_squares
+    a = float(amplitude)
+    if not (math.isfinite(a) and a > 0):
+        raise ModelError(f"amplitude must be a finite number > 0, got {amplitude!r}")
+    if fast is None:
+        car = carrier(model, k, branch)
+        masses = np.asarray(model.masses, float)
+        acoustic = acoustic_directions(model)
+    else:
+        if "acoustic" not in fast:
+            if "car" not in fast:
+                fast["car"] = carrier(model, k, branch)
+            fast.update(acoustic=acoustic_directions(model),
+                        masses=np.asarray(model.masses, float))
+        car, acoustic, masses = fast["car"], fast["acoustic"], fast["masses"]
+    d = model.n_fields
+    solve = _solve if fast is None else _solve_fast
+    kw = {} if fast is None else {"qr": bool(fast.get("qr")), "done": fast.get("done", 1e-14)}
+    H = harmonics or first or 8
+    if start is not None:
+        omega0, c0 = _scaled_start(start, car, a, H)
+    else:
+        c0 = np.zeros((d, 2 * H + 1), complex)
+        c0[:, H + 1] = a / 2 * car.e
+        c0[:, H - 1] = np.conj(c0[:, H + 1])
+        omega0 = car.omega
+    while True:
+        wave = solve(model, car, a, masses, acoustic, H, c0, omega0, least_squares, **kw)
+        tail = np.max(np.abs(wave.coefficients[:, [0, -1]])) / a
+        if harmonics or tail < 1e-13 or H >= 32:
+            break
+        H2 = 2 * H  # the harmonics reach the truncation: twice as many
+        c0 = np.zeros((d, 2 * H2 + 1), complex)
+        c0[:, H2 - H:H2 + H + 1] = wave.coefficients
+        omega0, H = wave.omega, H2
+    scale = max(np.max(masses) * wave.omega**2, 1e-300)
+    if not (wave.residual < RESIDUAL_TOL) or not np.isfinite(wave.omega):
+        raise ModelError(
+            f"model {model.describe()}: no travelling wave of amplitude {a:g} at k = {k:.6g} "
+            f"(harmonic balance residual {wave.residual:.2g} of m omega^2 a = {scale * a:.3g}; "
+            "a harmonic resonant with a branch, or an amplitude beyond the branch's range)")
+    return wave
+
+
+def _solve(model, car, a, masses, acoustic, H, c0, omega0, least_squares):
+    """The collocation equations at H harmonics: Gauss-Newton with their exact Jacobian
+    (from the generated cell Hessian), least squares with a finite-difference Jacobian
+    (scipy's "lm") where Newton does not settle. Both solve the same equations; Newton
+    needs ~5 steps of one Hessian evaluation and a small least-squares solve each."""
+    d = model.n_fields
+    M = max(64, 4 * H + 8)
+    xi = _grid(M)
+    optical, free = _pack_layout(d, H, car.field, acoustic)
+    h = np.arange(-H, H + 1)
+    E = np.exp(-1j * h[:, None] * xi[None, :]) / M  # projection onto e^{i h xi}
+    scale = float(np.max(masses)) * omega0**2 * a
+    n_opt = optical.shape[1]
+
+    def unpack(x):
+        omega = x[0]
+        mean = optical @ x[1:1 + n_opt]
+        parts = np.zeros((d, H, 2))
+        parts[free] = x[1 + n_opt:]
+        parts[car.field, 0] = (a / 2, 0.0)
+        c = np.zeros((d, 2 * H + 1), complex)
+        c[:, H] = mean
+        c[:, H + 1:] = parts[..., 0] + 1j * parts[..., 1]
+        c[:, :H] = np.conj(c[:, H + 1:][:, ::-1])
+        return omega, c
+
+    # e^{i h xi}, e^{i h (xi + k)}, e^{i h (xi - k)} on the grid, once per solve
+    B0 = np.exp(1j * h[:, None] * xi[None, :])
+    Bp = B0 * np.exp(1j * h * car.k)[:, None]
+    Bm = B0 * np.exp(-1j * h * car.k)[:, None]
+
+    def equations(R_hat):
+        """The real equations of R_hat, shape (d, 2H + 1[, ncols])."""
+        eqs = [np.real(np.tensordot(optical.T, R_hat[:, H], axes=1))]
+        pos = R_hat[:, H + 1:]
+        rest = pos.shape[2:]
+        eqs += [np.real(pos).reshape((-1,) + rest), np.imag(pos).reshape((-1,) + rest)]
+        return np.concatenate(eqs) / scale
+
+    def residual(x):
+        omega, c = unpack(x)
+        U0, Up, Um = np.real(c @ B0), np.real(c @ Bp), np.real(c @ Bm)
+        g_here = np.empty((2 * d, M))
+        g_back = np.empty((2 * d, M))
+        model.code.cell_gradient_into(np.concatenate([U0, Up]), model.p, g_here)
+        model.code.cell_gradient_into(np.concatenate([Um, U0]), model.p, g_back)
+        R = (masses[:, None] * omega**2 * np.real((c * (-(h**2))) @ B0)
+             + g_here[:d] + g_back[d:])
+        return equations(R @ E.T)
+
+    def jacobian(x):
+        omega, c = unpack(x)
+        U0 = np.real(c @ B0)
+        Hf = np.empty((2 * d, 2 * d, M))
+        Hb = np.empty((2 * d, 2 * d, M))
+        model.code.cell_hessian_into(np.concatenate([U0, np.real(c @ Bp)]), model.p, Hf)
+        model.code.cell_hessian_into(np.concatenate([np.real(c @ Bm), U0]), model.p, Hb)
+        # dR_hat[l, j] / dc[h, b] (c[h] and c[-h] independent): the DFT of the force's
+        # derivative at l - h, the same grid as the residual (exact for the discrete system)
+        sidx = (h[:, None] - h[None, :]) % M
+        Ff, Fb = np.fft.fft(Hf, axis=-1) / M, np.fft.fft(Hb, axis=-1) / M
+        ph = np.exp(1j * h * car.k)[None, :, None, None]
+        J = (Ff[:d, :d][..., sidx] + Fb[d:, d:][..., sidx]).transpose(2, 3, 0, 1) \
+            + Ff[:d, d:][..., sidx].transpose(2, 3, 0, 1) * ph \
+            + Fb[d:, :d][..., sidx].transpose(2, 3, 0, 1) / ph   # (l, h, j, b)
+        J[np.arange(2 * H + 1), np.arange(2 * H + 1)] -= (
+            (h**2 * omega**2)[:, None, None] * np.diag(masses)[None])
+        J = J.transpose(2, 0, 3, 1)                               # (j, l, b, h)
+        # the unknowns: omega, the optical means, Re and Im of c[b, 1..H] where free
+        # (c[-h] = conj c[h]), in the order unpack reads them
+        Jp, Jm = J[..., H + 1:], J[..., H - 1::-1]
+        parts = np.stack([Jp + Jm, 1j * (Jp - Jm)], axis=-1)[:, :, free]  # (j, l, n_free)
+        cols = [equations(-2 * omega * masses[:, None] * h**2 * c)[:, None]]
+        if n_opt:
+            cols.append(equations(np.tensordot(J[:, :, :, H], optical, axes=1)))
+        cols.append(equations(parts))
+        return np.concatenate(cols, axis=1)
+
+    x0 = [omega0, *(optical.T @ np.real(c0[:, H]))]
+    parts0 = np.stack([np.real(c0[:, H + 1:]), np.imag(c0[:, H + 1:])], axis=-1)
+    x0 = np.array(x0 + list(parts0[free]))
+    x = _gauss_newton(residual, jacobian, x0)
+    if x is None:
+        sol = least_squares(residual, x0, method="lm", xtol=1e-15, ftol=1e-15, gtol=1e-15,
+                            max_nfev=200 * (x0.size + 1))
+        x = sol.x
+    omega, c = unpack(x)
+    res = float(np.max(np.abs(residual(x)))) if np.all(np.isfinite(x)) else math.inf
+    return TravellingWave(model=model, carrier=car, amplitude=a, omega=float(omega),
+                          coefficients=c, residual=res)
+
+
+def _solve_fast(model, car, a, masses, acoustic, H, c0, omega0, least_squares, qr=False,
+                done=1e-14):
+    """``_solve``'s equations from their linear maps (``_collocation``: no per-call
+    assembly), by the chord method (``chord_newton``: the start's Jacobian kept; Gauss-
+    Newton where it does not converge), the converged residual not computed again: the
+    same wave to round-off (tests/test_models_exact.py). ``qr``, ``done``: the Gauss-Newton
+    fallback's (``_gauss_newton``)."""
+    from ._collocation import chord_newton, collocation
+
+    d = model.n_fields
+    optical, free = _pack_layout(d, H, car.field, acoustic)
+    scale = float(np.max(masses)) * omega0**2 * a
+    n_opt = optical.shape[1]
+    residual, jacobian = collocation(d, H, car.k, car.field, optical, free).equations(
+        model, masses, a, scale)
+    parts0 = np.stack([np.real(c0[:, H + 1:]), np.imag(c0[:, H + 1:])], axis=-1)
+    x0 = np.concatenate([[omega0], optical.T @ np.real(c0[:, H]), parts0[free]])
+    x = chord_newton(residual, jacobian, x0)
+    if x is None:
+        x = _gauss_newton(residual, jacobian, x0, qr=qr, done=done)
+    if x is None:
+        x = least_squares(residual, x0, method="lm", xtol=1e-15, ftol=1e-15, gtol=1e-15,
+                          max_nfev=200 * (x0.size + 1)).x
+        residual(x)
+    parts = np.zeros((d, H, 2))
+    parts[free] = x[1 + n_opt:]
+    parts[car.field, 0] = (a / 2, 0.0)
+    c = np.zeros((d, 2 * H + 1), complex)
+    c[:, H] = optical @ x[1:1 + n_opt]
+    c[:, H + 1:] = parts[..., 0] + 1j * parts[..., 1]
+    c[:, :H] = np.conj(c[:, H + 1:][:, ::-1])
+    # the residual of x is the last one computed (Newton's, or the line above's)
+    res = float(np.max(np.abs(residual.last))) if np.all(np.isfinite(x)) else math.inf
+    return TravellingWave(model=model, carrier=car, amplitude=a, omega=float(x[0]),
+                          coefficients=c, residual=res)
+
+
+def continued_wave(model: Model, car: Carrier, amplitude: float, start: TravellingWave,
+                   fast: dict) -> TravellingWave:
+    """``travelling_wave(model, car.k, amplitude, car.branch, start=start)`` by the fast
+    solve (``_solve_fast``): the lower amplitudes of a damped point
+    (``_losses_sampling``), ``fast`` one dict per carrier. The caller holds the BLAS
+    threads (``one_blas_thread``)."""
+    return _travelling_wave(model, car.k, amplitude, car.branch, None, start, fast)
+
+
+def _gauss_newton(residual, jacobian, x0, steps=40, qr=False, done=1e-14):
+    """Gauss-Newton until the residual is round-off (None where it does not settle: the
+    caller falls back to scipy's least squares). ``qr``: each step's least squares by
+    Householder QR (~1/4 of ``lstsq``'s SVD on the 64 x 63 systems of H = 16), the SVD
+    where R is near singular (a fold: lstsq's cut-off then matters); the same solution,
+    other round-off: used by the continuation's checks (``_connected``). ``done``: the
+    residual it stops at (round-off by default; the continuation's steps before the
+    last stop at 1e-11, 100x below RESIDUAL_TOL: each is only the next one's start)."""
+    x = x0.copy()
+    r = residual(x)
+    start = best = np.max(np.abs(r))
+    for _ in range(steps):
+        if not (np.isfinite(best) and best < 1e6 * max(start, 1e-3)):
+            return None
+        if best < done:
+            return x
+        J = jacobian(x)
+        step = _qr_step(J, r) if qr else None
+        if step is None:
+            step = np.linalg.lstsq(J, -r, rcond=None)[0]
+        x = x + step
+        r = residual(x)
+        now = np.max(np.abs(r))
+        if best < 1e-11 and now >= best / 4:
+            return x if now < 2 * best else None  # round-off: the last step changed nothing
+        best = now
+    return x if best < RESIDUAL_TOL else None
+
+
+def _qr_step(J, r):
+    """The least-squares step -J^+ r by QR (J of full column rank), or None where R's
+    diagonal spans more than 1e10 (near rank-deficient: ``lstsq`` decides)."""
+    Q, R = np.linalg.qr(J)
+    diag = np.abs(np.diagonal(R))
+    if not diag.size or not diag.min() > 1e-10 * diag.max():
+        return None
+    step = np.linalg.solve(R, -(Q.T @ r))
+    return step if np.all(np.isfinite(step)) else None
