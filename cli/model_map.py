@@ -389,9 +389,12 @@ def _plot_map(ds, path: Path, model):
         + (f"; line: critical {damping}, amplification {OBSERVABLE:g}x" if critical else ""),
         int(width * 14))  # ~14 characters of 10-point text an inch
     height = 4.2 + 0.18 * len(title)
-    fig, axes = plt.subplots(1, len(panels), figsize=(width, height), squeeze=False, dpi=100)
+    # the panels share their axes: the y ticks and label drawn once (a third less text to
+    # lay out, measured)
+    fig, axes = plt.subplots(1, len(panels), figsize=(width, height), squeeze=False, dpi=100,
+                             sharex=True, sharey=True)
     fig.subplots_adjust(left=0.9 / width, right=1 - 0.2 / width, bottom=0.6 / height,
-                        top=1 - (0.45 + 0.18 * len(title)) / height, wspace=0.32)
+                        top=1 - (0.45 + 0.18 * len(title)) / height, wspace=0.12)
     fig.suptitle("\n".join(title), fontsize=10)
     for ax, (name, label) in zip(axes[0], panels):
         V = np.vectorize(lambda s: code.get(s, 2))(ds[name].values)
@@ -425,7 +428,8 @@ def _plot_map(ds, path: Path, model):
             if d in logs:
                 setter("log")
         ax.set_xlabel(xdim + (" (rad/site)" if xdim == "k" else ""))
-        ax.set_ylabel(ydim + (" (rad/site)" if ydim == "k" else ""))
+        if ax is axes[0][0]:
+            ax.set_ylabel(ydim + (" (rad/site)" if ydim == "k" else ""))
         ax.set_title(label + (" (x: observable)" if marked else ""), fontsize=10)
     fig.savefig(path)
     plt.close(fig)
