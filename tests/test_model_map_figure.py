@@ -14,10 +14,13 @@ def _figures(monkeypatch):
     seen = []
 
     def savefig(fig, *a, **kw):
+        # what the panels share (the model, its fixed parameters, the amplitude) is the
+        # figure's title, above them; each panel's own title names its theory
         for ax in fig.axes:
             mesh = ax.collections[0]
             xy = mesh.get_coordinates()
-            seen.append((ax.get_title(), (xy[..., 0].min(), xy[..., 0].max()),
+            seen.append((fig.get_suptitle() + " | " + ax.get_title(),
+                         (xy[..., 0].min(), xy[..., 0].max()),
                          (xy[..., 1].min(), xy[..., 1].max())))
 
     monkeypatch.setattr(matplotlib.figure.Figure, "savefig", savefig)
