@@ -142,9 +142,6 @@ TEST_EXCEPTIONS = {
                                         "the kernel recomputed at each amplitude",
     "numerics.models._losses_sampling": "the exact theory's coarse-to-fine offsets: which "
                                         "columns a profile refines",
-    "numerics.models._small_algebra": "the Hill kernel's LU that skips exact zeros against a "
-                                  "dense solve, and its round-off threshold on the Hessian's "
-                                  "harmonics",
     "derivation._mi": "the MI band's derivation step",
     "derivation._pipeline": "the semi-discrete NLS derived afresh (the generated code's source)",
     "numerics.maps._integrity": "a garbled chunk found from its Blosc header, never decoded",
@@ -180,8 +177,6 @@ BENCH_EXCEPTIONS = {
     "numerics.lattice._kernels": "bench/speed.py times the kernel's parts one by one "
                                  "(stencil, the libm variant, the vectorised loops)",
     "numerics.maps._cells": "bench/gpu.py takes a map's step (map_step) as a map does",
-    "numerics.models._sidebands": "bench/hill_kernel_check.py swaps the compiled Hill kernel "
-                                  "for another tree's copy, to compare their answers",
     "numerics.maps._gpu": "bench/gpu.py reports the device's name and whether it simulates",
     "numerics.maps._gpu_models": "bench/gpu.py times one launch of each model's kernel (its "
                                  "chains started as a map's are)",
