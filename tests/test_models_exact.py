@@ -503,3 +503,24 @@ def test_the_travelling_wave_stays_on_the_carriers_branch_near_a_resonance():
     assert 0 < spec.peak_gain < 0.1  # the other family's 0.19 is not this wave's
     assert classify_mode(spec)["mode_kind"] in ("sidebands", "backward", "parametric",
                                                 "resonance")
+
+
+def test_one_offset_asked_alone_has_the_rate_the_ring_gives_it():
+    """The Hill spectrum at an offset does not depend on which other offsets are asked
+    with it: fput at k = pi / 2 (a commensurate carrier, README's example), where the
+    fastest mode at q = pi / 2 is a copy of the one at q = 0 (pi/2 + l k, l = -1). A kernel
+    that lost it when q = pi / 2 was asked alone (no neighbouring offset's start) named
+    another mode (a merged-and-reverted sparse kernel, 2026-11-26). Tolerance 1e-9 of the
+    rate: both calls solve the same pencil to Newton's round-off."""
+    from numerics.models import hill_spectrum, ring_offsets
+
+    model = load_model("fput", alpha=0.8, beta=1.0)
+    spec = exact_gain(model, np.pi / 2, 0.1, N=256)
+    ring = hill_spectrum(spec.wave, ring_offsets(256))
+    for q in (np.pi / 2, 0.0, ring.offsets[int(np.argmax(ring.gain))]):
+        alone = hill_spectrum(spec.wave, [q]).gain[0]
+        j = int(np.argmin(np.abs(ring.offsets - q)))
+        if abs(ring.offsets[j] - q) < 1e-12:
+            assert alone == pytest.approx(ring.gain[j], rel=1e-9, abs=1e-12), q
+    assert hill_spectrum(spec.wave, [np.pi / 2]).gain[0] == pytest.approx(
+        spec.peak_gain, rel=1e-9)
