@@ -153,14 +153,19 @@ def run_map(args) -> int:
         log(f"start: {launched.describe}, with its own noise"
             + (", the runs' T from its theory's rate" if t_end is None else "")
             + f"; its theory: {launched.column} (Hill's method about that state)")
-    estimate = _estimate(params, n_workers or local_cores(), args.scheduler, log)
+    if _finished(args.out, params):  # nothing to compute: no cell measured to estimate it
+        log(f"estimate: none needed: {Path(args.out) / 'map.zarr'} holds every cell of this "
+            "map (its checksums are verified, the summary and figure made again)")
+        estimated = 0.0
+    else:
+        estimated = _estimate(params, n_workers or local_cores(), args.scheduler, log).seconds
     out = prepare_output(args.out, cache=False)
     path = out / "map.zarr"
     existed = path.exists()
     from .map import with_wall
 
     ds = run_engine(params, out, args.scheduler, args.workers,
-                    log=with_wall(log, started, estimate.seconds), overwrite=args.overwrite,
+                    log=with_wall(log, started, estimated), overwrite=args.overwrite,
                     timeout=args.timeout, device=device)
     verdicts = [v for v in ds.data_vars if v.startswith("verdict_")
                 and (simulated or v != "verdict_simulated")]
@@ -256,6 +261,23 @@ def _start_of(args, model, simulated: bool) -> str:
         raise ValueError(f"--start {start}: its theory and runs use the ring: a simulated "
                          "map, or --theory-only --exact")
     return start
+
+
+def _finished(out, params) -> bool:
+    """Whether ``OUT/map.zarr`` holds this map (its identity attributes) with every cell
+    done (simulated, or predicted for a theory-only map): then the command has no work to
+    estimate. Anything unreadable: False (the engine says what it is)."""
+    import zarr
+
+    try:
+        group = zarr.open_group(str(Path(out) / "map.zarr"), mode="r", use_consolidated=False)
+        attrs = dict(group.attrs)
+        if any(attrs.get(n) != v for n, v in params.identity().items()):
+            return False
+        done = group["done_predicted" if params.theory_only else "done"][...]
+        return bool(done.size) and bool(done.all())
+    except Exception:  # no store, another format, a damaged one: the engine decides
+        return False
 
 
 def _estimate(params, workers: int, scheduler, log):
