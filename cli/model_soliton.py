@@ -71,11 +71,12 @@ def _estimate(args, model, branch) -> None:
     from common.text import duration
     from energy import ModelError
     from numerics.maps import estimate_model_point
-    from numerics.models import ring_soliton
+    from numerics.models import check_soliton_launch, ring_soliton
 
     try:
         pred = ring_soliton(model, args.k, args.amplitude, N=args.N, kind=args.kind,
                             branch=branch)
+        check_soliton_launch(model, pred)  # a launch refused is refused before its estimate
         t_end = args.travel * pred.width / max(abs(pred.velocity), 1e-12)
         if not math.isfinite(t_end):
             return

@@ -192,9 +192,11 @@ def test_cli_json_scales_the_numbers_to_si_but_not_the_errors(capsys):
 ])
 def test_bad_input_is_one_line_and_exit_2(argv, message, capsys):
     code = cli(["soliton", "--model", "fput", "--param", "alpha=0.5", *argv, "--simulate"])
-    err = capsys.readouterr().err.strip()
+    out, err = capsys.readouterr()
+    err = err.strip()
     assert code == 2
     assert len(err.splitlines()) == 1 and message in err, err
+    assert "estimate" not in out  # a refused launch is not estimated first
 
 
 def test_a_lossy_model_is_refused_and_its_lossless_limit_runs(capsys):

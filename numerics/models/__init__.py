@@ -89,6 +89,7 @@ from ._simulate import (
 from ._soliton_run import (
                      ModelSolitonRun,
                      RingSoliton,
+                     check_soliton_launch,
                      ring_soliton,
                      simulate_soliton,
                      soliton_report,
@@ -106,6 +107,7 @@ __all__ = ["Carrier", "carrier", "branches", "branch_index", "check_rest_stable"
            "saturation_time", "check_ring", "compiled_force",
            "lattice_force", "lattice_energy", "snap_ring", "Amplified", "nls_amplification",
            "four_wave_amplification", "exact_amplification", "simulate_soliton",
-           "ModelSolitonRun", "RingSoliton", "ring_soliton", "soliton_report", "lossy_runs",
+           "ModelSolitonRun", "RingSoliton", "ring_soliton", "check_soliton_launch",
+           "soliton_report", "lossy_runs",
            "FORCES", "energy_hash", "run_force", "ExtraTheory", "extra_theories",
            "register_extra_theory", "ExtraStart", "extra_starts", "register_extra_start"]

@@ -346,9 +346,10 @@ MIN_LAUNCH_WIDTH = 2.0
 MIN_SEPARATION = 6.0
 
 
-def _check_launch(model: Model, pred: RingSoliton):
-    """Refuse a launch the lattice cannot carry or the measurement cannot see, each with
-    its remedy."""
+def check_soliton_launch(model: Model, pred: RingSoliton):
+    """Refuse (ModelError) a launch of ``pred`` (``ring_soliton``'s) the lattice cannot
+    carry or the measurement cannot see, each with its remedy: what ``simulate_soliton``
+    asks before it runs (a command asks it before estimating the run)."""
     from ._reach import energy_not_real
 
     if model.lossy and any(np.any(m != 0) for m in model.damping):
@@ -414,7 +415,7 @@ def simulate_soliton(model: Model, k: float, amplitude: float, kind: str | None 
     s0 = probe.soliton(amplitude)
     N = default_ring(s0.width) if N is None else check_ring(N)
     pred = ring_soliton(model, k, amplitude, N, kind, probe.carrier.branch)
-    _check_launch(model, pred)
+    check_soliton_launch(model, pred)
     snapshots = check_count("snapshots", snapshots, least=3)
     if t_end is None:
         if not (isinstance(travel, (int, float)) and math.isfinite(travel) and travel > 0):
