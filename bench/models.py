@@ -403,6 +403,14 @@ def main(quick=False, out=None):
         print(f"  {name:<16} generated {r['generated_ns_per_site']:.2f} ns, by hand "
               f"{r['by_hand_ns_per_site']:.2f} ns: {r['generated_over_by_hand']:.2f}x "
               "(goal: <= 1.3x)")
+    print_exact_against_runs(against)
+    print(f"theory-only --exact map of fput, {emap['cells']} cells, N = {emap['N']}: "
+          f"{emap['wall_s']:.1f} s wall, {emap['cpu_s']:.1f} s CPU (goal: <= 60 s at 64 x 64)")
+    return res
+
+
+def print_exact_against_runs(against: dict) -> None:
+    """``exact_against_runs``'s rows, a line per model (``main`` and ``--exact-only``)."""
     print("exact_gain against one seeded run (CPU s, N = 256; goal: ratio <= 0.1):")
     for name, r in against.items():
         if "error" in r:
@@ -412,9 +420,6 @@ def main(quick=False, out=None):
               f"{r['exact_chain_cpu_s']:.4f} s, run {r['run_cpu_s']:.3f} s "
               f"(T = {r['run_t_end']:g}): ring/run {r['ring_over_run']:.3f}, chain/run "
               f"{r['chain_over_run']:.3f}")
-    print(f"theory-only --exact map of fput, {emap['cells']} cells, N = {emap['N']}: "
-          f"{emap['wall_s']:.1f} s wall, {emap['cpu_s']:.1f} s CPU (goal: <= 60 s at 64 x 64)")
-    return res
 
 
 def force_only(reps=2000, N=500):
@@ -460,15 +465,7 @@ def exact_only(argv):
 
     quick, out = arguments(__doc__, argv)
     against = exact_against_runs(quick)
-    print("exact_gain against one seeded run (CPU s, N = 256; goal: ratio <= 0.1):")
-    for name, r in against.items():
-        if "error" in r:
-            print(f"  {name:<18} {r['error']}")
-            continue
-        print(f"  {name:<18} ring {r['exact_ring_cpu_s']:.4f} s, chain "
-              f"{r['exact_chain_cpu_s']:.4f} s, run {r['run_cpu_s']:.3f} s "
-              f"(T = {r['run_t_end']:g}): ring/run {r['ring_over_run']:.3f}, chain/run "
-              f"{r['chain_over_run']:.3f}")
+    print_exact_against_runs(against)
     path = results_path(quick, out)
     models = json.loads(path.read_text()).get("models", {}) if path.exists() else {}
     models["exact_against_runs"] = against

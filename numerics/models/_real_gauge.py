@@ -30,6 +30,9 @@ import numpy as np
 from numba import njit, types
 from numba.np.linalg import _LAPACK
 
+# one LU for both: compiled per argument type, real here, complex in the Hill kernel
+from ._sidebands import _lu, _lu_solve
+
 #: |Im R| over max |K| below which the gauged pencil is taken as real (round-off is
 #: ~5e-16 at P = 10: the margin is 200x; a wave without the symmetry has O(1) there)
 GAUGE_TOL = 1e-13
@@ -100,9 +103,9 @@ def frozen_real(K, Om, cidx, ridx, g, X, Sig):
     lam = np.empty(2 * rc, np.complex128)
     if nr:
         piv = np.empty(nr, np.int64)
-        if not _lu_real(T, piv):
+        if not _lu(T, piv):
             return lam, False
-        _lu_solve_real(T, piv, Y)
+        _lu_solve(T, piv, Y)
     # L^T with L = [[Omega_C, I], [A, Omega_C]], A = R_CC - R_CR Y (same eigenvalues)
     m = 2 * rc
     L = np.zeros((m, m))
@@ -132,56 +135,3 @@ def frozen_real(K, Om, cidx, ridx, g, X, Sig):
     # keep the arrays alive past the LAPACK call (``.ctypes`` does not)
     ok = info == 0 and L.size + wr.size + wi.size + vl.size + vr.size > 0
     return lam, ok
-
-
-@njit(**_KW)
-def _lu_real(A, piv):
-    """In-place LU with partial pivoting of a real square matrix; False if singular."""
-    n = A.shape[0]
-    for j in range(n):
-        p = j
-        big = abs(A[j, j])
-        for i in range(j + 1, n):
-            if abs(A[i, j]) > big:
-                big = abs(A[i, j])
-                p = i
-        piv[j] = p
-        if big == 0.0:
-            return False
-        if p != j:
-            for c in range(n):
-                t = A[j, c]
-                A[j, c] = A[p, c]
-                A[p, c] = t
-        inv = 1.0 / A[j, j]
-        for i in range(j + 1, n):
-            f = A[i, j] * inv
-            A[i, j] = f
-            if f != 0:
-                for c in range(j + 1, n):
-                    A[i, c] -= f * A[j, c]
-    return True
-
-
-@njit(**_KW)
-def _lu_solve_real(A, piv, B):
-    """Solves A X = B in place (B, shape (n, m)) with ``_lu_real``'s factors."""
-    n, m = B.shape
-    for j in range(n):
-        p = piv[j]
-        if p != j:
-            for c in range(m):
-                t = B[j, c]
-                B[j, c] = B[p, c]
-                B[p, c] = t
-    for c in range(m):
-        for i in range(n):
-            s = B[i, c]
-            for k in range(i):
-                s -= A[i, k] * B[k, c]
-            B[i, c] = s
-        for i in range(n - 1, -1, -1):
-            s = B[i, c]
-            for k in range(i + 1, n):
-                s -= A[i, k] * B[k, c]
-            B[i, c] = s / A[i, i]
