@@ -44,6 +44,8 @@ def run_map(args) -> int:
         vals = parse_spec(amp, "--amplitude")
         if not np.all(np.isfinite(vals)) or vals.min() <= 0:
             raise ValueError(f"--amplitude must be > 0, got {amp!r}")
+        for v in vals:
+            check_value("--amplitude", float(v))
         amp, amp_axis = (None, vals) if vals.size > 1 else (float(vals[0]), None)
     named = (list(axes.items()) + ([("k", k_axis)] if k_axis is not None else [])
              + ([("amplitude", amp_axis)] if amp_axis is not None else []))

@@ -6,7 +6,7 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
-from .models import _emit, _fmt, branch_of, load
+from .models import _emit, _fmt, branch_of, check_amplitude, load
 
 
 # ------------------------------------------------------------------ point
@@ -271,7 +271,7 @@ def run_point(args) -> int:
     model = load(args)
     units = model_units(args)
     checks.real("--k", args.k, 0.0, math.pi)
-    checks.real("--amplitude", args.amplitude, 0.0, None)
+    check_amplitude(args.amplitude)
     if args.t_end is not None and not args.simulate:
         raise ValueError("--t-end acts with --simulate only")
     start = _start_of(args, model)

@@ -57,6 +57,7 @@ MAX_DEPTH = 60  # nesting, a chain of + - * counted once
 MAX_CALL_DEPTH = 4  # functions nested in functions (each level ~4x the derivation time)
 MAX_EXPONENT = 64  # |a constant exponent|
 MAX_CONSTANT = 1e15  # |a number in an energy|
+MAX_VALUE = MAX_CONSTANT  # |a parameter's value|, |a carrier's amplitude|
 _KEYS = {"name", "description", "fields", "parameters", "energy", "branch", "references",
          "dissipation"}
 _ENERGY_KEYS = ("kinetic", "bond", "site")
@@ -291,12 +292,18 @@ class Lattice:
 
 
 def check_value(where: str, v) -> float:
-    """A parameter value: a finite real number (not a bool, a string or a complex)."""
+    """A parameter value (or a carrier's amplitude): a finite real number (not a bool, a
+    string or a complex) of size at most ``MAX_VALUE``, the bound on a number in an energy
+    (beyond it a coefficient's powers overflow: g2 of FPUT at alpha = 1e100 is inf)."""
     if isinstance(v, bool) or not isinstance(v, numbers.Real):
         raise ModelError(f"{where} must be a real number, got {type(v).__name__} {v!r}")
     v = float(v)
     if not math.isfinite(v):
         raise ModelError(f"{where} must be finite, got {v!r}")
+    if abs(v) > MAX_VALUE:
+        raise ModelError(f"{where} must be at most {MAX_VALUE:g} in size (a model's numbers "
+                         f"are bounded so that its coefficients stay finite: rescale its "
+                         f"units), got {v!r}")
     return v
 
 

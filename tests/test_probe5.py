@@ -63,3 +63,75 @@ def test_hill_copies_of_a_large_ring_is_fast():
     out = hill_copies(q, g, 2 * np.pi * 160_000 / N)
     assert time.perf_counter() - t < 30
     assert out["gain"].max() == g.max()
+
+
+def _cli(capsys, *argv):
+    from cli.app import main as cli
+
+    code = cli(list(argv))
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+@pytest.mark.parametrize("argv", [
+    ["coefficients", "--model", "fput", "--k", "1"],
+    ["point", "--model", "fput", "--k", "1", "--N", "32"],
+    ["soliton", "--model", "fput", "--k", "2"],
+    ["map", "--model", "fput", "--param", "beta=1,2", "--k", "1,2", "--theory-only"],
+])
+def test_a_huge_amplitude_is_refused_in_one_line(argv, capsys, tmp_path):
+    """--amplitude 1e200 overflowed the NLS's gain (a**2): an OverflowError traceback in
+    all four commands. Now one line naming --amplitude, exit 2, nothing written."""
+    out = ["--out", str(tmp_path / "m")] if argv[0] == "map" else []
+    code, _, err = _cli(capsys, *argv, *out, "--amplitude", "1e200")
+    assert code == 2
+    assert err.startswith("flexmm: error: --amplitude must be") and "1e+15" in err
+    assert err.count("\n") == 1
+    assert not (tmp_path / "m").exists()
+
+
+def test_a_map_amplitude_axis_beyond_the_bound_is_refused(capsys, tmp_path):
+    code, _, err = _cli(capsys, "map", "--model", "fput", "--amplitude", "1e100,1e200",
+                        "--k", "1,2", "--theory-only", "--out", str(tmp_path / "m"))
+    assert code == 2 and "--amplitude must be at most 1e+15" in err
+
+
+def test_a_huge_parameter_is_refused_naming_it(capsys):
+    """--param alpha=1e100: g2 overflowed and --json died on 'Out of range float values
+    are not JSON compliant' (no option named)."""
+    code, _, err = _cli(capsys, "coefficients", "--model", "fput", "--k", "1",
+                        "--amplitude", "0.1", "--param", "alpha=1e100", "--json")
+    assert code == 2
+    assert "parameter alpha must be at most 1e+15" in err and err.count("\n") == 1
+
+
+def test_json_of_an_undefined_four_wave_row_is_strict(capsys):
+    """At the bound (alpha = 1e15) the four-wave theory is undefined and its frequency nan:
+    the JSON writes null (as every undefined number), the text says why."""
+    import json
+
+    code, out, _ = _cli(capsys, "coefficients", "--model", "fput", "--k", "1",
+                        "--amplitude", "0.1", "--param", "alpha=1e15", "--json")
+    assert code == 0
+    fw = json.loads(out)["four_wave"]
+    assert fw["verdict"] == "undefined" and fw["frequency"] is None and fw["reason"]
+    code, out, _ = _cli(capsys, "coefficients", "--model", "fput", "--k", "1",
+                        "--amplitude", "0.1", "--param", "alpha=1e15")
+    assert code == 0 and "four-wave undefined: " in out
+    # the shift is 1.2e28 omega: said as a factor, not as a 30-digit percentage
+    assert "times omega" in out and "%" not in out.split("note:")[1]
+
+
+def test_a_linear_chain_has_no_soliton_and_no_focusing_word(capsys):
+    """FPUT at alpha = beta = 0 is linear: g2 = 0. soliton divided by sqrt|g| = 0 (a
+    ZeroDivisionError traceback) and coefficients called it 'stable (defocusing)', g -0."""
+    for extra in ([], ["--simulate"]):
+        code, _, err = _cli(capsys, "soliton", "--model", "fput", "--param", "beta=0",
+                            "--k", "1", "--amplitude", "0.1", *extra)
+        assert code == 2 and "no soliton: g2 = 0" in err, err
+    code, out, _ = _cli(capsys, "coefficients", "--model", "fput", "--param", "beta=0",
+                        "--k", "1", "--amplitude", "0.1")
+    assert code == 0
+    assert "stable (g2 = 0)" in out and "defocusing" not in out
+    g_line = next(line for line in out.splitlines() if line.startswith("g = g2/g1"))
+    assert g_line.split()[-1] == "0"

@@ -185,7 +185,8 @@ class FourWave:
                 "mode_waves": [{"branch": b, "wavenumber": kap,
                                 "field": wave_field(self.model, kap, b)}
                                for b, kap in self.mode_waves],
-                "frequency": self.frequency, "kind_rates": self.kind_rates(),
+                "frequency": self.frequency if math.isfinite(self.frequency) else None,
+                "kind_rates": self.kind_rates(),
                 "reason": self.undefined}
 
 

@@ -124,6 +124,9 @@ class ModelNLS:
         if not (math.isfinite(a) and a > 0):
             raise ModelError(f"amplitude must be > 0, got {amplitude!r}")
         g = self.g
+        if g == 0:  # a linear chain (or cancelling terms): no envelope is held together
+            raise ModelError(f"no soliton: g2 = 0 at k = {self.carrier.k:.6g} (no cubic "
+                             "nonlinearity: a linear chain at this order)")
         kind = "bright" if g > 0 else "dark"
         width = 2 / (a * math.sqrt(abs(g)))
         # the mean strain eps^2 |A|^2 s integrated over the envelope |E|^2 = (a/2)^2 sech^2

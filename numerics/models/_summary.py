@@ -38,8 +38,10 @@ def model_coefficients(model: Model, k: float, amplitude: float, branch=None) ->
     peak = r.peak_gain(a)
     warn = []
     if not r.undefined and abs(r.frequency_shift(a)) > WEAK_SHIFT * c.omega:
+        share = abs(r.frequency_shift(a)) / c.omega
+        share = f"{share:.0%} of" if share < 10 else f"{share:.3g} times"  # not 30 digits
         warn.append(f"the NLS's frequency shift |g2| a^2/4 = {abs(r.frequency_shift(a)):.3g} "
-                    f"is {abs(r.frequency_shift(a)) / c.omega:.0%} of omega: beyond the weakly "
+                    f"is {share} omega: beyond the weakly "
                     "nonlinear expansion; lower the amplitude or ask the exact theory")
     fields = model.fields
     return {
