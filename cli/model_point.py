@@ -274,6 +274,12 @@ def run_point(args) -> int:
     check_amplitude(args.amplitude)
     if args.t_end is not None and not args.simulate:
         raise ValueError("--t-end acts with --simulate only")
+    if args.simulate:  # the runs' options, as the paper chain's point checks them: before
+        from numerics.maps import MAX_SEEDS, MAX_T_END  # any theory (--t-end 1e30 hung
+
+        checks.integer("--seeds", args.seeds, 1, MAX_SEEDS)  # in the estimate's probe)
+        if args.t_end is not None:
+            checks.real("--t-end", args.t_end, 0.0, MAX_T_END)
     start = _start_of(args, model)
     from numerics.models import check_ring
 

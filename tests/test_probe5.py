@@ -135,3 +135,18 @@ def test_a_linear_chain_has_no_soliton_and_no_focusing_word(capsys):
     assert "stable (g2 = 0)" in out and "defocusing" not in out
     g_line = next(line for line in out.splitlines() if line.startswith("g = g2/g1"))
     assert g_line.split()[-1] == "0"
+
+
+@pytest.mark.parametrize("option, value", [("--t-end", "-1"), ("--t-end", "1e30"),
+                                           ("--seeds", "0"), ("--seeds", "5000")])
+def test_point_checks_its_runs_options_before_any_theory(option, value, capsys):
+    """point --model --simulate checked --seeds after the theories and an estimate of '0
+    run(s)'; --t-end -1 was refused as 't_end ... got -0.0001' (the estimate's probe), and
+    --t-end 1e30 hung in that probe with no output. Now each is refused at once, named,
+    with the paper chain point's bounds."""
+    t = time.perf_counter()
+    code, out, err = _cli(capsys, "point", "--model", "fput", "--k", "1", "--amplitude",
+                          "0.1", "--N", "32", "--simulate", option, value)
+    assert code == 2 and err.startswith(f"flexmm: error: {option} must be")
+    assert "estimate" not in out + err and "point:" not in out + err
+    assert time.perf_counter() - t < 20  # refused before anything runs (~0.1 s here)
