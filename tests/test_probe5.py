@@ -150,3 +150,16 @@ def test_point_checks_its_runs_options_before_any_theory(option, value, capsys):
     assert code == 2 and err.startswith(f"flexmm: error: {option} must be")
     assert "estimate" not in out + err and "point:" not in out + err
     assert time.perf_counter() - t < 20  # refused before anything runs (~0.1 s here)
+
+
+def test_a_store_of_another_amplitude_names_what_differs(capsys, tmp_path):
+    """The same map run again at another amplitude was refused as 'a map of model 'fput'
+    with other parameters', parameters that were the same: the refusal names the
+    amplitude, the stored value and the asked one."""
+    argv = ["map", "--model", "fput", "--param", "beta=1,2", "--k", "1,2", "--theory-only",
+            "--out", str(tmp_path / "m")]
+    assert _cli(capsys, *argv, "--amplitude", "0.1")[0] == 0
+    code, _, err = _cli(capsys, *argv, "--amplitude", "0.2")
+    assert code == 2 and "(amplitude 0.1 stored, 0.2 asked)" in err, err
+    code, _, err = _cli(capsys, *argv, "--amplitude", "0.1", "--param", "alpha=0.5")
+    assert code == 2 and "(alpha 0.0 stored, 0.5 asked)" in err, err

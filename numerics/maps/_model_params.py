@@ -461,7 +461,19 @@ class ModelMapParameters:
                 return (f"a map of model {name!r} with {unit} = {attrs.get(unit) or 'none'} "
                         f"(asked {mine:g}: the stored numbers are in lattice units either "
                         "way)")
-        return f"a map of model {name!r} with other parameters"
+        mine = self.identity()  # name what differs (the store's value, then this map's)
+
+        def said(n):  # a fixed parameter by its own name, as --param gives it
+            return n[len("param_"):] if n.startswith("param_") else n
+
+        differ = [f"{said(n)} {attrs[n]!r} stored, {mine[n]!r} asked"
+                  for n in sorted(mine) if n in attrs and attrs[n] != mine[n]]
+        differ += [f"{said(n)} {attrs[n]!r} stored, none asked" for n in sorted(attrs)
+                   if n.startswith("param_") and n not in mine]
+        differ += [f"{said(n)} none stored, {mine[n]!r} asked" for n in sorted(mine)
+                   if n.startswith("param_") and n not in attrs]
+        return (f"a map of model {name!r} with other parameters"
+                + (f" ({'; '.join(differ[:4])})" if differ else ""))
 
     def new_dataset(self):
         """The store before any task: every variable at its fill value, ``done`` False."""
