@@ -163,3 +163,57 @@ def test_a_store_of_another_amplitude_names_what_differs(capsys, tmp_path):
     assert code == 2 and "(amplitude 0.1 stored, 0.2 asked)" in err, err
     code, _, err = _cli(capsys, *argv, "--amplitude", "0.1", "--param", "alpha=0.5")
     assert code == 2 and "(alpha 0.0 stored, 0.5 asked)" in err, err
+
+
+def _api_cases():
+    import numerics.models as nm
+    from energy import load_model
+
+    m = load_model("fput")
+    wave = nm.travelling_wave(m, 1.0, 0.1)
+    return [
+        # (call, words the one-line error holds): each raised an AttributeError, an
+        # OverflowError, a TypeError from inside, or passed a wrong type through
+        (lambda: nm.nls("fput", 1.0), "model must be an energy.Model"),
+        (lambda: nm.carrier(m, [1, 2]), "k must be a finite real number"),
+        (lambda: nm.model_coefficients(m, 1.0, "0.1"), "amplitude must be a real number"),
+        (lambda: nm.model_coefficients(m, 1.0, None), "amplitude must be a real number"),
+        (lambda: nm.model_coefficients(m, 1.0, 1e200), "at most 1e+15"),
+        (lambda: nm.travelling_wave(m, 1.0, True), "amplitude must be a real number"),
+        (lambda: nm.hill_spectrum(None, [0.1]), "wave must be a TravellingWave"),
+        (lambda: nm.hill_spectrum(wave, [math.nan]), "offsets must be finite"),
+        (lambda: nm.energy_not_real(m, 1.0, "x"), "amplitude must be a real number"),
+        (lambda: nm.simulate_model(m, 1.0, 0.1, N=16, t_end="5"), "t_end must be"),
+        (lambda: nm.model_map(m, "beta", ("k", [1.0, 2.0]), 0.1), "(name, values) pair"),
+    ]
+
+
+@pytest.mark.parametrize("case", range(11))
+def test_the_model_api_refuses_wrong_types_in_one_line(case):
+    from energy import ModelError
+
+    call, words = _api_cases()[case]
+    with pytest.raises(ModelError) as exc:
+        call()
+    assert words in str(exc.value) and "\n" not in str(exc.value)
+
+
+def test_a_stiff_model_run_is_refused_not_hung(capsys):
+    """diatomic-fput at m = 1e-300: its optical branch sits at 1.6e150, the step at 4e-151;
+    point --simulate hung (no output past 150 s) in the estimate's probe run. Now the run
+    is refused in one line naming the frequency and the step."""
+    t = time.perf_counter()
+    code, _, err = _cli(capsys, "point", "--model", "diatomic-fput", "--param", "m=1e-300",
+                        "--k", "1", "--N", "32", "--amplitude", "0.05", "--simulate",
+                        "--seeds", "1")
+    assert code == 2 and "highest frequency 1.56e+150" in err and "steps" in err
+    assert time.perf_counter() - t < 60  # ~1 s here; it never ended before
+
+
+def test_an_overflowing_coupling_warns_nothing(capsys, recwarn):
+    """The same model's four-wave kernel overflowed (C12 C21 / 4 w1 w2 at 1e150) and
+    printed numpy's RuntimeWarning among the results; the pair is no rate (nan) either way."""
+    code, out, err = _cli(capsys, "coefficients", "--model", "diatomic-fput", "--param",
+                          "m=1e-300", "--k", "1", "--branch", "1", "--amplitude", "0.05")
+    assert code == 0 and "RuntimeWarning" not in err
+    assert not [w for w in recwarn if issubclass(w.category, RuntimeWarning)]

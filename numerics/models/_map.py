@@ -75,6 +75,10 @@ def model_map(model: Model, x: tuple, y: tuple, amplitude: float, k: float | Non
         raise ModelError(f"amplitude must be > 0, got {amplitude!r}")
     if k is not None:
         k = float(_axis(model, AXIS_K, [k])[0])
+    for axis in (x, y):  # (name, values): a bare name once failed inside _axis's call
+        if not (isinstance(axis, tuple) and len(axis) == 2 and isinstance(axis[0], str)):
+            raise ModelError(f"a map axis is a (name, values) pair such as ('k', [1.0, 2.0]), "
+                             f"got {axis!r}")
     xn, xv = x[0], _axis(model, *x)
     yn, yv = y[0], _axis(model, *y)
     if xn == yn:

@@ -21,6 +21,8 @@ import numpy as np
 
 from energy import Model, ModelError
 
+from ._linear import check_amplitude
+
 #: sites of the ring the linear profile is checked on (its phases k n mod 2 pi)
 _SITES = 512
 
@@ -61,6 +63,7 @@ def amplitude_reach(model: Model, k: float, amplitude: float, branch=None, *,
     """The largest amplitude a <= ``amplitude`` with the model's energy and force finite
     along the linear wave at ``k`` (bisection, to ``rtol``); ``amplitude`` itself where
     they are finite there, 0 where they are not finite at any amplitude tried."""
+    amplitude = check_amplitude(amplitude)
     if _finite(model, k, amplitude, branch):
         return float(amplitude)
     lo, hi = 0.0, float(amplitude)

@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import math
 
-from energy import Model, ModelError
+from energy import Model
 
-from ._linear import carrier_damping, field_rule
+from ._linear import carrier_damping, check_amplitude, field_rule
 from ._nls import nls
 
 #: The NLS's own frequency shift beyond this share of omega is outside the weakly nonlinear
@@ -29,10 +29,7 @@ def model_coefficients(model: Model, k: float, amplitude: float, branch=None) ->
     ``frequency_shift`` and ``warnings``; a model with [dissipation] adds
     ``carrier_damping`` (the carrier branch's amplitude decay rate Gamma, 1/time). Non-finite numbers are None.
     """
-    a = float(amplitude)
-    if not (math.isfinite(a) and a > 0):
-        raise ModelError(f"amplitude must be > 0 (first-harmonic amplitude of the carrier's "
-                         f"field), got {amplitude!r}")
+    a = check_amplitude(amplitude)  # the carrier field's first harmonic
     r = nls(model, k, branch)
     c = r.carrier
     peak = r.peak_gain(a)
