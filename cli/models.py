@@ -89,6 +89,11 @@ def load(args, axes_ok=False):
     model = load_model(args.model, **fixed)
     for name in axes:
         model.lattice.values({name: 0.0})  # an unknown axis name: the model's one-line error
+    b = branch_of(args)  # named as the option, before any work (an index or a field)
+    if b is not None and not (isinstance(b, int) and 0 <= b < model.n_fields
+                              or b in model.fields):
+        raise ValueError(f"--branch {b}: give an index 0..{model.n_fields - 1} or a field of "
+                         f"model {model.name!r} ({', '.join(model.fields)})")
     from numerics.models import check_rest_stable
 
     if not axes:

@@ -92,8 +92,10 @@ def check_name(where: str, kind: str, name) -> str:
     if len(name) > MAX_NAME:
         _fail(where, f"{kind} name {_short(name)} is longer than {MAX_NAME} characters")
     if not _NAME.fullmatch(name):
-        _fail(where, f"{kind} name {_short(name)} is not valid (letters and digits, single '_' "
-                     "between them, starting with a letter)")
+        _fail(where, f"{kind} name {_short(name)} is not valid (ASCII letters a-z, A-Z and "
+                     "digits, single '_' between them, starting with a letter"
+                     + (": spell a Greek letter out, 'theta' for '\u03b8')"
+                        if not name.isascii() else ")"))
     if name.endswith(_SUFFIXES):
         _fail(where, f"{kind} name {name!r} ends in {name[name.rindex('_'):]!r}, which the "
                      "generator gives fields (u_prev, u_next, u_t): rename it")
@@ -156,8 +158,8 @@ class Lattice:
         if not isinstance(self.name, str) or len(self.name) > MAX_NAME or not re.fullmatch(
                 r"[A-Za-z][A-Za-z0-9_-]*", self.name):
             where = "model"
-            _fail(where, f"name must be letters, digits, '-' or '_' (at most {MAX_NAME}), got "
-                         f"{_short(self.name)}")
+            _fail(where, f"name must be ASCII letters, digits, '-' or '_', starting with a "
+                         f"letter (at most {MAX_NAME}), got {_short(self.name)}")
         for key in ("description", "references", "source"):
             text = getattr(self, key)
             if not isinstance(text, str):

@@ -217,3 +217,28 @@ def test_an_overflowing_coupling_warns_nothing(capsys, recwarn):
                           "m=1e-300", "--k", "1", "--branch", "1", "--amplitude", "0.05")
     assert code == 0 and "RuntimeWarning" not in err
     assert not [w for w in recwarn if issubclass(w.category, RuntimeWarning)]
+
+
+@pytest.mark.parametrize("argv", [
+    ["coefficients", "--model", "fput", "--k", "1", "--branch", "1"],
+    ["point", "--model", "diatomic-fput", "--k", "1", "--N", "32", "--branch", "w"],
+    ["soliton", "--model", "diatomic-fput", "--k", "1", "--branch", "1.5"],
+    ["map", "--model", "diatomic-fput", "--param", "m=1,2", "--k", "1,2", "--branch", "-1",
+     "--theory-only"],
+])
+def test_a_bad_branch_is_named_as_the_option(argv, capsys, tmp_path):
+    """'branch must be in 0..0 for model ...' or 'branch 'w' is neither ...' did not name
+    --branch (and a map said it after starting its cluster)."""
+    out = ["--out", str(tmp_path / "m")] if argv[0] == "map" else []
+    code, _, err = _cli(capsys, *argv, *out)
+    assert code == 2 and err.startswith("flexmm: error: --branch ") and "give an index" in err
+    assert not (tmp_path / "m").exists()
+
+
+def test_a_unicode_name_is_refused_saying_ascii(tmp_path):
+    from energy import ModelError, parse_model
+
+    text = ('name = "x"\nfields = ["\\u03b8"]\n[energy]\nkinetic = "\\u03b8_t**2/2"\n'
+            'bond = "(\\u03b8_next - \\u03b8)**2/2"\n')
+    with pytest.raises(ModelError, match="ASCII letters.*'theta' for"):
+        parse_model(text)
