@@ -180,6 +180,10 @@ def run_map(args) -> int:
                          f"{params.undefined_reason()}); change the axes, k, the amplitude "
                          "or --branch")
     mi = {v: float(np.mean(ds[v].values == 1)) for v in verdicts}
+    # cells a theory leaves undetermined (k = pi for the NLS, no wave for the exact theory)
+    # are in the share's denominator, not MI: said beside it, so 50% is not read as half
+    # of the cells stable
+    undetermined = {v: int(np.sum(ds[v].values < 0)) for v in verdicts}
     png = out / "map.png"
     _plot_map(_as_words(ds, verdicts), png, model)
     files = [str(path), str(png)]
@@ -188,7 +192,7 @@ def run_map(args) -> int:
     if args.json:
         res = {"model": model.name, "parameters": dict(model.params), "amplitude": amp,
                "axes": {x[0]: list(map(float, x[1])), y[0]: list(map(float, y[1]))},
-               "mi_share": mi, "files": files}
+               "mi_share": mi, "undetermined": undetermined, "files": files}
         if critical:
             res["critical_damping"] = critical
         if unsampled is not None:
@@ -210,7 +214,9 @@ def run_map(args) -> int:
         _emit(res)
         return 0
     for v, share in mi.items():
-        print(f"MI share, {v.replace('verdict_', '')}: {share:.0%}")
+        n = undetermined[v]
+        print(f"MI share, {v.replace('verdict_', '')}: {share:.0%}"
+              + (f" ({n} of {ds[v].size} cells undetermined, counted as not MI)" if n else ""))
     if unsampled and unsampled["cells"]:
         print(_unsampled_text(unsampled, args.N))
     for name, c in critical.items():

@@ -242,3 +242,26 @@ def test_a_unicode_name_is_refused_saying_ascii(tmp_path):
             'bond = "(\\u03b8_next - \\u03b8)**2/2"\n')
     with pytest.raises(ModelError, match="ASCII letters.*'theta' for"):
         parse_model(text)
+
+
+def test_a_model_map_says_how_many_cells_are_undetermined(capsys, tmp_path):
+    """A k axis reaching pi (the NLS is undefined there): 'MI share, semidiscrete: 50%'
+    read as half the cells stable; the text now counts the undetermined cells, the JSON
+    gives them per theory."""
+    import json
+
+    argv = ["map", "--model", "fput", "--param", "beta=1,2", "--k", f"2,{math.pi!r}",
+            "--amplitude", "0.1", "--theory-only", "--out", str(tmp_path / "m")]
+    code, out, _ = _cli(capsys, *argv)
+    assert code == 0
+    assert "MI share, semidiscrete: 50% (2 of 4 cells undetermined, counted as not MI)" in out
+    code, out, _ = _cli(capsys, *argv, "--json")
+    assert code == 0 and json.loads(out)["undetermined"] == {"verdict_semidiscrete": 2}
+
+
+def test_a_wavenumber_no_ring_carries_gives_a_possible_remedy(capsys):
+    """k = 1e-9 on 64 sites said 'raise N above 3141592654', past the largest ring."""
+    code, _, err = _cli(capsys, "point", "--model", "fput", "--k", "1e-9", "--N", "64")
+    assert code == 2 and "no ring carries it (N at most 1048576)" in err
+    code, _, err = _cli(capsys, "point", "--model", "fput", "--k", "0.01", "--N", "64")
+    assert code == 2 and "raise N above 315" in err

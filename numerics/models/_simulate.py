@@ -78,8 +78,11 @@ def snap_ring(k: float, N: int) -> tuple[float, int]:
         raise ModelError(f"k must be in (0, pi], got {k!r}")
     m = int(round(k * N / (2 * math.pi)))
     if m == 0:
-        raise ModelError(f"k = {k:g} snaps to 0 on a ring of N = {N} (no wave): raise N "
-                         f"above {math.ceil(math.pi / k)}")
+        need = math.ceil(math.pi / k)
+        raise ModelError(f"k = {k:g} snaps to 0 on a ring of N = {N} (no wave): " + (
+            f"raise N above {need}" if need < MAX_RING else
+            f"no ring carries it (N at most {MAX_RING}): k at least "
+            f"{2 * math.pi / MAX_RING:.3g}"))
     return 2 * math.pi * m / N, m
 
 
