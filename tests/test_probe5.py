@@ -265,3 +265,22 @@ def test_a_wavenumber_no_ring_carries_gives_a_possible_remedy(capsys):
     assert code == 2 and "no ring carries it (N at most 1048576)" in err
     code, _, err = _cli(capsys, "point", "--model", "fput", "--k", "0.01", "--N", "64")
     assert code == 2 and "raise N above 315" in err
+
+
+def test_an_amplitude_in_a_field_that_hardly_moves_is_said(capsys):
+    """diatomic-fput's acoustic branch at k = 3.14 is nearly all v (u moves 0.0016 of it):
+    a = 0.1 of u is v = 63, and the output said only that the shift was 147 839% of
+    omega. The note names the fields, v's amplitude and the --branch that measures v."""
+    import json
+
+    code, out, _ = _cli(capsys, "coefficients", "--model", "diatomic-fput", "--k", "3.14",
+                        "--amplitude", "0.1", "--branch", "0", "--json")
+    co = json.loads(out)
+    e = co["amplitude"] / 0.0016  # the ratio the note states, to its 2 digits
+    note = next(w for w in co["warnings"] if "hardly" in w or "moves" in w)
+    assert "field u moves 0.0016 of v" in note and "--branch v" in note
+    v = float(note.split(" is v = ")[1].split(";")[0])
+    assert abs(v / e - 1) < 0.05  # 0.0016 is rounded to 2 digits
+    code, out, _ = _cli(capsys, "coefficients", "--model", "diatomic-fput", "--k", "1",
+                        "--amplitude", "0.1", "--json")
+    assert not [w for w in json.loads(out)["warnings"] if "moves" in w]

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from energy import Model
 
 from ._linear import carrier_damping, check_amplitude, field_rule
@@ -12,6 +14,9 @@ from ._nls import nls
 #: The NLS's own frequency shift beyond this share of omega is outside the weakly nonlinear
 #: expansion (the paper chain's coefficients command warns at the same 10%).
 WEAK_SHIFT = 0.10
+#: The amplitude's field moving less than this share of the wave's largest field is said:
+#: a = 0.1 of u on diatomic FPUT's acoustic branch at k = 3.14 is v = 125
+SMALL_FIELD = 0.1
 
 
 def _num(x):
@@ -41,6 +46,13 @@ def model_coefficients(model: Model, k: float, amplitude: float, branch=None) ->
                     f"is {share} omega: beyond the weakly "
                     "nonlinear expansion; lower the amplitude or ask the exact theory")
     fields = model.fields
+    e = np.abs(np.asarray(c.e))
+    big = int(np.argmax(e))
+    if e[c.field] < SMALL_FIELD * e[big]:  # a of a field that hardly moves: a huge wave
+        warn.append(f"on branch {c.branch} at k = {c.k:.4g} the field {fields[c.field]} moves "
+                    f"{e[c.field] / e[big]:.2g} of {fields[big]}: a = {a:g} of "
+                    f"{fields[c.field]} is {fields[big]} = {a * e[big] / e[c.field]:.3g}; "
+                    f"--branch {fields[big]} measures a in {fields[big]}")
     return {
         "model": model.name, "parameters": dict(model.params), "k": float(k),
         "amplitude": a, "branch": c.branch, "field": fields[c.field],
