@@ -284,3 +284,17 @@ def test_an_amplitude_in_a_field_that_hardly_moves_is_said(capsys):
     code, out, _ = _cli(capsys, "coefficients", "--model", "diatomic-fput", "--k", "1",
                         "--amplitude", "0.1", "--json")
     assert not [w for w in json.loads(out)["warnings"] if "moves" in w]
+
+
+def test_no_wave_where_the_energy_is_not_real_says_so(tmp_path):
+    """A site energy u^2/2 - log(1 + u) + u (real for u > -1) at amplitude 3: the exact
+    theory said the wave's family 'folds' (a resonance), the energy's edge unsaid; now it
+    names the largest amplitude the energy allows (about 1)."""
+    from energy import ModelError, load_model, parse_model
+    from numerics.models import exact_gain_checked
+
+    text = ('name = "logsite"\nfields = ["u"]\n[energy]\nkinetic = "u_t**2/2"\n'
+            'bond = "(u_next - u)**2/2"\nsite = "u**2/2 - log(1 + u) + u"\n')
+    model = load_model(parse_model(text))
+    with pytest.raises(ModelError, match="energy is not real.*allows at k = 1 is about 1 "):
+        exact_gain_checked(model, 1.0, 3.0, N=16)

@@ -96,8 +96,9 @@ def energy_not_real(model: Model, k: float, amplitude: float, branch=None) -> st
 
 
 def exact_gain_checked(model: Model, k: float, amplitude: float, branch=None, **kw):
-    """``exact_gain``; where its solver stops on non-finite values, a ModelError that says
-    the energy is not real there and the largest amplitude allowed (``energy_not_real``)."""
+    """``exact_gain``; where its solver stops on non-finite values, or finds no wave where
+    the energy is not real along the linear wave, a ModelError that says the energy is not
+    real there and the largest amplitude allowed (``energy_not_real``)."""
     import warnings
 
     from ._exact import exact_gain
@@ -107,14 +108,14 @@ def exact_gain_checked(model: Model, k: float, amplitude: float, branch=None, **
         try:
             spec = exact_gain(model, k, amplitude, branch, **kw)
         except (ValueError, FloatingPointError) as exc:
-            if isinstance(exc, ModelError):
-                raise
             try:
                 why = energy_not_real(model, k, amplitude, branch)
             except Exception:  # the check itself failed: the solver's own error stands
                 why = None
             if why is None:
                 raise
+            if isinstance(exc, ModelError):  # no wave found, and the energy is not real
+                why += " (the harmonic balance found no wave either)"  # along the linear one
             raise ModelError(why) from exc
     for w in caught:
         warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
