@@ -298,3 +298,15 @@ def test_no_wave_where_the_energy_is_not_real_says_so(tmp_path):
     model = load_model(parse_model(text))
     with pytest.raises(ModelError, match="energy is not real.*allows at k = 1 is about 1 "):
         exact_gain_checked(model, 1.0, 3.0, N=16)
+
+
+@pytest.mark.parametrize("extra, start", [
+    (["--k", "1", "--N", "16"], "flexmm: error: --N 16 is too short"),
+    (["--k", "2.5", "--kind", "dark"], "flexmm: error: --kind dark: the NLS"),
+])
+def test_soliton_simulate_names_its_options(extra, start, capsys):
+    """soliton --model --simulate said 'N = 16 is too short' and 'kind dark: ...' (the
+    API's names) where the command without --simulate says '--kind dark: ...'."""
+    code, _, err = _cli(capsys, "soliton", "--model", "fput", "--amplitude", "0.05",
+                        "--simulate", "--travel", "2", *extra)
+    assert code == 2 and err.startswith(start), err
