@@ -114,6 +114,9 @@ def _simulated_row(model, k, args, spec, start, peak_time=None, gain=None) -> di
            "method": runs[0].method}
     if length is not None and length.note():
         row["note"] = length.note()
+    blind = [g for g in (r.growth() for r in runs) if g.verdict == "undetermined"]
+    if blind and not model.lossy:  # the ring shows nothing but the carrier's own modes
+        row["note"] = f"the runs on N = {args.N} sites: {blind[0].label}"
     from .model_figure import simulated_curve
 
     row["curve"] = simulated_curve(runs, k)  # sigma(q) measured; None where none grew

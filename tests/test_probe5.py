@@ -334,3 +334,21 @@ def test_a_map_cell_on_the_ring_answers_as_point(capsys, tmp_path):
         # the same functions at the same k and ring: equal to rounding
         assert float(cell[f"peak_gain_{col}"]) == pytest.approx(point[row]["peak_gain"],
                                                                rel=1e-9), col
+
+
+def test_a_ring_whose_modes_are_all_the_carriers_claims_no_stability(capsys):
+    """FPUT at k = 8 pi / 9 on 9 sites: the sidebands k +- 2 pi / 9 are -k and 3k, every
+    ring mode a harmonic of the carrier. The run's deviation from the wave grows 1e8x (the
+    exact theory's rate 0.187), yet the run read 'no growth within T' (nothing left to
+    measure: factor 0). Now it is undetermined, and point says why."""
+    from energy import load_model
+    from numerics.models import simulate_model
+
+    run = simulate_model(load_model("fput"), 3.1, 0.3, N=9, t_end=120)
+    assert run.deviation[-1] > 1e6 * run.deviation[0]  # it grows: the physics
+    g = run.growth()
+    assert g.verdict == "undetermined" and math.isnan(g.factor)
+    code, out, _ = _cli(capsys, "point", "--model", "fput", "--k", "3.1", "--amplitude",
+                        "0.3", "--N", "9", "--simulate", "--seeds", "1")
+    assert code == 0 and "no growth within T" not in out
+    assert "every mode of the ring is a harmonic of the carrier" in out
