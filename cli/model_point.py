@@ -193,22 +193,11 @@ def _loss_table(out, units=None) -> None:
 
 
 def _coefficients_or_undefined(model, k, amplitude, branch) -> dict:
-    """The NLS row, or (at k = pi, where 2k is the mean: no expansion) an undefined one
-    with its reason: the exact theory and a simulation still answer there."""
-    from energy import ModelError
-    from numerics.models import carrier, model_coefficients
+    """The NLS row (``model_coefficients``; at k = pi too, the zone boundary, where its
+    coefficients are their limit k -> pi)."""
+    from numerics.models import model_coefficients
 
-    try:
-        return model_coefficients(model, k, amplitude, branch)
-    except ModelError as exc:
-        if k < math.pi:
-            raise
-        car = carrier(model, k, branch)
-        return {"k": k, "amplitude": float(amplitude), "branch": car.branch,
-                "field": model.fields[car.field], "verdict": "undefined", "peak_gain": None,
-                "fastest_offset": None, "band_edge": None, "g1": car.g1, "g2": None,
-                "reason": f"{exc} (at k = pi the second harmonic 2k is the mean, 0 mod 2 pi)",
-                "warnings": []}
+    return model_coefficients(model, k, amplitude, branch)
 
 
 def _ring_note(model, k, amplitude, branch, N, row) -> str | None:
@@ -273,7 +262,7 @@ def run_point(args) -> int:
 
     model = load(args)
     units = model_units(args)
-    checks.real("--k", args.k, 0.0, math.pi)
+    checks.real("--k", args.k, 0.0, math.pi, high_open=False)
     check_amplitude(args.amplitude)
     if args.t_end is not None and not args.simulate:
         raise ValueError("--t-end acts with --simulate only")

@@ -156,7 +156,7 @@ def run_coefficients(args) -> int:
 
     model = load(args)
     units = model_units(args)
-    checks.real("--k", args.k, 0.0, math.pi)
+    checks.real("--k", args.k, 0.0, math.pi, high_open=False)
     check_amplitude(args.amplitude)
     co = model_coefficients(model, args.k, args.amplitude, branch_of(args))
     from numerics.models import four_wave
@@ -222,7 +222,7 @@ def run_soliton(args) -> int:
 
     model = load(args)
     units = model_units(args)
-    checks.real("--k", args.k, 0.0, math.pi)
+    checks.real("--k", args.k, 0.0, math.pi, high_open=False)
     check_amplitude(args.amplitude)
     if getattr(args, "simulate", False) or getattr(args, "out", None):
         from .model_soliton import run_model_soliton

@@ -245,12 +245,13 @@ def test_a_unicode_name_is_refused_saying_ascii(tmp_path):
 
 
 def test_a_model_map_says_how_many_cells_are_undetermined(capsys, tmp_path):
-    """A k axis reaching pi (the NLS is undefined there): 'MI share, semidiscrete: 50%'
-    read as half the cells stable; the text now counts the undetermined cells, the JSON
-    gives them per theory."""
+    """A k axis through Klein-Gordon's inflection point (g1 = 0: no NLS there, cos k =
+    (3 - sqrt 5) / 2): 'MI share, semidiscrete: 50%' read as half the cells stable; the
+    text now counts the undetermined cells, the JSON gives them per theory."""
     import json
 
-    argv = ["map", "--model", "fput", "--param", "beta=1,2", "--k", f"2,{math.pi!r}",
+    k0 = math.acos((3 - math.sqrt(5)) / 2)  # omega^2 = 3 - 2 cos k: omega'' = 0 there
+    argv = ["map", "--model", "klein-gordon", "--param", "beta=1,2", "--k", f"2,{k0!r}",
             "--amplitude", "0.1", "--theory-only", "--out", str(tmp_path / "m")]
     code, out, _ = _cli(capsys, *argv)
     assert code == 0
@@ -352,3 +353,36 @@ def test_a_ring_whose_modes_are_all_the_carriers_claims_no_stability(capsys):
                         "0.3", "--N", "9", "--simulate", "--seeds", "1")
     assert code == 0 and "no growth within T" not in out
     assert "every mode of the ring is a harmonic of the carrier" in out
+
+
+@pytest.mark.parametrize("name, params, branch", [
+    ("fput", {"alpha": 0.5}, None), ("fput", {"alpha": 1.0}, None),
+    ("diatomic-fput", {"alpha": 0.3}, 1), ("flexmm", {}, None),
+    ("klein-gordon", {"alpha": 0.5}, None), ("sine-gordon", {}, None)])
+def test_the_nls_at_the_zone_boundary_is_its_limit(name, params, branch):
+    """k = pi was refused by the NLS (point: 'undefined ... 2k is the mean') while
+    k = pi - 1e-9 answered and the exact theory and runs take pi. Its 2k harmonic is
+    uniform at 2 omega, apart from the mean: the coefficients at pi are the limit."""
+    from energy import load_model
+    from numerics.models import nls
+
+    m = load_model(name, **params)
+    at, near = nls(m, math.pi, branch), nls(m, math.pi - 1e-7, branch)
+    assert not at.undefined
+    # the coefficients are even in k - pi: 1e-7 away they differ by ~1e-14 relative
+    assert at.g2 == pytest.approx(near.g2, rel=1e-9)
+    assert at.g1 == pytest.approx(near.g1, rel=1e-9)
+
+
+@pytest.mark.parametrize("alpha, beta, word", [(0.5, 1.0, "MI"), (1.0, 1.0, "stable"),
+                                               (1.0, 1.4, "MI"), (1.0, 1.3, "stable")])
+def test_fput_at_the_zone_boundary_follows_3_beta_above_4_alpha_squared(alpha, beta, word,
+                                                                        capsys):
+    """MI of FPUT's zone-boundary mode iff 3 beta > 4 alpha^2 (Flach & Gorbach, Phys.
+    Rep. 467 (2008)): the criterion from the literature, not from this code."""
+    import json
+
+    code, out, _ = _cli(capsys, "coefficients", "--model", "fput", "--param",
+                        f"alpha={alpha}", "--param", f"beta={beta}", "--k",
+                        repr(math.pi), "--amplitude", "0.05", "--json")
+    assert code == 0 and json.loads(out)["verdict"] == word

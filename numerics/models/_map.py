@@ -27,8 +27,8 @@ def _axis(model: Model, name: str, values) -> np.ndarray:
         raise ModelError(f"map axis {name} needs real numbers, got {values!r}") from None
     if v.ndim != 1 or v.size == 0 or not np.all(np.isfinite(v)):
         raise ModelError(f"map axis {name} needs finite values, got {values!r}")
-    if name == AXIS_K and (v.min() <= 0 or v.max() >= math.pi):
-        raise ModelError(f"k must be in (0, {math.pi:.6g}), got {v.min():g}..{v.max():g}")
+    if name == AXIS_K and (v.min() <= 0 or v.max() > math.pi):
+        raise ModelError(f"k must be in (0, pi], got {v.min():g}..{v.max():g}")
     return v
 
 
