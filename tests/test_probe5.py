@@ -386,3 +386,15 @@ def test_fput_at_the_zone_boundary_follows_3_beta_above_4_alpha_squared(alpha, b
                         f"alpha={alpha}", "--param", f"beta={beta}", "--k",
                         repr(math.pi), "--amplitude", "0.05", "--json")
     assert code == 0 and json.loads(out)["verdict"] == word
+
+
+def test_a_standing_soliton_at_the_zone_boundary_is_refused_with_a_k_that_runs(capsys):
+    """soliton --simulate at k = 3.13 on 256 sites (the ring's nearest is pi, v_g = 0):
+    'no ring wavenumber near k' gave no reason nor remedy; now it says why and the
+    largest k that runs, and that k runs."""
+    argv = ["soliton", "--model", "fput", "--param", "alpha=0.5", "--amplitude", "0.05",
+            "--simulate", "--travel", "2"]
+    code, _, err = _cli(capsys, *argv, "--k", "3.13")
+    assert code == 2 and "v_g = 0" in err
+    k = err.split("k <= ")[1].split(" ")[0]
+    assert _cli(capsys, *argv, "--k", k)[0] == 0
