@@ -510,7 +510,7 @@ def read_model(path: str | Path) -> Lattice:
     if len(raw) > MAX_FILE_BYTES:
         raise ModelError(f"{where}: the model file is larger than {MAX_FILE_BYTES // 1024} KiB")
     try:
-        text = raw.decode("utf-8")
+        text = raw.decode("utf-8-sig")  # a byte-order mark (Windows editors) is no TOML
     except UnicodeDecodeError as exc:
         raise ModelError(f"{where}: the model file is not UTF-8 text (byte {exc.start})") \
             from None
@@ -525,7 +525,7 @@ def parse_model(text: str, where: str = "model") -> Lattice:
     if len(text.encode("utf-8", "surrogatepass")) > MAX_FILE_BYTES:
         raise ModelError(f"{where}: the model file is larger than {MAX_FILE_BYTES // 1024} KiB")
     try:
-        data = tomllib.loads(text)
+        data = tomllib.loads(text.removeprefix("\ufeff"))  # a byte-order mark: no TOML
     except tomllib.TOMLDecodeError as exc:
         raise ModelError(f"{where}: not valid TOML ({_short(exc, 200)[1:-1]})") from None
     except (RecursionError, MemoryError):

@@ -398,3 +398,18 @@ def test_a_standing_soliton_at_the_zone_boundary_is_refused_with_a_k_that_runs(c
     assert code == 2 and "v_g = 0" in err
     k = err.split("k <= ")[1].split(" ")[0]
     assert _cli(capsys, *argv, "--k", k)[0] == 0
+
+
+def test_a_model_file_with_a_byte_order_mark_reads_and_maps(capsys, tmp_path):
+    """A file saved with a UTF-8 byte-order mark (Windows editors) was 'not valid TOML
+    (Invalid statement (at line 1, column 1))'; a map's workers parse the file's text
+    again, so they must read it too."""
+    path = tmp_path / "bom.toml"
+    path.write_bytes(b"\xef\xbb\xbf" + b'name = "bom"\nfields = ["u"]\n[parameters]\nbeta = 1.0\n'
+                     b'[energy]\nkinetic = "u_t**2/2"\n'
+                     b'bond = "(u_next - u)**2/2 + beta*(u_next - u)**4/4"\n')
+    code, out, err = _cli(capsys, "coefficients", "--model", str(path), "--k", "1")
+    assert code == 0, err
+    code, out, err = _cli(capsys, "map", "--model", str(path), "--param", "beta=1,2", "--k",
+                          "1,2", "--theory-only", "--out", str(tmp_path / "m"))
+    assert code == 0, err
