@@ -413,3 +413,27 @@ def test_a_model_file_with_a_byte_order_mark_reads_and_maps(capsys, tmp_path):
     code, out, err = _cli(capsys, "map", "--model", str(path), "--param", "beta=1,2", "--k",
                           "1,2", "--theory-only", "--out", str(tmp_path / "m"))
     assert code == 0, err
+
+
+def test_an_overdamped_carrier_is_said(capsys, tmp_path):
+    """Lossy FPUT (R = gamma u_t^2 / 2) at gamma = 5, k = 1: gamma / 2 > omega (0.96), the
+    carrier's damped frequency is -0.19i (no oscillation: u'' + gamma u' + omega^2 u = 0),
+    yet coefficients printed 'MI (focusing)' with a gain and no word. The note says the
+    carrier is overdamped; at gamma = 0.01 nothing is said."""
+    import json
+
+    lossy = ('name = "fl"\nfields = ["u"]\n[parameters]\nbeta = 1.0\ngamma = 0.01\n'
+             '[energy]\nkinetic = "u_t**2/2"\nbond = "(u_next - u)**2/2 + '
+             'beta*(u_next - u)**4/4"\n[dissipation]\nsite = "gamma*u_t**2/2"\n')
+    path = tmp_path / "fl.toml"
+    path.write_text(lossy)
+    notes = {}
+    for gamma in (5.0, 0.01):
+        code, out, _ = _cli(capsys, "coefficients", "--model", str(path), "--param",
+                            f"gamma={gamma}", "--k", "1", "--amplitude", "0.1", "--json")
+        assert code == 0
+        notes[gamma] = [w for w in json.loads(out)["warnings"] if "damped at" in w]
+    # the slow root of s^2 + 5 s + omega^2 = 0, omega^2 = 4 sin^2(1/2): 0.1912
+    slow = (5 - math.sqrt(25 - 4 * 4 * math.sin(0.5) ** 2)) / 2
+    assert notes[5.0] and "overdamped" in notes[5.0][0] and f"{-slow:.3g}i" in notes[5.0][0]
+    assert not notes[0.01]

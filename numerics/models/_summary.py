@@ -45,6 +45,15 @@ def model_coefficients(model: Model, k: float, amplitude: float, branch=None) ->
         warn.append(f"the NLS's frequency shift |g2| a^2/4 = {abs(r.frequency_shift(a)):.3g} "
                     f"is {share} omega: beyond the weakly "
                     "nonlinear expansion; lower the amplitude or ask the exact theory")
+    if model.lossy:  # a carrier that decays before its phase turns is no wave to modulate
+        from ._linear import damped_frequencies
+
+        w = complex(np.asarray(damped_frequencies(model, c.k))[c.branch])
+        if abs(w.real) <= abs(w.imag):
+            warn.append(f"the carrier is {'over' if abs(w.real) < 1e-9 * abs(w.imag) else ''}"
+                        f"damped at k = {c.k:.4g}: its damped frequency is {w.real + 0.0:.3g} "
+                        f"{w.imag:+.3g}i (it decays faster than its phase turns); the rates "
+                        "above are the lossless wave's, lower the damping for a wave")
     fields = model.fields
     e = np.abs(np.asarray(c.e))
     big = int(np.argmax(e))
