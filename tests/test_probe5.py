@@ -437,3 +437,22 @@ def test_an_overdamped_carrier_is_said(capsys, tmp_path):
     slow = (5 - math.sqrt(25 - 4 * 4 * math.sin(0.5) ** 2)) / 2
     assert notes[5.0] and "overdamped" in notes[5.0][0] and f"{-slow:.3g}i" in notes[5.0][0]
     assert not notes[0.01]
+
+
+def test_the_map_api_refuses_wrong_inputs_in_one_line(tmp_path):
+    """run_map('x', out) raised an AttributeError from inside, check_rest_stable('fput')
+    another; ModelMapParameters took an amplitude of 1e200 and a parameter axis to 1e300
+    (each cell's coefficients overflowed later, on a worker)."""
+    from energy import ModelError
+    from numerics.maps import ModelMapParameters, run_map
+    from numerics.models import check_rest_stable
+
+    with pytest.raises(TypeError, match="params must be a MapParameters"):
+        run_map("x", tmp_path / "m")
+    with pytest.raises(ModelError, match="model must be an energy.Model"):
+        check_rest_stable("fput")
+    with pytest.raises(ModelError, match="amplitude must be at most 1e"):
+        ModelMapParameters.from_model("fput", ("beta", [1, 2]), ("k", [1, 2]), 1e200)
+    with pytest.raises(ModelError, match=r"rows \(beta\) must be at most 1e"):
+        ModelMapParameters.from_model("fput", ("beta", [1, 1e300]), ("k", [1, 2]), 0.1)
+    assert not (tmp_path / "m").exists()

@@ -105,6 +105,8 @@ class ModelMapParameters:
     start: str = "exact"
 
     def __post_init__(self):
+        from energy import check_value
+
         from ..lattice import checks
 
         for name in ("rows", "cols"):
@@ -112,6 +114,8 @@ class ModelMapParameters:
             if not isinstance(axis, str):
                 raise TypeError(f"{name}: the axis name must be a string, got {axis!r}")
             values = checks.real_values(f"{name} ({axis})", tuple(np.ravel(values)))
+            for v in values:  # a model's numbers (a parameter's value, an amplitude) are
+                check_value(f"{name} ({axis})", v)  # bounded: beyond, coefficients overflow
             if axis == "k" and any(not 0 < v <= math.pi for v in values):
                 raise ValueError(f"k must be in (0, pi], got {min(values):g}..{max(values):g}")
             if axis == AXIS_AMPLITUDE and any(not v > 0 for v in values):
@@ -139,7 +143,7 @@ class ModelMapParameters:
             raise ValueError("amplitude: give the carrier's amplitude (> 0), or make "
                              f"{AXIS_AMPLITUDE!r} one of the map's axes")
         else:
-            checks.positive("amplitude", self.amplitude)
+            check_value("amplitude", checks.positive("amplitude", self.amplitude))
         for axis in (self.rows[0], self.cols[0]):
             if axis not in ("k", AXIS_AMPLITUDE) and axis not in names:
                 raise ValueError(f"map axis {axis!r} is neither 'k', 'amplitude' nor a "

@@ -80,7 +80,7 @@ def branches(model: Model, kappa) -> np.ndarray:
 
 def check_rest_stable(model: Model, samples: int = 257):
     """Refuse a rest state that is not a minimum: omega^2 < 0 on some branch."""
-    H = model.code.taylor(model.p)[0]
+    H = check_model(model).code.taylor(model.p)[0]
     m = model.masses
     s = 1 / np.sqrt(m)
     scale = max(1.0, float(np.max(np.abs(H))) / float(np.min(m)))
