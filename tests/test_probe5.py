@@ -456,3 +456,12 @@ def test_the_map_api_refuses_wrong_inputs_in_one_line(tmp_path):
     with pytest.raises(ModelError, match=r"rows \(beta\) must be at most 1e"):
         ModelMapParameters.from_model("fput", ("beta", [1, 1e300]), ("k", [1, 2]), 0.1)
     assert not (tmp_path / "m").exists()
+
+
+def test_a_spec_with_start_equal_to_stop_says_so():
+    """'1:1:3' was 'cannot read SPEC' (it reads; it asks one value three times)."""
+    from numerics.maps import parse_spec
+
+    with pytest.raises(ValueError, match=r"start = stop.*single value 1"):
+        parse_spec("1:1:3", "--param beta")
+    assert list(parse_spec("1:1:1", "--param beta")) == [1.0]
