@@ -465,3 +465,15 @@ def test_a_spec_with_start_equal_to_stop_says_so():
     with pytest.raises(ValueError, match=r"start = stop.*single value 1"):
         parse_spec("1:1:3", "--param beta")
     assert list(parse_spec("1:1:1", "--param beta")) == [1.0]
+
+
+def test_four_wave_takes_no_ring_of_zero_sites():
+    """four_wave(..., N=0) answered for the infinite chain while exact_gain(..., N=0)
+    refuses it ('N = 0 is a bad ring'): one rule for both."""
+    from energy import ModelError, load_model
+    from numerics.models import exact_gain, four_wave
+
+    m = load_model("fput")
+    for theory in (four_wave, exact_gain):
+        with pytest.raises(ModelError, match="N must be an integer"):
+            theory(m, 1.0, 0.1, N=0)

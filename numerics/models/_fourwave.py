@@ -452,9 +452,10 @@ def four_wave(model: Model, k: float, amplitude: float, branch=None, *, N: int |
         expansion fails (a resonant second harmonic, a degenerate carrier).
     """
     a = check_amplitude(amplitude)
-    if N:
-        from ._simulate import snap_ring
+    if N is not None:  # N = 0 is a bad ring, not the infinite chain (as exact_gain's)
+        from ._simulate import check_ring, snap_ring
 
+        N = check_ring(N)
         k = snap_ring(k, N)[0]
         q = 2 * np.pi * np.arange(1, N // 2 + 1) / N
     else:
