@@ -145,7 +145,12 @@ def _pairs_compiled(best=False):
             r = math.sqrt(abs(bc))
             rh = r * h
             if bc > 0:
-                ch, sh = math.cosh(rh), math.sinh(rh)
+                # cosh and sinh from one expm1 (half the exponentials of math.cosh and
+                # math.sinh; no cancellation: em1 >= 0), each to a few ulp
+                em1 = math.expm1(rh)
+                ex = 1.0 + em1
+                ch = 1.0 + em1 * em1 / (2.0 * ex)
+                sh = em1 * (em1 + 2.0) / (2.0 * ex)
             else:
                 ch, sh = math.cos(rh), math.sin(rh)
             shl = sh / r if rh > 1e-12 else h

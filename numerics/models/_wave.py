@@ -317,7 +317,8 @@ def _travelling_wave(model, k, amplitude, branch, harmonics, start=None, fast=No
         car, acoustic, masses = fast["car"], fast["acoustic"], fast["masses"]
     d = model.n_fields
     solve = _solve if fast is None else _solve_fast
-    kw = {} if fast is None else {"qr": bool(fast.get("qr")), "done": fast.get("done", 1e-14)}
+    kw = {} if fast is None else {"qr": bool(fast.get("qr")), "done": fast.get("done", 1e-14),
+                                  "kept": fast.setdefault("layouts", {})}
     H = harmonics or first or 8
     if start is not None:
         omega0, c0 = _scaled_start(start, car, a, H)
@@ -437,20 +438,26 @@ def _solve(model, car, a, masses, acoustic, H, c0, omega0, least_squares):
 
 
 def _solve_fast(model, car, a, masses, acoustic, H, c0, omega0, least_squares, qr=False,
-                done=1e-14):
+                done=1e-14, kept=None):
     """``_solve``'s equations from their linear maps (``_collocation``: no per-call
     assembly), by the chord method (``chord_newton``: the start's Jacobian kept; Gauss-
     Newton where it does not converge), the converged residual not computed again: the
     same wave to round-off (tests/test_models_exact.py). ``qr``, ``done``: the Gauss-Newton
-    fallback's (``_gauss_newton``)."""
+    fallback's (``_gauss_newton``). ``kept``: a dict of one carrier's calls (the layout
+    and its ``Collocation`` per H, built once: a damped point's lower amplitudes)."""
     from ._collocation import chord_newton, collocation
 
     d = model.n_fields
-    optical, free = _pack_layout(d, H, car.field, acoustic)
+    layout = None if kept is None else kept.get(H)
+    if layout is None:
+        optical, free = _pack_layout(d, H, car.field, acoustic)
+        layout = (optical, free, collocation(d, H, car.k, car.field, optical, free))
+        if kept is not None:
+            kept[H] = layout
+    optical, free, coll = layout
     scale = float(np.max(masses)) * omega0**2 * a
     n_opt = optical.shape[1]
-    residual, jacobian = collocation(d, H, car.k, car.field, optical, free).equations(
-        model, masses, a, scale)
+    residual, jacobian = coll.equations(model, masses, a, scale)
     parts0 = np.stack([np.real(c0[:, H + 1:]), np.imag(c0[:, H + 1:])], axis=-1)
     x0 = np.concatenate([[omega0], optical.T @ np.real(c0[:, H]), parts0[free]])
     x = chord_newton(residual, jacobian, x0)
