@@ -305,6 +305,11 @@ class _Sidebands:
         offsets with count >= 0 (the dense spectrum's rule: argmax weight at |l| <= 1, less
         than 1e-6 of it in the outer three harmonics)."""
         P, k, d = self.P, self.wave.k, self.wave.model.n_fields
+        if gains_only:  # the rates alone: the same rule, compiled (``_kept``)
+            from ._kept import kept_gains
+
+            kept_gains(lam, vec, count, P, d, self.floor, gains)
+            return
         l_ = np.arange(-P, P + 1)
         # the slots that hold a mode anywhere (flexmm: <= 4 of MAX_MODES): the same values
         width = max(int(count.max(initial=0)), 1)
@@ -319,8 +324,6 @@ class _Sidebands:
         best = np.argmax(re, axis=1)
         grows = np.flatnonzero(re[np.arange(offsets.size), best] > self.floor)
         gains[grows] = re[grows, best[grows]]
-        if gains_only:
-            return
         w_best = per_l[grows, best[grows]]                           # (grows, 2P + 1)
         modes[grows] = l_[np.argmax(w_best, axis=1)]
         offs[grows] = _sideband_offsets(offsets[grows], l_, k, w_best)
