@@ -38,7 +38,7 @@ import numpy as np
 
 from energy import Model, ModelError
 
-from ._losses_rates import _carrier_damping, side_rates, sideband_damping
+from ._losses_rates import _carrier_damping, rates_once, side_rates, sideband_damping
 
 #: amplification a theory calls observable (the runs' threshold)
 OBSERVABLE = 20.0
@@ -84,6 +84,19 @@ def integrate_pairs(P, Q, psi0, Gamma, G, q, t_end, steps=4000, carrier_decays=T
 def _pairs_start(P, Q, psi0, Gamma, G, q, t_end, steps, carrier_decays=True):
     """(q^2, G, x, y, h, a2) of ``integrate_pairs``: the growing eigenvector at t = 0 per
     offset, the step and the carrier's psi0^2 e^{-2 Gamma t} at each step's midpoint."""
+    h, a2 = _pairs_times(psi0, Gamma, t_end, steps, carrier_decays)
+    return (*_pairs_columns(P, Q, psi0, G, q), h, a2)
+
+
+def _pairs_times(psi0, Gamma, t_end, steps, carrier_decays=True):
+    """(h, a2) of ``_pairs_start``: the step and psi0^2 e^{-2 Gamma t} at the midpoints."""
+    h = t_end / steps
+    tm = (np.arange(steps) + 0.5) * h
+    return h, psi0**2 * (np.exp(-2 * Gamma * tm) if carrier_decays else np.ones(steps))
+
+
+def _pairs_columns(P, Q, psi0, G, q):
+    """(q^2, G, x, y) of ``_pairs_start``: each offset's growing eigenvector at t = 0."""
     q = np.atleast_1d(np.asarray(q, float))
     G = np.ascontiguousarray(np.broadcast_to(np.asarray(G, float), q.shape), dtype=float)
     q2 = q * q
@@ -94,17 +107,16 @@ def _pairs_start(P, Q, psi0, Gamma, G, q, t_end, steps, carrier_decays=True):
     x = np.where(s0 > 0, b, 1.0)
     y = np.where(s0 > 0, s0, 0.0)
     n0 = np.hypot(x, y)
-    h = t_end / steps
-    tm = (np.arange(steps) + 0.5) * h
-    a2 = psi0**2 * (np.exp(-2 * Gamma * tm) if carrier_decays else np.ones(steps))
-    return q2, G, x / n0, y / n0, h, a2
+    return q2, G, x / n0, y / n0
 
 
-def _pairs_best(P, Q, psi0, Gamma, G, q, t_end, steps):
+def _pairs_best(P, Q, psi0, Gamma, G, q, t_end, steps, times=None):
     """Per offset of ``integrate_pairs``: its largest |(x, y)(t)| / |(x, y)(0)| and the
     first step index that reaches it, without the (steps + 1, len(q)) array (the same
-    numbers: the same kernel, its writes replaced by the running maximum)."""
-    q2, G, x, y, h, a2 = _pairs_start(P, Q, psi0, Gamma, G, q, t_end, steps)
+    numbers: the same kernel, its writes replaced by the running maximum). ``times``:
+    ``_pairs_times``' (h, a2, later) of these arguments, where already computed."""
+    q2, G, x, y = _pairs_columns(P, Q, psi0, G, q)
+    h, a2, later = _pairs_later(psi0, Gamma, t_end, steps) if times is None else times
     best = np.ones(q2.size)
     first = np.zeros(q2.size, np.int64)
     # where an offset's maximum is final: each step is e^{-G h} exp(h [[0, b], [c, 0]]),
@@ -113,11 +125,17 @@ def _pairs_best(P, Q, psi0, Gamma, G, q, t_end, steps):
     # (``calm``) no step lengthens (x, y), so once |(x, y)| is below the running maximum
     # (by more than the steps' round-off, ``_CALM_MARGIN``) the maximum and its first
     # step are the ones the whole horizon gives, and the offset stops there
-    later = np.maximum.accumulate(a2[::-1])[::-1]          # max of a2 over the later steps
     calm = np.searchsorted(-later, -G / max(abs(float(Q)), 1e-300), side="left")
     _pairs_compiled(best=True)(float(P), float(Q), a2, G, q2, h, x, y, best, first,
                                calm.astype(np.int64))
     return best, first
+
+
+def _pairs_later(psi0, Gamma, t_end, steps):
+    """(h, a2, later) of ``_pairs_best``: ``_pairs_times``' and the largest a2 over the
+    later steps (its calm test), once for every offset of a point."""
+    h, a2 = _pairs_times(psi0, Gamma, t_end, steps)
+    return h, a2, np.maximum.accumulate(a2[::-1])[::-1]
 
 
 #: the relative round-off allowed to the remaining steps of an offset that stops early
@@ -213,8 +231,9 @@ def nls_amplification(model: Model, k: float, amplitude: float, branch=None, *,
         return Amplified(Gamma, 1.0, 0.0, math.nan, False, -G1)
     edge = math.sqrt(2 * Q / P) * psi0  # band edge of the carrier at t = 0
     q = np.linspace(edge / offsets, edge, offsets, endpoint=False)
-    G = sideband_damping(model, c.k, q, c.branch)
-    Gamma = max(_carrier_damping(model, c.k, c.branch), 0.0) + 0.0  # -0.0 at zero damping
+    # its own offsets, shared with no other theory: one call, not kept (``rates_once``)
+    G, Gamma = rates_once(model, c.k, q, c.branch)
+    Gamma = max(Gamma, 0.0) + 0.0  # -0.0 at zero damping
     rate0 = abs(P) * q * np.sqrt(np.maximum(q**2 * 0 + (2 * Q / P) * psi0**2 - q**2, 0))
     net0 = float(np.max(rate0 - G))
     if Gamma <= 0:  # the lossless limit: a constant carrier, growth never stops

@@ -66,6 +66,19 @@ def _rates_at(model: Model, kappas) -> np.ndarray:
     return rows[at].reshape(kap.size, model.n_fields)
 
 
+def rates_once(model: Model, k: float, q, branch: int) -> tuple[np.ndarray, float]:
+    """(G_q, Gamma): ``sideband_damping`` and the carrier's rate from one
+    ``damping_rates`` call, nothing kept: a theory's own offsets that no other asks (the
+    damped NLS's), where merging them into the kept rates costs as much as the rates
+    (the same numbers: a row depends on its wavenumber alone)."""
+    from ._linear import branch_index, damping_rates
+
+    q = np.atleast_1d(np.asarray(q, float))
+    rows = damping_rates(model, np.concatenate([[float(k)], k + q, k - q]))
+    b = branch_index(model, k, branch)
+    return 0.5 * (rows[1:q.size + 1, b] + rows[q.size + 1:, b]), float(rows[0, b])
+
+
 def _carrier_damping(model: Model, k: float, branch) -> float:
     """``carrier_damping(model, k, branch)`` (Gamma of the carrier's branch) from the
     rates kept: a point's theories ask it after their sidebands' rates, which hold it."""
