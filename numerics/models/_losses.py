@@ -330,18 +330,16 @@ def _integrate(s_arr, g2, s_t, t, G, per_column=False):
     faster, the same numbers to the last bit; ties to the first in row-major order, as
     argmax). ``per_column``: also each column's own largest (array, 0 where it never
     grows)."""
-    n = s_arr.size
-    pos = g2 > 0
-    lo = np.where(pos.any(axis=0), np.argmax(pos, axis=0), n - 1)
-    j = np.clip(np.searchsorted(s_arr, s_t), 1, n - 1) if n > 1 else np.zeros(s_t.size, int)
-    lo_j = np.maximum(j - 1, 0)
-    w = (s_t - s_arr[lo_j]) / np.where(j != lo_j, s_arr[j] - s_arr[lo_j], 1.0)
-    colbest = np.zeros(g2.shape[1])
+    from ._losses_quadrature import quadrature_tables
+
     G = np.ascontiguousarray(G, float)
+    lo, j, lo_j, w, dt, cold, s_hot, ok = quadrature_tables(
+        np.ascontiguousarray(s_arr, float), np.ascontiguousarray(g2, float),
+        np.ascontiguousarray(s_t, float), np.ascontiguousarray(t, float), G)
+    colbest = np.zeros(g2.shape[1])
     best, i, col = _integrate_compiled()(
-        np.ascontiguousarray(g2.T), s_arr, s_t, np.diff(t), G,
-        lo.astype(np.int64), j.astype(np.int64), lo_j.astype(np.int64), w, colbest,
-        *_calm(s_arr, g2, G, lo))
+        np.ascontiguousarray(g2.T), s_arr, s_t, dt, G, lo, j, lo_j, w, colbest, cold, s_hot,
+        ok)
     if per_column:
         return float(best), int(i), int(col), colbest
     return float(best), int(i), int(col)
