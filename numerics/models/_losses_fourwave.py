@@ -41,10 +41,12 @@ def rates_at(model, first, rows, branch_pairs):
     if not np.all(np.abs(kk0 - coupling2)[grows] <= REAL_COUPLING * kk0[grows]):
         return None
     q = np.asarray(first.offsets, float)[rows]
-    b1 = np.array([first.pairs[j][0] for j in branch_pairs], int)
-    b2 = np.array([first.pairs[j][1] for j in branch_pairs], int)
-    w1 = _frequencies(model, q + first.k)[np.arange(q.size), b1]
-    w2 = _frequencies(model, first.k - q)[np.arange(q.size), b2]
+    pairs = np.asarray(first.pairs, int).reshape(-1, 2)[np.asarray(branch_pairs, int)]
+    # both waves' frequencies in one batched call (each matrix's own eigenvalues: the same
+    # numbers as two calls)
+    both = _frequencies(model, np.concatenate([q + first.k, first.k - q]))
+    w1 = both[np.arange(q.size), pairs[:, 0]]
+    w2 = both[q.size + np.arange(q.size), pairs[:, 1]]
     lin = w1 + w2 - 2 * first.omega
 
     def at(s):
