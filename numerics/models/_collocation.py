@@ -126,6 +126,7 @@ class Collocation:
             return out
 
         residual.last = None
+        residual.at = at  # (x, its coefficients, its fields) of the last residual
         return residual, jacobian
 
 
