@@ -378,7 +378,8 @@ def test_one_stepper():
     # constant coefficients (cosh/sinh of each interval; a theory, no force, no state), and
     # the trapezoid quadrature of a rate along the decaying carrier (along_decay: a sum);
     # "step" is one interval's exponential of that pair, shared by its two loops
-    theory = {("_losses.py", "pairs"), ("_losses.py", "step"), ("_losses.py", "integrate")}
+    theory = {("_losses_pairs.py", "pairs_top"), ("_losses_pairs.py", "pairs_all"),
+              ("_losses_pairs.py", "step"), ("_losses.py", "integrate")}
     for path in sorted((ROOT / "numerics" / "models").rglob("*.py")):
         for fn in _compiled_functions(path):
             if (path.name, fn.name) in theory:

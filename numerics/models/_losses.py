@@ -123,7 +123,7 @@ def _pairs_best(P, Q, psi0, Gamma, G, q, t_end, steps, times=None):
     # whose 2-norm is at most e^{h mu}, mu = |b + c| / 2 - G = |Q| a2 - G (the
     # logarithmic norm); from the first step after which |Q| a2 <= G at every later one
     # (``calm``) no step lengthens (x, y), so once |(x, y)| is below the running maximum
-    # (by more than the steps' round-off, ``_CALM_MARGIN``) the maximum and its first
+    # (by more than the steps' round-off, ``_losses_pairs.CALM_MARGIN``) the maximum and its first
     # step are the ones the whole horizon gives, and the offset stops there
     calm = np.searchsorted(-later, -G / max(abs(float(Q)), 1e-300), side="left")
     _pairs_compiled(best=True)(float(P), float(Q), a2, G, q2, h, x, y, best, first,
@@ -138,71 +138,16 @@ def _pairs_later(psi0, Gamma, t_end, steps):
     return h, a2, np.maximum.accumulate(a2[::-1])[::-1]
 
 
-#: the relative round-off allowed to the remaining steps of an offset that stops early
-#: (``_pairs_best``): ~1e-13 after 1000 steps of a few ulp each; 1e-9 of margin
-_CALM_MARGIN = 1e-9
-
-
-_PAIRS = {}
-
-
 def _pairs_compiled(best=False):
-    """The steps of ``integrate_pairs``, compiled (cached on disk): per offset, the
-    product in order of each step's exp(h [[-G, b], [c, -G]]) = e^{-G h} [[ch, b sh/l],
-    [c sh/l, ch]], l = sqrt(b c), b = P q^2, c = 2 Q a(t)^2 - b (cosh, sinh where b c > 0;
-    cos, sin where b c < 0: l is real or imaginary). ``best``: each offset's running
-    maximum and its first step instead of every step, each offset stopped where its
-    maximum is final (``_pairs_best``)."""
-    if best not in _PAIRS:
-        import numba
+    """The steps of ``integrate_pairs``, compiled (``_losses_pairs``, cached on disk): per
+    offset, the product in order of each step's exp(h [[-G, b], [c, -G]]) = e^{-G h}
+    [[ch, b sh/l], [c sh/l, ch]], l = sqrt(b c), b = P q^2, c = 2 Q a(t)^2 - b (cosh,
+    sinh where b c > 0; cos, sin where b c < 0: l is real or imaginary). ``best``: each
+    offset's running maximum and its first step instead of every step, each offset
+    stopped where its maximum is final (``_pairs_best``)."""
+    from ._losses_pairs import pairs_all, pairs_top
 
-        @numba.njit(cache=True, error_model="numpy", boundscheck=False, inline="always")
-        def step(P, Q, a2i, b, e, h, xj, yj):
-            c = 2 * Q * a2i - b
-            bc = b * c
-            r = math.sqrt(abs(bc))
-            rh = r * h
-            if bc > 0:
-                # cosh and sinh from one expm1 (half the exponentials of math.cosh and
-                # math.sinh; no cancellation: em1 >= 0), each to a few ulp
-                em1 = math.expm1(rh)
-                ex = 1.0 + em1
-                ch = 1.0 + em1 * em1 / (2.0 * ex)
-                sh = em1 * (em1 + 2.0) / (2.0 * ex)
-            else:
-                ch, sh = math.cos(rh), math.sin(rh)
-            shl = sh / r if rh > 1e-12 else h
-            xj, yj = e * ch * xj + e * b * shl * yj, e * c * shl * xj + e * ch * yj
-            # sqrt of the sum (2/3 of hypot's time), hypot where it would overflow
-            r2 = xj * xj + yj * yj
-            return xj, yj, (math.sqrt(r2) if r2 < 1e300 else math.hypot(xj, yj))
-
-        if best:
-            @numba.njit(cache=True, error_model="numpy", boundscheck=False)
-            def pairs(P, Q, a2, G, q2, h, x, y, top, first, calm):
-                grow = 1.0 + _CALM_MARGIN
-                for j in range(q2.size):
-                    b = P * q2[j]
-                    e = math.exp(-G[j] * h)
-                    xj, yj = x[j], y[j]
-                    for i in range(a2.size):
-                        xj, yj, n = step(P, Q, a2[i], b, e, h, xj, yj)
-                        if n > top[j]:
-                            top[j], first[j] = n, i + 1
-                        elif i + 1 >= calm[j] and n * grow < top[j]:
-                            break  # no later step lengthens (x, y): the maximum is final
-        else:
-            @numba.njit(cache=True, error_model="numpy", boundscheck=False)
-            def pairs(P, Q, a2, G, q2, h, x, y, out):
-                for j in range(q2.size):
-                    b = P * q2[j]
-                    e = math.exp(-G[j] * h)
-                    xj, yj = x[j], y[j]
-                    for i in range(a2.size):
-                        xj, yj, out[j, i + 1] = step(P, Q, a2[i], b, e, h, xj, yj)
-
-        _PAIRS[best] = pairs
-    return _PAIRS[best]
+    return pairs_top if best else pairs_all
 
 
 def _horizon(rate0: float, Gamma: float) -> float:
