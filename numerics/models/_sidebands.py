@@ -79,14 +79,21 @@ def _eigh2(A, ev, vec):
 
 @njit(**_KW)
 def _lu(A, piv):
-    """In-place LU with partial pivoting of a square complex matrix; False if singular."""
+    """In-place LU with partial pivoting of a square complex matrix; False if singular.
+    The pivot by |Re| + |Im| (LAPACK's izamax: no square root per entry); the update
+    runs over the pivot row's nonzero columns only and skips zero multipliers, so a rest
+    that splits (a symmetric potential's odd and even harmonics) or is banded (the
+    Hessian's harmonics below round-off, ``_drop_roundoff``) costs what its blocks do,
+    with the same arithmetic on every nonzero."""
     n = A.shape[0]
+    cols = np.empty(n, np.int64)
     for j in range(n):
         p = j
-        big = abs(A[j, j])
+        big = abs(A[j, j].real) + abs(A[j, j].imag)
         for i in range(j + 1, n):
-            if abs(A[i, j]) > big:
-                big = abs(A[i, j])
+            v = abs(A[i, j].real) + abs(A[i, j].imag)
+            if v > big:
+                big = v
                 p = i
         piv[j] = p
         if big == 0.0:
@@ -96,19 +103,27 @@ def _lu(A, piv):
                 t = A[j, c]
                 A[j, c] = A[p, c]
                 A[p, c] = t
+        nc = 0
+        for c in range(j + 1, n):
+            if A[j, c] != 0:
+                cols[nc] = c
+                nc += 1
         inv = 1.0 / A[j, j]
         for i in range(j + 1, n):
+            if A[i, j] == 0:
+                continue
             f = A[i, j] * inv
             A[i, j] = f
-            if f != 0:
-                for c in range(j + 1, n):
-                    A[i, c] -= f * A[j, c]
+            for t in range(nc):
+                c = cols[t]
+                A[i, c] -= f * A[j, c]
     return True
 
 
 @njit(**_KW)
 def _lu_solve(A, piv, B):
-    """Solves A X = B in place (B, shape (n, m)) with ``_lu``'s factors."""
+    """Solves A X = B in place (B, shape (n, m)) with ``_lu``'s factors; by columns of
+    the factors, skipping the solution's zeros (a block the right side does not reach)."""
     n, m = B.shape
     for j in range(n):
         p = piv[j]
@@ -118,33 +133,36 @@ def _lu_solve(A, piv, B):
                 B[j, c] = B[p, c]
                 B[p, c] = t
     for c in range(m):
-        for i in range(n):
-            s = B[i, c]
-            for k in range(i):
-                s -= A[i, k] * B[k, c]
-            B[i, c] = s
-        for i in range(n - 1, -1, -1):
-            s = B[i, c]
-            for k in range(i + 1, n):
-                s -= A[i, k] * B[k, c]
-            B[i, c] = s / A[i, i]
+        for k in range(n):
+            x = B[k, c]
+            if x != 0:
+                for i in range(k + 1, n):
+                    B[i, c] -= A[i, k] * x
+        for k in range(n - 1, -1, -1):
+            x = B[k, c] / A[k, k]
+            B[k, c] = x
+            if x != 0:
+                for i in range(k):
+                    B[i, c] -= A[i, k] * x
 
 
 @njit(**_KW)
 def _lu_solve_t(A, piv, B):
-    """Solves A^T X = B in place with ``_lu``'s factors (P A = L U: A^T = U^T L^T P)."""
+    """Solves A^T X = B in place with ``_lu``'s factors (P A = L U: A^T = U^T L^T P), by
+    rows of the factors, skipping the solution's zeros."""
     n, m = B.shape
     for c in range(m):
-        for i in range(n):
-            s = B[i, c]
-            for k in range(i):
-                s -= A[k, i] * B[k, c]
-            B[i, c] = s / A[i, i]
-        for i in range(n - 1, -1, -1):
-            s = B[i, c]
-            for k in range(i + 1, n):
-                s -= A[k, i] * B[k, c]
-            B[i, c] = s
+        for k in range(n):
+            x = B[k, c] / A[k, k]
+            B[k, c] = x
+            if x != 0:
+                for i in range(k + 1, n):
+                    B[i, c] -= A[k, i] * x
+        for k in range(n - 1, -1, -1):
+            x = B[k, c]
+            if x != 0:
+                for i in range(k):
+                    B[i, c] -= A[k, i] * x
     for j in range(n - 1, -1, -1):
         p = piv[j]
         if p != j:
@@ -460,6 +478,34 @@ def _offset(Kt, Om, lvec, cidx, ridx, lo, hi, floor, om, out_lam, out_vec):
     return found
 
 
+#: a Hessian harmonic below ROUNDOFF times its field pair's largest is the DFT's
+#: round-off (``_exact._hessian_harmonics`` sums M >= 128 samples: the error of each
+#: coefficient is ~ sqrt(M) eps of the largest sample, 11 eps at M = 128, and no
+#: coefficient's magnitude is known better than that; 16 eps = 3.6e-15 stays above the
+#: odd harmonics of a symmetric potential, measured 1e-16 to 7e-16 of the largest)
+ROUNDOFF = 16 * 2.220446049250313e-16
+
+
+@njit(**_KW)
+def _drop_roundoff(Hh):
+    """A copy of the Hessian's harmonics (shape (4P + 1, 2d, 2d)) with those below the
+    DFT's round-off (``ROUNDOFF``) set to zero: the pencil's couplings they carry are
+    noise, and exact zeros let ``_lu`` skip them (a symmetric potential's odd harmonics
+    decouple the odd and even copies; a weak wave's far harmonics band the pencil).
+    Moving an entry by its own round-off moves the eigenvalues by round-off."""
+    out = Hh.copy()
+    ns, da, db = Hh.shape
+    for a in range(da):
+        for b in range(db):
+            big = 0.0
+            for s in range(ns):
+                big = max(big, abs(Hh[s, a, b]))
+            for s in range(ns):
+                if abs(Hh[s, a, b]) <= ROUNDOFF * big:
+                    out[s, a, b] = 0.0
+    return out
+
+
 @njit(**_KW)
 def _pencil_at(Hh, sq, k, P, q, ed, eq, K):
     """K(q) of the scaled pencil into ``K`` (``_exact``'s dense pencil, scaled by
@@ -497,6 +543,7 @@ def sideband_modes(Hh, masses, k, omega, P, offsets, floor, max_modes, max_clust
     nl = 2 * P + 1
     n = d * nl
     Q = offsets.size
+    Hh = _drop_roundoff(Hh)
     lam_out = np.zeros((Q, max_modes), np.complex128)
     vec_out = np.zeros((Q, max_modes, n), np.complex128)
     count = np.zeros(Q, np.int64)
@@ -545,9 +592,19 @@ def sideband_modes(Hh, masses, k, omega, P, offsets, floor, max_modes, max_clust
                     w2[li * d + a] = ev[a]
                     for b in range(d):
                         V[li * d + b, li * d + a] = evec[b, a]
-            # Kt = V^* K V, block by block (V is block diagonal)
+            # Kt = V^* K V, block by block (V is block diagonal); a zero block (its
+            # harmonic dropped as round-off) stays exactly zero
             for li in range(nl):
                 for hi_ in range(nl):
+                    nz = False
+                    for c in range(d):
+                        for e in range(d):
+                            nz |= K[li * d + c, hi_ * d + e] != 0
+                    if not nz:
+                        for a in range(d):
+                            for b in range(d):
+                                Kt[li * d + a, hi_ * d + b] = 0.0
+                        continue
                     for a in range(d):
                         for b in range(d):
                             acc = 0j
@@ -561,7 +618,10 @@ def sideband_modes(Hh, masses, k, omega, P, offsets, floor, max_modes, max_clust
             r = 0.0
             for j in range(n):
                 if lvec[j] != lvec[i]:
-                    r += abs(Kt[i, j])
+                    # |z| without hypot's scaling (entries are O(1)): ~8x cheaper,
+                    # within an ulp
+                    v = Kt[i, j]
+                    r += math.sqrt(v.real * v.real + v.imag * v.imag)
             Rrow[i] = r
             # the diagonal block is diag(w^2) exactly in these coordinates
             for j in range(n):
