@@ -142,7 +142,7 @@ TEST_EXCEPTIONS = {
                                         "the kernel recomputed at each amplitude",
     "numerics.models._losses_sampling": "the exact theory's coarse-to-fine offsets: which "
                                         "columns a profile refines",
-    "numerics.models._sidebands": "the Hill kernel's LU that skips exact zeros against a "
+    "numerics.models._small_algebra": "the Hill kernel's LU that skips exact zeros against a "
                                   "dense solve, and its round-off threshold on the Hessian's "
                                   "harmonics",
     "derivation._mi": "the MI band's derivation step",

@@ -5,7 +5,13 @@ dense solve gives, to round-off."""
 import numpy as np
 import pytest
 
-from numerics.models._sidebands import ROUNDOFF, _drop_roundoff, _lu, _lu_solve, _lu_solve_t
+from numerics.models._small_algebra import (
+    ROUNDOFF,
+    _drop_roundoff,
+    _lu,
+    _lu_solve,
+    _lu_solve_t,
+)
 
 
 def _split(n, rng, band=None):
