@@ -180,6 +180,8 @@ BENCH_EXCEPTIONS = {
     "numerics.lattice._kernels": "bench/speed.py times the kernel's parts one by one "
                                  "(stencil, the libm variant, the vectorised loops)",
     "numerics.maps._cells": "bench/gpu.py takes a map's step (map_step) as a map does",
+    "numerics.models._sidebands": "bench/hill_kernel_check.py swaps the compiled Hill kernel "
+                                  "for another tree's copy, to compare their answers",
     "numerics.maps._gpu": "bench/gpu.py reports the device's name and whether it simulates",
     "numerics.maps._gpu_models": "bench/gpu.py times one launch of each model's kernel (its "
                                  "chains started as a map's are)",
