@@ -508,10 +508,9 @@ def test_the_travelling_wave_stays_on_the_carriers_branch_near_a_resonance():
 def test_one_offset_asked_alone_has_the_rate_the_ring_gives_it():
     """The Hill spectrum at an offset does not depend on which other offsets are asked
     with it: fput at k = pi / 2 (a commensurate carrier, README's example), where the
-    fastest mode at q = pi / 2 is a copy of the one at q = 0 (pi/2 + l k, l = -1). A kernel
-    that lost it when q = pi / 2 was asked alone (no neighbouring offset's start) named
-    another mode (a merged-and-reverted sparse kernel, 2026-11-26). Tolerance 1e-9 of the
-    rate: both calls solve the same pencil to Newton's round-off."""
+    fastest mode at q = pi / 2 is a copy of the one at q = 0 (pi/2 + l k, l = -1). Tolerance
+    1e-9 of the rate: both calls solve the same pencil to Newton's round-off. (What the
+    merged-and-reverted sparse kernel of 2026-11-26 broke is the next test's.)"""
     from numerics.models import hill_spectrum, ring_offsets
 
     model = load_model("fput", alpha=0.8, beta=1.0)
@@ -524,3 +523,28 @@ def test_one_offset_asked_alone_has_the_rate_the_ring_gives_it():
             assert alone == pytest.approx(ring.gain[j], rel=1e-9, abs=1e-12), q
     assert hill_spectrum(spec.wave, [np.pi / 2]).gain[0] == pytest.approx(
         spec.peak_gain, rel=1e-9)
+
+
+def test_a_pair_split_evenly_between_two_harmonics_is_kept_at_every_copy():
+    """README's fput point (alpha 0.8, beta 1, k = pi / 2, a 0.1): the fastest mode is a
+    backward pair whose two waves are one (k - pi), so at q = pi / 2 and 3 pi / 2 it weighs
+    the same at l = 0 and l = 2. The kept-mode rule took the heaviest harmonic, which
+    round-off picked: the dense spectrum dropped the growing member there, and whichever
+    copy the ring's argmax landed on (q = pi / 2 or pi, equal rates to an ulp) named the
+    mode: a backward pair or the carrier's sidebands (the sparse kernel of 2026-11-26,
+    merged and reverted, only moved that ulp). Every copy must keep the rate and the name.
+    Tolerance 1e-9 of the rate: eig and Newton agree to ~1e-12 on it here."""
+    from numerics.models import classify_mode
+
+    model = load_model("fput", alpha=0.8, beta=1.0)
+    spec = exact_gain(model, np.pi / 2, 0.1, N=256)
+    want = classify_mode(spec)
+    assert want["mode_kind"] == "backward"
+    for q in (np.pi / 2, np.pi, 3 * np.pi / 2):
+        dense, lams = hill_spectrum(spec.wave, [q], return_eigenvalues=True)
+        assert dense.gain[0] == pytest.approx(spec.peak_gain, rel=1e-9), q
+        assert lams[0].real.max() == pytest.approx(spec.peak_gain, rel=1e-9), q
+        alone = classify_mode(hill_spectrum(spec.wave, [q]))
+        assert alone["mode_kind"] == "backward", q
+        for a, b in zip(alone["mode_waves"], want["mode_waves"]):
+            assert a["wavenumber"] == pytest.approx(b["wavenumber"], abs=1e-9), q
