@@ -165,7 +165,8 @@ TEST_EXCEPTIONS = {
     "numerics.theory._hill": "Hill's batched eigenproblems, the pencil's input",
     "numerics.theory._pencil": "the pencil eigenvalue solver",
     "numerics.models._exact": "the anchors' writer moves the wave exact_gain solves (its own "
-                              "round-off spread, tests/anchors)",
+                              "round-off spread, tests/anchors); the kept-mode rule's "
+                              "centre of tied harmonics",
     "numerics.models._real_gauge": "the phase that makes the Hill pencil real, and the "
                                    "frozen pencil's real eigenvalues against the complex ones",
     "numerics.theory._plane_wave": "the batched plane-wave solver the exact map uses",

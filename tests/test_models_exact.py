@@ -548,3 +548,34 @@ def test_a_pair_split_evenly_between_two_harmonics_is_kept_at_every_copy():
         assert alone["mode_kind"] == "backward", q
         for a, b in zip(alone["mode_waves"], want["mode_waves"]):
             assert a["wavenumber"] == pytest.approx(b["wavenumber"], abs=1e-9), q
+
+
+def test_tied_harmonics_are_centred_at_their_mean():
+    """The kept-mode rule's centre: the heaviest harmonic; where harmonics tie (to
+    CENTRE_TIE, 1e-6 relative), their mean says whether the mode is central, whichever of
+    them round-off made the heaviest. Weights made by hand, so the expected centres are
+    the rule's statement, not the code's output."""
+    from numerics.models._exact import CENTRE_TIE, _centre
+
+    l_ = np.arange(-5, 6)
+
+    def weights(**at):
+        w = np.full(l_.size, 1e-3)
+        for key, v in at.items():
+            w[int(key[1:]) * (-1 if key[0] == "m" else 1) + 5] = v
+        return w
+
+    eps = 0.1 * CENTRE_TIE  # a round-off difference
+    rows = np.array([
+        weights(p0=0.45, p2=0.45 * (1 + eps)),   # {0, 2}: centred at 1, kept
+        weights(p0=0.45 * (1 + eps), p2=0.45),   # the same, round-off the other way
+        weights(p1=0.45, p3=0.45 * (1 + eps)),   # {1, 3}: centred at 2, not kept
+        weights(p1=0.45 * (1 + eps), p3=0.45),   # the same, round-off the other way
+        weights(m1=0.45, p1=0.45 * (1 + eps)),   # {-1, 1}: kept, its heaviest named
+        weights(p0=0.45, p2=0.46),               # a real difference: l = 2, not kept
+        weights(m2=0.3, m1=0.6),                 # one heaviest: l = -1, kept
+    ])
+    harmonic, central = _centre(rows, l_)
+    assert central.tolist() == [True, True, False, False, True, False, True]
+    assert harmonic.tolist()[:2] == [0, 0]
+    assert harmonic[4] == 1 and harmonic[5] == 2 and harmonic[6] == -1
