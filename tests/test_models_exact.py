@@ -338,6 +338,13 @@ def test_a_model_map_with_the_exact_theory_per_cell(tmp_path, capsys):
     assert ds["verdict_semidiscrete"].values.tolist() == want
     assert ds["verdict_exact"].dtype == "int8" and "flag_meanings" in ds["verdict_exact"].attrs
     assert ds["done_predicted"].values.all() and not ds["done"].values.any()
+    # summary.json: the paper map's keys, the fractions the store's verdicts give
+    summary = json.loads((tmp_path / "summary.json").read_text())
+    assert summary["cells"] == 4 and summary["simulated"] == 0
+    assert summary["mi_fraction"] == out["mi_fraction"] == {
+        n: float((ds[f"verdict_{n}"].values == 1).mean())
+        for n in ("semidiscrete", "exact", "fourwave")}
+    assert summary["undetermined_cells"]["exact"] == 0
     assert ds.attrs["model"] == "fput" and ds.attrs["model_hash"] == builtin("fput").content_hash
     assert 'name = "fput"' in ds.attrs["model_file"] and ds.attrs["param_alpha"] == 1.0
     ds.close()
@@ -441,6 +448,8 @@ def test_a_simulated_model_map_is_stored_and_resumes(tmp_path, capsys):
     written into the checksummed map.zarr, so a rerun computes nothing again (a cell
     whose values no longer match its checksum, as a torn write leaves, is computed again),
     and a store of another map is refused."""
+    import json
+
     import xarray as xr
     import zarr
 
@@ -467,6 +476,12 @@ def test_a_simulated_model_map_is_stored_and_resumes(tmp_path, capsys):
     assert ds["peak_gain_simulated"].attrs["bound_where"] == "verdict_simulated == 0"
     assert ds["done"].values.all() and ds.attrs["N"] == 64
     assert {"growth", "growth_q", "t_simulated", "k_simulated"} <= set(ds.data_vars)
+    # each run as long as its cell's rate needs (no one T): the agreement over the
+    # determined cells, which here is every cell, and no "decided" share without a T
+    agree = json.loads((tmp_path / "summary.json").read_text())[
+        "agreement_with_simulation_percent"]
+    assert agree["exact"] == 100.0 and agree["exact_undetermined_cells"] == 0
+    assert "exact_decided" not in agree
     group = zarr.open_group(str(tmp_path / "map.zarr"), mode="r+")
     group["growth"][1, 1] = 1e9  # a cell's value no longer matches its checksum
     capsys.readouterr()
