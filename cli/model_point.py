@@ -302,6 +302,10 @@ def run_point(args) -> int:
     checks.real("--amplitude", args.amplitude, 0.0, None)
     if args.t_end is not None and not args.simulate:
         raise ValueError("--t-end acts with --simulate only")
+    if not args.simulate and ("--seeds" in getattr(args, "given", ()) or args.seeds != 4):
+        # the paper chain's point predicts its growth per seed; a model's seeds are runs
+        raise ValueError("--seeds: a model point's seeds are its runs'; add --simulate, "
+                         "or leave --seeds out")
     start = _start_of(args, model)
     from numerics.models import check_ring
 

@@ -306,6 +306,8 @@ def test_point_with_a_model_simulates_and_reports_every_theory(capsys):
     (["--alpha", "2.5", "--K-s", "0.02", "--K-theta", "0.015", "--case", "coupled",
       "--start", "linear"], "--start linear"),
     (["--model", "fput", "--t-end", "100"], "--t-end acts with --simulate"),
+    # a model point's seeds are runs (the paper chain's also seed its predicted growth)
+    (["--model", "fput", "--seeds", "2"], "--seeds: a model point's seeds are its runs'"),
 ])
 def test_point_refuses_starts_of_the_other_kind(argv, match, capsys):
     from cli.app import main
@@ -566,3 +568,22 @@ def test_finding_where_g2_is_a_small_remainder_the_nls_error_is_large_and_order_
     assert "the NLS is the a -> 0 limit" in out and "(mean flow)" in out
     assert main([*argv, "0.0125", "--N", "2000"]) == 0
     assert "a -> 0 limit" not in capsys.readouterr().out
+
+
+def test_the_paper_point_takes_seeds_without_runs(capsys):
+    """The paper chain's point predicts the growth factor per seed from each seed's initial
+    state (numerics.theory.predict_growth), no runs needed: --seeds 2 gives two factors,
+    the first two of the default four (seeded draws: the same states)."""
+    from cli.app import main
+
+    argv = ["point", "--alpha", "2.5", "--K-s", "0.01851", "--case", "coupled",
+            "--K-theta", "0.016", "--k", "1.2", "--start", "travelling"]
+
+    def factors(extra):
+        assert main([*argv, *extra]) == 0
+        line = next(ln for ln in capsys.readouterr().out.splitlines()
+                    if ln.startswith("growth factor within"))
+        return line.split("predicted ", 1)[1].split(", ")
+
+    two, four = factors(["--seeds", "2"]), factors([])
+    assert len(two) == 2 and len(four) == 4 and two == four[:2]
