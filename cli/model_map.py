@@ -162,6 +162,11 @@ def run_map(args) -> int:
     out = prepare_output(args.out, cache=False)
     path = out / "map.zarr"
     existed = path.exists()
+    import json
+
+    from common.files import write_text
+    from common.output import strict_json
+
     from .map import with_wall
 
     ds = run_engine(params, out, args.scheduler, args.workers,
@@ -180,13 +185,18 @@ def run_map(args) -> int:
     mi = {v: float(np.mean(ds[v].values == 1)) for v in verdicts}
     png = out / "map.png"
     _plot_map(_as_words(ds, verdicts), png, model)
-    files = [str(path), str(png)]
+    summary = _summary(ds, verdicts, simulated)
+    write_text(out / "summary.json", json.dumps(strict_json(summary), indent=2) + "\n")
+    files = [str(path), str(png), str(out / "summary.json")]
     critical = _critical_rows(ds)
     unsampled = _unsampled(ds)
     if args.json:
         res = {"model": model.name, "parameters": dict(model.params), "amplitude": amp,
                "axes": {x[0]: list(map(float, x[1])), y[0]: list(map(float, y[1]))},
-               "mi_share": mi, "files": files}
+               "mi_fraction": summary["mi_fraction"], "mi_share": mi, "files": files}
+        if simulated:
+            res["agreement_with_simulation_percent"] = summary[
+                "agreement_with_simulation_percent"]
         if critical:
             res["critical_damping"] = critical
         if unsampled is not None:
@@ -217,8 +227,27 @@ def run_map(args) -> int:
             f"{other} {v:g}: " + ("-" if x is None else f"{x:.4g}")
             for v, x in zip(c[other], c["value"]))
               + ("" if all(x is not None for x in c["value"]) else f" ({c['reason']})"))
-    print(f"wrote {path} and {png} (xarray: xr.open_zarr({str(path)!r}))")
+    print(f"wrote {path}, {png} and {out / 'summary.json'} (xarray: "
+          f"xr.open_zarr({str(path)!r}))")
     return 0
+
+
+def _summary(ds, verdicts: list, simulated: bool) -> dict:
+    """summary.json, the paper map's keys: cells, cells simulated, each theory's share of
+    MI cells (``mi_fraction``, by theory name) and of undetermined ones, and with runs how
+    often each theory's verdict agrees with the simulation's (``numerics.maps.agreement``)."""
+    import numpy as np
+
+    from numerics.maps import agreement
+
+    names = {v: v.removeprefix("verdict_") for v in verdicts}
+    out = {"cells": int(ds["done"].size),
+           "simulated": int(ds["done"].values.sum()) if simulated else 0,
+           "mi_fraction": {n: float(np.mean(ds[v].values == 1)) for v, n in names.items()},
+           "undetermined_cells": {n: int((ds[v].values < 0).sum()) for v, n in names.items()}}
+    if simulated:
+        out["agreement_with_simulation_percent"] = agreement(ds)
+    return out
 
 
 #: a theory-only map's cells per task unless --block: a row of the map, up to this many

@@ -27,7 +27,8 @@ harmonics. Gershgorin discs about the roots i (l omega +- w) of each harmonic's 
 with the roots' Krein signs, certify the offsets and frequencies where no mode can grow;
 each cluster of discs that can hold a growing mode centred at l = -1, 0, 1 is solved by
 Newton on its Schur complement, and the modes found are kept by the same weights as the
-dense eigenproblem's (argmax at |l| <= 1, < 1e-6 in the outer three harmonics). Where a
+dense eigenproblem's (heaviest at |l| <= 1, a tie of harmonics centred at their mean:
+``CENTRE_TIE``; < 1e-6 in the outer three harmonics). Where a
 cluster is too large (strong coupling, or a flat branch: flexmm), or Newton does not
 settle, the central harmonics' pencil at |l| <= P - 5 with the outer ones folded in, its
 growing eigenvalues refined by Newton at P, fastest first (``_strong``: flexmm's offsets
@@ -69,6 +70,32 @@ from ._wave import (  # noqa: F401 (TravellingWave, travelling_wave, continued_w
 #: are degenerate, which eig resolves only to sqrt(machine epsilon) (measured up to
 #: 8e-8 omega on FPUT at k = pi / 2); a rate that small needs > 1e6 periods to show.
 GAIN_FLOOR = 3e-7
+
+#: Harmonics whose weights are within this (relative) of a mode's largest tie. A
+#: four-wave pair holds its two waves in harmonics l and l - 2 with equal weight where the
+#: waves mirror each other (README's fput at k = pi / 2: a backward pair, both waves at
+#: k - pi, weighs 0.4954 at l = 0 and at l = 2 at q = pi / 2, equal to 1e-15; flexmm at
+#: q = pi - k and q = k). The heaviest harmonic was then round-off's pick, and the mode
+#: was kept or dropped by it: the merged-and-reverted sparse kernel of 2026-11-26 moved
+#: that round-off and README's mode lost its name. A tie is centred at its harmonics'
+#: mean: {0, 2} at 1 (kept), {1, 3} at 2 (not: its copy {-1, 1} two offsets over is).
+#: 1e-6: above the weights' error (measured <= 2e-12 at such ties; the eigenvector's,
+#: ~ eps |A| / rate, <= 1e-8 at the rate floor), below any difference that names one.
+CENTRE_TIE = 1e-6
+
+
+def _centre(per_l, l_):
+    """Where each mode is centred: (harmonic, central), per row of ``per_l`` (weights
+    over ``l_``, last axis). Its heaviest harmonic; where others tie with it
+    (``CENTRE_TIE``), the tie's mean decides ``central`` (|mean| <= 1) and the tied
+    harmonic nearest l = 0 is reported where the heaviest is not central."""
+    per_l = np.asarray(per_l)
+    heavy = l_[np.argmax(per_l, axis=-1)]
+    tied = per_l >= (1 - CENTRE_TIE) * per_l.max(axis=-1, keepdims=True)
+    mean = (tied * l_).sum(axis=-1) / tied.sum(axis=-1)
+    central = np.abs(mean) <= 1
+    near = l_[np.argmin(np.where(tied, np.abs(l_), np.inf), axis=-1)]
+    return np.where(central & (np.abs(heavy) > 1), near, heavy), central
 
 
 @dataclass(frozen=True)
@@ -302,8 +329,8 @@ class _Sidebands:
 
     def _keep(self, offsets, lam, vec, count, gains, modes, offs, gains_only=False):
         """The kept modes' rate, harmonic and sideband offset into gains, modes, offs at the
-        offsets with count >= 0 (the dense spectrum's rule: argmax weight at |l| <= 1, less
-        than 1e-6 of it in the outer three harmonics)."""
+        offsets with count >= 0 (the dense spectrum's rule: heaviest at |l| <= 1 or a tie
+        centred there, less than 1e-6 of it in the outer three harmonics)."""
         P, k, d = self.P, self.wave.k, self.wave.model.n_fields
         if gains_only:  # the rates alone: the same rule, compiled (``_kept``)
             from ._kept import kept_gains
@@ -317,7 +344,7 @@ class _Sidebands:
         c = np.abs(vec) ** 2                                         # (Q, modes, n)
         weight = c / np.maximum(c.sum(axis=-1, keepdims=True), 1e-300)
         per_l = weight.reshape(offsets.size, width, 2 * P + 1, d).sum(axis=-1)
-        central = np.abs(l_[np.argmax(per_l, axis=-1)]) <= 1
+        centre, central = _centre(per_l, l_)
         outer = per_l[..., :3].sum(axis=-1) + per_l[..., -3:].sum(axis=-1)
         have = np.arange(width)[None, :] < count[:, None]
         re = np.where(have & central & (outer < 1e-6), lam.real, -np.inf)
@@ -325,7 +352,7 @@ class _Sidebands:
         grows = np.flatnonzero(re[np.arange(offsets.size), best] > self.floor)
         gains[grows] = re[grows, best[grows]]
         w_best = per_l[grows, best[grows]]                           # (grows, 2P + 1)
-        modes[grows] = l_[np.argmax(w_best, axis=1)]
+        modes[grows] = centre[grows, best[grows]]
         offs[grows] = _sideband_offsets(offsets[grows], l_, k, w_best)
 
     def checked(self, offsets) -> HillSpectrum:
@@ -409,10 +436,11 @@ def _dense_growing(wave, offsets, P):
             x = lu_solve(lu, x / np.max(np.abs(x)), check_finite=False)
             c = np.abs(x[:n]) ** 2
             per_l = (c / max(c.sum(), 1e-300)).reshape(2 * P + 1, d).sum(axis=1)
-            if abs(l_[np.argmax(per_l)]) > 1 or per_l[:3].sum() + per_l[-3:].sum() >= 1e-6:
+            centre, central = _centre(per_l, l_)
+            if not central or per_l[:3].sum() + per_l[-3:].sum() >= 1e-6:
                 continue
             gains[i] = lam[j].real
-            modes[i] = int(l_[int(np.argmax(per_l))])
+            modes[i] = int(centre)
             offs[i] = _sideband_offset(q, l_, k, per_l)
             break
     return HillSpectrum(wave=wave, offsets=offsets, gain=gains, harmonic=modes,
@@ -455,13 +483,13 @@ def _dense_spectrum(wave, offsets, P, return_eigenvalues):
         c = np.abs(vec[:n]) ** 2
         weight = c / np.maximum(c.sum(axis=0), 1e-300)
         per_l = weight.reshape(2 * P + 1, d, -1).sum(axis=1)
-        central = np.abs(l_[np.argmax(per_l, axis=0)]) <= 1
+        centre, central = _centre(per_l.T, l_)
         resolved = central & (weight[outer].sum(axis=0) < 1e-6)
         re = np.where(resolved, lam.real, -np.inf)
         best = int(np.argmax(re))
         g = float(re[best]) if np.isfinite(re[best]) else 0.0
         gains.append(g if g > floor else 0.0)
-        modes.append(int(l_[int(np.argmax(per_l[:, best]))]))
+        modes.append(int(centre[best]))
         kap = q + l_ * k
         dist = np.minimum(_wrap(kap - k), _wrap(kap + k))
         near = dist <= np.pi / 4
