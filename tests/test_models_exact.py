@@ -642,3 +642,63 @@ def test_the_paper_point_takes_seeds_without_runs(capsys):
 
     two, four = factors(["--seeds", "2"]), factors([])
     assert len(two) == 2 and len(four) == 4 and two == four[:2]
+
+
+@pytest.mark.parametrize("name, params, k, a", [
+    ("fput", {}, np.pi / 2, 0.3),              # tied harmonics at q = pi / 2 (a backward pair)
+    ("klein-gordon", {}, 2.0, 0.4),
+    ("sine-gordon", {}, 0.8, 0.5),
+    ("flexmm", {}, 0.81681, 0.028),            # two fields
+    ("diatomic-fput", {}, 1.0, 0.1),
+])
+def test_the_rates_alone_keep_the_modes_the_spectrum_keeps(name, params, k, a):
+    """A damped point's lower amplitudes ask the Hill rates alone (``gains_only``: the
+    kept-mode rule compiled, ``_kept``): at every ring offset, at the point's amplitude and
+    at half of it, the same rate as the full spectrum's (the same eigenvalues, the same
+    rule: equal to the bit; a rule that differed, e.g. in the centre of tied harmonics,
+    would keep or drop a mode and change a rate by its whole size)."""
+    from numerics.models._exact import _Sidebands, continued_wave
+
+    model = _model(name, **params)
+    top = travelling_wave(model, k, a)
+    q = 2 * np.pi * np.arange(65) / 128
+    for wave in (top, continued_wave(model, top.carrier, a / 2, top, {})):
+        engine = _Sidebands(wave)
+        full = engine.spectrum(q)
+        alone = engine.spectrum(q, gains_only=True)
+        assert np.array_equal(alone.gain, full.gain)
+        assert full.peak_gain > 0 or name == "diatomic-fput"
+
+
+def test_the_compiled_rule_centres_tied_harmonics_at_their_mean():
+    """``_kept.kept_gains`` (the rates alone) states the kept-mode rule as ``_centre``
+    does: eigenvectors made by hand, one mode per offset, weights 0.45 at two harmonics
+    tied to round-off (0.1 CENTRE_TIE), the rest spread below 1e-6 of the outer three.
+    {0, 2}: centred at 1, kept; {1, 3}: at 2, dropped, whichever round-off made heavier;
+    {-1, 1}: kept; a real difference (0.45 against 0.46 at l = 2): dropped; an outer
+    weight of 1e-5: dropped. The expected rates are the rule's statement."""
+    from numerics.models._exact import CENTRE_TIE
+    from numerics.models._kept import kept_gains
+
+    P = 5
+    l_ = np.arange(-P, P + 1)
+    eps = 0.1 * CENTRE_TIE
+
+    def mode(outer=1e-9, **at):
+        w = np.where(np.abs(l_) >= P - 2, outer, 1e-3)
+        for key, v in at.items():
+            w[int(key[1:]) * (-1 if key[0] == "m" else 1) + P] = v
+        return np.sqrt(w / w.sum()) * np.exp(1j * l_)  # a phase: weights are |y|^2
+
+    cases = [(mode(p0=0.45, p2=0.45 * (1 + eps)), True),
+             (mode(p0=0.45 * (1 + eps), p2=0.45), True),
+             (mode(p1=0.45, p3=0.45 * (1 + eps)), False),
+             (mode(p1=0.45 * (1 + eps), p3=0.45), False),
+             (mode(m1=0.45, p1=0.45 * (1 + eps)), True),
+             (mode(p0=0.45, p2=0.46), False),
+             (mode(outer=1e-5, p0=0.9), False)]
+    vec = np.array([[v] for v, _ in cases])
+    lam = np.full((len(cases), 1), 0.02 + 1.0j)
+    gains = np.zeros(len(cases))
+    kept_gains(lam, vec, np.ones(len(cases), np.int64), P, 1, 1e-7, gains, CENTRE_TIE)
+    assert gains.tolist() == [0.02 if keep else 0.0 for _, keep in cases]

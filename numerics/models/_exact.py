@@ -335,7 +335,7 @@ class _Sidebands:
         if gains_only:  # the rates alone: the same rule, compiled (``_kept``)
             from ._kept import kept_gains
 
-            kept_gains(lam, vec, count, P, d, self.floor, gains)
+            kept_gains(lam, vec, count, P, d, self.floor, gains, CENTRE_TIE)
             return
         l_ = np.arange(-P, P + 1)
         # the slots that hold a mode anywhere (flexmm: <= 4 of MAX_MODES): the same values
