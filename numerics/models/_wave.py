@@ -265,6 +265,25 @@ def _connected(model, k, a, branch, harmonics, direct, fast=None):
     return direct
 
 
+# (weak reference to a model, its acoustic directions, read only): a damped point's lower
+# amplitudes solve their waves with the set-up of the full amplitude's, one model object
+_ACOUSTIC = [None]
+
+
+def _acoustic(model):
+    """``acoustic_directions(model)``, kept for the last model object asked (read and
+    replaced whole: safe across threads; read only)."""
+    import weakref
+
+    last = _ACOUSTIC[0]
+    if last is not None and last[0]() is model:
+        return last[1]
+    N = acoustic_directions(model)
+    N.flags.writeable = False
+    _ACOUSTIC[0] = (weakref.ref(model), N)
+    return N
+
+
 def _scaled_start(start, car, a, H):
     """(omega, coefficients at H harmonics) of ``start`` moved to amplitude a: the first
     guess of ``_travelling_wave`` (``travelling_wave``'s ``start``)."""
@@ -307,12 +326,12 @@ def _travelling_wave(model, k, amplitude, branch, harmonics, start=None, fast=No
     if fast is None:
         car = carrier(model, k, branch)
         masses = np.asarray(model.masses, float)
-        acoustic = acoustic_directions(model)
+        acoustic = _acoustic(model)
     else:
         if "acoustic" not in fast:
             if "car" not in fast:
                 fast["car"] = carrier(model, k, branch)
-            fast.update(acoustic=acoustic_directions(model),
+            fast.update(acoustic=_acoustic(model),
                         masses=np.asarray(model.masses, float))
         car, acoustic, masses = fast["car"], fast["acoustic"], fast["masses"]
     d = model.n_fields
@@ -451,14 +470,17 @@ def _solve_fast(model, car, a, masses, acoustic, H, c0, omega0, least_squares, q
     layout = None if kept is None else kept.get(H)
     if layout is None:
         optical, free = _pack_layout(d, H, car.field, acoustic)
-        layout = (optical, free, collocation(d, H, car.k, car.field, optical, free))
+        layout = (optical, free, collocation(d, H, car.k, car.field, optical, free),
+                  float(np.max(masses)))
         if kept is not None:
             kept[H] = layout
-    optical, free, coll = layout
-    scale = float(np.max(masses)) * omega0**2 * a
+    optical, free, coll, m_max = layout
+    scale = m_max * omega0**2 * a
     n_opt = optical.shape[1]
     residual, jacobian = coll.equations(model, masses, a, scale)
-    parts0 = np.stack([np.real(c0[:, H + 1:]), np.imag(c0[:, H + 1:])], axis=-1)
+    # Re and Im of c0[:, 1..H] side by side (a complex array's float view: the values of
+    # np.stack([Re, Im], axis=-1)), the free ones in ``parts[free]``'s order
+    parts0 = np.ascontiguousarray(c0[:, H + 1:]).view(float).reshape(d, H, 2)
     x0 = np.concatenate([[omega0], optical.T @ np.real(c0[:, H]), parts0[free]])
     x = chord_newton(residual, jacobian, x0)
     if x is None:
