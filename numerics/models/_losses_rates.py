@@ -53,8 +53,10 @@ def _rates_at(model: Model, kappas) -> np.ndarray:
     hit = keys[at] == kap if keys.size else np.zeros(kap.size, bool)
     if not hit.all():
         missing = np.unique(kap[~hit])
-        if keys.size + missing.size > SIDE_KEPT:  # afresh: this call's wavenumbers alone
-            keys = np.unique(kap)
+        if not keys.size or keys.size + missing.size > SIDE_KEPT:
+            # afresh (none kept, or too many): this call's wavenumbers alone, already
+            # sorted and unique (``missing``: every one)
+            keys = missing if not keys.size else np.unique(kap)
             rows = damping_rates(model, keys)
         else:
             keys = np.concatenate([keys, missing])
