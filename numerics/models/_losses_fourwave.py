@@ -70,6 +70,9 @@ def _frequencies(model, kap):
     s = 1 / np.sqrt(m)
     z = np.exp(1j * kap)[:, None, None]
     K = (H[:d, :d] + H[d:, d:]) + H[:d, d:] * z + H[d:, :d] / z
-    lam = np.linalg.eigvalsh(s[None, :, None] * K * s[None, None, :])
+    A = s[None, :, None] * K * s[None, None, :]
+    # one field: a 1 x 1 Hermitian matrix's eigenvalue is its diagonal's real part (what
+    # LAPACK's zheevd returns for it, without the batched call)
+    lam = np.real(A[:, :, 0]) if d == 1 else np.linalg.eigvalsh(A)
     with np.errstate(invalid="ignore"):
         return np.where(lam >= 0, np.sqrt(np.abs(lam)), np.nan)
