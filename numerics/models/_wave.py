@@ -36,7 +36,7 @@ from common.threads import one_blas_thread
 from energy import Model, ModelError
 
 from ._linear import Carrier, carrier
-from ._nls import acoustic_directions
+from ._nls import kept_acoustic_directions
 
 RESIDUAL_TOL = 1e-9
 #: A growth rate below this fraction of omega is round-off of the eigensolver: at a
@@ -265,25 +265,6 @@ def _connected(model, k, a, branch, harmonics, direct, fast=None):
     return direct
 
 
-# (weak reference to a model, its acoustic directions, read only): a damped point's lower
-# amplitudes solve their waves with the set-up of the full amplitude's, one model object
-_ACOUSTIC = [None]
-
-
-def _acoustic(model):
-    """``acoustic_directions(model)``, kept for the last model object asked (read and
-    replaced whole: safe across threads; read only)."""
-    import weakref
-
-    last = _ACOUSTIC[0]
-    if last is not None and last[0]() is model:
-        return last[1]
-    N = acoustic_directions(model)
-    N.flags.writeable = False
-    _ACOUSTIC[0] = (weakref.ref(model), N)
-    return N
-
-
 def _scaled_start(start, car, a, H):
     """(omega, coefficients at H harmonics) of ``start`` moved to amplitude a: the first
     guess of ``_travelling_wave`` (``travelling_wave``'s ``start``)."""
@@ -326,12 +307,12 @@ def _travelling_wave(model, k, amplitude, branch, harmonics, start=None, fast=No
     if fast is None:
         car = carrier(model, k, branch)
         masses = np.asarray(model.masses, float)
-        acoustic = _acoustic(model)
+        acoustic = kept_acoustic_directions(model)
     else:
         if "acoustic" not in fast:
             if "car" not in fast:
                 fast["car"] = carrier(model, k, branch)
-            fast.update(acoustic=_acoustic(model),
+            fast.update(acoustic=kept_acoustic_directions(model),
                         masses=np.asarray(model.masses, float))
         car, acoustic, masses = fast["car"], fast["acoustic"], fast["masses"]
     d = model.n_fields
