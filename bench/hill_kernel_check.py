@@ -32,6 +32,9 @@ MODELS = (("fput", {}), ("fput", dict(alpha=0.5)), ("klein-gordon", {}),
 
 def main(argv=None):
     argv = sys.argv[1:] if argv is None else argv
+    if "--baseline" not in argv or argv.index("--baseline") + 1 >= len(argv):
+        raise SystemExit("usage: python -m bench.hill_kernel_check --baseline "
+                         "OTHER_TREE/numerics/models/_sidebands.py")
     path = argv[argv.index("--baseline") + 1]
     # named by its file's stem: numba's on-disk cache of that file records the module name
     stem = Path(path).stem

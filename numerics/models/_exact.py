@@ -277,6 +277,8 @@ def _work_harmonics(wave) -> int:
 def _hill_spectrum(wave, offsets, harmonics=None, return_eigenvalues=False):
     offsets = np.atleast_1d(np.asarray(offsets, dtype=float))
     if harmonics or return_eigenvalues:
+        from ._hill_dense import _dense_spectrum
+
         return _dense_spectrum(wave, offsets, harmonics or wave.harmonics + 4,
                                return_eigenvalues)
     return _Sidebands(wave).checked(offsets)
@@ -321,6 +323,8 @@ class _Sidebands:
             gains[dense], modes[dense], offs[dense] = sub
             dense = dense[count < 0]
         if dense.size:
+            from ._hill_dense import _dense_growing
+
             sub = _dense_growing(wave, offsets[dense], P)
             gains[dense], modes[dense] = sub.gain, sub.harmonic
             offs[dense] = sub.sideband_offset
@@ -353,6 +357,8 @@ class _Sidebands:
         gains[grows] = re[grows, best[grows]]
         w_best = per_l[grows, best[grows]]                           # (grows, 2P + 1)
         modes[grows] = centre[grows, best[grows]]
+        from ._hill_dense import _sideband_offsets
+
         offs[grows] = _sideband_offsets(offsets[grows], l_, k, w_best)
 
     def checked(self, offsets) -> HillSpectrum:
@@ -367,141 +373,11 @@ class _Sidebands:
         P2 = self.P + PERSIST_STEP
         if abs(again.gain[0] - spec.gain[i]) <= 1e-6 * spec.gain[i]:
             return dataclasses.replace(spec, truncations=(self.P, P2))
+        from ._hill_dense import _dense_spectrum
+
         P = self.wave.harmonics + 4
         return dataclasses.replace(_dense_spectrum(self.wave, offsets, P, False),
                                    truncations=(P,))
-
-
-def _sideband_offsets(q, l_, k, w_best):
-    """``_sideband_offset`` of many offsets q (shape (m,)) at once, w_best (m, 2P + 1)."""
-    kap = q[:, None] + l_[None, :] * k
-    dist = np.minimum(_wrap(kap - k), _wrap(kap + k))
-    near = dist <= np.pi / 4
-    side = np.where(near, w_best, 0).sum(axis=1) >= 0.1 * w_best.sum(axis=1)
-    j = np.argmax(np.where(near, w_best, -np.inf), axis=1)
-    out = dist[np.arange(q.size), j]
-    return np.where(side & near.any(axis=1), out, math.nan)
-
-
-def _sideband_offset(q, l_, k, w_best):
-    kap = q + l_ * k
-    dist = np.minimum(_wrap(kap - k), _wrap(kap + k))
-    near = dist <= np.pi / 4
-    side = w_best[near].sum() >= 0.1 * w_best.sum()
-    return float(dist[near][np.argmax(w_best[near])]) if side else math.nan
-
-
-def _dense_growing(wave, offsets, P):
-    """The compiled path's fallback: the dense eigenvalues (``eigvals``, no vectors) at
-    each offset, then the eigenvectors of the growing ones only, fastest first (inverse
-    iteration on the linearisation), until one is kept by the dense spectrum's rule: the
-    same rate, harmonic and sideband offset at ~60% of ``eig``'s cost (flexmm, P = 10)."""
-    from scipy.linalg import lu_factor, lu_solve
-
-    model = wave.model
-    d = model.n_fields
-    k, omega = wave.k, wave.omega
-    Hh = _hessian_harmonics(wave, P)
-    l_ = np.arange(-P, P + 1)
-    n = d * (2 * P + 1)
-    m = np.tile(np.asarray(model.masses, float), 2 * P + 1)
-    Minv = 1 / m
-    floor = GAIN_FLOOR * max(omega, 1e-300)
-    diff = l_[:, None] - l_[None, :] + 2 * P
-    back = np.exp(-1j * (l_[:, None] - l_[None, :]) * k)[..., None, None]
-    ll = np.repeat(l_, d)
-    gains = np.zeros(offsets.size)
-    modes = np.zeros(offsets.size, int)
-    offs = np.full(offsets.size, math.nan)
-    b = np.random.default_rng(0).standard_normal(2 * n) + 0j  # inverse iteration's start
-    for i, q in enumerate(offsets):
-        ph = np.exp(1j * (q + l_ * k))[None, :, None, None]
-        S = Hh[diff]
-        Sb = S * back
-        blk = (S[..., :d, :d] + S[..., :d, d:] * ph + Sb[..., d:, :d] / ph
-               + Sb[..., d:, d:])
-        L = blk.transpose(0, 2, 1, 3).reshape(n, n)
-        A = np.zeros((2 * n, 2 * n), complex)
-        A[:n, n:] = np.eye(n)
-        A[n:, :n] = -Minv[:, None] * (L - np.diag(ll**2 * omega**2 * m))
-        A[n:, n:] = np.diag(2j * omega * ll)
-        lam = np.linalg.eigvals(A)
-        for j in np.argsort(-lam.real):
-            if not lam[j].real > floor:
-                break
-            # A - lam I is singular to round-off: two solves give its null vector
-            shift = lam[j] + 1e-13 * (abs(lam[j]) + omega)
-            lu = lu_factor(A - shift * np.eye(2 * n), check_finite=False)
-            x = lu_solve(lu, b, check_finite=False)
-            x = lu_solve(lu, x / np.max(np.abs(x)), check_finite=False)
-            c = np.abs(x[:n]) ** 2
-            per_l = (c / max(c.sum(), 1e-300)).reshape(2 * P + 1, d).sum(axis=1)
-            centre, central = _centre(per_l, l_)
-            if not central or per_l[:3].sum() + per_l[-3:].sum() >= 1e-6:
-                continue
-            gains[i] = lam[j].real
-            modes[i] = int(centre)
-            offs[i] = _sideband_offset(q, l_, k, per_l)
-            break
-    return HillSpectrum(wave=wave, offsets=offsets, gain=gains, harmonic=modes,
-                        sideband_offset=offs, truncations=(P,))
-
-
-def _dense_spectrum(wave, offsets, P, return_eigenvalues):
-    """The Hill pencil's whole spectrum per offset (numpy.linalg.eig of its 2 n x 2 n
-    linearisation): the reference the compiled path equals, and its fallback."""
-    model = wave.model
-    d = model.n_fields
-    k, omega = wave.k, wave.omega
-    Hh = _hessian_harmonics(wave, P)
-    l_ = np.arange(-P, P + 1)
-    n = d * (2 * P + 1)
-    m = np.tile(np.asarray(model.masses, float), 2 * P + 1)
-    Minv = 1 / m
-    gains, modes, lams, offs = [], [], [], []
-    floor = GAIN_FLOOR * max(omega, 1e-300)
-    outer = np.zeros((2 * P + 1, d), bool)
-    outer[:3] = outer[-3:] = True
-    outer = outer.ravel()
-    diff = l_[:, None] - l_[None, :] + 2 * P
-    back = np.exp(-1j * (l_[:, None] - l_[None, :]) * k)[..., None, None]
-    for q in offsets:
-        ph = np.exp(1j * (q + l_ * k))[None, :, None, None]  # per column harmonic h
-        S = Hh[diff]                                          # (l, h, 2d, 2d)
-        Sb = S * back
-        blk = (S[..., :d, :d] + S[..., :d, d:] * ph + Sb[..., d:, :d] / ph
-               + Sb[..., d:, d:])                            # (l, h, d, d)
-        L = blk.transpose(0, 2, 1, 3).reshape(n, n)
-        ll = np.repeat(l_, d)
-        K0 = L - np.diag(ll**2 * omega**2 * m)
-        B = np.diag(-2j * omega * ll * m)
-        A = np.zeros((2 * n, 2 * n), complex)
-        A[:n, n:] = np.eye(n)
-        A[n:, :n] = -Minv[:, None] * K0
-        A[n:, n:] = -Minv[:, None] * B
-        lam, vec = np.linalg.eig(A)
-        c = np.abs(vec[:n]) ** 2
-        weight = c / np.maximum(c.sum(axis=0), 1e-300)
-        per_l = weight.reshape(2 * P + 1, d, -1).sum(axis=1)
-        centre, central = _centre(per_l.T, l_)
-        resolved = central & (weight[outer].sum(axis=0) < 1e-6)
-        re = np.where(resolved, lam.real, -np.inf)
-        best = int(np.argmax(re))
-        g = float(re[best]) if np.isfinite(re[best]) else 0.0
-        gains.append(g if g > floor else 0.0)
-        modes.append(int(centre[best]))
-        kap = q + l_ * k
-        dist = np.minimum(_wrap(kap - k), _wrap(kap + k))
-        near = dist <= np.pi / 4
-        w_best = per_l[:, best]
-        side = w_best[near].sum() >= 0.1 * w_best.sum()
-        offs.append(float(dist[near][np.argmax(w_best[near])]) if side else math.nan)
-        if return_eigenvalues:
-            lams.append(lam[resolved])
-    spec = HillSpectrum(wave=wave, offsets=offsets, gain=np.array(gains),
-                        harmonic=np.array(modes, int), sideband_offset=np.array(offs),
-                        truncations=(P,))
-    return (spec, lams) if return_eigenvalues else spec
 
 
 def ring_offsets(N: int) -> np.ndarray:
@@ -545,6 +421,8 @@ def exact_gain(model: Model, k: float, amplitude: float, branch=None, *, N: int 
                            method="bounded", options={"xatol": 1e-6 * (hi - lo)})
     extra = engine.checked(np.array([best.x]))
     if len(extra.truncations) != 2:  # the peak did not persist: the old dense way
+        from ._hill_dense import _dense_spectrum
+
         spec = _dense_spectrum(wave, q, wave.harmonics + 4, False)
         extra = _dense_spectrum(wave, extra.offsets, wave.harmonics + 4, False)
     order = np.argsort(np.concatenate([q, extra.offsets]))
