@@ -39,6 +39,8 @@ or bench/ with --update). Reports the load average: the machine is shared.
     python -m bench.maps --model-row [--quick] [--fput-32 [--update]]
         (issue 40's rows alone, printed: the table, the model map on 2 workers against 1;
         the 32 x 32 fput map with --fput-32, written into bench/results.json with --update)
+    python -m bench.maps --workers-row [--quick] [--update]
+        (the model map on 2 workers against 1 alone, into results.json with --update)
     python -m bench.maps --estimates [--quick]   (issue 44's estimate rows, printed)
 """
 
@@ -369,6 +371,18 @@ if __name__ == "__main__":
 
     if "--estimates" in sys.argv:  # issue 44's estimate rows alone (printed, not written)
         print_estimates(estimates("--quick" in sys.argv))
+    elif "--workers-row" in sys.argv:  # issue 40's 2-workers row alone
+        layouts = model_map_layouts("--quick" in sys.argv)
+        print_model_layouts(layouts)
+        if "--update" in sys.argv:  # into the committed maps section, its rest kept
+            import json
+
+            from bench.simulator import output_dir, results_path, write_sections
+
+            here = output_dir(update=True)
+            section = json.loads(results_path(False, here).read_text()).get("maps", {})
+            section.update(model_map_workers=layouts)
+            write_sections({"maps": section}, False, here)
     elif "--model-row" in sys.argv:  # issue 40's rows alone (printed, not written)
         load = os.getloadavg()[0]
         row = model_vs_paper_map()

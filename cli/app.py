@@ -161,7 +161,9 @@ def _point_parser(sub, model_mode=False):
                         "within [1000, 100000]; 5000 where nothing grows; the output says "
                         "when the cap stops a run short of the 4 e-foldings that decide). "
                         "A run's verdict: MI, 'no growth within T' or undetermined")
-    p.add_argument("--seeds", type=int, default=4, help="with --simulate: noise seeds of the simulation")
+    p.add_argument("--seeds", type=int, default=4, help="noise seeds of the runs (--simulate) and of the paper "
+                   "chain's predicted growth factor (no runs needed); a model's point: "
+                   "with --simulate only")
     p.add_argument("--out", help="folder for point.json and point.png (default: none, "
                    "print only)")
     add_model_args(p)

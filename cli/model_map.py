@@ -164,6 +164,11 @@ def run_map(args) -> int:
     out = prepare_output(args.out, cache=False)
     path = out / "map.zarr"
     existed = path.exists()
+    import json
+
+    from common.files import write_text
+    from common.output import strict_json
+
     from .map import with_wall
 
     ds = run_engine(params, out, args.scheduler, args.workers,
@@ -180,19 +185,21 @@ def run_map(args) -> int:
                          f"{params.undefined_reason()}); change the axes, k, the amplitude "
                          "or --branch")
     mi = {v: float(np.mean(ds[v].values == 1)) for v in verdicts}
-    # cells a theory leaves undetermined (k = pi for the NLS, no wave for the exact theory)
-    # are in the share's denominator, not MI: said beside it, so 50% is not read as half
-    # of the cells stable
-    undetermined = {v: int(np.sum(ds[v].values < 0)) for v in verdicts}
     png = out / "map.png"
     _plot_map(_as_words(ds, verdicts), png, model)
-    files = [str(path), str(png)]
+    summary = _summary(ds, verdicts, simulated)
+    write_text(out / "summary.json", json.dumps(strict_json(summary), indent=2) + "\n")
+    files = [str(path), str(png), str(out / "summary.json")]
     critical = _critical_rows(ds)
     unsampled = _unsampled(ds)
     if args.json:
         res = {"model": model.name, "parameters": dict(model.params), "amplitude": amp,
                "axes": {x[0]: list(map(float, x[1])), y[0]: list(map(float, y[1]))},
-               "mi_share": mi, "undetermined": undetermined, "files": files}
+               "mi_fraction": summary["mi_fraction"], "mi_share": mi,
+               "undetermined_cells": summary["undetermined_cells"], "files": files}
+        if simulated:
+            res["agreement_with_simulation_percent"] = summary[
+                "agreement_with_simulation_percent"]
         if critical:
             res["critical_damping"] = critical
         if unsampled is not None:
@@ -214,7 +221,10 @@ def run_map(args) -> int:
         _emit(res)
         return 0
     for v, share in mi.items():
-        n = undetermined[v]
+        # cells a theory leaves undetermined (g1 = 0 for the NLS, no wave for the exact
+        # theory) are in the share's denominator, not MI: said beside it, so 50% is not
+        # read as half of the cells stable
+        n = summary["undetermined_cells"][v.removeprefix("verdict_")]
         print(f"MI share, {v.replace('verdict_', '')}: {share:.0%}"
               + (f" ({n} of {ds[v].size} cells undetermined, counted as not MI)" if n else ""))
     if unsampled and unsampled["cells"]:
@@ -225,8 +235,27 @@ def run_map(args) -> int:
             f"{other} {v:g}: " + ("-" if x is None else f"{x:.4g}")
             for v, x in zip(c[other], c["value"]))
               + ("" if all(x is not None for x in c["value"]) else f" ({c['reason']})"))
-    print(f"wrote {path} and {png} (xarray: xr.open_zarr({str(path)!r}))")
+    print(f"wrote {path}, {png} and {out / 'summary.json'} (xarray: "
+          f"xr.open_zarr({str(path)!r}))")
     return 0
+
+
+def _summary(ds, verdicts: list, simulated: bool) -> dict:
+    """summary.json, the paper map's keys: cells, cells simulated, each theory's share of
+    MI cells (``mi_fraction``, by theory name) and of undetermined ones, and with runs how
+    often each theory's verdict agrees with the simulation's (``numerics.maps.agreement``)."""
+    import numpy as np
+
+    from numerics.maps import agreement
+
+    names = {v: v.removeprefix("verdict_") for v in verdicts}
+    out = {"cells": int(ds["done"].size),
+           "simulated": int(ds["done"].values.sum()) if simulated else 0,
+           "mi_fraction": {n: float(np.mean(ds[v].values == 1)) for v, n in names.items()},
+           "undetermined_cells": {n: int((ds[v].values < 0).sum()) for v, n in names.items()}}
+    if simulated:
+        out["agreement_with_simulation_percent"] = agreement(ds)
+    return out
 
 
 #: a theory-only map's cells per task unless --block: a row of the map, up to this many

@@ -142,6 +142,9 @@ TEST_EXCEPTIONS = {
                                         "the kernel recomputed at each amplitude",
     "numerics.models._losses_sampling": "the exact theory's coarse-to-fine offsets: which "
                                         "columns a profile refines",
+    "numerics.models._small_algebra": "the Hill kernel's LU that skips exact zeros against a "
+                                  "dense solve, and its round-off threshold on the Hessian's "
+                                  "harmonics",
     "derivation._mi": "the MI band's derivation step",
     "derivation._pipeline": "the semi-discrete NLS derived afresh (the generated code's source)",
     "numerics.maps._integrity": "a garbled chunk found from its Blosc header, never decoded",
@@ -162,7 +165,10 @@ TEST_EXCEPTIONS = {
     "numerics.theory._hill": "Hill's batched eigenproblems, the pencil's input",
     "numerics.theory._pencil": "the pencil eigenvalue solver",
     "numerics.models._exact": "the anchors' writer moves the wave exact_gain solves (its own "
-                              "round-off spread, tests/anchors)",
+                              "round-off spread, tests/anchors); the kept-mode rule's "
+                              "centre of tied harmonics",
+    "numerics.models._kept": "the compiled kept-mode rule against eigenvectors made by hand "
+                             "(the centre of tied harmonics)",
     "numerics.models._real_gauge": "the phase that makes the Hill pencil real, and the "
                                    "frozen pencil's real eigenvalues against the complex ones",
     "numerics.theory._plane_wave": "the batched plane-wave solver the exact map uses",
@@ -177,6 +183,8 @@ BENCH_EXCEPTIONS = {
     "numerics.lattice._kernels": "bench/speed.py times the kernel's parts one by one "
                                  "(stencil, the libm variant, the vectorised loops)",
     "numerics.maps._cells": "bench/gpu.py takes a map's step (map_step) as a map does",
+    "numerics.models._sidebands": "bench/hill_kernel_check.py swaps the compiled Hill kernel "
+                                  "for another tree's copy, to compare their answers",
     "numerics.maps._gpu": "bench/gpu.py reports the device's name and whether it simulates",
     "numerics.maps._gpu_models": "bench/gpu.py times one launch of each model's kernel (its "
                                  "chains started as a map's are)",
@@ -378,7 +386,8 @@ def test_one_stepper():
     # constant coefficients (cosh/sinh of each interval; a theory, no force, no state), and
     # the trapezoid quadrature of a rate along the decaying carrier (along_decay: a sum);
     # "step" is one interval's exponential of that pair, shared by its two loops
-    theory = {("_losses.py", "pairs"), ("_losses.py", "step"), ("_losses.py", "integrate")}
+    theory = {("_losses_pairs.py", "pairs_top"), ("_losses_pairs.py", "pairs_all"),
+              ("_losses_pairs.py", "step"), ("_losses.py", "integrate")}
     for path in sorted((ROOT / "numerics" / "models").rglob("*.py")):
         for fn in _compiled_functions(path):
             if (path.name, fn.name) in theory:

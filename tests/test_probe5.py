@@ -247,7 +247,7 @@ def test_a_unicode_name_is_refused_saying_ascii(tmp_path):
 def test_a_model_map_says_how_many_cells_are_undetermined(capsys, tmp_path):
     """A k axis through Klein-Gordon's inflection point (g1 = 0: no NLS there, cos k =
     (3 - sqrt 5) / 2): 'MI share, semidiscrete: 50%' read as half the cells stable; the
-    text now counts the undetermined cells, the JSON gives them per theory."""
+    text now counts the undetermined cells (the JSON and summary.json by theory name)."""
     import json
 
     k0 = math.acos((3 - math.sqrt(5)) / 2)  # omega^2 = 3 - 2 cos k: omega'' = 0 there
@@ -257,7 +257,7 @@ def test_a_model_map_says_how_many_cells_are_undetermined(capsys, tmp_path):
     assert code == 0
     assert "MI share, semidiscrete: 50% (2 of 4 cells undetermined, counted as not MI)" in out
     code, out, _ = _cli(capsys, *argv, "--json")
-    assert code == 0 and json.loads(out)["undetermined"] == {"verdict_semidiscrete": 2}
+    assert code == 0 and json.loads(out)["undetermined_cells"] == {"semidiscrete": 2}
 
 
 def test_a_wavenumber_no_ring_carries_gives_a_possible_remedy(capsys):

@@ -18,7 +18,9 @@ def agreement(ds, margin: float = MARGIN) -> dict:
     """Percent of the simulated cells where each theory's verdict equals the simulation's:
     over the cells where the theory is determined (``<name>_undetermined_cells`` says how
     many simulated cells it could not evaluate), and over those where it is not marginal
-    either (its predicted growth over t_end not within ``margin`` of the threshold).
+    either (its predicted growth over t_end not within ``margin`` of the threshold; left
+    out where the store has no one t_end: a model map whose runs are as long as each
+    cell's own rate needs).
 
     "predicted" (the growth factor predicted from each cell's own initial state) is
     marginal where ``growth_predicted`` is within ``margin`` of the threshold.
@@ -27,7 +29,11 @@ def agreement(ds, margin: float = MARGIN) -> dict:
     ``growth_log_ratio``), out of ``predicted_growth_cells``."""
     done = ds["done"].values
     sim = ds["verdict_simulated"].values.astype(np.int8)
-    t_end, thr = float(ds.attrs["t_end"]), float(ds.attrs["growth_threshold"])
+    thr = float(ds.attrs["growth_threshold"])
+    try:  # a model map's runs may take their length from each cell's rate: no one T
+        t_end = float(ds.attrs["t_end"])
+    except (TypeError, ValueError):
+        t_end = None
     names = [n.removeprefix("verdict_") for n in ds.data_vars
              if n.startswith("verdict_") and n != "verdict_simulated"
              and f"peak_gain_{n.removeprefix('verdict_')}" in ds.data_vars]
@@ -41,9 +47,12 @@ def agreement(ds, margin: float = MARGIN) -> dict:
         gain = ds[f"peak_gain_{name}"].values
         determined = done & (v != UNDETERMINED)
         with np.errstate(invalid="ignore"):
-            decided = determined & (np.abs(gain * t_end - math.log(thr)) > math.log(margin))
+            decided = determined & (np.abs(gain * (t_end or 0.0) - math.log(thr))
+                                    > math.log(margin))
         out[name] = pct(v, determined)
         out[f"{name}_undetermined_cells"] = int((done & (v == UNDETERMINED)).sum())
+        if t_end is None:  # each run as long as its cell's own rate needs: none marginal
+            continue
         out[f"{name}_decided"] = pct(v, decided)
         out[f"{name}_decided_cells"] = int(decided.sum())
     if "verdict_predicted" in ds:

@@ -284,7 +284,7 @@ def _run_tasks(params, path, todo, n_todo, scheduler, workers, progress, log, ar
 
         close(client, cluster)
     log(f"{'predicted' if params.theory_only else 'simulated'} {n_todo} cells in "
-        f"{time.perf_counter() - t0:.1f} s")
+        f"{time.perf_counter() - t0:.2f} s")
 
 
 #: the store's own names, and those it gathers (the map engine's internals under test:

@@ -27,7 +27,8 @@ harmonics. Gershgorin discs about the roots i (l omega +- w) of each harmonic's 
 with the roots' Krein signs, certify the offsets and frequencies where no mode can grow;
 each cluster of discs that can hold a growing mode centred at l = -1, 0, 1 is solved by
 Newton on its Schur complement, and the modes found are kept by the same weights as the
-dense eigenproblem's (argmax at |l| <= 1, < 1e-6 in the outer three harmonics). Where a
+dense eigenproblem's (heaviest at |l| <= 1, a tie of harmonics centred at their mean:
+``CENTRE_TIE``; < 1e-6 in the outer three harmonics). Where a
 cluster is too large (strong coupling, or a flat branch: flexmm), or Newton does not
 settle, the central harmonics' pencil at |l| <= P - 5 with the outer ones folded in, its
 growing eigenvalues refined by Newton at P, fastest first (``_strong``: flexmm's offsets
@@ -69,6 +70,32 @@ from ._wave import (  # noqa: F401 (TravellingWave, travelling_wave, continued_w
 #: are degenerate, which eig resolves only to sqrt(machine epsilon) (measured up to
 #: 8e-8 omega on FPUT at k = pi / 2); a rate that small needs > 1e6 periods to show.
 GAIN_FLOOR = 3e-7
+
+#: Harmonics whose weights are within this (relative) of a mode's largest tie. A
+#: four-wave pair holds its two waves in harmonics l and l - 2 with equal weight where the
+#: waves mirror each other (README's fput at k = pi / 2: a backward pair, both waves at
+#: k - pi, weighs 0.4954 at l = 0 and at l = 2 at q = pi / 2, equal to 1e-15; flexmm at
+#: q = pi - k and q = k). The heaviest harmonic was then round-off's pick, and the mode
+#: was kept or dropped by it: the merged-and-reverted sparse kernel of 2026-11-26 moved
+#: that round-off and README's mode lost its name. A tie is centred at its harmonics'
+#: mean: {0, 2} at 1 (kept), {1, 3} at 2 (not: its copy {-1, 1} two offsets over is).
+#: 1e-6: above the weights' error (measured <= 2e-12 at such ties; the eigenvector's,
+#: ~ eps |A| / rate, <= 1e-8 at the rate floor), below any difference that names one.
+CENTRE_TIE = 1e-6
+
+
+def _centre(per_l, l_):
+    """Where each mode is centred: (harmonic, central), per row of ``per_l`` (weights
+    over ``l_``, last axis). Its heaviest harmonic; where others tie with it
+    (``CENTRE_TIE``), the tie's mean decides ``central`` (|mean| <= 1) and the tied
+    harmonic nearest l = 0 is reported where the heaviest is not central."""
+    per_l = np.asarray(per_l)
+    heavy = l_[np.argmax(per_l, axis=-1)]
+    tied = per_l >= (1 - CENTRE_TIE) * per_l.max(axis=-1, keepdims=True)
+    mean = (tied * l_).sum(axis=-1) / tied.sum(axis=-1)
+    central = np.abs(mean) <= 1
+    near = l_[np.argmin(np.where(tied, np.abs(l_), np.inf), axis=-1)]
+    return np.where(central & (np.abs(heavy) > 1), near, heavy), central
 
 
 @dataclass(frozen=True)
@@ -256,6 +283,8 @@ def _work_harmonics(wave) -> int:
 def _hill_spectrum(wave, offsets, harmonics=None, return_eigenvalues=False):
     offsets = np.atleast_1d(np.asarray(offsets, dtype=float))
     if harmonics or return_eigenvalues:
+        from ._hill_dense import _dense_spectrum
+
         return _dense_spectrum(wave, offsets, harmonics or wave.harmonics + 4,
                                return_eigenvalues)
     return _Sidebands(wave).checked(offsets)
@@ -300,6 +329,8 @@ class _Sidebands:
             gains[dense], modes[dense], offs[dense] = sub
             dense = dense[count < 0]
         if dense.size:
+            from ._hill_dense import _dense_growing
+
             sub = _dense_growing(wave, offsets[dense], P)
             gains[dense], modes[dense] = sub.gain, sub.harmonic
             offs[dense] = sub.sideband_offset
@@ -308,9 +339,14 @@ class _Sidebands:
 
     def _keep(self, offsets, lam, vec, count, gains, modes, offs, gains_only=False):
         """The kept modes' rate, harmonic and sideband offset into gains, modes, offs at the
-        offsets with count >= 0 (the dense spectrum's rule: argmax weight at |l| <= 1, less
-        than 1e-6 of it in the outer three harmonics)."""
+        offsets with count >= 0 (the dense spectrum's rule: heaviest at |l| <= 1 or a tie
+        centred there, less than 1e-6 of it in the outer three harmonics)."""
         P, k, d = self.P, self.wave.k, self.wave.model.n_fields
+        if gains_only:  # the rates alone: the same rule, compiled (``_kept``)
+            from ._kept import kept_gains
+
+            kept_gains(lam, vec, count, P, d, self.floor, gains, CENTRE_TIE)
+            return
         l_ = np.arange(-P, P + 1)
         # the slots that hold a mode anywhere (flexmm: <= 4 of MAX_MODES): the same values
         width = max(int(count.max(initial=0)), 1)
@@ -318,17 +354,17 @@ class _Sidebands:
         c = np.abs(vec) ** 2                                         # (Q, modes, n)
         weight = c / np.maximum(c.sum(axis=-1, keepdims=True), 1e-300)
         per_l = weight.reshape(offsets.size, width, 2 * P + 1, d).sum(axis=-1)
-        central = np.abs(l_[np.argmax(per_l, axis=-1)]) <= 1
+        centre, central = _centre(per_l, l_)
         outer = per_l[..., :3].sum(axis=-1) + per_l[..., -3:].sum(axis=-1)
         have = np.arange(width)[None, :] < count[:, None]
         re = np.where(have & central & (outer < 1e-6), lam.real, -np.inf)
         best = np.argmax(re, axis=1)
         grows = np.flatnonzero(re[np.arange(offsets.size), best] > self.floor)
         gains[grows] = re[grows, best[grows]]
-        if gains_only:
-            return
         w_best = per_l[grows, best[grows]]                           # (grows, 2P + 1)
-        modes[grows] = l_[np.argmax(w_best, axis=1)]
+        modes[grows] = centre[grows, best[grows]]
+        from ._hill_dense import _sideband_offsets
+
         offs[grows] = _sideband_offsets(offsets[grows], l_, k, w_best)
 
     def checked(self, offsets) -> HillSpectrum:
@@ -343,140 +379,11 @@ class _Sidebands:
         P2 = self.P + PERSIST_STEP
         if abs(again.gain[0] - spec.gain[i]) <= 1e-6 * spec.gain[i]:
             return dataclasses.replace(spec, truncations=(self.P, P2))
+        from ._hill_dense import _dense_spectrum
+
         P = self.wave.harmonics + 4
         return dataclasses.replace(_dense_spectrum(self.wave, offsets, P, False),
                                    truncations=(P,))
-
-
-def _sideband_offsets(q, l_, k, w_best):
-    """``_sideband_offset`` of many offsets q (shape (m,)) at once, w_best (m, 2P + 1)."""
-    kap = q[:, None] + l_[None, :] * k
-    dist = np.minimum(_wrap(kap - k), _wrap(kap + k))
-    near = dist <= np.pi / 4
-    side = np.where(near, w_best, 0).sum(axis=1) >= 0.1 * w_best.sum(axis=1)
-    j = np.argmax(np.where(near, w_best, -np.inf), axis=1)
-    out = dist[np.arange(q.size), j]
-    return np.where(side & near.any(axis=1), out, math.nan)
-
-
-def _sideband_offset(q, l_, k, w_best):
-    kap = q + l_ * k
-    dist = np.minimum(_wrap(kap - k), _wrap(kap + k))
-    near = dist <= np.pi / 4
-    side = w_best[near].sum() >= 0.1 * w_best.sum()
-    return float(dist[near][np.argmax(w_best[near])]) if side else math.nan
-
-
-def _dense_growing(wave, offsets, P):
-    """The compiled path's fallback: the dense eigenvalues (``eigvals``, no vectors) at
-    each offset, then the eigenvectors of the growing ones only, fastest first (inverse
-    iteration on the linearisation), until one is kept by the dense spectrum's rule: the
-    same rate, harmonic and sideband offset at ~60% of ``eig``'s cost (flexmm, P = 10)."""
-    from scipy.linalg import lu_factor, lu_solve
-
-    model = wave.model
-    d = model.n_fields
-    k, omega = wave.k, wave.omega
-    Hh = _hessian_harmonics(wave, P)
-    l_ = np.arange(-P, P + 1)
-    n = d * (2 * P + 1)
-    m = np.tile(np.asarray(model.masses, float), 2 * P + 1)
-    Minv = 1 / m
-    floor = GAIN_FLOOR * max(omega, 1e-300)
-    diff = l_[:, None] - l_[None, :] + 2 * P
-    back = np.exp(-1j * (l_[:, None] - l_[None, :]) * k)[..., None, None]
-    ll = np.repeat(l_, d)
-    gains = np.zeros(offsets.size)
-    modes = np.zeros(offsets.size, int)
-    offs = np.full(offsets.size, math.nan)
-    b = np.random.default_rng(0).standard_normal(2 * n) + 0j  # inverse iteration's start
-    for i, q in enumerate(offsets):
-        ph = np.exp(1j * (q + l_ * k))[None, :, None, None]
-        S = Hh[diff]
-        Sb = S * back
-        blk = (S[..., :d, :d] + S[..., :d, d:] * ph + Sb[..., d:, :d] / ph
-               + Sb[..., d:, d:])
-        L = blk.transpose(0, 2, 1, 3).reshape(n, n)
-        A = np.zeros((2 * n, 2 * n), complex)
-        A[:n, n:] = np.eye(n)
-        A[n:, :n] = -Minv[:, None] * (L - np.diag(ll**2 * omega**2 * m))
-        A[n:, n:] = np.diag(2j * omega * ll)
-        lam = np.linalg.eigvals(A)
-        for j in np.argsort(-lam.real):
-            if not lam[j].real > floor:
-                break
-            # A - lam I is singular to round-off: two solves give its null vector
-            shift = lam[j] + 1e-13 * (abs(lam[j]) + omega)
-            lu = lu_factor(A - shift * np.eye(2 * n), check_finite=False)
-            x = lu_solve(lu, b, check_finite=False)
-            x = lu_solve(lu, x / np.max(np.abs(x)), check_finite=False)
-            c = np.abs(x[:n]) ** 2
-            per_l = (c / max(c.sum(), 1e-300)).reshape(2 * P + 1, d).sum(axis=1)
-            if abs(l_[np.argmax(per_l)]) > 1 or per_l[:3].sum() + per_l[-3:].sum() >= 1e-6:
-                continue
-            gains[i] = lam[j].real
-            modes[i] = int(l_[int(np.argmax(per_l))])
-            offs[i] = _sideband_offset(q, l_, k, per_l)
-            break
-    return HillSpectrum(wave=wave, offsets=offsets, gain=gains, harmonic=modes,
-                        sideband_offset=offs, truncations=(P,))
-
-
-def _dense_spectrum(wave, offsets, P, return_eigenvalues):
-    """The Hill pencil's whole spectrum per offset (numpy.linalg.eig of its 2 n x 2 n
-    linearisation): the reference the compiled path equals, and its fallback."""
-    model = wave.model
-    d = model.n_fields
-    k, omega = wave.k, wave.omega
-    Hh = _hessian_harmonics(wave, P)
-    l_ = np.arange(-P, P + 1)
-    n = d * (2 * P + 1)
-    m = np.tile(np.asarray(model.masses, float), 2 * P + 1)
-    Minv = 1 / m
-    gains, modes, lams, offs = [], [], [], []
-    floor = GAIN_FLOOR * max(omega, 1e-300)
-    outer = np.zeros((2 * P + 1, d), bool)
-    outer[:3] = outer[-3:] = True
-    outer = outer.ravel()
-    diff = l_[:, None] - l_[None, :] + 2 * P
-    back = np.exp(-1j * (l_[:, None] - l_[None, :]) * k)[..., None, None]
-    for q in offsets:
-        ph = np.exp(1j * (q + l_ * k))[None, :, None, None]  # per column harmonic h
-        S = Hh[diff]                                          # (l, h, 2d, 2d)
-        Sb = S * back
-        blk = (S[..., :d, :d] + S[..., :d, d:] * ph + Sb[..., d:, :d] / ph
-               + Sb[..., d:, d:])                            # (l, h, d, d)
-        L = blk.transpose(0, 2, 1, 3).reshape(n, n)
-        ll = np.repeat(l_, d)
-        K0 = L - np.diag(ll**2 * omega**2 * m)
-        B = np.diag(-2j * omega * ll * m)
-        A = np.zeros((2 * n, 2 * n), complex)
-        A[:n, n:] = np.eye(n)
-        A[n:, :n] = -Minv[:, None] * K0
-        A[n:, n:] = -Minv[:, None] * B
-        lam, vec = np.linalg.eig(A)
-        c = np.abs(vec[:n]) ** 2
-        weight = c / np.maximum(c.sum(axis=0), 1e-300)
-        per_l = weight.reshape(2 * P + 1, d, -1).sum(axis=1)
-        central = np.abs(l_[np.argmax(per_l, axis=0)]) <= 1
-        resolved = central & (weight[outer].sum(axis=0) < 1e-6)
-        re = np.where(resolved, lam.real, -np.inf)
-        best = int(np.argmax(re))
-        g = float(re[best]) if np.isfinite(re[best]) else 0.0
-        gains.append(g if g > floor else 0.0)
-        modes.append(int(l_[int(np.argmax(per_l[:, best]))]))
-        kap = q + l_ * k
-        dist = np.minimum(_wrap(kap - k), _wrap(kap + k))
-        near = dist <= np.pi / 4
-        w_best = per_l[:, best]
-        side = w_best[near].sum() >= 0.1 * w_best.sum()
-        offs.append(float(dist[near][np.argmax(w_best[near])]) if side else math.nan)
-        if return_eigenvalues:
-            lams.append(lam[resolved])
-    spec = HillSpectrum(wave=wave, offsets=offsets, gain=np.array(gains),
-                        harmonic=np.array(modes, int), sideband_offset=np.array(offs),
-                        truncations=(P,))
-    return (spec, lams) if return_eigenvalues else spec
 
 
 def ring_offsets(N: int) -> np.ndarray:
@@ -520,6 +427,8 @@ def exact_gain(model: Model, k: float, amplitude: float, branch=None, *, N: int 
                            method="bounded", options={"xatol": 1e-6 * (hi - lo)})
     extra = engine.checked(np.array([best.x]))
     if len(extra.truncations) != 2:  # the peak did not persist: the old dense way
+        from ._hill_dense import _dense_spectrum
+
         spec = _dense_spectrum(wave, q, wave.harmonics + 4, False)
         extra = _dense_spectrum(wave, extra.offsets, wave.harmonics + 4, False)
     order = np.argsort(np.concatenate([q, extra.offsets]))

@@ -38,7 +38,7 @@ import numpy as np
 
 from energy import Model, ModelError
 
-from ._losses_rates import _carrier_damping, side_rates, sideband_damping
+from ._losses_rates import _carrier_damping, rates_once, side_rates, sideband_damping
 
 #: amplification a theory calls observable (the runs' threshold)
 OBSERVABLE = 20.0
@@ -84,6 +84,19 @@ def integrate_pairs(P, Q, psi0, Gamma, G, q, t_end, steps=4000, carrier_decays=T
 def _pairs_start(P, Q, psi0, Gamma, G, q, t_end, steps, carrier_decays=True):
     """(q^2, G, x, y, h, a2) of ``integrate_pairs``: the growing eigenvector at t = 0 per
     offset, the step and the carrier's psi0^2 e^{-2 Gamma t} at each step's midpoint."""
+    h, a2 = _pairs_times(psi0, Gamma, t_end, steps, carrier_decays)
+    return (*_pairs_columns(P, Q, psi0, G, q), h, a2)
+
+
+def _pairs_times(psi0, Gamma, t_end, steps, carrier_decays=True):
+    """(h, a2) of ``_pairs_start``: the step and psi0^2 e^{-2 Gamma t} at the midpoints."""
+    h = t_end / steps
+    tm = (np.arange(steps) + 0.5) * h
+    return h, psi0**2 * (np.exp(-2 * Gamma * tm) if carrier_decays else np.ones(steps))
+
+
+def _pairs_columns(P, Q, psi0, G, q):
+    """(q^2, G, x, y) of ``_pairs_start``: each offset's growing eigenvector at t = 0."""
     q = np.atleast_1d(np.asarray(q, float))
     G = np.ascontiguousarray(np.broadcast_to(np.asarray(G, float), q.shape), dtype=float)
     q2 = q * q
@@ -94,92 +107,47 @@ def _pairs_start(P, Q, psi0, Gamma, G, q, t_end, steps, carrier_decays=True):
     x = np.where(s0 > 0, b, 1.0)
     y = np.where(s0 > 0, s0, 0.0)
     n0 = np.hypot(x, y)
-    h = t_end / steps
-    tm = (np.arange(steps) + 0.5) * h
-    a2 = psi0**2 * (np.exp(-2 * Gamma * tm) if carrier_decays else np.ones(steps))
-    return q2, G, x / n0, y / n0, h, a2
+    return q2, G, x / n0, y / n0
 
 
-def _pairs_best(P, Q, psi0, Gamma, G, q, t_end, steps):
+def _pairs_best(P, Q, psi0, Gamma, G, q, t_end, steps, times=None):
     """Per offset of ``integrate_pairs``: its largest |(x, y)(t)| / |(x, y)(0)| and the
     first step index that reaches it, without the (steps + 1, len(q)) array (the same
-    numbers: the same kernel, its writes replaced by the running maximum)."""
-    q2, G, x, y, h, a2 = _pairs_start(P, Q, psi0, Gamma, G, q, t_end, steps)
+    numbers: the same kernel, its writes replaced by the running maximum). ``times``:
+    ``_pairs_times``' (h, a2, later) of these arguments, where already computed."""
+    q2, G, x, y = _pairs_columns(P, Q, psi0, G, q)
+    h, a2, later = _pairs_later(psi0, Gamma, t_end, steps) if times is None else times
     best = np.ones(q2.size)
     first = np.zeros(q2.size, np.int64)
     # where an offset's maximum is final: each step is e^{-G h} exp(h [[0, b], [c, 0]]),
     # whose 2-norm is at most e^{h mu}, mu = |b + c| / 2 - G = |Q| a2 - G (the
     # logarithmic norm); from the first step after which |Q| a2 <= G at every later one
     # (``calm``) no step lengthens (x, y), so once |(x, y)| is below the running maximum
-    # (by more than the steps' round-off, ``_CALM_MARGIN``) the maximum and its first
+    # (by more than the steps' round-off, ``_losses_pairs.CALM_MARGIN``) the maximum and its first
     # step are the ones the whole horizon gives, and the offset stops there
-    later = np.maximum.accumulate(a2[::-1])[::-1]          # max of a2 over the later steps
     calm = np.searchsorted(-later, -G / max(abs(float(Q)), 1e-300), side="left")
     _pairs_compiled(best=True)(float(P), float(Q), a2, G, q2, h, x, y, best, first,
                                calm.astype(np.int64))
     return best, first
 
 
-#: the relative round-off allowed to the remaining steps of an offset that stops early
-#: (``_pairs_best``): ~1e-13 after 1000 steps of a few ulp each; 1e-9 of margin
-_CALM_MARGIN = 1e-9
-
-
-_PAIRS = {}
+def _pairs_later(psi0, Gamma, t_end, steps):
+    """(h, a2, later) of ``_pairs_best``: ``_pairs_times``' and the largest a2 over the
+    later steps (its calm test), once for every offset of a point."""
+    h, a2 = _pairs_times(psi0, Gamma, t_end, steps)
+    return h, a2, np.maximum.accumulate(a2[::-1])[::-1]
 
 
 def _pairs_compiled(best=False):
-    """The steps of ``integrate_pairs``, compiled (cached on disk): per offset, the
-    product in order of each step's exp(h [[-G, b], [c, -G]]) = e^{-G h} [[ch, b sh/l],
-    [c sh/l, ch]], l = sqrt(b c), b = P q^2, c = 2 Q a(t)^2 - b (cosh, sinh where b c > 0;
-    cos, sin where b c < 0: l is real or imaginary). ``best``: each offset's running
-    maximum and its first step instead of every step, each offset stopped where its
-    maximum is final (``_pairs_best``)."""
-    if best not in _PAIRS:
-        import numba
+    """The steps of ``integrate_pairs``, compiled (``_losses_pairs``, cached on disk): per
+    offset, the product in order of each step's exp(h [[-G, b], [c, -G]]) = e^{-G h}
+    [[ch, b sh/l], [c sh/l, ch]], l = sqrt(b c), b = P q^2, c = 2 Q a(t)^2 - b (cosh,
+    sinh where b c > 0; cos, sin where b c < 0: l is real or imaginary). ``best``: each
+    offset's running maximum and its first step instead of every step, each offset
+    stopped where its maximum is final (``_pairs_best``)."""
+    from ._losses_pairs import pairs_all, pairs_top
 
-        @numba.njit(cache=True, error_model="numpy", boundscheck=False, inline="always")
-        def step(P, Q, a2i, b, e, h, xj, yj):
-            c = 2 * Q * a2i - b
-            bc = b * c
-            r = math.sqrt(abs(bc))
-            rh = r * h
-            if bc > 0:
-                ch, sh = math.cosh(rh), math.sinh(rh)
-            else:
-                ch, sh = math.cos(rh), math.sin(rh)
-            shl = sh / r if rh > 1e-12 else h
-            xj, yj = e * ch * xj + e * b * shl * yj, e * c * shl * xj + e * ch * yj
-            # sqrt of the sum (2/3 of hypot's time), hypot where it would overflow
-            r2 = xj * xj + yj * yj
-            return xj, yj, (math.sqrt(r2) if r2 < 1e300 else math.hypot(xj, yj))
-
-        if best:
-            @numba.njit(cache=True, error_model="numpy", boundscheck=False)
-            def pairs(P, Q, a2, G, q2, h, x, y, top, first, calm):
-                grow = 1.0 + _CALM_MARGIN
-                for j in range(q2.size):
-                    b = P * q2[j]
-                    e = math.exp(-G[j] * h)
-                    xj, yj = x[j], y[j]
-                    for i in range(a2.size):
-                        xj, yj, n = step(P, Q, a2[i], b, e, h, xj, yj)
-                        if n > top[j]:
-                            top[j], first[j] = n, i + 1
-                        elif i + 1 >= calm[j] and n * grow < top[j]:
-                            break  # no later step lengthens (x, y): the maximum is final
-        else:
-            @numba.njit(cache=True, error_model="numpy", boundscheck=False)
-            def pairs(P, Q, a2, G, q2, h, x, y, out):
-                for j in range(q2.size):
-                    b = P * q2[j]
-                    e = math.exp(-G[j] * h)
-                    xj, yj = x[j], y[j]
-                    for i in range(a2.size):
-                        xj, yj, out[j, i + 1] = step(P, Q, a2[i], b, e, h, xj, yj)
-
-        _PAIRS[best] = pairs
-    return _PAIRS[best]
+    return pairs_top if best else pairs_all
 
 
 def _horizon(rate0: float, Gamma: float) -> float:
@@ -208,8 +176,9 @@ def nls_amplification(model: Model, k: float, amplitude: float, branch=None, *,
         return Amplified(Gamma, 1.0, 0.0, math.nan, False, -G1)
     edge = math.sqrt(2 * Q / P) * psi0  # band edge of the carrier at t = 0
     q = np.linspace(edge / offsets, edge, offsets, endpoint=False)
-    G = sideband_damping(model, c.k, q, c.branch)
-    Gamma = max(_carrier_damping(model, c.k, c.branch), 0.0) + 0.0  # -0.0 at zero damping
+    # its own offsets, shared with no other theory: one call, not kept (``rates_once``)
+    G, Gamma = rates_once(model, c.k, q, c.branch)
+    Gamma = max(Gamma, 0.0) + 0.0  # -0.0 at zero damping
     rate0 = abs(P) * q * np.sqrt(np.maximum(q**2 * 0 + (2 * Q / P) * psi0**2 - q**2, 0))
     net0 = float(np.max(rate0 - G))
     if Gamma <= 0:  # the lossless limit: a constant carrier, growth never stops
@@ -306,18 +275,16 @@ def _integrate(s_arr, g2, s_t, t, G, per_column=False):
     faster, the same numbers to the last bit; ties to the first in row-major order, as
     argmax). ``per_column``: also each column's own largest (array, 0 where it never
     grows)."""
-    n = s_arr.size
-    pos = g2 > 0
-    lo = np.where(pos.any(axis=0), np.argmax(pos, axis=0), n - 1)
-    j = np.clip(np.searchsorted(s_arr, s_t), 1, n - 1) if n > 1 else np.zeros(s_t.size, int)
-    lo_j = np.maximum(j - 1, 0)
-    w = (s_t - s_arr[lo_j]) / np.where(j != lo_j, s_arr[j] - s_arr[lo_j], 1.0)
-    colbest = np.zeros(g2.shape[1])
+    from ._losses_quadrature import quadrature_tables
+
     G = np.ascontiguousarray(G, float)
+    lo, j, lo_j, w, dt, cold, s_hot, ok = quadrature_tables(
+        np.ascontiguousarray(s_arr, float), np.ascontiguousarray(g2, float),
+        np.ascontiguousarray(s_t, float), np.ascontiguousarray(t, float), G)
+    colbest = np.zeros(g2.shape[1])
     best, i, col = _integrate_compiled()(
-        np.ascontiguousarray(g2.T), s_arr, s_t, np.diff(t), G,
-        lo.astype(np.int64), j.astype(np.int64), lo_j.astype(np.int64), w, colbest,
-        *_calm(s_arr, g2, G, lo))
+        np.ascontiguousarray(g2.T), s_arr, s_t, dt, G, lo, j, lo_j, w, colbest, cold, s_hot,
+        ok)
     if per_column:
         return float(best), int(i), int(col), colbest
     return float(best), int(i), int(col)

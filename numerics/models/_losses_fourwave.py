@@ -41,10 +41,12 @@ def rates_at(model, first, rows, branch_pairs):
     if not np.all(np.abs(kk0 - coupling2)[grows] <= REAL_COUPLING * kk0[grows]):
         return None
     q = np.asarray(first.offsets, float)[rows]
-    b1 = np.array([first.pairs[j][0] for j in branch_pairs], int)
-    b2 = np.array([first.pairs[j][1] for j in branch_pairs], int)
-    w1 = _frequencies(model, q + first.k)[np.arange(q.size), b1]
-    w2 = _frequencies(model, first.k - q)[np.arange(q.size), b2]
+    pairs = np.asarray(first.pairs, int).reshape(-1, 2)[np.asarray(branch_pairs, int)]
+    # both waves' frequencies in one batched call (each matrix's own eigenvalues: the same
+    # numbers as two calls)
+    both = _frequencies(model, np.concatenate([q + first.k, first.k - q]))
+    w1 = both[np.arange(q.size), pairs[:, 0]]
+    w2 = both[q.size + np.arange(q.size), pairs[:, 1]]
     lin = w1 + w2 - 2 * first.omega
 
     def at(s):
@@ -68,6 +70,9 @@ def _frequencies(model, kap):
     s = 1 / np.sqrt(m)
     z = np.exp(1j * kap)[:, None, None]
     K = (H[:d, :d] + H[d:, d:]) + H[:d, d:] * z + H[d:, :d] / z
-    lam = np.linalg.eigvalsh(s[None, :, None] * K * s[None, None, :])
+    A = s[None, :, None] * K * s[None, None, :]
+    # one field: a 1 x 1 Hermitian matrix's eigenvalue is its diagonal's real part (what
+    # LAPACK's zheevd returns for it, without the batched call)
+    lam = np.real(A[:, :, 0]) if d == 1 else np.linalg.eigvalsh(A)
     with np.errstate(invalid="ignore"):
         return np.where(lam >= 0, np.sqrt(np.abs(lam)), np.nan)

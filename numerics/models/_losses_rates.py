@@ -53,8 +53,10 @@ def _rates_at(model: Model, kappas) -> np.ndarray:
     hit = keys[at] == kap if keys.size else np.zeros(kap.size, bool)
     if not hit.all():
         missing = np.unique(kap[~hit])
-        if keys.size + missing.size > SIDE_KEPT:  # afresh: this call's wavenumbers alone
-            keys = np.unique(kap)
+        if not keys.size or keys.size + missing.size > SIDE_KEPT:
+            # afresh (none kept, or too many): this call's wavenumbers alone, already
+            # sorted and unique (``missing``: every one)
+            keys = missing if not keys.size else np.unique(kap)
             rows = damping_rates(model, keys)
         else:
             keys = np.concatenate([keys, missing])
@@ -64,6 +66,19 @@ def _rates_at(model: Model, kappas) -> np.ndarray:
         _SIDE[0] = (weakref.ref(model), keys, rows)
         at = np.searchsorted(keys, kap)
     return rows[at].reshape(kap.size, model.n_fields)
+
+
+def rates_once(model: Model, k: float, q, branch: int) -> tuple[np.ndarray, float]:
+    """(G_q, Gamma): ``sideband_damping`` and the carrier's rate from one
+    ``damping_rates`` call, nothing kept: a theory's own offsets that no other asks (the
+    damped NLS's), where merging them into the kept rates costs as much as the rates
+    (the same numbers: a row depends on its wavenumber alone)."""
+    from ._linear import branch_index, damping_rates
+
+    q = np.atleast_1d(np.asarray(q, float))
+    rows = damping_rates(model, np.concatenate([[float(k)], k + q, k - q]))
+    b = branch_index(model, k, branch)
+    return 0.5 * (rows[1:q.size + 1, b] + rows[q.size + 1:, b]), float(rows[0, b])
 
 
 def _carrier_damping(model: Model, k: float, branch) -> float:

@@ -26,6 +26,7 @@ or before the every-column ones, and only where every computed column lies on a 
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -118,13 +119,23 @@ def refine_columns(positions: np.ndarray, coarse: np.ndarray, log_amp: np.ndarra
         slope = np.diff(y) / np.diff(x)
         inner = same[:-1] & same[1:]
         curv[1:-1] = np.where(inner, np.abs(2 * np.diff(slope) / (x[2:] - x[:-2])), 0.0)
-    out = []
-    for i in np.flatnonzero(same & (np.diff(coarse) > 1)):  # an interval with columns inside
-        h = x[i + 1] - x[i]
-        slack = max(curv[i], curv[i + 1]) * h * h / 2
-        if max(y[i], y[i + 1]) + slack >= best:
-            out.extend(range(coarse[i] + 1, coarse[i + 1]))
-    return np.asarray(out, int)
+    i = np.flatnonzero(same & (np.diff(coarse) > 1))  # the intervals with columns inside
+    h = x[i + 1] - x[i]
+    slack = np.maximum(curv[i], curv[i + 1]) * h * h / 2
+    hit = i[np.maximum(y[i], y[i + 1]) + slack >= best]
+    if not hit.size:
+        return np.zeros(0, int)
+    return np.concatenate([np.arange(coarse[j] + 1, coarse[j + 1]) for j in hit])
+
+
+@functools.lru_cache(maxsize=16)
+def _contiguous(n: int, stride: int):
+    """(arange(n), its ``coarse_columns``), read only: the damped NLS's offsets are one
+    run of n, the same every call."""
+    where = np.arange(n)
+    coarse = coarse_columns(where, stride)
+    where.flags.writeable = coarse.flags.writeable = False
+    return where, coarse
 
 
 def nls_first_max(P, Q, psi0, Gamma, G, q, t_end, steps):
@@ -132,18 +143,18 @@ def nls_first_max(P, Q, psi0, Gamma, G, q, t_end, steps):
     (``_first_max``), its offsets coarse to fine (``_losses_sampling``: every eighth, then
     those between whose log amplification may reach the largest; the NLS's is smooth in
     q, one band): the same numbers wherever the largest's offset is computed."""
-    from ._losses import NLS_STRIDE, _pairs_best
+    from ._losses import NLS_STRIDE, _pairs_best, _pairs_later
 
     top, first = np.ones(q.size), np.zeros(q.size, np.int64)
     done = np.zeros(q.size, bool)
+    times = _pairs_later(psi0, Gamma, t_end, steps)  # the same for every offset
 
     def run(cols):
         top[cols], first[cols] = _pairs_best(P, Q, psi0, Gamma, G[cols], q[cols], t_end,
-                                             steps)
+                                             steps, times)
         done[cols] = True
 
-    where = np.arange(q.size)
-    coarse = coarse_columns(where, NLS_STRIDE)
+    where, coarse = _contiguous(q.size, NLS_STRIDE)
     run(coarse)
     run(refine_columns(where, coarse, np.log(top[coarse])))
     cols = np.flatnonzero(done)

@@ -78,7 +78,10 @@ def classify_mode(spectrum) -> dict:
     i = int(np.argmax(spectrum.gain))
     q = float(spectrum.offsets[i])
     _, lams = hill_spectrum(wave, [q], return_eigenvalues=True)
-    lam = lams[0][int(np.argmax(lams[0].real))]
+    # the pencil is Hamiltonian (T(lambda)^H = T(-conj lambda)): a kept decaying root
+    # is its growing mirror's pair, with the same frequency; name the growing member
+    lam = lams[0][int(np.argmax(np.abs(lams[0].real)))]
+    lam = complex(abs(lam.real), lam.imag)
     best = None
     # the carrier's own nonlinear frequency shift: a pair locked to it (sidebands, a
     # backward pair) sits that far off the linear branches, each wave by the same amount

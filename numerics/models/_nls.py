@@ -205,6 +205,25 @@ def acoustic_directions(model: Model, H=None, T=None, Q=None) -> np.ndarray:
     return N if d else N
 
 
+# (weak reference to a model, its acoustic directions, read only): a damped point's lower
+# amplitudes solve their waves with the set-up of the full amplitude's, one model object
+_ACOUSTIC = [None]
+
+
+def kept_acoustic_directions(model: Model) -> np.ndarray:
+    """``acoustic_directions(model)``, kept for the last model object asked (read and
+    replaced whole: safe across threads; read only)."""
+    import weakref
+
+    last = _ACOUSTIC[0]
+    if last is not None and last[0]() is model:
+        return last[1]
+    N = acoustic_directions(model)
+    N.flags.writeable = False
+    _ACOUSTIC[0] = (weakref.ref(model), N)
+    return N
+
+
 def nls(model: Model, k: float, branch=None) -> ModelNLS:
     """The semi-discrete NLS of ``model`` on ``branch`` at carrier wavenumber ``k``.
 

@@ -31,7 +31,7 @@ from numba import njit, types
 from numba.np.linalg import _LAPACK
 
 # one LU for both: compiled per argument type, real here, complex in the Hill kernel
-from ._sidebands import _lu, _lu_solve
+from ._small_algebra import _lu, _lu_solve
 
 #: |Im R| over max |K| below which the gauged pencil is taken as real (round-off is
 #: ~5e-16 at P = 10: the margin is 200x; a wave without the symmetry has O(1) there)

@@ -38,6 +38,17 @@ grow once the fold is frozen again between them) settles on the exact ones, the 
 eigenvector (S's null vector, the rest -T_RR^{-1} E_RC y_C) gives the weights the kept
 modes are chosen by, as the dense eigenproblem's did. Where Newton does not settle, or a
 cluster is larger than the caller allows, the caller solves that offset densely.
+
+Cost (measured, bench/README.md "Hill kernel per offset"): an offset costs its pencil
+and discs (~8 us at one field, P = 10) plus one LU of the rest T_RR (n_R = d (2P + 1) -
+r_C coordinates) per fold and per Newton step, and one for the eigenvector: ~4 for a
+cluster with one growing mode. Offsets differ by their clusters (none, one without a
+growing start, one or two growing), by n_R (two fields or the P + 4 check: n_R 27-39,
+the LU 3-6x a one-field one), not by Newton's iterations (2-3 from the frozen pencil's
+start) nor by dense fallbacks (none at the bench points). The LU skips exact zeros, and
+the Hessian's harmonics below the DFT's round-off are made exact zeros
+(``_small_algebra._drop_roundoff``): a symmetric potential's odd harmonics vanish, its
+rest splits into odd and even copies, and each LU costs about a quarter.
 """
 
 from __future__ import annotations
@@ -47,111 +58,13 @@ import math
 import numpy as np
 from numba import njit
 
+from ._small_algebra import _drop_roundoff, _eigh2, _lu, _lu_solve, _lu_solve_t
+
 #: Newton steps at most per eigenvalue, and the step (relative to |lambda| + omega)
 #: after which it has settled: Newton's next error is ~ its square, below round-off
 STEPS, TOL = 40, 1e-9
 
 _KW = dict(cache=True, nogil=True, error_model="numpy", boundscheck=False)
-
-
-@njit(**_KW)
-def _eigh2(A, ev, vec):
-    """Eigenvalues (ascending) and orthonormal eigenvectors (columns) of a 2 x 2
-    Hermitian matrix, in closed form (LAPACK's call costs more than the algebra)."""
-    a, c, b = A[0, 0].real, A[1, 1].real, A[0, 1]
-    mid, half = 0.5 * (a + c), 0.5 * (a - c)
-    r = math.sqrt(half * half + abs(b) ** 2)
-    ev[0], ev[1] = mid - r, mid + r
-    if abs(b) == 0.0:
-        lo_first = a <= c
-        vec[0, 0], vec[1, 0] = (1.0, 0.0) if lo_first else (0.0, 1.0)
-        vec[0, 1], vec[1, 1] = (0.0, 1.0) if lo_first else (1.0, 0.0)
-        return
-    for j in range(2):
-        lam = ev[j]
-        x0, x1 = b, lam - a + 0j             # from the first row
-        y0, y1 = lam - c + 0j, np.conj(b)    # from the second
-        if abs(x0) ** 2 + abs(x1) ** 2 < abs(y0) ** 2 + abs(y1) ** 2:
-            x0, x1 = y0, y1
-        nrm = math.sqrt(abs(x0) ** 2 + abs(x1) ** 2)
-        vec[0, j], vec[1, j] = x0 / nrm, x1 / nrm
-
-
-@njit(**_KW)
-def _lu(A, piv):
-    """In-place LU with partial pivoting of a square complex matrix; False if singular."""
-    n = A.shape[0]
-    for j in range(n):
-        p = j
-        big = abs(A[j, j])
-        for i in range(j + 1, n):
-            if abs(A[i, j]) > big:
-                big = abs(A[i, j])
-                p = i
-        piv[j] = p
-        if big == 0.0:
-            return False
-        if p != j:
-            for c in range(n):
-                t = A[j, c]
-                A[j, c] = A[p, c]
-                A[p, c] = t
-        inv = 1.0 / A[j, j]
-        for i in range(j + 1, n):
-            f = A[i, j] * inv
-            A[i, j] = f
-            if f != 0:
-                for c in range(j + 1, n):
-                    A[i, c] -= f * A[j, c]
-    return True
-
-
-@njit(**_KW)
-def _lu_solve(A, piv, B):
-    """Solves A X = B in place (B, shape (n, m)) with ``_lu``'s factors."""
-    n, m = B.shape
-    for j in range(n):
-        p = piv[j]
-        if p != j:
-            for c in range(m):
-                t = B[j, c]
-                B[j, c] = B[p, c]
-                B[p, c] = t
-    for c in range(m):
-        for i in range(n):
-            s = B[i, c]
-            for k in range(i):
-                s -= A[i, k] * B[k, c]
-            B[i, c] = s
-        for i in range(n - 1, -1, -1):
-            s = B[i, c]
-            for k in range(i + 1, n):
-                s -= A[i, k] * B[k, c]
-            B[i, c] = s / A[i, i]
-
-
-@njit(**_KW)
-def _lu_solve_t(A, piv, B):
-    """Solves A^T X = B in place with ``_lu``'s factors (P A = L U: A^T = U^T L^T P)."""
-    n, m = B.shape
-    for c in range(m):
-        for i in range(n):
-            s = B[i, c]
-            for k in range(i):
-                s -= A[k, i] * B[k, c]
-            B[i, c] = s / A[i, i]
-        for i in range(n - 1, -1, -1):
-            s = B[i, c]
-            for k in range(i + 1, n):
-                s -= A[k, i] * B[k, c]
-            B[i, c] = s
-    for j in range(n - 1, -1, -1):
-        p = piv[j]
-        if p != j:
-            for c in range(m):
-                t = B[j, c]
-                B[j, c] = B[p, c]
-                B[p, c] = t
 
 
 @njit(**_KW)
@@ -497,6 +410,7 @@ def sideband_modes(Hh, masses, k, omega, P, offsets, floor, max_modes, max_clust
     nl = 2 * P + 1
     n = d * nl
     Q = offsets.size
+    Hh = _drop_roundoff(Hh)
     lam_out = np.zeros((Q, max_modes), np.complex128)
     vec_out = np.zeros((Q, max_modes, n), np.complex128)
     count = np.zeros(Q, np.int64)
@@ -545,9 +459,19 @@ def sideband_modes(Hh, masses, k, omega, P, offsets, floor, max_modes, max_clust
                     w2[li * d + a] = ev[a]
                     for b in range(d):
                         V[li * d + b, li * d + a] = evec[b, a]
-            # Kt = V^* K V, block by block (V is block diagonal)
+            # Kt = V^* K V, block by block (V is block diagonal); a zero block (its
+            # harmonic dropped as round-off) stays exactly zero
             for li in range(nl):
                 for hi_ in range(nl):
+                    nz = False
+                    for c in range(d):
+                        for e in range(d):
+                            nz |= K[li * d + c, hi_ * d + e] != 0
+                    if not nz:
+                        for a in range(d):
+                            for b in range(d):
+                                Kt[li * d + a, hi_ * d + b] = 0.0
+                        continue
                     for a in range(d):
                         for b in range(d):
                             acc = 0j
@@ -561,7 +485,10 @@ def sideband_modes(Hh, masses, k, omega, P, offsets, floor, max_modes, max_clust
             r = 0.0
             for j in range(n):
                 if lvec[j] != lvec[i]:
-                    r += abs(Kt[i, j])
+                    # |z| without hypot's scaling (entries are O(1)): ~8x cheaper,
+                    # within an ulp
+                    v = Kt[i, j]
+                    r += math.sqrt(v.real * v.real + v.imag * v.imag)
             Rrow[i] = r
             # the diagonal block is diag(w^2) exactly in these coordinates
             for j in range(n):
