@@ -319,8 +319,11 @@ ROUND3 += [
      (C, 2, r"--travel does nothing without --simulate")),
     ("soliton: --N 400 without --simulate", lambda: _cli(*SOLITON, "--N", "400"),
      (C, 2, r"--N does nothing without --simulate")),
-    ("point: --seeds 6 without --simulate", lambda: _cli(*POINT, "--seeds", "6"),
-     (C, 2, r"--seeds does nothing without --simulate")),
+    # the paper chain's point predicts its growth per seed, no runs needed: --seeds acts
+    # alone there; a model point's seeds are runs, so it is refused there
+    ("point --model: --seeds 6 without --simulate", lambda: _cli(
+        "point", "--model", "fput", "--k", "1.1", "--seeds", "6"),
+     (C, 2, r"--seeds: a model point's seeds are its runs'")),
     # class 5: a negative non-finite value reaches the check that names its option
     ("map: --t-end -Infinity", lambda: _cli(*MAP, "--delta", "0.0035", "--k", "1.1",
                                             "--t-end", "-Infinity"), (C, 2, r"--t-end must be")),

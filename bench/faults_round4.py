@@ -160,11 +160,11 @@ ROUND4 = [
     ("model: sqrt(u) on site", _with_cache(lambda: _load(
         bond="(u_next - u)**2 + sqrt(u**2 + 3*u)")),
      (E, ValueError, r"not differentiable at the rest state")),
-    # 9. no verdict where the coefficients overflow
-    ("model_coefficients: fput alpha=1e250 is undefined, not stable", lambda: __import__(
-        "numerics.models", fromlist=["model_coefficients"]).model_coefficients(
-        __import__("energy").load_model("fput", alpha=1e250), 0.7, 0.1),
-     ("ok", lambda r: r["verdict"] == "undefined" and "overflows" in r["reason"])),
+    # 9. no verdict where the coefficients overflow: a parameter beyond energy.MAX_VALUE
+    # is refused where it is given (probe 5), an overflow below it is undefined
+    ("model_coefficients: fput alpha=1e250 is refused where it is given", lambda: __import__(
+        "energy").load_model("fput", alpha=1e250),
+     (E, ValueError, r"parameter alpha must be at most 1e\+15")),
     # 10, 12. model maps: refused input leaves nothing; the command's bad options
     ("map --model: --t-end nan leaves nothing; the corrected map runs",
      _refused_map_then_corrected, ("ok", lambda r: r == (2, False, 0))),
@@ -175,7 +175,7 @@ ROUND4 = [
     ("map --model --branch 4 (one field)", lambda: _cli(
         "map", M, "fput", "--param", "beta=1,2", "--k", "1,2", "--amplitude", "0.1",
         "--theory-only", "--branch", "4", "--out", "/nonexistent-flexmm/m4"),
-     (C, 2, r"branch must be in 0\.\.0")),
+     (C, 2, r"--branch 4: give an index 0\.\.0")),
     # 15. a ring with no sideband bin
     ("point --simulate --N 11 (odd ring, every theta bin a harmonic)", lambda: _cli(
         "point", "--alpha", "2.4", "--K-s", "0.03", "--K-theta", "0.02", "--case", "coupled",
