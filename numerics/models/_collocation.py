@@ -190,14 +190,19 @@ def _entry(F, sidx, ph, H, w2, masses, j, li, b, hi):
     return v
 
 
-def chord_newton(residual, jacobian, x0, steps=12):
+def chord_newton(residual, jacobian, x0, steps=12, progress=None):
     """Newton's method with the start's Jacobian kept (the chord method): the lower
     amplitudes of a damped point start from the last wave scaled, ~1e-5 of their
     residual's scale away, where the chord converges linearly at a rate of that order, so
     one Jacobian and its pseudo-inverse serve every step (Newton took two Jacobians and
     two least-squares solves for the same round-off). Stops as ``_wave._gauss_newton``:
     a residual below 1e-14, or one that no longer falls by 4 once below 1e-11 (round-off);
-    None where it does not converge so (the caller solves by Gauss-Newton instead)."""
+    None where it does not converge so (the caller solves by Gauss-Newton instead).
+    ``progress``: a list that gets the last iterate whose residual fell by 4 or more
+    against the one before (left empty where none did): where the chord gives up, Gauss-Newton
+    goes on from it rather than from x0 (the continuation's steps of ``_wave._connected``:
+    the chord took a flexmm wave's residual from ~1e-3 to ~1e-10 before it stalled, and
+    Gauss-Newton then began again at 1e-3)."""
     x = x0.copy()
     r = residual(x)
     best = float(np.max(np.abs(r)))
@@ -217,6 +222,8 @@ def chord_newton(residual, jacobian, x0, steps=12):
         if now >= best / 4:  # round-off, or too far for the chord
             return x if best < 1e-11 and now < 2 * best else None
         best = now
+        if progress is not None:
+            progress[:] = [x]
     return None
 
 

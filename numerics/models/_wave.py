@@ -463,7 +463,12 @@ def _solve_fast(model, car, a, masses, acoustic, H, c0, omega0, least_squares, q
     # np.stack([Re, Im], axis=-1)), the free ones in ``parts[free]``'s order
     parts0 = np.ascontiguousarray(c0[:, H + 1:]).view(float).reshape(d, H, 2)
     x0 = np.concatenate([[omega0], optical.T @ np.real(c0[:, H]), parts0[free]])
-    x = chord_newton(residual, jacobian, x0)
+    progress = []
+    x = chord_newton(residual, jacobian, x0, progress=progress)
+    if x is None and progress:
+        # Gauss-Newton from where the chord got to (its residual fell by 4 a step until
+        # then: the same root's basin), from x0 where that does not settle
+        x = _gauss_newton(residual, jacobian, progress[0], qr=qr, done=done)
     if x is None:
         x = _gauss_newton(residual, jacobian, x0, qr=qr, done=done)
     if x is None:
