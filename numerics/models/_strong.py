@@ -61,6 +61,7 @@ from ._sidebands import (
     _pencil_at,
     _schur,
 )
+from ._small_algebra import _drop_roundoff
 
 _KW = dict(cache=True, nogil=True, error_model="numpy", boundscheck=False)
 
@@ -211,6 +212,10 @@ def strong_modes(Hh, masses, k, omega, P, Pc, offsets, floor, max_modes):
     nl = 2 * P + 1
     n = d * nl
     Q = offsets.size
+    # the Hessian's harmonics below the DFT's round-off made exact zeros, as the Gershgorin
+    # pass has them (``_sidebands``): where the pencil splits, its frozen pencil's
+    # eigenvalues are found block by block (``_real_gauge.frozen_real``)
+    Hh = _drop_roundoff(Hh)
     lam_out = np.zeros((Q, max_modes), np.complex128)
     vec_out = np.zeros((Q, max_modes, n), np.complex128)
     count = np.zeros(Q, np.int64)
