@@ -82,7 +82,8 @@ def build_parser(model_mode: bool = False):
     co = _sub(sub, "coefficients", "NLS coefficients and MI band of any model or material "
               "at any k")
     co.add_argument("--k", type=float, required=True,
-                    help="(required) carrier wavenumber, rad per site, in (0, pi)")
+                    help="(required) carrier wavenumber, rad per site, in (0, pi) (with --model "
+                         "(0, pi]: the zone boundary too)")
     co.add_argument("--amplitude", type=float, default=paper.AMPLITUDE, help=AMPLITUDE_HELP)
     add_model_args(co)
     _material_args(co, map_=False)
@@ -151,7 +152,8 @@ def _point_parser(sub, model_mode=False):
     p = _sub(sub, "point", "MI at one point of any model or material: the theories' "
              "verdicts and gain curves (and a simulation that checks them, with --simulate)")
     p.add_argument("--k", type=float, required=True,
-                   help="(required) carrier wavenumber, rad per site, in (0, pi)")
+                   help="(required) carrier wavenumber, rad per site, in (0, pi) (with --model "
+                         "(0, pi]: the zone boundary too)")
     _experiment_args(p)
     p.add_argument("--simulate", action="store_true", help="measure sigma(q) too")
     p.add_argument("--t-end", dest="t_end", type=float,
@@ -173,7 +175,8 @@ def _soliton_parser(sub, model_mode=False):
              "k: width, velocity, frequency and kink of U, and with --simulate the same "
              "measured in the lattice")
     p.add_argument("--k", type=float, required=True,
-                   help="(required) carrier wavenumber, rad per site, in (0, pi)")
+                   help="(required) carrier wavenumber, rad per site, in (0, pi) (with --model "
+                         "(0, pi]: the zone boundary too)")
     p.add_argument("--amplitude", type=float, default=0.002,
                    help="peak amplitude of the soliton (bright) or of its background (dark): "
                         "a of the carrier's first harmonic in its field (the paper chain: "

@@ -44,6 +44,8 @@ def run_map(args) -> int:
         vals = parse_spec(amp, "--amplitude")
         if not np.all(np.isfinite(vals)) or vals.min() <= 0:
             raise ValueError(f"--amplitude must be > 0, got {amp!r}")
+        for v in vals:
+            check_value("--amplitude", float(v))
         amp, amp_axis = (None, vals) if vals.size > 1 else (float(vals[0]), None)
     named = (list(axes.items()) + ([("k", k_axis)] if k_axis is not None else [])
              + ([("amplitude", amp_axis)] if amp_axis is not None else []))
@@ -193,7 +195,8 @@ def run_map(args) -> int:
     if args.json:
         res = {"model": model.name, "parameters": dict(model.params), "amplitude": amp,
                "axes": {x[0]: list(map(float, x[1])), y[0]: list(map(float, y[1]))},
-               "mi_fraction": summary["mi_fraction"], "mi_share": mi, "files": files}
+               "mi_fraction": summary["mi_fraction"], "mi_share": mi,
+               "undetermined_cells": summary["undetermined_cells"], "files": files}
         if simulated:
             res["agreement_with_simulation_percent"] = summary[
                 "agreement_with_simulation_percent"]
@@ -218,7 +221,12 @@ def run_map(args) -> int:
         _emit(res)
         return 0
     for v, share in mi.items():
-        print(f"MI share, {v.replace('verdict_', '')}: {share:.0%}")
+        # cells a theory leaves undetermined (g1 = 0 for the NLS, no wave for the exact
+        # theory) are in the share's denominator, not MI: said beside it, so 50% is not
+        # read as half of the cells stable
+        n = summary["undetermined_cells"][v.removeprefix("verdict_")]
+        print(f"MI share, {v.replace('verdict_', '')}: {share:.0%}"
+              + (f" ({n} of {ds[v].size} cells undetermined, counted as not MI)" if n else ""))
     if unsampled and unsampled["cells"]:
         print(_unsampled_text(unsampled, args.N))
     for name, c in critical.items():

@@ -6,7 +6,7 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
-from .models import _emit, _fmt, branch_of, load
+from .models import _emit, _fmt, branch_of, check_amplitude, load
 
 
 # ------------------------------------------------------------------ point
@@ -114,6 +114,9 @@ def _simulated_row(model, k, args, spec, start, peak_time=None, gain=None) -> di
            "method": runs[0].method}
     if length is not None and length.note():
         row["note"] = length.note()
+    blind = [g for g in (r.growth() for r in runs) if g.verdict == "undetermined"]
+    if blind and not model.lossy:  # the ring shows nothing but the carrier's own modes
+        row["note"] = f"the runs on N = {args.N} sites: {blind[0].label}"
     from .model_figure import simulated_curve
 
     row["curve"] = simulated_curve(runs, k)  # sigma(q) measured; None where none grew
@@ -190,22 +193,11 @@ def _loss_table(out, units=None) -> None:
 
 
 def _coefficients_or_undefined(model, k, amplitude, branch) -> dict:
-    """The NLS row, or (at k = pi, where 2k is the mean: no expansion) an undefined one
-    with its reason: the exact theory and a simulation still answer there."""
-    from energy import ModelError
-    from numerics.models import carrier, model_coefficients
+    """The NLS row (``model_coefficients``; at k = pi too, the zone boundary, where its
+    coefficients are their limit k -> pi)."""
+    from numerics.models import model_coefficients
 
-    try:
-        return model_coefficients(model, k, amplitude, branch)
-    except ModelError as exc:
-        if k < math.pi:
-            raise
-        car = carrier(model, k, branch)
-        return {"k": k, "amplitude": float(amplitude), "branch": car.branch,
-                "field": model.fields[car.field], "verdict": "undefined", "peak_gain": None,
-                "fastest_offset": None, "band_edge": None, "g1": car.g1, "g2": None,
-                "reason": f"{exc} (at k = pi the second harmonic 2k is the mean, 0 mod 2 pi)",
-                "warnings": []}
+    return model_coefficients(model, k, amplitude, branch)
 
 
 def _ring_note(model, k, amplitude, branch, N, row) -> str | None:
@@ -298,14 +290,20 @@ def run_point(args) -> int:
 
     model = load(args)
     units = model_units(args)
-    checks.real("--k", args.k, 0.0, math.pi)
-    checks.real("--amplitude", args.amplitude, 0.0, None)
+    checks.real("--k", args.k, 0.0, math.pi, high_open=False)
+    check_amplitude(args.amplitude)
     if args.t_end is not None and not args.simulate:
         raise ValueError("--t-end acts with --simulate only")
     if not args.simulate and ("--seeds" in getattr(args, "given", ()) or args.seeds != 4):
         # the paper chain's point predicts its growth per seed; a model's seeds are runs
         raise ValueError("--seeds: a model point's seeds are its runs'; add --simulate, "
                          "or leave --seeds out")
+    if args.simulate:  # the runs' options, as the paper chain's point checks them: before
+        from numerics.maps import MAX_SEEDS, MAX_T_END  # any theory (--t-end 1e30 hung
+
+        checks.integer("--seeds", args.seeds, 1, MAX_SEEDS)  # in the estimate's probe)
+        if args.t_end is not None:
+            checks.real("--t-end", args.t_end, 0.0, MAX_T_END)
     start = _start_of(args, model)
     from numerics.models import check_ring
 

@@ -91,6 +91,15 @@ def _estimate(args, model, branch) -> None:
           f"measured here){hint}", file=sys.stderr if args.json else sys.stdout, flush=True)
 
 
+def _as_options(text: str) -> str:
+    """An error of ``simulate_soliton`` with its arguments named as this command's
+    options ('kind dark: ...' -> '--kind dark: ...', 'N = 16 is ...' -> '--N 16 is ...')."""
+    import re
+
+    text = re.sub(r"^kind (\w+):", r"--kind \1:", text)
+    return re.sub(r"^N = (\d+) ", r"--N \1 ", text)
+
+
 def run_model_soliton(args, model, units, branch) -> dict:
     """Predict (and with --simulate, run) the soliton; print; write --out. Returns the
     report (``numerics.models.soliton_report``)."""
@@ -110,8 +119,11 @@ def run_model_soliton(args, model, units, branch) -> dict:
         if args.N is not None:
             checks.integer("--N", args.N, 16, 10**6)
         _estimate(args, model, branch)
-        run = simulate_soliton(model, args.k, args.amplitude, args.kind, branch=branch,
-                               N=args.N, travel=args.travel)
+        try:
+            run = simulate_soliton(model, args.k, args.amplitude, args.kind, branch=branch,
+                                   N=args.N, travel=args.travel)
+        except ValueError as exc:  # the API's argument names, said as the options are
+            raise ValueError(_as_options(str(exc))) from None
         pred = run.predicted
     else:
         pred = ring_soliton(model, args.k, args.amplitude, kind=args.kind, branch=branch)

@@ -34,6 +34,15 @@ def add_model_args(p, json_help="print one JSON object on stdout and nothing els
                         "also given in rad/m (k / spacing)")
 
 
+def check_amplitude(value) -> float:
+    """--amplitude of a model's command: a number > 0, at most ``energy.MAX_VALUE`` (a
+    wave of amplitude 1e200 overflowed its gain: a traceback, not an answer)."""
+    from energy import MAX_VALUE
+    from numerics.lattice import checks
+
+    return checks.real("--amplitude", value, 0.0, MAX_VALUE, high_open=False)
+
+
 def wants_model(args) -> bool:
     return getattr(args, "model", None) is not None
 
@@ -80,6 +89,11 @@ def load(args, axes_ok=False):
     model = load_model(args.model, **fixed)
     for name in axes:
         model.lattice.values({name: 0.0})  # an unknown axis name: the model's one-line error
+    b = branch_of(args)  # named as the option, before any work (an index or a field)
+    if b is not None and not (isinstance(b, int) and 0 <= b < model.n_fields
+                              or b in model.fields):
+        raise ValueError(f"--branch {b}: give an index 0..{model.n_fields - 1} or a field of "
+                         f"model {model.name!r} ({', '.join(model.fields)})")
     from numerics.models import check_rest_stable
 
     if not axes:
@@ -93,7 +107,9 @@ def branch_of(args):
 
 
 def _emit(obj: dict):
-    print(json.dumps(obj, allow_nan=False, default=_plain))
+    from common.output import strict_json  # a NaN or inf is null (as the library's rows)
+
+    print(json.dumps(strict_json(obj), allow_nan=False, default=_plain))
 
 
 def _plain(x):
@@ -129,7 +145,7 @@ def run_models(args) -> int:
 def _fmt(x, digits=6):
     if x is None:
         return "-"
-    return f"{x:.{digits}g}"
+    return f"{x + 0.0 if x == 0 else x:.{digits}g}"  # -0.0 (g = g2/g1 of g2 = 0) as 0
 
 
 def run_coefficients(args) -> int:
@@ -140,8 +156,8 @@ def run_coefficients(args) -> int:
 
     model = load(args)
     units = model_units(args)
-    checks.real("--k", args.k, 0.0, math.pi)
-    checks.real("--amplitude", args.amplitude, 0.0, None)
+    checks.real("--k", args.k, 0.0, math.pi, high_open=False)
+    check_amplitude(args.amplitude)
     co = model_coefficients(model, args.k, args.amplitude, branch_of(args))
     from numerics.models import four_wave
 
@@ -167,8 +183,9 @@ def run_coefficients(args) -> int:
     for name, v, key in rows:
         print(f"{name:<{W}} {_fmt(v):>14}" + (units.si(v, kind_of[key]) if key else ""))
     verdict = co["verdict"]
-    if verdict != "undefined":
-        verdict += " (focusing)" if verdict == "MI" else " (defocusing)"
+    if verdict != "undefined":  # g2 = 0 (a linear chain): no cubic term, neither kind
+        verdict += (" (focusing)" if verdict == "MI" else " (defocusing)" if co["g"]
+                    else " (g2 = 0)")
     print(f"{'verdict (semi-discrete NLS)':<{W}} {verdict:>14}")
     for name, key in (("peak gain (1/time)", "peak_gain"),
                       ("e-folding time (time)", "e_folding_time"),
@@ -189,6 +206,8 @@ def run_coefficients(args) -> int:
              if fw["verdict"] == "MI" else ""))
     if co["reason"]:
         print(f"undefined: {co['reason']}")
+    if fw["verdict"] == "undefined" and fw["reason"]:
+        print(f"four-wave undefined: {fw['reason']}")
     for w in co["warnings"]:
         print(f"note: {w}")
     return 0
@@ -203,8 +222,8 @@ def run_soliton(args) -> int:
 
     model = load(args)
     units = model_units(args)
-    checks.real("--k", args.k, 0.0, math.pi)
-    checks.real("--amplitude", args.amplitude, 0.0, None)
+    checks.real("--k", args.k, 0.0, math.pi, high_open=False)
+    check_amplitude(args.amplitude)
     if getattr(args, "simulate", False) or getattr(args, "out", None):
         from .model_soliton import run_model_soliton
 

@@ -14,6 +14,7 @@ load_model -> Model          a model with parameter values and its generated cod
                              on first use and cached by the content hash of its energy)
 check_generated              is a generated module whole (its body's hash) and of this energy
 check_name, RESERVED         the rule for field and parameter names
+check_value, MAX_VALUE       the rule for a parameter's value (finite, |v| <= 1e15)
 """
 
 from __future__ import annotations
@@ -31,6 +32,7 @@ from ._model import (
 )
 from ._spec import (
     FUNCTIONS,
+    MAX_VALUE,
     RESERVED,
     Lattice,
     ModelError,
@@ -42,5 +44,5 @@ from ._spec import (
 
 __all__ = ["Lattice", "ModelError", "read_model", "parse_model", "BUILTIN", "builtin",
            "load_model", "resolve_model", "module_name", "Model", "FUNCTIONS", "RESERVED",
-           "check_name", "check_value", "ModelCacheWarning", "check_generated",
+           "check_name", "check_value", "MAX_VALUE", "ModelCacheWarning", "check_generated",
            "with_body_hash"]

@@ -57,6 +57,7 @@ MAX_DEPTH = 60  # nesting, a chain of + - * counted once
 MAX_CALL_DEPTH = 4  # functions nested in functions (each level ~4x the derivation time)
 MAX_EXPONENT = 64  # |a constant exponent|
 MAX_CONSTANT = 1e15  # |a number in an energy|
+MAX_VALUE = MAX_CONSTANT  # |a parameter's value|, |a carrier's amplitude|
 _KEYS = {"name", "description", "fields", "parameters", "energy", "branch", "references",
          "dissipation"}
 _ENERGY_KEYS = ("kinetic", "bond", "site")
@@ -91,8 +92,10 @@ def check_name(where: str, kind: str, name) -> str:
     if len(name) > MAX_NAME:
         _fail(where, f"{kind} name {_short(name)} is longer than {MAX_NAME} characters")
     if not _NAME.fullmatch(name):
-        _fail(where, f"{kind} name {_short(name)} is not valid (letters and digits, single '_' "
-                     "between them, starting with a letter)")
+        _fail(where, f"{kind} name {_short(name)} is not valid (ASCII letters a-z, A-Z and "
+                     "digits, single '_' between them, starting with a letter"
+                     + (": spell a Greek letter out, 'theta' for '\u03b8')"
+                        if not name.isascii() else ")"))
     if name.endswith(_SUFFIXES):
         _fail(where, f"{kind} name {name!r} ends in {name[name.rindex('_'):]!r}, which the "
                      "generator gives fields (u_prev, u_next, u_t): rename it")
@@ -155,8 +158,8 @@ class Lattice:
         if not isinstance(self.name, str) or len(self.name) > MAX_NAME or not re.fullmatch(
                 r"[A-Za-z][A-Za-z0-9_-]*", self.name):
             where = "model"
-            _fail(where, f"name must be letters, digits, '-' or '_' (at most {MAX_NAME}), got "
-                         f"{_short(self.name)}")
+            _fail(where, f"name must be ASCII letters, digits, '-' or '_', starting with a "
+                         f"letter (at most {MAX_NAME}), got {_short(self.name)}")
         for key in ("description", "references", "source"):
             text = getattr(self, key)
             if not isinstance(text, str):
@@ -291,12 +294,18 @@ class Lattice:
 
 
 def check_value(where: str, v) -> float:
-    """A parameter value: a finite real number (not a bool, a string or a complex)."""
+    """A parameter value (or a carrier's amplitude): a finite real number (not a bool, a
+    string or a complex) of size at most ``MAX_VALUE``, the bound on a number in an energy
+    (beyond it a coefficient's powers overflow: g2 of FPUT at alpha = 1e100 is inf)."""
     if isinstance(v, bool) or not isinstance(v, numbers.Real):
         raise ModelError(f"{where} must be a real number, got {type(v).__name__} {v!r}")
     v = float(v)
     if not math.isfinite(v):
         raise ModelError(f"{where} must be finite, got {v!r}")
+    if abs(v) > MAX_VALUE:
+        raise ModelError(f"{where} must be at most {MAX_VALUE:g} in size (a model's numbers "
+                         f"are bounded so that its coefficients stay finite: rescale its "
+                         f"units), got {v!r}")
     return v
 
 
@@ -501,7 +510,7 @@ def read_model(path: str | Path) -> Lattice:
     if len(raw) > MAX_FILE_BYTES:
         raise ModelError(f"{where}: the model file is larger than {MAX_FILE_BYTES // 1024} KiB")
     try:
-        text = raw.decode("utf-8")
+        text = raw.decode("utf-8-sig")  # a byte-order mark (Windows editors) is no TOML
     except UnicodeDecodeError as exc:
         raise ModelError(f"{where}: the model file is not UTF-8 text (byte {exc.start})") \
             from None
@@ -516,7 +525,7 @@ def parse_model(text: str, where: str = "model") -> Lattice:
     if len(text.encode("utf-8", "surrogatepass")) > MAX_FILE_BYTES:
         raise ModelError(f"{where}: the model file is larger than {MAX_FILE_BYTES // 1024} KiB")
     try:
-        data = tomllib.loads(text)
+        data = tomllib.loads(text.removeprefix("\ufeff"))  # a byte-order mark: no TOML
     except tomllib.TOMLDecodeError as exc:
         raise ModelError(f"{where}: not valid TOML ({_short(exc, 200)[1:-1]})") from None
     except (RecursionError, MemoryError):

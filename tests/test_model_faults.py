@@ -284,10 +284,17 @@ def test_infinite_fourth_derivative_leaves_the_nls_undefined(cache):
     assert np.isnan(r.peak_gain(0.1))
 
 
-def test_overflowing_coefficients_give_no_verdict():
+def test_overflowing_coefficients_give_no_verdict(cache):
+    """A parameter beyond 1e15 is refused at load (alpha = 3e170 once overflowed g2);
+    constants multiplied in the energy still reach 1e180, and give no verdict."""
     from numerics.models import nls
 
-    r = nls(load_model("fput", alpha=3e170), 0.8)
+    with pytest.raises(ModelError) as exc:
+        load_model("fput", alpha=3e170)
+    one_line(exc, "parameter alpha", "1e+15")
+    big = "*".join(["1e15"] * 12)  # each number within the file's bound, the product not
+    r = nls(load_model(parse_model(model_text(bond=f"(u_next - u)**2/2 + {big}*(u_next - u)**3"))),
+            0.8)
     assert r.verdict == "undefined" and np.isnan(r.g)
 
 

@@ -77,8 +77,12 @@ def test_critical_damping_against_a_bisection_of_the_point(tmp_path, capsys, fpu
             lo, hi = (mid, hi) if a >= 20 else (lo, mid)
         return math.sqrt(lo * hi)
 
+    # the point's NLS, as the map's, at the ring's k (2 pi m / N: point snaps it too)
+    from numerics.models import snap_ring
+
+    k_ring = snap_ring(K, N)[0]
     want = {"exact": bisect(lambda m, k, a: exact_amplification(m, k, a, N=N)),
-            "semidiscrete": bisect(nls_amplification)}
+            "semidiscrete": bisect(lambda m, k, a: nls_amplification(m, k_ring, a))}
     with xr.open_zarr(tmp_path / "m" / "map.zarr") as ds:
         for theory, g in want.items():
             var = ds[f"critical_gamma_{theory}"]

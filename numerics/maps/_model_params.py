@@ -105,6 +105,8 @@ class ModelMapParameters:
     start: str = "exact"
 
     def __post_init__(self):
+        from energy import check_value
+
         from ..lattice import checks
 
         for name in ("rows", "cols"):
@@ -112,6 +114,8 @@ class ModelMapParameters:
             if not isinstance(axis, str):
                 raise TypeError(f"{name}: the axis name must be a string, got {axis!r}")
             values = checks.real_values(f"{name} ({axis})", tuple(np.ravel(values)))
+            for v in values:  # a model's numbers (a parameter's value, an amplitude) are
+                check_value(f"{name} ({axis})", v)  # bounded: beyond, coefficients overflow
             if axis == "k" and any(not 0 < v <= math.pi for v in values):
                 raise ValueError(f"k must be in (0, pi], got {min(values):g}..{max(values):g}")
             if axis == AXIS_AMPLITUDE and any(not v > 0 for v in values):
@@ -139,7 +143,7 @@ class ModelMapParameters:
             raise ValueError("amplitude: give the carrier's amplitude (> 0), or make "
                              f"{AXIS_AMPLITUDE!r} one of the map's axes")
         else:
-            checks.positive("amplitude", self.amplitude)
+            check_value("amplitude", checks.positive("amplitude", self.amplitude))
         for axis in (self.rows[0], self.cols[0]):
             if axis not in ("k", AXIS_AMPLITUDE) and axis not in names:
                 raise ValueError(f"map axis {axis!r} is neither 'k', 'amplitude' nor a "
@@ -461,7 +465,19 @@ class ModelMapParameters:
                 return (f"a map of model {name!r} with {unit} = {attrs.get(unit) or 'none'} "
                         f"(asked {mine:g}: the stored numbers are in lattice units either "
                         "way)")
-        return f"a map of model {name!r} with other parameters"
+        mine = self.identity()  # name what differs (the store's value, then this map's)
+
+        def said(n):  # a fixed parameter by its own name, as --param gives it
+            return n[len("param_"):] if n.startswith("param_") else n
+
+        differ = [f"{said(n)} {attrs[n]!r} stored, {mine[n]!r} asked"
+                  for n in sorted(mine) if n in attrs and attrs[n] != mine[n]]
+        differ += [f"{said(n)} {attrs[n]!r} stored, none asked" for n in sorted(attrs)
+                   if n.startswith("param_") and n not in mine]
+        differ += [f"{said(n)} none stored, {mine[n]!r} asked" for n in sorted(mine)
+                   if n.startswith("param_") and n not in attrs]
+        return (f"a map of model {name!r} with other parameters"
+                + (f" ({'; '.join(differ[:4])})" if differ else ""))
 
     def new_dataset(self):
         """The store before any task: every variable at its fill value, ``done`` False."""

@@ -61,7 +61,11 @@ def parse_spec(text: str, name: str) -> np.ndarray:
             if len(parts) != 3:
                 raise ValueError
             start, stop, num = float(parts[0]), float(parts[1]), int(parts[2])
-            if num < 1 or (num > 1 and start == stop):
+            if num > 1 and start == stop:  # every value the same: one, said so
+                raise _DropsBound(f"{name}: SPEC {text!r} asks for {num} values from "
+                                  f"{start:g} to {stop:g} (start = stop: one value {num} "
+                                  f"times); give start != stop, or the single value {start:g}")
+            if num < 1:
                 raise ValueError
             if num == 1 and start != stop:  # linspace would keep start and drop stop
                 raise _DropsBound(f"{name}: SPEC {text!r} asks for 1 value between {start:g} "

@@ -129,7 +129,12 @@ def run_map(params: MapParameters, out: Path, scheduler: str | None = None,
     and resume as on the CPU."""
     from ._devices import resolve_device
     from ._integrity import store_lock
+    from ._model_params import ModelMapParameters
+    from ._params import MapParameters
 
+    if not isinstance(params, (MapParameters, ModelMapParameters)):
+        raise TypeError(f"params must be a MapParameters or a ModelMapParameters "
+                        f"(ModelMapParameters.from_model(...)), got {type(params).__name__}")
     device = resolve_device(device, params.theory_only, log, scheduler)
 
     if scheduler:

@@ -55,7 +55,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from common.threads import one_blas_thread
-from energy import Model
+from energy import Model, ModelError
 
 from ._wave import (  # noqa: F401 (TravellingWave, travelling_wave, continued_wave: here too)
     TravellingWave,
@@ -244,7 +244,13 @@ def hill_spectrum(wave: TravellingWave, offsets, *, harmonics: int | None = None
     With ``return_eigenvalues``, also the lambdas at each q (list of arrays). On one BLAS
     thread (``common.threads``).
     """
-    return _hill_spectrum(wave, offsets, harmonics, return_eigenvalues)
+    if not isinstance(wave, TravellingWave):
+        raise ModelError(f"wave must be a TravellingWave (numerics.models.travelling_wave), "
+                         f"got {type(wave).__name__}")
+    q = np.atleast_1d(np.asarray(offsets))
+    if q.dtype.kind not in "fiu" or q.ndim != 1 or not np.all(np.isfinite(q)):
+        raise ModelError(f"offsets must be finite real numbers (rad/site), got {offsets!r}")
+    return _hill_spectrum(wave, q.astype(float), harmonics, return_eigenvalues)
 
 
 #: The fast path's truncation: harmonics l = -P..P with P = min(H + 4, WORK_HARMONICS)

@@ -51,7 +51,7 @@ import numpy as np
 from energy import Model, ModelError
 
 from ._exact import GAIN_FLOOR  # one floor for both theories' verdicts
-from ._linear import carrier, dynamical_matrix
+from ._linear import carrier, check_amplitude, dynamical_matrix
 from ._modes import _wrap, own_offset, pair_kind, wave_field
 
 #: A driven wave whose operator has a singular value below this share of the largest is
@@ -185,7 +185,8 @@ class FourWave:
                 "mode_waves": [{"branch": b, "wavenumber": kap,
                                 "field": wave_field(self.model, kap, b)}
                                for b, kap in self.mode_waves],
-                "frequency": self.frequency, "kind_rates": self.kind_rates(),
+                "frequency": self.frequency if math.isfinite(self.frequency) else None,
+                "kind_rates": self.kind_rates(),
                 "reason": self.undefined}
 
 
@@ -352,7 +353,8 @@ def _rates(model, k, car, Omega, Hh, pairs, offsets):
             Dr = np.where(bad[:, None, None], np.eye(d), D)
             return np.linalg.solve(Dr, f[..., None])[..., 0], bad
 
-    with np.errstate(invalid="ignore", divide="ignore"):  # a zero-frequency wave: nan
+    # nan where a wave has zero frequency, or its coupling overflows (a branch at 1e150)
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
         for j, (b1, b2) in enumerate(pairs):
             w1, w2 = om1[:, b1], om2[:, b2]
             e1, e2c = E1[:, :, b1], E2[:, :, b2].conj()
@@ -449,12 +451,11 @@ def four_wave(model: Model, k: float, amplitude: float, branch=None, *, N: int |
         ``offset`` of the fastest. ``undefined`` (with nan rates) where the carrier's
         expansion fails (a resonant second harmonic, a degenerate carrier).
     """
-    a = float(amplitude)
-    if not (math.isfinite(a) and a > 0):
-        raise ModelError(f"amplitude must be a finite number > 0, got {amplitude!r}")
-    if N:
-        from ._simulate import snap_ring
+    a = check_amplitude(amplitude)
+    if N is not None:  # N = 0 is a bad ring, not the infinite chain (as exact_gain's)
+        from ._simulate import check_ring, snap_ring
 
+        N = check_ring(N)
         k = snap_ring(k, N)[0]
         q = 2 * np.pi * np.arange(1, N // 2 + 1) / N
     else:

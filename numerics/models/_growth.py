@@ -36,7 +36,9 @@ class Growth:
 
     Attributes
     ----------
-    verdict : 'unstable' or 'no growth within T'
+    verdict : 'unstable', 'no growth within T' or 'undetermined'
+        (undetermined: every mode of the ring is a harmonic of the carrier, nothing to
+        measure; factor nan)
     rate : float
         The fastest mode's rate (1/time) where unstable, else nan.
     wavenumber : float
@@ -60,6 +62,9 @@ class Growth:
     def label(self) -> str:
         if self.verdict == "unstable":
             return f"unstable (measured rate {self.rate:.4g})"
+        if self.verdict == "undetermined":
+            return ("undetermined (every mode of the ring is a harmonic of the carrier: a "
+                    "growth cannot be told from the wave's own; a larger N)")
         return (f"no growth within T (a rate below {self.detectable:.2g} cannot show by "
                 f"t = {self.t_linear:.4g})")
 
@@ -147,6 +152,12 @@ def measure_growth(run: ModelRun) -> Growth:
         (s * h * m) % N for h in range(2, H + 1) for s in (1, -1)
         if h * phase * size[h] > 0.1 * floor}
     keep = np.array([j not in harmonics and 0 < j <= N // 2 for j in range(N)])
+    if not keep.any():  # every mode of the ring is the carrier's (N = 9, k = 8 pi / 9: its
+        # sidebands k +- 2 pi / 9 are -k and 3k): a growth cannot be told from the wave's
+        # own drift, so none is claimed (a run that grew 1e8x once read "no growth")
+        T = float(run.t[-1])
+        return Growth("undetermined", math.nan, math.nan, math.nan,
+                      math.log(GROWTH_FACTOR) / T if T > 0 else math.inf, T)
     # the sidebands' rms (the carrier's harmonics left out: a linear start slips in phase)
     sidebands = np.sqrt(2 * np.sum(run.spectrum[:, keep] ** 2, axis=1))
     sat = np.nonzero(sidebands > SATURATION * run.amplitude)[0]

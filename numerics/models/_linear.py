@@ -12,11 +12,12 @@ Branch b at kappa is the b-th eigenvalue (ascending) of M^{-1/2} K M^{-1/2}, ome
 from __future__ import annotations
 
 import math
+import numbers
 from dataclasses import dataclass
 
 import numpy as np
 
-from energy import Model, ModelError
+from energy import MAX_VALUE, Model, ModelError
 
 
 def blocks(H: np.ndarray, d: int):
@@ -79,7 +80,7 @@ def branches(model: Model, kappa) -> np.ndarray:
 
 def check_rest_stable(model: Model, samples: int = 257):
     """Refuse a rest state that is not a minimum: omega^2 < 0 on some branch."""
-    H = model.code.taylor(model.p)[0]
+    H = check_model(model).code.taylor(model.p)[0]
     m = model.masses
     s = 1 / np.sqrt(m)
     scale = max(1.0, float(np.max(np.abs(H))) / float(np.min(m)))
@@ -90,10 +91,31 @@ def check_rest_stable(model: Model, samples: int = 257):
                              f"branch 0 has omega^2 = {lam[0]:.3g} < 0 at k = {kap:.4g}")
 
 
+def check_model(model) -> Model:
+    """``model`` itself where it is an ``energy.Model``; a one-line error naming what it
+    got otherwise (a name or a Lattice given where the loaded model belongs)."""
+    if not isinstance(model, Model):
+        raise ModelError(f"model must be an energy.Model (energy.load_model(name, file or "
+                         f"Lattice)), got {type(model).__name__} {str(model)[:60]!r}")
+    return model
+
+
+def check_amplitude(amplitude, name: str = "amplitude") -> float:
+    """A carrier's amplitude: a real number (not a bool or a string) in (0, MAX_VALUE]."""
+    if isinstance(amplitude, (bool, np.bool_)) or not isinstance(amplitude, numbers.Real):
+        raise ModelError(f"{name} must be a real number > 0, got "
+                         f"{type(amplitude).__name__} {amplitude!r}")
+    a = float(amplitude)
+    if not (math.isfinite(a) and 0 < a <= MAX_VALUE):
+        raise ModelError(f"{name} must be a finite number > 0 (at most {MAX_VALUE:g}), got "
+                         f"{amplitude!r}")
+    return a
+
+
 def branch_index(model: Model, k: float, branch=None) -> int:
     """Branch index at k from an index, a field name (the branch that field dominates) or
     None (the model's default: its ``branch`` field, else 0)."""
-    d = model.n_fields
+    d = check_model(model).n_fields
     if branch is None:
         branch = model.lattice.branch if model.lattice.branch is not None else 0
     if isinstance(branch, (int, np.integer)) and not isinstance(branch, bool):
@@ -125,6 +147,9 @@ def _modes(model: Model, k: float):
 def carrier(model: Model, k: float, branch=None) -> Carrier:
     """The carrier of ``branch`` at ``k`` with its group velocity and g1 (perturbation
     theory of the Hermitian eigenproblem; checked against finite differences in tests)."""
+    if isinstance(k, (bool, np.bool_)) or not isinstance(k, numbers.Real) \
+            or not math.isfinite(k):
+        raise ModelError(f"k must be a finite real number, got {type(k).__name__} {k!r}")
     b = branch_index(model, k, branch)
     lam, vecs, H, s = _modes(model, k)
     if lam[b] <= 0:

@@ -124,6 +124,9 @@ class ModelNLS:
         if not (math.isfinite(a) and a > 0):
             raise ModelError(f"amplitude must be > 0, got {amplitude!r}")
         g = self.g
+        if g == 0:  # a linear chain (or cancelling terms): no envelope is held together
+            raise ModelError(f"no soliton: g2 = 0 at k = {self.carrier.k:.6g} (no cubic "
+                             "nonlinearity: a linear chain at this order)")
         kind = "bright" if g > 0 else "dark"
         width = 2 / (a * math.sqrt(abs(g)))
         # the mean strain eps^2 |A|^2 s integrated over the envelope |E|^2 = (a/2)^2 sech^2
@@ -231,8 +234,11 @@ def nls(model: Model, k: float, branch=None) -> ModelNLS:
     if isinstance(k, bool) or not isinstance(k, numbers.Real):
         raise ModelError(f"k must be a real number, got {type(k).__name__} {k!r}")
     k = float(k)
-    if not (math.isfinite(k) and 0 < k < math.pi):
-        raise ModelError(f"k must be in (0, {math.pi:.6g}), got {k!r}")
+    # k = pi (the zone boundary) included: the 2k harmonic is uniform there but at 2 omega,
+    # apart from the mean (at 0), and every coefficient is its limit k -> pi (g2, g1 of
+    # seven models equal to 1e-14 at pi - 1e-7; FPUT's 3 beta > 4 alpha^2 at pi)
+    if not (math.isfinite(k) and 0 < k <= math.pi):
+        raise ModelError(f"k must be in (0, pi], got {k!r}")
     c = carrier(model, k, branch)
     H, T, Q = model.code.taylor(model.p)
     if not (np.all(np.isfinite(T)) and np.all(np.isfinite(Q))):

@@ -21,6 +21,8 @@ import numpy as np
 
 from energy import Model, ModelError
 
+from ._linear import check_amplitude
+
 #: sites of the ring the linear profile is checked on (its phases k n mod 2 pi)
 _SITES = 512
 
@@ -61,6 +63,7 @@ def amplitude_reach(model: Model, k: float, amplitude: float, branch=None, *,
     """The largest amplitude a <= ``amplitude`` with the model's energy and force finite
     along the linear wave at ``k`` (bisection, to ``rtol``); ``amplitude`` itself where
     they are finite there, 0 where they are not finite at any amplitude tried."""
+    amplitude = check_amplitude(amplitude)
     if _finite(model, k, amplitude, branch):
         return float(amplitude)
     lo, hi = 0.0, float(amplitude)
@@ -93,8 +96,9 @@ def energy_not_real(model: Model, k: float, amplitude: float, branch=None) -> st
 
 
 def exact_gain_checked(model: Model, k: float, amplitude: float, branch=None, **kw):
-    """``exact_gain``; where its solver stops on non-finite values, a ModelError that says
-    the energy is not real there and the largest amplitude allowed (``energy_not_real``)."""
+    """``exact_gain``; where its solver stops on non-finite values, or finds no wave where
+    the energy is not real along the linear wave, a ModelError that says the energy is not
+    real there and the largest amplitude allowed (``energy_not_real``)."""
     import warnings
 
     from ._exact import exact_gain
@@ -104,14 +108,14 @@ def exact_gain_checked(model: Model, k: float, amplitude: float, branch=None, **
         try:
             spec = exact_gain(model, k, amplitude, branch, **kw)
         except (ValueError, FloatingPointError) as exc:
-            if isinstance(exc, ModelError):
-                raise
             try:
                 why = energy_not_real(model, k, amplitude, branch)
             except Exception:  # the check itself failed: the solver's own error stands
                 why = None
             if why is None:
                 raise
+            if isinstance(exc, ModelError):  # no wave found, and the energy is not real
+                why += " (the harmonic balance found no wave either)"  # along the linear one
             raise ModelError(why) from exc
     for w in caught:
         warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)

@@ -51,6 +51,10 @@ class _Stop(Exception):
 
 #: The largest ring (sites): a run keeps ``records`` spectra of N values each.
 MAX_RING = 2**20
+#: the most steps a run may take: 1e10 steps of a small ring are hours of CPU; a run past
+#: it is a stiff model (a mass of 1e-300 puts a branch at 1e150: 1e154 steps, where the
+#: run and the estimate's probe hung without a word) or a T no one can wait for
+MAX_STEPS = 1e10
 
 
 def check_ring(N) -> int:
@@ -74,8 +78,11 @@ def snap_ring(k: float, N: int) -> tuple[float, int]:
         raise ModelError(f"k must be in (0, pi], got {k!r}")
     m = int(round(k * N / (2 * math.pi)))
     if m == 0:
-        raise ModelError(f"k = {k:g} snaps to 0 on a ring of N = {N} (no wave): raise N "
-                         f"above {math.ceil(math.pi / k)}")
+        need = math.ceil(math.pi / k)
+        raise ModelError(f"k = {k:g} snaps to 0 on a ring of N = {N} (no wave): " + (
+            f"raise N above {need}" if need < MAX_RING else
+            f"no ring carries it (N at most {MAX_RING}): k at least "
+            f"{2 * math.pi / MAX_RING:.3g}"))
     return 2 * math.pi * m / N, m
 
 
@@ -277,13 +284,20 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
             from ._exact import hill_spectrum
             expected_gain = hill_spectrum(wave, ring_offsets(N)).peak_gain
         t_end = run_length(expected_gain).t_end
-    if not (math.isfinite(t_end) and t_end > 0):
+    if isinstance(t_end, bool) or not isinstance(t_end, (int, float, np.floating)) or not (
+            math.isfinite(t_end) and t_end > 0):
         raise ModelError(f"t_end must be a finite time > 0, got {t_end!r}")
     wmax = float(np.nanmax(branches(model, np.linspace(0, math.pi, 129)))) * 1.1 + wave.omega
     if dt is None:
         dt = 0.2 * meth.stability_limit() / wmax
     if not (math.isfinite(dt) and dt > 0):
         raise ModelError(f"dt must be a finite step > 0, got {dt!r}")
+    if t_end / dt > MAX_STEPS:
+        raise ModelError(f"the lattice's highest frequency {wmax:.3g} asks for a step dt = "
+                         f"{dt:.3g} (0.2 of the method's stability limit): a run of T = "
+                         f"{t_end:g} would take {t_end / dt:.2g} steps, more than "
+                         f"{MAX_STEPS:g}; a model whose frequencies span less (a mass near "
+                         "0 is stiff), or a shorter T")
     nsteps = max(1, int(math.ceil(t_end / dt)))
     dt = t_end / nsteps
     every = max(1, nsteps // records)

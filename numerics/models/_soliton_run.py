@@ -56,7 +56,12 @@ def ring_wavenumber(k: float, N: int, kind: str = "bright") -> float:
     m = round((k * N - offset) / (2 * math.pi))
     out = (2 * math.pi * m + offset) / N
     if not 0 < out < math.pi:
-        raise ModelError(f"no ring wavenumber near k = {k:g} for N = {N} (a {kind} soliton)")
+        why = ("its nearest is pi, where v_g = 0: the soliton stands still and travels no "
+               f"widths; k <= {(2 * math.pi * (m - 1) + offset) / N:.6g} (or a larger N)"
+               if out >= math.pi else
+               f"its nearest is {out:.3g}: a larger N")
+        raise ModelError(f"no ring wavenumber near k = {k:g} for N = {N} (a {kind} soliton): "
+                         + why)
     return out
 
 

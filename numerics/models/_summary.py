@@ -4,14 +4,19 @@ from __future__ import annotations
 
 import math
 
-from energy import Model, ModelError
+import numpy as np
 
-from ._linear import carrier_damping, field_rule
+from energy import Model
+
+from ._linear import carrier_damping, check_amplitude, field_rule
 from ._nls import nls
 
 #: The NLS's own frequency shift beyond this share of omega is outside the weakly nonlinear
 #: expansion (the paper chain's coefficients command warns at the same 10%).
 WEAK_SHIFT = 0.10
+#: The amplitude's field moving less than this share of the wave's largest field is said:
+#: a = 0.1 of u on diatomic FPUT's acoustic branch at k = 3.14 is v = 125
+SMALL_FIELD = 0.1
 
 
 def _num(x):
@@ -29,19 +34,34 @@ def model_coefficients(model: Model, k: float, amplitude: float, branch=None) ->
     ``frequency_shift`` and ``warnings``; a model with [dissipation] adds
     ``carrier_damping`` (the carrier branch's amplitude decay rate Gamma, 1/time). Non-finite numbers are None.
     """
-    a = float(amplitude)
-    if not (math.isfinite(a) and a > 0):
-        raise ModelError(f"amplitude must be > 0 (first-harmonic amplitude of the carrier's "
-                         f"field), got {amplitude!r}")
+    a = check_amplitude(amplitude)  # the carrier field's first harmonic
     r = nls(model, k, branch)
     c = r.carrier
     peak = r.peak_gain(a)
     warn = []
     if not r.undefined and abs(r.frequency_shift(a)) > WEAK_SHIFT * c.omega:
+        share = abs(r.frequency_shift(a)) / c.omega
+        share = f"{share:.0%} of" if share < 10 else f"{share:.3g} times"  # not 30 digits
         warn.append(f"the NLS's frequency shift |g2| a^2/4 = {abs(r.frequency_shift(a)):.3g} "
-                    f"is {abs(r.frequency_shift(a)) / c.omega:.0%} of omega: beyond the weakly "
+                    f"is {share} omega: beyond the weakly "
                     "nonlinear expansion; lower the amplitude or ask the exact theory")
+    if model.lossy:  # a carrier that decays before its phase turns is no wave to modulate
+        from ._linear import damped_frequencies
+
+        w = complex(np.asarray(damped_frequencies(model, c.k))[c.branch])
+        if abs(w.real) <= abs(w.imag):
+            warn.append(f"the carrier is {'over' if abs(w.real) < 1e-9 * abs(w.imag) else ''}"
+                        f"damped at k = {c.k:.4g}: its damped frequency is {w.real + 0.0:.3g} "
+                        f"{w.imag:+.3g}i (it decays faster than its phase turns); the rates "
+                        "above are the lossless wave's, lower the damping for a wave")
     fields = model.fields
+    e = np.abs(np.asarray(c.e))
+    big = int(np.argmax(e))
+    if e[c.field] < SMALL_FIELD * e[big]:  # a of a field that hardly moves: a huge wave
+        warn.append(f"on branch {c.branch} at k = {c.k:.4g} the field {fields[c.field]} moves "
+                    f"{e[c.field] / e[big]:.2g} of {fields[big]}: a = {a:g} of "
+                    f"{fields[c.field]} is {fields[big]} = {a * e[big] / e[c.field]:.3g}; "
+                    f"--branch {fields[big]} measures a in {fields[big]}")
     return {
         "model": model.name, "parameters": dict(model.params), "k": float(k),
         "amplitude": a, "branch": c.branch, "field": fields[c.field],

@@ -35,7 +35,7 @@ import numpy as np
 from common.threads import one_blas_thread
 from energy import Model, ModelError
 
-from ._linear import Carrier, carrier
+from ._linear import Carrier, carrier, check_amplitude
 from ._nls import kept_acoustic_directions
 
 RESIDUAL_TOL = 1e-9
@@ -301,9 +301,7 @@ def _travelling_wave(model, k, amplitude, branch, harmonics, start=None, fast=No
     truncation H tried where ``harmonics`` is None (default 8; doubled while the tail is
     above 1e-13 of the amplitude, up to 32)."""
     least_squares = _least_squares
-    a = float(amplitude)
-    if not (math.isfinite(a) and a > 0):
-        raise ModelError(f"amplitude must be a finite number > 0, got {amplitude!r}")
+    a = check_amplitude(amplitude)
     if fast is None:
         car = carrier(model, k, branch)
         masses = np.asarray(model.masses, float)
