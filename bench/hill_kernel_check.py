@@ -37,9 +37,12 @@ def main(argv=None):
                          "OTHER_TREE/numerics/models/_sidebands.py")
     path = argv[argv.index("--baseline") + 1]
     # named by its file's stem: numba's on-disk cache of that file records the module name
-    stem = Path(path).stem
+    # inside this tree's package, so that its relative imports (``._small_algebra``)
+    # resolve: the kernel's helpers are this tree's for both
+    stem = f"numerics.models._baseline{Path(path).stem}"
     spec = importlib.util.spec_from_file_location(stem, path)
     old = importlib.util.module_from_spec(spec)
+    old.__package__ = "numerics.models"
     sys.modules[stem] = old
     spec.loader.exec_module(old)
     new = kernel.sideband_modes

@@ -17,6 +17,7 @@ tests/test_dissipation.py).
 from __future__ import annotations
 
 import functools
+import math
 
 import numpy as np
 from numba import njit
@@ -190,34 +191,77 @@ def _entry(F, sidx, ph, H, w2, masses, j, li, b, hi):
     return v
 
 
-def chord_newton(residual, jacobian, x0, steps=12):
+def chord_newton(residual, jacobian, x0, steps=12, progress=None, refresh=0, done=1e-14):
     """Newton's method with the start's Jacobian kept (the chord method): the lower
     amplitudes of a damped point start from the last wave scaled, ~1e-5 of their
     residual's scale away, where the chord converges linearly at a rate of that order, so
     one Jacobian and its pseudo-inverse serve every step (Newton took two Jacobians and
     two least-squares solves for the same round-off). Stops as ``_wave._gauss_newton``:
     a residual below 1e-14, or one that no longer falls by 4 once below 1e-11 (round-off);
-    None where it does not converge so (the caller solves by Gauss-Newton instead)."""
+    None where it does not converge so (the caller solves by Gauss-Newton instead).
+    ``progress``: a list that gets the last iterate whose residual fell by 4 or more
+    against the one before (left empty where none did): where the chord gives up, Gauss-Newton
+    goes on from it rather than from x0 (the continuation's steps of ``_wave._connected``:
+    the chord took a flexmm wave's residual from ~1e-3 to ~1e-10 before it stalled, and
+    Gauss-Newton then began again at 1e-3). ``refresh``: how many times at most the
+    Jacobian is taken again at the latest iterate, where the chord's rate (now / before)
+    says it would need more than ``REFRESH_AFTER`` further steps to reach 1e-14, or where
+    a step fails to fall by 4 from the Jacobian of an earlier iterate (the continuation's
+    last step: a rate of ~0.21 from 1e-2, 14 residuals before it stalled at 4e-11; with
+    the Jacobian taken again at 5e-5 it converges in two more steps). Its fixed point does
+    not depend on the Jacobian, so neither does the converged wave, beyond round-off.
+    ``done``: the residual it stops at (1e-14; the continuation's steps before its last
+    stop at 1e-11, as ``_wave._gauss_newton``'s)."""
     x = x0.copy()
     r = residual(x)
     best = float(np.max(np.abs(r)))
     if not np.isfinite(best):
         return None
-    if best < 1e-14:
+    if best < done:
         return x
     step = _least_squares_map(jacobian(x))  # the least-squares solution of each step
+    fresh = True  # the step map is the current iterate's
     for _ in range(steps):
-        x = x - step @ r
-        r = residual(x)
-        now = float(np.max(np.abs(r)))
+        xn = x - step @ r
+        rn = residual(xn)
+        now = float(np.max(np.abs(rn)))
         if not np.isfinite(now):
             return None
-        if now < 1e-14:
-            return x
+        if now < done:
+            return xn
         if now >= best / 4:  # round-off, or too far for the chord
-            return x if best < 1e-11 and now < 2 * best else None
-        best = now
+            if best < 1e-11 and now < 2 * best:
+                return xn
+            if refresh and fresh and now < 1e3 * best:
+                # the current Jacobian's own step went up (Newton's overshoot far from the
+                # root): taken, and the Jacobian with it, as Gauss-Newton would (which
+                # otherwise starts again from x0 and takes this same step first)
+                refresh -= 1
+                x, r, best = xn, rn, now
+                step = _least_squares_map(jacobian(x))
+                continue
+            if not refresh or fresh:
+                return None
+            # the Jacobian of an earlier iterate: taken again at the best one
+            refresh -= 1
+            step = _least_squares_map(jacobian(x))
+            fresh = True
+            continue
+        rate = now / best
+        x, r, best = xn, rn, now
+        fresh = False
+        if progress is not None:
+            progress[:] = [x]
+        if refresh and now > 1e-11 and math.log(1e-14 / now) / math.log(rate) > REFRESH_AFTER:
+            refresh -= 1
+            step = _least_squares_map(jacobian(x))
+            fresh = True
     return None
+
+
+#: ``chord_newton``'s steps at the current rate beyond which the Jacobian is taken again
+#: (one Jacobian and its map cost ~3 residuals for flexmm at H = 16, measured)
+REFRESH_AFTER = 4
 
 
 def _least_squares_map(J):

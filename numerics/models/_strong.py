@@ -51,18 +51,18 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from ._real_gauge import frozen_real, real_gauge
+from ._frozen import _frozen_starts, _start_vector
+from ._real_gauge import _components
 from ._sidebands import (
     STEPS,
     TOL,
-    _fold,
     _lu,
     _lu_solve,
     _newton,
     _pencil_at,
     _schur,
-    _small_pencil,
 )
+from ._small_algebra import _drop_roundoff
 
 _KW = dict(cache=True, nogil=True, error_model="numpy", boundscheck=False)
 
@@ -132,16 +132,20 @@ def _newton_past(Kt, Om, lam, cidx, ridx, scale, X, known):
 
 
 @njit(**_KW)
-def _refine(K, Om, lam, v, scale):
+def _refine(K, Om, lam, v, scale, split=False):
     """Nonlinear inverse iteration on the whole pencil T(lambda) = (lambda - i Omega)^2 + K
     (Ruhe's: w = T^{-1} T' v, lambda -= 1 / (v^* w), v = w / |w|; quadratic, Newton on det T
     for one coordinate) from ``lam`` and the frozen pencil's eigenvector ``v`` (unit norm,
     updated in place), until a step is below TOL, as ``_sidebands._newton``. One LAPACK
-    solve of n x n a step, against the Schur complement's two solves and two products.
-    Returns (lambda, settled)."""
+    solve of n x n a step, against the Schur complement's two solves and two products;
+    ``split`` (the pencil's nonzeros in separate blocks): by the LU that skips zeros
+    instead, which then costs what the blocks do (stiff-hinge's two halves: 12 us
+    against LAPACK's 20; slower on a connected pencil). Returns (lambda, settled)."""
     n = Om.size
     T = np.empty((n, n), np.complex128)
     rhs = np.empty(n, np.complex128)
+    B = np.empty((n, 1), np.complex128)
+    piv = np.empty(n, np.int64)
     for _ in range(STEPS):
         for a in range(n):
             for b in range(n):
@@ -149,10 +153,18 @@ def _refine(K, Om, lam, v, scale):
             z = lam - 1j * Om[a]
             T[a, a] += z * z
             rhs[a] = 2 * z * v[a]
-        try:
-            w = np.linalg.solve(T, rhs)
-        except Exception:  # exactly singular: lam is an eigenvalue, v not yet its vector
-            return lam, False
+        if split:
+            if not _lu(T, piv):
+                return lam, False  # exactly singular, as below
+            for a in range(n):
+                B[a, 0] = rhs[a]
+            _lu_solve(T, piv, B)
+            w = B[:, 0]
+        else:
+            try:
+                w = np.linalg.solve(T, rhs)
+            except Exception:  # exactly singular: lam is an eigenvalue, v not yet its vector
+                return lam, False
         vw = 0j
         nrm = 0.0
         for a in range(n):
@@ -168,71 +180,6 @@ def _refine(K, Om, lam, v, scale):
         if abs(step) <= TOL * (abs(lam) + scale):
             return lam, True
     return lam, False
-
-
-@njit(**_KW)
-def _frozen_starts(K, Om, cidx, ridx, lvec, P, sq, omega, starts, gaps, larg, vecs):
-    """The frozen pencil's starts at one offset: each growing eigenvalue, and each pair
-    close on the axis from between them (half their gap into ``gaps``); for each, its
-    eigenvector (one inverse-iteration step on the frozen pencil, the rest
-    -T_RR(0)^{-1} K_RC y_C: whole, into ``vecs``) and its heaviest harmonic (``larg``,
-    over the C part: 0 where the step is singular). Returns how many; -1 where the fold
-    is singular."""
-    rc, nr = cidx.size, ridx.size
-    X = np.empty((nr, rc), np.complex128)
-    g = np.empty(K.shape[0], np.complex128)
-    ok = False
-    if real_gauge(K, g):  # in real arithmetic (``_real_gauge``): ~1/3 of the cost
-        Sig = np.empty((rc, rc), np.complex128)
-        lam0, ok = frozen_real(K, Om, cidx, ridx, g, X, Sig)
-    if not ok:
-        Sig, ok = _fold(K, Om, 0j, cidx, ridx, X)
-        if not ok:
-            return -1
-        lam0 = _small_pencil(K, Om, cidx, Sig)
-    ns = 0
-    for s in range(lam0.size):
-        if lam0[s].real > 1e-9 * omega:
-            starts[ns] = lam0[s]
-            gaps[ns] = 0.0
-            ns += 1
-    order = np.argsort(lam0.imag)
-    for t in range(lam0.size - 1):
-        a0, b0 = lam0[order[t]], lam0[order[t + 1]]
-        if abs(a0.real) > 1e-9 * omega or abs(b0.real) > 1e-9 * omega:
-            continue
-        gap = b0.imag - a0.imag
-        if gap < 1e-2 * omega and ns < starts.size:
-            starts[ns] = 0.5 * (a0 + b0) + 0.5 * gap
-            gaps[ns] = 0.5 * gap
-            ns += 1
-    F = np.empty((rc, rc), np.complex128)
-    B = np.empty((rc, 1), np.complex128)
-    piv = np.empty(rc, np.int64)
-    per_l = np.empty(2 * P + 1)
-    for s in range(ns):
-        for a in range(rc):
-            for b in range(rc):
-                F[a, b] = K[cidx[a], cidx[b]] - Sig[a, b]
-            z = starts[s] - 1j * Om[cidx[a]]
-            F[a, a] += z * z
-            B[a, 0] = 1.0
-        if _lu(F, piv):
-            _lu_solve(F, piv, B)
-            per_l[:] = 0.0
-            for a in range(rc):
-                per_l[lvec[a] + P] += abs(B[a, 0] * sq[cidx[a] % sq.size]) ** 2
-            larg[s] = np.argmax(per_l) - P
-        else:
-            larg[s] = 0
-        for a in range(rc):
-            vecs[s, cidx[a]] = B[a, 0]
-        for a in range(nr):
-            acc = 0j
-            for b in range(rc):
-                acc += X[a, b] * B[b, 0]
-            vecs[s, ridx[a]] = -acc
-    return ns
 
 
 @njit(**_KW)
@@ -278,6 +225,10 @@ def strong_modes(Hh, masses, k, omega, P, Pc, offsets, floor, max_modes):
     nl = 2 * P + 1
     n = d * nl
     Q = offsets.size
+    # the Hessian's harmonics below the DFT's round-off made exact zeros, as the Gershgorin
+    # pass has them (``_sidebands``): where the pencil splits, its frozen pencil's
+    # eigenvalues are found block by block (``_real_gauge.frozen_real``)
+    Hh = _drop_roundoff(Hh)
     lam_out = np.zeros((Q, max_modes), np.complex128)
     vec_out = np.zeros((Q, max_modes, n), np.complex128)
     count = np.zeros(Q, np.int64)
@@ -351,18 +302,26 @@ def strong_modes(Hh, masses, k, omega, P, Pc, offsets, floor, max_modes):
     s_larg = np.zeros((nsrc + 1, width), np.int64)
     s_vecs = np.zeros((nsrc + 1, width, n), np.complex128)
     s_count = np.zeros(nsrc + 1, np.int64)
+    # each slot's frozen pencil and fold, its starts' eigenvectors made from them when the
+    # search first reaches them (``s_made``): most starts are left by the cut-off
+    s_F0 = np.zeros((nsrc + 1, rc, rc), np.complex128)
+    s_X = np.zeros((nsrc + 1, nr, rc), np.complex128)
+    s_made = np.zeros((nsrc + 1, width), np.bool_)
     for i in range(Q):
         if slot[i] >= 0:
             _pencil_at(Hh, sq, k, P, offsets[i], ed, eq, K)
             j = slot[i]
-            s_count[j] = _frozen_starts(K, Om, cidx, ridx, lvec, P, sq, omega, s_starts[j],
-                                        s_gaps[j], s_larg[j], s_vecs[j])
+            s_count[j] = _frozen_starts(K, Om, cidx, ridx, omega, s_starts[j], s_gaps[j],
+                                        s_F0[j], s_X[j])
     starts = np.empty(3 * width, np.complex128)
     gaps = np.empty(3 * width)
-    larg = np.empty(3 * width, np.int64)
-    vecs = np.empty((3 * width, n), np.complex128)
+    src = np.empty(3 * width, np.int64)  # each start's slot, index there, sigma, mirror
+    src_s = np.empty(3 * width, np.int64)
+    src_sigma = np.empty(3 * width, np.int64)
+    src_mir = np.zeros(3 * width, np.bool_)
     for iq in range(Q):
         _pencil_at(Hh, sq, k, P, offsets[iq], ed, eq, K)
+        split = _components(K).max() > 0
         # this offset's starts: its own where it is a source, else its neighbours'
         ns = 0
         for c in range(3):
@@ -372,8 +331,9 @@ def strong_modes(Hh, masses, k, omega, P, Pc, offsets, floor, max_modes):
                 j, sigma, mir = slot[iq], 0, False
                 if j < 0:
                     j = nsrc
-                    s_count[j] = _frozen_starts(K, Om, cidx, ridx, lvec, P, sq, omega,
-                                                s_starts[j], s_gaps[j], s_larg[j], s_vecs[j])
+                    s_count[j] = _frozen_starts(K, Om, cidx, ridx, omega, s_starts[j],
+                                                s_gaps[j], s_F0[j], s_X[j])
+                    s_made[j, :] = False
             else:
                 if c == 2 or nb[iq, c] < 0 or not source[nb[iq, c]]:
                     continue
@@ -383,24 +343,11 @@ def strong_modes(Hh, masses, k, omega, P, Pc, offsets, floor, max_modes):
                 break
             for s in range(s_count[j]):
                 lam = s_starts[j, s]
-                lq = s_larg[j, s]
                 if mir:  # the mirror image at -q: conj(lambda), harmonic l -> -l
                     lam = np.conj(lam)
-                    lq = -lq
                 starts[ns] = lam - 1j * sigma * omega
                 gaps[ns] = s_gaps[j, s]
-                larg[ns] = lq - sigma
-                for li in range(nl):  # c_t[l] = c'[l + sigma], c'[l] = conj(c_s[-l]) mirrored
-                    ls = li - P + sigma
-                    if abs(ls) > P:
-                        for a in range(d):
-                            vecs[ns, li * d + a] = 0.0
-                        continue
-                    if mir:
-                        ls = -ls
-                    for a in range(d):
-                        val = s_vecs[j, s, (ls + P) * d + a]
-                        vecs[ns, li * d + a] = np.conj(val) if mir else val
+                src[ns], src_s[ns], src_sigma[ns], src_mir[ns] = j, s, sigma, mir
                 ns += 1
         if ns < 0:
             count[iq] = -1
@@ -420,17 +367,34 @@ def strong_modes(Hh, masses, k, omega, P, Pc, offsets, floor, max_modes):
             s = first[t]
             if kept > 0 and reach[s] + gaps[s] + 10 * moved < kept:
                 break
-            if abs(larg[s]) > 2:
+            j, js, sigma, mir = src[s], src_s[s], src_sigma[s], src_mir[s]
+            if not s_made[j, js]:
+                s_larg[j, js] = _start_vector(s_F0[j], s_X[j], Om, cidx, ridx, lvec, P, sq,
+                                              s_starts[j, js], s_vecs[j, js])
+                s_made[j, js] = True
+            lq = -s_larg[j, js] if mir else s_larg[j, js]
+            if abs(lq - sigma) > 2:
                 continue  # its frozen eigenvector is heaviest off the centre: not kept
             # the whole frozen eigenvector refined on the whole pencil; Newton on the
-            # Schur complement where that does not settle
+            # Schur complement where that does not settle. Translated from its source:
+            # c_t[l] = c'[l + sigma], c'[l] = conj(c_s[-l]) where mirrored
+            for li in range(nl):
+                ls = li - P + sigma
+                if abs(ls) > P:
+                    for a in range(d):
+                        v[li * d + a] = 0.0
+                    continue
+                if mir:
+                    ls = -ls
+                for a in range(d):
+                    val = s_vecs[j, js, (ls + P) * d + a]
+                    v[li * d + a] = np.conj(val) if mir else val
             nrm = 0.0
             for a in range(n):
-                v[a] = vecs[s, a]
                 nrm += abs(v[a]) ** 2
             for a in range(n):
                 v[a] /= np.sqrt(nrm)
-            lam, settled = _refine(K, Om, starts[s], v, scale)
+            lam, settled = _refine(K, Om, starts[s], v, scale, split)
             whole = settled and lam.real >= -floor
             if not whole:
                 lam, settled = _newton(K, Om, starts[s], cidx, ridx, scale, y, True, X)

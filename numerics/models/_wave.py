@@ -233,7 +233,7 @@ def _connected(model, k, a, branch, harmonics, direct, fast=None):
     base = fast
     # the steps' least squares by QR, the steps before the last converged to 1e-11 (each
     # only the next one's start)
-    fast = dict(fast or {}, qr=True)
+    fast = dict(fast or {}, qr=True, refresh=6)
     prev = None
     for j in range(1, CONTINUATION_STEPS + 1):
         aj = a * j / CONTINUATION_STEPS
@@ -316,7 +316,8 @@ def _travelling_wave(model, k, amplitude, branch, harmonics, start=None, fast=No
     d = model.n_fields
     solve = _solve if fast is None else _solve_fast
     kw = {} if fast is None else {"qr": bool(fast.get("qr")), "done": fast.get("done", 1e-14),
-                                  "kept": fast.setdefault("layouts", {})}
+                                  "kept": fast.setdefault("layouts", {}),
+                                  "refresh": int(fast.get("refresh", 0))}
     H = harmonics or first or 8
     if start is not None:
         omega0, c0 = _scaled_start(start, car, a, H)
@@ -436,13 +437,15 @@ def _solve(model, car, a, masses, acoustic, H, c0, omega0, least_squares):
 
 
 def _solve_fast(model, car, a, masses, acoustic, H, c0, omega0, least_squares, qr=False,
-                done=1e-14, kept=None):
+                done=1e-14, kept=None, refresh=0):
     """``_solve``'s equations from their linear maps (``_collocation``: no per-call
     assembly), by the chord method (``chord_newton``: the start's Jacobian kept; Gauss-
     Newton where it does not converge), the converged residual not computed again: the
     same wave to round-off (tests/test_models_exact.py). ``qr``, ``done``: the Gauss-Newton
     fallback's (``_gauss_newton``). ``kept``: a dict of one carrier's calls (the layout
-    and its ``Collocation`` per H, built once: a damped point's lower amplitudes)."""
+    and its ``Collocation`` per H, built once: a damped point's lower amplitudes).
+    ``refresh``: the chord's Jacobian taken again up to that many times where it
+    converges slowly (``chord_newton``; the continuation's steps)."""
     from ._collocation import chord_newton, collocation
 
     d = model.n_fields
@@ -461,7 +464,12 @@ def _solve_fast(model, car, a, masses, acoustic, H, c0, omega0, least_squares, q
     # np.stack([Re, Im], axis=-1)), the free ones in ``parts[free]``'s order
     parts0 = np.ascontiguousarray(c0[:, H + 1:]).view(float).reshape(d, H, 2)
     x0 = np.concatenate([[omega0], optical.T @ np.real(c0[:, H]), parts0[free]])
-    x = chord_newton(residual, jacobian, x0)
+    progress = []
+    x = chord_newton(residual, jacobian, x0, progress=progress, refresh=refresh, done=done)
+    if x is None and progress:
+        # Gauss-Newton from where the chord got to (its residual fell by 4 a step until
+        # then: the same root's basin), from x0 where that does not settle
+        x = _gauss_newton(residual, jacobian, progress[0], qr=qr, done=done)
     if x is None:
         x = _gauss_newton(residual, jacobian, x0, qr=qr, done=done)
     if x is None:
