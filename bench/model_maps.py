@@ -64,7 +64,8 @@ def print_model_layouts(res: dict):
         print(f"model map ({row['cells']} cells, flexmm, N {row['N']}, T {row['t_end']:g}, "
               f"{row.get('block', 1)} cell(s) a task), task phase: 1 worker "
               f"{t['1 worker(s)']:.2f} s, 2 workers {t['2 worker(s)']:.2f} s -> "
-              f"{row['speedup_2_workers_task_phase']:.2f}x (issue 40 asks >= 1.8x)")
+              f"{row['speedup_2_workers_task_phase']:.2f}x (issue 40 asks >= 1.8x); "
+              f"the same map again on each cluster: {row['speedup_2_workers_again']:.2f}x")
 
 
 def print_fput_32(res: dict):
@@ -105,28 +106,38 @@ def model_map_layouts(quick: bool = False) -> dict:
         params = maps.ModelMapParameters.from_model(
             "flexmm", ("K_theta", K), ("k", list(k)), 0.1, N=128, seeds=1, t_end=T,
             block=block)
-        tasks, walls = {}, {}
+        tasks, walls, again = {}, {}, {}
         for workers in (1, 2):
-            d = Path(tempfile.mkdtemp())
-            try:
-                with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                                  dashboard_address=":0", silence_logs=40) as cluster, \
-                        Client(cluster) as client:
-                    for w in client.scheduler_info()["workers"]:  # each worker's first cell
-                        client.submit(tiny.task, tiny, 0, [0], True, workers=[w],
-                                      pure=False).result()
-                    said = []
-                    t0 = time.perf_counter()
-                    maps.run_map(params, d, scheduler=cluster.scheduler_address,
-                                 progress=False, log=said.append)
-                    walls[workers] = time.perf_counter() - t0
-                    tasks[workers] = float(said[-1].rsplit(" in ", 1)[1].split()[0])
-            finally:
-                shutil.rmtree(d, ignore_errors=True)
+            with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                              dashboard_address=":0", silence_logs=40) as cluster, \
+                    Client(cluster) as client:
+                for w in client.scheduler_info()["workers"]:  # each worker's first cell
+                    client.submit(tiny.task, tiny, 0, [0], True, workers=[w],
+                                  pure=False).result()
+                # the map twice on the same cluster: the first loads, in each worker,
+                # the compiled functions the tiny cell did not reach (numba's disk cache,
+                # ~0.7 s on one worker, measured); the second is the steady state
+                for rep in (0, 1):
+                    d = Path(tempfile.mkdtemp())
+                    try:
+                        said = []
+                        t0 = time.perf_counter()
+                        maps.run_map(params, d, scheduler=cluster.scheduler_address,
+                                     progress=False, log=said.append)
+                        took = float(said[-1].rsplit(" in ", 1)[1].split()[0])
+                        if rep == 0:
+                            walls[workers] = time.perf_counter() - t0
+                            tasks[workers] = took
+                        else:
+                            again[workers] = took
+                    finally:
+                        shutil.rmtree(d, ignore_errors=True)
         row = {"cells": int(np.prod(params.grid_shape)), "block": block, "N": 128,
                "t_end": T, "task_phase_s": {f"{w} worker(s)": t for w, t in tasks.items()},
                "run_map_wall_s": {f"{w} worker(s)": t for w, t in walls.items()},
-               "speedup_2_workers_task_phase": tasks[1] / tasks[2]}
+               "speedup_2_workers_task_phase": tasks[1] / tasks[2],
+               "task_phase_again_s": {f"{w} worker(s)": t for w, t in again.items()},
+               "speedup_2_workers_again": again[1] / again[2]}
         if block == 1:
             res["one_cell_a_task"] = row
         else:
