@@ -86,7 +86,13 @@ def load(args, axes_ok=False):
 
     refuse_paper_flags(args)
     fixed, axes = params_of(args, axes_ok)
-    model = load_model(args.model, **fixed)
+    try:
+        model = load_model(args.model, **fixed)
+    except ValueError as exc:  # a value's check, named as the option it came from
+        words = str(exc).split(" ", 2)
+        if len(words) == 3 and words[0] == "parameter" and words[1] in fixed:
+            raise type(exc)(f"--param {words[1]}={fixed[words[1]]!r}: {words[2]}") from None
+        raise
     for name in axes:
         model.lattice.values({name: 0.0})  # an unknown axis name: the model's one-line error
     b = branch_of(args)  # named as the option, before any work (an index or a field)
