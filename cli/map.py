@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import json
 import math
+from pathlib import Path
 
 import numpy as np
 
@@ -148,7 +149,10 @@ def run_map_command(args, log=print):
             f" e.g. {moved[0][0]:g} -> {moved[0][1]:.6g}; simulation and theories use the "
             "snapped k (coordinate k_simulated)")
     n_workers = args.workers or (1 if args.scheduler else local_cores())
-    from numerics.maps import estimate_map
+    from numerics.maps import check_store, estimate_map
+
+    # a store only --overwrite may replace: refused before the estimate
+    check_store(Path(args.out) / "map.zarr", params, args.overwrite)
 
     estimate = estimate_map(params, n_workers, args.scheduler)  # this machine's speed
     est = estimate.seconds

@@ -155,6 +155,10 @@ def run_map(args) -> int:
         log(f"start: {launched.describe}, with its own noise"
             + (", the runs' T from its theory's rate" if t_end is None else "")
             + f"; its theory: {launched.column} (Hill's method about that state)")
+    from numerics.maps import check_store
+
+    # a store only --overwrite may replace: refused before the estimate's seconds
+    check_store(Path(args.out) / "map.zarr", params, args.overwrite)
     if _finished(args.out, params):  # nothing to compute: no cell measured to estimate it
         log(f"estimate: none needed: {Path(args.out) / 'map.zarr'} holds every cell of this "
             "map (its checksums are verified, the summary and figure made again)")

@@ -478,3 +478,24 @@ def test_four_wave_takes_no_ring_of_zero_sites():
     for theory in (four_wave, exact_gain):
         with pytest.raises(ModelError, match="N must be an integer"):
             theory(m, 1.0, 0.1, N=0)
+
+
+def test_another_maps_store_is_refused_before_the_estimate(tmp_path, capsys):
+    """Probe 5 leftover: a model map refused another map's store only after its estimate
+    (3-5 s of probing cells); numerics.maps.check_store refuses it first, for the model
+    map and the paper chain's map alike, and leaves the store as it was."""
+    out = str(tmp_path)
+    base = ["map", "--model", "fput", "--param", "alpha=1", "--k", "2.6,2.8", "--amplitude",
+            "0.1", "--theory-only", "--workers", "1", "--out", out]
+    assert _cli(capsys, *base, "--param", "beta=0.8,1.6")[0] == 0
+    before = sorted(p.name for p in (tmp_path / "map.zarr").iterdir())
+    code, printed, err = _cli(capsys, *base, "--param", "beta=0.8,1.7", "--N", "64",
+                              "--exact")
+    assert code == 2 and "replace it with --overwrite" in err and err.count("\n") == 1
+    assert "estimate" not in printed + err
+    assert sorted(p.name for p in (tmp_path / "map.zarr").iterdir()) == before
+    paper = ["map", "--alpha", "2.5", "--K-s", "0.01851", "--case", "coupled", "--k",
+             "0.8,0.9", "--theory-only", "--workers", "1", "--out", out]
+    code, printed, err = _cli(capsys, *paper, "--K-theta", "0.016")
+    assert code == 2 and "replace it with --overwrite" in err
+    assert "predictions about" not in printed + err  # the paper map's estimate line

@@ -76,12 +76,13 @@ from ._point import (
                      theory_curves,
 )
 from ._store import MapCellError, cells_done, open_or_create, run_map
+from ._store_open import check_store
 
 __all__ = [
     "resonance_map", "simulate_cell", "cell_step", "growth_of", "measured_peak_gain",
     "MapParameters", "ModelMapParameters", "model_text", "VERDICT_CODES", "MODE_KIND_CODES",
     "parse_spec", "run_map", "DEVICES", "resolve_device", "theory_columns", "agreement", "AGREEMENT_MARGIN",
-    "open_or_create",
+    "open_or_create", "check_store",
     "simulate_block", "CRITERION", "MapCellError", "local_cores",
     "seed_majority", "PointResult", "measure_point", "point_step", "theory_curves",
     "offset_curve", "fold", "snap_carrier", "MAX_SEEDS", "MAX_T_END",

@@ -134,6 +134,29 @@ def empty_dataset_names(params: MapParameters) -> list:
                    *params.theory_names()})
 
 
+def _checked(path: Path, params: MapParameters, overwrite: bool):
+    """``_inspect``'s (what, detail), after refusing what only --overwrite may replace: an
+    unreadable store, or another map with finished cells."""
+    # --overwrite replaces another map or an unreadable store; this map's store is resumed
+    what, detail = _inspect(path, params) if path.exists() else ("none", None)
+    if what == "unreadable" and not overwrite:
+        raise ValueError(f"{path}: damaged: {detail}; which map it holds cannot be read, so "
+                         "nothing in it can be trusted; replace it with --overwrite, or "
+                         "choose another --out")
+    if what == "other" and detail != 0 and not overwrite:
+        raise ValueError(f"{path} holds {params.other_map(_stored_attrs(path))}; replace it "
+                         "with --overwrite, or choose another --out")
+    return what, detail
+
+
+def check_store(path: Path, params: MapParameters, overwrite: bool = False) -> None:
+    """Refuse, before any work, a store at ``path`` that ``run_map`` would refuse (an
+    unreadable one, another map with finished cells; ``overwrite`` allows both): the
+    command says so before its estimate, not after it. Reads only the store's metadata,
+    its coordinates and its done flags; changes nothing."""
+    _checked(Path(path), params, overwrite)
+
+
 def _open(path: Path, params: MapParameters, overwrite: bool = False, log=print):
     """``open_or_create``'s dataset (lazy) and its variables' values in memory, the store
     read once: on a 64 x 64 map each full read costs ~6 s (zarr reads 22 variables of 1 024
@@ -144,15 +167,7 @@ def _open(path: Path, params: MapParameters, overwrite: bool = False, log=print)
         return {n: (ds[n].values if raw is None or n not in raw else
                     np.asarray(raw[n], ds[n].dtype)) for n in ds.data_vars}
 
-    # --overwrite replaces another map or an unreadable store; this map's store is resumed
-    what, detail = _inspect(path, params) if path.exists() else ("none", None)
-    if what == "unreadable" and not overwrite:
-        raise ValueError(f"{path}: damaged: {detail}; which map it holds cannot be read, so "
-                         "nothing in it can be trusted; replace it with --overwrite, or "
-                         "choose another --out")
-    if what == "other" and detail != 0 and not overwrite:
-        raise ValueError(f"{path} holds {params.other_map(_stored_attrs(path))}; replace it "
-                         "with --overwrite, or choose another --out")
+    what, detail = _checked(path, params, overwrite)
     if what == "other" and detail == 0:  # no finished cell: nothing is lost by replacing it
         log(f"note: {path} held another map with no finished cell (every cell failed, "
             "or none ran): replaced")
