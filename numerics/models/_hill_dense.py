@@ -32,6 +32,36 @@ def _sideband_offset(q, l_, k, w_best):
     return float(dist[near][np.argmax(w_best[near])]) if side else math.nan
 
 
+class _DensePencil:
+    """What both dense paths build from the wave at truncation P: the harmonics, the
+    masses, the rate floor, and per offset q the scaled-free stiffness L(q) (n x n, the
+    cell Hessian's Fourier blocks: ``_exact``'s module docstring)."""
+
+    def __init__(self, wave, P):
+        model = wave.model
+        self.d = d = model.n_fields
+        self.k, self.omega = wave.k, wave.omega
+        self.Hh = _hessian_harmonics(wave, P)
+        self.l_ = l_ = np.arange(-P, P + 1)
+        self.n = d * (2 * P + 1)
+        self.m = np.tile(np.asarray(model.masses, float), 2 * P + 1)
+        self.Minv = 1 / self.m
+        self.ll = np.repeat(l_, d)
+        self.floor = GAIN_FLOOR * max(self.omega, 1e-300)
+        self._diff = l_[:, None] - l_[None, :] + 2 * P
+        self._back = np.exp(-1j * (l_[:, None] - l_[None, :]) * self.k)[..., None, None]
+
+    def stiffness(self, q):
+        """L(q): block (l, h) = A + B e^{i th_h} + C e^{-i th_l} + D e^{-i (l - h) k}."""
+        d, l_ = self.d, self.l_
+        ph = np.exp(1j * (q + l_ * self.k))[None, :, None, None]  # per column harmonic h
+        S = self.Hh[self._diff]                                     # (l, h, 2d, 2d)
+        Sb = S * self._back
+        blk = (S[..., :d, :d] + S[..., :d, d:] * ph + Sb[..., d:, :d] / ph
+               + Sb[..., d:, d:])                                  # (l, h, d, d)
+        return blk.transpose(0, 2, 1, 3).reshape(self.n, self.n)
+
+
 def _dense_growing(wave, offsets, P):
     """The compiled path's fallback: the dense eigenvalues (``eigvals``, no vectors) at
     each offset, then the eigenvectors of the growing ones only, fastest first (inverse
@@ -39,29 +69,15 @@ def _dense_growing(wave, offsets, P):
     same rate, harmonic and sideband offset at ~60% of ``eig``'s cost (flexmm, P = 10)."""
     from scipy.linalg import lu_factor, lu_solve
 
-    model = wave.model
-    d = model.n_fields
-    k, omega = wave.k, wave.omega
-    Hh = _hessian_harmonics(wave, P)
-    l_ = np.arange(-P, P + 1)
-    n = d * (2 * P + 1)
-    m = np.tile(np.asarray(model.masses, float), 2 * P + 1)
-    Minv = 1 / m
-    floor = GAIN_FLOOR * max(omega, 1e-300)
-    diff = l_[:, None] - l_[None, :] + 2 * P
-    back = np.exp(-1j * (l_[:, None] - l_[None, :]) * k)[..., None, None]
-    ll = np.repeat(l_, d)
+    pencil = _DensePencil(wave, P)
+    d, k, omega, l_, n = pencil.d, pencil.k, pencil.omega, pencil.l_, pencil.n
+    m, Minv, ll, floor = pencil.m, pencil.Minv, pencil.ll, pencil.floor
     gains = np.zeros(offsets.size)
     modes = np.zeros(offsets.size, int)
     offs = np.full(offsets.size, math.nan)
     b = np.random.default_rng(0).standard_normal(2 * n) + 0j  # inverse iteration's start
     for i, q in enumerate(offsets):
-        ph = np.exp(1j * (q + l_ * k))[None, :, None, None]
-        S = Hh[diff]
-        Sb = S * back
-        blk = (S[..., :d, :d] + S[..., :d, d:] * ph + Sb[..., d:, :d] / ph
-               + Sb[..., d:, d:])
-        L = blk.transpose(0, 2, 1, 3).reshape(n, n)
+        L = pencil.stiffness(q)
         A = np.zeros((2 * n, 2 * n), complex)
         A[:n, n:] = np.eye(n)
         A[n:, :n] = -Minv[:, None] * (L - np.diag(ll**2 * omega**2 * m))
@@ -91,29 +107,15 @@ def _dense_growing(wave, offsets, P):
 def _dense_spectrum(wave, offsets, P, return_eigenvalues):
     """The Hill pencil's whole spectrum per offset (numpy.linalg.eig of its 2 n x 2 n
     linearisation): the reference the compiled path equals, and its fallback."""
-    model = wave.model
-    d = model.n_fields
-    k, omega = wave.k, wave.omega
-    Hh = _hessian_harmonics(wave, P)
-    l_ = np.arange(-P, P + 1)
-    n = d * (2 * P + 1)
-    m = np.tile(np.asarray(model.masses, float), 2 * P + 1)
-    Minv = 1 / m
+    pencil = _DensePencil(wave, P)
+    d, k, omega, l_, n = pencil.d, pencil.k, pencil.omega, pencil.l_, pencil.n
+    m, Minv, ll, floor = pencil.m, pencil.Minv, pencil.ll, pencil.floor
     gains, modes, lams, offs = [], [], [], []
-    floor = GAIN_FLOOR * max(omega, 1e-300)
     outer = np.zeros((2 * P + 1, d), bool)
     outer[:3] = outer[-3:] = True
     outer = outer.ravel()
-    diff = l_[:, None] - l_[None, :] + 2 * P
-    back = np.exp(-1j * (l_[:, None] - l_[None, :]) * k)[..., None, None]
     for q in offsets:
-        ph = np.exp(1j * (q + l_ * k))[None, :, None, None]  # per column harmonic h
-        S = Hh[diff]                                          # (l, h, 2d, 2d)
-        Sb = S * back
-        blk = (S[..., :d, :d] + S[..., :d, d:] * ph + Sb[..., d:, :d] / ph
-               + Sb[..., d:, d:])                            # (l, h, d, d)
-        L = blk.transpose(0, 2, 1, 3).reshape(n, n)
-        ll = np.repeat(l_, d)
+        L = pencil.stiffness(q)
         K0 = L - np.diag(ll**2 * omega**2 * m)
         B = np.diag(-2j * omega * ll * m)
         A = np.zeros((2 * n, 2 * n), complex)
