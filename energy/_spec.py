@@ -18,6 +18,7 @@ import numbers
 import re
 import tomllib
 from dataclasses import dataclass, field
+import os
 from pathlib import Path
 from types import MappingProxyType
 
@@ -496,6 +497,9 @@ def _check_rayleigh(where: str, tree: ast.Expression):
 
 def read_model(path: str | Path) -> Lattice:
     """Read a model file (TOML): the format of ``docs/models.md``."""
+    if not isinstance(path, (str, os.PathLike)):
+        raise ModelError(f"read_model: the path of a model file (.toml) must be a str or "
+                         f"os.PathLike, got {type(path).__name__} {path!r}")
     path = Path(path)
     where = str(path)
     try:

@@ -76,7 +76,12 @@ def branches(model: Model, kappa) -> np.ndarray:
     H = model.code.taylor(model.p)[0]
     m = model.masses
     s = 1 / np.sqrt(m)
-    kap = np.asarray(kappa, dtype=float)
+    try:
+        kap = np.asarray(kappa, dtype=float)
+    except (TypeError, ValueError):
+        kap = None
+    if kap is None or not np.all(np.isfinite(kap)) or np.asarray(kappa).dtype.kind == "b":
+        raise ModelError(f"kappa must be finite real wavenumbers (rad/site), got {kappa!r}")
     out = np.empty(kap.shape + (len(m),))
     for idx in np.ndindex(kap.shape):
         A = s[:, None] * dynamical_matrix(H, float(kap[idx])) * s[None, :]
