@@ -15,10 +15,10 @@ import json
 import keyword
 import math
 import numbers
+import os
 import re
 import tomllib
 from dataclasses import dataclass, field
-import os
 from pathlib import Path
 from types import MappingProxyType
 

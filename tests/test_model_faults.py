@@ -563,8 +563,6 @@ def test_a_full_disk_names_the_file(cache, tmp_path, monkeypatch, capsys):
 @pytest.mark.parametrize("bad", [123, None, 1.5])
 def test_read_model_names_what_a_path_must_be(bad):
     """read_model(123) was a TypeError from pathlib ('expected str, bytes or os.PathLike')."""
-    from energy import read_model
-
     with pytest.raises(ModelError, match="must be a str or os.PathLike"):
         read_model(bad)
 
