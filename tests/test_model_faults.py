@@ -589,3 +589,26 @@ def test_a_dissipation_refused_after_parsing_names_its_file(tmp_path, capsys):
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and err[0].startswith(f"flexmm: error: {f}: ")
     assert "not positive semi-definite" in err[0]
+
+
+@pytest.mark.parametrize("bond,kinked", [("C*(u_next - u)**2/2 + 0.1*Abs(u_next - u)", True),
+                                         ("C*Abs(u_next - u)", True),
+                                         ("C*(u_next - u)**2/2 + Abs(u_next - u)**3", False),
+                                         ("C*(u_next - u)**2/2 + Abs(u_next - u)**(5/2)",
+                                          False)])
+def test_a_kink_at_rest_is_named_where_a_linear_wave_is_asked(bond, kinked, cache):
+    """Abs(r) to the first power: the force jumps at rest by its coefficient, which the
+    Hessian (Abs differentiated away from its kink) does not see. The NLS said "g1 = 0, no
+    dispersion" (a V-shaped bond over an on-site term) or "omega^2 = 0, no carrier": the
+    reason is the kink, named with the jump. Abs(r)**p, p > 2, is smooth enough: no change.
+    The chain still simulates (test_abs_energies_derive_and_simulate)."""
+    from numerics.models import carrier
+
+    model = load_model(parse_model(model_text(bond=bond, site="u**2/2")))
+    if kinked:
+        with pytest.raises(ModelError, match="kink of the energy") as exc:
+            carrier(model, 1.0)
+        jump = 0.1 if "0.1*" in bond else 1.0  # the coefficient of Abs
+        assert f"jumps by {jump:.3g} " in str(exc.value)
+    else:
+        assert carrier(model, 1.0).omega > 0
