@@ -13,14 +13,21 @@ are only starts: each is refined on the offset's own whole pencil (``_strong._re
 with the anchors' largest refinement move in its cut-off, so the answers are that
 pencil's eigenvalues, as they were from the offset's own frozen starts.
 
-Where a growing mode may appear or leave between the anchors, the offset solves its own
-frozen pencil as every offset did before: the anchors' frozen pencils have different
-numbers of growing eigenvalues (a band edge), or either has a close pair on the axis
+A mode refined at both anchors is known to within its move between them: the search's
+cut-off leaves it where its rate plus that move cannot reach the fastest kept mode found
+(a frozen start keeps the cut-off's margin for the frozen pencil's error, 10x the largest
+refinement move at the anchors).
+
+Where a growing mode may appear between the anchors, the offset solves its own frozen
+pencil as every offset did before: either anchor has a close pair on the axis
 (``_frozen``: a collision) whose eigenvector is central (heaviest at |l| <= 2: it may
 become a kept mode between them; measured: a stiff-hinge band of rate 1.05e-3 one grid
 offset wide, whose pair's gap was 0.010 and 0.005 at the two anchors, was missed without
-this), or an anchor went to the dense eigenproblem; also where the start from the anchors
-leaves the offset unsure (it would go dense). Not a certificate, as the frozen pencil
+this), or an anchor went to the dense eigenproblem; also where the starts from the anchors
+leave the offset unsure (it would go dense). A band edge where a growing frozen
+eigenvalue appears between the anchors needs no more: the anchor inside the band brings
+its refined mode and frozen start (a guard on the anchors' growing counts was tried:
+no answer changed at 116 spectra without it). Not a certificate, as the frozen pencil
 itself is not (``_strong``'s module docstring). Measured against main's answers (every
 offset's rate within 1e-6 relative, peaks equal) and tested against the same spectrum
 asked one offset at a time (tests/test_exact_between.py); bench/README.md.
@@ -76,17 +83,6 @@ def between_anchors(offsets, own):
         lo[i], hi[i] = a, b
         frac[i] = (offsets[i] - offsets[a]) / span
     return lo, hi, frac
-
-
-@njit(**_KW)
-def growing_count(every, omega):
-    """How many of a frozen pencil's eigenvalues grow (rate > 1e-9 omega, the starts'
-    threshold)."""
-    c = 0
-    for s in range(every.size):
-        if every[s].real > 1e-9 * omega:
-            c += 1
-    return c
 
 
 @njit(**_KW)

@@ -54,7 +54,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from ._between import between_anchors, growing_count, merged_starts
+from ._between import between_anchors, merged_starts
 from ._frozen import _frozen_starts, _start_vector
 from ._real_gauge import _components
 from ._refine import _kept, _newton_past, _refine
@@ -225,6 +225,7 @@ def strong_modes(Hh, masses, k, omega, P, Pc, offsets, floor, max_modes):
     m_other = np.empty(2 * width, np.int64)
     src_alt = np.full(3 * width, -1, np.int64)
     no_gaps = np.zeros(max_modes)
+    sure = np.zeros(3 * width, np.bool_)
     s_done = np.zeros((nsrc + 1, width), np.bool_)  # a slot's start refined at its offset
     s_moved = np.zeros(Q)  # each offset's largest refinement move
     ja, jb = 0, 0
@@ -250,11 +251,10 @@ def strong_modes(Hh, masses, k, omega, P, Pc, offsets, floor, max_modes):
             if use_anchors:
                 ja, jb = slot[lo[iq]], slot[hi[iq]]
                 qa, qb = lo[iq], hi[iq]
-                # a band edge between the anchors (their frozen pencils grow unalike, or a
-                # close pair that may be central sits at either: a collision): own pencil
+                # a collision between the anchors (a close pair that may be central at
+                # either) or an anchor gone dense: its own pencil
                 alike = (s_count[ja] >= 0 and s_count[jb] >= 0 and count[qa] >= 0
-                         and count[qb] >= 0 and growing_count(s_every[ja], omega)
-                         == growing_count(s_every[jb], omega))
+                         and count[qb] >= 0)
                 for j in (ja, jb):
                     for js in range(s_count[j] if alike else 0):
                         if s_gaps[j, js] > 0:
@@ -275,6 +275,14 @@ def strong_modes(Hh, masses, k, omega, P, Pc, offsets, floor, max_modes):
                         starts[s], gaps[s] = m_starts[s], 0.0
                         src[s] = -1 - (qb if m_which[s] else qa)
                         src_s[s], src_sigma[s], src_mir[s] = m_index[s], 0, False
+                        # a mode refined at both: its rate known to within its move
+                        # between them (gaps), not the frozen pencil's error (the cut-off)
+                        sure[s] = m_other[s] >= 0
+                        if sure[s]:
+                            gaps[s] = abs(lam_out[qa, m_index[s]] - lam_out[qb, m_other[s]])
+                            if m_which[s]:
+                                gaps[s] = abs(lam_out[qb, m_index[s]]
+                                              - lam_out[qa, m_other[s]])
                     nf = merged_starts(s_starts[ja], s_gaps[ja], s_count[ja], s_starts[jb],
                                        s_gaps[jb], s_count[jb], frac[iq], m_starts, m_gaps,
                                        m_which, m_index, m_other)
@@ -288,6 +296,7 @@ def strong_modes(Hh, masses, k, omega, P, Pc, offsets, floor, max_modes):
                         src[ns] = jb if m_which[s] else ja
                         src_s[ns], src_sigma[ns], src_mir[ns] = m_index[s], 0, False
                         src_alt[ns] = m_other[s]
+                        sure[ns] = False
                         ns += 1
                     merged = True
             for c in range(3):
@@ -335,6 +344,8 @@ def strong_modes(Hh, masses, k, omega, P, Pc, offsets, floor, max_modes):
                 moved = max(moved, s_moved[lo[iq]], s_moved[hi[iq]])
             for t in range(ns):
                 s = first[t]
+                if kept > 0 and merged and sure[s] and reach[s] + gaps[s] < kept:
+                    continue
                 if kept > 0 and reach[s] + gaps[s] + 10 * moved < kept:
                     break
                 j, js, sigma, mir = src[s], src_s[s], src_sigma[s], src_mir[s]
