@@ -43,7 +43,11 @@ before this check, none with it).
 
 On a ring the frozen pencil is solved at half of the offsets: the pencil at q + k is the
 one at q shifted one harmonic (``strong_modes``), so an offset between two sources takes
-their starts, translated; each is refined at its own offset as any other. On a fine grid
+their starts, translated; each is refined at its own offset as any other. The sources go
+first: their refined modes, translated, are starts too (the same eigenvalues but for the
+truncation's edge: their rate known, so the cut-off leaves those that cannot reach the
+fastest kept one), and a frozen start a source refined is not refined again (its mode
+is among them); the frozen starts' cut-off keeps the sources' largest refinement move. On a fine grid
 (the infinite chain's) it is solved at every other offset, the anchors; an offset between
 two takes their refined modes and frozen starts, interpolated (``_between``), or solves
 its own where a mode may appear between them.
@@ -235,8 +239,11 @@ def strong_modes(Hh, masses, k, omega, P, Pc, offsets, floor, max_modes):
     src_s = np.empty(3 * width, np.int64)
     src_sigma = np.empty(3 * width, np.int64)
     src_mir = np.zeros(3 * width, np.bool_)
-    # the offsets between anchors last: they start from the anchors' refined modes
-    order = np.concatenate((np.flatnonzero(lo < 0), np.flatnonzero(lo >= 0)))
+    # the sources first, the offsets between anchors last: the others start from their
+    # sources' or anchors' refined modes
+    order = np.concatenate((np.flatnonzero(source & (lo < 0)), np.flatnonzero(~source),
+                            np.flatnonzero(lo >= 0)))
+    w = np.empty(n, np.complex128)
     for iq in order:
         # between two anchors: first from their starts; where that is unsure (the
         # dense eigenproblem would be asked), again from its own frozen pencil
@@ -248,6 +255,7 @@ def strong_modes(Hh, masses, k, omega, P, Pc, offsets, floor, max_modes):
             # pencils grow alike; its own where it is a source, else its neighbours'
             ns = 0
             merged = False
+            ring_moved = 0.0
             if use_anchors:
                 ja, jb = slot[lo[iq]], slot[hi[iq]]
                 qa, qb = lo[iq], hi[iq]
@@ -315,10 +323,22 @@ def strong_modes(Hh, masses, k, omega, P, Pc, offsets, floor, max_modes):
                     if c == 2 or nb[iq, c] < 0 or not source[nb[iq, c]]:
                         continue
                     j, sigma, mir = slot[nb[iq, c]], 1 - 2 * c, mirror[iq, c]
+                    # the source's refined modes, translated (its pencil is this one
+                    # shifted: the same eigenvalues but for the truncation's edge)
+                    qs = nb[iq, c]
+                    for f in range(max(count[qs], 0)):
+                        lam = np.conj(lam_out[qs, f]) if mir else lam_out[qs, f]
+                        starts[ns], gaps[ns], sure[ns] = lam - 1j * sigma * omega, 0.0, True
+                        src[ns], src_s[ns], src_sigma[ns], src_mir[ns] = -1 - qs, f, sigma, mir
+                        ns += 1
+                    ring_moved = max(ring_moved, s_moved[qs])
                 if s_count[j] < 0:
                     ns = -1
                     break
                 for s in range(s_count[j]):
+                    if not source[iq] and count[nb[iq, c]] >= 0 and s_done[j, s]:
+                        continue  # refined at its source: its mode is among those above
+                    sure[ns] = False
                     lam = s_starts[j, s]
                     if mir:  # the mirror image at -q: conj(lambda), harmonic l -> -l
                         lam = np.conj(lam)
@@ -342,16 +362,17 @@ def strong_modes(Hh, masses, k, omega, P, Pc, offsets, floor, max_modes):
             moved = 1e-9 * omega
             if merged:  # the anchors' refinements measured the frozen starts' error
                 moved = max(moved, s_moved[lo[iq]], s_moved[hi[iq]])
+            moved = max(moved, ring_moved)  # and a ring's sources theirs
             for t in range(ns):
                 s = first[t]
-                if kept > 0 and merged and sure[s] and reach[s] + gaps[s] < kept:
+                if kept > 0 and sure[s] and reach[s] + gaps[s] < kept:
                     continue
                 if kept > 0 and reach[s] + gaps[s] + 10 * moved < kept:
                     break
                 j, js, sigma, mir = src[s], src_s[s], src_sigma[s], src_mir[s]
-                if j < 0:  # an anchor's refined mode, interpolated (``_between``)
+                if j < 0:  # a refined mode: an anchor's (``_between``) or a ring source's
                     for a in range(n):
-                        v[a] = vec_out[-1 - j, js, a] / sq[a % d]
+                        w[a] = vec_out[-1 - j, js, a] / sq[a % d]
                 else:
                     if not s_made[j, js]:
                         s_larg[j, js] = _start_vector(s_F0[j], s_X[j], Om, cidx, ridx, lvec, P, sq,
@@ -383,6 +404,18 @@ def strong_modes(Hh, masses, k, omega, P, Pc, offsets, floor, max_modes):
                             ls = -ls
                         for a in range(d):
                             val = s_vecs[j, js, (ls + P) * d + a]
+                            v[li * d + a] = np.conj(val) if mir else val
+                if j < 0:  # translated as a frozen start's vector is, below
+                    for li in range(nl):
+                        ls = li - P + sigma
+                        if abs(ls) > P:
+                            for a in range(d):
+                                v[li * d + a] = 0.0
+                            continue
+                        if mir:
+                            ls = -ls
+                        for a in range(d):
+                            val = w[(ls + P) * d + a]
                             v[li * d + a] = np.conj(val) if mir else val
                 nrm = 0.0
                 for a in range(n):
