@@ -41,9 +41,10 @@ from numba import njit
 _KW = dict(cache=True, nogil=True, error_model="numpy", boundscheck=False)
 
 #: every STRIDE-th offset (ascending q) of those that solve their own frozen pencil is an
-#: anchor; the STRIDE - 1 between two anchors take the anchors' starts. Measured: at 3,
-#: 3 of 52 spectra (random flexmm / stiff-hinge points, ring and chain) lost a growing
-#: offset (rates 1e-3 to 2e-2) and the chain was no cheaper (more own solves and refinements)
+#: anchor; the STRIDE - 1 between two anchors take the anchors' starts. Measured at 3
+#: (with every rule here): 4 of 192 spectra (random flexmm / stiff-hinge points, ring and
+#: chain) lost a growing offset (rates 6e-4 to 1.7e-2), and the chains were no cheaper
+#: (more own solves and refinements): 2 it is
 STRIDE = 2
 #: anchors at most this far apart (rad/site): the infinite chain's grid (pi / 400 a
 #: step, finer below it) is interpolated, a coarse ring's offsets (2 pi / N, N < ~600 at
