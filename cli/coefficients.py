@@ -71,6 +71,12 @@ def weak_nonlinearity_note(co: dict, amplitude: float,
             f"expansion the NLS rests on; ask the exact lattice theory ({remedy})")
 
 
+def _number(x: float, spec: str) -> str:
+    """A table cell: '-' where the number is undefined (nan, inf), as every other
+    undefined cell of the table."""
+    return format(x, spec) if math.isfinite(x) else "-"
+
+
 def format_coefficients(material: Material, k: float, amplitude: float, units: Units = Units(),
                         k_requested: float | None = None, eps: float = paper.EPS) -> str:
     """The table `flexmm coefficients` prints: inputs echoed, both models side by side."""
@@ -87,7 +93,7 @@ def format_coefficients(material: Material, k: float, amplitude: float, units: U
     rows = [("omega (1/T)", "omega"), ("v_g (site/T)", "v_g"), ("g1", "g1")]
     table = [["quantity"] + names]
     for label, key in rows:
-        table.append([label] + [f"{co[n][key]:.6g}" for n in names])
+        table.append([label] + [_number(co[n][key], ".6g") for n in names])
     for case, roman in (("rotation", "I"), ("coupled", "II")):
         table.append([f"case {roman} ({case})"] + [""] * len(names))
         for label, key in (("  g2", "g2"), ("  g = g2/g1", "g"), ("  verdict", "verdict"),
@@ -109,11 +115,11 @@ def format_coefficients(material: Material, k: float, amplitude: float, units: U
                     cells.append("-")
                 elif key == "peak_gain" and r["verdict"] == "undefined":
                     cells.append("-")
-                else:
-                    cells.append(f"{r[key]:.6g}")
+                else:  # g = g2/g1 at g1 = 0 (delta = 0): undefined, said below the table
+                    cells.append(_number(r[key], ".6g"))
             table.append([label] + cells)
-    table.append(["u2: |c| (eq. u1)"] + [f"{co[n]['u2 |c|']:.6g}" for n in names])
-    table.append(["U at 2k = |c| amp^2/2"] + [f"{co[n]['U at 2k']:.4g}" for n in names])
+    table.append(["u2: |c| (eq. u1)"] + [_number(co[n]['u2 |c|'], ".6g") for n in names])
+    table.append(["U at 2k = |c| amp^2/2"] + [_number(co[n]['U at 2k'], ".4g") for n in names])
     widths = [max(len(r[i]) for r in table) for i in range(len(table[0]))]
     for j, r in enumerate(table):
         lines.append("  ".join(c.ljust(w) if i == 0 else c.rjust(w)
