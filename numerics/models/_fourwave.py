@@ -44,6 +44,7 @@ partner is no linear wave (a harmonic resonant with a branch).
 from __future__ import annotations
 
 import math
+import numbers
 from dataclasses import dataclass
 
 import numpy as np
@@ -51,7 +52,7 @@ import numpy as np
 from energy import Model, ModelError
 
 from ._exact import GAIN_FLOOR  # one floor for both theories' verdicts
-from ._linear import carrier, check_amplitude, dynamical_matrix
+from ._linear import carrier, check_amplitude, check_model, dynamical_matrix
 from ._modes import _wrap, own_offset, pair_kind, wave_field
 
 #: A driven wave whose operator has a singular value below this share of the largest is
@@ -451,18 +452,23 @@ def four_wave(model: Model, k: float, amplitude: float, branch=None, *, N: int |
         ``offset`` of the fastest. ``undefined`` (with nan rates) where the carrier's
         expansion fails (a resonant second harmonic, a degenerate carrier).
     """
+    from ._simulate import check_count, check_ring, snap_ring
+
+    check_model(model)
     a = check_amplitude(amplitude)
     if N is not None:  # N = 0 is a bad ring, not the infinite chain (as exact_gain's)
-        from ._simulate import check_ring, snap_ring
 
         N = check_ring(N)
         k = snap_ring(k, N)[0]
         q = 2 * np.pi * np.arange(1, N // 2 + 1) / N
     else:
+        if isinstance(k, (bool, np.bool_)) or not isinstance(k, numbers.Real):
+            raise ModelError(f"k must be a real number in (0, pi], got {type(k).__name__} "
+                             f"{k!r}")
         k = float(k)
         if not (math.isfinite(k) and 0 < k <= math.pi):
             raise ModelError(f"k must be in (0, pi], got {k!r}")
-        q = _offset_grid(samples)
+        q = _offset_grid(check_count("samples", samples, least=8))  # exact_gain's rule
     kernel = _kernel(model, k, a, branch)
     d = model.n_fields
     if isinstance(kernel, str):
