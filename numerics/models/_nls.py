@@ -37,7 +37,7 @@ import numpy as np
 
 from energy import Model, ModelError
 
-from ._linear import Carrier, blocks, carrier, dynamical_matrix
+from ._linear import Carrier, blocks, carrier, check_amplitude, dynamical_matrix
 
 #: Relative size under which a matrix is singular: a resonance, not a number.
 SINGULAR = 1e-9
@@ -93,13 +93,21 @@ class ModelNLS:
     def peak_gain(self, amplitude: float) -> float:
         """Fastest sideband growth rate |g2| a^2/4 (1/time) where MI, else 0; nan where
         undefined."""
+        amplitude = check_amplitude(amplitude)
         if self.undefined:
             return math.nan
         return abs(self.g2) * amplitude**2 / 4 if self.g > 0 else 0.0
 
     def gain(self, offset, amplitude: float):
         """sigma(q) at sideband offsets q (rad/site) for carrier amplitude a."""
-        q = np.abs(np.asarray(offset, dtype=float))
+        amplitude = check_amplitude(amplitude)
+        try:
+            q = np.abs(np.asarray(offset, dtype=float))
+        except (TypeError, ValueError):
+            q = np.array(np.nan)
+        if not np.all(np.isfinite(q)):  # a nan offset gave a nan rate, said nowhere
+            raise ModelError(f"offset must be finite real numbers (rad/site), got "
+                             f"{str(offset)[:60]}")
         if self.undefined:
             return np.full(q.shape, np.nan)
         g = self.g
@@ -107,22 +115,24 @@ class ModelNLS:
             0.0, g * amplitude**2 - q**2)), 0.0)
 
     def fastest_offset(self, amplitude: float) -> float:
+        """The fastest sideband's offset a sqrt(g/2) (rad/site) where MI, else nan."""
+        amplitude = check_amplitude(amplitude)
         return amplitude * math.sqrt(self.g / 2) if self.verdict == "MI" else math.nan
 
     def band_edge(self, amplitude: float) -> float:
+        """The MI band's edge a sqrt(g) (rad/site) where MI, else nan."""
+        amplitude = check_amplitude(amplitude)
         return amplitude * math.sqrt(self.g) if self.verdict == "MI" else math.nan
 
     def frequency_shift(self, amplitude: float) -> float:
         """The NLS's nonlinear frequency shift -g2 a^2/4 of the plane wave."""
-        return -self.g2 * amplitude**2 / 4
+        return -self.g2 * check_amplitude(amplitude)**2 / 4
 
     def soliton(self, amplitude: float) -> ModelSoliton:
         """The envelope soliton of peak (bright) or background (dark) amplitude a."""
         if self.undefined:
             raise ModelError(f"no soliton: the NLS is undefined ({self.undefined})")
-        a = float(amplitude)
-        if not (math.isfinite(a) and a > 0):
-            raise ModelError(f"amplitude must be > 0, got {amplitude!r}")
+        a = check_amplitude(amplitude)
         g = self.g
         if g == 0:  # a linear chain (or cancelling terms): no envelope is held together
             raise ModelError(f"no soliton: g2 = 0 at k = {self.carrier.k:.6g} (no cubic "
