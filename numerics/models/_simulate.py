@@ -21,6 +21,7 @@ Measurement: ``_growth`` (``ModelRun.growth``, ``ModelRun.amplification``).
 from __future__ import annotations
 
 import math
+import numbers
 from dataclasses import dataclass
 
 import numpy as np
@@ -455,6 +456,34 @@ class SeededRuns:
     length: object = None
 
 
+def _check_spec(model: Model, k: float, amplitude: float, spec, branch, N: int) -> None:
+    """``spec`` is the exact theory of this very wave on this ring: the runs start from
+    ``spec.wave``, so a spectrum of another k, amplitude, branch or model would start
+    them from another wave, silently (seen: amplitude 0.5 asked, 0.05 run)."""
+    from ._linear import branch_index, check_amplitude, check_model
+
+    wave = getattr(spec, "wave", None)
+    if wave is None or not hasattr(spec, "peak_gain"):
+        raise ModelError(f"spec must be the exact theory of the wave on this ring "
+                         f"(numerics.models.exact_gain(model, k, amplitude, branch, N=N)), "
+                         f"got {type(spec).__name__}")
+    check_model(model)
+    a = check_amplitude(amplitude)
+    kr = snap_ring(k, N)[0]
+    b = branch_index(model, kr, branch)
+    differ = [f"{name} {got} (spec: {want})" for name, got, want, same in (
+        ("k on the ring", f"{kr:.6g}", f"{wave.k:.6g}", math.isclose(kr, wave.k, rel_tol=1e-12)),
+        ("amplitude", f"{a:.6g}", f"{wave.amplitude:.6g}",
+         math.isclose(a, wave.amplitude, rel_tol=1e-12)),
+        ("branch", b, wave.carrier.branch, b == wave.carrier.branch),
+        ("model", model.describe(), wave.model.describe(),
+         wave.model.lattice == model.lattice and dict(wave.model.params) == dict(model.params)))
+        if not same]
+    if differ:
+        raise ModelError(f"spec is the exact theory of another wave: {'; '.join(differ)}; "
+                         f"give exact_gain(model, k, amplitude, branch, N=N) of these")
+
+
 def simulate_seeds(model: Model, k: float, amplitude: float, spec, *, branch=None,
                    N: int = 256, seeds: int = 1, t_end: float | None = None,
                    start: str = "exact", gain: float | None = None, **run) -> SeededRuns:
@@ -467,6 +496,10 @@ def simulate_seeds(model: Model, k: float, amplitude: float, spec, *, branch=Non
 
     if isinstance(seeds, bool) or not isinstance(seeds, (int, np.integer)) or seeds < 1:
         raise ModelError(f"seeds must be an integer >= 1, got {seeds!r}")
+    _check_spec(model, k, amplitude, spec, branch, N)
+    if t_end is not None and (isinstance(t_end, bool) or not isinstance(t_end, numbers.Real)):
+        raise ModelError(f"t_end must be a finite time > 0, got {type(t_end).__name__} "
+                         f"{t_end!r}")
     length = run_length(spec.peak_gain if gain is None else gain) if t_end is None else None
     T = float(t_end) if t_end is not None else length.t_end
     runs = [simulate_model(model, k, amplitude, branch=branch, N=N, t_end=T, start=start,
