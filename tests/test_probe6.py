@@ -1,0 +1,108 @@
+"""Fault probe 6 of the commands a user runs most (coefficients, point, soliton, map, with
+and without --model) and of the model API: each test is a try that failed before its fix
+(a silent nan, a traceback, a wrong answer or an advice that did not work)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+
+def _cli(capsys, *argv):
+    from cli.app import main as cli
+
+    code = cli(list(argv))
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def test_the_paper_chains_table_prints_no_nan_at_delta_zero(capsys):
+    """delta = 0 (K_s = K_theta): g1 = 0, so g = g2/g1 is undefined; the table printed
+    'nan' there while every other undefined cell prints '-' (the reason is below it)."""
+    code, out, _ = _cli(capsys, "coefficients", "--alpha", "2.5", "--K-s", "0.02",
+                        "--K-theta", "0.02", "--k", "1.3")
+    assert code == 0
+    assert "nan" not in out.lower() and "inf" not in out.lower()
+    rows = [line for line in out.splitlines() if line.strip().startswith("g = g2/g1")]
+    assert len(rows) == 2 and all(r.split()[-2:] == ["-", "-"] for r in rows)
+    assert "undefined: g1 = 0" in out
+
+
+@pytest.fixture(scope="module")
+def fput():
+    from energy import builtin, load_model
+
+    return load_model(builtin("fput"))
+
+
+@pytest.mark.parametrize("call, words", [
+    (lambda fw, m: fw("fput", 1.0, 0.02), "model must be an energy.Model"),
+    (lambda fw, m: fw(m, 1.0, 0.02, samples=1), "samples must be an integer >= 8"),
+    (lambda fw, m: fw(m, 1.0, 0.02, samples=1.5), "samples must be an integer >= 8"),
+    (lambda fw, m: fw(m, "1", 0.02), "k must be a real number in (0, pi]"),
+])
+def test_four_wave_refuses_what_exact_gain_refuses(call, words, fput):
+    """four_wave('fput', ...) was an AttributeError ('str' object has no attribute 'code'),
+    samples=1 answered on a grid of one offset (exact_gain refuses samples < 8) and
+    samples=1.5 was a TypeError from numpy."""
+    from energy import ModelError
+    from numerics.models import four_wave
+
+    with pytest.raises(ModelError) as exc:
+        call(four_wave, fput)
+    assert words in str(exc.value)
+
+
+@pytest.mark.parametrize("method, args", [
+    ("peak_gain", (float("nan"),)), ("peak_gain", (1e200,)), ("gain", (0.01, -1.0)),
+    ("gain", (float("nan"), 0.02)), ("fastest_offset", (0.0,)), ("band_edge", (-1.0,)),
+    ("frequency_shift", (math.inf,)), ("soliton", ("a",)),
+])
+def test_the_nls_refuses_a_bad_amplitude_or_offset(method, args, fput):
+    """nls(...).peak_gain(nan) answered nan, peak_gain(1e200) raised OverflowError,
+    gain(q, -1) a rate for a negative amplitude, band_edge(-1) a negative edge and
+    soliton('a') numpy's 'could not convert string to float'."""
+    from energy import ModelError
+    from numerics.models import nls
+
+    with pytest.raises(ModelError, match="amplitude must be|offset must be finite"):
+        getattr(nls(fput, 1.0), method)(*args)
+
+
+def test_the_nls_answers_at_good_amplitudes(fput):
+    """The checks keep the answers: |g2| a^2 / 4, and the gain's peak at a sqrt(g / 2)."""
+    from numerics.models import nls
+
+    r, a = nls(fput, 1.0), 0.02
+    assert r.peak_gain(a) == pytest.approx(abs(r.g2) * a**2 / 4, rel=1e-15)
+    q = r.fastest_offset(a)
+    assert r.gain(q, a) == pytest.approx(r.peak_gain(a), rel=1e-12)
+    # at the edge sqrt(g a^2 - q^2) of a round-off difference: ~sqrt(1e-16) of the peak
+    edge = r.gain(np.array([0.0, r.band_edge(a)]), a)
+    assert edge == pytest.approx([0.0, 0.0], abs=1e-6 * r.peak_gain(a))
+
+
+@pytest.mark.parametrize("change, words", [
+    (dict(amplitude=0.5), "amplitude 0.5 (spec: 0.05)"),
+    (dict(k=2.0), "k on the ring 1.9635 (spec: 0.981748)"),
+    (dict(spec=None), "spec must be the exact theory"),
+    (dict(t_end="5"), "t_end must be a finite time > 0"),
+])
+def test_simulate_seeds_refuses_a_spectrum_of_another_wave(change, words, fput):
+    """simulate_seeds(model, k, a, spec) starts its runs from spec.wave: a spectrum of
+    amplitude 0.05 with a = 0.5 asked ran 0.05 and reported it as 0.5's verdict; k = 2
+    with a spectrum of k = 1 ran k = 1 (growth 1.0000000008, 'no growth'); spec=None was
+    an AttributeError and t_end='5' was taken as 5."""
+    from energy import ModelError
+    from numerics.models import exact_gain, simulate_seeds
+
+    spec = exact_gain(fput, 1.0, 0.05, N=32)
+    kw = dict(k=1.0, amplitude=0.05, spec=spec, N=32, t_end=5.0) | change
+    with pytest.raises(ModelError) as exc:
+        simulate_seeds(fput, kw.pop("k"), kw.pop("amplitude"), kw.pop("spec"), **kw)
+    assert words in str(exc.value)
+    # the matching call runs (the check refuses only another wave)
+    ok = simulate_seeds(fput, 1.0, 0.05, spec, N=32, t_end=5.0)
+    assert ok.t_end == 5.0 and len(ok.runs) == 1
