@@ -197,7 +197,10 @@ def run_map(args) -> int:
     critical = _critical_rows(ds)
     unsampled = _unsampled(ds)
     if args.json:
-        res = {"model": model.name, "parameters": dict(model.params), "amplitude": amp,
+        # a swept parameter is an axis, not its default (beta = 1.0 of a beta axis read as
+        # the map's beta); the amplitude is null where it is an axis, as here
+        fixed = {n: v for n, v in model.params.items() if n not in (x[0], y[0])}
+        res = {"model": model.name, "parameters": fixed, "amplitude": amp,
                "axes": {x[0]: list(map(float, x[1])), y[0]: list(map(float, y[1]))},
                "mi_fraction": summary["mi_fraction"], "mi_share": mi,
                "undetermined_cells": summary["undetermined_cells"], "files": files}

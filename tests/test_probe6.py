@@ -106,3 +106,17 @@ def test_simulate_seeds_refuses_a_spectrum_of_another_wave(change, words, fput):
     # the matching call runs (the check refuses only another wave)
     ok = simulate_seeds(fput, 1.0, 0.05, spec, N=32, t_end=5.0)
     assert ok.t_end == 5.0 and len(ok.runs) == 1
+
+
+def test_a_map_json_gives_no_default_for_a_swept_parameter(capsys, tmp_path):
+    """map --model fput --param beta=0.5,1.5 --json printed "parameters": {"alpha": 0,
+    "beta": 1.0}: the file's default for the axis it swept, read as the map's beta."""
+    import json
+
+    code, out, _ = _cli(capsys, "map", "--model", "fput", "--param", "beta=0.5,1.5",
+                        "--k", "1,2", "--theory-only", "--N", "32", "--workers", "1",
+                        "--json", "--out", str(tmp_path / "m"))
+    assert code == 0
+    res = json.loads(out)
+    assert res["parameters"] == {"alpha": 0.0}
+    assert res["axes"]["beta"] == [0.5, 1.5]
