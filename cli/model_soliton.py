@@ -93,11 +93,12 @@ def _estimate(args, model, branch) -> None:
 
 def _as_options(text: str) -> str:
     """An error of ``simulate_soliton`` with its arguments named as this command's
-    options ('kind dark: ...' -> '--kind dark: ...', 'N = 16 is ...' -> '--N 16 is ...')."""
+    options ('kind dark: ...' -> '--kind dark: ...', 'N = 16 is ...' -> '--N 16 is ...',
+    '...: N = 5112 holds' -> '...: --N 5112 holds')."""
     import re
 
     text = re.sub(r"^kind (\w+):", r"--kind \1:", text)
-    return re.sub(r"^N = (\d+) ", r"--N \1 ", text)
+    return re.sub(r"(^|: |; )N = (\d+) ", r"\1--N \2 ", text)  # and the ring it advises
 
 
 def run_model_soliton(args, model, units, branch) -> dict:

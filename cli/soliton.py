@@ -80,6 +80,10 @@ def run_soliton(args, log=print) -> dict:
                                        N=args.N, travel=args.travel)
             except RunTooLong as exc:  # its remedies as this command's options
                 raise ValueError(exc.advice("--travel", "--amplitude")) from None
+            except ValueError as exc:  # 'N = 16 is too short ...' -> '--N 16 is ...'
+                from .model_soliton import _as_options
+
+                raise ValueError(_as_options(str(exc))) from None
         sol_ring = run.predicted
         log(f"simulated: N = {run.N} sites, k = {sol_ring.k:.6g} rad/site (the nearest a ring "
             f"carries a {sol.kind} soliton), T = {run.t_end:.6g}, {run.method} dt = "

@@ -120,3 +120,48 @@ def test_a_map_json_gives_no_default_for_a_swept_parameter(capsys, tmp_path):
     res = json.loads(out)
     assert res["parameters"] == {"alpha": 0.0}
     assert res["axes"]["beta"] == [0.5, 1.5]
+
+
+def _advised_N(text: str) -> int:
+    import re
+
+    found = re.findall(r"--N (\d+) holds", text)
+    assert len(found) == 1, text
+    return int(found[0])
+
+
+def test_a_models_soliton_ring_advice_is_a_ring_that_holds_it(capsys, fput):
+    """soliton --model fput --k 1 --simulate --N 16 advised 'N >= 12 widths = 4409' (12
+    widths at the 16-site ring's k = 1.178); --N 4410 was then refused for 5109 (its k is
+    near 1, where the soliton is wider). The advice now names a ring that holds it."""
+    from numerics.models import ring_soliton
+
+    code, _, err = _cli(capsys, "soliton", "--model", "fput", "--k", "1", "--simulate",
+                        "--N", "16")
+    assert code == 2 and err.startswith("flexmm: error: --N 16 is too short")
+    N = _advised_N(err)
+    ring = ring_soliton(fput, 1.0, 0.002, N=N)  # the default amplitude of the command
+    assert 12 * ring.soliton.width <= N
+    # the old advice (12 widths at the short ring's k) is refused: the advice is not it
+    old = int(err.split("(12 widths = ")[1].split()[0])
+    assert old < N
+
+
+def test_the_paper_chains_soliton_ring_advice_names_the_option_and_holds_it(capsys, blue):
+    """soliton --simulate --N 16 at the blue point, case coupled: the ring's k (0.98) has
+    the other kind, and the error said "kind='dark': ..." (no --kind was given; --N and a
+    remedy unnamed); a short ring said 'N = 64 is too short' with the API's name and the
+    short ring's width."""
+    from numerics.theory import simulate_soliton
+
+    args = ["soliton", "--alpha", "2.5", "--K-s", "0.01851", "--K-theta", "0.01551",
+            "--k", "0.81681", "--case", "coupled", "--simulate"]
+    code, _, err = _cli(capsys, *args, "--N", "16")
+    assert code == 2 and err.startswith("flexmm: error: --N 16 moves k to 0.981748")
+    assert "kind=" not in err
+    code, _, err64 = _cli(capsys, *args, "--N", "64")
+    assert code == 2 and err64.startswith("flexmm: error: --N 64 is too short")
+    for text in (err, err64):
+        N = _advised_N(text)
+        run = simulate_soliton(blue, "coupled", 0.81681, 0.002, N=N, t_end=1.0, snapshots=2)
+        assert run.N == N and 12 * run.predicted.width <= N

@@ -31,6 +31,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from energy import Model, ModelError
+from numerics.theory import ring_too_short, shortest_ring
 
 from ._linear import blocks, dynamical_matrix
 from ._nls import ModelNLS, ModelSoliton, acoustic_directions, nls
@@ -242,13 +243,26 @@ def ring_soliton(model: Model, k: float, amplitude: float, N: int | None = None,
     nl = nls(model, kr, probe.carrier.branch)
     if nl.undefined:
         raise ModelError(f"no soliton at the ring's k = {kr:.6g}: {nl.undefined}")
+
+    def width_at(ring: int) -> float:
+        kn = ring_wavenumber(k, ring, exists)
+        near = nls(model, kn, probe.carrier.branch)
+        if near.undefined:
+            raise ModelError(near.undefined)
+        sn = near.soliton(amplitude)
+        if sn.kind != exists:
+            raise ModelError("g changes sign")
+        return sn.width
+
     s = nl.soliton(amplitude)
     if s.kind != exists:
+        fits = shortest_ring(width_at, N + 1, ModelError)
         raise ModelError(f"the ring's k = {kr:.6g} (N = {N}) has a {s.kind} soliton, k = "
-                         f"{k:.6g} a {exists} one (g changes sign between): a longer ring")
+                         f"{k:.6g} a {exists} one (g changes sign between): a longer ring"
+                         + (f"; N = {fits} holds one of 12 widths at its own k" if fits
+                            else ""))
     if 12 * s.width > N:
-        raise ModelError(f"N = {N} is too short for a soliton {s.width:.3g} sites wide (need "
-                         f"N >= 12 widths = {math.ceil(12 * s.width)})")
+        raise ModelError(ring_too_short(N, s.width, kr, shortest_ring(width_at, N, ModelError)))
     n = np.arange(N, dtype=float)
     a, w = s.amplitude, s.width
     xi = n + 0.5 - N / 2

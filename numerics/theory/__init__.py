@@ -24,7 +24,8 @@ Measurement     measure_gain, relative_errors (sigma(q) measured from runs)
 Solitons        soliton -> Soliton (bright or dark, width, velocity, frequency, kink of U),
                 ring_wavenumber, soliton_state (the lattice launch), simulate_soliton ->
                 SolitonRun (tracked: centre, width, amplitude, kink, radiation),
-                measure_state, soliton_report (the JSON of `flexmm soliton`)
+                measure_state, soliton_report (the JSON of `flexmm soliton`);
+                shortest_ring, ring_too_short (a ring that holds 12 widths at its own k)
 """
 
 from ._coefficients import nls_coefficients
@@ -65,7 +66,14 @@ from ._soliton import (
                        ring_wavenumber,
                        soliton,
 )
-from ._soliton_launch import RunTooLong, default_ring, simulate_soliton, soliton_state
+from ._soliton_launch import (
+    RunTooLong,
+    default_ring,
+    ring_too_short,
+    shortest_ring,
+    simulate_soliton,
+    soliton_state,
+)
 from ._soliton_measure import Snapshot, SolitonRun, measure_state, soliton_report
 
 __all__ = [
@@ -78,5 +86,5 @@ __all__ = [
     "EXACT_LATTICE", "EXACT_PAPER_START", "EXACT_ALL_MODES", "PREDICTED",
     "SOLITON_THEORIES", "Snapshot", "Soliton", "SolitonRun", "SolitonWarning", "default_ring",
     "measure_state", "ring_wavenumber", "simulate_soliton", "soliton", "soliton_report",
-    "soliton_state", "RunTooLong", "SITES",
+    "soliton_state", "RunTooLong", "SITES", "shortest_ring", "ring_too_short",
 ]

@@ -42,6 +42,35 @@ class RunTooLong(ValueError):
                 + (f", or {t_end}" if t_end else ""))
 
 
+def shortest_ring(width_at, N: int, errors) -> int | None:
+    """A ring (from ``N`` up, the shortest where the width varies smoothly with k) that
+    holds 12 widths of the soliton at that ring's own k (``width_at(ring)``): k moves as
+    the ring changes, and the width with it (12 widths at a 16-site ring's k advised 4409
+    sites for FPUT at k = 1, whose k there needs 5109). A ring whose k has no such soliton
+    (``errors`` raised) is stepped over; None where no ring up to 2^20 sites holds one."""
+    ring = N
+    for _ in range(80):  # each step lengthens the ring; k moves by < pi / ring
+        try:
+            need = math.ceil(12 * width_at(ring))
+        except errors:  # no such soliton at this ring's k: a longer ring, nearer k
+            need = max(ring + 1, math.ceil(1.1 * ring))
+        else:
+            if need <= ring:
+                return ring
+        ring = max(need, ring + 1)
+        if ring > 2**20:
+            break
+    return None
+
+
+def ring_too_short(N: int, width: float, k: float, fits: int | None) -> str:
+    """The refusal of a ring of N sites for a soliton ``width`` sites wide at the ring's
+    ``k``, with the shortest ring ``fits`` that holds one (:func:`shortest_ring`)."""
+    return (f"N = {N} is too short for a soliton {width:.3g} sites wide at the ring's k = "
+            f"{k:.6g} (12 widths = {math.ceil(12 * width)} sites)"
+            + (f"; k moves with N: N = {fits} holds 12 widths at its own k" if fits else ""))
+
+
 def soliton_state(sol: Soliton, N: int, centre: float | None = None) -> LatticeState:
     """theta, theta_dot (and U, U_dot in case II) of ``sol`` centred at site ``centre``.
 
@@ -122,9 +151,29 @@ def simulate_soliton(material: Material, case: str, k: float, amplitude: float,
     sol0 = soliton(material, case, k, amplitude, kind, theory=theory, phi=phi)
     N = default_ring(sol0.width) if N is None else checks.integer("N", N, 16)
     kr = ring_wavenumber(k, N, sol0.kind, phi)
-    with warnings.catch_warnings():  # said once, for the k asked
-        warnings.simplefilter("ignore", SolitonWarning)
-        sol = soliton(material, case, kr, amplitude, sol0.kind, theory=theory, phi=phi, N=N)
+
+    def at(ring: int, kn: float) -> Soliton:
+        with warnings.catch_warnings():  # said once, for the k asked
+            warnings.simplefilter("ignore", SolitonWarning)
+            return soliton(material, case, kn, amplitude, sol0.kind, theory=theory, phi=phi,
+                           N=ring)
+
+    def width_at(ring: int) -> float:
+        return at(ring, ring_wavenumber(k, ring, sol0.kind, phi)).width
+
+    try:
+        sol = at(N, kr)
+    except ValueError as exc:  # the ring's k has the other kind: g changes sign between
+        if "kind=" not in str(exc):
+            raise
+        fits = shortest_ring(width_at, N + 1, ValueError)
+        raise ValueError(f"N = {N} moves k to {kr:.6g}, where the {theory} has no "
+                         f"{sol0.kind} soliton (g changes sign between it and k = {k:.6g}); "
+                         + (f"N = {fits} holds one of 12 widths at its own k" if fits else
+                            "a longer ring keeps k nearer")) from None
+    if 12 * sol.width > N:  # before the run's set-up: with the ring that holds one
+        raise ValueError(ring_too_short(N, sol.width, kr, shortest_ring(width_at, N,
+                                                                         ValueError)))
     snapshots = checks.integer("snapshots", snapshots, 2)
     if t_end is None:
         travel = checks.positive("travel", travel)
@@ -153,4 +202,5 @@ def simulate_soliton(material: Material, case: str, k: float, amplitude: float,
                       theta=np.array(thetas), U=np.array(Us) if case == "coupled" else None)
 
 
-__all__ = ["soliton_state", "simulate_soliton", "default_ring", "MAX_T_END", "RunTooLong"]
+__all__ = ["soliton_state", "simulate_soliton", "default_ring", "MAX_T_END", "RunTooLong",
+           "shortest_ring", "ring_too_short"]
