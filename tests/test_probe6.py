@@ -165,3 +165,27 @@ def test_the_paper_chains_soliton_ring_advice_names_the_option_and_holds_it(caps
         N = _advised_N(text)
         run = simulate_soliton(blue, "coupled", 0.81681, 0.002, N=N, t_end=1.0, snapshots=2)
         assert run.N == N and 12 * run.predicted.width <= N
+
+
+@pytest.mark.parametrize("extra", [["--exact", "--theory-only"], ["--t-end", "50"]])
+def test_a_model_map_refuses_two_k_of_one_ring_wavenumber(extra, capsys, tmp_path):
+    """--k 1,1.01 on N = 32 (both 2 pi 5 / 32): the model map ran both columns, identical
+    cells under two k labels, where the paper chain's map refuses them in one line."""
+    code, _, err = _cli(capsys, "map", "--model", "fput", "--param", "beta=0.5,1", "--k",
+                        "1.01,2,1", "--N", "32", "--workers", "1", "--out",
+                        str(tmp_path / "m"), *extra)
+    assert code == 2
+    assert err.startswith("flexmm: error: --k: 1 and 1.01 both snap to 2 pi 5/32 = 0.981748")
+    assert "a larger --N" in err and not (tmp_path / "m").exists()
+
+
+def test_a_theory_only_model_map_keeps_close_k_values(tmp_path):
+    """Without a ring (the semi-discrete NLS alone) close k values are distinct carriers."""
+    from numerics.maps import ModelMapParameters
+
+    p = ModelMapParameters.from_model("fput", ("beta", [0.5, 1.0]), ("k", [1.0, 1.01]), 0.02,
+                                      theory_only=True, N=32)
+    assert p.grid_shape == (2, 2)
+    with pytest.raises(ValueError, match="both snap to 2 pi 5/32"):
+        ModelMapParameters.from_model("fput", ("beta", [0.5, 1.0]), ("k", [1.0, 1.01]), 0.02,
+                                      theory_only=True, exact=True, N=32)

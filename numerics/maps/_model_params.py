@@ -154,6 +154,16 @@ class ModelMapParameters:
                 raise TypeError(f"{flag} must be True or False, got {getattr(self, flag)!r}")
         if self.ring:  # the ring of the exact theory and the runs
             checks.integer("N", self.N, 8, 2**20 + 1)
+            ks = dict([self.rows, self.cols]).get("k", ())
+            seen = {}  # two columns of one ring carrier: one cell computed twice, the plot
+            for v in ks:  # showing a k resolution the ring lacks (the paper map's rule)
+                m = round(v * self.N / (2 * math.pi))
+                if m in seen:
+                    raise ValueError(
+                        f"--k: {seen[m]:g} and {v:g} both snap to 2 pi {m}/{self.N} = "
+                        f"{2 * math.pi * m / self.N:.6g}, the nearest wavenumber of a ring of "
+                        f"N = {self.N} sites; give fewer k values or a larger --N")
+                seen[m] = v
         checks.integer("seeds", self.seeds, 1, 1001)
         checks.integer("block", self.block, 1, 10**6 + 1)
         if self.t_end is not None:
