@@ -122,6 +122,22 @@ def test_a_map_json_gives_no_default_for_a_swept_parameter(capsys, tmp_path):
     assert res["axes"]["beta"] == [0.5, 1.5]
 
 
+def test_a_model_maps_axes_say_what_they_are(capsys, tmp_path):
+    """The store's parameter and amplitude axes had no attributes (k had its unit only),
+    where every variable says its unit."""
+    import xarray as xr
+
+    for axes in (["--param", "beta=0.5,1.5", "--k", "1,2"],
+                 ["--amplitude", "0.01,0.02", "--param", "beta=0.5,1.5", "--k", "1"]):
+        out = tmp_path / axes[0].strip("-")
+        code, _, _ = _cli(capsys, "map", "--model", "fput", *axes, "--theory-only",
+                          "--workers", "1", "--out", str(out))
+        assert code == 0
+        with xr.open_zarr(out / "map.zarr") as ds:
+            for name in ds.dims:
+                assert {"long_name", "units"} <= set(ds[name].attrs), name
+
+
 def _advised_N(text: str) -> int:
     import re
 

@@ -518,10 +518,22 @@ class ModelMapParameters:
                                   {"long_name": "cell's theories computed"})
         data[CHECKSUM] = (dims, cell_checksums({n: v[1] for n, v in data.items()}),
                           CHECKSUM_ATTRS)
-        coords = {n: (n, np.asarray(v), {"units": "rad per site"} if n == "k" else {})
-                  for n, v in self.store_coords().items()}
+        coords = {n: (n, np.asarray(v), _axis_attrs(n)) for n, v in self.store_coords().items()}
         return xr.Dataset(data, coords=coords, attrs={**self.attrs(),
                                                        "store_format": STORE_FORMAT})
+
+
+def _axis_attrs(name: str) -> dict:
+    """A map axis' attributes: what it is and its unit (a parameter or amplitude axis had
+    none, where every variable says its unit)."""
+    if name == "k":
+        return {"long_name": "carrier wavenumber asked (k_simulated: on the ring)",
+                "units": "rad per site"}
+    if name == AXIS_AMPLITUDE:
+        return {"long_name": "amplitude a of the carrier's first harmonic in its field",
+                "units": "the carrier field's own unit"}
+    return {"long_name": f"model parameter {name}",
+            "units": "the model file's (lattice units)"}
 
 
 __all__ = ["ModelMapParameters", "model_block", "model_text", "VERDICT_CODES",
