@@ -226,7 +226,9 @@ def carrier(model: Model, k: float, branch=None) -> Carrier:
     for j in others:
         if abs(lam[j] - lam[b]) > 1e-13 * max(1.0, abs(lam[b])):
             lam2 += 2 * abs(vecs[:, j].conj() @ A1 @ phi) ** 2 / (lam[b] - lam[j])
-    vg = lam1 / (2 * omega)
+    # omega(pi + q) = omega(pi - q) (time reversal and the 2 pi period): v_g is 0 at the
+    # zone boundary, not sin(pi)'s round-off (6e-17 printed as a soliton's velocity)
+    vg = 0.0 if k == math.pi else lam1 / (2 * omega)
     g1 = (lam2 - 2 * vg**2) / (2 * omega)
     e = s * phi  # back from mass-weighted coordinates
     f = field_of(model, e, branch if isinstance(branch, str) and not branch.isdigit() else None)
