@@ -227,3 +227,18 @@ def test_the_group_velocity_at_the_zone_boundary_is_zero(name, branch, capsys):
     assert code in (0, 2)  # a branch may have no soliton there; the velocity is the point
     if code == 0:
         assert "velocity 0 sites/time" in out
+
+
+def test_a_model_map_says_where_k_snapped(capsys, tmp_path):
+    """--k pi on a ring of 33 sites is 2 pi 16 / 33 = 3.046: the model map ran it without
+    a word (the paper chain's map says 'k values snapped'); a k the ring carries is not
+    named."""
+    code, out, _ = _cli(capsys, "map", "--model", "fput", "--param", "beta=1,2", "--k",
+                        f"{math.pi!r},2", "--theory-only", "--exact", "--N", "33",
+                        "--workers", "1", "--out", str(tmp_path / "a"))
+    assert code == 0
+    assert "note: 2 of 2 k values snapped to 2 pi m / N (N = 33), e.g. 2 -> 2.0944" in out
+    code, out, _ = _cli(capsys, "map", "--model", "fput", "--param", "beta=1,2", "--k",
+                        f"{math.pi!r},{2 * math.pi * 5 / 32!r}", "--theory-only", "--exact",
+                        "--N", "32", "--workers", "1", "--out", str(tmp_path / "b"))
+    assert code == 0 and "snapped" not in out
