@@ -154,6 +154,8 @@ def run_map(args) -> int:
             log(f"note: {len(moved)} of {len(ks)} k values snapped to 2 pi m / N (N = "
                 f"{args.N}), e.g. {moved[0][0]:g} -> {moved[0][1]:.6g}; every theory and run "
                 "uses the snapped k (variable k_simulated)")
+        if same := params.same_ring_k():
+            log(f"note: {same}")
     if start != "exact":
         from numerics.models import extra_starts
 

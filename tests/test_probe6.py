@@ -184,27 +184,28 @@ def test_the_paper_chains_soliton_ring_advice_names_the_option_and_holds_it(caps
 
 
 @pytest.mark.parametrize("extra", [["--exact", "--theory-only"], ["--t-end", "50"]])
-def test_a_model_map_refuses_two_k_of_one_ring_wavenumber(extra, capsys, tmp_path):
+def test_a_model_map_says_two_k_are_one_ring_wavenumber(extra, capsys, tmp_path):
     """--k 1,1.01 on N = 32 (both 2 pi 5 / 32): the model map ran both columns, identical
-    cells under two k labels, where the paper chain's map refuses them in one line."""
-    code, _, err = _cli(capsys, "map", "--model", "fput", "--param", "beta=0.5,1", "--k",
+    cells under two k labels, without a word (the paper chain's map refuses them; a model
+    map keeps them, and says so)."""
+    code, out, _ = _cli(capsys, "map", "--model", "fput", "--param", "beta=0.5,1", "--k",
                         "1.01,2,1", "--N", "32", "--workers", "1", "--out",
                         str(tmp_path / "m"), *extra)
-    assert code == 2
-    assert err.startswith("flexmm: error: --k: 1 and 1.01 both snap to 2 pi 5/32 = 0.981748")
-    assert "a larger --N" in err and not (tmp_path / "m").exists()
+    assert code == 0
+    assert ("note: --k 1 and 1.01 both snap to 2 pi 5/32 = 0.981748 on the ring of N = 32: "
+            "their columns are one carrier, computed twice; a larger --N separates them") in out
 
 
-def test_a_theory_only_model_map_keeps_close_k_values(tmp_path):
+def test_a_theory_only_model_map_keeps_close_k_values_unnoted():
     """Without a ring (the semi-discrete NLS alone) close k values are distinct carriers."""
     from numerics.maps import ModelMapParameters
 
     p = ModelMapParameters.from_model("fput", ("beta", [0.5, 1.0]), ("k", [1.0, 1.01]), 0.02,
                                       theory_only=True, N=32)
-    assert p.grid_shape == (2, 2)
-    with pytest.raises(ValueError, match="both snap to 2 pi 5/32"):
-        ModelMapParameters.from_model("fput", ("beta", [0.5, 1.0]), ("k", [1.0, 1.01]), 0.02,
+    assert p.grid_shape == (2, 2) and p.same_ring_k() is None
+    q = ModelMapParameters.from_model("fput", ("beta", [0.5, 1.0]), ("k", [1.0, 1.01]), 0.02,
                                       theory_only=True, exact=True, N=32)
+    assert "both snap to 2 pi 5/32" in q.same_ring_k()
 
 
 @pytest.mark.parametrize("name, branch", [("fput", 0), ("klein-gordon", 0),
@@ -242,3 +243,53 @@ def test_a_model_map_says_where_k_snapped(capsys, tmp_path):
                         f"{math.pi!r},{2 * math.pi * 5 / 32!r}", "--theory-only", "--exact",
                         "--N", "32", "--workers", "1", "--out", str(tmp_path / "b"))
     assert code == 0 and "snapped" not in out
+
+
+@pytest.mark.parametrize("change, error, words", [
+    (dict(rows="beta"), TypeError, "rows must be (axis name, values)"),
+    (dict(rows=("beta", [1.0, 1.0])), ValueError, "rows (beta) repeats a value"),
+    (dict(branch="5"), ValueError, "branch must be in 0..0 for model 'fput'"),
+    (dict(branch=5), ValueError, "branch must be in 0..0 for model 'fput'"),
+    (dict(branch="x"), ValueError, "neither an index nor a field"),
+    (dict(branch=1.0), TypeError, "branch must be an index or a field name"),
+])
+def test_model_map_parameters_refuse_in_one_line(change, error, words):
+    """rows='beta' was 'too many values to unpack'; a repeated value ran one cell twice;
+    branch='5' (or 'x') made every cell undetermined without a word (run_map returned a
+    map of -1), and branch=1 (an int) an AttributeError once the store was named."""
+    from numerics.maps import ModelMapParameters
+
+    kw = dict(rows=("beta", [1.0, 2.0]), cols=("k", [1.0, 2.0]), theory_only=True) | change
+    with pytest.raises(error) as exc:
+        ModelMapParameters.from_model("fput", kw.pop("rows"), kw.pop("cols"), 0.02, **kw)
+    assert words in str(exc.value)
+
+
+def test_a_model_maps_branch_index_is_kept_as_the_cli_gives_it():
+    from numerics.maps import ModelMapParameters
+
+    p = ModelMapParameters.from_model("diatomic-fput", ("m", [1.5, 2.0]), ("k", [1.0, 2.0]),
+                                      0.02, theory_only=True, branch=1)
+    assert p.branch == "1" and p.branch_value == 1
+
+
+@pytest.mark.parametrize("kw, error, words", [
+    (dict(workers=0), ValueError, "workers must be an integer >= 1"),
+    (dict(workers=1, timeout=-1.0), ValueError, "timeout must be a finite time > 0"),
+    (dict(workers=1, timeout=float("nan")), ValueError, "timeout must be a finite time > 0"),
+])
+def test_run_map_refuses_bad_options_before_any_work(kw, error, words, tmp_path):
+    """workers=0 ran as the default workers; timeout=-1 (with a scheduler) was the socket
+    module's 'Timeout value out of range'; an out that is a file was FileExistsError."""
+    from numerics.maps import ModelMapParameters, run_map
+
+    p = ModelMapParameters.from_model("fput", ("beta", [1.0, 2.0]), ("k", [1.0, 2.0]), 0.02,
+                                      theory_only=True)
+    with pytest.raises(error, match=words):
+        run_map(p, tmp_path / "m", scheduler="tcp://127.0.0.1:1", **kw)
+    assert not (tmp_path / "m").exists()
+    (tmp_path / "f").write_text("x")
+    with pytest.raises(ValueError, match="is a file, not a folder"):
+        run_map(p, tmp_path / "f", workers=1)
+    with pytest.raises(TypeError, match="out must be a folder"):
+        run_map(p, None, workers=1)

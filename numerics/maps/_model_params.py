@@ -108,14 +108,21 @@ class ModelMapParameters:
         from energy import check_value
 
         from ..lattice import checks
+        from ._model_axes import checked_branch
 
         for name in ("rows", "cols"):
-            axis, values = getattr(self, name)
+            given = getattr(self, name)
+            if not (isinstance(given, (tuple, list)) and len(given) == 2):
+                raise TypeError(f"{name} must be (axis name, values), e.g. ('k', [1.0, 2.0]), "
+                                f"got {str(given)[:60]}")
+            axis, values = given
             if not isinstance(axis, str):
                 raise TypeError(f"{name}: the axis name must be a string, got {axis!r}")
             values = checks.real_values(f"{name} ({axis})", tuple(np.ravel(values)))
             for v in values:  # a model's numbers (a parameter's value, an amplitude) are
                 check_value(f"{name} ({axis})", v)  # bounded: beyond, coefficients overflow
+            if len(set(values)) < len(values):  # one cell twice, under one label
+                raise ValueError(f"{name} ({axis}) repeats a value: {list(values)}")
             if axis == "k" and any(not 0 < v <= math.pi for v in values):
                 raise ValueError(f"k must be in (0, pi], got {min(values):g}..{max(values):g}")
             if axis == AXIS_AMPLITUDE and any(not v > 0 for v in values):
@@ -154,16 +161,6 @@ class ModelMapParameters:
                 raise TypeError(f"{flag} must be True or False, got {getattr(self, flag)!r}")
         if self.ring:  # the ring of the exact theory and the runs
             checks.integer("N", self.N, 8, 2**20 + 1)
-            ks = dict([self.rows, self.cols]).get("k", ())
-            seen = {}  # two columns of one ring carrier: one cell computed twice, the plot
-            for v in ks:  # showing a k resolution the ring lacks (the paper map's rule)
-                m = round(v * self.N / (2 * math.pi))
-                if m in seen:
-                    raise ValueError(
-                        f"--k: {seen[m]:g} and {v:g} both snap to 2 pi {m}/{self.N} = "
-                        f"{2 * math.pi * m / self.N:.6g}, the nearest wavenumber of a ring of "
-                        f"N = {self.N} sites; give fewer k values or a larger --N")
-                seen[m] = v
         checks.integer("seeds", self.seeds, 1, 1001)
         checks.integer("block", self.block, 1, 10**6 + 1)
         if self.t_end is not None:
@@ -171,6 +168,8 @@ class ModelMapParameters:
         for unit in ("time_unit_s", "length_unit_m"):
             if getattr(self, unit) is not None:
                 object.__setattr__(self, unit, checks.positive(unit, getattr(self, unit)))
+        if self.branch is not None:  # an impossible branch made every cell undetermined
+            object.__setattr__(self, "branch", checked_branch(self))
         if self.start != "exact":
             from numerics.models import extra_starts
 
@@ -250,6 +249,12 @@ class ModelMapParameters:
         except ModelError as exc:
             return str(exc)
         return r.undefined or "no theory has a verdict"
+
+    def same_ring_k(self) -> str | None:
+        """A note where two k values snap to one ring wavenumber (else None)."""
+        from ._model_axes import same_ring_k
+
+        return same_ring_k(self)
 
     @property
     def branch_value(self):
@@ -518,22 +523,11 @@ class ModelMapParameters:
                                   {"long_name": "cell's theories computed"})
         data[CHECKSUM] = (dims, cell_checksums({n: v[1] for n, v in data.items()}),
                           CHECKSUM_ATTRS)
-        coords = {n: (n, np.asarray(v), _axis_attrs(n)) for n, v in self.store_coords().items()}
+        from ._model_axes import axis_attrs
+
+        coords = {n: (n, np.asarray(v), axis_attrs(n)) for n, v in self.store_coords().items()}
         return xr.Dataset(data, coords=coords, attrs={**self.attrs(),
                                                        "store_format": STORE_FORMAT})
-
-
-def _axis_attrs(name: str) -> dict:
-    """A map axis' attributes: what it is and its unit (a parameter or amplitude axis had
-    none, where every variable says its unit)."""
-    if name == "k":
-        return {"long_name": "carrier wavenumber asked (k_simulated: on the ring)",
-                "units": "rad per site"}
-    if name == AXIS_AMPLITUDE:
-        return {"long_name": "amplitude a of the carrier's first harmonic in its field",
-                "units": "the carrier field's own unit"}
-    return {"long_name": f"model parameter {name}",
-            "units": "the model file's (lattice units)"}
 
 
 __all__ = ["ModelMapParameters", "model_block", "model_text", "VERDICT_CODES",

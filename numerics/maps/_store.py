@@ -22,6 +22,8 @@ comparison of the verdicts in ``_agreement``.
 from __future__ import annotations
 
 import contextlib
+import math
+import os
 import time
 from pathlib import Path
 
@@ -135,6 +137,16 @@ def run_map(params: MapParameters, out: Path, scheduler: str | None = None,
     if not isinstance(params, (MapParameters, ModelMapParameters)):
         raise TypeError(f"params must be a MapParameters or a ModelMapParameters "
                         f"(ModelMapParameters.from_model(...)), got {type(params).__name__}")
+    if workers is not None and (isinstance(workers, bool) or not isinstance(
+            workers, (int, np.integer)) or workers < 1):  # 0 ran as the default, said nowhere
+        raise ValueError(f"workers must be an integer >= 1 (None: the cores), got {workers!r}")
+    if not (isinstance(timeout, (int, float)) and math.isfinite(timeout) and timeout > 0):
+        raise ValueError(f"timeout must be a finite time > 0 in seconds, got {timeout!r}")
+    if not isinstance(out, (str, os.PathLike)):
+        raise TypeError(f"out must be a folder (str or os.PathLike), got {type(out).__name__}")
+    if Path(out).exists() and not Path(out).is_dir():  # was FileExistsError from mkdir
+        raise ValueError(f"out {str(out)!r} is a file, not a folder: give a folder for "
+                         "map.zarr")
     device = resolve_device(device, params.theory_only, log, scheduler)
 
     if scheduler:
