@@ -24,6 +24,20 @@ ROWS = (("velocity", "sites/T"), ("width", "sites"), ("amplitude", "rad (peak ro
         ("frequency", "1/T"), ("kink_height", "U, lattice units"))
 
 
+#: the table's rows in SI (--physical): sites -> m, T -> s
+SI_UNITS = {"velocity": "m/s", "width": "m", "frequency": "1/s"}
+
+
+def _si(sol, run, units) -> dict:
+    """{"predicted": {velocity, width, frequency}, "measured": ...} in m/s, m and 1/s."""
+    a, T = units.metres_per_site, units.seconds_per_T
+    scale = {"velocity": a / T, "width": a, "frequency": 1 / T}
+    out = {"predicted": {key: sol.summary()[key] * f for key, f in scale.items()}}
+    if run is not None:
+        out["measured"] = {key: run.measured()[key] * f for key, f in scale.items()}
+    return out
+
+
 def _other_theory(mat, case, k, amplitude, theory):
     """The other NLS's kind at this point, or a sentence saying where it disagrees."""
     other = [t.label for t in NLS_THEORIES if t.label != theory][0]
@@ -39,7 +53,7 @@ def _other_theory(mat, case, k, amplitude, theory):
 def run_soliton(args, log=print) -> dict:
     from .point import material_from
 
-    mat, _ = material_from(args)
+    mat, units = material_from(args)
     if args.out:  # before any computation (a simulation may take minutes)
         prepare_output(args.out, cache=False)
     amplitude = checks.real("--amplitude", args.amplitude, 0.0, 1.0)
@@ -60,6 +74,8 @@ def run_soliton(args, log=print) -> dict:
         f"(delta = {mat.delta:.4g}); case {args.case}")
     log(f"carrier:  k = {k:g} rad/site; amplitude {amplitude:g} rad (peak rotation of the "
         + ("soliton)" if sol.kind == "bright" else "background)"))
+    if units.seconds_per_T:  # --physical: as coefficients and point say it
+        log(f"units:    {units.describe()}")
     log(f"NLS ({args.theory}): omega = {sol.omega:.6g} 1/T, v_g = {sol.v_g:.5g} sites/T, "
         f"g1 = {sol.g1:.4g}, g2 = {sol.g2:.4g}, g = g2/g1 = {sol.g:.4g} -> "
         f"{'focusing' if sol.g > 0 else 'defocusing'}: {sol.kind} soliton")
@@ -111,6 +127,11 @@ def run_soliton(args, log=print) -> dict:
                 "the run (sound in U crossing the +-8-width window, or a ring too short for "
                 "it): not a measurement of the kink; a longer ring (--N) may settle it")
     result = soliton_report(sol, run)
+    if units.seconds_per_T:  # --physical promises seconds and metres: the table's in SI
+        result["si"] = _si(sol, run, units)
+        log("in SI: " + "; ".join(f"{name} " + ", ".join(f"{key} {v:.4g} {SI_UNITS[key]}"
+                                                         for key, v in values.items())
+                                  for name, values in result["si"].items()))
     if args.out:
         out = Path(args.out)
         out.mkdir(parents=True, exist_ok=True)

@@ -293,3 +293,22 @@ def test_run_map_refuses_bad_options_before_any_work(kw, error, words, tmp_path)
         run_map(p, tmp_path / "f", workers=1)
     with pytest.raises(TypeError, match="out must be a folder"):
         run_map(p, None, workers=1)
+
+
+def test_soliton_physical_answers_in_seconds_and_metres(capsys, tmp_path):
+    """--physical promises answers 'also in seconds and metres' (its help): coefficients
+    and point gave them, soliton printed lattice units only and dropped the units line."""
+    import json
+
+    m, J, a, k_l = 1e-3, 1e-7, 0.01, 100.0
+    T = math.sqrt(m / k_l)  # seconds per lattice time unit (below eq. norm)
+    code, out, _ = _cli(capsys, "soliton", "--physical", f"{m},{J},{a},{k_l},2,0.001",
+                        "--k", "1", "--case", "rotation", "--out", str(tmp_path))
+    assert code == 0
+    assert f"1 T = sqrt(m/k_l) = {T:.4g} s, 1 site = a = {a:.4g} m" in out
+    res = json.loads((tmp_path / "soliton.json").read_text())
+    pred, si = res["predicted"], res["si"]["predicted"]
+    assert si["width"] == pytest.approx(pred["width"] * a, rel=1e-12)
+    assert si["velocity"] == pytest.approx(pred["velocity"] * a / T, rel=1e-12)
+    assert si["frequency"] == pytest.approx(pred["frequency"] / T, rel=1e-12)
+    assert f"width {si['width']:.4g} m" in out and f"{si['velocity']:.4g} m/s" in out
