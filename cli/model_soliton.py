@@ -101,6 +101,21 @@ def _as_options(text: str) -> str:
     return re.sub(r"(^|: |; )N = (\d+) ", r"\1--N \2 ", text)  # and the ring it advises
 
 
+def lossy_note(model, k: float, branch, units) -> tuple[float, str | None]:
+    """(the carrier's amplitude decay rate, a note) of a lossy model's soliton: the NLS's
+    soliton is lossless, the chain's decays (0.0 and None without losses)."""
+    from numerics.models import carrier_damping
+
+    damping = carrier_damping(model, k, branch)
+    if not damping > 0:
+        return 0.0, None
+    return damping, (f"note: {model.name} has [dissipation]: the carrier's amplitude decays "
+                     f"at {damping:.4g} /time{units.si(damping, 'rate')} (e-folding "
+                     f"{1 / damping:.4g} time{units.si(1 / damping, 'time')}), which this "
+                     "soliton of the lossless NLS leaves out; --param its damping = 0 for "
+                     "the lossless chain")
+
+
 def run_model_soliton(args, model, units, branch) -> dict:
     """Predict (and with --simulate, run) the soliton; print; write --out. Returns the
     report (``numerics.models.soliton_report``)."""
@@ -129,6 +144,9 @@ def run_model_soliton(args, model, units, branch) -> dict:
     else:
         pred = ring_soliton(model, args.k, args.amplitude, kind=args.kind, branch=branch)
     report = soliton_report(pred, run)
+    damping, lossy = lossy_note(model, pred.k, pred.nls.carrier.branch, units)
+    if damping > 0:  # a lossy model's soliton was printed as if it lasted
+        report["carrier_damping"] = damping
     if args.json:
         _emit(with_units(report, units))
     else:
@@ -161,6 +179,8 @@ def run_model_soliton(args, model, units, branch) -> dict:
                   f"{m['drift']['amplitude']:+.2%}")
         for line in pred.notes():
             print(line)
+        if lossy:
+            print(lossy)
     if folder is not None:
         from common.files import write_text
         from common.output import strict_json

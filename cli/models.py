@@ -253,6 +253,11 @@ def run_soliton(args) -> int:
            "width": s.width, "velocity": s.velocity, "frequency": s.frequency,
            "kink": {f: float(v) for f, v in zip(model.fields, s.kink)},
            "g1": r.g1, "g2": r.g2}
+    from .model_soliton import lossy_note
+
+    damping, lossy = lossy_note(model, args.k, r.carrier.branch, units)
+    if damping > 0:  # the NLS's soliton is lossless; the chain's decays
+        out["carrier_damping"] = damping
     if args.json:
         _emit(add_units(out, units))
         return 0
@@ -271,4 +276,6 @@ def run_soliton(args) -> int:
     if s.width < 8:
         print(f"note: {s.width:.3g} sites is too narrow for the envelope theory; lower the "
               "amplitude")
+    if lossy:
+        print(lossy)
     return 0

@@ -312,3 +312,26 @@ def test_soliton_physical_answers_in_seconds_and_metres(capsys, tmp_path):
     assert si["velocity"] == pytest.approx(pred["velocity"] * a / T, rel=1e-12)
     assert si["frequency"] == pytest.approx(pred["frequency"] / T, rel=1e-12)
     assert f"width {si['width']:.4g} m" in out and f"{si['velocity']:.4g} m/s" in out
+
+
+def test_a_lossy_models_soliton_says_it_decays(capsys):
+    """soliton --model flexmm-lossy printed a soliton's width, velocity and frequency as
+    if it lasted, losses unsaid (--simulate refuses a lossy model; the prediction did not
+    say why it cannot hold)."""
+    import json
+
+    from energy import builtin, load_model
+    from numerics.models import carrier_damping
+
+    model = load_model(builtin("flexmm-lossy"))
+    gamma = carrier_damping(model, 1.0)
+    assert gamma > 0
+    code, out, _ = _cli(capsys, "soliton", "--model", "flexmm-lossy", "--k", "1")
+    assert code == 0
+    assert f"the carrier's amplitude decays at {gamma:.4g} /time (e-folding " \
+           f"{1 / gamma:.4g} time)" in out
+    code, out, _ = _cli(capsys, "soliton", "--model", "flexmm-lossy", "--k", "1", "--json")
+    assert code == 0 and json.loads(out)["carrier_damping"] == pytest.approx(gamma, rel=1e-12)
+    code, out, _ = _cli(capsys, "soliton", "--model", "flexmm-lossy", "--k", "1", "--param",
+                        "gamma_theta=0", "--param", "gamma_U=0")
+    assert code == 0 and "dissipation" not in out
