@@ -337,11 +337,13 @@ def probe_model_cell(params) -> ModelCellCost:
 
 
 def estimate_model_map(params, workers: int, scheduler: str | None = None,
-                       cost: ModelCellCost | None = None) -> MapEstimate:
+                       cost: ModelCellCost | None = None,
+                       cells: int | None = None) -> MapEstimate:
     """Wall time of ``flexmm map --model`` for ``params`` (a ModelMapParameters) on
     ``workers``: the start-up (as the paper chain's, plus each worker's warm-up), and every
     cell at the measured cost of one (:func:`probe_model_cell`; measured when not given),
-    over the workers, slowed by the load.
+    over the workers, slowed by the load; ``cells``: how many are still to compute (a
+    resumed map's; default every cell of the map).
 
     Returns
     -------
@@ -351,7 +353,7 @@ def estimate_model_map(params, workers: int, scheduler: str | None = None,
     """
     cost = cost or probe_model_cell(params)
     workers = max(int(workers), 1)
-    cells = int(np.prod(params.grid_shape))
+    cells = int(np.prod(params.grid_shape)) if cells is None else int(cells)
     theory = cells * cost.theory
     runs = 0.0 if params.theory_only else cells * params.seeds * cost.run
     startup = STARTUP_SECONDS["scheduler" if scheduler else "local"]

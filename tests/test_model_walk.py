@@ -1,0 +1,74 @@
+"""A new user's walk through the model path (README "Your own lattice", docs/models.md,
+docs/maps.md): each test is a mistake or a surprise met on the way, fixed, and fails
+without its fix."""
+
+from __future__ import annotations
+
+import pytest
+
+from cli.app import main
+
+
+@pytest.fixture
+def no_run(monkeypatch):
+    """The map engine replaced by a failure: a map that should be refused before its
+    work fails at once, not after minutes of it."""
+    import numerics.maps
+
+    def ran(*a, **kw):
+        raise RuntimeError("the map ran")
+
+    monkeypatch.setattr(numerics.maps, "run_map", ran)
+
+
+def _map(tmp_path, *extra):
+    return ["map", "--model", "fput", "--amplitude", "0.1", "--workers", "1",
+            "--out", str(tmp_path / "m"), *extra]
+
+
+def test_a_model_map_of_too_many_cells_is_refused_before_any_work(tmp_path, capsys,
+                                                                  no_run):
+    """3000 x 3000 cells ran for minutes (theory-only) and 1e5 x 1e5 died on a 75 GiB
+    allocation; the paper chain's map refuses more than 250 000 cells, and so does a
+    model's, naming the options that asked for them."""
+    assert main(_map(tmp_path, "--param", "beta=1:2:1000", "--k", "1:2:1000",
+                     "--theory-only")) == 2
+    err = capsys.readouterr().err
+    assert "--param beta and --k ask for 1000000 cells; at most 250000" in err
+    assert len(err.strip().splitlines()) == 1
+    assert not (tmp_path / "m").exists()
+
+
+def test_a_model_map_estimated_beyond_an_hour_asks_for_yes(tmp_path, capsys, no_run):
+    """As the paper chain's map: an estimate above an hour is refused without --yes (a
+    model map started hours of work unasked, and refused --yes). 400 stable cells (beta
+    < 0: defocusing, no run stops early) of T = 1e9: each run's cost is measured here and
+    scaled by T: ~1000 h on this 2-core machine (10 h at T = 1e7), beyond the gate's hour
+    on any CPU."""
+    argv = _map(tmp_path, "--param", "beta=-1:-0.5:20", "--k", "0.5:1.4:20", "--N", "64",
+                "--t-end", "1e9")
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert "add --yes to run it" in err and "> 60 min" in err
+    assert not (tmp_path / "m" / "map.zarr").exists()
+    with pytest.raises(RuntimeError, match="the map ran"):  # --yes passes the gate
+        main(argv + ["--yes"])
+
+
+def test_a_resumed_model_map_estimates_the_cells_left(tmp_path, capsys):
+    """A resumed map's estimate was of every cell (and its resume line gave another,
+    rough, figure): it is of the cells left, and says so."""
+    import zarr
+
+    argv = _map(tmp_path, "--param", "beta=0.5,1", "--k", "1,2", "--theory-only")
+    assert main(argv) == 0
+    capsys.readouterr()
+    group = zarr.open_group(str(tmp_path / "m" / "map.zarr"), mode="r+",
+                            use_consolidated=False)
+    done = group["done_predicted"][...]
+    done[0, 0] = False  # one cell not computed, as an interrupted map leaves it
+    group["done_predicted"][...] = done
+    assert main(argv) == 0
+    out = capsys.readouterr().out
+    assert "for 1 of its 4 cells (the other 3 are in the store)" in out
+    assert "3 of 4 cells already done" in out
