@@ -72,3 +72,26 @@ def test_a_resumed_model_map_estimates_the_cells_left(tmp_path, capsys):
     out = capsys.readouterr().out
     assert "for 1 of its 4 cells (the other 3 are in the store)" in out
     assert "3 of 4 cells already done" in out
+
+
+def test_a_store_of_other_axes_is_refused_naming_the_axis(tmp_path, capsys):
+    """A rerun with another grid said "with other parameters" and nothing more: the axis
+    that differs is named, with the store's values and the asked ones."""
+    base = _map(tmp_path, "--param", "beta=0.5,1", "--theory-only")
+    assert main(base + ["--k", "1,2"]) == 0
+    capsys.readouterr()
+    assert main(base + ["--k", "1,1.5,2"]) == 2
+    err = capsys.readouterr().err
+    assert "its axes differ: k: 2 values 1 to 2 stored, 3 values 1 to 2 asked" in err
+    assert main(base + ["--k", "1,2.5"]) == 2
+    assert "k: 2 values 1 to 2 stored, 2 values 1 to 2.5 asked" in capsys.readouterr().err
+    other = base + ["--out", str(tmp_path / "m2")]  # one value moved: named by its place
+    assert main(other + ["--k", "1,1.5,2"]) == 0
+    capsys.readouterr()
+    assert main(other + ["--k", "1,1.6,2"]) == 2
+    assert "its axes differ: k: value 2 is 1.5 stored, 1.6 asked" in capsys.readouterr().err
+    assert main(_map(tmp_path, "--param", "beta=0.5,0.75,1", "--theory-only", "--k",
+                     "1,1.5,2")) == 2
+    err = capsys.readouterr().err
+    assert "beta: 2 values 0.5 to 1 stored, 3 values 0.5 to 1 asked; k: 2 values" in err
+    assert len(err.strip().splitlines()) == 1
