@@ -449,8 +449,9 @@ def run_point(args) -> int:
         print(f"note: the exact lattice's fastest mode is {what} ({_waves(ex)}), not the "
               "carrier's sidebands: the NLS cannot see it")
     fw = out["four-wave"]
-    if fw.get("reason"):
-        print(f"four-wave undefined: {fw['reason']}")
+    if fw.get("reason"):  # the exact lattice's reason said once (the energy not real)
+        print("four-wave undefined: " + ("as the exact lattice" if fw["reason"] ==
+                                         ex.get("reason") else fw["reason"]))
     if fw["verdict"] == "MI":
         print(f"four-wave: the fastest pair is {fw['mode_kind']} ({_waves(fw)})")
     if start_label and out[start_label].get("reason"):

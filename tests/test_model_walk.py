@@ -95,3 +95,53 @@ def test_a_store_of_other_axes_is_refused_naming_the_axis(tmp_path, capsys):
     err = capsys.readouterr().err
     assert "beta: 2 values 0.5 to 1 stored, 3 values 0.5 to 1 asked; k: 2 values" in err
     assert len(err.strip().splitlines()) == 1
+
+
+HERTZ = """name = "hertz"
+description = "precompressed Hertz chain: the contact opens at strain d0"
+fields = ["u"]
+[parameters]
+d0 = 1.0
+[energy]
+kinetic = "u_t**2/2"
+bond = "(2/5)*(d0 - (u_next - u))**(5/2)"
+"""
+
+
+def test_theories_at_an_amplitude_the_model_cannot_carry_say_so(tmp_path, capsys):
+    """A Hertz chain at k = 2, a = 0.8: its linear wave stretches a bond by 2 a sin(k/2) =
+    1.35 > d0 = 1, where the energy is not real (the largest a is d0 / (2 sin 1) = 0.594).
+    The exact theory said so; the four-wave theory rated the wave from the energy's Taylor
+    coefficients at rest ("stable", and MI at a = 0.9 on a map) and coefficients printed
+    the NLS's gain with no word. Now the four-wave theory is undefined with the reason, and
+    coefficients notes that its numbers are of a wave that cannot exist."""
+    import json
+    import math
+
+    model = tmp_path / "hertz.toml"
+    model.write_text(HERTZ)
+    assert 0.8 * 2 * math.sin(1.0) > 1.0 > 0.3 * 2 * math.sin(1.0)
+    assert main(["coefficients", "--model", str(model), "--k", "2", "--amplitude", "0.8",
+                 "--json"]) == 0
+    co = json.loads(capsys.readouterr().out)
+    assert co["four_wave"]["verdict"] == "undefined"
+    assert "the energy is not real" in co["four_wave"]["reason"]
+    # the reach is a bisection to 1e-4 of the amplitude: d0 / (2 sin 1) to 3 digits
+    note = f"at most a = {1 / (2 * math.sin(1.0)):.3g} at k = 2"
+    assert any(note in w and "cannot carry" in w for w in co["warnings"]), co["warnings"]
+    assert main(["coefficients", "--model", str(model), "--k", "2", "--amplitude",
+                 "0.3"]) == 0  # a wave the model carries: no such note, a four-wave verdict
+    out = capsys.readouterr().out
+    assert "cannot carry" not in out and "four-wave undefined" not in out
+    argv = ["map", "--model", str(model), "--amplitude", "0.3,0.9", "--k", "2,2.5",
+            "--theory-only", "--exact", "--N", "32", "--workers", "1",
+            "--out", str(tmp_path / "m")]
+    assert main(argv) == 0
+    capsys.readouterr()
+    import xarray as xr
+
+    with xr.open_zarr(tmp_path / "m" / "map.zarr") as ds:
+        beyond = ds["verdict_exact"].values[1] < 0  # a = 0.9: beyond d0 at both k
+        assert beyond.all()
+        assert (ds["verdict_fourwave"].values[1] == -1).all()
+        assert (ds["verdict_fourwave"].values[0] >= 0).all()
