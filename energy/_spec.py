@@ -322,7 +322,10 @@ def _checked_tree(where: str, text: str, allowed: set) -> ast.Expression:
     try:
         tree = ast.parse(text.strip(), mode="eval")
     except SyntaxError as exc:
-        _fail(where, f"syntax error in {_short(text)} at column {exc.offset}: {exc.msg}")
+        # Python gives column 0 (or none) where the expression ends too soon ("u +")
+        at = (f"at column {exc.offset}" if exc.offset and 0 < exc.offset <= len(text.strip())
+              else "at its end (an operator or a bracket left open?)")
+        _fail(where, f"syntax error in {_short(text)} {at}: {exc.msg}")
     except (RecursionError, MemoryError):
         _fail(where, f"the expression {_short(text)} has too many terms or is nested too "
                      f"deeply to read (at most {MAX_NODES} terms and symbols, {MAX_DEPTH} "

@@ -145,3 +145,19 @@ def test_theories_at_an_amplitude_the_model_cannot_carry_say_so(tmp_path, capsys
         assert beyond.all()
         assert (ds["verdict_fourwave"].values[1] == -1).all()
         assert (ds["verdict_fourwave"].values[0] >= 0).all()
+
+
+def test_a_model_file_whose_energy_ends_too_soon_says_where(tmp_path, capsys):
+    """A trailing '+' (a line cut while editing) was 'syntax error ... at column 0': the
+    error says it is at the expression's end; an error inside keeps its column."""
+    text = HERTZ.replace('bond = "(2/5)*(d0 - (u_next - u))**(5/2)"',
+                         'bond = "(2/5)*(d0 - (u_next - u))**(5/2) +"')
+    (tmp_path / "cut.toml").write_text(text)
+    assert main(["coefficients", "--model", str(tmp_path / "cut.toml"), "--k", "1"]) == 2
+    err = capsys.readouterr().err
+    assert "energy.bond: syntax error in" in err and "at its end" in err
+    assert "column 0" not in err and len(err.strip().splitlines()) == 1
+    (tmp_path / "inside.toml").write_text(text.replace("**(5/2) +", "** * (5/2)"))
+    assert main(["coefficients", "--model", str(tmp_path / "inside.toml"), "--k", "1"]) == 2
+    # the lone "*" after "** " is character 29 (1-based, as Python counts)
+    assert "at column 29: invalid syntax" in capsys.readouterr().err
