@@ -299,9 +299,22 @@ def _print_checks(summary):
         print(f"[{c['outcome']}] {c['check']}: theory {c['theory']}; numerics {c['numerics']}")
 
 
+def _quiet_stdout() -> None:
+    """stdout pointed at the null device: its reader is gone, and the interpreter's last
+    flush would otherwise print 'Exception ignored ... BrokenPipeError' at exit."""
+    import os
+
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+    except (OSError, ValueError, AttributeError):  # no real stdout (captured): nothing to do
+        pass
+
+
 def main(argv=None) -> int:
     """Run the CLI; returns the exit code (0 ok, 2 bad input or file system, 130 SIGINT,
-    143 SIGTERM: both handled alike, one line saying what was kept where)."""
+    143 SIGTERM: both handled alike, one line saying what was kept where; 141, silent,
+    where the reader of its output left, as ``| head`` does)."""
     from common.signals import exit_code, interrupts, received
 
     created = []  # the --out folders this command would create (removed if left empty)
@@ -320,6 +333,9 @@ def main(argv=None) -> int:
             except KeyboardInterrupt:
                 pass
             return exit_code(exc)
+        except BrokenPipeError:  # `flexmm ... | head`: the reader has what it wanted
+            _quiet_stdout()
+            return 141  # as a shell reports a writer ended by SIGPIPE (128 + 13)
         except (ValueError, TypeError, FloatingPointError, MemoryError, OSError) as exc:
             _remove_if_empty(created)
             if (interrupt := received()) is not None:  # an interrupt, in another form

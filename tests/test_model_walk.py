@@ -161,3 +161,18 @@ def test_a_model_file_whose_energy_ends_too_soon_says_where(tmp_path, capsys):
     assert main(["coefficients", "--model", str(tmp_path / "inside.toml"), "--k", "1"]) == 2
     # the lone "*" after "** " is character 29 (1-based, as Python counts)
     assert "at column 29: invalid syntax" in capsys.readouterr().err
+
+
+def test_output_piped_into_a_reader_that_stops_is_not_an_error():
+    """`flexmm coefficients ... | head -2` printed 'flexmm: error: Broken pipe': a reader
+    that has what it wanted is no error (silent, exit 141 as for SIGPIPE)."""
+    import subprocess
+    import sys
+
+    p = subprocess.Popen([sys.executable, "-m", "cli", "coefficients", "--model", "fput",
+                          "--k", "1", "--amplitude", "0.1"], stdout=subprocess.PIPE,
+                         stderr=subprocess.PIPE)
+    p.stdout.close()  # the reader leaves before the first line (the imports take ~1 s)
+    err = p.stderr.read().decode()
+    assert p.wait(timeout=120) == 141, err
+    assert err == "", err
