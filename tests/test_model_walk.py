@@ -176,3 +176,42 @@ def test_output_piped_into_a_reader_that_stops_is_not_an_error():
     err = p.stderr.read().decode()
     assert p.wait(timeout=120) == 141, err
     assert err == "", err
+
+
+ROTOR = """name = "rotor-chain"
+description = "a sliding field u and a rotation phi per cell, coupled through cos(phi)"
+fields = ["u", "phi"]
+[parameters]
+k_l = 1.0
+k_r = 0.1
+J = 0.5
+a = 1.0
+[energy]
+kinetic = "u_t**2/2 + J*phi_t**2/2"
+bond = "k_l*(u_next - u + a*(cos(phi_next) - cos(phi)))**2/2 + k_r*(phi_next + phi)**2/2"
+site = "k_r*phi**2/2"
+"""
+
+
+def test_a_point_where_the_nls_grows_and_the_lattice_does_not_says_so(tmp_path, capsys):
+    """A two-field rotor chain (a user's first model) at k = 1, a = 0.05 on 64 sites: the
+    semi-discrete NLS says MI at ~0.006 /time, the exact lattice nothing, and a run of
+    T = 5000 (where 0.006 /time would grow e^30) shows no growth. The table showed the two
+    rows side by side with no word on which to trust (only the opposite case, exact well
+    above the NLS, had a note)."""
+    model = tmp_path / "rotor.toml"
+    model.write_text(ROTOR)
+    assert main(["point", "--model", str(model), "--k", "1", "--amplitude", "0.05",
+                 "--N", "64", "--simulate", "--seeds", "1"]) == 0
+    out = capsys.readouterr().out
+    rows = {ln.split()[0]: ln.split() for ln in out.splitlines()
+            if ln.startswith(("semi-discrete", "exact", "simulated "))}
+    assert rows["semi-discrete"][2] == "MI" and float(rows["semi-discrete"][3]) > 1e-3
+    assert rows["exact"][2] == "stable"
+    assert "simulated: no growth within T" in out  # the lattice itself sides with exact
+    assert "note: the semi-discrete NLS's sidebands grow on this ring" in out
+    assert "nothing grows in the exact lattice theory" in out
+    # where the two agree (FPUT, alpha 0, k 2: both MI, 0.0177 and 0.017) no such note
+    assert main(["point", "--model", "fput", "--k", "2", "--amplitude", "0.1",
+                 "--N", "64"]) == 0
+    assert "nothing grows in the exact" not in capsys.readouterr().out
