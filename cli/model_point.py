@@ -242,7 +242,7 @@ def _reach_note(model, k, amplitude, branch, out) -> str | None:
         parts = nls(model, k, branch).parts
         big = max(parts, key=lambda p: abs(parts[p]))
         return (f"the semi-discrete NLS's sidebands grow on this ring (peak "
-                f"{row['ring_peak_gain']:.3g} /time) but nothing grows in the exact lattice "
+                f"{row['ring_peak_gain']:.3g} /time) but nothing grows there in the exact lattice "
                 f"theory: the NLS is the a -> 0 limit and fails at a = {amplitude:g} (g2 = "
                 f"{row['g2']:.3g}, its largest part the {big}, {parts[big]:.3g}); trust the "
                 "exact row (--simulate measures it)")
