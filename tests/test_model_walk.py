@@ -215,3 +215,24 @@ def test_a_point_where_the_nls_grows_and_the_lattice_does_not_says_so(tmp_path, 
     assert main(["point", "--model", "fput", "--k", "2", "--amplitude", "0.1",
                  "--N", "64"]) == 0
     assert "nothing grows there in the exact" not in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("energy, param", [
+    ('site = "u**2/2 + sqrt(u**2 - c)"', []),  # sqrt(-1) at rest
+    ('site = "u**2/2 + log(u**2 + 1 - c)"', ["--param", "c=2"]),  # log(-1) at c = 2
+    (None, ["--param", "d0=-1"]),  # a Hertz contact open at rest: (d0 - r)**(5/2) at d0 < 0
+])
+def test_an_energy_not_real_at_rest_is_refused_in_one_line(tmp_path, capsys, energy, param):
+    """An energy that is complex at rest for the parameters' values (the derivation's
+    symbolic checks hold for every value, so they pass it): coefficients printed omega =
+    nan, g2 '-' and RuntimeWarnings naming the cache's generated file, or refused it as 'not
+    a minimum: omega^2 = -1'. Now one line: the energy is not real at the rest state."""
+    text = HERTZ if energy is None else (
+        'name = "bad"\nfields = ["u"]\n[parameters]\nc = 1.0\n[energy]\n'
+        f'kinetic = "u_t**2/2"\nbond = "(u_next - u)**2/2"\n{energy}\n')
+    (tmp_path / "m.toml").write_text(text)
+    assert main(["coefficients", "--model", str(tmp_path / "m.toml"), "--k", "1",
+                 "--amplitude", "0.1", *param]) == 2
+    err = capsys.readouterr().err
+    assert "the energy is not real at the rest state (every field 0)" in err, err
+    assert len(err.strip().splitlines()) == 1, err
