@@ -8,6 +8,7 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
+from ._map_guards import cells_done, check_rest, option
 from .models import _emit, branch_of, load
 
 
@@ -57,9 +58,10 @@ def run_map(args) -> int:
 
     cells = len(named[0][1]) * len(named[1][1])
     if cells > MAX_CELLS:  # as the paper chain's map: before a grid fills memory
-        raise ValueError(f"{' and '.join(_option(n) for n, _ in named)} ask for {cells} "
+        raise ValueError(f"{' and '.join(option(n) for n, _ in named)} ask for {cells} "
                          f"cells; at most {MAX_CELLS} (split the map into several --out "
                          "folders)")
+    check_rest(model, named)
     if amp_axis is not None and "amplitude" in model.params:
         raise ValueError("--amplitude SPEC: the model has a parameter named 'amplitude' too; "
                          "rename it in the model file to sweep the carrier's amplitude")
@@ -164,7 +166,7 @@ def run_map(args) -> int:
 
     # a store only --overwrite may replace: refused before the estimate's seconds
     check_store(Path(args.out) / "map.zarr", params, args.overwrite)
-    done, cells = _cells_done(args.out, params)
+    done, cells = cells_done(args.out, params)
     left = None  # the engine's rough figure on its resume line (nothing measured here)
     if done == cells:  # nothing to compute: no cell measured to estimate it
         log(f"estimate: none needed: {Path(args.out) / 'map.zarr'} holds every cell of this "
@@ -321,30 +323,6 @@ def _start_of(args, model, simulated: bool) -> str:
         raise ValueError(f"--start {start}: its theory and runs use the ring: a simulated "
                          "map, or --theory-only --exact")
     return start
-
-
-def _option(axis: str) -> str:
-    """The option that gave a map's axis (a parameter's: --param NAME)."""
-    return f"--{axis}" if axis in ("k", "amplitude") else f"--param {axis}"
-
-
-def _cells_done(out, params) -> tuple:
-    """(cells done, cells) of this map in ``OUT/map.zarr``: done is simulated, or predicted
-    for a theory-only map; 0 where the store holds another map (its identity attributes),
-    none, or anything unreadable (the engine says what it is)."""
-    import numpy as np
-    import zarr
-
-    cells = int(np.prod(params.grid_shape))
-    try:
-        group = zarr.open_group(str(Path(out) / "map.zarr"), mode="r", use_consolidated=False)
-        attrs = dict(group.attrs)
-        if any(attrs.get(n) != v for n, v in params.identity().items()):
-            return 0, cells
-        done = group["done_predicted" if params.theory_only else "done"][...]
-        return (int(done.sum()), cells) if done.size == cells else (0, cells)
-    except Exception:  # no store, another format, a damaged one: the engine decides
-        return 0, cells
 
 
 def _estimate(params, workers: int, scheduler, log, left: int, cells: int):

@@ -236,3 +236,18 @@ def test_an_energy_not_real_at_rest_is_refused_in_one_line(tmp_path, capsys, ene
     err = capsys.readouterr().err
     assert "the energy is not real at the rest state (every field 0)" in err, err
     assert len(err.strip().splitlines()) == 1, err
+
+
+def test_a_map_axis_through_values_without_a_rest_state_is_refused(tmp_path, capsys):
+    """A Hertz map over d0 = -1, 1: at d0 < 0 the contact is open at rest and the energy
+    complex. The map ran, printed a dozen RuntimeWarnings naming the cache's generated
+    file and left those cells undefined with no reason; now refused before any work,
+    naming the value."""
+    (tmp_path / "hertz.toml").write_text(HERTZ)
+    assert main(["map", "--model", str(tmp_path / "hertz.toml"), "--param", "d0=-1,1",
+                 "--k", "1,2", "--amplitude", "0.1", "--theory-only", "--workers", "1",
+                 "--out", str(tmp_path / "m")]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("flexmm: error: --param d0=-1: the energy of hertz is not real "
+                          "at the rest state"), err
+    assert len(err.strip().splitlines()) == 1 and not (tmp_path / "m").exists()
