@@ -52,7 +52,9 @@ def refuse_paper_flags(args):
     if given:
         flags = ", ".join("--" + f.replace("_", "-") for f in given)
         raise ValueError(f"{flags}: the paper chain's flags; with --model give the model's "
-                         "parameters as --param NAME=VALUE")
+                         "parameters as --param NAME=VALUE"
+                         + (", and its units (SI answers) as --time-unit SECONDS and "
+                            "--length-unit METRES" if "physical" in given else ""))
 
 
 def params_of(args, axes_ok=False) -> tuple:

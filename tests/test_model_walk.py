@@ -251,3 +251,16 @@ def test_a_map_axis_through_values_without_a_rest_state_is_refused(tmp_path, cap
     assert err.startswith("flexmm: error: --param d0=-1: the energy of hertz is not real "
                           "at the rest state"), err
     assert len(err.strip().splitlines()) == 1 and not (tmp_path / "m").exists()
+
+
+def test_physical_with_a_model_names_the_model_units_options(capsys):
+    """--physical (the paper chain's SI material) with --model pointed to --param only; a
+    user after SI answers needs --time-unit and --length-unit (docs/models.md, Units)."""
+    assert main(["coefficients", "--model", "fput", "--k", "1", "--physical",
+                 "0.01,2e-6,0.02,1e4,185,1"]) == 2
+    err = capsys.readouterr().err
+    assert "--physical: the paper chain's flags" in err
+    assert "--time-unit SECONDS and --length-unit METRES" in err
+    assert main(["coefficients", "--model", "fput", "--k", "1", "--time-unit", "0.001",
+                 "--length-unit", "0.01"]) == 0  # the options it names work as named
+    assert "1 time unit = 0.001 s (--time-unit)" in capsys.readouterr().out
