@@ -252,6 +252,16 @@ def run_map(args) -> int:
         n = summary["undetermined_cells"][v.removeprefix("verdict_")]
         print(f"MI share, {v.replace('verdict_', '')}: {share:.0%}"
               + (f" ({n} of {ds[v].size} cells undetermined, counted as not MI)" if n else ""))
+    ag = summary.get("agreement_with_simulation_percent") or {}
+    told = [n.removesuffix("_undetermined_cells") for n in ag
+            if n.endswith("_undetermined_cells")]
+    if told:  # the runs' verdict against each theory's (summary.json's numbers)
+        print("agreement with the runs (cells the theory decides): " + ", ".join(
+            f"{n} {ag[n]:.0f}%"
+            + (f" ({ag[n + '_decided']:.0f}% of {ag[n + '_decided_cells']} not marginal)"
+               if n + "_decided" in ag else "")
+            + (f" ({ag[n + '_undetermined_cells']} undetermined, left out)"
+               if ag[n + "_undetermined_cells"] else "") for n in told))
     if unsampled and unsampled["cells"]:
         print(_unsampled_text(unsampled, args.N))
     for name, c in critical.items():

@@ -264,3 +264,27 @@ def test_physical_with_a_model_names_the_model_units_options(capsys):
     assert main(["coefficients", "--model", "fput", "--k", "1", "--time-unit", "0.001",
                  "--length-unit", "0.01"]) == 0  # the options it names work as named
     assert "1 time unit = 0.001 s (--time-unit)" in capsys.readouterr().out
+
+
+def test_a_simulated_model_map_prints_its_agreement_with_the_runs(tmp_path, capsys):
+    """A simulated model map printed each theory's MI share but not how often it agreed
+    with the runs (only summary.json had it, the paper map prints it): the line is there,
+    with the shares the store's verdicts give."""
+    import json
+
+    import numpy as np
+    import xarray as xr
+
+    assert main(_map(tmp_path, "--param", "alpha=1", "--param", "beta=0.8,1.6", "--k",
+                     "2.0,2.8", "--N", "64")) == 0
+    out = capsys.readouterr().out
+    line = next(ln for ln in out.splitlines() if ln.startswith("agreement with the runs"))
+    with xr.open_zarr(tmp_path / "m" / "map.zarr") as ds:
+        sim = ds["verdict_simulated"].values
+        for name in ("semidiscrete", "fourwave", "exact"):
+            v = ds[f"verdict_{name}"].values
+            decided = v >= 0
+            share = 100 * np.mean(v[decided] == sim[decided])
+            assert f"{name} {share:.0f}%" in line, line
+    summary = json.loads((tmp_path / "m" / "summary.json").read_text())
+    assert f"exact {summary['agreement_with_simulation_percent']['exact']:.0f}%" in line
