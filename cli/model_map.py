@@ -71,8 +71,11 @@ def run_map(args) -> int:
     given = getattr(args, "given", ())
     start = _start_of(args, model, simulated) if "--start" in given else "exact"
     if not simulated and ("--seeds" in given or "--t-end" in given):
-        raise ValueError("--seeds and --t-end act on a simulated model map: drop them, or "
-                         "--theory-only")
+        given_run = " and ".join(o for o in ("--seeds", "--t-end") if o in given)
+        raise ValueError(f"{given_run}: {'acts' if ' and ' not in given_run else 'act'} on "
+                         "a simulated model map's runs; drop "
+                         f"{'it' if ' and ' not in given_run else 'them'}, or drop "
+                         "--theory-only to run the cells")
     if simulated and args.exact:
         raise ValueError("--exact: a simulated model map has the exact lattice theory "
                          "per cell already")

@@ -288,3 +288,13 @@ def test_a_simulated_model_map_prints_its_agreement_with_the_runs(tmp_path, caps
             assert f"{name} {share:.0f}%" in line, line
     summary = json.loads((tmp_path / "m" / "summary.json").read_text())
     assert f"exact {summary['agreement_with_simulation_percent']['exact']:.0f}%" in line
+
+
+def test_run_options_on_a_theory_only_map_name_the_right_remedy(tmp_path, capsys):
+    """--seeds on a --theory-only map said 'drop them, or --theory-only' to a user who had
+    given --theory-only: the remedy is to drop --theory-only (or the option given)."""
+    assert main(_map(tmp_path, "--param", "beta=1,2", "--k", "1,2", "--theory-only",
+                     "--seeds", "3")) == 2
+    err = capsys.readouterr().err
+    assert "--seeds: acts on a simulated model map's runs" in err
+    assert "drop it, or drop --theory-only" in err and "--t-end" not in err
