@@ -298,3 +298,17 @@ def test_run_options_on_a_theory_only_map_name_the_right_remedy(tmp_path, capsys
     err = capsys.readouterr().err
     assert "--seeds: acts on a simulated model map's runs" in err
     assert "drop it, or drop --theory-only" in err and "--t-end" not in err
+
+
+def test_a_resumed_map_given_another_block_says_to_omit_it(tmp_path, capsys):
+    """A map resumed with another --block (the cells a task takes; the store keeps its
+    own) was refused with only '--overwrite, or another --out', which would throw its
+    finished cells away; without --block it continues."""
+    base = _map(tmp_path, "--param", "beta=1,2", "--k", "1,2", "--theory-only")
+    assert main(base + ["--block", "1"]) == 0
+    capsys.readouterr()
+    assert main(base + ["--block", "2"]) == 2
+    assert "(block 1 stored, 2 asked: omit --block to continue with the store's)" in (
+        capsys.readouterr().err)
+    assert main(base) == 0  # as the error says
+    assert "4 of 4 cells already done" in capsys.readouterr().out
