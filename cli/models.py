@@ -94,9 +94,10 @@ def load(args, axes_ok=False):
         words = str(exc).split(" ", 2)
         if len(words) == 3 and words[0] == "parameter" and words[1] in fixed:
             raise type(exc)(f"--param {words[1]}={fixed[words[1]]!r}: {words[2]}") from None
+        if "has no parameter" in str(exc):  # a typo: named as the option, the likely name
+            _unknown_parameter(load_model(args.model), fixed)
         raise
-    for name in axes:
-        model.lattice.values({name: 0.0})  # an unknown axis name: the model's one-line error
+    _unknown_parameter(model, axes)
     b = branch_of(args)  # named as the option, before any work (an index or a field)
     if b is not None and not (isinstance(b, int) and 0 <= b < model.n_fields
                               or b in model.fields):
@@ -107,6 +108,21 @@ def load(args, axes_ok=False):
     if not axes:
         check_rest_stable(model)
     return (model, axes) if axes_ok else model
+
+
+def _unknown_parameter(model, names) -> None:
+    """Refuse a --param NAME the model does not have, naming the option, the closest of
+    its parameters (a typo: 'betta') and all of them."""
+    import difflib
+
+    for name in names:
+        if name not in model.params:
+            lower = {n.lower(): n for n in model.params}  # 'D0' for 'd0' too
+            close = [lower[c] for c in difflib.get_close_matches(name.lower(), list(lower),
+                                                                 n=1)]
+            raise ValueError(f"--param {name}: model {model.name!r} has no parameter "
+                             f"{name!r}" + (f"; did you mean {close[0]!r}?" if close else "")
+                             + f" (it has: {', '.join(model.params) or 'none'})")
 
 
 def branch_of(args):

@@ -312,3 +312,21 @@ def test_a_resumed_map_given_another_block_says_to_omit_it(tmp_path, capsys):
         capsys.readouterr().err)
     assert main(base) == 0  # as the error says
     assert "4 of 4 cells already done" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("given, said", [
+    ("betta=1", "--param betta: model 'fput' has no parameter 'betta'; did you mean 'beta'?"),
+    ("Alpha=1", "--param Alpha: model 'fput' has no parameter 'Alpha'; did you mean 'alpha'?"),
+    ("zzz=1", "--param zzz: model 'fput' has no parameter 'zzz' (it has: alpha, beta)"),
+])
+def test_a_parameter_typo_names_the_option_and_the_likely_name(tmp_path, capsys, given,
+                                                              said):
+    """'model 'fput' has no parameter 'betta'' named neither the option nor the name
+    meant; a map's axis ('betta=1,2') is refused in the same words."""
+    assert main(["coefficients", "--model", "fput", "--param", given, "--k", "1"]) == 2
+    err = capsys.readouterr().err
+    assert said in err and len(err.strip().splitlines()) == 1, err
+    axis = given.replace("=1", "=1,2")
+    assert main(["map", "--model", "fput", "--param", axis, "--k", "1,2", "--theory-only",
+                 "--out", str(tmp_path / "m")]) == 2
+    assert said in capsys.readouterr().err
