@@ -440,6 +440,12 @@ def _unknown(name: str, allowed: set) -> str:
     elif name.endswith("_t"):
         hint = (" (velocities are allowed in energy.kinetic and [dissipation] only; "
                 "u_next_t in dissipation.bond only)")
+    else:  # a typo of a declared name or a function ('betta', 'Sin'): the likely one
+        import difflib
+
+        lower = {n.lower(): n for n in allowed}
+        close = difflib.get_close_matches(name.lower(), list(lower), n=1, cutoff=0.75)
+        hint = f" (did you mean {lower[close[0]]!r}?)" if close else ""
     names = ", ".join(sorted(n for n in allowed if n not in FUNCTIONS and n not in CONSTANTS))
     return f"unknown symbol {_short(name, 40)}{hint}; allowed here: {names}"
 

@@ -330,3 +330,17 @@ def test_a_parameter_typo_names_the_option_and_the_likely_name(tmp_path, capsys,
     assert main(["map", "--model", "fput", "--param", axis, "--k", "1,2", "--theory-only",
                  "--out", str(tmp_path / "m")]) == 2
     assert said in capsys.readouterr().err
+
+
+def test_a_typo_in_a_model_file_names_the_likely_symbol(tmp_path, capsys):
+    """'unknown symbol 'betta'' in a model file: the declared name it likely meant is said
+    (case too); a symbol close to none ('I', the imaginary unit) gets no guess."""
+    for typo, said in (("betta", " (did you mean 'beta'?)"), ("Beta", " (did you mean "
+                                                                      "'beta'?)"),
+                       ("I", "")):
+        text = HERTZ.replace("[parameters]\nd0 = 1.0", "[parameters]\nd0 = 1.0\nbeta = 1.0")
+        text = text.replace('(5/2)"', f'(5/2) + {typo}*(u_next - u)**4"')
+        (tmp_path / "m.toml").write_text(text)
+        assert main(["coefficients", "--model", str(tmp_path / "m.toml"), "--k", "1"]) == 2
+        err = capsys.readouterr().err
+        assert f"energy.bond: unknown symbol {typo!r}{said}; allowed here: beta, d0, u" in err
