@@ -408,6 +408,9 @@ def run_point(args) -> int:
         out["curves"][start_label] = _curve(*start_curve)
     if args.simulate:
         out["curves"]["simulated"] = out["simulated"].pop("curve")
+    # the table's notes for a script too (the rings' missed bands: ring_misses)
+    reach = _reach_note(model, k, args.amplitude, branch_of(args), out)
+    out["notes"] = [n for n in (ring_note, reach) if n] + list(co["warnings"])
     out = strict_json(add_units(out, units))
     if args.out:
         import json
@@ -490,7 +493,6 @@ def run_point(args) -> int:
             print(f"note: {sim['note']}")
     if ring_note:
         print(f"note: {ring_note}")
-    reach = _reach_note(model, k, args.amplitude, branch_of(args), out)
     if reach:
         print(f"note: {reach}")
     # the fastest few in full; near the zone boundary a small ring can miss a dozen bands

@@ -344,3 +344,20 @@ def test_a_typo_in_a_model_file_names_the_likely_symbol(tmp_path, capsys):
         assert main(["coefficients", "--model", str(tmp_path / "m.toml"), "--k", "1"]) == 2
         err = capsys.readouterr().err
         assert f"energy.bond: unknown symbol {typo!r}{said}; allowed here: beta, d0, u" in err
+
+
+def test_point_json_carries_the_tables_notes(tmp_path, capsys):
+    """The table's notes (the NLS against the exact theory, a band the ring misses) were
+    printed only: --json and point.json had no word of them. Now a "notes" list."""
+    import json
+
+    model = tmp_path / "rotor.toml"
+    model.write_text(ROTOR)
+    argv = ["point", "--model", str(model), "--k", "1", "--amplitude", "0.05", "--N", "64"]
+    assert main(argv) == 0
+    printed = [ln.removeprefix("note: ") for ln in capsys.readouterr().out.splitlines()
+               if ln.startswith("note: the semi-discrete NLS's sidebands")]
+    assert main(argv + ["--json", "--out", str(tmp_path / "p")]) == 0
+    notes = json.loads(capsys.readouterr().out)["notes"]
+    assert printed and printed[0] in notes
+    assert json.loads((tmp_path / "p" / "point.json").read_text())["notes"] == notes
