@@ -361,3 +361,24 @@ def test_point_json_carries_the_tables_notes(tmp_path, capsys):
     notes = json.loads(capsys.readouterr().out)["notes"]
     assert printed and printed[0] in notes
     assert json.loads((tmp_path / "p" / "point.json").read_text())["notes"] == notes
+
+
+def test_a_resumed_paper_map_estimates_the_cells_left(tmp_path, capsys):
+    """The paper chain's map as a model's: its estimate (and the --yes gate on it) was of
+    every cell of a resumed map; it is of the cells left, and says so."""
+    import zarr
+
+    argv = ["map", "--alpha", "2.5", "--K-s", "0.01851", "--delta=-0.003,0.003", "--k",
+            "0.5,1", "--case", "coupled", "--theory-only", "--N", "64", "--workers", "1",
+            "--out", str(tmp_path / "m")]
+    assert main(argv) == 0
+    assert " left (" not in capsys.readouterr().out
+    group = zarr.open_group(str(tmp_path / "m" / "map.zarr"), mode="r+",
+                            use_consolidated=False)
+    done = group["done_predicted"][...]
+    done[0, 0] = False
+    group["done_predicted"][...] = done
+    assert main(argv) == 0
+    out = capsys.readouterr().out
+    assert "for the 1 left (3 in the store)" in out
+    assert "3 of 4 cells already done" in out

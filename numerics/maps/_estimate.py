@@ -188,7 +188,7 @@ class MapEstimate:
 
 
 def estimate_map(params, workers: int, scheduler: str | None = None,
-                 speed: dict | None = None) -> MapEstimate:
+                 speed: dict | None = None, cells: int | None = None) -> MapEstimate:
     """Wall time of ``flexmm map`` for ``params`` (a MapParameters) on ``workers``.
 
     Parameters
@@ -200,12 +200,14 @@ def estimate_map(params, workers: int, scheduler: str | None = None,
         A running scheduler's address (no cluster to start here).
     speed : dict, optional
         :func:`machine_speed`'s answer (measured and cached when not given).
+    cells : int, optional
+        The cells still to compute (a resumed map's); default every cell of the map.
     """
     from ..lattice import get_method
 
     speed = speed or machine_speed()
     workers = max(int(workers), 1)
-    cells = len(params.k) * len(params.delta)
+    cells = len(params.k) * len(params.delta) if cells is None else int(cells)
     scale_n = params.N / REFERENCE["N"]
     predict = cells * speed["predict"] * _predict_scale(params.k_simulated, params.N,
                                                         params.start)
