@@ -1,5 +1,5 @@
-"""What ``flexmm map --model`` checks before its work: parameter values without a rest
-state, the cells a store already holds, an axis by its option."""
+"""What ``flexmm map`` checks before its work: the cells a store already holds (both
+maps), and for ``--model`` parameter values without a rest state, an axis by its option."""
 
 from __future__ import annotations
 
