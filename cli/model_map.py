@@ -78,7 +78,8 @@ def run_map(args) -> int:
                          "--theory-only to run the cells")
     if simulated and args.exact:
         raise ValueError("--exact: a simulated model map has the exact lattice theory "
-                         "per cell already")
+                         "per cell already; drop --exact, or add --theory-only for the "
+                         "theories without the runs")
     if amp is not None and check_value("--amplitude", amp) <= 0:
         raise ValueError(f"--amplitude must be > 0, got {amp!r}")
     ring = args.exact or simulated  # the ring the exact theory and the runs use

@@ -382,3 +382,13 @@ def test_a_resumed_paper_map_estimates_the_cells_left(tmp_path, capsys):
     out = capsys.readouterr().out
     assert "for the 1 left (3 in the store)" in out
     assert "3 of 4 cells already done" in out
+
+
+def test_exact_on_a_simulated_map_gives_the_remedy(tmp_path, capsys):
+    """'--exact: a simulated model map has the exact lattice theory per cell already' said
+    what, not what to do: a user who wanted the theories alone needs --theory-only."""
+    assert main(_map(tmp_path, "--param", "beta=1,2", "--k", "1,2", "--exact")) == 2
+    err = capsys.readouterr().err
+    assert "drop --exact, or add --theory-only" in err
+    assert main(_map(tmp_path, "--param", "beta=1,2", "--k", "1,2", "--exact", "--N", "32",
+                     "--theory-only")) == 0  # the remedy runs
