@@ -43,7 +43,7 @@ EPILOG = {
                "--out out/soliton",
     "map": "examples:\n  any model (a parameter and k swept: --param NAME=start:stop:num):\n  "
            "flexmm map --model fput --param alpha=1 --param beta=0.5:1.5:3 --k 0.5:3:4 "
-           "--amplitude 0.1 --theory-only --out out/map\n  the paper chain:\n  "
+           "--amplitude 0.1 --theory-only --out out/fput-map\n  the paper chain:\n  "
            "flexmm map --alpha 2.5 --K-s 0.01851 --delta -0.01:0.01:5 --k 0.3:2.9:6 "
            "--case rotation --theory-only --out out/map",
 }

@@ -392,3 +392,26 @@ def test_exact_on_a_simulated_map_gives_the_remedy(tmp_path, capsys):
     assert "drop --exact, or add --theory-only" in err
     assert main(_map(tmp_path, "--param", "beta=1,2", "--k", "1,2", "--exact", "--N", "32",
                      "--theory-only")) == 0  # the remedy runs
+
+
+def test_the_map_help_examples_run_one_after_the_other(tmp_path, capsys, monkeypatch):
+    """`flexmm map --help` gave both examples --out out/map: the second, run after the
+    first as a reader would, was refused as 'a map with other parameters (or of an older
+    format)' while the store held a model's map. Each example has its own folder, and a
+    paper map meeting a model's store says whose it is."""
+    import shlex
+
+    from cli.app import EPILOG
+
+    monkeypatch.chdir(tmp_path)
+    lines = [ln.strip() for ln in EPILOG["map"].splitlines()
+             if ln.strip().startswith("flexmm map")]
+    assert len(lines) == 2
+    for line in lines:
+        assert main(shlex.split(line)[1:]) == 0, capsys.readouterr().err
+    capsys.readouterr()
+    model_out = shlex.split(lines[0])[shlex.split(lines[0]).index("--out") + 1]
+    paper = shlex.split(lines[1])[1:]
+    paper[paper.index("--out") + 1] = model_out  # the paper map into the model's folder
+    assert main(paper) == 2
+    assert "holds a map of model 'fput' (flexmm map --model)" in capsys.readouterr().err
