@@ -12,7 +12,9 @@ from cli.app import main
 @pytest.fixture
 def no_run(monkeypatch):
     """The map engine replaced by a failure: a map that should be refused before its
-    work fails at once, not after minutes of it."""
+    work fails at once, not after minutes of it. (cli.map binds run_map at its import:
+    imported first, so that it keeps the real one for the tests after this one.)"""
+    import cli.map  # noqa: F401
     import numerics.maps
 
     def ran(*a, **kw):
