@@ -220,6 +220,9 @@ def test_a_point_where_the_nls_grows_and_the_lattice_does_not_says_so(tmp_path, 
 
 
 @pytest.mark.parametrize("energy, param", [
+    ('site = "sqrt(u - 1)"', []),  # sqrt(-1) at rest for any c: said 'not an equilibrium:
+    # the force on u there is I/2'
+    ('site = "u**2/2 + log(u**2 - 1)"', []),  # log(-1): 'not a minimum: omega^2 = -1'
     ('site = "u**2/2 + sqrt(u**2 - c)"', []),  # sqrt(-1) at rest
     ('site = "u**2/2 + log(u**2 + 1 - c)"', ["--param", "c=2"]),  # log(-1) at c = 2
     (None, ["--param", "d0=-1"]),  # a Hertz contact open at rest: (d0 - r)**(5/2) at d0 < 0
