@@ -96,6 +96,11 @@ def load(args, axes_ok=False):
             raise type(exc)(f"--param {words[1]}={fixed[words[1]]!r}: {words[2]}") from None
         if "has no parameter" in str(exc):  # a typo: named as the option, the likely name
             _unknown_parameter(load_model(args.model), fixed)
+        where = str(args.model)
+        if where.endswith(".toml") and not str(exc).startswith(where):
+            # a check after parsing (a dissipation that is not >= 0 at the file's values):
+            # the file named, as the parser's errors name it
+            raise type(exc)(f"{where}: {exc}") from None
         raise
     _unknown_parameter(model, axes)
     b = branch_of(args)  # named as the option, before any work (an index or a field)
