@@ -16,7 +16,8 @@ from .models import add_model_args
 #: the first example line of each command runs in the tests (tests/test_cli_help.py); a
 #: command that takes --model shows one for any model first, then the paper chain's shorthand
 EPILOG = {
-    "models": "example:\n  flexmm models\n  flexmm coefficients --model fput --param alpha=1 "
+    "models": "example:\n  flexmm models\n  flexmm models fput > mine.toml\n  "
+              "flexmm coefficients --model fput --param alpha=1 "
               "--param beta=1 --k 1.57 --amplitude 0.1",
     "coefficients": "examples:\n  any model:\n  flexmm coefficients --model fput --param alpha=1 "
                     "--param beta=1 --k 1.57 --amplitude 0.1\n  the paper chain:\n  "
@@ -109,6 +110,8 @@ def build_parser(model_mode: bool = False):
     _soliton_parser(sub, model_mode)
     ms = _sub(sub, "models", "list the built-in lattice models: their fields, parameters and "
               "what each describes")
+    ms.add_argument("name", nargs="?", help="a built-in model: print its model file (a "
+                    "template for your own: flexmm models fput > mine.toml)")
     ms.add_argument("--json", action="store_true", help="one JSON object on stdout")
     return p
 

@@ -151,9 +151,23 @@ def _plain(x):
 
 # ------------------------------------------------------------------ flexmm models
 def run_models(args) -> int:
-    """List the built-in models: fields, parameters with defaults, one line each."""
+    """List the built-in models: fields, parameters with defaults, one line each; with a
+    NAME, print that model's file (a template for one's own)."""
     from energy import BUILTIN, builtin
 
+    name = getattr(args, "name", None)
+    if name is not None:
+        if name not in BUILTIN:
+            raise ValueError(f"flexmm models {name}: no built-in model {name!r}; built-in: "
+                             f"{', '.join(BUILTIN)}")
+        from numerics.maps import model_text
+
+        text = model_text(name)
+        if getattr(args, "json", False):
+            _emit({"name": name, "file": text})
+        else:
+            print(text, end="" if text.endswith("\n") else "\n")
+        return 0
     rows = [builtin(n) for n in BUILTIN]
     if getattr(args, "json", False):
         _emit({"models": [{"name": m.name, "fields": list(m.fields),
@@ -165,8 +179,9 @@ def run_models(args) -> int:
         params = ", ".join(f"{p}={v:g}" for p, v in m.parameters.items())
         print(f"{m.name:<{width}}  fields {', '.join(m.fields):<9}  {params}")
         print(f"{'':<{width}}  {m.description}")
-    print("give one with --model NAME (or --model FILE.toml for your own, docs/models.md); "
-          "parameters with --param NAME=VALUE")
+    print("give one with --model NAME (or --model FILE.toml for your own, docs/models.md: "
+          "`flexmm models NAME > mine.toml` starts one from a built-in's file); parameters "
+          "with --param NAME=VALUE")
     return 0
 
 

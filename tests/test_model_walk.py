@@ -420,3 +420,23 @@ def test_the_map_help_examples_run_one_after_the_other(tmp_path, capsys, monkeyp
     paper[paper.index("--out") + 1] = model_out  # the paper map into the model's folder
     assert main(paper) == 2
     assert "holds a map of model 'fput' (flexmm map --model)" in capsys.readouterr().err
+
+
+def test_models_name_prints_a_template_that_loads(tmp_path, capsys):
+    """A user writing a model file had the format in docs/models.md but no file to start
+    from: `flexmm models NAME` prints a built-in's file; saved under another name it is a
+    model of its own that loads and answers as the built-in does."""
+    import json
+
+    assert main(["models", "diatomic-fput"]) == 0
+    text = capsys.readouterr().out
+    mine = tmp_path / "mine.toml"
+    mine.write_text(text.replace('name = "diatomic-fput"', 'name = "mine"'))
+    argv = ["coefficients", "--k", "1", "--amplitude", "0.05", "--json", "--model"]
+    assert main(argv + ["diatomic-fput"]) == 0
+    builtin = json.loads(capsys.readouterr().out)
+    assert main(argv + [str(mine)]) == 0
+    own = json.loads(capsys.readouterr().out)
+    assert own["model"] == "mine" and own["g2"] == builtin["g2"]
+    assert main(["models", "fpu"]) == 2
+    assert "no built-in model 'fpu'; built-in: diatomic-fput" in capsys.readouterr().err
