@@ -60,12 +60,21 @@ import math
 import numpy as np
 from numba import njit
 
-from ._chaining import central_chain
+from ._chaining import central_chain, pencil_parts
 from ._small_algebra import _drop_roundoff, _eigh2, _lu, _lu_solve, _lu_solve_t
 
 #: Newton steps at most per eigenvalue, and the step (relative to |lambda| + omega)
 #: after which it has settled: Newton's next error is ~ its square, below round-off
 STEPS, TOL = 40, 1e-9
+#: how far (relative to the cluster's scale) ``_frozen`` moves Aberth's starts off the
+#: imaginary axis: any distinct tilt breaks the mirror symmetry; 1e-3 of the scale is
+#: ~1e-3 of omega, well inside a cluster's width yet far above round-off (measured
+#: iterations at 1e-6, 1e-4, 1e-2: 8-15, 5-12, 4-11)
+START_TILT = 1e-3
+#: power-iteration sweeps at most for a converged mode's eigenvector (``_null_vector``):
+#: each leaves the ratio step / distance of the other roots' part, <= 1e-3 even at the
+#: rate floor (step <= 1e-9 scale, the mirror 2 x 3e-7 omega away): 5 sweeps reach 1e-15
+ITERATIONS = 8
 
 _KW = dict(cache=True, nogil=True, error_model="numpy", boundscheck=False)
 
@@ -124,6 +133,7 @@ def _newton(Kt, Om, lam, cidx, ridx, scale, y, deflate, X):
     S = np.empty((rc, rc), np.complex128)
     dS = np.empty((rc, rc), np.complex128)
     piv = np.empty(rc, np.int64)
+    factored = False
     for _ in range(STEPS):
         if not _schur(Kt, Om, lam, cidx, ridx, X, S, dS):
             return lam, False
@@ -142,9 +152,20 @@ def _newton(Kt, Om, lam, cidx, ridx, scale, y, deflate, X):
         step = -1.0 / tr
         lam += step
         if abs(step) <= TOL * (abs(lam) + scale):
+            factored = True
             break
     else:
         return lam, False
+    if factored:
+        # the null vector from the last step's factors (S and X at lambda - step): the
+        # eigenvector of the pencil S(lambda - step) + mu S' nearest mu = step, by
+        # power iteration on dS = S^{-1} S' (its dominant eigenvalue ~ 1 / step; the next,
+        # the mirror's or another root's, ~ 1 / distance: each sweep leaves their ratio
+        # of the others), until it no longer moves. It differs from S(lambda)'s null
+        # vector by O(step^2), the rest -X y by O(step) (~1e-9 of |X|): what one more
+        # Schur complement and LU of the rest cost
+        _null_vector(dS, y)
+        return lam, True
     # the null vector of S(lambda): one inverse-iteration step
     _schur(Kt, Om, lam, cidx, ridx, X, S, dS)
     B = np.ones((rc, 1), np.complex128)
@@ -169,6 +190,39 @@ def _newton(Kt, Om, lam, cidx, ridx, scale, y, deflate, X):
                 t += S[i, c] * y[c]
             y[i] = -t / S[i, i] if S[i, i] != 0 else 0.0
     return lam, True
+
+
+@njit(**_KW)
+def _null_vector(M, y):
+    """The dominant eigenvector of the small matrix ``M`` into ``y`` (largest entry 1), by
+    power iteration from ones until the vector moves by < 1e-14 (ITERATIONS at most)."""
+    rc = y.size
+    for a in range(rc):
+        y[a] = 1.0
+    z = np.empty(rc, np.complex128)
+    for _ in range(ITERATIONS):
+        nrm = 0.0
+        for a in range(rc):
+            acc = 0j
+            for b in range(rc):
+                acc += M[a, b] * y[b]
+            z[a] = acc
+            nrm = max(nrm, abs(acc))
+        if nrm == 0:
+            return
+        # normalised by the largest entry's phase too, so that a converged vector repeats
+        big = 0
+        for a in range(rc):
+            if abs(z[a]) > abs(z[big]):
+                big = a
+        ph = z[big]
+        moved = 0.0
+        for a in range(rc):
+            v = z[a] / ph
+            moved = max(moved, abs(v - y[a]))
+            y[a] = v
+        if moved <= 1e-14:
+            return
 
 
 @njit(**_KW)
@@ -270,6 +324,12 @@ def _frozen(Kt, Om, cidx, Sig, centre, scale):
         for j in range(k):
             if abs(z[k] - z[j]) < 1e-9 * scale:
                 z[k] += 1e-6 * scale * (k + 1) * (0.6 + 0.8j)
+    for k in range(D):
+        # off the axis, each its own way: the uncoupled roots lie on the imaginary axis,
+        # and the polynomial is mirror symmetric (lambda -> -conj(lambda)), so starts on
+        # the axis stay there until round-off breaks the symmetry, and a growing pair
+        # took ~55 of the 60 iterations (measured, sine-gordon); tilted: ~5
+        z[k] += START_TILT * scale * np.exp(1j * (0.3 + 0.7 * k))
     for _ in range(60):
         big = 0.0
         for k in range(D):
@@ -398,6 +458,36 @@ def _pencil_at(Hh, sq, k, P, q, ed, eq, K):
 
 
 @njit(**_KW)
+def _pencil_from_parts(parts, P, k, q, eq, K):
+    """K(q) of the scaled pencil into ``K`` from its q-independent parts
+    (``_chaining.pencil_parts``): block (l, h) = AD_s + B_s e^{i (q + h k)} + C_s
+    e^{-i (q + l k)}, s = l - h + 2P; ``eq`` gets the phases e^{i (q + l k)}. The same
+    operations in the same order as ``_chaining.central_chain`` (the same bits). One field
+    apart: the blocks are numbers (the generic loop's d x d inner loops cost ~5x there)."""
+    d = parts.shape[2]
+    nl = 2 * P + 1
+    for li in range(nl):
+        eq[li] = np.exp(1j * (q + (li - P) * k))
+    if d == 1:
+        AD, B, C = parts[0, :, 0, 0], parts[1, :, 0, 0], parts[2, :, 0, 0]
+        for li in range(nl):
+            el = np.conj(eq[li])
+            for hi_ in range(nl):
+                s = li - hi_ + 2 * P
+                K[li, hi_] = AD[s] + B[s] * eq[hi_] + C[s] * el
+        return
+    for li in range(nl):
+        el = np.conj(eq[li])
+        for hi_ in range(nl):
+            s = li - hi_ + 2 * P
+            eh = eq[hi_]
+            for a in range(d):
+                for b in range(d):
+                    K[li * d + a, hi_ * d + b] = (parts[0, s, a, b] + parts[1, s, a, b] * eh
+                                                  + parts[2, s, a, b] * el)
+
+
+@njit(**_KW)
 def sideband_modes(Hh, masses, k, omega, P, offsets, floor, max_modes, max_cluster,
                    pretest=True):
     """For each offset: the growing eigenvalues of every cluster that can hold a mode
@@ -437,7 +527,9 @@ def sideband_modes(Hh, masses, k, omega, P, offsets, floor, max_modes, max_clust
     ed = np.empty(4 * P + 1, np.complex128)
     for s in range(4 * P + 1):
         ed[s] = np.exp(-1j * (s - 2 * P) * k)
+    parts = pencil_parts(Hh, sq, ed)
     eq = np.empty(nl, np.complex128)
+    W = np.empty((d, d), np.complex128)
     blk = np.empty((d, d), np.complex128)
     ev2 = np.empty(2)
     evec2 = np.empty((2, 2), np.complex128)
@@ -459,7 +551,7 @@ def sideband_modes(Hh, masses, k, omega, P, offsets, floor, max_modes, max_clust
                 count[iq] = -1
                 continue
         # L(q), scaled: block (l, h) = A + B e^{i th_h} + C e^{-i th_l} + D e^{-i (l-h) k}
-        _pencil_at(Hh, sq, k, P, q, ed, eq, K)
+        _pencil_from_parts(parts, P, k, q, eq, K)
         if d == 1:  # the diagonal "blocks" are numbers: no rotation
             for i in range(n):
                 w2[i] = K[i, i].real
@@ -492,14 +584,19 @@ def sideband_modes(Hh, masses, k, omega, P, offsets, floor, max_modes, max_clust
                             for b in range(d):
                                 Kt[li * d + a, hi_ * d + b] = 0.0
                         continue
+                    # K_lh V_h first, then V_l^* (2 d^3 products, not 2 d^4; the
+                    # order ``_chaining.central_chain`` uses: the same bits)
+                    for c in range(d):
+                        for b in range(d):
+                            acc = 0j
+                            for e in range(d):
+                                acc += K[li * d + c, hi_ * d + e] * V[hi_ * d + e, hi_ * d + b]
+                            W[c, b] = acc
                     for a in range(d):
                         for b in range(d):
                             acc = 0j
                             for c in range(d):
-                                vc = np.conj(V[li * d + c, li * d + a])
-                                for e in range(d):
-                                    acc += (vc * K[li * d + c, hi_ * d + e]
-                                            * V[hi_ * d + e, hi_ * d + b])
+                                acc += np.conj(V[li * d + c, li * d + a]) * W[c, b]
                             Kt[li * d + a, hi_ * d + b] = acc
         for i in range(n):
             r = 0.0
