@@ -61,7 +61,15 @@ import numpy as np
 from numba import njit
 
 from ._chaining import central_chain, pencil_parts
-from ._small_algebra import _drop_roundoff, _eigh2, _lu, _lu_solve, _lu_solve_t
+from ._small_algebra import (
+    _drop_roundoff,
+    _eigh2,
+    _ldlh,
+    _ldlh_half,
+    _lu,
+    _lu_solve,
+    _lu_solve_t,
+)
 
 #: Newton steps at most per eigenvalue, and the step (relative to |lambda| + omega)
 #: after which it has settled: Newton's next error is ~ its square, below round-off
@@ -257,6 +265,42 @@ def _fold(Kt, Om, lam, cidx, ridx, X):
 
 
 @njit(**_KW)
+def _fold_axis(Kt, Om, mu, cidx, ridx, X, lo, hi):
+    """Sigma(i mu) as ``_fold``'s, for mu in the cluster's span [lo, hi]: there every
+    coordinate of the rest lies outside its own discs, |(i mu - i Omega_j)^2 + w_j^2| >
+    R_j (the discs hold every point of the axis where it is not), so T_RR(i mu) =
+    K_RR - (mu - Omega_R)^2 is Hermitian and strictly diagonally dominant by rows, and
+    its L D L^* needs no pivoting (``_ldlh``: half an LU's products), Sigma = Z^* D^{-1} Z
+    with Z = L^{-1} E_RC. Elsewhere, or where a pivot vanishes, ``_fold``."""
+    nr = ridx.size
+    rc = cidx.size
+    if nr == 0 or not (lo <= mu <= hi):
+        return _fold(Kt, Om, 1j * mu, cidx, ridx, X)
+    A = np.empty((nr, nr), np.complex128)
+    for a in range(nr):
+        ia = ridx[a]
+        for b in range(a):
+            A[a, b] = Kt[ia, ridx[b]]
+        z = mu - Om[ia]
+        A[a, a] = Kt[ia, ia].real - z * z
+    if not _ldlh(A):
+        return _fold(Kt, Om, 1j * mu, cidx, ridx, X)
+    for a in range(nr):
+        for b in range(rc):
+            X[a, b] = Kt[ridx[a], cidx[b]]
+    _ldlh_half(A, X)
+    Sig = np.zeros((rc, rc), np.complex128)
+    for a in range(rc):
+        for b in range(a, rc):
+            s = 0j
+            for c in range(nr):
+                s += np.conj(X[c, a]) * X[c, b] / A[c, c].real
+            Sig[a, b] = s
+            Sig[b, a] = np.conj(s)
+    return Sig, True
+
+
+@njit(**_KW)
 def _small_pencil(Kt, Om, cidx, Sig):
     """Eigenvalues of the r_c x r_c pencil (lam - i Omega_C)^2 + K_CC - Sig."""
     rc = cidx.size
@@ -371,7 +415,7 @@ def _offset(Kt, Om, lvec, cidx, ridx, lo, hi, floor, om, out_lam, out_vec):
     X = np.empty((nr, rc), np.complex128)
     width = hi - lo
     scale = width + om
-    Sig, ok = _fold(Kt, Om, 0.5j * (lo + hi), cidx, ridx, X)
+    Sig, ok = _fold_axis(Kt, Om, 0.5 * (lo + hi), cidx, ridx, X, lo, hi)
     if not ok:
         return -1
     lam0 = _frozen(Kt, Om, cidx, Sig, 0.5j * (lo + hi), scale)
@@ -395,7 +439,7 @@ def _offset(Kt, Om, lvec, cidx, ridx, lo, hi, floor, om, out_lam, out_vec):
             # two close on the axis: the fold frozen again between them (its error is
             # then second order in their distance) says whether they meet
             mid = 0.5 * (lam0[s] + lam0[t])
-            Sig, ok = _fold(Kt, Om, 1j * mid.imag, cidx, ridx, X)
+            Sig, ok = _fold_axis(Kt, Om, mid.imag, cidx, ridx, X, lo, hi)
             if not ok:
                 return -1
             lam1 = _frozen(Kt, Om, cidx, Sig, 1j * mid.imag, scale)
@@ -475,6 +519,22 @@ def _pencil_from_parts(parts, P, k, q, eq, K):
             for hi_ in range(nl):
                 s = li - hi_ + 2 * P
                 K[li, hi_] = AD[s] + B[s] * eq[hi_] + C[s] * el
+        return
+    if d == 2:  # unrolled: the same expressions, in registers
+        for li in range(nl):
+            el = np.conj(eq[li])
+            r = 2 * li
+            for hi_ in range(nl):
+                s = li - hi_ + 2 * P
+                eh = eq[hi_]
+                c = 2 * hi_
+                K[r, c] = parts[0, s, 0, 0] + parts[1, s, 0, 0] * eh + parts[2, s, 0, 0] * el
+                K[r, c + 1] = (parts[0, s, 0, 1] + parts[1, s, 0, 1] * eh
+                               + parts[2, s, 0, 1] * el)
+                K[r + 1, c] = (parts[0, s, 1, 0] + parts[1, s, 1, 0] * eh
+                               + parts[2, s, 1, 0] * el)
+                K[r + 1, c + 1] = (parts[0, s, 1, 1] + parts[1, s, 1, 1] * eh
+                                   + parts[2, s, 1, 1] * el)
         return
     for li in range(nl):
         el = np.conj(eq[li])

@@ -80,6 +80,52 @@ def _lu(A, piv):
 
 
 @njit(**_KW)
+def _ldlh(A):
+    """In-place A = L D L^* of a Hermitian matrix, its lower triangle read (L unit lower
+    below the diagonal, D real on it), without pivoting: for a strictly diagonally
+    dominant one (the Hill kernel's rest at a point of the imaginary axis outside every
+    disc of its own: ``_sidebands._fold``) elimination keeps the dominance and every
+    pivot is nonzero, at half an LU's products. False where a pivot is not positive in
+    modulus. Zeros skipped as ``_lu`` does."""
+    n = A.shape[0]
+    cols = np.empty(n, np.int64)
+    for j in range(n):
+        dj = A[j, j].real
+        if dj == 0.0:
+            return False
+        nc = 0
+        for i in range(j + 1, n):
+            if A[i, j] != 0:
+                cols[nc] = i
+                nc += 1
+        inv = 1.0 / dj
+        # the trailing lower triangle: A_ic -= A_ij conj(A_cj) / d_j, c <= i
+        for t in range(nc):
+            i = cols[t]
+            f = A[i, j] * inv
+            for u in range(t + 1):
+                c = cols[u]
+                A[i, c] -= f * np.conj(A[c, j])
+        for t in range(nc):
+            A[cols[t], j] *= inv
+        A[j, j] = dj
+    return True
+
+
+@njit(**_KW)
+def _ldlh_half(A, B):
+    """Z = L^{-1} B in place (B, shape (n, m)) with ``_ldlh``'s factors: then
+    B^* A^{-1} B = Z^* D^{-1} Z, Hermitian by construction."""
+    n, m = B.shape
+    for c in range(m):
+        for k in range(n):
+            x = B[k, c]
+            if x != 0:
+                for i in range(k + 1, n):
+                    B[i, c] -= A[i, k] * x
+
+
+@njit(**_KW)
 def _lu_solve(A, piv, B):
     """Solves A X = B in place (B, shape (n, m)) with ``_lu``'s factors; by columns of
     the factors, skipping the solution's zeros (a block the right side does not reach)."""
