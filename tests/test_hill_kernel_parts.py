@@ -86,7 +86,7 @@ def test_fold_on_the_axis_is_the_lu_fold():
     np.testing.assert_array_equal(ax, lu)
 
 
-@pytest.mark.parametrize("rc", [1, 2, 3])
+@pytest.mark.parametrize("rc", [1, 2, 3, 4])
 def test_frozen_roots_are_lapacks(rc):
     rng = np.random.default_rng(10 + rc)
     growing = 0
