@@ -625,6 +625,9 @@ def sideband_modes(Hh, masses, k, omega, P, offsets, floor, max_modes, max_clust
     ev2 = np.empty(2)
     evec2 = np.empty((2, 2), np.complex128)
     Kt = np.empty((n, n), np.complex128)
+    # a cluster's modes (``_offset`` writes every coordinate of each it reports)
+    lam_c = np.empty(max_modes, np.complex128)
+    vec_c = np.empty((max_modes, n), np.complex128)
     # the central harmonics |l| <= L, one more than needed to hold more than max_cluster
     # coordinates: their discs alone may already show the offset given up (``_chaining``:
     # the same discs, the same verdict), tried while the offset before was given up so.
@@ -690,18 +693,21 @@ def sideband_modes(Hh, masses, k, omega, P, offsets, floor, max_modes, max_clust
                                 acc += np.conj(V[li * d + c, li * d + a]) * W[c, b]
                             Kt[li * d + a, hi_ * d + b] = acc
         for i in range(n):
+            # the other harmonics' columns, in order: [0, b0) and [b0 + d, n)
+            b0 = (i // d) * d
             r = 0.0
-            for j in range(n):
-                if lvec[j] != lvec[i]:
-                    # |z| without hypot's scaling (entries are O(1)): ~8x cheaper,
-                    # within an ulp
-                    v = Kt[i, j]
-                    r += math.sqrt(v.real * v.real + v.imag * v.imag)
+            for j in range(b0):
+                # |z| without hypot's scaling (entries are O(1)): ~8x cheaper,
+                # within an ulp
+                v = Kt[i, j]
+                r += math.sqrt(v.real * v.real + v.imag * v.imag)
+            for j in range(b0 + d, n):
+                v = Kt[i, j]
+                r += math.sqrt(v.real * v.real + v.imag * v.imag)
             Rrow[i] = r
             # the diagonal block is diag(w^2) exactly in these coordinates
-            for j in range(n):
-                if lvec[j] == lvec[i]:
-                    Kt[i, j] = w2[i] if i == j else 0.0
+            for j in range(b0, b0 + d):
+                Kt[i, j] = w2[i] if i == j else 0.0
         # roots and their discs: (lo, hi, sign, coordinate); sign 0: a joint disc
         m = 0
         lo_ = np.empty(2 * n)
@@ -752,8 +758,6 @@ def sideband_modes(Hh, masses, k, omega, P, offsets, floor, max_modes, max_clust
                 if cidx.size > max_cluster:
                     bad = chained = True
                     break
-                lam_c = np.zeros(max_modes, np.complex128)
-                vec_c = np.zeros((max_modes, n), np.complex128)
                 got = _offset(Kt, Om, lvec, cidx, ridx, lo_[order[start]], top, floor,
                               omega, lam_c, vec_c)
                 if got < 0 or found + got > max_modes:
