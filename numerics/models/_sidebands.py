@@ -289,12 +289,16 @@ def _fold_axis(Kt, Om, mu, cidx, ridx, X, lo, hi):
         for b in range(rc):
             X[a, b] = Kt[ridx[a], cidx[b]]
     _ldlh_half(A, X)
+    # Sigma = Z^* D^{-1} Z with D^{-1} taken once a row (a product, not a division, in
+    # the inner loop)
+    for c in range(nr):
+        A[c, c] = 1.0 / A[c, c].real
     Sig = np.zeros((rc, rc), np.complex128)
     for a in range(rc):
         for b in range(a, rc):
             s = 0j
             for c in range(nr):
-                s += np.conj(X[c, a]) * X[c, b] / A[c, c].real
+                s += np.conj(X[c, a]) * (X[c, b] * A[c, c].real)
             Sig[a, b] = s
             Sig[b, a] = np.conj(s)
     return Sig, True
