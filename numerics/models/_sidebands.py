@@ -295,7 +295,12 @@ def _fold_axis(Kt, Om, mu, cidx, ridx, X, lo, hi):
         A[c, c] = 1.0 / A[c, c].real
     Sig = np.zeros((rc, rc), np.complex128)
     for a in range(rc):
-        for b in range(a, rc):
+        r = 0.0  # the diagonal: real
+        for c in range(nr):
+            x = X[c, a]
+            r += (x.real * x.real + x.imag * x.imag) * A[c, c].real
+        Sig[a, a] = r
+        for b in range(a + 1, rc):
             s = 0j
             for c in range(nr):
                 s += np.conj(X[c, a]) * (X[c, b] * A[c, c].real)
