@@ -92,6 +92,11 @@ def load(args, axes_ok=False):
         words = str(exc).split(" ", 2)
         if len(words) == 3 and words[0] == "parameter" and words[1] in fixed:
             raise type(exc)(f"--param {words[1]}={fixed[words[1]]!r}: {words[2]}") from None
+        where = str(args.model)
+        if where.endswith(".toml") and not str(exc).startswith(where):
+            # a check after parsing (a dissipation that is not >= 0 at the file's values):
+            # the file named, as the parser's errors name it
+            raise type(exc)(f"{where}: {exc}") from None
         raise
     for name in axes:
         model.lattice.values({name: 0.0})  # an unknown axis name: the model's one-line error

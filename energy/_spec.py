@@ -15,6 +15,7 @@ import json
 import keyword
 import math
 import numbers
+import os
 import re
 import tomllib
 from dataclasses import dataclass, field
@@ -496,6 +497,9 @@ def _check_rayleigh(where: str, tree: ast.Expression):
 
 def read_model(path: str | Path) -> Lattice:
     """Read a model file (TOML): the format of ``docs/models.md``."""
+    if not isinstance(path, (str, os.PathLike)):
+        raise ModelError(f"read_model: the path of a model file (.toml) must be a str or "
+                         f"os.PathLike, got {type(path).__name__} {path!r}")
     path = Path(path)
     where = str(path)
     try:

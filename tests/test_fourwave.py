@@ -211,6 +211,28 @@ def test_the_ring_says_which_band_it_misses():
     assert ring_misses(model, 0.335, 0.05, N=300) == []
 
 
+
+def test_a_band_far_narrower_than_the_chains_samples_is_still_named():
+    """A Hertz chain (d = 1, k = 2 pi 10/64, a = 0.05): a parametric band 9e-5 wide at
+    q = 1.128 (rate 4.3e-5), between the chain's samples (pi / 400 apart) and the 1e-3
+    grid ring_misses put across the four-wave band (the four-wave rates' round-off, ~1e-13,
+    also read as a band over the whole zone). It is named, with the ring that samples it;
+    the four-wave theory sees it within 10% (its own band 6e-5 wide inside the exact one)."""
+    model = load_model(Lattice(
+        name="hertz1", fields=("u",), parameters={"d": 1.0}, kinetic="u_t**2/2",
+        bond="(2/5)*(d + u - u_next)**2.5 - d**1.5*(u - u_next) - (2/5)*d**2.5"))
+    k = 2 * math.pi * 10 / 64
+    fw = four_wave(model, k, 0.05)
+    assert fw.gain == pytest.approx(4.3e-5, rel=0.10)
+    (miss,) = ring_misses(model, k, 0.05, N=64)
+    lo, hi = miss["band"]
+    assert 1.1280 < lo < hi < 1.1283 and hi - lo < 2e-4
+    assert miss["peak_gain"] == pytest.approx(fw.gain, rel=0.10)
+    # the ring named has an offset 2 pi j / N inside the band
+    n = miss["N"]
+    assert math.floor(hi * n / (2 * math.pi)) >= math.ceil(lo * n / (2 * math.pi))
+
+
 # ------------------------------------------------ the commands
 def test_point_and_coefficients_report_the_four_wave_row(capsys):
     from cli.app import main

@@ -558,3 +558,57 @@ def test_a_full_disk_names_the_file(cache, tmp_path, monkeypatch, capsys):
     err = capsys.readouterr().err.strip()
     assert err.count("\n") == 0 and "No space left on device" in err
     assert str(cache) in err and "error::" not in err
+
+
+@pytest.mark.parametrize("bad", [123, None, 1.5])
+def test_read_model_names_what_a_path_must_be(bad):
+    """read_model(123) was a TypeError from pathlib ('expected str, bytes or os.PathLike')."""
+    with pytest.raises(ModelError, match="must be a str or os.PathLike"):
+        read_model(bad)
+
+
+@pytest.mark.parametrize("bad", ["a", None, float("nan"), True])
+def test_branches_refuses_what_is_not_a_wavenumber(bad):
+    """branches(model, 'a') was numpy's 'could not convert string to float'."""
+    from numerics.models import branches
+
+    with pytest.raises(ModelError, match="finite real wavenumbers"):
+        branches(load_model("fput"), bad)
+
+
+def test_a_dissipation_refused_after_parsing_names_its_file(tmp_path, capsys):
+    """A [dissipation] that is not >= 0 at the file's values is refused when the model is
+    loaded, after parsing: the error names the file as the parser's do."""
+    from cli.app import main
+
+    f = tmp_path / "lossy.toml"
+    f.write_text('name = "lossy"\nfields = ["u"]\n[parameters]\ngamma = -0.1\n[energy]\n'
+                 'kinetic = "u_t**2/2"\nbond = "(u_next - u)**2/2 + (u_next - u)**4/4"\n'
+                 '[dissipation]\nsite = "gamma*u_t**2/2"\n')
+    assert main(["coefficients", "--model", str(f), "--k", "1.0"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith(f"flexmm: error: {f}: ")
+    assert "not positive semi-definite" in err[0]
+
+
+@pytest.mark.parametrize("bond,kinked", [("C*(u_next - u)**2/2 + 0.1*Abs(u_next - u)", True),
+                                         ("C*Abs(u_next - u)", True),
+                                         ("C*(u_next - u)**2/2 + Abs(u_next - u)**3", False),
+                                         ("C*(u_next - u)**2/2 + Abs(u_next - u)**(5/2)",
+                                          False)])
+def test_a_kink_at_rest_is_named_where_a_linear_wave_is_asked(bond, kinked, cache):
+    """Abs(r) to the first power: the force jumps at rest by its coefficient, which the
+    Hessian (Abs differentiated away from its kink) does not see. The NLS said "g1 = 0, no
+    dispersion" (a V-shaped bond over an on-site term) or "omega^2 = 0, no carrier": the
+    reason is the kink, named with the jump. Abs(r)**p, p > 2, is smooth enough: no change.
+    The chain still simulates (test_abs_energies_derive_and_simulate)."""
+    from numerics.models import carrier
+
+    model = load_model(parse_model(model_text(bond=bond, site="u**2/2")))
+    if kinked:
+        with pytest.raises(ModelError, match="kink of the energy") as exc:
+            carrier(model, 1.0)
+        jump = 0.1 if "0.1*" in bond else 1.0  # the coefficient of Abs
+        assert f"jumps by {jump:.3g} " in str(exc.value)
+    else:
+        assert carrier(model, 1.0).omega > 0

@@ -48,3 +48,17 @@ def test_point_names_the_strain_and_the_largest_amplitude(tmp_path):
     assert "Residuals" not in proc.stderr and "Traceback" not in proc.stderr
     assert "energy is not real" in proc.stderr and "d0 = 0.5" in proc.stderr
     assert "largest amplitude the model allows" in proc.stderr
+
+
+def test_a_site_limit_is_named_by_the_displacement_not_a_strain():
+    """A site term real only for u > -d (a one-sided substrate) limits the displacement
+    |u| = a, whatever the strain: the sentence names the displacement and d (it named the
+    strain |u_next - u| = 2 a sin(k/2), a quantity that has no limit here)."""
+    model = load_model(Lattice(
+        name="substrate", fields=("u",), parameters={"d": 0.5}, kinetic="u_t**2/2",
+        bond="(u_next - u)**2/2",
+        site="(2/3)*(d + u)**(3/2) - sqrt(d)*u - (2/3)*d**(3/2) + u**2/2"))
+    why = energy_not_real(model, 1.0, 0.8)
+    assert "displacement |u|" in why and "strain" not in why and "d = 0.5" in why
+    # the linear wave's largest |u| is a (512 sites sample the phases to ~1e-4)
+    assert amplitude_reach(model, 1.0, 0.8) == pytest.approx(0.5, rel=2e-3)

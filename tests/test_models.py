@@ -135,6 +135,23 @@ def test_group_velocity_and_g1_are_derivatives_of_omega(name, params, k):
     assert c.g1 == pytest.approx((w[2] - 2 * w[1] + w[0]) / h**2, abs=1e-5)
 
 
+@pytest.mark.parametrize("k", [1e-9, 1e-5, 1e-4, 1e-2])
+def test_acoustic_branch_keeps_its_precision_at_long_waves(k):
+    """FPUT's omega = 2 sin(k/2), g1 = -sin(k/2)/2. omega^2 as 2 - 2 cos k lost its digits
+    to cancellation: omega^2 = 0 at k = 1e-9 (the carrier refused), g1 3x off at 1e-4.
+    omega to 1e-12 relative (a few ulps of the sin form); g1 = (lambda'' - 2 v_g^2) /
+    (2 omega) still cancels two O(1) terms, absolute error ~ eps / omega: 1e-4 relative
+    where that is below it (k >= 1e-5), its sign and size where it is not (k = 1e-9)."""
+    c = carrier(load_model("fput"), k)
+    assert c.omega == pytest.approx(2 * math.sin(k / 2), rel=1e-12)
+    assert c.group_velocity == pytest.approx(math.cos(k / 2), rel=1e-12)
+    if k >= 1e-5:
+        assert c.g1 == pytest.approx(-math.sin(k / 2) / 2, rel=1e-4)
+    # the mean flow resonates at long waves (v_g -> the sound speed 1): no NLS, said why
+    if k <= 1e-5:
+        assert "sound speed" in nls(load_model("fput"), k).undefined
+
+
 def test_diatomic_branches_acoustic_and_optical():
     m = load_model("diatomic-fput", m=2.0)
     w = branches(m, np.array([1e-9, math.pi]))

@@ -19,11 +19,12 @@ _KW = dict(cache=True, nogil=True, error_model="numpy", boundscheck=False)
 
 
 @njit(**_KW)
-def _frozen_starts(K, Om, cidx, ridx, omega, starts, gaps, F0, X):
+def _frozen_starts(K, Om, cidx, ridx, omega, starts, gaps, F0, X, every):
     """The frozen pencil's starts at one offset: each growing eigenvalue, and each pair
     close on the axis from between them (half their gap into ``gaps``); K_CC - Sigma
     into ``F0`` and T_RR(0)^{-1} K_RC into ``X``, what a start's eigenvector is made of
-    (``_start_vector``, asked only for the starts the search reaches). Returns how many;
+    (``_start_vector``, asked only for the starts the search reaches); all 2 r_C
+    eigenvalues into ``every`` (``_between``'s certificate). Returns how many starts;
     -1 where the fold is singular."""
     rc = cidx.size
     g = np.empty(K.shape[0], np.complex128)
@@ -36,6 +37,7 @@ def _frozen_starts(K, Om, cidx, ridx, omega, starts, gaps, F0, X):
         if not ok:
             return -1
         lam0 = _small_pencil(K, Om, cidx, Sig)
+    every[:] = lam0
     ns = 0
     for s in range(lam0.size):
         if lam0[s].real > 1e-9 * omega:

@@ -145,13 +145,21 @@ def ring_misses(model: Model, k: float, amplitude: float, branch=None, *, N: int
     q, g = chain.offsets, chain.gain
     if fw.verdict == "MI":
         # Hill offsets every 1e-3 (at most 40) across each band the four-wave theory finds
-        # and 4e-3 beyond it
-        r4 = np.nan_to_num(fw.rates, nan=0.0).max(axis=1) > 0
+        # and 4e-3 beyond it, and 41 across the band and its width on either side: a
+        # parametric band can be far narrower than 1e-3 (a Hertz chain's, 9e-5 wide at
+        # q = 1.128, k = 0.98, a = 0.05, fell between them). A band: rates above the
+        # verdicts' floor (the four-wave rates' round-off, ~1e-13, is positive elsewhere)
+        from ._exact import GAIN_FLOOR
+
+        floor = GAIN_FLOOR * fw.omega
+        r4 = np.nan_to_num(fw.rates, nan=0.0).max(axis=1) > floor
         e4 = np.flatnonzero(np.diff(np.concatenate([[0], r4.astype(int), [0]])))
-        spans = [(fw.offsets[a] - 4e-3, fw.offsets[b - 1] + 4e-3) for a, b in
-                 zip(e4[::2], e4[1::2])]
-        extra = np.concatenate([np.linspace(lo, hi, min(40, int((hi - lo) / 1e-3) + 2))
-                                for lo, hi in spans])
+        bands = [(fw.offsets[a], fw.offsets[b - 1]) for a, b in zip(e4[::2], e4[1::2])]
+        extra = np.concatenate(
+            [np.linspace(lo - 4e-3, hi + 4e-3, min(40, int((hi - lo + 8e-3) / 1e-3) + 2))
+             for lo, hi in bands]
+            + [np.linspace(lo - w, hi + w, 41) for lo, hi in bands
+               for w in [max(hi - lo, 1e-5)]] + [np.empty(0)])
         extra = extra[(extra > 0) & (extra <= math.pi)]
         if extra.size:
             more = hill_spectrum(chain.wave, extra)

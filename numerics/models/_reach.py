@@ -50,10 +50,23 @@ def _finite(model: Model, k: float, amplitude: float, branch) -> bool:
                     and math.isfinite(lattice_energy(model, u, v)))
 
 
-def _strain(model: Model, k: float, amplitude: float, branch) -> tuple[float, str]:
-    """The largest bond strain |u_next - u| of the linear wave and its field."""
+def _site_limited(model: Model, k: float, amplitude: float, branch) -> bool:
+    """Whether the energy is not real already without strain: each cell of the linear wave
+    at this amplitude taken with its neighbour displaced as itself (u_next = u), which
+    leaves the site term (and the bond at rest strain). A square root or logarithm of a
+    displacement (a site limit) is not real there; a Hertz contact's (a bond's) is."""
+    u, _, _ = _profile(model, k, amplitude, branch)
+    with np.errstate(all="ignore"):
+        return not bool(np.all(np.isfinite(model.code.cell_energy(
+            np.concatenate([u, u]), model.p))))
+
+
+def _strain(model: Model, k: float, amplitude: float, branch,
+            site: bool = False) -> tuple[float, str]:
+    """The largest bond strain |u_next - u| of the linear wave and its field (``site``:
+    the largest displacement |u|)."""
     u, _, car = _profile(model, k, amplitude, branch)
-    r = np.abs(np.roll(u, -1, axis=1) - u).max(axis=1)
+    r = np.abs(u if site else np.roll(u, -1, axis=1) - u).max(axis=1)
     i = int(np.argmax(r))
     return float(r[i]), model.fields[i]
 
@@ -81,12 +94,15 @@ def energy_not_real(model: Model, k: float, amplitude: float, branch=None) -> st
     a_max = amplitude_reach(model, k, amplitude, branch)
     if a_max >= amplitude:
         return None
-    strain, field = _strain(model, k, amplitude, branch)
-    edge, _ = _strain(model, k, a_max, branch)
+    site = _site_limited(model, k, amplitude, branch)
+    strain, field = _strain(model, k, amplitude, branch, site)
+    edge, _ = _strain(model, k, a_max, branch, site)
     named = [f"{n} = {v:g}" for n, v in model.params.items()
              if v and abs(edge / v - 1) < 2e-3]
-    where = (f"the {field} strain |{field}_next - {field}| of the linear wave reaches "
-             f"{strain:.3g}, beyond {edge:.3g}"
+    what = (f"displacement |{field}|" if site
+            else f"strain |{field}_next - {field}|")
+    where = (f"the {field} {what} of the linear wave reaches {strain:.3g}, beyond "
+             f"{edge:.3g}"
              + (f" ({' or '.join(named)})" if named else "")
              + " where the model's energy stops being real")
     allowed = (f"the largest amplitude the model allows at k = {k:.4g} is about {a_max:.3g}"

@@ -89,9 +89,10 @@ def frozen_real(K, Om, cidx, ridx, g, X, Sig):
     (into ``X``), both back in the pencil's own coordinates, as ``_sidebands._fold`` gives
     them. Returns (lambda, ok): ok False where T_RR(0) is singular or dgeev fails."""
     rc, nr = cidx.size, ridx.size
-    # R_RR - Omega_R^2 and R_RC, real
+    # R_RR - Omega_R^2 and R_RC, real (R symmetric: R_CR = R_RC^T, gauged once)
     T = np.empty((nr, nr))
     Y = np.empty((nr, rc))
+    RRC = np.empty((nr, rc))
     for a in range(nr):
         ia = ridx[a]
         ga = np.conj(g[ia])
@@ -99,7 +100,8 @@ def frozen_real(K, Om, cidx, ridx, g, X, Sig):
             T[a, b] = (ga * K[ia, ridx[b]] * g[ridx[b]]).real
         T[a, a] -= Om[ia] * Om[ia]
         for b in range(rc):
-            Y[a, b] = (ga * K[ia, cidx[b]] * g[cidx[b]]).real
+            RRC[a, b] = (ga * K[ia, cidx[b]] * g[cidx[b]]).real
+            Y[a, b] = RRC[a, b]
     lam = np.empty(2 * rc, np.complex128)
     if nr:
         piv = np.empty(nr, np.int64)
@@ -115,7 +117,7 @@ def frozen_real(K, Om, cidx, ridx, g, X, Sig):
         for b in range(rc):
             s = 0.0
             for c in range(nr):
-                s += (ga * K[ca, ridx[c]] * g[ridx[c]]).real * Y[c, b]
+                s += RRC[c, a] * Y[c, b]
             Sig[a, b] = g[ca] * s * np.conj(g[cidx[b]])
             L[b, rc + a] = (ga * K[ca, cidx[b]] * g[cidx[b]]).real - s
         L[a, a] = Om[ca]
