@@ -7,8 +7,8 @@ test)."""
 import numpy as np
 import pytest
 
-from numerics.models._sidebands import _fold, _fold_axis, _frozen, _null_vector, _small_pencil
-from numerics.models._small_algebra import _ldlh, _ldlh_half
+from numerics.models._sidebands import _fold, _fold_axis, _frozen, _small_pencil
+from numerics.models._small_algebra import _ldlh, _ldlh_half, _null_vector
 
 
 def _dominant(n, rng, margin=1.5, split=False):
