@@ -16,7 +16,8 @@ from .models import add_model_args
 #: the first example line of each command runs in the tests (tests/test_cli_help.py); a
 #: command that takes --model shows one for any model first, then the paper chain's shorthand
 EPILOG = {
-    "models": "example:\n  flexmm models\n  flexmm coefficients --model fput --param alpha=1 "
+    "models": "example:\n  flexmm models\n  flexmm models fput > mine.toml\n  "
+              "flexmm coefficients --model fput --param alpha=1 "
               "--param beta=1 --k 1.57 --amplitude 0.1",
     "coefficients": "examples:\n  any model:\n  flexmm coefficients --model fput --param alpha=1 "
                     "--param beta=1 --k 1.57 --amplitude 0.1\n  the paper chain:\n  "
@@ -43,7 +44,7 @@ EPILOG = {
                "--out out/soliton",
     "map": "examples:\n  any model (a parameter and k swept: --param NAME=start:stop:num):\n  "
            "flexmm map --model fput --param alpha=1 --param beta=0.5:1.5:3 --k 0.5:3:4 "
-           "--amplitude 0.1 --theory-only --out out/map\n  the paper chain:\n  "
+           "--amplitude 0.1 --theory-only --out out/fput-map\n  the paper chain:\n  "
            "flexmm map --alpha 2.5 --K-s 0.01851 --delta -0.01:0.01:5 --k 0.3:2.9:6 "
            "--case rotation --theory-only --out out/map",
 }
@@ -109,6 +110,8 @@ def build_parser(model_mode: bool = False):
     _soliton_parser(sub, model_mode)
     ms = _sub(sub, "models", "list the built-in lattice models: their fields, parameters and "
               "what each describes")
+    ms.add_argument("name", nargs="?", help="a built-in model: print its model file (a "
+                    "template for your own: flexmm models fput > mine.toml)")
     ms.add_argument("--json", action="store_true", help="one JSON object on stdout")
     return p
 
@@ -299,9 +302,22 @@ def _print_checks(summary):
         print(f"[{c['outcome']}] {c['check']}: theory {c['theory']}; numerics {c['numerics']}")
 
 
+def _quiet_stdout() -> None:
+    """stdout pointed at the null device: its reader is gone, and the interpreter's last
+    flush would otherwise print 'Exception ignored ... BrokenPipeError' at exit."""
+    import os
+
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+    except (OSError, ValueError, AttributeError):  # no real stdout (captured): nothing to do
+        pass
+
+
 def main(argv=None) -> int:
     """Run the CLI; returns the exit code (0 ok, 2 bad input or file system, 130 SIGINT,
-    143 SIGTERM: both handled alike, one line saying what was kept where)."""
+    143 SIGTERM: both handled alike, one line saying what was kept where; 141, silent,
+    where the reader of its output left, as ``| head`` does)."""
     from common.signals import exit_code, interrupts, received
 
     created = []  # the --out folders this command would create (removed if left empty)
@@ -320,6 +336,9 @@ def main(argv=None) -> int:
             except KeyboardInterrupt:
                 pass
             return exit_code(exc)
+        except BrokenPipeError:  # `flexmm ... | head`: the reader has what it wanted
+            _quiet_stdout()
+            return 141  # as a shell reports a writer ended by SIGPIPE (128 + 13)
         except (ValueError, TypeError, FloatingPointError, MemoryError, OSError) as exc:
             _remove_if_empty(created)
             if (interrupt := received()) is not None:  # an interrupt, in another form

@@ -154,15 +154,20 @@ def run_map_command(args, log=print):
     # a store only --overwrite may replace: refused before the estimate
     check_store(Path(args.out) / "map.zarr", params, args.overwrite)
 
-    estimate = estimate_map(params, n_workers, args.scheduler)  # this machine's speed
+    from ._map_guards import cells_done
+
+    done, _ = cells_done(args.out, params)  # a resumed map: the estimate of the cells left
+    # this machine's speed
+    estimate = estimate_map(params, n_workers, args.scheduler, cells=cells - done)
     est = estimate.seconds
+    left = f" for the {cells - done} left ({done} in the store)" if done else ""
     if params.theory_only:
         log(f"map (theory only): {cells} cells, N = {params.N}, T = {params.t_end:g}: "
-            f"predictions about {_duration(est)} ({estimate.describe()}) on {n_workers} "
-            "worker(s)")
+            f"predictions about {_duration(est)}{left} ({estimate.describe()}) on "
+            f"{n_workers} worker(s)")
     else:
         log(f"map: {cells} cells x {params.seeds} seed(s), N = {params.N}, T = "
-            f"{params.t_end:g}: about {_duration(est)} ({estimate.describe()}) on "
+            f"{params.t_end:g}: about {_duration(est)}{left} ({estimate.describe()}) on "
             f"{n_workers} worker(s) (less where MI stops a run early)")
     if device == "gpu":
         log("device gpu: the cells' simulations run on the GPU in batches (the estimate "
@@ -173,7 +178,8 @@ def run_map_command(args, log=print):
                          "fewer cells, seeds, a shorter --t-end or --theory-only")
     out = prepare_output(args.out)
     ds = run_map(params, out, args.scheduler, args.workers, log=with_wall(log, started, est),
-                 overwrite=args.overwrite, timeout=args.timeout, device=device)
+                 overwrite=args.overwrite, timeout=args.timeout, device=device,
+                 estimate=est - estimate.startup * estimate.startup_slowdown if done else None)
     verdicts = [n for n in ds.data_vars if n.startswith("verdict_")]
     summary = {"cells": int(ds["done"].size), "simulated": int(ds["done"].values.sum()),
                "agreement_with_simulation_percent": agreement(ds),

@@ -8,6 +8,7 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
+from ._map_guards import cells_done, check_rest, option
 from .models import _emit, branch_of, load
 
 
@@ -53,6 +54,14 @@ def run_map(args) -> int:
         raise ValueError(f"a model map sweeps two axes among --k SPEC, --amplitude SPEC and "
                          f"--param NAME=SPEC (SPEC v1,v2,... or start:stop:num); got "
                          f"{len(named)}: {', '.join(n for n, _ in named) or 'none'}")
+    from .map import MAX_CELLS
+
+    cells = len(named[0][1]) * len(named[1][1])
+    if cells > MAX_CELLS:  # as the paper chain's map: before a grid fills memory
+        raise ValueError(f"{' and '.join(option(n) for n, _ in named)} ask for {cells} "
+                         f"cells; at most {MAX_CELLS} (split the map into several --out "
+                         "folders)")
+    check_rest(model, named)
     if amp_axis is not None and "amplitude" in model.params:
         raise ValueError("--amplitude SPEC: the model has a parameter named 'amplitude' too; "
                          "rename it in the model file to sweep the carrier's amplitude")
@@ -60,15 +69,17 @@ def run_map(args) -> int:
         raise ValueError("--k: give the carrier wavenumber (one value, or a SPEC to sweep)")
     simulated = not getattr(args, "theory_only", False)
     given = getattr(args, "given", ())
-    if "--yes" in given:
-        raise ValueError("--yes: it acts on the paper chain's maps; drop it")
     start = _start_of(args, model, simulated) if "--start" in given else "exact"
     if not simulated and ("--seeds" in given or "--t-end" in given):
-        raise ValueError("--seeds and --t-end act on a simulated model map: drop them, or "
-                         "--theory-only")
+        given_run = " and ".join(o for o in ("--seeds", "--t-end") if o in given)
+        raise ValueError(f"{given_run}: {'acts' if ' and ' not in given_run else 'act'} on "
+                         "a simulated model map's runs; drop "
+                         f"{'it' if ' and ' not in given_run else 'them'}, or drop "
+                         "--theory-only to run the cells")
     if simulated and args.exact:
         raise ValueError("--exact: a simulated model map has the exact lattice theory "
-                         "per cell already")
+                         "per cell already; drop --exact, or add --theory-only for the "
+                         "theories without the runs")
     if amp is not None and check_value("--amplitude", amp) <= 0:
         raise ValueError(f"--amplitude must be > 0, got {amp!r}")
     ring = args.exact or simulated  # the ring the exact theory and the runs use
@@ -167,12 +178,26 @@ def run_map(args) -> int:
 
     # a store only --overwrite may replace: refused before the estimate's seconds
     check_store(Path(args.out) / "map.zarr", params, args.overwrite)
-    if _finished(args.out, params):  # nothing to compute: no cell measured to estimate it
+    done, cells = cells_done(args.out, params)
+    left = None  # the engine's rough figure on its resume line (nothing measured here)
+    if done == cells:  # nothing to compute: no cell measured to estimate it
         log(f"estimate: none needed: {Path(args.out) / 'map.zarr'} holds every cell of this "
             "map (its checksums are verified, the summary and figure made again)")
         estimated = 0.0
-    else:
-        estimated = _estimate(params, n_workers or local_cores(), args.scheduler, log).seconds
+    else:  # a resumed map: the cells left, not the whole map
+        est = _estimate(params, n_workers or local_cores(), args.scheduler, log,
+                        cells - done, cells)
+        estimated, left = est.seconds, est.seconds - est.startup * est.startup_slowdown
+        from .map import CONFIRM_SECONDS
+
+        if estimated > CONFIRM_SECONDS and not args.yes and device == "cpu":
+            from common.text import duration
+
+            raise ValueError(f"the map would take about {duration(estimated)} (> "
+                             f"{duration(CONFIRM_SECONDS)}); add --yes to run it, or use "
+                             "fewer cells" + (", seeds, a shorter --t-end or --theory-only"
+                                              if simulated else " or a smaller --N"
+                                              if params.ring else ""))
     out = prepare_output(args.out, cache=False)
     path = out / "map.zarr"
     existed = path.exists()
@@ -185,7 +210,7 @@ def run_map(args) -> int:
 
     ds = run_engine(params, out, args.scheduler, args.workers,
                     log=with_wall(log, started, estimated), overwrite=args.overwrite,
-                    timeout=args.timeout, device=device)
+                    timeout=args.timeout, device=device, estimate=left)
     verdicts = [v for v in ds.data_vars if v.startswith("verdict_")
                 and (simulated or v != "verdict_simulated")]
     if all((ds[v].values < 0).all() for v in verdicts):
@@ -242,6 +267,16 @@ def run_map(args) -> int:
         n = summary["undetermined_cells"][v.removeprefix("verdict_")]
         print(f"MI share, {v.replace('verdict_', '')}: {share:.0%}"
               + (f" ({n} of {ds[v].size} cells undetermined, counted as not MI)" if n else ""))
+    ag = summary.get("agreement_with_simulation_percent") or {}
+    told = [n.removesuffix("_undetermined_cells") for n in ag
+            if n.endswith("_undetermined_cells")]
+    if told:  # the runs' verdict against each theory's (summary.json's numbers)
+        print("agreement with the runs (cells the theory decides): " + ", ".join(
+            f"{n} {ag[n]:.0f}%"
+            + (f" ({ag[n + '_decided']:.0f}% of {ag[n + '_decided_cells']} not marginal)"
+               if n + "_decided" in ag else "")
+            + (f" ({ag[n + '_undetermined_cells']} undetermined, left out)"
+               if ag[n + "_undetermined_cells"] else "") for n in told))
     if unsampled and unsampled["cells"]:
         print(_unsampled_text(unsampled, args.N))
     for name, c in critical.items():
@@ -315,34 +350,21 @@ def _start_of(args, model, simulated: bool) -> str:
     return start
 
 
-def _finished(out, params) -> bool:
-    """Whether ``OUT/map.zarr`` holds this map (its identity attributes) with every cell
-    done (simulated, or predicted for a theory-only map): then the command has no work to
-    estimate. Anything unreadable: False (the engine says what it is)."""
-    import zarr
-
-    try:
-        group = zarr.open_group(str(Path(out) / "map.zarr"), mode="r", use_consolidated=False)
-        attrs = dict(group.attrs)
-        if any(attrs.get(n) != v for n, v in params.identity().items()):
-            return False
-        done = group["done_predicted" if params.theory_only else "done"][...]
-        return bool(done.size) and bool(done.all())
-    except Exception:  # no store, another format, a damaged one: the engine decides
-        return False
-
-
-def _estimate(params, workers: int, scheduler, log):
-    """The map's wall time (a MapEstimate), estimated from one cell measured here (its
-    theories and, for a simulated map, a short run of its ring) and said before the work."""
+def _estimate(params, workers: int, scheduler, log, left: int, cells: int):
+    """The map's wall time (a MapEstimate) for the ``left`` of its ``cells`` still to
+    compute, estimated from one cell measured here (its theories and, for a simulated map,
+    a short run of its ring) and said before the work."""
     from common.text import duration
     from numerics.maps import estimate_model_map, probe_model_cell
 
     cost = probe_model_cell(params)
-    est = estimate_model_map(params, workers, scheduler, cost)
+    est = estimate_model_map(params, workers, scheduler, cost, cells=left)
     measured = f"theories {cost.theory:.2g} s" + (
         f", a run of T = {cost.t_end:g} {cost.run:.2g} s" if not params.theory_only else "")
-    log(f"estimate: about {duration(est.seconds)} ({est.describe()}; one cell measured here: "
+    log(f"estimate: about {duration(est.seconds)}"
+        + (f" for {left} of its {cells} cells (the other {cells - left} are in the store)"
+           if left < cells else "")
+        + f" ({est.describe()}; one cell measured here: "
         f"{measured} of CPU) on {workers} worker(s)")
     return est
 

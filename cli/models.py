@@ -52,7 +52,9 @@ def refuse_paper_flags(args):
     if given:
         flags = ", ".join("--" + f.replace("_", "-") for f in given)
         raise ValueError(f"{flags}: the paper chain's flags; with --model give the model's "
-                         "parameters as --param NAME=VALUE")
+                         "parameters as --param NAME=VALUE"
+                         + (", and its units (SI answers) as --time-unit SECONDS and "
+                            "--length-unit METRES" if "physical" in given else ""))
 
 
 def params_of(args, axes_ok=False) -> tuple:
@@ -92,14 +94,15 @@ def load(args, axes_ok=False):
         words = str(exc).split(" ", 2)
         if len(words) == 3 and words[0] == "parameter" and words[1] in fixed:
             raise type(exc)(f"--param {words[1]}={fixed[words[1]]!r}: {words[2]}") from None
+        if "has no parameter" in str(exc):  # a typo: named as the option, the likely name
+            _unknown_parameter(load_model(args.model), fixed)
         where = str(args.model)
         if where.endswith(".toml") and not str(exc).startswith(where):
             # a check after parsing (a dissipation that is not >= 0 at the file's values):
             # the file named, as the parser's errors name it
             raise type(exc)(f"{where}: {exc}") from None
         raise
-    for name in axes:
-        model.lattice.values({name: 0.0})  # an unknown axis name: the model's one-line error
+    _unknown_parameter(model, axes)
     b = branch_of(args)  # named as the option, before any work (an index or a field)
     if b is not None and not (isinstance(b, int) and 0 <= b < model.n_fields
                               or b in model.fields):
@@ -110,6 +113,21 @@ def load(args, axes_ok=False):
     if not axes:
         check_rest_stable(model)
     return (model, axes) if axes_ok else model
+
+
+def _unknown_parameter(model, names) -> None:
+    """Refuse a --param NAME the model does not have, naming the option, the closest of
+    its parameters (a typo: 'betta') and all of them."""
+    import difflib
+
+    for name in names:
+        if name not in model.params:
+            lower = {n.lower(): n for n in model.params}  # 'D0' for 'd0' too
+            close = [lower[c] for c in difflib.get_close_matches(name.lower(), list(lower),
+                                                                 n=1)]
+            raise ValueError(f"--param {name}: model {model.name!r} has no parameter "
+                             f"{name!r}" + (f"; did you mean {close[0]!r}?" if close else "")
+                             + f" (it has: {', '.join(model.params) or 'none'})")
 
 
 def branch_of(args):
@@ -133,9 +151,23 @@ def _plain(x):
 
 # ------------------------------------------------------------------ flexmm models
 def run_models(args) -> int:
-    """List the built-in models: fields, parameters with defaults, one line each."""
+    """List the built-in models: fields, parameters with defaults, one line each; with a
+    NAME, print that model's file (a template for one's own)."""
     from energy import BUILTIN, builtin
 
+    name = getattr(args, "name", None)
+    if name is not None:
+        if name not in BUILTIN:
+            raise ValueError(f"flexmm models {name}: no built-in model {name!r}; built-in: "
+                             f"{', '.join(BUILTIN)}")
+        from numerics.maps import model_text
+
+        text = model_text(name)
+        if getattr(args, "json", False):
+            _emit({"name": name, "file": text})
+        else:
+            print(text, end="" if text.endswith("\n") else "\n")
+        return 0
     rows = [builtin(n) for n in BUILTIN]
     if getattr(args, "json", False):
         _emit({"models": [{"name": m.name, "fields": list(m.fields),
@@ -147,8 +179,9 @@ def run_models(args) -> int:
         params = ", ".join(f"{p}={v:g}" for p, v in m.parameters.items())
         print(f"{m.name:<{width}}  fields {', '.join(m.fields):<9}  {params}")
         print(f"{'':<{width}}  {m.description}")
-    print("give one with --model NAME (or --model FILE.toml for your own, docs/models.md); "
-          "parameters with --param NAME=VALUE")
+    print("give one with --model NAME (or --model FILE.toml for your own, docs/models.md: "
+          "`flexmm models NAME > mine.toml` starts one from a built-in's file); parameters "
+          "with --param NAME=VALUE")
     return 0
 
 

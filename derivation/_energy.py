@@ -149,6 +149,11 @@ def energies(lat: Lattice) -> Energies:
         raise ModelError(f"{where}: is not a quadratic form in the velocities (the rest "
                          f"{sp.simplify(rest)} remains)")
     at_rest = {x: 0 for x in s.here + s.next}
+    w0 = sp.simplify((bond + site).subs(at_rest))
+    if w0.has(sp.I):  # sqrt(u - 1): complex at rest whatever the parameters (numbers alone)
+        raise ModelError(f"model {lat.name!r}: the energy is not real at the rest state "
+                         f"(every field 0): bond + site there is {w0} (a square root, log or "
+                         "fractional power of a quantity negative at rest?)")
     for i, x in enumerate(s.here):
         # net force on field i of a chain at rest: -(dW/du + dW/du_next) at u = 0
         f0 = sp.simplify((sp.diff(bond + site, x) + sp.diff(bond, s.next[i])).subs(at_rest))

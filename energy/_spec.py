@@ -323,7 +323,10 @@ def _checked_tree(where: str, text: str, allowed: set) -> ast.Expression:
     try:
         tree = ast.parse(text.strip(), mode="eval")
     except SyntaxError as exc:
-        _fail(where, f"syntax error in {_short(text)} at column {exc.offset}: {exc.msg}")
+        # Python gives column 0 (or none) where the expression ends too soon ("u +")
+        at = (f"at column {exc.offset}" if exc.offset and 0 < exc.offset <= len(text.strip())
+              else "at its end (an operator or a bracket left open?)")
+        _fail(where, f"syntax error in {_short(text)} {at}: {exc.msg}")
     except (RecursionError, MemoryError):
         _fail(where, f"the expression {_short(text)} has too many terms or is nested too "
                      f"deeply to read (at most {MAX_NODES} terms and symbols, {MAX_DEPTH} "
@@ -438,6 +441,12 @@ def _unknown(name: str, allowed: set) -> str:
     elif name.endswith("_t"):
         hint = (" (velocities are allowed in energy.kinetic and [dissipation] only; "
                 "u_next_t in dissipation.bond only)")
+    else:  # a typo of a declared name or a function ('betta', 'Sin'): the likely one
+        import difflib
+
+        lower = {n.lower(): n for n in allowed}
+        close = difflib.get_close_matches(name.lower(), list(lower), n=1, cutoff=0.75)
+        hint = f" (did you mean {lower[close[0]]!r}?)" if close else ""
     names = ", ".join(sorted(n for n in allowed if n not in FUNCTIONS and n not in CONSTANTS))
     return f"unknown symbol {_short(name, 40)}{hint}; allowed here: {names}"
 

@@ -144,7 +144,7 @@ TEST_EXCEPTIONS = {
                                         "columns a profile refines",
     "numerics.models._small_algebra": "the Hill kernel's LU that skips exact zeros against a "
                                   "dense solve, and its round-off threshold on the Hessian's "
-                                  "harmonics",
+                                  "harmonics; its L D L^* fold against a dense solve",
     "derivation._mi": "the MI band's derivation step",
     "derivation._pipeline": "the semi-discrete NLS derived afresh (the generated code's source)",
     "numerics.maps._integrity": "a garbled chunk found from its Blosc header, never decoded",
@@ -172,7 +172,9 @@ TEST_EXCEPTIONS = {
     "numerics.models._collocation": "the wave's chord method with its Jacobian taken "
                                     "again, on a system whose root is known",
     "numerics.models._sidebands": "the compiled Hill kernel's early give-up where the "
-                                  "central discs chain, against its own full pass",
+                                  "central discs chain, against its own full pass; its "
+                                  "fold on the axis, frozen roots and eigenvector against "
+                                  "LU, LAPACK and a known eigenvector",
     "numerics.models._real_gauge": "the phase that makes the Hill pencil real, and the "
                                    "frozen pencil's real eigenvalues against the complex ones",
     "numerics.theory._plane_wave": "the batched plane-wave solver the exact map uses",

@@ -188,7 +188,7 @@ class MapEstimate:
 
 
 def estimate_map(params, workers: int, scheduler: str | None = None,
-                 speed: dict | None = None) -> MapEstimate:
+                 speed: dict | None = None, cells: int | None = None) -> MapEstimate:
     """Wall time of ``flexmm map`` for ``params`` (a MapParameters) on ``workers``.
 
     Parameters
@@ -200,12 +200,14 @@ def estimate_map(params, workers: int, scheduler: str | None = None,
         A running scheduler's address (no cluster to start here).
     speed : dict, optional
         :func:`machine_speed`'s answer (measured and cached when not given).
+    cells : int, optional
+        The cells still to compute (a resumed map's); default every cell of the map.
     """
     from ..lattice import get_method
 
     speed = speed or machine_speed()
     workers = max(int(workers), 1)
-    cells = len(params.k) * len(params.delta)
+    cells = len(params.k) * len(params.delta) if cells is None else int(cells)
     scale_n = params.N / REFERENCE["N"]
     predict = cells * speed["predict"] * _predict_scale(params.k_simulated, params.N,
                                                         params.start)
@@ -337,11 +339,13 @@ def probe_model_cell(params) -> ModelCellCost:
 
 
 def estimate_model_map(params, workers: int, scheduler: str | None = None,
-                       cost: ModelCellCost | None = None) -> MapEstimate:
+                       cost: ModelCellCost | None = None,
+                       cells: int | None = None) -> MapEstimate:
     """Wall time of ``flexmm map --model`` for ``params`` (a ModelMapParameters) on
     ``workers``: the start-up (as the paper chain's, plus each worker's warm-up), and every
     cell at the measured cost of one (:func:`probe_model_cell`; measured when not given),
-    over the workers, slowed by the load.
+    over the workers, slowed by the load; ``cells``: how many are still to compute (a
+    resumed map's; default every cell of the map).
 
     Returns
     -------
@@ -351,7 +355,7 @@ def estimate_model_map(params, workers: int, scheduler: str | None = None,
     """
     cost = cost or probe_model_cell(params)
     workers = max(int(workers), 1)
-    cells = int(np.prod(params.grid_shape))
+    cells = int(np.prod(params.grid_shape)) if cells is None else int(cells)
     theory = cells * cost.theory
     runs = 0.0 if params.theory_only else cells * params.seeds * cost.run
     startup = STARTUP_SECONDS["scheduler" if scheduler else "local"]

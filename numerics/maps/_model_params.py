@@ -486,6 +486,7 @@ class ModelMapParameters:
             return n[len("param_"):] if n.startswith("param_") else n
 
         differ = [f"{said(n)} {attrs[n]!r} stored, {mine[n]!r} asked"
+                  + (": omit --block to continue with the store's" if n == "block" else "")
                   for n in sorted(mine) if n in attrs and attrs[n] != mine[n]]
         differ += [f"{said(n)} {attrs[n]!r} stored, none asked" for n in sorted(attrs)
                    if n.startswith("param_") and n not in mine]

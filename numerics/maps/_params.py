@@ -343,6 +343,8 @@ class MapParameters:
 
     def other_map(self, attrs: dict) -> str:
         """What a store of another map holds, in words (its attributes ``attrs``)."""
+        if attrs.get("map_of") == "model":  # `map --model`'s store, not this chain's flags
+            return f"a map of model {attrs.get('model')!r} (flexmm map --model)"
         return "a map with other parameters (or of an older format)"
 
     def new_dataset(self):

@@ -121,14 +121,16 @@ def _named_os_errors(path: Path):
 
 def run_map(params: MapParameters, out: Path, scheduler: str | None = None,
             workers: int | None = None, progress: bool | None = None, log=print,
-            overwrite: bool = False, timeout: float = 20.0, device: str = "cpu"):
+            overwrite: bool = False, timeout: float = 20.0, device: str = "cpu",
+            estimate: float | None = None):
     """Compute (or resume) ``OUT/map.zarr``; returns the dataset (loaded). One writer at a
     time (``OUT/map.zarr.lock``); ``timeout``: seconds to reach ``scheduler``. ``progress``:
     a bar on stderr (None: where it is a terminal), or a callable given each finished
     block's number of cells. ``device``
     "gpu" (or "auto" where a GPU is usable) simulates the cells on the GPU in batches
     (``simulate_map_cells_gpu``; the theories on this CPU), with the same store, checksums
-    and resume as on the CPU."""
+    and resume as on the CPU. ``estimate``: the caller's estimate of the seconds its cells
+    left take (a resumed map's line says it instead of the parameters' rough figure)."""
     from ._devices import resolve_device
     from ._integrity import store_lock
     from ._model_params import ModelMapParameters
@@ -165,8 +167,9 @@ def run_map(params: MapParameters, out: Path, scheduler: str | None = None,
         n_cells, n_done = done.size, int(done.sum())
         if n_done:
             # the estimate on this machine's cores (a scheduler's workers are unknown here)
-            left = (params.estimated_seconds(workers or local_cores()) * (n_cells - n_done)
-                    / n_cells) if not scheduler and n_cells > n_done else None
+            left = estimate if estimate is not None else (
+                params.estimated_seconds(workers or local_cores()) * (n_cells - n_done)
+                / n_cells) if not scheduler and n_cells > n_done else None
             log(f"resuming {path}: {n_done} of {n_cells} cells already done (checksums "
                 f"verified), {n_cells - n_done} to {what}"
                 + (f" (about {duration(left)})" if left is not None else ""))

@@ -117,6 +117,38 @@ def _inspect(path: Path, params: MapParameters):
     return "this", damaged
 
 
+def _axes_differ(path: Path, params) -> str:
+    """The axes of the store at ``path`` that differ from this map's, in words (its
+    values, then this map's); "" where none differs or they cannot be read."""
+    import zarr
+
+    try:
+        group = zarr.open_group(str(path), mode="r", use_consolidated=False)
+    except Exception:  # unreadable: the caller names the map without them
+        return ""
+
+    def span(v):
+        return f"{v.size} value{'s' * (v.size != 1)} {v.min():g} to {v.max():g}"
+
+    said = []
+    # the axes as the user gave them (not derived coordinates such as k_simulated)
+    for name, values in zip(params.dims, params.axis_values()):
+        want = np.asarray(values, float)
+        try:
+            got = np.asarray(group[name][...], float)
+        except Exception:  # another map's axes (other names) or unreadable: not compared
+            continue
+        if got.shape == want.shape and np.array_equal(got, want):
+            continue
+        if got.shape == want.shape and got.size and got.min() == want.min() \
+                and got.max() == want.max():
+            i = int(np.flatnonzero(got != want)[0])
+            said.append(f"{name}: value {i + 1} is {got[i]:.6g} stored, {want[i]:.6g} asked")
+        else:
+            said.append(f"{name}: {span(got)} stored, {span(want)} asked")
+    return "; ".join(said)
+
+
 def _stored_attrs(path: Path) -> dict:
     """The store's attributes, or {} where they cannot be read."""
     import zarr
@@ -144,8 +176,10 @@ def _checked(path: Path, params: MapParameters, overwrite: bool):
                          "nothing in it can be trusted; replace it with --overwrite, or "
                          "choose another --out")
     if what == "other" and detail != 0 and not overwrite:
-        raise ValueError(f"{path} holds {params.other_map(_stored_attrs(path))}; replace it "
-                         "with --overwrite, or choose another --out")
+        axes = _axes_differ(path, params)
+        raise ValueError(f"{path} holds {params.other_map(_stored_attrs(path))}"
+                         + (f" (its axes differ: {axes})" if axes else "")
+                         + "; replace it with --overwrite, or choose another --out")
     return what, detail
 
 

@@ -29,17 +29,39 @@ _KW = dict(cache=True, nogil=True, error_model="numpy", boundscheck=False)
 
 
 @njit(**_KW)
+def pencil_parts(Hh, sq, ed):
+    """The q-independent parts of the scaled pencil's blocks (``_sidebands._pencil_at``):
+    block (l, h) = AD_s + B_s e^{i (q + h k)} + C_s e^{-i (q + l k)}, s = l - h + 2P, with
+    AD_s = M^{-1/2} (Hhat_s[:d, :d] + Hhat_s[d:, d:] e^{-i (l - h) k}) M^{-1/2} and B_s,
+    C_s the off-diagonal quarters Hhat_s[:d, d:], Hhat_s[d:, :d], scaled alike. Shape (3, 4P + 1, d, d). Computed once per call of
+    ``sideband_modes``: an entry then costs two complex products, not three and a scaling
+    (and the q-independent phase e^{-i (l - h) k} is no longer taken per entry)."""
+    ns = Hh.shape[0]
+    d = sq.size
+    out = np.empty((3, ns, d, d), np.complex128)
+    for s in range(ns):
+        for a in range(d):
+            for b in range(d):
+                f = sq[a] * sq[b]
+                out[0, s, a, b] = (Hh[s, a, b] + Hh[s, d + a, d + b] * ed[s]) * f
+                out[1, s, a, b] = Hh[s, a, d + b] * f
+                out[2, s, a, b] = Hh[s, d + a, b] * f
+    return out
+
+
+@njit(**_KW)
 def central_chain(Hh, sq, k, P, q, omega, L, max_cluster, ed, eq):
     """True where the discs of the harmonics |l| <= L at offset ``q`` already hold a cluster
     ``sideband_modes`` gives up on (module docstring): central, with roots of both Krein
     signs or a joint disc, more than ``max_cluster`` coordinates. ``Hh``: the Hessian's
     harmonics as ``sideband_modes`` uses them (round-off dropped); ``ed``: its
     e^{-i (s - 2P) k}; ``eq`` (shape (2P + 1,)) gets the copies' phases. Each number is
-    computed as ``_sidebands._pencil_at`` and ``sideband_modes`` compute it (the same
+    computed as ``sideband_modes`` computes it (``pencil_parts``, then the same
     operations in the same order), so the discs are theirs to the bit."""
     d = sq.size
     nl = 2 * P + 1
     n = d * nl
+    parts = pencil_parts(Hh, sq, ed)  # the same function, the same bits as the full pass
     for li in range(nl):
         eq[li] = np.exp(1j * (q + (li - P) * k))
     # each harmonic's diagonal block and its rotation V_l (every harmonic's: the columns)
@@ -55,9 +77,7 @@ def central_chain(Hh, sq, k, P, q, omega, L, max_cluster, ed, eq):
         eh = eq[li]
         for a in range(d):
             for b in range(d):
-                val = (Hh[s, a, b] + Hh[s, a, d + b] * eh + Hh[s, d + a, b] * el
-                       + Hh[s, d + a, d + b] * ed[s])
-                Kll[a, b] = val * sq[a] * sq[b]
+                Kll[a, b] = parts[0, s, a, b] + parts[1, s, a, b] * eh + parts[2, s, a, b] * el
         if d == 1:
             w2[li] = Kll[0, 0].real
             V[li, 0] = 1.0
@@ -90,9 +110,8 @@ def central_chain(Hh, sq, k, P, q, omega, L, max_cluster, ed, eq):
             eh = eq[hi2]
             for a in range(d):
                 for b in range(d):
-                    val = (Hh[s, a, b] + Hh[s, a, d + b] * eh + Hh[s, d + a, b] * el
-                           + Hh[s, d + a, d + b] * ed[s])
-                    Krow[a, hi2 * d + b] = val * sq[a] * sq[b]
+                    Krow[a, hi2 * d + b] = (parts[0, s, a, b] + parts[1, s, a, b] * eh
+                                            + parts[2, s, a, b] * el)
         for a in range(d):
             i = li * d + a
             r = 0.0
@@ -109,13 +128,13 @@ def central_chain(Hh, sq, k, P, q, omega, L, max_cluster, ed, eq):
                                 nz |= Krow[c, hi2 * d + e] != 0
                         if not nz:
                             v = 0j
-                        else:
-                            acc = 0j
+                        else:  # K_lh V_h, then V_l^*: ``sideband_modes``' order
+                            v = 0j
                             for c in range(d):
-                                vc = np.conj(V[li * d + c, a])
+                                acc = 0j
                                 for e in range(d):
-                                    acc += vc * Krow[c, hi2 * d + e] * V[hi2 * d + e, b]
-                            v = acc
+                                    acc += Krow[c, hi2 * d + e] * V[hi2 * d + e, b]
+                                v += np.conj(V[li * d + c, a]) * acc
                     r += math.sqrt(v.real * v.real + v.imag * v.imag)
             c0 = (li - P) * omega
             if w2[i] > r:

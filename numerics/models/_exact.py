@@ -348,6 +348,11 @@ class _Sidebands:
             kept_gains(lam, vec, count, P, d, self.floor, gains, CENTRE_TIE)
             return
         l_ = np.arange(-P, P + 1)
+        # only the offsets that hold a mode (a stable chain's 440: none; the same values)
+        rows = np.flatnonzero(count > 0)
+        if not rows.size:
+            return
+        offsets, lam, vec, count = offsets[rows], lam[rows], vec[rows], count[rows]
         # the slots that hold a mode anywhere (flexmm: <= 4 of MAX_MODES): the same values
         width = max(int(count.max(initial=0)), 1)
         lam, vec = lam[:, :width], vec[:, :width]
@@ -360,12 +365,13 @@ class _Sidebands:
         re = np.where(have & central & (outer < 1e-6), lam.real, -np.inf)
         best = np.argmax(re, axis=1)
         grows = np.flatnonzero(re[np.arange(offsets.size), best] > self.floor)
-        gains[grows] = re[grows, best[grows]]
+        at = rows[grows]
+        gains[at] = re[grows, best[grows]]
         w_best = per_l[grows, best[grows]]                           # (grows, 2P + 1)
-        modes[grows] = centre[grows, best[grows]]
+        modes[at] = centre[grows, best[grows]]
         from ._hill_dense import _sideband_offsets
 
-        offs[grows] = _sideband_offsets(offsets[grows], l_, k, w_best)
+        offs[at] = _sideband_offsets(offsets[grows], l_, k, w_best)
 
     def checked(self, offsets) -> HillSpectrum:
         """``spectrum``, its fastest mode checked at P + PERSIST_STEP harmonics: where it

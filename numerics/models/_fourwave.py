@@ -450,7 +450,8 @@ def four_wave(model: Model, k: float, amplitude: float, branch=None, *, N: int |
     FourWave
         Every pair's rate; ``gain``, ``verdict``, ``mode_kind``, ``mode_waves`` and
         ``offset`` of the fastest. ``undefined`` (with nan rates) where the carrier's
-        expansion fails (a resonant second harmonic, a degenerate carrier).
+        expansion fails (a resonant second harmonic, a degenerate carrier) or the model's
+        energy is not real along the wave (``energy_not_real``).
     """
     from ._simulate import check_count, check_ring, snap_ring
 
@@ -469,7 +470,11 @@ def four_wave(model: Model, k: float, amplitude: float, branch=None, *, N: int |
         if not (math.isfinite(k) and 0 < k <= math.pi):
             raise ModelError(f"k must be in (0, pi], got {k!r}")
         q = _offset_grid(check_count("samples", samples, least=8))  # exact_gain's rule
-    kernel = _kernel(model, k, a, branch)
+    from ._reach import energy_not_real
+
+    # a wave the model cannot carry (its energy not real along it) has no four-wave rates:
+    # the kernel's Taylor coefficients at rest would rate it as if it existed
+    kernel = energy_not_real(model, k, a, branch) or _kernel(model, k, a, branch)
     d = model.n_fields
     if isinstance(kernel, str):
         car = carrier(model, k, branch)

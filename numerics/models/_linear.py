@@ -134,9 +134,24 @@ def _rest_kink(model: Model) -> str | None:
 
 
 def check_rest_stable(model: Model, samples: int = 257):
-    """Refuse a rest state that is not a minimum: omega^2 < 0 on some branch, or a kink of
-    the energy (``rest_kink``)."""
-    H = check_model(model).code.taylor(model.p)[0]
+    """Refuse a rest state whose energy is not real (or not finite) at the parameters'
+    values, one that is not a minimum (omega^2 < 0 on some branch), or a kink of the
+    energy (``rest_kink``)."""
+    import warnings
+
+    model = check_model(model)
+    with warnings.catch_warnings(), np.errstate(all="ignore"):  # said below, in one line
+        warnings.simplefilter("ignore")
+        w0 = np.asarray(model.code.cell_energy(np.zeros(2 * model.n_fields), model.p))
+        H = np.asarray(model.code.taylor(model.p)[0], dtype=float)
+    if not (np.all(np.isfinite(w0)) and np.all(np.isfinite(H))):
+        # sqrt(u**2 - c) or log(u**2 - c) at c > 0: NaN at rest (the symbolic checks of the
+        # derivation hold for every parameter value, so they cannot see it)
+        raise ModelError(f"model {model.describe()}: the energy is not real at the rest "
+                         f"state (every field 0): bond + site there is {float(w0.ravel()[0]):g}"
+                         + ("" if np.all(np.isfinite(H)) else ", its stiffness not finite")
+                         + " (a square root, log or fractional power of a quantity that is "
+                         "negative at rest at these parameter values?)")
     if why := rest_kink(model):
         raise ModelError(why)
     m = model.masses

@@ -60,8 +60,18 @@ import math
 import numpy as np
 from numba import njit
 
-from ._chaining import central_chain
-from ._small_algebra import _drop_roundoff, _eigh2, _lu, _lu_solve, _lu_solve_t
+from ._chaining import central_chain, pencil_parts
+from ._frozen_roots import _frozen, _small_pencil  # noqa: F401 (_small_pencil: _frozen.py's)
+from ._small_algebra import (
+    _drop_roundoff,
+    _eigh2,
+    _ldlh,
+    _ldlh_half,
+    _lu,
+    _lu_solve,
+    _lu_solve_t,
+    _null_vector,
+)
 
 #: Newton steps at most per eigenvalue, and the step (relative to |lambda| + omega)
 #: after which it has settled: Newton's next error is ~ its square, below round-off
@@ -124,6 +134,7 @@ def _newton(Kt, Om, lam, cidx, ridx, scale, y, deflate, X):
     S = np.empty((rc, rc), np.complex128)
     dS = np.empty((rc, rc), np.complex128)
     piv = np.empty(rc, np.int64)
+    factored = False
     for _ in range(STEPS):
         if not _schur(Kt, Om, lam, cidx, ridx, X, S, dS):
             return lam, False
@@ -142,9 +153,20 @@ def _newton(Kt, Om, lam, cidx, ridx, scale, y, deflate, X):
         step = -1.0 / tr
         lam += step
         if abs(step) <= TOL * (abs(lam) + scale):
+            factored = True
             break
     else:
         return lam, False
+    if factored:
+        # the null vector from the last step's factors (S and X at lambda - step): the
+        # eigenvector of the pencil S(lambda - step) + mu S' nearest mu = step, by
+        # power iteration on dS = S^{-1} S' (its dominant eigenvalue ~ 1 / step; the next,
+        # the mirror's or another root's, ~ 1 / distance: each sweep leaves their ratio
+        # of the others), until it no longer moves. It differs from S(lambda)'s null
+        # vector by O(step^2), the rest -X y by O(step) (~1e-9 of |X|): what one more
+        # Schur complement and LU of the rest cost
+        _null_vector(dS, y)
+        return lam, True
     # the null vector of S(lambda): one inverse-iteration step
     _schur(Kt, Om, lam, cidx, ridx, X, S, dS)
     B = np.ones((rc, 1), np.complex128)
@@ -203,99 +225,48 @@ def _fold(Kt, Om, lam, cidx, ridx, X):
 
 
 @njit(**_KW)
-def _small_pencil(Kt, Om, cidx, Sig):
-    """Eigenvalues of the r_c x r_c pencil (lam - i Omega_C)^2 + K_CC - Sig."""
+def _fold_axis(Kt, Om, mu, cidx, ridx, X, lo, hi):
+    """Sigma(i mu) as ``_fold``'s, for mu in the cluster's span [lo, hi]: there every
+    coordinate of the rest lies outside its own discs, |(i mu - i Omega_j)^2 + w_j^2| >
+    R_j (the discs hold every point of the axis where it is not), so T_RR(i mu) =
+    K_RR - (mu - Omega_R)^2 is Hermitian and strictly diagonally dominant by rows, and
+    its L D L^* needs no pivoting (``_ldlh``: half an LU's products), Sigma = Z^* D^{-1} Z
+    with Z = L^{-1} E_RC. Elsewhere, or where a pivot vanishes, ``_fold``."""
+    nr = ridx.size
     rc = cidx.size
-    A = np.zeros((2 * rc, 2 * rc), np.complex128)
-    for a in range(rc):
-        A[a, rc + a] = 1.0
-        oa = Om[cidx[a]]
+    if nr == 0 or not (lo <= mu <= hi):
+        return _fold(Kt, Om, 1j * mu, cidx, ridx, X)
+    A = np.empty((nr, nr), np.complex128)
+    for a in range(nr):
+        ia = ridx[a]
+        for b in range(a):
+            A[a, b] = Kt[ia, ridx[b]]
+        z = mu - Om[ia]
+        A[a, a] = Kt[ia, ia].real - z * z
+    if not _ldlh(A):
+        return _fold(Kt, Om, 1j * mu, cidx, ridx, X)
+    for a in range(nr):
         for b in range(rc):
-            A[rc + a, b] = -(Kt[cidx[a], cidx[b]] - Sig[a, b])
-        A[rc + a, a] += oa * oa
-        A[rc + a, rc + a] = 2j * oa
-    return np.linalg.eigvals(A)
-
-
-@njit(**_KW)
-def _polymul(a, b):
-    """Coefficients (ascending) of the product of two polynomials."""
-    out = np.zeros(a.size + b.size - 1, np.complex128)
-    for i in range(a.size):
-        for j in range(b.size):
-            out[i + j] += a[i] * b[j]
-    return out
-
-
-@njit(**_KW)
-def _frozen(Kt, Om, cidx, Sig, centre, scale):
-    """The eigenvalues of the frozen pencil (``_small_pencil``). Up to three coordinates:
-    the roots of its determinant, a polynomial of degree 2 r_c in z = lambda - centre
-    (products of each coordinate's quadratic (z + centre - i Omega_c)^2 + A_cc and the
-    couplings A = K_CC - Sigma), by Aberth's iteration from the uncoupled roots: LAPACK's
-    zgeev takes 12 us on 4 x 4 and 28 us on 6 x 6, this ~1 us. Beyond three coordinates,
-    or where Aberth does not settle, LAPACK."""
-    rc = cidx.size
-    if rc > 3:
-        return _small_pencil(Kt, Om, cidx, Sig)
-    A = np.empty((rc, rc), np.complex128)
+            X[a, b] = Kt[ridx[a], cidx[b]]
+    _ldlh_half(A, X)
+    # Sigma = Z^* D^{-1} Z with D^{-1} taken once a row (a product, not a division, in
+    # the inner loop)
+    for c in range(nr):
+        A[c, c] = 1.0 / A[c, c].real
+    Sig = np.zeros((rc, rc), np.complex128)
     for a in range(rc):
-        for b in range(rc):
-            A[a, b] = Kt[cidx[a], cidx[b]] - Sig[a, b]
-    quad = np.empty((rc, 3), np.complex128)
-    for c in range(rc):
-        bc = centre - 1j * Om[cidx[c]]
-        quad[c, 0] = bc * bc + A[c, c]
-        quad[c, 1] = 2 * bc
-        quad[c, 2] = 1.0
-    if rc == 1:
-        poly = quad[0].copy()
-    elif rc == 2:
-        poly = _polymul(quad[0], quad[1])
-        poly[0] -= A[0, 1] * A[1, 0]
-    else:
-        poly = _polymul(_polymul(quad[0], quad[1]), quad[2])
-        for c, (a, b) in enumerate(((1, 2), (0, 2), (0, 1))):
-            cross = A[a, b] * A[b, a]
-            for m in range(3):
-                poly[m] -= quad[c, m] * cross
-        poly[0] += A[0, 1] * A[1, 2] * A[2, 0] + A[0, 2] * A[1, 0] * A[2, 1]
-    D = 2 * rc
-    z = np.empty(D, np.complex128)
-    for c in range(rc):
-        r = 1j * np.sqrt(A[c, c] + 0j)
-        z[2 * c] = -(centre - 1j * Om[cidx[c]]) + r
-        z[2 * c + 1] = -(centre - 1j * Om[cidx[c]]) - r
-    for k in range(D):  # Aberth needs distinct starts
-        for j in range(k):
-            if abs(z[k] - z[j]) < 1e-9 * scale:
-                z[k] += 1e-6 * scale * (k + 1) * (0.6 + 0.8j)
-    for _ in range(60):
-        big = 0.0
-        for k in range(D):
-            pv = poly[D]
-            dp = 0j
-            for m in range(D - 1, -1, -1):
-                dp = dp * z[k] + pv
-                pv = pv * z[k] + poly[m]
-            if pv == 0:
-                continue
-            if dp == 0:
-                return _small_pencil(Kt, Om, cidx, Sig)
-            w = pv / dp
-            rep = 0j
-            for j in range(D):
-                if j != k:
-                    rep += 1.0 / (z[k] - z[j])
-            den = 1.0 - w * rep
-            if den == 0:
-                return _small_pencil(Kt, Om, cidx, Sig)
-            corr = w / den
-            z[k] -= corr
-            big = max(big, abs(corr) / (abs(z[k]) + scale))
-        if big <= 1e-15:
-            return z + centre
-    return _small_pencil(Kt, Om, cidx, Sig)
+        r = 0.0  # the diagonal: real
+        for c in range(nr):
+            x = X[c, a]
+            r += (x.real * x.real + x.imag * x.imag) * A[c, c].real
+        Sig[a, a] = r
+        for b in range(a + 1, rc):
+            s = 0j
+            for c in range(nr):
+                s += np.conj(X[c, a]) * (X[c, b] * A[c, c].real)
+            Sig[a, b] = s
+            Sig[b, a] = np.conj(s)
+    return Sig, True
 
 
 @njit(**_KW)
@@ -311,7 +282,7 @@ def _offset(Kt, Om, lvec, cidx, ridx, lo, hi, floor, om, out_lam, out_vec):
     X = np.empty((nr, rc), np.complex128)
     width = hi - lo
     scale = width + om
-    Sig, ok = _fold(Kt, Om, 0.5j * (lo + hi), cidx, ridx, X)
+    Sig, ok = _fold_axis(Kt, Om, 0.5 * (lo + hi), cidx, ridx, X, lo, hi)
     if not ok:
         return -1
     lam0 = _frozen(Kt, Om, cidx, Sig, 0.5j * (lo + hi), scale)
@@ -335,7 +306,7 @@ def _offset(Kt, Om, lvec, cidx, ridx, lo, hi, floor, om, out_lam, out_vec):
             # two close on the axis: the fold frozen again between them (its error is
             # then second order in their distance) says whether they meet
             mid = 0.5 * (lam0[s] + lam0[t])
-            Sig, ok = _fold(Kt, Om, 1j * mid.imag, cidx, ridx, X)
+            Sig, ok = _fold_axis(Kt, Om, mid.imag, cidx, ridx, X, lo, hi)
             if not ok:
                 return -1
             lam1 = _frozen(Kt, Om, cidx, Sig, 1j * mid.imag, scale)
@@ -398,6 +369,52 @@ def _pencil_at(Hh, sq, k, P, q, ed, eq, K):
 
 
 @njit(**_KW)
+def _pencil_from_parts(parts, P, k, q, eq, K):
+    """K(q) of the scaled pencil into ``K`` from its q-independent parts
+    (``_chaining.pencil_parts``): block (l, h) = AD_s + B_s e^{i (q + h k)} + C_s
+    e^{-i (q + l k)}, s = l - h + 2P; ``eq`` gets the phases e^{i (q + l k)}. The same
+    operations in the same order as ``_chaining.central_chain`` (the same bits). One field
+    apart: the blocks are numbers (the generic loop's d x d inner loops cost ~5x there)."""
+    d = parts.shape[2]
+    nl = 2 * P + 1
+    for li in range(nl):
+        eq[li] = np.exp(1j * (q + (li - P) * k))
+    if d == 1:
+        AD, B, C = parts[0, :, 0, 0], parts[1, :, 0, 0], parts[2, :, 0, 0]
+        for li in range(nl):
+            el = np.conj(eq[li])
+            for hi_ in range(nl):
+                s = li - hi_ + 2 * P
+                K[li, hi_] = AD[s] + B[s] * eq[hi_] + C[s] * el
+        return
+    if d == 2:  # unrolled: the same expressions, in registers
+        for li in range(nl):
+            el = np.conj(eq[li])
+            r = 2 * li
+            for hi_ in range(nl):
+                s = li - hi_ + 2 * P
+                eh = eq[hi_]
+                c = 2 * hi_
+                K[r, c] = parts[0, s, 0, 0] + parts[1, s, 0, 0] * eh + parts[2, s, 0, 0] * el
+                K[r, c + 1] = (parts[0, s, 0, 1] + parts[1, s, 0, 1] * eh
+                               + parts[2, s, 0, 1] * el)
+                K[r + 1, c] = (parts[0, s, 1, 0] + parts[1, s, 1, 0] * eh
+                               + parts[2, s, 1, 0] * el)
+                K[r + 1, c + 1] = (parts[0, s, 1, 1] + parts[1, s, 1, 1] * eh
+                                   + parts[2, s, 1, 1] * el)
+        return
+    for li in range(nl):
+        el = np.conj(eq[li])
+        for hi_ in range(nl):
+            s = li - hi_ + 2 * P
+            eh = eq[hi_]
+            for a in range(d):
+                for b in range(d):
+                    K[li * d + a, hi_ * d + b] = (parts[0, s, a, b] + parts[1, s, a, b] * eh
+                                                  + parts[2, s, a, b] * el)
+
+
+@njit(**_KW)
 def sideband_modes(Hh, masses, k, omega, P, offsets, floor, max_modes, max_cluster,
                    pretest=True):
     """For each offset: the growing eigenvalues of every cluster that can hold a mode
@@ -437,11 +454,16 @@ def sideband_modes(Hh, masses, k, omega, P, offsets, floor, max_modes, max_clust
     ed = np.empty(4 * P + 1, np.complex128)
     for s in range(4 * P + 1):
         ed[s] = np.exp(-1j * (s - 2 * P) * k)
+    parts = pencil_parts(Hh, sq, ed)
     eq = np.empty(nl, np.complex128)
+    W = np.empty((d, d), np.complex128)
     blk = np.empty((d, d), np.complex128)
     ev2 = np.empty(2)
     evec2 = np.empty((2, 2), np.complex128)
     Kt = np.empty((n, n), np.complex128)
+    # a cluster's modes (``_offset`` writes every coordinate of each it reports)
+    lam_c = np.empty(max_modes, np.complex128)
+    vec_c = np.empty((max_modes, n), np.complex128)
     # the central harmonics |l| <= L, one more than needed to hold more than max_cluster
     # coordinates: their discs alone may already show the offset given up (``_chaining``:
     # the same discs, the same verdict), tried while the offset before was given up so.
@@ -459,7 +481,7 @@ def sideband_modes(Hh, masses, k, omega, P, offsets, floor, max_modes, max_clust
                 count[iq] = -1
                 continue
         # L(q), scaled: block (l, h) = A + B e^{i th_h} + C e^{-i th_l} + D e^{-i (l-h) k}
-        _pencil_at(Hh, sq, k, P, q, ed, eq, K)
+        _pencil_from_parts(parts, P, k, q, eq, K)
         if d == 1:  # the diagonal "blocks" are numbers: no rotation
             for i in range(n):
                 w2[i] = K[i, i].real
@@ -492,28 +514,36 @@ def sideband_modes(Hh, masses, k, omega, P, offsets, floor, max_modes, max_clust
                             for b in range(d):
                                 Kt[li * d + a, hi_ * d + b] = 0.0
                         continue
+                    # K_lh V_h first, then V_l^* (2 d^3 products, not 2 d^4; the
+                    # order ``_chaining.central_chain`` uses: the same bits)
+                    for c in range(d):
+                        for b in range(d):
+                            acc = 0j
+                            for e in range(d):
+                                acc += K[li * d + c, hi_ * d + e] * V[hi_ * d + e, hi_ * d + b]
+                            W[c, b] = acc
                     for a in range(d):
                         for b in range(d):
                             acc = 0j
                             for c in range(d):
-                                vc = np.conj(V[li * d + c, li * d + a])
-                                for e in range(d):
-                                    acc += (vc * K[li * d + c, hi_ * d + e]
-                                            * V[hi_ * d + e, hi_ * d + b])
+                                acc += np.conj(V[li * d + c, li * d + a]) * W[c, b]
                             Kt[li * d + a, hi_ * d + b] = acc
         for i in range(n):
+            # the other harmonics' columns, in order: [0, b0) and [b0 + d, n)
+            b0 = (i // d) * d
             r = 0.0
-            for j in range(n):
-                if lvec[j] != lvec[i]:
-                    # |z| without hypot's scaling (entries are O(1)): ~8x cheaper,
-                    # within an ulp
-                    v = Kt[i, j]
-                    r += math.sqrt(v.real * v.real + v.imag * v.imag)
+            for j in range(b0):
+                # |z| without hypot's scaling (entries are O(1)): ~8x cheaper,
+                # within an ulp
+                v = Kt[i, j]
+                r += math.sqrt(v.real * v.real + v.imag * v.imag)
+            for j in range(b0 + d, n):
+                v = Kt[i, j]
+                r += math.sqrt(v.real * v.real + v.imag * v.imag)
             Rrow[i] = r
             # the diagonal block is diag(w^2) exactly in these coordinates
-            for j in range(n):
-                if lvec[j] == lvec[i]:
-                    Kt[i, j] = w2[i] if i == j else 0.0
+            for j in range(b0, b0 + d):
+                Kt[i, j] = w2[i] if i == j else 0.0
         # roots and their discs: (lo, hi, sign, coordinate); sign 0: a joint disc
         m = 0
         lo_ = np.empty(2 * n)
@@ -564,8 +594,6 @@ def sideband_modes(Hh, masses, k, omega, P, offsets, floor, max_modes, max_clust
                 if cidx.size > max_cluster:
                     bad = chained = True
                     break
-                lam_c = np.zeros(max_modes, np.complex128)
-                vec_c = np.zeros((max_modes, n), np.complex128)
                 got = _offset(Kt, Om, lvec, cidx, ridx, lo_[order[start]], top, floor,
                               omega, lam_c, vec_c)
                 if got < 0 or found + got > max_modes:

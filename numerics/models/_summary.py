@@ -54,6 +54,13 @@ def model_coefficients(model: Model, k: float, amplitude: float, branch=None) ->
                         f"damped at k = {c.k:.4g}: its damped frequency is {w.real + 0.0:.3g} "
                         f"{w.imag:+.3g}i (it decays faster than its phase turns); the rates "
                         "above are the lossless wave's, lower the damping for a wave")
+    from ._reach import amplitude_reach
+
+    reach = amplitude_reach(model, c.k, a, branch)
+    if reach < a:  # the NLS's numbers at this a would describe a wave that cannot exist
+        warn.append(f"at amplitude {a:g} the model's energy is not real along the wave (at "
+                    f"most a = {reach:.3g} at k = {c.k:.4g}): the NLS's gain, band and shift "
+                    "here are of a wave the model cannot carry")
     fields = model.fields
     e = np.abs(np.asarray(c.e))
     big = int(np.argmax(e))

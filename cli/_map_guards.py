@@ -1,0 +1,59 @@
+"""What ``flexmm map`` checks before its work: the cells a store already holds (both
+maps), and for ``--model`` parameter values without a rest state, an axis by its option."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+
+def check_rest(model, named) -> None:
+    """Refuse, before any work, a parameter value of the axes (each combination, where
+    both axes are parameters) at which the energy is not real or not finite at rest (a
+    Hertz contact's d0 < 0): the model has no rest state there, and its cells would only
+    be undefined, after NumPy's warnings. ~30 us a value."""
+    import itertools
+    import warnings
+
+    import numpy as np
+
+    axes = [(n, v) for n, v in named if n in model.params]
+    if not axes:
+        return
+    zero = np.zeros(2 * model.n_fields)
+    with warnings.catch_warnings(), np.errstate(all="ignore"):
+        warnings.simplefilter("ignore")
+        for combo in itertools.product(*(v for _, v in axes)):
+            values = {n: float(v) for (n, _), v in zip(axes, combo)}
+            m = model.with_params(**values)
+            if (np.all(np.isfinite(np.asarray(m.code.cell_energy(zero, m.p))))
+                    and np.all(np.isfinite(np.asarray(m.code.taylor(m.p)[0], float)))):
+                continue
+            given = ", ".join(f"--param {n}={v:g}" for n, v in values.items())
+            raise ValueError(f"{given}: the energy of {model.name} is not real at the rest "
+                             "state (every field 0) there (a square root, log or fractional "
+                             "power of a quantity negative at rest?); leave such values out "
+                             "of the axis")
+
+
+def option(axis: str) -> str:
+    """The option that gave a map's axis (a parameter's: --param NAME)."""
+    return f"--{axis}" if axis in ("k", "amplitude") else f"--param {axis}"
+
+
+def cells_done(out, params) -> tuple:
+    """(cells done, cells) of this map in ``OUT/map.zarr``: done is simulated, or predicted
+    for a theory-only map; 0 where the store holds another map (its identity attributes),
+    none, or anything unreadable (the engine says what it is)."""
+    import numpy as np
+    import zarr
+
+    cells = int(np.prod(params.grid_shape))
+    try:
+        group = zarr.open_group(str(Path(out) / "map.zarr"), mode="r", use_consolidated=False)
+        attrs = dict(group.attrs)
+        if any(attrs.get(n) != v for n, v in params.identity().items()):
+            return 0, cells
+        done = group["done_predicted" if params.theory_only else "done"][...]
+        return (int(done.sum()), cells) if done.size == cells else (0, cells)
+    except Exception:  # no store, another format, a damaged one: the engine decides
+        return 0, cells
