@@ -335,3 +335,14 @@ def test_a_lossy_models_soliton_says_it_decays(capsys):
     code, out, _ = _cli(capsys, "soliton", "--model", "flexmm-lossy", "--k", "1", "--param",
                         "gamma_theta=0", "--param", "gamma_U=0")
     assert code == 0 and "dissipation" not in out
+
+
+@pytest.mark.parametrize("k", [4.0, -1.0, 0.0, float("nan"), "1", True])
+def test_the_infinite_chains_exact_theory_refuses_a_k_outside_the_zone(k):
+    """exact_gain without N took k = 4 (a peak gain of 9e-4) or -1 and answered, where the
+    ring path, nls and four_wave refuse k outside (0, pi]."""
+    from energy import ModelError, load_model
+    from numerics.models import exact_gain
+
+    with pytest.raises(ModelError, match=r"k must be .*\(0, pi\]"):
+        exact_gain(load_model("fput"), k, 0.1)

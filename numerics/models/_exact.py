@@ -50,6 +50,7 @@ from __future__ import annotations
 import dataclasses
 import functools
 import math
+import numbers
 from dataclasses import dataclass
 
 import numpy as np
@@ -411,6 +412,13 @@ def exact_gain(model: Model, k: float, amplitude: float, branch=None, *, N: int 
     if N is not None:
         N = check_ring(N)  # N = 0 is a bad ring, not the infinite chain
         k = snap_ring(k, N)[0]
+    else:  # the ring's snap checks k; the chain's as four_wave and nls do
+        if isinstance(k, (bool, np.bool_)) or not isinstance(k, numbers.Real):
+            raise ModelError(f"k must be a real number in (0, pi], got {type(k).__name__} "
+                             f"{k!r}")
+        if not (math.isfinite(k) and 0 < k <= math.pi):
+            raise ModelError(f"k must be in (0, pi], got {k!r}")
+        k = float(k)
     samples = check_count("samples", samples, least=8)
     wave = travelling_wave(model, k, amplitude, branch)  # the branch checked (_connected)
     engine = _Sidebands(wave)
