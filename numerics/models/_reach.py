@@ -42,12 +42,17 @@ def _profile(model: Model, k: float, amplitude: float, branch):
 
 
 def _finite(model: Model, k: float, amplitude: float, branch) -> bool:
-    from ._simulate import lattice_energy, lattice_force
-
-    u, v, _ = _profile(model, k, amplitude, branch)
+    """Energy and force finite along the linear wave: every cell's energy and gradient,
+    from the generated module's numpy functions (the compiled force would cost its
+    compilation, ~1.5 s, in every process that asks: each worker of a map; the kinetic
+    energy of finite velocities is finite)."""
+    u, _, _ = _profile(model, k, amplitude, branch)
+    x = np.concatenate([u, np.roll(u, -1, axis=1)])  # the cells (n, n + 1) of the ring
+    grad = np.empty_like(x)
     with np.errstate(all="ignore"):
-        return bool(np.all(np.isfinite(lattice_force(model, u)))
-                    and math.isfinite(lattice_energy(model, u, v)))
+        energy = model.code.cell_energy(x, model.p)
+        model.code.cell_gradient_into(x, model.p, grad)
+        return bool(np.all(np.isfinite(energy)) and np.all(np.isfinite(grad)))
 
 
 def _site_limited(model: Model, k: float, amplitude: float, branch) -> bool:
