@@ -119,6 +119,7 @@ def cell_costs(params, paper_params):
 def layout_walls(params):
     """Wall time of the layouts' map per cluster layout (fresh stores, warmed clusters), and
     of its task phase."""
+    import dask
     from dask.distributed import Client, LocalCluster
 
     layouts = {"1 process": dict(n_workers=1, threads_per_worker=1, processes=True),
@@ -133,7 +134,9 @@ def layout_walls(params):
         d = Path(tempfile.mkdtemp())
         try:
             maps.open_or_create(d / "map.zarr", params)  # theory columns outside the timing
-            with LocalCluster(dashboard_address=":0", silence_logs=40, **kw) as cluster, \
+            # the settings of run_map's own cluster (maps.LOCAL_CLUSTER_CONFIG)
+            with dask.config.set(maps.LOCAL_CLUSTER_CONFIG), \
+                    LocalCluster(dashboard_address=":0", silence_logs=40, **kw) as cluster, \
                     Client(cluster) as client:
                 client.gather([client.submit(maps.simulate_block, tiny, 0, [0], pure=False)
                                for _ in range(2)])  # load the compiled kernels
@@ -166,7 +169,7 @@ def map_64(N, T):
     """The 64 x 64 map of the fig3 plane, case II: its cells simulated (one task per
     block of 4, as run_map) on this machine's default cluster, wall time. The predictions
     ``run_map`` adds per cell are timed apart (``cell_costs``)."""
-    from dask.distributed import Client, LocalCluster
+    from dask.distributed import Client
 
     m = np.unique(np.round(np.linspace(0.08, 0.92, 64) * N / 2).astype(int))
     params = maps.MapParameters(case="coupled", alpha=paper.ALPHA, K_s=paper.K_S,
@@ -175,9 +178,7 @@ def map_64(N, T):
                                 N=N, t_end=T)
     params.cell_step  # chosen once, in the client (as run_map does)
     todo = maps._store.blocks(params, np.zeros((len(params.delta), len(params.k)), bool))
-    with LocalCluster(n_workers=maps.local_cores(), threads_per_worker=1,
-                      dashboard_address=":0", silence_logs=40) as cluster, \
-            Client(cluster) as client:
+    with maps.local_cluster(maps.local_cores()) as cluster, Client(cluster) as client:
         client.gather([client.submit(_simulate_cells, params, 0, [0], pure=False)
                        for _ in range(2)])  # load the compiled kernels
         t0 = time.perf_counter()

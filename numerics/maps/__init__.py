@@ -16,7 +16,8 @@ Maps by sim.     MapParameters (what defines a map; ModelMapParameters: a lattic
                  a resumable Zarr store), theory_columns, agreement (AGREEMENT_MARGIN)
 Their parts      cell_records, predict_cell, GROWTH_TOL, GROWTH_ERROR_CONSTANTS (a cell's
                  step accuracy), tri_state (gains -> verdicts), store_lock (one writer),
-                 cells_done (what a store holds)
+                 cells_done (what a store holds), local_cluster (the LocalCluster a map
+                 starts: LOCAL_CLUSTER_CONFIG, Dask's settings for it)
 With losses      critical_damping (where an amplification falls below 20x along a damping
                  axis: a lossy model map's critical_<damping>_<theory>), damping_parameters
 Run time         estimate_map -> MapEstimate (start-up + cells at this machine's measured
@@ -46,6 +47,7 @@ from ._cells import (
                      seed_majority,
                      simulate_cell,
 )
+from ._cluster import LOCAL_CLUSTER_CONFIG, local_cluster
 from ._columns import theory_columns, tri_state
 from ._critical import critical_damping, damping_parameters
 from ._devices import DEVICE_PATHS, DEVICES, DevicePath, register_device_path, resolve_device
@@ -87,7 +89,7 @@ __all__ = [
     "seed_majority", "PointResult", "measure_point", "point_step", "theory_curves",
     "offset_curve", "fold", "snap_carrier", "MAX_SEEDS", "MAX_T_END",
     "cell_records", "predict_cell", "GROWTH_TOL", "GROWTH_ERROR_CONSTANTS", "tri_state",
-    "store_lock", "cells_done",
+    "store_lock", "cells_done", "local_cluster", "LOCAL_CLUSTER_CONFIG",
     "simulate_block", "CRITERION", "MapCellError", "local_cores", "MapEstimate",
     "estimate_map", "machine_speed", "ModelCellCost", "probe_model_cell", "estimate_model_map",
     "PointEstimate", "estimate_model_point",

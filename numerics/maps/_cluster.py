@@ -147,7 +147,7 @@ def _signals_deferred():
 def connect(scheduler: str | None, workers: int | None, timeout: float = 20.0):
     """(client, cluster or None): a Client of ``scheduler`` (probed first) or of a new
     LocalCluster of ``workers`` processes."""
-    from dask.distributed import Client, LocalCluster
+    from dask.distributed import Client
 
     from ._params import local_cores
 
@@ -163,18 +163,45 @@ def connect(scheduler: str | None, workers: int | None, timeout: float = 20.0):
                    "give tcp://HOST:PORT of a running `dask scheduler`")
             raise SchedulerError(f"--scheduler {scheduler}: cannot use it as a Dask scheduler "
                                  f"({type(exc).__name__}: {text[:120]}); {why}") from None
-    n = workers or local_cores()
+    with _signals_deferred():
+        cluster = local_cluster(workers or local_cores())
+        client = Client(cluster)
+    return client, cluster
+
+
+#: Dask's settings for the LocalCluster a map starts (an existing scheduler keeps its own).
+#: Both give workers' time back to the cells; bench/model_maps.py measures them
+#: (bench/README.md, issue 40's row "2 workers against 1").
+LOCAL_CLUSTER_CONFIG = {
+    # the statistical profiler samples each worker's stacks every 10 ms for the dashboard's
+    # profile page, which a map never shows: its thread and the GIL it takes cost a flexmm
+    # model map's task phase ~10% on 2 workers of 2 cores (1.44 -> 1.26 s, measured)
+    "distributed.worker.profile.enabled": False,
+    # a worker is sent its next block when it is free (Dask's default, 1.1, sends one block
+    # ahead, which no other worker may take: at a map's end one worker still had two blocks
+    # while the other was idle)
+    "distributed.scheduler.worker-saturation": 1.0,
+}
+
+
+def local_cluster(workers: int):
+    """The LocalCluster of a map: ``workers`` processes of one thread, which ignore SIGINT
+    (``numerics.maps._worker_preload``), with ``LOCAL_CLUSTER_CONFIG``. The caller closes
+    it (``close``)."""
+    import dask
+    from dask.distributed import LocalCluster
+
     # multiprocessing's resource tracker (started with this interpreter's -W options) warns
     # of "leaked semaphores" of workers stopped by a signal: nothing leaks past its clean-up
     flag = "ignore:resource_tracker:UserWarning"
     if flag not in sys.warnoptions:
         sys.warnoptions.append(flag)
-    with _signals_deferred():
-        cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
-                               dashboard_address=":0", silence_logs=logging.CRITICAL,
-                               preload=["numerics.maps._worker_preload"])
-        client = Client(cluster)
-    return client, cluster
+    # the scheduler reads its settings when it starts, each nanny keeps a copy of the
+    # settings for the worker processes it starts (and restarts)
+    with dask.config.set(LOCAL_CLUSTER_CONFIG):
+        return LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                            dashboard_address=":0", silence_logs=logging.CRITICAL,
+                            preload=["numerics.maps._worker_preload"])
 
 
 def close(client, cluster) -> None:
