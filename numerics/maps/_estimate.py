@@ -38,13 +38,20 @@ REFERENCE = dict(alpha=paper.ALPHA, K_s=paper.K_S, K_theta=paper.POINTS["blue"][
 TRAVELLING_SHARE = 0.15 / 0.35
 #: the reference cell's k (``measure_speed``'s carrier)
 REFERENCE_K = 0.73
+#: the reference cell's prediction, warm (``measure_speed``), on the 2-core VM: what the
+#: constants below are ratios to (2026-11-26)
+REFERENCE_PREDICT_SECONDS = 0.057
+#: a map cell's prediction costs this many times the reference cell's, typically: the 18
+#: cells of a 3 x 6 paper-start map (N 500, T 5000, delta -0.003..0.003, k 0.5..1.5) took
+#: 0.10-0.50 s, mean 0.20 s, warm, on the 2-core VM (their Bloch families and resonances,
+#: which the reference cell at the paper's blue point has few of)
+PREDICT_CELL_OVER_REFERENCE = 0.20 / REFERENCE_PREDICT_SECONDS
 #: the theory columns (computed in the client, serially, before the tasks: the exact
 #: theory's stability_map over EXACT_OFFSETS per cell) cost about this many times the
-#: reference cell's prediction per cell: 0.03 s a cell against 0.19 s on the 2-core VM
-#: (travelling start, 32 and 128 cells; the paper start 0.012 s a cell), plus a fixed
-#: 0.25 s
-THEORY_COLUMNS_PER_CELL = 0.03 / 0.19
-THEORY_COLUMNS_FIXED = 0.25 / 0.19
+#: reference cell's prediction per cell: 0.03 s a cell on the 2-core VM (travelling start,
+#: 32 and 128 cells; the paper start 0.012-0.015 s a cell), plus a fixed 0.25 s
+THEORY_COLUMNS_PER_CELL = 0.03 / REFERENCE_PREDICT_SECONDS
+THEORY_COLUMNS_FIXED = 0.25 / REFERENCE_PREDICT_SECONDS
 
 
 def _predict_scale(k, N: int, start: str) -> float:
@@ -58,6 +65,10 @@ def _predict_scale(k, N: int, start: str) -> float:
     return float(np.mean(np.sqrt(x)))
 
 
+#: the version of ``measure_speed``'s measurement, part of the cache's key
+SPEED_VERSION = 2
+
+
 def _cache_file() -> Path:
     root = os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache"
     return Path(root) / "flexmm-mi" / "speed.json"
@@ -66,8 +77,10 @@ def _cache_file() -> Path:
 def _key() -> str:
     import numpy
 
+    # SPEED_VERSION: a speed measured the old way (its prediction's compile counted) is
+    # measured again
     return f"{platform.node()} {platform.machine()} py{platform.python_version()} " \
-           f"numpy{numpy.__version__}"
+           f"numpy{numpy.__version__} v{SPEED_VERSION}"
 
 
 def measure_speed() -> dict:
@@ -82,7 +95,11 @@ def measure_speed() -> dict:
     mat = Material(r["alpha"], r["K_s"], r["K_theta"])
     k = snap_wavenumber(0.73, r["N"])
     run = dict(method=r["method"], dt=r["dt"], early_stop=False)
-    simulate_cell(mat, r["case"], k, r["N"], 10.0, **run)  # the kernels, loaded once
+    # the kernels of both, compiled or loaded once: on a machine whose numba cache is
+    # empty the first prediction compiles them (2.3 s here, 3.7 s on a fresh H200 host,
+    # against 0.055 s warm), which a cached speed then counted in every cell of every map
+    simulate_cell(mat, r["case"], k, r["N"], 10.0, **run)
+    predict_cell(mat, r["case"], k, r["N"], r["t_end"])
     t0 = time.process_time()
     simulate_cell(mat, r["case"], k, r["N"], r["t_end"], **run)
     t1 = time.process_time()
@@ -209,8 +226,8 @@ def estimate_map(params, workers: int, scheduler: str | None = None,
     workers = max(int(workers), 1)
     cells = len(params.k) * len(params.delta) if cells is None else int(cells)
     scale_n = params.N / REFERENCE["N"]
-    predict = cells * speed["predict"] * _predict_scale(params.k_simulated, params.N,
-                                                        params.start)
+    predict = cells * speed["predict"] * PREDICT_CELL_OVER_REFERENCE * _predict_scale(
+        params.k_simulated, params.N, params.start)
     simulate = 0.0
     if not params.theory_only:
         method, dt = params.cell_step
