@@ -104,6 +104,18 @@ class Verdict:
                     f"{self.slowest_visible:.2g} {per} cannot show)")
         return f"undetermined ({self.reason})"
 
+    @property
+    def map_rate(self) -> float:
+        """The rate a map cell stores for these runs (``peak_gain_simulated``): the measured
+        rate where MI; where there was no growth within T, the bound ln(threshold) / T
+        below which the rate lies (a faster one would have grown past the threshold); NaN
+        where undetermined (it grew, but less than the threshold)."""
+        if self.word == "MI":
+            return float(self.rate)
+        if self.word == "no growth within T":
+            return float(self.slowest_visible)
+        return math.nan
+
     def to_dict(self) -> dict:
         return {"verdict": self.word, "text": str(self), "t_end": self.t_end,
                 "rate": self.rate, "growth": list(self.growth),

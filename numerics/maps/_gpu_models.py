@@ -186,7 +186,8 @@ def _cell_row(growth: list, t_end: float, read_to=None) -> dict:
     verdict = simulated_verdict([g.factor for g in growth], t_end, rate)
     top = max(growth, key=lambda g: g.factor if math.isfinite(g.factor) else -1.0)
     return {"verdict_simulated": verdict.word,
-            "peak_gain_simulated": rate if verdict.word == "MI" else math.nan,
+            # map_cells' own rule (no growth within T: the bound ln(threshold) / T)
+            "peak_gain_simulated": verdict.map_rate,
             "growth": float(np.median([g.factor for g in growth])),
             "growth_q": float(top.wavenumber),
             "t_simulated": float(t_end if read_to is None else max(read_to))}

@@ -194,22 +194,10 @@ def simulated_cell(model: Model, k: float, amplitude: float, branch=None, *, N: 
     else:
         sim, amp = simulate_seeds(model, k, amplitude, spec, branch=branch, N=N,
                                   seeds=seeds, t_end=t_end, until_saturated=True), {}
-    rate = _simulated_rate(sim.verdict)
+    rate = sim.verdict.map_rate
     return {"verdict_exact": spec.verdict, "peak_gain_exact": spec.peak_gain,
             "verdict_simulated": sim.verdict.word,
             "peak_gain_simulated": rate if math.isfinite(rate) else None, **amp}
-
-
-def _simulated_rate(verdict) -> float:
-    """The runs' rate as a map stores it: the seeds' median measured rate where MI; where
-    there was no growth within T, the bound ln(threshold) / T below which the rate lies
-    (a faster one would have grown past the threshold: ``Verdict.slowest_visible``);
-    NaN where undetermined (it grew, but less than the threshold) or undefined."""
-    if verdict.word == "MI":
-        return float(verdict.rate)
-    if verdict.word == "no growth within T":
-        return float(verdict.slowest_visible)
-    return math.nan
 
 
 def _map_cell(model: Model, k: float, amplitude: float, branch=None, *, exact: bool = False,
@@ -326,7 +314,7 @@ def _cell_columns(model, k, amplitude, branch, *, exact, simulate, N, seeds, t_e
         growth = [run.growth() for run in sim.runs]
         top = max(growth, key=lambda g: g.factor if math.isfinite(g.factor) else -1.0)
         row.update(verdict_simulated=sim.verdict.word,
-                   peak_gain_simulated=_simulated_rate(sim.verdict),
+                   peak_gain_simulated=sim.verdict.map_rate,
                    growth=float(np.median([g.factor for g in growth])),
                    growth_q=float(top.wavenumber), t_simulated=float(
                        max(r.t[-1] for r in sim.runs) if lossy else max(
