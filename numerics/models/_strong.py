@@ -102,6 +102,25 @@ def _neighbours(offsets, k):
     return nb, mirror
 
 
+@njit(inline="always")
+def _translate(c_s, v, P, d, sigma, mir):
+    """A start's vector ``c_s`` moved from its source to this offset, into ``v``: the
+    pencil at q + sigma k is the one at q shifted one harmonic, c_t[l] = c'[l + sigma]
+    (zero past the truncation's edge), c'[l] = conj(c_s[-l]) where mirrored (the source
+    at -q: lambda -> conj(lambda), l -> -l); sigma 0: the vector itself."""
+    for li in range(2 * P + 1):
+        ls = li - P + sigma
+        if abs(ls) > P:
+            for a in range(d):
+                v[li * d + a] = 0.0
+            continue
+        if mir:
+            ls = -ls
+        for a in range(d):
+            val = c_s[(ls + P) * d + a]
+            v[li * d + a] = np.conj(val) if mir else val
+
+
 @njit(**_KW)
 def strong_modes(Hh, masses, k, omega, P, Pc, offsets, floor, max_modes):
     """For each offset: the growing eigenvalues refined from the central frozen pencil's
@@ -373,6 +392,7 @@ def strong_modes(Hh, masses, k, omega, P, Pc, offsets, floor, max_modes):
                 if j < 0:  # a refined mode: an anchor's (``_between``) or a ring source's
                     for a in range(n):
                         w[a] = vec_out[-1 - j, js, a] / sq[a % d]
+                    _translate(w, v, P, d, sigma, mir)
                 else:
                     if not s_made[j, js]:
                         s_larg[j, js] = _start_vector(s_F0[j], s_X[j], Om, cidx, ridx, lvec, P, sq,
@@ -392,31 +412,8 @@ def strong_modes(Hh, masses, k, omega, P, Pc, offsets, floor, max_modes):
                     if abs(lq - sigma) > 2:
                         continue  # its frozen eigenvector is heaviest off the centre: not kept
                     # the whole frozen eigenvector refined on the whole pencil; Newton on the
-                    # Schur complement where that does not settle. Translated from its source:
-                    # c_t[l] = c'[l + sigma], c'[l] = conj(c_s[-l]) where mirrored
-                    for li in range(nl):
-                        ls = li - P + sigma
-                        if abs(ls) > P:
-                            for a in range(d):
-                                v[li * d + a] = 0.0
-                            continue
-                        if mir:
-                            ls = -ls
-                        for a in range(d):
-                            val = s_vecs[j, js, (ls + P) * d + a]
-                            v[li * d + a] = np.conj(val) if mir else val
-                if j < 0:  # translated as a frozen start's vector is, below
-                    for li in range(nl):
-                        ls = li - P + sigma
-                        if abs(ls) > P:
-                            for a in range(d):
-                                v[li * d + a] = 0.0
-                            continue
-                        if mir:
-                            ls = -ls
-                        for a in range(d):
-                            val = w[(ls + P) * d + a]
-                            v[li * d + a] = np.conj(val) if mir else val
+                    # Schur complement where that does not settle
+                    _translate(s_vecs[j, js], v, P, d, sigma, mir)
                 nrm = 0.0
                 for a in range(n):
                     nrm += abs(v[a]) ** 2
