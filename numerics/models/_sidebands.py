@@ -348,27 +348,6 @@ def _offset(Kt, Om, lvec, cidx, ridx, lo, hi, floor, om, out_lam, out_vec):
 
 
 @njit(**_KW)
-def _pencil_at(Hh, sq, k, P, q, ed, eq, K):
-    """K(q) of the scaled pencil into ``K`` (``_exact``'s dense pencil, scaled by
-    M^{-1/2}; ``eq`` gets the copies' phases e^{i (q + l k)}): the spectrum's per-offset
-    blocks and the strong-coupling path's pencils."""
-    d = sq.size
-    nl = 2 * P + 1
-    for li in range(nl):
-        eq[li] = np.exp(1j * (q + (li - P) * k))
-    for li in range(nl):
-        el = np.conj(eq[li])
-        for hi_ in range(nl):
-            s = li - hi_ + 2 * P
-            eh = eq[hi_]
-            for a in range(d):
-                for b in range(d):
-                    val = (Hh[s, a, b] + Hh[s, a, d + b] * eh + Hh[s, d + a, b] * el
-                           + Hh[s, d + a, d + b] * ed[s])
-                    K[li * d + a, hi_ * d + b] = val * sq[a] * sq[b]
-
-
-@njit(**_KW)
 def _pencil_from_parts(parts, P, k, q, eq, K):
     """K(q) of the scaled pencil into ``K`` from its q-independent parts
     (``_chaining.pencil_parts``): block (l, h) = AD_s + B_s e^{i (q + h k)} + C_s

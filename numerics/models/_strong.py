@@ -59,10 +59,11 @@ import numpy as np
 from numba import njit
 
 from ._between import between_anchors, merged_starts
+from ._chaining import pencil_parts
 from ._frozen import _frozen_starts, _start_vector
 from ._real_gauge import _components
 from ._refine import _kept, _newton_past, _refine
-from ._sidebands import _newton, _pencil_at
+from ._sidebands import _newton, _pencil_from_parts
 from ._small_algebra import _drop_roundoff
 
 _KW = dict(cache=True, nogil=True, error_model="numpy", boundscheck=False)
@@ -160,6 +161,7 @@ def strong_modes(Hh, masses, k, omega, P, Pc, offsets, floor, max_modes):
     ed = np.empty(4 * P + 1, np.complex128)
     for s in range(4 * P + 1):
         ed[s] = np.exp(-1j * (s - 2 * P) * k)
+    parts = pencil_parts(Hh, sq, ed)  # K(q) as ``sideband_modes`` builds it
     eq = np.empty(nl, np.complex128)
     K = np.empty((n, n), np.complex128)
     X = np.empty((nr, rc), np.complex128)
@@ -237,7 +239,7 @@ def strong_modes(Hh, masses, k, omega, P, Pc, offsets, floor, max_modes):
     s_made = np.zeros((nsrc + 1, width), np.bool_)
     for i in range(Q):
         if slot[i] >= 0:
-            _pencil_at(Hh, sq, k, P, offsets[i], ed, eq, K)
+            _pencil_from_parts(parts, P, k, offsets[i], eq, K)
             j = slot[i]
             s_count[j] = _frozen_starts(K, Om, cidx, ridx, omega, s_starts[j], s_gaps[j],
                                         s_F0[j], s_X[j], s_every[j])
@@ -267,7 +269,7 @@ def strong_modes(Hh, masses, k, omega, P, Pc, offsets, floor, max_modes):
         # between two anchors: first from their starts; where that is unsure (the
         # dense eigenproblem would be asked), again from its own frozen pencil
         use_anchors = lo[iq] >= 0
-        _pencil_at(Hh, sq, k, P, offsets[iq], ed, eq, K)
+        _pencil_from_parts(parts, P, k, offsets[iq], eq, K)
         split = _components(K).max() > 0
         for _attempt in range(2):
             # this offset's starts: between two anchors, both anchors' where their frozen
