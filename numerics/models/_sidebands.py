@@ -130,8 +130,9 @@ def _newton_step(Kt, Om, lam, cidx, ridx, scale, X, S, dS, piv, mirror, past, kn
     ``mirror`` and lambda grows. Returns (state, lambda): state 1 settled (the step below
     TOL: quadratic convergence, the step after it is below round-off), 0 not yet, 2 S
     exactly singular at ``lam`` (an eigenvalue; not moved), -1 failed (T_RR singular,
-    the iterate on ``known``, or a zero trace). Leaves X = T_RR^{-1} E_RC at ``lam``, S
-    factored and dS = S^{-1} S' (``_newton``'s null vector)."""
+    the iterate on ``known``, or a zero trace). At states 0 and 1 it leaves, at the
+    ``lam`` it stepped from, X = T_RR^{-1} E_RC, S factored and dS = S^{-1} S'
+    (``_newton``'s null vector)."""
     if not _schur(Kt, Om, lam, cidx, ridx, X, S, dS):
         return -1, lam
     if not _lu(S, piv):
