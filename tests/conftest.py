@@ -59,6 +59,51 @@ def quick_scenes(tmp_path_factory):
     return out, {name: scenes.run_scene(name, out, quick=True) for name in scenes.REGISTRY}
 
 
+def _flexmm_points(seed, count, window=False):
+    """``count`` seeded points (name, params, k, a) of flexmm and flexmm-stiff-hinge in turn,
+    parameters drawn in their ranges (hinge K_theta 0.01-0.03, shear K_s 0.01-0.03, alpha
+    1.5-3.5, the stiffening K_3 0-1), k over the rotation branch (0.3-pi), amplitude
+    0.02-0.1. ``window``: (name, params, k, a, start), ``start`` an index in [1, 360)
+    drawn after the parameters (a window of the infinite chain's offsets)."""
+    rng = np.random.default_rng(seed)
+    points = []
+    for i in range(count):
+        name = ("flexmm", "flexmm-stiff-hinge")[i % 2]
+        params = {"K_theta": rng.uniform(0.01, 0.03), "K_s": rng.uniform(0.01, 0.03),
+                  "alpha": rng.uniform(1.5, 3.5)}
+        if name == "flexmm-stiff-hinge":
+            params["K_3"] = rng.uniform(0.0, 1.0)
+        start = int(rng.integers(1, 360)) if window else None
+        point = (name, params, rng.uniform(0.3, np.pi), rng.uniform(0.02, 0.1))
+        points.append((*point, start) if window else point)
+    return points
+
+
+@pytest.fixture(scope="session")
+def flexmm_points():
+    """``_flexmm_points(seed, count, window=False)``: seeded random points of the strongly
+    coupled models (tests/test_exact_strong.py, tests/test_exact_between.py)."""
+    return _flexmm_points
+
+
+def _interrupt_map(out):
+    """Marks the first cell of the map stored under ``out`` (its ``map.zarr``) not computed,
+    as an interrupted map leaves it."""
+    import zarr
+
+    group = zarr.open_group(str(out / "map.zarr"), mode="r+", use_consolidated=False)
+    done = group["done_predicted"][...]
+    done[0, 0] = False
+    group["done_predicted"][...] = done
+
+
+@pytest.fixture(scope="session")
+def interrupt_map():
+    """``_interrupt_map(out)``: a finished map's store made one an interrupted run leaves
+    (tests/test_model_walk.py's resumed maps)."""
+    return _interrupt_map
+
+
 @pytest.fixture
 def sigint_raises():
     """SIGINT raises KeyboardInterrupt during the test, whatever the process inherited: a

@@ -18,23 +18,6 @@ RTOL, ATOL_OMEGA = 1e-6, 1e-9
 STEP = np.pi / 400
 
 
-def _random_points(seed, count):
-    """Seeded flexmm and flexmm-stiff-hinge points, drawn as tests/test_exact_strong.py
-    draws them, each with a window of 40 chain offsets somewhere in (0, pi]."""
-    rng = np.random.default_rng(seed)
-    points = []
-    for i in range(count):
-        name = ("flexmm", "flexmm-stiff-hinge")[i % 2]
-        params = {"K_theta": rng.uniform(0.01, 0.03), "K_s": rng.uniform(0.01, 0.03),
-                  "alpha": rng.uniform(1.5, 3.5)}
-        if name == "flexmm-stiff-hinge":
-            params["K_3"] = rng.uniform(0.0, 1.0)
-        start = int(rng.integers(1, 360))
-        points.append((name, params, rng.uniform(0.3, np.pi), rng.uniform(0.02, 0.1),
-                       STEP * np.arange(start, start + 40)))
-    return points
-
-
 def _same_one_at_a_time(name, params, k, a, q):
     model = load_model(name).with_params(**params)
     try:
@@ -56,10 +39,12 @@ def _same_one_at_a_time(name, params, k, a, q):
     return int(grows.sum())
 
 
-def test_fine_grid_is_each_offset_alone_at_random_points():
-    """Six seeded random points (~5 s): a window of 40 chain offsets asked at once (anchors
-    and offsets between them) equals the offsets asked one at a time, rate by rate."""
-    grown = [_same_one_at_a_time(*p) for p in _random_points(4103, 6)]
+def test_fine_grid_is_each_offset_alone_at_random_points(flexmm_points):
+    """Six seeded random points of flexmm and flexmm-stiff-hinge (~5 s), each with a window
+    of 40 chain offsets somewhere in (0, pi], asked at once (anchors and offsets between
+    them): equal to the offsets asked one at a time, rate by rate."""
+    grown = [_same_one_at_a_time(name, params, k, a, STEP * np.arange(start, start + 40))
+             for name, params, k, a, start in flexmm_points(4103, 6, window=True)]
     assert sum(g for g in grown if g) >= 40  # growing offsets were compared
 
 

@@ -44,22 +44,6 @@ def test_strongly_coupled_spectrum_is_the_dense_one(name, params, k, a):
     assert len(fast.truncations) == 2  # the fastest mode checked at a second truncation
 
 
-def _random_strong_points(seed, count):
-    """``count`` seeded points of flexmm and flexmm-stiff-hinge, parameters drawn in their
-    ranges (hinge K_theta 0.01-0.03, shear K_s 0.01-0.03, alpha 1.5-3.5, the stiffening
-    K_3 0-1), k over the rotation branch, amplitude 0.02-0.1."""
-    rng = np.random.default_rng(seed)
-    points = []
-    for i in range(count):
-        name = ("flexmm", "flexmm-stiff-hinge")[i % 2]
-        params = {"K_theta": rng.uniform(0.01, 0.03), "K_s": rng.uniform(0.01, 0.03),
-                  "alpha": rng.uniform(1.5, 3.5)}
-        if name == "flexmm-stiff-hinge":
-            params["K_3"] = rng.uniform(0.0, 1.0)
-        points.append((name, params, rng.uniform(0.3, np.pi), rng.uniform(0.02, 0.1)))
-    return points
-
-
 def _same_as_dense(name, params, k, a, N, on_ring=True):
     """The fast spectrum against the dense one on the ring of N; ``on_ring``: k snapped to
     2 pi m / N as ``exact_gain`` does on a ring, where the offsets q +- k are the ring's
@@ -106,20 +90,20 @@ def _same_as_dense(name, params, k, a, N, on_ring=True):
     return dense.peak_gain
 
 
-def test_strong_path_is_the_dense_one_at_random_points():
+def test_strong_path_is_the_dense_one_at_random_points(flexmm_points):
     """Six seeded random points of the strongly coupled models (ring of 32, ~10 s; four
     with k on the ring): the fast path (the central pencil, its starts translated between
     neighbouring offsets, the refinement, the pair check where a frozen start ends on the
     axis) equals the dense eigenproblem at its truncation to 1e-6 relative, verdicts
     identical."""
     peaks = [_same_as_dense(*p, N=32, on_ring=i % 3 > 0)
-             for i, p in enumerate(_random_strong_points(4101, 6))]
+             for i, p in enumerate(flexmm_points(4101, 6))]
     assert sum(p is not None and p > 0 for p in peaks) >= 3  # growth was compared
 
 
 @pytest.mark.slow
-def test_strong_path_is_the_dense_one_at_many_random_points():
+def test_strong_path_is_the_dense_one_at_many_random_points(flexmm_points):
     """40 seeded random points (rings of 64, 30 with k on the ring; ~1 min): as above."""
     peaks = [_same_as_dense(*p, N=64, on_ring=i % 4 > 0)
-             for i, p in enumerate(_random_strong_points(4102, 40))]
+             for i, p in enumerate(flexmm_points(4102, 40))]
     assert sum(p is not None and p > 0 for p in peaks) >= 20

@@ -57,19 +57,13 @@ def test_a_model_map_estimated_beyond_an_hour_asks_for_yes(tmp_path, capsys, no_
         main(argv + ["--yes"])
 
 
-def test_a_resumed_model_map_estimates_the_cells_left(tmp_path, capsys):
+def test_a_resumed_model_map_estimates_the_cells_left(tmp_path, capsys, interrupt_map):
     """A resumed map's estimate was of every cell (and its resume line gave another,
     rough, figure): it is of the cells left, and says so."""
-    import zarr
-
     argv = _map(tmp_path, "--param", "beta=0.5,1", "--k", "1,2", "--theory-only")
     assert main(argv) == 0
     capsys.readouterr()
-    group = zarr.open_group(str(tmp_path / "m" / "map.zarr"), mode="r+",
-                            use_consolidated=False)
-    done = group["done_predicted"][...]
-    done[0, 0] = False  # one cell not computed, as an interrupted map leaves it
-    group["done_predicted"][...] = done
+    interrupt_map(tmp_path / "m")  # one cell not computed
     assert main(argv) == 0
     out = capsys.readouterr().out
     assert "for 1 of its 4 cells (the other 3 are in the store)" in out
@@ -368,21 +362,15 @@ def test_point_json_carries_the_tables_notes(tmp_path, capsys):
     assert json.loads((tmp_path / "p" / "point.json").read_text())["notes"] == notes
 
 
-def test_a_resumed_paper_map_estimates_the_cells_left(tmp_path, capsys):
+def test_a_resumed_paper_map_estimates_the_cells_left(tmp_path, capsys, interrupt_map):
     """The paper chain's map as a model's: its estimate (and the --yes gate on it) was of
     every cell of a resumed map; it is of the cells left, and says so."""
-    import zarr
-
     argv = ["map", "--alpha", "2.5", "--K-s", "0.01851", "--delta=-0.003,0.003", "--k",
             "0.5,1", "--case", "coupled", "--theory-only", "--N", "64", "--workers", "1",
             "--out", str(tmp_path / "m")]
     assert main(argv) == 0
     assert " left (" not in capsys.readouterr().out
-    group = zarr.open_group(str(tmp_path / "m" / "map.zarr"), mode="r+",
-                            use_consolidated=False)
-    done = group["done_predicted"][...]
-    done[0, 0] = False
-    group["done_predicted"][...] = done
+    interrupt_map(tmp_path / "m")
     assert main(argv) == 0
     out = capsys.readouterr().out
     assert "for the 1 left (3 in the store)" in out

@@ -8,7 +8,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from ._sidebands import STEPS, TOL, _lu, _lu_solve, _schur
+from ._sidebands import STEPS, TOL, _lu, _lu_solve, _newton_step
 
 _KW = dict(cache=True, nogil=True, error_model="numpy", boundscheck=False)
 
@@ -37,33 +37,18 @@ def _kept(vec, P, d):
 
 @njit(**_KW)
 def _newton_past(Kt, Om, lam, cidx, ridx, scale, X, known):
-    """Newton on det S(lambda) from ``lam`` with the root ``known`` divided out (Maehly, as
-    ``_sidebands._newton`` divides out a growing iterate's mirror): the second root of a
+    """Newton on det S(lambda) from ``lam`` with the root ``known`` divided out (Maehly,
+    ``_sidebands._newton_step``, besides a growing iterate's mirror): the second root of a
     pair the frozen pencil placed off the axis. Returns (lambda, settled)."""
     rc = cidx.size
     S = np.empty((rc, rc), np.complex128)
     dS = np.empty((rc, rc), np.complex128)
     piv = np.empty(rc, np.int64)
     for _ in range(STEPS):
-        if not _schur(Kt, Om, lam, cidx, ridx, X, S, dS):
-            return lam, False
-        if not _lu(S, piv):
-            return lam, True  # exactly singular: an eigenvalue
-        _lu_solve(S, piv, dS)
-        tr = 0j
-        for a in range(rc):
-            tr += dS[a, a]
-        if lam == known:
-            return lam, False
-        tr -= 1.0 / (lam - known)
-        if lam.real > 1e-9 * scale:
-            tr -= 1.0 / (2.0 * lam.real)
-        if tr == 0:
-            return lam, False
-        step = -1.0 / tr
-        lam += step
-        if abs(step) <= TOL * (abs(lam) + scale):
-            return lam, True
+        state, lam = _newton_step(Kt, Om, lam, cidx, ridx, scale, X, S, dS, piv, True, True,
+                                  known)
+        if state != 0:
+            return lam, state > 0  # 2: exactly singular, an eigenvalue
     return lam, False
 
 

@@ -124,40 +124,57 @@ def _schur(Kt, Om, lam, cidx, ridx, X, S, dS):
 
 
 @njit(**_KW)
+def _newton_step(Kt, Om, lam, cidx, ridx, scale, X, S, dS, piv, mirror, past, known):
+    """One step of Newton on det S(lambda) from ``lam``, -1 / tr(S^{-1} S'), with roots
+    divided out (Maehly): ``known`` where ``past``, then the mirror -conj(lambda) where
+    ``mirror`` and lambda grows. Returns (state, lambda): state 1 settled (the step below
+    TOL: quadratic convergence, the step after it is below round-off), 0 not yet, 2 S
+    exactly singular at ``lam`` (an eigenvalue; not moved), -1 failed (T_RR singular,
+    the iterate on ``known``, or a zero trace). At states 0 and 1 it leaves, at the
+    ``lam`` it stepped from, X = T_RR^{-1} E_RC, S factored and dS = S^{-1} S'
+    (``_newton``'s null vector)."""
+    if not _schur(Kt, Om, lam, cidx, ridx, X, S, dS):
+        return -1, lam
+    if not _lu(S, piv):
+        return 2, lam
+    _lu_solve(S, piv, dS)
+    tr = 0j
+    for a in range(cidx.size):
+        tr += dS[a, a]
+    if past:
+        if lam == known:
+            return -1, lam
+        tr -= 1.0 / (lam - known)
+    if mirror and lam.real > 1e-9 * scale:
+        # the mirror root -conj(lambda) deflated: a growing pair's roots are 2 Re lambda
+        # apart, and Newton on det S alone crawls between them
+        tr -= 1.0 / (2.0 * lam.real)
+    if tr == 0:
+        return -1, lam
+    step = -1.0 / tr
+    lam += step
+    return (1 if abs(step) <= TOL * (abs(lam) + scale) else 0), lam
+
+
+@njit(**_KW)
 def _newton(Kt, Om, lam, cidx, ridx, scale, y, deflate, X):
-    """Newton on det S(lambda) from ``lam`` (steps -1 / tr(S^{-1} S'), with ``deflate``
-    the mirror root -conj(lambda) divided out) until a step is below TOL (quadratic
-    convergence: the step after it is below round-off); the eigenvalue and its C part
-    into y, T_RR^{-1} E_RC at it into X (shape (n_R, r_C): the eigenvector's rest is
-    -X y). Returns (lambda, settled)."""
+    """Newton on det S(lambda) from ``lam`` (``_newton_step``; with ``deflate`` the
+    mirror root -conj(lambda) divided out) until a step is below TOL; the eigenvalue and
+    its C part into y, T_RR^{-1} E_RC at it into X (shape (n_R, r_C): the eigenvector's
+    rest is -X y). Returns (lambda, settled)."""
     rc = cidx.size
     S = np.empty((rc, rc), np.complex128)
     dS = np.empty((rc, rc), np.complex128)
     piv = np.empty(rc, np.int64)
-    factored = False
+    state = 0
     for _ in range(STEPS):
-        if not _schur(Kt, Om, lam, cidx, ridx, X, S, dS):
-            return lam, False
-        if not _lu(S, piv):
-            break  # exactly singular: an eigenvalue
-        _lu_solve(S, piv, dS)
-        tr = 0j
-        for a in range(rc):
-            tr += dS[a, a]
-        if deflate and lam.real > 1e-9 * scale:
-            # the mirror root -conj(lambda) deflated (Maehly): a growing pair's roots are
-            # 2 Re lambda apart, and Newton on det S alone crawls between them
-            tr -= 1.0 / (2.0 * lam.real)
-        if tr == 0:
-            return lam, False
-        step = -1.0 / tr
-        lam += step
-        if abs(step) <= TOL * (abs(lam) + scale):
-            factored = True
+        state, lam = _newton_step(Kt, Om, lam, cidx, ridx, scale, X, S, dS, piv, deflate,
+                                  False, 0j)
+        if state != 0:
             break
-    else:
+    if state <= 0:
         return lam, False
-    if factored:
+    if state == 1:
         # the null vector from the last step's factors (S and X at lambda - step): the
         # eigenvector of the pencil S(lambda - step) + mu S' nearest mu = step, by
         # power iteration on dS = S^{-1} S' (its dominant eigenvalue ~ 1 / step; the next,
@@ -345,27 +362,6 @@ def _offset(Kt, Om, lvec, cidx, ridx, lo, hi, floor, om, out_lam, out_vec):
         out_lam[found] = lam
         found += 1
     return found
-
-
-@njit(**_KW)
-def _pencil_at(Hh, sq, k, P, q, ed, eq, K):
-    """K(q) of the scaled pencil into ``K`` (``_exact``'s dense pencil, scaled by
-    M^{-1/2}; ``eq`` gets the copies' phases e^{i (q + l k)}): the spectrum's per-offset
-    blocks and the strong-coupling path's pencils."""
-    d = sq.size
-    nl = 2 * P + 1
-    for li in range(nl):
-        eq[li] = np.exp(1j * (q + (li - P) * k))
-    for li in range(nl):
-        el = np.conj(eq[li])
-        for hi_ in range(nl):
-            s = li - hi_ + 2 * P
-            eh = eq[hi_]
-            for a in range(d):
-                for b in range(d):
-                    val = (Hh[s, a, b] + Hh[s, a, d + b] * eh + Hh[s, d + a, b] * el
-                           + Hh[s, d + a, d + b] * ed[s])
-                    K[li * d + a, hi_ * d + b] = val * sq[a] * sq[b]
 
 
 @njit(**_KW)

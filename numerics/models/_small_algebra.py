@@ -119,8 +119,10 @@ def _ldlh(A):
 
 @njit(**_KW)
 def _ldlh_half(A, B):
-    """Z = L^{-1} B in place (B, shape (n, m)) with ``_ldlh``'s factors: then
-    B^* A^{-1} B = Z^* D^{-1} Z, Hermitian by construction."""
+    """Z = L^{-1} B in place (B, shape (n, m)), L the unit lower triangle stored below
+    A's diagonal: with ``_ldlh``'s factors B^* A^{-1} B = Z^* D^{-1} Z, Hermitian by
+    construction; with ``_lu``'s, after the row swaps, ``_lu_solve``'s forward sweep.
+    By columns of L, skipping the solution's zeros."""
     n, m = B.shape
     for c in range(m):
         for k in range(n):
@@ -142,12 +144,8 @@ def _lu_solve(A, piv, B):
                 t = B[j, c]
                 B[j, c] = B[p, c]
                 B[p, c] = t
+    _ldlh_half(A, B)
     for c in range(m):
-        for k in range(n):
-            x = B[k, c]
-            if x != 0:
-                for i in range(k + 1, n):
-                    B[i, c] -= A[i, k] * x
         for k in range(n - 1, -1, -1):
             x = B[k, c] / A[k, k]
             B[k, c] = x

@@ -59,10 +59,11 @@ import numpy as np
 from numba import njit
 
 from ._between import between_anchors, merged_starts
+from ._chaining import pencil_parts
 from ._frozen import _frozen_starts, _start_vector
 from ._real_gauge import _components
 from ._refine import _kept, _newton_past, _refine
-from ._sidebands import _newton, _pencil_at
+from ._sidebands import _newton, _pencil_from_parts
 from ._small_algebra import _drop_roundoff
 
 _KW = dict(cache=True, nogil=True, error_model="numpy", boundscheck=False)
@@ -100,6 +101,25 @@ def _neighbours(offsets, k):
                     mirror[i, c] = mir
                     break
     return nb, mirror
+
+
+@njit(inline="always")
+def _translate(c_s, v, P, d, sigma, mir):
+    """A start's vector ``c_s`` moved from its source to this offset, into ``v``: the
+    pencil at q + sigma k is the one at q shifted one harmonic, c_t[l] = c'[l + sigma]
+    (zero past the truncation's edge), c'[l] = conj(c_s[-l]) where mirrored (the source
+    at -q: lambda -> conj(lambda), l -> -l); sigma 0: the vector itself."""
+    for li in range(2 * P + 1):
+        ls = li - P + sigma
+        if abs(ls) > P:
+            for a in range(d):
+                v[li * d + a] = 0.0
+            continue
+        if mir:
+            ls = -ls
+        for a in range(d):
+            val = c_s[(ls + P) * d + a]
+            v[li * d + a] = np.conj(val) if mir else val
 
 
 @njit(**_KW)
@@ -141,6 +161,7 @@ def strong_modes(Hh, masses, k, omega, P, Pc, offsets, floor, max_modes):
     ed = np.empty(4 * P + 1, np.complex128)
     for s in range(4 * P + 1):
         ed[s] = np.exp(-1j * (s - 2 * P) * k)
+    parts = pencil_parts(Hh, sq, ed)  # K(q) as ``sideband_modes`` builds it
     eq = np.empty(nl, np.complex128)
     K = np.empty((n, n), np.complex128)
     X = np.empty((nr, rc), np.complex128)
@@ -218,7 +239,7 @@ def strong_modes(Hh, masses, k, omega, P, Pc, offsets, floor, max_modes):
     s_made = np.zeros((nsrc + 1, width), np.bool_)
     for i in range(Q):
         if slot[i] >= 0:
-            _pencil_at(Hh, sq, k, P, offsets[i], ed, eq, K)
+            _pencil_from_parts(parts, P, k, offsets[i], eq, K)
             j = slot[i]
             s_count[j] = _frozen_starts(K, Om, cidx, ridx, omega, s_starts[j], s_gaps[j],
                                         s_F0[j], s_X[j], s_every[j])
@@ -248,7 +269,7 @@ def strong_modes(Hh, masses, k, omega, P, Pc, offsets, floor, max_modes):
         # between two anchors: first from their starts; where that is unsure (the
         # dense eigenproblem would be asked), again from its own frozen pencil
         use_anchors = lo[iq] >= 0
-        _pencil_at(Hh, sq, k, P, offsets[iq], ed, eq, K)
+        _pencil_from_parts(parts, P, k, offsets[iq], eq, K)
         split = _components(K).max() > 0
         for _attempt in range(2):
             # this offset's starts: between two anchors, both anchors' where their frozen
@@ -373,6 +394,7 @@ def strong_modes(Hh, masses, k, omega, P, Pc, offsets, floor, max_modes):
                 if j < 0:  # a refined mode: an anchor's (``_between``) or a ring source's
                     for a in range(n):
                         w[a] = vec_out[-1 - j, js, a] / sq[a % d]
+                    _translate(w, v, P, d, sigma, mir)
                 else:
                     if not s_made[j, js]:
                         s_larg[j, js] = _start_vector(s_F0[j], s_X[j], Om, cidx, ridx, lvec, P, sq,
@@ -392,31 +414,8 @@ def strong_modes(Hh, masses, k, omega, P, Pc, offsets, floor, max_modes):
                     if abs(lq - sigma) > 2:
                         continue  # its frozen eigenvector is heaviest off the centre: not kept
                     # the whole frozen eigenvector refined on the whole pencil; Newton on the
-                    # Schur complement where that does not settle. Translated from its source:
-                    # c_t[l] = c'[l + sigma], c'[l] = conj(c_s[-l]) where mirrored
-                    for li in range(nl):
-                        ls = li - P + sigma
-                        if abs(ls) > P:
-                            for a in range(d):
-                                v[li * d + a] = 0.0
-                            continue
-                        if mir:
-                            ls = -ls
-                        for a in range(d):
-                            val = s_vecs[j, js, (ls + P) * d + a]
-                            v[li * d + a] = np.conj(val) if mir else val
-                if j < 0:  # translated as a frozen start's vector is, below
-                    for li in range(nl):
-                        ls = li - P + sigma
-                        if abs(ls) > P:
-                            for a in range(d):
-                                v[li * d + a] = 0.0
-                            continue
-                        if mir:
-                            ls = -ls
-                        for a in range(d):
-                            val = w[(ls + P) * d + a]
-                            v[li * d + a] = np.conj(val) if mir else val
+                    # Schur complement where that does not settle
+                    _translate(s_vecs[j, js], v, P, d, sigma, mir)
                 nrm = 0.0
                 for a in range(n):
                     nrm += abs(v[a]) ** 2
