@@ -74,7 +74,6 @@ def test_the_machine_speed_leaves_the_first_calls_compile_out(monkeypatch):
     """The reference cell is timed warm: a first call that compiles (a machine with an
     empty numba cache: 2-4 s against 0.06 s) made a fresh machine's estimates 12-20x too
     long (a 64 x 64 map that took 4.5 min was said to take 63 min), and was cached so."""
-    from numerics.maps import _cells
     from numerics.maps import _estimate as e
 
     def slow_first(seconds):
@@ -88,8 +87,9 @@ def test_the_machine_speed_leaves_the_first_calls_compile_out(monkeypatch):
             calls.append(1)
         return fake
 
-    monkeypatch.setattr(_cells, "simulate_cell", slow_first(0.3))
-    monkeypatch.setattr(_cells, "predict_cell", slow_first(0.3))
+    # where measure_speed imports them from
+    monkeypatch.setattr("numerics.maps._cells.simulate_cell", slow_first(0.3))
+    monkeypatch.setattr("numerics.maps._cells.predict_cell", slow_first(0.3))
     speed = e.measure_speed()
     # what is left is the fakes' own call: microseconds, floored at 1 ms
     assert speed["predict"] < 0.05 and speed["simulate"] < 0.05
