@@ -24,6 +24,23 @@ MODEL_VERDICT_ATTRS = {**VERDICT_ATTRS, "verdict_words": (
     "MI -> 1 (MI); stable, 'no growth within T' -> 0 (stable); undefined (no carrier or no "
     "travelling wave at the cell), undetermined (a run grew, but less than the threshold) "
     "-> -1 (undetermined)")}
+def simulated_verdict_attrs(theory_only: bool) -> dict:
+    """``verdict_simulated``'s own words: -1 is also "not simulated" (done False), and a
+    theory-only map's store holds no run at all (what its cells say until a simulated map
+    of the same parameters resumes the store)."""
+    words = (f"MI -> 1 (MI: most seeds grew more than {GROWTH_THRESHOLD:g}x); 'no growth "
+             "within T' -> 0 (stable); -1 (undetermined): not simulated where done is "
+             "False (no run made), else undefined (no travelling wave at the cell) or "
+             "undetermined (a run grew, but less than the threshold)")
+    if theory_only:
+        return {"long_name": "simulated verdict: not simulated (a theory-only map makes no "
+                             "run; -1 in every cell where done is False)",
+                "verdict_words": words, "undetermined": "not simulated: no run made"}
+    return {"long_name": f"simulated: most seeds grew more than {GROWTH_THRESHOLD:g}x",
+            "verdict_words": words,
+            "undetermined": "not simulated yet where done is False (no run made)"}
+
+
 #: the four-wave theory's fastest pair (``FourWave.mode_kind``) -> the store's int8 codes
 MODE_KIND_CODES = {"undefined": -1, "none": 0, "sidebands": 1, "backward": 2,
                    "parametric": 3}
@@ -159,6 +176,6 @@ def unsampled_band(params: ModelMapParameters, arrays: dict) -> dict:
     return {"nls_band_unsampled": (params.dims, flag, attrs)}
 
 
-__all__ = ["model_block", "unsampled_band", "VERDICT_CODES", "MODE_KIND_CODES",
+__all__ = ["model_block", "unsampled_band", "simulated_verdict_attrs", "VERDICT_CODES", "MODE_KIND_CODES",
            "MODE_KIND_ATTRS", "MODEL_VERDICT_ATTRS", "SIMULATED_COLUMNS", "LOSSY_SIMULATED_COLUMNS",
            "OBSERVABLE_ATTRS", "VARIABLE_ATTRS"]

@@ -33,6 +33,7 @@ from ._model_columns import (
     VARIABLE_ATTRS,
     VERDICT_CODES,
     model_block,
+    simulated_verdict_attrs,
     unsampled_band,
 )
 from ._params import DEFAULT_BLOCK
@@ -513,10 +514,10 @@ class ModelMapParameters:
                               dict(MODE_KIND_ATTRS))
             elif name.startswith("verdict_"):
                 theory = name.removeprefix("verdict_")
-                long = (f"simulated: most seeds grew more than {GROWTH_THRESHOLD:g}x"
-                        if theory == "simulated" else f"{theory} theory's verdict")
-                data[name] = (dims, np.full(shape, UNDETERMINED, np.int8),
-                              {"long_name": long, **MODEL_VERDICT_ATTRS})
+                attrs = {"long_name": f"{theory} theory's verdict", **MODEL_VERDICT_ATTRS}
+                if theory == "simulated":
+                    attrs.update(simulated_verdict_attrs(self.theory_only))
+                data[name] = (dims, np.full(shape, UNDETERMINED, np.int8), attrs)
             else:
                 data[name] = (dims, np.full(shape, np.nan), dict(VARIABLE_ATTRS.get(name, {})))
         data["done"] = (dims, np.zeros(shape, bool), {"long_name": "cell simulated"})
