@@ -29,3 +29,100 @@ def test_a_simulated_model_store_names_not_simulated_beside_a_run_that_grew_too_
     assert "not simulated yet where done is False" in attrs["undetermined"]
     assert "a run grew, but less than the threshold" in attrs["verdict_words"]
     assert np.int8(-1) in attrs["flag_values"]
+
+
+# --- tiny k and tiny amplitudes: refused with their bound, not a verdict of rounding ------
+
+def _fput():
+    from energy import load_model
+
+    return load_model("fput")  # alpha 0, beta 1, unit masses and springs
+
+
+def test_a_k_whose_omega_underflows_is_not_called_a_missing_carrier():
+    from energy import ModelError
+    from numerics.models import nls
+
+    with pytest.raises(ModelError, match=r"k = 1e-300 is below what float64 resolves .*not "
+                                         r"a missing carrier.*k \(--k\) >= \S+"):
+        nls(_fput(), 1e-300)
+
+
+def _diatomic_g1(k, m=2.0):
+    """g1 of the diatomic FPUT chain's acoustic branch (masses 1 and m, unit springs):
+    omega^2 = 4 sin^2(k/2) / m / (s + sqrt(s^2 - 4 sin^2(k/2) / m)), s = 1 + 1/m (the
+    small root without cancellation), differentiated twice in 50-digit arithmetic."""
+    import mpmath
+
+    mpmath.mp.dps = 50
+
+    def omega(k):
+        s2 = 4 * mpmath.sin(k / 2) ** 2 / m
+        s = 1 + 1 / mpmath.mpf(m)
+        return mpmath.sqrt(s2 / (s + mpmath.sqrt(s * s - s2)))
+
+    return float(mpmath.diff(omega, mpmath.mpf(k), 2))
+
+
+def test_the_smallest_k_the_nls_takes_gives_g1_its_true_sign():
+    """A diatomic chain's acoustic omega^2 ~ k^2 is the small eigenvalue of an O(1)
+    matrix, and g1 the difference of two O(1) terms: at k = 1e-4 its sign came out
+    flipped ('stable'; the chain is MI there). Below the bound the NLS is refused; above
+    it g1 has the 50-digit formula's sign, and its size once k is a few times the bound."""
+    import re
+
+    from energy import ModelError, load_model
+    from numerics.models import nls
+
+    model = load_model("diatomic-fput")
+    with pytest.raises(ModelError, match=r"g1 .* cancel to within their rounding") as err:
+        nls(model, 1e-4, 0)
+    least = float(re.search(r">= (\S+)$", str(err.value)).group(1))
+    # float64 resolves k^2 ~ 1e-7 differences of O(1) terms only from eps / k^2 < 1:
+    # the bound is near sqrt(eps) ~ 1e-8 in k^2, k ~ 1e-4..1e-2
+    assert 1e-4 < least < 1e-2
+    for k in (1.01 * least, 10 * least, 0.3):
+        assert np.sign(nls(model, k, 0).g1) == np.sign(_diatomic_g1(k)), k
+    # 10x the bound: g1's rounding ~ 1/k^2 against its size ~ k, 1e-3 of the bound's
+    assert nls(model, 10 * least, 0).g1 == pytest.approx(_diatomic_g1(10 * least), rel=1e-2)
+
+
+def test_an_amplitude_whose_shift_is_lost_in_omega_is_refused_with_the_bound():
+    """The bound is where the NLS's shift |g2| a^2/4 stops changing omega in float64:
+    half of it is lost when added to omega, twice it is not."""
+    import re
+
+    from energy import ModelError
+    from numerics.models import exact_gain, four_wave, nls
+
+    r = nls(_fput(), 0.5)
+    with pytest.raises(ModelError, match=r"amplitude a = 1e-300 is below what float64") \
+            as err:
+        r.peak_gain(1e-300)
+    least = float(re.search(r">= (\S+)$", str(err.value)).group(1))
+    omega, shift = r.carrier.omega, lambda a: abs(r.g2) * a * a / 4
+    assert omega + shift(least / 2) == omega
+    assert omega + shift(2 * least) != omega
+    assert r.peak_gain(2 * least) > 0
+    for theory in (lambda a: exact_gain(_fput(), 0.5, a, N=64),
+                   lambda a: four_wave(_fput(), 0.5, a, N=64)):
+        with pytest.raises(ModelError, match="below what float64 resolves"):
+            theory(least / 2)
+
+
+def test_point_refuses_a_tiny_amplitude_in_one_line(capsys):
+    from cli.app import main
+
+    code = main(["point", "--model", "fput", "--k", "0.5", "--amplitude", "1e-300"])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert code == 2 and len(err) == 1
+    assert "--amplitude" in err[0] and "below what float64 resolves" in err[0]
+
+
+def test_a_map_cell_of_a_tiny_amplitude_is_undefined_and_says_why():
+    from numerics.models import map_cells
+
+    row, = map_cells(_fput(), [({}, 0.5)], 1e-300)
+    assert row["verdict_semidiscrete"] == "undefined"
+    assert "below what float64 resolves" in row["reason"]
+
