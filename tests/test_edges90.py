@@ -126,3 +126,23 @@ def test_a_map_cell_of_a_tiny_amplitude_is_undefined_and_says_why():
     assert row["verdict_semidiscrete"] == "undefined"
     assert "below what float64 resolves" in row["reason"]
 
+
+# --- a spectrum of another ring ------------------------------------------------------------
+
+def test_simulate_seeds_refuses_a_spectrum_of_another_ring_at_the_same_k():
+    """pi/4 is 2 pi 4/32 and 2 pi 8/64: k, amplitude, branch and model agree, yet the runs
+    would start from the 64-site ring's wave with that ring's rates."""
+    import math
+
+    from energy import ModelError
+    from numerics.models import exact_gain, simulate_seeds
+
+    k = math.pi / 4
+    for spec, said in ((exact_gain(_fput(), k, 0.05, N=64), "spec: N = 64"),
+                       (exact_gain(_fput(), k, 0.05, samples=16), "spec: the infinite chain")):
+        with pytest.raises(ModelError, match=rf"another wave: ring N = 32 \({said}"):
+            simulate_seeds(_fput(), k, 0.05, spec, N=32, t_end=5.0)
+    for N in (32, 33):  # the spectrum of the ring asked for runs, an odd ring's too
+        spec = exact_gain(_fput(), k, 0.05, N=N)
+        assert len(simulate_seeds(_fput(), k, 0.05, spec, N=N, t_end=5.0).runs) == 1
+
