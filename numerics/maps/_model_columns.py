@@ -176,6 +176,40 @@ def unsampled_band(params: ModelMapParameters, arrays: dict) -> dict:
     return {"nls_band_unsampled": (params.dims, flag, attrs)}
 
 
-__all__ = ["model_block", "unsampled_band", "simulated_verdict_attrs", "VERDICT_CODES", "MODE_KIND_CODES",
+def slow_for_run(params: ModelMapParameters, arrays: dict) -> dict:
+    """``slow_for_T`` (int8 per cell: 1 where the exact theory calls the cell MI at a rate
+    too slow to grow GROWTH_THRESHOLD-fold within the run's length T (``t_simulated``:
+    peak_gain_exact T < ln(threshold)), so the run cannot decide and its verdict is "no
+    growth within T" or undetermined, not a disagreement with the theory; 0 for the other
+    simulated cells; -1 where no run was made), with the count in its attributes and in
+    the store's (``slow_for_T_cells``, what ``flexmm map --model`` prints): the paper
+    chain's map asks its theories the runs' question (a rate above ln(threshold) /
+    t_end), a model map says which cells its T cannot decide. Empty for a theory-only
+    map."""
+    need = {"done", "verdict_exact", "peak_gain_exact", "t_simulated"}
+    if params.theory_only or not need <= set(arrays):
+        return {}
+    done = np.asarray(arrays["done"], bool)
+    with np.errstate(invalid="ignore"):
+        reach = np.asarray(arrays["peak_gain_exact"], float) * np.asarray(
+            arrays["t_simulated"], float)
+    slow = done & (np.asarray(arrays["verdict_exact"]) == MI) & (reach < math.log(
+        GROWTH_THRESHOLD))
+    flag = np.where(done, slow, -1).astype(np.int8)
+    words = {n: int((slow & (np.asarray(arrays["verdict_simulated"]) == c)).sum())
+             for n, c in (("no_growth", STABLE), ("undetermined", UNDETERMINED),
+                          ("MI", MI))} if "verdict_simulated" in arrays else {}
+    attrs = {
+        "long_name": f"the exact theory's rate cannot grow {GROWTH_THRESHOLD:g}x within the "
+                     "run's T (peak_gain_exact t_simulated < ln(growth_threshold)): the run "
+                     "cannot decide",
+        "flag_values": [-1, 0, 1], "flag_meanings": "not_simulated decidable too_slow_for_T",
+        "cells": int(slow.sum()), "of": int(slow.size),
+        **{f"runs_{n}": v for n, v in words.items()},
+        "remedy": "a longer --t-end (or none: each cell's T from its exact rate)"}
+    return {"slow_for_T": (params.dims, flag, attrs)}
+
+
+__all__ = ["model_block", "unsampled_band", "slow_for_run", "simulated_verdict_attrs", "VERDICT_CODES", "MODE_KIND_CODES",
            "MODE_KIND_ATTRS", "MODEL_VERDICT_ATTRS", "SIMULATED_COLUMNS", "LOSSY_SIMULATED_COLUMNS",
            "OBSERVABLE_ATTRS", "VARIABLE_ATTRS"]
