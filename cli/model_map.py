@@ -224,7 +224,10 @@ def run_map(args) -> int:
     mi = {v: float(np.mean(ds[v].values == 1)) for v in verdicts}
     png = out / "map.png"
     _plot_map(_as_words(ds, verdicts), png, model)
-    summary = _summary(ds, verdicts, simulated)
+    from ._map_inputs import model_inputs
+
+    summary = {"inputs": model_inputs(params, model, device),
+               **_summary(ds, verdicts, simulated)}
     write_text(out / "summary.json", json.dumps(strict_json(summary), indent=2) + "\n")
     files = [str(path), str(png), str(out / "summary.json")]
     critical = _critical_rows(ds)

@@ -166,3 +166,39 @@ def test_cells_whose_exact_rate_cannot_grow_20x_within_t_are_marked_and_counted(
     assert params.derived_attrs({"slow_for_T": (dims, flag, attrs)})["slow_for_T_cells"] == 1
     assert slow_for_run(_fput_map(theory_only=True, exact=True), arrays) == {}
 
+
+# --- a map's summary.json says what was run ------------------------------------------------
+
+def test_a_paper_maps_summary_holds_its_inputs(tmp_path):
+    import json
+
+    from cli.app import main
+
+    assert main(["map", "--alpha", "2.5", "--K-s", "0.01851", "--delta", "0.003,0.004",
+                 "--k", "0.5,1.0", "--case", "rotation", "--theory-only", "--N", "64",
+                 "--t-end", "700", "--workers", "1", "--out", str(tmp_path)]) == 0
+    got = json.loads((tmp_path / "summary.json").read_text())["inputs"]
+    assert got == {"command": "flexmm map", "case": "rotation", "alpha": 2.5,
+                   "K_s": 0.01851, "axes": {"delta": [0.003, 0.004], "k": [0.5, 1.0]},
+                   "k_simulated": got["k_simulated"], "amplitude": 0.02, "N": 64,
+                   "t_end": 700.0, "seeds": got["seeds"], "start": "paper",
+                   "theory_only": True, "device": "cpu", "block": got["block"]}
+    # k as simulated: the ring's 2 pi m / 64 nearest each k
+    assert got["k_simulated"] == pytest.approx([2 * np.pi * round(k * 64 / (2 * np.pi)) / 64
+                                                for k in (0.5, 1.0)], rel=1e-12)
+
+
+def test_a_model_maps_summary_holds_its_inputs(tmp_path):
+    import json
+
+    from cli.app import main
+
+    assert main(["map", "--model", "fput", "--param", "alpha=1", "--param", "beta=0.8,1.6",
+                 "--k", "2.6,2.8", "--amplitude", "0.1", "--theory-only", "--workers", "1",
+                 "--out", str(tmp_path)]) == 0
+    got = json.loads((tmp_path / "summary.json").read_text())["inputs"]
+    assert got == {"command": "flexmm map --model", "model": "fput",
+                   "parameters": {"alpha": 1.0}, "axes": {"beta": [0.8, 1.6], "k": [2.6, 2.8]},
+                   "k": None, "amplitude": 0.1, "branch": None, "N": None, "t_end": None,
+                   "seeds": None, "start": "exact", "exact": False, "theory_only": True,
+                   "device": "cpu", "block": got["block"]}
