@@ -288,16 +288,40 @@ def _check_g1_resolved(model: Model, c, branch) -> None:
             f"noise; give k (--k) >= {least:.3g}")
 
 
+#: (id of the model, k, branch) -> (the model, its NLS there or None: none), for the
+#: theories' amplitude checks: one NLS per carrier, not one per theory (the NLS costs
+#: ~3 ms, a quarter of a ring's exact or four-wave theory); the model kept beside its id,
+#: so that another model at a reused id is never taken for it
+_NLS_AT: dict = {}
+
+
+def _carrier_key(model: Model, k: float, branch) -> tuple:
+    return id(model), float(k), None if branch is None else str(branch)
+
+
+def remember_nls(model: Model, k: float, branch, r: ModelNLS | None) -> None:
+    """Keep ``r`` for ``check_resolved_amplitude`` at this carrier (a map cell computes
+    its NLS first)."""
+    if len(_NLS_AT) > 4096:  # a bound on the memory, not a cache policy
+        _NLS_AT.clear()
+    _NLS_AT[_carrier_key(model, k, branch)] = (model, r)
+
+
 def check_resolved_amplitude(model: Model, k: float, amplitude: float, branch=None) -> None:
     """A ModelError where ``amplitude`` is below what float64 resolves at carrier ``k``
     (``ModelNLS.smallest_amplitude``), for the theories that do not go through the NLS
     (exact, four-wave): their rates there are the Hill matrix's rounding. Nothing where
     the NLS has no answer at k (the theory itself then says why)."""
-    try:
-        r = nls(model, k, branch)
-    except ModelError:
-        return
-    r.check_resolved(amplitude)
+    kept = _NLS_AT.get(_carrier_key(model, k, branch))
+    if kept is None or kept[0] is not model:
+        try:
+            remember_nls(model, k, branch, nls(model, k, branch))
+        except ModelError:
+            remember_nls(model, k, branch, None)
+        kept = _NLS_AT[_carrier_key(model, k, branch)]
+    r = kept[1]
+    if r is not None and not r.undefined:
+        r.check_resolved(amplitude)
 
 
 def nls(model: Model, k: float, branch=None) -> ModelNLS:
