@@ -152,19 +152,18 @@ def test_simulate_seeds_refuses_a_spectrum_of_another_ring_at_the_same_k():
 def test_cells_whose_exact_rate_cannot_grow_20x_within_t_are_marked_and_counted():
     """ln 20 = 3.0: a rate 0.01 over T = 100 grows e^1 (too slow), over T = 1000 e^10; a
     cell the exact theory calls stable, or not simulated, is not 'too slow'."""
-    from numerics.maps._model_columns import slow_for_run
-
     params = _fput_map(N=64, t_end=100.0)
     arrays = {"done": np.array([[True, True], [True, False]]),
               "verdict_exact": np.array([[1, 1], [0, 1]], np.int8),
               "peak_gain_exact": np.array([[0.01, 0.01], [0.0, 0.01]]),
               "t_simulated": np.array([[100.0, 1000.0], [100.0, np.nan]]),
               "verdict_simulated": np.array([[0, 1], [0, -1]], np.int8)}
-    dims, flag, attrs = slow_for_run(params, arrays)["slow_for_T"]
+    dims, flag, attrs = params.derived_variables(arrays)["slow_for_T"]
     assert flag.tolist() == [[1, 0], [0, -1]]
     assert attrs["cells"] == 1 and attrs["runs_no_growth"] == 1
     assert params.derived_attrs({"slow_for_T": (dims, flag, attrs)})["slow_for_T_cells"] == 1
-    assert slow_for_run(_fput_map(theory_only=True, exact=True), arrays) == {}
+    assert "slow_for_T" not in _fput_map(theory_only=True, exact=True).derived_variables(
+        arrays)
 
 
 # --- a map's summary.json says what was run ------------------------------------------------
