@@ -181,7 +181,10 @@ def run_map_command(args, log=print):
                  overwrite=args.overwrite, timeout=args.timeout, device=device,
                  estimate=est - estimate.startup * estimate.startup_slowdown if done else None)
     verdicts = [n for n in ds.data_vars if n.startswith("verdict_")]
-    summary = {"cells": int(ds["done"].size), "simulated": int(ds["done"].values.sum()),
+    from ._map_inputs import paper_inputs
+
+    summary = {"inputs": paper_inputs(args, params, device),
+               "cells": int(ds["done"].size), "simulated": int(ds["done"].values.sum()),
                "agreement_with_simulation_percent": agreement(ds),
                "mi_fraction": {n.removeprefix("verdict_"): _mi_fraction(ds[n].values)
                                for n in verdicts},

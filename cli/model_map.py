@@ -224,7 +224,10 @@ def run_map(args) -> int:
     mi = {v: float(np.mean(ds[v].values == 1)) for v in verdicts}
     png = out / "map.png"
     _plot_map(_as_words(ds, verdicts), png, model)
-    summary = _summary(ds, verdicts, simulated)
+    from ._map_inputs import model_inputs
+
+    summary = {"inputs": model_inputs(params, model, device),
+               **_summary(ds, verdicts, simulated)}
     write_text(out / "summary.json", json.dumps(strict_json(summary), indent=2) + "\n")
     files = [str(path), str(png), str(out / "summary.json")]
     critical = _critical_rows(ds)
@@ -244,6 +247,8 @@ def run_map(args) -> int:
             res["critical_damping"] = critical
         if unsampled is not None:
             res["nls_band_unsampled"] = unsampled
+        if "slow_for_T_cells" in summary:
+            res["slow_for_T_cells"] = summary["slow_for_T_cells"]
         u, _ = ModelUnits.json(units, {})
         if "k" in res["axes"]:  # the k axis, in rad/m too
             u["lattice"]["k"] = "rad/site"
@@ -279,6 +284,8 @@ def run_map(args) -> int:
                if ag[n + "_undetermined_cells"] else "") for n in told))
     if unsampled and unsampled["cells"]:
         print(_unsampled_text(unsampled, args.N))
+    if summary.get("slow_for_T_cells"):  # runs too short for their cell's exact rate
+        print(f"{ds.attrs['slow_for_T_note']}; a longer --t-end decides them")
     for name, c in critical.items():
         other = c["along"]
         print(f"{name} (amplification {OBSERVABLE:g}x): " + ", ".join(
@@ -305,6 +312,8 @@ def _summary(ds, verdicts: list, simulated: bool) -> dict:
            "undetermined_cells": {n: int((ds[v].values < 0).sum()) for v, n in names.items()}}
     if simulated:
         out["agreement_with_simulation_percent"] = agreement(ds)
+    if "slow_for_T" in ds.data_vars:  # the runs whose T cannot reach their exact rate's 20x
+        out["slow_for_T_cells"] = int(ds["slow_for_T"].attrs["cells"])
     return out
 
 

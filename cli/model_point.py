@@ -326,6 +326,15 @@ def run_point(args) -> int:
     except ValueError as exc:
         raise ValueError(f"--N: {exc}") from None
     k, _ = snap_ring(args.k, args.N)
+    from energy import ModelError
+    from numerics.models import nls
+
+    try:  # an amplitude whose nonlinearity is rounding: refused, not three verdicts of it
+        nls(model, k, branch_of(args)).check_resolved(args.amplitude)
+    except ModelError as exc:
+        if str(exc).startswith("amplitude"):
+            raise ValueError(f"--amplitude: {exc}") from None
+        # no NLS here (no carrier, a resonance): the theories below say why
     launched = None  # a start the model registers (eq. IC): checked before any work
     if start not in ("exact", "linear"):
         from energy import ModelError

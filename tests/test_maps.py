@@ -114,11 +114,24 @@ def test_a_damaged_store_is_repaired_and_what_run_map_returns_is_the_store(tmp_p
     xr.testing.assert_identical(ds, first)
 
 
-@pytest.mark.parametrize("garbage", [b"\x00garbage" * 3, b"", b"\x02\x01" + bytes(40)])
+def _frame(flags, nbytes, blocksize, cbytes, rest):
+    """A Blosc 1 frame: 16 header bytes (version 2, typesize 8) and ``rest``."""
+    return (bytes((2, 1, flags, 8)) + b"".join(v.to_bytes(4, "little")
+                                               for v in (nbytes, blocksize, cbytes)) + rest)
+
+
+@pytest.mark.parametrize("garbage", [
+    b"\x00garbage" * 3, b"", b"\x02\x01" + bytes(40),
+    # headers that match the file (8 decoded bytes, the stored size its length) but whose
+    # frame leads the decoder outside it: a block start past the end, a copied chunk
+    # shorter than its data, a block size of 0
+    _frame(0x01, 8, 8, 24, (99).to_bytes(4, "little") + bytes(4)),
+    _frame(0x03, 8, 8, 20, bytes(4)),
+    _frame(0x01, 8, 0, 24, bytes(8))])
 def test_a_garbled_chunk_is_found_from_its_header_and_never_decoded(tmp_path, garbage):
     """Blosc reads past the end of a garbled buffer (numcodecs#228): what it raises, or
-    returns, depends on the memory beside it (a CI run once got KeyError: 5). A chunk whose
-    header does not match its file is named damaged without being decoded."""
+    returns, depends on the memory beside it (CI runs once got KeyError: 5, KeyError: 4).
+    A chunk whose frame does not match its file is named damaged without being decoded."""
     from numerics.maps._integrity import read_raw, unsound_chunks
 
     store = tmp_path / "map.zarr"

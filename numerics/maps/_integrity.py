@@ -74,12 +74,15 @@ def cell_checksums(arrays: dict, cells=None) -> np.ndarray:
 
 
 def unsound_chunks(array_dir: Path) -> set:
-    """The chunk keys of the zarr v2 array at ``array_dir`` ("i.j") whose Blosc header does
-    not match the file (format version, stored size = file size, decompressed size = the
-    chunk's): such a chunk is damaged, and is never handed to the decoder, because Blosc
-    reads past the end of a garbled buffer (numcodecs#228), which makes the error it raises
-    (or the values it returns) depend on the memory beside it. Empty for other codecs, and
-    when the metadata cannot be read (the caller's read fails and says so)."""
+    """The chunk keys of the zarr v2 array at ``array_dir`` ("i.j") whose Blosc frame does
+    not match the file: a damaged chunk, never handed to the decoder, because Blosc trusts
+    the offsets in its frame and reads past the end of a garbled buffer (numcodecs#228),
+    which makes the error it raises (KeyError, MemoryError for a header that asks for
+    1.7 GB, or values) depend on the memory beside it. Checked: the format version, stored
+    size = file size, decompressed size = the chunk's, a block size in [1, that size], and
+    either a copied chunk (16 header bytes + the data) or every block's start inside the
+    file after the table of starts. Empty for other codecs, and when the metadata cannot be
+    read (the caller's read fails and says so)."""
     try:
         meta = json.loads((array_dir / ".zarray").read_text())
         if (meta.get("compressor") or {}).get("id") != "blosc" or meta.get("filters"):
@@ -92,17 +95,33 @@ def unsound_chunks(array_dir: Path) -> set:
         if f.name.startswith("."):
             continue
         try:
-            with open(f, "rb") as fh:
-                head = fh.read(16)
-            size = f.stat().st_size
+            frame = f.read_bytes()
         except OSError:
             bad.add(f.name)
             continue
-        if (len(head) < 16 or head[0] not in (1, 2, 3, 4)
-                or int.from_bytes(head[4:8], "little") != want
-                or int.from_bytes(head[12:16], "little") != size):
+        if not _sound_blosc_frame(frame, want):
             bad.add(f.name)
     return bad
+
+
+def _sound_blosc_frame(frame: bytes, want: int) -> bool:
+    """Whether ``frame`` is a Blosc 1 frame of ``want`` bytes that the decoder can read
+    without leaving it (c-blosc's frame layout: 16 header bytes, then a copy of the data
+    when flag 0x02 is set, else one uint32 start per block and the blocks)."""
+    if len(frame) < 16 or frame[0] not in (1, 2, 3, 4):
+        return False
+    flags = frame[2]
+    nbytes, blocksize, cbytes = (int.from_bytes(frame[i:i + 4], "little") for i in (4, 8, 12))
+    if nbytes != want or cbytes != len(frame) or not 1 <= blocksize <= max(nbytes, 1):
+        return False
+    if flags & 0x02:  # copied, not compressed
+        return cbytes == nbytes + 16
+    nblocks = -(-nbytes // blocksize)
+    table = 16 + 4 * nblocks
+    if table > cbytes:
+        return False
+    starts = np.frombuffer(frame, "<u4", count=nblocks, offset=16)
+    return bool(np.all((starts >= table) & (starts < cbytes)))
 
 
 def read_raw(path: Path, names, shape) -> tuple[dict, np.ndarray]:

@@ -24,6 +24,23 @@ MODEL_VERDICT_ATTRS = {**VERDICT_ATTRS, "verdict_words": (
     "MI -> 1 (MI); stable, 'no growth within T' -> 0 (stable); undefined (no carrier or no "
     "travelling wave at the cell), undetermined (a run grew, but less than the threshold) "
     "-> -1 (undetermined)")}
+def simulated_verdict_attrs(theory_only: bool) -> dict:
+    """``verdict_simulated``'s own words: -1 is also "not simulated" (done False), and a
+    theory-only map's store holds no run at all (what its cells say until a simulated map
+    of the same parameters resumes the store)."""
+    words = (f"MI -> 1 (MI: most seeds grew more than {GROWTH_THRESHOLD:g}x); 'no growth "
+             "within T' -> 0 (stable); -1 (undetermined): not simulated where done is "
+             "False (no run made), else undefined (no travelling wave at the cell) or "
+             "undetermined (a run grew, but less than the threshold)")
+    if theory_only:
+        return {"long_name": "simulated verdict: not simulated (a theory-only map makes no "
+                             "run; -1 in every cell where done is False)",
+                "verdict_words": words, "undetermined": "not simulated: no run made"}
+    return {"long_name": f"simulated: most seeds grew more than {GROWTH_THRESHOLD:g}x",
+            "verdict_words": words,
+            "undetermined": "not simulated yet where done is False (no run made)"}
+
+
 #: the four-wave theory's fastest pair (``FourWave.mode_kind``) -> the store's int8 codes
 MODE_KIND_CODES = {"undefined": -1, "none": 0, "sidebands": 1, "backward": 2,
                    "parametric": 3}
@@ -159,6 +176,40 @@ def unsampled_band(params: ModelMapParameters, arrays: dict) -> dict:
     return {"nls_band_unsampled": (params.dims, flag, attrs)}
 
 
-__all__ = ["model_block", "unsampled_band", "VERDICT_CODES", "MODE_KIND_CODES",
+def slow_for_run(params: ModelMapParameters, arrays: dict) -> dict:
+    """``slow_for_T`` (int8 per cell: 1 where the exact theory calls the cell MI at a rate
+    too slow to grow GROWTH_THRESHOLD-fold within the run's length T (``t_simulated``:
+    peak_gain_exact T < ln(threshold)), so the run cannot decide and its verdict is "no
+    growth within T" or undetermined, not a disagreement with the theory; 0 for the other
+    simulated cells; -1 where no run was made), with the count in its attributes and in
+    the store's (``slow_for_T_cells``, what ``flexmm map --model`` prints): the paper
+    chain's map asks its theories the runs' question (a rate above ln(threshold) /
+    t_end), a model map says which cells its T cannot decide. Empty for a theory-only
+    map."""
+    need = {"done", "verdict_exact", "peak_gain_exact", "t_simulated"}
+    if params.theory_only or not need <= set(arrays):
+        return {}
+    done = np.asarray(arrays["done"], bool)
+    with np.errstate(invalid="ignore"):
+        reach = np.asarray(arrays["peak_gain_exact"], float) * np.asarray(
+            arrays["t_simulated"], float)
+    slow = done & (np.asarray(arrays["verdict_exact"]) == MI) & (reach < math.log(
+        GROWTH_THRESHOLD))
+    flag = np.where(done, slow, -1).astype(np.int8)
+    words = {n: int((slow & (np.asarray(arrays["verdict_simulated"]) == c)).sum())
+             for n, c in (("no_growth", STABLE), ("undetermined", UNDETERMINED),
+                          ("MI", MI))} if "verdict_simulated" in arrays else {}
+    attrs = {
+        "long_name": f"the exact theory's rate cannot grow {GROWTH_THRESHOLD:g}x within the "
+                     "run's T (peak_gain_exact t_simulated < ln(growth_threshold)): the run "
+                     "cannot decide",
+        "flag_values": [-1, 0, 1], "flag_meanings": "not_simulated decidable too_slow_for_T",
+        "cells": int(slow.sum()), "of": int(slow.size),
+        **{f"runs_{n}": v for n, v in words.items()},
+        "remedy": "a longer --t-end (or none: each cell's T from its exact rate)"}
+    return {"slow_for_T": (params.dims, flag, attrs)}
+
+
+__all__ = ["model_block", "unsampled_band", "slow_for_run", "simulated_verdict_attrs", "VERDICT_CODES", "MODE_KIND_CODES",
            "MODE_KIND_ATTRS", "MODEL_VERDICT_ATTRS", "SIMULATED_COLUMNS", "LOSSY_SIMULATED_COLUMNS",
            "OBSERVABLE_ATTRS", "VARIABLE_ATTRS"]

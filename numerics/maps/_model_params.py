@@ -33,6 +33,8 @@ from ._model_columns import (
     VARIABLE_ATTRS,
     VERDICT_CODES,
     model_block,
+    simulated_verdict_attrs,
+    slow_for_run,
     unsampled_band,
 )
 from ._params import DEFAULT_BLOCK
@@ -335,6 +337,7 @@ class ModelMapParameters:
         from ._critical import THRESHOLD, critical_damping
 
         out = self.unsampled_band(arrays)
+        out.update(slow_for_run(self, arrays))
         axis = self.damping_axis()
         if axis is None or not self.amplified():
             return out
@@ -369,11 +372,19 @@ class ModelMapParameters:
 
     def derived_attrs(self, derived: dict) -> dict:
         """The store's attributes from the derived variables: the count of cells whose NLS
-        band no ring offset samples (``nls_band_unsampled_cells``, of how many)."""
+        band no ring offset samples (``nls_band_unsampled_cells``, of how many), and of
+        cells whose runs are too short for their exact rate (``slow_for_T_cells``)."""
+        out = {}
+        if "slow_for_T" in derived:
+            a = derived["slow_for_T"][2]
+            out.update(slow_for_T_cells=a["cells"], slow_for_T_note=(
+                f"{a['cells']} of {a['of']} cells: the exact theory's rate is too slow to "
+                f"grow {GROWTH_THRESHOLD:g}x within the run's T, so their runs cannot decide "
+                "(variable slow_for_T)"))
         if "nls_band_unsampled" not in derived:
-            return {}
+            return out
         a = derived["nls_band_unsampled"][2]
-        return {"nls_band_unsampled_cells": a["cells"],
+        return {**out, "nls_band_unsampled_cells": a["cells"],
                 "nls_band_unsampled_note": (
                     f"{a['cells']} of {a['of']} cells: the semi-discrete NLS's MI band lies "
                     f"below the ring's smallest offset 2 pi / N = "
@@ -513,10 +524,10 @@ class ModelMapParameters:
                               dict(MODE_KIND_ATTRS))
             elif name.startswith("verdict_"):
                 theory = name.removeprefix("verdict_")
-                long = (f"simulated: most seeds grew more than {GROWTH_THRESHOLD:g}x"
-                        if theory == "simulated" else f"{theory} theory's verdict")
-                data[name] = (dims, np.full(shape, UNDETERMINED, np.int8),
-                              {"long_name": long, **MODEL_VERDICT_ATTRS})
+                attrs = {"long_name": f"{theory} theory's verdict", **MODEL_VERDICT_ATTRS}
+                if theory == "simulated":
+                    attrs.update(simulated_verdict_attrs(self.theory_only))
+                data[name] = (dims, np.full(shape, UNDETERMINED, np.int8), attrs)
             else:
                 data[name] = (dims, np.full(shape, np.nan), dict(VARIABLE_ATTRS.get(name, {})))
         data["done"] = (dims, np.zeros(shape, bool), {"long_name": "cell simulated"})

@@ -135,6 +135,8 @@ def _axes_differ(path: Path, params) -> str:
     for name, values in zip(params.dims, params.axis_values()):
         want = np.asarray(values, float)
         try:
+            if unsound_chunks(path / name):  # never decoded (_integrity.unsound_chunks)
+                continue
             got = np.asarray(group[name][...], float)
         except Exception:  # another map's axes (other names) or unreadable: not compared
             continue
@@ -170,7 +172,11 @@ def _checked(path: Path, params: MapParameters, overwrite: bool):
     """``_inspect``'s (what, detail), after refusing what only --overwrite may replace: an
     unreadable store, or another map with finished cells."""
     # --overwrite replaces another map or an unreadable store; this map's store is resumed
-    what, detail = _inspect(path, params) if path.exists() else ("none", None)
+    try:
+        what, detail = _inspect(path, params) if path.exists() else ("none", None)
+    except Exception as exc:  # any other failure to read it: named, never a traceback
+        first = str(exc).splitlines()[0][:100] if str(exc) else ""
+        what, detail = "unreadable", f"{type(exc).__name__}{': ' * bool(first)}{first}"
     if what == "unreadable" and not overwrite:
         raise ValueError(f"{path}: damaged: {detail}; which map it holds cannot be read, so "
                          "nothing in it can be trusted; replace it with --overwrite, or "

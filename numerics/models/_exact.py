@@ -420,6 +420,9 @@ def exact_gain(model: Model, k: float, amplitude: float, branch=None, *, N: int 
             raise ModelError(f"k must be in (0, pi], got {k!r}")
         k = float(k)
     samples = check_count("samples", samples, least=8)
+    from ._nls import check_resolved_amplitude
+
+    check_resolved_amplitude(model, k, amplitude, branch)  # no rates from rounding
     wave = travelling_wave(model, k, amplitude, branch)  # the branch checked (_connected)
     engine = _Sidebands(wave)
     if N:

@@ -470,8 +470,10 @@ def four_wave(model: Model, k: float, amplitude: float, branch=None, *, N: int |
         if not (math.isfinite(k) and 0 < k <= math.pi):
             raise ModelError(f"k must be in (0, pi], got {k!r}")
         q = _offset_grid(check_count("samples", samples, least=8))  # exact_gain's rule
+    from ._nls import check_resolved_amplitude
     from ._reach import energy_not_real
 
+    check_resolved_amplitude(model, k, a, branch)  # no rates from rounding
     # a wave the model cannot carry (its energy not real along it) has no four-wave rates:
     # the kernel's Taylor coefficients at rest would rate it as if it existed
     kernel = energy_not_real(model, k, a, branch) or _kernel(model, k, a, branch)

@@ -217,6 +217,90 @@ def _modes(model: Model, k: float):
     return lam, vecs, H, s
 
 
+#: float64's unit round-off: the rounding error of one operation, relative
+_EPS = float(np.finfo(float).eps)
+
+
+def _rounding_floor(H: np.ndarray, s: np.ndarray, k: float) -> float:
+    """The rounding error of omega^2 at ``k`` from the mass-weighted dynamical matrix:
+    its entries' (each K(0) + H12 (e^{ik} - 1) + H21 (e^{-ik} - 1), good to eps times the
+    size of those terms: ``dynamical_matrix``) and, with more than one field, the
+    Hermitian eigensolver's, backward stable to eps times the matrix's norm times its order
+    (an acoustic omega^2 ~ k^2 of a diatomic chain keeps no digit below k ~ 1e-8: its
+    eigenvalue is the small difference of the matrix's O(1) ones)."""
+    d = len(s)
+    H11, H12, H21, H22 = blocks(H, d)
+    w = np.abs(s)[:, None] * np.abs(s)[None, :]
+    # one field: omega^2 is the entry's real part, whose e^{ik} - 1 is -2 sin^2(k/2) (the
+    # imaginary parts cancel exactly); more: the entries' imaginary parts count too
+    dz = 2 * math.sin(k / 2) ** 2 if d == 1 else abs(2 * math.sin(k / 2))
+    terms = w * (np.abs(H11 + H22 + H12 + H21) + (np.abs(H12) + np.abs(H21)) * dz)
+    floor = _EPS * float(np.max(terms.sum(axis=1)))
+    if d > 1:
+        A = w * np.abs(dynamical_matrix(H, k))
+        floor += d * _EPS * float(np.max(A.sum(axis=1)))
+    # below the smallest normal number omega^2 underflows, losing its digits one by one
+    return max(floor, float(np.finfo(float).tiny))
+
+
+def _carrier_parts(model: Model, k: float, b: int):
+    """(lam, vecs, H, s, lam1, lam2): omega^2 of every branch at ``k``, the modes, and
+    d(omega_b^2)/dk, d^2(omega_b^2)/dk^2 of branch ``b`` (perturbation theory of the
+    Hermitian eigenproblem); lam1, lam2 None where omega_b^2 <= 0."""
+    lam, vecs, H, s = _modes(model, k)
+    if lam[b] <= 0:
+        return lam, vecs, H, s, None, None
+    phi = vecs[:, b]
+    A1 = s[:, None] * dynamical_matrix(H, k, 1) * s[None, :]
+    A2 = s[:, None] * dynamical_matrix(H, k, 2) * s[None, :]
+    lam1 = float(np.real(phi.conj() @ A1 @ phi))
+    lam2 = float(np.real(phi.conj() @ A2 @ phi))
+    for j in range(len(lam)):
+        if j != b and abs(lam[j] - lam[b]) > 1e-13 * max(1.0, abs(lam[b])):
+            lam2 += 2 * abs(vecs[:, j].conj() @ A1 @ phi) ** 2 / (lam[b] - lam[j])
+    return lam, vecs, H, s, lam1, lam2
+
+
+def _smallest_k(resolved, k: float) -> float | None:
+    """The smallest wavenumber in [k, pi] where ``resolved(k)`` holds (bisection in log k:
+    the rounding of a long wave's coefficients falls off as a power of k), or None where it
+    does not hold at pi either."""
+    if not resolved(math.pi):
+        return None
+    lo, hi = math.log(max(k, 1e-300)), math.log(math.pi)
+    for _ in range(60):  # 60 halvings of [ln 1e-300, ln pi]: k to 1e-15 relative
+        mid = (lo + hi) / 2
+        lo, hi = (lo, mid) if resolved(math.exp(mid)) else (mid, hi)
+    return math.exp(hi)
+
+
+def g1_resolved(lam: float, lam1: float, lam2: float, floor: float) -> bool:
+    """Whether g1's numerator lam2 - 2 v_g^2 (v_g^2 = lam1^2 / (4 lam)) is larger than its
+    rounding: the subtraction's own, eps (|lam2| + 2 v_g^2), and v_g^2's through omega^2's
+    (``floor`` / lam relative, which a long acoustic wave of several fields magnifies)."""
+    vg2 = lam1 ** 2 / (4 * lam)
+    return abs(lam2 - 2 * vg2) > _EPS * (abs(lam2) + 2 * vg2) + 2 * vg2 * floor / lam
+
+
+def smallest_resolved_k(model: Model, k: float, branch=None, of: str = "omega") -> float:
+    """The smallest k (>= ``k``) at which float64 resolves the carrier of ``branch``:
+    ``of`` "omega": omega^2 above its rounding floor (``_rounding_floor``); "g1": also
+    g1's two terms lam2 - 2 v_g^2, which cancel on a long acoustic wave (g1 ~ k while each
+    term ~ c^2), not equal within their rounding eps (|lam2| + 2 v_g^2). NaN where it is
+    not resolved even at pi."""
+    b = branch_index(model, k, branch)
+
+    def resolved(kk):
+        lam, _, H, s, lam1, lam2 = _carrier_parts(model, kk, b)
+        floor = _rounding_floor(H, s, kk)
+        if lam[b] <= floor:
+            return False
+        return of == "omega" or g1_resolved(lam[b], lam1, lam2, floor)
+
+    found = _smallest_k(resolved, k)
+    return math.nan if found is None else found
+
+
 def carrier(model: Model, k: float, branch=None) -> Carrier:
     """The carrier of ``branch`` at ``k`` with its group velocity and g1 (perturbation
     theory of the Hermitian eigenproblem; checked against finite differences in tests)."""
@@ -226,21 +310,22 @@ def carrier(model: Model, k: float, branch=None) -> Carrier:
     b = branch_index(model, k, branch)
     if why := rest_kink(model):
         raise ModelError(why)
-    lam, vecs, H, s = _modes(model, k)
+    lam, vecs, H, s, lam1, lam2 = _carrier_parts(model, k, b)
+    floor = _rounding_floor(H, s, k)
+    if abs(lam[b]) <= floor:  # lost to rounding (or an underflow): neither > 0 nor < 0
+        least = smallest_resolved_k(model, k, b)
+        if least == least:
+            raise ModelError(
+                f"k = {k:.6g} is below what float64 resolves on branch {b} of model "
+                f"{model.describe()}: omega^2 = {lam[b]:.3g} is within its rounding error "
+                f"{floor:.2g} or underflows (not a missing carrier); give k (--k) >= {least:.3g}")
     if lam[b] <= 0:
         raise ModelError(f"model {model.describe()}: branch {b} has omega^2 = {lam[b]:.3g} "
                          f"<= 0 at k = {k:.6g}: no carrier wave there")
     omega = math.sqrt(lam[b])
     phi = vecs[:, b]
-    A1 = s[:, None] * dynamical_matrix(H, k, 1) * s[None, :]
-    A2 = s[:, None] * dynamical_matrix(H, k, 2) * s[None, :]
-    lam1 = float(np.real(phi.conj() @ A1 @ phi))
-    lam2 = float(np.real(phi.conj() @ A2 @ phi))
     others = [j for j in range(len(lam)) if j != b]
     gap = min((abs(math.sqrt(max(lam[j], 0)) - omega) for j in others), default=math.inf)
-    for j in others:
-        if abs(lam[j] - lam[b]) > 1e-13 * max(1.0, abs(lam[b])):
-            lam2 += 2 * abs(vecs[:, j].conj() @ A1 @ phi) ** 2 / (lam[b] - lam[j])
     # omega(pi + q) = omega(pi - q) (time reversal and the 2 pi period): v_g is 0 at the
     # zone boundary, not sin(pi)'s round-off (6e-17 printed as a soliton's velocity)
     vg = 0.0 if k == math.pi else lam1 / (2 * omega)

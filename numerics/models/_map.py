@@ -8,7 +8,7 @@ import numpy as np
 
 from energy import Model, ModelError
 
-from ._nls import nls
+from ._nls import nls, remember_nls
 
 AXIS_K = "k"
 
@@ -240,6 +240,7 @@ def _cell_columns(model, k, amplitude, branch, *, exact, simulate, N, seeds, t_e
         k = snap_ring(k, N)[0]  # map (the NLS at k = 2 and the runs at 1.96 disagreed)
     try:
         r = nls(model, k, branch)
+        remember_nls(model, k, branch, r)  # the ring theories' amplitude check reads it
         row.update(verdict_semidiscrete=r.verdict, peak_gain_semidiscrete=r.peak_gain(amplitude),
                    g1=r.g1, g2=r.g2, reason=r.undefined or "", carrier=True)
     except ModelError as exc:  # e.g. no carrier on this branch at these values

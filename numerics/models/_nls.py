@@ -90,12 +90,41 @@ class ModelNLS:
             return "undefined"
         return "MI" if self.g > 0 else "stable"
 
+    def smallest_amplitude(self) -> float:
+        """The smallest amplitude whose nonlinearity float64 resolves at this carrier:
+        where the NLS's frequency shift |g2| a^2 / 4 (the nonlinear terms' share of the
+        wave's frequency) reaches omega's rounding error eps omega. Below it the wave is
+        linear to the last bit of omega: every theory's rate (~ the shift) is rounding
+        or an underflow, no verdict. 0 where the NLS is undefined or g2 = 0."""
+        g2 = abs(self.g2)
+        if self.undefined or not g2 > 0 or not math.isfinite(g2):
+            return 0.0
+        eps = float(np.finfo(float).eps)
+        # the product eps * omega / g2 first: a^2 itself may underflow
+        return 2 * math.sqrt(eps * self.carrier.omega / g2)
+
+    def check_resolved(self, amplitude: float) -> float:
+        """``amplitude``, or a ModelError naming the smallest one resolved
+        (``smallest_amplitude``): a one-line refusal, not a verdict from rounding."""
+        a = check_amplitude(amplitude)
+        least = self.smallest_amplitude()
+        if a < least:
+            raise ModelError(
+                f"amplitude a = {a:.3g} is below what float64 resolves at k = "
+                f"{self.carrier.k:.6g}: its nonlinear frequency shift |g2| a^2 / 4 = "
+                f"{abs(self.g2) / 4 * a * a:.3g} is under omega's rounding error eps omega = "
+                f"{float(np.finfo(float).eps) * self.carrier.omega:.3g}, so every theory's "
+                f"growth rate there is rounding, not a verdict; give amplitude "
+                f"(--amplitude) >= {least:.3g}")
+        return a
+
     def peak_gain(self, amplitude: float) -> float:
         """Fastest sideband growth rate |g2| a^2/4 (1/time) where MI, else 0; nan where
-        undefined."""
+        undefined. ModelError for an amplitude below ``smallest_amplitude``."""
         amplitude = check_amplitude(amplitude)
         if self.undefined:
             return math.nan
+        self.check_resolved(amplitude)
         return abs(self.g2) * amplitude**2 / 4 if self.g > 0 else 0.0
 
     def gain(self, offset, amplitude: float):
@@ -110,6 +139,7 @@ class ModelNLS:
                              f"{str(offset)[:60]}")
         if self.undefined:
             return np.full(q.shape, np.nan)
+        self.check_resolved(amplitude)
         g = self.g
         return np.where(g > 0, abs(self.g1) / 2 * q * np.sqrt(np.maximum(
             0.0, g * amplitude**2 - q**2)), 0.0)
@@ -234,6 +264,66 @@ def kept_acoustic_directions(model: Model) -> np.ndarray:
     return N
 
 
+def _check_g1_resolved(model: Model, c, branch) -> None:
+    """Refuse a long wave whose g1 float64 cannot resolve (``_linear.g1_resolved``): g1 =
+    (lam2 - 2 v_g^2) / (2 omega) is a difference of two terms ~ c^2 that cancel to ~ k^2
+    on an acoustic branch, and its sign, which decides the verdict, is then rounding (a
+    diatomic FPUT chain's flipped between k = 1e-4 and 1e-3). Asked after the NLS's
+    resonance checks: a long acoustic wave's mean flow resonance is an answer of its own.
+    An isolated zero of g1 (an inflection of omega(k)) is unresolved only within ~ eps
+    of it and keeps the NLS's 'g1 = 0': refused only where the resolved k lies beyond
+    sqrt(eps) relative."""
+    from ._linear import _EPS, _carrier_parts, _rounding_floor, g1_resolved, smallest_resolved_k
+
+    lam, _, H, s, lam1, lam2 = _carrier_parts(model, c.k, c.branch)
+    if c.k == math.pi or g1_resolved(lam[c.branch], lam1, lam2,
+                                     _rounding_floor(H, s, c.k)):
+        return
+    least = smallest_resolved_k(model, c.k, c.branch, of="g1")
+    if least == least and least > c.k * (1 + math.sqrt(_EPS)):
+        raise ModelError(
+            f"k = {c.k:.6g} is below what float64 resolves of the NLS on branch {c.branch} "
+            f"of model {model.describe()}: g1 = d^2 omega/dk^2's two terms (each "
+            f"~{c.group_velocity ** 2:.3g}) cancel to within their rounding, so its sign is "
+            f"noise; give k (--k) >= {least:.3g}")
+
+
+#: (id of the model, k, branch) -> (the model, its NLS there or None: none), for the
+#: theories' amplitude checks: one NLS per carrier, not one per theory (the NLS costs
+#: ~3 ms, a quarter of a ring's exact or four-wave theory); the model kept beside its id,
+#: so that another model at a reused id is never taken for it
+_NLS_AT: dict = {}
+
+
+def _carrier_key(model: Model, k: float, branch) -> tuple:
+    return id(model), float(k), None if branch is None else str(branch)
+
+
+def remember_nls(model: Model, k: float, branch, r: ModelNLS | None) -> None:
+    """Keep ``r`` for ``check_resolved_amplitude`` at this carrier (a map cell computes
+    its NLS first)."""
+    if len(_NLS_AT) > 4096:  # a bound on the memory, not a cache policy
+        _NLS_AT.clear()
+    _NLS_AT[_carrier_key(model, k, branch)] = (model, r)
+
+
+def check_resolved_amplitude(model: Model, k: float, amplitude: float, branch=None) -> None:
+    """A ModelError where ``amplitude`` is below what float64 resolves at carrier ``k``
+    (``ModelNLS.smallest_amplitude``), for the theories that do not go through the NLS
+    (exact, four-wave): their rates there are the Hill matrix's rounding. Nothing where
+    the NLS has no answer at k (the theory itself then says why)."""
+    kept = _NLS_AT.get(_carrier_key(model, k, branch))
+    if kept is None or kept[0] is not model:
+        try:
+            remember_nls(model, k, branch, nls(model, k, branch))
+        except ModelError:
+            remember_nls(model, k, branch, None)
+        kept = _NLS_AT[_carrier_key(model, k, branch)]
+    r = kept[1]
+    if r is not None and not r.undefined:
+        r.check_resolved(amplitude)
+
+
 def nls(model: Model, k: float, branch=None) -> ModelNLS:
     """The semi-discrete NLS of ``model`` on ``branch`` at carrier wavenumber ``k``.
 
@@ -330,6 +420,9 @@ def nls(model: Model, k: float, branch=None) -> ModelNLS:
                         f"g2 is not finite at k = {k:.6g} (it overflows: parameters "
                         f"{model.describe()} out of floating-point range?)", parts)
     out = ModelNLS(model, c, g2, v2, w, strain_dir, "", parts)
+    # after the resonances (a long acoustic wave's mean flow is one, and says so): a
+    # verdict resting on g1's sign only where float64 resolves it
+    _check_g1_resolved(model, c, branch)
     if abs(c.g1) < 1e-12 * max(abs(w0), 1.0):
         return ModelNLS(model, c, math.nan, v2, w, strain_dir,
                         f"g1 = d^2 omega/dk^2 = 0 at k = {k:.6g} (no dispersion: the NLS "

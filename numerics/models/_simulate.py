@@ -479,9 +479,31 @@ def _check_spec(model: Model, k: float, amplitude: float, spec, branch, N: int) 
         ("model", model.describe(), wave.model.describe(),
          wave.model.lattice == model.lattice and dict(wave.model.params) == dict(model.params)))
         if not same]
+    ring = _spec_ring(spec)
+    if ring != N:  # another ring's k can snap to the same 2 pi m / N: its offsets differ
+        differ.append(f"ring N = {N} (spec: "
+                      + ("the infinite chain, or no ring's offsets" if ring is None
+                         else f"N = {ring}") + ")")
     if differ:
         raise ModelError(f"spec is the exact theory of another wave: {'; '.join(differ)}; "
                          f"give exact_gain(model, k, amplitude, branch, N=N) of these")
+
+
+def _spec_ring(spec) -> int | None:
+    """The ring whose offsets 2 pi j / N (j = 1..N // 2) ``spec`` holds, from the offsets
+    themselves (``exact_gain(..., N=N)`` takes exactly those), or None: the infinite
+    chain's grid, or offsets of no ring."""
+    from ._exact import ring_offsets
+
+    q = np.asarray(getattr(spec, "offsets", ()), float).ravel()
+    if not q.size or not np.isfinite(q).all() or q[0] <= 0:
+        return None
+    n = round(2 * math.pi / q[0])
+    for N in (n, n + 1):  # N // 2 offsets: an odd ring's has the even ring's count
+        want = ring_offsets(N)
+        if want.shape == q.shape and np.allclose(q, want, rtol=1e-12, atol=0):
+            return N
+    return None
 
 
 def simulate_seeds(model: Model, k: float, amplitude: float, spec, *, branch=None,
