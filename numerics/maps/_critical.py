@@ -104,3 +104,40 @@ def critical_damping(damping, amplification, threshold: float = THRESHOLD,
         critical[c] = math.exp(math.log(g0) + f * (math.log(g1) - math.log(g0)))
         reasons.append("")
     return critical, reasons
+
+
+def critical_variables(params, arrays: dict) -> dict:
+    """Over a damping axis of the model map ``params`` (a ModelMapParameters),
+    ``critical_<damping>_<theory>`` per value of the other axis, for each theory's
+    amplification and, where cells were simulated, the runs' (``critical_<damping>_
+    simulated``): the damping where the amplification falls below 20x
+    (:func:`critical_damping`), nan where it does not cross inside the axis (the
+    variable's ``reason`` attribute says why, per value). {} without a damping axis."""
+    out = {}
+    axis = params.damping_axis()
+    if axis is None or not params.amplified():
+        return out
+    along = params.dims.index(axis)
+    other = params.dims[1 - along]
+    damping, values = params.axis_values()[along], params.axis_values()[1 - along]
+    theories = list(params.amplified())
+    if "amplification_simulated" in arrays and np.any(arrays["done"]):
+        theories.append("simulated")
+    for theory in theories:
+        amp = np.asarray(arrays[f"amplification_{theory}"], float)
+        done = np.asarray(arrays["done" if theory == "simulated" else "done_predicted"],
+                          bool)
+        amp = np.where(done, amp, np.nan)
+        crit, why = critical_damping(damping, amp if along == 0 else amp.T, THRESHOLD,
+                                     axis)
+        reason = "; ".join(f"{other} = {v:g}: {w}" for v, w in zip(values, why) if w)
+        out[f"critical_{axis}_{theory}"] = ((other,), crit, {
+            "long_name": f"critical {axis}: where the {theory} amplification falls below "
+                         f"{THRESHOLD:g}x for good along the {axis} axis (the sidebands "
+                         "are not observable above it)",
+            "damping_axis": axis, "theory": theory, "threshold": THRESHOLD,
+            "interpolation": "between the two cells that bracket the crossing: "
+                             "ln(ln A) linear in ln of the damping (ln A where the "
+                             "next cell is <= 1); no extrapolation",
+            "reason": reason or "every value crosses inside the axis"})
+    return out

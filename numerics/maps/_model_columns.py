@@ -210,6 +210,28 @@ def slow_for_run(params: ModelMapParameters, arrays: dict) -> dict:
     return {"slow_for_T": (params.dims, flag, attrs)}
 
 
-__all__ = ["model_block", "unsampled_band", "slow_for_run", "simulated_verdict_attrs", "VERDICT_CODES", "MODE_KIND_CODES",
+def derived_attrs(derived: dict) -> dict:
+    """The store's attributes from the derived variables: the count of cells whose NLS
+    band no ring offset samples (``nls_band_unsampled_cells``, of how many), and of
+    cells whose runs are too short for their exact rate (``slow_for_T_cells``)."""
+    out = {}
+    if "slow_for_T" in derived:
+        a = derived["slow_for_T"][2]
+        out.update(slow_for_T_cells=a["cells"], slow_for_T_note=(
+            f"{a['cells']} of {a['of']} cells: the exact theory's rate is too slow to "
+            f"grow {GROWTH_THRESHOLD:g}x within the run's T, so their runs cannot decide "
+            "(variable slow_for_T)"))
+    if "nls_band_unsampled" not in derived:
+        return out
+    a = derived["nls_band_unsampled"][2]
+    return {**out, "nls_band_unsampled_cells": a["cells"],
+            "nls_band_unsampled_note": (
+                f"{a['cells']} of {a['of']} cells: the semi-discrete NLS's MI band lies "
+                f"below the ring's smallest offset 2 pi / N = "
+                f"{a['ring_smallest_offset']:.4g}, which no ring offset samples "
+                "(variable nls_band_unsampled)")}
+
+
+__all__ = ["model_block", "unsampled_band", "slow_for_run", "derived_attrs", "simulated_verdict_attrs", "VERDICT_CODES", "MODE_KIND_CODES",
            "MODE_KIND_ATTRS", "MODEL_VERDICT_ATTRS", "SIMULATED_COLUMNS", "LOSSY_SIMULATED_COLUMNS",
            "OBSERVABLE_ATTRS", "VARIABLE_ATTRS"]

@@ -32,6 +32,7 @@ from ._model_columns import (
     SIMULATED_COLUMNS,
     VARIABLE_ATTRS,
     VERDICT_CODES,
+    derived_attrs,
     model_block,
     simulated_verdict_attrs,
     slow_for_run,
@@ -329,41 +330,14 @@ class ModelMapParameters:
 
     def derived_variables(self, arrays: dict) -> dict:
         """Variables computed from the finished cells (``run_map`` writes them after the
-        tasks): over a damping axis, ``critical_<damping>_<theory>`` per value of the other
-        axis, for each theory's amplification and, where cells were simulated, the runs'
-        (``critical_<damping>_simulated``): the damping where the amplification falls
-        below 20x (``_critical.critical_damping``), nan where it does not cross inside the
-        axis (the variable's ``reason`` attribute says why, per value)."""
-        from ._critical import THRESHOLD, critical_damping
+        tasks): ``nls_band_unsampled``, ``slow_for_T`` and, over a damping axis,
+        ``critical_<damping>_<theory>`` per value of the other axis
+        (``_critical.critical_variables``)."""
+        from ._critical import critical_variables
 
         out = self.unsampled_band(arrays)
         out.update(slow_for_run(self, arrays))
-        axis = self.damping_axis()
-        if axis is None or not self.amplified():
-            return out
-        along = self.dims.index(axis)
-        other = self.dims[1 - along]
-        damping, values = self.axis_values()[along], self.axis_values()[1 - along]
-        theories = list(self.amplified())
-        if "amplification_simulated" in arrays and np.any(arrays["done"]):
-            theories.append("simulated")
-        for theory in theories:
-            amp = np.asarray(arrays[f"amplification_{theory}"], float)
-            done = np.asarray(arrays["done" if theory == "simulated" else "done_predicted"],
-                              bool)
-            amp = np.where(done, amp, np.nan)
-            crit, why = critical_damping(damping, amp if along == 0 else amp.T, THRESHOLD,
-                                         axis)
-            reason = "; ".join(f"{other} = {v:g}: {w}" for v, w in zip(values, why) if w)
-            out[f"critical_{axis}_{theory}"] = ((other,), crit, {
-                "long_name": f"critical {axis}: where the {theory} amplification falls below "
-                             f"{THRESHOLD:g}x for good along the {axis} axis (the sidebands "
-                             "are not observable above it)",
-                "damping_axis": axis, "theory": theory, "threshold": THRESHOLD,
-                "interpolation": "between the two cells that bracket the crossing: "
-                                 "ln(ln A) linear in ln of the damping (ln A where the "
-                                 "next cell is <= 1); no extrapolation",
-                "reason": reason or "every value crosses inside the axis"})
+        out.update(critical_variables(self, arrays))
         return out
 
     def unsampled_band(self, arrays: dict) -> dict:
@@ -371,25 +345,8 @@ class ModelMapParameters:
         return unsampled_band(self, arrays)
 
     def derived_attrs(self, derived: dict) -> dict:
-        """The store's attributes from the derived variables: the count of cells whose NLS
-        band no ring offset samples (``nls_band_unsampled_cells``, of how many), and of
-        cells whose runs are too short for their exact rate (``slow_for_T_cells``)."""
-        out = {}
-        if "slow_for_T" in derived:
-            a = derived["slow_for_T"][2]
-            out.update(slow_for_T_cells=a["cells"], slow_for_T_note=(
-                f"{a['cells']} of {a['of']} cells: the exact theory's rate is too slow to "
-                f"grow {GROWTH_THRESHOLD:g}x within the run's T, so their runs cannot decide "
-                "(variable slow_for_T)"))
-        if "nls_band_unsampled" not in derived:
-            return out
-        a = derived["nls_band_unsampled"][2]
-        return {**out, "nls_band_unsampled_cells": a["cells"],
-                "nls_band_unsampled_note": (
-                    f"{a['cells']} of {a['of']} cells: the semi-discrete NLS's MI band lies "
-                    f"below the ring's smallest offset 2 pi / N = "
-                    f"{a['ring_smallest_offset']:.4g}, which no ring offset samples "
-                    "(variable nls_band_unsampled)")}
+        """The store's attributes from the derived variables (``_model_columns``)."""
+        return derived_attrs(derived)
 
     @property
     def task(self):
