@@ -12,6 +12,7 @@ share of a core a busy process gets at the start (:func:`cpu_share`, 0.2 s).
 
 from __future__ import annotations
 
+import contextlib
 import json
 import math
 import os
@@ -300,6 +301,13 @@ def probe_model_run(model, k: float, amplitude: float, branch=None, *, N: int, t
     return run, max(warm - run / 1e4, 0.0)  # the first call ran 1e-4 of the run
 
 
+#: the ring of the probe's warm-up call (its exact and four-wave theories, as a cell's)
+WARMUP_RING = 16
+#: a first cell cheaper than this many CPU seconds is followed by the other picks, timed
+#: (what the first call still loaded, ~0.5 s, would dominate its time)
+PROBE_MORE_BELOW = 2.0
+
+
 def probe_model_cell(params) -> ModelCellCost:
     """One cell of the model map ``params`` (a ModelMapParameters), its middle one,
     measured here: its theories as a task computes them, and, for a simulated map, a
@@ -328,10 +336,19 @@ def probe_model_cell(params) -> ModelCellCost:
 
     t0 = time.process_time()  # the NLS alone first: the imports a worker pays once
     map_cells(model, [({}, k)], amplitude, params.branch_value, N=params.N)
+    if params.ring:
+        # the ring's theories on a small ring: their kernels compiled (an empty numba
+        # cache: 33 s on a fresh H200 host, a cell 0.5 s) or loaded, which a worker pays
+        # once; their types, not N, decide what compiles
+        from energy import ModelError
+
+        with contextlib.suppress(ModelError, ValueError, ArithmeticError):
+            map_cells(model, [({}, k)], amplitude, params.branch_value, exact=True,
+                      N=min(params.N, WARMUP_RING), start=getattr(params, "start", "exact"))
     warmup = time.process_time() - t0
     first, row = theories(*cells[0])
     times = [first]
-    if first < 2.0:  # cheap cells: what the first call still loaded (~0.5 s) would dominate
+    if first < PROBE_MORE_BELOW:  # cheap cells: what the first still loaded would dominate
         times = [theories(*c)[0] for c in cells[1:]] or [theories(*cells[0])[0]]
         warmup += max(first - float(np.mean(times)), 0.0)
     theory = float(np.mean(times))
