@@ -35,7 +35,10 @@ growing eigenvalues refined by Newton at P, fastest first (``_strong``: flexmm's
 at ~1/4 of the dense eigenproblem's cost; that pencil in real arithmetic where a diagonal
 phase makes the Hill matrix real, every built-in model's wave: ``_real_gauge``, ~1/3 of
 the complex eigensolver's cost); where that does not settle either, that
-offset's dense eigenproblem at the same P. The fastest mode is computed again
+offset's dense eigenproblem at the same P. On a ring (k = 2 pi m / N) a one-field wave's
+modes are found once, in the clusters that hold an l = 0 root, at every ring offset, and
+moved to the offsets q - s k where they are centred at l = s (``_ring_copies``: about
+half the clusters solved). The fastest mode is computed again
 at P + PERSIST_STEP (the truncation persistence rule of CONVENTIONS.md;
 ``HillSpectrum.truncations`` names both); where it moves by more than 1e-6 relative, the
 whole spectrum is the dense one at H + 4. tests/test_exact_gain_anchors.py holds the
@@ -314,8 +317,10 @@ class _Sidebands:
         gains = np.zeros(offsets.size)
         modes = np.zeros(offsets.size, int)
         offs = np.full(offsets.size, math.nan)
+        # every argument given: numba's specialisation with the defaults omitted ran the
+        # kernel 3-15% slower (measured, fput and klein-gordon, alternating in one process)
         lam, vec, count = sideband_modes(self.Hh, self.masses, wave.k, wave.omega, P, offsets,
-                                         self.floor, MAX_MODES, MAX_CLUSTER)
+                                         self.floor, MAX_MODES, MAX_CLUSTER, True, False)
         self._keep(offsets, lam, vec, count, gains, modes, offs, gains_only)
         dense = np.flatnonzero(count < 0)
         Pc = P - CENTRAL_MARGIN
@@ -374,11 +379,18 @@ class _Sidebands:
 
         offs[at] = _sideband_offsets(offsets[grows], l_, k, w_best)
 
-    def checked(self, offsets) -> HillSpectrum:
+    def checked(self, offsets, ring=None) -> HillSpectrum:
         """``spectrum``, its fastest mode checked at P + PERSIST_STEP harmonics: where it
         moves by more than 1e-6 relative, the whole spectrum densely at the wave's
-        H + 4 (the truncation before issue 41)."""
-        spec = self.spectrum(offsets)
+        H + 4 (the truncation before issue 41). ``ring``: (N, m), ``offsets`` the ring's
+        and k = 2 pi m / N, a one-field wave: the spectrum from the modes' copies at l = 0
+        (``_ring_copies``: ~half the clusters solved)."""
+        if ring is None:
+            spec = self.spectrum(offsets)
+        else:
+            from ._ring_copies import ring_copies
+
+            spec = ring_copies(self, *ring)
         if spec.peak_gain <= 0:
             return spec
         i = int(np.argmax(spec.gain))
@@ -411,7 +423,7 @@ def exact_gain(model: Model, k: float, amplitude: float, branch=None, *, N: int 
 
     if N is not None:
         N = check_ring(N)  # N = 0 is a bad ring, not the infinite chain
-        k = snap_ring(k, N)[0]
+        k, m = snap_ring(k, N)
     else:  # the ring's snap checks k; the chain's as four_wave and nls do
         if isinstance(k, (bool, np.bool_)) or not isinstance(k, numbers.Real):
             raise ModelError(f"k must be a real number in (0, pi], got {type(k).__name__} "
@@ -426,7 +438,8 @@ def exact_gain(model: Model, k: float, amplitude: float, branch=None, *, N: int 
     wave = travelling_wave(model, k, amplitude, branch)  # the branch checked (_connected)
     engine = _Sidebands(wave)
     if N:
-        return engine.checked(ring_offsets(N))
+        one = wave.model.n_fields == 1
+        return engine.checked(ring_offsets(N), ring=(N, m) if one else None)
     # small offsets log-spaced below the uniform grid's first point: a weak wave's band is
     # O(a) wide (a = 0.002: edge 0.005, inside the first uniform step pi / 400)
     q = np.concatenate([np.geomspace(1e-5, np.pi / samples, 40, endpoint=False),

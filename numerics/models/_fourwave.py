@@ -203,14 +203,16 @@ def _harmonic_ratio(H, M, k, w, e, v2) -> float:
     return math.sqrt(abs(e2) / e1) if e1 > 0 else math.inf
 
 
-def second_harmonic_size(model: Model, k: float, a: float, branch=None) -> float:
+def second_harmonic_size(model: Model, k: float, a: float, branch=None, car=None) -> float:
     """The carrier's second harmonic at amplitude a, to O(a^2), against its first
     harmonic (square root of their energies' ratio; inf at a resonance): small for a
-    weakly nonlinear wave, O(1) where 2 omega(k) meets a branch at 2k."""
+    weakly nonlinear wave, O(1) where 2 omega(k) meets a branch at 2k. ``car``: the
+    carrier ``carrier(model, k, branch)`` where the caller has it (``travelling_wave``:
+    ~0.07 ms of its ~1.3 for fput)."""
     H, T, _ = model.code.taylor(model.p)
     d = model.n_fields
     M = np.diag(np.asarray(model.masses, float))
-    c = carrier(model, k, branch)
+    c = carrier(model, k, branch) if car is None else car
     X1 = np.concatenate([c.e, np.exp(1j * k) * c.e])
     P2 = np.hstack([np.eye(d), np.eye(d) * np.exp(-2j * k)])
     D2 = dynamical_matrix(H, 2 * k) - (2 * c.omega) ** 2 * M

@@ -412,7 +412,7 @@ def _pencil_from_parts(parts, P, k, q, eq, K):
 
 @njit(**_KW)
 def sideband_modes(Hh, masses, k, omega, P, offsets, floor, max_modes, max_cluster,
-                   pretest=True):
+                   pretest=True, zero_only=False):
     """For each offset: the growing eigenvalues of every cluster that can hold a mode
     centred at l = -1, 0, 1 (module docstring), with their eigenvectors in the harmonics'
     coordinates (field-major inside a harmonic, as ``_exact``'s dense pencil).
@@ -424,6 +424,8 @@ def sideband_modes(Hh, masses, k, omega, P, offsets, floor, max_modes, max_clust
     copies l omega + w and (l + 2) omega - w meet at every harmonic chain the discs).
     ``pretest``: that last case told from the central harmonics' discs first where it can
     be (``_chaining``; False: the full pass at every offset, the same answers).
+    ``zero_only``: only the clusters that hold a root of l = 0 (``_ring_copies``: on a
+    ring the other central modes are copies found so at the offsets q +- k, q +- 2k).
     """
     d = masses.size
     nl = 2 * P + 1
@@ -439,10 +441,12 @@ def sideband_modes(Hh, masses, k, omega, P, offsets, floor, max_modes, max_clust
         sq_n[i] = sq[i % d]
     Om = np.empty(n)
     lvec = np.empty(n, np.int64)
+    asked = np.empty(n, np.bool_)  # the coordinates whose clusters are solved
     for li in range(nl):
         for a in range(d):
             Om[li * d + a] = (li - P) * omega
             lvec[li * d + a] = li - P
+            asked[li * d + a] = li == P if zero_only else abs(li - P) <= 1
     K = np.empty((n, n), np.complex128)
     V = np.zeros((n, n), np.complex128)
     w2 = np.empty(n)
@@ -580,7 +584,7 @@ def sideband_modes(Hh, masses, k, omega, P, offsets, floor, max_modes, max_clust
                 plus |= sg[j] == 1
                 minus |= sg[j] == -1
                 joint |= sg[j] == 0
-                central |= abs(lvec[co[j]]) <= 1
+                central |= asked[co[j]]
             if central and (joint or (plus and minus)):
                 inC = np.zeros(n, np.bool_)
                 for t in range(start, end):
