@@ -34,9 +34,10 @@ def pencil_parts(Hh, sq, ed):
     ``_sidebands._pencil_from_parts``, the one builder of the pencil):
     block (l, h) = AD_s + B_s e^{i (q + h k)} + C_s e^{-i (q + l k)}, s = l - h + 2P, with
     AD_s = M^{-1/2} (Hhat_s[:d, :d] + Hhat_s[d:, d:] e^{-i (l - h) k}) M^{-1/2} and B_s,
-    C_s the off-diagonal quarters Hhat_s[:d, d:], Hhat_s[d:, :d], scaled alike. Shape (3, 4P + 1, d, d).
-    Computed once per call of ``sideband_modes`` (and of ``_strong.strong_modes``): an entry then costs two complex products, not three and a scaling
-    (and the q-independent phase e^{-i (l - h) k} is no longer taken per entry)."""
+    C_s the off-diagonal quarters Hhat_s[:d, d:], Hhat_s[d:, :d], scaled alike. Shape
+    (3, 4P + 1, d, d). Computed once per call of ``sideband_modes`` (and of
+    ``_strong.strong_modes``): an entry then costs two complex products, not three and a
+    scaling (and the q-independent phase e^{-i (l - h) k} is no longer taken per entry)."""
     ns = Hh.shape[0]
     d = sq.size
     out = np.empty((3, ns, d, d), np.complex128)
