@@ -24,6 +24,14 @@ def test_a_theory_only_model_store_says_its_simulated_verdict_holds_no_run():
     assert (ds["verdict_simulated"].values == -1).all() and "-1" in said
 
 
+def test_a_theorys_verdict_words_speak_of_the_theory_not_of_runs():
+    ds = _fput_map(N=64, t_end=100.0).new_dataset()
+    for name in ("verdict_semidiscrete", "verdict_exact", "verdict_fourwave"):
+        words = ds[name].attrs["verdict_words"]
+        assert "run" not in words and "no growth within T" not in words, name
+        assert "not predicted yet" in words and "undefined" in words, name
+
+
 def test_a_simulated_model_store_names_not_simulated_beside_a_run_that_grew_too_little():
     attrs = _fput_map(N=64, t_end=100.0).new_dataset()["verdict_simulated"].attrs
     assert "not simulated yet where done is False" in attrs["undetermined"]

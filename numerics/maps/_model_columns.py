@@ -19,11 +19,12 @@ if TYPE_CHECKING:
 #: a model's verdict words (``numerics.models``) -> the store's int8 codes
 VERDICT_CODES = {"MI": MI, "stable": STABLE, "no growth within T": STABLE,
                  "undetermined": UNDETERMINED, "undefined": UNDETERMINED}
-#: the mapping, stored with each verdict variable
+#: the mapping, stored with each theory's verdict variable (the runs' own:
+#: ``simulated_verdict_attrs``)
 MODEL_VERDICT_ATTRS = {**VERDICT_ATTRS, "verdict_words": (
-    "MI -> 1 (MI); stable, 'no growth within T' -> 0 (stable); undefined (no carrier or no "
-    "travelling wave at the cell), undetermined (a run grew, but less than the threshold) "
-    "-> -1 (undetermined)")}
+    "MI -> 1 (MI); stable -> 0 (stable); undefined (no carrier, no travelling wave or no "
+    "theory at the cell: its reason is the point's) or not predicted yet (done_predicted "
+    "False) -> -1 (undetermined)")}
 def simulated_verdict_attrs(theory_only: bool) -> dict:
     """``verdict_simulated``'s own words: -1 is also "not simulated" (done False), and a
     theory-only map's store holds no run at all (what its cells say until a simulated map
