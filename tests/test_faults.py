@@ -326,11 +326,11 @@ def test_a_full_disk_while_a_map_writes_names_the_store_and_keeps_its_cells(tmp_
     written = []
     real = _store._CellWriter.write
 
-    def write(self, region, cells):
+    def write(self, region, cells, arrays=None):
         if written:
             raise OSError(28, "No space left on device")
         written.append(cells)
-        return real(self, region, cells)
+        return real(self, region, cells, arrays)
 
     monkeypatch.setattr(_store._CellWriter, "write", write)
     args = ["map", "--case", "rotation", "--alpha", "3.1", "--K-s", "0.024", "--delta",
