@@ -24,6 +24,23 @@ def test_a_theory_only_model_store_says_its_simulated_verdict_holds_no_run():
     assert (ds["verdict_simulated"].values == -1).all() and "-1" in said
 
 
+def test_a_theory_only_store_resumed_by_a_simulated_map_says_it_holds_runs(tmp_path):
+    import xarray as xr
+
+    from numerics.maps import run_map
+
+    quiet = dict(workers=1, progress=False, log=lambda *a: None)
+    theory = run_map(_fput_map(N=16, theory_only=True, exact=True, t_end=6.0), tmp_path, **quiet)
+    assert int(theory.attrs["theory_only"]) == 1
+    ds = run_map(_fput_map(N=16, t_end=6.0), tmp_path, **quiet)
+    assert ds["done"].values.all()
+    back = xr.open_zarr(tmp_path / "map.zarr")
+    for d in (ds, back):  # what run_map returns and what the store says
+        assert int(d.attrs["theory_only"]) == 0
+        assert d["verdict_simulated"].attrs["long_name"].startswith("simulated:")
+        assert "no run made" not in d["verdict_simulated"].attrs["long_name"]
+
+
 def test_a_theorys_verdict_words_speak_of_the_theory_not_of_runs():
     ds = _fput_map(N=64, t_end=100.0).new_dataset()
     for name in ("verdict_semidiscrete", "verdict_exact", "verdict_fourwave"):

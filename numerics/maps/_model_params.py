@@ -348,6 +348,12 @@ class ModelMapParameters:
         """The store's attributes from the derived variables (``_model_columns``)."""
         return derived_attrs(derived)
 
+    def simulated_attrs(self) -> dict:
+        """The attributes of the runs' variables as this map writes them (``run_map`` puts
+        them on a theory-only store that a simulated map resumed)."""
+        return {} if self.theory_only else {
+            "verdict_simulated": simulated_verdict_attrs(False)}
+
     @property
     def task(self):
         return model_block

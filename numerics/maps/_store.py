@@ -261,8 +261,15 @@ def run_map(params: MapParameters, out: Path, scheduler: str | None = None,
             from ._devices import device_attrs
 
             who = device_attrs(device, scheduler)
-            zarr.open_group(str(path), mode="r+", use_consolidated=False).attrs.update(who)
+            # a theory-only store resumed by a simulated map now holds runs: its own flag
+            # and what its simulated variables say follow (they said "no run made")
+            who["theory_only"] = params.attrs()["theory_only"]
+            group = zarr.open_group(str(path), mode="r+", use_consolidated=False)
+            group.attrs.update(who)
             ds.attrs.update(who)
+            for name, attrs in getattr(params, "simulated_attrs", dict)().items():
+                group[name].attrs.update(attrs)
+                ds[name].attrs.update(attrs)
         # .zmetadata is derived from the arrays' own metadata: rebuilt on every run, so a
         # stale or damaged copy never keeps xr.open_zarr(path) from reading the store
 
