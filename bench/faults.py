@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import math
 import re
+from pathlib import Path
 
 import numpy as np
 
@@ -102,6 +103,16 @@ CATALOGUE += MAP_CATALOGUE
 
 
 
+def _where(exc: BaseException) -> str:
+    """The last three frames an exception passed, innermost last (a rare failure, seen
+    once in CI, then says where it came from)."""
+    import traceback
+
+    frames = traceback.extract_tb(exc.__traceback__)[-3:]
+    return " <- ".join(f"{Path(f.filename).name}:{f.lineno} {f.name}"
+                       for f in reversed(frames)) or "?"
+
+
 def run_one(action, expected):
     """("clear error" | "worked" | "problem", what happened). ``("cli", code, regex)``: the
     action returns (exit code, stderr) of a CLI call; a clear error is that code and one
@@ -122,7 +133,7 @@ def run_one(action, expected):
         if expected[0] == E and isinstance(exc, expected[1]) and \
                 re.search(expected[2], str(exc)):
             return "clear error", f"{type(exc).__name__}: {exc}"
-        return "problem", f"{type(exc).__name__}: {exc}"
+        return "problem", f"{type(exc).__name__}: {exc} (raised at {_where(exc)})"
     if expected[0] == "ok" and expected[1](result):
         return "worked", "as expected"
     return "problem", f"returned {type(result).__name__} (expected {expected[0]})"
