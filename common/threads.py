@@ -43,4 +43,16 @@ def one_blas_thread(fn):
     return wrapper
 
 
-__all__ = ["one_blas_thread"]
+__all__ = ["one_blas_thread", "threaded_get"]
+
+
+def threaded_get():
+    """Dask's threaded scheduler, as a callable: ``dask.compute(..., scheduler=
+    threaded_get())`` runs on this process' threads without asking distributed for a
+    default client, which ``scheduler="threads"`` does first, and whose registry lookup
+    races with the garbage collection of a closed client (distributed's
+    ``_get_global_client``: a KeyError, seen in CI as 'KeyError: 4' while a map store's
+    theory columns were computed)."""
+    import dask.threaded
+
+    return dask.threaded.get

@@ -226,3 +226,26 @@ def test_a_model_maps_summary_holds_its_inputs(tmp_path):
                    "k": None, "amplitude": 0.1, "branch": None, "N": None, "t_end": None,
                    "seeds": None, "start": "exact", "exact": False, "theory_only": True,
                    "device": "cpu", "block": got["block"]}
+
+
+def test_the_theory_columns_never_ask_distributed_for_a_client(tmp_path, monkeypatch):
+    """A map store's theory columns run on Dask's threaded scheduler without the default
+    client lookup, which races with the garbage collection of a closed client (CI saw
+    'KeyError: 4' from distributed's _get_global_client while a damaged store's theory
+    columns were recomputed). Here the registry's entry vanishes on every lookup."""
+    pytest.importorskip("distributed")
+    import distributed.client as dc
+
+    from common import paper
+    from numerics.maps import MapParameters, open_or_create
+
+    class Vanishing(dict):
+        def __getitem__(self, key):  # collected between list() and [key]
+            raise KeyError(key)
+
+    monkeypatch.setattr(dc, "_global_clients", Vanishing({4: None}))
+    params = MapParameters(case="coupled", alpha=paper.ALPHA, K_s=paper.K_S,
+                           delta=(0.0035, -0.002), k=(1.1, 1.6), amplitude=0.02, N=100,
+                           t_end=300.0, theory_only=True, block=1)
+    ds = open_or_create(tmp_path / "map.zarr", params, log=lambda *a: None)
+    assert ds["verdict_exact"].shape == (2, 2)

@@ -22,7 +22,7 @@ import functools
 
 import numpy as np
 
-from common.threads import one_blas_thread
+from common.threads import one_blas_thread, threaded_get
 from generated import lattice_model as model
 
 from ..lattice import Material, check_case, checks
@@ -300,8 +300,9 @@ def stability_map(k, delta=None, case: str | None = None, alpha: float | None = 
     tasks = [dask.delayed(_stability_chunk)(kf[s:s + chunk], Ktf[s:s + chunk], float(alpha),
                                             float(K_s), float(amplitude), q, H,
                                             case == "coupled", modes) for s in starts]
-    # chunks on the machine's cores (LAPACK on one BLAS thread releases the GIL)
-    for s, g in zip(starts, dask.compute(*tasks, scheduler="threads")):
+    # chunks on the machine's cores (LAPACK on one BLAS thread releases the GIL), by the
+    # threaded scheduler itself (``threaded_get``: no client lookup)
+    for s, g in zip(starts, dask.compute(*tasks, scheduler=threaded_get())):
         out[s:s + chunk] = g
     return out.reshape(k.shape)
 

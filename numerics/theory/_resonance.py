@@ -33,7 +33,7 @@ import dask
 import numpy as np
 from numba import njit
 
-from common.threads import one_blas_thread
+from common.threads import one_blas_thread, threaded_get
 from generated import lattice_model as model
 
 from ..lattice import checks
@@ -203,7 +203,7 @@ def resonance_map(k, delta=None, case: str | None = None, alpha: float | None = 
              for sl in slices]
     # chunks on the machine's cores: NumPy, LAPACK and the compiled loops release the GIL
     # (1.9x on 2 cores against one thread, chunks of 1000 cells, measured once)
-    for sl, res in zip(slices, dask.compute(*tasks, scheduler="threads")):
+    for sl, res in zip(slices, dask.compute(*tasks, scheduler=threaded_get())):
         for name in out:
             out[name][sl] = res[name]
     return {name: v.reshape(k.shape) for name, v in out.items()}
