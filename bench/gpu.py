@@ -7,6 +7,9 @@ one launch over chains x sites x force evaluations done), ``cells_per_s`` (the s
 ``map_64x64_wall_s`` and ``map_512x512_wall_s`` (N = 500, T = 5000, paper start, one seed,
 through ``flexmm map --device gpu``), ``cpu_cores`` and ``map_64x64_cpu_wall_s`` (the same
 64 x 64 map through ``flexmm map`` on the CPU cores) and ``gpu_speedup`` (their ratio).
+``--maps 32 --cpu-map 32`` times the 32 x 32 map on both instead (``map_32x32_wall_s``,
+``map_32x32_cpu_wall_s``), where a device lease cannot hold the 64 x 64 CPU map;
+``gpu_speedup_map`` names the size the speed-up was measured at (the largest with both).
 The maps are measured, never estimated: a map the CLI cannot run on the GPU (no
 ``--device`` yet) is null with the reason in ``notes``. ``models``: every built-in model's
 own kernel (its generated site force, ``numerics.maps.simulate_model_cells_gpu``'s launch):
@@ -21,7 +24,7 @@ what it measured; the stages not reached are null, said in ``notes``). ``version
 numba-cuda and numpy, as measured.
 
     python -m bench.gpu [--quick] [--out DIR | --update] [--skip-cpu-map] [--maps 64,512]
-                        [--resume]
+                        [--cpu-map 64] [--resume]
 """
 
 from __future__ import annotations
@@ -43,6 +46,11 @@ HERE = Path(__file__).resolve().parent
 #: the map of the goals: the paper's alpha and K_s, delta across zero, k over the branch
 MAP = ["--alpha", "2.5", "--K-s", "0.01851", "--case", "coupled", "--N", "500",
        "--t-end", "5000", "--start", "paper", "--seeds", "1", "--overwrite", "--yes"]
+
+
+#: the maps' sizes (cells a side) bench.gpu can time on the GPU, and on the CPU cores
+GPU_MAP_SIZES = (32, 64, 512)
+CPU_MAP_SIZES = (32, 64)
 
 
 def map_args(n: int) -> list:
@@ -159,8 +167,13 @@ def main(argv=None) -> int:
     ap.add_argument("--resume", action="store_true",
                     help="keep the stages a results_gpu.json of the same GPU already has")
     ap.add_argument("--maps", default="64,512",
-                    help="which GPU maps to time (64 and/or 512 cells a side)")
+                    help="which GPU maps to time (32, 64 and/or 512 cells a side)")
+    ap.add_argument("--cpu-map", type=int, default=64, choices=CPU_MAP_SIZES,
+                    help="cells a side of the CPU map timed against the GPU's (default 64)")
     a = ap.parse_args(argv)
+    sizes = [int(n) for n in a.maps.split(",") if n.strip()]
+    if bad := [n for n in sizes if n not in GPU_MAP_SIZES]:
+        ap.error(f"--maps: {bad} not among {GPU_MAP_SIZES}")
     from numerics.maps._gpu import gpu_name, gpu_status, simulated
 
     ok, reason = gpu_status()
@@ -169,16 +182,19 @@ def main(argv=None) -> int:
         return 0
     notes: list = []
     result = {"device": gpu_name(), "status": reason, "cpu_cores": os.cpu_count(),
-              "versions": versions(), "notes": notes, "map_64x64_wall_s": None,
-              "map_512x512_wall_s": None, "map_64x64_cpu_wall_s": None, "gpu_speedup": None,
-              "ps_per_site_evaluation": None, "cells_per_s": None, "models": {}}
+              "versions": versions(), "notes": notes, "gpu_speedup": None,
+              "gpu_speedup_map": None, "ps_per_site_evaluation": None, "cells_per_s": None,
+              "models": {}}
+    result.update({f"map_{n}x{n}_wall_s": None for n in GPU_MAP_SIZES})
+    result.update({f"map_{n}x{n}_cpu_wall_s": None for n in CPU_MAP_SIZES})
     out = HERE / "results_gpu.json" if a.update else Path(a.out) / "results_gpu.json"
     out.parent.mkdir(parents=True, exist_ok=True)
     if a.resume and out.exists():
         old = json.loads(out.read_text())
         if old.get("device") == result["device"]:
             kept = {k: v for k, v in old.items() if v not in (None, {}, [])
-                    and k not in ("status", "versions", "notes", "last_stage", "gpu_speedup")}
+                    and k not in ("status", "versions", "notes", "last_stage", "gpu_speedup",
+                                  "gpu_speedup_map")}
             result.update(kept)
             print(f"[bench.gpu] resuming {out}: kept {', '.join(sorted(kept))}", flush=True)
 
@@ -197,30 +213,36 @@ def main(argv=None) -> int:
     help_text = subprocess.run([shutil.which("flexmm") or "flexmm", "map", "--help"],
                                capture_output=True, text=True).stdout
     has_device = "--device" in help_text
-    sizes = [int(n) for n in a.maps.split(",") if n.strip()]
     with tempfile.TemporaryDirectory() as tmp:
         tmp = Path(tmp)
-        for n in (64, 512):
+        for n in GPU_MAP_SIZES:
             key = f"map_{n}x{n}_wall_s"
             if result[key] is not None:
                 continue
             if a.quick or not has_device or n not in sizes:
                 if not has_device:
                     notes.append(f"{key}: flexmm map has no --device option yet")
-                elif n not in sizes and not a.quick:
+                elif n not in sizes and not a.quick and n != 32:
                     notes.append(f"{key}: not run (--maps {a.maps})")
                 continue
             result[key] = timed_map(n, "gpu", tmp / f"gpu{n}", notes, out.parent)
             save(key)
-        if not (a.quick or a.skip_cpu_map or result["map_64x64_cpu_wall_s"] is not None):
-            result["map_64x64_cpu_wall_s"] = timed_map(64, "cpu" if has_device else None,
-                                                       tmp / "cpu64", notes, out.parent)
-            save("map_64x64_cpu_wall_s")
-    g, c = result["map_64x64_wall_s"], result["map_64x64_cpu_wall_s"]
-    result["gpu_speedup"] = c / g if g and c else None
+        n = a.cpu_map
+        key = f"map_{n}x{n}_cpu_wall_s"
+        if not (a.quick or a.skip_cpu_map or result[key] is not None):
+            result[key] = timed_map(n, "cpu" if has_device else None, tmp / f"cpu{n}",
+                                    notes, out.parent)
+            save(key)
+    for n in sorted(CPU_MAP_SIZES, reverse=True):  # the largest map measured on both
+        g, c = result[f"map_{n}x{n}_wall_s"], result[f"map_{n}x{n}_cpu_wall_s"]
+        if g and c:
+            result["gpu_speedup"], result["gpu_speedup_map"] = c / g, f"{n}x{n}"
+            break
     save("done")
-    for k in ("device", "ps_per_site_evaluation", "cells_per_s", "map_64x64_wall_s",
-              "map_512x512_wall_s", "map_64x64_cpu_wall_s", "gpu_speedup"):
+    for k in ("device", "ps_per_site_evaluation", "cells_per_s",
+              *(f"map_{n}x{n}_wall_s" for n in GPU_MAP_SIZES),
+              *(f"map_{n}x{n}_cpu_wall_s" for n in CPU_MAP_SIZES), "gpu_speedup",
+              "gpu_speedup_map"):
         v = result[k]
         print(f"{k:>24}: {v:.4g}" if isinstance(v, float) and math.isfinite(v) else
               f"{k:>24}: {v}")
