@@ -533,3 +533,22 @@ def test_the_client_writes_edge_chunks_in_both_dimensions_as_zarr_does(tmp_path,
     for key in mine:
         assert mine[key] == zarrs[key], key
     np.testing.assert_array_equal(zarr.open_group(str(ours), mode="r")["x"][...], x)
+
+
+def test_an_array_with_nested_chunk_keys_is_written_by_zarr(tmp_path):
+    """A zarr v2 array whose chunk keys are nested ("i/j", dimension_separator "/") is not
+    written by the client itself (its chunk files would need folders it does not make):
+    zarr writes it, and it reads back."""
+    import zarr
+
+    zarr.open_group(str(tmp_path), mode="w", zarr_format=2).create_array(
+        "x", shape=(5, 7), chunks=(2, 3), dtype="<f8", fill_value=np.nan,
+        chunk_key_encoding={"name": "v2", "separator": "/"})
+    writer = maps._CellWriter(tmp_path)
+    assert "x" not in writer.direct
+    x = np.full((5, 7), np.nan)
+    cells = (slice(1, 5), slice(2, 7))
+    x[cells] = np.arange(20.0).reshape(4, 5)
+    writer.write({"x": x[cells]}, cells, {"x": x})
+    assert (tmp_path / "x" / "2" / "2").is_file()
+    np.testing.assert_array_equal(zarr.open_group(str(tmp_path), mode="r")["x"][...], x)

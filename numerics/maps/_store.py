@@ -96,18 +96,19 @@ class _ChunkSpec(NamedTuple):
     chunks: tuple
     dtype: np.dtype
     empty: np.ndarray
-    separator: str
 
 
 def _v2_chunk_spec(array_dir: Path) -> _ChunkSpec | None:
     """The chunk spec of a zarr v2 array whose chunk is the codec's encoding of its C-order
-    bytes (Blosc, no filters, a numeric or bool dtype); None for any other, and where the
+    bytes (Blosc, no filters, a numeric or bool dtype) in a file "i.j" beside its metadata
+    (the "." key separator, as the store is written); None for any other, and where the
     metadata cannot be read (``_integrity.read_zarray``): zarr's own path, which says so."""
     import numcodecs
 
     meta = read_zarray(array_dir)
     if (meta is None or meta.zarr_format != 2 or meta.filters or meta.order != "C"
-            or (meta.compressor or {}).get("id") != "blosc" or meta.dtype.kind not in "biuf"):
+            or (meta.compressor or {}).get("id") != "blosc" or meta.dtype.kind not in "biuf"
+            or meta.separator != "."):
         return None
     try:
         codec = numcodecs.get_codec(dict(meta.compressor))
@@ -117,7 +118,7 @@ def _v2_chunk_spec(array_dir: Path) -> _ChunkSpec | None:
     except Exception:  # noqa: BLE001 - a codec or fill this numcodecs cannot make: zarr's path
         return None
     empty.flags.writeable = False
-    return _ChunkSpec(codec, meta.chunks, meta.dtype, empty, meta.separator)
+    return _ChunkSpec(codec, meta.chunks, meta.dtype, empty)
 
 
 def _write_chunks(array_dir: Path, spec: _ChunkSpec, values: np.ndarray, cells: tuple):
@@ -133,7 +134,7 @@ def _write_chunks(array_dir: Path, spec: _ChunkSpec, values: np.ndarray, cells: 
         part = values[tuple(slice(a * n, (a + 1) * n) for a, n in zip(at, chunks))]
         chunk = spec.empty.copy()
         chunk[tuple(slice(0, m) for m in part.shape)] = part
-        f = array_dir / spec.separator.join(str(a) for a in at)
+        f = array_dir / ".".join(str(a) for a in at)
         if np.array_equal(chunk, spec.empty, equal_nan=nan_is_fill):
             f.unlink(missing_ok=True)  # as zarr: a chunk of the fill value is not stored
             continue
