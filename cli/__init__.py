@@ -12,7 +12,7 @@ main(argv=None) -> int      run ``flexmm`` with ``argv`` (default ``sys.argv[1:]
 
 Modules
 -------
-app             the parser, the dispatch, exit codes and interrupt lines
+app             the dispatch, exit codes and interrupt lines (the parser: ``_parser``)
 coefficients    ``flexmm coefficients``
 table           ``flexmm table``
 point           ``flexmm point``

@@ -430,11 +430,30 @@ def test_a_stale_consolidated_metadata_is_rebuilt_by_the_next_run(tmp_path):
         assert ds["done_predicted"].values.all() and ds["growth_predicted"].notnull().all()
 
 
+def _chunk_files(array_dir) -> dict:
+    """{chunk key: file bytes} of a zarr v2 array (its metadata files left out)."""
+    return {f.name: f.read_bytes() for f in array_dir.iterdir() if not f.name.startswith(".")}
+
+
+def _random_values(rng, like):
+    """Values of ``like``'s dtype and shape, the fill value among them for small dtypes."""
+    if like.dtype == bool:
+        return rng.random(like.shape) > 0.5
+    if like.dtype.kind == "i":
+        return rng.integers(-1, 2, like.shape).astype(like.dtype)
+    if like.dtype.kind == "u":
+        return rng.integers(0, 2**62, like.shape).astype(like.dtype)
+    return rng.random(like.shape)
+
+
 def test_the_client_writes_the_chunks_zarr_would_write(tmp_path):
     """The client writes its blocks' chunks itself (zarr v2: the codec's encoding of the
     chunk's C-order bytes): the files equal, byte for byte, those zarr writes for the same
-    values, for a whole chunk, an edge chunk (3 columns of a chunk of 2) and a single cell
-    of a chunk (a map's last blocks go a cell at a time), and zarr reads them back."""
+    values - a whole chunk, the last chunk of a row partly outside the grid (3 columns in
+    chunks of 2: its padding is the fill value in both), a single cell of a chunk (a map's
+    last blocks go a cell at a time), a write across a whole and an edge chunk, and a chunk
+    set back to the fill value alone, which neither stores (zarr's write_empty_chunks
+    False) - and zarr reads them back."""
     import zarr
 
     params = _params(k=tuple(2 * np.pi * np.array([11, 13, 15]) / N), block=2)
@@ -443,31 +462,93 @@ def test_the_client_writes_the_chunks_zarr_would_write(tmp_path):
         maps.open_or_create(path, params)
     with xr.open_zarr(ours, consolidated=False, chunks=None) as ds:
         arrays = {n: ds[n].values.copy() for n in ds.data_vars}
+    names = ("growth", "done", "verdict_simulated", "checksum")
+    # the store's fill values (growth NaN; the others none given, which zarr reads as 0)
+    fill = {"growth": np.nan, "done": False, "verdict_simulated": 0, "checksum": 0}
     writer = maps._CellWriter(ours)
-    assert {"growth", "done", "verdict_simulated", "checksum"} <= set(writer.direct)
+    assert set(names) <= set(writer.direct)
     rng = np.random.default_rng(7)
-    for cells in [(slice(0, 1), slice(0, 2)), (slice(1, 2), slice(2, 3)),
-                  (slice(0, 1), slice(2, 3)), (slice(1, 2), slice(0, 1))]:
+    for cells, values in [((slice(0, 1), slice(0, 2)), "random"),  # chunk 0.0, whole
+                          ((slice(1, 2), slice(2, 3)), "random"),  # 1.1: the edge chunk
+                          ((slice(0, 1), slice(2, 3)), "random"),  # 0.1: the edge chunk
+                          ((slice(1, 2), slice(0, 1)), "random"),  # a cell of 1.0
+                          ((slice(1, 2), slice(1, 3)), "random"),  # across 1.0 and 1.1
+                          ((slice(0, 1), slice(0, 2)), "fill")]:  # 0.0 back to the fill
         region = {}
-        for name in ("growth", "done", "verdict_simulated", "checksum"):
+        for name in names:
             a = arrays[name]
-            a[cells] = (rng.random(a[cells].shape) > 0.5 if a.dtype == bool else
-                        rng.integers(-1, 2, a[cells].shape).astype(a.dtype) if a.dtype.kind == "i"
-                        else rng.integers(0, 2**62, a[cells].shape).astype(a.dtype)
-                        if a.dtype.kind == "u" else rng.random(a[cells].shape))
+            a[cells] = (_random_values(rng, a[cells]) if values == "random" else fill[name])
             region[name] = a[cells]
         writer.write(region, cells, arrays)
         group = zarr.open_group(str(theirs), mode="r+")
         for name, values in region.items():
             group[name][cells] = values
-    for name in ("growth", "done", "verdict_simulated", "checksum"):
-        files = sorted(f.name for f in (ours / name).iterdir() if not f.name.startswith("."))
-        assert files == sorted(f.name for f in (theirs / name).iterdir()
-                               if not f.name.startswith(".")), name
-        for f in files:
-            if f == "1.1":  # an edge chunk: its padding is the fill value in ours
-                continue
-            assert (ours / name / f).read_bytes() == (theirs / name / f).read_bytes(), (name, f)
+    for name in names:
+        mine, zarrs = _chunk_files(ours / name), _chunk_files(theirs / name)
+        assert sorted(mine) == sorted(zarrs), name
+        assert "0.0" not in mine, name  # the fill value alone: not stored (and removed)
+        assert "1.1" in mine or name == "done", name  # done's 1.1 may hold False alone
+        for key in mine:
+            assert mine[key] == zarrs[key], (name, key)
         back = zarr.open_group(str(ours), mode="r")[name][...]
         np.testing.assert_array_equal(back, arrays[name])
         np.testing.assert_array_equal(back, zarr.open_group(str(theirs), mode="r")[name][...])
+
+
+@pytest.mark.parametrize("dtype, fill", [("<f8", "NaN"), ("<f8", 0.25), ("|i1", -1),
+                                         ("<u8", None), ("|b1", None)])
+def test_the_client_writes_edge_chunks_in_both_dimensions_as_zarr_does(tmp_path, dtype, fill):
+    """A zarr v2 array of 5 x 7 in chunks of 2 x 3 (the map store's chunks are one row,
+    so only this array has edge chunks across rows): the client's chunk files equal zarr's
+    byte for byte after writes of a whole chunk, the corner chunk (one cell inside the
+    grid), a region across whole, partly written, edge and corner chunks, and a stored
+    chunk set back to the fill value (removed by both); the chunks never written are
+    absent in both."""
+    import zarr
+
+    shape = (5, 7)
+    fill_value = {"NaN": np.nan, None: 0}.get(fill, fill)  # what a read of it gives
+    ours, theirs = tmp_path / "ours", tmp_path / "theirs"
+    for path in (ours, theirs):
+        zarr.open_group(str(path), mode="w", zarr_format=2).create_array(
+            "x", shape=shape, chunks=(2, 3), dtype=dtype,
+            fill_value=np.nan if fill == "NaN" else fill)
+    writer = maps._CellWriter(ours)
+    assert "x" in writer.direct
+    x = np.full(shape, fill_value, dtype)
+    rng = np.random.default_rng(3)
+    for cells, values in [((slice(0, 2), slice(0, 3)), "random"),  # chunk 0.0, whole
+                          ((slice(4, 5), slice(6, 7)), "random"),  # 2.2: one cell in the grid
+                          ((slice(2, 5), slice(2, 7)), "random"),  # 1.0 to 2.2: 5 partial
+                          ((slice(2, 4), slice(3, 6)), "fill")]:  # 1.1 back to the fill
+        x[cells] = _random_values(rng, x[cells]) if values == "random" else fill_value
+        if values == "random" and dtype == "|b1":
+            x[cells][0, 0] = True  # a value other than the fill in every write
+        writer.write({"x": x[cells]}, cells, {"x": x})
+        zarr.open_group(str(theirs), mode="r+")["x"][cells] = x[cells]
+    mine, zarrs = _chunk_files(ours / "x"), _chunk_files(theirs / "x")
+    assert sorted(mine) == sorted(zarrs)
+    # 1.1 set back to the fill; rows 0-1 of columns 3-6 (0.1, 0.2) never written
+    assert sorted(mine) == ["0.0", "1.0", "1.2", "2.0", "2.1", "2.2"]
+    for key in mine:
+        assert mine[key] == zarrs[key], key
+    np.testing.assert_array_equal(zarr.open_group(str(ours), mode="r")["x"][...], x)
+
+
+def test_an_array_with_nested_chunk_keys_is_written_by_zarr(tmp_path):
+    """A zarr v2 array whose chunk keys are nested ("i/j", dimension_separator "/") is not
+    written by the client itself (its chunk files would need folders it does not make):
+    zarr writes it, and it reads back."""
+    import zarr
+
+    zarr.open_group(str(tmp_path), mode="w", zarr_format=2).create_array(
+        "x", shape=(5, 7), chunks=(2, 3), dtype="<f8", fill_value=np.nan,
+        chunk_key_encoding={"name": "v2", "separator": "/"})
+    writer = maps._CellWriter(tmp_path)
+    assert "x" not in writer.direct
+    x = np.full((5, 7), np.nan)
+    cells = (slice(1, 5), slice(2, 7))
+    x[cells] = np.arange(20.0).reshape(4, 5)
+    writer.write({"x": x[cells]}, cells, {"x": x})
+    assert (tmp_path / "x" / "2" / "2").is_file()
+    np.testing.assert_array_equal(zarr.open_group(str(tmp_path), mode="r")["x"][...], x)

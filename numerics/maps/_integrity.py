@@ -20,12 +20,14 @@ from __future__ import annotations
 import contextlib
 import hashlib
 import json
+import math
 import os
 import socket
 import sys
 import threading
 import time
 from pathlib import Path
+from typing import NamedTuple
 
 import numpy as np
 
@@ -73,6 +75,48 @@ def cell_checksums(arrays: dict, cells=None) -> np.ndarray:
     return out.reshape(shape)
 
 
+class ZarrayMeta(NamedTuple):
+    """The fields of a zarr v2 array's ``.zarray`` that the store's readers and its writer
+    act on: ``compressor`` and ``filters`` as stored (a codec's config dict, or None),
+    ``dtype`` and ``chunks`` decoded, ``fill_value`` decoded as the v2 format writes a
+    float's ("NaN", "Infinity", "-Infinity"; None stays None: no fill given)."""
+
+    zarr_format: object
+    compressor: dict | None
+    filters: list | None
+    order: object
+    dtype: np.dtype
+    chunks: tuple
+    fill_value: object
+    separator: str
+
+
+#: the v2 format's JSON spelling of the floats JSON has no literal for
+_FLOAT_FILLS = {"NaN": math.nan, "Infinity": math.inf, "-Infinity": -math.inf}
+
+
+def read_zarray(array_dir: Path) -> ZarrayMeta | None:
+    """The ``.zarray`` of the zarr v2 array at ``array_dir``, or None when it cannot be read
+    or is malformed (no such file, not JSON, a dtype or chunk shape that does not parse, a
+    compressor that is not a codec's config): the one reader of it, for the chunk checks
+    (:func:`unsound_chunks`) and the client's own chunk writes (``_store._CellWriter``),
+    each of which then leaves such an array to zarr, whose own read says what is wrong."""
+    try:
+        meta = json.loads((array_dir / ".zarray").read_text())
+        compressor = meta.get("compressor")
+        if compressor is not None and not isinstance(compressor, dict):
+            return None
+        fill = meta.get("fill_value")
+        return ZarrayMeta(
+            zarr_format=meta.get("zarr_format"), compressor=compressor,
+            filters=meta.get("filters"), order=meta.get("order"),
+            dtype=np.dtype(meta["dtype"]), chunks=tuple(int(n) for n in meta["chunks"]),
+            fill_value=_FLOAT_FILLS.get(fill, fill) if isinstance(fill, str) else fill,
+            separator=meta.get("dimension_separator", "."))
+    except Exception:  # noqa: BLE001 - any malformed metadata: the caller leaves it to zarr
+        return None
+
+
 def unsound_chunks(array_dir: Path) -> set:
     """The chunk keys of the zarr v2 array at ``array_dir`` ("i.j") whose Blosc frame does
     not match the file: a damaged chunk, never handed to the decoder, because Blosc trusts
@@ -83,13 +127,10 @@ def unsound_chunks(array_dir: Path) -> set:
     either a copied chunk (16 header bytes + the data) or every block's start inside the
     file after the table of starts. Empty for other codecs, and when the metadata cannot be
     read (the caller's read fails and says so)."""
-    try:
-        meta = json.loads((array_dir / ".zarray").read_text())
-        if (meta.get("compressor") or {}).get("id") != "blosc" or meta.get("filters"):
-            return set()
-        want = int(np.dtype(meta["dtype"]).itemsize * np.prod(meta["chunks"]))
-    except Exception:  # unreadable metadata: reported by the read itself
+    meta = read_zarray(array_dir)
+    if meta is None or (meta.compressor or {}).get("id") != "blosc" or meta.filters:
         return set()
+    want = int(meta.dtype.itemsize * np.prod(meta.chunks))
     bad = set()
     for f in array_dir.iterdir():
         if f.name.startswith("."):

@@ -22,11 +22,11 @@ comparison of the verdicts in ``_agreement``.
 from __future__ import annotations
 
 import contextlib
-import json
 import math
 import os
 import time
 from pathlib import Path
+from typing import NamedTuple
 
 import numpy as np
 
@@ -39,7 +39,7 @@ from ._columns import (
     theory_columns,
     tri_state,
 )
-from ._integrity import CHECKSUM, unsound_chunks
+from ._integrity import CHECKSUM, read_zarray, unsound_chunks
 from ._params import MapParameters, local_cores
 from ._store_open import _open, open_or_create
 
@@ -87,46 +87,60 @@ class _CellWriter:
             self._sync(writes())
 
 
-def _v2_chunk_spec(array_dir: Path) -> tuple | None:
-    """(codec, chunk shape, dtype, fill, separator) of a zarr v2 array whose chunk is the
-    codec's encoding of its C-order bytes (Blosc, no filters); None for any other."""
+class _ChunkSpec(NamedTuple):
+    """What the client needs to write a chunk of a zarr v2 array itself: the array's codec,
+    chunk shape and dtype, and a chunk of its fill value alone (read-only: each chunk
+    starts as a copy of it, and a chunk equal to it is not stored)."""
+
+    codec: object
+    chunks: tuple
+    dtype: np.dtype
+    empty: np.ndarray
+
+
+def _v2_chunk_spec(array_dir: Path) -> _ChunkSpec | None:
+    """The chunk spec of a zarr v2 array whose chunk is the codec's encoding of its C-order
+    bytes (Blosc, no filters, a numeric or bool dtype) in a file "i.j" beside its metadata
+    (the "." key separator, as the store is written); None for any other, and where the
+    metadata cannot be read (``_integrity.read_zarray``): zarr's own path, which says so."""
     import numcodecs
 
-    try:
-        meta = json.loads((array_dir / ".zarray").read_text())
-        if (meta.get("zarr_format") != 2 or meta.get("filters") or meta.get("order") != "C"
-                or (meta.get("compressor") or {}).get("id") != "blosc"):
-            return None
-        dtype = np.dtype(meta["dtype"])
-        if dtype.kind not in "biuf":
-            return None
-        fill = meta.get("fill_value")
-        fill = 0 if fill is None else float("nan") if fill == "NaN" else fill
-        return (numcodecs.get_codec(meta["compressor"]), tuple(meta["chunks"]), dtype, fill,
-                meta.get("dimension_separator", "."))
-    except Exception:  # noqa: BLE001 - unreadable metadata: zarr's own path, which says so
+    meta = read_zarray(array_dir)
+    if (meta is None or meta.zarr_format != 2 or meta.filters or meta.order != "C"
+            or (meta.compressor or {}).get("id") != "blosc" or meta.dtype.kind not in "biuf"
+            or meta.separator != "."):
         return None
+    try:
+        codec = numcodecs.get_codec(dict(meta.compressor))
+        # no fill given: zarr pads a chunk with the dtype's zero, and so does its reader
+        empty = np.full(meta.chunks, 0 if meta.fill_value is None else meta.fill_value,
+                        meta.dtype)
+    except Exception:  # noqa: BLE001 - a codec or fill this numcodecs cannot make: zarr's path
+        return None
+    empty.flags.writeable = False
+    return _ChunkSpec(codec, meta.chunks, meta.dtype, empty)
 
 
-def _write_chunks(array_dir: Path, spec: tuple, values: np.ndarray, cells: tuple):
+def _write_chunks(array_dir: Path, spec: _ChunkSpec, values: np.ndarray, cells: tuple):
     """The chunks of ``values`` (the whole array, in memory) that ``cells`` touch, each
     encoded whole (an edge chunk padded with the fill value, which no read sees) into its
     file, replaced atomically; a chunk of the fill value alone is not stored (zarr's
     default, ``write_empty_chunks`` False)."""
-    codec, chunks, dtype, fill, sep = spec
+    chunks = spec.chunks
+    nan_is_fill = spec.dtype.kind == "f"
     ranges = [range(c.start // n, (c.stop - 1) // n + 1) for c, n in zip(cells, chunks)]
     for index in np.ndindex(*(len(r) for r in ranges)):
         at = tuple(r[x] for r, x in zip(ranges, index))
         part = values[tuple(slice(a * n, (a + 1) * n) for a, n in zip(at, chunks))]
-        chunk = np.full(chunks, fill, dtype)
+        chunk = spec.empty.copy()
         chunk[tuple(slice(0, m) for m in part.shape)] = part
-        f = array_dir / sep.join(str(a) for a in at)
-        if np.array_equal(chunk, np.full(chunks, fill, dtype), equal_nan=dtype.kind == "f"):
+        f = array_dir / ".".join(str(a) for a in at)
+        if np.array_equal(chunk, spec.empty, equal_nan=nan_is_fill):
             f.unlink(missing_ok=True)  # as zarr: a chunk of the fill value is not stored
             continue
         tmp = f.with_name(f".{f.name}.{os.getpid()}.tmp")
         try:
-            tmp.write_bytes(codec.encode(chunk))
+            tmp.write_bytes(spec.codec.encode(chunk))
             os.replace(tmp, f)
         except OSError as exc:  # a full disk, a quota: said of the store (_named_os_errors)
             tmp.unlink(missing_ok=True)
