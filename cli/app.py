@@ -1,4 +1,6 @@
-"""`flexmm`: the NLS table at the test points; list, run and redraw the scenes."""
+"""`flexmm`'s entry point: parse the command line (its parser in `_parser.py`), dispatch each
+subcommand (the NLS table, point, map, soliton, coefficients, models, the scenes), and turn
+bad input, interruptions and a closed stdout into one-line messages and exit codes."""
 
 from __future__ import annotations
 
