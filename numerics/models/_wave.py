@@ -35,6 +35,7 @@ import numpy as np
 from common.threads import one_blas_thread
 from energy import Model, ModelError
 
+from ._fourwave_kernel import second_harmonic_size
 from ._linear import Carrier, carrier, check_amplitude
 from ._nls import kept_acoustic_directions
 from ._wave_solve import RESIDUAL_TOL, _least_squares, _solve, _solve_fast
@@ -162,8 +163,6 @@ def travelling_wave(model: Model, k: float, amplitude: float, branch=None, *,
     amplitude beyond the branch's nonlinear range): said in one line. Small dense algebra:
     on one BLAS thread (``common.threads``).
     """
-    from ._fourwave import second_harmonic_size
-
     # the collocation's set-up once for the direct solve and the continuation's steps
     # (``_solve_fast``: the same values, to the bit). The chord's Jacobian taken again once
     # where its rate is slow (``chord_newton``'s refresh): from the linear wave at H = 8
