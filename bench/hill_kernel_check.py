@@ -7,7 +7,10 @@ relative change. Then single offsets asked alone (``hill_spectrum(wave, [q])``: 
 ring's fastest offset and three random ones per point), each kernel's rate against the
 ring call's and against the dense eigenproblem at the compiled path's truncation: a mode
 lost or kept by one path only shows there (README's fput point lost one at q = pi / 2).
-The rest of the theory (waves, strong-coupling and dense paths) is this tree's for both.
+The rest of the theory (waves, strong-coupling and dense paths) is this tree's for both,
+and so is what the copy imports: since the cluster solve moved to ``_cluster_solve``, a
+copy of a later ``_sidebands.py`` compares the disc pass alone (a copy from before it
+moved carries its own).
 
     OMP_NUM_THREADS=1 python -m bench.hill_kernel_check --baseline /tmp/main_sidebands.py
 """

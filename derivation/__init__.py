@@ -36,8 +36,8 @@ _LAZY = {
     "solve_case": ("._multiscale", "solve_case"),
     "analyse_mi": ("._mi", "analyse"),
     "paper_forms": (".paper_forms", None),
-    "compile_model": ("._energy", "compile_model"),
-    "model_module_text": ("._energy", "model_module_text"),
+    "compile_model": ("._model_code", "compile_model"),
+    "model_module_text": ("._model_code", "model_module_text"),
     "model_energies": ("._energy", "energies"),
     "equations_of_motion": ("._energy", "equations_of_motion"),
 }

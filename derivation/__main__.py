@@ -47,7 +47,7 @@ def write_outputs(out_dir: Path) -> list[Path]:
     out_dir.mkdir(parents=True, exist_ok=True)
     # write-then-rename: an interrupted derive never leaves a half-written file
     paths = [write_text(out_dir / name, text) for name, text in files.items()]
-    from ._energy import write_builtin_models
+    from ._model_code import write_builtin_models
 
     return paths + write_builtin_models(out_dir / "models")
 

@@ -7,7 +7,8 @@ test)."""
 import numpy as np
 import pytest
 
-from numerics.models._sidebands import _fold, _fold_axis, _frozen, _small_pencil
+from numerics.models._cluster_solve import _fold, _fold_axis
+from numerics.models._frozen_roots import _frozen, _small_pencil
 from numerics.models._small_algebra import _ldlh, _ldlh_half, _null_vector
 
 

@@ -22,15 +22,11 @@ from dataclasses import asdict, dataclass
 import numpy as np
 
 from ..lattice import GROWTH_THRESHOLD
-from ._columns import MI, STORE_FORMAT, UNDETERMINED
+from ._columns import MI
 from ._model_columns import (
     LOSSY_SIMULATED_COLUMNS,
-    MODE_KIND_ATTRS,
     MODE_KIND_CODES,
-    MODEL_VERDICT_ATTRS,
-    OBSERVABLE_ATTRS,
     SIMULATED_COLUMNS,
-    VARIABLE_ATTRS,
     VERDICT_CODES,
     derived_attrs,
     model_block,
@@ -38,6 +34,7 @@ from ._model_columns import (
     slow_for_run,
     unsampled_band,
 )
+from ._model_store import new_dataset, other_map
 from ._params import DEFAULT_BLOCK
 
 #: rough seconds per cell on one core (the resume message's estimate): the NLS, the exact
@@ -420,90 +417,16 @@ class ModelMapParameters:
                 if n not in ("theory_only", "exact", "model_file", "units")
                 and not (n in ("time_unit_s", "length_unit_m") and v == "")}
 
+
     def other_map(self, attrs: dict) -> str:
         """What a store of another map holds: another model's, this model's before its
-        energy changed, or this model's with other parameters."""
-        if attrs.get("map_of") != "model" or attrs.get("model") is None:
-            return "a map of the paper flags (or of an older format)"
-        name = self.lattice_model.name
-        if attrs.get("model") != name:
-            return f"a map of model {attrs['model']!r}, not {name!r}"
-        mine = self.lattice_model.lattice.content_hash
-        if attrs.get("model_hash") != mine:
-            return (f"a map of model {name!r} whose energy differs from this one's "
-                    f"(content hash {str(attrs.get('model_hash'))[:12]} against "
-                    f"{mine[:12]}: the model file changed)")
-        if attrs.get("start", "exact") != self.start:
-            return (f"a map of model {name!r} whose runs start from "
-                    f"{attrs.get('start', 'exact')!r}, not {self.start!r}")
-        if attrs.get("theories") != " ".join(self.theory_columns()):
-            return (f"a map of model {name!r} of other theories ({attrs.get('theories')} "
-                    f"against {' '.join(self.theory_columns())}; a --theory-only map without "
-                    "--exact has no exact columns to continue, a store made before the "
-                    "four-wave columns none of those)")
-        mine = self.attrs()
-        if any(attrs.get(n, "") != mine.get(n, "") for n in ("amplification",
-                                                            "amplification_runs")):
-            return (f"a map of lossy model {name!r} made before its amplification columns "
-                    f"(amplification_<theory> of {' '.join(self.amplified())}"
-                    + (", and the runs' amplification_simulated" if self.ring else "")
-                    + ")")
-        for unit in ("time_unit_s", "length_unit_m"):
-            mine = getattr(self, unit)
-            if mine is not None and attrs.get(unit) != mine:
-                return (f"a map of model {name!r} with {unit} = {attrs.get(unit) or 'none'} "
-                        f"(asked {mine:g}: the stored numbers are in lattice units either "
-                        "way)")
-        mine = self.identity()  # name what differs (the store's value, then this map's)
-
-        def said(n):  # a fixed parameter by its own name, as --param gives it
-            return n[len("param_"):] if n.startswith("param_") else n
-
-        differ = [f"{said(n)} {attrs[n]!r} stored, {mine[n]!r} asked"
-                  + (": omit --block to continue with the store's" if n == "block" else "")
-                  for n in sorted(mine) if n in attrs and attrs[n] != mine[n]]
-        differ += [f"{said(n)} {attrs[n]!r} stored, none asked" for n in sorted(attrs)
-                   if n.startswith("param_") and n not in mine]
-        differ += [f"{said(n)} none stored, {mine[n]!r} asked" for n in sorted(mine)
-                   if n.startswith("param_") and n not in attrs]
-        return (f"a map of model {name!r} with other parameters"
-                + (f" ({'; '.join(differ[:4])})" if differ else ""))
+        energy changed, or this model's with other parameters (``_model_store``)."""
+        return other_map(self, attrs)
 
     def new_dataset(self):
-        """The store before any task: every variable at its fill value, ``done`` False."""
-        import xarray as xr
-
-        from ._integrity import CHECKSUM, CHECKSUM_ATTRS, cell_checksums
-
-        shape = self.grid_shape
-        dims = self.dims
-        data = {}
-        flags = self.flag_columns()
-        for name in (*flags["done_predicted"], *flags["done"]):
-            if name == "observable_simulated":
-                data[name] = (dims, np.full(shape, -1, np.int8), dict(OBSERVABLE_ATTRS))
-            elif name == "mode_kind_fourwave":
-                data[name] = (dims, np.full(shape, MODE_KIND_CODES["undefined"], np.int8),
-                              dict(MODE_KIND_ATTRS))
-            elif name.startswith("verdict_"):
-                theory = name.removeprefix("verdict_")
-                attrs = {"long_name": f"{theory} theory's verdict", **MODEL_VERDICT_ATTRS}
-                if theory == "simulated":
-                    attrs.update(simulated_verdict_attrs(self.theory_only))
-                data[name] = (dims, np.full(shape, UNDETERMINED, np.int8), attrs)
-            else:
-                data[name] = (dims, np.full(shape, np.nan), dict(VARIABLE_ATTRS.get(name, {})))
-        data["done"] = (dims, np.zeros(shape, bool), {"long_name": "cell simulated"})
-        data["done_predicted"] = (dims, np.zeros(shape, bool),
-                                  {"long_name": "cell's theories computed"})
-        data[CHECKSUM] = (dims, cell_checksums({n: v[1] for n, v in data.items()}),
-                          CHECKSUM_ATTRS)
-        from ._model_axes import axis_attrs
-
-        coords = {n: (n, np.asarray(v), axis_attrs(n)) for n, v in self.store_coords().items()}
-        return xr.Dataset(data, coords=coords, attrs={**self.attrs(),
-                                                       "store_format": STORE_FORMAT})
-
+        """The store before any task: every variable at its fill value, ``done`` False
+        (``_model_store``)."""
+        return new_dataset(self)
 
 __all__ = ["ModelMapParameters", "model_block", "model_text", "VERDICT_CODES",
            "MODE_KIND_CODES"]

@@ -71,11 +71,11 @@ from ._map import lossy_runs, map_cells, model_map, simulated_cell
 from ._modes import classify_mode, ring_misses
 from ._nls import ModelNLS, ModelSoliton, acoustic_directions, nls
 from ._reach import amplitude_reach, energy_not_real, exact_gain_checked
+from ._seeds import SeededRuns, simulate_seeds
 from ._simulate import (
                      NOISE,
                      Growth,
                      ModelRun,
-                     SeededRuns,
                      check_ring,
                      compiled_force,
                      lattice_energy,
@@ -83,7 +83,6 @@ from ._simulate import (
                      measure_growth,
                      saturation_time,
                      simulate_model,
-                     simulate_seeds,
                      snap_ring,
 )
 from ._soliton_run import (

@@ -1,11 +1,11 @@
-"""The travelling wave's collocation equations (``_wave._solve``), set up once per layout.
+"""The travelling wave's collocation equations (``_wave_solve._solve``), set up once per layout.
 
 A damped point (issue 42) solves the wave of one carrier at several amplitudes, each from
 a near start in two Newton steps: most of such a solve was its set-up (the carrier, the
 acoustic directions, the grid's phase tables) and each call's assembly. Here the tables
 that depend on the layout alone (fields, H, k, the carrier field, the acoustic
 directions; not the amplitude, not the model's parameters) are built once and kept
-(least recently used), and the residual and its Jacobian are ``_wave._solve``'s,
+(least recently used), and the residual and its Jacobian are ``_wave_solve._solve``'s,
 operation for operation, with fewer calls. The solve keeps the start's Jacobian
 (``chord_newton``: one Jacobian and its pseudo-inverse a wave instead of two Jacobians
 and two least-squares solves): the same wave as ``_solve``'s to round-off (6e-14 of the
@@ -34,7 +34,7 @@ class Collocation:
         h = np.arange(-H, H + 1)
         self.d, self.H, self.M, self.k, self.field = d, H, M, k, field
         self.optical, self.free, self.n_opt, self.h = optical, free, optical.shape[1], h
-        # ``_wave._solve``'s expressions, evaluated once
+        # ``_wave_solve._solve``'s expressions, evaluated once
         self.E = np.exp(-1j * h[:, None] * xi[None, :]) / M
         self.B0 = np.exp(1j * h[:, None] * xi[None, :])
         self.Bp = self.B0 * np.exp(1j * h * k)[:, None]
@@ -52,7 +52,7 @@ class Collocation:
             arr.flags.writeable = False
 
     def equations(self, model, masses, a, scale):
-        """(residual(x), jacobian(x)) of ``_wave._solve`` at amplitude a and ``scale``,
+        """(residual(x), jacobian(x)) of ``_wave_solve._solve`` at amplitude a and ``scale``,
         the same values. ``residual`` keeps its last value in ``last`` (the caller's check
         of a converged x reads it instead of computing it again)."""
         d, M, H, h = self.d, self.M, self.H, self.h
@@ -133,7 +133,7 @@ class Collocation:
 
 @njit(cache=True, nogil=True, error_model="numpy", boundscheck=False)
 def _assemble(F, sidx, ph, H, omega, masses, c, free_cols, optical, scale, out):
-    """The collocation Jacobian (``_wave._solve``'s, element for element) into ``out``
+    """The collocation Jacobian (``_wave_solve._solve``'s, element for element) into ``out``
     (rows, unknowns), from F (2d, 2d, 2, M): the DFT / M of the cell Hessian along the
     grid at the cells (n, n + 1) [0] and (n - 1, n) [1]. dR_hat[l, j] / dc[h, b] is
     F[j, b, 0] + F[d + j, d + b, 1] + F[j, d + b, 0] e^{i h k} + F[d + j, b, 1] e^{-i h k}
@@ -196,7 +196,7 @@ def chord_newton(residual, jacobian, x0, steps=12, progress=None, refresh=0, don
     amplitudes of a damped point start from the last wave scaled, ~1e-5 of their
     residual's scale away, where the chord converges linearly at a rate of that order, so
     one Jacobian and its pseudo-inverse serve every step (Newton took two Jacobians and
-    two least-squares solves for the same round-off). Stops as ``_wave._gauss_newton``:
+    two least-squares solves for the same round-off). Stops as ``_wave_solve._gauss_newton``:
     a residual below 1e-14, or one that no longer falls by 4 once below 1e-11 (round-off);
     None where it does not converge so (the caller solves by Gauss-Newton instead).
     ``progress``: a list that gets the last iterate whose residual fell by 4 or more
@@ -211,7 +211,7 @@ def chord_newton(residual, jacobian, x0, steps=12, progress=None, refresh=0, don
     the Jacobian taken again at 5e-5 it converges in two more steps). Its fixed point does
     not depend on the Jacobian, so neither does the converged wave, beyond round-off.
     ``done``: the residual it stops at (1e-14; the continuation's steps before its last
-    stop at 1e-11, as ``_wave._gauss_newton``'s)."""
+    stop at 1e-11, as ``_wave_solve._gauss_newton``'s)."""
     x = x0.copy()
     r = residual(x)
     best = float(np.max(np.abs(r)))
@@ -271,7 +271,7 @@ def _least_squares_map(J):
     does not depend on B): the normal equations, B = (J^T J)^{-1} J^T (one 16 x 16 solve
     for a one-field wave, ~1/3 of a QR's cost), kept where |B J - I| <= 1e-8 (J
     conditioned to ~1e4 or better: cond(J) ~ 300 at Klein-Gordon a 0.4); else QR (R^{-1}
-    Q^T where J is tall and R's diagonal within 1e10, ``_wave._qr_step``'s rule), else
+    Q^T where J is tall and R's diagonal within 1e10, ``_wave_solve._qr_step``'s rule), else
     ``pinv``. The converged wave differs by round-off, ~1e-16 of the amplitude."""
     m, n = J.shape
     if m >= n:

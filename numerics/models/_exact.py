@@ -63,11 +63,11 @@ from energy import Model, ModelError
 
 from ._wave import (  # noqa: F401 (TravellingWave, travelling_wave, continued_wave: here too)
     TravellingWave,
-    _grid,
     _wrap,
     continued_wave,
     travelling_wave,
 )
+from ._wave_solve import _grid
 
 #: A growth rate below this fraction of omega is round-off of the eigensolver: at a
 #: commensurate k (k = 2 pi p / r) a mode appears in several harmonics and its eigenvalues

@@ -11,8 +11,9 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from ._cluster_solve import _fold
+from ._frozen_roots import _small_pencil
 from ._real_gauge import frozen_real, real_gauge
-from ._sidebands import _fold, _small_pencil
 from ._small_algebra import _lu, _lu_solve
 
 _KW = dict(cache=True, nogil=True, error_model="numpy", boundscheck=False)

@@ -421,7 +421,8 @@ def four_wave_amplification(model: Model, k: float, amplitude: float, branch=Non
     """The four-wave theory along the decaying carrier: every pair (offset q, branches
     b1, b2) at its rate at a(t), damped at the mean of its two waves' rates
     (Gamma_b1(k + q) + Gamma_b2(k - q)) / 2 (``along_decay``)."""
-    from ._fourwave import _kernel, four_wave
+    from ._fourwave import four_wave
+    from ._fourwave_kernel import _kernel
 
     if first is None:
         first = four_wave(model, k, amplitude, branch, N=N)

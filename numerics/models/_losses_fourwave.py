@@ -1,7 +1,7 @@
 """The four-wave theory's rates at a lower carrier amplitude, from its rates at a0
 (issue 42, ``four_wave_amplification``).
 
-In the four-wave kernel (``_fourwave``) the wave's harmonics scale exactly as x1 ~ a,
+In the four-wave kernel (``_fourwave_kernel``) the wave's harmonics scale exactly as x1 ~ a,
 x2, x0 ~ a^2, its frequency as Omega = omega - g2 a^2 / 4, and the driven waves'
 operators D_l do not depend on a (their frequencies are the pair's and the carrier's
 linear ones). So the cross-phase shifts S_j and the couplings C_ij are ~ a^2, and with
@@ -29,7 +29,7 @@ def rates_at(model, first, rows, branch_pairs):
     """A function s -> the rates of the pairs (``first.offsets[rows]``, branch pairs
     ``branch_pairs`` (index into ``first.pairs``)) at s = (a / a0)^2; None where the
     pairs' coupling is not real and positive (then the kernel is needed at each a)."""
-    from ._fourwave import FLOOR
+    from ._fourwave_kernel import FLOOR
 
     rate0 = np.asarray(first.rates, float)[rows, branch_pairs]
     det0 = np.asarray(first.detuning, float)[rows, branch_pairs]

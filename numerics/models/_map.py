@@ -174,7 +174,7 @@ def simulated_cell(model: Model, k: float, amplitude: float, branch=None, *, N: 
     bound ln(threshold) / T the rate lies below); for a lossy model also the runs'
     amplification columns (``lossy_runs``)."""
     from ._reach import exact_gain_checked
-    from ._simulate import simulate_seeds
+    from ._seeds import simulate_seeds
 
     try:  # the energy not real along the wave: undefined, as without a travelling wave
         spec = exact_gain_checked(model, k, amplitude, branch, N=N)
@@ -232,7 +232,8 @@ def _start_columns(model, k, amplitude, N, start) -> tuple:
 def _cell_columns(model, k, amplitude, branch, *, exact, simulate, N, seeds, t_end,
                   start="exact"):
     from ._reach import exact_gain_checked
-    from ._simulate import simulate_seeds, snap_ring
+    from ._seeds import simulate_seeds
+    from ._simulate import snap_ring
 
     row = {"verdict_semidiscrete": "undefined", "peak_gain_semidiscrete": math.nan,
            "g1": math.nan, "g2": math.nan, "reason": "", "carrier": False}
@@ -345,7 +346,7 @@ def lossy_runs(model: Model, k: float, amplitude: float, spec, *, branch=None,
     """
     from numerics.lattice import run_length
 
-    from ._simulate import simulate_seeds
+    from ._seeds import simulate_seeds
 
     if t_end is None and peak_time is not None and math.isfinite(peak_time):
         t_end = max(run_length(spec.peak_gain).t_end, 1.5 * peak_time)

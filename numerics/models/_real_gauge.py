@@ -86,7 +86,7 @@ def real_gauge(K, g):
 def frozen_real(K, Om, cidx, ridx, g, X, Sig):
     """The frozen pencil at lambda = 0 in the gauge ``g`` (``real_gauge``): its 2 r_C
     eigenvalues lambda (returned), the fold Sigma (into ``Sig``) and T_RR(0)^{-1} K_RC
-    (into ``X``), both back in the pencil's own coordinates, as ``_sidebands._fold`` gives
+    (into ``X``), both back in the pencil's own coordinates, as ``_cluster_solve._fold`` gives
     them. Returns (lambda, ok): ok False where T_RR(0) is singular or dgeev fails."""
     rc, nr = cidx.size, ridx.size
     # R_RR - Omega_R^2 and R_RC, real (R symmetric: R_CR = R_RC^T, gauged once)

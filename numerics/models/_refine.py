@@ -8,7 +8,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from ._sidebands import STEPS, TOL, _lu, _lu_solve, _newton_step
+from ._cluster_solve import STEPS, TOL, _newton_step
+from ._small_algebra import _lu, _lu_solve
 
 _KW = dict(cache=True, nogil=True, error_model="numpy", boundscheck=False)
 
@@ -38,7 +39,7 @@ def _kept(vec, P, d):
 @njit(**_KW)
 def _newton_past(Kt, Om, lam, cidx, ridx, scale, X, known):
     """Newton on det S(lambda) from ``lam`` with the root ``known`` divided out (Maehly,
-    ``_sidebands._newton_step``, besides a growing iterate's mirror): the second root of a
+    ``_cluster_solve._newton_step``, besides a growing iterate's mirror): the second root of a
     pair the frozen pencil placed off the axis. Returns (lambda, settled)."""
     rc = cidx.size
     S = np.empty((rc, rc), np.complex128)
@@ -57,7 +58,7 @@ def _refine(K, Om, lam, v, scale, split=False):
     """Nonlinear inverse iteration on the whole pencil T(lambda) = (lambda - i Omega)^2 + K
     (Ruhe's: w = T^{-1} T' v, lambda -= 1 / (v^* w), v = w / |w|; quadratic, Newton on det T
     for one coordinate) from ``lam`` and the frozen pencil's eigenvector ``v`` (unit norm,
-    updated in place), until a step is below TOL, as ``_sidebands._newton``. One LAPACK
+    updated in place), until a step is below TOL, as ``_cluster_solve._newton``. One LAPACK
     solve of n x n a step, against the Schur complement's two solves and two products;
     ``split`` (the pencil's nonzeros in separate blocks): by the LU that skips zeros
     instead, which then costs what the blocks do (stiff-hinge's two halves: 12 us

@@ -89,7 +89,7 @@ def _ldlh(A):
     """In-place A = L D L^* of a Hermitian matrix, its lower triangle read (L unit lower
     below the diagonal, D real on it), without pivoting: for a strictly diagonally
     dominant one (the Hill kernel's rest at a point of the imaginary axis outside every
-    disc of its own: ``_sidebands._fold``) elimination keeps the dominance and every
+    disc of its own: ``_cluster_solve._fold``) elimination keeps the dominance and every
     pivot is nonzero, at half an LU's products. False where a pivot is not positive in
     modulus. Zeros skipped as ``_lu`` does."""
     n = A.shape[0]

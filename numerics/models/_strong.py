@@ -14,7 +14,7 @@ whose eigenvector is heaviest at |l| <= 2 (one inverse-iteration step) is refine
 on the whole pencil at P, exact: nonlinear inverse iteration (``_refine``) from it and
 its eigenvector (the C part from that step, the rest -T_RR(0)^{-1} K_RC y_C), whose
 eigenvector gives the weights the kept modes are chosen by, as the dense eigenproblem's
-do; where it does not settle, Newton on det S (``_sidebands._newton``: the mirror root
+do; where it does not settle, Newton on det S (``_cluster_solve._newton``: the mirror root
 -conj(lambda) divided out, the eigenvector S's null vector and the rest
 -T_RR^{-1} K_RC y_C). A step of the inverse iteration is one LAPACK solve of n x n, one
 of Newton's on S two solves and two products (halves the refinement's cost). A pair of
@@ -60,10 +60,11 @@ from numba import njit
 
 from ._between import between_anchors, merged_starts
 from ._chaining import pencil_parts
+from ._cluster_solve import _newton
 from ._frozen import _frozen_starts, _start_vector
 from ._real_gauge import _components
 from ._refine import _kept, _newton_past, _refine
-from ._sidebands import _newton, _pencil_from_parts
+from ._sidebands import _pencil_from_parts
 from ._small_algebra import _drop_roundoff
 
 _KW = dict(cache=True, nogil=True, error_model="numpy", boundscheck=False)

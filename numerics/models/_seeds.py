@@ -1,0 +1,126 @@
+"""The seeded runs of one point (``simulate_seeds`` -> ``SeededRuns``), split from
+``_simulate``: ``seeds`` runs of the ring from the exact theory's wave (``simulate_model``)
+and their verdict, one rule for a point and a map cell; the exact theory handed in is
+checked to be that of this very wave on this ring.
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+from dataclasses import dataclass
+
+import numpy as np
+
+from energy import Model, ModelError
+
+from ._simulate import simulate_model, snap_ring
+
+
+@dataclass(frozen=True)
+class SeededRuns:
+    """Runs of one point from the exact wave with seeds 0 .. n - 1, and their verdict.
+
+    verdict : numerics.lattice.Verdict
+        ``simulated_verdict`` of their growth factors (MI, "no growth within T",
+        "undetermined"), with the median rate of the unstable runs.
+    rate : float
+        That median rate (1/time); nan where no run was unstable.
+    runs : list of ModelRun
+    t_end : float
+        The runs' length.
+    length : RunLength or None
+        How T was chosen from the exact rate (None where ``t_end`` was given).
+    """
+
+    verdict: object
+    rate: float
+    runs: list
+    t_end: float
+    length: object = None
+
+
+def _check_spec(model: Model, k: float, amplitude: float, spec, branch, N: int) -> None:
+    """``spec`` is the exact theory of this very wave on this ring: the runs start from
+    ``spec.wave``, so a spectrum of another k, amplitude, branch or model would start
+    them from another wave, silently (seen: amplitude 0.5 asked, 0.05 run)."""
+    from ._linear import branch_index, check_amplitude, check_model
+
+    wave = getattr(spec, "wave", None)
+    if wave is None or not hasattr(spec, "peak_gain"):
+        raise ModelError(f"spec must be the exact theory of the wave on this ring "
+                         f"(numerics.models.exact_gain(model, k, amplitude, branch, N=N)), "
+                         f"got {type(spec).__name__}")
+    check_model(model)
+    a = check_amplitude(amplitude)
+    kr = snap_ring(k, N)[0]
+    b = branch_index(model, kr, branch)
+    differ = [f"{name} {got} (spec: {want})" for name, got, want, same in (
+        ("k on the ring", f"{kr:.6g}", f"{wave.k:.6g}", math.isclose(kr, wave.k, rel_tol=1e-12)),
+        ("amplitude", f"{a:.6g}", f"{wave.amplitude:.6g}",
+         math.isclose(a, wave.amplitude, rel_tol=1e-12)),
+        ("branch", b, wave.carrier.branch, b == wave.carrier.branch),
+        ("model", model.describe(), wave.model.describe(),
+         wave.model.lattice == model.lattice and dict(wave.model.params) == dict(model.params)))
+        if not same]
+    ring = _spec_ring(spec)
+    if ring != N:  # another ring's k can snap to the same 2 pi m / N: its offsets differ
+        differ.append(f"ring N = {N} (spec: "
+                      + ("the infinite chain, or no ring's offsets" if ring is None
+                         else f"N = {ring}") + ")")
+    if differ:
+        raise ModelError(f"spec is the exact theory of another wave: {'; '.join(differ)}; "
+                         f"give exact_gain(model, k, amplitude, branch, N=N) of these")
+
+
+def _spec_ring(spec) -> int | None:
+    """The ring whose offsets 2 pi j / N (j = 1..N // 2) ``spec`` holds, from the offsets
+    themselves (``exact_gain(..., N=N)`` takes exactly those), or None: the infinite
+    chain's grid, or offsets of no ring."""
+    from ._exact import ring_offsets
+
+    q = np.asarray(getattr(spec, "offsets", ()), float).ravel()
+    if not q.size or not np.isfinite(q).all() or q[0] <= 0:
+        return None
+    n = round(2 * math.pi / q[0])
+    for N in (n, n + 1):  # N // 2 offsets: an odd ring's has the even ring's count
+        want = ring_offsets(N)
+        if want.shape == q.shape and np.allclose(q, want, rtol=1e-12, atol=0):
+            return N
+    return None
+
+
+def simulate_seeds(model: Model, k: float, amplitude: float, spec, *, branch=None,
+                   N: int = 256, seeds: int = 1, t_end: float | None = None,
+                   start: str = "exact", gain: float | None = None, **run) -> SeededRuns:
+    """``seeds`` runs of the ring from ``spec``'s exact wave (``exact_gain`` on this ring)
+    and their verdict: one rule for a point and a map cell. T is ``run_length`` of the
+    exact rate (``gain``: of this rate instead, the theory of another ``start``'s state)
+    unless ``t_end`` is given. ``run``: more keywords of ``simulate_model`` (``noise_on``,
+    ``until_peak``: a lossy point's launch, issue 42)."""
+    from numerics.lattice import run_length, simulated_verdict
+
+    if isinstance(seeds, bool) or not isinstance(seeds, (int, np.integer)) or seeds < 1:
+        raise ModelError(f"seeds must be an integer >= 1, got {seeds!r}")
+    _check_spec(model, k, amplitude, spec, branch, N)
+    if t_end is not None and (isinstance(t_end, bool) or not isinstance(t_end, numbers.Real)):
+        raise ModelError(f"t_end must be a finite time > 0, got {type(t_end).__name__} "
+                         f"{t_end!r}")
+    length = run_length(spec.peak_gain if gain is None else gain) if t_end is None else None
+    T = float(t_end) if t_end is not None else length.t_end
+    runs = [simulate_model(model, k, amplitude, branch=branch, N=N, t_end=T, start=start,
+                           seed=s, wave=spec.wave, **run) for s in range(int(seeds))]
+    growth = [r.growth() for r in runs]
+    rates = [g.rate for g in growth if g.verdict == "unstable"]
+    rate = float(np.median(rates)) if rates else math.nan
+    if model.lossy and run.get("until_peak"):
+        # with losses growth is transient and these runs stop once A(t) has halved: their
+        # factor is the amplification (max over t of A(t) / A(0)), not end over start,
+        # and T is how long they ran
+        factors = [r.amplification().amplification for r in runs]
+        T_run = max(float(r.t[-1]) for r in runs)
+        return SeededRuns(simulated_verdict(factors, T_run, rate, time_name="time"), rate,
+                          runs, T_run, length)
+    return SeededRuns(simulated_verdict([g.factor for g in growth], T, rate,
+                                        time_name="time"), rate, runs, T,
+                      length)
