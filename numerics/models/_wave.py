@@ -122,24 +122,6 @@ def _wrap(x):
     return np.abs((np.asarray(x) + np.pi) % (2 * np.pi) - np.pi)
 
 
-def _fields_at(c, xi, shift=0.0):
-    """U(xi + shift) from coefficients c (d, 2H + 1)."""
-    H = (c.shape[1] - 1) // 2
-    h = np.arange(-H, H + 1)
-    return np.real(c @ np.exp(1j * h[:, None] * (xi[None, :] + shift)))
-
-
-def _force(model: Model, c, xi, k):
-    """F_j(xi) = -[d_j W(U(xi), U(xi + k)) + d_{d+j} W(U(xi - k), U(xi))], shape (d, M)."""
-    d = model.n_fields
-    U0, Up, Um = _fields_at(c, xi), _fields_at(c, xi, k), _fields_at(c, xi, -k)
-    g_here = np.empty((2 * d, xi.size))
-    g_back = np.empty((2 * d, xi.size))
-    model.code.cell_gradient_into(np.concatenate([U0, Up]), model.p, g_here)
-    model.code.cell_gradient_into(np.concatenate([Um, U0]), model.p, g_back)
-    return -(g_here[:d] + g_back[d:])
-
-
 @one_blas_thread
 def travelling_wave(model: Model, k: float, amplitude: float, branch=None, *,
                     harmonics: int | None = None,
