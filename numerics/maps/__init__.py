@@ -8,7 +8,9 @@ One cell         simulate_cell (the simulated verdict, growth factor, early stop
                  growth_of, measured_peak_gain
 One point        measure_point -> PointResult (`flexmm point`: the theories over the
                  sideband offsets, the predicted growth, a simulation with a cell's step
-                 choice and seed majority), point_step, theory_curves, offset_curve, fold,
+                 choice and seed majority); of a ModelPointSpec (any model's point: its
+                 theories, runs, notes; PointInputError) -> ModelPoint (POINT_KINDS,
+                 register_point_kind: each kind of point by its type), point_step, theory_curves, offset_curve, fold,
                  snap_carrier (k -> 2 pi m / N, checked), MAX_SEEDS, MAX_T_END
 Maps by sim.     MapParameters (what defines a map; ModelMapParameters: a lattice model's,
                  model_text its file's text), parse_spec (``v1,v2`` or
@@ -65,15 +67,18 @@ from ._gpu import gpu_status, simulate_cells_gpu, simulate_map_cells_gpu
 from ._gpu_models import simulate_model_cells_gpu
 from ._integrity import store_lock
 from ._model_params import MODE_KIND_CODES, VERDICT_CODES, ModelMapParameters, model_text
+from ._model_point import ModelPoint, ModelPointSpec, PointInputError
 from ._params import CRITERION, MapParameters, local_cores, parse_spec
 from ._point import (
                      MAX_SEEDS,
                      MAX_T_END,
+                     POINT_KINDS,
                      PointResult,
                      fold,
                      measure_point,
                      offset_curve,
                      point_step,
+                     register_point_kind,
                      snap_carrier,
                      theory_curves,
 )
@@ -87,6 +92,7 @@ __all__ = [
     "open_or_create", "check_store",
     "simulate_block", "CRITERION", "MapCellError", "local_cores",
     "seed_majority", "PointResult", "measure_point", "point_step", "theory_curves",
+    "ModelPointSpec", "ModelPoint", "PointInputError", "POINT_KINDS", "register_point_kind",
     "offset_curve", "fold", "snap_carrier", "MAX_SEEDS", "MAX_T_END",
     "cell_records", "predict_cell", "GROWTH_TOL", "GROWTH_ERROR_CONSTANTS", "tri_state",
     "store_lock", "cells_done", "local_cluster", "LOCAL_CLUSTER_CONFIG",

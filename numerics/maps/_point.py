@@ -3,7 +3,9 @@ growth factor predicted from the initial state, and (``simulate=True``) the meas
 and verdict, with a map cell's step choice and seed-majority verdict.
 
 ``measure_point`` is ``flexmm point`` without the command line: the command prints and
-writes what it returns (``point.json`` is :meth:`PointResult.as_dict`).
+writes what it returns (``point.json`` is :meth:`PointResult.as_dict`). It takes every kind
+of point by its type (``POINT_KINDS``): a Material here, a lattice model's
+``ModelPointSpec`` (``_model_point``, which registers itself).
 """
 
 from __future__ import annotations
@@ -339,10 +341,44 @@ def _simulated(material, case, k, amplitude, start, N, t_end, seeds):
     return simulated, meas, growths
 
 
-def measure_point(material: Material, case: str, k: float,
-                  amplitude: float = paper.AMPLITUDE, *, N: int = paper.N,
-                  start: str = "paper", simulate: bool = False, t_end: float | None = None,
-                  seeds: int = 4) -> PointResult:
+#: the kinds of point ``measure_point`` takes: {the point's type: its measure(point, ...)}
+POINT_KINDS: dict = {}
+
+
+def register_point_kind(kind: type, measure) -> None:
+    """``measure_point(point, ...)`` of a ``kind`` is ``measure(point, ...)``: a kind of
+    point answers the one entry point, as a map kind answers ``run_map``."""
+    POINT_KINDS[kind] = measure
+
+
+def measure_point(material, *args, **kwargs):
+    """MI at one point: the theories, and (``simulate``) the runs that check them.
+
+    ``material`` picks the kind of point (``POINT_KINDS``): a ``Material`` (the paper's
+    chain; the parameters below) or a ``ModelPointSpec`` (any lattice model; the keywords
+    ``on_estimate`` and ``estimate_figure`` only, see ``measure_model_point``: returns a
+    ``ModelPoint``).
+
+    Parameters
+    ----------
+    material : Material or ModelPointSpec
+    case, k, amplitude, N, start, simulate, t_end, seeds
+        A Material's point: see ``_measure_material`` (below).
+
+    Returns
+    -------
+    PointResult or ModelPoint
+    """
+    for kind, measure in POINT_KINDS.items():
+        if isinstance(material, kind):
+            return measure(material, *args, **kwargs)
+    return _measure_material(material, *args, **kwargs)  # its check names what it takes
+
+
+def _measure_material(material: Material, case: str, k: float,
+                      amplitude: float = paper.AMPLITUDE, *, N: int = paper.N,
+                      start: str = "paper", simulate: bool = False,
+                      t_end: float | None = None, seeds: int = 4) -> PointResult:
     """MI at one point: the three theories, the predicted growth and (``simulate``) the run.
 
     Parameters
@@ -414,5 +450,7 @@ def measure_point(material: Material, case: str, k: float,
         length=length)
 
 
-__all__ = ["PointResult", "measure_point", "point_step", "theory_curves", "offset_curve", "fold",
+register_point_kind(Material, _measure_material)
+
+__all__ = ["PointResult", "measure_point", "POINT_KINDS", "register_point_kind", "point_step", "theory_curves", "offset_curve", "fold",
            "snap_carrier", "MAX_SEEDS", "MAX_T_END", "Q_GRID", "SAVE_EVERY", "START_CURVE_POINTS"]
