@@ -211,25 +211,26 @@ def _dispatch(args, scenes) -> int:
         raise ValueError("--json: for --model commands (" + (
             f"the paper chain's {args.cmd} writes {writes} with --out; " if writes else "")
             + f"try {args.cmd} --model flexmm --param alpha=...)")
-    if getattr(args, "model", None) is not None:
-        from . import model_map, model_point, models
-
-        run = {"coefficients": models.run_coefficients, "point": model_point.run_point,
-               "map": model_map.run_map, "soliton": models.run_soliton}[args.cmd]
-        return run(args)
-    if getattr(args, "exact", False):
-        raise ValueError("--exact: for --model maps (the paper chain's maps hold the exact "
-                         "lattice theory already)")
-    if hasattr(args, "start"):  # the paper chain's starts: eq. IC (default) or travelling
-        if args.start == "linear":
-            raise ValueError("--start linear: for --model runs (the paper chain starts from "
-                             "eq. IC, 'paper', or the exact wave, 'travelling')")
-        args.start = args.start or "paper"
-    if args.cmd == "point":
+    if getattr(args, "model", None) is None:
+        if getattr(args, "exact", False):
+            raise ValueError("--exact: for --model maps (the paper chain's maps hold the "
+                             "exact lattice theory already)")
+        if hasattr(args, "start"):  # the paper chain's starts: eq. IC (default), travelling
+            if args.start == "linear":
+                raise ValueError("--start linear: for --model runs (the paper chain starts "
+                                 "from eq. IC, 'paper', or the exact wave, 'travelling')")
+            args.start = args.start or "paper"
+    if args.cmd == "point":  # one point path: every model's, the paper flags' too
         from .point import run_point
 
         run_point(args)
         return 0
+    if getattr(args, "model", None) is not None:
+        from . import model_map, models
+
+        run = {"coefficients": models.run_coefficients, "map": model_map.run_map,
+               "soliton": models.run_soliton}[args.cmd]
+        return run(args)
     if args.cmd == "soliton":
         from .soliton import run_soliton
 

@@ -1,6 +1,8 @@
-"""`flexmm point`: the three theories of MI at one point of any material, and optionally
-the simulation that checks them (measured sigma(q), verdict, figure). The numbers are
-``numerics.maps.measure_point``'s; this module checks the options, prints and writes."""
+"""`flexmm point`: the theories of MI at one point of the paper's chain (its flags) or of
+any lattice model (``--model``), and optionally the simulation that checks them (measured
+sigma(q), verdict, figure). The numbers are ``numerics.maps.measure_point``'s, for a
+Material or a ``ModelPointSpec``; this module checks the options, prints and writes (a
+model point's table and files in ``_model_point_text``)."""
 
 from __future__ import annotations
 
@@ -207,7 +209,13 @@ def _log_fastest(log, rows, k, units):
 
 def run_point(args, log=print) -> dict:
     """`flexmm point`: check the options, echo them, ``measure_point``, print the table
-    and (``--out``) write point.json and point.png. Returns point.json's dict."""
+    and (``--out``) write point.json and point.png. Returns point.json's dict.
+
+    With ``--model`` the point is the model's (``ModelPointSpec``), printed by
+    ``_model_point_text`` (``log`` is the paper flags' only: a model point's messages go
+    to stderr with --json)."""
+    if getattr(args, "model", None) is not None:
+        return _run_model_point(args)
     mat, units = material_from(args)
     amplitude, k, m = _checked(args, mat)
     if args.out:  # before any computation (a simulation may take minutes)
@@ -363,3 +371,83 @@ def _figure(out, th, meas, k, args, amplitude, mat=None, no_rate=None):
     with atomic_write(out / "point.png", mode=None) as tmp:
         fig.savefig(tmp, format="png", dpi=110)
     plt.close(fig)
+
+
+# ------------------------------------------------------------------ --model
+def _model_start(args, model) -> str:
+    """The run's start: "exact" (--start travelling, the default), "linear", or a start the
+    model registers (``numerics.models.extra_starts``: "paper", eq. IC, for the paper
+    chain's energy)."""
+    from numerics.models import extra_starts
+
+    start = getattr(args, "start", None)
+    if start in (None, "travelling"):
+        return "exact"
+    if start == "linear" or start in extra_starts(model):
+        return start
+    raise ValueError(f"--start {start}: model {model.name} has no such start; it starts "
+                     "from travelling (the exact wave, default) or linear (the linear plane "
+                     "wave)" + ("; the paper's start (eq. IC) belongs to the paper chain's "
+                                "energy, lossless (flexmm, flexmm-rotation)"
+                                if start == "paper" else ""))
+
+
+def _option_error(exc, args) -> ValueError:
+    """A ``PointInputError`` said with the option's name (``--N: ...``), the start's as
+    the command spells it (travelling for the API's "exact")."""
+    if exc.field == "start":
+        return ValueError(f"--start {args.start}: " + exc.reason.replace(
+            "use start 'exact' or 'linear'", "use --start travelling or linear"))
+    return ValueError(f"--{exc.field}: {exc.reason}")
+
+
+def _run_model_point(args) -> dict:
+    """`flexmm point --model`: the options checked (each by its name, before any theory
+    runs), ``measure_point`` of the ``ModelPointSpec``, then ``_model_point_text``."""
+    import time
+
+    from numerics.maps import ModelPointSpec, PointInputError
+
+    from . import _model_point_text as text
+    from .models import branch_of, check_amplitude, load
+    from .units import model_units
+
+    model = load(args)
+    units = model_units(args)
+    checks.real("--k", args.k, 0.0, math.pi, high_open=False)
+    check_amplitude(args.amplitude)
+    if args.t_end is not None and not args.simulate:
+        raise ValueError("--t-end acts with --simulate only")
+    if not args.simulate and ("--seeds" in getattr(args, "given", ()) or args.seeds != 4):
+        # the paper chain's point predicts its growth per seed; a model's seeds are runs
+        raise ValueError("--seeds: a model point's seeds are its runs'; add --simulate, "
+                         "or leave --seeds out")
+    if args.simulate:  # the runs' options, as the paper chain's point checks them: before
+        checks.integer("--seeds", args.seeds, 1, MAX_SEEDS)  # any theory (--t-end 1e30
+        if args.t_end is not None:  # hung in the estimate's probe)
+            checks.real("--t-end", args.t_end, 0.0, MAX_T_END)
+    start = _model_start(args, model)
+    try:  # the ring, the amplitude's resolution, a registered start's state
+        spec = ModelPointSpec(model, args.k, args.amplitude, branch_of(args), N=args.N,
+                              start=start, simulate=args.simulate, seeds=args.seeds,
+                              t_end=args.t_end)
+    except PointInputError as exc:
+        raise _option_error(exc, args) from None
+    if args.out:
+        from common.output import check_output
+        check_output(args.out, cache=False)
+    if args.simulate:  # said before anything that takes time
+        text.log_to(args)(f"point: the theories, then an estimate of the {args.seeds} "
+                          "run(s) (a model's first run compiles its force for this "
+                          "machine, once: seconds to tens of seconds)")
+    said = []  # when the estimate was said: the runs' wall time is counted from there
+
+    def on_estimate(est):
+        text.say_estimate(args, est)
+        said.append(time.perf_counter())
+
+    try:
+        point = measure_point(spec, on_estimate=on_estimate, estimate_figure=bool(args.out))
+    except PointInputError as exc:  # --simulate where the model has no travelling wave
+        raise _option_error(exc, args) from None
+    return text.report(args, point, units, said[0] if said else None)

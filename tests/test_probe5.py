@@ -15,7 +15,7 @@ def _wrap(x):
 
 
 def _copies_by_scan(q, g, k, step):
-    """The copy rule of ``cli.model_figure.hill_copies`` as a plain scan of every kept
+    """The copy rule of ``numerics.maps._model_point_curves.hill_copies`` as a plain scan of every kept
     offset (its form before the binned look-up): the reference the fast form must equal."""
     grows = g > 0
     edges = np.flatnonzero(np.diff(np.concatenate([[0], grows.astype(int), [0]])))
@@ -37,7 +37,7 @@ def _copies_by_scan(q, g, k, step):
 def test_hill_copies_equal_the_plain_scan(N, m):
     """The binned look-up finds the copies the quadratic scan finds, on ring offsets with
     bands that repeat one another at +-q + l k (and gains that do or do not agree)."""
-    from cli.model_figure import hill_copies
+    from numerics.maps._model_point_curves import hill_copies
 
     rng = np.random.default_rng(N)
     q = 2 * np.pi * np.arange(1, N // 2 + 1) / N
@@ -54,7 +54,7 @@ def test_hill_copies_of_a_large_ring_is_fast():
     """A ring of 2^20 sites (the largest --N) with a band of 30 000 unstable offsets: the
     point's curve took hours (a scan of every kept offset per offset); now well under a
     minute on a shared 2-core machine (measured ~1 s here; 30 s allows a 30x slower box)."""
-    from cli.model_figure import hill_copies
+    from numerics.maps._model_point_curves import hill_copies
 
     N = 2**20
     q = 2 * np.pi * np.arange(1, N // 2 + 1) / N

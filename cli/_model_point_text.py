@@ -1,0 +1,183 @@
+"""What `flexmm point --model` prints and writes (``cli.point.run_point`` calls it): the
+estimate of the runs before them, point.json and point.png, then the table of every
+theory's verdict (and a lossy model's amplifications) and the notes, or the JSON alone.
+The numbers are ``numerics.maps.measure_point``'s (a ``ModelPoint``)."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+from .models import _emit, _fmt
+
+
+def log_to(args):
+    """Where a point's messages go: stdout, or stderr where stdout is the JSON."""
+    return (lambda *a: print(*a, file=sys.stderr)) if args.json else print
+
+
+def say_estimate(args, est) -> None:
+    """The runs of a simulated point and what follows them (``PointEstimate``: one run
+    measured here), said before them."""
+    from common.text import duration
+
+    log_to(args)(f"estimate: about {duration(est.seconds)} more ({est.seeds} run(s) of T = "
+                 f"{est.t_end:g} on N = {args.N} sites ~{est.seeds * est.run:.2g} s of CPU, "
+                 "measured here"
+                 + (f"; the cores shared (load average {est.load:.1f} on {est.cores}): "
+                    f"{est.slowdown:.1f}x slower, counted" if est.slowdown > 1 else "") + ")")
+
+
+def _waves(row) -> str:
+    return " and ".join(f"branch {w['branch']} ({w['field']}) at {w['wavenumber']:.4g}"
+                        for w in row.get("mode_waves", []))
+
+
+#: the infinite chain's unsampled bands a point's text lists in full (the fastest ones)
+MISSES_SHOWN = 3
+
+
+def _miss_text(b, N) -> str:
+    return (f"the infinite chain grows at {b['peak_gain']:.3g} /time in the band of offsets "
+            f"{b['band'][0]:.4g} to {b['band'][1]:.4g} rad/site, which no offset 2 pi j / N "
+            f"of the ring of N = {N} samples: N = {b['N']} does (k snaps to 2 pi m / N)")
+
+
+def _times(x, f):
+    """x f, None where either is None."""
+    return None if x is None or f is None else x * f
+
+
+def _inverse(rate):
+    """The e-folding time 1/rate of a positive rate, else None."""
+    return 1 / rate if rate is not None and rate > 0 else None
+
+
+def _loss_table(out, units=None) -> None:
+    """The table of a lossy point's amplifications (printed after the verdicts; the time
+    also in s where --time-unit is given)."""
+    t_f = units.factor("time") if units is not None else None
+    print(f"{'with losses':<20} {'carrier damping':>16} {'amplification':>14} "
+          f"{'at time':>10} {'observable':>11}" + (f" {'at time (s)':>12}" if t_f else ""))
+    for name in ("semi-discrete NLS", "four-wave", "exact lattice", "simulated"):
+        t = out.get(name, {})
+        if "amplification" not in t:
+            continue
+        amp = t["amplification"]
+        amp_s = "inf" if amp is None and t["observable"] else _fmt(amp, 4)
+        obs = {True: "yes (>= 20x)", False: "no", None: "-"}[t["observable"]]
+        print(f"{name:<20} {_fmt(t.get('carrier_damping'), 3):>16} {amp_s:>14} "
+              f"{_fmt(t['amplification_time'], 4):>10} {obs:>11}"
+              + (f" {_fmt(_times(t['amplification_time'], t_f), 4):>12}" if t_f else ""))
+
+
+def report(args, point, units, since=None) -> dict:
+    """Write (``--out``) point.json and point.png, say how long the runs took after their
+    estimate (``since``: when it was said), then print the JSON (``--json``) or the table
+    and its notes. Returns point.json's object."""
+    import time
+
+    from common.output import strict_json
+
+    from .units import add_units
+
+    model, out = point.spec.model, strict_json(add_units(point.as_dict(), units))
+    start, launched, start_label = point.spec.start, point.spec.launched, point.start_label
+    misses = point.rows["ring_misses"]  # as measured (out: strict JSON)
+    if args.out:
+        import json
+
+        from common.files import write_text
+        from common.output import prepare_output
+        folder = prepare_output(args.out, cache=False)
+        write_text(folder / "point.json", json.dumps(out, indent=1, allow_nan=False) + "\n")
+        from .model_figure import figure
+        curves = {n: c for n, c in out["curves"].items() if n not in ("description",
+                                                                       "simulated")}
+        figure(folder / "point.png", model, out, curves, out["curves"].get("simulated"),
+               getattr(args, "seeds", 1), args.simulate)
+    if point.estimate is not None:
+        from common.text import duration
+
+        log_to(args)(f"took {duration(time.perf_counter() - since)} after the estimate "
+                     f"(estimated {duration(point.estimate.seconds)})")
+    if args.json:
+        _emit(out)
+        return out
+    print(f"model:    {model.describe()}")
+    print(f"carrier:  k = {out['k']:g} rad/site (2 pi m / N on the ring of N = {args.N}) on "
+          f"branch {out['branch']} (field {out['field']}), amplitude a = {out['amplitude']:g}"
+          + (f"; k{units.si(out['k'], 'wavenumber')}" if units.metres_per_site else ""))
+    print(f"units:    {units.describe()}")
+    rate_f, k_f = units.factor("rate"), units.factor("wavenumber")
+    w = max(20, len(start_label or ""))  # the names' column
+    print(f"{'theory':<{w}} {'verdict':>19} {'peak gain (1/time)':>19} {'at offset':>10}"
+          + (f" {'peak gain (1/s)':>16} {'e-folding (s)':>14}" if rate_f else "")
+          + (f" {'offset (rad/m)':>15}" if k_f else ""))
+    for name in ("continuum NLS", "semi-discrete NLS", "four-wave", "exact lattice",
+                 *([start_label] if start_label else []), "simulated"):
+        if name in out:
+            t = out[name]
+            word = t.get("simulation_verdict", t["verdict"])  # a run says what T shows
+            gain = t["peak_gain"] if word == "MI" or name != "simulated" else None
+            off = t.get("fastest_offset")
+            print(f"{name:<{w}} {word:>19} {_fmt(gain, 4):>19} {_fmt(off, 4):>10}"
+                  + (f" {_fmt(_times(gain, rate_f), 4):>16} "
+                     f"{_fmt(_times(_inverse(gain), units.seconds_per_T), 4):>14}"
+                     if rate_f else "")
+                  + (f" {_fmt(_times(off, k_f), 4):>15}" if k_f else ""))
+    if model.lossy:
+        _loss_table(out, units)
+    if out["semi-discrete NLS"]["reason"]:
+        print(f"undefined: {out['semi-discrete NLS']['reason']}")
+    ex = out["exact lattice"]
+    if ex.get("reason"):
+        print(f"exact lattice undefined: {ex['reason']}")
+    elif ex["verdict"] == "MI" and ex["mode_kind"] != "sidebands":
+        what = "a resonance" if ex["mode_kind"] == "resonance" else f"a {ex['mode_kind']} pair"
+        print(f"note: the exact lattice's fastest mode is {what} ({_waves(ex)}), not the "
+              "carrier's sidebands: the NLS cannot see it")
+    fw = out["four-wave"]
+    if fw.get("reason"):  # the exact lattice's reason said once (the energy not real)
+        print("four-wave undefined: " + ("as the exact lattice" if fw["reason"] ==
+                                         ex.get("reason") else fw["reason"]))
+    if fw["verdict"] == "MI":
+        print(f"four-wave: the fastest pair is {fw['mode_kind']} ({_waves(fw)})")
+    if start_label and out[start_label].get("reason"):
+        print(f"{start_label} undefined: {out[start_label]['reason']}")
+    if "simulated" in out:
+        sim = out["simulated"]
+        drift = (f"energy balance error {sim['energy_balance']:.1g} (dE/dt = -2R)"
+                 if "energy_balance" in sim else f"energy drift {sim['energy_drift']:.1g}")
+        text = sim["text"]
+        if "amplification" in sim:  # with losses growth is transient: say the factor first
+            text = (f"the sidebands grew {sim['amplification']:.4g}x by t = "
+                    f"{sim['amplification_time']:.4g} (the rate rule over the run: {text})")
+        origin = (launched.describe if launched is not None else
+                  f"the {'exact travelling' if start == 'exact' else 'linear plane'} wave")
+        print(f"simulated: {text}; {sim['seeds']} seed(s) from {origin}, {drift}")
+        if "peaked" in sim:
+            print("simulated with losses: noise on the carrier field's positions; the runs "
+                  f"went on to t = {sim['t_end']:.4g}, " + (
+                      "where A(t) had fallen to half its peak" if sim["peaked"] else
+                      "their cap (A(t) had not fallen to half its peak)"))
+        if sim.get("note"):
+            print(f"note: {sim['note']}")
+    if point.ring_note:
+        print(f"note: {point.ring_note}")
+    if point.reach_note:
+        print(f"note: {point.reach_note}")
+    # the fastest few in full; near the zone boundary a small ring can miss a dozen bands
+    shown = sorted(misses, key=lambda m: -m["peak_gain"])[:MISSES_SHOWN]
+    for m in sorted(shown, key=lambda m: m["band"][0]):
+        print(f"note: {_miss_text(m, args.N)}")
+    if len(misses) > len(shown):
+        rest = [m for m in misses if m not in shown]
+        print(f"note: {len(rest)} more such bands, growing at up to "
+              f"{max(m['peak_gain'] for m in rest):.3g} /time (all in ring_misses: --json, "
+              f"or point.json with --out); N = {min(m['N'] for m in misses)} samples one")
+    for w in point.warnings:
+        print(f"note: {w}")
+    if args.out:
+        print(f"wrote {Path(args.out) / 'point.json'} and {Path(args.out) / 'point.png'}")
+    return out
