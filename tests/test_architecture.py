@@ -366,6 +366,54 @@ def test_one_map_engine():
         assert all(hasattr(cls, a) for a in asked), cls
 
 
+# --- one point path ---------------------------------------------------------------------------
+
+#: the cli modules of `flexmm point` (the command, a model point's text, its figure)
+POINT_MODULES = ("point.py", "_model_point_text.py", "model_figure.py")
+#: what a model point computes, in numerics.models: the numbers of its rows and curves
+MODEL_THEORY = {"exact_gain", "exact_gain_checked", "four_wave", "nls", "simulate_seeds",
+                "simulate_model", "model_coefficients", "ring_misses", "ring_offsets",
+                "classify_mode", "extra_theories", "nls_amplification",
+                "exact_amplification", "four_wave_amplification", "growth_rates"}
+
+
+def _tree(path: Path):
+    return ast.parse(path.read_text(), str(path))
+
+
+def test_one_point_path():
+    """Every `flexmm point`, the paper flags' and any model's, is one command (``run_point``
+    in cli/point.py) over one entry point, ``numerics.maps.measure_point``, which takes each
+    kind of point by its type: the numbers are numerics', the cli checks, prints, writes."""
+    defining = sorted(p.name for p in (ROOT / "cli").glob("*.py")
+                      if any(isinstance(n, ast.FunctionDef) and n.name == "run_point"
+                             for n in ast.walk(_tree(p))))
+    assert defining == ["point.py"], defining
+    for name in POINT_MODULES:
+        tree = _tree(ROOT / "cli" / name)
+        imported = {(n.module, a.name) for n in ast.walk(tree)
+                    if isinstance(n, ast.ImportFrom) for a in n.names}
+        # a model's start names are a registry look-up (the option's check), not a theory
+        from_models = {a for m, a in imported if m == "numerics.models"} - {"extra_starts"}
+        assert not from_models, (name, from_models)
+        called = {n.func.id if isinstance(n.func, ast.Name) else getattr(n.func, "attr", None)
+                  for n in ast.walk(tree) if isinstance(n, ast.Call)}
+        assert not called & MODEL_THEORY, (name, called & MODEL_THEORY)
+    point = _tree(ROOT / "cli" / "point.py")
+    assert ("numerics.maps", "measure_point") in {
+        (n.module, a.name) for n in ast.walk(point) if isinstance(n, ast.ImportFrom)
+        for a in n.names}
+    # app.py sends every point to that one function
+    app = _tree(ROOT / "cli" / "app.py")
+    assert not any(isinstance(n, ast.ImportFrom) and any("model_point" in a.name
+                                                         for a in n.names)
+                   for n in ast.walk(app))
+    # each kind of point answers measure_point, as each kind of map answers run_map
+    from numerics.maps import POINT_KINDS, ModelPoint, ModelPointSpec, PointResult
+
+    assert {Material, ModelPointSpec} <= set(POINT_KINDS)
+    assert all(hasattr(cls, "as_dict") for cls in (PointResult, ModelPoint))
+
 # --- one stepper ------------------------------------------------------------------------------
 
 def _compiled_functions(path: Path):
