@@ -61,3 +61,8 @@ def test_a_refused_point_names_its_field(kwargs, field):
     assert err.value.field == field
     assert str(err.value).startswith(field)  # one line, named as the API spells it
     assert "\n" not in str(err.value)
+
+
+def test_a_models_name_is_not_a_model():
+    with pytest.raises(TypeError, match="model must be a Model"):
+        ModelPointSpec("fput", 1.0, 0.1, N=32)

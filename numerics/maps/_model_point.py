@@ -44,7 +44,8 @@ class ModelPointSpec:
     Attributes
     ----------
     model : energy.Model
-        The loaded model (``energy.load_model``), its parameters set.
+        The loaded model (``energy.load_model``), its parameters set (a name is refused:
+        TypeError).
     k : float
         Carrier wavenumber (rad per site) in (0, pi], snapped to 2 pi m / N (``k_ring``).
     amplitude : float
@@ -81,12 +82,13 @@ class ModelPointSpec:
     launched: object = field(init=False, repr=False, compare=False)
 
     def __post_init__(self):
-        from energy import MAX_VALUE, ModelError
+        from energy import MAX_VALUE, Model, ModelError
 
         from ..lattice import checks
         from ..models import check_ring, extra_starts, nls, snap_ring
         from ._point import MAX_SEEDS, MAX_T_END
 
+        checks.instance("model", self.model, Model)  # energy.load_model's, not its name
         checks.real("k", self.k, 0.0, math.pi, high_open=False)
         checks.real("amplitude", self.amplitude, 0.0, MAX_VALUE, high_open=False)
         if self.simulate:

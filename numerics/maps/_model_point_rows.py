@@ -48,7 +48,7 @@ def simulated_row(model, k, amplitude, branch, N, seeds, t_end, spec, start, pea
     from ..models import simulate_seeds
 
     if isinstance(seeds, bool) or not isinstance(seeds, int) or seeds < 1:
-        raise ValueError(f"--seeds must be an integer >= 1, got {seeds!r}")
+        raise ValueError(f"seeds must be an integer >= 1, got {seeds!r}")
     # a lossy model's runs are launched as issue 42 measures an amplification: noise on
     # the carrier field's positions, run until A(t) has fallen to half its peak (T a cap)
     launch = {"noise_on": "carrier", "until_peak": True} if model.lossy else {}
