@@ -42,9 +42,9 @@ def _chain(node, ops):
 
 
 def to_sympy(tree: ast.Expression, names: dict) -> sp.Expr:
-    """SymPy expression of a checked energy tree (``energy._spec``): no ``eval``. Chains of
+    """SymPy expression of a checked energy tree (``energy._expressions``): no ``eval``. Chains of
     + - and of * are read flat (one SymPy Add or Mul), so the recursion goes only as deep
-    as the expression's nesting, which ``energy._spec`` bounds."""
+    as the expression's nesting, which ``energy._expressions`` bounds."""
 
     def conv(node):
         if isinstance(node, ast.Expression):

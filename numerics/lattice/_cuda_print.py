@@ -20,7 +20,7 @@ functions, the same operations in the same order as the CPU's loop:
 
 Arrays on the device are flat: ``_u[a, n]`` is printed ``_u[a * _N + n]``. A field or
 parameter name reaches this source only as the generated module spells it, a name the
-energy parser checked (``energy._spec``); numbers only as ``repr`` of the generated literal.
+energy parser checked (``energy._expressions``); numbers only as ``repr`` of the generated literal.
 """
 
 from __future__ import annotations
@@ -29,7 +29,7 @@ import ast
 import inspect
 import textwrap
 
-#: the energy grammar's functions (``energy._spec.FUNCTIONS``) as the generated module
+#: the energy grammar's functions (``energy._expressions.FUNCTIONS``) as the generated module
 #: prints them -> their device form (sin/cos of the site functions: the polynomial)
 _DEVICE_FUNCTIONS = {"sin": "math.sin", "cos": "math.cos", "tan": "math.tan",
                      "exp": "math.exp", "log": "math.log", "sqrt": "math.sqrt",
