@@ -1,0 +1,49 @@
+"""Edges (issue 93, a new user's walk): an option given twice is refused, not silently
+replaced by its last value; a model's point says which k was asked when the ring snapped
+it; the one-line errors about a model's rest state, masses and reserved names name the
+cause and the remedy."""
+
+import pytest
+
+from cli.app import main
+
+TODA = """
+name = "toda"
+fields = ["u"]
+[parameters]
+a = 1.0
+b = 1.0
+[energy]
+kinetic = "u_t**2/2"
+bond = "a/b*(exp(-b*(u_next - u)) - 1 + b*(u_next - u))"
+"""
+
+
+def _one_line_error(capsys, argv):
+    code = main(argv)
+    err = capsys.readouterr().err.strip().splitlines()
+    assert code == 2 and len(err) == 1, err
+    return err[0]
+
+@pytest.mark.parametrize("argv, option", [
+    # argparse keeps the last value: a user who typed the axis twice got the second grid,
+    # the paper chain's material with the second alpha, without a word
+    (["map", "--model", "fput", "--param", "beta=0.5:1.5:2", "--k", "0.5:2:2",
+      "--k", "1:2:2", "--theory-only", "--out", "unused"], "--k"),
+    (["point", "--alpha", "2.5", "--K-s", "0.01851", "--K-theta", "0.01551", "--k", "0.8",
+      "--case", "coupled", "--alpha", "3"], "--alpha"),
+    (["coefficients", "--model", "fput", "--k", "1", "--amplitude=0.1", "--amplitude",
+      "0.2"], "--amplitude"),
+    (["point", "--model", "fput", "--k", "1", "--N", "64", "--N=128"], "--N"),
+])
+def test_an_option_given_twice_is_refused_in_one_line(argv, option, capsys, tmp_path,
+                                                      monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    err = _one_line_error(capsys, argv)
+    assert f"{option} given twice" in err and "give it once" in err
+    assert not (tmp_path / "unused").exists()
+
+
+def test_flags_and_repeatable_options_may_repeat(capsys):
+    assert main(["coefficients", "--model", "fput", "--param", "alpha=1", "--param",
+                 "beta=1", "--k", "1", "--json", "--json"]) == 0
