@@ -250,8 +250,11 @@ def run_point(args) -> int:
         _emit(out)
         return 0
     print(f"model:    {model.describe()}")
-    print(f"carrier:  k = {co['k']:g} rad/site (2 pi m / N on the ring of N = {args.N}) on "
-          f"branch {co['branch']} (field {co['field']}), amplitude a = {co['amplitude']:g}"
+    # the k asked, where the ring moved it (by 30% from 1 on N = 9), as the paper's point
+    asked = "" if f"{co['k']:g}" == f"{args.k:g}" else f", asked {args.k:g}"
+    print(f"carrier:  k = {co['k']:g} rad/site (2 pi m / N on the ring of N = {args.N}"
+          f"{asked}) on branch {co['branch']} (field {co['field']}), amplitude a = "
+          f"{co['amplitude']:g}"
           + (f"; k{units.si(co['k'], 'wavenumber')}" if units.metres_per_site else ""))
     print(f"units:    {units.describe()}")
     rate_f, k_f = units.factor("rate"), units.factor("wavenumber")

@@ -47,3 +47,18 @@ def test_an_option_given_twice_is_refused_in_one_line(argv, option, capsys, tmp_
 def test_flags_and_repeatable_options_may_repeat(capsys):
     assert main(["coefficients", "--model", "fput", "--param", "alpha=1", "--param",
                  "beta=1", "--k", "1", "--json", "--json"]) == 0
+
+def test_a_models_point_says_which_k_was_asked_when_the_ring_snapped_it(capsys):
+    # 2 pi / 9 = 0.698 is the nearest k a ring of 9 sites carries to 1: a 30% change the
+    # user must see, as the paper chain's point says it
+    assert main(["point", "--model", "fput", "--k", "1", "--N", "9",
+                 "--amplitude", "0.1"]) == 0
+    carrier = next(l for l in capsys.readouterr().out.splitlines()
+                   if l.startswith("carrier:"))
+    assert "k = 0.698132" in carrier and "asked 1" in carrier
+
+
+def test_a_models_point_on_the_ring_says_no_asked_k(capsys):
+    assert main(["point", "--model", "fput", "--k", "1.5707963267948966", "--N", "64",
+                 "--amplitude", "0.1"]) == 0
+    assert "asked" not in capsys.readouterr().out
