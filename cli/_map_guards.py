@@ -30,9 +30,9 @@ def check_rest(model, named) -> None:
                 continue
             given = ", ".join(f"--param {n}={v:g}" for n, v in values.items())
             raise ValueError(f"{given}: the energy of {model.name} is not real at the rest "
-                             "state (every field 0) there (a square root, log or fractional "
-                             "power of a quantity negative at rest?); leave such values out "
-                             "of the axis")
+                             "state (every field 0) there (a division by zero, or a square "
+                             "root, log or fractional power of a quantity negative at rest?); "
+                             "leave such values out of the axis")
 
 
 def option(axis: str) -> str:

@@ -62,3 +62,30 @@ def test_a_models_point_on_the_ring_says_no_asked_k(capsys):
     assert main(["point", "--model", "fput", "--k", "1.5707963267948966", "--N", "64",
                  "--amplitude", "0.1"]) == 0
     assert "asked" not in capsys.readouterr().out
+
+def test_an_energy_divided_by_a_zero_parameter_names_the_division(capsys, tmp_path):
+    # the Toda chain's a/b (...) at b = 0 is 0/0 at rest: the message guessed a square root
+    (tmp_path / "toda.toml").write_text(TODA)
+    err = _one_line_error(capsys, ["coefficients", "--model", str(tmp_path / "toda.toml"),
+                                   "--param", "b=0", "--k", "1"])
+    assert "division by zero" in err
+    err = _one_line_error(capsys, ["map", "--model", str(tmp_path / "toda.toml"),
+                                   "--param", "b=0:1:2", "--k", "0.5:2:2", "--theory-only",
+                                   "--out", str(tmp_path / "m")])
+    assert "division by zero" in err and "--param b=0" in err
+
+
+def test_a_negative_mass_names_the_parameters_to_change(capsys, tmp_path):
+    (tmp_path / "m.toml").write_text(TODA.replace('name = "toda"', 'name = "heavy"')
+                                     .replace("a = 1.0", "a = 1.0\nm = -1.0")
+                                     .replace('"u_t**2/2"', '"m*u_t**2/2"'))
+    err = _one_line_error(capsys, ["coefficients", "--model", str(tmp_path / "m.toml"),
+                                   "--k", "1"])
+    assert "mass of u is not > 0" in err and "m*u_t**2/2" in err and "--param m" in err
+
+
+def test_a_field_named_pi_is_told_to_rename(capsys, tmp_path):
+    (tmp_path / "pi.toml").write_text(TODA.replace('["u"]', '["pi"]'))
+    err = _one_line_error(capsys, ["coefficients", "--model", str(tmp_path / "pi.toml"),
+                                   "--k", "1"])
+    assert "'pi'" in err and "rename it" in err

@@ -150,8 +150,8 @@ def check_rest_stable(model: Model, samples: int = 257):
         raise ModelError(f"model {model.describe()}: the energy is not real at the rest "
                          f"state (every field 0): bond + site there is {float(w0.ravel()[0]):g}"
                          + ("" if np.all(np.isfinite(H)) else ", its stiffness not finite")
-                         + " (a square root, log or fractional power of a quantity that is "
-                         "negative at rest at these parameter values?)")
+                         + " (a division by zero, or a square root, log or fractional power "
+                         "of a quantity that is negative at rest, at these parameter values?)")
     if why := rest_kink(model):
         raise ModelError(why)
     m = model.masses
