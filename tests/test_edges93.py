@@ -89,3 +89,22 @@ def test_a_field_named_pi_is_told_to_rename(capsys, tmp_path):
     err = _one_line_error(capsys, ["coefficients", "--model", str(tmp_path / "pi.toml"),
                                    "--k", "1"])
     assert "'pi'" in err and "rename it" in err
+
+def test_a_map_estimate_probing_a_cell_with_no_wave_neither_fails_nor_warns(tmp_path):
+    """The estimate runs one cell; at Toda's amplitude 2000 exp overflows along the wave, so
+    scipy's solver refused its start ('Residuals are not finite in the initial point'):
+    the whole map ended in that line, though its cells say 'undetermined' there."""
+    import warnings
+
+    from numerics.maps import ModelMapParameters
+    from numerics.maps._estimate import probe_model_cell
+
+    (tmp_path / "toda.toml").write_text(TODA)
+    params = ModelMapParameters.from_model(str(tmp_path / "toda.toml"),
+                                           ("amplitude", [1.0, 2000.0]), ("k", [1.0, 2.0]),
+                                           None, N=64, t_end=200.0)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        cost = probe_model_cell(params)
+    assert cost.theory > 0 and cost.run == 0.0
+    assert not [w for w in caught if issubclass(w.category, RuntimeWarning)], caught
