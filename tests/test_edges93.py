@@ -25,6 +25,7 @@ def _one_line_error(capsys, argv):
     assert code == 2 and len(err) == 1, err
     return err[0]
 
+
 @pytest.mark.parametrize("argv, option", [
     # argparse keeps the last value: a user who typed the axis twice got the second grid,
     # the paper chain's material with the second alpha, without a word
@@ -48,6 +49,7 @@ def test_flags_and_repeatable_options_may_repeat(capsys):
     assert main(["coefficients", "--model", "fput", "--param", "alpha=1", "--param",
                  "beta=1", "--k", "1", "--json", "--json"]) == 0
 
+
 def test_a_models_point_says_which_k_was_asked_when_the_ring_snapped_it(capsys):
     # 2 pi / 9 = 0.698 is the nearest k a ring of 9 sites carries to 1: a 30% change the
     # user must see, as the paper chain's point says it
@@ -62,6 +64,7 @@ def test_a_models_point_on_the_ring_says_no_asked_k(capsys):
     assert main(["point", "--model", "fput", "--k", "1.5707963267948966", "--N", "64",
                  "--amplitude", "0.1"]) == 0
     assert "asked" not in capsys.readouterr().out
+
 
 def test_an_energy_divided_by_a_zero_parameter_names_the_division(capsys, tmp_path):
     # the Toda chain's a/b (...) at b = 0 is 0/0 at rest: the message guessed a square root
@@ -90,6 +93,7 @@ def test_a_field_named_pi_is_told_to_rename(capsys, tmp_path):
                                    "--k", "1"])
     assert "'pi'" in err and "rename it" in err
 
+
 def test_a_map_estimate_probing_a_cell_with_no_wave_neither_fails_nor_warns(tmp_path):
     """The estimate runs one cell; at Toda's amplitude 2000 exp overflows along the wave, so
     scipy's solver refused its start ('Residuals are not finite in the initial point'):
@@ -108,3 +112,10 @@ def test_a_map_estimate_probing_a_cell_with_no_wave_neither_fails_nor_warns(tmp_
         cost = probe_model_cell(params)
     assert cost.theory > 0 and cost.run == 0.0
     assert not [w for w in caught if issubclass(w.category, RuntimeWarning)], caught
+
+
+def test_models_given_a_file_says_where_a_file_goes(capsys, tmp_path):
+    # a newcomer's `flexmm models mine.toml` (to see their model) named only the built-ins
+    (tmp_path / "toda.toml").write_text(TODA)
+    err = _one_line_error(capsys, ["models", str(tmp_path / "toda.toml")])
+    assert f"--model {tmp_path / 'toda.toml'}" in err and "flexmm coefficients" in err
