@@ -119,3 +119,21 @@ def test_models_given_a_file_says_where_a_file_goes(capsys, tmp_path):
     (tmp_path / "toda.toml").write_text(TODA)
     err = _one_line_error(capsys, ["models", str(tmp_path / "toda.toml")])
     assert f"--model {tmp_path / 'toda.toml'}" in err and "flexmm coefficients" in err
+
+
+def test_a_simulated_paper_map_says_what_its_runs_found(tmp_path, capsys):
+    """It printed the theories' agreement with the runs, never the runs' own share of MI
+    (a model map prints 'MI share, simulated'); the share is read back from the store."""
+    import xarray as xr
+
+    out = tmp_path / "m"
+    assert main(["map", "--alpha", "2.5", "--K-s", "0.01851", "--delta", "0.003", "--k",
+                 "0.8,1.0", "--case", "coupled", "--N", "64", "--t-end", "200",
+                 "--workers", "1", "--out", str(out)]) == 0
+    lines = capsys.readouterr().out.strip().splitlines()
+    runs = xr.open_zarr(out / "map.zarr")["verdict_simulated"].values.ravel()
+    assert (runs >= 0).all()
+    share = f"{100 * (runs == 1).mean():.0f}%"
+    line = next(ln for ln in lines if ln.startswith("MI (grows more than 20x within T = 200)"))
+    assert f"in: simulated {share} of cells;" in line
+    assert lines[-1].startswith("wrote ")
