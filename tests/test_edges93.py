@@ -137,3 +137,12 @@ def test_a_simulated_paper_map_says_what_its_runs_found(tmp_path, capsys):
     line = next(ln for ln in lines if ln.startswith("MI (grows more than 20x within T = 200)"))
     assert f"in: simulated {share} of cells;" in line
     assert lines[-1].startswith("wrote ")
+
+
+@pytest.mark.parametrize("values, name", [("0.01,2e-6,0.02,1e4,185,0", "k_theta"),
+                                          ("0.01,2e-6,0.02,0,185,1", "k_l")])
+def test_a_bad_physical_value_names_the_option(values, name, capsys):
+    # 'k_theta must be finite and > 0' named no option: --physical's sixth value it is
+    err = _one_line_error(capsys, ["coefficients", "--physical", values, "--k", "1"])
+    assert err.startswith("flexmm: error: --physical m,J,a,k_l,k_s,k_theta: ")
+    assert f"{name} must be finite and > 0" in err
