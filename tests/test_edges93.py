@@ -3,6 +3,7 @@ replaced by its last value; a model's point says which k was asked when the ring
 it; the one-line errors about a model's rest state, masses and reserved names name the
 cause and the remedy."""
 
+import numpy as np
 import pytest
 
 from cli.app import main
@@ -146,3 +147,30 @@ def test_a_bad_physical_value_names_the_option(values, name, capsys):
     err = _one_line_error(capsys, ["coefficients", "--physical", values, "--k", "1"])
     assert err.startswith("flexmm: error: --physical m,J,a,k_l,k_s,k_theta: ")
     assert f"{name} must be finite and > 0" in err
+
+
+def test_a_run_that_blows_up_says_so_without_numpys_overflow_warnings(tmp_path):
+    """A softening chain (bond r^2/2 - r^4) launched at a = 0.3, k = 5 pi/8 escapes to
+    infinity: the run's records squared a state past 1e154 before the stepper saw a
+    non-finite one, and a map's workers printed numpy's 'overflow encountered in square'
+    after the cell's verdict. The run says it blew up (a point's); a map cell's run stops
+    at the record that left the range (its saturation stop), as before, in silence."""
+    import warnings
+
+    from energy import load_model
+    from numerics.models import simulate_model
+
+    (tmp_path / "soft.toml").write_text(TODA.replace('name = "toda"', 'name = "soft"')
+                                        .replace("a/b*(exp(-b*(u_next - u)) - 1 + b*(u_next"
+                                                 " - u))", "(u_next - u)**2/2 - "
+                                                 "(u_next - u)**4"))
+    model = load_model(str(tmp_path / "soft.toml"))
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        with pytest.raises(FloatingPointError, match="the run blew up by t = "):
+            simulate_model(model, 5 * np.pi / 8, 0.3, N=32, t_end=300.0, seed=0)
+        run = simulate_model(model, 5 * np.pi / 8, 0.3, N=32, t_end=300.0, seed=0,
+                             until_saturated=True, energy=False)
+    assert not [w for w in caught if issubclass(w.category, RuntimeWarning)], caught
+    assert run.t[-1] < 300.0 and not np.isfinite(run.deviation[-1])  # left the range
+
