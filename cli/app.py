@@ -200,7 +200,7 @@ def _interrupted(args, exc) -> str:
                 if done else f"nothing was written to {store}")
         return (f"interrupted ({name}); {kept}; the cells that were running were not kept: "
                 "run the same command again to continue")
-    if cmd == "point":
+    if cmd in ("point", "soliton"):  # each writes its files at its end, or nothing
         return (f"interrupted ({name}); nothing was written"
                 + (f" to {args.out}" if getattr(args, "out", None) else ""))
     return f"interrupted ({name})"

@@ -174,3 +174,21 @@ def test_a_run_that_blows_up_says_so_without_numpys_overflow_warnings(tmp_path):
     assert not [w for w in caught if issubclass(w.category, RuntimeWarning)], caught
     assert run.t[-1] < 300.0 and not np.isfinite(run.deviation[-1])  # left the range
 
+
+def test_an_interrupted_soliton_says_what_it_wrote(tmp_path, capsys, monkeypatch):
+    # a point said 'nothing was written to OUT'; a soliton, which writes at its end too,
+    # said only 'interrupted (SIGINT)'
+    from cli import soliton as soliton_command
+
+    def interrupted(*_a, **_k):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(soliton_command, "simulate_soliton", interrupted)
+    out = tmp_path / "s"
+    code = main(["soliton", "--alpha", "2.5", "--K-s", "0.01851", "--K-theta", "0.02151",
+                 "--k", "0.92991", "--amplitude", "0.002", "--case", "rotation",
+                 "--simulate", "--travel", "1", "--out", str(out)])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert code == 130 and err == [f"flexmm: interrupted (SIGINT); nothing was written to "
+                                   f"{out}"]
+    assert not out.exists()
