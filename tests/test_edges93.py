@@ -192,3 +192,13 @@ def test_an_interrupted_soliton_says_what_it_wrote(tmp_path, capsys, monkeypatch
     assert code == 130 and err == [f"flexmm: interrupted (SIGINT); nothing was written to "
                                    f"{out}"]
     assert not out.exists()
+
+
+def test_a_map_k_no_ring_carries_is_not_told_a_larger_n(capsys, tmp_path):
+    # k = 3.14159 is 2.7e-6 from pi: a ring carrying it needs N ~ 2.4e6 > 10^6, the bound;
+    # the map said 'give a larger N', the point says to choose k <= 3.129
+    err = _one_line_error(capsys, ["map", "--alpha", "2.5", "--K-s", "0.01851", "--case",
+                                   "rotation", "--theory-only", "--delta", "0.003", "--k",
+                                   "3.1,3.14159", "--out", str(tmp_path / "m")])
+    assert "snaps to pi" in err and "choose k <= 3.129" in err
+    assert "no chain of up to 10^6 sites" in err and "larger N" not in err
