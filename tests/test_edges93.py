@@ -202,3 +202,28 @@ def test_a_map_k_no_ring_carries_is_not_told_a_larger_n(capsys, tmp_path):
                                    "3.1,3.14159", "--out", str(tmp_path / "m")])
     assert "snaps to pi" in err and "choose k <= 3.129" in err
     assert "no chain of up to 10^6 sites" in err and "larger N" not in err
+
+
+TWO_FIELDS = """
+name = "two-field"
+fields = ["u", "v"]
+[parameters]
+c = 0.3
+[energy]
+kinetic = "u_t**2/2 + 2*v_t**2/2"
+bond = "(u_next - u)**2/2 + (v_next - v)**2/2 + (u_next - u)**4/4"
+site = "c*(u - v)**2/2"
+"""
+
+
+def test_a_map_axis_through_an_unstable_rest_state_is_refused(capsys, tmp_path):
+    """c < 0 pushes u and v apart: omega^2 = 2c (1 + 1/2) < 0 at k = 0 (-0.15 at c = -0.1),
+    which a point refuses; the map called those cells MI at the NLS's rate."""
+    (tmp_path / "two.toml").write_text(TWO_FIELDS)
+    err = _one_line_error(capsys, ["map", "--model", str(tmp_path / "two.toml"), "--param",
+                                   "c=-0.1,0.3", "--k", "1,2", "--amplitude", "0.1",
+                                   "--theory-only", "--out", str(tmp_path / "m")])
+    assert err.startswith("flexmm: error: --param c=-0.1: the rest state is not a minimum")
+    assert "omega^2 = -0.15 < 0 at k = 0" in err and "leave such values out" in err
+    assert not (tmp_path / "m").exists()
+
