@@ -227,3 +227,14 @@ def test_a_map_axis_through_an_unstable_rest_state_is_refused(capsys, tmp_path):
     assert "omega^2 = -0.15 < 0 at k = 0" in err and "leave such values out" in err
     assert not (tmp_path / "m").exists()
 
+
+def test_a_rest_state_that_is_no_equilibrium_gets_a_remedy(capsys, tmp_path):
+    # site f u is a constant force: the error named the force only
+    (tmp_path / "lin.toml").write_text(TODA.replace('name = "toda"', 'name = "lin"')
+                                       .replace("a/b*(exp(-b*(u_next - u)) - 1 + b*(u_next"
+                                                " - u))", "(u_next - u)**2/2")
+                                       + 'site = "u**2/2 + a*u"\n')
+    err = _one_line_error(capsys, ["coefficients", "--model", str(tmp_path / "lin.toml"),
+                                   "--k", "1"])
+    assert "is not an equilibrium: the force on u there is -a" in err
+    assert "remove the energy's terms linear in the fields" in err
