@@ -10,11 +10,16 @@ def check_rest(model, named) -> None:
     """Refuse, before any work, a parameter value of the axes (each combination, where
     both axes are parameters) at which the energy is not real or not finite at rest (a
     Hertz contact's d0 < 0): the model has no rest state there, and its cells would only
-    be undefined, after NumPy's warnings. ~30 us a value."""
+    be undefined, after NumPy's warnings; or at which the rest state is no minimum (a
+    coupling of the wrong sign), as a point refuses it: a map called such cells MI at the
+    NLS's slow rate, while the chain at rest is itself unstable. ~0.3 ms a value."""
     import itertools
     import warnings
 
     import numpy as np
+
+    from energy import ModelError
+    from numerics.models import check_rest_stable
 
     axes = [(n, v) for n, v in named if n in model.params]
     if not axes:
@@ -25,14 +30,20 @@ def check_rest(model, named) -> None:
         for combo in itertools.product(*(v for _, v in axes)):
             values = {n: float(v) for (n, _), v in zip(axes, combo)}
             m = model.with_params(**values)
+            given = ", ".join(f"--param {n}={v:g}" for n, v in values.items())
             if (np.all(np.isfinite(np.asarray(m.code.cell_energy(zero, m.p))))
                     and np.all(np.isfinite(np.asarray(m.code.taylor(m.p)[0], float)))):
+                try:
+                    check_rest_stable(m)
+                except ModelError as exc:
+                    why = str(exc).split(": ", 1)[-1]  # past 'model NAME (values)'
+                    raise ValueError(f"{given}: {why}; leave such values out of the "
+                                     "axis") from None
                 continue
-            given = ", ".join(f"--param {n}={v:g}" for n, v in values.items())
             raise ValueError(f"{given}: the energy of {model.name} is not real at the rest "
-                             "state (every field 0) there (a square root, log or fractional "
-                             "power of a quantity negative at rest?); leave such values out "
-                             "of the axis")
+                             "state (every field 0) there (a division by zero, or a square "
+                             "root, log or fractional power of a quantity negative at rest?); "
+                             "leave such values out of the axis")
 
 
 def option(axis: str) -> str:

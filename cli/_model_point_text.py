@@ -105,8 +105,11 @@ def report(args, point, units, since=None) -> dict:
         _emit(out)
         return out
     print(f"model:    {model.describe()}")
-    print(f"carrier:  k = {out['k']:g} rad/site (2 pi m / N on the ring of N = {args.N}) on "
-          f"branch {out['branch']} (field {out['field']}), amplitude a = {out['amplitude']:g}"
+    # the k asked, where the ring moved it (by 30% from 1 on N = 9), as the paper's point
+    asked = "" if f"{out['k']:g}" == f"{args.k:g}" else f", asked {args.k:g}"
+    print(f"carrier:  k = {out['k']:g} rad/site (2 pi m / N on the ring of N = {args.N}"
+          f"{asked}) on branch {out['branch']} (field {out['field']}), amplitude a = "
+          f"{out['amplitude']:g}"
           + (f"; k{units.si(out['k'], 'wavenumber')}" if units.metres_per_site else ""))
     print(f"units:    {units.describe()}")
     rate_f, k_f = units.factor("rate"), units.factor("wavenumber")

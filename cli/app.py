@@ -119,11 +119,37 @@ def _parse(argv):
                  for c in difflib.get_close_matches(e.split("=")[0], known, n=1)]
         sub.error(f"unrecognized arguments: {' '.join(extra)}"
                   + (f" (did you mean {close[0]}?)" if close else ""))
+    _refuse_repeated(sub, argv)
     unused_without(sub, args, argv)  # an option that acts only with another, given alone
     # the options the user typed (a default that differs by command, e.g. a model map's
     # T chosen from the exact rate unless --t-end is given)
     args.given = frozenset(a.split("=", 1)[0] for a in argv if a.startswith("--"))
     return args
+
+
+def _refuse_repeated(sub, argv) -> None:
+    """An option of one value given twice is refused: argparse keeps the last value without
+    a word, so ``--k 0.5:2:2 ... --k 1:2:2`` mapped the second grid and ``--alpha 2.5 ...
+    --alpha 3`` another material. Flags and ``--param`` (one per parameter) may repeat."""
+    actions = sub._option_string_actions  # argparse's own table of the command's options
+    seen = {}
+    for i, token in enumerate(argv):
+        if not token.startswith("--"):
+            continue
+        name = token.split("=", 1)[0]
+        matches = ([name] if name in actions  # else an abbreviation argparse accepted
+                   else [o for o in actions if o.startswith(name)])
+        if len(matches) != 1:
+            continue
+        action = actions[matches[0]]
+        if action.nargs == 0 or isinstance(action, argparse._AppendAction):
+            continue
+        value = (token.split("=", 1)[1] if "=" in token
+                 else argv[i + 1] if i + 1 < len(argv) else "")
+        if action.dest in seen:
+            option, before = seen[action.dest]
+            raise ValueError(f"{option} given twice ({before} and {value}): give it once")
+        seen[action.dest] = (action.option_strings[-1], value)
 
 
 def _missing_folders(out) -> list:
@@ -174,7 +200,7 @@ def _interrupted(args, exc) -> str:
                 if done else f"nothing was written to {store}")
         return (f"interrupted ({name}); {kept}; the cells that were running were not kept: "
                 "run the same command again to continue")
-    if cmd == "point":
+    if cmd in ("point", "soliton"):  # each writes its files at its end, or nothing
         return (f"interrupted ({name}); nothing was written"
                 + (f" to {args.out}" if getattr(args, "out", None) else ""))
     return f"interrupted ({name})"

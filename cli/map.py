@@ -198,12 +198,14 @@ def run_map_command(args, log=print):
     with atomic_write(out / "map.png", mode=None) as tmp:
         fig.savefig(tmp, format="png", dpi=110)
     plt.close(fig)
-    if not summary["simulated"]:
-        und = summary["undetermined_cells"]
-        log(f"MI (grows more than {GROWTH_THRESHOLD:g}x within T = {params.t_end:g}) in: "
-            + "; ".join(f"{n} {100 * summary['mi_fraction'][n]:.0f}% of cells"
-                        + (f" ({und[n]} undetermined, left out)" if und[n] else "")
-                        for n in MAP_COLUMNS if n in summary["mi_fraction"]))
+    # what the runs found leads, where they ran: a simulated map printed only the theories'
+    # agreement with them, never the runs' own share of MI
+    und, share = summary["undetermined_cells"], summary["mi_fraction"]
+    log(f"MI (grows more than {GROWTH_THRESHOLD:g}x within T = {params.t_end:g}) in: "
+        + "; ".join(f"{n} {100 * share[n]:.0f}% of cells"
+                    + (f" ({und[n]} undetermined, left out)" if und[n] else "")
+                    for n in ("simulated", *MAP_COLUMNS)
+                    if n in share and (n != "simulated" or summary["simulated"])))
     if summary["simulated"]:
         ag = summary["agreement_with_simulation_percent"]
         log(f"theory verdicts that agree with the simulation (marginal: the theory's growth "

@@ -158,8 +158,10 @@ def run_models(args) -> int:
     name = getattr(args, "name", None)
     if name is not None:
         if name not in BUILTIN:
+            own = (f" (a model file of your own goes to a command: flexmm coefficients "
+                   f"--model {name} --k 1)" if name.endswith(".toml") else "")
             raise ValueError(f"flexmm models {name}: no built-in model {name!r}; built-in: "
-                             f"{', '.join(BUILTIN)}")
+                             f"{', '.join(BUILTIN)}{own}")
         from numerics.maps import model_text
 
         text = model_text(name)

@@ -57,7 +57,10 @@ def material_from(args):
                              f"{len(values)}")
         if any(v is not None for v in (args.alpha, args.K_s, args.K_theta)):
             raise ValueError("give --physical or --alpha/--K-s/--K-theta, not both")
-        mat = Material.from_physical(*values)
+        try:  # its six values are one option's: named as it (m, J, a, k_l > 0 too)
+            mat = Material.from_physical(*values)
+        except ValueError as exc:
+            raise ValueError(f"--physical m,J,a,k_l,k_s,k_theta: {exc}") from None
         m, _, a, k_l = values[:4]
         return mat, Units.physical(m, k_l, a)
     missing = [n for n, v in (("--alpha", args.alpha), ("--K-s", args.K_s),

@@ -165,7 +165,9 @@ def energies(lat: Lattice) -> Energies:
                              "quantity that vanishes at rest?)")
         if f0 != 0:
             raise ModelError(f"model {lat.name!r}: the rest state (every field 0) is not an "
-                             f"equilibrium: the force on {lat.fields[i]} there is {-f0}")
+                             f"equilibrium: the force on {lat.fields[i]} there is {-f0}; "
+                             "remove the energy's terms linear in the fields (a constant "
+                             "force), or write the energy about the equilibrium")
     return Energies(lat, s, kin, bond, site, tuple(masses), _dissipation(lat, s, names))
 
 

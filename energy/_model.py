@@ -225,8 +225,16 @@ class Model:
         m = np.asarray(self.code.masses(self.p), dtype=float)
         bad = [f for f, v in zip(self.fields, m) if not (np.isfinite(v) and v > 0)]
         if bad:
+            import re
+
+            # the parameters the kinetic energy holds are the ones to change (the remedy)
+            used = [p for p in self.lattice.parameters
+                    if re.search(rf"\b{p}\b", self.lattice.kinetic)]
             raise ModelError(f"model {self.name!r}: the mass of {', '.join(bad)} is not > 0 "
-                             f"at {self.describe()} (masses {m.tolist()})")
+                             f"at {self.describe()} (masses {m.tolist()}, from kinetic = "
+                             f"{self.lattice.kinetic!r})"
+                             + (f": change {', '.join(f'--param {p}' for p in used)}"
+                                if used else ": give each velocity a positive mass"))
         return m
 
     @property

@@ -87,7 +87,8 @@ def check_name(where: str, kind: str, name) -> str:
         _fail(where, f"{kind} name {name!r} ends in {name[name.rindex('_'):]!r}, which the "
                      "generator gives fields (u_prev, u_next, u_t): rename it")
     if name in FUNCTIONS or name in CONSTANTS:
-        _fail(where, f"{kind} name {name!r} is a function or constant of the energies")
+        _fail(where, f"{kind} name {name!r} is a function or constant of the energies: "
+                     "rename it")
     if name in RESERVED:
         why = ("a Python keyword" if keyword.iskeyword(name) or keyword.issoftkeyword(name)
                else "a name the generated code uses" if name in GENERATOR_NAMES

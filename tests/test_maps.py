@@ -169,7 +169,8 @@ def test_a_map_without_a_finished_cell_does_not_block_the_corrected_command(tmp_
     (["--delta", "0.001", "--amplitude", "3"], "amplitude"),
 ])
 def test_map_bad_input_is_one_line_and_writes_nothing(extra, match, tmp_path, capsys):
-    args = ["map", "--case", "coupled", "--alpha", "2.5", "--K-s", "0.01851", "--k", "0.8168",
+    k = [] if "--k" in extra else ["--k", "0.8168"]  # an option given twice is refused
+    args = ["map", "--case", "coupled", "--alpha", "2.5", "--K-s", "0.01851", *k,
             "--N", "100", "--out", str(tmp_path / "out")] + extra
     assert cli(args) == 2
     err = capsys.readouterr().err.strip()

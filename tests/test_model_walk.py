@@ -81,7 +81,8 @@ def test_a_store_of_other_axes_is_refused_naming_the_axis(tmp_path, capsys):
     assert "its axes differ: k: 2 values 1 to 2 stored, 3 values 1 to 2 asked" in err
     assert main(base + ["--k", "1,2.5"]) == 2
     assert "k: 2 values 1 to 2 stored, 2 values 1 to 2.5 asked" in capsys.readouterr().err
-    other = base + ["--out", str(tmp_path / "m2")]  # one value moved: named by its place
+    # one value moved: named by its place (another --out: an option given twice is refused)
+    other = [str(tmp_path / "m2") if a == str(tmp_path / "m") else a for a in base]
     assert main(other + ["--k", "1,1.5,2"]) == 0
     capsys.readouterr()
     assert main(other + ["--k", "1,1.6,2"]) == 2

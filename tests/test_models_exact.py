@@ -621,7 +621,7 @@ def test_finding_where_g2_is_a_small_remainder_the_nls_error_is_large_and_order_
     assert main([*argv, "0.1"]) == 0
     out = capsys.readouterr().out
     assert "the NLS is the a -> 0 limit" in out and "(mean flow)" in out
-    assert main([*argv, "0.0125", "--N", "2000"]) == 0
+    assert main([*argv[:-2], "2000", "--amplitude", "0.0125"]) == 0  # --N 2000, not 64
     assert "a -> 0 limit" not in capsys.readouterr().out
 
 

@@ -19,6 +19,7 @@ from ..lattice import (
     non_carrier_bins,
     paper_start_undefined,
     shortest_run_error,
+    snap_wavenumber,
 )
 from ..theory import MAX_AMPLITUDE, SITES
 from ._cells import GROWTH_ERROR_CONSTANTS, GROWTH_TOL, RECORDS
@@ -182,6 +183,8 @@ class MapParameters:
         for x, ks in zip(self.k, snapped):
             m = round(ks * self.N / (2 * math.pi))
             if m < 1 or 2 * m >= self.N or not non_carrier_bins(m, self.N).any():
+                if m < 1 or 2 * m >= self.N:  # at 0 or pi: the point's words, whose remedy
+                    snap_wavenumber(x, self.N)  # knows where no N up to 10^6 helps
                 raise ValueError(f"N = {self.N} sites carry no wavenumber near k = {x:g} with "
                                  "sidebands to grow (k snaps to 2 pi m / N with 0 < m < N/2 "
                                  "and needs bins besides its harmonics); give a larger N")

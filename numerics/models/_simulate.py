@@ -353,8 +353,12 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
         U = wave_at(t)
         delta = u - U
         ts.append(t)
-        spec.append(np.sqrt(np.sum(np.abs(np.fft.fft(delta, axis=1)) ** 2, axis=0)) / N)
-        dev.append(float(np.sqrt(np.mean(delta**2))))
+        # a state still finite but past 1e154 overflows its squares to inf: a run leaving
+        # the lattice's range, which the stepper's check or a map cell's saturation stop
+        # reads and says (numpy's overflow warnings, printed by a map's workers, did not)
+        with np.errstate(over="ignore", invalid="ignore"):
+            spec.append(np.sqrt(np.sum(np.abs(np.fft.fft(delta, axis=1)) ** 2, axis=0)) / N)
+            dev.append(float(np.sqrt(np.mean(delta**2))))
         en.append(energy_of(u, v, p, masses, x) if energy_of is not None else math.nan)
         if lossy:
             diss.append(2 * rayleigh(model, v, (S_d, B_d)))
