@@ -250,6 +250,8 @@ def run_map(args) -> int:
             res["nls_band_unsampled"] = unsampled
         if "slow_for_T_cells" in summary:
             res["slow_for_T_cells"] = summary["slow_for_T_cells"]
+        if summary.get("blew_up_cells"):
+            res["blew_up_cells"] = summary["blew_up_cells"]
         u, _ = ModelUnits.json(units, {})
         if "k" in res["axes"]:  # the k axis, in rad/m too
             u["lattice"]["k"] = "rad/site"
@@ -285,6 +287,10 @@ def run_map(args) -> int:
                if ag[n + "_undetermined_cells"] else "") for n in told))
     if unsampled and unsampled["cells"]:
         print(_unsampled_text(unsampled, args.N))
+    if summary.get("blew_up_cells"):
+        print(f"runs that blew up (the state left the lattice's range, growth inf): "
+              f"{summary['blew_up_cells']} of {summary['cells']} cells, undetermined (a "
+              "softening or escaping potential; their MI is not decided by these runs)")
     if summary.get("slow_for_T_cells"):  # runs too short for their cell's exact rate
         print(f"{ds.attrs['slow_for_T_note']}; a longer --t-end decides them")
     for name, c in critical.items():
@@ -313,6 +319,10 @@ def _summary(ds, verdicts: list, simulated: bool) -> dict:
            "undetermined_cells": {n: int((ds[v].values < 0).sum()) for v, n in names.items()}}
     if simulated:
         out["agreement_with_simulation_percent"] = agreement(ds)
+        # runs that left the lattice's range (numerics.BlowUpError, or records past 1e154):
+        # growth inf, the verdict undetermined; named, so that they are not read as MI
+        out["blew_up_cells"] = int(((ds["verdict_simulated"].values < 0)
+                                    & np.isposinf(ds["growth"].values)).sum())
     if "slow_for_T" in ds.data_vars:  # the runs whose T cannot reach their exact rate's 20x
         out["slow_for_T_cells"] = int(ds["slow_for_T"].attrs["cells"])
     return out

@@ -239,7 +239,7 @@ def simulate_model_cells_gpu(model, cells, amplitude: float, branch=None, *, N: 
     and ``device`` ("gpu", "cpu", or "gpu+cpu" where some seeds ran again on the CPU).
     """
     from energy import ModelError
-    from numerics.lattice import cuda_model_kernels, run_length
+    from numerics.lattice import BlowUpError, cuda_model_kernels, run_length
     from numerics.models import check_ring, exact_gain_checked, simulate_model, simulate_seeds
 
     N = check_ring(N)
@@ -275,8 +275,12 @@ def simulate_model_cells_gpu(model, cells, amplitude: float, branch=None, *, N: 
             continue
         T = float(t_end) if t_end is not None else run_length(spec.peak_gain).t_end
         if why_cpu is not None:
-            sim = simulate_seeds(m, k, amplitude, spec, branch=branch, N=N, seeds=seeds,
-                                 t_end=T, noise=noise, until_saturated=True)
+            try:
+                sim = simulate_seeds(m, k, amplitude, spec, branch=branch, N=N, seeds=seeds,
+                                     t_end=T, noise=noise, until_saturated=True)
+            except BlowUpError as exc:  # the state left the lattice's range
+                rows[c] = _blown_row(exc.time, records)
+                continue
             growth = [r.growth() for r in sim.runs]
             rows[c] = dict(_cell_row(growth, T, [r.t_end for r in sim.runs]),
                            growth_runs=growth, device="cpu")
@@ -293,12 +297,17 @@ def simulate_model_cells_gpu(model, cells, amplitude: float, branch=None, *, N: 
     per_cell: dict = {}
     t_of = {ch.cell: ch.t_end for ch in chains}
     again = 0
+    blown: dict = {}  # cell -> when a run of it blew up on the CPU (as map_cells says it)
     for ch, (status, _, half) in zip(chains, results):
         if status != K.STATUS_OK:
             again += 1
-            run = simulate_model(ch.model, ch.spec.wave.k, amplitude, branch=branch, N=N,
-                                 t_end=ch.t_end, seed=ch.seed, wave=ch.spec.wave,
-                                 noise=noise, until_saturated=True)
+            try:
+                run = simulate_model(ch.model, ch.spec.wave.k, amplitude, branch=branch,
+                                     N=N, t_end=ch.t_end, seed=ch.seed, wave=ch.spec.wave,
+                                     noise=noise, until_saturated=True)
+            except BlowUpError as exc:  # the state left the lattice's range
+                blown[ch.cell] = exc.time
+                continue
             per_cell.setdefault(ch.cell, []).append((run.growth(), run.t, run.spectrum,
                                                      "cpu", run.t_end))
         else:
@@ -316,7 +325,20 @@ def simulate_model_cells_gpu(model, cells, amplitude: float, branch=None, *, N: 
                        else "gpu+cpu")
         if records:
             rows[c]["records"] = [(r[1], r[2]) for r in runs]
+    for c, when in blown.items():
+        rows[c] = _blown_row(when, records)
     return rows
+
+
+def _blown_row(when, records: bool) -> dict:
+    """A cell one of whose runs blew up (``BlowUpError`` at time ``when``), as
+    ``numerics.models.map_cells`` stores it: undetermined, growth inf."""
+    row = dict(UNDEFINED_ROW, verdict_simulated="undetermined", growth=math.inf,
+               t_simulated=math.nan if when is None else float(when), growth_runs=[],
+               device="cpu")
+    if records:
+        row["records"] = []
+    return row
 
 
 @dataclass(frozen=True)

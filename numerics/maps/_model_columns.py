@@ -32,7 +32,8 @@ def simulated_verdict_attrs(theory_only: bool) -> dict:
     words = (f"MI -> 1 (MI: most seeds grew more than {GROWTH_THRESHOLD:g}x); 'no growth "
              "within T' -> 0 (stable); -1 (undetermined): not simulated where done is "
              "False (no run made), else undefined (no travelling wave at the cell) or "
-             "undetermined (a run grew, but less than the threshold)")
+             "undetermined (a run grew, but less than the threshold; or it blew up, the "
+             "state leaving the lattice's range: growth inf, t_simulated when)")
     if theory_only:
         return {"long_name": "simulated verdict: not simulated (a theory-only map makes no "
                              "run; -1 in every cell where done is False)",

@@ -172,7 +172,10 @@ def simulated_cell(model: Model, k: float, amplitude: float, branch=None, *, N: 
     "no growth within T", "undetermined"; "undefined" without a travelling wave) and
     peak_gain_simulated (the seeds' median rate where MI; with no growth within T, the
     bound ln(threshold) / T the rate lies below); for a lossy model also the runs'
-    amplification columns (``lossy_runs``)."""
+    amplification columns (``lossy_runs``). A run that blew up (the state left the
+    lattice's range) leaves verdict_simulated "undetermined"."""
+    from numerics.lattice import BlowUpError
+
     from ._reach import exact_gain_checked
     from ._seeds import simulate_seeds
 
@@ -192,8 +195,12 @@ def simulated_cell(model: Model, k: float, amplitude: float, branch=None, *, N: 
         sim, amp = lossy_runs(model, k, amplitude, spec, branch=branch, N=N, seeds=seeds,
                               t_end=t_end, peak_time=peak)
     else:
-        sim, amp = simulate_seeds(model, k, amplitude, spec, branch=branch, N=N,
-                                  seeds=seeds, t_end=t_end, until_saturated=True), {}
+        try:
+            sim, amp = simulate_seeds(model, k, amplitude, spec, branch=branch, N=N,
+                                      seeds=seeds, t_end=t_end, until_saturated=True), {}
+        except BlowUpError:  # the state left the lattice's range: no MI verdict from it
+            return {"verdict_exact": spec.verdict, "peak_gain_exact": spec.peak_gain,
+                    "verdict_simulated": "undetermined", "peak_gain_simulated": None}
     rate = sim.verdict.map_rate
     return {"verdict_exact": spec.verdict, "peak_gain_exact": spec.peak_gain,
             "verdict_simulated": sim.verdict.word,
@@ -231,8 +238,9 @@ def _start_columns(model, k, amplitude, N, start) -> tuple:
 
 def _cell_columns(model, k, amplitude, branch, *, exact, simulate, N, seeds, t_end,
                   start="exact"):
+    from numerics.lattice import BlowUpError
+
     from ._reach import exact_gain_checked
-    from ._seeds import simulate_seeds
     from ._simulate import snap_ring
 
     row = {"verdict_semidiscrete": "undefined", "peak_gain_semidiscrete": math.nan,
@@ -298,29 +306,50 @@ def _cell_columns(model, k, amplitude, branch, *, exact, simulate, N, seeds, t_e
         except ModelError:
             row["amplification_exact"] = math.nan
     if simulate:
-        if lossy:  # issue 42: launched as a point's, the runs' amplification
-            sim, amp = lossy_runs(model, k, amplitude, spec, branch=branch, N=N,
-                                  seeds=seeds, t_end=t_end, peak_time=peak_time,
-                                  energy=False)
-            row.update(amp)
-        else:
-            # energy=False: a cell's columns do not use the runs' energy, whose kernel
-            # (compiled in every worker, no disk cache) would cost more than the cell;
-            # until_saturated: a run stops where its linear stage has ended (the growth it
-            # measures is the whole run's, bit for bit): an MI cell no longer runs all of T
-            if not launch_ok:  # eq. IC has no state here: nothing to run
-                return row
-            sim = simulate_seeds(model, k, amplitude, spec, branch=branch, N=N, seeds=seeds,
-                                 t_end=t_end, energy=False, until_saturated=True,
-                                 start=start, gain=start_gain)
-        growth = [run.growth() for run in sim.runs]
-        top = max(growth, key=lambda g: g.factor if math.isfinite(g.factor) else -1.0)
-        row.update(verdict_simulated=sim.verdict.word,
-                   peak_gain_simulated=sim.verdict.map_rate,
-                   growth=float(np.median([g.factor for g in growth])),
-                   growth_q=float(top.wavenumber), t_simulated=float(
-                       max(r.t[-1] for r in sim.runs) if lossy else max(
-                           r.t_end for r in sim.runs)))
+        try:
+            return _simulated_columns(row, model, k, amplitude, spec, branch=branch, N=N,
+                                      seeds=seeds, t_end=t_end, start=start,
+                                      start_gain=start_gain, launch_ok=launch_ok,
+                                      peak_time=peak_time)
+        except BlowUpError as exc:
+            # a run that left the lattice's range (a softening bond past its barrier, say):
+            # the cell's runs say nothing more about MI, and the other cells stand; stored
+            # as a run whose records overflowed first is (growth inf, undetermined), with
+            # the time it blew up
+            row.update(verdict_simulated="undetermined", peak_gain_simulated=math.nan,
+                       growth=math.inf, growth_q=math.nan,
+                       t_simulated=math.nan if exc.time is None else float(exc.time))
+    return row
+
+
+def _simulated_columns(row, model, k, amplitude, spec, *, branch, N, seeds, t_end, start,
+                       start_gain, launch_ok, peak_time):
+    """A cell's runs and their columns (``_cell_columns``'s last part)."""
+    from ._seeds import simulate_seeds
+
+    lossy = model.lossy
+    if lossy:  # issue 42: launched as a point's, the runs' amplification
+        sim, amp = lossy_runs(model, k, amplitude, spec, branch=branch, N=N, seeds=seeds,
+                              t_end=t_end, peak_time=peak_time, energy=False)
+        row.update(amp)
+    else:
+        # energy=False: a cell's columns do not use the runs' energy, whose kernel
+        # (compiled in every worker, no disk cache) would cost more than the cell;
+        # until_saturated: a run stops where its linear stage has ended (the growth it
+        # measures is the whole run's, bit for bit): an MI cell no longer runs all of T
+        if not launch_ok:  # eq. IC has no state here: nothing to run
+            return row
+        sim = simulate_seeds(model, k, amplitude, spec, branch=branch, N=N, seeds=seeds,
+                             t_end=t_end, energy=False, until_saturated=True,
+                             start=start, gain=start_gain)
+    growth = [run.growth() for run in sim.runs]
+    top = max(growth, key=lambda g: g.factor if math.isfinite(g.factor) else -1.0)
+    row.update(verdict_simulated=sim.verdict.word,
+               peak_gain_simulated=sim.verdict.map_rate,
+               growth=float(np.median([g.factor for g in growth])),
+               growth_q=float(top.wavenumber), t_simulated=float(
+                   max(r.t[-1] for r in sim.runs) if lossy else max(
+                       r.t_end for r in sim.runs)))
     return row
 
 
@@ -433,7 +462,10 @@ def map_cells(model: Model, cells, amplitude: float, branch=None, *, exact: bool
         linear stage has saturated, ``saturation_record``, else runs T); for a lossy model the runs are
         launched as issue 42 measures an amplification (``lossy_runs``) and add
         ``amplification_simulated``, ``amplification_time_simulated`` and
-        ``observable_simulated`` (1.0 or 0.0) of the median seed.
+        ``observable_simulated`` (1.0 or 0.0) of the median seed. A cell whose run blew
+        up (``numerics.BlowUpError``: the state left the lattice's range, as a softening
+        bond's past its barrier) is "undetermined" with ``growth`` inf and
+        ``t_simulated`` the time it blew up; the other cells stand.
     """
     return [_map_cell(model.with_params(**values), k, amplitude, branch, exact=exact,
                       simulate=simulate, N=N, seeds=seeds, t_end=t_end, start=start)

@@ -231,10 +231,12 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
     harmonic left out) reach ``SATURATION`` of the amplitude (``saturation_record``): the
     linear stage has ended there, so ``growth()`` is that of the whole run, bit for bit (a
     map cell's run: an MI cell stops there, a stable one runs T); ``t_end`` is then the
-    last record's time.
+    last record's time. A state that stops being finite raises ``numerics.BlowUpError``
+    (a FloatingPointError; its ``time`` when the stepper saw it).
     """
     from common.signals import signal_number
     from numerics.lattice import (
+        BlowUpError,
         ForceStepper,
         SimulationInterrupted,
         band_flow,
@@ -398,10 +400,11 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
                     got = stepper.advance(n)
                     done += got
                     if got < n or not np.all(np.isfinite(u)):
-                        raise FloatingPointError(
+                        raise BlowUpError(
                             f"model {model.describe()}: the run blew up by t = "
                             f"{done * dt:.4g} (dt = {dt:.3g}, method {method}): the wave "
-                            "left the lattice's range; lower the amplitude or dt")
+                            "left the lattice's range; lower the amplitude or dt",
+                            time=done * dt)
                     if interrupted() and done < nsteps:
                         raise _Stop(interrupted())
                 record(done * dt)
