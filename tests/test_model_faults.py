@@ -429,14 +429,26 @@ def test_a_refused_model_map_leaves_nothing_that_blocks_the_corrected_one(
 def test_every_cell_undefined_is_an_error_naming_why(tmp_path, capsys):
     from cli.app import main
 
-    # negative bond stiffness: omega^2 < 0 at these k, no carrier in any cell
-    argv = ["map", "--model", "klein-gordon", "--param", "C=-5,-6", "--k", "2.0,2.5",
-            "--amplitude", "0.1", "--theory-only", "--out", str(tmp_path / "u")]
+    # on-site oscillators coupled only by a quartic bond: a flat linear branch, g1 = 0 at
+    # every k, so no cell has an NLS verdict
+    (tmp_path / "flat.toml").write_text(
+        'name = "flat"\nfields = ["u"]\n[parameters]\nb = 1.0\n[energy]\n'
+        'kinetic = "u_t**2/2"\nbond = "b*(u_next - u)**4/4"\nsite = "u**2/2"\n')
+    argv = ["map", "--model", str(tmp_path / "flat.toml"), "--param", "b=1,2", "--k",
+            "1,2", "--amplitude", "0.1", "--theory-only", "--out", str(tmp_path / "u")]
     assert main(argv) == 2
     err = capsys.readouterr().err
-    assert "every cell of the map is undefined" in err and "omega^2" in err
+    assert "every cell of the map is undefined" in err and "g1" in err
     # the store of a map without a verdict is not kept: the corrected command runs
     assert not (tmp_path / "u" / "map.zarr").exists()
+    # negative bond stiffness (omega^2 < 0 at these k, no carrier in any cell): refused
+    # before any cell since the axis' rest states are checked (edges93), naming omega^2
+    argv = ["map", "--model", "klein-gordon", "--param", "C=-5,-6", "--k", "2.0,2.5",
+            "--amplitude", "0.1", "--theory-only", "--out", str(tmp_path / "v")]
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert "--param C=" in err and "omega^2" in err and err.count("\n") == 1
+    assert not (tmp_path / "v").exists()
 
 
 def test_a_model_map_refuses_booleans_and_bad_amplitudes():
