@@ -326,7 +326,7 @@ def probe_model_cell(params) -> ModelCellCost:
     picks = list(dict.fromkeys([(rows // 2, cols // 2), (0, 0), (rows - 1, cols - 1)]))
     cells = [(*params.cell(i, j), params.amplitude_at(i, j)) for i, j in picks]
     values, k, amplitude = cells[0]
-    model = params.lattice_model.with_params(**values)
+    model = params.lattice_model.with_params(**values)  # the warm-up's
 
     def theories(values, k, amplitude):
         t0 = time.process_time()
@@ -355,26 +355,34 @@ def probe_model_cell(params) -> ModelCellCost:
     theory = float(np.mean(times))
     run, t_end = 0.0, 0.0
     if not params.theory_only:
-        start = getattr(params, "start", "exact")  # the runs' T follows their start's theory
-        rate = row.get("peak_gain_exact" if start == "exact" else f"peak_gain_{start}_start",
-                       math.nan)
-        t_end = float(params.t_end) if params.t_end is not None else run_length(rate).t_end
         from energy import ModelError
 
-        try:
-            # a cell whose energy is not real along the wave (Toda's exp at amplitude 2000)
-            # has no wave to run: the solver's overflow there is no warning of the map's
-            with warnings.catch_warnings(), np.errstate(all="ignore"):
-                warnings.simplefilter("ignore", RuntimeWarning)
-                run, compile_s = probe_model_run(model, k, amplitude, params.branch_value,
-                                                 N=params.N, t_end=t_end, energy=False)
+        start = getattr(params, "start", "exact")  # the runs' T follows their start's theory
+        # the middle cell's run, else a corner's: a cell with no wave to run (Toda's exp
+        # overflowing at amplitude 2000) or whose run blows up would count the runs as 0 s
+        for n, (values, k, amplitude) in enumerate(cells):
+            if n:
+                row = theories(values, k, amplitude)[1]
+            rate = row.get("peak_gain_exact" if start == "exact"
+                           else f"peak_gain_{start}_start", math.nan)
+            t_end = (float(params.t_end) if params.t_end is not None
+                     else run_length(rate).t_end)
+            try:
+                # the solver's overflow at a cell with no wave is no warning of the map's
+                with warnings.catch_warnings(), np.errstate(all="ignore"):
+                    warnings.simplefilter("ignore", RuntimeWarning)
+                    run, compile_s = probe_model_run(
+                        params.lattice_model.with_params(**values), k, amplitude,
+                        params.branch_value, N=params.N, t_end=t_end, energy=False)
+            except (ModelError, FloatingPointError, ValueError):  # no wave here to run
+                # (ValueError: scipy's least_squares on non-finite residuals at its start)
+                run = 0.0
+                continue
             warmup += compile_s
             # a cell's run stops once its linear stage saturated (until_saturated): the
-            # middle cell's exact rate says about when
+            # cell's exact rate says about when
             run *= min(1.0, saturation_time(rate) / t_end) if t_end > 0 else 1.0
-        except (ModelError, FloatingPointError, ValueError):  # no wave at this cell to run
-            # (ValueError: scipy's least_squares on non-finite residuals at its start)
-            run = 0.0
+            break
     return ModelCellCost(theory, run, t_end, warmup, time.perf_counter() - w0)
 
 
