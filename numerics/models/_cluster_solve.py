@@ -31,6 +31,19 @@ _KW = dict(cache=True, nogil=True, error_model="numpy", boundscheck=False)
 
 
 @njit(**_KW)
+def _pencil_block(Kt, Om, lam, idx, out):
+    """T(lam) = K + (lam - i Omega)^2 on the coordinates ``idx`` (rows and columns), into
+    ``out``: the blocks T_RR and T_CC that the Schur complement and the fold factor."""
+    n = idx.size
+    for a in range(n):
+        ia = idx[a]
+        for b in range(n):
+            out[a, b] = Kt[ia, idx[b]]
+        z = lam - 1j * Om[ia]
+        out[a, a] += z * z
+
+
+@njit(**_KW)
 def _schur(Kt, Om, lam, cidx, ridx, X, S, dS):
     """S(lam) = T_CC - E_CR T_RR^{-1} E_RC and dS/dlam into S, dS; X = T_RR^{-1} E_RC;
     False where T_RR is singular."""
@@ -38,22 +51,17 @@ def _schur(Kt, Om, lam, cidx, ridx, X, S, dS):
     rc = cidx.size
     A = np.empty((nr, nr), np.complex128)
     Yt = np.empty((nr, rc), np.complex128)
+    _pencil_block(Kt, Om, lam, ridx, A)
     for a in range(nr):
         ia = ridx[a]
-        for b in range(nr):
-            A[a, b] = Kt[ia, ridx[b]]
-        z = lam - 1j * Om[ia]
-        A[a, a] += z * z
         for b in range(rc):
             X[a, b] = Kt[ia, cidx[b]]
             Yt[a, b] = Kt[cidx[b], ia]
+    _pencil_block(Kt, Om, lam, cidx, S)
     for a in range(rc):
         for b in range(rc):
-            S[a, b] = Kt[cidx[a], cidx[b]]
             dS[a, b] = 0.0
-        z = lam - 1j * Om[cidx[a]]
-        S[a, a] += z * z
-        dS[a, a] = 2 * z
+        dS[a, a] = 2 * (lam - 1j * Om[cidx[a]])
     if nr == 0:
         return True
     piv = np.empty(nr, np.int64)
@@ -166,12 +174,7 @@ def _fold(Kt, Om, lam, cidx, ridx, X):
     nr = ridx.size
     rc = cidx.size
     A = np.empty((nr, nr), np.complex128)
-    for a in range(nr):
-        ia = ridx[a]
-        for b in range(nr):
-            A[a, b] = Kt[ia, ridx[b]]
-        z = lam - 1j * Om[ia]
-        A[a, a] += z * z
+    _pencil_block(Kt, Om, lam, ridx, A)
     for a in range(nr):
         for b in range(rc):
             X[a, b] = Kt[ridx[a], cidx[b]]
