@@ -348,9 +348,12 @@ def probe_model_cell(params) -> ModelCellCost:
                       N=min(params.N, WARMUP_RING), start=getattr(params, "start", "exact"))
     warmup = time.process_time() - t0
     first, row = theories(*cells[0])
+    rows = {0: row}  # each pick's theory row, as timed (the runs' T reads its rate)
     times = [first]
     if first < PROBE_MORE_BELOW:  # cheap cells: what the first still loaded would dominate
-        times = [theories(*c)[0] for c in cells[1:]] or [theories(*cells[0])[0]]
+        timed = [theories(*c) for c in cells[1:]]
+        rows.update({n + 1: r for n, (_, r) in enumerate(timed)})
+        times = [t for t, _ in timed] or [theories(*cells[0])[0]]
         warmup += max(first - float(np.mean(times)), 0.0)
     theory = float(np.mean(times))
     run, t_end = 0.0, 0.0
@@ -361,8 +364,7 @@ def probe_model_cell(params) -> ModelCellCost:
         # the middle cell's run, else a corner's: a cell with no wave to run (Toda's exp
         # overflowing at amplitude 2000) or whose run blows up would count the runs as 0 s
         for n, (values, k, amplitude) in enumerate(cells):
-            if n:
-                row = theories(values, k, amplitude)[1]
+            row = rows[n] if n in rows else theories(values, k, amplitude)[1]
             rate = row.get("peak_gain_exact" if start == "exact"
                            else f"peak_gain_{start}_start", math.nan)
             t_end = (float(params.t_end) if params.t_end is not None
