@@ -15,7 +15,11 @@
   one point: CPU seconds of ``exact_gain`` on the ring of N = 256 and on the infinite
   chain, of one seeded run of that ring (``simulate_seeds(..., seeds=1)``, its default
   length), and their ratios (the goal: <= 0.1). Warm (compiled), one BLAS thread
-  (``exact_gain``'s own), best of REPEATS_EXACT, ``time.process_time``.
+  (``exact_gain``'s own), best of REPEATS_EXACT, ``time.process_time``. Beside them the
+  chain's floor: the wave (``travelling_wave``) and one dense LU solve of the whole Hill
+  pencil (fields x (2 P + 1) square) at each of the chain's 440 offsets, the least a method
+  that must find each offset's growing modes does where no offset is certified stable
+  without one (flexmm, stiff-hinge: growing copies at every offset at P = 10).
 - A 64 x 64 theory-only ``--exact`` map of fput (N = 256) through the command line: wall
   and CPU seconds (the goal: <= 60 s; 8 x 8 with --quick).
 - The four-wave row against the NLS row per point (``four_wave_cost``): the NLS row
@@ -125,6 +129,28 @@ def by_hand(rng, N, reps):
     return out
 
 
+@njit(cache=True)
+def _solves(A, b, reps):
+    """``reps`` dense LU solves of ``A x = b`` (LAPACK zgesv, as the kernels' own)."""
+    s = 0j
+    for _ in range(reps):
+        s += np.linalg.solve(A, b)[0]
+    return s
+
+
+#: the chain's offsets (``exact_gain``'s ``samples`` = 400 uniform and 40 log-spaced)
+CHAIN_OFFSETS = 440
+
+
+def solve_floor(n: int, reps: int = 440, repeats: int = 5) -> float:
+    """CPU seconds of one dense complex n x n solve (best of ``repeats`` loops of ``reps``)."""
+    rng = np.random.default_rng(1)
+    A = rng.standard_normal((n, n)) + 1j * rng.standard_normal((n, n)) + 2 * n * np.eye(n)
+    b = rng.standard_normal(n) + 0j
+    _solves(A, b, 2)
+    return _cpu(lambda: _solves(A, b, reps), repeats)[0] / reps
+
+
 def _cpu(f, reps):
     """Best CPU seconds of ``f()`` over ``reps`` calls, and its last result."""
     best, out = float("inf"), None
@@ -155,10 +181,20 @@ def exact_against_runs(quick=False, N=256):
         t_end = 200.0 if quick else None
         run_s, runs = _cpu(lambda m=model, k=k, a=a, b=br, s=spec, T=t_end: simulate_seeds(
             m, k, a, s, branch=b, N=N, seeds=1, t_end=T), 1)
+        # the floor of any method that touches every chain offset's whole Hill pencil
+        # (n = fields x (2 P + 1)) once: the wave and one LU solve per offset
+        from numerics.models import travelling_wave
+
+        wave_s = _cpu(lambda m=model, k=k, a=a, b=br: travelling_wave(m, k, a, b), reps)[0]
+        n = model.n_fields * (2 * spec.truncations[0] + 1)
+        floor_s = wave_s + CHAIN_OFFSETS * solve_floor(n)
         rows[name] = {"params": params, "k": spec.wave.k, "amplitude": a, "branch": br, "N": N,
                       "exact_ring_cpu_s": ring_s, "exact_chain_cpu_s": chain_s,
+                      "wave_cpu_s": wave_s, "pencil_size": n,
+                      "chain_floor_cpu_s": floor_s,
                       "run_cpu_s": run_s, "run_t_end": runs.t_end,
                       "ring_over_run": ring_s / run_s, "chain_over_run": chain_s / run_s,
+                      "chain_floor_over_run": floor_s / run_s,
                       "ring_peak_gain": spec.peak_gain, "chain_peak_gain": chain.peak_gain,
                       "truncations": list(spec.truncations)}
     return rows
@@ -423,7 +459,9 @@ def print_exact_against_runs(against: dict) -> None:
         print(f"  {name:<18} ring {r['exact_ring_cpu_s']:.4f} s, chain "
               f"{r['exact_chain_cpu_s']:.4f} s, run {r['run_cpu_s']:.3f} s "
               f"(T = {r['run_t_end']:g}): ring/run {r['ring_over_run']:.3f}, chain/run "
-              f"{r['chain_over_run']:.3f}")
+              f"{r['chain_over_run']:.3f} (floor {r['chain_floor_over_run']:.3f}: the wave "
+              f"{r['wave_cpu_s'] * 1e3:.1f} ms + {CHAIN_OFFSETS} solves of "
+              f"{r['pencil_size']} x {r['pencil_size']})")
 
 
 def force_only(reps=2000, N=500):
