@@ -382,7 +382,8 @@ def _estimate(params, workers: int, scheduler, log, left: int, cells: int):
     measured = f"theories {cost.theory:.2g} s" + (
         f", a run of T = {cost.t_end:g} {cost.run:.2g} s" if not params.theory_only else "")
     log(f"estimate: about {duration(est.seconds)}"
-        + (f" for {left} of its {cells} cells (the other {cells - left} are in the store)"
+        + (f" for {left} of its {cells} cells (the other {cells - left} "
+           f"{'is' if cells - left == 1 else 'are'} in the store)"
            if left < cells else "")
         + f" ({est.describe()}; one cell measured here: "
         f"{measured} of CPU) on {workers} worker(s)")

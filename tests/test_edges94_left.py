@@ -3,6 +3,7 @@ carries no wave of the amplitude gets no NLS verdict; summary.json's mi_fraction
 same for every map; argparse's own value errors are one line with a remedy; "1 cell", and
 a model's soliton at an amplitude it cannot have is refused; --overwrite starts afresh."""
 
+import json
 
 import pytest
 
@@ -52,3 +53,43 @@ def test_an_unknown_option_keeps_its_usage_and_nearest_name(capsys):
     assert "did you mean --amplitude?" in capsys.readouterr().err
 
 
+# ------------------------------------------------------------ 4: wording, the soliton
+def test_one_cell_is_one_cell(capsys, tmp_path):
+    assert main(["map", "--alpha", "2.5", "--K-s", "0.01851", "--delta", "0.01", "--k", "1",
+                 "--case", "rotation", "--theory-only", "--N", "32", "--workers", "1",
+                 "--out", str(tmp_path)]) == 0
+    out = capsys.readouterr().out
+    assert "1 cells" not in out, out
+    assert "map (theory only): 1 cell, " in out and "predicted 1 cell in " in out
+
+
+def test_a_models_soliton_narrower_than_a_site_is_refused(capsys):
+    # fput at a = 1e3: the NLS's width 0.0005 sites and a frequency 1e6 times omega were
+    # printed as a dark soliton, with a note; the width goes as 1 / a, so the remedy's
+    # amplitude for 8 sites is a * width / 8
+    err = _one_line_error(capsys, ["soliton", "--model", "fput", "--param", "alpha=1",
+                                   "--param", "beta=1", "--k", "1", "--amplitude", "1e3"])
+    assert "narrower than one site" in err and "lower --amplitude" in err
+    assert main(["soliton", "--model", "fput", "--param", "alpha=1", "--param", "beta=1",
+                 "--k", "1", "--amplitude", "0.0664", "--json"]) == 0
+    width = json.loads(capsys.readouterr().out)["width"]
+    assert width == pytest.approx(8, rel=2e-3)  # the remedy's 3 digits of the amplitude
+
+
+def test_a_soliton_of_a_wave_the_model_cannot_carry_is_refused(capsys, tmp_path):
+    # Toda at a = 1000, k = 1: the linear wave's strain reaches 954, beyond 710 where
+    # exp(-r) overflows; a soliton of it was printed (width 0.001 sites)
+    (tmp_path / "toda.toml").write_text(TODA)
+    err = _one_line_error(capsys, ["soliton", "--model", str(tmp_path / "toda.toml"),
+                                   "--k", "1", "--amplitude", "1e3"])
+    assert "energy is not real" in err and "lower --amplitude" in err
+    # within its reach, the soliton stands
+    assert main(["soliton", "--model", str(tmp_path / "toda.toml"), "--k", "1",
+                 "--amplitude", "0.05"]) == 0
+    assert "soliton, amplitude 0.05" in capsys.readouterr().out
+
+
+def test_a_soliton_of_a_few_sites_keeps_its_note(capsys):
+    assert main(["soliton", "--model", "fput", "--param", "alpha=1", "--param", "beta=1",
+                 "--k", "1", "--amplitude", "0.3"]) == 0
+    assert "too narrow for the envelope theory" in capsys.readouterr().out
