@@ -222,13 +222,14 @@ def run_map(args) -> int:
         raise ValueError(f"every cell of the map is undefined (first cell: "
                          f"{params.undefined_reason()}); change the axes, k, the amplitude "
                          "or --branch")
-    mi = {v: float(np.mean(ds[v].values == 1)) for v in verdicts}
     png = out / "map.png"
     _plot_map(_as_words(ds, verdicts), png, model)
     from ._map_inputs import model_inputs
 
     summary = {"inputs": model_inputs(params, model, device),
                **_summary(ds, verdicts, simulated)}
+    # mi_share: summary.json's mi_fraction by variable name (kept for older scripts)
+    mi = {v: summary["mi_fraction"][v.removeprefix("verdict_")] for v in verdicts}
     write_text(out / "summary.json", json.dumps(strict_json(summary), indent=2) + "\n")
     files = [str(path), str(png), str(out / "summary.json")]
     critical = _critical_rows(ds)
@@ -269,12 +270,13 @@ def run_map(args) -> int:
         _emit(res)
         return 0
     for v, share in mi.items():
-        # cells a theory leaves undetermined (g1 = 0 for the NLS, no wave for the exact
-        # theory) are in the share's denominator, not MI: said beside it, so 50% is not
-        # read as half of the cells stable
+        # the share among the cells a theory decides, as the paper chain's map gives it;
+        # the cells it leaves undetermined (g1 = 0 for the NLS, no wave for the exact
+        # theory) said beside it, so that 50% is read against the cells it decided
         n = summary["undetermined_cells"][v.removeprefix("verdict_")]
-        print(f"MI share, {v.replace('verdict_', '')}: {share:.0%}"
-              + (f" ({n} of {ds[v].size} cells undetermined, counted as not MI)" if n else ""))
+        print(f"MI share, {v.replace('verdict_', '')}: "
+              + (f"{share:.0%}" if math.isfinite(share) else "no cell decided")
+              + (f" ({n} of {ds[v].size} cells undetermined, left out)" if n else ""))
     ag = summary.get("agreement_with_simulation_percent") or {}
     told = [n.removesuffix("_undetermined_cells") for n in ag
             if n.endswith("_undetermined_cells")]
@@ -306,16 +308,19 @@ def run_map(args) -> int:
 
 def _summary(ds, verdicts: list, simulated: bool) -> dict:
     """summary.json, the paper map's keys: cells, cells simulated, each theory's share of
-    MI cells (``mi_fraction``, by theory name) and of undetermined ones, and with runs how
+    MI among the cells it decides (``mi_fraction``, by theory name; NaN where it decides
+    none: the paper map's definition) and its count of undetermined ones, and with runs how
     often each theory's verdict agrees with the simulation's (``numerics.maps.agreement``)."""
     import numpy as np
 
     from numerics.maps import agreement
 
+    from .map import _mi_fraction
+
     names = {v: v.removeprefix("verdict_") for v in verdicts}
     out = {"cells": int(ds["done"].size),
            "simulated": int(ds["done"].values.sum()) if simulated else 0,
-           "mi_fraction": {n: float(np.mean(ds[v].values == 1)) for v, n in names.items()},
+           "mi_fraction": {n: _mi_fraction(ds[v].values) for v, n in names.items()},
            "undetermined_cells": {n: int((ds[v].values < 0).sum()) for v, n in names.items()}}
     if simulated:
         out["agreement_with_simulation_percent"] = agreement(ds)

@@ -6,6 +6,7 @@ a model's soliton at an amplitude it cannot have is refused; --overwrite starts 
 import json
 
 import pytest
+import xarray as xr
 
 from cli.app import main
 
@@ -26,6 +27,31 @@ def _one_line_error(capsys, argv):
     err = capsys.readouterr().err.strip().splitlines()
     assert code == 2 and len(err) == 1, err
     return err[0]
+
+
+# ------------------------------------------------------------ 2: one mi_fraction
+def test_a_model_maps_mi_fraction_is_the_share_among_decided_cells(capsys, tmp_path):
+    """Klein-Gordon's NLS has g1 = 0 at cos k = (3 - sqrt 5) / 2: that column of the map
+    is undetermined. The model map counted it as not MI (50%), the paper map leaves such
+    cells out; one definition now, the paper map's, with the count beside it."""
+    import math
+
+    k0 = math.acos((3 - math.sqrt(5)) / 2)
+    code = main(["map", "--model", "klein-gordon", "--param", "beta=1,2", "--k",
+                 f"2,{k0!r}", "--amplitude", "0.1", "--theory-only", "--workers", "1",
+                 "--out", str(tmp_path), "--json"])
+    out = json.loads(capsys.readouterr().out)
+    summary = json.loads((tmp_path / "summary.json").read_text())
+    with xr.open_zarr(tmp_path / "map.zarr") as ds:
+        v = ds["verdict_semidiscrete"].values
+    decided = v >= 0
+    assert code == 0 and decided.sum() == 2  # the k0 column undetermined
+    # the share the paper map's definition gives, from the store's own verdicts
+    want = float((v[decided] == 1).mean())
+    assert summary["mi_fraction"]["semidiscrete"] == want
+    assert out["mi_fraction"]["semidiscrete"] == want
+    assert out["mi_share"]["verdict_semidiscrete"] == want
+    assert summary["undetermined_cells"]["semidiscrete"] == 2
 
 
 # ------------------------------------------------------------ 3: argparse's value errors
