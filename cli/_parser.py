@@ -270,7 +270,9 @@ def _map_parser(sub, model_mode=False):
     p.add_argument("--seeds", type=int, default=1, help="noise seeds per cell")
     p.add_argument("--out", default="out/map", help="folder of map.zarr")
     p.add_argument("--overwrite", action="store_true",
-                   help="replace a map.zarr in OUT that holds a map with other parameters")
+                   help="discard the map.zarr in OUT (its finished cells too, whichever map "
+                        "it holds) and compute the map afresh; without it the same command "
+                        "resumes its map, and a store of another map is refused")
     p.add_argument("--yes", action="store_true",
                    help="run even when the estimated run time exceeds one hour")
     p.add_argument("--scheduler", help="address of a running Dask scheduler "

@@ -157,7 +157,8 @@ def run_map_command(args, log=print):
 
     from ._map_guards import cells_done
 
-    done, _ = cells_done(args.out, params)  # a resumed map: the estimate of the cells left
+    # a resumed map: the estimate of the cells left (--overwrite computes every cell)
+    done = 0 if args.overwrite else cells_done(args.out, params)[0]
     # this machine's speed
     estimate = estimate_map(params, n_workers, args.scheduler, cells=cells - done)
     est = estimate.seconds

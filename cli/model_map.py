@@ -127,7 +127,8 @@ def run_map(args) -> int:
         rows=y, cols=x, amplitude=None if amp is None else float(amp), k=k_fixed,
         branch=None if args.branch is None else str(args.branch), exact=bool(args.exact),
         theory_only=not simulated, N=args.N, seeds=seeds, t_end=t_end,
-        block=args.block if "--block" in given else _default_block(args.out, simulated, x),
+        block=args.block if "--block" in given else _default_block(
+            None if args.overwrite else args.out, simulated, x),
         time_unit_s=units.seconds_per_T, length_unit_m=units.metres_per_site, start=start)
     check_output(args.out)
     log = (lambda *a: print(*a, file=sys.stderr)) if args.json else print
@@ -179,7 +180,8 @@ def run_map(args) -> int:
 
     # a store only --overwrite may replace: refused before the estimate's seconds
     check_store(Path(args.out) / "map.zarr", params, args.overwrite)
-    done, cells = cells_done(args.out, params)
+    # --overwrite discards the store: every cell is computed (and estimated)
+    done, cells = (0, cells) if args.overwrite else cells_done(args.out, params)
     left = None  # the engine's rough figure on its resume line (nothing measured here)
     if done == cells:  # nothing to compute: no cell measured to estimate it
         log(f"estimate: none needed: {Path(args.out) / 'map.zarr'} holds every cell of this "
@@ -201,7 +203,7 @@ def run_map(args) -> int:
                                               if params.ring else ""))
     out = prepare_output(args.out, cache=False)
     path = out / "map.zarr"
-    existed = path.exists()
+    existed = path.exists() and not args.overwrite  # --overwrite: the old one is gone
     import json
 
     from common.files import write_text
@@ -341,11 +343,14 @@ THEORY_BLOCK = 64
 
 def _default_block(out, simulated: bool, cols) -> int:
     """--block's default: the block of a map store already in ``out`` (a resumed map keeps
-    its chunks), else 4 cells a task for a simulated map (each cell runs the ring), else a
-    row of the map up to THEORY_BLOCK cells."""
+    its chunks; ``out`` None: a store discarded by --overwrite), else 4 cells a task for a
+    simulated map (each cell runs the ring), else a row of the map up to THEORY_BLOCK
+    cells."""
     import zarr
 
     try:
+        if out is None:
+            raise FileNotFoundError
         stored = zarr.open_group(str(Path(out) / "map.zarr"), mode="r").attrs.get("block")
     except Exception:  # no store there, or none readable: the map's own default
         stored = None

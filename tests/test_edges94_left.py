@@ -5,6 +5,7 @@ a model's soliton at an amplitude it cannot have is refused; --overwrite starts 
 
 import json
 
+import numpy as np
 import pytest
 import xarray as xr
 
@@ -119,3 +120,56 @@ def test_a_soliton_of_a_few_sites_keeps_its_note(capsys):
     assert main(["soliton", "--model", "fput", "--param", "alpha=1", "--param", "beta=1",
                  "--k", "1", "--amplitude", "0.3"]) == 0
     assert "too narrow for the envelope theory" in capsys.readouterr().out
+
+
+# ------------------------------------------------------------ 5: --overwrite starts afresh
+FPUT_MAP = ["map", "--model", "fput", "--param", "alpha=1", "--param", "beta=0.8,1.6",
+            "--k", "2.6,2.8", "--amplitude", "0.1", "--theory-only", "--workers", "1"]
+
+
+def test_overwrite_of_the_same_map_discards_its_cells(capsys, tmp_path):
+    out = ["--out", str(tmp_path)]
+    assert main([*FPUT_MAP, *out]) == 0
+    # a mark that only a recomputation removes: a cell's verdict edited with its checksum
+    # left as it was would be recomputed on resume too, so the store's attrs carry it
+    import zarr
+
+    zarr.open_group(str(tmp_path / "map.zarr"), mode="r+").attrs["left_by"] = "the old run"
+    capsys.readouterr()
+    assert main([*FPUT_MAP, *out]) == 0  # without --overwrite: resumed, nothing computed
+    said = capsys.readouterr().out
+    assert "resuming" in said and "predicted" not in said
+    assert main([*FPUT_MAP, *out, "--overwrite"]) == 0
+    said = capsys.readouterr().out
+    assert "discarded (4 finished cells of its map)" in said and "resuming" not in said
+    assert "predicted 4 cells in " in said and "estimate: about" in said
+    group = zarr.open_group(str(tmp_path / "map.zarr"), mode="r")
+    assert "left_by" not in group.attrs and np.asarray(group["done_predicted"]).all()
+
+
+@pytest.mark.parametrize("make", ["files", "link", "nested"])
+def test_overwrite_never_removes_a_folder_that_is_no_map_store(make, capsys, tmp_path):
+    store = tmp_path / "out" / "map.zarr"
+    mine = tmp_path / "mine"
+    mine.mkdir()
+    (mine / "notes.txt").write_text("keep me")
+    if make == "files":  # a folder of the user's own, named map.zarr
+        store.parent.mkdir()
+        mine.rename(store)
+        mine = store
+    elif make == "link":  # a link to it
+        store.parent.mkdir()
+        store.symlink_to(mine, target_is_directory=True)
+    else:  # a Zarr group's marker, and a folder no map variable holds
+        store.mkdir(parents=True)
+        (store / ".zgroup").write_text('{"zarr_format": 2}')
+        (store / "done").mkdir()
+        (store / "done" / "sub").mkdir()
+        (store / "done" / "sub" / "data").write_text("keep me")
+    err = _one_line_error(capsys, [*FPUT_MAP, "--out", str(tmp_path / "out"), "--overwrite"])
+    assert "is not a map store" in err and "--overwrite removes only a map store" in err
+    if make == "nested":
+        assert (store / "done" / "sub" / "data").read_text() == "keep me"
+    else:
+        assert (mine / "notes.txt").read_text() == "keep me"
+        assert store.exists() or store.is_symlink()
