@@ -255,6 +255,8 @@ def run_map(args) -> int:
             res["slow_for_T_cells"] = summary["slow_for_T_cells"]
         if summary.get("blew_up_cells"):
             res["blew_up_cells"] = summary["blew_up_cells"]
+        if summary.get("no_wave_cells"):
+            res["no_wave_cells"] = summary["no_wave_cells"]
         u, _ = ModelUnits.json(units, {})
         if "k" in res["axes"]:  # the k axis, in rad/m too
             u["lattice"]["k"] = "rad/site"
@@ -284,13 +286,16 @@ def run_map(args) -> int:
             if n.endswith("_undetermined_cells")]
     if told:  # the runs' verdict against each theory's (summary.json's numbers)
         print("agreement with the runs (cells the theory decides): " + ", ".join(
-            f"{n} {ag[n]:.0f}%"
-            + (f" ({ag[n + '_decided']:.0f}% of {ag[n + '_decided_cells']} not marginal)"
-               if n + "_decided" in ag else "")
+            (f"{n}: no cell it could evaluate" if not math.isfinite(ag[n]) else  # not nan%
+             f"{n} {ag[n]:.0f}%"
+             + (f" ({ag[n + '_decided']:.0f}% of {ag[n + '_decided_cells']} not marginal)"
+                if n + "_decided" in ag and math.isfinite(ag[n + "_decided"]) else ""))
             + (f" ({ag[n + '_undetermined_cells']} undetermined, left out)"
                if ag[n + "_undetermined_cells"] else "") for n in told))
     if unsampled and unsampled["cells"]:
         print(_unsampled_text(unsampled, args.N))
+    if summary.get("no_wave_cells"):
+        print(_no_wave_text(ds, params, summary))
     if summary.get("blew_up_cells"):
         print(f"runs that blew up (the state left the lattice's range, growth inf): "
               f"{summary['blew_up_cells']} of {summary['cells']} cells, undetermined (a "
@@ -330,9 +335,31 @@ def _summary(ds, verdicts: list, simulated: bool) -> dict:
         # growth inf, the verdict undetermined; named, so that they are not read as MI
         out["blew_up_cells"] = int(((ds["verdict_simulated"].values < 0)
                                     & np.isposinf(ds["growth"].values)).sum())
+    if "no_wave" in ds.data_vars:  # no wave of the amplitude: every theory undetermined
+        out["no_wave_cells"] = int((ds["no_wave"].values == 1).sum())
     if "slow_for_T" in ds.data_vars:  # the runs whose T cannot reach their exact rate's 20x
         out["slow_for_T_cells"] = int(ds["slow_for_T"].attrs["cells"])
     return out
+
+
+def _no_wave_text(ds, params, summary: dict) -> str:
+    """The line that counts the cells where the model carries no wave of the amplitude
+    (the store's ``no_wave``), with the first one's reason (``energy_not_real``: the
+    largest amplitude allowed there)."""
+    import numpy as np
+
+    from numerics.models import energy_not_real
+
+    i, j = (int(n) for n in np.argwhere(ds["no_wave"].values == 1)[0])
+    values, k = params.cell(i, j)
+    if params.ring:  # the cell's theories ran at the ring's k
+        k = float(ds["k_simulated"].values[i, j])
+    at = ", ".join(f"{n} = {float(ds[n].values[m]):g}" for n, m in zip(params.dims, (i, j)))
+    why = energy_not_real(params.lattice_model.with_params(**values), k,
+                          params.amplitude_at(i, j), params.branch_value)
+    return (f"no wave of the amplitude (the model's energy is not real along it): "
+            f"{summary['no_wave_cells']} of {summary['cells']} cells, undetermined by every "
+            f"theory (no verdict of a wave that does not exist); first at {at}: {why}")
 
 
 #: a theory-only map's cells per task unless --block: a row of the map, up to this many

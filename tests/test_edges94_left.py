@@ -23,11 +23,68 @@ bond = "a/b*(exp(-b*(u_next - u)) - 1 + b*(u_next - u))"
 """
 
 
+FPUT_MAP = ["map", "--model", "fput", "--param", "alpha=1", "--param", "beta=0.8,1.6",
+            "--k", "2.6,2.8", "--amplitude", "0.1", "--theory-only", "--workers", "1"]
+
+
 def _one_line_error(capsys, argv):
     code = main(argv)
     err = capsys.readouterr().err.strip().splitlines()
     assert code == 2 and len(err) == 1, err
     return err[0]
+
+
+# ------------------------------------------------------------ 1: no wave, no verdict
+def test_a_model_map_gives_no_verdict_where_the_model_carries_no_wave(capsys, tmp_path):
+    """Toda's exp(-r) overflows past r = 710: at a = 2000 the linear wave's largest strain
+    |u_next - u| = 2 a sin(k / 2) is about 990 at k = 0.5, and the map gave the NLS's
+    'stable' there, while `point` notes that the wave cannot exist. The cell is
+    undetermined by every theory now, counted (no_wave_cells) and said; a = 1 keeps its
+    verdicts."""
+    import math
+
+    (tmp_path / "toda.toml").write_text(TODA)
+    argv = ["map", "--model", str(tmp_path / "toda.toml"), "--k", "0.5,1", "--amplitude",
+            "1,2000", "--theory-only", "--workers", "1", "--out", str(tmp_path / "m")]
+    assert main(argv) == 0
+    out = capsys.readouterr().out
+    # the strain 2 a sin(k / 2) of the linear wave against ln(max float) = 709.8: at
+    # a = 2000 both k overflow, at a = 1 neither (an independent count of the cells)
+    overflow = [[2 * a * math.sin(k / 2) > 709.8 for k in (0.5, 1)] for a in (1, 2000)]
+    assert overflow == [[False, False], [True, True]]
+    with xr.open_zarr(tmp_path / "m" / "map.zarr") as ds:
+        no_wave, verdict = ds["no_wave"].values, ds["verdict_semidiscrete"].values
+        assert ds["no_wave"].dims == ("amplitude", "k")
+    assert (no_wave == 1).tolist() == overflow
+    assert (verdict[no_wave == 1] == -1).all() and (verdict[no_wave == 0] >= 0).all()
+    summary = json.loads((tmp_path / "m" / "summary.json").read_text())
+    assert summary["no_wave_cells"] == 2 and summary["undetermined_cells"]["semidiscrete"] == 2
+    line = next(ln for ln in out.splitlines() if ln.startswith("no wave of the amplitude"))
+    assert "2 of 4 cells" in line and "largest amplitude the model allows" in line
+    assert main([*argv[:-2], "--out", str(tmp_path / "j"), "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["no_wave_cells"] == 2
+
+
+def test_a_simulated_map_runs_no_cell_without_a_wave(capsys, tmp_path):
+    (tmp_path / "toda.toml").write_text(TODA)
+    assert main(["map", "--model", str(tmp_path / "toda.toml"), "--k", "0.5,1",
+                 "--amplitude", "1,2000", "--N", "32", "--t-end", "200", "--workers", "1",
+                 "--out", str(tmp_path)]) == 0
+    with xr.open_zarr(tmp_path / "map.zarr") as ds:
+        gone = ds["no_wave"].values == 1
+        assert gone.sum() == 2 and ds["done"].values.all()
+        for v in ("semidiscrete", "exact", "fourwave", "simulated"):
+            assert (ds[f"verdict_{v}"].values[gone] == -1).all(), v
+        assert np.isnan(ds["growth"].values[gone]).all()  # no run made there
+    assert json.loads((tmp_path / "summary.json").read_text())["no_wave_cells"] == 2
+
+
+def test_a_model_map_whose_waves_all_exist_says_nothing_of_them(capsys, tmp_path):
+    assert main([*FPUT_MAP, "--out", str(tmp_path)]) == 0
+    assert "no wave" not in capsys.readouterr().out
+    with xr.open_zarr(tmp_path / "map.zarr") as ds:
+        assert (ds["no_wave"].values == 0).all()
+    assert json.loads((tmp_path / "summary.json").read_text())["no_wave_cells"] == 0
 
 
 # ------------------------------------------------------------ 2: one mi_fraction
@@ -123,10 +180,6 @@ def test_a_soliton_of_a_few_sites_keeps_its_note(capsys):
 
 
 # ------------------------------------------------------------ 5: --overwrite starts afresh
-FPUT_MAP = ["map", "--model", "fput", "--param", "alpha=1", "--param", "beta=0.8,1.6",
-            "--k", "2.6,2.8", "--amplitude", "0.1", "--theory-only", "--workers", "1"]
-
-
 def test_overwrite_of_the_same_map_discards_its_cells(capsys, tmp_path):
     out = ["--out", str(tmp_path)]
     assert main([*FPUT_MAP, *out]) == 0
