@@ -266,11 +266,11 @@ def _refuse_no_envelope(model, k: float, amplitude: float, branch) -> None:
     amplitude (its energy not real along it; the check ``point`` and the map use), and
     where the envelope would be narrower than one site, so that the NLS's slowly varying
     envelope, its width, speed and frequency, describe nothing on the lattice (at 1e3 on
-    fput: 0.0005 sites, a frequency 1e6 times omega). Between one site and MIN_WIDTH the
-    result stands with its note: the theory is rough there, not void."""
+    fput: 0.0005 sites, a frequency 1e6 times omega). Between one site and MIN_WIDTH
+    (numerics.theory's) the result stands with its note: the theory is rough there, not
+    void."""
     from energy import ModelError
     from numerics.models import energy_not_real, nls
-    from numerics.theory import MIN_WIDTH  # the paper chain's, as the note below uses
 
     why = energy_not_real(model, k, amplitude, branch)
     if why is not None:
@@ -281,10 +281,19 @@ def _refuse_no_envelope(model, k: float, amplitude: float, branch) -> None:
     except ModelError:  # no carrier here: the command's own error says why
         return
     if width is not None and width < 1:
-        raise ValueError(f"--amplitude {amplitude:g}: the soliton would be {width:.3g} sites "
-                         "wide, narrower than one site: the envelope theory has no soliton "
-                         f"there; lower --amplitude (about {amplitude * width / MIN_WIDTH:.3g} "
-                         f"gives {MIN_WIDTH:g} sites, the narrowest it describes)")
+        raise ValueError(narrower_than_a_site(amplitude, width))
+
+
+def narrower_than_a_site(amplitude: float, width: float) -> str:
+    """The refusal of a soliton narrower than one site (any model's, the paper chain's),
+    with the amplitude that gives MIN_WIDTH sites: an NLS soliton's width goes as
+    1 / amplitude."""
+    from numerics.theory import MIN_WIDTH
+
+    return (f"--amplitude {amplitude:g}: the soliton would be {width:.3g} sites wide, "
+            "narrower than one site: the envelope theory has no soliton there; lower "
+            f"--amplitude (about {amplitude * width / MIN_WIDTH:.3g} gives {MIN_WIDTH:g} "
+            "sites, the narrowest it describes)")
 
 
 def run_soliton(args) -> int:

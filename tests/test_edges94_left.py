@@ -173,6 +173,16 @@ def test_a_soliton_of_a_wave_the_model_cannot_carry_is_refused(capsys, tmp_path)
     assert "soliton, amplitude 0.05" in capsys.readouterr().out
 
 
+def test_the_paper_chains_soliton_narrower_than_a_site_is_refused_too(capsys):
+    # its amplitude is bounded by 1 rad (1e3 refused), but 0.9 printed a table of a
+    # soliton 0.06 sites wide, with a warning
+    paper = ["soliton", "--alpha", "2.5", "--K-s", "0.01851", "--K-theta", "0.02151",
+             "--k", "0.92991", "--case", "rotation", "--amplitude"]
+    err = _one_line_error(capsys, [*paper, "0.9"])
+    assert "narrower than one site" in err and "lower --amplitude" in err
+    assert main([*paper, "0.002"]) == 0  # the epilog's example stands
+
+
 def test_a_soliton_of_a_few_sites_keeps_its_note(capsys):
     assert main(["soliton", "--model", "fput", "--param", "alpha=1", "--param", "beta=1",
                  "--k", "1", "--amplitude", "0.3"]) == 0
