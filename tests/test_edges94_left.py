@@ -79,6 +79,40 @@ def test_a_simulated_map_runs_no_cell_without_a_wave(capsys, tmp_path):
     assert json.loads((tmp_path / "summary.json").read_text())["no_wave_cells"] == 2
 
 
+GPU_MAP = """
+import json, sys, tempfile
+from numerics.maps import ModelMapParameters, run_map
+path = sys.argv[1]
+p = ModelMapParameters(model=path, text=open(path).read(), parameters=(("a", 1.0), ("b", 1.0)),
+                       rows=("amplitude", [1.0, 2000.0]), cols=("k", [0.5, 1.0]),
+                       amplitude=None, N=16, t_end=6.0, block=1)
+ds = run_map(p, tempfile.mkdtemp(), progress=False, log=lambda *a: None, device="gpu")
+print(json.dumps({n: ds[n].values.tolist() for n in ("no_wave", "verdict_simulated",
+                                                     "t_simulated", "done")}))
+"""
+
+
+def test_the_gpu_path_launches_no_cell_without_a_wave(tmp_path):
+    """run_map(device="gpu") under numba's CUDA simulator (no GPU needed): the cells
+    without a wave are not launched, as on the CPU (their runs undetermined, no growth)."""
+    import os
+    import subprocess
+    import sys
+
+    (tmp_path / "toda.toml").write_text(TODA)
+    env = dict(os.environ, NUMBA_ENABLE_CUDASIM="1", OMP_NUM_THREADS="1")
+    res = subprocess.run([sys.executable, "-c", GPU_MAP, str(tmp_path / "toda.toml")],
+                         env=env, capture_output=True, text=True, timeout=600)
+    assert res.returncode == 0, res.stderr[-3000:]
+    got = json.loads(res.stdout.splitlines()[-1])
+    assert got["no_wave"] == [[0, 0], [1, 1]] and got["done"] == [[True, True]] * 2
+    assert got["verdict_simulated"][1] == [-1, -1]
+    # a run's length is NaN only where none was made (T = 6 is too short for a verdict at
+    # a = 1, whose runs are made and undetermined too, on the CPU as here)
+    ran, none = got["t_simulated"]
+    assert ran == [6.0, 6.0] and all(t != t for t in none)
+
+
 def test_a_model_map_whose_waves_all_exist_says_nothing_of_them(capsys, tmp_path):
     assert main([*FPUT_MAP, "--out", str(tmp_path)]) == 0
     assert "no wave" not in capsys.readouterr().out
