@@ -375,10 +375,10 @@ def _default_block(out, simulated: bool, cols) -> int:
     cells."""
     import zarr
 
+    stored = None
     try:
-        if out is None:
-            raise FileNotFoundError
-        stored = zarr.open_group(str(Path(out) / "map.zarr"), mode="r").attrs.get("block")
+        if out is not None:
+            stored = zarr.open_group(str(Path(out) / "map.zarr"), mode="r").attrs.get("block")
     except Exception:  # no store there, or none readable: the map's own default
         stored = None
     if isinstance(stored, int) and stored >= 1:

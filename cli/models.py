@@ -306,8 +306,10 @@ def run_soliton(args) -> int:
     units = model_units(args)
     checks.real("--k", args.k, 0.0, math.pi, high_open=False)
     check_amplitude(args.amplitude)
-    _refuse_no_envelope(model, args.k, args.amplitude, branch_of(args))
-    if getattr(args, "simulate", False) or getattr(args, "out", None):
+    simulate = getattr(args, "simulate", False)
+    if not simulate:  # a launch refuses these itself (check_soliton_launch: < 2 sites)
+        _refuse_no_envelope(model, args.k, args.amplitude, branch_of(args))
+    if simulate or getattr(args, "out", None):
         from .model_soliton import run_model_soliton
 
         run_model_soliton(args, model, units, branch_of(args))

@@ -181,13 +181,16 @@ def test_one_cell_is_one_cell(capsys, tmp_path):
     assert "map (theory only): 1 cell, " in out and "predicted 1 cell in " in out
 
 
-def test_a_models_soliton_narrower_than_a_site_is_refused(capsys):
+def test_a_models_soliton_narrower_than_a_site_is_refused(capsys, tmp_path):
     # fput at a = 1e3: the NLS's width 0.0005 sites and a frequency 1e6 times omega were
-    # printed as a dark soliton, with a note; the width goes as 1 / a, so the remedy's
-    # amplitude for 8 sites is a * width / 8
-    err = _one_line_error(capsys, ["soliton", "--model", "fput", "--param", "alpha=1",
-                                   "--param", "beta=1", "--k", "1", "--amplitude", "1e3"])
-    assert "narrower than one site" in err and "lower --amplitude" in err
+    # printed as a dark soliton, with a note (and written, with --out); the width goes as
+    # 1 / a, so the remedy's amplitude for 8 sites is a * width / 8
+    argv = ["soliton", "--model", "fput", "--param", "alpha=1", "--param", "beta=1",
+            "--k", "1", "--amplitude", "1e3"]
+    for extra in ([], ["--out", str(tmp_path / "s")]):
+        err = _one_line_error(capsys, argv + extra)
+        assert "narrower than one site" in err and "lower --amplitude" in err
+    assert not (tmp_path / "s").exists()
     assert main(["soliton", "--model", "fput", "--param", "alpha=1", "--param", "beta=1",
                  "--k", "1", "--amplitude", "0.0664", "--json"]) == 0
     width = json.loads(capsys.readouterr().out)["width"]
