@@ -62,6 +62,48 @@ class _Help(argparse.ArgumentDefaultsHelpFormatter, argparse.RawDescriptionHelpF
         return super()._get_help_string(action)
 
 
+class _Parser(argparse.ArgumentParser):
+    """argparse's parser, whose errors about a value it could not convert (``--N 1.5``,
+    ``--amplitude x``, ``--case foo``) are one line naming the option and the remedy (the
+    project's rule for bad input; raised as ValueError, which ``cli.app.main`` prints as
+    ``flexmm: error: ...`` with exit code 2) instead of the usage and "invalid float
+    value". Its other errors (an unknown or missing option) keep argparse's usage."""
+
+    def error(self, message):
+        said = _value_error(self, message)
+        if said is None:
+            super().error(message)
+        raise ValueError(said)
+
+
+#: a value of each type for a remedy, where the option has no default to show
+_EXAMPLE = {"float": "1.2", "int": "64"}
+_WHAT = {"float": "a number", "int": "a whole number"}
+
+
+def _value_error(parser, message: str) -> str | None:
+    """The one-line error for argparse's ``message`` about a value it could not convert,
+    or None for its other errors. Every option's type and choices go through here, so no
+    option needs its own converter."""
+    import re
+
+    typed = re.fullmatch(r"argument (--[\w-]+)(?:/\S+)?: invalid (float|int) value: (.*)",
+                         message)
+    if typed:
+        option, kind, value = typed.groups()
+        action = parser._option_string_actions.get(option)  # argparse's own table
+        default = getattr(action, "default", None)
+        example = (f"{default:g} (the default)" if isinstance(default, (int, float))
+                   and not isinstance(default, bool) else _EXAMPLE[kind])
+        return f"{option}: {value} is not {_WHAT[kind]}; give one such as {example}"
+    chosen = re.fullmatch(r"argument (--[\w-]+)(?:/\S+)?: invalid choice: (.*) \(choose "
+                          r"from (.*)\)", message)
+    if chosen:
+        option, value, choices = chosen.groups()
+        return f"{option}: {value} is not one of {choices}; give one of them"
+    return None
+
+
 def _sub(sub, name, help_):
     return sub.add_parser(name, help=help_, description=help_[0].upper() + help_[1:] + ".",
                           epilog=EPILOG[name], formatter_class=_Help)
@@ -70,7 +112,7 @@ def _sub(sub, name, help_):
 def build_parser(model_mode: bool = False):
     """The parser; ``model_mode`` (a --model on the line): the paper chain's required
     --case is not required (the model's commands refuse it)."""
-    p = argparse.ArgumentParser(
+    p = _Parser(  # each command's parser is one too (argparse makes them of this class)
         prog="flexmm", description="Modulation instability in flexible mechanical "
         "metamaterials: coefficients, MI verdicts, simulations, maps and the paper's figures.",
         epilog="run `flexmm COMMAND --help` for a command's options and an example")
@@ -228,7 +270,9 @@ def _map_parser(sub, model_mode=False):
     p.add_argument("--seeds", type=int, default=1, help="noise seeds per cell")
     p.add_argument("--out", default="out/map", help="folder of map.zarr")
     p.add_argument("--overwrite", action="store_true",
-                   help="replace a map.zarr in OUT that holds a map with other parameters")
+                   help="discard the map.zarr in OUT (its finished cells too, whichever map "
+                        "it holds) and compute the map afresh; without it the same command "
+                        "resumes its map, and a store of another map is refused")
     p.add_argument("--yes", action="store_true",
                    help="run even when the estimated run time exceeds one hour")
     p.add_argument("--scheduler", help="address of a running Dask scheduler "

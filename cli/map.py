@@ -11,6 +11,7 @@ import numpy as np
 
 from common.output import check_output, prepare_output, strict_json
 from common.text import duration as _duration
+from common.text import plural
 from numerics.lattice import GROWTH_THRESHOLD, checks
 from numerics.maps import (
     AGREEMENT_MARGIN,
@@ -56,7 +57,7 @@ def with_wall(log, started: float, estimate: float):
     import time
 
     def out(msg="", *a, **kw):
-        if re.match(r"(simulated|predicted) \d+ cells in ", str(msg)):
+        if re.match(r"(simulated|predicted) \d+ cells? (in|on) ", str(msg)):
             msg = (f"{msg}; the command so far {time.perf_counter() - started:.1f} s, "
                    f"estimated {estimate:.0f} s")
         return log(msg, *a, **kw)
@@ -156,17 +157,18 @@ def run_map_command(args, log=print):
 
     from ._map_guards import cells_done
 
-    done, _ = cells_done(args.out, params)  # a resumed map: the estimate of the cells left
+    # a resumed map: the estimate of the cells left (--overwrite computes every cell)
+    done = 0 if args.overwrite else cells_done(args.out, params)[0]
     # this machine's speed
     estimate = estimate_map(params, n_workers, args.scheduler, cells=cells - done)
     est = estimate.seconds
     left = f" for the {cells - done} left ({done} in the store)" if done else ""
     if params.theory_only:
-        log(f"map (theory only): {cells} cells, N = {params.N}, T = {params.t_end:g}: "
+        log(f"map (theory only): {plural(cells, 'cell')}, N = {params.N}, T = {params.t_end:g}: "
             f"predictions about {_duration(est)}{left} ({estimate.describe()}) on "
             f"{n_workers} worker(s)")
     else:
-        log(f"map: {cells} cells x {params.seeds} seed(s), N = {params.N}, T = "
+        log(f"map: {plural(cells, 'cell')} x {params.seeds} seed(s), N = {params.N}, T = "
             f"{params.t_end:g}: about {_duration(est)}{left} ({estimate.describe()}) on "
             f"{n_workers} worker(s) (less where MI stops a run early)")
     if device == "gpu":
@@ -214,7 +216,7 @@ def run_map_command(args, log=print):
         if ag["predicted_growth_cells"]:
             log(f"predicted growth within 2x of the measured one in "
                 f"{ag['predicted_growth_within_2x']:.0f}% of the "
-                f"{ag['predicted_growth_cells']} cells that grew 2x to 1000x")
+                f"{plural(ag['predicted_growth_cells'], 'cell')} that grew 2x to 1000x")
     log(f"wrote {out / 'map.zarr'}, {out / 'map.png'}, {out / 'summary.json'}")  # last
     return ds
 

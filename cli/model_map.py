@@ -127,7 +127,8 @@ def run_map(args) -> int:
         rows=y, cols=x, amplitude=None if amp is None else float(amp), k=k_fixed,
         branch=None if args.branch is None else str(args.branch), exact=bool(args.exact),
         theory_only=not simulated, N=args.N, seeds=seeds, t_end=t_end,
-        block=args.block if "--block" in given else _default_block(args.out, simulated, x),
+        block=args.block if "--block" in given else _default_block(
+            None if args.overwrite else args.out, simulated, x),
         time_unit_s=units.seconds_per_T, length_unit_m=units.metres_per_site, start=start)
     check_output(args.out)
     log = (lambda *a: print(*a, file=sys.stderr)) if args.json else print
@@ -179,7 +180,8 @@ def run_map(args) -> int:
 
     # a store only --overwrite may replace: refused before the estimate's seconds
     check_store(Path(args.out) / "map.zarr", params, args.overwrite)
-    done, cells = cells_done(args.out, params)
+    # --overwrite discards the store: every cell is computed (and estimated)
+    done, cells = (0, cells) if args.overwrite else cells_done(args.out, params)
     left = None  # the engine's rough figure on its resume line (nothing measured here)
     if done == cells:  # nothing to compute: no cell measured to estimate it
         log(f"estimate: none needed: {Path(args.out) / 'map.zarr'} holds every cell of this "
@@ -201,7 +203,7 @@ def run_map(args) -> int:
                                               if params.ring else ""))
     out = prepare_output(args.out, cache=False)
     path = out / "map.zarr"
-    existed = path.exists()
+    existed = path.exists() and not args.overwrite  # --overwrite: the old one is gone
     import json
 
     from common.files import write_text
@@ -222,13 +224,14 @@ def run_map(args) -> int:
         raise ValueError(f"every cell of the map is undefined (first cell: "
                          f"{params.undefined_reason()}); change the axes, k, the amplitude "
                          "or --branch")
-    mi = {v: float(np.mean(ds[v].values == 1)) for v in verdicts}
     png = out / "map.png"
     _plot_map(_as_words(ds, verdicts), png, model)
     from ._map_inputs import model_inputs
 
     summary = {"inputs": model_inputs(params, model, device),
                **_summary(ds, verdicts, simulated)}
+    # mi_share: summary.json's mi_fraction by variable name (kept for older scripts)
+    mi = {v: summary["mi_fraction"][v.removeprefix("verdict_")] for v in verdicts}
     write_text(out / "summary.json", json.dumps(strict_json(summary), indent=2) + "\n")
     files = [str(path), str(png), str(out / "summary.json")]
     critical = _critical_rows(ds)
@@ -252,6 +255,8 @@ def run_map(args) -> int:
             res["slow_for_T_cells"] = summary["slow_for_T_cells"]
         if summary.get("blew_up_cells"):
             res["blew_up_cells"] = summary["blew_up_cells"]
+        if summary.get("no_wave_cells"):
+            res["no_wave_cells"] = summary["no_wave_cells"]
         u, _ = ModelUnits.json(units, {})
         if "k" in res["axes"]:  # the k axis, in rad/m too
             u["lattice"]["k"] = "rad/site"
@@ -269,24 +274,28 @@ def run_map(args) -> int:
         _emit(res)
         return 0
     for v, share in mi.items():
-        # cells a theory leaves undetermined (g1 = 0 for the NLS, no wave for the exact
-        # theory) are in the share's denominator, not MI: said beside it, so 50% is not
-        # read as half of the cells stable
+        # the share among the cells a theory decides, as the paper chain's map gives it;
+        # the cells it leaves undetermined (g1 = 0 for the NLS, no wave for the exact
+        # theory) said beside it, so that 50% is read against the cells it decided
         n = summary["undetermined_cells"][v.removeprefix("verdict_")]
-        print(f"MI share, {v.replace('verdict_', '')}: {share:.0%}"
-              + (f" ({n} of {ds[v].size} cells undetermined, counted as not MI)" if n else ""))
+        print(f"MI share, {v.replace('verdict_', '')}: "
+              + (f"{share:.0%}" if math.isfinite(share) else "no cell decided")
+              + (f" ({n} of {ds[v].size} cells undetermined, left out)" if n else ""))
     ag = summary.get("agreement_with_simulation_percent") or {}
     told = [n.removesuffix("_undetermined_cells") for n in ag
             if n.endswith("_undetermined_cells")]
     if told:  # the runs' verdict against each theory's (summary.json's numbers)
         print("agreement with the runs (cells the theory decides): " + ", ".join(
-            f"{n} {ag[n]:.0f}%"
-            + (f" ({ag[n + '_decided']:.0f}% of {ag[n + '_decided_cells']} not marginal)"
-               if n + "_decided" in ag else "")
+            (f"{n}: no cell it could evaluate" if not math.isfinite(ag[n]) else  # not nan%
+             f"{n} {ag[n]:.0f}%"
+             + (f" ({ag[n + '_decided']:.0f}% of {ag[n + '_decided_cells']} not marginal)"
+                if n + "_decided" in ag and math.isfinite(ag[n + "_decided"]) else ""))
             + (f" ({ag[n + '_undetermined_cells']} undetermined, left out)"
                if ag[n + "_undetermined_cells"] else "") for n in told))
     if unsampled and unsampled["cells"]:
         print(_unsampled_text(unsampled, args.N))
+    if summary.get("no_wave_cells"):
+        print(_no_wave_text(ds, params, summary))
     if summary.get("blew_up_cells"):
         print(f"runs that blew up (the state left the lattice's range, growth inf): "
               f"{summary['blew_up_cells']} of {summary['cells']} cells, undetermined (a "
@@ -306,16 +315,19 @@ def run_map(args) -> int:
 
 def _summary(ds, verdicts: list, simulated: bool) -> dict:
     """summary.json, the paper map's keys: cells, cells simulated, each theory's share of
-    MI cells (``mi_fraction``, by theory name) and of undetermined ones, and with runs how
+    MI among the cells it decides (``mi_fraction``, by theory name; NaN where it decides
+    none: the paper map's definition) and its count of undetermined ones, and with runs how
     often each theory's verdict agrees with the simulation's (``numerics.maps.agreement``)."""
     import numpy as np
 
     from numerics.maps import agreement
 
+    from .map import _mi_fraction
+
     names = {v: v.removeprefix("verdict_") for v in verdicts}
     out = {"cells": int(ds["done"].size),
            "simulated": int(ds["done"].values.sum()) if simulated else 0,
-           "mi_fraction": {n: float(np.mean(ds[v].values == 1)) for v, n in names.items()},
+           "mi_fraction": {n: _mi_fraction(ds[v].values) for v, n in names.items()},
            "undetermined_cells": {n: int((ds[v].values < 0).sum()) for v, n in names.items()}}
     if simulated:
         out["agreement_with_simulation_percent"] = agreement(ds)
@@ -323,9 +335,31 @@ def _summary(ds, verdicts: list, simulated: bool) -> dict:
         # growth inf, the verdict undetermined; named, so that they are not read as MI
         out["blew_up_cells"] = int(((ds["verdict_simulated"].values < 0)
                                     & np.isposinf(ds["growth"].values)).sum())
+    if "no_wave" in ds.data_vars:  # no wave of the amplitude: every theory undetermined
+        out["no_wave_cells"] = int((ds["no_wave"].values == 1).sum())
     if "slow_for_T" in ds.data_vars:  # the runs whose T cannot reach their exact rate's 20x
         out["slow_for_T_cells"] = int(ds["slow_for_T"].attrs["cells"])
     return out
+
+
+def _no_wave_text(ds, params, summary: dict) -> str:
+    """The line that counts the cells where the model carries no wave of the amplitude
+    (the store's ``no_wave``), with the first one's reason (``energy_not_real``: the
+    largest amplitude allowed there)."""
+    import numpy as np
+
+    from numerics.models import energy_not_real
+
+    i, j = (int(n) for n in np.argwhere(ds["no_wave"].values == 1)[0])
+    values, k = params.cell(i, j)
+    if params.ring:  # the cell's theories ran at the ring's k
+        k = float(ds["k_simulated"].values[i, j])
+    at = ", ".join(f"{n} = {float(ds[n].values[m]):g}" for n, m in zip(params.dims, (i, j)))
+    why = energy_not_real(params.lattice_model.with_params(**values), k,
+                          params.amplitude_at(i, j), params.branch_value)
+    return (f"no wave of the amplitude (the model's energy is not real along it): "
+            f"{summary['no_wave_cells']} of {summary['cells']} cells, undetermined by every "
+            f"theory (no verdict of a wave that does not exist); first at {at}: {why}")
 
 
 #: a theory-only map's cells per task unless --block: a row of the map, up to this many
@@ -336,12 +370,15 @@ THEORY_BLOCK = 64
 
 def _default_block(out, simulated: bool, cols) -> int:
     """--block's default: the block of a map store already in ``out`` (a resumed map keeps
-    its chunks), else 4 cells a task for a simulated map (each cell runs the ring), else a
-    row of the map up to THEORY_BLOCK cells."""
+    its chunks; ``out`` None: a store discarded by --overwrite), else 4 cells a task for a
+    simulated map (each cell runs the ring), else a row of the map up to THEORY_BLOCK
+    cells."""
     import zarr
 
+    stored = None
     try:
-        stored = zarr.open_group(str(Path(out) / "map.zarr"), mode="r").attrs.get("block")
+        if out is not None:
+            stored = zarr.open_group(str(Path(out) / "map.zarr"), mode="r").attrs.get("block")
     except Exception:  # no store there, or none readable: the map's own default
         stored = None
     if isinstance(stored, int) and stored >= 1:
@@ -382,7 +419,8 @@ def _estimate(params, workers: int, scheduler, log, left: int, cells: int):
     measured = f"theories {cost.theory:.2g} s" + (
         f", a run of T = {cost.t_end:g} {cost.run:.2g} s" if not params.theory_only else "")
     log(f"estimate: about {duration(est.seconds)}"
-        + (f" for {left} of its {cells} cells (the other {cells - left} are in the store)"
+        + (f" for {left} of its {cells} cells (the other {cells - left} "
+           f"{'is' if cells - left == 1 else 'are'} in the store)"
            if left < cells else "")
         + f" ({est.describe()}; one cell measured here: "
         f"{measured} of CPU) on {workers} worker(s)")

@@ -260,6 +260,42 @@ def run_coefficients(args) -> int:
 
 
 # ------------------------------------------------------------------ soliton
+def _refuse_no_envelope(model, k: float, amplitude: float, branch) -> None:
+    """Refuse a soliton that cannot exist, before a table of numbers about it (the paper
+    chain refuses an amplitude of 1 rad or more): where the model carries no wave of this
+    amplitude (its energy not real along it; the check ``point`` and the map use), and
+    where the envelope would be narrower than one site, so that the NLS's slowly varying
+    envelope, its width, speed and frequency, describe nothing on the lattice (at 1e3 on
+    fput: 0.0005 sites, a frequency 1e6 times omega). Between one site and MIN_WIDTH
+    (numerics.theory's) the result stands with its note: the theory is rough there, not
+    void."""
+    from energy import ModelError
+    from numerics.models import energy_not_real, nls
+
+    why = energy_not_real(model, k, amplitude, branch)
+    if why is not None:
+        raise ValueError(f"--amplitude: no soliton: {why}; lower --amplitude")
+    try:
+        r = nls(model, k, branch)
+        width = None if r.undefined else r.soliton(amplitude).width
+    except ModelError:  # no carrier here: the command's own error says why
+        return
+    if width is not None and width < 1:
+        raise ValueError(narrower_than_a_site(amplitude, width))
+
+
+def narrower_than_a_site(amplitude: float, width: float) -> str:
+    """The refusal of a soliton narrower than one site (any model's, the paper chain's),
+    with the amplitude that gives MIN_WIDTH sites: an NLS soliton's width goes as
+    1 / amplitude."""
+    from numerics.theory import MIN_WIDTH
+
+    return (f"--amplitude {amplitude:g}: the soliton would be {width:.3g} sites wide, "
+            "narrower than one site: the envelope theory has no soliton there; lower "
+            f"--amplitude (about {amplitude * width / MIN_WIDTH:.3g} gives {MIN_WIDTH:g} "
+            "sites, the narrowest it describes)")
+
+
 def run_soliton(args) -> int:
     from numerics.lattice import checks
     from numerics.models import nls
@@ -270,7 +306,10 @@ def run_soliton(args) -> int:
     units = model_units(args)
     checks.real("--k", args.k, 0.0, math.pi, high_open=False)
     check_amplitude(args.amplitude)
-    if getattr(args, "simulate", False) or getattr(args, "out", None):
+    simulate = getattr(args, "simulate", False)
+    if not simulate:  # a launch refuses these itself (check_soliton_launch: < 2 sites)
+        _refuse_no_envelope(model, args.k, args.amplitude, branch_of(args))
+    if simulate or getattr(args, "out", None):
         from .model_soliton import run_model_soliton
 
         run_model_soliton(args, model, units, branch_of(args))
@@ -288,6 +327,8 @@ def run_soliton(args) -> int:
            "width": s.width, "velocity": s.velocity, "frequency": s.frequency,
            "kink": {f: float(v) for f, v in zip(model.fields, s.kink)},
            "g1": r.g1, "g2": r.g2}
+    from numerics.theory import MIN_WIDTH
+
     from .model_soliton import lossy_note
 
     damping, lossy = lossy_note(model, args.k, r.carrier.branch, units)
@@ -308,7 +349,7 @@ def run_soliton(args) -> int:
     for f, v in zip(model.fields, s.kink):
         if v != 0:
             print(f"kink of {f}: {v:.4g} (step of its mean displacement across the soliton)")
-    if s.width < 8:
+    if s.width < MIN_WIDTH:
         print(f"note: {s.width:.3g} sites is too narrow for the envelope theory; lower the "
               "amplitude")
     if lossy:

@@ -70,6 +70,10 @@ def run_soliton(args, log=print) -> dict:
         except ValueError as exc:
             raise ValueError(f"--kind: {exc}" if args.kind and "kind=" in str(exc)
                              else str(exc)) from None
+    if sol.width < 1:  # as a model's soliton: no table of an envelope the lattice lacks
+        from .models import narrower_than_a_site
+
+        raise ValueError(narrower_than_a_site(amplitude, sol.width))
     log(f"material: alpha = {mat.alpha:g}, K_s = {mat.K_s:g}, K_theta = {mat.K_theta:g} "
         f"(delta = {mat.delta:.4g}); case {args.case}")
     log(f"carrier:  k = {k:g} rad/site; amplitude {amplitude:g} rad (peak rotation of the "

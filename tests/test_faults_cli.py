@@ -94,7 +94,7 @@ def test_map_interrupted_by_a_signal_is_one_line(signum, code, when, tmp_path):
                          cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                          start_new_session=True)
     try:
-        assert _wait_for(p, "map: 1 cells", SLOW), "the map did not start"
+        assert _wait_for(p, "map: 1 cell x", SLOW), "the map did not start"
         if when == "running":  # the store exists: the cluster is up, the cell running
             end = time.monotonic() + SLOW
             while not (out / "map.zarr").exists() and time.monotonic() < end:

@@ -397,16 +397,18 @@ def test_map_tasks_reuse_freed_memory_under_dasks_malloc_setting():
     assert before > 5000 and after * 10 < before, (before, after)
 
 
-def test_overwrite_resumes_this_maps_store_and_replaces_another(tmp_path):
+def test_overwrite_discards_this_maps_store_and_replaces_another(tmp_path):
     import zarr
 
     maps.open_or_create(tmp_path / "map.zarr", _params())
     zarr.open_group(str(tmp_path / "map.zarr"), mode="r+")["done"][0, 0] = True
-    # the same map with --overwrite: resumed (its cell is kept only if its checksum holds:
-    # here the flag was set by hand, so the cell is named and run again, not the map lost)
+    # the same map with --overwrite: computed afresh, its finished cell discarded and said
+    # (it resumed before: a user who says --overwrite expects the old cells gone)
     seen = []
-    maps.open_or_create(tmp_path / "map.zarr", _params(), overwrite=True, log=seen.append)
-    assert len(seen) == 1 and "1 of" in seen[0] and "fail their checksum" in seen[0]
+    ds = maps.open_or_create(tmp_path / "map.zarr", _params(), overwrite=True,
+                             log=seen.append)
+    assert len(seen) == 1 and "discarded (1 finished cell of its map)" in seen[0]
+    assert not ds["done"].values.any()
     ds = maps.open_or_create(tmp_path / "map.zarr", _params(t_end=3000.0), overwrite=True)
     assert ds.attrs["t_end"] == 3000.0
 

@@ -248,7 +248,9 @@ def test_a_unicode_name_is_refused_saying_ascii(tmp_path):
 def test_a_model_map_says_how_many_cells_are_undetermined(capsys, tmp_path):
     """A k axis through Klein-Gordon's inflection point (g1 = 0: no NLS there, cos k =
     (3 - sqrt 5) / 2): 'MI share, semidiscrete: 50%' read as half the cells stable; the
-    text now counts the undetermined cells (the JSON and summary.json by theory name)."""
+    text now counts the undetermined cells (the JSON and summary.json by theory name), and
+    the share is of the cells the theory decides (the paper map's definition): the two
+    cells at k = 2 are both MI (the 50% of all four cells it printed before)."""
     import json
 
     k0 = math.acos((3 - math.sqrt(5)) / 2)  # omega^2 = 3 - 2 cos k: omega'' = 0 there
@@ -256,7 +258,7 @@ def test_a_model_map_says_how_many_cells_are_undetermined(capsys, tmp_path):
             "--amplitude", "0.1", "--theory-only", "--out", str(tmp_path / "m")]
     code, out, _ = _cli(capsys, *argv)
     assert code == 0
-    assert "MI share, semidiscrete: 50% (2 of 4 cells undetermined, counted as not MI)" in out
+    assert "MI share, semidiscrete: 100% (2 of 4 cells undetermined, left out)" in out
     code, out, _ = _cli(capsys, *argv, "--json")
     assert code == 0 and json.loads(out)["undetermined_cells"] == {"semidiscrete": 2}
 

@@ -169,6 +169,7 @@ def run_gpu(params, path, todo, n_todo, progress, log, arrays, workers=None, tim
     written (checksummed) as a worker's would be: an interrupted map keeps every batch
     written."""
     from common.progress import progress_class
+    from common.text import plural
     tqdm = progress_class()
 
     from ._params import local_cores
@@ -221,4 +222,4 @@ def run_gpu(params, path, todo, n_todo, progress, log, arrays, workers=None, tim
             from ._cluster import close
 
             close(client, cluster)
-    log(f"simulated {n_todo} cells on the GPU in {time.perf_counter() - t0:.1f} s")
+    log(f"simulated {plural(n_todo, 'cell')} on the GPU in {time.perf_counter() - t0:.1f} s")

@@ -371,11 +371,15 @@ def _wave_of(params, values: dict, k: float, peak_gain: float, amplitude: float)
 def model_theories(params, i: int, js: list) -> tuple:
     """A model map's block (i, js) before its runs, on a CPU: (``model_block``'s theory
     columns, each cell's wave for its runs, ``_wave_of``)."""
+    from energy import ModelError
+
     from ._model_columns import model_block
 
     block = model_block(params, i, js, simulate=False)
-    specs = [_wave_of(params, *params.cell(i, j), row.get("peak_gain_exact", math.nan),
-                      params.amplitude_at(i, j)) for j, row in zip(js, block["rows"])]
+    # a cell without a wave of its amplitude (no_wave 1) is not launched, as on the CPU
+    specs = [ModelError("no wave of this amplitude (no_wave)") if row.get("no_wave") == 1
+             else _wave_of(params, *params.cell(i, j), row.get("peak_gain_exact", math.nan),
+                           params.amplitude_at(i, j)) for j, row in zip(js, block["rows"])]
     return block, specs
 
 

@@ -59,6 +59,14 @@ SIMULATED_COLUMNS = ("verdict_simulated", "peak_gain_simulated", "growth", "grow
 #: and a lossy model's runs (issue 42: launched as a point's, until A(t) halves)
 LOSSY_SIMULATED_COLUMNS = ("amplification_simulated", "amplification_time_simulated",
                            "observable_simulated")
+#: where the model carries no wave of the cell's amplitude (``numerics.models.map_cells``'
+#: ``no_wave``): int8, every theory's verdict undetermined there
+NO_WAVE_ATTRS = {
+    "long_name": "the model carries no wave of this amplitude at k: its energy is not real "
+                 "along the linear wave (numerics.models.energy_not_real), so no theory has "
+                 "a verdict (every verdict -1)",
+    "flag_values": [-1, 0, 1], "flag_meanings": "not_computed_or_no_carrier wave no_wave",
+    "remedy": "a lower amplitude (flexmm point --model at the cell says the largest)"}
 #: the runs' observable flag: int8, -1 where no run (not simulated, or no travelling wave)
 OBSERVABLE_ATTRS = {
     "long_name": f"the median seed's sidebands grew {GROWTH_THRESHOLD:g}x (issue 42)",
@@ -133,7 +141,8 @@ def model_block(params: ModelMapParameters, i: int, js: list, simulate: bool = T
     for row in rows:
         out.append({n: (np.int8(VERDICT_CODES[v]) if n.startswith("verdict_") else
                         np.int8(MODE_KIND_CODES[v]) if n == "mode_kind_fourwave" else
-                        np.int8(-1 if not v == v else int(v)) if n == "observable_simulated"
+                        np.int8(-1 if not v == v else int(v))
+                        if n in ("observable_simulated", "no_wave")
                         else
                         float(v) if v is not None else math.nan)
                     for n, v in row.items() if n in keep})
@@ -234,6 +243,6 @@ def derived_attrs(derived: dict) -> dict:
                 "(variable nls_band_unsampled)")}
 
 
-__all__ = ["model_block", "unsampled_band", "slow_for_run", "derived_attrs", "simulated_verdict_attrs", "VERDICT_CODES", "MODE_KIND_CODES",
+__all__ = ["model_block", "unsampled_band", "slow_for_run", "derived_attrs", "simulated_verdict_attrs", "VERDICT_CODES", "MODE_KIND_CODES", "NO_WAVE_ATTRS",
            "MODE_KIND_ATTRS", "MODEL_VERDICT_ATTRS", "SIMULATED_COLUMNS", "LOSSY_SIMULATED_COLUMNS",
            "OBSERVABLE_ATTRS", "VARIABLE_ATTRS"]

@@ -241,14 +241,17 @@ class ModelMapParameters:
     def undefined_reason(self) -> str:
         """Why the first cell has no verdict (the semi-discrete NLS's reason)."""
         from energy import ModelError
-        from numerics.models import nls
+        from numerics.models import energy_not_real, nls
 
         values, k = self.cell(0, 0)
+        model = self.lattice_model.with_params(**values)
         try:
-            r = nls(self.lattice_model.with_params(**values), k, self.branch_value)
+            r = nls(model, k, self.branch_value)
         except ModelError as exc:
             return str(exc)
-        return r.undefined or "no theory has a verdict"
+        return (r.undefined or energy_not_real(model, k, self.amplitude_at(0, 0),
+                                               self.branch_value)
+                or "no theory has a verdict")
 
     def same_ring_k(self) -> str | None:
         """A note where two k values snap to one ring wavenumber (else None)."""
@@ -309,7 +312,7 @@ class ModelMapParameters:
                                     else ())
 
     def flag_columns(self) -> dict:
-        theory = ["g1", "g2", "k_simulated"] + [f"{kind}_{name}" for name in
+        theory = ["g1", "g2", "k_simulated", "no_wave"] + [f"{kind}_{name}" for name in
                                                 self.theory_columns()
                                                 for kind in ("verdict", "peak_gain")]
         if "fourwave" in self.theory_columns():
@@ -389,6 +392,9 @@ class ModelMapParameters:
                    step="per cell: 0.2 of the method's stability limit over the lattice's "
                         "highest frequency, rounded so that the steps fill T",
                    growth_threshold=GROWTH_THRESHOLD, map_of="model",
+                   # the layout with the no_wave flag: a store made before it (whose
+                   # no-wave cells may hold an NLS verdict) is another map's
+                   no_wave="no_wave: 1 where the model carries no wave of the amplitude",
                    theories=" ".join(self.theory_columns()))
         if self.start != "exact":  # a store of the exact wave's runs keeps its identity
             out["start"] = self.start

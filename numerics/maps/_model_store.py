@@ -13,6 +13,7 @@ from ._model_columns import (
     MODE_KIND_ATTRS,
     MODE_KIND_CODES,
     MODEL_VERDICT_ATTRS,
+    NO_WAVE_ATTRS,
     OBSERVABLE_ATTRS,
     VARIABLE_ATTRS,
     simulated_verdict_attrs,
@@ -35,6 +36,10 @@ def other_map(params, attrs: dict) -> str:
     if attrs.get("start", "exact") != params.start:
         return (f"a map of model {name!r} whose runs start from "
                 f"{attrs.get('start', 'exact')!r}, not {params.start!r}")
+    if attrs.get("no_wave") != params.attrs()["no_wave"]:
+        return (f"a map of model {name!r} made before its no_wave column (its cells where "
+                "the model carries no wave of the amplitude may hold an NLS verdict of a "
+                "wave that does not exist)")
     if attrs.get("theories") != " ".join(params.theory_columns()):
         return (f"a map of model {name!r} of other theories ({attrs.get('theories')} "
                 f"against {' '.join(params.theory_columns())}; a --theory-only map without "
@@ -80,8 +85,9 @@ def new_dataset(params):
     data = {}
     flags = params.flag_columns()
     for name in (*flags["done_predicted"], *flags["done"]):
-        if name == "observable_simulated":
-            data[name] = (dims, np.full(shape, -1, np.int8), dict(OBSERVABLE_ATTRS))
+        if name in ("observable_simulated", "no_wave"):
+            data[name] = (dims, np.full(shape, -1, np.int8), dict(
+                OBSERVABLE_ATTRS if name == "observable_simulated" else NO_WAVE_ATTRS))
         elif name == "mode_kind_fourwave":
             data[name] = (dims, np.full(shape, MODE_KIND_CODES["undefined"], np.int8),
                           dict(MODE_KIND_ATTRS))

@@ -30,7 +30,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from common.text import duration
+from common.text import duration, plural
 
 from ._agreement import agreement
 from ._blocks import blocks, simulate_block
@@ -395,7 +395,7 @@ def _run_tasks(params, path, todo, n_todo, scheduler, workers, progress, log, ar
         from ._cluster import close
 
         close(client, cluster)
-    log(f"{'predicted' if params.theory_only else 'simulated'} {n_todo} cells in "
+    log(f"{'predicted' if params.theory_only else 'simulated'} {plural(n_todo, 'cell')} in "
         f"{time.perf_counter() - t0:.2f} s")
 
 

@@ -41,10 +41,42 @@ def _write_new(path: Path, ds, params: MapParameters):
 def open_or_create(path: Path, params: MapParameters, overwrite: bool = False, log=print):
     """The store's dataset: an existing one with the same parameters (to resume; its
     checksums verified and what is damaged repaired or marked for simulation again), or a
-    new one with the theory columns filled in (``overwrite``: replace a store that holds
-    another map, or an unreadable one)."""
+    new one with the theory columns filled in (``overwrite``: discard the store there, this
+    map's finished cells too, and start afresh; only a folder recognisably a map store,
+    ``not_a_map_store``, is removed)."""
     return _open(path, params, overwrite, log)[0]
 
+
+#: what a map store's folder holds besides its variables' folders (zarr v2's metadata)
+_STORE_FILES = frozenset({".zgroup", ".zattrs", ".zmetadata"})
+
+
+def not_a_map_store(path: Path) -> str | None:
+    """Why the folder at ``path`` is not recognisably a map store (None where it is), the
+    check before a store is removed: a folder (not a link) with zarr's ``.zgroup``, holding
+    only zarr's metadata files and flat folders of files (a variable's chunks), among them
+    a map's ``done``, ``done_predicted`` or ``checksum``. A damaged store (a garbled chunk
+    or attribute file, a variable's metadata lost) still passes; a user's folder of other
+    files, or one with subfolders, never does."""
+    path = Path(path)
+    if path.is_symlink():
+        return "a symbolic link"
+    if not path.is_dir():
+        return "not a folder"
+    if not (path / ".zgroup").is_file():
+        return "no .zgroup: not a Zarr store"
+    entries = list(path.iterdir())
+    for entry in entries:
+        if entry.name in _STORE_FILES and entry.is_file():
+            continue
+        if not entry.is_dir() or entry.is_symlink():
+            return f"it holds {entry.name!r}, which a map store does not"
+        inner = next((e for e in entry.iterdir() if e.is_dir() or e.is_symlink()), None)
+        if inner is not None:
+            return f"it holds {entry.name}/{inner.name}, a folder no map variable holds"
+    if not {e.name for e in entries} & {"done", "done_predicted", CHECKSUM}:
+        return "none of a map store's variables (done, done_predicted, checksum)"
+    return None
 
 
 
@@ -170,13 +202,25 @@ def empty_dataset_names(params: MapParameters) -> list:
 
 def _checked(path: Path, params: MapParameters, overwrite: bool):
     """``_inspect``'s (what, detail), after refusing what only --overwrite may replace: an
-    unreadable store, or another map with finished cells."""
-    # --overwrite replaces another map or an unreadable store; this map's store is resumed
+    unreadable store, or another map with finished cells; ("discard", why) where
+    ``overwrite`` discards the store (only one ``not_a_map_store`` recognises: else a
+    ValueError, and nothing is removed)."""
+    if overwrite and (path.exists() or path.is_symlink()):
+        why = not_a_map_store(path)
+        if why is not None:
+            raise ValueError(f"{path} is not a map store ({why}): --overwrite removes only "
+                             "a map store; move it away, or choose another --out")
+        return "discard", None
+    # without --overwrite this map's store is resumed, another map's or an unreadable one
+    # refused
     try:
         what, detail = _inspect(path, params) if path.exists() else ("none", None)
     except Exception as exc:  # any other failure to read it: named, never a traceback
         first = str(exc).splitlines()[0][:100] if str(exc) else ""
         what, detail = "unreadable", f"{type(exc).__name__}{': ' * bool(first)}{first}"
+    if what == "unreadable" and (why := not_a_map_store(path)) is not None:
+        raise ValueError(f"{path} is not a map store ({why}); move it away, or choose "
+                         "another --out")
     if what == "unreadable" and not overwrite:
         raise ValueError(f"{path}: damaged: {detail}; which map it holds cannot be read, so "
                          "nothing in it can be trusted; replace it with --overwrite, or "
@@ -208,7 +252,16 @@ def _open(path: Path, params: MapParameters, overwrite: bool = False, log=print)
                     np.asarray(raw[n], ds[n].dtype)) for n in ds.data_vars}
 
     what, detail = _checked(path, params, overwrite)
+    if what == "discard":  # --overwrite: the user asked for the map afresh
+        done = _finished_cells(path)
+        log(f"--overwrite: {path} discarded"
+            + (f" ({done} finished cell{'s' * (done != 1)} of its map)" if done else "")
+            + "; the map is computed afresh")
     if what == "other" and detail == 0:  # no finished cell: nothing is lost by replacing it
+        why = not_a_map_store(path)
+        if why is not None:  # a Zarr group of the user's, say: never removed unasked
+            raise ValueError(f"{path} is not a map store ({why}); move it away, or choose "
+                             "another --out")
         log(f"note: {path} held another map with no finished cell (every cell failed, "
             "or none ran): replaced")
     if what == "this":
@@ -224,6 +277,20 @@ def _open(path: Path, params: MapParameters, overwrite: bool = False, log=print)
     _write_new(path, ds, params)
     ds = xr.open_zarr(path, consolidated=False, chunks=None)
     return ds, values(ds)
+
+
+def _finished_cells(path: Path) -> int:
+    """The cells a store's ``done`` or ``done_predicted`` flags mark (0 where unreadable):
+    what --overwrite discards, said."""
+    import zarr
+
+    try:
+        group = zarr.open_group(str(path), mode="r", use_consolidated=False)
+        flags = [np.asarray(group[f][...], bool) for f in ("done", "done_predicted")
+                 if f in group and not unsound_chunks(path / f)]
+        return int(np.logical_or.reduce(flags).sum()) if flags else 0
+    except Exception:  # a damaged store: its count unknown, it is discarded all the same
+        return 0
 
 
 def _verified(path: Path, ds, params: MapParameters, log, rebuild: bool = False):
@@ -287,4 +354,4 @@ def _verified(path: Path, ds, params: MapParameters, log, rebuild: bool = False)
     return xr.open_zarr(path, consolidated=False, chunks=None), None
 
 
-__all__ = ["open_or_create", "empty_dataset_names"]
+__all__ = ["open_or_create", "empty_dataset_names", "not_a_map_store"]

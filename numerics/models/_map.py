@@ -240,11 +240,12 @@ def _cell_columns(model, k, amplitude, branch, *, exact, simulate, N, seeds, t_e
                   start="exact"):
     from numerics.lattice import BlowUpError
 
-    from ._reach import exact_gain_checked
+    from ._reach import energy_not_real, exact_gain_checked
     from ._simulate import snap_ring
 
     row = {"verdict_semidiscrete": "undefined", "peak_gain_semidiscrete": math.nan,
-           "g1": math.nan, "g2": math.nan, "reason": "", "carrier": False}
+           "g1": math.nan, "g2": math.nan, "reason": "", "carrier": False,
+           "no_wave": math.nan}
     if exact or simulate:  # every theory at the ring's k, as point and the paper chain's
         k = snap_ring(k, N)[0]  # map (the NLS at k = 2 and the runs at 1.96 disagreed)
     try:
@@ -254,10 +255,21 @@ def _cell_columns(model, k, amplitude, branch, *, exact, simulate, N, seeds, t_e
                    g1=r.g1, g2=r.g2, reason=r.undefined or "", carrier=True)
     except ModelError as exc:  # e.g. no carrier on this branch at these values
         row["reason"] = str(exc)
+    # a wave of this amplitude the model cannot carry (its energy not real along it: the
+    # check point's note and the four-wave theory use): no theory's verdict, not an NLS
+    # verdict of a wave that does not exist (Toda at a = 2000 was 'stable')
+    why = energy_not_real(model, k, amplitude, branch, carrier=r.carrier) \
+        if row["carrier"] else None
+    if row["carrier"]:
+        row["no_wave"] = 0.0 if why is None else 1.0
+    if why is not None:
+        row.update(verdict_semidiscrete="undefined", peak_gain_semidiscrete=math.nan,
+                   reason=why)
     from ._extras import extra_theories
 
     for extra in extra_theories(model):  # the paper chain's continuum NLS, say
-        got = extra.row(model, k, amplitude)
+        got = ({"verdict": "undefined", "peak_gain": None} if why is not None
+               else extra.row(model, k, amplitude))
         row[f"verdict_{extra.column}"] = got["verdict"]
         row[f"peak_gain_{extra.column}"] = (math.nan if got["peak_gain"] is None
                                             else float(got["peak_gain"]))
@@ -266,13 +278,14 @@ def _cell_columns(model, k, amplitude, branch, *, exact, simulate, N, seeds, t_e
         from ._losses import nls_amplification
 
         row["amplification_semidiscrete"] = _amplification(
-            lambda: nls_amplification(model, k, amplitude, branch, first=r)) if row["carrier"] \
-            else math.nan
+            lambda: nls_amplification(model, k, amplitude, branch, first=r)) if (
+                row["carrier"] and why is None) else math.nan
     if not (exact or simulate):
         row["k_simulated"] = float(k)
         return row
     row["k_simulated"] = snap_ring(k, N)[0]
-    fw_columns, fw = _four_wave_columns(model, k, amplitude, branch, N)
+    fw_columns, fw = ((_four_wave_columns(model, k, amplitude, branch, N)) if why is None
+                      else (_UNDEFINED_FOUR_WAVE, None))
     row.update(verdict_exact="undefined", peak_gain_exact=math.nan, **fw_columns)
     if lossy:
         from ._losses import four_wave_amplification
@@ -286,6 +299,13 @@ def _cell_columns(model, k, amplitude, branch, *, exact, simulate, N, seeds, t_e
         if lossy:
             row.update(amplification_simulated=math.nan,
                        amplification_time_simulated=math.nan, observable_simulated=math.nan)
+    if start != "exact":  # a block's rows share their columns: undefined until computed
+        from ._extras import extra_starts
+
+        col = extra_starts(model)[start].column
+        row.update({f"verdict_{col}": "undefined", f"peak_gain_{col}": math.nan})
+    if why is not None:  # no wave to solve for, launch or measure
+        return row
     try:  # the energy not real along the wave: undefined, as without a travelling wave
         spec = exact_gain_checked(model, k, amplitude, branch, N=N)
     except ModelError:  # no travelling wave here: nothing to launch or measure from
@@ -388,6 +408,11 @@ def lossy_runs(model: Model, k: float, amplitude: float, spec, *, branch=None,
                  "observable_simulated": float(med.observable)}
 
 
+#: a cell's four-wave columns where the theory has no answer
+_UNDEFINED_FOUR_WAVE = {"verdict_fourwave": "undefined", "peak_gain_fourwave": math.nan,
+                        "mode_kind_fourwave": "undefined"}
+
+
 def _four_wave_columns(model, k, amplitude, branch, N) -> tuple:
     """The four-wave theory on the ring of N sites (as ``point``'s four-wave row):
     ({verdict_fourwave, peak_gain_fourwave, mode_kind_fourwave ('sidebands', 'backward',
@@ -400,8 +425,7 @@ def _four_wave_columns(model, k, amplitude, branch, N) -> tuple:
     except ModelError:  # no carrier on this branch at these values
         fw = None
     if fw is None or fw.undefined:
-        return {"verdict_fourwave": "undefined", "peak_gain_fourwave": math.nan,
-                "mode_kind_fourwave": "undefined"}, None
+        return dict(_UNDEFINED_FOUR_WAVE), None
     return {"verdict_fourwave": fw.verdict, "peak_gain_fourwave": fw.gain,
             "mode_kind_fourwave": fw.mode_kind}, fw
 
@@ -445,7 +469,10 @@ def map_cells(model: Model, cells, amplitude: float, branch=None, *, exact: bool
     list of dict
         Per cell: ``verdict_semidiscrete`` ("MI", "stable", "undefined"),
         ``peak_gain_semidiscrete``, ``g1``, ``g2``, ``reason`` (why undefined),
-        ``carrier`` (False where the branch has no carrier at the cell),
+        ``carrier`` (False where the branch has no carrier at the cell), ``no_wave`` (1.0
+        where the model carries no wave of this amplitude at k, its energy not real along
+        the linear wave, ``energy_not_real``: every theory's verdict is then "undefined",
+        the reason that sentence; 0.0 where it does; nan without a carrier),
         ``k_simulated`` (k snapped to the ring where the ring is used); with ``exact`` or
         ``simulate`` ``verdict_exact``, ``peak_gain_exact`` and the four-wave theory on
         the same ring, ``verdict_fourwave``, ``peak_gain_fourwave``, ``mode_kind_fourwave``

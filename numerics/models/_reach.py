@@ -27,12 +27,13 @@ from ._linear import check_amplitude
 _SITES = 512
 
 
-def _profile(model: Model, k: float, amplitude: float, branch):
+def _profile(model: Model, k: float, amplitude: float, branch, car=None):
     """The linear plane wave's displacements and velocities on a ring of ``_SITES`` sites
-    at the nearest k it carries: (u, v), each (d, N)."""
+    at the nearest k it carries: (u, v), each (d, N). ``car``: the carrier at (k, branch)
+    where the caller has it (a map cell's NLS: its eigenproblem is most of the cost)."""
     from ._linear import carrier
 
-    car = carrier(model, k, branch)
+    car = carrier(model, k, branch) if car is None else car
     m = max(1, round(k * _SITES / (2 * math.pi)))
     xi = 2 * math.pi * m / _SITES * np.arange(_SITES)
     e = car.e[:, None]
@@ -41,12 +42,12 @@ def _profile(model: Model, k: float, amplitude: float, branch):
     return np.ascontiguousarray(u), np.ascontiguousarray(v), car
 
 
-def _finite(model: Model, k: float, amplitude: float, branch) -> bool:
+def _finite(model: Model, k: float, amplitude: float, branch, car=None) -> bool:
     """Energy and force finite along the linear wave: every cell's energy and gradient,
     from the generated module's numpy functions (the compiled force would cost its
     compilation, ~1.5 s, in every process that asks: each worker of a map; the kinetic
     energy of finite velocities is finite)."""
-    u, _, _ = _profile(model, k, amplitude, branch)
+    u, _, _ = _profile(model, k, amplitude, branch, car)
     x = np.concatenate([u, np.roll(u, -1, axis=1)])  # the cells (n, n + 1) of the ring
     grad = np.empty_like(x)
     with np.errstate(all="ignore"):
@@ -77,26 +78,30 @@ def _strain(model: Model, k: float, amplitude: float, branch,
 
 
 def amplitude_reach(model: Model, k: float, amplitude: float, branch=None, *,
-                    rtol: float = 1e-4) -> float:
+                    rtol: float = 1e-4, carrier=None) -> float:
     """The largest amplitude a <= ``amplitude`` with the model's energy and force finite
     along the linear wave at ``k`` (bisection, to ``rtol``); ``amplitude`` itself where
-    they are finite there, 0 where they are not finite at any amplitude tried."""
+    they are finite there, 0 where they are not finite at any amplitude tried.
+    ``carrier``: the model's ``carrier(model, k, branch)``, where the caller has it."""
     amplitude = check_amplitude(amplitude)
-    if _finite(model, k, amplitude, branch):
+    if _finite(model, k, amplitude, branch, carrier):
         return float(amplitude)
     lo, hi = 0.0, float(amplitude)
     while hi - lo > rtol * hi:
         mid = (lo + hi) / 2
-        lo, hi = (mid, hi) if _finite(model, k, mid, branch) else (lo, mid)
+        lo, hi = (mid, hi) if _finite(model, k, mid, branch, carrier) else (lo, mid)
     return lo
 
 
-def energy_not_real(model: Model, k: float, amplitude: float, branch=None) -> str | None:
+def energy_not_real(model: Model, k: float, amplitude: float, branch=None, *,
+                    carrier=None) -> str | None:
     """Why there is no wave of this amplitude at k, when its energy is not real there: the
     strain the linear wave reaches, the strain where the energy stops being real (with the
     parameter of that value, if one has it) and the largest amplitude allowed at this k.
-    None where energy and force are finite along the linear wave."""
-    a_max = amplitude_reach(model, k, amplitude, branch)
+    None where energy and force are finite along the linear wave. ``carrier``: the
+    model's ``carrier(model, k, branch)`` where the caller has it (a map cell's NLS
+    computed it: the check then costs the profile's energy, not a second eigenproblem)."""
+    a_max = amplitude_reach(model, k, amplitude, branch, carrier=carrier)
     if a_max >= amplitude:
         return None
     site = _site_limited(model, k, amplitude, branch)
