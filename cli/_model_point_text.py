@@ -131,11 +131,13 @@ def report(args, point, units, since=None) -> dict:
                   + (f" {_fmt(_times(off, k_f), 4):>15}" if k_f else ""))
     if model.lossy:
         _loss_table(out, units)
-    if out["semi-discrete NLS"]["reason"]:
-        print(f"undefined: {out['semi-discrete NLS']['reason']}")
+    why_nls = out["semi-discrete NLS"]["reason"]
+    if why_nls:
+        print(f"undefined: {why_nls}")
     ex = out["exact lattice"]
-    if ex.get("reason"):
-        print(f"exact lattice undefined: {ex['reason']}")
+    if ex.get("reason"):  # the NLS's reason said once (the energy not real)
+        print("exact lattice undefined: " + ("as the semi-discrete NLS" if ex["reason"] ==
+                                             why_nls else ex["reason"]))
     elif ex["verdict"] == "MI" and ex["mode_kind"] != "sidebands":
         what = "a resonance" if ex["mode_kind"] == "resonance" else f"a {ex['mode_kind']} pair"
         print(f"note: the exact lattice's fastest mode is {what} ({_waves(ex)}), not the "

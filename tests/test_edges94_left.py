@@ -273,3 +273,31 @@ def test_overwrite_never_removes_a_folder_that_is_no_map_store(make, capsys, tmp
     else:
         assert (mine / "notes.txt").read_text() == "keep me"
         assert store.exists() or store.is_symlink()
+
+
+def test_point_and_coefficients_give_no_nls_verdict_where_the_model_carries_no_wave(
+        capsys, tmp_path):
+    """The map's cell and the point's table say the same where the wave cannot exist:
+    Toda at a = 2000, k = 1 (strain 2 a sin(1/2) ~ 1900 > ln(max float) ~ 710) read
+    'stable' in the point's and the coefficients' NLS row. g1 and g2 stay (they do not
+    depend on a); a = 1 keeps its verdict."""
+    import math
+
+    from energy import load_model
+    from numerics.models import model_coefficients
+
+    (tmp_path / "toda.toml").write_text(TODA)
+    model = load_model(str(tmp_path / "toda.toml"))
+    assert 2 * 2000 * math.sin(0.5) > 709.8 > 2 * 1 * math.sin(0.5)
+    far = model_coefficients(model, 1.0, 2000.0)
+    assert far["verdict"] == "undefined" and "energy is not real" in far["reason"]
+    assert far["peak_gain"] is None and far["band_edge"] is None
+    assert far["g1"] is not None and math.isfinite(far["g2"])
+    near = model_coefficients(model, 1.0, 1.0)
+    assert near["verdict"] in ("MI", "stable") and not near["reason"]
+    assert main(["point", "--model", str(tmp_path / "toda.toml"), "--k", "1", "--amplitude",
+                 "2000", "--N", "64"]) == 0
+    out = capsys.readouterr().out
+    row = next(line for line in out.splitlines() if line.startswith("semi-discrete NLS"))
+    assert row.split()[2] == "undefined", row
+    assert "exact lattice undefined: as the semi-discrete NLS" in out

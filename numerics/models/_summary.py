@@ -54,13 +54,20 @@ def model_coefficients(model: Model, k: float, amplitude: float, branch=None) ->
                         f"damped at k = {c.k:.4g}: its damped frequency is {w.real + 0.0:.3g} "
                         f"{w.imag:+.3g}i (it decays faster than its phase turns); the rates "
                         "above are the lossless wave's, lower the damping for a wave")
-    from ._reach import amplitude_reach
+    from ._reach import amplitude_reach, energy_not_real
 
-    reach = amplitude_reach(model, c.k, a, branch)
+    reach = amplitude_reach(model, c.k, a, branch, carrier=c)
+    verdict, reason, no_wave = r.verdict, r.undefined, False
     if reach < a:  # the NLS's numbers at this a would describe a wave that cannot exist
         warn.append(f"at amplitude {a:g} the model's energy is not real along the wave (at "
                     f"most a = {reach:.3g} at k = {c.k:.4g}): the NLS's gain, band and shift "
                     "here are of a wave the model cannot carry")
+        # no verdict of a wave that does not exist (a map's cell says the same, ``_map``;
+        # Toda at a = 2000 read 'stable'); g1, g2 and g stay: they do not depend on a
+        if verdict != "undefined":
+            verdict = "undefined"
+            reason = energy_not_real(model, k, a, branch, carrier=c)
+            peak, no_wave = math.nan, True
     fields = model.fields
     e = np.abs(np.asarray(c.e))
     big = int(np.argmax(e))
@@ -75,10 +82,11 @@ def model_coefficients(model: Model, k: float, amplitude: float, branch=None) ->
         "field_rule": field_rule(model, branch, c.field),
         "omega": c.omega, "group_velocity": c.group_velocity, "g1": c.g1,
         "g2": _num(r.g2), "g2_parts": {p: _num(v) for p, v in r.parts.items()},
-        "g": _num(r.g), "verdict": r.verdict, "reason": r.undefined,
+        "g": _num(r.g), "verdict": verdict, "reason": reason,
         "peak_gain": _num(peak), "e_folding_time": _num(1 / peak) if peak and peak > 0
         else None,
-        "fastest_offset": _num(r.fastest_offset(a)), "band_edge": _num(r.band_edge(a)),
+        "fastest_offset": None if no_wave else _num(r.fastest_offset(a)),
+        "band_edge": None if no_wave else _num(r.band_edge(a)),
         "second_harmonic": {f: _num(abs(v) * a**2 / 2) for f, v in
                             zip(fields, r.second_harmonic)},
         "mean": {f: _num(float(v) * a**2 / 4) for f, v in zip(fields, r.mean)},
