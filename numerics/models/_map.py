@@ -344,9 +344,14 @@ def _simulated_columns(row, model, k, amplitude, spec, *, branch, N, seeds, t_en
                              start=start, gain=start_gain)
     growth = [run.growth() for run in sim.runs]
     top = max(growth, key=lambda g: g.factor if math.isfinite(g.factor) else -1.0)
+    # a lossy run goes on until A(t) has halved: the rate rule's log-slope bound reads that
+    # fall as no growth (factor 1 where a run grew 167x); its factor is what its verdict
+    # reads, max_t A(t) / A(0)
+    factors = ([r.amplification().amplification for r in sim.runs] if lossy
+               else [g.factor for g in growth])
     row.update(verdict_simulated=sim.verdict.word,
                peak_gain_simulated=sim.verdict.map_rate,
-               growth=float(np.median([g.factor for g in growth])),
+               growth=float(np.median(factors)),
                growth_q=float(top.wavenumber), t_simulated=float(
                    max(r.t[-1] for r in sim.runs) if lossy else max(
                        r.t_end for r in sim.runs)))
@@ -457,7 +462,7 @@ def map_cells(model: Model, cells, amplitude: float, branch=None, *, exact: bool
         ``verdict_simulated`` (MI, "no growth within T", "undetermined", "undefined"),
         ``peak_gain_simulated`` (the seeds' median rate where MI; with "no growth within
         T" the upper bound ln(GROWTH_THRESHOLD) / T on the rate), ``growth`` (median
-        growth factor), ``growth_q`` (wavenumber of the fastest mode of the seed that grew
+        growth factor; a lossy model's runs': max_t A(t) / A(0)), ``growth_q`` (wavenumber of the fastest mode of the seed that grew
         most) and ``t_simulated`` (the longest run: a run stops at the record where its
         linear stage has saturated, ``saturation_record``, else runs T); for a lossy model the runs are
         launched as issue 42 measures an amplification (``lossy_runs``) and add
