@@ -93,3 +93,31 @@ def test_a_lossless_map_says_nothing_of_observable(tmp_path, capsys):
     assert "observable" not in capsys.readouterr().out
     assert "observable_fraction" not in json.loads((tmp_path / "m" / "summary.json")
                                                    .read_text())
+
+
+def test_coefficients_of_a_lossy_model_say_the_amplification_not_a_rate_alone(
+        tmp_path, fput_lossy, capsys):
+    """`coefficients` printed the lossless peak gain and e-folding time of a lossy chain
+    (and the carrier's damping), never that its sidebands grow only 5.5x: README's
+    lossy FPUT point, whose NLS amplification `point` prints as 5.489 at t = 51.27."""
+    path = tmp_path / "fput-lossy.toml"
+    path.write_text(fput_lossy)
+    argv = ["coefficients", "--model", str(path), "--param", "gamma=0.03", "--k", str(K),
+            "--amplitude", str(AMPLITUDE)]
+    assert main(argv) == 0
+    line = next(ln for ln in capsys.readouterr().out.splitlines()
+                if ln.startswith("with losses"))
+    assert "5.489x" in line and "t = 51.27" in line and "not observable (< 20x)" in line
+    assert main([*argv, "--json"]) == 0
+    co = json.loads(capsys.readouterr().out)
+    assert co["amplification"] == pytest.approx(5.489, abs=5e-4)
+    assert co["amplification_time"] == pytest.approx(51.27, abs=5e-3)
+    assert co["observable"] is False and co["units"]["lattice"]["amplification_time"] == "time"
+    # weakly damped, 146-217x (README): observable
+    assert main([*argv[:4], "gamma=0.012", *argv[5:]]) == 0
+    assert "observable (>= 20x)" in capsys.readouterr().out
+
+
+def test_coefficients_of_a_lossless_model_print_no_losses_line(capsys):
+    assert main(["coefficients", "--model", "fput", "--k", "2.5", "--amplitude", "0.2"]) == 0
+    assert "with losses" not in capsys.readouterr().out
