@@ -121,3 +121,31 @@ def test_coefficients_of_a_lossy_model_say_the_amplification_not_a_rate_alone(
 def test_coefficients_of_a_lossless_model_print_no_losses_line(capsys):
     assert main(["coefficients", "--model", "fput", "--k", "2.5", "--amplitude", "0.2"]) == 0
     assert "with losses" not in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("model, remedy", [
+    ("fput-lossy.toml", "--param gamma=0"),
+    ("flexmm-lossy", "--param gamma_U=0 --param gamma_theta=0")])
+def test_a_lossy_soliton_names_the_damping_parameters_to_zero(model, remedy, tmp_path,
+                                                              fput_lossy, capsys,
+                                                              monkeypatch):
+    """The refusal said '--param NAME=0' and the note '--param its damping = 0': the user
+    had to find which parameters damp; the remedy now reads as options to type."""
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "fput-lossy.toml").write_text(fput_lossy)
+    k, a = ("2.5", "0.05") if model.endswith(".toml") else ("0.92991", "0.002")
+    argv = ["soliton", "--model", model, "--k", k, "--amplitude", a]
+    assert main(argv) == 0
+    note = capsys.readouterr().out.strip().splitlines()[-1]
+    assert note.startswith("note: ") and f"{remedy} for the lossless chain" in note
+    assert main([*argv, "--simulate"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and f"add {remedy} to launch the lossless one" in err[0]
+
+
+def test_a_lossy_solitons_remedy_runs_as_written(tmp_path, fput_lossy, capsys):
+    (tmp_path / "fput-lossy.toml").write_text(fput_lossy)
+    assert main(["soliton", "--model", str(tmp_path / "fput-lossy.toml"), "--k", "2.5",
+                 "--amplitude", "0.05", "--simulate", "--travel", "2",
+                 "--param", "gamma=0"]) == 0
+    assert "simulated: N = " in capsys.readouterr().out
