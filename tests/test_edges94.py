@@ -149,3 +149,15 @@ def test_a_lossy_solitons_remedy_runs_as_written(tmp_path, fput_lossy, capsys):
                  "--amplitude", "0.05", "--simulate", "--travel", "2",
                  "--param", "gamma=0"]) == 0
     assert "simulated: N = " in capsys.readouterr().out
+
+
+def test_every_scenes_run_time_says_which_is_the_quick_one():
+    """`flexmm scenes` listed four-wave-pairs as '~7 s (~5 s)': which was quick was left to
+    guess, where every other scene says '(quick ~5 s)'."""
+    import re
+
+    import scenes
+
+    time = r"(<1 s|~\d+ (s|min))"
+    for scene in scenes.REGISTRY.values():
+        assert re.fullmatch(fr"{time}( \(quick {time}\))?", scene.runtime), scene.name
