@@ -253,7 +253,7 @@ def run_coefficients(args) -> int:
     print(f"{'four-wave':<{W}} {fw['verdict']:>14}  peak gain {_fmt(fw['peak_gain'])}"
           + (f", {fw['mode_kind']} ({waves}), offset {_fmt(fw['fastest_offset'], 4)}"
              if fw["verdict"] == "MI" else ""))
-    lossy = [f"{name} " + _losses_text(t) for name, t in (("semi-discrete NLS", co),
+    lossy = [f"{name} " + _losses_text(t, units) for name, t in (("semi-discrete NLS", co),
                                                           ("four-wave", fw))
              if "amplification" in t]
     if lossy:  # with losses growth is transient: the rates above alone mislead
@@ -294,12 +294,12 @@ def _add_losses(co: dict, model, k: float, amplitude: float, branch, fw) -> None
                                             "(Gamma = 0), its sidebands grow without end")
 
 
-def _losses_text(t: dict) -> str:
+def _losses_text(t: dict, units) -> str:
     if t["observable"] is None:
         return f"no answer ({t['amplification_reason']})"
     amp, time = t["amplification"], t["amplification_time"]
     said = ("unbounded (the carrier is not damped)" if amp == math.inf
-            else f"{_fmt(amp, 4)}x at t = {_fmt(time, 4)}")
+            else f"{_fmt(amp, 4)}x at t = {_fmt(time, 4)}{units.si(time, 'time')}")
     return said + (", observable (>= 20x)" if t["observable"] else ", not observable (< 20x)")
 
 

@@ -161,3 +161,15 @@ def test_every_scenes_run_time_says_which_is_the_quick_one():
     time = r"(<1 s|~\d+ (s|min))"
     for scene in scenes.REGISTRY.values():
         assert re.fullmatch(fr"{time}( \(quick {time}\))?", scene.runtime), scene.name
+
+
+def test_coefficients_lossy_line_gives_the_peak_time_in_seconds_too(tmp_path, fput_lossy,
+                                                                    capsys):
+    # every other time of the command is also in s with --time-unit (1 time unit = 1 ms)
+    (tmp_path / "fput-lossy.toml").write_text(fput_lossy)
+    assert main(["coefficients", "--model", str(tmp_path / "fput-lossy.toml"), "--param",
+                 "gamma=0.03", "--k", str(K), "--amplitude", str(AMPLITUDE), "--time-unit",
+                 "0.001"]) == 0
+    line = next(ln for ln in capsys.readouterr().out.splitlines()
+                if ln.startswith("with losses"))
+    assert "t = 51.27 = 0.05127 s" in line
