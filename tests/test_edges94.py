@@ -66,6 +66,8 @@ def test_a_lossy_map_says_which_cells_are_observable_and_how_the_runs_agree(
     share = next(ln for ln in lines if ln.startswith("observable (amplified 20x"))
     for name, s in seen.items():
         assert f"{name} {100 * s.mean():.0f}%" in share
+    rates = next(ln for ln in lines if ln.startswith("agreement with the runs (cells"))
+    assert "gain beating the damping at t = 0" in rates  # what that agreement compares
     agree = next(ln for ln in lines if ln.startswith("agreement with the runs on observable"))
     for name in ("exact", "fourwave", "semidiscrete"):
         assert f"{name} {100 * np.mean(seen[name] == seen['simulated']):.0f}%" in agree
