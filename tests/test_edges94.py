@@ -175,3 +175,33 @@ def test_coefficients_lossy_line_gives_the_peak_time_in_seconds_too(tmp_path, fp
     line = next(ln for ln in capsys.readouterr().out.splitlines()
                 if ln.startswith("with losses"))
     assert "t = 51.27 = 0.05127 s" in line
+
+
+def test_a_lossy_maps_store_says_when_each_theorys_amplification_peaks(tmp_path,
+                                                                      fput_lossy, capsys):
+    """The store held each theory's amplification but not when it peaks (only the runs'
+    amplification_time_simulated): half of a transient answer; `point` prints both."""
+    import zarr
+
+    argv, out = _lossy_map(tmp_path, fput_lossy, "--theory-only", "--exact")
+    assert main(argv) == 0
+    ds = xr.open_zarr(out / "map.zarr").load()
+    capsys.readouterr()
+    assert main(["point", "--model", str(tmp_path / "fput-lossy.toml"), "--param",
+                 "gamma=0.03", "--k", str(K), "--amplitude", str(AMPLITUDE), "--N", str(N),
+                 "--json"]) == 0
+    point = json.loads(capsys.readouterr().out)
+    cell = ds.sel(gamma=0.03, k=K)
+    for theory, row in (("semidiscrete", "semi-discrete NLS"), ("exact", "exact lattice"),
+                        ("fourwave", "four-wave")):
+        t = float(cell[f"amplification_time_{theory}"])
+        assert ds[f"amplification_time_{theory}"].attrs["units"] == "T (lattice time)"
+        # README's lossy FPUT point peaks at t = 50-51 in every theory, as the point's
+        assert 45 < t < 55 and t == pytest.approx(point[row]["amplification_time"],
+                                                  rel=1e-9), theory
+    # a lossy store made before these columns is refused, saying so (not a KeyError)
+    group = zarr.open_group(str(out / "map.zarr"), mode="r+")
+    del group.attrs["amplification_time"]
+    zarr.consolidate_metadata(str(out / "map.zarr"))
+    assert main(argv) == 2
+    assert "amplification_time_<theory>" in capsys.readouterr().err

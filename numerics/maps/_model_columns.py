@@ -80,6 +80,9 @@ VARIABLE_ATTRS = {
                      "decaying carrier (inf: the carrier is not damped and a mode grows)",
         "observable_from": GROWTH_THRESHOLD, "units": "1"} for t in ("semidiscrete", "exact",
                                                                "fourwave")},
+    **{f"amplification_time_{t}": {
+        "long_name": f"when the {t} theory's amplification peaks (inf where it is inf)",
+        "units": "T (lattice time)"} for t in ("semidiscrete", "exact", "fourwave")},
     "peak_gain_simulated": {
         "long_name": "the seeds' median measured rate where MI; where no growth within T "
                      "(verdict_simulated 0), the upper bound ln(growth_threshold) / "

@@ -265,9 +265,8 @@ def _cell_columns(model, k, amplitude, branch, *, exact, simulate, N, seeds, t_e
     if lossy:  # issue 42: the sidebands' amplification along the decaying carrier
         from ._losses import nls_amplification
 
-        row["amplification_semidiscrete"] = _amplification(
-            lambda: nls_amplification(model, k, amplitude, branch, first=r)) if row["carrier"] \
-            else math.nan
+        row.update(_amplification("semidiscrete", lambda: nls_amplification(
+            model, k, amplitude, branch, first=r) if row["carrier"] else None))
     if not (exact or simulate):
         row["k_simulated"] = float(k)
         return row
@@ -277,9 +276,10 @@ def _cell_columns(model, k, amplitude, branch, *, exact, simulate, N, seeds, t_e
     if lossy:
         from ._losses import four_wave_amplification
 
-        row["amplification_exact"] = math.nan
-        row["amplification_fourwave"] = math.nan if fw is None else _amplification(
-            lambda: four_wave_amplification(model, k, amplitude, branch, N=N, first=fw))
+        row.update(_amplification("exact", lambda: None))
+        row.update(_amplification("fourwave", lambda: None if fw is None else
+                                  four_wave_amplification(model, k, amplitude, branch, N=N,
+                                                          first=fw)))
     if simulate:
         row.update(verdict_simulated="undefined", peak_gain_simulated=math.nan,
                    growth=math.nan, growth_q=math.nan, t_simulated=math.nan)
@@ -300,11 +300,9 @@ def _cell_columns(model, k, amplitude, branch, *, exact, simulate, N, seeds, t_e
     if lossy:
         from ._losses import exact_amplification
 
-        try:
-            ex = exact_amplification(model, k, amplitude, branch, N=N, first=spec)
-            row["amplification_exact"], peak_time = ex.amplification, ex.amplification_time
-        except ModelError:
-            row["amplification_exact"] = math.nan
+        row.update(_amplification("exact", lambda: exact_amplification(
+            model, k, amplitude, branch, N=N, first=spec)))
+        peak_time = row["amplification_time_exact"]
     if simulate:
         try:
             return _simulated_columns(row, model, k, amplitude, spec, branch=branch, N=N,
@@ -411,13 +409,18 @@ def _four_wave_columns(model, k, amplitude, branch, N) -> tuple:
             "mode_kind_fourwave": fw.mode_kind}, fw
 
 
-def _amplification(f) -> float:
-    """A theory's amplification with losses (``Amplified.amplification``: inf where the
-    carrier is not damped and a mode grows); nan where the theory has none here."""
+def _amplification(theory: str, f) -> dict:
+    """A theory's columns with losses: ``amplification_<theory>`` (``Amplified``'s: inf
+    where the carrier is not damped and a mode grows) and ``amplification_time_<theory>``
+    (when it peaks, inf there: growth is transient, its time is half the answer); nan
+    where the theory has none here (``f`` returns None or raises ModelError)."""
     try:
-        return float(f().amplification)
+        a = f()
     except ModelError:
-        return math.nan
+        a = None
+    return {f"amplification_{theory}": math.nan if a is None else float(a.amplification),
+            f"amplification_time_{theory}": math.nan if a is None
+            else float(a.amplification_time)}
 
 
 def map_cells(model: Model, cells, amplitude: float, branch=None, *, exact: bool = False,
@@ -457,7 +460,8 @@ def map_cells(model: Model, cells, amplitude: float, branch=None, *, exact: bool
         ("sidebands", "backward", "parametric", "none" where stable, "undefined"); for a
         lossy model (``[dissipation]``) ``amplification_<theory>`` of each theory computed
         (the sidebands' largest amplification along the decaying carrier, inf where the
-        carrier is not damped and a mode grows; nan without a theory); with
+        carrier is not damped and a mode grows; nan without a theory) and
+        ``amplification_time_<theory>`` (when it peaks); with
         ``simulate``
         ``verdict_simulated`` (MI, "no growth within T", "undetermined", "undefined"),
         ``peak_gain_simulated`` (the seeds' median rate where MI; with "no growth within
