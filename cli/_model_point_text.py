@@ -131,6 +131,13 @@ def report(args, point, units, since=None) -> dict:
                   + (f" {_fmt(_times(off, k_f), 4):>15}" if k_f else ""))
     if model.lossy:
         _loss_table(out, units)
+        damped = [name for name in ("semi-discrete NLS", "four-wave", "exact lattice")
+                  if out.get(name, {}).get("lossless_verdict")]
+        if damped:  # its verdict stable beside a gain: said why
+            print(f"note: {', '.join(damped)}: stable with these losses, no sideband "
+                  "outgrows its damping at t = 0 (net rate at best "
+                  + ", ".join(f"{_fmt(out[n]['net_gain'], 3)}" for n in damped)
+                  + " /time); the peak gain shown is the lossless chain's, which is MI")
     if out["semi-discrete NLS"]["reason"]:
         print(f"undefined: {out['semi-discrete NLS']['reason']}")
     ex = out["exact lattice"]

@@ -232,7 +232,9 @@ def run_coefficients(args) -> int:
     for name, v, key in rows:
         print(f"{name:<{W}} {_fmt(v):>14}" + (units.si(v, kind_of[key]) if key else ""))
     verdict = co["verdict"]
-    if verdict != "undefined":  # g2 = 0 (a linear chain): no cubic term, neither kind
+    if co.get("lossless_verdict"):  # focusing, but the losses win from t = 0
+        verdict += " (damped)"
+    elif verdict != "undefined":  # g2 = 0 (a linear chain): no cubic term, neither kind
         verdict += (" (focusing)" if verdict == "MI" else " (defocusing)" if co["g"]
                     else " (g2 = 0)")
     print(f"{'verdict (semi-discrete NLS)':<{W}} {verdict:>14}")
@@ -248,6 +250,8 @@ def run_coefficients(args) -> int:
         print(f"{f + ': 2k harmonic, mean':<{W}} {_fmt(co['second_harmonic'][f]):>14} "
               f"{_fmt(co['mean'][f]):>12}  (mean strain {_fmt(co['mean_strain'][f])})")
     fw = co["four_wave"]
+    if fw.get("lossless_verdict"):
+        fw = {**fw, "verdict": "stable (damped)"}
     waves = " and ".join(f"branch {w['branch']} ({w['field']}) at {w['wavenumber']:.4g}"
                          for w in fw["mode_waves"])
     print(f"{'four-wave':<{W}} {fw['verdict']:>14}  peak gain {_fmt(fw['peak_gain'])}"
@@ -271,7 +275,8 @@ def run_coefficients(args) -> int:
 def _add_losses(co: dict, model, k: float, amplitude: float, branch, fw) -> None:
     """A lossy model's amplification (issue 42) into ``co`` (the semi-discrete NLS's) and
     ``co["four_wave"]`` (the four-wave theory's, the infinite chain's as its row):
-    amplification, amplification_time, observable (>= 20x), as ``point``'s."""
+    amplification, amplification_time, observable (>= 20x), as ``point``'s; a verdict MI
+    whose gain no damping lets grow at t = 0 is "stable" (``lossless_verdict`` MI)."""
     from energy import ModelError
     from numerics.models import four_wave_amplification, nls_amplification
 
@@ -289,6 +294,8 @@ def _add_losses(co: dict, model, k: float, amplitude: float, branch, fw) -> None
         row = a.row()
         row.pop("carrier_damping")  # printed once, as the carrier's
         target.update(row)
+        if target["verdict"] == "MI" and not a.initial_gain > 0:  # physical, as point's
+            target.update(verdict="stable", lossless_verdict="MI", net_gain=a.initial_gain)
         if a.amplification == math.inf:  # JSON null: said in words, as point's
             target["amplification_note"] = ("unbounded: the carrier is not damped "
                                             "(Gamma = 0), its sidebands grow without end")
@@ -300,6 +307,9 @@ def _losses_text(t: dict, units) -> str:
     amp, time = t["amplification"], t["amplification_time"]
     said = ("unbounded (the carrier is not damped)" if amp == math.inf
             else f"{_fmt(amp, 4)}x at t = {_fmt(time, 4)}{units.si(time, 'time')}")
+    if t.get("lossless_verdict"):  # beside a gain printed above: why it is not MI
+        said += (f" (the losses win from t = 0: net rate {_fmt(t['net_gain'], 3)} /time; "
+                 "the peak gain above is the lossless chain's)")
     return said + (", observable (>= 20x)" if t["observable"] else ", not observable (< 20x)")
 
 

@@ -265,8 +265,8 @@ def _cell_columns(model, k, amplitude, branch, *, exact, simulate, N, seeds, t_e
     if lossy:  # issue 42: the sidebands' amplification along the decaying carrier
         from ._losses import nls_amplification
 
-        row.update(_amplification("semidiscrete", lambda: nls_amplification(
-            model, k, amplitude, branch, first=r) if row["carrier"] else None))
+        _amplification(row, "semidiscrete", lambda: nls_amplification(
+            model, k, amplitude, branch, first=r) if row["carrier"] else None)
     if not (exact or simulate):
         row["k_simulated"] = float(k)
         return row
@@ -276,10 +276,9 @@ def _cell_columns(model, k, amplitude, branch, *, exact, simulate, N, seeds, t_e
     if lossy:
         from ._losses import four_wave_amplification
 
-        row.update(_amplification("exact", lambda: None))
-        row.update(_amplification("fourwave", lambda: None if fw is None else
-                                  four_wave_amplification(model, k, amplitude, branch, N=N,
-                                                          first=fw)))
+        _amplification(row, "exact", lambda: None)
+        _amplification(row, "fourwave", lambda: None if fw is None else
+                       four_wave_amplification(model, k, amplitude, branch, N=N, first=fw))
     if simulate:
         row.update(verdict_simulated="undefined", peak_gain_simulated=math.nan,
                    growth=math.nan, growth_q=math.nan, t_simulated=math.nan)
@@ -300,8 +299,8 @@ def _cell_columns(model, k, amplitude, branch, *, exact, simulate, N, seeds, t_e
     if lossy:
         from ._losses import exact_amplification
 
-        row.update(_amplification("exact", lambda: exact_amplification(
-            model, k, amplitude, branch, N=N, first=spec)))
+        _amplification(row, "exact", lambda: exact_amplification(
+            model, k, amplitude, branch, N=N, first=spec))
         peak_time = row["amplification_time_exact"]
     if simulate:
         try:
@@ -409,18 +408,23 @@ def _four_wave_columns(model, k, amplitude, branch, N) -> tuple:
             "mode_kind_fourwave": fw.mode_kind}, fw
 
 
-def _amplification(theory: str, f) -> dict:
-    """A theory's columns with losses: ``amplification_<theory>`` (``Amplified``'s: inf
-    where the carrier is not damped and a mode grows) and ``amplification_time_<theory>``
-    (when it peaks, inf there: growth is transient, its time is half the answer); nan
-    where the theory has none here (``f`` returns None or raises ModelError)."""
+def _amplification(row: dict, theory: str, f) -> None:
+    """A theory's columns with losses, into ``row``: ``amplification_<theory>``
+    (``Amplified``'s: inf where the carrier is not damped and a mode grows) and
+    ``amplification_time_<theory>`` (when it peaks, inf there: growth is transient, its
+    time is half the answer); nan where the theory has none here (``f`` returns None or
+    raises ModelError). Its verdict MI becomes "stable" where no gain beats its damping at
+    t = 0 (the verdict is physical, ``_losses``; ``peak_gain_<theory>`` stays the lossless
+    rate), as ``point``'s."""
     try:
         a = f()
     except ModelError:
         a = None
-    return {f"amplification_{theory}": math.nan if a is None else float(a.amplification),
-            f"amplification_time_{theory}": math.nan if a is None
-            else float(a.amplification_time)}
+    row[f"amplification_{theory}"] = math.nan if a is None else float(a.amplification)
+    row[f"amplification_time_{theory}"] = (math.nan if a is None
+                                           else float(a.amplification_time))
+    if a is not None and row.get(f"verdict_{theory}") == "MI" and not a.initial_gain > 0:
+        row[f"verdict_{theory}"] = "stable"
 
 
 def map_cells(model: Model, cells, amplitude: float, branch=None, *, exact: bool = False,
