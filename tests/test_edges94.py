@@ -223,6 +223,7 @@ def test_a_point_whose_losses_win_from_the_start_is_stable(tmp_path, fput_lossy,
         # on its grid of 200 offsets, within 1e-4 of its peak (a smooth maximum)
         assert row["net_gain"] == pytest.approx(row["peak_gain"] - 0.15, abs=1e-4), name
         assert row["amplification"] == 1.0
+    assert out["units"]["lattice"]["net_gain"] == "1/time"
     assert main([*argv, "--param", "gamma=0.3"]) == 0
     text = capsys.readouterr().out
     assert "stable with these losses" in text and "the lossless chain's, which is MI" in text
