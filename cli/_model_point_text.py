@@ -66,6 +66,8 @@ def _loss_table(out, units=None) -> None:
         amp = t["amplification"]
         amp_s = "inf" if amp is None and t["observable"] else _fmt(amp, 4)
         obs = {True: "yes (>= 20x)", False: "no", None: "-"}[t["observable"]]
+        if t["observable"] is False and t.get("peaked") is False:
+            obs = "not by cap"  # the runs stopped while A(t) still rose: no answer yet
         print(f"{name:<20} {_fmt(t.get('carrier_damping'), 3):>16} {amp_s:>14} "
               f"{_fmt(t['amplification_time'], 4):>10} {obs:>11}"
               + (f" {_fmt(_times(t['amplification_time'], t_f), 4):>12}" if t_f else ""))

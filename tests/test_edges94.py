@@ -262,3 +262,18 @@ def test_coefficients_whose_losses_win_from_the_start_say_stable(tmp_path, fput_
     assert main(argv) == 0
     text = capsys.readouterr().out
     assert "stable (damped)" in text and "the losses win from t = 0" in text
+
+
+def test_a_lossy_run_capped_before_its_peak_is_not_called_unobservable(tmp_path, fput_lossy,
+                                                                       capsys):
+    """--t-end 50 stops the runs while A(t) still rises (the theories peak near t = 140,
+    146x at gamma 0.012): the table said 'no' in the observable column, an answer the
+    runs did not give."""
+    (tmp_path / "fput-lossy.toml").write_text(fput_lossy)
+    assert main(["point", "--model", str(tmp_path / "fput-lossy.toml"), "--param",
+                 "gamma=0.012", "--k", str(K), "--amplitude", str(AMPLITUDE), "--N", str(N),
+                 "--simulate", "--seeds", "1", "--t-end", "50"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    table = lines[next(i for i, ln in enumerate(lines) if ln.startswith("with losses")):]
+    row = next(ln for ln in table if ln.startswith("simulated "))
+    assert row.rstrip().endswith("not by cap"), row
