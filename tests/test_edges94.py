@@ -277,3 +277,19 @@ def test_a_lossy_run_capped_before_its_peak_is_not_called_unobservable(tmp_path,
     table = lines[next(i for i, ln in enumerate(lines) if ln.startswith("with losses")):]
     row = next(ln for ln in table if ln.startswith("simulated "))
     assert row.rstrip().endswith("not by cap"), row
+
+
+def test_a_lossy_maps_runs_capped_before_the_peak_are_said_undecided(tmp_path, fput_lossy,
+                                                                     capsys):
+    """--t-end 50: the weakly damped cells' theories peak past 20x near t = 160-260, so
+    their runs (7-17x by t = 50) cannot answer; the map counted them not observable and
+    said the runs' critical gamma lies below the axis, without a word on T (a lossless
+    map says 'a longer --t-end decides them' for runs too short for their rate)."""
+    argv, out = _lossy_map(tmp_path, fput_lossy, "--t-end", "50")
+    assert main(argv) == 0
+    text = capsys.readouterr().out
+    assert "2 of 4 cells:" in text and "peaks after the run's end" in text
+    assert "a longer --t-end decides them" in text
+    ds = xr.open_zarr(out / "map.zarr").load()
+    # gamma 0.01 (first row): 236x and 468x, at t > 150; gamma 0.03: below 5x, decided
+    assert ds["slow_for_T"].values.tolist() == [[1, 1], [0, 0]]
