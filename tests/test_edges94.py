@@ -293,3 +293,12 @@ def test_a_lossy_maps_runs_capped_before_the_peak_are_said_undecided(tmp_path, f
     ds = xr.open_zarr(out / "map.zarr").load()
     # gamma 0.01 (first row): 236x and 468x, at t > 150; gamma 0.03: below 5x, decided
     assert ds["slow_for_T"].values.tolist() == [[1, 1], [0, 0]]
+
+
+@pytest.mark.parametrize("cmd", [["scene", "fig2-dispersion"], ["run"]])
+def test_a_bad_scene_seed_names_the_option(cmd, tmp_path, capsys):
+    # 'seed must be an integer in [0, 2^63)' named no option of the command
+    code = main([*cmd, "--seed", "-1", "--out", str(tmp_path / "o")])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert code == 2 and len(err) == 1 and "--seed must be an integer" in err[0], err
+    assert not (tmp_path / "o").exists()
