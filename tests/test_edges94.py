@@ -302,3 +302,15 @@ def test_a_bad_scene_seed_names_the_option(cmd, tmp_path, capsys):
     err = capsys.readouterr().err.strip().splitlines()
     assert code == 2 and len(err) == 1 and "--seed must be an integer" in err[0], err
     assert not (tmp_path / "o").exists()
+
+
+def test_the_exact_and_four_wave_rows_name_one_pair_in_one_order(capsys):
+    """flexmm at k 0.785 on 64 sites: the note said 'branch 1 (theta) at 0.2945 and branch
+    0 (theta) at 1.276', the four-wave line the same pair the other way round."""
+    assert main(["point", "--model", "flexmm", "--k", "0.8", "--amplitude", "0.02", "--N",
+                 "64"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    note = next(ln for ln in lines if ln.startswith("note: the exact lattice's fastest"))
+    fw = next(ln for ln in lines if ln.startswith("four-wave: the fastest pair"))
+    pair = fw[fw.index("(") + 1:fw.rindex(")")]
+    assert "parametric" in fw and f"({pair})" in note, (note, fw)
