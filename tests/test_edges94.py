@@ -314,3 +314,19 @@ def test_the_exact_and_four_wave_rows_name_one_pair_in_one_order(capsys):
     fw = next(ln for ln in lines if ln.startswith("four-wave: the fastest pair"))
     pair = fw[fw.index("(") + 1:fw.rindex(")")]
     assert "parametric" in fw and f"({pair})" in note, (note, fw)
+
+
+def test_coefficients_of_an_undamped_lossy_model_is_strict_json(tmp_path, fput_lossy,
+                                                                  capsys):
+    # gamma = 0: the amplification is unbounded; JSON has no inf, so null and words
+    (tmp_path / "fput-lossy.toml").write_text(fput_lossy)
+    assert main(["coefficients", "--model", str(tmp_path / "fput-lossy.toml"), "--param",
+                 "gamma=0", "--k", "2.5", "--amplitude", str(AMPLITUDE), "--json"]) == 0
+
+    def refuse(constant):
+        raise ValueError(f"not strict JSON: {constant}")
+
+    co = json.loads(capsys.readouterr().out, parse_constant=refuse)
+    for row in (co, co["four_wave"]):
+        assert row["amplification"] is None and row["observable"] is True
+        assert row["amplification_note"].startswith("unbounded")
