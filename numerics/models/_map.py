@@ -65,6 +65,8 @@ def model_map(model: Model, x: tuple, y: tuple, amplitude: float, k: float | Non
         ``verdict_semidiscrete`` ("MI", "stable", "undefined"), ``peak_gain_semidiscrete``
         (1/time), ``g1``, ``g2``, ``reason`` (why undefined), and the exact columns when
         asked; dims (y, x) named after the axes; model, parameters and amplitude in attrs.
+        A lossy model's NLS verdict is physical ("stable" where no sideband outgrows its
+        damping at t = 0, as ``map_cells``'); its peak gain the lossless rate.
     """
     import xarray as xr
 
