@@ -29,8 +29,11 @@ def say_estimate(args, est) -> None:
 
 
 def _waves(row) -> str:
+    # one order for every row (the larger wavenumber first, k + q before k - q): the
+    # exact and four-wave rows named one parametric pair in opposite orders, read as two
+    waves = sorted(row.get("mode_waves", []), key=lambda w: -w["wavenumber"])
     return " and ".join(f"branch {w['branch']} ({w['field']}) at {w['wavenumber']:.4g}"
-                        for w in row.get("mode_waves", []))
+                        for w in waves)
 
 
 #: the infinite chain's unsampled bands a point's text lists in full (the fastest ones)
@@ -66,6 +69,8 @@ def _loss_table(out, units=None) -> None:
         amp = t["amplification"]
         amp_s = "inf" if amp is None and t["observable"] else _fmt(amp, 4)
         obs = {True: "yes (>= 20x)", False: "no", None: "-"}[t["observable"]]
+        if t["observable"] is False and t.get("peaked") is False:
+            obs = "not by cap"  # the runs stopped while A(t) still rose: no answer yet
         print(f"{name:<20} {_fmt(t.get('carrier_damping'), 3):>16} {amp_s:>14} "
               f"{_fmt(t['amplification_time'], 4):>10} {obs:>11}"
               + (f" {_fmt(_times(t['amplification_time'], t_f), 4):>12}" if t_f else ""))
@@ -131,6 +136,13 @@ def report(args, point, units, since=None) -> dict:
                   + (f" {_fmt(_times(off, k_f), 4):>15}" if k_f else ""))
     if model.lossy:
         _loss_table(out, units)
+        damped = [name for name in ("semi-discrete NLS", "four-wave", "exact lattice")
+                  if out.get(name, {}).get("lossless_verdict")]
+        if damped:  # its verdict stable beside a gain: said why
+            print(f"note: {', '.join(damped)}: stable with these losses, no sideband "
+                  "outgrows its damping at t = 0 (net rate at best "
+                  + ", ".join(f"{_fmt(out[n]['net_gain'], 3)}" for n in damped)
+                  + " /time); the peak gain shown is the lossless chain's, which is MI")
     why_nls = out["semi-discrete NLS"]["reason"]
     if why_nls:
         print(f"undefined: {why_nls}")

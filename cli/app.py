@@ -290,6 +290,10 @@ def _dispatch(args, scenes) -> int:
             print(f"{sc.name:<{width}}  {sc.runtime:<18}  {sc.description}")
         return 0
     t0 = time.perf_counter()
+    if args.cmd in ("scene", "run"):  # named as the option ('seed must be ...' named none)
+        from numerics.lattice import checks
+
+        checks.seed(args.seed, "--seed")
     if args.cmd == "scene" and args.replot:
         folder = scenes.replot_scene(args.name, args.out)
         print(f"{args.name}: redrew {folder}/figure.png and figure.pdf from data.h5 in "

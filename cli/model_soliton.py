@@ -112,8 +112,18 @@ def lossy_note(model, k: float, branch, units) -> tuple[float, str | None]:
     return damping, (f"note: {model.name} has [dissipation]: the carrier's amplitude decays "
                      f"at {damping:.4g} /time{units.si(damping, 'rate')} (e-folding "
                      f"{1 / damping:.4g} time{units.si(1 / damping, 'time')}), which this "
-                     "soliton of the lossless NLS leaves out; --param its damping = 0 for "
+                     f"soliton of the lossless NLS leaves out; {lossless_params(model)} for "
                      "the lossless chain")
+
+
+def lossless_params(model) -> str:
+    """The options that make a lossy ``model`` lossless: '--param gamma=0' for each
+    parameter its [dissipation] uses (a remedy the user can type)."""
+    from numerics.maps import damping_parameters
+
+    names = damping_parameters(model.lattice)
+    return (" ".join(f"--param {n}=0" for n in names) if names
+            else "--param each damping parameter = 0")
 
 
 def run_model_soliton(args, model, units, branch) -> dict:
@@ -131,6 +141,12 @@ def run_model_soliton(args, model, units, branch) -> dict:
     folder = prepare_output(args.out, cache=False) if args.out else None
     run = None
     if args.simulate:
+        if model.lossy and any(m.any() for m in model.damping):
+            # the launch refuses it (check_soliton_launch); said here with the options
+            raise ValueError(f"--simulate: model {model.describe()} has [dissipation]: its "
+                             "soliton decays, and the NLS it is measured against is "
+                             f"lossless; add {lossless_params(model)} to launch the "
+                             "lossless one")
         checks.real("--travel", args.travel, 0.0, 1000.0)
         if args.N is not None:
             checks.integer("--N", args.N, 16, 10**6)

@@ -207,7 +207,10 @@ def run_coefficients(args) -> int:
     co = model_coefficients(model, args.k, args.amplitude, branch_of(args))
     from numerics.models import four_wave
 
-    co["four_wave"] = four_wave(model, args.k, args.amplitude, branch_of(args)).row()
+    fw = four_wave(model, args.k, args.amplitude, branch_of(args))
+    co["four_wave"] = fw.row()
+    if model.lossy:
+        _add_losses(co, model, args.k, args.amplitude, branch_of(args), fw)
     if args.json:
         _emit(add_units(co, units))
         return 0
@@ -229,7 +232,9 @@ def run_coefficients(args) -> int:
     for name, v, key in rows:
         print(f"{name:<{W}} {_fmt(v):>14}" + (units.si(v, kind_of[key]) if key else ""))
     verdict = co["verdict"]
-    if verdict != "undefined":  # g2 = 0 (a linear chain): no cubic term, neither kind
+    if co.get("lossless_verdict"):  # focusing, but the losses win from t = 0
+        verdict += " (damped)"
+    elif verdict != "undefined":  # g2 = 0 (a linear chain): no cubic term, neither kind
         verdict += (" (focusing)" if verdict == "MI" else " (defocusing)" if co["g"]
                     else " (g2 = 0)")
     print(f"{'verdict (semi-discrete NLS)':<{W}} {verdict:>14}")
@@ -245,11 +250,19 @@ def run_coefficients(args) -> int:
         print(f"{f + ': 2k harmonic, mean':<{W}} {_fmt(co['second_harmonic'][f]):>14} "
               f"{_fmt(co['mean'][f]):>12}  (mean strain {_fmt(co['mean_strain'][f])})")
     fw = co["four_wave"]
+    if fw.get("lossless_verdict"):
+        fw = {**fw, "verdict": "stable (damped)"}
     waves = " and ".join(f"branch {w['branch']} ({w['field']}) at {w['wavenumber']:.4g}"
                          for w in fw["mode_waves"])
     print(f"{'four-wave':<{W}} {fw['verdict']:>14}  peak gain {_fmt(fw['peak_gain'])}"
           + (f", {fw['mode_kind']} ({waves}), offset {_fmt(fw['fastest_offset'], 4)}"
              if fw["verdict"] == "MI" else ""))
+    lossy = [f"{name} " + _losses_text(t, units) for name, t in (("semi-discrete NLS", co),
+                                                          ("four-wave", fw))
+             if "amplification" in t]
+    if lossy:  # with losses growth is transient: the rates above alone mislead
+        print("with losses (the sidebands' largest amplification along the decaying "
+              "carrier): " + "; ".join(lossy))
     if co["reason"]:
         print(f"undefined: {co['reason']}")
     if fw["verdict"] == "undefined" and fw["reason"]:
@@ -257,6 +270,47 @@ def run_coefficients(args) -> int:
     for w in co["warnings"]:
         print(f"note: {w}")
     return 0
+
+
+def _add_losses(co: dict, model, k: float, amplitude: float, branch, fw) -> None:
+    """A lossy model's amplification (issue 42) into ``co`` (the semi-discrete NLS's) and
+    ``co["four_wave"]`` (the four-wave theory's, the infinite chain's as its row):
+    amplification, amplification_time, observable (>= 20x), as ``point``'s; a verdict MI
+    whose gain no damping lets grow at t = 0 is "stable" (``lossless_verdict`` MI)."""
+    from energy import ModelError
+    from numerics.models import four_wave_amplification, nls_amplification
+
+    for target, f in ((co, lambda: nls_amplification(model, k, amplitude, branch)),
+                      (co["four_wave"], lambda: four_wave_amplification(
+                          model, k, amplitude, branch, first=fw))):
+        if target["verdict"] == "undefined":  # its reason is said; no amplification
+            continue
+        try:
+            a = f()
+        except ModelError as exc:  # no theory with losses here: why, as point's
+            target.update(amplification=None, amplification_time=None, observable=None,
+                          amplification_reason=str(exc))
+            continue
+        row = a.row()
+        row.pop("carrier_damping")  # printed once, as the carrier's
+        target.update(row)
+        if target["verdict"] == "MI" and not a.initial_gain > 0:  # physical, as point's
+            target.update(verdict="stable", lossless_verdict="MI", net_gain=a.initial_gain)
+        if a.amplification == math.inf:  # JSON null: said in words, as point's
+            target["amplification_note"] = ("unbounded: the carrier is not damped "
+                                            "(Gamma = 0), its sidebands grow without end")
+
+
+def _losses_text(t: dict, units) -> str:
+    if t["observable"] is None:
+        return f"no answer ({t['amplification_reason']})"
+    amp, time = t["amplification"], t["amplification_time"]
+    said = ("unbounded (the carrier is not damped)" if amp == math.inf
+            else f"{_fmt(amp, 4)}x at t = {_fmt(time, 4)}{units.si(time, 'time')}")
+    if t.get("lossless_verdict"):  # beside a gain printed above: why it is not MI
+        said += (f" (the losses win from t = 0: net rate {_fmt(t['net_gain'], 3)} /time; "
+                 "the peak gain above is the lossless chain's)")
+    return said + (", observable (>= 20x)" if t["observable"] else ", not observable (< 20x)")
 
 
 # ------------------------------------------------------------------ soliton

@@ -24,7 +24,8 @@ KINDS = {"rate": ("1/time", "1/s"), "time": ("time", "s"),
 #: is a ratio or a count; g = g2/g1 and g2's parts are in g2's units over g1's)
 KEYS = {
     "rate": ("peak_gain", "ring_peak_gain", "modulational_gain", "carrier_damping", "omega",
-             "omega_linear", "frequency_shift", "frequency", "slowest_visible_rate"),
+             "omega_linear", "frequency_shift", "frequency", "slowest_visible_rate",
+             "net_gain"),
     "time": ("e_folding_time", "amplification_time", "t_end"),
     "wavenumber": ("k", "k_requested", "fastest_offset", "band_edge", "wavenumber"),
     "velocity": ("group_velocity", "velocity"),

@@ -115,4 +115,4 @@ def plot(data):
 
 SCENE = register(Scene("four-wave-pairs", "FPUT's four-wave pairs near k = pi/2: sidebands "
                        "and backward (umklapp) pairs against the exact theory",
-                       "beyond the paper", "~7 s (~5 s)", False, compute, plot))
+                       "beyond the paper", "~7 s (quick ~5 s)", False, compute, plot))

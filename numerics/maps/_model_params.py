@@ -317,7 +317,8 @@ class ModelMapParameters:
                                                 for kind in ("verdict", "peak_gain")]
         if "fourwave" in self.theory_columns():
             theory.append("mode_kind_fourwave")
-        theory += [f"amplification_{name}" for name in self.amplified()]
+        theory += [f"amplification{t}_{name}" for name in self.amplified()
+                   for t in ("", "_time")]
         return {"done": self.simulated_columns(), "done_predicted": tuple(sorted(theory))}
 
     def damping_axis(self) -> str | None:
@@ -400,6 +401,8 @@ class ModelMapParameters:
             out["start"] = self.start
         if self.amplified():  # a lossy model's store only (a lossless store's identity kept)
             out["amplification"] = " ".join(self.amplified())
+            # when each peaks (a store made before these columns has no such attribute)
+            out["amplification_time"] = " ".join(self.amplified())
             if self.ring:  # the runs' columns (a theory-only --exact store has them empty)
                 out["amplification_runs"] = " ".join(LOSSY_SIMULATED_COLUMNS)
         out.update({f"param_{n}": v for n, v in self.parameters

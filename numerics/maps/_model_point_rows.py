@@ -99,7 +99,9 @@ def simulated_row(model, k, amplitude, branch, N, seeds, t_end, spec, start, pea
 def add_losses(model, k, amplitude, branch, N, out, spec, fw) -> None:
     """A lossy model's amplification per theory (issue 42), into each theory's object:
     carrier_damping, amplification (max over modes and times along the decaying
-    carrier), amplification_time, observable (amplification >= 20)."""
+    carrier), amplification_time, observable (amplification >= 20); a theory whose gain
+    no damping lets grow at t = 0 is "stable", with ``lossless_verdict`` "MI" and
+    ``net_gain`` (its best gain minus damping, <= 0) beside it."""
     from energy import ModelError
 
     from ..models import (
@@ -112,6 +114,11 @@ def add_losses(model, k, amplitude, branch, N, out, spec, fw) -> None:
         try:
             a = f()
             out[name].update(a.row())
+            if out[name]["verdict"] == "MI" and not a.initial_gain > 0:
+                # the verdict is physical (module docstring of ..models._losses): MI where
+                # a gain beats its damping at t = 0; here the losses win from the start
+                out[name].update(verdict="stable", lossless_verdict="MI",
+                                 net_gain=a.initial_gain)
             if a.amplification == math.inf:  # JSON null: said in words
                 out[name]["amplification_note"] = (
                     "unbounded: the carrier is not damped (Gamma = 0), its sidebands grow "

@@ -47,9 +47,11 @@ def other_map(params, attrs: dict) -> str:
                 "four-wave columns none of those)")
     mine = params.attrs()
     if any(attrs.get(n, "") != mine.get(n, "") for n in ("amplification",
+                                                        "amplification_time",
                                                         "amplification_runs")):
         return (f"a map of lossy model {name!r} made before its amplification columns "
-                f"(amplification_<theory> of {' '.join(params.amplified())}"
+                f"(amplification_<theory> and amplification_time_<theory> of "
+                f"{' '.join(params.amplified())}"
                 + (", and the runs' amplification_simulated" if params.ring else "")
                 + ")")
     for unit in ("time_unit_s", "length_unit_m"):

@@ -65,6 +65,8 @@ def model_map(model: Model, x: tuple, y: tuple, amplitude: float, k: float | Non
         ``verdict_semidiscrete`` ("MI", "stable", "undefined"), ``peak_gain_semidiscrete``
         (1/time), ``g1``, ``g2``, ``reason`` (why undefined), and the exact columns when
         asked; dims (y, x) named after the axes; model, parameters and amplitude in attrs.
+        A lossy model's NLS verdict is physical ("stable" where no sideband outgrows its
+        damping at t = 0, as ``map_cells``'); its peak gain the lossless rate.
     """
     import xarray as xr
 
@@ -277,9 +279,9 @@ def _cell_columns(model, k, amplitude, branch, *, exact, simulate, N, seeds, t_e
     if lossy:  # issue 42: the sidebands' amplification along the decaying carrier
         from ._losses import nls_amplification
 
-        row["amplification_semidiscrete"] = _amplification(
-            lambda: nls_amplification(model, k, amplitude, branch, first=r)) if (
-                row["carrier"] and why is None) else math.nan
+        _amplification(row, "semidiscrete", lambda: nls_amplification(
+            model, k, amplitude, branch, first=r) if row["carrier"] and why is None
+            else None)
     if not (exact or simulate):
         row["k_simulated"] = float(k)
         return row
@@ -290,9 +292,9 @@ def _cell_columns(model, k, amplitude, branch, *, exact, simulate, N, seeds, t_e
     if lossy:
         from ._losses import four_wave_amplification
 
-        row["amplification_exact"] = math.nan
-        row["amplification_fourwave"] = math.nan if fw is None else _amplification(
-            lambda: four_wave_amplification(model, k, amplitude, branch, N=N, first=fw))
+        _amplification(row, "exact", lambda: None)
+        _amplification(row, "fourwave", lambda: None if fw is None else
+                       four_wave_amplification(model, k, amplitude, branch, N=N, first=fw))
     if simulate:
         row.update(verdict_simulated="undefined", peak_gain_simulated=math.nan,
                    growth=math.nan, growth_q=math.nan, t_simulated=math.nan)
@@ -320,11 +322,9 @@ def _cell_columns(model, k, amplitude, branch, *, exact, simulate, N, seeds, t_e
     if lossy:
         from ._losses import exact_amplification
 
-        try:
-            ex = exact_amplification(model, k, amplitude, branch, N=N, first=spec)
-            row["amplification_exact"], peak_time = ex.amplification, ex.amplification_time
-        except ModelError:
-            row["amplification_exact"] = math.nan
+        _amplification(row, "exact", lambda: exact_amplification(
+            model, k, amplitude, branch, N=N, first=spec))
+        peak_time = row["amplification_time_exact"]
     if simulate:
         try:
             return _simulated_columns(row, model, k, amplitude, spec, branch=branch, N=N,
@@ -364,9 +364,14 @@ def _simulated_columns(row, model, k, amplitude, spec, *, branch, N, seeds, t_en
                              start=start, gain=start_gain)
     growth = [run.growth() for run in sim.runs]
     top = max(growth, key=lambda g: g.factor if math.isfinite(g.factor) else -1.0)
+    # a lossy run goes on until A(t) has halved: the rate rule's log-slope bound reads that
+    # fall as no growth (factor 1 where a run grew 167x); its factor is what its verdict
+    # reads, max_t A(t) / A(0)
+    factors = ([r.amplification().amplification for r in sim.runs] if lossy
+               else [g.factor for g in growth])
     row.update(verdict_simulated=sim.verdict.word,
                peak_gain_simulated=sim.verdict.map_rate,
-               growth=float(np.median([g.factor for g in growth])),
+               growth=float(np.median(factors)),
                growth_q=float(top.wavenumber), t_simulated=float(
                    max(r.t[-1] for r in sim.runs) if lossy else max(
                        r.t_end for r in sim.runs)))
@@ -430,13 +435,23 @@ def _four_wave_columns(model, k, amplitude, branch, N) -> tuple:
             "mode_kind_fourwave": fw.mode_kind}, fw
 
 
-def _amplification(f) -> float:
-    """A theory's amplification with losses (``Amplified.amplification``: inf where the
-    carrier is not damped and a mode grows); nan where the theory has none here."""
+def _amplification(row: dict, theory: str, f) -> None:
+    """A theory's columns with losses, into ``row``: ``amplification_<theory>``
+    (``Amplified``'s: inf where the carrier is not damped and a mode grows) and
+    ``amplification_time_<theory>`` (when it peaks, inf there: growth is transient, its
+    time is half the answer); nan where the theory has none here (``f`` returns None or
+    raises ModelError). Its verdict MI becomes "stable" where no gain beats its damping at
+    t = 0 (the verdict is physical, ``_losses``; ``peak_gain_<theory>`` stays the lossless
+    rate), as ``point``'s."""
     try:
-        return float(f().amplification)
+        a = f()
     except ModelError:
-        return math.nan
+        a = None
+    row[f"amplification_{theory}"] = math.nan if a is None else float(a.amplification)
+    row[f"amplification_time_{theory}"] = (math.nan if a is None
+                                           else float(a.amplification_time))
+    if a is not None and row.get(f"verdict_{theory}") == "MI" and not a.initial_gain > 0:
+        row[f"verdict_{theory}"] = "stable"
 
 
 def map_cells(model: Model, cells, amplitude: float, branch=None, *, exact: bool = False,
@@ -479,12 +494,13 @@ def map_cells(model: Model, cells, amplitude: float, branch=None, *, exact: bool
         ("sidebands", "backward", "parametric", "none" where stable, "undefined"); for a
         lossy model (``[dissipation]``) ``amplification_<theory>`` of each theory computed
         (the sidebands' largest amplification along the decaying carrier, inf where the
-        carrier is not damped and a mode grows; nan without a theory); with
+        carrier is not damped and a mode grows; nan without a theory) and
+        ``amplification_time_<theory>`` (when it peaks); with
         ``simulate``
         ``verdict_simulated`` (MI, "no growth within T", "undetermined", "undefined"),
         ``peak_gain_simulated`` (the seeds' median rate where MI; with "no growth within
         T" the upper bound ln(GROWTH_THRESHOLD) / T on the rate), ``growth`` (median
-        growth factor), ``growth_q`` (wavenumber of the fastest mode of the seed that grew
+        growth factor; a lossy model's runs': max_t A(t) / A(0)), ``growth_q`` (wavenumber of the fastest mode of the seed that grew
         most) and ``t_simulated`` (the longest run: a run stops at the record where its
         linear stage has saturated, ``saturation_record``, else runs T); for a lossy model the runs are
         launched as issue 42 measures an amplification (``lossy_runs``) and add
