@@ -9,6 +9,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import pytest
 
 from energy import load_model, parse_model
 
@@ -92,3 +93,29 @@ def test_a_long_damped_runs_energy_balance_is_the_steppers_not_the_records():
     assert bare.lost is None
     np.testing.assert_array_equal(bare.deviation, run.deviation)
     np.testing.assert_array_equal(bare.state[0], run.state[0])
+
+
+def test_a_lossy_points_verdict_is_stable_where_nothing_outgrows_its_damping():
+    """The probe's point 5: the lossless chain grows at 5.6e-4 /time, a tenth of its carrier
+    damping (4.8e-3, by hand); the carrier only decays, so nothing grows (every theory's
+    amplification 1, the run's too) and the verdict says stable, the lossless MI beside it
+    (docs/models.md: "MI where the gain exceeds the damping at t = 0"). At k 2, a 0.3 the
+    gain (0.0158) exceeds the damping and the verdict stays MI."""
+    from numerics.maps import ModelPointSpec, measure_point
+
+    model = _model(LOSSY_KG).with_params(alpha=0.41, gamma=0.008,
+                                                               eta=0.004)
+    rows = measure_point(ModelPointSpec(model, 1.2768, 0.0538, N=128)).as_dict()
+    gamma = _carrier_damping(model.params, rows["k"])
+    for name in ("semi-discrete NLS", "four-wave", "exact lattice"):
+        row = rows[name]
+        assert 0 < row["peak_gain"] < 0.2 * gamma, (name, row["peak_gain"], gamma)
+        assert row["carrier_damping"] == pytest.approx(gamma, rel=1e-2)  # weak damping
+        assert row["verdict"] == "stable" and row["lossless_verdict"] == "MI", name
+        assert row["amplification"] == 1.0 and row["net_initial_gain"] <= 0
+    strong = measure_point(ModelPointSpec(model.with_params(alpha=0.3, gamma=0.004,
+                                                            eta=0.002), 2.0, 0.3,
+                                          N=64)).as_dict()["exact lattice"]
+    assert strong["peak_gain"] > strong["carrier_damping"]
+    assert strong["verdict"] == "MI" and "lossless_verdict" not in strong
+    assert strong["amplification"] > 1

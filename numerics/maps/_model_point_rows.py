@@ -99,7 +99,9 @@ def simulated_row(model, k, amplitude, branch, N, seeds, t_end, spec, start, pea
 def add_losses(model, k, amplitude, branch, N, out, spec, fw) -> None:
     """A lossy model's amplification per theory (issue 42), into each theory's object:
     carrier_damping, amplification (max over modes and times along the decaying
-    carrier), amplification_time, observable (amplification >= 20)."""
+    carrier), amplification_time, observable (amplification >= 20). A lossless MI whose
+    gain nowhere exceeds the sidebands' damping at t = 0 reads "stable" (its
+    ``lossless_verdict`` MI and ``net_initial_gain`` <= 0 beside it)."""
     from energy import ModelError
 
     from ..models import (
@@ -112,6 +114,13 @@ def add_losses(model, k, amplitude, branch, N, out, spec, fw) -> None:
         try:
             a = f()
             out[name].update(a.row())
+            if out[name]["verdict"] == "MI" and not a.initial_gain > 0:
+                # the verdict is the damped chain's (docs/models.md, "Losses"): nothing
+                # outgrows its damping at t = 0, and the carrier only decays, so nothing
+                # grows (issue 94: Klein-Gordon at a rate 0.1x its damping read "MI" with
+                # amplification 1); the lossless one kept beside it
+                out[name].update(verdict="stable", lossless_verdict="MI",
+                                 net_initial_gain=a.initial_gain)
             if a.amplification == math.inf:  # JSON null: said in words
                 out[name]["amplification_note"] = (
                     "unbounded: the carrier is not damped (Gamma = 0), its sidebands grow "
