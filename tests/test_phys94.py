@@ -119,3 +119,60 @@ def test_a_lossy_points_verdict_is_stable_where_nothing_outgrows_its_damping():
     assert strong["peak_gain"] > strong["carrier_damping"]
     assert strong["verdict"] == "MI" and "lossless_verdict" not in strong
     assert strong["amplification"] > 1
+
+
+def test_a_pair_far_from_the_carrier_that_the_nls_calls_stable_is_said():
+    """The probe's point 9: a rotor chain with a cubic cross term at k 1.374, a 0.0596,
+    128 sites. The NLS says stable; the exact lattice and the four-wave theory grow at
+    1.34e-3 through the pair of the carrier's own branch at 2.602 and 0.147 (offset 1.23,
+    far outside any NLS band), and a run measures it (10%, the three-way bar; measured
+    0.1%). The point's notes say so (it printed none)."""
+    from numerics.maps import ModelPointSpec, measure_point
+    from numerics.models import simulate_model
+
+    model = _model(ROTOR)
+    rows = measure_point(ModelPointSpec(model, 1.3641, 0.0596, N=128)).as_dict()
+    ex, fw = rows["exact lattice"], rows["four-wave"]
+    assert rows["semi-discrete NLS"]["verdict"] == "stable"
+    assert ex["verdict"] == "MI" and ex["mode_kind"] == fw["mode_kind"] == "sidebands"
+    assert ex["fastest_offset"] > 1.0
+    assert fw["peak_gain"] == pytest.approx(ex["peak_gain"], rel=0.10)
+    note = [n for n in rows["notes"] if "far from it" in n]
+    assert len(note) == 1 and "it says stable" in note[0]
+    g = simulate_model(model, rows["k"], 0.0596, N=128, expected_gain=ex["peak_gain"],
+                       seed=3).growth()
+    assert g.verdict == "unstable" and g.rate == pytest.approx(ex["peak_gain"], rel=0.10)
+
+
+def test_no_far_pair_note_where_the_nls_describes_the_growth():
+    """FPUT beta 1 at k 2, a 0.1: the NLS's band holds the exact fastest sidebands (offset
+    0.29 against its edge 0.41), so no note."""
+    from numerics.maps import ModelPointSpec, measure_point
+
+    rows = measure_point(ModelPointSpec(load_model("fput").with_params(alpha=0.0, beta=1.0),
+                                        2.0, 0.1, N=128)).as_dict()
+    assert rows["exact lattice"]["verdict"] == "MI"
+    assert not any("far from it" in n or "near the carrier" in n for n in rows["notes"])
+
+
+def test_a_backward_pair_the_nls_cannot_see_is_in_the_points_notes(capsys):
+    """The probe's point 18 (an r^2/2 + a r^3 + b r^4 bond at k = pi/2, a 0.126): the NLS
+    says stable and a backward pair grows (exact 0.0114, a run 0.0102-0.0110); the table
+    said why, point.json's notes did not. FPUT alpha 0.8 at pi/2 (the README's point),
+    64 sites: the note in both, once in the table."""
+    import json
+
+    from cli.app import main
+
+    argv = ["point", "--model", "fput", "--param", "alpha=0.8", "--param", "beta=1",
+            "--k", "1.5708", "--amplitude", "0.1", "--N", "64"]
+    assert main(argv + ["--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["semi-discrete NLS"]["verdict"] == "stable"
+    assert out["exact lattice"]["verdict"] == "MI"
+    assert out["exact lattice"]["mode_kind"] == "backward"
+    said = [n for n in out["notes"] if "the NLS cannot see it" in n]
+    assert len(said) == 1 and "a backward pair" in said[0]
+    assert main(argv) == 0
+    text = capsys.readouterr().out
+    assert text.count("the NLS cannot see it") == 1

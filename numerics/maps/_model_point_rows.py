@@ -194,6 +194,9 @@ def reach_note(model, k, amplitude, branch, out) -> str | None:
                 f"theory: the NLS is the a -> 0 limit and fails at a = {amplitude:g} (g2 = "
                 f"{row['g2']:.3g}, its largest part the {big}, {parts[big]:.3g}); trust the "
                 "exact row (--simulate measures it)")
+    far = _far_sidebands(ex, row, amplitude)
+    if far:
+        return far
     if (ex.get("verdict") != "MI" or ex.get("mode_kind") != "sidebands"
             or row["verdict"] != "MI" or not row.get("ring_peak_gain")):
         return None
@@ -211,3 +214,58 @@ def reach_note(model, k, amplitude, branch, out) -> str | None:
     return (f"the exact lattice's sidebands grow {ratio:.2g}x as fast as the semi-discrete "
             f"NLS's on this ring: the NLS is the a -> 0 limit and {why}; at a = "
             f"{amplitude:g} trust the exact row (--simulate measures it)")
+
+
+#: a pair of the carrier's branch whose offset passes this many NLS band edges is not the
+#: NLS's band grown by the amplitude (its band and the exact one differ by O(a^2)) but a
+#: resonance of two waves far from the carrier
+FAR_BAND = 2.0
+
+
+def _far_sidebands(ex, row, amplitude) -> str | None:
+    """A sentence where the exact lattice's fastest pair is on the carrier's own branch
+    (``mode_kind`` 'sidebands') and the NLS does not describe it: far outside the NLS's
+    band, or where the NLS says stable (near the carrier: its O(a^2) error flips the
+    verdict; far from it: another resonance). The NLS is the near-carrier limit, its
+    'stable' about small offsets only. Found by issue 94's probe: a rotor chain with a
+    cubic cross term (kt 0.433, w0 0.872, c 0.795, I 0.5) at k 1.374, a 0.06 grows at
+    0.00134 /time through the pair at 2.602 and 0.147 (offset 1.23; four-wave, exact and a
+    run agree) where the NLS says stable, and the point said nothing."""
+    if ex.get("verdict") != "MI" or ex.get("mode_kind") != "sidebands":
+        return None
+    q, edge = ex.get("fastest_offset"), row.get("band_edge")
+    if q is None or row["verdict"] == "undefined" or (
+            row["verdict"] == "MI" and edge and q <= FAR_BAND * edge):
+        return None
+    g1, g2 = row.get("g1"), row.get("g2")
+    # the band the NLS would have with g's sign flipped: the scale of "near the carrier"
+    scale = edge if edge else (amplitude * math.sqrt(abs(g2 / g1)) if g1 and g2 else 0.0)
+    if row["verdict"] != "MI" and q <= FAR_BAND * scale:
+        return (f"the exact lattice's sidebands grow at {ex['peak_gain']:.3g} /time near the "
+                f"carrier (offset {q:.3g} rad/site) where the semi-discrete NLS says "
+                f"{row['verdict']} (g2 = {g2:.3g}): the NLS is the a -> 0 limit and its O(a^2) "
+                f"error flips the verdict at a = {amplitude:g}; trust the exact row "
+                "(--simulate measures it)")
+    waves = " and ".join(f"{w['wavenumber']:.4g}" for w in ex.get("mode_waves", []))
+    where = (f"its band reaches offset {edge:.3g}" if row["verdict"] == "MI" and edge else
+             f"it says {row['verdict']}")
+    return (f"the exact lattice grows at {ex['peak_gain']:.3g} /time through a pair of the "
+            f"carrier's branch far from it (wavenumbers {waves}, offset {q:.3g} rad/site), "
+            f"outside what the semi-discrete NLS describes ({where}): the NLS is the "
+            "near-carrier limit; trust the exact row (--simulate measures it)")
+
+
+def mode_note(out) -> str | None:
+    """A sentence where the exact lattice's fastest mode is not the carrier's sidebands (a
+    backward or parametric pair, a resonance): the NLS cannot see it. In point.json's
+    notes as in the table (a script reading an NLS 'stable' beside an exact MI learns why;
+    issue 94: FPUT-like bonds at k = pi/2 grow through a backward pair, the NLS stable)."""
+    ex = out.get("exact lattice", {})
+    if ex.get("reason") or ex.get("verdict") != "MI" or ex.get("mode_kind") in (
+            None, "sidebands"):
+        return None
+    what = "a resonance" if ex["mode_kind"] == "resonance" else f"a {ex['mode_kind']} pair"
+    waves = " and ".join(f"branch {w['branch']} ({w['field']}) at {w['wavenumber']:.4g}"
+                         for w in ex.get("mode_waves", []))
+    return (f"the exact lattice's fastest mode is {what} ({waves}), not the carrier's "
+            "sidebands: the NLS cannot see it")
