@@ -176,3 +176,34 @@ def test_a_backward_pair_the_nls_cannot_see_is_in_the_points_notes(capsys):
     assert main(argv) == 0
     text = capsys.readouterr().out
     assert text.count("the NLS cannot see it") == 1
+
+
+HERTZISH = """name = "hertzish"
+fields = ["u"]
+[parameters]
+a = 0.425
+b = 0.649
+[energy]
+kinetic = "u_t**2/2"
+bond = "(u_next - u)**2/2 + a*(u_next - u)**3 + b*(u_next - u)**4"
+"""
+
+
+def test_near_the_zone_boundarys_flip_the_small_amplitude_rates_are_off_alike_and_said():
+    """The probe's point 12 (bond r^2/2 + 0.425 r^3 + 0.649 r^4, FPUT's alpha 1.275, beta
+    2.596, k = pi, where 3 beta = 7.8 barely beats 4 alpha^2 = 6.5): exact and run 0.0125,
+    NLS 0.0088 and four-wave 0.0087. A limitation, not a bug: both are the a^2 order, and
+    the exact rate over the four-wave's tends to 1 as a^2 (measured 1.47, 1.12, 1.031,
+    1.008 at a = 0.0826, 0.04, 0.02, 0.01 on the chain; halving a must cut the excess at
+    least 3x, 4x for a^2). The note names both rows."""
+    from numerics.maps import ModelPointSpec, measure_point
+    from numerics.models import exact_gain, four_wave
+
+    model = _model(HERTZISH)
+    excess = [exact_gain(model, math.pi, a).peak_gain / four_wave(model, math.pi, a).gain - 1
+              for a in (0.04, 0.02, 0.01)]
+    assert excess[0] > 0.05 and excess[0] / excess[1] > 3 and excess[1] / excess[2] > 3
+    rows = measure_point(ModelPointSpec(model, math.pi, 0.0826, N=64)).as_dict()
+    assert rows["exact lattice"]["peak_gain"] > 1.25 * rows["four-wave"]["peak_gain"]
+    said = [n for n in rows["notes"] if "a -> 0 limit" in n]
+    assert len(said) == 1 and "four-wave row" in said[0]
