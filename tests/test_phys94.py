@@ -261,3 +261,63 @@ def test_a_sideband_pair_and_its_mean_flow_are_no_decay():
     fw = four_wave(load_model("fput", alpha=0.5, beta=1.0), math.pi / 2, 0.1, N=256)
     assert fw.verdict == "MI" and not fw.undefined
     assert fw.gain == pytest.approx(8.67e-3, rel=0.05)
+
+
+def test_a_higher_order_resonance_neither_theory_rates_is_said():
+    """The probe's seed-7 point 16 (the unequal-mass chain, m 2.05, cubic -0.153, quartic
+    -0.37, acoustic carrier at k 1.64, a 0.091, 256 sites): the exact lattice grows at
+    8.9e-5 through a resonance (a run of T = 1e5 measured 8.9e-5), the NLS and the
+    four-wave theory say stable. The note says that neither rates it."""
+    from numerics.maps import ModelPointSpec, measure_point
+
+    model = _model(DIATOMIC).with_params(m=2.05, a=-0.153, b=-0.37)
+    rows = measure_point(ModelPointSpec(model, 1.6455, 0.0909, branch=0, N=256)).as_dict()
+    assert rows["exact lattice"]["verdict"] == "MI"
+    assert rows["exact lattice"]["mode_kind"] == "resonance"
+    assert rows["four-wave"]["verdict"] == rows["semi-discrete NLS"]["verdict"] == "stable"
+    said = [n for n in rows["notes"] if "the NLS cannot see it" in n]
+    assert len(said) == 1 and "nor does the four-wave theory" in said[0]
+
+
+def test_a_fastest_offset_on_the_carriers_harmonics_is_said():
+    """The probe's seed-7 point 4 (the unequal-mass chain's optical carrier, m 2.088, cubic
+    -0.557, quartic 0.115, k = 2 pi 63/128, a 0.0852): the exact ring's fastest offset
+    j = 2 (1.08e-3) has its waves at the ring modes 65 = -m and 61 = 3m, harmonics of the
+    carrier that a run leaves out; two seeds measured 8.55e-4, the next offset's rate
+    (8.61e-4, j = 1), 21% below the exact row. The point says so, with that rate; an
+    ordinary point (FPUT at k 2) does not."""
+    from energy import load_model
+    from numerics.maps import ModelPointSpec, measure_point
+    from numerics.models import simulate_model
+
+    model = _model(DIATOMIC).with_params(m=2.088, a=-0.557, b=0.115)
+    point = measure_point(ModelPointSpec(model, 3.0682, 0.0852, branch=1, N=128))
+    rows = point.as_dict()
+    said = [n for n in rows["notes"] if "harmonics of the carrier" in n]
+    assert len(said) == 1 and "j = 2 " in said[0] and point.mode_note == said[0]
+    seen = float(said[0].split("off them, ")[1].split(" /time")[0])
+    assert seen < 0.9 * rows["exact lattice"]["peak_gain"]
+    g = simulate_model(model, rows["k"], 0.0852, branch=1, N=128,
+                       expected_gain=rows["exact lattice"]["peak_gain"]).growth()
+    assert g.rate == pytest.approx(seen, rel=0.05)  # the fit of a finite linear stage
+    plain = measure_point(ModelPointSpec(load_model("fput").with_params(alpha=0.0, beta=1.0),
+                                         2.0, 0.1, N=128)).as_dict()
+    assert not any("harmonics of the carrier" in n for n in plain["notes"])
+
+
+def test_a_four_wave_rate_far_off_the_exact_one_is_said():
+    """The probe's seed-7 point 6 (bond r^2/2 - 0.596 r^3 + 0.673 r^4, k 1.52, a 0.152,
+    128 sites; its frequency shifted 8%): a backward pair grows at 0.0110 (a run 0.0090 at
+    T = 1000), the four-wave theory names the same pair at 0.0044. Both are stated; the
+    note says the four-wave rate is the a^2 order and by how much the exact one exceeds it
+    (the long wave at -0.098 and the wave at 1.62 are no isolated decay: the four-wave
+    row stays defined)."""
+    from numerics.maps import ModelPointSpec, measure_point
+
+    rows = measure_point(ModelPointSpec(_model(HERTZISH).with_params(a=-0.596, b=0.673),
+                                        1.5336, 0.1518, N=128)).as_dict()
+    ex, fw = rows["exact lattice"], rows["four-wave"]
+    assert ex["mode_kind"] == fw["mode_kind"] == "backward"
+    assert ex["peak_gain"] > 2 * fw["peak_gain"] > 0
+    said = [n for n in rows["notes"] if "four-wave row's rate" in n]
+    assert len(said) == 1 and "the a^2 order" in said[0]

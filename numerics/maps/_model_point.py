@@ -258,6 +258,11 @@ def measure_model_point(spec: ModelPointSpec, *, on_estimate=None,
     # the table's notes for a script too (the rings' missed bands: ring_misses)
     reach = rows.reach_note(model, k, amplitude, branch, out)
     mode = rows.mode_note(out)
+    blind = rows.harmonic_note(hill, N)
+    if blind and mode:  # one sentence for the table's one line of the exact row
+        mode = f"{mode}; {blind}"
+    elif blind:
+        mode = blind
     out["notes"] = [n for n in (mode, ring_note, reach) if n] + list(co["warnings"])
     return ModelPoint(spec=spec, rows=out, ring_note=ring_note, reach_note=reach,
                       warnings=tuple(co["warnings"]), start_label=start_label,
