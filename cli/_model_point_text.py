@@ -150,10 +150,8 @@ def report(args, point, units, since=None) -> dict:
     if ex.get("reason"):  # the NLS's reason said once (the energy not real)
         print("exact lattice undefined: " + ("as the semi-discrete NLS" if ex["reason"] ==
                                              why_nls else ex["reason"]))
-    elif ex["verdict"] == "MI" and ex["mode_kind"] != "sidebands":
-        what = "a resonance" if ex["mode_kind"] == "resonance" else f"a {ex['mode_kind']} pair"
-        print(f"note: the exact lattice's fastest mode is {what} ({_waves(ex)}), not the "
-              "carrier's sidebands: the NLS cannot see it")
+    elif point.mode_note:
+        print(f"note: {point.mode_note}")
     fw = out["four-wave"]
     if fw.get("reason"):  # the exact lattice's reason said once (the energy not real)
         print("four-wave undefined: " + ("as the exact lattice" if fw["reason"] ==

@@ -143,6 +143,9 @@ class ModelPoint:
         The row of a registered start's own theory ("exact lattice, paper start").
     estimate : PointEstimate or None
         The runs' estimate, made before them (``simulate``).
+    mode_note : str or None
+        Where the exact lattice's fastest mode is not the carrier's sidebands (the NLS
+        cannot see it; also in "notes").
     """
 
     spec: ModelPointSpec
@@ -152,6 +155,7 @@ class ModelPoint:
     warnings: tuple
     start_label: str | None
     estimate: object = None
+    mode_note: str | None = None
 
     def as_dict(self) -> dict:
         """point.json's object (a new dict: a caller adds its units to it)."""
@@ -253,10 +257,16 @@ def measure_model_point(spec: ModelPointSpec, *, on_estimate=None,
         out["curves"]["simulated"] = out["simulated"].pop("curve")
     # the table's notes for a script too (the rings' missed bands: ring_misses)
     reach = rows.reach_note(model, k, amplitude, branch, out)
-    out["notes"] = [n for n in (ring_note, reach) if n] + list(co["warnings"])
+    mode = rows.mode_note(out)
+    blind = rows.harmonic_note(hill, N)
+    if blind and mode:  # one sentence for the table's one line of the exact row
+        mode = f"{mode}; {blind}"
+    elif blind:
+        mode = blind
+    out["notes"] = [n for n in (mode, ring_note, reach) if n] + list(co["warnings"])
     return ModelPoint(spec=spec, rows=out, ring_note=ring_note, reach_note=reach,
                       warnings=tuple(co["warnings"]), start_label=start_label,
-                      estimate=estimate)
+                      estimate=estimate, mode_note=mode)
 
 
 register_point_kind(ModelPointSpec, measure_model_point)

@@ -192,6 +192,9 @@ def reach_note(model, k, amplitude, branch, out) -> str | None:
                 f"theory: the NLS is the a -> 0 limit and fails at a = {amplitude:g} (g2 = "
                 f"{row['g2']:.3g}, its largest part the {big}, {parts[big]:.3g}); trust the "
                 "exact row (--simulate measures it)")
+    far = _far_sidebands(ex, row, amplitude, out)
+    if far:
+        return far
     if (ex.get("verdict") != "MI" or ex.get("mode_kind") != "sidebands"
             or row["verdict"] != "MI" or not row.get("ring_peak_gain")):
         return None
@@ -206,6 +209,134 @@ def reach_note(model, k, amplitude, branch, out) -> str | None:
     why = (f"g2 = {row['g2']:.3g} is what is left of parts as large as {parts[big]:.3g} "
            f"({big}), so the NLS's O(a^2) error is large here" if left < 0.25 else
            "its relative error grows as a^2")
+    fw = out.get("four-wave", {})
+    # the four-wave rates are of the NLS's order in a (a^2 a pair's): off alike (issue 94's
+    # probe: a cubic-quartic bond at k = pi, a 0.083, exact 1.43x the four-wave's, 1.12x at
+    # a 0.04, 1.03x at 0.02)
+    also = (f"; the four-wave row, of the same order in a, is off alike (the exact rate "
+            f"{ex['peak_gain'] / fw['peak_gain']:.2g}x its)"
+            if fw.get("verdict") == "MI" and (fw.get("peak_gain") or 0) > 0
+            and ex["peak_gain"] / fw["peak_gain"] >= 1.25 else "")
     return (f"the exact lattice's sidebands grow {ratio:.2g}x as fast as the semi-discrete "
-            f"NLS's on this ring: the NLS is the a -> 0 limit and {why}; at a = "
+            f"NLS's on this ring: the NLS is the a -> 0 limit and {why}{also}; at a = "
             f"{amplitude:g} trust the exact row (--simulate measures it)")
+
+
+#: a pair of the carrier's branch whose offset passes this many NLS band edges is not the
+#: NLS's band grown by the amplitude (its band and the exact one differ by O(a^2)) but a
+#: resonance of two waves far from the carrier
+FAR_BAND = 2.0
+
+
+def _decays(out) -> bool:
+    """Whether the four-wave row is undefined by a three-wave decay
+    (``numerics.models.four_wave``: the carrier's own decay at order a)."""
+    return "three-wave decay" in (out.get("four-wave", {}).get("reason") or "")
+
+
+def _far_sidebands(ex, row, amplitude, out) -> str | None:
+    """A sentence where the exact lattice's fastest pair is on the carrier's own branch
+    (``mode_kind`` 'sidebands') and the NLS does not describe it: far outside the NLS's
+    band, or where the NLS says stable (near the carrier: its O(a^2) error flips the
+    verdict; far from it: another resonance). The NLS is the near-carrier limit, its
+    'stable' about small offsets only. Found by issue 94's probe: a rotor chain with a
+    cubic cross term (kt 0.433, w0 0.872, c 0.795, I 0.5) at k 1.374, a 0.06 grows at
+    0.00134 /time through the pair at 2.602 and 0.147 (offset 1.23; four-wave, exact and a
+    run agree) where the NLS says stable, and the point said nothing."""
+    if ex.get("verdict") != "MI" or ex.get("mode_kind") != "sidebands" or _decays(out):
+        return None
+    q, edge = ex.get("fastest_offset"), row.get("band_edge")
+    if q is None or row["verdict"] == "undefined" or (
+            row["verdict"] == "MI" and edge and q <= FAR_BAND * edge):
+        return None
+    g1, g2 = row.get("g1"), row.get("g2")
+    # the band the NLS would have with g's sign flipped: the scale of "near the carrier"
+    scale = edge if edge else (amplitude * math.sqrt(abs(g2 / g1)) if g1 and g2 else 0.0)
+    if row["verdict"] != "MI" and q <= FAR_BAND * scale:
+        return (f"the exact lattice's sidebands grow at {ex['peak_gain']:.3g} /time near the "
+                f"carrier (offset {q:.3g} rad/site) where the semi-discrete NLS says "
+                f"{row['verdict']} (g2 = {g2:.3g}): the NLS is the a -> 0 limit and its O(a^2) "
+                f"error flips the verdict at a = {amplitude:g}; trust the exact row "
+                "(--simulate measures it)")
+    waves = " and ".join(f"{w['wavenumber']:.4g}" for w in ex.get("mode_waves", []))
+    where = (f"its band reaches offset {edge:.3g}" if row["verdict"] == "MI" and edge else
+             f"it says {row['verdict']}")
+    return (f"the exact lattice grows at {ex['peak_gain']:.3g} /time through a pair of the "
+            f"carrier's branch far from it (wavenumbers {waves}, offset {q:.3g} rad/site), "
+            f"outside what the semi-discrete NLS describes ({where}): the NLS is the "
+            "near-carrier limit; trust the exact row (--simulate measures it)")
+
+
+def mode_note(out) -> str | None:
+    """A sentence where the exact lattice's fastest mode is not the carrier's sidebands (a
+    backward or parametric pair, a resonance): the NLS cannot see it. In point.json's
+    notes as in the table (a script reading an NLS 'stable' beside an exact MI learns why;
+    issue 94: FPUT-like bonds at k = pi/2 grow through a backward pair, the NLS stable)."""
+    ex = out.get("exact lattice", {})
+    if ex.get("reason") or ex.get("verdict") != "MI":
+        return None
+    if _decays(out):  # the four-wave row names it (its reason)
+        return (f"the exact lattice grows at {ex['peak_gain']:.3g} /time through a three-wave "
+                "decay of the carrier (the four-wave row's reason), a process of order a "
+                "that neither the NLS nor the four-wave pairs describe")
+    if ex.get("mode_kind") in (None, "sidebands"):
+        return None
+    what = "a resonance" if ex["mode_kind"] == "resonance" else f"a {ex['mode_kind']} pair"
+    waves = " and ".join(f"branch {w['branch']} ({w['field']}) at {w['wavenumber']:.4g}"
+                         for w in ex.get("mode_waves", []))
+    fw = out.get("four-wave", {})
+    # a resonance of higher order than the four-wave pairs' (issue 94's probe: an
+    # unequal-mass chain at k 1.64, a 0.09, exact and a run 8.9e-5, the four-wave stable)
+    neither = ("; nor does the four-wave theory, which says stable (its pairs are of order "
+               "a^2; this is a higher-order resonance)" if fw.get("verdict") == "stable" else "")
+    return (f"the exact lattice's fastest mode is {what} ({waves}), not the carrier's "
+            f"sidebands: the NLS cannot see it{neither}{_fourwave_off(out)}")
+
+
+def _fourwave_off(out) -> str:
+    """A clause where the four-wave row's rate is 25% off the exact one: its pairs' rates
+    are the a^2 order (issue 94's probe: a cubic-quartic bond at k 1.52, a 0.15, a
+    backward pair, four-wave 0.0044 against the exact 0.0110 and a run's 0.0090)."""
+    ex, fw = out.get("exact lattice", {}), out.get("four-wave", {})
+    if fw.get("verdict") != "MI" or not (fw.get("peak_gain") or 0) > 0:
+        return ""
+    ratio = ex["peak_gain"] / fw["peak_gain"]
+    if 1 / 1.25 < ratio < 1.25:
+        return ""
+    return (f"; the four-wave row's rate is {fw['peak_gain']:.3g}, the exact one {ratio:.2g}x "
+            f"it: its pairs' rates are the a^2 order, and at a = {out['amplitude']:g} the "
+            "exact row holds")
+
+
+#: a run can miss the ring's fastest offset where the fastest one off the carrier's
+#: harmonics is this much slower
+BLIND_SHARE = 0.9
+
+
+def harmonic_note(spec, N) -> str | None:
+    """A sentence where the exact ring theory's fastest offsets j put both their waves,
+    ring modes m + j and m - j, on harmonics of the carrier (h m mod N, |h| <= the wave's
+    harmonics), and every offset off them grows less than ``BLIND_SHARE`` as fast: a run
+    leaves the harmonics out of its growth (the carrier's -k always, a higher one whose
+    phase drift shows), so it may measure the slower rate. Issue 94's probe: an
+    unequal-mass chain's optical carrier at k = 2 pi 63/128 (near pi), a 0.085: the
+    fastest offset j = 2 (1.08e-3) has its waves at -k and 3k; the runs measured the
+    next, j = 1 (8.6e-4), 21% below the exact row."""
+    import numpy as np
+
+    if spec is None or not spec.peak_gain > 0:
+        return None
+    gain = np.asarray(spec.gain, float)
+    m = int(round(spec.wave.k * N / (2 * math.pi)))
+    H = spec.wave.harmonics
+    harm = {(h * m) % N for h in range(-H, H + 1)}
+    j = np.arange(1, gain.size + 1)  # ring_offsets(N): q = 2 pi j / N
+    blind = np.array([(m + i) % N in harm and (m - i) % N in harm for i in j])
+    seen = float(np.max(gain[~blind], initial=0.0))
+    if not blind.any() or seen >= BLIND_SHARE * spec.peak_gain or not np.max(
+            gain[blind]) >= spec.peak_gain:
+        return None
+    at = int(j[blind & (gain >= spec.peak_gain * (1 - 1e-9))][0])  # its copies: the same
+    return (f"the exact ring's fastest offset (j = {at} of 2 pi j / N) puts both its waves "
+            f"on harmonics of the carrier, which a run leaves out of its growth: a run may "
+            f"measure the fastest offset off them, {seen:.3g} /time, not {spec.peak_gain:.3g}")

@@ -289,10 +289,34 @@ def four_wave(model: Model, k: float, amplitude: float, branch=None, *, N: int |
             fine = np.linspace(q[max(i - 1, 0)], q[min(i + 1, q.size - 1)], 35)[1:-1]
             q, rate, det, coup = _merge(q, (rate, det, coup), fine, rates(fine))
     why = ""
-    if not np.nanmax(np.nan_to_num(rate, nan=0.0), initial=0.0) > GAIN_FLOOR * car.omega:
+    best = float(np.nanmax(np.nan_to_num(rate, nan=0.0), initial=0.0))
+    if not best > GAIN_FLOOR * car.omega:
         why = _untreated(q, pairs, rate, det)
+    decay = _decay(model, k, a, branch, N, samples)
+    if decay is not None and decay[0] > max(best, GAIN_FLOOR * car.omega):
+        rate3, (b1, k1), (b3, k3) = decay
+        why = (f"a three-wave decay of the carrier into branch {b1} at {k1:.4g} and branch "
+               f"{b3} at {k3:.4g} grows at about {rate3:.3g} /time, faster than any "
+               f"four-wave pair ({best:.3g}): a process of order a that the four-wave "
+               "ordering does not rate; the exact theory holds")
     return FourWave(model, k, a, car.branch, car.omega, float(Omega), q, tuple(pairs),
                     rate, det, coup, why)
+
+
+def _decay(model, k, a, branch, N, samples):
+    """The fastest isolated three-wave decay (``_threewave.fastest_decay``) over the
+    ring's offsets of both signs, or a grid of the chain's; None where none grows."""
+    from ._fourwave_kernel import _plane_wave
+    from ._threewave import fastest_decay
+
+    wave = _plane_wave(model, k, a, branch)
+    if N:
+        j = np.arange(-(N // 2) + 1, N // 2 + 1)
+        q = 2 * np.pi * j[j != 0] / N
+    else:
+        q = np.linspace(-np.pi, np.pi, 2 * samples + 1)[1:]
+        q = q[q != 0]
+    return fastest_decay(model, k, wave, q, refine=not N)
 
 
 def _untreated(q, pairs, rate, det) -> str:
