@@ -77,7 +77,7 @@ def test_a_runs_energy_balance_is_exact_for_exponential_losses_between_far_recor
 def test_a_long_damped_runs_energy_balance_is_the_steppers_not_the_records():
     """The probe's point 11 (lossy Klein-Gordon, k 3.09, a 0.0465; its point runs T = 38500
     with 400 records and printed an energy balance error of 0.41): the same run on 64 sites
-    now reads 3.5e-5 (2R integrated from samples 2 radians of the carrier apart; from the
+    now reads 1.7e-5 (2R integrated from samples 8 radians of the carrier apart; from the
     records alone, exponential between them, 5.5e-4): 2e-4 fails either record-only rule.
     The samples cut the run into shorter compiled calls, the same steps: a run that records
     no energy (a map cell's) steps the same states to the last bit."""
