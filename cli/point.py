@@ -62,7 +62,12 @@ def material_from(args):
         except ValueError as exc:
             raise ValueError(f"--physical m,J,a,k_l,k_s,k_theta: {exc}") from None
         m, _, a, k_l = values[:4]
-        return mat, Units.physical(m, k_l, a)
+        units = Units.physical(m, k_l, a)
+        # sqrt(m / k_l) can leave float64 while the material is fine: seconds would be 0 or inf
+        if not (math.isfinite(units.seconds_per_T) and units.seconds_per_T > 0):
+            raise ValueError("--physical m,J,a,k_l,k_s,k_theta: the time unit sqrt(m / k_l) is "
+                             "out of float64's range; give m and k_l in units nearer 1")
+        return mat, units
     missing = [n for n, v in (("--alpha", args.alpha), ("--K-s", args.K_s),
                               ("--K-theta", args.K_theta)) if v is None]
     if missing:

@@ -65,8 +65,22 @@ class Material:
         m, J, a, k_l, k_s, k_theta = (
             positive(n, v) for n, v in
             zip(("m", "J", "a", "k_l", "k_s", "k_theta"), (m, J, a, k_l, k_s, k_theta)))
-        return cls(alpha=a * math.sqrt(m / (4 * J)), K_s=k_s / k_l,
-                   K_theta=4 * k_theta / (k_l * a**2))
+        # each value may be fine in SI while a ratio leaves float64 (k_l a^2 underflowing to
+        # 0, m / 4J to inf): that is the units' fault, not the material's; say so
+        try:
+            values = {"alpha": a * math.sqrt(m / (4 * J)), "K_s": k_s / k_l,
+                      "K_theta": 4 * k_theta / (k_l * a**2)}
+        except (ZeroDivisionError, OverflowError):
+            values = {}
+        bad = [n for n, v in values.items() if not (math.isfinite(v) and v > 0)] \
+            if values else ["K_theta"]  # the one ratio that can divide by an underflowed 0
+        if bad:
+            raise ValueError(
+                f"the normalised {', '.join(bad)} {'is' if len(bad) == 1 else 'are'} out of "
+                "float64's range "
+                "(over- or underflow); give m, J, a, k_l, k_s, k_theta in units nearer 1 "
+                "(e.g. g and mm)")
+        return cls(**values)
 
     def omega_max(self, case: str) -> float:
         """Highest linear frequency of the lattice (max of `discrete1`, `discrete2`)."""
