@@ -97,3 +97,19 @@ def test_the_paper_start_theory_is_converged_in_the_carrier_harmonics():
     converged = mi_gain(mat, "coupled", k, amp, Q, harmonics=3, start="paper")
     assert row[0] == pytest.approx(converged[0], rel=1e-4)
     assert row[0] == pytest.approx(4.3416e-4, rel=2e-3)  # the run's fitted rate
+
+
+def test_an_underflow_from_a_tiny_k_names_k_not_only_the_material(capsys):
+    # k = 1e-300 underflowed k^2 and said 'at alpha = 2, K_s = 0.02, K_theta = 0.01 ...;
+    # rescale the material': the material was fine, the carrier was not
+    assert main(["coefficients", "--alpha", "2", "--K-s", "0.02", "--K-theta", "0.01",
+                 "--k", "1e-300"]) == 0
+    out = capsys.readouterr()
+    lines = [ln for ln in (out.out + out.err).splitlines() if "float64" in ln]
+    assert lines and all("k = 1e-300" in ln and "larger k" in ln for ln in lines), lines
+    # a material that leaves float64 at any k keeps its own remedy
+    assert main(["coefficients", "--alpha", "1e-200", "--K-s", "0.02", "--K-theta", "0.01",
+                 "--k", "1"]) == 0
+    out = capsys.readouterr()
+    lines = [ln for ln in (out.out + out.err).splitlines() if "float64" in ln]
+    assert lines and all("rescale the material" in ln for ln in lines), lines

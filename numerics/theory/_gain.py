@@ -63,14 +63,23 @@ def nls_undefined(nls, material: Material, case: str, k: float) -> str | None:
         except KeyError:
             raise ValueError(f"nls must be one of {tuple(_NLS)}, got {nls!r}") from None
     p = (k, material.alpha, material.K_s, material.K_theta)
-    try:  # an overflow or underflow is the arithmetic's limit, not the physics'
+
+    def evaluate(p):
         with np.errstate(over="raise", under="raise", divide="ignore", invalid="ignore"):
-            omega, g1 = float(nls.omega(*p)), float(nls.g1(*p))
-            g2 = float(getattr(nls, f"g2_{case}")(*p))
+            return (float(nls.omega(*p)), float(nls.g1(*p)),
+                    float(getattr(nls, f"g2_{case}")(*p)))
+
+    try:  # an overflow or underflow is the arithmetic's limit, not the physics'
+        omega, g1, g2 = evaluate(p)
     except FloatingPointError as exc:
-        return (f"an {str(exc).split()[0]} in float64 at alpha = {material.alpha:g}, K_s = "
-                f"{material.K_s:g}, K_theta = {material.K_theta:g} (not a resonance: the "
-                "numbers leave float64's range); rescale the material")
+        try:  # the same material at k = 1: whose fault it is decides the remedy
+            evaluate((1.0,) + p[1:])
+            remedy = "choose a larger k"
+        except FloatingPointError:
+            remedy = "rescale the material"
+        return (f"an {str(exc).split()[0]} in float64 at k = {k:.4g}, alpha = "
+                f"{material.alpha:g}, K_s = {material.K_s:g}, K_theta = {material.K_theta:g} "
+                f"(not a resonance: the numbers leave float64's range); {remedy}")
     if not np.isfinite(omega):
         if nls is _NLS[PAPER_NLS.label]:
             return (f"no real carrier frequency: omega^2 = alpha^2 (6 K_theta + delta k^2) < 0 "
