@@ -60,7 +60,7 @@ class Material:
 
         alpha = a sqrt(m / (4 J)), K_s = k_s / k_l, K_theta = 4 k_theta / (k_l a^2).
         The paper prints alpha = a / sqrt(m / (4 J)), which is not dimensionless (erratum 3
-        in the README); this is the dimensionless form consistent with T = t sqrt(k_l/m).
+        in docs/reliability.md); this is the dimensionless form consistent with T = t sqrt(k_l/m).
         """
         m, J, a, k_l, k_s, k_theta = (
             positive(n, v) for n, v in
