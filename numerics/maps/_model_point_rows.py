@@ -102,31 +102,15 @@ def add_losses(model, k, amplitude, branch, N, out, spec, fw) -> None:
     carrier), amplification_time, observable (amplification >= 20); a theory whose gain
     no damping lets grow at t = 0 is "stable", with ``lossless_verdict`` "MI" and
     ``net_gain`` (its best gain minus damping, <= 0) beside it."""
-    from energy import ModelError
-
     from ..models import (
+        amplified_row,
         exact_amplification,
         four_wave_amplification,
         nls_amplification,
     )
 
     def put(name, f):
-        try:
-            a = f()
-            out[name].update(a.row())
-            if out[name]["verdict"] == "MI" and not a.initial_gain > 0:
-                # the verdict is physical (module docstring of ..models._losses): MI where
-                # a gain beats its damping at t = 0; here the losses win from the start
-                out[name].update(verdict="stable", lossless_verdict="MI",
-                                 net_gain=a.initial_gain)
-            if a.amplification == math.inf:  # JSON null: said in words
-                out[name]["amplification_note"] = (
-                    "unbounded: the carrier is not damped (Gamma = 0), its sidebands grow "
-                    "without end")
-        except ModelError as exc:  # no theory here: the verdict's reason says why
-            out[name].update({"carrier_damping": None, "amplification": None,
-                              "amplification_time": None, "observable": None,
-                              "amplification_reason": str(exc)})
+        out[name].update(amplified_row(out[name]["verdict"], f))
 
     if out["semi-discrete NLS"]["verdict"] != "undefined":
         put("semi-discrete NLS", lambda: nls_amplification(model, k, amplitude, branch))
