@@ -182,7 +182,7 @@ def run_map(args) -> int:
     check_store(Path(args.out) / "map.zarr", params, args.overwrite)
     # --overwrite discards the store: every cell is computed (and estimated)
     done, cells = (0, cells) if args.overwrite else cells_done(args.out, params)
-    left = None  # the engine's rough figure on its resume line (nothing measured here)
+    left = None  # the resume line's figure: the estimate's, where one is measured
     if done == cells:  # nothing to compute: no cell measured to estimate it
         log(f"estimate: none needed: {Path(args.out) / 'map.zarr'} holds every cell of this "
             "map (its checksums are verified, the summary and figure made again)")
@@ -190,7 +190,9 @@ def run_map(args) -> int:
     else:  # a resumed map: the cells left, not the whole map
         est = _estimate(params, n_workers or local_cores(), args.scheduler, log,
                         cells - done, cells)
-        estimated, left = est.seconds, est.seconds - est.startup * est.startup_slowdown
+        # the resume line comes before the workers start: its figure is this one, the
+        # start-up included (it said 6 s below an estimate of 18 s for the same cells)
+        estimated = left = est.seconds
         from .map import CONFIRM_SECONDS
 
         if estimated > CONFIRM_SECONDS and not args.yes and device == "cpu":
@@ -352,24 +354,33 @@ def _summary(ds, verdicts: list, simulated: bool) -> dict:
 
 
 def _observable(ds, simulated: bool) -> dict:
-    """A lossy map's (``amplification_<theory>`` columns) share of cells each theory, and
-    the runs, call observable (amplified 20x before the losses win), and with runs how often
-    each theory's observable agrees with the runs' over the cells where both answer; {} for
-    a lossless map. With losses the verdicts' MI (the gain beats the damping at t = 0) is
-    not what a sample shows: growth is transient."""
+    """A lossy map's (``amplification_<theory>`` columns) share of observable cells
+    (amplified 20x before the losses win) among those each theory, and the runs, answer
+    (``mi_fraction``'s definition; NaN where none answers) with the count of cells without
+    an answer, and with runs how often each theory's observable agrees with the runs' over
+    the cells where both answer; {} for a lossless map. With losses the verdicts' MI (the
+    gain beats the damping at t = 0) is not what a sample shows: growth is transient."""
     import numpy as np
+
+    from .map import _mi_fraction
 
     names = str(ds.attrs.get("amplification", "")).split()
     if not names:
         return {}
     seen = {}
     if simulated and "observable_simulated" in ds.data_vars:
-        seen["simulated"] = ds["observable_simulated"].values.astype(np.int8)
+        run = ds["observable_simulated"].values.astype(np.int8)
+        if "slow_for_T" in ds.data_vars:
+            # a run that could not decide (slow_for_T: capped before the exact theory's
+            # peak, or too slow for its T) and did not reach 20x has no answer yet, as
+            # point's 'not by cap'; one that reached 20x answered
+            run = np.where((ds["slow_for_T"].values == 1) & (run == 0), -1, run)
+        seen["simulated"] = run.astype(np.int8)
     for n in names:  # nan (no theory at the cell): -1, as a run not made
         a = ds[f"amplification_{n}"].values
         with np.errstate(invalid="ignore"):
             seen[n] = np.where(np.isnan(a), -1, a >= OBSERVABLE).astype(np.int8)
-    out = {"observable_fraction": {n: float(np.mean(v == 1)) for n, v in seen.items()},
+    out = {"observable_fraction": {n: _mi_fraction(v) for n, v in seen.items()},
            "observable_unanswered_cells": {n: int((v < 0).sum()) for n, v in seen.items()}}
     if "simulated" in seen:
         run = seen["simulated"]
@@ -469,14 +480,16 @@ def _print_observable(summary: dict) -> None:
     if "observable_fraction" not in summary:
         return
     none = summary["observable_unanswered_cells"]
-    print(f"observable (amplified {OBSERVABLE:g}x before the losses win), share of cells: "
-          + ", ".join(f"{n} {s:.0%}" + (f" ({none[n]} without an answer, counted as not)"
-                                        if none[n] else "")
-                      for n, s in summary["observable_fraction"].items()))
+    print(f"observable (amplified {OBSERVABLE:g}x before the losses win), share of the "
+          "cells answered: " + ", ".join(
+              (f"{n} {s:.0%}" if math.isfinite(s) else f"{n}: no cell answered")  # not nan%
+              + (f" ({none[n]} without an answer, left out)" if none[n] else "")
+              for n, s in summary["observable_fraction"].items()))
     ag = summary.get("observable_agreement_with_simulation_percent")
     if ag:
         print("agreement with the runs on observable (cells both answer): " + ", ".join(
-            f"{n} {v:.0f}%" for n, v in ag.items()))
+            f"{n} {v:.0f}%" if math.isfinite(v) else f"{n}: no cell both answer"
+            for n, v in ag.items()))
 
 
 def _critical_rows(ds) -> dict:
