@@ -345,3 +345,25 @@ def test_the_integrable_toda_chain_has_no_decay():
     k = 2 * math.pi * 23 / 256
     assert exact_gain(model, k, 0.0525, N=256).peak_gain == 0.0
     assert four_wave(model, k, 0.0525, N=256).verdict == "stable"
+
+
+def test_a_damped_map_cell_reads_as_the_point_and_its_pair_is_the_lossless_chains():
+    """The point above, as a map cell: the same verdicts (stable, the losses win from
+    t = 0) and the same four-wave pair. The cell's mode_kind_fourwave still names the
+    lossless chain's fastest pair (as peak_gain_fourwave keeps the lossless rate, and as
+    point's four-wave row keeps its mode_kind), while the store's attributes said code 0
+    is 'none (stable)' and the kinds were 'the four-wave theory's fastest pair': they say
+    now whose pair it is."""
+    from numerics.maps import ModelPointSpec, measure_point
+    from numerics.maps._model_columns import MODE_KIND_ATTRS
+    from numerics.models import map_cells
+
+    model = _model(LOSSY_KG).with_params(alpha=0.41, gamma=0.008, eta=0.004)
+    rows = measure_point(ModelPointSpec(model, 1.2768, 0.0538, N=128)).as_dict()
+    (cell,) = map_cells(model, [({}, 1.2768)], 0.0538, N=128, exact=True)
+    for name, col in (("semi-discrete NLS", "semidiscrete"), ("four-wave", "fourwave"),
+                      ("exact lattice", "exact")):
+        assert cell[f"verdict_{col}"] == rows[name]["verdict"] == "stable", name
+    assert cell["mode_kind_fourwave"] == rows["four-wave"]["mode_kind"] != "none"
+    said = MODE_KIND_ATTRS["long_name"] + MODE_KIND_ATTRS["mode_kinds"]
+    assert "lossless" in said and "damping" in said
