@@ -367,3 +367,24 @@ def test_a_damped_map_cell_reads_as_the_point_and_its_pair_is_the_lossless_chain
     assert cell["mode_kind_fourwave"] == rows["four-wave"]["mode_kind"] != "none"
     said = MODE_KIND_ATTRS["long_name"] + MODE_KIND_ATTRS["mode_kinds"]
     assert "lossless" in said and "damping" in said
+
+
+@pytest.mark.parametrize("N", [16, 15])
+def test_the_decay_check_visits_every_offset_of_the_ring(N, monkeypatch):
+    """A ring of N sites carries N - 1 offsets 2 pi j / N besides the carrier; the
+    three-wave check took j from -(N // 2) + 1 to N // 2, which for an odd N leaves
+    out j = -(N - 1) / 2 (q near -pi): a decay there was never rated."""
+    from numerics.models import _threewave, four_wave
+
+    seen = []
+
+    def spy(model, k, wave, offsets, *, refine):
+        seen.append(np.asarray(offsets, float))
+        return None
+
+    monkeypatch.setattr(_threewave, "fastest_decay", spy)
+    four_wave(load_model("fput", alpha=0.5, beta=1.0), 2 * math.pi * 4 / N, 0.05, N=N)
+    (q,) = seen
+    on_ring = np.round(q * N / (2 * math.pi)).astype(int) % N  # each offset's ring mode
+    assert np.allclose(q * N / (2 * math.pi), np.round(q * N / (2 * math.pi)))
+    assert sorted(on_ring.tolist()) == list(range(1, N))
