@@ -388,3 +388,16 @@ def test_the_decay_check_visits_every_offset_of_the_ring(N, monkeypatch):
     on_ring = np.round(q * N / (2 * math.pi)).astype(int) % N  # each offset's ring mode
     assert np.allclose(q * N / (2 * math.pi), np.round(q * N / (2 * math.pi)))
     assert sorted(on_ring.tolist()) == list(range(1, N))
+
+
+def test_a_records_interval_that_starts_at_zero_power_is_a_trapezoid():
+    """2R = 0 at one end (a wave at rest there, say): no exponential passes through 0, so
+    the interval is the trapezoid's h f1 / 2; the records' rule read it 0 (log(f1 / 0) is
+    inf), while the sampled rule gave the trapezoid: one rule now."""
+    from numerics.models._simulate import _lost_power, _spend
+
+    t, power = np.array([0.0, 2.0, 4.0]), np.array([0.0, 3.0, 3.0])
+    assert _lost_power(t, power).tolist() == [3.0, 6.0]  # h f1 / 2; h f (equal ends)
+    spent = [0.0, 0.0, 0.0]
+    _spend(spent, 2.0, 3.0)
+    assert spent[0] == 3.0
