@@ -401,3 +401,30 @@ def test_a_records_interval_that_starts_at_zero_power_is_a_trapezoid():
     spent = [0.0, 0.0, 0.0]
     _spend(spent, 2.0, 3.0)
     assert spent[0] == 3.0
+
+
+def test_a_pair_stable_only_by_its_damping_is_not_called_a_higher_order_resonance():
+    """With losses the notes compare the theories' peak gains, the lossless chain's: a
+    four-wave row made stable by its damping (lossless MI at 0.004) beside an exact MI
+    backward pair (0.01, past its damping) was read as 'the four-wave theory says stable
+    (its pairs are of order a^2; this is a higher-order resonance)', which it does not
+    say: its lossless pair grows. The rows here are built by hand: the note's words are
+    what is tested, whatever point measures."""
+    from numerics.maps._model_point_rows import mode_note
+
+    waves = [{"branch": 0, "field": "u", "wavenumber": w} for w in (0.3, 2.9)]
+    out = {"amplitude": 0.1,
+           "exact lattice": {"verdict": "MI", "mode_kind": "backward", "peak_gain": 0.01,
+                             "mode_waves": waves},
+           "four-wave": {"verdict": "stable", "lossless_verdict": "MI", "net_gain": -0.001,
+                         "mode_kind": "backward", "peak_gain": 0.004},
+           "semi-discrete NLS": {"verdict": "stable"}}
+    note = mode_note(out)
+    assert "backward pair" in note and "says stable" not in note
+    assert "higher-order" not in note
+    # the lossless four-wave rate 0.004 is 2.5x off the exact one: that is said instead
+    assert "the four-wave row's rate is 0.004" in note
+    # a four-wave row stable without losses is the higher-order case
+    lossless = {**out, "four-wave": {"verdict": "stable", "mode_kind": "none",
+                                     "peak_gain": 0.0}}
+    assert "higher-order resonance" in mode_note(lossless)
