@@ -354,6 +354,7 @@ def test_a_lossy_maps_runs_capped_before_the_peak_have_no_observable_answer(
     both = answered & ~np.isnan(ds["amplification_exact"].values)
     assert summary["observable_agreement_with_simulation_percent"]["exact"] == \
         pytest.approx(100 * np.mean(exact[both] == (runs[both] == 1)))
+    assert "slow_for_T" in ds["observable_simulated"].attrs["comment"]  # the store says it
     share = next(ln for ln in text.splitlines() if ln.startswith("observable (amplified"))
     assert f"simulated {np.mean(runs[answered] == 1):.0%} ({int((~answered).sum())} " \
         "without an answer, left out)" in share

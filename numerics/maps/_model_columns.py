@@ -75,7 +75,10 @@ NO_WAVE_ATTRS = {
 #: the runs' observable flag: int8, -1 where no run (not simulated, or no travelling wave)
 OBSERVABLE_ATTRS = {
     "long_name": f"the median seed's sidebands grew {GROWTH_THRESHOLD:g}x (issue 42)",
-    "flag_values": [-1, 0, 1], "flag_meanings": "no_run no yes"}
+    "flag_values": [-1, 0, 1], "flag_meanings": "no_run no yes",
+    # as point's 'not by cap': summary.json's observable share leaves such cells out
+    "comment": "a 0 where slow_for_T is 1 is no answer: the run was too short to show the "
+               "exact theory's rate or its peak"}
 _GAIN = {"units": "1/T (lattice time)"}
 VARIABLE_ATTRS = {
     "peak_gain_semidiscrete": {"long_name": "semi-discrete NLS peak growth rate", **_GAIN},
