@@ -252,8 +252,9 @@ def run_coefficients(args) -> int:
     fw = co["four_wave"]
     if fw.get("lossless_verdict"):
         fw = {**fw, "verdict": "stable (damped)"}
-    waves = " and ".join(f"branch {w['branch']} ({w['field']}) at {w['wavenumber']:.4g}"
-                         for w in fw["mode_waves"])
+    from ._model_point_text import _waves  # point's words for a pair, in its order
+
+    waves = _waves(fw)
     print(f"{'four-wave':<{W}} {fw['verdict']:>14}  peak gain {_fmt(fw['peak_gain'])}"
           + (f", {fw['mode_kind']} ({waves}), offset {_fmt(fw['fastest_offset'], 4)}"
              if fw["verdict"] == "MI" else ""))

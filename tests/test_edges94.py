@@ -358,3 +358,17 @@ def test_a_lossy_maps_runs_capped_before_the_peak_have_no_observable_answer(
     share = next(ln for ln in text.splitlines() if ln.startswith("observable (amplified"))
     assert f"simulated {np.mean(runs[answered] == 1):.0%} ({int((~answered).sum())} " \
         "without an answer, left out)" in share
+
+
+def test_coefficients_name_a_pair_in_points_order(capsys):
+    """point names a pair's waves larger wavenumber first (fa19315); coefficients' four-wave
+    line printed them as the theory holds them (k + q first, wrapped): flexmm at k 2.6,
+    a 0.02, 'branch 1 (U) at -1.41 and branch 0 (U) at 0.3268', the other way round."""
+    import re
+
+    assert main(["coefficients", "--model", "flexmm", "--k", "2.6", "--amplitude",
+                 "0.02"]) == 0
+    line = next(ln for ln in capsys.readouterr().out.splitlines()
+                if ln.startswith("four-wave") and " at " in ln)
+    at = [float(x) for x in re.findall(r" at (-?[\d.]+)", line)]
+    assert len(at) == 2 and at[0] > at[1], line

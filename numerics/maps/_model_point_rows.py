@@ -254,7 +254,7 @@ def _far_sidebands(ex, row, amplitude, out) -> str | None:
                 f"{row['verdict']} (g2 = {g2:.3g}): the NLS is the a -> 0 limit and its O(a^2) "
                 f"error flips the verdict at a = {amplitude:g}; trust the exact row "
                 "(--simulate measures it)")
-    waves = " and ".join(f"{w['wavenumber']:.4g}" for w in _ordered(ex))
+    waves = " and ".join(f"{w['wavenumber']:.4g}" for w in waves_in_order(ex))
     where = (f"its band reaches offset {edge:.3g}" if row["verdict"] == "MI" and edge else
              f"it says {row['verdict']}")
     return (f"the exact lattice grows at {ex['peak_gain']:.3g} /time through a pair of the "
@@ -263,10 +263,11 @@ def _far_sidebands(ex, row, amplitude, out) -> str | None:
             "near-carrier limit; trust the exact row (--simulate measures it)")
 
 
-def _ordered(row) -> list:
-    """A row's pair, the larger wavenumber first (k + q before k - q), as the text's
-    four-wave line names it: one pair in two orders read as two pairs."""
-    return sorted(row.get("mode_waves", []), key=lambda w: -w["wavenumber"])
+def waves_in_order(row) -> list:
+    """A theory row's pair (``mode_waves``) in the order every text names it, the larger
+    wavenumber first: the rows hold k + q first (``own_offset`` reads it), which wraps,
+    and one pair named in two orders reads as two pairs."""
+    return sorted(row.get("mode_waves") or [], key=lambda w: -w["wavenumber"])
 
 
 def mode_note(out) -> str | None:
@@ -286,7 +287,7 @@ def mode_note(out) -> str | None:
         return None
     what = "a resonance" if ex["mode_kind"] == "resonance" else f"a {ex['mode_kind']} pair"
     waves = " and ".join(f"branch {w['branch']} ({w['field']}) at {w['wavenumber']:.4g}"
-                         for w in _ordered(ex))
+                         for w in waves_in_order(ex))
     fw = out.get("four-wave", {})
     # a resonance of higher order than the four-wave pairs' (issue 94's probe: an
     # unequal-mass chain at k 1.64, a 0.09, exact and a run 8.9e-5, the four-wave stable)
