@@ -29,11 +29,12 @@ def say_estimate(args, est) -> None:
 
 
 def _waves(row) -> str:
-    # one order for every row (the larger wavenumber first, k + q before k - q): the
-    # exact and four-wave rows named one parametric pair in opposite orders, read as two
-    waves = sorted(row.get("mode_waves", []), key=lambda w: -w["wavenumber"])
+    """A row's pair in words, in the one order of every text (``waves_in_order``): the
+    exact and four-wave rows named one parametric pair in opposite orders, read as two."""
+    from numerics.maps import waves_in_order
+
     return " and ".join(f"branch {w['branch']} ({w['field']}) at {w['wavenumber']:.4g}"
-                        for w in waves)
+                        for w in waves_in_order(row))
 
 
 #: the infinite chain's unsampled bands a point's text lists in full (the fastest ones)

@@ -252,8 +252,9 @@ def run_coefficients(args) -> int:
     fw = co["four_wave"]
     if fw.get("lossless_verdict"):
         fw = {**fw, "verdict": "stable (damped)"}
-    waves = " and ".join(f"branch {w['branch']} ({w['field']}) at {w['wavenumber']:.4g}"
-                         for w in fw["mode_waves"])
+    from ._model_point_text import _waves  # point's words for a pair, in its order
+
+    waves = _waves(fw)
     print(f"{'four-wave':<{W}} {fw['verdict']:>14}  peak gain {_fmt(fw['peak_gain'])}"
           + (f", {fw['mode_kind']} ({waves}), offset {_fmt(fw['fastest_offset'], 4)}"
              if fw["verdict"] == "MI" else ""))
@@ -277,28 +278,16 @@ def _add_losses(co: dict, model, k: float, amplitude: float, branch, fw) -> None
     ``co["four_wave"]`` (the four-wave theory's, the infinite chain's as its row):
     amplification, amplification_time, observable (>= 20x), as ``point``'s; a verdict MI
     whose gain no damping lets grow at t = 0 is "stable" (``lossless_verdict`` MI)."""
-    from energy import ModelError
-    from numerics.models import four_wave_amplification, nls_amplification
+    from numerics.models import amplified_row, four_wave_amplification, nls_amplification
 
     for target, f in ((co, lambda: nls_amplification(model, k, amplitude, branch)),
                       (co["four_wave"], lambda: four_wave_amplification(
                           model, k, amplitude, branch, first=fw))):
         if target["verdict"] == "undefined":  # its reason is said; no amplification
             continue
-        try:
-            a = f()
-        except ModelError as exc:  # no theory with losses here: why, as point's
-            target.update(amplification=None, amplification_time=None, observable=None,
-                          amplification_reason=str(exc))
-            continue
-        row = a.row()
+        row = amplified_row(target["verdict"], f)  # the verdict physical, as point's
         row.pop("carrier_damping")  # printed once, as the carrier's
         target.update(row)
-        if target["verdict"] == "MI" and not a.initial_gain > 0:  # physical, as point's
-            target.update(verdict="stable", lossless_verdict="MI", net_gain=a.initial_gain)
-        if a.amplification == math.inf:  # JSON null: said in words, as point's
-            target["amplification_note"] = ("unbounded: the carrier is not damped "
-                                            "(Gamma = 0), its sidebands grow without end")
 
 
 def _losses_text(t: dict, units) -> str:

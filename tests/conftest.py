@@ -27,6 +27,22 @@ def green():
 
 
 @pytest.fixture(scope="session")
+def toda():
+    """The text of a Toda chain's model file (the energy exp(-b r) that stops being real
+    at large strain: a = 2000 carries no wave), with parameters a and b."""
+    return """
+name = "toda"
+fields = ["u"]
+[parameters]
+a = 1.0
+b = 1.0
+[energy]
+kinetic = "u_t**2/2"
+bond = "a/b*(exp(-b*(u_next - u)) - 1 + b*(u_next - u))"
+"""
+
+
+@pytest.fixture(scope="session")
 def fput_lossy():
     """The text of a lossy FPUT model file (issue 42): the FPUT chain (quartic bonds, beta)
     with viscous damping of each site, R = gamma u_t^2 / 2 (the carrier decays at

@@ -159,6 +159,11 @@ TEST_EXCEPTIONS = {
     "numerics.lattice._runcontrol": "an interrupt injected into the run loop",
     "numerics.lattice._simulate": "an interrupt injected into the run loop",
     "numerics.maps._store": "the map store's format and damage handling",
+    "numerics.maps._model_columns": "the mode kind's attributes, read beside a map cell",
+    "numerics.maps._model_point_rows": "a point's note from rows built by hand (damped "
+                                       "verdicts beside lossless rates)",
+    "numerics.models._simulate": "the energy balance's interval rule, records and samples",
+    "numerics.models._threewave": "the offsets the three-wave check is given (a spy)",
     "numerics.lattice._verdict": "the run-length bounds against the --help text and the API",
     "numerics.maps._estimate": "the map estimate's start-up and speed model, part by part",
     "numerics.maps._gpu": "the GPU cells' seed rule and launch, under the CUDA simulator",

@@ -8,17 +8,6 @@ import pytest
 
 from cli.app import main
 
-TODA = """
-name = "toda"
-fields = ["u"]
-[parameters]
-a = 1.0
-b = 1.0
-[energy]
-kinetic = "u_t**2/2"
-bond = "a/b*(exp(-b*(u_next - u)) - 1 + b*(u_next - u))"
-"""
-
 
 def _one_line_error(capsys, argv):
     code = main(argv)
@@ -67,9 +56,9 @@ def test_a_models_point_on_the_ring_says_no_asked_k(capsys):
     assert "asked" not in capsys.readouterr().out
 
 
-def test_an_energy_divided_by_a_zero_parameter_names_the_division(capsys, tmp_path):
+def test_an_energy_divided_by_a_zero_parameter_names_the_division(toda, capsys, tmp_path):
     # the Toda chain's a/b (...) at b = 0 is 0/0 at rest: the message guessed a square root
-    (tmp_path / "toda.toml").write_text(TODA)
+    (tmp_path / "toda.toml").write_text(toda)
     err = _one_line_error(capsys, ["coefficients", "--model", str(tmp_path / "toda.toml"),
                                    "--param", "b=0", "--k", "1"])
     assert "division by zero" in err
@@ -79,8 +68,8 @@ def test_an_energy_divided_by_a_zero_parameter_names_the_division(capsys, tmp_pa
     assert "division by zero" in err and "--param b=0" in err
 
 
-def test_a_negative_mass_names_the_parameters_to_change(capsys, tmp_path):
-    (tmp_path / "m.toml").write_text(TODA.replace('name = "toda"', 'name = "heavy"')
+def test_a_negative_mass_names_the_parameters_to_change(toda, capsys, tmp_path):
+    (tmp_path / "m.toml").write_text(toda.replace('name = "toda"', 'name = "heavy"')
                                      .replace("a = 1.0", "a = 1.0\nm = -1.0")
                                      .replace('"u_t**2/2"', '"m*u_t**2/2"'))
     err = _one_line_error(capsys, ["coefficients", "--model", str(tmp_path / "m.toml"),
@@ -88,14 +77,14 @@ def test_a_negative_mass_names_the_parameters_to_change(capsys, tmp_path):
     assert "mass of u is not > 0" in err and "m*u_t**2/2" in err and "--param m" in err
 
 
-def test_a_field_named_pi_is_told_to_rename(capsys, tmp_path):
-    (tmp_path / "pi.toml").write_text(TODA.replace('["u"]', '["pi"]'))
+def test_a_field_named_pi_is_told_to_rename(toda, capsys, tmp_path):
+    (tmp_path / "pi.toml").write_text(toda.replace('["u"]', '["pi"]'))
     err = _one_line_error(capsys, ["coefficients", "--model", str(tmp_path / "pi.toml"),
                                    "--k", "1"])
     assert "'pi'" in err and "rename it" in err
 
 
-def test_a_map_estimate_probing_a_cell_with_no_wave_neither_fails_nor_warns(tmp_path):
+def test_a_map_estimate_probing_a_cell_with_no_wave_neither_fails_nor_warns(toda, tmp_path):
     """The estimate runs one cell; at Toda's amplitude 2000 exp overflows along the wave, so
     scipy's solver refused its start ('Residuals are not finite in the initial point'):
     the whole map ended in that line, though its cells say 'undetermined' there."""
@@ -104,7 +93,7 @@ def test_a_map_estimate_probing_a_cell_with_no_wave_neither_fails_nor_warns(tmp_
     from numerics.maps import ModelMapParameters
     from numerics.maps._estimate import probe_model_cell
 
-    (tmp_path / "toda.toml").write_text(TODA)
+    (tmp_path / "toda.toml").write_text(toda)
     params = ModelMapParameters.from_model(str(tmp_path / "toda.toml"),
                                            ("amplitude", [1.0, 2000.0]), ("k", [1.0, 2.0]),
                                            None, N=64, t_end=200.0)
@@ -117,9 +106,9 @@ def test_a_map_estimate_probing_a_cell_with_no_wave_neither_fails_nor_warns(tmp_
     assert not [w for w in caught if issubclass(w.category, RuntimeWarning)], caught
 
 
-def test_models_given_a_file_says_where_a_file_goes(capsys, tmp_path):
+def test_models_given_a_file_says_where_a_file_goes(toda, capsys, tmp_path):
     # a newcomer's `flexmm models mine.toml` (to see their model) named only the built-ins
-    (tmp_path / "toda.toml").write_text(TODA)
+    (tmp_path / "toda.toml").write_text(toda)
     err = _one_line_error(capsys, ["models", str(tmp_path / "toda.toml")])
     assert f"--model {tmp_path / 'toda.toml'}" in err and "flexmm coefficients" in err
 
@@ -151,7 +140,7 @@ def test_a_bad_physical_value_names_the_option(values, name, capsys):
     assert f"{name} must be finite and > 0" in err
 
 
-def test_a_run_that_blows_up_says_so_without_numpys_overflow_warnings(tmp_path):
+def test_a_run_that_blows_up_says_so_without_numpys_overflow_warnings(toda, tmp_path):
     """A softening chain (bond r^2/2 - r^4) launched at a = 0.3, k = 5 pi/8 escapes to
     infinity: the run's records squared a state past 1e154 before the stepper saw a
     non-finite one, and a map's workers printed numpy's 'overflow encountered in square'
@@ -162,7 +151,7 @@ def test_a_run_that_blows_up_says_so_without_numpys_overflow_warnings(tmp_path):
     from energy import load_model
     from numerics.models import simulate_model
 
-    (tmp_path / "soft.toml").write_text(TODA.replace('name = "toda"', 'name = "soft"')
+    (tmp_path / "soft.toml").write_text(toda.replace('name = "toda"', 'name = "soft"')
                                         .replace("a/b*(exp(-b*(u_next - u)) - 1 + b*(u_next"
                                                  " - u))", "(u_next - u)**2/2 - "
                                                  "(u_next - u)**4"))
@@ -230,9 +219,9 @@ def test_a_map_axis_through_an_unstable_rest_state_is_refused(capsys, tmp_path):
     assert not (tmp_path / "m").exists()
 
 
-def test_a_rest_state_that_is_no_equilibrium_gets_a_remedy(capsys, tmp_path):
+def test_a_rest_state_that_is_no_equilibrium_gets_a_remedy(toda, capsys, tmp_path):
     # site f u is a constant force: the error named the force only
-    (tmp_path / "lin.toml").write_text(TODA.replace('name = "toda"', 'name = "lin"')
+    (tmp_path / "lin.toml").write_text(toda.replace('name = "toda"', 'name = "lin"')
                                        .replace("a/b*(exp(-b*(u_next - u)) - 1 + b*(u_next"
                                                 " - u))", "(u_next - u)**2/2")
                                        + 'site = "u**2/2 + a*u"\n')

@@ -11,18 +11,6 @@ import xarray as xr
 
 from cli.app import main
 
-TODA = """
-name = "toda"
-fields = ["u"]
-[parameters]
-a = 1.0
-b = 1.0
-[energy]
-kinetic = "u_t**2/2"
-bond = "a/b*(exp(-b*(u_next - u)) - 1 + b*(u_next - u))"
-"""
-
-
 FPUT_MAP = ["map", "--model", "fput", "--param", "alpha=1", "--param", "beta=0.8,1.6",
             "--k", "2.6,2.8", "--amplitude", "0.1", "--theory-only", "--workers", "1"]
 
@@ -35,7 +23,7 @@ def _one_line_error(capsys, argv):
 
 
 # ------------------------------------------------------------ 1: no wave, no verdict
-def test_a_model_map_gives_no_verdict_where_the_model_carries_no_wave(capsys, tmp_path):
+def test_a_model_map_gives_no_verdict_where_the_model_carries_no_wave(toda, capsys, tmp_path):
     """Toda's exp(-r) overflows past r = 710: at a = 2000 the linear wave's largest strain
     |u_next - u| = 2 a sin(k / 2) is about 990 at k = 0.5, and the map gave the NLS's
     'stable' there, while `point` notes that the wave cannot exist. The cell is
@@ -43,7 +31,7 @@ def test_a_model_map_gives_no_verdict_where_the_model_carries_no_wave(capsys, tm
     verdicts."""
     import math
 
-    (tmp_path / "toda.toml").write_text(TODA)
+    (tmp_path / "toda.toml").write_text(toda)
     argv = ["map", "--model", str(tmp_path / "toda.toml"), "--k", "0.5,1", "--amplitude",
             "1,2000", "--theory-only", "--workers", "1", "--out", str(tmp_path / "m")]
     assert main(argv) == 0
@@ -65,8 +53,8 @@ def test_a_model_map_gives_no_verdict_where_the_model_carries_no_wave(capsys, tm
     assert json.loads(capsys.readouterr().out)["no_wave_cells"] == 2
 
 
-def test_a_simulated_map_runs_no_cell_without_a_wave(capsys, tmp_path):
-    (tmp_path / "toda.toml").write_text(TODA)
+def test_a_simulated_map_runs_no_cell_without_a_wave(toda, capsys, tmp_path):
+    (tmp_path / "toda.toml").write_text(toda)
     assert main(["map", "--model", str(tmp_path / "toda.toml"), "--k", "0.5,1",
                  "--amplitude", "1,2000", "--N", "32", "--t-end", "200", "--workers", "1",
                  "--out", str(tmp_path)]) == 0
@@ -92,14 +80,14 @@ print(json.dumps({n: ds[n].values.tolist() for n in ("no_wave", "verdict_simulat
 """
 
 
-def test_the_gpu_path_launches_no_cell_without_a_wave(tmp_path):
+def test_the_gpu_path_launches_no_cell_without_a_wave(toda, tmp_path):
     """run_map(device="gpu") under numba's CUDA simulator (no GPU needed): the cells
     without a wave are not launched, as on the CPU (their runs undetermined, no growth)."""
     import os
     import subprocess
     import sys
 
-    (tmp_path / "toda.toml").write_text(TODA)
+    (tmp_path / "toda.toml").write_text(toda)
     env = dict(os.environ, NUMBA_ENABLE_CUDASIM="1", OMP_NUM_THREADS="1")
     res = subprocess.run([sys.executable, "-c", GPU_MAP, str(tmp_path / "toda.toml")],
                          env=env, capture_output=True, text=True, timeout=600)
@@ -197,10 +185,10 @@ def test_a_models_soliton_narrower_than_a_site_is_refused(capsys, tmp_path):
     assert width == pytest.approx(8, rel=2e-3)  # the remedy's 3 digits of the amplitude
 
 
-def test_a_soliton_of_a_wave_the_model_cannot_carry_is_refused(capsys, tmp_path):
+def test_a_soliton_of_a_wave_the_model_cannot_carry_is_refused(toda, capsys, tmp_path):
     # Toda at a = 1000, k = 1: the linear wave's strain reaches 954, beyond 710 where
     # exp(-r) overflows; a soliton of it was printed (width 0.001 sites)
-    (tmp_path / "toda.toml").write_text(TODA)
+    (tmp_path / "toda.toml").write_text(toda)
     err = _one_line_error(capsys, ["soliton", "--model", str(tmp_path / "toda.toml"),
                                    "--k", "1", "--amplitude", "1e3"])
     assert "energy is not real" in err and "lower --amplitude" in err
@@ -276,7 +264,7 @@ def test_overwrite_never_removes_a_folder_that_is_no_map_store(make, capsys, tmp
 
 
 def test_point_and_coefficients_give_no_nls_verdict_where_the_model_carries_no_wave(
-        capsys, tmp_path):
+        toda, capsys, tmp_path):
     """The map's cell and the point's table say the same where the wave cannot exist:
     Toda at a = 2000, k = 1 (strain 2 a sin(1/2) ~ 1900 > ln(max float) ~ 710) read
     'stable' in the point's and the coefficients' NLS row. g1 and g2 stay (they do not
@@ -286,7 +274,7 @@ def test_point_and_coefficients_give_no_nls_verdict_where_the_model_carries_no_w
     from energy import load_model
     from numerics.models import model_coefficients
 
-    (tmp_path / "toda.toml").write_text(TODA)
+    (tmp_path / "toda.toml").write_text(toda)
     model = load_model(str(tmp_path / "toda.toml"))
     assert 2 * 2000 * math.sin(0.5) > 709.8 > 2 * 1 * math.sin(0.5)
     far = model_coefficients(model, 1.0, 2000.0)

@@ -345,3 +345,86 @@ def test_the_integrable_toda_chain_has_no_decay():
     k = 2 * math.pi * 23 / 256
     assert exact_gain(model, k, 0.0525, N=256).peak_gain == 0.0
     assert four_wave(model, k, 0.0525, N=256).verdict == "stable"
+
+
+def test_a_damped_map_cell_reads_as_the_point_and_its_pair_is_the_lossless_chains():
+    """The point above, as a map cell: the same verdicts (stable, the losses win from
+    t = 0) and the same four-wave pair. The cell's mode_kind_fourwave still names the
+    lossless chain's fastest pair (as peak_gain_fourwave keeps the lossless rate, and as
+    point's four-wave row keeps its mode_kind), while the store's attributes said code 0
+    is 'none (stable)' and the kinds were 'the four-wave theory's fastest pair': they say
+    now whose pair it is."""
+    from numerics.maps import ModelPointSpec, measure_point
+    from numerics.maps._model_columns import MODE_KIND_ATTRS
+    from numerics.models import map_cells
+
+    model = _model(LOSSY_KG).with_params(alpha=0.41, gamma=0.008, eta=0.004)
+    rows = measure_point(ModelPointSpec(model, 1.2768, 0.0538, N=128)).as_dict()
+    (cell,) = map_cells(model, [({}, 1.2768)], 0.0538, N=128, exact=True)
+    for name, col in (("semi-discrete NLS", "semidiscrete"), ("four-wave", "fourwave"),
+                      ("exact lattice", "exact")):
+        assert cell[f"verdict_{col}"] == rows[name]["verdict"] == "stable", name
+    assert cell["mode_kind_fourwave"] == rows["four-wave"]["mode_kind"] != "none"
+    said = MODE_KIND_ATTRS["long_name"] + MODE_KIND_ATTRS["mode_kinds"]
+    assert "lossless" in said and "damping" in said
+
+
+@pytest.mark.parametrize("N", [16, 15])
+def test_the_decay_check_visits_every_offset_of_the_ring(N, monkeypatch):
+    """A ring of N sites carries N - 1 offsets 2 pi j / N besides the carrier; the
+    three-wave check took j from -(N // 2) + 1 to N // 2, which for an odd N leaves
+    out j = -(N - 1) / 2 (q near -pi): a decay there was never rated."""
+    from numerics.models import _threewave, four_wave
+
+    seen = []
+
+    def spy(model, k, wave, offsets, *, refine):
+        seen.append(np.asarray(offsets, float))
+        return None
+
+    monkeypatch.setattr(_threewave, "fastest_decay", spy)
+    four_wave(load_model("fput", alpha=0.5, beta=1.0), 2 * math.pi * 4 / N, 0.05, N=N)
+    (q,) = seen
+    on_ring = np.round(q * N / (2 * math.pi)).astype(int) % N  # each offset's ring mode
+    assert np.allclose(q * N / (2 * math.pi), np.round(q * N / (2 * math.pi)))
+    assert sorted(on_ring.tolist()) == list(range(1, N))
+
+
+def test_a_records_interval_that_starts_at_zero_power_is_a_trapezoid():
+    """2R = 0 at one end (a wave at rest there, say): no exponential passes through 0, so
+    the interval is the trapezoid's h f1 / 2; the records' rule read it 0 (log(f1 / 0) is
+    inf), while the sampled rule gave the trapezoid: one rule now."""
+    from numerics.models._simulate import _lost_power, _spend
+
+    t, power = np.array([0.0, 2.0, 4.0]), np.array([0.0, 3.0, 3.0])
+    assert _lost_power(t, power).tolist() == [3.0, 6.0]  # h f1 / 2; h f (equal ends)
+    spent = [0.0, 0.0, 0.0]
+    _spend(spent, 2.0, 3.0)
+    assert spent[0] == 3.0
+
+
+def test_a_pair_stable_only_by_its_damping_is_not_called_a_higher_order_resonance():
+    """With losses the notes compare the theories' peak gains, the lossless chain's: a
+    four-wave row made stable by its damping (lossless MI at 0.004) beside an exact MI
+    backward pair (0.01, past its damping) was read as 'the four-wave theory says stable
+    (its pairs are of order a^2; this is a higher-order resonance)', which it does not
+    say: its lossless pair grows. The rows here are built by hand: the note's words are
+    what is tested, whatever point measures."""
+    from numerics.maps._model_point_rows import mode_note
+
+    waves = [{"branch": 0, "field": "u", "wavenumber": w} for w in (0.3, 2.9)]
+    out = {"amplitude": 0.1,
+           "exact lattice": {"verdict": "MI", "mode_kind": "backward", "peak_gain": 0.01,
+                             "mode_waves": waves},
+           "four-wave": {"verdict": "stable", "lossless_verdict": "MI", "net_gain": -0.001,
+                         "mode_kind": "backward", "peak_gain": 0.004},
+           "semi-discrete NLS": {"verdict": "stable"}}
+    note = mode_note(out)
+    assert "backward pair" in note and "says stable" not in note
+    assert "higher-order" not in note
+    # the lossless four-wave rate 0.004 is 2.5x off the exact one: that is said instead
+    assert "the four-wave row's rate is 0.004" in note
+    # a four-wave row stable without losses is the higher-order case
+    lossless = {**out, "four-wave": {"verdict": "stable", "mode_kind": "none",
+                                     "peak_gain": 0.0}}
+    assert "higher-order resonance" in mode_note(lossless)

@@ -68,6 +68,7 @@ from ._gpu_models import simulate_model_cells_gpu
 from ._integrity import store_lock
 from ._model_params import MODE_KIND_CODES, VERDICT_CODES, ModelMapParameters, model_text
 from ._model_point import ModelPoint, ModelPointSpec, PointInputError
+from ._model_point_rows import waves_in_order
 from ._params import CRITERION, MapParameters, local_cores, parse_spec
 from ._point import (
                      MAX_SEEDS,
@@ -92,7 +93,7 @@ __all__ = [
     "open_or_create", "check_store",
     "simulate_block", "CRITERION", "MapCellError", "local_cores",
     "seed_majority", "PointResult", "measure_point", "point_step", "theory_curves",
-    "ModelPointSpec", "ModelPoint", "PointInputError", "POINT_KINDS", "register_point_kind",
+    "ModelPointSpec", "ModelPoint", "PointInputError", "waves_in_order", "POINT_KINDS", "register_point_kind",
     "offset_curve", "fold", "snap_carrier", "MAX_SEEDS", "MAX_T_END",
     "cell_records", "predict_cell", "GROWTH_TOL", "GROWTH_ERROR_CONSTANTS", "tri_state",
     "store_lock", "cells_done", "local_cluster", "LOCAL_CLUSTER_CONFIG",

@@ -48,11 +48,16 @@ MODE_KIND_CODES = {"undefined": -1, "none": 0, "sidebands": 1, "backward": 2,
                    "parametric": 3}
 #: the mapping, stored with ``mode_kind_fourwave``
 MODE_KIND_ATTRS = {
-    "long_name": "four-wave theory's fastest pair", "flag_values": [-1, 0, 1, 2, 3],
+    "long_name": "four-wave theory's fastest pair (the lossless chain's, as "
+                 "peak_gain_fourwave is its rate)", "flag_values": [-1, 0, 1, 2, 3],
     "flag_meanings": "undefined none sidebands backward parametric",
-    "mode_kinds": "-1 undefined (no theory), 0 none (stable), 1 sidebands (k +- q on the "
-                  "carrier's branch, q <= pi/2), 2 backward (q > pi/2), 3 parametric (a "
-                  "pair on other branches)"}
+    # a damped cell keeps its lossless pair, as point's four-wave row keeps its mode_kind:
+    # code 0 would say the lossless chain is stable, which it is not
+    "mode_kinds": "-1 undefined (no theory), 0 none (the lossless chain stable), 1 "
+                  "sidebands (k +- q on the carrier's branch, q <= pi/2), 2 backward (q > "
+                  "pi/2), 3 parametric (a pair on other branches); with losses where the "
+                  "damping wins at t = 0 (verdict_fourwave stable) the pair that would grow "
+                  "without them"}
 #: the variables a simulated block writes (with ``done``)
 SIMULATED_COLUMNS = ("verdict_simulated", "peak_gain_simulated", "growth", "growth_q",
                      "t_simulated")
@@ -70,7 +75,10 @@ NO_WAVE_ATTRS = {
 #: the runs' observable flag: int8, -1 where no run (not simulated, or no travelling wave)
 OBSERVABLE_ATTRS = {
     "long_name": f"the median seed's sidebands grew {GROWTH_THRESHOLD:g}x (issue 42)",
-    "flag_values": [-1, 0, 1], "flag_meanings": "no_run no yes"}
+    "flag_values": [-1, 0, 1], "flag_meanings": "no_run no yes",
+    # as point's 'not by cap': summary.json's observable share leaves such cells out
+    "comment": "a 0 where slow_for_T is 1 is no answer: the run was too short to show the "
+               "exact theory's rate or its peak"}
 _GAIN = {"units": "1/T (lattice time)"}
 VARIABLE_ATTRS = {
     "peak_gain_semidiscrete": {"long_name": "semi-discrete NLS peak growth rate", **_GAIN},

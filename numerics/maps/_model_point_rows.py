@@ -102,31 +102,15 @@ def add_losses(model, k, amplitude, branch, N, out, spec, fw) -> None:
     carrier), amplification_time, observable (amplification >= 20); a theory whose gain
     no damping lets grow at t = 0 is "stable", with ``lossless_verdict`` "MI" and
     ``net_gain`` (its best gain minus damping, <= 0) beside it."""
-    from energy import ModelError
-
     from ..models import (
+        amplified_row,
         exact_amplification,
         four_wave_amplification,
         nls_amplification,
     )
 
     def put(name, f):
-        try:
-            a = f()
-            out[name].update(a.row())
-            if out[name]["verdict"] == "MI" and not a.initial_gain > 0:
-                # the verdict is physical (module docstring of ..models._losses): MI where
-                # a gain beats its damping at t = 0; here the losses win from the start
-                out[name].update(verdict="stable", lossless_verdict="MI",
-                                 net_gain=a.initial_gain)
-            if a.amplification == math.inf:  # JSON null: said in words
-                out[name]["amplification_note"] = (
-                    "unbounded: the carrier is not damped (Gamma = 0), its sidebands grow "
-                    "without end")
-        except ModelError as exc:  # no theory here: the verdict's reason says why
-            out[name].update({"carrier_damping": None, "amplification": None,
-                              "amplification_time": None, "observable": None,
-                              "amplification_reason": str(exc)})
+        out[name].update(amplified_row(out[name]["verdict"], f))
 
     if out["semi-discrete NLS"]["verdict"] != "undefined":
         put("semi-discrete NLS", lambda: nls_amplification(model, k, amplitude, branch))
@@ -178,6 +162,7 @@ def reach_note(model, k, amplitude, branch, out) -> str | None:
     alpha 1, beta 1.5, k 2.45, g2 = -0.80 left of parts of 15 (the cubic against the mean
     flow): exact / NLS - 1 = 0.30, 0.076, 0.019 at a = 0.05, 0.025, 0.0125 (4x per
     halving), 1.1 at a = 0.1, where a run measures the exact row."""
+    out = _lossless_words(out)
     ex, row = out.get("exact lattice", {}), out["semi-discrete NLS"]
     if row["verdict"] == "MI" and row.get("ring_peak_gain") and ex.get("verdict") == "stable":
         # the opposite: sidebands the NLS grows on this ring, and nothing grows in the
@@ -222,6 +207,17 @@ def reach_note(model, k, amplitude, branch, out) -> str | None:
             f"{amplitude:g} trust the exact row (--simulate measures it)")
 
 
+def _lossless_words(out) -> dict:
+    """``out`` with each theory's verdict the lossless chain's where the damping made it
+    stable (``lossless_verdict``): the notes compare the theories' rates, ``peak_gain``,
+    which are the lossless chain's, so their verdicts must be too (a four-wave row stable
+    by its damping beside an exact MI read as 'the four-wave theory says stable: a
+    higher-order resonance')."""
+    return {n: ({**r, "verdict": r["lossless_verdict"]}
+                if isinstance(r, dict) and r.get("lossless_verdict") else r)
+            for n, r in out.items()}
+
+
 #: a pair of the carrier's branch whose offset passes this many NLS band edges is not the
 #: NLS's band grown by the amplitude (its band and the exact one differ by O(a^2)) but a
 #: resonance of two waves far from the carrier
@@ -258,7 +254,7 @@ def _far_sidebands(ex, row, amplitude, out) -> str | None:
                 f"{row['verdict']} (g2 = {g2:.3g}): the NLS is the a -> 0 limit and its O(a^2) "
                 f"error flips the verdict at a = {amplitude:g}; trust the exact row "
                 "(--simulate measures it)")
-    waves = " and ".join(f"{w['wavenumber']:.4g}" for w in _ordered(ex))
+    waves = " and ".join(f"{w['wavenumber']:.4g}" for w in waves_in_order(ex))
     where = (f"its band reaches offset {edge:.3g}" if row["verdict"] == "MI" and edge else
              f"it says {row['verdict']}")
     return (f"the exact lattice grows at {ex['peak_gain']:.3g} /time through a pair of the "
@@ -267,10 +263,11 @@ def _far_sidebands(ex, row, amplitude, out) -> str | None:
             "near-carrier limit; trust the exact row (--simulate measures it)")
 
 
-def _ordered(row) -> list:
-    """A row's pair, the larger wavenumber first (k + q before k - q), as the text's
-    four-wave line names it: one pair in two orders read as two pairs."""
-    return sorted(row.get("mode_waves", []), key=lambda w: -w["wavenumber"])
+def waves_in_order(row) -> list:
+    """A theory row's pair (``mode_waves``) in the order every text names it, the larger
+    wavenumber first: the rows hold k + q first (``own_offset`` reads it), which wraps,
+    and one pair named in two orders reads as two pairs."""
+    return sorted(row.get("mode_waves") or [], key=lambda w: -w["wavenumber"])
 
 
 def mode_note(out) -> str | None:
@@ -278,6 +275,7 @@ def mode_note(out) -> str | None:
     backward or parametric pair, a resonance): the NLS cannot see it. In point.json's
     notes as in the table (a script reading an NLS 'stable' beside an exact MI learns why;
     issue 94: FPUT-like bonds at k = pi/2 grow through a backward pair, the NLS stable)."""
+    out = _lossless_words(out)
     ex = out.get("exact lattice", {})
     if ex.get("reason") or ex.get("verdict") != "MI":
         return None
@@ -289,7 +287,7 @@ def mode_note(out) -> str | None:
         return None
     what = "a resonance" if ex["mode_kind"] == "resonance" else f"a {ex['mode_kind']} pair"
     waves = " and ".join(f"branch {w['branch']} ({w['field']}) at {w['wavenumber']:.4g}"
-                         for w in _ordered(ex))
+                         for w in waves_in_order(ex))
     fw = out.get("four-wave", {})
     # a resonance of higher order than the four-wave pairs' (issue 94's probe: an
     # unequal-mass chain at k 1.64, a 0.09, exact and a run 8.9e-5, the four-wave stable)

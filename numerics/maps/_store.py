@@ -205,7 +205,8 @@ def run_map(params: MapParameters, out: Path, scheduler: str | None = None,
     "gpu" (or "auto" where a GPU is usable) simulates the cells on the GPU in batches
     (``simulate_map_cells_gpu``; the theories on this CPU), with the same store, checksums
     and resume as on the CPU. ``estimate``: the caller's estimate of the seconds its cells
-    left take (a resumed map's line says it instead of the parameters' rough figure)."""
+    left take, the workers' start-up included (a resumed map's line says it instead of the
+    parameters' rough figure)."""
     from ._devices import resolve_device
     from ._integrity import store_lock
     from ._model_params import ModelMapParameters

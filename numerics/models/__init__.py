@@ -63,6 +63,7 @@ from ._linear import (
 )
 from ._losses import (
                      Amplified,
+                     amplified_row,
                      exact_amplification,
                      four_wave_amplification,
                      nls_amplification,
@@ -104,7 +105,7 @@ __all__ = ["Carrier", "carrier", "branches", "branch_index", "check_rest_stable"
            "classify_mode", "ring_misses", "ring_offsets", "simulate_model", "simulate_seeds",
            "SeededRuns", "ModelRun", "NOISE", "Growth", "measure_growth", "saturation_record",
            "saturation_time", "check_ring", "compiled_force",
-           "lattice_force", "lattice_energy", "snap_ring", "Amplified", "nls_amplification",
+           "lattice_force", "lattice_energy", "snap_ring", "Amplified", "amplified_row", "nls_amplification",
            "four_wave_amplification", "exact_amplification", "simulate_soliton",
            "ModelSolitonRun", "RingSoliton", "ring_soliton", "check_soliton_launch",
            "soliton_report", "lossy_runs",

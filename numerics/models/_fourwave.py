@@ -311,7 +311,7 @@ def _decay(model, k, a, branch, N, samples):
 
     wave = _plane_wave(model, k, a, branch)
     if N:
-        j = np.arange(-(N // 2) + 1, N // 2 + 1)
+        j = np.arange(-((N - 1) // 2), N // 2 + 1)  # every ring offset, N odd too
         q = 2 * np.pi * j[j != 0] / N
     else:
         q = np.linspace(-np.pi, np.pi, 2 * samples + 1)[1:]

@@ -66,6 +66,37 @@ class Amplified:
                 "amplification_time": self.amplification_time,
                 "observable": self.observable}
 
+    def damped_verdict(self, verdict: str) -> dict:
+        """A theory's ``verdict`` with these losses, the one rule for point, coefficients
+        and map cells: {} where it stands; where the lossless chain's MI has no gain that
+        beats its damping at t = 0 (the losses win from the start), {"verdict": "stable",
+        "lossless_verdict": "MI", "net_gain": ``initial_gain`` (<= 0)}."""
+        if verdict == "MI" and not self.initial_gain > 0:
+            return {"verdict": "stable", "lossless_verdict": "MI",
+                    "net_gain": self.initial_gain}
+        return {}
+
+
+#: the words beside a JSON null amplification (inf: the lossless limit)
+UNBOUNDED_NOTE = ("unbounded: the carrier is not damped (Gamma = 0), its sidebands grow "
+                  "without end")
+
+
+def amplified_row(verdict: str, f) -> dict:
+    """A theory's JSON object's additions with losses (issue 42), as ``point`` and
+    ``coefficients`` print them: ``Amplified.row``, its ``damped_verdict`` of ``verdict``
+    and an ``amplification_note`` where it is unbounded; where ``f`` (the theory's
+    amplification) raises ModelError, None for each number and ``amplification_reason``."""
+    try:
+        a = f()
+    except ModelError as exc:  # no theory with losses here: why, in one sentence
+        return {"carrier_damping": None, "amplification": None, "amplification_time": None,
+                "observable": None, "amplification_reason": str(exc)}
+    out = {**a.row(), **a.damped_verdict(verdict)}
+    if a.amplification == math.inf:  # JSON null: said in words
+        out["amplification_note"] = UNBOUNDED_NOTE
+    return out
+
 
 def integrate_pairs(P, Q, psi0, Gamma, G, q, t_end, steps=4000, carrier_decays=True):
     """|(x, y)(t)| / |(x, y)(0)| of the linearised damped NLS per offset q: array

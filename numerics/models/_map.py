@@ -450,8 +450,9 @@ def _amplification(row: dict, theory: str, f) -> None:
     row[f"amplification_{theory}"] = math.nan if a is None else float(a.amplification)
     row[f"amplification_time_{theory}"] = (math.nan if a is None
                                            else float(a.amplification_time))
-    if a is not None and row.get(f"verdict_{theory}") == "MI" and not a.initial_gain > 0:
-        row[f"verdict_{theory}"] = "stable"
+    if a is not None:  # the verdict physical (``Amplified.damped_verdict``), as point's
+        v = f"verdict_{theory}"
+        row[v] = a.damped_verdict(row.get(v)).get("verdict", row.get(v))
 
 
 def map_cells(model: Model, cells, amplitude: float, branch=None, *, exact: bool = False,

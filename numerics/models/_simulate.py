@@ -86,20 +86,22 @@ def snap_ring(k: float, N: int) -> tuple[float, int]:
     return 2 * math.pi * m / N, m
 
 
+def _exp_integral(h: float, f0: float, f1: float) -> float:
+    """The integral of a power (2R >= 0) over an interval of length h between samples f0
+    and f1, taking it exponential through both: h (f1 - f0) / ln(f1 / f0), the
+    trapezoid's h (f0 + f1) / 2 where they are equal (the log's cancellation) or one is 0.
+    A damped wave's 2R decays exponentially, and a long run's records are far apart:
+    trapezoids were off by (h 2 Gamma)^2 / 12 of it per interval (issue 94: a Klein-Gordon
+    run of T = 38500 with 400 records, h 2 Gamma = 2.3, read 0.41 of E(0) where this reads
+    3e-4); second order like them elsewhere."""
+    r = math.log(f1 / f0) if f0 > 0 and f1 > 0 else 0.0
+    return h * (f1 - f0) / r if abs(r) >= 1e-6 else h * (f0 + f1) / 2
+
+
 def _lost_power(t: np.ndarray, power: np.ndarray) -> np.ndarray:
-    """The integral of ``power`` (2R >= 0) over each interval between records, taking it
-    exponential through its two ends: h (f1 - f0) / ln(f1 / f0), the trapezoid's h (f0 +
-    f1) / 2 where they are equal or one is 0. A damped wave's 2R decays exponentially,
-    and a long run's records are far apart: trapezoids were off by (h 2 Gamma)^2 / 12 of
-    it per interval (issue 94: a Klein-Gordon run of T = 38500 with 400 records, h 2 Gamma
-    = 2.3, read 0.41 of E(0) where this reads 3e-4); second order like them elsewhere."""
-    h, f0, f1 = np.diff(t), power[:-1], power[1:]
-    with np.errstate(divide="ignore", invalid="ignore"):
-        r = np.log(f1 / f0)
-        seg = h * (f1 - f0) / r
-    flat = ~np.isfinite(seg) | (np.abs(r) < 1e-6)  # 0/0, or the log's cancellation
-    seg[flat] = (h * (f0 + f1) / 2)[flat]
-    return seg
+    """``_exp_integral`` over each interval between records (the records' 2R)."""
+    return np.array([_exp_integral(float(h), float(f0), float(f1)) for h, f0, f1 in
+                     zip(np.diff(t), power[:-1], power[1:])], float)
 
 
 #: a damped run's samples of 2R for its energy balance, in radians of the carrier: 2R of
@@ -117,11 +119,8 @@ LOSS_SAMPLE = 8.0
 
 def _spend(spent: list, t: float, power: float) -> None:
     """Add the integral of 2R from ``spent``'s last sample to (t, power) to ``spent`` =
-    [integral, last time, last 2R], as ``_lost_power`` takes one interval (in scalars: a
-    damped run calls it every few steps)."""
-    h, f0 = t - spent[1], spent[2]
-    r = math.log(power / f0) if power > 0 and f0 > 0 else 0.0
-    spent[0] += h * (power - f0) / r if abs(r) >= 1e-6 else h * (f0 + power) / 2
+    [integral, last time, last 2R] (``_exp_integral``, the records' rule)."""
+    spent[0] += _exp_integral(t - spent[1], spent[2], power)
     spent[1], spent[2] = t, power
 
 

@@ -1,0 +1,112 @@
+"""A model map's summary: summary.json's keys (the paper map's, with a lossy map's
+observable shares) and the lines that say them (``cli.model_map``)."""
+
+from __future__ import annotations
+
+import math
+
+from ._model_map_figure import OBSERVABLE
+
+
+def _summary(ds, verdicts: list, simulated: bool) -> dict:
+    """summary.json, the paper map's keys: cells, cells simulated, each theory's share of
+    MI among the cells it decides (``mi_fraction``, by theory name; NaN where it decides
+    none: the paper map's definition) and its count of undetermined ones, and with runs how
+    often each theory's verdict agrees with the simulation's (``numerics.maps.agreement``)."""
+    import numpy as np
+
+    from numerics.maps import agreement
+
+    from .map import _mi_fraction
+
+    names = {v: v.removeprefix("verdict_") for v in verdicts}
+    out = {"cells": int(ds["done"].size),
+           "simulated": int(ds["done"].values.sum()) if simulated else 0,
+           "mi_fraction": {n: _mi_fraction(ds[v].values) for v, n in names.items()},
+           "undetermined_cells": {n: int((ds[v].values < 0).sum()) for v, n in names.items()}}
+    if simulated:
+        out["agreement_with_simulation_percent"] = agreement(ds)
+        # runs that left the lattice's range (numerics.BlowUpError, or records past 1e154):
+        # growth inf, the verdict undetermined; named, so that they are not read as MI
+        out["blew_up_cells"] = int(((ds["verdict_simulated"].values < 0)
+                                    & np.isposinf(ds["growth"].values)).sum())
+    if "no_wave" in ds.data_vars:  # no wave of the amplitude: every theory undetermined
+        out["no_wave_cells"] = int((ds["no_wave"].values == 1).sum())
+    if "slow_for_T" in ds.data_vars:  # the runs whose T cannot reach their exact rate's 20x
+        out["slow_for_T_cells"] = int(ds["slow_for_T"].attrs["cells"])
+    out.update(_observable(ds, simulated))
+    return out
+
+
+def _observable(ds, simulated: bool) -> dict:
+    """A lossy map's (``amplification_<theory>`` columns) share of observable cells
+    (amplified 20x before the losses win) among those each theory, and the runs, answer
+    (``mi_fraction``'s definition; NaN where none answers) with the count of cells without
+    an answer, and with runs how often each theory's observable agrees with the runs' over
+    the cells where both answer; {} for a lossless map. With losses the verdicts' MI (the
+    gain beats the damping at t = 0) is not what a sample shows: growth is transient."""
+    import numpy as np
+
+    from .map import _mi_fraction
+
+    names = str(ds.attrs.get("amplification", "")).split()
+    if not names:
+        return {}
+    seen = {}
+    if simulated and "observable_simulated" in ds.data_vars:
+        run = ds["observable_simulated"].values.astype(np.int8)
+        if "slow_for_T" in ds.data_vars:
+            # a run that could not decide (slow_for_T: capped before the exact theory's
+            # peak, or too slow for its T) and did not reach 20x has no answer yet, as
+            # point's 'not by cap'; one that reached 20x answered
+            run = np.where((ds["slow_for_T"].values == 1) & (run == 0), -1, run)
+        seen["simulated"] = run.astype(np.int8)
+    for n in names:  # nan (no theory at the cell): -1, as a run not made
+        a = ds[f"amplification_{n}"].values
+        with np.errstate(invalid="ignore"):
+            seen[n] = np.where(np.isnan(a), -1, a >= OBSERVABLE).astype(np.int8)
+    out = {"observable_fraction": {n: _mi_fraction(v) for n, v in seen.items()},
+           "observable_unanswered_cells": {n: int((v < 0).sum()) for n, v in seen.items()}}
+    if "simulated" in seen:
+        run = seen["simulated"]
+        out["observable_agreement_with_simulation_percent"] = {
+            n: (float(100 * np.mean(v[m] == run[m])) if (m := (v >= 0) & (run >= 0)).any()
+                else math.nan) for n, v in seen.items() if n != "simulated"}
+    return out
+
+
+def _no_wave_text(ds, params, summary: dict) -> str:
+    """The line that counts the cells where the model carries no wave of the amplitude
+    (the store's ``no_wave``), with the first one's reason (``energy_not_real``: the
+    largest amplitude allowed there)."""
+    import numpy as np
+
+    from numerics.models import energy_not_real
+
+    i, j = (int(n) for n in np.argwhere(ds["no_wave"].values == 1)[0])
+    values, k = params.cell(i, j)
+    if params.ring:  # the cell's theories ran at the ring's k
+        k = float(ds["k_simulated"].values[i, j])
+    at = ", ".join(f"{n} = {float(ds[n].values[m]):g}" for n, m in zip(params.dims, (i, j)))
+    why = energy_not_real(params.lattice_model.with_params(**values), k,
+                          params.amplitude_at(i, j), params.branch_value)
+    return (f"no wave of the amplitude (the model's energy is not real along it): "
+            f"{summary['no_wave_cells']} of {summary['cells']} cells, undetermined by every "
+            f"theory (no verdict of a wave that does not exist); first at {at}: {why}")
+
+
+def _print_observable(summary: dict) -> None:
+    """A lossy map's observable shares and their agreement with the runs (``_observable``)."""
+    if "observable_fraction" not in summary:
+        return
+    none = summary["observable_unanswered_cells"]
+    print(f"observable (amplified {OBSERVABLE:g}x before the losses win), share of the "
+          "cells answered: " + ", ".join(
+              (f"{n} {s:.0%}" if math.isfinite(s) else f"{n}: no cell answered")  # not nan%
+              + (f" ({none[n]} without an answer, left out)" if none[n] else "")
+              for n, s in summary["observable_fraction"].items()))
+    ag = summary.get("observable_agreement_with_simulation_percent")
+    if ag:
+        print("agreement with the runs on observable (cells both answer): " + ", ".join(
+            f"{n} {v:.0f}%" if math.isfinite(v) else f"{n}: no cell both answer"
+            for n, v in ag.items()))
