@@ -212,7 +212,8 @@ def simulate_model_cells_gpu(model, cells, amplitude: float, branch=None, *, N: 
         Each cell's parameter values and carrier k (as ``numerics.models.map_cells``).
     amplitude, branch, N, seeds, t_end
         As ``map_cells``: ``seeds`` runs per cell from the exact wave on the ring of N
-        sites, each ``t_end`` long (None: ``run_length`` of the cell's exact rate).
+        sites, each ``t_end`` long (None: ``run_length`` of the exact rate a run can see,
+        ``visible_gain``).
     noise : float, optional
         The seeded noise relative to the amplitude (``simulate_model``'s default).
     specs : sequence, optional
@@ -240,7 +241,13 @@ def simulate_model_cells_gpu(model, cells, amplitude: float, branch=None, *, N: 
     """
     from energy import ModelError
     from numerics.lattice import BlowUpError, cuda_model_kernels, run_length
-    from numerics.models import check_ring, exact_gain_checked, simulate_model, simulate_seeds
+    from numerics.models import (
+        check_ring,
+        exact_gain_checked,
+        simulate_model,
+        simulate_seeds,
+        visible_gain,
+    )
 
     N = check_ring(N)
     if isinstance(seeds, bool) or not isinstance(seeds, (int, np.integer)) or seeds < 1:
@@ -273,7 +280,7 @@ def simulate_model_cells_gpu(model, cells, amplitude: float, branch=None, *, N: 
         if isinstance(spec, Exception):
             rows[c] = dict(UNDEFINED_ROW, growth_runs=[], device="cpu")
             continue
-        T = float(t_end) if t_end is not None else run_length(spec.peak_gain).t_end
+        T = float(t_end) if t_end is not None else run_length(visible_gain(spec, N)).t_end
         if why_cpu is not None:
             try:
                 sim = simulate_seeds(m, k, amplitude, spec, branch=branch, N=N, seeds=seeds,

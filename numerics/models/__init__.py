@@ -49,7 +49,7 @@ from ._extras import (
 )
 from ._forces import FORCES, energy_hash, run_force
 from ._fourwave import FourWave, four_wave, pair_rates
-from ._growth import saturation_record
+from ._growth import read_modes, saturation_record, settled_rate
 from ._linear import (
                      Carrier,
                      branch_index,
@@ -72,7 +72,7 @@ from ._map import lossy_runs, map_cells, model_map, simulated_cell
 from ._modes import classify_mode, ring_misses
 from ._nls import ModelNLS, ModelSoliton, acoustic_directions, nls
 from ._reach import amplitude_reach, energy_not_real, exact_gain_checked
-from ._seeds import SeededRuns, simulate_seeds
+from ._seeds import SeededRuns, simulate_seeds, visible_gain
 from ._simulate import (
                      NOISE,
                      Growth,
@@ -104,6 +104,7 @@ __all__ = ["Carrier", "carrier", "branches", "branch_index", "check_rest_stable"
            "energy_not_real", "amplitude_reach", "FourWave", "four_wave", "pair_rates",
            "classify_mode", "ring_misses", "ring_offsets", "simulate_model", "simulate_seeds",
            "SeededRuns", "ModelRun", "NOISE", "Growth", "measure_growth", "saturation_record",
+           "settled_rate", "read_modes", "visible_gain",
            "saturation_time", "check_ring", "compiled_force",
            "lattice_force", "lattice_energy", "snap_ring", "Amplified", "amplified_row", "nls_amplification",
            "four_wave_amplification", "exact_amplification", "simulate_soliton",

@@ -90,12 +90,32 @@ def _spec_ring(spec) -> int | None:
     return None
 
 
+def visible_gain(spec, N: int) -> float:
+    """The exact ring theory's fastest rate over the offsets a run can measure: offset j
+    (waves at ring modes m + j and m - j) is left out where both waves sit on harmonics of
+    the carrier (h m mod N, |h| <= the wave's harmonics), which a run leaves out of its
+    growth (``numerics.maps``' ``harmonic_note`` says so on a point). A run's default
+    length is chosen from this rate: from the peak, a run's T held too few e-foldings of
+    what it can see (issue 95: the probe's rotor chain, kt 0.997, w0 0.544, c -0.039, k
+    1.767, a 0.078, 256 sites: peak 1.65e-3 on the mean flow and 2k, T 5500; the fastest
+    visible mode, 1.05e-3, grew 5.9x by then: "no growth within T")."""
+    gain = np.asarray(getattr(spec, "gain", ()), float)
+    if not gain.size or not float(np.max(gain)) > 0:
+        return float(getattr(spec, "peak_gain", 0.0))
+    m = int(round(spec.wave.k * N / (2 * math.pi)))
+    H = int(spec.wave.harmonics)
+    harm = {(h * m) % N for h in range(-H, H + 1)}
+    seen = np.array([not ((m + j) % N in harm and (m - j) % N in harm)
+                     for j in range(1, gain.size + 1)])
+    return float(np.max(gain[seen], initial=0.0))
+
+
 def simulate_seeds(model: Model, k: float, amplitude: float, spec, *, branch=None,
                    N: int = 256, seeds: int = 1, t_end: float | None = None,
                    start: str = "exact", gain: float | None = None, **run) -> SeededRuns:
     """``seeds`` runs of the ring from ``spec``'s exact wave (``exact_gain`` on this ring)
     and their verdict: one rule for a point and a map cell. T is ``run_length`` of the
-    exact rate (``gain``: of this rate instead, the theory of another ``start``'s state)
+    exact rate a run can see (``visible_gain``; ``gain``: of this rate instead, the theory of another ``start``'s state)
     unless ``t_end`` is given. ``run``: more keywords of ``simulate_model`` (``noise_on``,
     ``until_peak``: a lossy point's launch, issue 42)."""
     from numerics.lattice import run_length, simulated_verdict
@@ -106,7 +126,8 @@ def simulate_seeds(model: Model, k: float, amplitude: float, spec, *, branch=Non
     if t_end is not None and (isinstance(t_end, bool) or not isinstance(t_end, numbers.Real)):
         raise ModelError(f"t_end must be a finite time > 0, got {type(t_end).__name__} "
                          f"{t_end!r}")
-    length = run_length(spec.peak_gain if gain is None else gain) if t_end is None else None
+    length = run_length(visible_gain(spec, N) if gain is None else gain) \
+        if t_end is None else None
     T = float(t_end) if t_end is not None else length.t_end
     runs = [simulate_model(model, k, amplitude, branch=branch, N=N, t_end=T, start=start,
                            seed=s, wave=spec.wave, **run) for s in range(int(seeds))]
