@@ -187,6 +187,8 @@ def _log_verdicts(log, res, args):
                 for n, t in res.theories.items()
                 if t.get("grows_beyond_threshold_within_t_end") is not None)
             + "; measured " + ", ".join(f"{g['growth']:.3g}x" for g in res.growths))
+        if res.simulated.get("note"):
+            log(f"note: {res.simulated['note']}")
     length = res.length
     if length.capped and not args.t_end:
         log(f"note: {length.note()} decide (the cap T = {length.cap:g} keeps a point "

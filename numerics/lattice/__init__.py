@@ -47,6 +47,7 @@ from ._analysis import (GROWTH_THRESHOLD, U_REFERENCE, band_summary, carrier_amp
                         forced_second_harmonic, growth_rates, grows_beyond_threshold,
                         LINEAR_STAGE_RULE, harmonic_bins, linear_stage, mode, non_carrier_bins,
                         shortest_run, shortest_run_error, sideband_to_carrier, spectrum, spectrum_growth,
+                        exponential_bound,
                         stability_verdict)
 from ._cache import cached_simulate
 from ._integrate import (BlowUpError, SimulationInterrupted, Stepper, blowup_message,
@@ -94,7 +95,7 @@ __all__ = ["cuda_kernels", "cuda_model_kernels", "TRIG_LIMIT",
     "harmonic_bins", "non_carrier_bins", "sideband_to_carrier", "stability_verdict",
     "linear_stage", "LINEAR_STAGE_RULE", "growth_rates", "band_summary", "forced_second_harmonic",
     "carrier_amplitude", "carrier_frequency", "GROWTH_THRESHOLD", "grows_beyond_threshold",
-    "checks", "noise_field", "spectrum_growth",
+    "checks", "noise_field", "spectrum_growth", "exponential_bound",
     # for the other rooms of numerics (theory, maps) and the bench: no private name crosses
     "Stepper", "blowup_message", "check_time", "check_case", "check_start",
     "dominant_frequency", "ERROR_CONSTANTS", "STABILITY_MARGIN", "FASTMATH", "sincos_vers",

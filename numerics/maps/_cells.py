@@ -75,14 +75,18 @@ def _ratios(theta_hat, U_hat, m, N):
 
 def growth_of(t, theta_hat, U_hat, m, N, t_end: float | None = None) -> dict:
     """Largest growth factor over the records, which field and wavenumber carries it
-    (the reading :func:`numerics.lattice.spectrum_growth` defines). U's growth counts from
-    its level at U_REFERENCE t_end (default t_end: the last record's time; a run stopped
-    early passes its planned t_end, so the reference does not move)."""
+    (the reading :func:`numerics.lattice.spectrum_growth` defines), and
+    ``growth_exponential``: the factor exponential growth accounts for (at most
+    ``exponential_bound``: algebraic growth does not count; a point's run verdict reads
+    it). U's growth counts from its level at U_REFERENCE t_end (default t_end: the last
+    record's time; a run stopped early passes its planned t_end, so the reference does not
+    move)."""
     ratios, bins = _ratios(theta_hat, U_hat, m, N)
-    growth, field, q = spectrum_growth(np.asarray(t), {f: r[None] for f, r in ratios.items()},
-                                       bins, N, t_end)
+    stack = {f: r[None] for f, r in ratios.items()}
+    growth, field, q = spectrum_growth(np.asarray(t), stack, bins, N, t_end)
+    expo, _, _ = spectrum_growth(np.asarray(t), stack, bins, N, t_end, exponential=True)
     return {"growth": float(growth[0]), "growth_field": str(field[0]),
-            "growth_q": float(q[0])}
+            "growth_q": float(q[0]), "growth_exponential": float(expo[0])}
 
 
 def seed_majority(growths) -> bool:

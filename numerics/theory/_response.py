@@ -126,6 +126,10 @@ class GrowthPrediction:
         seed + 1 .. seed + draws); ``growth_quantiles`` its 10%, 50% and 90% quantiles,
         ``growth_draws`` every draw's growth factor.
     k, start, N, seed, t_end : the experiment
+    exponential : ndarray, shape (1 + draws,)
+        The growth factors (seed, then each draw) that exponential growth accounts for
+        (``spectrum_growth(exponential=True)``: algebraic growth does not count), as a
+        point's run verdict reads them.
     """
 
     t: np.ndarray
@@ -146,6 +150,7 @@ class GrowthPrediction:
     N: int
     seed: int
     t_end: float
+    exponential: np.ndarray | None = None
 
     @property
     def approximate(self) -> bool:
@@ -321,6 +326,7 @@ def predict_growth(material: Material, case: str, k: float, amplitude: float = 0
         ratio[name] = np.transpose(spec / carrier[:, None, None], (1, 0, 2))
         bins_of[name] = np.flatnonzero(mask)
     growth, field, where = spectrum_growth(t, ratio, bins_of, N)
+    exponential, _, _ = spectrum_growth(t, ratio, bins_of, N, exponential=True)
     g = float(growth[0])
     expected = float(np.mean(growth[1:])) if draws else float("nan")
     quant = tuple(float(x) for x in np.quantile(growth[1:], (0.1, 0.5, 0.9))) if draws \
@@ -333,7 +339,7 @@ def predict_growth(material: Material, case: str, k: float, amplitude: float = 0
         torus_misfit=float(tor.residual if launched is not None else 0.0),
         expected_growth=expected, growth_quantiles=quant, growth_draws=growth[1:].copy(),
         k=float(k_run), start=start, N=N,
-        seed=seed, t_end=float(t_end))
+        seed=seed, t_end=float(t_end), exponential=exponential.copy())
 
 
 __all__ = ["GrowthPrediction", "predict_growth"]
