@@ -190,3 +190,19 @@ def test_the_default_length_is_chosen_from_the_rate_a_run_can_see():
     sim = simulate_seeds(model, 1.775, 0.078, spec, branch="th", N=256, energy=False)
     assert sim.verdict.word == "MI" and sim.t_end * seen >= 8.9
     assert sim.rate == pytest.approx(seen, rel=0.05)
+
+
+def test_visible_gain_by_hand():
+    """A ring of 16 sites, carrier m = 4, harmonics |h| <= 2: the harmonics are the modes
+    0, 4, 8, 12; offset j puts its waves at 4 + j and 4 - j: both on harmonics for j = 4
+    (8, 0) and j = 8 (12, 12), nowhere else. So the visible peak skips those offsets."""
+    from types import SimpleNamespace
+
+    from numerics.models import visible_gain
+
+    gain = np.array([1.0, 2.0, 3.0, 9.0, 4.0, 5.0, 6.0, 8.0])  # offsets j = 1..8
+    spec = SimpleNamespace(gain=gain, peak_gain=9.0,
+                           wave=SimpleNamespace(k=2 * math.pi * 4 / 16, harmonics=2))
+    assert visible_gain(spec, 16) == 6.0
+    assert visible_gain(SimpleNamespace(gain=np.zeros(8), peak_gain=0.0, wave=spec.wave),
+                        16) == 0.0
