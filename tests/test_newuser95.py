@@ -1,0 +1,126 @@
+"""What issue 95's new user found with five lattices nobody had tried (bench/probe_newuser95.py
+holds the model texts and reruns the probe), each reproduced on its point:
+
+- branches of two linearly uncoupled fields cross (the paper's own chain: theta and U near
+  k = 0.78), so branch indices swap between k and k +- q: a pair of the carrier's own
+  waves across the crossing was named 'parametric' and the point said the NLS cannot see
+  it, where the NLS gives its rate;
+- a nearly flat branch put the NLS's band edge at 4.3 rad/site, its fastest offset at 3.06,
+  without a word;
+- a softening chain's MI drove the run past its barrier and ``point --simulate`` ended in
+  an error (from its estimate's probe run), no table, where a map cell said MI.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+
+import pytest
+
+from bench.probe_newuser95 import MODELS, omega_by_hand
+from energy import load_model, parse_model
+
+
+def _model(name):
+    return load_model(parse_model(MODELS[name], f"{name}.toml"))
+
+
+# ------------------------------------------------ crossing branches
+def test_a_pair_across_an_exact_crossing_is_the_carriers_sidebands():
+    """cross: u (omega = 2|sin(kappa/2)|) and v (omega = wv = 1) are coupled only by the
+    cubic c (u_next - u) v^2, so their branches cross at kappa = pi/3. The u carrier at
+    k = 2 pi 20/128 = 0.98 (branch 0) grows through u waves at 1.08 (branch 1: past the
+    crossing) and 0.88 (branch 0): its own sidebands, whose NLS rate 0.00157 is the exact
+    one (0.00150) to O(a^2). Before, both theories named the pair 'parametric' and the
+    point noted that the NLS cannot see it."""
+    from numerics.maps import ModelPointSpec, measure_point
+
+    model = _model("cross")
+    k, a = 2 * math.pi * 20 / 128, 0.1
+    d = measure_point(ModelPointSpec(model, k, a, branch="u", N=128)).as_dict()
+    ex, fw, nl = d["exact lattice"], d["four-wave"], d["semi-discrete NLS"]
+    assert ex["mode_kind"] == fw["mode_kind"] == "sidebands", (ex, fw)
+    # both waves are u waves, by the hand dispersion (not the code's field naming)
+    for w in ex["mode_waves"]:
+        assert w["frequency"] == pytest.approx(2 * abs(math.sin(w["wavenumber"] / 2)),
+                                               abs=0.01)  # the pair's O(a^2) shift: 0.002
+    assert {w["branch"] for w in ex["mode_waves"]} == {0, 1}  # across the crossing
+    assert not any("not the carrier's sidebands" in n for n in d["notes"]), d["notes"]
+    # the NLS's ring rate is the exact one within its O(a^2) error (measured 4.6%)
+    assert nl["ring_peak_gain"] == pytest.approx(ex["peak_gain"], rel=0.10)
+
+
+def test_a_genuinely_other_wave_pair_stays_parametric():
+    """cross, carrier on the flat v branch at k = 2 (g1 = 0): the pair the four-wave theory
+    rates is of v waves, on the carrier's sheet; a pair with a u wave would be parametric.
+    The sheets are (group of linearly coupled fields, rank within it): u and v are two
+    groups here, the paper chain's theta and U too, diatomic FPUT's u and v one."""
+    from numerics.models import field_groups, four_wave, sheet_pair_kind
+
+    model = _model("cross")
+    assert field_groups(model) == (0, 1)
+    assert field_groups(load_model("flexmm")) == (0, 1)
+    assert field_groups(load_model("diatomic-fput")) == (0, 0)
+    # at kappa = 1.5 the u branch (2 sin 0.75 = 1.36) is above v (1): branch 0 is v,
+    # branch 1 is u; at kappa = 0.5 (u at 0.49) the other way round
+    assert omega_by_hand("cross", model.params, 1.5)[0] == pytest.approx(1.0)
+    k = 1.0  # u carrier (branch 0: 0.959 < 1)
+    q = 0.5  # k + q = 1.5, k - q = 0.5
+    assert sheet_pair_kind(model, k, 0, (1, 0), q) == "sidebands"   # u at both
+    assert sheet_pair_kind(model, k, 0, (0, 0), q) == "parametric"  # v at 1.5, u at 0.5
+    assert sheet_pair_kind(model, k, 0, (1, 1), q) == "parametric"  # u at 1.5, v at 0.5
+    fw = four_wave(model, 2.0, 0.1, "v")
+    assert {w["field"] for w in fw.row()["mode_waves"]} == {"v"}
+    assert fw.mode_kind in ("sidebands", "backward")
+
+
+# ------------------------------------------------ a nearly flat branch
+def test_an_nls_band_wider_than_half_the_zone_is_warned(tmp_path, capsys):
+    """flat-kg (C 1e-3): at k = 2.5 g1 = C cos k / omega - ... = -8.0e-4 and g2 = -3 lambda
+    / (2 omega) = -1.497, so the band edge a sqrt(g2/g1) = 4.33 at a = 0.1: past pi/2 (and
+    the zone), where the lattice's pairs are backward ones (exact 0.0030, NLS 0.0037). At
+    a = 0.03 the edge is 1.30: no warning. The file's name and description are unicode."""
+    from cli import main
+
+    path = tmp_path / "flat_\u00dcn\u00efcode.toml"
+    path.write_text(MODELS["flat-kg"], encoding="utf-8")
+    p = {"C_tiny_2": 1e-3, "Omega_0": 1.0, "lambda_4": 1.0}
+    # by hand: omega^2 = Omega0^2 + 2 C (1 - cos k), so omega' = C sin k / omega and
+    # g1 = omega'' = (C cos k - omega'^2) / omega (second differences of omega ~ 1 keep
+    # only 1e-5 of a g1 ~ 1e-3)
+    C, k = p["C_tiny_2"], 2.5
+    om = omega_by_hand("flat-kg", p, k)[0]
+    g1 = (C * math.cos(k) - (C * math.sin(k) / om) ** 2) / om
+    g2 = -1.5 / om
+    for a, wide in ((0.1, True), (0.03, False)):
+        assert main(["coefficients", "--model", str(path), "--k", "2.5", "--amplitude",
+                     str(a), "--json"]) == 0
+        co = json.loads(capsys.readouterr().out)
+        assert co["band_edge"] == pytest.approx(a * math.sqrt(g2 / g1), rel=1e-6)
+        said = [x for x in co["warnings"] if "beyond pi/2" in x]
+        assert bool(said) == wide, co["warnings"]
+
+
+# ------------------------------------------------ a softening chain past its barrier
+def test_a_point_whose_run_blows_up_after_growing_still_answers(capsys, tmp_path):
+    """soft-pi (r^2/2 + 0.3 r^3/3 - r^4/4) at k = pi, a = 0.3 on 64 sites: the exact
+    lattice grows at 0.0630; a full run blows up at t ~ 272, after its sidebands have
+    grown (ln(1e8) / 0.063 = 290). The point ended in 'error: the run blew up' (exit 2,
+    no table) while a map cell of the same (k, a) said MI at 0.0619. Now the point's runs
+    stop where the map cell's do, once the sidebands saturate, with a note."""
+    from cli import main
+    from numerics.models import map_cells
+
+    path = tmp_path / "soft-pi.toml"
+    path.write_text(MODELS["soft-pi"])
+    assert main(["point", "--model", str(path), "--k", str(math.pi), "--amplitude", "0.3",
+                 "--N", "64", "--simulate", "--seeds", "1", "--json"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    ex, sim = d["exact lattice"], d["simulated"]
+    assert ex["verdict"] == sim["verdict"] == "MI"
+    assert sim["peak_gain"] == pytest.approx(ex["peak_gain"], rel=0.10)  # measured -1.8%
+    assert "blew up" in sim["note"]
+    cell = map_cells(load_model(str(path)), [({}, math.pi)], 0.3, simulate=True, N=64)[0]
+    assert cell["verdict_simulated"] == "MI"
+    assert cell["peak_gain_simulated"] == pytest.approx(sim["peak_gain"], rel=1e-9)
