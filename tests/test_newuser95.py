@@ -124,3 +124,23 @@ def test_a_point_whose_run_blows_up_after_growing_still_answers(capsys, tmp_path
     cell = map_cells(load_model(str(path)), [({}, math.pi)], 0.3, simulate=True, N=64)[0]
     assert cell["verdict_simulated"] == "MI"
     assert cell["peak_gain_simulated"] == pytest.approx(sim["peak_gain"], rel=1e-9)
+
+
+# ------------------------------------------------ names a new user tries
+def test_a_unicode_bare_key_is_named_in_the_toml_error(tmp_path, capsys):
+    """``ω0 = 1.0`` is no TOML (a bare key is ASCII); the error said only 'Invalid
+    statement (at line 4, column 1)'. Now it names the key and the remedy; the quoted key
+    ``"ω0"`` reaches the name check, which says the same. The flat-kg file's unicode and
+    quotes in its description, its integer parameter and its odd names load as they are."""
+    from cli import main
+
+    text = MODELS["flat-kg"].replace("Omega_0", "\u03a90")
+    path = tmp_path / "bare.toml"
+    path.write_text(text, encoding="utf-8")
+    assert main(["coefficients", "--model", str(path), "--k", "1", "--amplitude", "0.1"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "not valid TOML" in err[0]
+    assert "'\u03a90' is not ASCII" in err[0] and "spell a Greek letter out" in err[0], err
+    lat = parse_model(MODELS["flat-kg"], "flat.toml")
+    assert lat.parameters == {"C_tiny_2": 1e-3, "Omega_0": 1.0, "lambda_4": 1}
+    assert "\u03c9 \u2248 \u03a9\u2080" in lat.description and '"almost no"' in lat.description
