@@ -285,8 +285,14 @@ def probe(index: int, pt, paths) -> dict:
     if "damping_err" in row:
         row["checks"]["damping"] = bool(row["damping_err"] < 1e-10)
     row["checks"]["energy_by_hand"] = bool(row["energy_hand_err"] < 1e-12)
+    # the same (k, a) through coefficients (at the ring's k) and through point
+    co_ring = model_coefficients(model, row["k_ring"], a, branch)
+    # (both lossless words: the point's rows were read as the lossless chain's above)
     row["checks"]["coefficients_vs_point"] = bool(
-        co["verdict"] == d["semi-discrete NLS"].get("verdict") or row["k_ring"] != k)
+        co_ring.get("lossless_verdict", co_ring["verdict"]) == d["semi-discrete NLS"]["verdict"])
+    # k -> -k: the energy is real, so omega_b(-k) = omega_b(k)
+    row["checks"]["k_symmetry"] = bool(np.allclose(branches(model, -k), branches(model, k),
+                                                   rtol=1e-13, atol=1e-15))
     return row
 
 
