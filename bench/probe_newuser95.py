@@ -277,6 +277,10 @@ def probe(index: int, pt, paths) -> dict:
     run = simulate_model(model, k, a, branch=branch, N=N, t_end=200.0, seed=1)
     e_hand = energy_by_hand(name, p, *run.state)
     row["energy_hand_err"] = abs(e_hand - float(run.energy[-1])) / abs(e_hand)
+    if model.lossy:  # 2R by hand (R = gr v_t^2 / 2 per site) at the last record's state
+        two_r = p["gr"] * float(np.sum(np.asarray(run.state[1])[1] ** 2))
+        row["dissipation_hand_err"] = abs(two_r - float(run.dissipation[-1])) / max(
+            abs(two_r), 1e-300) if two_r else abs(float(run.dissipation[-1]))
     row["seconds"] = time.time() - t0
     row["checks"] = judge(row)
     row["checks"]["g1"] = bool(row["g1_err"] < 1e-6)
@@ -285,6 +289,8 @@ def probe(index: int, pt, paths) -> dict:
     if "damping_err" in row:
         row["checks"]["damping"] = bool(row["damping_err"] < 1e-10)
     row["checks"]["energy_by_hand"] = bool(row["energy_hand_err"] < 1e-12)
+    if "dissipation_hand_err" in row:
+        row["checks"]["dissipation_by_hand"] = bool(row["dissipation_hand_err"] < 1e-12)
     # the same (k, a) through coefficients (at the ring's k) and through point
     co_ring = model_coefficients(model, row["k_ring"], a, branch)
     # (both lossless words: the point's rows were read as the lossless chain's above)
