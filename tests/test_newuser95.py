@@ -144,3 +144,27 @@ def test_a_unicode_bare_key_is_named_in_the_toml_error(tmp_path, capsys):
     lat = parse_model(MODELS["flat-kg"], "flat.toml")
     assert lat.parameters == {"C_tiny_2": 1e-3, "Omega_0": 1.0, "lambda_4": 1}
     assert "\u03c9 \u2248 \u03a9\u2080" in lat.description and '"almost no"' in lat.description
+
+
+def test_a_map_of_a_flat_branch_points_to_the_exact_theory(tmp_path, capsys):
+    """cross's v branch is flat (omega = wv at every k: g1 = 0), so no cell has an NLS
+    verdict and a --theory-only map is refused; the exact lattice and four-wave theories
+    have verdicts there (exact MI at k = 2 pi 15/64 for both c), which the message did not
+    say: it offered only other axes, k, amplitudes or branches."""
+    from cli import main
+
+    path = tmp_path / "cross.toml"
+    path.write_text(MODELS["cross"])
+    argv = ["map", "--model", str(path), "--branch", "v", "--param", "c=0.2,0.5", "--k",
+            "1.5,2.5", "--amplitude", "0.1", "--theory-only", "--workers", "1", "--N", "64",
+            "--out", str(tmp_path / "m")]
+    assert main(argv) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "every cell of the map is undefined" in err[0], err
+    assert "add --exact" in err[0]
+    assert main([*argv, "--exact"]) == 0
+    import xarray as xr
+
+    ds = xr.open_zarr(tmp_path / "m" / "map.zarr")
+    assert (ds["verdict_semidiscrete"].values == -1).all()
+    assert ds["verdict_exact"].values[:, 0].tolist() == [1, 1]
