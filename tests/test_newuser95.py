@@ -168,3 +168,33 @@ def test_a_map_of_a_flat_branch_points_to_the_exact_theory(tmp_path, capsys):
     ds = xr.open_zarr(tmp_path / "m" / "map.zarr")
     assert (ds["verdict_semidiscrete"].values == -1).all()
     assert ds["verdict_exact"].values[:, 0].tolist() == [1, 1]
+
+
+def test_a_parameter_named_k_is_not_swept_as_the_carrier(tmp_path, capsys):
+    """A model whose parameter is named k (valid, as E, N or amplitude are): ``map --param
+    k=0.3,0.6 --amplitude 0.1,0.2 --k 1`` swept the carrier over 0.3, 0.6 (g1 0.84 and
+    0.51: the carrier's dispersion, by hand (C cos k w^2 - C^2 sin^2 k) / w^3 = 0.838 at
+    0.3) at the parameter's default, and ignored --k 1; with --k 1,2 it said the two axes
+    'must differ'. Now both are refused in one line, as a parameter named amplitude is;
+    the Python model_map too."""
+    from cli import main
+    from numerics.models import model_map
+
+    text = MODELS["fk-cubic"].replace("w0", "k")
+    path = tmp_path / "pk.toml"
+    path.write_text(text)
+    for axes in (["--param", "k=0.3,0.6", "--amplitude", "0.1,0.2", "--k", "1"],
+                 ["--param", "k=0.3,0.6", "--k", "1,2", "--amplitude", "0.1"]):
+        assert main(["map", "--model", str(path), *axes, "--theory-only", "--workers", "1",
+                     "--out", str(tmp_path / "m")]) == 2
+        err = capsys.readouterr().err.strip().splitlines()
+        assert len(err) == 1 and "map axis 'k' is ambiguous" in err[0], err
+        assert not (tmp_path / "m").exists()
+    from energy import ModelError
+
+    with pytest.raises(ModelError, match="ambiguous"):
+        model_map(load_model(str(path)), ("k", [0.3, 0.6]), ("alpha", [0.1, 0.2]), 0.1)
+    # a fixed carrier with the parameter k on no axis still maps
+    assert main(["map", "--model", str(path), "--param", "alpha=0.1,0.2", "--param",
+                 "beta=0.3,0.4", "--k", "1", "--amplitude", "0.1", "--theory-only",
+                 "--workers", "1", "--out", str(tmp_path / "ok")]) == 0
