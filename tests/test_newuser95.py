@@ -221,3 +221,15 @@ def test_the_exact_theory_is_mathieus_rate_for_the_flat_oscillators_decay(c):
     assert ex.wave.omega == pytest.approx(Omega, rel=1e-4)  # O(a^4) beyond: 2e-5 measured
     fw = four_wave(model, k, a, "u", N=64)
     assert fw.verdict == "undefined" and "three-wave decay" in fw.undefined
+
+
+def test_a_pair_wave_at_zero_wavenumber_is_not_minus_zero():
+    """flat-kg at k = pi/2 (a = 0.05, 64 sites): the fastest four-wave pair is at k + q =
+    pi and k - q = 0, which the point printed as 'branch 0 (q_1) at -0' (the wrap of
+    k - q gave -0.0, and the JSON held -0.0)."""
+    from numerics.models import four_wave
+
+    fw = four_wave(_model("flat-kg"), math.pi / 2, 0.05, N=64)
+    waves = [w["wavenumber"] for w in fw.row()["mode_waves"]]
+    assert 0.0 in waves and all(math.copysign(1.0, w) > 0 for w in waves if w == 0), waves
+    assert "-0" not in json.dumps(fw.row()["mode_waves"])

@@ -19,8 +19,8 @@ from energy import Model
 
 
 def _wrap(x):
-    """x wrapped to (-pi, pi]."""
-    return -((-np.asarray(x, dtype=float) + np.pi) % (2 * np.pi) - np.pi)
+    """x wrapped to (-pi, pi] (0 as +0.0: a pair's wave at k - q = 0 read '-0')."""
+    return -((-np.asarray(x, dtype=float) + np.pi) % (2 * np.pi) - np.pi) + 0.0
 
 
 def wave_field(model: Model, kappa: float, branch: int) -> str:

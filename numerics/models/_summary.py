@@ -56,8 +56,8 @@ def model_coefficients(model: Model, k: float, amplitude: float, branch=None) ->
         warn.append(f"the NLS's band reaches offset {edge:.3g} rad/site (its fastest "
                     f"{r.fastest_offset(a):.3g}), beyond pi/2: the envelope's long-wave "
                     "expansion does not hold that far from the carrier (offsets past pi/2 "
-                    "are the lattice's backward pairs); lower the amplitude, or ask the "
-                    "four-wave and exact theories (flexmm point)")
+                    "are the lattice's backward pairs); lower the amplitude, or trust the "
+                    "four-wave and exact lattice theories (flexmm point's rows)")
     if model.lossy:  # a carrier that decays before its phase turns is no wave to modulate
         from ._linear import damped_frequencies
 
