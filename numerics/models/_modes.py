@@ -90,6 +90,20 @@ def wave_sheets(model: Model, kappas, groups: tuple) -> list:
     return out if np.ndim(kappas) else out[0]
 
 
+def sheet_branches(model: Model, k: float, branch: int, kappas) -> np.ndarray:
+    """The branch index of the carrier's sheet (``wave_sheet`` of (k, branch)) at each of
+    ``kappas``: ``branch`` everywhere where the fields are all linearly coupled; across a
+    crossing of uncoupled branches, the other index (flexmm-lossy at the blue point: the
+    sideband at k - q = 0.07 is theta's on branch 1, where branch 0 is U, damped 25x
+    less)."""
+    kappas = np.atleast_1d(np.asarray(kappas, dtype=float))
+    groups = field_groups(model)
+    if len(set(groups)) == 1:
+        return np.full(kappas.size, int(branch))
+    own = wave_sheets(model, float(k), groups)[int(branch)]
+    return np.array([row.index(own) for row in wave_sheets(model, kappas, groups)], int)
+
+
 def sheet_pair_kind(model: Model, k: float, branch: int, pair, q: float,
                     groups=None) -> str:
     """``pair_kind`` by dispersion sheets (``wave_sheet``) instead of branch indices: the
