@@ -291,3 +291,18 @@ def test_a_lossy_run_that_never_passes_its_noise_floor_says_so():
                                      simulate=True, seeds=1)).as_dict()
     assert d["simulated"]["amplification"] > 1.2
     assert "never passed A(0)" not in d["simulated"].get("note", "")
+
+
+def test_fk_cubic_is_even_under_u_to_minus_u_with_alpha_to_minus_alpha():
+    """The fk-cubic energy is unchanged by u -> -u together with alpha -> -alpha (the
+    on-site 1 - cos u and the quartic bond are even), so every theory's rate is even in
+    alpha: the NLS's g2 (its alpha enters as alpha^2 through the second harmonic) and the
+    exact ring's peak rate, to round-off (measured 4e-15 for the exact one)."""
+    from numerics.models import exact_gain, model_coefficients
+
+    plus, minus = (_model("fk-cubic").with_params(alpha=s * 0.6) for s in (1, -1))
+    k = 2 * math.pi * 20 / 64
+    assert model_coefficients(plus, k, 0.15)["g2"] == pytest.approx(
+        model_coefficients(minus, k, 0.15)["g2"], rel=1e-12)
+    assert exact_gain(plus, k, 0.15, N=64).peak_gain == pytest.approx(
+        exact_gain(minus, k, 0.15, N=64).peak_gain, rel=1e-9)
