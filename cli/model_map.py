@@ -224,9 +224,13 @@ def run_map(args) -> int:
             import shutil
 
             shutil.rmtree(path, ignore_errors=True)
+        # the NLS alone has no verdict where its expansion fails (a flat branch's g1 = 0:
+        # issue 95's v oscillator); the exact lattice and four-wave theories may have one
+        more = ("" if simulated or params.exact else
+                ", or add --exact (the exact lattice and four-wave theories on the ring)")
         raise ValueError(f"every cell of the map is undefined (first cell: "
                          f"{params.undefined_reason()}); change the axes, k, the amplitude "
-                         "or --branch")
+                         f"or --branch{more}")
     png = out / "map.png"
     _plot_map(_as_words(ds, verdicts), png, model)
     from ._map_inputs import model_inputs

@@ -325,6 +325,23 @@ def read_model(path: str | Path) -> Lattice:
     return parse_model(text, where)
 
 
+def _bare_key_hint(text: str, exc) -> str:
+    """A hint where the failing line's key holds a non-ASCII letter (``ω0 = 1.0``: TOML's
+    own message, 'Invalid statement', names no cause)."""
+    import re
+
+    found = re.search(r"at line (\d+)", str(exc))  # tomllib's message (3.11-3.13)
+    line = int(found.group(1)) if found else None
+    lines = text.removeprefix("\ufeff").splitlines()
+    if not line or line > len(lines):
+        return ""
+    key = lines[line - 1].split("=", 1)[0].strip()
+    if not key or key.isascii() or key.startswith(("\"", "'", "#", "[")):
+        return ""
+    return (f"; the key {key!r} is not ASCII: model names are ASCII letters, digits and '_' "
+            "(spell a Greek letter out, 'omega0' for 'ω0')")
+
+
 def parse_model(text: str, where: str = "model") -> Lattice:
     """A :class:`Lattice` from the text of a model file."""
     if not isinstance(text, str):
@@ -335,7 +352,8 @@ def parse_model(text: str, where: str = "model") -> Lattice:
     try:
         data = tomllib.loads(text.removeprefix("\ufeff"))  # a byte-order mark: no TOML
     except tomllib.TOMLDecodeError as exc:
-        raise ModelError(f"{where}: not valid TOML ({_short(exc, 200)[1:-1]})") from None
+        raise ModelError(f"{where}: not valid TOML ({_short(exc, 200)[1:-1]})"
+                         f"{_bare_key_hint(text, exc)}") from None
     except (RecursionError, MemoryError):
         raise ModelError(f"{where}: not valid TOML (nested too deeply)") from None
     unknown = sorted(set(data) - _KEYS)

@@ -318,7 +318,14 @@ def test_the_paper_chain_four_wave_theory_never_misses_a_band_its_resonance_engi
                 fw = four_wave(model, k, a)
                 if fw.verdict == "stable":
                     misses.append((a, Kt, k))
-                if fw.mode_kind == "sidebands" and abs(fw.offset - q) < 0.05:
+                # sidebands on the carrier's branch index, not straddling the theta-U
+                # crossing (k ~ 0.78): there the pair is theta's by its sheet
+                # (``sheet_pair_kind``) but a U-U pair resonates at nearly its offset and
+                # the engine's theta reduction rates neither alone (a 0.05, K_theta
+                # 0.008, k 0.5: four-wave theta-theta 0.0190 at 0.609, the engine 0.0142
+                # at 0.585, the model's exact fastest, U-U, 0.0168 at 0.642)
+                same_index = all(b == fw.branch for b, _ in fw.mode_waves)
+                if fw.mode_kind == "sidebands" and same_index and abs(fw.offset - q) < 0.05:
                     diffs.append(fw.gain / g - 1)
     assert n_bands > 30  # the grid crosses the engine's bands (48 measured)
     assert misses == []

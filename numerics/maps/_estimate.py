@@ -295,9 +295,22 @@ def probe_model_run(model, k: float, amplitude: float, branch=None, *, N: int, t
     warm = time.process_time() - t0
     probe_t = min(t_end, PROBE_STEPS * first.dt)
     records = max(2, round(400 * probe_t / t_end))
+    from ..lattice import BlowUpError
+
     t0 = time.process_time()
-    simulate_model(model, k, amplitude, branch=branch, N=N, t_end=probe_t, wave=wave,
-                   records=records, energy=energy)
+    try:
+        simulate_model(model, k, amplitude, branch=branch, N=N, t_end=probe_t, wave=wave,
+                       records=records, energy=energy)
+    except BlowUpError:
+        # the probe's steps outran the sidebands' saturation and the state left the
+        # lattice's range (a softening bond past its barrier: soft-pi at k = pi, a = 0.3,
+        # blew up at t = 272 of its 644, and the point ended in an error before its
+        # table): time the run up to saturation, scaled by how far it got
+        t0 = time.process_time()
+        ran = simulate_model(model, k, amplitude, branch=branch, N=N, t_end=probe_t,
+                             wave=wave, records=records, energy=energy,
+                             until_saturated=True)
+        probe_t = max(float(ran.t[-1]), first.dt)
     run = (time.process_time() - t0) * t_end / probe_t
     return run, max(warm - run / 1e4, 0.0)  # the first call ran 1e-4 of the run
 

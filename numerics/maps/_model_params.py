@@ -129,6 +129,14 @@ class ModelMapParameters:
                 raise ValueError(f"amplitude must be > 0, got {min(values):g}..."
                                  f"{max(values):g}")
             object.__setattr__(self, name, (axis, values))
+        if "k" in (self.rows[0], self.cols[0]) and "k" in {
+                str(n) for n, _ in self.parameters}:
+            # a model parameter named k: the axis 'k' is the carrier's, and a sweep of the
+            # parameter read as the carrier's silently (issue 95: --param k=0.3,0.6
+            # --amplitude 0.1,0.2 --k 1 mapped carriers 0.3, 0.6 and ignored --k 1)
+            raise ValueError("map axis 'k' is ambiguous: the model has a parameter named 'k' "
+                             "(the carrier's wavenumber is the axis 'k'); rename it in the "
+                             "model file to sweep one of them")
         if self.rows[0] == self.cols[0]:
             raise ValueError(f"the two map axes must differ, got {self.rows[0]!r} twice")
         if "k" not in (self.rows[0], self.cols[0]) and self.k is None:

@@ -11,6 +11,8 @@ exact_gain                              both at one point: the exact lattice the
 four_wave -> FourWave                   every four-wave pair's rate (Zakharov's kernel of the
                                         lattice): sidebands, backward pairs, parametric decays
 classify_mode, ring_misses              what an exact mode is; bands a ring does not sample
+field_groups, wave_sheet, sheet_pair_kind, sheet_branches   dispersion sheets: a wave's own branch where
+                                        branches of uncoupled fields cross
 energy_not_real, amplitude_reach        where the energy stops being real along a wave: why
 exact_gain_checked                      there is no travelling wave, the largest amplitude
 simulate_model -> ModelRun              a ring of the model; .growth() -> Growth
@@ -69,7 +71,14 @@ from ._losses import (
                      nls_amplification,
 )
 from ._map import lossy_runs, map_cells, model_map, simulated_cell
-from ._modes import classify_mode, ring_misses
+from ._modes import (
+                     classify_mode,
+                     field_groups,
+                     ring_misses,
+                     sheet_branches,
+                     sheet_pair_kind,
+                     wave_sheet,
+)
 from ._nls import ModelNLS, ModelSoliton, acoustic_directions, nls
 from ._reach import amplitude_reach, energy_not_real, exact_gain_checked
 from ._seeds import SeededRuns, simulate_seeds, visible_gain
@@ -102,7 +111,7 @@ __all__ = ["Carrier", "carrier", "branches", "branch_index", "check_rest_stable"
            "damping_matrix", "damping_rates", "TravellingWave", "HillSpectrum",
            "travelling_wave", "hill_spectrum", "exact_gain", "exact_gain_checked",
            "energy_not_real", "amplitude_reach", "FourWave", "four_wave", "pair_rates",
-           "classify_mode", "ring_misses", "ring_offsets", "simulate_model", "simulate_seeds",
+           "classify_mode", "field_groups", "sheet_branches", "sheet_pair_kind", "wave_sheet", "ring_misses", "ring_offsets", "simulate_model", "simulate_seeds",
            "SeededRuns", "ModelRun", "NOISE", "Growth", "measure_growth", "saturation_record",
            "settled_rate", "read_modes", "visible_gain",
            "saturation_time", "check_ring", "compiled_force",

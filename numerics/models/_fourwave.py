@@ -43,6 +43,7 @@ partner is no linear wave (a harmonic resonant with a branch).
 
 from __future__ import annotations
 
+import functools
 import math
 import numbers
 from dataclasses import dataclass
@@ -54,7 +55,7 @@ from energy import Model, ModelError
 from ._exact import GAIN_FLOOR  # one floor for both theories' verdicts
 from ._fourwave_kernel import _kernel
 from ._linear import carrier, check_amplitude, check_model
-from ._modes import _wrap, own_offset, pair_kind, wave_field
+from ._modes import _wrap, field_groups, own_offset, pair_kind, wave_field, wave_sheets
 
 KINDS = ("sidebands", "backward", "parametric", "resonance")
 
@@ -124,8 +125,29 @@ class FourWave:
         return int(i), int(j)
 
     def kind_of(self, i: int, j: int) -> str:
-        """The kind of pair (offset index i, branch pair j)."""
-        return pair_kind(self.branch, self.pairs[j], self.offsets[i])
+        """The kind of pair (offset index i, branch pair j): by dispersion sheets
+        (``sheet_pair_kind``), so a pair of the carrier's own waves across a crossing of
+        uncoupled branches is its sidebands."""
+        table = self._sheets
+        if table is None:  # the fields all coupled: the sheets are the branch indices
+            return pair_kind(self.branch, self.pairs[j], self.offsets[i])
+        own, plus, minus = table
+        b1, b2 = self.pairs[j]
+        if plus[i][b1] != own or minus[i][b2] != own:
+            return "parametric"
+        return pair_kind(self.branch, (self.branch, self.branch), self.offsets[i])
+
+    @functools.cached_property
+    def _sheets(self):
+        """(the carrier's sheet, every branch's sheet at k + q and at k - q per offset),
+        None where the fields are all linearly coupled."""
+        groups = field_groups(self.model)
+        if len(set(groups)) == 1:
+            return None
+        own = wave_sheets(self.model, self.k, groups)[self.branch]
+        q = np.asarray(self.offsets, dtype=float)
+        return (own, wave_sheets(self.model, _wrap(self.k + q), groups),
+                wave_sheets(self.model, _wrap(self.k - q), groups))
 
     @property
     def mode_kind(self) -> str:
@@ -158,9 +180,9 @@ class FourWave:
         'parametric': ...} (0 where none grows)."""
         out = {kind: 0.0 for kind in KINDS[:3]}
         r = np.nan_to_num(self.rates, nan=0.0)
-        for j, pair in enumerate(self.pairs):
+        for j in range(len(self.pairs)):
             for i in np.flatnonzero(r[:, j] > 0):
-                kind = pair_kind(self.branch, pair, self.offsets[i])
+                kind = self.kind_of(int(i), j)
                 out[kind] = max(out[kind], float(r[i, j]))
         return out
 

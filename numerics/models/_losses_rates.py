@@ -13,9 +13,17 @@ from energy import Model
 
 
 def sideband_damping(model: Model, k: float, q, branch: int) -> np.ndarray:
-    """G_q: the mean amplitude decay rate of the sidebands k + q and k - q on the branch."""
+    """G_q: the mean amplitude decay rate of the sidebands k + q and k - q on the carrier's
+    branch, followed as a dispersion sheet (``sheet_branches``) where the branches of
+    linearly uncoupled fields cross between k and k +- q (by index, a theta sideband of the
+    paper chain below the theta-U crossing was damped at U's rate)."""
+    from ._modes import sheet_branches
+
     up, down = side_rates(model, k, q)
-    return 0.5 * (up[:, branch] + down[:, branch])
+    q = np.atleast_1d(np.asarray(q, float))
+    rows = np.arange(q.size)
+    return 0.5 * (up[rows, sheet_branches(model, k, branch, k + q)]
+                  + down[rows, sheet_branches(model, k, branch, k - q)])
 
 
 # (weak reference to the model, kappas kept (ascending, unique), their rows): the rates a
@@ -74,11 +82,15 @@ def rates_once(model: Model, k: float, q, branch: int) -> tuple[np.ndarray, floa
     damped NLS's), where merging them into the kept rates costs as much as the rates
     (the same numbers: a row depends on its wavenumber alone)."""
     from ._linear import branch_index, damping_rates
+    from ._modes import sheet_branches
 
     q = np.atleast_1d(np.asarray(q, float))
     rows = damping_rates(model, np.concatenate([[float(k)], k + q, k - q]))
     b = branch_index(model, k, branch)
-    return 0.5 * (rows[1:q.size + 1, b] + rows[q.size + 1:, b]), float(rows[0, b])
+    n = np.arange(q.size)
+    return (0.5 * (rows[1:q.size + 1][n, sheet_branches(model, k, b, k + q)]
+                   + rows[q.size + 1:][n, sheet_branches(model, k, b, k - q)]),
+            float(rows[0, b]))
 
 
 def _carrier_damping(model: Model, k: float, branch) -> float:

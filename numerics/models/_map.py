@@ -81,6 +81,10 @@ def model_map(model: Model, x: tuple, y: tuple, amplitude: float, k: float | Non
         if not (isinstance(axis, tuple) and len(axis) == 2 and isinstance(axis[0], str)):
             raise ModelError(f"a map axis is a (name, values) pair such as ('k', [1.0, 2.0]), "
                              f"got {axis!r}")
+    if AXIS_K in (x[0], y[0]) and AXIS_K in model.params:  # the carrier's or the parameter's?
+        raise ModelError("map axis 'k' is ambiguous: the model has a parameter named 'k' "
+                         "(the carrier's wavenumber is the axis 'k'); rename it in the model "
+                         "file to sweep one of them")
     xn, xv = x[0], _axis(model, *x)
     yn, yv = y[0], _axis(model, *y)
     if xn == yn:

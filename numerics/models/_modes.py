@@ -6,6 +6,7 @@ classify_mode   the fastest mode of an exact Hill spectrum as a four-wave pair: 
 ring_misses     the infinite chain's unstable bands that no offset 2 pi j / N of a ring
                 samples, with the ring size that would
 wave_field, pair_kind, own_offset   the naming rules, shared with ``_fourwave``
+sheet_pair_kind, wave_sheet   pair_kind by dispersion sheets, where uncoupled branches cross
 """
 
 from __future__ import annotations
@@ -18,8 +19,8 @@ from energy import Model
 
 
 def _wrap(x):
-    """x wrapped to (-pi, pi]."""
-    return -((-np.asarray(x, dtype=float) + np.pi) % (2 * np.pi) - np.pi)
+    """x wrapped to (-pi, pi] (0 as +0.0: a pair's wave at k - q = 0 read '-0')."""
+    return -((-np.asarray(x, dtype=float) + np.pi) % (2 * np.pi) - np.pi) + 0.0
 
 
 def wave_field(model: Model, kappa: float, branch: int) -> str:
@@ -36,6 +37,87 @@ def pair_kind(branch: int, pair, q: float) -> str:
     """'sidebands', 'backward' or 'parametric' for the pair (k + q on pair[0], k - q on
     pair[1]) of a carrier on ``branch``."""
     if pair[0] != branch or pair[1] != branch:
+        return "parametric"
+    return "sidebands" if abs(float(_wrap(q))) <= math.pi / 2 else "backward"
+
+
+def field_groups(model: Model) -> tuple:
+    """Per field, the label of its group of linearly coupled fields: fields that no term
+    of the rest Hessian (the bond's and the site's) couples, directly or through others,
+    are linearly independent waves, whose branches cross where their frequencies meet."""
+    d = model.n_fields
+    H = np.asarray(model.code.taylor(model.p)[0], dtype=float)
+    big = float(np.max(np.abs(H))) or 1.0
+    link = np.zeros((d, d), bool)
+    for blk in (H[:d, :d], H[:d, d:], H[d:, :d], H[d:, d:]):
+        link |= (np.abs(blk) > 1e-14 * big) | (np.abs(blk.T) > 1e-14 * big)
+    label = list(range(d))
+    for _ in range(d):  # propagate the smallest label through the links
+        for i in range(d):
+            for j in range(d):
+                if link[i, j]:
+                    label[i] = label[j] = min(label[i], label[j])
+    return tuple(label)
+
+
+def wave_sheet(model: Model, kappa: float, branch: int, groups=None) -> tuple:
+    """The dispersion sheet of the linear wave (kappa, branch): (its group of linearly
+    coupled fields, its rank by frequency within that group). Branch indices rank the
+    waves of all fields together, so where the branches of two uncoupled groups cross
+    (a field coupled to the others only through nonlinear terms) the indices swap while
+    each wave stays on its own sheet; with one group the sheet is the branch index."""
+    groups = field_groups(model) if groups is None else groups
+    if len(set(groups)) == 1:
+        return (groups[0], int(branch))
+    return wave_sheets(model, kappa, groups)[branch]
+
+
+def wave_sheets(model: Model, kappas, groups: tuple) -> list:
+    """``wave_sheet`` of every branch at each of ``kappas`` (a float or a sequence; one
+    small eigenproblem each, the rest Hessian taken once): a list per kappa."""
+    from ._linear import dynamical_matrix
+
+    H = model.code.taylor(model.p)[0]
+    s = 1 / np.sqrt(model.masses)
+    ks = np.atleast_1d(np.asarray(kappas, dtype=float))
+    # the eigenvectors _modes takes (mass-weighted), as wave_field names a wave; stacked
+    D = np.stack([s[:, None] * dynamical_matrix(H, float(x)) * s[None, :] for x in ks])
+    heavy = np.argmax(np.abs(np.linalg.eigh(D)[1]) ** 2, axis=1)  # (n, branches)
+    out = []
+    for row in heavy:
+        g = [groups[int(f)] for f in row]
+        out.append([(g[b], sum(1 for c in range(b) if g[c] == g[b])) for b in range(len(g))])
+    return out if np.ndim(kappas) else out[0]
+
+
+def sheet_branches(model: Model, k: float, branch: int, kappas) -> np.ndarray:
+    """The branch index of the carrier's sheet (``wave_sheet`` of (k, branch)) at each of
+    ``kappas``: ``branch`` everywhere where the fields are all linearly coupled; across a
+    crossing of uncoupled branches, the other index (flexmm-lossy at the blue point: the
+    sideband at k - q = 0.07 is theta's on branch 1, where branch 0 is U, damped 25x
+    less)."""
+    kappas = np.atleast_1d(np.asarray(kappas, dtype=float))
+    groups = field_groups(model)
+    if len(set(groups)) == 1:
+        return np.full(kappas.size, int(branch))
+    own = wave_sheets(model, float(k), groups)[int(branch)]
+    return np.array([row.index(own) for row in wave_sheets(model, kappas, groups)], int)
+
+
+def sheet_pair_kind(model: Model, k: float, branch: int, pair, q: float,
+                    groups=None) -> str:
+    """``pair_kind`` by dispersion sheets (``wave_sheet``) instead of branch indices: the
+    pair (k + q on pair[0], k - q on pair[1]) is the carrier's sidebands (or backward pair)
+    where both waves lie on the carrier's sheet, even where another group's branch crosses
+    it between k and k +- q (there the indices swap). Equal to ``pair_kind`` where the
+    fields are all linearly coupled."""
+    groups = field_groups(model) if groups is None else groups
+    if len(set(groups)) == 1:
+        return pair_kind(branch, pair, q)
+    own = wave_sheet(model, k, branch, groups)
+    on = (wave_sheet(model, float(_wrap(k + q)), pair[0], groups) == own
+          and wave_sheet(model, float(_wrap(k - q)), pair[1], groups) == own)
+    if not on:
         return "parametric"
     return "sidebands" if abs(float(_wrap(q))) <= math.pi / 2 else "backward"
 
@@ -115,7 +197,7 @@ def classify_mode(spectrum) -> dict:
     if miss > tol:
         return {"mode_kind": "resonance", "mode_waves": waves,
                 "fastest_offset": float(min(abs(_wrap(kap - k)), abs(_wrap(kap + k))))}
-    kind = pair_kind(wave.carrier.branch, (b1, b2), kap - k)
+    kind = sheet_pair_kind(model, k, wave.carrier.branch, (b1, b2), kap - k)
     return {"mode_kind": kind, "mode_waves": waves,
             "fastest_offset": own_offset(kind, kap - k)}
 

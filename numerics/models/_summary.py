@@ -14,6 +14,9 @@ from ._nls import nls
 #: The NLS's own frequency shift beyond this share of omega is outside the weakly nonlinear
 #: expansion (the paper chain's coefficients command warns at the same 10%).
 WEAK_SHIFT = 0.10
+#: An NLS band wider than this (rad/site) leaves the sidebands' half of the zone: offsets past
+#: pi/2 are the lattice's backward pairs (``numerics.models.pair_kind``)
+WIDE_BAND = math.pi / 2
 #: The amplitude's field moving less than this share of the wave's largest field is said:
 #: a = 0.1 of u on diatomic FPUT's acoustic branch at k = 3.14 is v = 125
 SMALL_FIELD = 0.1
@@ -45,6 +48,16 @@ def model_coefficients(model: Model, k: float, amplitude: float, branch=None) ->
         warn.append(f"the NLS's frequency shift |g2| a^2/4 = {abs(r.frequency_shift(a)):.3g} "
                     f"is {share} omega: beyond the weakly "
                     "nonlinear expansion; lower the amplitude or ask the exact theory")
+    edge = r.band_edge(a) if not r.undefined else math.nan
+    if r.verdict == "MI" and math.isfinite(edge) and edge > WIDE_BAND:
+        # a nearly flat branch (tiny g1): flat-kg, C 1e-3, k 2.5, a 0.1 put its NLS band
+        # edge at 4.33 rad/site and its peak (0.00374 /time) at offset 3.06, where the
+        # lattice's pair is a backward one (exact and four-wave 0.0030, a run 0.0027)
+        warn.append(f"the NLS's band reaches offset {edge:.3g} rad/site (its fastest "
+                    f"{r.fastest_offset(a):.3g}), beyond pi/2: the envelope's long-wave "
+                    "expansion does not hold that far from the carrier (offsets past pi/2 "
+                    "are the lattice's backward pairs); lower the amplitude, or trust the "
+                    "four-wave and exact lattice theories (flexmm point's rows)")
     if model.lossy:  # a carrier that decays before its phase turns is no wave to modulate
         from ._linear import damped_frequencies
 
