@@ -83,3 +83,17 @@ def test_hill_spectrum_says_offsets_must_be_one_dimensional(fput_wave):
     # before: "offsets must be finite real numbers" for a finite 2-D array
     with pytest.raises(ModelError, match="1-D array.*shape \\(2, 2\\)"):
         nm.hill_spectrum(fput_wave, np.full((2, 2), 0.1))
+
+
+def test_load_model_reads_a_model_files_text(fput):
+    # before: the text was taken for a path (it holds '/'): "<whole text>: no such model file"
+    text = (ROOT / "energy" / "models" / "fput.toml").read_text()
+    m = energy.load_model(text, beta=2.0)
+    assert m.params == {"alpha": 0.0, "beta": 2.0}
+    g1, g2, _, _ = beta_fput_nls(1.3, 0.05, beta=2.0)
+    n = nm.nls(m, 1.3)
+    # carrier and g2 by perturbation theory against the closed forms: round-off
+    assert n.carrier.g1 == pytest.approx(g1, rel=1e-9)
+    assert n.g2 == pytest.approx(g2, rel=1e-9)
+    with pytest.raises(ModelError, match="model text: not valid TOML"):
+        energy.load_model('name = "x"\nfields = [')
