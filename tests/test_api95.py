@@ -4,6 +4,7 @@ against forms derived here by hand, not read from the code under test."""
 
 from __future__ import annotations
 
+import json
 import math
 from pathlib import Path
 
@@ -97,3 +98,20 @@ def test_load_model_reads_a_model_files_text(fput):
     assert n.g2 == pytest.approx(g2, rel=1e-9)
     with pytest.raises(ModelError, match="model text: not valid TOML"):
         energy.load_model('name = "x"\nfields = [')
+
+
+def _numpy_leaves(x, path=""):
+    if isinstance(x, dict):
+        return [p for k, v in x.items() for p in _numpy_leaves(v, f"{path}.{k}")]
+    if isinstance(x, list):
+        return [p for i, v in enumerate(x) for p in _numpy_leaves(v, f"{path}[{i}]")]
+    return [path] if type(x).__module__ == "numpy" else []
+
+
+@pytest.mark.parametrize("name", ["flexmm", "diatomic-fput", "flexmm-lossy"])
+def test_model_coefficients_holds_plain_python_numbers(name):
+    # before: g1 and the second harmonic of a model of several fields were numpy.float64
+    d = nm.model_coefficients(energy.load_model(name), 1.0, 0.05)
+    assert _numpy_leaves(d) == []
+    assert type(d["g1"]) is float and type(d["group_velocity"]) is float
+    assert json.loads(json.dumps(d, allow_nan=False)) == d

@@ -355,8 +355,8 @@ def carrier(model: Model, k: float, branch=None) -> Carrier:
     e = s * phi  # back from mass-weighted coordinates
     f = field_of(model, e, branch if isinstance(branch, str) and not branch.isdigit() else None)
     e = e / e[f]
-    return Carrier(k=float(k), omega=omega, branch=b, field=f, e=e, group_velocity=vg, g1=g1,
-                   gap=gap)
+    return Carrier(k=float(k), omega=omega, branch=b, field=f, e=e, group_velocity=float(vg),
+                   g1=float(g1), gap=gap)
 
 
 def field_of(model: Model, e: np.ndarray, name: str | None = None) -> int:

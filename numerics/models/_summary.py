@@ -20,7 +20,11 @@ SMALL_FIELD = 0.1
 
 
 def _num(x):
-    return None if x is None or (isinstance(x, float) and not math.isfinite(x)) else x
+    """A plain float (not numpy's: the dict is JSON-ready), None where not finite."""
+    if x is None:
+        return None
+    x = float(x)
+    return x if math.isfinite(x) else None
 
 
 def model_coefficients(model: Model, k: float, amplitude: float, branch=None) -> dict:
