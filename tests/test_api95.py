@@ -115,3 +115,21 @@ def test_model_coefficients_holds_plain_python_numbers(name):
     assert _numpy_leaves(d) == []
     assert type(d["g1"]) is float and type(d["group_velocity"]) is float
     assert json.loads(json.dumps(d, allow_nan=False)) == d
+
+
+@pytest.mark.parametrize("module", ["coefficients", "lattice_coefficients"])
+def test_band_edge_and_fastest_offset_are_even_in_the_amplitude(module):
+    # before: 2 A0 sqrt(g) printed as typed gave K_c = -20 at A0 = -1 (g = 100): B -> -B
+    # is a symmetry of the NLS, and eq. `kc` is |K_c| = 2 A0 sqrt(g) for A0 > 0
+    import importlib
+
+    co = importlib.import_module(f"generated.{module}")
+    g, A0 = np.array([100.0, 3.0]), np.array([-1.0, -0.25])
+    Kc, Km = co.mi_cutoff(g, A0), co.mi_fastest(g, A0)
+    # by hand: Omega_I(K)^2 = K^2 (g A0^2 - K^2 / 4) vanishes at K^2 = 4 g A0^2 and peaks
+    # at K^2 = 2 g A0^2, with Omega_I = g A0^2 there
+    np.testing.assert_allclose(Kc, 2 * np.abs(A0) * np.sqrt(g), rtol=1e-15)
+    np.testing.assert_allclose(Km, np.sqrt(2 * g) * np.abs(A0), rtol=1e-15)
+    np.testing.assert_array_equal(Kc, co.mi_cutoff(g, -A0))
+    np.testing.assert_allclose(co.mi_growth_rate(Km, g, A0), g * A0**2, rtol=1e-14)
+    assert np.all(co.mi_growth_rate(Kc * (1 + 1e-12), g, A0) == 0)
