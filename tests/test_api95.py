@@ -133,3 +133,17 @@ def test_band_edge_and_fastest_offset_are_even_in_the_amplitude(module):
     np.testing.assert_array_equal(Kc, co.mi_cutoff(g, -A0))
     np.testing.assert_allclose(co.mi_growth_rate(Km, g, A0), g * A0**2, rtol=1e-14)
     assert np.all(co.mi_growth_rate(Kc * (1 + 1e-12), g, A0) == 0)
+
+
+@pytest.mark.parametrize("module", ["energy._model", "numerics.theory._response",
+                                    "numerics.theory._launched", "numerics.theory._soliton",
+                                    "numerics.maps._params", "numerics.maps._model_params",
+                                    "numerics.lattice._simulate"])
+def test_docstring_examples_run_as_written(module):
+    # the modules whose public docstrings hold >>> examples (grep); before: launched_state's
+    # example called s.mode("U", 2, t) with t undefined (NameError)
+    import doctest
+    import importlib
+
+    result = doctest.testmod(importlib.import_module(module), verbose=False)
+    assert result.attempted > 0 and result.failed == 0
