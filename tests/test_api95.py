@@ -147,3 +147,33 @@ def test_docstring_examples_run_as_written(module):
 
     result = doctest.testmod(importlib.import_module(module), verbose=False)
     assert result.attempted > 0 and result.failed == 0
+
+
+UNSTABLE_REST = """name = "soft"
+fields = ["u"]
+[parameters]
+b = 1.0
+[energy]
+kinetic = "u_t**2/2"
+bond = "-(u_next - u)**2/2 + b*(u_next - u)**4/4"
+site = "u**2"
+"""
+
+
+def test_a_lattice_unstable_at_rest_gets_no_nls_verdict():
+    # by hand: omega^2(kappa) = 2 - 4 sin^2(kappa/2), < 0 beyond pi/2, down to -2 at pi:
+    # the rest state itself grows at up to sqrt(2). Before: model_coefficients said "MI"
+    # with the NLS's 7.6e-4 and no warning, and classify_mode of the exact spectrum raised
+    # numpy's "All-NaN slice encountered" (branches are NaN where omega^2 < 0)
+    m = energy.load_model(UNSTABLE_REST)
+    assert 1.0 < math.pi / 2  # the carrier itself is a real wave
+    assert nm.carrier(m, 1.0).omega == pytest.approx(math.sqrt(2 - 4 * math.sin(0.5)**2),
+                                                      rel=1e-12)
+    d = nm.model_coefficients(m, 1.0, 0.05)
+    assert d["verdict"] == "undefined" and "not a minimum" in d["reason"]
+    assert d["peak_gain"] is None and d["g2"] is not None
+    spec = nm.exact_gain(m, 1.0, 0.05)
+    # the exact theory sees the rest state's growth: sqrt(2) moved by the carrier's O(a^2)
+    # (0.35% measured at a = 0.05)
+    assert spec.peak_gain == pytest.approx(math.sqrt(2), rel=0.01)
+    assert nm.classify_mode(spec)["mode_kind"] == "resonance"
