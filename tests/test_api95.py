@@ -177,3 +177,29 @@ def test_a_lattice_unstable_at_rest_gets_no_nls_verdict():
     # (0.35% measured at a = 0.05)
     assert spec.peak_gain == pytest.approx(math.sqrt(2), rel=0.01)
     assert nm.classify_mode(spec)["mode_kind"] == "resonance"
+
+
+def test_derivation_takes_a_model_by_name_model_or_text():
+    # before: model_energies("fput"), model_energies(load_model("fput")),
+    # equations_of_motion("fput") and model_module_text("fput") raised AttributeError
+    import sympy as sp
+
+    import derivation
+
+    text = (ROOT / "energy" / "models" / "fput.toml").read_text()
+    u, up, un, a, b = sp.symbols("u u_prev u_next alpha beta")
+
+    def dV(r):  # the bond force V'(r) = r + alpha r^2 + beta r^3, by hand
+        return r + a * r**2 + b * r**3
+
+    hand = dV(un - u) - dV(u - up)  # u'' = V'(u_next - u) - V'(u - u_prev)
+    for given in ("fput", energy.load_model("fput"), text):
+        (acc,) = derivation.equations_of_motion(given)
+        by_name = {str(x): x for x in acc.free_symbols}
+        ours = hand.subs({x: by_name[str(x)] for x in (u, up, un, a, b)},
+                         simultaneous=True)
+        assert sp.expand(acc - ours) == 0
+    assert derivation.model_module_text("fput") == derivation.model_module_text(
+        energy.builtin("fput"))
+    with pytest.raises(ModelError, match="model must be an energy.Lattice"):
+        derivation.model_energies(3)
