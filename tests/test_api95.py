@@ -203,3 +203,39 @@ def test_derivation_takes_a_model_by_name_model_or_text():
         energy.builtin("fput"))
     with pytest.raises(ModelError, match="model must be an energy.Lattice"):
         derivation.model_energies(3)
+
+
+HALF_POWER = """name = "half-power"
+fields = ["u"]
+[energy]
+kinetic = "u_t**2/2"
+bond = "(u_next - u)**2/2 + (u_next - u)**2.5"
+"""
+
+
+def _within(seconds, f):
+    """f(), or a failure after ``seconds`` (the old tree looped forever)."""
+    import signal
+
+    def stop(*_):
+        raise TimeoutError(f"no answer within {seconds} s")
+
+    old = signal.signal(signal.SIGALRM, stop)
+    signal.alarm(seconds)
+    try:
+        return f()
+    finally:
+        signal.alarm(0)
+        signal.signal(signal.SIGALRM, old)
+
+
+def test_a_model_real_at_no_amplitude_is_said_not_looped_on():
+    # r**(5/2) is real only for r >= 0 and every wave has r < 0 somewhere, so no amplitude
+    # has a real energy (by hand). Before: amplitude_reach's bisection never ended (hi
+    # underflowed to 5e-324, mid rounded to 0), and model_coefficients with it (> 13 min)
+    m = energy.load_model(HALF_POWER)
+    assert _within(60, lambda: nm.amplitude_reach(m, 1.0, 0.05)) == 0.0
+    why = _within(60, lambda: nm.energy_not_real(m, 1.0, 0.05))
+    assert "no amplitude tried had a real energy" in why
+    d = _within(60, lambda: nm.model_coefficients(m, 1.0, 0.05))
+    assert d["verdict"] == "undefined" and d["peak_gain"] is None
