@@ -265,6 +265,9 @@ def test_an_abs_cube_nonlinearity_gets_no_cubic_nls():
     # next order O(R) relative: 4 R / pi = 0.9% at a = 0.005; 3% allows it
     assert shift == pytest.approx(16 * a * math.sin(k / 2)**2 / math.pi, rel=0.03)
     assert nm.exact_gain(m, k, 0.02).peak_gain > 0.01
+    # the four-wave kernel reads the same tensors: before, 'stable' with gain 0
+    fw = nm.four_wave(m, k, 0.02)
+    assert fw.verdict == "undefined" and "third derivatives jump" in fw.undefined
 
 
 @pytest.mark.parametrize("name", sorted(energy.BUILTIN))
