@@ -276,3 +276,11 @@ def test_smooth_builtin_models_keep_their_nls(name):
     m = energy.load_model(name)
     for k in (0.5, 1.0, 2.0, 3.1):
         assert "third derivatives jump" not in nm.nls(m, k).undefined
+
+
+def test_ring_soliton_names_the_kinds_for_an_unknown_one(fput):
+    # before: "kind grey: the NLS at k = 2 has g = 16.99 (> 0), so only bright solitons"
+    with pytest.raises(ModelError, match="kind must be one of .*'grey'"):
+        nm.ring_soliton(fput, 2.0, 0.1, kind="grey")
+    with pytest.raises(ModelError, match="so only bright solitons"):
+        nm.ring_soliton(fput, 2.0, 0.1, kind="dark")  # g = 24 sin^2(1) > 0: focusing
