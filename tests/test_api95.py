@@ -284,3 +284,12 @@ def test_ring_soliton_names_the_kinds_for_an_unknown_one(fput):
         nm.ring_soliton(fput, 2.0, 0.1, kind="grey")
     with pytest.raises(ModelError, match="so only bright solitons"):
         nm.ring_soliton(fput, 2.0, 0.1, kind="dark")  # g = 24 sin^2(1) > 0: focusing
+
+
+def test_saturation_time_is_never_negative():
+    # ln(SATURATION / noise) / rate: two noises differ by ln(n2 / n1) / rate (by hand)
+    t1, t2 = nm.saturation_time(0.01, noise=1e-8), nm.saturation_time(0.01, noise=1e-6)
+    assert t1 - t2 == pytest.approx(math.log(100) / 0.01, rel=1e-12)
+    # noise of twice the amplitude is past any saturation share: no time to wait
+    assert nm.saturation_time(0.01, noise=2.0) == 0.0  # before: -299.6
+    assert nm.saturation_time(0.0) == math.inf

@@ -227,7 +227,8 @@ def saturation_time(rate: float, noise: float = NOISE) -> float:
     map's estimate: the noise spreads over the modes, so the stop comes a little later."""
     if not (math.isfinite(rate) and rate > 0 and noise > 0):
         return math.inf
-    return math.log(SATURATION / noise) / rate
+    # noise at or above SATURATION is saturated from the start (was a negative time)
+    return max(0.0, math.log(SATURATION / noise) / rate)
 
 
 #: ``until_peak`` stops a run once A(t) has risen this much (sqrt(20), the runs' own
