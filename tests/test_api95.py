@@ -293,3 +293,13 @@ def test_saturation_time_is_never_negative():
     # noise of twice the amplitude is past any saturation share: no time to wait
     assert nm.saturation_time(0.01, noise=2.0) == 0.0  # before: -299.6
     assert nm.saturation_time(0.0) == math.inf
+
+
+def test_with_energy_names_a_key_it_cannot_replace():
+    lat = energy.builtin("klein-gordon")
+    # before: TypeError "Lattice.__init__() got an unexpected keyword argument 'sit'"
+    with pytest.raises(ModelError, match="cannot replace sit .*site"):
+        lat.with_energy(sit="u**2/2")
+    # and a replacement that works: C = 0 leaves omega = omega0 on every k (by hand)
+    m = energy.load_model(lat.with_energy(bond="0*(u_next - u)**2"), omega0=1.5)
+    assert nm.carrier(m, 2.0).omega == pytest.approx(1.5, rel=1e-12)
