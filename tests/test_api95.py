@@ -303,3 +303,15 @@ def test_with_energy_names_a_key_it_cannot_replace():
     # and a replacement that works: C = 0 leaves omega = omega0 on every k (by hand)
     m = energy.load_model(lat.with_energy(bond="0*(u_next - u)**2"), omega0=1.5)
     assert nm.carrier(m, 2.0).omega == pytest.approx(1.5, rel=1e-12)
+
+
+def test_nls_summary_gives_no_stability_where_g_is_undefined():
+    from numerics import Material, nls_summary
+
+    # delta = 0: C1 = alpha^2 delta = 0 and v_g = C1 k / omega = 0, so g1 = 0 (eq. g_i by
+    # hand) and g = g2/g1 does not exist. Before: "stable": False, read as unstable
+    s = nls_summary(Material(2.5, 0.02, 0.02), "coupled", 0.8, amplitude=0.02)
+    assert s["g1"] == 0.0 and math.isnan(s["g"]) and "g1 = 0" in s["undefined"]
+    assert s["stable"] is None
+    blue = nls_summary(Material.paper("blue"), "coupled", 0.81681, amplitude=0.02)
+    assert blue["stable"] is False and blue["g"] > 0  # the paper's MI point keeps its verdict
