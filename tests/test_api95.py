@@ -315,3 +315,13 @@ def test_nls_summary_gives_no_stability_where_g_is_undefined():
     assert s["stable"] is None
     blue = nls_summary(Material.paper("blue"), "coupled", 0.81681, amplitude=0.02)
     assert blue["stable"] is False and blue["g"] > 0  # the paper's MI point keeps its verdict
+
+
+def test_model_map_refuses_k_given_twice(fput):
+    # before: k = 1.0 beside a 'k' axis was dropped without a word
+    with pytest.raises(ModelError, match="k = 1 given and 'k' is a map axis"):
+        nm.model_map(fput, ("k", [0.5]), ("beta", [1.0]), 0.05, k=1.0)
+    ds = nm.model_map(fput, ("k", [0.5, 2.0]), ("beta", [0.5, 1.0]), 0.05)
+    # beta-FPUT NLS rate 3 beta a^2 sin^3(k/2) by hand (beta_fput_nls): the map's cells
+    want = [[beta_fput_nls(k, 0.05, beta)[3] for k in (0.5, 2.0)] for beta in (0.5, 1.0)]
+    np.testing.assert_allclose(ds["peak_gain_semidiscrete"].values, want, rtol=1e-9)

@@ -87,6 +87,8 @@ def model_map(model: Model, x: tuple, y: tuple, amplitude: float, k: float | Non
         raise ModelError(f"the two map axes must differ, got {xn!r} twice")
     if AXIS_K not in (xn, yn) and k is None:
         raise ModelError("give k (the carrier) when neither map axis is 'k'")
+    if AXIS_K in (xn, yn) and k is not None:  # before: k = 1.0 dropped without a word
+        raise ModelError(f"k = {k:g} given and 'k' is a map axis: give one of them")
     from ._linear import branch_index
 
     k0 = xv[0] if xn == AXIS_K else (yv[0] if yn == AXIS_K else k)
