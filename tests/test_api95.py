@@ -321,6 +321,9 @@ def test_model_map_refuses_k_given_twice(fput):
     # before: k = 1.0 beside a 'k' axis was dropped without a word
     with pytest.raises(ModelError, match="k = 1 given and 'k' is a map axis"):
         nm.model_map(fput, ("k", [0.5]), ("beta", [1.0]), 0.05, k=1.0)
+    # before: "needs finite values" for a finite 2-D list
+    with pytest.raises(ModelError, match="1-D list of values, got an array of shape \\(1, 2\\)"):
+        nm.model_map(fput, ("k", [[0.5, 1.0]]), ("beta", [1.0]), 0.05)
     ds = nm.model_map(fput, ("k", [0.5, 2.0]), ("beta", [0.5, 1.0]), 0.05)
     # beta-FPUT NLS rate 3 beta a^2 sin^3(k/2) by hand (beta_fput_nls): the map's cells
     want = [[beta_fput_nls(k, 0.05, beta)[3] for k in (0.5, 2.0)] for beta in (0.5, 1.0)]

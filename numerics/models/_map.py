@@ -25,7 +25,10 @@ def _axis(model: Model, name: str, values) -> np.ndarray:
         v = np.asarray(values, dtype=float)
     except (TypeError, ValueError):
         raise ModelError(f"map axis {name} needs real numbers, got {values!r}") from None
-    if v.ndim != 1 or v.size == 0 or not np.all(np.isfinite(v)):
+    if v.ndim != 1:  # before: "needs finite values" for a finite 2-D list
+        raise ModelError(f"map axis {name} needs a 1-D list of values, got an array of "
+                         f"shape {v.shape}")
+    if v.size == 0 or not np.all(np.isfinite(v)):
         raise ModelError(f"map axis {name} needs finite values, got {values!r}")
     if name == AXIS_K and (v.min() <= 0 or v.max() > math.pi):
         raise ModelError(f"k must be in (0, pi], got {v.min():g}..{v.max():g}")
