@@ -328,3 +328,21 @@ def test_model_map_refuses_k_given_twice(fput):
     # beta-FPUT NLS rate 3 beta a^2 sin^3(k/2) by hand (beta_fput_nls): the map's cells
     want = [[beta_fput_nls(k, 0.05, beta)[3] for k in (0.5, 2.0)] for beta in (0.5, 1.0)]
     np.testing.assert_allclose(ds["peak_gain_semidiscrete"].values, want, rtol=1e-9)
+
+
+def test_simulate_model_refuses_a_wave_of_another_point(fput):
+    # before: a wave of another amplitude, model or k was run silently, from its own
+    # state (a k = 2 wave on a 32-site ring that carries k = 1.9635 only: not periodic)
+    N = 32
+    kr = nm.snap_ring(2.0, N)[0]
+    assert kr == pytest.approx(2 * math.pi * 10 / N)  # 2 pi m / N, m = 10 (by hand)
+    right = nm.travelling_wave(fput, kr, 0.1)
+    for wave, words in ((nm.travelling_wave(fput, kr, 0.2), "amplitude 0.1 \\(wave: 0.2\\)"),
+                        (nm.travelling_wave(fput, 2.0, 0.1), "k on the ring"),
+                        (nm.travelling_wave(fput.with_params(beta=2.0), kr, 0.1), "model"),
+                        (3, "wave must be a TravellingWave")):
+        with pytest.raises(ModelError, match=words):
+            nm.simulate_model(fput, 2.0, 0.1, N=N, t_end=10.0, wave=wave)
+    run = nm.simulate_model(fput, 2.0, 0.1, N=N, t_end=10.0, wave=right, records=2)
+    e = run.energy  # symplectic step: energy kept to round-off over 10 time units
+    assert abs(e[-1] - e[0]) < 1e-12 * abs(e[0])

@@ -323,6 +323,9 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
     k_ring, _ = snap_ring(k, N)
     if wave is None:
         wave = travelling_wave(model, k_ring, amplitude, branch)
+    else:  # before: another model's, amplitude's or k's wave was run silently
+        from ._seeds import check_wave
+        check_wave(model, k_ring, amplitude, wave, branch)
     if t_end is None:
         if expected_gain is None and extra is not None:  # the launched state's theory
             expected_gain = extra.theory(model, k_ring, amplitude, N)["peak_gain"] or 0.0

@@ -459,7 +459,7 @@ def simulate_soliton(model: Model, k: float, amplitude: float, kind: str | None 
         if i:
             run = simulate_model(model, wave.carrier.k, amplitude, N=N, t_end=ti - times[i - 1],
                                  dt=dt, method=method, noise=0.0, records=1, wave=wave,
-                                 initial=(u, v))
+                                 initial=(u, v), branch=wave.carrier.branch)
             u, v = run.state
             step = run.dt
             if not energy:
