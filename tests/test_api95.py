@@ -346,3 +346,22 @@ def test_simulate_model_refuses_a_wave_of_another_point(fput):
     run = nm.simulate_model(fput, 2.0, 0.1, N=N, t_end=10.0, wave=right, records=2)
     e = run.energy  # symplectic step: energy kept to round-off over 10 time units
     assert abs(e[-1] - e[0]) < 1e-12 * abs(e[0])
+
+
+def test_lossy_amplification_checks_its_sampling_options():
+    m = energy.load_model("flexmm-lossy")
+    # the carrier's decay rate by hand: R = gamma theta_t^2/2 on a mass 1/alpha^2 damps the
+    # amplitude at gamma alpha^2 / 2 = 0.001 * 6.25 / 2
+    assert nm.carrier_damping(m, 1.0) == pytest.approx(0.001 * 2.5**2 / 2, rel=1e-12)
+    # before: ZeroDivisionError (offsets, steps = 0), 'math domain error' (ratio -1),
+    # 'amplitude must be > 0' (ratio 0), most = 0 accepted
+    for kw, words in ((dict(offsets=0), "offsets must be an integer >= 1"),
+                      (dict(steps=0), "steps must be an integer >= 1")):
+        with pytest.raises(ModelError, match=words):
+            nm.nls_amplification(m, 1.0, 0.05, **kw)
+    for kw, words in ((dict(ratio=-1.0), "ratio .* must be in \\(0, 1\\)"),
+                      (dict(ratio=0.0), "ratio"), (dict(ratio=2.0), "ratio"),
+                      (dict(most=0), "most must be an integer >= 1")):
+        for f in (nm.exact_amplification, nm.four_wave_amplification):
+            with pytest.raises(ModelError, match=words):
+                f(m, 1.0, 0.05, **kw)
