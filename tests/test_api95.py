@@ -365,3 +365,25 @@ def test_lossy_amplification_checks_its_sampling_options():
         for f in (nm.exact_amplification, nm.four_wave_amplification):
             with pytest.raises(ModelError, match=words):
                 f(m, 1.0, 0.05, **kw)
+
+
+def test_lattice_force_and_energy_refuse_a_state_of_the_wrong_shape(fput):
+    u = np.array([[0.1, -0.2, 0.05, 0.3, -0.1]])
+    # by hand: F_n = V'(r_n) - V'(r_{n-1}), r_n = u_{n+1} - u_n on the ring, V'(r) = r + r^3
+    r = np.roll(u, -1, axis=1) - u
+    np.testing.assert_allclose(nm.lattice_force(fput, u), (r + r**3) - np.roll(r + r**3, 1, 1),
+                               rtol=1e-13, atol=1e-16)
+    assert nm.lattice_energy(fput, u, 0 * u) == pytest.approx(np.sum(r**2 / 2 + r**4 / 4),
+                                                                rel=1e-13)
+    # before: a (1, N) state of the two-field flexmm returned NaN forces after reading and
+    # writing past the array (a segmentation fault or LLVM assertion later in the
+    # process); a 1-D state raised IndexError; u and v of different N read past v
+    flexmm = energy.load_model("flexmm")
+    with pytest.raises(ModelError, match="shape \\(d, N\\) = \\(2, N >= 3\\).*\\(1, 5\\)"):
+        nm.lattice_force(flexmm, u)
+    with pytest.raises(ModelError, match="got shape \\(5,\\)"):
+        nm.lattice_force(fput, u[0])
+    with pytest.raises(ModelError, match="same shape"):
+        nm.lattice_energy(fput, u, np.zeros((1, 3)))
+    with pytest.raises(ModelError, match="real numbers"):
+        nm.lattice_force(fput, u + 0j)
