@@ -387,3 +387,15 @@ def test_lattice_force_and_energy_refuse_a_state_of_the_wrong_shape(fput):
         nm.lattice_energy(fput, u, np.zeros((1, 3)))
     with pytest.raises(ModelError, match="real numbers"):
         nm.lattice_force(fput, u + 0j)
+
+
+def test_simulate_model_names_an_initial_state_of_the_wrong_shape(fput):
+    # before: numpy's "cannot reshape array of size 64 into shape (1,32)"
+    with pytest.raises(ModelError, match="initial must be a pair \\(u, v\\), each of shape "
+                                         "\\(d, N\\) = \\(1, 32\\)"):
+        nm.simulate_model(fput, 2.0, 0.1, N=32, t_end=5.0,
+                          initial=(np.zeros((2, 32)), np.zeros((2, 32))))
+    # the rest state stays at rest: energy 0 (noise 0)
+    run = nm.simulate_model(fput, 2.0, 0.1, N=32, t_end=5.0, records=2, noise=0.0,
+                            initial=(np.zeros((1, 32)), np.zeros((1, 32))))
+    assert np.all(run.energy == 0.0)

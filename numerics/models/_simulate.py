@@ -363,7 +363,12 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
     if extra is not None and initial is None:
         u, v = extra.state(model, k_ring, amplitude, N, noise, seed)
         added = 0.0
-    if initial is not None:
+    if initial is not None:  # before: numpy's "cannot reshape array of size 64 ..."
+        if not (isinstance(initial, (tuple, list)) and len(initial) == 2) or any(
+                np.size(x) != d * N for x in initial):
+            raise ModelError(f"initial must be a pair (u, v), each of shape (d, N) = "
+                             f"({d}, {N}), got {type(initial).__name__} of shapes "
+                             f"{[np.shape(x) for x in initial][:2]}")
         u, v = (np.array(x, dtype=float).reshape(d, N) for x in initial)
     if noise_on not in ("all", "carrier"):
         raise ModelError(f"noise_on must be 'all' or 'carrier', got {noise_on!r}")
