@@ -399,3 +399,24 @@ def test_simulate_model_names_an_initial_state_of_the_wrong_shape(fput):
     run = nm.simulate_model(fput, 2.0, 0.1, N=32, t_end=5.0, records=2, noise=0.0,
                             initial=(np.zeros((1, 32)), np.zeros((1, 32))))
     assert np.all(run.energy == 0.0)
+
+
+def test_simulated_verdict_and_run_length_check_their_arguments():
+    from numerics.lattice import run_length, simulated_verdict
+
+    # the rule as documented: most seeds past 20x is MI, a median below sqrt(20) no growth
+    assert simulated_verdict([100.0, 100.0, 1.0], 1000.0).word == "MI"
+    assert simulated_verdict([1.0], 1000.0).word == "no growth within T"
+    assert simulated_verdict([10.0], 1000.0).word == "undetermined"
+    # before: "MI (grew 100x within T = -1)", "math domain error", "'float' object is not
+    # iterable", "no growth" for a negative factor, and run_length(cap=-1) gave T = -1
+    with pytest.raises(ValueError, match="t_end must be finite and > 0"):
+        simulated_verdict([100.0], -1.0)
+    with pytest.raises(ValueError, match="threshold must be in \\(1, inf\\)"):
+        simulated_verdict([2.0], 100.0, threshold=0.0)
+    with pytest.raises(TypeError, match="growth must be a sequence"):
+        simulated_verdict(100.0, 100.0)
+    with pytest.raises(ValueError, match="amplitude ratios"):
+        simulated_verdict([-5.0], 100.0)
+    with pytest.raises(ValueError, match="cap must be finite and > 0"):
+        run_length(0.01, cap=-1.0)
