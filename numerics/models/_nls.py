@@ -348,7 +348,7 @@ def nls(model: Model, k: float, branch=None) -> ModelNLS:
                         "the energy's third or fourth derivatives at rest are not finite "
                         "(a power below 4 of a quantity that vanishes at rest, as r**(5/2)): "
                         "no weakly nonlinear expansion")
-    if why := rest_not_cubic(model):  # Abs(r)**3: the tensors read g2 = 0, "stable"
+    if why := rest_not_cubic(model, (H, T, Q)):  # Abs(r)**3: the tensors read g2 = 0, "stable"
         nan_d = np.full(model.n_fields, np.nan)
         return ModelNLS(model, c, math.nan, nan_d.astype(complex), nan_d, nan_d, why)
     d = model.n_fields

@@ -15,6 +15,7 @@ c h^2 where the third derivatives jump; seen at two steps, the h^2 law is the te
 
 from __future__ import annotations
 
+import functools
 import itertools
 
 import numpy as np
@@ -31,17 +32,19 @@ JUMP = 1e-6
 _ANSWERS: dict = {}
 
 
-def rest_not_cubic(model: Model) -> str | None:
+def rest_not_cubic(model: Model, taylor=None) -> str | None:
     """Why the model's nonlinearity at rest is not cubic (its third derivatives jump
-    there), or None. Once per model and parameters."""
+    there), or None. Once per model and parameters; ``taylor``: ``model.code.taylor``'s
+    (H, T, Q) where the caller has them (the NLS: ~0.1 ms a new parameter value)."""
     key = (model.code, np.asarray(model.p, float).tobytes())
     if key not in _ANSWERS:
         if len(_ANSWERS) > 256:
             _ANSWERS.clear()
-        _ANSWERS[key] = _rest_not_cubic(model)
+        _ANSWERS[key] = _rest_not_cubic(model, taylor)
     return _ANSWERS[key]
 
 
+@functools.lru_cache(maxsize=16)
 def _directions(n: int) -> np.ndarray:
     """Unit vectors, pairwise sums (a product of fields) and one generic direction, as
     columns."""
@@ -51,8 +54,8 @@ def _directions(n: int) -> np.ndarray:
     return np.column_stack([*eye, *pairs, generic]) if n > 1 else eye
 
 
-def _rest_not_cubic(model: Model) -> str | None:
-    H, T, Q = (np.asarray(a, float) for a in model.code.taylor(model.p))
+def _rest_not_cubic(model: Model, taylor=None) -> str | None:
+    H, T, Q = (np.asarray(a, float) for a in (taylor or model.code.taylor(model.p)))
     if not (np.all(np.isfinite(H)) and np.all(np.isfinite(T)) and np.all(np.isfinite(Q))):
         return None  # said by the NLS's own check (a power below 4)
     n = H.shape[0]
