@@ -420,3 +420,16 @@ def test_simulated_verdict_and_run_length_check_their_arguments():
         simulated_verdict([-5.0], 100.0)
     with pytest.raises(ValueError, match="cap must be finite and > 0"):
         run_length(0.01, cap=-1.0)
+
+
+def test_a_spec_or_wave_of_the_same_model_from_its_file_is_accepted(fput):
+    # before: the built-in fput and energy/models/fput.toml differ only in Lattice.source,
+    # and simulate_seeds refused the spec as "model fput (...) (spec: fput (...))"
+    same = energy.load_model(str(ROOT / "energy" / "models" / "fput.toml"))
+    assert same.lattice.source != fput.lattice.source
+    spec = nm.exact_gain(fput, 2.0, 0.1, N=32)
+    runs = nm.simulate_seeds(same, 2.0, 0.1, spec, N=32, seeds=1, t_end=20.0)
+    assert len(runs.runs) == 1 and runs.t_end == 20.0
+    nm.simulate_model(same, 2.0, 0.1, N=32, t_end=5.0, wave=spec.wave, records=2)
+    with pytest.raises(ModelError, match="model"):  # another beta is another model
+        nm.simulate_seeds(fput.with_params(beta=2.0), 2.0, 0.1, spec, N=32, t_end=20.0)
