@@ -50,14 +50,25 @@ _REAL = '''def _real(name, value):
 '''
 
 
+def _printed_expr(form):
+    """``form.expr`` with each argument named in ``even_in`` replaced by its absolute value
+    (a real symbol of the same name: the derivation's is positive, where |x| = x)."""
+    even = getattr(form, "even_in", ())
+    if not even:
+        return form.expr
+    return form.expr.xreplace({a: sp.Abs(sp.Symbol(a.name, real=True))
+                               for a in form.args if a.name in even})
+
+
 def _function_source(form, printer):
     args = [str(a) for a in form.args]
-    matrix = isinstance(form.expr, sp.MatrixBase)
-    exprs = list(form.expr) if matrix else [form.expr]
+    expr = _printed_expr(form)
+    matrix = isinstance(expr, sp.MatrixBase)
+    exprs = list(expr) if matrix else [expr]
     subs, body = sp.cse(exprs, symbols=sp.numbered_symbols("x"), optimizations=None,
                         order="canonical")
     lines = [f"def {form.name}({', '.join(args)}):"]
-    latex = sp.latex(form.expr)
+    latex = sp.latex(expr)
     lines.append(f'    r"""{form.doc}')
     lines.append("")
     lines.append(f"    Paper: eq. `{form.label}`. Derived closed form:")
@@ -78,7 +89,7 @@ def _function_source(form, printer):
     entries = ", ".join(printer.doprint(e) for e in body)
     lines.append(f"    entries = numpy.broadcast_arrays({', '.join(args)}, {entries})"
                  f"[{len(args)}:]")
-    lines.append(f"    return numpy.stack(entries).reshape({form.expr.shape!r} + "
+    lines.append(f"    return numpy.stack(entries).reshape({expr.shape!r} + "
                  "entries[0].shape)")
     return "\n".join(lines)
 

@@ -115,8 +115,27 @@ class Energies:
         return self.bond + self.site
 
 
+def lattice_of(model) -> Lattice:
+    """The :class:`Lattice` of ``model``: a Lattice, an ``energy.Model`` (its lattice), or
+    what ``energy.resolve_model`` reads (a built-in name, a path, a model file's text)."""
+    import os
+
+    from energy import Model, resolve_model
+
+    if isinstance(model, Lattice):
+        return model
+    if isinstance(model, Model):
+        return model.lattice
+    if isinstance(model, (str, os.PathLike)):
+        return resolve_model(model)
+    raise ModelError(f"model must be an energy.Lattice, an energy.Model, a built-in name, a "
+                     f"model file's path or its text, got {type(model).__name__}")
+
+
 def energies(lat: Lattice) -> Energies:
-    """Read the energies of ``lat`` into SymPy and check the kinetic energy's form."""
+    """Read the energies of ``lat`` into SymPy and check the kinetic energy's form (``lat``:
+    a Lattice, or any model ``lattice_of`` reads)."""
+    lat = lattice_of(lat)
     s = Symbols.of(lat)
     names = {p.name: p for p in s.params}
     names.update({f: x for f, x in zip(lat.fields, s.here)})
@@ -210,7 +229,10 @@ def _regular(expr):
 
 
 def equations_of_motion(e: Energies) -> tuple:
-    """Accelerations d^2 u_{i,n}/dt^2 of eq. (1), in u_prev, u, u_next (one per field)."""
+    """Accelerations d^2 u_{i,n}/dt^2 of eq. (1), in u_prev, u, u_next (one per field).
+    ``e``: the model's ``Energies``, or any model ``energies`` reads."""
+    if not isinstance(e, Energies):
+        e = energies(e)
     s = e.symbols
     back = dict(zip(s.here, s.prev)) | dict(zip(s.next, s.here))
     w_left = e.bond.subs(back, simultaneous=True)  # the bond (n-1, n)

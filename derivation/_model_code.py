@@ -11,7 +11,7 @@ import sympy as sp
 
 from energy import Lattice, with_body_hash
 
-from ._energy import Energies, _regular, energies, taylor_tensors
+from ._energy import Energies, _regular, energies, lattice_of, taylor_tensors
 
 
 def _printer():
@@ -144,7 +144,9 @@ def _site_loop_text(e: Energies) -> list:
 
 
 def model_module_text(lat: Lattice, e: Energies | None = None, command: str = "") -> str:
-    """The generated NumPy module of one model (deterministic: no time, no path)."""
+    """The generated NumPy module of one model (deterministic: no time, no path). ``lat``:
+    a Lattice, or any model ``lattice_of`` reads (a Model, a built-in name, a path)."""
+    lat = lattice_of(lat)
     e = e or energies(lat)
     s = e.symbols
     x = s.here + s.next

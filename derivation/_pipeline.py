@@ -25,6 +25,10 @@ class ClosedForm:
     args: tuple
     doc: str
     label: str  # the paper's equation label it corresponds to
+    #: names of arguments the quantity depends on through their size only, printed as
+    #: |x| (the derivation assumes x > 0; the NLS's B -> -B symmetry makes |K_c| of
+    #: A0 = -1 that of A0 = 1, where 2 A0 sqrt(g) printed as typed would be negative)
+    even_in: tuple = ()
 
 
 @dataclass(frozen=True)
@@ -78,9 +82,11 @@ def derive() -> Derivation:
                    "c.c. (case II). Diverges at the resonance k^2 = omega^2.", "u1"),
         ClosedForm("mi_cutoff", mi.cutoff, MI_ARGS,
                    "Cutoff K_c of the unstable band |K| < K_c (NLS units, xi1 = eps X). "
-                   "NaN for g < 0: there is no band.", "kc"),
+                   "NaN for g < 0: there is no band. A0 enters as |A0| (B -> -B).", "kc",
+                   even_in=("A0",)),
         ClosedForm("mi_fastest", mi.fastest, MI_ARGS,
-                   "Fastest-growing perturbation wavenumber K_m. NaN for g < 0.", "K_m"),
+                   "Fastest-growing perturbation wavenumber K_m. NaN for g < 0. A0 enters "
+                   "as |A0| (B -> -B).", "K_m", even_in=("A0",)),
         ClosedForm("mi_growth_rate", growth, GROWTH_ARGS,
                    "Growth rate Omega_I(K) in the NLS time tilde-tau2 = g1 eps^2 T; 0 outside "
                    "the band (and for g <= 0). The lattice rate is eps^2 |g1| Omega_I.",

@@ -11,7 +11,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from types import MappingProxyType, ModuleType
 
-from ._spec import Lattice, ModelError, read_model
+from ._spec import Lattice, ModelError, parse_model, read_model
 
 MODELS_DIR = Path(__file__).with_name("models")
 #: Names of the built-in models (energy/models/NAME.toml).
@@ -28,15 +28,19 @@ def builtin(name: str) -> Lattice:
 
 
 def resolve_model(model) -> Lattice:
-    """A :class:`Lattice` from a Lattice, a built-in name or a path to a model file."""
+    """A :class:`Lattice` from a Lattice, a built-in name, a path to a model file or a
+    model file's text (a string of several lines: no name or path has a line break)."""
     if isinstance(model, Lattice):
         return model
+    if isinstance(model, str) and "\n" in model:
+        return parse_model(model, where="model text")
     if isinstance(model, os.PathLike) or (isinstance(model, str) and (
             model.endswith(".toml") or os.sep in model)):
         return read_model(model)
     if isinstance(model, str):
         return builtin(model)
-    raise ModelError(f"model must be a built-in name, a .toml path or a Lattice, got "
+    raise ModelError(f"model must be a built-in name, a .toml path, a model file's text or a "
+                     f"Lattice, got "
                      f"{type(model).__name__} {model!r}")
 
 
@@ -295,7 +299,8 @@ def load_model(model, **params) -> Model:
     Parameters
     ----------
     model : str, path or Lattice
-        ``"fput"``, ``"my_chain.toml"``, ...
+        ``"fput"``, ``"my_chain.toml"``, ..., or the text of a model file (a string of
+        several lines, as :func:`parse_model` reads it).
     **params : float
         Parameter values; the others keep the model's defaults.
 

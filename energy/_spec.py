@@ -106,7 +106,7 @@ class Lattice:
     diagonal positive quadratic form in the velocities, ``bond`` couples cell n to n + 1
     only, ``site`` depends on cell n only. The rest state (every field 0) must be an
     equilibrium. Equations of motion, dispersion, the NLS and the simulator's force all come
-    from these three expressions (``derivation.derive_model``).
+    from these three expressions (``derivation.model_energies``, ``compile_model``).
 
     Parameters
     ----------
@@ -269,6 +269,10 @@ class Lattice:
         kw = {k: getattr(self, k) for k in ("name", "fields", "parameters", "kinetic", "bond",
                                            "site", "description", "branch", "references",
                                            "source", "dissipation")}
+        unknown = sorted(set(changes) - set(kw))
+        if unknown:  # before: dataclass's TypeError "__init__() got an unexpected keyword"
+            raise ModelError(f"model {self.name!r}: with_energy cannot replace "
+                             f"{', '.join(unknown)} (it replaces: {', '.join(kw)})")
         kw.update(changes)
         return Lattice(**kw)
 

@@ -178,33 +178,33 @@ def u2_coefficient(k, alpha, K_s, K_theta):
 
 
 def mi_cutoff(g, A0):
-    r"""Cutoff K_c of the unstable band |K| < K_c (NLS units, xi1 = eps X). NaN for g < 0: there is no band.
+    r"""Cutoff K_c of the unstable band |K| < K_c (NLS units, xi1 = eps X). NaN for g < 0: there is no band. A0 enters as |A0| (B -> -B).
 
     Paper: eq. `kc`. Derived closed form:
 
-    .. math:: 2 A_{0} \sqrt{g}
+    .. math:: 2 \sqrt{g} \left|{A_{0}}\right|
 
     Parameters are floats or arrays (NumPy broadcasting); singular points
     give inf/nan with NumPy's RuntimeWarning, never an exception.
     """
     g = _real('g', g)
     A0 = _real('A0', A0)
-    return 2*A0*numpy.sqrt(g)
+    return 2*numpy.sqrt(g)*numpy.abs(A0)
 
 
 def mi_fastest(g, A0):
-    r"""Fastest-growing perturbation wavenumber K_m. NaN for g < 0.
+    r"""Fastest-growing perturbation wavenumber K_m. NaN for g < 0. A0 enters as |A0| (B -> -B).
 
     Paper: eq. `K_m`. Derived closed form:
 
-    .. math:: \sqrt{2} A_{0} \sqrt{g}
+    .. math:: \sqrt{2} \sqrt{g} \left|{A_{0}}\right|
 
     Parameters are floats or arrays (NumPy broadcasting); singular points
     give inf/nan with NumPy's RuntimeWarning, never an exception.
     """
     g = _real('g', g)
     A0 = _real('A0', A0)
-    return numpy.sqrt(2)*A0*numpy.sqrt(g)
+    return numpy.sqrt(2)*numpy.sqrt(g)*numpy.abs(A0)
 
 
 def mi_growth_rate(K, g, A0):

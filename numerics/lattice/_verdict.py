@@ -70,6 +70,9 @@ def run_length(rate: float, cap: float = T_CAP) -> RunLength:
     -------
     RunLength
     """
+    from . import checks
+
+    cap = checks.positive("cap", cap)  # before: cap = -1 gave t_end = -1
     if not (isinstance(rate, (int, float, np.floating)) and rate > 0 and math.isfinite(rate)):
         return RunLength(DEFAULT_T, float("nan"), False, float("nan"), cap)
     rate = float(rate)
@@ -155,7 +158,20 @@ def simulated_verdict(growth, t_end: float, rate: float = float("nan"),
         their median stayed below sqrt(threshold); "undetermined" between (it grew, a longer
         run decides) or without a finite growth factor.
     """
-    g = tuple(float(x) for x in growth)
+    # before: t_end = -1 gave "MI (grew 100x within T = -1)", threshold 0 "math domain
+    # error", a bare number "'float' object is not iterable", a factor -5 "no growth"
+    from . import checks
+
+    t_end = checks.positive("t_end", t_end)
+    threshold = checks.real("threshold", threshold, 1.0, None)
+    if isinstance(growth, (str, bytes)) or not hasattr(growth, "__iter__"):
+        raise TypeError(f"growth must be a sequence of growth factors (one per seed), got "
+                        f"{type(growth).__name__} {growth!r}")
+    g = tuple(checks.real("growth", x, finite=False) if not (
+        isinstance(x, float) and math.isnan(x)) else x for x in growth)
+    if any(x < 0 for x in g):
+        raise ValueError(f"growth factors are amplitude ratios (end over start), >= 0, "
+                         f"got {min(g):g}")
     low = slowest_visible_rate(t_end, threshold)
     if not g or not all(math.isfinite(x) for x in g):
         return Verdict("undetermined", t_end, rate, g, low, "no growth factor from the run",

@@ -133,9 +133,25 @@ def _kernels(model: Model) -> _Compiled:
     return _KERNELS[key]
 
 
+def ring_state(model: Model, name: str, u) -> np.ndarray:
+    """``u`` as a C-contiguous float array of shape (d, N), N >= 3, or a ModelError: the
+    compiled kernels index d rows and the ring's neighbours without bounds checks (a
+    (1, N) state of the two-field flexmm read and wrote past its end: NaN forces, then a
+    segmentation fault or an LLVM assertion later in the process)."""
+    a = np.asarray(u)
+    d = model.n_fields
+    if a.dtype.kind not in "fiu":
+        raise ModelError(f"{name} must hold real numbers, got an array of dtype {a.dtype}")
+    if a.ndim != 2 or a.shape[0] != d or a.shape[1] < 3:
+        raise ModelError(f"{name} must have shape (d, N) = ({d}, N >= 3): one row per field "
+                         f"of model {model.name!r} ({', '.join(model.fields)}), got shape "
+                         f"{a.shape}")
+    return np.ascontiguousarray(a, dtype=float)
+
+
 def lattice_force(model: Model, u: np.ndarray) -> np.ndarray:
     """The acceleration of every site, shape (d, N), from the compiled force."""
-    u = np.ascontiguousarray(u, dtype=float)
+    u = ring_state(model, "u", u)
     out = np.empty_like(u)
     compiled_force(model, u.shape[1])(u, out)
     return out
@@ -162,6 +178,9 @@ def compiled_force(model: Model, N: int):
 def lattice_energy(model: Model, u: np.ndarray, v: np.ndarray) -> float:
     """Total energy of a ring state (kinetic + every cell's W), from the model file."""
     energy = _kernels(model).energy
-    return float(energy(np.ascontiguousarray(u, float), np.ascontiguousarray(v, float),
+    u, v = ring_state(model, "u", u), ring_state(model, "v", v)
+    if u.shape != v.shape:
+        raise ModelError(f"u and v must have the same shape, got {u.shape} and {v.shape}")
+    return float(energy(u, v,
                         np.asarray(model.p, float), np.asarray(model.masses, float),
                         np.empty(2 * model.n_fields)))

@@ -61,6 +61,7 @@ import numpy as np
 from common.threads import one_blas_thread
 from energy import Model, ModelError
 
+from ._linear import check_harmonics
 from ._wave import (  # noqa: F401 (TravellingWave, travelling_wave, continued_wave: here too)
     TravellingWave,
     _wrap,
@@ -244,7 +245,8 @@ def hill_spectrum(wave: TravellingWave, offsets, *, harmonics: int | None = None
                   return_eigenvalues: bool = False):
     """The growth rate of the fastest resolved sideband mode at each offset q.
 
-    ``harmonics`` P: the perturbation's harmonics l = -P..P (default: the wave's H + 4).
+    ``harmonics`` P: the perturbation's harmonics l = -P..P (default: the wave's H + 4;
+    an integer >= 4: below, no sideband mode is resolved and every gain would read 0).
     With ``return_eigenvalues``, also the lambdas at each q (list of arrays). On one BLAS
     thread (``common.threads``).
     """
@@ -252,8 +254,18 @@ def hill_spectrum(wave: TravellingWave, offsets, *, harmonics: int | None = None
         raise ModelError(f"wave must be a TravellingWave (numerics.models.travelling_wave), "
                          f"got {type(wave).__name__}")
     q = np.atleast_1d(np.asarray(offsets))
-    if q.dtype.kind not in "fiu" or q.ndim != 1 or not np.all(np.isfinite(q)):
+    if q.ndim != 1:
+        raise ModelError(f"offsets must be a number or a 1-D array of offsets q (rad/site), "
+                         f"got an array of shape {q.shape}: pass offsets.ravel() and "
+                         f"reshape the gain")
+    if q.dtype.kind not in "fiu" or not np.all(np.isfinite(q)):
         raise ModelError(f"offsets must be finite real numbers (rad/site), got {offsets!r}")
+    # below P = 4 the outer three harmonics, where a kept mode must hold < 1e-6 of its
+    # weight, include l = +-1 where every sideband mode sits: each would be dropped and
+    # the gain read 0 (stable) whatever the wave
+    harmonics = check_harmonics(harmonics, 4, "a sideband mode sits at l = +-1, and a "
+                                "mode counts only with < 1e-6 of its weight in the outer "
+                                "three harmonics")
     return _hill_spectrum(wave, q.astype(float), harmonics, return_eigenvalues)
 
 

@@ -284,11 +284,15 @@ def four_wave(model: Model, k: float, amplitude: float, branch=None, *, N: int |
         q = _offset_grid(check_count("samples", samples, least=8))  # exact_gain's rule
     from ._nls import check_resolved_amplitude
     from ._reach import energy_not_real
+    from ._rest_order import rest_not_cubic
 
     check_resolved_amplitude(model, k, a, branch)  # no rates from rounding
     # a wave the model cannot carry (its energy not real along it) has no four-wave rates:
     # the kernel's Taylor coefficients at rest would rate it as if it existed
-    kernel = energy_not_real(model, k, a, branch) or _kernel(model, k, a, branch)
+    # nor where its nonlinearity at rest is not cubic (Abs(r)**3): the kernel's tensors
+    # read 0 there, and 'stable' while the exact theory finds MI
+    kernel = (energy_not_real(model, k, a, branch) or rest_not_cubic(model)
+              or _kernel(model, k, a, branch))
     d = model.n_fields
     if isinstance(kernel, str):
         car = carrier(model, k, branch)

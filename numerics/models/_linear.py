@@ -181,6 +181,20 @@ def check_model(model) -> Model:
     return model
 
 
+def check_harmonics(harmonics, low: int, why: str, name: str = "harmonics") -> int | None:
+    """A truncation: None (the default) or an integer (not a bool) >= ``low``; ``why``
+    says what the lower bound is for, in the error."""
+    if harmonics is None:
+        return None
+    if isinstance(harmonics, (bool, np.bool_)) or not isinstance(harmonics, numbers.Integral):
+        raise ModelError(f"{name} must be an integer >= {low} or None (the default), got "
+                         f"{type(harmonics).__name__} {harmonics!r}")
+    if int(harmonics) < low:
+        raise ModelError(f"{name} must be an integer >= {low} ({why}) or None (the "
+                         f"default), got {int(harmonics)}")
+    return int(harmonics)
+
+
 def check_amplitude(amplitude, name: str = "amplitude") -> float:
     """A carrier's amplitude: a real number (not a bool or a string) in (0, MAX_VALUE]."""
     if isinstance(amplitude, (bool, np.bool_)) or not isinstance(amplitude, numbers.Real):
@@ -341,8 +355,8 @@ def carrier(model: Model, k: float, branch=None) -> Carrier:
     e = s * phi  # back from mass-weighted coordinates
     f = field_of(model, e, branch if isinstance(branch, str) and not branch.isdigit() else None)
     e = e / e[f]
-    return Carrier(k=float(k), omega=omega, branch=b, field=f, e=e, group_velocity=vg, g1=g1,
-                   gap=gap)
+    return Carrier(k=float(k), omega=omega, branch=b, field=f, e=e, group_velocity=float(vg),
+                   g1=float(g1), gap=gap)
 
 
 def field_of(model: Model, e: np.ndarray, name: str | None = None) -> int:

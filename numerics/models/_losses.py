@@ -38,7 +38,7 @@ import numpy as np
 
 from energy import Model, ModelError
 
-from ._losses_rates import _carrier_damping, rates_once, side_rates, sideband_damping
+from ._losses_rates import _carrier_damping, _sampling, rates_once, side_rates, sideband_damping
 
 #: amplification a theory calls observable (the runs' threshold)
 OBSERVABLE = 20.0
@@ -193,8 +193,13 @@ def nls_amplification(model: Model, k: float, amplitude: float, branch=None, *,
                       offsets: int = 200, steps: int = 1000, first=None) -> Amplified:
     """The damped semi-discrete NLS's amplification (module docstring). ``first``: the
     point's ``nls(model, k, branch)``, where already computed."""
+    from ._linear import check_amplitude
     from ._nls import nls
+    from ._simulate import check_count
 
+    # before: offsets = 0 or steps = 0 raised ZeroDivisionError from inside
+    amplitude = check_amplitude(amplitude)
+    offsets, steps = check_count("offsets", offsets), check_count("steps", steps)
     r = nls(model, k, branch) if first is None else first
     c = r.carrier
     P, Q = c.g1 / 2, r.g2
@@ -423,6 +428,7 @@ def exact_amplification(model: Model, k: float, amplitude: float, branch=None, *
     ring, where already computed."""
     from ._exact import exact_gain
 
+    ratio, most = _sampling(ratio, most)
     if first is None:
         first = exact_gain(model, k, amplitude, branch, N=N)
     c = first.wave.carrier
@@ -455,6 +461,7 @@ def four_wave_amplification(model: Model, k: float, amplitude: float, branch=Non
     from ._fourwave import four_wave
     from ._fourwave_kernel import _kernel
 
+    ratio, most = _sampling(ratio, most)
     if first is None:
         first = four_wave(model, k, amplitude, branch, N=N)
     if first.undefined:  # no rate, no amplification: the reason instead (issue 43)

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from energy import Model
+from energy import Model, ModelError
 
 
 def sideband_damping(model: Model, k: float, q, branch: int) -> np.ndarray:
@@ -102,3 +102,14 @@ def _carrier_damping(model: Model, k: float, branch) -> float:
         return 0.0
     return float(_rates_at(model, [float(k)])[0][branch_index(model, k, branch)])
 
+
+def _sampling(ratio, most) -> tuple[float, int]:
+    """``along_decay``'s ratio in (0, 1) and most >= 1 (before: ratio -1 'math domain
+    error', 0 'amplitude must be > 0', most 0 accepted)."""
+    from ._simulate import check_count
+
+    if isinstance(ratio, bool) or not isinstance(ratio, (int, float, np.floating)) \
+            or not 0 < ratio < 1:
+        raise ModelError(f"ratio (of the squared amplitudes sampled along the decay) must "
+                         f"be in (0, 1), got {ratio!r}")
+    return float(ratio), check_count("most", most)

@@ -25,7 +25,10 @@ def _axis(model: Model, name: str, values) -> np.ndarray:
         v = np.asarray(values, dtype=float)
     except (TypeError, ValueError):
         raise ModelError(f"map axis {name} needs real numbers, got {values!r}") from None
-    if v.ndim != 1 or v.size == 0 or not np.all(np.isfinite(v)):
+    if v.ndim != 1:  # before: "needs finite values" for a finite 2-D list
+        raise ModelError(f"map axis {name} needs a 1-D list of values, got an array of "
+                         f"shape {v.shape}")
+    if v.size == 0 or not np.all(np.isfinite(v)):
         raise ModelError(f"map axis {name} needs finite values, got {values!r}")
     if name == AXIS_K and (v.min() <= 0 or v.max() > math.pi):
         raise ModelError(f"k must be in (0, pi], got {v.min():g}..{v.max():g}")
@@ -91,6 +94,8 @@ def model_map(model: Model, x: tuple, y: tuple, amplitude: float, k: float | Non
         raise ModelError(f"the two map axes must differ, got {xn!r} twice")
     if AXIS_K not in (xn, yn) and k is None:
         raise ModelError("give k (the carrier) when neither map axis is 'k'")
+    if AXIS_K in (xn, yn) and k is not None:  # before: k = 1.0 dropped without a word
+        raise ModelError(f"k = {k:g} given and 'k' is a map axis: give one of them")
     from ._linear import branch_index
 
     k0 = xv[0] if xn == AXIS_K else (yv[0] if yn == AXIS_K else k)

@@ -178,6 +178,10 @@ def classify_mode(spectrum) -> dict:
             continue
         kap, kap2 = float(_wrap(q + l * k)), float(_wrap(2 * k - q - l * k))
         w1, w2 = branches(model, [kap, kap2])
+        if np.all(np.isnan(w1)) or np.all(np.isnan(w2)):
+            # omega^2 < 0 on every branch there (a rest state that is no minimum): no
+            # linear wave to name; before, nanargmin raised 'All-NaN slice encountered'
+            continue
         miss, b1, b2 = min(
             (max(abs(w1[i] + s - phi), abs(w2[j] + s - phi2)), i, j)
             for s in (0.0, shift) if math.isfinite(s)

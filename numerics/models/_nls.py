@@ -38,6 +38,7 @@ import numpy as np
 from energy import Model, ModelError
 
 from ._linear import Carrier, blocks, carrier, check_amplitude, dynamical_matrix
+from ._rest_order import rest_not_cubic
 
 #: Relative size under which a matrix is singular: a resonance, not a number.
 SINGULAR = 1e-9
@@ -347,6 +348,9 @@ def nls(model: Model, k: float, branch=None) -> ModelNLS:
                         "the energy's third or fourth derivatives at rest are not finite "
                         "(a power below 4 of a quantity that vanishes at rest, as r**(5/2)): "
                         "no weakly nonlinear expansion")
+    if why := rest_not_cubic(model, (H, T, Q)):  # Abs(r)**3: the tensors read g2 = 0, "stable"
+        nan_d = np.full(model.n_fields, np.nan)
+        return ModelNLS(model, c, math.nan, nan_d.astype(complex), nan_d, nan_d, why)
     d = model.n_fields
     m = model.masses
     M = np.diag(m)

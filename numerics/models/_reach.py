@@ -25,6 +25,11 @@ from ._linear import check_amplitude
 
 #: sites of the ring the linear profile is checked on (its phases k n mod 2 pi)
 _SITES = 512
+#: halvings of the amplitude at most: 2^-64 of it (5e-20) is no amplitude left. Without a
+#: bound a model real at no amplitude (the bond r**(5/2), not real for r < 0, which every
+#: wave reaches) looped forever: hi underflows to 5e-324, mid rounds to 0 (finite), and
+#: hi - lo > rtol * hi reads 5e-324 > 0
+MAX_HALVINGS = 64
 
 
 def _profile(model: Model, k: float, amplitude: float, branch, car=None):
@@ -87,7 +92,9 @@ def amplitude_reach(model: Model, k: float, amplitude: float, branch=None, *,
     if _finite(model, k, amplitude, branch, carrier):
         return float(amplitude)
     lo, hi = 0.0, float(amplitude)
-    while hi - lo > rtol * hi:
+    for _ in range(MAX_HALVINGS):
+        if hi - lo <= rtol * hi:
+            break
         mid = (lo + hi) / 2
         lo, hi = (mid, hi) if _finite(model, k, mid, branch, carrier) else (lo, mid)
     return lo

@@ -44,25 +44,13 @@ def _check_spec(model: Model, k: float, amplitude: float, spec, branch, N: int) 
     """``spec`` is the exact theory of this very wave on this ring: the runs start from
     ``spec.wave``, so a spectrum of another k, amplitude, branch or model would start
     them from another wave, silently (seen: amplitude 0.5 asked, 0.05 run)."""
-    from ._linear import branch_index, check_amplitude, check_model
 
     wave = getattr(spec, "wave", None)
     if wave is None or not hasattr(spec, "peak_gain"):
         raise ModelError(f"spec must be the exact theory of the wave on this ring "
                          f"(numerics.models.exact_gain(model, k, amplitude, branch, N=N)), "
                          f"got {type(spec).__name__}")
-    check_model(model)
-    a = check_amplitude(amplitude)
-    kr = snap_ring(k, N)[0]
-    b = branch_index(model, kr, branch)
-    differ = [f"{name} {got} (spec: {want})" for name, got, want, same in (
-        ("k on the ring", f"{kr:.6g}", f"{wave.k:.6g}", math.isclose(kr, wave.k, rel_tol=1e-12)),
-        ("amplitude", f"{a:.6g}", f"{wave.amplitude:.6g}",
-         math.isclose(a, wave.amplitude, rel_tol=1e-12)),
-        ("branch", b, wave.carrier.branch, b == wave.carrier.branch),
-        ("model", model.describe(), wave.model.describe(),
-         wave.model.lattice == model.lattice and dict(wave.model.params) == dict(model.params)))
-        if not same]
+    differ = _differences(model, snap_ring(k, N)[0], amplitude, wave, branch, "spec")
     ring = _spec_ring(spec)
     if ring != N:  # another ring's k can snap to the same 2 pi m / N: its offsets differ
         differ.append(f"ring N = {N} (spec: "
@@ -71,6 +59,44 @@ def _check_spec(model: Model, k: float, amplitude: float, spec, branch, N: int) 
     if differ:
         raise ModelError(f"spec is the exact theory of another wave: {'; '.join(differ)}; "
                          f"give exact_gain(model, k, amplitude, branch, N=N) of these")
+
+
+def _differences(model: Model, kr: float, amplitude: float, wave, branch, what: str) -> list:
+    """How ``wave`` differs from the travelling wave of ``model`` at ring wavenumber kr,
+    ``amplitude`` and ``branch``: one phrase per difference (k, amplitude, branch, model)."""
+    from ._linear import branch_index, check_amplitude, check_model
+
+    check_model(model)
+    a = check_amplitude(amplitude)
+    b = branch_index(model, kr, branch)
+    return [f"{name} {got} ({what}: {want})" for name, got, want, same in (
+        ("k on the ring", f"{kr:.6g}", f"{wave.k:.6g}", math.isclose(kr, wave.k, rel_tol=1e-12)),
+        ("amplitude", f"{a:.6g}", f"{wave.amplitude:.6g}",
+         math.isclose(a, wave.amplitude, rel_tol=1e-12)),
+        ("branch", b, wave.carrier.branch, b == wave.carrier.branch),
+        ("model", model.describe(), wave.model.describe(),
+         # the content, not the Lattice object: the built-in fput and energy/models/
+         # fput.toml (another source) are the same model (before: refused as 'fput (...)
+         # (spec: fput (...))', both sides alike)
+         wave.model.lattice.content_hash == model.lattice.content_hash
+         and dict(wave.model.params) == dict(model.params)))
+        if not same]
+
+
+def check_wave(model: Model, kr: float, amplitude: float, wave, branch) -> None:
+    """``simulate_model``'s ``wave`` is the travelling wave of this model at the ring's k,
+    this amplitude and branch: the run starts from it and measures its deviation from it,
+    so another wave (another model's, amplitude's or k's) would be run silently."""
+    from ._exact import TravellingWave
+
+    if not isinstance(wave, TravellingWave):
+        raise ModelError(f"wave must be a TravellingWave (numerics.models.travelling_wave), "
+                         f"got {type(wave).__name__}")
+    differ = _differences(model, kr, amplitude, wave, branch, "wave")
+    if differ:
+        raise ModelError(f"wave is another wave: {'; '.join(differ)}; give "
+                         f"travelling_wave(model, k, amplitude, branch) of these, k on the "
+                         f"ring (snap_ring(k, N))")
 
 
 def _spec_ring(spec) -> int | None:

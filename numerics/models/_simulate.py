@@ -227,7 +227,8 @@ def saturation_time(rate: float, noise: float = NOISE) -> float:
     map's estimate: the noise spreads over the modes, so the stop comes a little later."""
     if not (math.isfinite(rate) and rate > 0 and noise > 0):
         return math.inf
-    return math.log(SATURATION / noise) / rate
+    # noise at or above SATURATION is saturated from the start (was a negative time)
+    return max(0.0, math.log(SATURATION / noise) / rate)
 
 
 #: ``until_peak`` stops a run once A(t) has risen this much (sqrt(20), the runs' own
@@ -322,6 +323,9 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
     k_ring, _ = snap_ring(k, N)
     if wave is None:
         wave = travelling_wave(model, k_ring, amplitude, branch)
+    else:  # before: another model's, amplitude's or k's wave was run silently
+        from ._seeds import check_wave
+        check_wave(model, k_ring, amplitude, wave, branch)
     if t_end is None:
         if expected_gain is None and extra is not None:  # the launched state's theory
             expected_gain = extra.theory(model, k_ring, amplitude, N)["peak_gain"] or 0.0
@@ -359,7 +363,12 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
     if extra is not None and initial is None:
         u, v = extra.state(model, k_ring, amplitude, N, noise, seed)
         added = 0.0
-    if initial is not None:
+    if initial is not None:  # before: numpy's "cannot reshape array of size 64 ..."
+        if not (isinstance(initial, (tuple, list)) and len(initial) == 2) or any(
+                np.size(x) != d * N for x in initial):
+            raise ModelError(f"initial must be a pair (u, v), each of shape (d, N) = "
+                             f"({d}, {N}), got {type(initial).__name__} of shapes "
+                             f"{[np.shape(x) for x in initial][:2]}")
         u, v = (np.array(x, dtype=float).reshape(d, N) for x in initial)
     if noise_on not in ("all", "carrier"):
         raise ModelError(f"noise_on must be 'all' or 'carrier', got {noise_on!r}")

@@ -230,6 +230,8 @@ def ring_soliton(model: Model, k: float, amplitude: float, N: int | None = None,
         No NLS at k, a kind that does not exist there (the message names the one that does),
         or a ring shorter than 12 widths.
     """
+    if kind is not None and kind not in KINDS:  # before: 'kind grey: ... only bright'
+        raise ModelError(f"kind must be one of {KINDS}, got {kind!r}")
     probe = nls(model, k, branch)
     if probe.undefined:
         raise ModelError(f"no soliton at k = {k:.6g}: {probe.undefined}")
@@ -457,7 +459,7 @@ def simulate_soliton(model: Model, k: float, amplitude: float, kind: str | None 
         if i:
             run = simulate_model(model, wave.carrier.k, amplitude, N=N, t_end=ti - times[i - 1],
                                  dt=dt, method=method, noise=0.0, records=1, wave=wave,
-                                 initial=(u, v))
+                                 initial=(u, v), branch=wave.carrier.branch)
             u, v = run.state
             step = run.dt
             if not energy:

@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 
-from energy import Model
+from energy import Model, ModelError
 
 from ._linear import carrier_damping, check_amplitude, field_rule
 from ._nls import nls
@@ -23,7 +23,25 @@ SMALL_FIELD = 0.1
 
 
 def _num(x):
-    return None if x is None or (isinstance(x, float) and not math.isfinite(x)) else x
+    """A plain float (not numpy's: the dict is JSON-ready), None where not finite."""
+    if x is None:
+        return None
+    x = float(x)
+    return x if math.isfinite(x) else None
+
+
+def _unstable_rest(model: Model) -> str:
+    """Why the model's rest state is no minimum (``check_rest_stable``'s message, and what
+    it means for a wave), or ''."""
+    from ._linear import check_rest_stable
+
+    try:
+        check_rest_stable(model)
+    except ModelError as err:
+        return (f"{err}: small waves there grow from rest (omega imaginary), so every "
+                "state of the lattice, this wave included, is linearly unstable; g1, g2 and "
+                "g describe its sidebands alone")
+    return ""
 
 
 def model_coefficients(model: Model, k: float, amplitude: float, branch=None) -> dict:
@@ -81,6 +99,12 @@ def model_coefficients(model: Model, k: float, amplitude: float, branch=None) ->
             verdict = "undefined"
             reason = energy_not_real(model, k, a, branch, carrier=c)
             peak, no_wave = math.nan, True
+    unstable_rest = _unstable_rest(model)
+    if unstable_rest and verdict == "undefined":
+        warn.append(unstable_rest)
+    elif unstable_rest:  # the lattice grows from rest: no wave of it is stable, whatever g
+        verdict, reason = "undefined", unstable_rest
+        peak, no_wave = math.nan, True
     fields = model.fields
     e = np.abs(np.asarray(c.e))
     big = int(np.argmax(e))

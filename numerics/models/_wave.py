@@ -36,7 +36,7 @@ from common.threads import one_blas_thread
 from energy import Model, ModelError
 
 from ._fourwave_kernel import second_harmonic_size
-from ._linear import Carrier, carrier, check_amplitude
+from ._linear import Carrier, carrier, check_amplitude, check_harmonics
 from ._nls import kept_acoustic_directions
 from ._wave_solve import RESIDUAL_TOL, _least_squares, _solve, _solve_fast
 
@@ -141,6 +141,9 @@ def travelling_wave(model: Model, k: float, amplitude: float, branch=None, *,
     continued from small amplitude (``_connected``): the carrier's family, where the
     harmonic balance from the linear wave can land on another.
 
+    ``harmonics``: the truncation H (an integer >= 1; default None: 8, doubled while the
+    harmonics reach it, up to 32).
+
     Raises ModelError where none is found (a resonance with another harmonic, an
     amplitude beyond the branch's nonlinear range): said in one line. Small dense algebra:
     on one BLAS thread (``common.threads``).
@@ -151,10 +154,14 @@ def travelling_wave(model: Model, k: float, amplitude: float, branch=None, *,
     # the chord converges at ~0.04 a step (fput alpha 0.5, beta 1, a 0.1: 10 residuals);
     # the fixed point is the same (the wave within 2e-18), the wave with the carrier passed
     # on (``second_harmonic_size``) 1.31 -> 1.14 ms (best of 150, alternating)
+    harmonics = check_harmonics(harmonics, 1, "the wave's first harmonic is its carrier")
+    if start is not None and not isinstance(start, TravellingWave):
+        raise ModelError(f"start must be a TravellingWave of the same model, k and branch "
+                         f"(numerics.models.travelling_wave), got {type(start).__name__}")
     fast = {"refresh": 1}
-    a = float(amplitude)
+    a = check_amplitude(amplitude)
     size = math.nan
-    if start is None and math.isfinite(a) and a > 0:
+    if start is None:
         fast["car"] = carrier(model, k, branch)
         size = second_harmonic_size(model, fast["car"].k, a, branch, car=fast["car"])
         if size >= HARMONIC_CHECK:

@@ -104,7 +104,8 @@ def nls_summary(material: Material, case: str, k: float, eps: float | None = Non
     """The NLS at one carrier: omega, v_g, g1, g2, g, verdict, and for g > 0 the band
     K_c, K_m (NLS units) and the peak lattice growth rate eps^2 |g1| Omega_I(K_m); the
     plane wave's nonlinear frequency shift eps^2 g2 A0^2 (``frequency_shift``). Where
-    the model has no verdict (:func:`nls_undefined`) g is NaN and ``undefined`` says why.
+    the model has no verdict (:func:`nls_undefined`) g is NaN, ``stable`` None and
+    ``undefined`` says why.
 
     The plane wave is given by ``amplitude`` (its peak rotation, rad: the project's one
     convention, converted here to the paper's A0 at eps = 0.01), or by the paper's
@@ -123,7 +124,9 @@ def nls_summary(material: Material, case: str, k: float, eps: float | None = Non
         g1 = float(nls.g1(*p))
         g2 = float(getattr(nls, f"g2_{case}")(*p))
         out = {"g": g, "g1": g1, "g2": g2,
-               "stable": bool(g < 0), "omega": float(nls.omega(*p)),
+               # no verdict (None) where g is undefined: False read as "unstable"
+               "stable": None if why is not None else bool(g < 0),
+               "omega": float(nls.omega(*p)),
                "v_g": float(nls.group_velocity(*p)),
                # the plane wave's own nonlinear frequency shift, eps^2 g2 A0^2 (1/T): the
                # expansion holds while it is small against omega

@@ -327,8 +327,14 @@ def launched_state(material: Material, case: str, k: float, amplitude: float | N
 
     Examples
     --------
+    >>> import numpy as np
     >>> s = launched_state(Material.paper("blue"), "coupled", 0.81681, 0.02)
-    >>> s.mode("U", 2, t)       # U at 2k over time: forced harmonic beating free waves
+    >>> u2 = s.mode("U", 2, np.linspace(0, 2000, 5))  # U at 2k: forced harmonic + free waves
+    >>> forced = abs(s.carrier.U_harmonics[0])
+    >>> bool(abs(u2[0]) < 0.01 * forced)  # eq. `IC` starts with U = 0: they cancel at T = 0
+    True
+    >>> bool(abs(u2).max() > forced)      # and beat later
+    True
     """
     checks.instance("material", material, Material)
     M = FREE_HARMONICS
