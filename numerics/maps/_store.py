@@ -272,7 +272,10 @@ def run_map(params: MapParameters, out: Path, scheduler: str | None = None,
             arrays.update({n: np.asarray(v[1]) for n, v in derived.items()})
             ds = ds.assign({n: (v[0], np.asarray(v[1]), v[2]) for n, v in derived.items()})
             ds.attrs.update(kept)
-        if todo and not params.theory_only:  # who simulated (the last run's cells)
+        if not params.theory_only and (todo or _unsaid(path, params)):
+            # who simulated (the last run's cells); also where a run stopped (Ctrl-C, kill)
+            # after its last cell and before these lines: the rerun has no cell left to
+            # simulate and the store lacked them (device, device_name) for good
             from ._devices import device_attrs
 
             who = device_attrs(device, scheduler)
@@ -292,6 +295,15 @@ def run_map(params: MapParameters, out: Path, scheduler: str | None = None,
         # the store's metadata and coordinates read; its variables are ``arrays``, which
         # every block written has updated (tests/test_maps.py: identical to a fresh read)
         return ds.copy(data={n: arrays[n] for n in ds.data_vars}).load()
+
+
+def _unsaid(path: Path, params) -> bool:
+    """Whether a simulated map's store lacks what its last run writes after the cells
+    (``device``, or its ``theory_only`` flag still the theory-only map's it resumed)."""
+    import zarr
+
+    attrs = zarr.open_group(str(path), mode="r", use_consolidated=False).attrs
+    return "device" not in attrs or attrs.get("theory_only") != params.attrs()["theory_only"]
 
 
 def _longest_first(params, todo, arrays=None) -> list:
