@@ -175,8 +175,9 @@ def run_map_command(args, log=print):
     out = prepare_output(args.out)
     ds = run_map(params, out, args.scheduler, args.workers, log=with_wall(log, started, est),
                  overwrite=args.overwrite, timeout=args.timeout, device=device,
-                 # the resume line comes before the workers start: the figure above
-                 estimate=est if done else None)
+                 # the resume line comes before the workers start: the figure above (and
+                 # the progress lines' time left until a cell is back)
+                 estimate=est)
     verdicts = [n for n in ds.data_vars if n.startswith("verdict_")]
     from ._map_inputs import paper_inputs
 

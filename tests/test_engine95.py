@@ -1,14 +1,104 @@
-"""The one map engine under stress (round 95): interrupted maps that end as undisturbed
-ones.
+"""The one map engine under stress (round 95): progress where no bar is drawn, the
+estimate compared with the command's wall time, the split modules' single definitions.
 
 Tests that start clusters or send signals here run serially (the Makefile's SERIAL_TESTS)."""
 
 from __future__ import annotations
 
 import re
+import time
 
 import numpy as np
 import pytest
+
+from cli.app import main as cli
+from numerics.maps import _progress
+
+
+class _Clock:
+    def __init__(self):
+        self.now = 100.0
+
+    def __call__(self):
+        return self.now
+
+
+def _lines(total=100, estimate=None):
+    clock, said = _Clock(), []
+    p = _progress.ProgressLines(total, "simulated", estimate, said.append, clock)
+    return p, clock, said
+
+
+def test_the_first_progress_line_comes_after_ten_seconds_then_every_thirty_at_most():
+    p, clock, said = _lines()
+    for t in np.arange(0.0, 9.99, 0.05):  # the polling loop's ticks
+        clock.now = 100.0 + t
+        p.tick()
+    assert said == []
+    clock.now = 110.0
+    p.tick()
+    assert len(said) == 1 and said[0].startswith("map: 0 of 100 cells simulated (0%) in 10 s")
+    # no estimate and no cell back: no time left is claimed
+    assert "left" not in said[0]
+    times = []
+    for t in np.arange(10.0, 200.0, 0.05):  # nothing finishes: still a line every 30 s
+        clock.now = 100.0 + t
+        n = len(said)
+        p.tick()
+        if len(said) > n:
+            times.append(t)
+    assert np.allclose(np.diff([10.0, *times]), 30.0, atol=0.06), times
+
+
+def test_time_left_is_the_throughput_since_the_first_block_not_the_start_up():
+    # workers start for 20 s, the first block of 4 cells is back at 20 s, then 4 cells
+    # every 2 s: 96 cells left after the first block take 48 s, so at 30 s (20 cells
+    # back) the 80 left take 40 s (by hand: 80 cells / (16 cells / 10 s))
+    p, clock, said = _lines(estimate=60.0)
+    clock.now = 105.0
+    p.tick()
+    assert said == []
+    clock.now = 110.0
+    p.tick()  # no cell back: the estimate less the time gone, said to be the estimate
+    assert said[-1].endswith("about 50 s left (the estimate; no cell back yet)")
+    clock.now = 120.0
+    p.update(4)  # the first block: 20 s each for 4 cells, start-up included: 96 * 5 s
+    assert p.left(120.0) == pytest.approx(96 * 20.0 / 4)
+    for n in range(4):
+        clock.now = 122.0 + 2 * n
+        p.update(4)
+    clock.now = 130.0
+    assert p.left(clock.now) == pytest.approx(80 * 10.0 / 16)
+    p.tick()  # 20 s after the first line: not due yet
+    assert len(said) == 1
+    clock.now = 140.0
+    p.tick()
+    assert p.left(140.0) == pytest.approx(80 * 20.0 / 16)  # 100 s: "2 min" in words
+    assert said[-1] == "map: 20 of 100 cells simulated (20%) in 40 s; about 2 min left"
+
+
+def test_a_finished_map_prints_no_progress_line():
+    p, clock, said = _lines(total=4)
+    clock.now = 200.0
+    p.update(4)
+    p.tick()
+    assert said == []
+
+
+def test_progress_lines_only_where_no_bar_is_drawn(monkeypatch):
+    import io
+    import sys
+
+    class Tty(io.StringIO):
+        def isatty(self):
+            return True
+
+    monkeypatch.setattr(sys, "stderr", Tty())
+    assert _progress.progress_lines(None, 4, "simulated") is None  # tqdm draws its bar
+    monkeypatch.setattr(sys, "stderr", io.StringIO())
+    assert isinstance(_progress.progress_lines(None, 4, "simulated"), _progress.ProgressLines)
+    for given in (False, True, print):  # off, a forced bar, the caller's callable
+        assert _progress.progress_lines(given, 4, "simulated") is None
 
 
 def _small_simulated_map(**kw):
@@ -48,3 +138,54 @@ def test_a_map_stopped_after_its_last_cell_ends_as_an_undisturbed_one(tmp_path, 
         for name in whole.variables:
             np.testing.assert_array_equal(ds[name].values, whole[name].values)
             assert ds[name].attrs == whole[name].attrs, name
+
+
+def test_a_model_maps_estimate_counts_the_time_it_took_to_measure(tmp_path, capsys,
+                                                                  monkeypatch):
+    """The cells' line compares the command's wall time with the estimate: the seconds
+    spent measuring a cell belong to the estimate too (a cold kernel cache: 94 s of
+    measuring, then "the command so far 220.1 s, estimated 109 s", the 109 s counting
+    from after the measurement); and a slow measurement is said while it runs. Both fail
+    on the old tree."""
+    import cli.model_map as model_map
+    import numerics.maps as maps
+
+    probe, estimate, seen = maps.probe_model_cell, maps.estimate_model_map, []
+
+    def slow_probe(params):
+        time.sleep(1.5)  # as a first compile would, in small
+        return probe(params)
+
+    def kept(*a, **k):
+        seen.append(estimate(*a, **k))
+        return seen[-1]
+
+    monkeypatch.setattr(maps, "probe_model_cell", slow_probe)
+    monkeypatch.setattr(maps, "estimate_model_map", kept)
+    monkeypatch.setattr(model_map, "PROBE_NOTE_S", 0.3)
+    assert cli(["map", "--model", "fput", "--param", "alpha=1", "--param", "beta=0.8,1.6",
+                "--k", "2.6,2.8", "--amplitude", "0.1", "--theory-only", "--workers", "1",
+                "--out", str(tmp_path / "m")]) == 0
+    out = capsys.readouterr().out.splitlines()
+    note = [i for i, s in enumerate(out) if s.startswith("estimate: measuring one cell here")]
+    about = [i for i, s in enumerate(out) if s.startswith("estimate: about ")]
+    assert len(note) == 1 and len(about) == 1 and note[0] < about[0], out
+    said = float(re.search(r"; the command so far [\d.]+ s, estimated (\d+) s",
+                           "\n".join(out)).group(1))
+    # the 1.5 s slept before the estimate, and the estimate after it (the line rounds to
+    # a second: 0.5 s either way)
+    assert said >= seen[0].seconds + 1.5 - 0.5, (said, seen[0].seconds)
+
+
+def test_a_map_whose_stderr_is_no_terminal_prints_progress_lines(tmp_path, capsys,
+                                                                  monkeypatch):
+    """stderr a log file or a pipe: tqdm draws no bar, and a 100-cell map said nothing
+    between its estimate and its end (minutes); now plain lines (here due at once). Fails
+    on the old tree (no line)."""
+    monkeypatch.setattr(_progress, "FIRST_LINE_S", 0.0)
+    assert cli(["map", "--model", "fput", "--param", "alpha=1", "--param", "beta=0.8,1.6",
+                "--k", "2.6,2.8", "--amplitude", "0.1", "--theory-only", "--workers", "1",
+                "--out", str(tmp_path / "m")]) == 0
+    err = capsys.readouterr().err.splitlines()
+    lines = [s for s in err if re.match(r"map: \d of 4 cells predicted \(\d+%\) in \d+ s", s)]
+    assert lines, err

@@ -256,7 +256,7 @@ def run_map(params: MapParameters, out: Path, scheduler: str | None = None,
                     timeout)
         elif todo:
             _run_tasks(params, path, todo, n_cells - n_done, scheduler, workers, progress,
-                       log, arrays, timeout)
+                       log, arrays, timeout, estimate)
         import zarr
 
         derived = getattr(params, "derived_variables", lambda arrays: {})(arrays)
@@ -332,7 +332,7 @@ class MapCellError(ValueError):
 
 
 def _run_tasks(params, path, todo, n_todo, scheduler, workers, progress, log, arrays=None,
-               timeout=20.0):
+               timeout=20.0, estimate=None):
     from dask.distributed import as_completed
 
     from common.progress import progress_class
@@ -345,6 +345,12 @@ def _run_tasks(params, path, todo, n_todo, scheduler, workers, progress, log, ar
     report = progress if callable(progress) else None
     bar = tqdm(total=n_todo, unit="cell", desc="map",
                disable=True if report else None if progress is None else not progress)
+    from ._progress import progress_lines
+
+    # no bar (stderr a log file or a pipe): a plain line every 30 s at most, the first
+    # after 10 s (a 100-cell map said nothing for minutes)
+    lines = progress_lines(progress, n_todo,
+                           "predicted" if params.theory_only else "simulated", estimate)
     t0 = time.perf_counter()
     address = scheduler or "of this machine's LocalCluster"
     watch = Watchdog(client, scheduler or getattr(cluster, "scheduler_address", "local"),
@@ -374,6 +380,8 @@ def _run_tasks(params, path, todo, n_todo, scheduler, workers, progress, log, ar
                 if (why := watch.check()) is not None:
                     raise ClusterLost(f"{why}: {kept()}; the same command continues the map "
                                       "once the cluster works again") from None
+                if lines is not None:
+                    lines.tick()
                 time.sleep(0.05)
                 continue
             for fut in ready:
@@ -401,6 +409,8 @@ def _run_tasks(params, path, todo, n_todo, scheduler, workers, progress, log, ar
                         f"{str(exc).splitlines()[0] if str(exc) else ''}; {kept()}") from None
                 _write_block(path, params, result, arrays, writer)
                 bar.update(len(result["js"]))
+                if lines is not None:
+                    lines.update(len(result["js"]))
                 if report is not None:
                     report(len(result["js"]))
     finally:
