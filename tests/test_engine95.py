@@ -189,3 +189,26 @@ def test_a_map_whose_stderr_is_no_terminal_prints_progress_lines(tmp_path, capsy
     err = capsys.readouterr().err.splitlines()
     lines = [s for s in err if re.match(r"map: \d of 4 cells predicted \(\d+%\) in \d+ s", s)]
     assert lines, err
+
+
+def test_a_tampered_cell_is_estimated_and_computed_again_not_called_none_needed(
+        tmp_path, capsys):
+    """A finished store with one cell's value changed behind its checksum (a valid chunk,
+    other numbers): the engine recomputes that cell, and the estimate before it now says
+    so; it said "estimate: none needed: ... holds every cell (its checksums are verified)"
+    and 0 s, then ran the cell (13.7 s). Fails on the old tree."""
+    import zarr
+
+    cmd = ["map", "--model", "fput", "--param", "alpha=1", "--param", "beta=0.8,1.6",
+           "--k", "2.4,2.8", "--amplitude", "0.1", "--N", "32", "--t-end", "200",
+           "--workers", "1", "--out", str(tmp_path / "m")]
+    assert cli(cmd) == 0
+    capsys.readouterr()
+    group = zarr.open_group(str(tmp_path / "m" / "map.zarr"), mode="r+",
+                            use_consolidated=False)
+    group["growth"][1, 0] = group["growth"][1, 0] * 2 + 1  # decodes fine, digest differs
+    assert cli(cmd) == 0
+    out = capsys.readouterr().out
+    assert "estimate: none needed" not in out, out
+    assert "estimate: about " in out and "for 1 of its 4 cells" in out, out
+    assert "1 of 4 cells fail their checksum" in out and "1 to simulate" in out, out

@@ -424,10 +424,13 @@ def _run_tasks(params, path, todo, n_todo, scheduler, workers, progress, log, ar
 
 #: the store's own names, and those it gathers (the map engine's internals under test:
 #: tests/test_maps.py, bench/)
-def cells_done(store, flag: str = "done") -> tuple[int, int] | None:
+def cells_done(store, flag: str = "done", params=None) -> tuple[int, int] | None:
     """(cells done, cells) of the map store at ``store`` (a path), or None when it holds
     none or cannot be read (what an interrupted ``flexmm map`` reports it kept);
-    ``flag``: the done flag counted ("done_predicted" for a theory-only map)."""
+    ``flag``: the done flag counted ("done_predicted" for a theory-only map).
+    ``params``: the map's parameters, to count only the cells whose checksum holds over
+    its variables (what a resumed map keeps: a tampered cell flagged done is computed
+    again, and its time estimated)."""
     try:
         import zarr
 
@@ -435,7 +438,14 @@ def cells_done(store, flag: str = "done") -> tuple[int, int] | None:
         # beside it (_integrity.unsound_chunks)
         if unsound_chunks(Path(store) / flag):
             return None
-        done = zarr.open_group(str(store), mode="r", use_consolidated=False)[flag][...]
+        group = zarr.open_group(str(store), mode="r", use_consolidated=False)
+        done = np.asarray(group[flag][...], bool)
+        if params is not None:
+            from ._integrity import verify
+            from ._store_open import empty_dataset_names
+
+            names = [n for n in empty_dataset_names(params) if n != CHECKSUM]
+            done &= ~verify(Path(store), names, done.shape)[0]
         return int(done.sum()), int(done.size)
     except Exception:  # no store, or not readable: nothing to report
         return None
