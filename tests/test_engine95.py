@@ -212,3 +212,18 @@ def test_a_tampered_cell_is_estimated_and_computed_again_not_called_none_needed(
     assert "estimate: none needed" not in out, out
     assert "estimate: about " in out and "for 1 of its 4 cells" in out, out
     assert "1 of 4 cells fail their checksum" in out and "1 to simulate" in out, out
+
+
+def test_a_finished_map_resumed_claims_no_time_for_nothing(tmp_path):
+    """Resuming a store that holds every cell: '24 of 24 cells already done ..., 0 to
+    simulate (about 12 s)' gave the caller's start-up estimate for no work. Fails on the
+    old tree."""
+    from numerics.maps import run_map
+
+    params = _small_simulated_map()
+    run_map(params, tmp_path, workers=1, progress=False, log=lambda *_: None)
+    said = []
+    run_map(params, tmp_path, workers=1, progress=False, log=said.append, estimate=12.0)
+    line = next(s for s in said if s.startswith("resuming "))
+    assert "4 of 4 cells already done" in line and "0 to simulate" in line
+    assert "about" not in line, line

@@ -243,9 +243,11 @@ def run_map(params: MapParameters, out: Path, scheduler: str | None = None,
         n_cells, n_done = done.size, int(done.sum())
         if n_done:
             # the estimate on this machine's cores (a scheduler's workers are unknown here)
-            left = estimate if estimate is not None else (
+            # nothing left: no time (it said "0 to simulate (about 12 s)", the start-up
+            # of workers it does not start)
+            left = None if n_done >= n_cells else estimate if estimate is not None else (
                 params.estimated_seconds(workers or local_cores()) * (n_cells - n_done)
-                / n_cells) if not scheduler and n_cells > n_done else None
+                / n_cells) if not scheduler else None
             log(f"resuming {path}: {n_done} of {n_cells} cells already done (checksums "
                 f"verified), {n_cells - n_done} to {what}"
                 + (f" (about {duration(left)})" if left is not None else ""))
