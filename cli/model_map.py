@@ -390,8 +390,8 @@ def _estimate(params, workers: int, scheduler, log, left: int, cells: int):
     # a fresh install compiles the cell's kernels here first (fput: 94 s said nothing
     # between the options' notes and the estimate): said where the measurement is slow
     slow = threading.Timer(PROBE_NOTE_S, lambda: log(
-        f"estimate: measuring one cell here (over {PROBE_NOTE_S:g} s: its kernels compile "
-        "once, on a fresh install or after an upgrade, a minute or two)"))
+        f"estimate: measuring one cell here (over {PROBE_NOTE_S:g} s: a busy machine, or "
+        "its kernels compiling once after an install or upgrade, a minute or two)"))
     slow.daemon = True
     slow.start()
     try:

@@ -227,3 +227,21 @@ def test_a_finished_map_resumed_claims_no_time_for_nothing(tmp_path):
     line = next(s for s in said if s.startswith("resuming "))
     assert "4 of 4 cells already done" in line and "0 to simulate" in line
     assert "about" not in line, line
+
+
+def test_every_coordinate_of_a_paper_map_store_says_its_unit():
+    """xr.open_zarr of the paper chain's store: delta and K_theta had a long_name and no
+    units (k, k_simulated had theirs; a model map's axes all have one). The stiffnesses
+    are ratios to k_l (K_s = k_s / k_l, common.paper): dimensionless. Fails on the old
+    tree."""
+    from numerics import Material
+    from numerics.maps import MapParameters
+
+    params = MapParameters(case="coupled", material=Material.paper("blue"),
+                           delta=(-0.003, 0.003), k=(0.6, 0.8), amplitude=0.02,
+                           theory_only=True)
+    ds = params.new_dataset()
+    assert set(ds.coords) == {"delta", "K_theta", "k", "k_simulated"}
+    for name in ds.coords:
+        assert ds[name].attrs.get("units"), name
+    assert ds["delta"].attrs["units"].startswith("1 ")  # dimensionless
