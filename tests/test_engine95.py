@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from cli.app import main as cli
-from numerics.maps import _progress
+from numerics.maps import _progress, _store
 
 
 class _Clock:
@@ -74,7 +74,8 @@ def test_time_left_is_the_throughput_since_the_first_block_not_the_start_up():
     clock.now = 140.0
     p.tick()
     assert p.left(140.0) == pytest.approx(80 * 20.0 / 16)  # 100 s: "2 min" in words
-    assert said[-1] == "map: 20 of 100 cells simulated (20%) in 40 s; about 2 min left"
+    assert said[-1] == ("map: 20 of 100 cells simulated (20%) in 40 s; about 2 min left at "
+                        "the pace so far")
 
 
 def test_a_finished_map_prints_no_progress_line():
@@ -245,3 +246,32 @@ def test_every_coordinate_of_a_paper_map_store_says_its_unit():
     for name in ds.coords:
         assert ds[name].attrs.get("units"), name
     assert ds["delta"].attrs["units"].startswith("1 ")  # dimensionless
+
+
+class _Costs:
+    """A map's parameters as the order reads them: each block's cost from a table."""
+
+    def __init__(self, costs):
+        self.costs = costs
+
+    def block_cost(self, i, js, arrays=None):
+        return self.costs[i]
+
+
+def test_blocks_of_equal_cost_go_spread_over_the_grid_costlier_first():
+    """A fresh model map's blocks all tie (its theories are the tasks'): in grid order its
+    first blocks were its first rows (a 100-cell fput map's low amplitudes, all of T
+    each) and the pace the progress lines read was 4x too slow. Now ties go in the
+    bit-reversed order of their ranks, so any first few sample the whole grid; a
+    costlier block still goes first. Fails on the old tree (grid order)."""
+    todo = [(i, [0, 1]) for i in range(16)]
+    order = _store._longest_first(_Costs([(0, 2)] * 16), todo)
+    assert sorted(order) == sorted(todo)
+    assert [i for i, _ in order[:4]] == [0, 8, 4, 12]  # by hand: 0, 1/2, 1/4, 3/4 of 16
+    rows = [i for i, _ in order[:8]]
+    assert min(rows) < 4 and max(rows) >= 12  # both ends of the grid among the first half
+    costs = [(0, 2)] * 16
+    costs[5] = (2, 2)  # two stable cells: runs all of T
+    costs[9] = (1, 2)
+    order = _store._longest_first(_Costs(costs), todo)
+    assert [i for i, _ in order[:3]] == [5, 9, 0]

@@ -60,8 +60,12 @@ class ProgressLines:
     def line(self, now: float) -> str:
         left = self.left(now)
         share = f" ({100 * self.done / self.total:.0f}%)" if self.total else ""
+        # "at the pace so far": cells are not alike (a stable cell runs all of T, an MI
+        # one stops at 20x), so the pace moves: a 100-cell fput map in grid order said 49 s
+        # left at 36% where 13 s were (its first rows the slow ones)
         when = ("" if left is None else
-                f"; about {duration(left)} left" + ("" if self._first is not None
+                f"; about {duration(left)} left" + (" at the pace so far"
+                                                    if self._first is not None
                                                     else " (the estimate; no cell back yet)"))
         return (f"map: {self.done} of {self.total} cells {self.what}{share} in "
                 f"{now - self.t0:.0f} s{when}")

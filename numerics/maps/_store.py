@@ -308,11 +308,30 @@ def _unsaid(path: Path, params) -> bool:
     return "device" not in attrs or attrs.get("theory_only") != params.attrs()["theory_only"]
 
 
+def _spread(rank: int) -> float:
+    """The van der Corput fraction of ``rank`` (its bits reversed after the binary point):
+    0, 1/2, 1/4, 3/4, 1/8, ...: the first n ranks so ordered sample the whole range."""
+    out, scale = 0.0, 0.5
+    while rank:
+        out += scale * (rank & 1)
+        rank >>= 1
+        scale /= 2
+    return out
+
+
 def _longest_first(params, todo, arrays=None) -> list:
     """The blocks in decreasing expected cost: a cell the exact theory calls stable runs the
     whole t_end (an MI cell stops once it passed 20x), and a prediction's Bloch families
-    grow with k (one per 2 pi / N up to k). Ties keep the grid's order."""
-    return sorted(todo, key=lambda block: params.block_cost(*block, arrays), reverse=True)
+    grow with k (one per 2 pi / N up to k). Ties (every block of a fresh model map, whose
+    theories the tasks compute) spread over the grid, not in its order: cells of one
+    region cost alike (a map's low-amplitude rows run all of T), and the progress lines'
+    pace is the whole grid's from its first blocks (in grid order a 100-cell fput map
+    said 49 s left at 36% where 13 s were)."""
+    n = len(todo)
+    place = {r: _spread(r) for r in range(n)}
+    order = sorted(range(n), key=lambda r: (params.block_cost(*todo[r], arrays),
+                                            -place[r]), reverse=True)
+    return [todo[r] for r in order]
 
 
 def _finer_tail(order: list, workers: int) -> list:
