@@ -5,8 +5,13 @@ Tests that start clusters or send signals here run serially (the Makefile's SERI
 
 from __future__ import annotations
 
+import os
 import re
+import signal
+import subprocess
+import sys
 import time
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -275,3 +280,71 @@ def test_blocks_of_equal_cost_go_spread_over_the_grid_costlier_first():
     costs[9] = (1, 2)
     order = _store._longest_first(_Costs(costs), todo)
     assert [i for i, _ in order[:3]] == [5, 9, 0]
+
+
+ROOT = Path(__file__).resolve().parents[1]
+#: a model map whose cells take seconds each (N = 128, T = 40000: its stable cells run all
+#: of T), one worker, a cell a task: a signal lands between finished cells
+SLOW_MAP = ["map", "--model", "fput", "--k", "0.4,1.2,2.0,2.8", "--amplitude", "0.03,0.3",
+            "--N", "128", "--t-end", "40000", "--block", "1", "--workers", "1"]
+
+
+def _flexmm(args, **kw):
+    return subprocess.Popen([sys.executable, "-m", "cli", *args], cwd=ROOT, text=True,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, **kw)
+
+
+@pytest.fixture(scope="module")
+def undisturbed(tmp_path_factory):
+    out = tmp_path_factory.mktemp("whole")
+    p = _flexmm(SLOW_MAP + ["--out", str(out)])
+    _, err = p.communicate(timeout=600)
+    assert p.returncode == 0, err
+    import xarray as xr
+
+    return xr.open_zarr(out / "map.zarr", chunks=None).load()
+
+
+@pytest.mark.parametrize("signum, code", [(signal.SIGTERM, 143), (signal.SIGKILL, -9)])
+def test_a_model_map_killed_mid_map_resumes_to_the_undisturbed_store(signum, code, tmp_path,
+                                                                      undisturbed):
+    """SIGTERM (one line, exit 143, the lock released) or kill -9 (a stale lock, taken
+    over) after some cells: the same command resumes with every finished cell kept and
+    none computed again, and ends with the undisturbed store, bit for bit (seeded runs)."""
+    from numerics.maps import cells_done
+
+    out = tmp_path / "m"
+    p = _flexmm(SLOW_MAP + ["--out", str(out)], start_new_session=True)
+    try:
+        end = time.monotonic() + 300
+        while time.monotonic() < end and p.poll() is None:
+            got = cells_done(out / "map.zarr")
+            if got and 1 <= got[0] < got[1]:
+                break
+            time.sleep(0.05)
+        assert p.poll() is None, "the map ended before the signal"
+        os.kill(p.pid, signum)  # the command only: its workers see their client go
+        _, err = p.communicate(timeout=120)
+    finally:
+        if p.poll() is None:
+            os.killpg(p.pid, signal.SIGKILL)
+            p.communicate()
+    assert p.returncode == code, err
+    kept = cells_done(out / "map.zarr")[0]
+    assert kept >= 1
+    if signum != signal.SIGKILL:
+        lines = err.strip().splitlines()
+        assert len(lines) == 1 and "Traceback" not in err, err
+        assert f"{kept} of 8 cells are kept" in lines[0], lines
+        assert not (out / "map.zarr.lock").exists()
+    again = _flexmm(SLOW_MAP + ["--out", str(out)])
+    said, err = again.communicate(timeout=600)
+    assert again.returncode == 0, err
+    assert f"resuming {out / 'map.zarr'}: {kept} of 8 cells already done" in said, said
+    assert re.search(rf"simulated {8 - kept} cells? in ", said), said  # none again
+    import xarray as xr
+
+    ds = xr.open_zarr(out / "map.zarr", chunks=None).load()
+    assert ds.attrs == undisturbed.attrs
+    for name in undisturbed.variables:
+        np.testing.assert_array_equal(ds[name].values, undisturbed[name].values, err_msg=name)
