@@ -348,3 +348,26 @@ def test_a_model_map_killed_mid_map_resumes_to_the_undisturbed_store(signum, cod
     assert ds.attrs == undisturbed.attrs
     for name in undisturbed.variables:
         np.testing.assert_array_equal(ds[name].values, undisturbed[name].values, err_msg=name)
+
+
+@pytest.mark.parametrize("flags", [
+    ["--model", "fput", "--param", "beta=0.8,1.6", "--k", "2.4,2.8", "--amplitude", "0.1",
+     "--N", "32", "--t-end", "200"],
+    ["--alpha", "2.5", "--K-s", "0.01851", "--delta=-0.003,0.003", "--k", "0.8,1.2",
+     "--case", "coupled", "--t-end", "1000"]], ids=["model", "paper"])
+def test_a_second_map_on_a_store_being_written_is_refused_before_its_estimate(
+        flags, tmp_path, capsys):
+    """Two maps on one OUT: the second measured a cell and estimated its map (seconds)
+    before the store's lock refused it; now refused before the estimate, in one line, exit
+    2, the store untouched. Fails on the old tree (an estimate line first)."""
+    from numerics.maps import store_lock
+
+    out = tmp_path / "m"
+    out.mkdir()
+    with store_lock(out / "map.zarr", log=lambda *_: None):  # a live writer: this process
+        assert cli(["map", *flags, "--workers", "1", "--out", str(out)]) == 2
+        printed = capsys.readouterr()
+    assert "estimate" not in printed.out + printed.err and " cells x " not in printed.out
+    assert printed.err.strip().count("\n") == 0 and "is being written by pid " \
+        f"{os.getpid()}" in printed.err, printed.err
+    assert not (out / "map.zarr").exists()
