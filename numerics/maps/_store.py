@@ -359,7 +359,7 @@ def _run_tasks(params, path, todo, n_todo, scheduler, workers, progress, log, ar
     from common.progress import progress_class
     tqdm = progress_class()
 
-    from ._cluster import ClusterLost, Watchdog, connect
+    from ._cluster import ClusterLost, Watchdog, connect, signals_held
 
     client, cluster = connect(scheduler, workers, timeout)
     writer = _CellWriter(path)
@@ -428,7 +428,11 @@ def _run_tasks(params, path, todo, n_todo, scheduler, workers, progress, log, ar
                         f"{', '.join(f'{cols[j]:g}' for j in js)}: "
                         f"{type(exc).__name__}: "
                         f"{str(exc).splitlines()[0] if str(exc) else ''}; {kept()}") from None
-                _write_block(path, params, result, arrays, writer)
+                # Ctrl-C or SIGTERM while a block is written: held until it is written
+                # whole (a SIGTERM between its done flags and its checksums lost the cell
+                # of a finished block: flagged, its checksum failed, computed again)
+                with signals_held():
+                    _write_block(path, params, result, arrays, writer)
                 bar.update(len(result["js"]))
                 if lines is not None:
                     lines.update(len(result["js"]))
