@@ -80,7 +80,7 @@ TEST_WORKERS ?= 2
 SERIAL_TESTS := tests/test_cluster_faults.py tests/test_faults.py tests/test_faults_cli.py \
 	tests/test_maps.py tests/test_tutorial.py tests/test_docs.py tests/test_models_exact.py \
 	tests/test_first_hour.py tests/test_threads.py tests/test_bench.py tests/test_gpu.py \
-	tests/test_gpu_models.py \
+	tests/test_gpu_models.py tests/test_engine95.py \
 	tests/test_scenes.py tests/test_figures.py tests/test_cli_help.py tests/test_model_walk.py
 PYTEST_PARALLEL = $(VPY) -m pytest -q -n $(TEST_WORKERS) $(addprefix --ignore=,$(SERIAL_TESTS))
 PYTEST_SERIAL = $(VPY) -m pytest -q $(SERIAL_TESTS)

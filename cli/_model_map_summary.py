@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import math
 
+from ._map_shares import mi_fraction as _mi_fraction
 from ._model_map_figure import OBSERVABLE
 
 
@@ -16,8 +17,6 @@ def _summary(ds, verdicts: list, simulated: bool) -> dict:
     import numpy as np
 
     from numerics.maps import agreement
-
-    from .map import _mi_fraction
 
     names = {v: v.removeprefix("verdict_") for v in verdicts}
     out = {"cells": int(ds["done"].size),
@@ -46,8 +45,6 @@ def _observable(ds, simulated: bool) -> dict:
     the cells where both answer; {} for a lossless map. With losses the verdicts' MI (the
     gain beats the damping at t = 0) is not what a sample shows: growth is transient."""
     import numpy as np
-
-    from .map import _mi_fraction
 
     names = str(ds.attrs.get("amplification", "")).split()
     if not names:

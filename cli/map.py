@@ -7,8 +7,6 @@ import json
 import math
 from pathlib import Path
 
-import numpy as np
-
 from common.output import check_output, prepare_output, strict_json
 from common.text import duration as _duration
 from common.text import plural
@@ -22,6 +20,8 @@ from numerics.maps import (
     run_map,
 )
 from numerics.theory import MAP_COLUMNS
+
+from ._map_shares import mi_fraction as _mi_fraction
 
 #: a map of more cells than this is refused (its theory columns alone fill memory)
 MAX_CELLS = 250_000
@@ -63,12 +63,6 @@ def with_wall(log, started: float, estimate: float):
         return log(msg, *a, **kw)
 
     return out
-
-
-def _mi_fraction(v: np.ndarray) -> float:
-    """Share of MI among the cells a verdict decides (undetermined cells left out)."""
-    decided = v >= 0
-    return float((v[decided] == 1).mean()) if decided.any() else float("nan")
 
 
 def plot_map(ds, ax=None):
@@ -181,8 +175,9 @@ def run_map_command(args, log=print):
     out = prepare_output(args.out)
     ds = run_map(params, out, args.scheduler, args.workers, log=with_wall(log, started, est),
                  overwrite=args.overwrite, timeout=args.timeout, device=device,
-                 # the resume line comes before the workers start: the figure above
-                 estimate=est if done else None)
+                 # the resume line comes before the workers start: the figure above (and
+                 # the progress lines' time left until a cell is back)
+                 estimate=est)
     verdicts = [n for n in ds.data_vars if n.startswith("verdict_")]
     from ._map_inputs import paper_inputs
 

@@ -193,13 +193,18 @@ def run_map(args) -> int:
                         cells - done, cells)
         # the resume line comes before the workers start: its figure is this one, the
         # start-up included (it said 6 s below an estimate of 18 s for the same cells)
-        estimated = left = est.seconds
+        left = est.seconds
+        # the cells' line compares the command's wall time so far with this: the seconds
+        # already spent (options, the cell measured) plus the estimate of what follows
+        # (it said "the command so far 220.1 s, estimated 109 s" after a 94 s measurement
+        # the 109 s did not include)
+        estimated = time.perf_counter() - started + left
         from .map import CONFIRM_SECONDS
 
-        if estimated > CONFIRM_SECONDS and not args.yes and device == "cpu":
+        if left > CONFIRM_SECONDS and not args.yes and device == "cpu":
             from common.text import duration
 
-            raise ValueError(f"the map would take about {duration(estimated)} (> "
+            raise ValueError(f"the map would take about {duration(left)} (> "
                              f"{duration(CONFIRM_SECONDS)}); add --yes to run it, or use "
                              "fewer cells" + (", seeds, a shorter --t-end or --theory-only"
                                               if simulated else " or a smaller --N"
@@ -373,14 +378,30 @@ def _start_of(args, model, simulated: bool) -> str:
     return start
 
 
+#: seconds of measuring one cell after which the estimate says why it takes long
+PROBE_NOTE_S = 5.0
+
+
 def _estimate(params, workers: int, scheduler, log, left: int, cells: int):
     """The map's wall time (a MapEstimate) for the ``left`` of its ``cells`` still to
     compute, estimated from one cell measured here (its theories and, for a simulated map,
     a short run of its ring) and said before the work."""
+    import threading
+
     from common.text import duration
     from numerics.maps import estimate_model_map, probe_model_cell
 
-    cost = probe_model_cell(params)
+    # a fresh install compiles the cell's kernels here first (fput: 94 s said nothing
+    # between the options' notes and the estimate): said where the measurement is slow
+    slow = threading.Timer(PROBE_NOTE_S, lambda: log(
+        f"estimate: measuring one cell here (over {PROBE_NOTE_S:g} s: a busy machine, or "
+        "its kernels compiling once after an install or upgrade, a minute or two)"))
+    slow.daemon = True
+    slow.start()
+    try:
+        cost = probe_model_cell(params)
+    finally:
+        slow.cancel()
     est = estimate_model_map(params, workers, scheduler, cost, cells=left)
     measured = f"theories {cost.theory:.2g} s" + (
         f", a run of T = {cost.t_end:g} {cost.run:.2g} s" if not params.theory_only else "")

@@ -131,6 +131,36 @@ def _quiet():
 
 
 @contextlib.contextmanager
+def signals_held():
+    """SIGINT and SIGTERM held meanwhile, then handled as they would have been (their
+    Python handlers, or the default action): a map block is written whole. Swaps the
+    handlers: a signal mask of the main thread alone does not hold a signal to the
+    process, which the kernel gives to any thread not masking it (the client's), whose
+    handler then raises in the main thread at once."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    got = []
+    old = {s: signal.getsignal(s) for s in (signal.SIGINT, signal.SIGTERM)}
+    for s, handler in old.items():
+        if handler not in (signal.SIG_IGN, None):
+            signal.signal(s, lambda signum, frame: got.append((signum, frame)))
+    try:
+        yield
+    finally:
+        for s, handler in old.items():
+            if handler not in (signal.SIG_IGN, None):
+                signal.signal(s, handler)
+        if got:
+            signum, frame = got[0]
+            handler = old[signum]
+            if callable(handler):
+                handler(signum, frame)
+            else:  # SIG_DFL: the default action, as if it came now
+                signal.raise_signal(signum)
+
+
+@contextlib.contextmanager
 def _signals_deferred():
     """Block SIGINT and SIGTERM in this thread (and the threads it starts) meanwhile; a
     signal that came is delivered, and handled, on exit."""

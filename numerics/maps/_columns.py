@@ -95,10 +95,14 @@ def empty_dataset(params: MapParameters, theory: dict):
             attrs["undetermined"] = UNDETERMINED_REASONS[name]
         data[name] = (dims, values, attrs)
     data[CHECKSUM] = (dims, cell_checksums({n: v[1] for n, v in data.items()}), CHECKSUM_ATTRS)
-    coords = {"delta": ("delta", np.asarray(params.delta), {"long_name": "K_s - K_theta"}),
+    # the stiffnesses are ratios to the longitudinal spring's (K_s = k_s / k_l, eq. `norm`):
+    # dimensionless, said as every other coordinate says its unit
+    ratio = "1 (a stiffness over the longitudinal spring's k_l, eq. norm)"
+    coords = {"delta": ("delta", np.asarray(params.delta), {"long_name": "K_s - K_theta",
+                                                            "units": ratio}),
               "K_theta": ("delta", np.asarray(params.K_theta),
                           {"long_name": "K_theta of the row: its cells are simulated, and the "
-                                        "theories evaluated, at it"}),
+                                        "theories evaluated, at it", "units": ratio}),
               "k": ("k", np.asarray(params.k), {"long_name": "k as requested",
                                                 "units": "rad per site"}),
               "k_simulated": ("k", np.asarray(params.k_simulated),

@@ -7,6 +7,7 @@ import time
 from collections.abc import Callable
 from dataclasses import dataclass
 
+from ._cluster import signals_held
 from ._store import _CellWriter, _write_block
 
 DEVICES = ("cpu", "gpu", "auto")
@@ -209,8 +210,9 @@ def run_gpu(params, path, todo, n_todo, progress, log, arrays, workers=None, tim
                 continue
             theories = theories_of(first, batch)
             for i, js, rows in device.rows(params, batch, theories, log):
-                _write_block(path, params, {"i": i, "js": js, "rows": rows,
-                                            "simulated": True}, arrays, writer)
+                with signals_held():  # a block written whole, as on the CPU path
+                    _write_block(path, params, {"i": i, "js": js, "rows": rows,
+                                                "simulated": True}, arrays, writer)
                 bar.update(len(js))
                 if report is not None:
                     report(len(js))

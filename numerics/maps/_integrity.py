@@ -268,6 +268,22 @@ def lock_holder(lock: Path) -> dict | None:
             "age": age}
 
 
+def _held(store: Path, lock: Path, holder: dict) -> str:
+    return (f"{store} is being written by pid {holder['pid']} on {holder['host']} since "
+            f"{holder['since']} (lock {lock}); wait for it to finish, or stop it: the same "
+            "command then continues its map")
+
+
+def refuse_if_held(store: Path) -> None:
+    """StoreLocked where a live process holds ``STORE.lock`` now: the map commands ask
+    before their estimate (a second map on the same OUT measured a cell and estimated its
+    map, seconds, before ``store_lock`` refused it); ``store_lock`` still decides."""
+    lock = store.with_name(store.name + ".lock")
+    holder = lock_holder(lock)
+    if holder is not None and not holder["stale"]:
+        raise StoreLocked(_held(store, lock, holder))
+
+
 @contextlib.contextmanager
 def store_lock(store: Path, log=print):
     """Hold ``STORE.lock`` while writing ``store``; StoreLocked if a live process holds it."""
@@ -283,10 +299,7 @@ def store_lock(store: Path, log=print):
             if holder is None:
                 continue  # released meanwhile
             if not holder["stale"]:
-                raise StoreLocked(
-                    f"{store} is being written by pid {holder['pid']} on {holder['host']} "
-                    f"since {holder['since']} (lock {lock}); wait for it to finish, or stop "
-                    "it: the same command then continues its map") from None
+                raise StoreLocked(_held(store, lock, holder)) from None
             if holder.get("foreign"):
                 log(f"note: replaced the lock file {lock}: it holds no flexmm lock record "
                     "(a torn write, or a file of something else), so nobody holds it")

@@ -243,9 +243,11 @@ def run_map(params: MapParameters, out: Path, scheduler: str | None = None,
         n_cells, n_done = done.size, int(done.sum())
         if n_done:
             # the estimate on this machine's cores (a scheduler's workers are unknown here)
-            left = estimate if estimate is not None else (
+            # nothing left: no time (it said "0 to simulate (about 12 s)", the start-up
+            # of workers it does not start)
+            left = None if n_done >= n_cells else estimate if estimate is not None else (
                 params.estimated_seconds(workers or local_cores()) * (n_cells - n_done)
-                / n_cells) if not scheduler and n_cells > n_done else None
+                / n_cells) if not scheduler else None
             log(f"resuming {path}: {n_done} of {n_cells} cells already done (checksums "
                 f"verified), {n_cells - n_done} to {what}"
                 + (f" (about {duration(left)})" if left is not None else ""))
@@ -256,7 +258,7 @@ def run_map(params: MapParameters, out: Path, scheduler: str | None = None,
                     timeout)
         elif todo:
             _run_tasks(params, path, todo, n_cells - n_done, scheduler, workers, progress,
-                       log, arrays, timeout)
+                       log, arrays, timeout, estimate)
         import zarr
 
         derived = getattr(params, "derived_variables", lambda arrays: {})(arrays)
@@ -272,7 +274,10 @@ def run_map(params: MapParameters, out: Path, scheduler: str | None = None,
             arrays.update({n: np.asarray(v[1]) for n, v in derived.items()})
             ds = ds.assign({n: (v[0], np.asarray(v[1]), v[2]) for n, v in derived.items()})
             ds.attrs.update(kept)
-        if todo and not params.theory_only:  # who simulated (the last run's cells)
+        if not params.theory_only and (todo or _unsaid(path, params)):
+            # who simulated (the last run's cells); also where a run stopped (Ctrl-C, kill)
+            # after its last cell and before these lines: the rerun has no cell left to
+            # simulate and the store lacked them (device, device_name) for good
             from ._devices import device_attrs
 
             who = device_attrs(device, scheduler)
@@ -294,11 +299,39 @@ def run_map(params: MapParameters, out: Path, scheduler: str | None = None,
         return ds.copy(data={n: arrays[n] for n in ds.data_vars}).load()
 
 
+def _unsaid(path: Path, params) -> bool:
+    """Whether a simulated map's store lacks what its last run writes after the cells
+    (``device``, or its ``theory_only`` flag still the theory-only map's it resumed)."""
+    import zarr
+
+    attrs = zarr.open_group(str(path), mode="r", use_consolidated=False).attrs
+    return "device" not in attrs or attrs.get("theory_only") != params.attrs()["theory_only"]
+
+
+def _spread(rank: int) -> float:
+    """The van der Corput fraction of ``rank`` (its bits reversed after the binary point):
+    0, 1/2, 1/4, 3/4, 1/8, ...: the first n ranks so ordered sample the whole range."""
+    out, scale = 0.0, 0.5
+    while rank:
+        out += scale * (rank & 1)
+        rank >>= 1
+        scale /= 2
+    return out
+
+
 def _longest_first(params, todo, arrays=None) -> list:
     """The blocks in decreasing expected cost: a cell the exact theory calls stable runs the
     whole t_end (an MI cell stops once it passed 20x), and a prediction's Bloch families
-    grow with k (one per 2 pi / N up to k). Ties keep the grid's order."""
-    return sorted(todo, key=lambda block: params.block_cost(*block, arrays), reverse=True)
+    grow with k (one per 2 pi / N up to k). Ties (every block of a fresh model map, whose
+    theories the tasks compute) spread over the grid, not in its order: cells of one
+    region cost alike (a map's low-amplitude rows run all of T), and the progress lines'
+    pace is the whole grid's from its first blocks (in grid order a 100-cell fput map
+    said 49 s left at 36% where 13 s were)."""
+    n = len(todo)
+    place = {r: _spread(r) for r in range(n)}
+    order = sorted(range(n), key=lambda r: (params.block_cost(*todo[r], arrays),
+                                            -place[r]), reverse=True)
+    return [todo[r] for r in order]
 
 
 def _finer_tail(order: list, workers: int) -> list:
@@ -320,19 +353,25 @@ class MapCellError(ValueError):
 
 
 def _run_tasks(params, path, todo, n_todo, scheduler, workers, progress, log, arrays=None,
-               timeout=20.0):
+               timeout=20.0, estimate=None):
     from dask.distributed import as_completed
 
     from common.progress import progress_class
     tqdm = progress_class()
 
-    from ._cluster import ClusterLost, Watchdog, connect
+    from ._cluster import ClusterLost, Watchdog, connect, signals_held
 
     client, cluster = connect(scheduler, workers, timeout)
     writer = _CellWriter(path)
     report = progress if callable(progress) else None
     bar = tqdm(total=n_todo, unit="cell", desc="map",
                disable=True if report else None if progress is None else not progress)
+    from ._progress import progress_lines
+
+    # no bar (stderr a log file or a pipe): a plain line every 30 s at most, the first
+    # after 10 s (a 100-cell map said nothing for minutes)
+    lines = progress_lines(progress, n_todo,
+                           "predicted" if params.theory_only else "simulated", estimate)
     t0 = time.perf_counter()
     address = scheduler or "of this machine's LocalCluster"
     watch = Watchdog(client, scheduler or getattr(cluster, "scheduler_address", "local"),
@@ -362,6 +401,8 @@ def _run_tasks(params, path, todo, n_todo, scheduler, workers, progress, log, ar
                 if (why := watch.check()) is not None:
                     raise ClusterLost(f"{why}: {kept()}; the same command continues the map "
                                       "once the cluster works again") from None
+                if lines is not None:
+                    lines.tick()
                 time.sleep(0.05)
                 continue
             for fut in ready:
@@ -387,8 +428,14 @@ def _run_tasks(params, path, todo, n_todo, scheduler, workers, progress, log, ar
                         f"{', '.join(f'{cols[j]:g}' for j in js)}: "
                         f"{type(exc).__name__}: "
                         f"{str(exc).splitlines()[0] if str(exc) else ''}; {kept()}") from None
-                _write_block(path, params, result, arrays, writer)
+                # Ctrl-C or SIGTERM while a block is written: held until it is written
+                # whole (a SIGTERM between its done flags and its checksums lost the cell
+                # of a finished block: flagged, its checksum failed, computed again)
+                with signals_held():
+                    _write_block(path, params, result, arrays, writer)
                 bar.update(len(result["js"]))
+                if lines is not None:
+                    lines.update(len(result["js"]))
                 if report is not None:
                     report(len(result["js"]))
     finally:
@@ -402,10 +449,13 @@ def _run_tasks(params, path, todo, n_todo, scheduler, workers, progress, log, ar
 
 #: the store's own names, and those it gathers (the map engine's internals under test:
 #: tests/test_maps.py, bench/)
-def cells_done(store, flag: str = "done") -> tuple[int, int] | None:
+def cells_done(store, flag: str = "done", params=None) -> tuple[int, int] | None:
     """(cells done, cells) of the map store at ``store`` (a path), or None when it holds
     none or cannot be read (what an interrupted ``flexmm map`` reports it kept);
-    ``flag``: the done flag counted ("done_predicted" for a theory-only map)."""
+    ``flag``: the done flag counted ("done_predicted" for a theory-only map).
+    ``params``: the map's parameters, to count only the cells whose checksum holds over
+    its variables (what a resumed map keeps: a tampered cell flagged done is computed
+    again, and its time estimated)."""
     try:
         import zarr
 
@@ -413,7 +463,14 @@ def cells_done(store, flag: str = "done") -> tuple[int, int] | None:
         # beside it (_integrity.unsound_chunks)
         if unsound_chunks(Path(store) / flag):
             return None
-        done = zarr.open_group(str(store), mode="r", use_consolidated=False)[flag][...]
+        group = zarr.open_group(str(store), mode="r", use_consolidated=False)
+        done = np.asarray(group[flag][...], bool)
+        if params is not None:
+            from ._integrity import verify
+            from ._store_open import empty_dataset_names
+
+            names = [n for n in empty_dataset_names(params) if n != CHECKSUM]
+            done &= ~verify(Path(store), names, done.shape)[0]
         return int(done.sum()), int(done.size)
     except Exception:  # no store, or not readable: nothing to report
         return None

@@ -237,7 +237,11 @@ def check_store(path: Path, params: MapParameters, overwrite: bool = False) -> N
     """Refuse, before any work, a store at ``path`` that ``run_map`` would refuse (an
     unreadable one, another map with finished cells; ``overwrite`` allows both): the
     command says so before its estimate, not after it. Reads only the store's metadata,
-    its coordinates and its done flags; changes nothing."""
+    its coordinates and its done flags; changes nothing. A store another live process
+    is writing (its lock held) is refused here too, with or without ``overwrite``."""
+    from ._integrity import refuse_if_held
+
+    refuse_if_held(Path(path))
     _checked(Path(path), params, overwrite)
 
 

@@ -70,7 +70,8 @@ from ._losses import (
                      four_wave_amplification,
                      nls_amplification,
 )
-from ._map import lossy_runs, map_cells, model_map, simulated_cell
+from ._map import model_map, simulated_cell
+from ._map_cells import lossy_runs, map_cells
 from ._modes import (
                      classify_mode,
                      field_groups,
