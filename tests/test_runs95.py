@@ -95,6 +95,24 @@ def test_settled_rate_reads_the_fastest_mode_and_no_product():
     assert col == 31 and rate == pytest.approx(0.029, rel=0.01)
 
 
+def test_settled_rate_of_a_stage_that_ends_in_a_blow_up():
+    """A run that blew up ends on a record of inf (map cells stop there): the settled rate
+    is the one read without that record, and no RuntimeWarning (numpy's quantile of
+    inf - inf) is raised on the way (before: 'invalid value encountered in subtract')."""
+    import warnings
+
+    from numerics.models import settled_rate
+
+    t, S = _synthetic()
+    want = settled_rate(t, S, np.median(S[:3], axis=0), 0.2)
+    blown = np.vstack([S, np.full((1, S.shape[1]), np.inf)])
+    t2 = np.append(t, t[-1] + (t[-1] - t[-2]))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        got = settled_rate(t2, blown, np.median(S[:3], axis=0), 0.2)
+    assert got == want
+
+
 def test_exponential_bound_by_hand():
     """Linear growth 1 + t / 1000 over T = 40000 reads 41x; its log-slope over the second
     half, ln(41/21) / 20000, run over T, is (41/21)^2 = 3.8x (< 4^p, p = 1). Exponential

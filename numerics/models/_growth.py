@@ -198,12 +198,15 @@ def settled_rate(t: np.ndarray, S: np.ndarray, start: np.ndarray, amplitude: flo
     # amplitude), land on other modes and grow at s_a + s_b: a mode is read only while it
     # is above PRODUCTS x r_max^2, where they are a tenth of it at most (and a mode that
     # is a product is never above)
-    clean = r >= PRODUCTS * np.max(r, axis=1, keepdims=True) ** 2
+    # a run that blew up ends on a record holding inf: no mode is read there, and the
+    # floor below takes it as the largest float (inf - inf in the quantile's lerp is nan)
+    finite = np.isfinite(S)
+    clean = finite & (r >= PRODUCTS * np.max(r, axis=1, keepdims=True) ** 2)
     # the neutral modes' level at each record (their lower quartile: robust while fewer
     # than 3/4 of the modes grow); it moves: the noise's launch transient raised every
     # mode ~30x within the first ~100 time units (issue 95, a Hertz-like bond at k 1.52,
     # a 0.15), so a mode's own start is no reference
-    floor = np.quantile(S, 0.25, axis=1)
+    floor = np.quantile(np.where(finite, S, np.finfo(float).max), 0.25, axis=1)
     best, col = -math.inf, -1
     rates = {}
     for i in range(S.shape[1]):
