@@ -146,6 +146,17 @@ def test_help_and_coefficients_answer_in_under_a_second_of_cpu():
     loaded = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                             check=True).stdout.split()
     assert loaded == []
-    assert _cpu_seconds(["--help"]) < 0.5
-    assert _cpu_seconds(["coefficients", "--alpha", "2", "--K-s", "0.03", "--K-theta", "0.02",
-                         "--k", "1.2"]) < 1.0
+    argv = ["coefficients", "--alpha", "2", "--K-s", "0.03", "--K-theta", "0.02", "--k", "1.2"]
+    code = ("import sys; from cli import main; main(" + repr(argv) + "); "
+            "print(' '.join(m for m in ('matplotlib', 'scenes.fig2_dispersion', 'dask', 'xarray')"
+            " if m in sys.modules), file=sys.stderr)")
+    loaded = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                            check=True).stderr.split()
+    # what made it slow before (the deterministic half of the check); Dask: ~80 ms of
+    # imports that only the exact-map engine's threaded chunks use
+    assert loaded == []
+    # the CPU bounds, best of three: CPU time of one fresh interpreter swings ~30% with the
+    # machine's load (1.08 s seen in CI on a 0.7-0.9 s command); the least of three is its
+    # cost, and a regression (matplotlib and the scenes: 2 s) fails all three
+    assert min(_cpu_seconds(["--help"]) for _ in range(3)) < 0.5
+    assert min(_cpu_seconds(argv) for _ in range(3)) < 1.0

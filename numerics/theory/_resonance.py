@@ -29,7 +29,6 @@ paper's amplitude, which ``mi_gain(start="paper")`` computes point by point).
 
 from __future__ import annotations
 
-import dask
 import numpy as np
 from numba import njit
 
@@ -198,6 +197,8 @@ def resonance_map(k, delta=None, case: str | None = None, alpha: float | None = 
     out = {"peak_gain": np.zeros(kf.size), "q_peak": np.full(kf.size, np.nan),
            "pumped": np.zeros(kf.size, bool)}
     slices = [slice(s, s + chunk) for s in range(0, kf.size, chunk)]
+    import dask  # here: importing the theory (`flexmm coefficients`) needs no Dask
+
     tasks = [dask.delayed(_chunk)(kf[sl], Ktf[sl], float(alpha), float(K_s),
                                   float(amplitude), q, coupled, start == "paper" and coupled)
              for sl in slices]
