@@ -134,27 +134,28 @@ def _cpu_seconds(argv) -> float:
     return (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
 
 
-def test_help_and_coefficients_answer_in_under_a_second_of_cpu():
-    """issue 36 item 2: `flexmm --help` imports no figure module, no matplotlib, no numerics
-    (measured 0.06 s CPU, 2 s before); `coefficients` no matplotlib and no scene (0.7 s)."""
+def _loaded_after(statement: str, modules) -> list:
+    """Which of ``modules`` a fresh interpreter has imported after ``statement`` (the
+    answer on stderr: the statement may print)."""
     import subprocess
     import sys
 
-    code = ("import sys; from cli.app import build_parser; build_parser(); "
-            "print(' '.join(m for m in ('matplotlib', 'numpy', 'numerics', 'scenes.fig2_dispersion')"
-            " if m in sys.modules))")
-    loaded = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                            check=True).stdout.split()
-    assert loaded == []
+    code = (f"import sys; {statement}; print(' '.join(m for m in {tuple(modules)!r} "
+            "if m in sys.modules), file=sys.stderr)")
+    return subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          check=True).stderr.split()
+
+
+def test_help_and_coefficients_answer_in_under_a_second_of_cpu():
+    """issue 36 item 2: `flexmm --help` imports no figure module, no matplotlib, no numerics
+    (measured 0.06 s CPU, 2 s before); `coefficients` no matplotlib and no scene (0.7 s)."""
+    assert _loaded_after("from cli.app import build_parser; build_parser()",
+                         ("matplotlib", "numpy", "numerics", "scenes.fig2_dispersion")) == []
     argv = ["coefficients", "--alpha", "2", "--K-s", "0.03", "--K-theta", "0.02", "--k", "1.2"]
-    code = ("import sys; from cli import main; main(" + repr(argv) + "); "
-            "print(' '.join(m for m in ('matplotlib', 'scenes.fig2_dispersion', 'dask', 'xarray')"
-            " if m in sys.modules), file=sys.stderr)")
-    loaded = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                            check=True).stderr.split()
     # what made it slow before (the deterministic half of the check); Dask: ~80 ms of
     # imports that only the exact-map engine's threaded chunks use
-    assert loaded == []
+    assert _loaded_after(f"from cli import main; main({argv!r})",
+                         ("matplotlib", "scenes.fig2_dispersion", "dask", "xarray")) == []
     # the CPU bounds, best of three: CPU time of one fresh interpreter swings ~30% with the
     # machine's load (1.08 s seen in CI on a 0.7-0.9 s command); the least of three is its
     # cost, and a regression (matplotlib and the scenes: 2 s) fails all three
