@@ -360,14 +360,13 @@ def harmonic_note(spec, N) -> str | None:
     next, j = 1 (8.6e-4), 21% below the exact row."""
     import numpy as np
 
+    from numerics.models import harmonic_offsets
+
     if spec is None or not spec.peak_gain > 0:
         return None
     gain = np.asarray(spec.gain, float)
-    m = int(round(spec.wave.k * N / (2 * math.pi)))
-    H = spec.wave.harmonics
-    harm = {(h * m) % N for h in range(-H, H + 1)}
     j = np.arange(1, gain.size + 1)  # ring_offsets(N): q = 2 pi j / N
-    blind = np.array([(m + i) % N in harm and (m - i) % N in harm for i in j])
+    blind = harmonic_offsets(spec, N)
     seen = float(np.max(gain[~blind], initial=0.0))
     if not blind.any() or seen >= BLIND_SHARE * spec.peak_gain or not np.max(
             gain[blind]) >= spec.peak_gain:

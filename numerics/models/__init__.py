@@ -82,7 +82,7 @@ from ._modes import (
 )
 from ._nls import ModelNLS, ModelSoliton, acoustic_directions, nls
 from ._reach import amplitude_reach, energy_not_real, exact_gain_checked
-from ._seeds import SeededRuns, simulate_seeds, visible_gain
+from ._seeds import SeededRuns, harmonic_offsets, simulate_seeds, visible_gain
 from ._simulate import (
                      NOISE,
                      Growth,
@@ -114,7 +114,7 @@ __all__ = ["Carrier", "carrier", "branches", "branch_index", "check_rest_stable"
            "energy_not_real", "amplitude_reach", "FourWave", "four_wave", "pair_rates",
            "classify_mode", "field_groups", "sheet_branches", "sheet_pair_kind", "wave_sheet", "ring_misses", "ring_offsets", "simulate_model", "simulate_seeds",
            "SeededRuns", "ModelRun", "NOISE", "Growth", "measure_growth", "saturation_record",
-           "settled_rate", "read_modes", "visible_gain",
+           "settled_rate", "read_modes", "visible_gain", "harmonic_offsets",
            "saturation_time", "check_ring", "compiled_force",
            "lattice_force", "lattice_energy", "snap_ring", "Amplified", "amplified_row", "nls_amplification",
            "four_wave_amplification", "exact_amplification", "simulate_soliton",

@@ -128,12 +128,19 @@ def visible_gain(spec, N: int) -> float:
     gain = np.asarray(getattr(spec, "gain", ()), float)
     if not gain.size or not float(np.max(gain)) > 0:
         return float(getattr(spec, "peak_gain", 0.0))
+    return float(np.max(gain[~harmonic_offsets(spec, N)], initial=0.0))
+
+
+def harmonic_offsets(spec, N: int) -> np.ndarray:
+    """Which of the ring's offsets j = 1 .. len(spec.gain) (``ring_offsets(N)``: q = 2 pi
+    j / N) put both their waves, ring modes m + j and m - j, on harmonics of the carrier
+    (h m mod N, |h| <= the wave's harmonics): the offsets a run leaves out of its growth
+    (``visible_gain``; ``numerics.maps``' ``harmonic_note``). Boolean, shape (len(gain),)."""
     m = int(round(spec.wave.k * N / (2 * math.pi)))
     H = int(spec.wave.harmonics)
     harm = {(h * m) % N for h in range(-H, H + 1)}
-    seen = np.array([not ((m + j) % N in harm and (m - j) % N in harm)
-                     for j in range(1, gain.size + 1)])
-    return float(np.max(gain[seen], initial=0.0))
+    return np.array([(m + j) % N in harm and (m - j) % N in harm
+                     for j in range(1, len(spec.gain) + 1)], dtype=bool)
 
 
 def simulate_seeds(model: Model, k: float, amplitude: float, spec, *, branch=None,
