@@ -114,3 +114,58 @@ def test_a_strongly_damped_runs_energy_falls_as_its_dissipated_power_says():
     assert np.all(np.diff(run.energy) <= 0)  # every record below the last
     assert run.energy[-1] < 1e-30 * run.energy[0]
     assert run.energy_balance() < 1e-3
+
+
+#: a mass-in-mass chain: outer masses u (1) on springs, inner masses w (m2) tied to them
+#: by k2 and a dashpot c on the relative velocity
+MASS_IN_MASS = """name = "mass-in-mass"
+fields = ["u", "w"]
+branch = "u"
+[parameters]
+m2 = 0.5
+k2 = 0.3
+beta = 1.0
+c = 0.01
+[energy]
+kinetic = "u_t**2/2 + m2*w_t**2/2"
+bond = "(u_next - u)**2/2 + beta*(u_next - u)**4/4"
+site = "k2*(w - u)**2/2"
+[dissipation]
+site = "c*(w_t - u_t)**2/2"
+"""
+
+
+@pytest.mark.parametrize("c", [0.65, 0.7, 1.0, 5.0])
+def test_an_overdamped_upper_branch_keeps_the_acoustic_carriers_own_rate(c):
+    """At k = 0.5 the acoustic branch (0.384, u and w in phase) is the carrier; a strong
+    dashpot c on the inner mass makes the optical branch overdamped (Re w = 0) or pulls
+    its Re w below the acoustic one. Before, the roots were listed by Re w and the
+    carrier took the optical pair's rate: 0.672 at c = 0.7 where its own is 0.0105 (0.0104
+    at c = 0.6, before the swap). The hand pencil here: det(K - i w C - w^2 M) with K =
+    [[4 sin^2(k/2) + k2, -k2], [-k2, k2]], C = c [[1, -1], [-1, 1]], M = diag(1, m2), its
+    quartic's roots by numpy: the acoustic wave is the forward root nearest the lossless
+    acoustic frequency (the in-phase mode: as c grows it tends to sqrt(4 sin^2(k/2) /
+    (1 + m2)) = 0.404, the locked pair), the optical the other forward root."""
+    from numerics.models import carrier, carrier_damping, damping_rates
+
+    k, m2, k2 = 0.5, 0.5, 0.3
+    model = load_model(parse_model(MASS_IN_MASS), c=c)
+    car = carrier(model, k)
+    assert car.branch == 0 and car.omega == pytest.approx(0.38374, abs=1e-5)
+    s2 = 4 * math.sin(k / 2) ** 2
+    P = np.polynomial.polynomial
+    a11, a22 = [s2 + k2, -1j * c, -1.0], [k2, -1j * c, -m2]
+    a12 = [-k2, 1j * c, 0.0]
+    det = P.polysub(P.polymul(a11, a22), P.polymul(a12, a12))
+    r = np.roots(det[::-1])
+    forward = r[np.real(r) >= -1e-9]
+    # an overdamped pair has two roots on Re w = 0: its slower one is the branch's rate
+    forward = forward[np.argsort(-np.imag(forward))]
+    acoustic = forward[np.argmin(np.abs(np.real(forward) - 0.3837))]
+    assert abs(acoustic.real - 0.4) < 0.02  # the locked pair's travelling wave
+    optical = [w for w in forward if w != acoustic][0]
+    rates = damping_rates(model, k)
+    # 1e-9: eigenvalues of a 4 x 4 companion against a quartic's roots (~1e-15 |w|)
+    assert rates[0] == pytest.approx(-acoustic.imag, rel=1e-9)
+    assert rates[1] == pytest.approx(-optical.imag, rel=1e-9)
+    assert carrier_damping(model, k) == rates[0] < 0.011
