@@ -169,3 +169,26 @@ def test_an_overdamped_upper_branch_keeps_the_acoustic_carriers_own_rate(c):
     assert rates[0] == pytest.approx(-acoustic.imag, rel=1e-9)
     assert rates[1] == pytest.approx(-optical.imag, rel=1e-9)
     assert carrier_damping(model, k) == rates[0] < 0.011
+
+
+@pytest.mark.parametrize("argv, option", [
+    (["point", "--model", "flexmm-lossy", "--param", "gamma_U=-0.001", "--k", "1",
+      "--amplitude", "0.1", "--N", "64"], "--param gamma_U=-0.001: "),
+    (["map", "--model", "FILE", "--param", "eta=-0.01:0.03:3", "--k", "2.3,2.5",
+      "--amplitude", "0.2", "--N", "64", "--theory-only", "--workers", "1"],
+     "--param eta=-0.01: ")])
+def test_a_negative_damping_is_refused_naming_its_option(argv, option, tmp_path, capsys):
+    """Before: 'flexmm: error: model 'fput-bond': dissipation.bond is not positive
+    semi-definite at ...', the option that gave the value (a point's --param, a map's
+    axis) unnamed and no remedy; now both, in one line, exit 2."""
+    from cli.app import main
+
+    path = tmp_path / "fput-bond.toml"
+    path.write_text(FPUT_BOND)
+    argv = [str(path) if a == "FILE" else a for a in argv]
+    if argv[0] == "map":
+        argv += ["--out", str(tmp_path / "map")]
+    assert main(argv) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith(f"flexmm: error: {option}")
+    assert "a damping must keep R >= 0" in err[0]
