@@ -70,7 +70,8 @@ def _loss_table(out, units=None) -> None:
         amp = t["amplification"]
         amp_s = "inf" if amp is None and t["observable"] else _fmt(amp, 4)
         obs = {True: "yes (>= 20x)", False: "no", None: "-"}[t["observable"]]
-        if t["observable"] is False and t.get("peaked") is False:
+        if (t["observable"] is False and t.get("peaked") is False
+                and not t.get("ended_below_half")):
             obs = "not by cap"  # the runs stopped while A(t) still rose: no answer yet
         print(f"{name:<20} {_fmt(t.get('carrier_damping'), 3):>16} {amp_s:>14} "
               f"{_fmt(t['amplification_time'], 4):>10} {obs:>11}"
@@ -176,6 +177,8 @@ def report(args, point, units, since=None) -> dict:
             print("simulated with losses: noise on the carrier field's positions; the runs "
                   f"went on to t = {sim['t_end']:.4g}, " + (
                       "where A(t) had fallen to half its peak" if sim["peaked"] else
+                      "their cap (A(t) never rose 4.5x and ended below half its largest: "
+                      "nothing grew)" if sim.get("ended_below_half") else
                       "their cap (A(t) had not fallen to half its peak)"))
         if sim.get("note"):
             print(f"note: {sim['note']}")

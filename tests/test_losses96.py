@@ -192,3 +192,25 @@ def test_a_negative_damping_is_refused_naming_its_option(argv, option, tmp_path,
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and err[0].startswith(f"flexmm: error: {option}")
     assert "a damping must keep R >= 0" in err[0]
+
+
+def test_an_overdamped_carriers_run_answers_no_not_by_cap(tmp_path, capsys):
+    """Klein-Gordon gamma 3 at k 1: the carrier is overdamped (its damped frequency -0.9i,
+    by hand gamma/2 - sqrt(gamma^2/4 - omega^2)), every theory says 1x, and the run's A(t)
+    only falls from its noisy start. The table said 'not by cap' and 'A(t) had not fallen
+    to half its peak' (the run never rose sqrt 20 x, so its peak was never registered)
+    where A(t) had fallen 1e-30-fold: now 'no', and why the run went to its cap."""
+    from cli.app import main
+
+    path = tmp_path / "kg-site.toml"
+    path.write_text(KG_SITE)
+    assert main(["point", "--model", str(path), "--param", "gamma=3", "--k", "1",
+                 "--amplitude", "0.3", "--N", "32", "--simulate", "--seeds", "1",
+                 "--t-end", "300"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    table = lines[next(i for i, ln in enumerate(lines) if ln.startswith("with losses")):]
+    row = next(ln for ln in table if ln.startswith("simulated "))
+    assert row.split()[-1] == "no" and "not by cap" not in row, row
+    said = next(ln for ln in lines if ln.startswith("simulated with losses"))
+    assert "nothing grew" in said and "had not fallen" not in said
+    assert any("overdamped" in ln for ln in lines)
