@@ -214,3 +214,23 @@ def test_an_overdamped_carriers_run_answers_no_not_by_cap(tmp_path, capsys):
     said = next(ln for ln in lines if ln.startswith("simulated with losses"))
     assert "nothing grew" in said and "had not fallen" not in said
     assert any("overdamped" in ln for ln in lines)
+
+
+def test_a_lossy_map_says_which_cells_carry_no_wave_to_modulate(tmp_path, capsys):
+    """Klein-Gordon over gamma 0..3 and k 1, 2 (theory only, --exact): the carrier decays
+    faster than its phase turns where gamma/2 >= Re w, by hand gamma^2 / 2 >= K = omega0^2 +
+    4 C sin^2(k/2) (gamma 2 and 3 at k 0.98, K = 1.89; gamma 3 at k 1.96, K = 3.77): 3 cells.
+    Before, those cells read 'stable' and 1x with no word (point says it in a note)."""
+    from cli.app import main
+
+    path = tmp_path / "kg-site.toml"
+    path.write_text(KG_SITE)
+    assert main(["map", "--model", str(path), "--param", "gamma=0:3:4", "--k", "1:2:2",
+                 "--amplitude", "0.4", "--N", "64", "--theory-only", "--exact",
+                 "--workers", "1", "--out", str(tmp_path / "map")]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    said = [ln for ln in lines if ln.startswith("a carrier that decays faster")]
+    kap = [2 * math.pi * round(k * 64 / (2 * math.pi)) / 64 for k in (1.0, 2.0)]
+    count = sum(g * g / 2 >= 1 + 4 * math.sin(q / 2) ** 2 for g in (0, 1, 2, 3)
+                for q in kap)
+    assert count == 3 and len(said) == 1 and f"{count} of 8 cells" in said[0], said
