@@ -234,3 +234,22 @@ def test_a_lossy_map_says_which_cells_carry_no_wave_to_modulate(tmp_path, capsys
     count = sum(g * g / 2 >= 1 + 4 * math.sin(q / 2) ** 2 for g in (0, 1, 2, 3)
                 for q in kap)
     assert count == 3 and len(said) == 1 and f"{count} of 8 cells" in said[0], said
+
+
+def test_the_loss_table_gives_the_damping_in_si_with_a_time_unit(tmp_path, capsys):
+    """--time-unit 1e-3 (a lattice time unit of 1 ms): the loss table gave the peak time
+    in s but the carrier's damping only in 1/time. Now also in 1/s: Gamma = 2 eta
+    sin^2(k/2) (the bond dashpot, hand formula) at the ring's k = 2 pi 25/64, / 1e-3 s."""
+    from cli.app import main
+
+    path = tmp_path / "fput-bond.toml"
+    path.write_text(FPUT_BOND)
+    assert main(["point", "--model", str(path), "--param", "eta=0.005", "--k", "2.5",
+                 "--amplitude", "0.2", "--N", "64", "--time-unit", "1e-3"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    at = next(i for i, ln in enumerate(lines) if ln.startswith("with losses"))
+    assert lines[at].rstrip().endswith("damping (1/s)")
+    k = 2 * math.pi * 25 / 64
+    si = 2 * 0.005 * math.sin(k / 2) ** 2 / 1e-3
+    row = next(ln for ln in lines[at:] if ln.startswith("exact lattice"))
+    assert float(row.split()[-1]) == pytest.approx(si, rel=1e-3)  # printed to 3 digits
