@@ -253,3 +253,25 @@ def test_the_loss_table_gives_the_damping_in_si_with_a_time_unit(tmp_path, capsy
     si = 2 * 0.005 * math.sin(k / 2) ** 2 / 1e-3
     row = next(ln for ln in lines[at:] if ln.startswith("exact lattice"))
     assert float(row.split()[-1]) == pytest.approx(si, rel=1e-3)  # printed to 3 digits
+
+
+def test_the_critical_damping_is_not_read_from_a_capped_amplification():
+    """Along a decaying carrier ln A ~ c / gamma (docs/models.md). Two cells bracketing
+    20x, the weaker damping's at ln A = 20600 (a tiny damping: its theories report the cap
+    e^700) and the stronger's at ln A = 1.5: the true crossing, ln A = ln 20, lies at
+    gamma = c / ln 20; from the capped value ln ln A's line landed 32% below it. A bound
+    gives no interpolation: nan, with the reason (as an inf amplification does)."""
+    from numerics.maps import critical_damping
+
+    c, g0 = 20600 * 1e-6, 1e-6
+    g1 = c / 1.5
+    cap = math.exp(700.0)
+    crit, why = critical_damping(np.array([g0, g1]), np.array([[cap], [math.exp(1.5)]]),
+                                 name="eta")
+    assert math.isnan(crit[0]) and "cap" in why[0] and "add values in between" in why[0]
+    # below the cap, from the true values: the crossing c / ln 20 exactly (ln A ~ 1/gamma
+    # is what ln ln A linear in ln gamma is exact for)
+    g600 = c / 600  # a cell whose ln A = 600, on the same law
+    crit, why = critical_damping(np.array([g600, g1]),
+                                 np.array([[math.exp(600.0)], [math.exp(1.5)]]), name="eta")
+    assert crit[0] == pytest.approx(c / math.log(20), rel=1e-9) and why == [""]
