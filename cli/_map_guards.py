@@ -29,8 +29,17 @@ def check_rest(model, named) -> None:
         warnings.simplefilter("ignore")
         for combo in itertools.product(*(v for _, v in axes)):
             values = {n: float(v) for (n, _), v in zip(axes, combo)}
-            m = model.with_params(**values)
             given = ", ".join(f"--param {n}={v:g}" for n, v in values.items())
+            try:  # a damping of the wrong sign (R < 0): its value named (issue 96)
+                m = model.with_params(**values)
+                m.damping  # noqa: B018 (reading it checks R >= 0)
+            except ModelError as exc:
+                if "semi-definite" not in str(exc):
+                    raise
+                why = str(exc).split(": ", 1)[-1]
+                raise ValueError(f"{given}: {why}; a damping must keep R >= 0 (a viscous "
+                                 "coefficient >= 0): leave such values out of the axis"
+                                 ) from None
             if (np.all(np.isfinite(np.asarray(m.code.cell_energy(zero, m.p))))
                     and np.all(np.isfinite(np.asarray(m.code.taylor(m.p)[0], float)))):
                 try:

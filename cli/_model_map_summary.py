@@ -92,6 +92,42 @@ def _no_wave_text(ds, params, summary: dict) -> str:
             f"theory (no verdict of a wave that does not exist); first at {at}: {why}")
 
 
+def _overdamped_text(ds, params) -> str | None:
+    """A lossy map's line for the cells whose carrier is overdamped (|Re w| <= |Im w|: it
+    decays before its phase turns, no wave to modulate; issue 96): their theories' 1x
+    and 'stable' are the losses', as point's note says; None where there is none."""
+    import numpy as np
+
+    from energy import ModelError
+    from numerics.models import carrier, damped_frequencies
+
+    if not params.lattice_model.lossy:
+        return None
+    shape = ds["no_wave"].shape
+    hit = []
+    for i, j in np.ndindex(*shape):
+        values, k = params.cell(i, j)
+        if params.ring:  # the cell's theories ran at the ring's k
+            k = float(ds["k_simulated"].values[i, j])
+        try:
+            m = params.lattice_model.with_params(**values)
+            c = carrier(m, k, params.branch_value)
+        except (ModelError, ValueError):  # no carrier here: the map says so elsewhere
+            continue
+        w = complex(np.asarray(damped_frequencies(m, c.k))[c.branch])
+        if abs(w.real) <= abs(w.imag):
+            hit.append((i, j, w))
+    if not hit:
+        return None
+    i, j, w = hit[0]
+    at = ", ".join(f"{n} = {float(ds[n].values[x]):g}" for n, x in zip(params.dims, (i, j)))
+    return (f"a carrier that decays faster than its phase turns (|Im w| >= |Re w|, "
+            f"overdamped where Re w = 0: no wave to modulate): {len(hit)} of "
+            f"{shape[0] * shape[1]} cells, their 'stable' and 1x the losses'; first at "
+            f"{at}: damped frequency {w.real + 0.0:.3g} {w.imag:+.3g}i; lower the damping "
+            "for a wave")
+
+
 def _print_observable(summary: dict) -> None:
     """A lossy map's observable shares and their agreement with the runs (``_observable``)."""
     if "observable_fraction" not in summary:

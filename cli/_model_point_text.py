@@ -61,8 +61,10 @@ def _loss_table(out, units=None) -> None:
     """The table of a lossy point's amplifications (printed after the verdicts; the time
     also in s where --time-unit is given)."""
     t_f = units.factor("time") if units is not None else None
+    r_f = units.factor("rate") if units is not None else None
     print(f"{'with losses':<20} {'carrier damping':>16} {'amplification':>14} "
-          f"{'at time':>10} {'observable':>11}" + (f" {'at time (s)':>12}" if t_f else ""))
+          f"{'at time':>10} {'observable':>11}" + (f" {'at time (s)':>12}" if t_f else "")
+          + (f" {'damping (1/s)':>14}" if r_f else ""))
     for name in ("semi-discrete NLS", "four-wave", "exact lattice", "simulated"):
         t = out.get(name, {})
         if "amplification" not in t:
@@ -70,11 +72,13 @@ def _loss_table(out, units=None) -> None:
         amp = t["amplification"]
         amp_s = "inf" if amp is None and t["observable"] else _fmt(amp, 4)
         obs = {True: "yes (>= 20x)", False: "no", None: "-"}[t["observable"]]
-        if t["observable"] is False and t.get("peaked") is False:
+        if (t["observable"] is False and t.get("peaked") is False
+                and not t.get("ended_below_half")):
             obs = "not by cap"  # the runs stopped while A(t) still rose: no answer yet
         print(f"{name:<20} {_fmt(t.get('carrier_damping'), 3):>16} {amp_s:>14} "
               f"{_fmt(t['amplification_time'], 4):>10} {obs:>11}"
-              + (f" {_fmt(_times(t['amplification_time'], t_f), 4):>12}" if t_f else ""))
+              + (f" {_fmt(_times(t['amplification_time'], t_f), 4):>12}" if t_f else "")
+              + (f" {_fmt(_times(t.get('carrier_damping'), r_f), 3):>14}" if r_f else ""))
 
 
 def report(args, point, units, since=None) -> dict:
@@ -176,6 +180,8 @@ def report(args, point, units, since=None) -> dict:
             print("simulated with losses: noise on the carrier field's positions; the runs "
                   f"went on to t = {sim['t_end']:.4g}, " + (
                       "where A(t) had fallen to half its peak" if sim["peaked"] else
+                      "their cap (A(t) never rose 4.5x and ended below half its largest: "
+                      "nothing grew)" if sim.get("ended_below_half") else
                       "their cap (A(t) had not fallen to half its peak)"))
         if sim.get("note"):
             print(f"note: {sim['note']}")

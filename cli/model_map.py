@@ -10,7 +10,7 @@ from pathlib import Path
 
 from ._map_guards import cells_done, check_rest, option
 from ._model_map_figure import OBSERVABLE, _plot_map
-from ._model_map_summary import _no_wave_text, _print_observable, _summary
+from ._model_map_summary import _no_wave_text, _overdamped_text, _print_observable, _summary
 from .models import _emit, branch_of, load
 
 
@@ -316,6 +316,8 @@ def run_map(args) -> int:
         print(_unsampled_text(unsampled, args.N))
     if summary.get("no_wave_cells"):
         print(_no_wave_text(ds, params, summary))
+    if (over := _overdamped_text(ds, params)) is not None:
+        print(over)
     if summary.get("blew_up_cells"):
         print(f"runs that blew up (the state left the lattice's range, growth inf): "
               f"{summary['blew_up_cells']} of {summary['cells']} cells, undetermined (a "

@@ -20,6 +20,9 @@ import numpy as np
 
 #: the amplification the critical damping is read at (the runs' 20x)
 THRESHOLD = 20.0
+#: the theories' largest amplification, e^700 (numerics.models' along_decay and damped
+#: NLS: past it a factor is only a lower bound; issue 96)
+CAP = math.exp(700.0)
 
 
 def damping_parameters(lattice) -> tuple:
@@ -94,6 +97,11 @@ def critical_damping(damping, amplification, threshold: float = THRESHOLD,
             reasons.append(f"crosses {threshold:g}x between {name} = {g0:g} (amplification "
                            f"{a0:g}) and {g1:g}: no log interpolation from there; add "
                            "values in between")
+            continue
+        if a0 >= CAP * (1 - 1e-9):  # a lower bound: ln ln A from it lands low (32% below)
+            reasons.append(f"crosses {threshold:g}x between {name} = {g0:g} (amplification "
+                           f"at least e^700, the theories' cap) and {g1:g}: no log "
+                           "interpolation from a bound; add values in between")
             continue
         if a1 > 1:  # ln ln A linear in ln gamma
             y0, y1, y = math.log(math.log(a0)), math.log(math.log(a1)), math.log(

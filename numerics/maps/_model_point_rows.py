@@ -113,6 +113,11 @@ def simulated_row(model, k, amplitude, branch, N, seeds, t_end, spec, start, pea
         amps = sorted((r.amplification() for r in runs), key=lambda a: a.amplification)
         med = amps[len(amps) // 2]
         row.update(med.row())
+        # issue 96: a run whose A(t) never rose PEAK_RISE (peaked False) but ended below
+        # half its largest and below its midpoint's, falling (an overdamped carrier's
+        # noise only decays), did answer: no; one still rising at its cap did not
+        A = med.A
+        row["ended_below_half"] = bool(A[-1] <= max(A) / 2 and A[-1] <= A[len(A) // 2])
         row["t_end"] = max(float(r.t[-1]) for r in runs)
         row["energy_balance"] = max(r.energy_balance() for r in runs)
         if (med.amplification <= 1.0 and peak_time is not None and math.isfinite(peak_time)

@@ -48,3 +48,29 @@ def rayleigh(model: Model, v: np.ndarray, matrices=None) -> float:
     vn = np.concatenate([v, np.roll(v, -1, axis=1)])
     return float(0.5 * (np.einsum("an,ab,bn->", v, S, v) + np.einsum("an,ab,bn->", vn, Bd,
                                                                       vn)))
+
+
+#: a damped run's samples of 2R (``simulate_model``'s energy balance) are at most
+#: LOSS_DECAY / (the damping's fastest rate) apart, besides ``LOSS_SAMPLE`` radians of the
+#: carrier: a strong damping's 2R falls as a sum of exponentials (an overdamped pair: two
+#: rates), which one exponential through two samples far apart misreads. Issue 96, balance
+#: errors from samples 8 radians apart, then at most 0.1 / rate apart (a sample every step
+#: where that is shorter than the step): Klein-Gordon gamma 0.5, 5.0e-3 -> 1.8e-4; gamma 3
+#: (overdamped at k 1) 0.099 -> 0.011 (0.72 -> 0.01 on a point's T = 5000); FPUT bond
+#: damping eta 1, 0.16 -> 0.012; a mass-in-mass dashpot c 1, 0.046 -> 0.020 (the last
+#: three limited by the step: dt 0.01-0.02 reads 2e-4). A rate below ~omega / 80 keeps
+#: the 8 radians (every run of the tests and docs).
+LOSS_DECAY = 0.1
+
+
+def loss_spacing(model: Model, N: int) -> float:
+    """The most time between two samples of 2R: LOSS_DECAY over the fastest rate of the
+    damping alone, the largest eigenvalue of M^-1/2 C(kappa) M^-1/2 over the ring's
+    wavenumbers (inf where nothing is damped)."""
+    S, B = model.damping
+    d = model.n_fields
+    s = 1 / np.sqrt(np.asarray(model.masses, float))
+    z = np.exp(2j * math.pi * np.arange(N) / N)[:, None, None]
+    C = S + B[:d, :d] + B[d:, d:] + B[:d, d:] * z + B[d:, :d] / z
+    top = float(np.max(np.linalg.eigvalsh(C * s[None, :, None] * s[None, None, :])))
+    return LOSS_DECAY / top if top > 0 else math.inf

@@ -446,7 +446,10 @@ def _damped_many(model: Model, kappas: np.ndarray) -> np.ndarray:
     # Re omega = 0: the slower-decaying root of the pair), every kappa at once
     order = np.lexsort((np.imag(w), np.round(np.real(w), 12)), axis=-1)[:, ::-1][:, :d]
     wi = np.take_along_axis(w, order, axis=-1)
-    return np.take_along_axis(wi, np.argsort(np.real(wi), axis=-1), axis=-1)
+    from ._damped_order import lossless_order  # each root to the branch it continues
+
+    return lossless_order(K, C, w2, np.take_along_axis(wi, np.argsort(np.real(wi), axis=-1),
+                                                       axis=-1))
 
 
 def _one_field_roots(a, b) -> np.ndarray:

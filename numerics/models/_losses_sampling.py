@@ -143,7 +143,8 @@ def nls_first_max(P, Q, psi0, Gamma, G, q, t_end, steps):
     (``_first_max``), its offsets coarse to fine (``_losses_sampling``: every eighth, then
     those between whose log amplification may reach the largest; the NLS's is smooth in
     q, one band): the same numbers wherever the largest's offset is computed."""
-    from ._losses import NLS_STRIDE, _pairs_best, _pairs_later
+    from ._losses import NLS_STRIDE
+    from ._losses_nls import _pairs_best, _pairs_later
 
     top, first = np.ones(q.size), np.zeros(q.size, np.int64)
     done = np.zeros(q.size, bool)

@@ -30,7 +30,7 @@ from energy import Model, ModelError
 # compiled_force, lattice_energy, lattice_force: here too, for the modules that import them
 # from here (the package's __init__, _reach)
 from ._compiled import _kernels, compiled_force, lattice_energy, lattice_force  # noqa: F401
-from ._damping import damping_flow, rayleigh
+from ._damping import damping_flow, loss_spacing, rayleigh
 from ._growth import (
     SATURATION,
     Amplification,
@@ -446,8 +446,9 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
     # time is known, with its records kept (SimulationInterrupted)
     per_call = steps_per_call(N * d, meth, every)
     # a damped run that records its energy integrates 2R between records from samples
-    # LOSS_SAMPLE radians of the carrier apart (``spent``: [integral, last time, last 2R])
-    sub = max(1, int(LOSS_SAMPLE / (wave.omega * dt))) if lossy and energy else per_call
+    # LOSS_SAMPLE radians of the carrier apart, at most ``loss_spacing`` (``spent``)
+    sub = max(1, int(min(LOSS_SAMPLE / wave.omega, loss_spacing(model, N)) / dt)) \
+        if lossy and energy else per_call
     try:
         with deferred_interrupt() as interrupted:
             while done < nsteps:
