@@ -96,11 +96,10 @@ from ._simulate import (
                      simulate_model,
                      snap_ring,
 )
+from ._soliton_ring import RingSoliton, ring_soliton
 from ._soliton_run import (
                      ModelSolitonRun,
-                     RingSoliton,
                      check_soliton_launch,
-                     ring_soliton,
                      simulate_soliton,
                      soliton_report,
 )

@@ -16,8 +16,8 @@ import numpy as np
 
 from ..lattice import RADIATION_WINDOW, fit_soliton_profile, ring_distance
 
-if TYPE_CHECKING:  # the prediction's type only: _soliton_run imports this module
-    from ._soliton_run import RingSoliton
+if TYPE_CHECKING:  # the prediction's type only
+    from ._soliton_ring import RingSoliton
 
 
 @dataclass(frozen=True)
