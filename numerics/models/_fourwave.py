@@ -129,8 +129,11 @@ class FourWave:
         (``sheet_pair_kind``), so a pair of the carrier's own waves across a crossing of
         uncoupled branches is its sidebands."""
         table = self._sheets
-        if table is None:  # the fields all coupled: the sheets are the branch indices
-            return pair_kind(self.branch, self.pairs[j], self.offsets[i])
+        if table[0] == "followed":  # the fields all coupled: the followed branch indices
+            b1, b2 = self.pairs[j]
+            on = b1 == table[1][i] and b2 == table[2][i]
+            return pair_kind(self.branch, (self.branch,) * 2 if on else (-1, -1),
+                             self.offsets[i])
         own, plus, minus = table
         b1, b2 = self.pairs[j]
         if plus[i][b1] != own or minus[i][b2] != own:
@@ -139,13 +142,18 @@ class FourWave:
 
     @functools.cached_property
     def _sheets(self):
-        """(the carrier's sheet, every branch's sheet at k + q and at k - q per offset),
-        None where the fields are all linearly coupled."""
+        """(the carrier's sheet, every branch's sheet at k + q and at k - q per offset);
+        where the fields are all linearly coupled ('followed', the carrier's branch
+        followed through avoided crossings to k + q, to k - q: ``_sheet_track``)."""
         groups = field_groups(self.model)
-        if len(set(groups)) == 1:
-            return None
-        own = wave_sheets(self.model, self.k, groups)[self.branch]
         q = np.asarray(self.offsets, dtype=float)
+        if len(set(groups)) == 1:
+            from ._sheet_track import followed_branches
+
+            both = followed_branches(self.model, self.k, self.branch,
+                                     np.concatenate([self.k + q, self.k - q]))
+            return ("followed", both[:q.size], both[q.size:])
+        own = wave_sheets(self.model, self.k, groups)[self.branch]
         return (own, wave_sheets(self.model, _wrap(self.k + q), groups),
                 wave_sheets(self.model, _wrap(self.k - q), groups))
 

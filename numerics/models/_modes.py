@@ -109,11 +109,17 @@ def sheet_pair_kind(model: Model, k: float, branch: int, pair, q: float,
     """``pair_kind`` by dispersion sheets (``wave_sheet``) instead of branch indices: the
     pair (k + q on pair[0], k - q on pair[1]) is the carrier's sidebands (or backward pair)
     where both waves lie on the carrier's sheet, even where another group's branch crosses
-    it between k and k +- q (there the indices swap). Equal to ``pair_kind`` where the
-    fields are all linearly coupled."""
+    it between k and k +- q (there the indices swap). Where the fields are all linearly
+    coupled, the carrier's branch followed by its eigenvector through avoided crossings
+    (``_sheet_track``): ``pair_kind`` where none lies between k and k +- q."""
     groups = field_groups(model) if groups is None else groups
     if len(set(groups)) == 1:
-        return pair_kind(branch, pair, q)
+        # one group: the sheet followed through avoided crossings by its eigenvector
+        from ._sheet_track import followed_branches
+
+        qw = float(_wrap(q))
+        on = tuple(int(b) for b in followed_branches(model, k, branch, [k + qw, k - qw]))
+        return pair_kind(branch, (branch, branch) if tuple(pair) == on else (-1, -1), q)
     own = wave_sheet(model, k, branch, groups)
     on = (wave_sheet(model, float(_wrap(k + q)), pair[0], groups) == own
           and wave_sheet(model, float(_wrap(k - q)), pair[1], groups) == own)
