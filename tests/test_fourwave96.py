@@ -5,6 +5,8 @@ against the field content of the pair's waves from a dynamical matrix written by
 
 from __future__ import annotations
 
+import math
+
 import pytest
 
 from bench.probe_fourwave96 import MODELS, hand_field
@@ -104,3 +106,18 @@ def fw_wave(model, k, a):
 
     return travelling_wave(model, k, a)
 
+
+
+def test_a_pair_named_by_the_exact_modes_eigenvector_not_the_nearest_frequency():
+    """cross (eps = 0) with the carrier on the flat v branch at k = pi/2 (a = 0.1): the
+    exact mode at q = 0.46 holds v waves at 2.031 and 1.111 (its eigenvector: all of
+    both harmonics' weight in v, 0.47 and 0.20), 0.024-0.054 off the v branch; the u
+    branch at 1.111 (1.054) lies nearer the second wave's frequency once moved by the
+    carrier's shift, and the mode was named 'parametric' with a u wave. The v carrier's
+    own pair (both waves v, |q| < pi/2) is its sidebands, as at eps = 1e-3."""
+    from numerics.models import classify_mode, exact_gain
+
+    for name in ("cross-0", "cross-1e-3"):
+        label = classify_mode(exact_gain(_model(name), math.pi / 2, 0.1, "v"))
+        assert label["mode_kind"] == "sidebands", (name, label)
+        assert [w["field"] for w in label["mode_waves"]] == ["v", "v"], (name, label)
