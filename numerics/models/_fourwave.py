@@ -333,15 +333,27 @@ def four_wave(model: Model, k: float, amplitude: float, branch=None, *, N: int |
                f"{b3} at {k3:.4g} grows at about {rate3:.3g} /time, faster than any "
                f"four-wave pair ({best:.3g}): a process of order a that the four-wave "
                "ordering does not rate; the exact theory holds")
+    if not why and not best > GAIN_FLOOR * car.omega:
+        # a decay the carrier's own shift could bring into resonance: 'stable' is not
+        # known at this order (issue 96: opt at pi/2, exact 6.3e-3, four-wave 'stable')
+        near = _decay(model, k, a, branch, N, samples, margin=True)
+        if near is not None and near[0] > GAIN_FLOOR * car.omega:
+            rate3, (b1, k1), (b3, k3) = near
+            why = (f"a three-wave decay of the carrier into branch {b1} at {k1:.4g} and "
+                   f"branch {b3} at {k3:.4g} is detuned by less than the carrier's own "
+                   f"frequency shift: it grows (at up to {rate3:.3g} /time) or not at the "
+                   "next order, which the four-wave ordering does not rate; the exact "
+                   "theory holds")
     return FourWave(model, k, a, car.branch, car.omega, float(Omega), q, tuple(pairs),
                     rate, det, coup, why)
 
 
-def _decay(model, k, a, branch, N, samples):
-    """The fastest isolated three-wave decay (``_threewave.fastest_decay``) over the
-    ring's offsets of both signs, or a grid of the chain's; None where none grows."""
+def _decay(model, k, a, branch, N, samples, margin=False):
+    """The fastest isolated three-wave decay (``_threewave.fastest_decay``, ``margin``
+    its) over the ring's offsets of both signs, or a grid of the chain's; None where none
+    grows."""
     from ._fourwave_kernel import _plane_wave
-    from ._threewave import fastest_decay
+    from ._threewave import fastest_decay, fastest_near_decay
 
     wave = _plane_wave(model, k, a, branch)
     if N:
@@ -350,7 +362,8 @@ def _decay(model, k, a, branch, N, samples):
     else:
         q = np.linspace(-np.pi, np.pi, 2 * samples + 1)[1:]
         q = q[q != 0]
-    return fastest_decay(model, k, wave, q, refine=not N)
+    return (fastest_near_decay if margin else fastest_decay)(model, k, wave, q,
+                                                            refine=not N)
 
 
 def _untreated(q, pairs, rate, det) -> str:
