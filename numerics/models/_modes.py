@@ -109,11 +109,17 @@ def sheet_pair_kind(model: Model, k: float, branch: int, pair, q: float,
     """``pair_kind`` by dispersion sheets (``wave_sheet``) instead of branch indices: the
     pair (k + q on pair[0], k - q on pair[1]) is the carrier's sidebands (or backward pair)
     where both waves lie on the carrier's sheet, even where another group's branch crosses
-    it between k and k +- q (there the indices swap). Equal to ``pair_kind`` where the
-    fields are all linearly coupled."""
+    it between k and k +- q (there the indices swap). Where the fields are all linearly
+    coupled, the carrier's branch followed by its eigenvector through avoided crossings
+    (``_sheet_track``): ``pair_kind`` where none lies between k and k +- q."""
     groups = field_groups(model) if groups is None else groups
     if len(set(groups)) == 1:
-        return pair_kind(branch, pair, q)
+        # one group: the sheet followed through avoided crossings by its eigenvector
+        from ._sheet_track import followed_branches
+
+        qw = float(_wrap(q))
+        on = tuple(int(b) for b in followed_branches(model, k, branch, [k + qw, k - qw]))
+        return pair_kind(branch, (branch, branch) if tuple(pair) == on else (-1, -1), q)
     own = wave_sheet(model, k, branch, groups)
     on = (wave_sheet(model, float(_wrap(k + q)), pair[0], groups) == own
           and wave_sheet(model, float(_wrap(k - q)), pair[1], groups) == own)
@@ -164,6 +170,7 @@ def classify_mode(spectrum) -> dict:
     # is its growing mirror's pair, with the same frequency; name the growing member
     lam = lams[0][int(np.argmax(np.abs(lams[0].real)))]
     lam = complex(abs(lam.real), lam.imag)
+    vec = _mode_vector(wave, q, lam) if model.n_fields > 1 else None
     best = None
     # the carrier's own nonlinear frequency shift: a pair locked to it (sidebands, a
     # backward pair) sits that far off the linear branches, each wave by the same amount
@@ -182,11 +189,18 @@ def classify_mode(spectrum) -> dict:
             # omega^2 < 0 on every branch there (a rest state that is no minimum): no
             # linear wave to name; before, nanargmin raised 'All-NaN slice encountered'
             continue
+        # each wave's branch: the one its harmonic's eigenvector lies along (issue 96:
+        # cross's v carrier at pi/2 holds only v in both harmonics, yet the u branch lay
+        # nearer one wave's frequency); the nearest in frequency where it is not known
+        own1 = _branch_along(model, kap, vec, l, conj=False)
+        own2 = _branch_along(model, kap2, vec, l - 2, conj=True)
         miss, b1, b2 = min(
             (max(abs(w1[i] + s - phi), abs(w2[j] + s - phi2)), i, j)
             for s in (0.0, shift) if math.isfinite(s)
-            for i in [int(np.nanargmin(np.abs(w1 + s - phi)))]
-            for j in [int(np.nanargmin(np.abs(w2 + s - phi2)))])
+            for i in [own1 if own1 is not None else int(np.nanargmin(np.abs(w1 + s - phi)))]
+            for j in [own2 if own2 is not None else int(np.nanargmin(np.abs(w2 + s - phi2)))])
+        if not (math.isfinite(miss)):
+            continue
         if best is None or miss < best[0]:
             best = (miss, kap, phi, b1, kap2, phi2, b2)
     if best is None:  # no pair of positive frequencies (a wave with Omega <= 0): unnamed
@@ -204,6 +218,54 @@ def classify_mode(spectrum) -> dict:
     kind = sheet_pair_kind(model, k, wave.carrier.branch, (b1, b2), kap - k)
     return {"mode_kind": kind, "mode_waves": waves,
             "fastest_offset": own_offset(kind, kap - k)}
+
+
+def _mode_vector(wave, q: float, lam: complex):
+    """The Hill mode (offset q, eigenvalue ``lam``) per harmonic: c_l, shape (2P + 1, d),
+    row P + l harmonic l, in displacements (the dense pencil of ``hill_spectrum`` with
+    ``return_eigenvalues``, P = H + 4; inverse iteration at ``lam``); None where it
+    does not settle."""
+    from scipy.linalg import lu_factor, lu_solve
+
+    from ._hill_dense import _DensePencil
+
+    P = wave.harmonics + 4
+    pen = _DensePencil(wave, P)
+    n, omega, ll, m = pen.n, pen.omega, pen.ll, pen.m
+    A = np.zeros((2 * n, 2 * n), complex)
+    A[:n, n:] = np.eye(n)
+    A[n:, :n] = -(pen.stiffness(q) - np.diag(ll**2 * omega**2 * m)) / m[:, None]
+    A[n:, n:] = np.diag(2j * omega * ll)
+    shift = lam + 1e-13 * (abs(lam) + omega)  # A - lam I is singular to round-off
+    with np.errstate(all="ignore"):
+        lu = lu_factor(A - shift * np.eye(2 * n), check_finite=False)
+        x = np.random.default_rng(0).standard_normal(2 * n) + 0j
+        for _ in range(2):
+            x = lu_solve(lu, x / np.max(np.abs(x)), check_finite=False)
+    if not np.all(np.isfinite(x)):
+        return None
+    return x[:n].reshape(2 * P + 1, pen.d)
+
+
+def _branch_along(model: Model, kappa: float, vec, l: int, conj: bool):
+    """The branch whose linear eigenvector at ``kappa`` the mode's harmonic l (conjugated
+    for the pair's second wave) overlaps most, in the mass inner product; None where the
+    mode is not known or the harmonic holds < 1e-6 of its weight."""
+    if vec is None:
+        return None
+    P = (vec.shape[0] - 1) // 2
+    if abs(l) > P:
+        return None
+    m = np.asarray(model.masses, float)
+    c = vec[P + l]
+    w = m * np.abs(vec) ** 2
+    if float(np.sum(m * np.abs(c) ** 2)) < 1e-6 * float(np.sum(w)):
+        return None
+    from ._linear import _modes
+
+    y = _modes(model, float(kappa))[1]  # mass-weighted eigenvectors
+    c = np.sqrt(m) * (np.conj(c) if conj else c)
+    return int(np.argmax(np.abs(y.conj().T @ c)))
 
 
 def ring_misses(model: Model, k: float, amplitude: float, branch=None, *, N: int,

@@ -41,7 +41,8 @@ from energy import Model
 ISOLATED = 4.0
 
 
-def decay_rates(model: Model, k: float, wave, offsets) -> tuple[np.ndarray, np.ndarray]:
+def decay_rates(model: Model, k: float, wave, offsets, *,
+                margin: bool = False) -> tuple[np.ndarray, np.ndarray]:
     """Every isolated three-wave decay's rate at the offsets q (any sign, rad/site).
 
     Parameters
@@ -52,6 +53,13 @@ def decay_rates(model: Model, k: float, wave, offsets) -> tuple[np.ndarray, np.n
     wave : tuple
         ``_fourwave_kernel._plane_wave``'s (carrier, Omega, x1, x2, x0).
     offsets : array_like, shape (n,)
+    margin : bool
+        Also the decays that the carrier's own shift |Omega - omega| could bring into
+        resonance (their detuning less that shift beaten by the coupling): the rate they
+        would have at resonance, sqrt(kappa13 kappa31 - (max(|Delta| - shift, 0)/2)^2).
+        Issue 96: opt (mass-in-mass, tests/test_fourwave96.py) at k pi/2 decays at 6.3e-3
+        (exact) into waves each moved up by the carrier (0.03, 0.02): linearly detuned
+        by -0.013, resonant once the daughters' and the carrier's shifts are counted.
 
     Returns
     -------
@@ -103,7 +111,10 @@ def decay_rates(model: Model, k: float, wave, offsets) -> tuple[np.ndarray, np.n
         # band's edge, 0.49 and 1.08; the diatomic chain at k 1.64, a 0.09, 1e-4 for a
         # long wave at 0.001 (the mean flow)
         shift = abs(Omega - car.omega)
-        robust = (np.abs(delta) + shift) ** 2 / 4 < np.real(kk)
+        near = np.maximum(np.abs(delta) - shift, 0.0) if margin else np.abs(delta) + shift
+        robust = near**2 / 4 < np.real(kk)
+        if margin:
+            sig = np.sqrt(np.maximum(np.real(kk) - near**2 / 4, 0.0))
         # the other harmonics l (wavenumber q + l k, frequency (l - 1) Omega + omega1):
         # each one's distance from every branch
         apart = np.full(w1.shape, np.inf)
@@ -122,13 +133,19 @@ def decay_rates(model: Model, k: float, wave, offsets) -> tuple[np.ndarray, np.n
     return rates, delta
 
 
-def fastest_decay(model: Model, k: float, wave, offsets, *, refine: bool) -> tuple | None:
+def fastest_decay(model: Model, k: float, wave, offsets, *, refine: bool,
+                  margin: bool = False) -> tuple | None:
+    """The fastest isolated decay over ``offsets`` (``_fastest_decay``)."""
+    return _fastest_decay(model, k, wave, offsets, refine, margin)
+
+
+def _fastest_decay(model, k, wave, offsets, refine, margin):
     """The fastest isolated decay over ``offsets`` as (rate, (b1, k1), (b3, k3)), or None
     where none grows. ``refine``: the offsets are a grid of the infinite chain, and the
     detuning's roots between them are added (a decay's band is O(a) wide); False for a
-    ring's own offsets."""
+    ring's own offsets. ``margin``: ``decay_rates``'s."""
     q = np.atleast_1d(np.asarray(offsets, dtype=float))
-    rates, delta = decay_rates(model, k, wave, q)
+    rates, delta = decay_rates(model, k, wave, q, margin=margin)
     roots = []
     for b1 in range(delta.shape[1]):
         for b3 in range(delta.shape[2]):
@@ -138,9 +155,16 @@ def fastest_decay(model: Model, k: float, wave, offsets, *, refine: bool) -> tup
             roots.extend(q[i] - dl[i] * (q[i + 1] - q[i]) / (dl[i + 1] - dl[i]))
     if roots and refine:
         q = np.concatenate([q, roots])
-        rates = np.concatenate([rates, decay_rates(model, k, wave, np.array(roots))[0]])
+        rates = np.concatenate([rates, decay_rates(model, k, wave, np.array(roots),
+                                                   margin=margin)[0]])
     if not np.max(rates, initial=0.0) > 0:
         return None
     n, b1, b3 = np.unravel_index(int(np.argmax(rates)), rates.shape)
     wrap = lambda x: float((x + np.pi) % (2 * np.pi) - np.pi)  # noqa: E731
     return float(rates[n, b1, b3]), (int(b1), wrap(k + q[n])), (int(b3), wrap(-q[n]))
+
+
+def fastest_near_decay(model: Model, k: float, wave, offsets, *, refine: bool):
+    """``fastest_decay`` of the decays the carrier's own shift could bring into resonance
+    too (``decay_rates``' ``margin``): their rate at resonance."""
+    return _fastest_decay(model, k, wave, offsets, refine, True)
