@@ -329,6 +329,11 @@ def carrier(model: Model, k: float, branch=None) -> Carrier:
     if isinstance(k, (bool, np.bool_)) or not isinstance(k, numbers.Real) \
             or not math.isfinite(k):
         raise ModelError(f"k must be a finite real number, got {type(k).__name__} {k!r}")
+    # the range nls, exact_gain and four_wave take: a Carrier that says k = -1 or 7 would
+    # be read downstream as a wave it is not (its v_g and e are those of k mod 2 pi)
+    if not 0 < k <= math.pi:
+        raise ModelError(f"k must be in (0, pi] rad/site, got {k!r}: fold it into (0, pi] "
+                         f"(k mod 2 pi, then 2 pi - k above pi)")
     b = branch_index(model, k, branch)
     if why := rest_kink(model):
         raise ModelError(why)
