@@ -135,9 +135,6 @@ def run_model_soliton(args, model, units, branch) -> dict:
 
     from .models import _emit
 
-    if getattr(args, "theory", "semi-discrete") == "paper":
-        raise ValueError("--theory paper: the paper's continuum NLS is the paper chain's "
-                         "(no --model); a model's soliton is its semi-discrete NLS's")
     folder = prepare_output(args.out, cache=False) if args.out else None
     run = None
     if args.simulate:

@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -61,3 +62,69 @@ def test_soliton_forms_take_the_amplitude_by_its_size(a):
                                   closed.bright_envelope(xi, t, a, G1, G2))
     np.testing.assert_array_equal(closed.dark_envelope(xi, t, -a, phi, G1, -G2),
                                   closed.dark_envelope(xi, t, a, phi, G1, -G2))
+
+
+# ------------------------------------------------------------------ the command line
+
+def _fails(capsys, argv) -> str:
+    """The one stderr line of a refused command (exit 2, no traceback)."""
+    from cli.app import main
+
+    assert main(argv) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "Traceback" not in err[0], err
+    return err[0]
+
+
+@pytest.mark.parametrize("value", ["0", "-1", "nan", "1e200"])
+def test_table_names_its_option(capsys, value):
+    # before: "A0 must be in (0, 75], got 0.0": no option of that name
+    assert _fails(capsys, ["table", "--A0", value]).startswith(
+        "flexmm: error: --A0 must be in (0, 75]")
+
+
+@pytest.mark.parametrize("argv", [
+    ["point", "--alpha", "2.5", "--K-s", "0.01851", "--K-theta", "0.01551", "--k", "0.81681",
+     "--case", "coupled"],
+    ["soliton", "--model", "fput", "--k", "1.0", "--amplitude", "0.05"],
+    ["map", "--model", "fput", "--param", "beta=1:2:2", "--k", "0.5:1:2", "--theory-only"],
+    ["scene", "fig2-dispersion", "--quick"],
+    ["run", "--quick"],
+])
+@pytest.mark.parametrize("under", [False, True])
+def test_an_out_that_is_a_file_is_named_as_the_option(capsys, tmp_path, argv, under):
+    # before: "/tmp/.../afile is a file, not a folder" (or "cannot create ...: ... is a
+    # file"), naming no option; now --out, the remedy, and nothing written beside it
+    f = tmp_path / "afile"
+    f.write_text("x")
+    out = f / "sub" if under else f
+    err = _fails(capsys, argv + ["--out", str(out)])
+    assert err.startswith(f"flexmm: error: --out {out}") and "give a folder" in err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["afile"] and f.read_text() == "x"
+
+
+def test_replot_without_data_names_the_option_and_the_command(capsys, tmp_path):
+    # before: ".../data.h5 does not exist: run `flexmm scene fig2-dispersion` first": that
+    # command writes to out/, not to the --out the replot read
+    out = tmp_path / "figs"
+    err = _fails(capsys, ["scene", "fig2-dispersion", "--replot", "--out", str(out)])
+    assert err.startswith("flexmm: error: --replot: ")
+    assert f"flexmm scene fig2-dispersion --out {out}" in err and not out.exists()
+
+
+def test_a_model_soliton_refuses_the_paper_theory_when_it_only_prints(capsys):
+    # before: `soliton --model fput ... --theory paper` printed the semi-discrete NLS's
+    # soliton (exit 0) as if the paper's continuum NLS had been asked and used; with
+    # --simulate or --out the same request was refused
+    err = _fails(capsys, ["soliton", "--model", "fput", "--k", "1.0", "--amplitude", "0.05",
+                          "--theory", "paper"])
+    assert err.startswith("flexmm: error: --theory paper:") and "no --model" in err
+
+
+@pytest.mark.skipif(not Path("/proc/self").is_dir(), reason="needs Linux's /proc")
+def test_an_out_nobody_can_create_is_named_as_the_option(capsys):
+    # before: "cannot write to /proc/96/m: No such file or directory (/proc)"
+    err = _fails(capsys, ["point", "--model", "fput", "--k", "2", "--amplitude", "0.1",
+                          "--out", "/proc/96/m"])
+    assert err.startswith("flexmm: error: cannot write to /proc/96/m")
+    assert err.endswith("give an --out you can write to")

@@ -1,0 +1,338 @@
+"""Issue 96's probe: the command line and the Python entry points as a new user meets them,
+at inputs nobody tried (odd numbers, bad files, hostile output folders).
+
+Every try runs in a fresh process with a 60 s limit (a try past it is a finding). A failure
+must be one line on stderr, exit 2, no traceback, naming the option (or argument); a
+success exits 0 and, where it writes files, says so on its last line; a failure leaves no
+new file in the output folder. Python tries: a clear ModelError / ValueError / TypeError
+naming the argument, never a silent NaN, a hang or a crash.
+
+    OMP_NUM_THREADS=1 NUMBA_NUM_THREADS=1 python -m bench.probe_cli96 [--only WORD]
+        [--json OUT.json]
+
+Seeded (numpy's default_rng(96)) where it draws; the tries themselves are listed below.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import shlex
+import stat
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+LIMIT = 60.0
+ROOT = Path(__file__).resolve().parents[1]
+PY = sys.executable
+RNG = np.random.default_rng(96)
+
+FPUT = "--model fput --param alpha=1 --param beta=1"
+FPUT1 = "--model fput --param alpha=1"
+PAPER = "--alpha 2.5 --K-s 0.01851 --K-theta 0.01551"
+
+
+def _files(folder: Path) -> set:
+    return {str(p.relative_to(folder)) for p in folder.rglob("*")} if folder.exists() else set()
+
+
+def run_cli(args: str, tmp: Path, expect: str, needle: str | None = None,
+            out: Path | None = None, stdin: bytes | None = None) -> dict:
+    """One `flexmm` call. expect: 'ok' (exit 0), 'bad' (exit 2, one line naming ``needle``)."""
+    argv = [PY, "-m", "cli", *shlex.split(args.replace("{tmp}", str(tmp)))]
+    before = _files(out) if out is not None else None
+    t0 = time.perf_counter()
+    env = {**os.environ, "OMP_NUM_THREADS": "1", "NUMBA_NUM_THREADS": "1"}
+    try:
+        p = subprocess.run(argv, cwd=tmp, capture_output=True, timeout=LIMIT, env=env,
+                           input=stdin)
+    except subprocess.TimeoutExpired:
+        return {"try": args, "finding": f"no answer within {LIMIT:.0f} s"}
+    dt = time.perf_counter() - t0
+    err = p.stderr.decode(errors="replace").strip()
+    so = p.stdout.decode(errors="replace").strip()
+    problems = []
+    if "Traceback" in err or "Traceback" in so:
+        problems.append("traceback")
+    if expect == "bad":
+        if p.returncode != 2:
+            problems.append(f"exit {p.returncode}, not 2")
+        lines = [ln for ln in err.splitlines() if ln.strip()]
+        last = lines[-1] if lines else ""
+        if not last.startswith(("flexmm", "usage")) and "error" not in last:
+            problems.append("no error line")
+        errors = [ln for ln in lines if "error" in ln]
+        if len(errors) != 1:
+            problems.append(f"{len(errors)} error lines")
+        if needle and needle.lower() not in err.lower():
+            problems.append(f"error does not name {needle!r}")
+        if out is not None and _files(out) != before:
+            problems.append(f"left files: {sorted(_files(out) - before)[:4]}")
+    elif expect == "ok":
+        if p.returncode != 0:
+            problems.append(f"exit {p.returncode}")
+        if needle and needle not in (so.splitlines() or [""])[-1]:
+            problems.append(f"last line lacks {needle!r}")
+    tail = ((err.splitlines() or [""])[-1] if expect == "bad" or p.returncode
+            else (so.splitlines() or [""])[-1])
+    return {"try": args, "rc": p.returncode, "seconds": round(dt, 2), "said": tail[:220],
+            **({"finding": "; ".join(problems)} if problems else {})}
+
+
+def _cli_tries(tmp: Path):
+    """(args, expect, needle, out) for `flexmm`."""
+    d = tmp / "files"
+    d.mkdir(exist_ok=True)
+    (d / "empty.toml").write_text("")
+    (d / "binary.toml").write_bytes(bytes(RNG.integers(0, 256, 300, dtype=np.uint8)))
+    (d / "syntax.toml").write_text('name = "x"\nfields = [\n')
+    (d / "nofields.toml").write_text('name = "x"\n[energy]\nkinetic = "u_t**2/2"\n')
+    (d / "evil.toml").write_text('name = "x"\nfields = ["u"]\n[energy]\nkinetic = "u_t**2/2"\n'
+                                 'bond = "__import__(\'os\').system(\'echo hi\')"\n')
+    (d / "ok.toml").write_text('name = "mine"\nfields = ["u"]\n[parameters]\nbeta = 1.0\n'
+                               '[energy]\nkinetic = "u_t**2/2"\n'
+                               'bond = "(u_next - u)**2/2 + beta*(u_next - u)**4/4"\n')
+    (d / "afile").write_text("x")
+    ro = tmp / "readonly"
+    ro.mkdir(exist_ok=True)
+    os.chmod(ro, stat.S_IRUSR | stat.S_IXUSR)
+    yield from [
+        # every --help, and the bare command
+        ("--help", "ok", None, None),
+        ("", "bad", "COMMAND", None),
+        *[(f"{c} --help", "ok", None, None) for c in
+          ("coefficients", "table", "scenes", "scene", "run", "point", "map", "soliton",
+           "models")],
+        ("nonsense", "bad", "nonsense", None),
+        # coefficients: k at and past its boundaries
+        (f"coefficients {PAPER} --k 0", "bad", "--k", None),
+        (f"coefficients {PAPER} --k -1", "bad", "--k", None),
+        (f"coefficients {PAPER} --k nan", "bad", "--k", None),
+        (f"coefficients {PAPER} --k inf", "bad", "--k", None),
+        (f"coefficients {PAPER} --k -inf", "bad", "--k", None),
+        (f"coefficients {PAPER} --k 1e308", "bad", "--k", None),
+        (f"coefficients {PAPER} --k ''", "bad", "--k", None),
+        (f"coefficients {PAPER} --k one", "bad", "--k", None),
+        (f"coefficients {PAPER} --k 3.141592653589793", "bad", "--k", None),
+        (f"coefficients {PAPER} --k 0x1p0", "bad", "--k", None),
+        (f"coefficients {PAPER} --k 1 --k 2", "bad", "--k", None),
+        (f"coefficients {FPUT} --k 3.141592653589793 --amplitude 0.1", "ok", None, None),
+        (f"coefficients {FPUT} --k 3.1415926535897936 --amplitude 0.1", "bad", "--k", None),
+        (f"coefficients {FPUT} --k 1e-300 --amplitude 0.1", "bad", "--k", None),
+        (f"coefficients {FPUT} --k 1.0 --amplitude 0", "bad", "--amplitude", None),
+        (f"coefficients {FPUT} --k 1.0 --amplitude -0.1", "bad", "--amplitude", None),
+        (f"coefficients {FPUT} --k 1.0 --amplitude nan", "bad", "--amplitude", None),
+        (f"coefficients {FPUT} --k 1.0 --amplitude 1e300", "bad", "--amplitude", None),
+        (f"coefficients {PAPER} --k 1.0 --amplitude 5", "bad", "--amplitude", None),
+        ("coefficients --alpha 0 --K-s 0.01 --K-theta 0.01 --k 1", "bad", "--alpha", None),
+        ("coefficients --alpha -2 --K-s 0.01 --K-theta 0.01 --k 1", "bad", "--alpha", None),
+        ("coefficients --alpha nan --K-s 0.01 --K-theta 0.01 --k 1", "bad", "--alpha", None),
+        ("coefficients --alpha 2 --K-s -0.01 --K-theta 0.01 --k 1", "bad", "--K-s", None),
+        ("coefficients --alpha 2 --K-s 0.01 --K-theta inf --k 1", "bad", "--K-theta", None),
+        ("coefficients --alpha 2 --K-s 0.01 --k 1", "bad", "--K-theta", None),
+        ("coefficients --k 1", "bad", "--alpha", None),
+        ("coefficients --alpha 2 --K-s 0.02 --K-theta 0.02 --k 1", "ok", None, None),
+        ("coefficients --physical 1,2,3 --k 1", "bad", "--physical", None),
+        ("coefficients --physical 0.01,2e-6,0.02,1e4,185,-1 --k 1", "bad", "--physical", None),
+        ("coefficients --physical 0.01,2e-6,0.02,1e4,185,nan --k 1", "bad", "--physical", None),
+        ("coefficients --physical a,b,c,d,e,f --k 1", "bad", "--physical", None),
+        (f"coefficients --physical 0.01,2e-6,0.02,1e4,185,1 {PAPER} --k 1", "bad", None, None),
+        # models and their files
+        ("coefficients --model nosuch --k 1", "bad", "nosuch", None),
+        ("coefficients --model '' --k 1", "bad", "built-in", None),
+        ("coefficients --model {tmp}/files/missing.toml --k 1", "bad", "missing.toml", None),
+        ("coefficients --model {tmp}/files --k 1", "bad", "not a regular file", None),
+        ("coefficients --model {tmp}/files/empty.toml --k 1", "bad", "empty.toml", None),
+        ("coefficients --model {tmp}/files/binary.toml --k 1", "bad", "binary.toml", None),
+        ("coefficients --model {tmp}/files/syntax.toml --k 1", "bad", "syntax.toml", None),
+        ("coefficients --model {tmp}/files/nofields.toml --k 1", "bad", "nofields.toml", None),
+        ("coefficients --model {tmp}/files/evil.toml --k 1", "bad", "evil.toml", None),
+        ("coefficients --model {tmp}/files/ok.toml --k 1 --amplitude 0.1", "ok", None, None),
+        ("coefficients --model {tmp}/files/ok.toml --k 1 --param gamma=1", "bad", "gamma", None),
+        ("coefficients --model {tmp}/files/ok.toml --k 1 --param beta=", "bad", "beta", None),
+        ("coefficients --model {tmp}/files/ok.toml --k 1 --param beta=nan", "bad", "beta", None),
+        ("coefficients --model {tmp}/files/ok.toml --k 1 --param beta", "bad", "--param", None),
+        ("coefficients --model {tmp}/files/ok.toml --k 1 --param =1", "bad", "--param", None),
+        ("coefficients --model fput --k 1 --param beta=1 --param beta=2", "bad", "beta", None),
+        ("coefficients --model fput --k 1 --param beta=1e308 --amplitude 0.1", "bad", "beta", None),
+        ("coefficients --model fput --k 1 --branch 1", "bad", "--branch", None),
+        ("coefficients --model fput --k 1 --branch -1", "bad", "--branch", None),
+        ("coefficients --model fput --k 1 --branch v", "bad", "--branch", None),
+        ("coefficients --model fput --k 1 --time-unit 0", "bad", "--time-unit", None),
+        ("coefficients --model fput --k 1 --time-unit -1", "bad", "--time-unit", None),
+        ("coefficients --model fput --k 1 --length-unit nan", "bad", "--length-unit", None),
+        (f"coefficients {PAPER} --k 1 --time-unit 1", "bad", "--time-unit", None),
+        (f"coefficients {PAPER} --k 1 --model fput", "bad", "--model", None),
+        ("coefficients --model fput --k 1 --json --amplitude 0.1", "ok", None, None),
+        ("models nosuch", "bad", "nosuch", None),
+        ("models fput", "ok", None, None),
+        ("models --json", "ok", None, None),
+        # table
+        ("table --A0 0", "bad", "--A0", None),
+        ("table --A0 -1", "bad", "--A0", None),
+        ("table --A0 nan", "bad", "--A0", None),
+        ("table --A0 1e200", "bad", "--A0", None),
+        ("table --A0 1.4", "ok", None, None),
+        # scene
+        ("scene nosuch --quick --out {tmp}/sc", "bad", "nosuch", tmp / "sc"),
+        ("scene fig2-dispersion --quick --out {tmp}/files/afile", "bad", "--out", None),
+        ("scene fig2-dispersion --quick --out {tmp}/files/afile/x", "bad", "--out", ro),
+        ("scene fig2-dispersion --replot --out {tmp}/noreplot", "bad", "--replot",
+         tmp / "noreplot"),
+        ("scene fig2-dispersion --quick --seed -1 --out {tmp}/sc2", "bad", "--seed", None),
+        ("run --quick --out {tmp}/files/afile", "bad", "--out", None),
+        # point
+        (f"point {PAPER} --k 0.81681 --case coupled --N 2", "bad", "--N", None),
+        (f"point {PAPER} --k 0.81681 --case coupled --N 0", "bad", "--N", None),
+        (f"point {PAPER} --k 0.81681 --case coupled --N -5", "bad", "--N", None),
+        (f"point {PAPER} --k 0.81681 --case coupled --N 1e9", "bad", "--N", None),
+        (f"point {PAPER} --k 0.81681 --case coupled --N 500.5", "bad", "--N", None),
+        (f"point {PAPER} --k 0.81681 --case coupled --N 99999999999", "bad", "--N", None),
+        (f"point {PAPER} --k 0.81681 --case nosuch", "bad", "--case", None),
+        (f"point {PAPER} --k 0.81681 --case coupled --t-end 0 --simulate", "bad", "--t-end",
+         None),
+        (f"point {PAPER} --k 0.81681 --case coupled --t-end nan --simulate", "bad", "--t-end",
+         None),
+        (f"point {PAPER} --k 0.81681 --case coupled --seeds 0 --simulate", "bad", "--seeds",
+         None),
+        (f"point {PAPER} --k 0.81681 --case coupled --seeds 100000 --simulate", "bad",
+         "--seeds", None),
+        (f"point {PAPER} --k 0.81681 --case coupled --out {{tmp}}/files/afile", "bad", "--out",
+         None),
+        (f"point {PAPER} --k 0.81681 --case coupled --out {{tmp}}/files/afile/p", "bad", "--out",
+         ro),
+        (f"point {PAPER} --k 0.81681 --case coupled --start linear", "bad", "--start", None),
+        (f"point {FPUT} --k 2.5 --amplitude 0.1 --N 3", "bad", "--N", None),
+        (f"point {FPUT} --k 2.5 --amplitude 0.1 --N 4 --out {{tmp}}/p4", "bad", "--N", tmp / "p4"),
+        (f"point {FPUT} --k 2.5 --amplitude 0.1 --N 64 --t-end 1e300 --simulate", "bad",
+         "--t-end", None),
+        (f"point {FPUT} --k 2.5 --amplitude 0.1 --N 64 --start paper", "bad", "--start", None),
+        (f"point {FPUT} --k 2.5 --amplitude 0.1 --N 64 --out ''", "ok", "wrote", None),
+        # the epilog examples, as written (small sizes are theirs already)
+        ("point --model fput --param alpha=1 --param beta=1.5 --k 2.5 --amplitude 0.1 --N 64 "
+         "--out out/point", "ok", "wrote", None),
+        ("point --alpha 2.5 --K-s 0.01851 --K-theta 0.01551 --k 0.81681 --case coupled",
+         "ok", None, None),
+        ("soliton --model fput --param alpha=1 --param beta=1 --k 1.0 --amplitude 0.05",
+         "ok", None, None),
+        ("soliton --alpha 2.5 --K-s 0.01851 --K-theta 0.02151 --k 0.92991 --amplitude 0.002 "
+         "--case rotation", "ok", None, None),
+        ("map --model fput --param alpha=1 --param beta=0.5:1.5:3 --k 0.5:3:4 --amplitude 0.1 "
+         "--theory-only --out out/fput-map", "ok", "wrote", None),
+        ("map --alpha 2.5 --K-s 0.01851 --delta -0.01:0.01:5 --k 0.3:2.9:6 --case rotation "
+         "--theory-only --out out/map", "ok", "wrote", None),
+        ("coefficients --model fput --param alpha=1 --param beta=1 --k 1.57 --amplitude 0.1",
+         "ok", None, None),
+        ("scenes", "ok", None, None),
+        # soliton
+        (f"soliton {FPUT} --k 1.0 --amplitude 0.05 --kind nosuch", "bad", "--kind", None),
+        (f"soliton {FPUT} --k 1.0 --amplitude 0.05 --travel 0 --simulate", "bad", "--travel",
+         None),
+        (f"soliton {FPUT} --k 1.0 --amplitude 0.05 --travel nan --simulate", "bad",
+         "--travel", None),
+        (f"soliton {FPUT} --k 1.0 --amplitude 0.05 --travel 1e9 --simulate", "bad",
+         "--travel", None),
+        (f"soliton {FPUT} --k 1.0 --amplitude 0.05 --N 3 --simulate", "bad", "--N", None),
+        (f"soliton {FPUT} --k 1.0 --amplitude 0.05 --kind bright", "bad", "--kind", None),
+        (f"soliton {FPUT} --k 1.0 --amplitude 0.05 --theory paper", "bad", "--theory", None),
+        (f"soliton {FPUT} --k 1.0 --amplitude 0.05 --out {{tmp}}/files/afile", "bad", "--out",
+         None),
+        (f"soliton {FPUT} --k 1.0 --amplitude 1e-200", "ok", None, None),
+        (f"soliton {FPUT} --k 1.0 --amplitude 0.5", "ok", None, None),
+        # map
+        (f"map {FPUT1} --param beta=1:1:1 --k 0.5:1:2 --theory-only --out {{tmp}}/m1", "ok",
+         "wrote", None),
+        (f"map {FPUT1} --param beta=2:1:3 --k 0.5:1:2 --theory-only --out {{tmp}}/m2", "ok",
+         "wrote", None),
+        (f"map {FPUT1} --param beta=1:2:0 --k 0.5:1:2 --theory-only --out {{tmp}}/m3", "bad",
+         "beta", tmp / "m3"),
+        (f"map {FPUT1} --param beta=1:2:-3 --k 0.5:1:2 --theory-only --out {{tmp}}/m4", "bad",
+         "beta", tmp / "m4"),
+        (f"map {FPUT1} --param beta=1:2:2.5 --k 0.5:1:2 --theory-only --out {{tmp}}/m5", "bad",
+         "beta", tmp / "m5"),
+        (f"map {FPUT1} --param beta=1:nan:2 --k 0.5:1:2 --theory-only --out {{tmp}}/m6", "bad",
+         "beta", tmp / "m6"),
+        (f"map {FPUT1} --param beta=1,1,1 --k 0.5:1:2 --theory-only --out {{tmp}}/m7", "bad",
+         "beta", tmp / "m7"),
+        (f"map {FPUT1} --param beta=1:2:3 --k 0.5:4:2 --theory-only --out {{tmp}}/m8", "bad",
+         "--k", tmp / "m8"),
+        (f"map {FPUT1} --param beta=1:2:3 --k 0:1:2 --theory-only --out {{tmp}}/m9", "bad",
+         "--k", tmp / "m9"),
+        (f"map {FPUT1} --param beta=1:2:3 --k '' --theory-only --out {{tmp}}/m10", "bad",
+         "--k", tmp / "m10"),
+        (f"map {FPUT1} --param beta=1:2:3 --k 1,, --theory-only --out {{tmp}}/m11", "bad",
+         "--k", tmp / "m11"),
+        (f"map {FPUT1} --param beta=1:2:3 --k 0.5:1:100000000 --theory-only --out {{tmp}}/m12",
+         "bad", "--k", tmp / "m12"),
+        (f"map {FPUT1} --param beta=1:2:3 --k 0.5:1:2 --theory-only --out {{tmp}}/files/afile",
+         "bad", "--out", None),
+        (f"map {FPUT1} --param beta=1:2:3 --k 0.5:1:2 --theory-only --out /proc/96/m",
+         "bad", "--out", ro),
+        (f"map {FPUT1} --param beta=1:2:3 --k 0.5:1:2 --theory-only --workers 0 "
+         "--out {tmp}/m13", "bad", "--workers", tmp / "m13"),
+        (f"map {FPUT1} --param beta=1:2:3 --k 0.5:1:2 --theory-only --workers -1 "
+         "--out {tmp}/m14", "bad", "--workers", tmp / "m14"),
+        (f"map {FPUT1} --param beta=1:2:3 --k 0.5:1:2 --theory-only --block 0 "
+         "--out {tmp}/m15", "bad", "--block", tmp / "m15"),
+        (f"map {FPUT1} --param beta=1:2:3 --k 0.5:1:2 --theory-only --timeout -1 "
+         "--scheduler tcp://127.0.0.1:1 --out {tmp}/m16", "bad", "--timeout", tmp / "m16"),
+        (f"map {FPUT1} --param beta=1:2:3 --k 0.5:1:2 --theory-only --scheduler nonsense "
+         "--out {tmp}/m17", "bad", "--scheduler", tmp / "m17"),
+        (f"map {FPUT1} --param beta=1:2:3 --k 0.5:1:2 --theory-only --scheduler "
+         "tcp://127.0.0.1:1 --timeout 1 --out {tmp}/m18", "bad", "--scheduler", tmp / "m18"),
+        (f"map {FPUT1} --param beta=1:2:3 --param alpha=1:2:2 --k 0.5:1:2 --theory-only "
+         "--out {tmp}/m19", "bad", None, tmp / "m19"),
+        (f"map {FPUT1} --param beta=1:2:3 --k 1 --theory-only --out {{tmp}}/m20", "bad", "--k",
+         tmp / "m20"),
+        (f"map {FPUT1} --param beta=1:2:3 --k 0.5:1:2 --theory-only --device gpu "
+         "--out {tmp}/m21", "bad", "--device", tmp / "m21"),
+        (f"map {FPUT1} --param beta=1:2:3 --k 0.5:1:2 --theory-only --amplitude 0.1:0.2:2 "
+         "--out {tmp}/m22", "bad", "--amplitude", tmp / "m22"),
+        (f"map {FPUT1} --param beta=1:2:3 --k 0.5:1:2 --t-end -5 --out {{tmp}}/m23", "bad",
+         "--t-end", tmp / "m23"),
+        (f"map {PAPER} --delta 0.01 --k 1 --case rotation --theory-only --out {{tmp}}/m24",
+         "bad", None, tmp / "m24"),
+        ("map --alpha 2.5 --K-s 0.01851 --delta -0.01:0.01:2 --k 1:2:2 --case rotation "
+         "--theory-only --N 2 --out {tmp}/m25", "bad", "--N", tmp / "m25"),
+        ("map --alpha 2.5 --K-s 0.01851 --delta 0.01:-0.01:2 --k 2:1:2 --case rotation "
+         "--theory-only --out {tmp}/m26", "ok", "wrote", None),
+        ("map --alpha 2.5 --K-s 0.01851 --delta 0.02 --k 1:2:2 --case rotation "
+         "--theory-only --out {tmp}/m27", "bad", "--delta", tmp / "m27"),
+    ]
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--only", help="run only the tries whose text holds this")
+    ap.add_argument("--json", help="write every try's outcome here")
+    a = ap.parse_args(argv)
+    results = []
+    with tempfile.TemporaryDirectory() as t:
+        tmp = Path(t)
+        try:
+            for args, expect, needle, out in _cli_tries(tmp):
+                if a.only and a.only not in args:
+                    continue
+                r = run_cli(args, tmp, expect, needle, out)
+                results.append(r)
+                mark = "FINDING" if "finding" in r else "ok"
+                print(f"[{mark}] flexmm {args}\n    -> rc {r.get('rc')} "
+                      f"({r.get('seconds')} s): {r.get('said', '')}"
+                      + (f"\n    !! {r['finding']}" if "finding" in r else ""), flush=True)
+        finally:
+            os.chmod(tmp / "readonly", stat.S_IRWXU)
+    n = sum("finding" in r for r in results)
+    print(f"{len(results)} tries, {n} findings")
+    if a.json:
+        Path(a.json).write_text(json.dumps(results, indent=1))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
