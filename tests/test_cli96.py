@@ -128,3 +128,58 @@ def test_an_out_nobody_can_create_is_named_as_the_option(capsys):
                           "--out", "/proc/96/m"])
     assert err.startswith("flexmm: error: cannot write to /proc/96/m")
     assert err.endswith("give an --out you can write to")
+
+
+# ------------------------------------------------------------------ the Python entry points
+
+def test_wavenumber_arguments_are_checked_by_name():
+    lossy = energy.load_model("flexmm-lossy")
+    # before: numpy's LinAlgError "Array must not contain infs or NaNs" (no argument named)
+    with pytest.raises(ModelError, match="kappa must be finite real wavenumbers"):
+        nm.damping_rates(lossy, float("nan"))
+    # before: the string "1" was cast by numpy and answered omega(1)
+    with pytest.raises(ModelError, match="kappa must be finite real wavenumbers"):
+        nm.branches(energy.load_model("fput"), "1")
+    # before: carrier_damping(flexmm-lossy, 7.0) = 0.003125, where carrier refuses k = 7
+    with pytest.raises(ModelError, match=r"k must be in \(0, pi\]"):
+        nm.carrier_damping(lossy, 7.0)
+    # the lossless answer at a k it takes: FPUT omega = 2 sin(k/2), no damping
+    fput = energy.load_model("fput")
+    assert nm.branches(fput, [1.0])[0, 0] == pytest.approx(2 * math.sin(0.5), rel=1e-14)
+    assert nm.carrier_damping(fput, 1.0) == 0.0
+
+
+def test_sizes_that_only_exhaust_memory_are_refused_by_name():
+    m = energy.load_model("fput", alpha=1, beta=1)
+    # before: numpy's MemoryError 'Unable to allocate 116. TiB' (harmonics = 10**6) and
+    # 'Allocation failed' (samples = 10**8), naming no argument
+    with pytest.raises(ModelError, match=r"harmonics must be at most 256"):
+        nm.travelling_wave(m, 1.0, 0.1, harmonics=10**6)
+    with pytest.raises(ModelError, match=r"samples must be an integer in \[8, 524288\]"):
+        nm.exact_gain(m, 2.5, 0.1, samples=10**8)
+
+
+@pytest.mark.parametrize("N", [0, -4, 2.5, True])
+def test_ring_offsets_takes_a_ring(N):
+    # before: N = 0 and -4 gave an empty array and N = 2.5 the offset [2.51]
+    with pytest.raises(ModelError, match=r"N must be an integer in \[8, "):
+        nm.ring_offsets(N)
+
+
+def test_ring_offsets_of_eight_sites():
+    # by hand: q = 2 pi j / 8, j = 1..4
+    np.testing.assert_allclose(nm.ring_offsets(8), [math.pi / 4, math.pi / 2,
+                                                    3 * math.pi / 4, math.pi], rtol=1e-15)
+
+
+def test_compile_model_names_a_path_it_cannot_write(tmp_path):
+    import derivation
+
+    lat = energy.builtin("fput")
+    # before: IsADirectoryError "'/.../.tmp.x.tmp' -> '/...'" after writing a temporary file
+    # beside the folder; None was os.fspath's "expected str, bytes or os.PathLike object"
+    with pytest.raises(ValueError, match="is a folder: give the module file"):
+        derivation.compile_model(lat, tmp_path)
+    with pytest.raises(TypeError, match="path must be the module file to write"):
+        derivation.compile_model(lat, None)
+    assert list(tmp_path.iterdir()) == []

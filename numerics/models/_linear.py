@@ -71,17 +71,26 @@ class Carrier:
     gap: float
 
 
+def wavenumbers(kappa, name: str = "kappa") -> np.ndarray:
+    """``kappa`` as a float array of finite real wavenumbers; ModelError naming ``name``
+    otherwise (a bool, a string such as "1" that numpy would cast, a complex, NaN)."""
+    try:
+        raw = np.asarray(kappa)
+        kap = raw.astype(float) if raw.dtype.kind in "fiu" else None
+    except (TypeError, ValueError):
+        kap = None
+    if kap is None or not np.all(np.isfinite(kap)):
+        raise ModelError(f"{name} must be finite real wavenumbers (rad/site), got "
+                         f"{kappa!r}"[:300])
+    return kap
+
+
 def branches(model: Model, kappa) -> np.ndarray:
     """omega_b(kappa) of every branch, shape (..., d), ascending; NaN where omega^2 < 0."""
     H = model.code.taylor(model.p)[0]
     m = model.masses
     s = 1 / np.sqrt(m)
-    try:
-        kap = np.asarray(kappa, dtype=float)
-    except (TypeError, ValueError):
-        kap = None
-    if kap is None or not np.all(np.isfinite(kap)) or np.asarray(kappa).dtype.kind == "b":
-        raise ModelError(f"kappa must be finite real wavenumbers (rad/site), got {kappa!r}")
+    kap = wavenumbers(kappa)
     out = np.empty(kap.shape + (len(m),))
     for idx in np.ndindex(kap.shape):
         A = s[:, None] * dynamical_matrix(H, float(kap[idx])) * s[None, :]
@@ -181,9 +190,14 @@ def check_model(model) -> Model:
     return model
 
 
+#: The most harmonics a truncation takes: 8x the travelling wave's own largest default (32);
+#: 10**6 asked for 116 TiB (numpy's MemoryError, naming no argument)
+MAX_HARMONICS = 256
+
+
 def check_harmonics(harmonics, low: int, why: str, name: str = "harmonics") -> int | None:
-    """A truncation: None (the default) or an integer (not a bool) >= ``low``; ``why``
-    says what the lower bound is for, in the error."""
+    """A truncation: None (the default) or an integer (not a bool) in [``low``,
+    MAX_HARMONICS]; ``why`` says what the lower bound is for, in the error."""
     if harmonics is None:
         return None
     if isinstance(harmonics, (bool, np.bool_)) or not isinstance(harmonics, numbers.Integral):
@@ -192,6 +206,10 @@ def check_harmonics(harmonics, low: int, why: str, name: str = "harmonics") -> i
     if int(harmonics) < low:
         raise ModelError(f"{name} must be an integer >= {low} ({why}) or None (the "
                          f"default), got {int(harmonics)}")
+    if int(harmonics) > MAX_HARMONICS:
+        raise ModelError(f"{name} must be at most {MAX_HARMONICS} (a wave that needs more is "
+                         f"not weakly nonlinear; None picks the truncation from the wave's "
+                         f"decay), got {int(harmonics)}")
     return int(harmonics)
 
 
@@ -323,17 +341,23 @@ def smallest_resolved_k(model: Model, k: float, branch=None, of: str = "omega") 
     return math.nan if found is None else found
 
 
-def carrier(model: Model, k: float, branch=None) -> Carrier:
-    """The carrier of ``branch`` at ``k`` with its group velocity and g1 (perturbation
-    theory of the Hermitian eigenproblem; checked against finite differences in tests)."""
+def check_k(k) -> float:
+    """A carrier wavenumber: a finite real number (not a bool) in (0, pi], the range nls,
+    exact_gain and four_wave take (a Carrier that said k = -1 or 7 would be read
+    downstream as a wave it is not: its v_g and e are those of k mod 2 pi)."""
     if isinstance(k, (bool, np.bool_)) or not isinstance(k, numbers.Real) \
             or not math.isfinite(k):
         raise ModelError(f"k must be a finite real number, got {type(k).__name__} {k!r}")
-    # the range nls, exact_gain and four_wave take: a Carrier that says k = -1 or 7 would
-    # be read downstream as a wave it is not (its v_g and e are those of k mod 2 pi)
     if not 0 < k <= math.pi:
         raise ModelError(f"k must be in (0, pi] rad/site, got {k!r}: fold it into (0, pi] "
                          f"(k mod 2 pi, then 2 pi - k above pi)")
+    return float(k)
+
+
+def carrier(model: Model, k: float, branch=None) -> Carrier:
+    """The carrier of ``branch`` at ``k`` with its group velocity and g1 (perturbation
+    theory of the Hermitian eigenproblem; checked against finite differences in tests)."""
+    check_k(k)
     b = branch_index(model, k, branch)
     if why := rest_kink(model):
         raise ModelError(why)
@@ -475,7 +499,7 @@ def _one_field_roots(a, b) -> np.ndarray:
 def damping_rates(model: Model, kappa) -> np.ndarray:
     """Gamma_b(kappa) = -Im omega_b: each branch's amplitude decay rate (1/time), shape
     (..., d), ascending branches as :func:`branches`; zeros without [dissipation]."""
-    kap = np.asarray(kappa, dtype=float)
+    kap = wavenumbers(kappa)  # a NaN was numpy's LinAlgError 'Array must not contain infs'
     out = np.zeros(kap.shape + (model.n_fields,))
     if not model.lossy:
         return out
@@ -490,7 +514,9 @@ def damping_rates(model: Model, kappa) -> np.ndarray:
 
 
 def carrier_damping(model: Model, k: float, branch=None) -> float:
-    """Gamma of the carrier's branch at k (0 without [dissipation])."""
+    """Gamma of the carrier's branch at k (0 without [dissipation]); k in (0, pi] as for
+    :func:`carrier`."""
+    check_k(k)
     if not model.lossy:
         return 0.0
     return float(damping_rates(model, k)[branch_index(model, k, branch)])

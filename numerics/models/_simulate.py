@@ -64,10 +64,15 @@ def check_ring(N) -> int:
     return int(N)
 
 
-def check_count(name: str, value, least: int = 1) -> int:
-    """An integer option (records, samples, seed, ...) >= ``least``, not a bool."""
+def check_count(name: str, value, least: int = 1, most: int | None = None,
+                why: str = "") -> int:
+    """An integer option (records, samples, seed, ...) >= ``least`` (and <= ``most``,
+    ``why`` saying what bounds it), not a bool."""
     if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < least:
         raise ModelError(f"{name} must be an integer >= {least}, got {value!r}")
+    if most is not None and value > most:
+        raise ModelError(f"{name} must be an integer in [{least}, {most}]"
+                         + (f" ({why})" if why else "") + f", got {value!r}")
     return int(value)
 
 
