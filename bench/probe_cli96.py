@@ -8,7 +8,7 @@ new file in the output folder. Python tries: a clear ModelError / ValueError / T
 naming the argument, never a silent NaN, a hang or a crash.
 
     OMP_NUM_THREADS=1 NUMBA_NUM_THREADS=1 python -m bench.probe_cli96 [--only WORD]
-        [--json OUT.json]
+        [--part all|cli|python] [--json OUT.json]
 
 Seeded (numpy's default_rng(96)) where it draws; the tries themselves are listed below.
 """
@@ -307,17 +307,123 @@ def _cli_tries(tmp: Path):
     ]
 
 
+#: Python tries: (label, statement, expected exception names ('' = returns), needle)
+PY_SETUP = ("import math, numpy as np, energy, derivation, numerics.models as nm, "
+            "numerics.maps as mp; from generated import soliton as closed; "
+            "m = energy.load_model('fput', alpha=1, beta=1); "
+            "lossy = energy.load_model('flexmm-lossy')")
+PY_TRIES = [
+    ("carrier k < 0", "nm.carrier(m, -1.0)", "ModelError", "(0, pi]"),
+    ("carrier k > pi", "nm.carrier(m, 7.0)", "ModelError", "(0, pi]"),
+    ("carrier k = 0", "nm.carrier(m, 0.0)", "ModelError", "(0, pi]"),
+    ("carrier k = pi", "print(nm.carrier(m, math.pi).omega)", "", None),
+    ("carrier k nan", "nm.carrier(m, math.nan)", "ModelError", "k must"),
+    ("carrier k array", "nm.carrier(m, np.array(1.0))", "ModelError", "k must"),
+    ("carrier branch 5", "nm.carrier(m, 1.0, 5)", "ModelError", "branch"),
+    ("carrier branch 1.5", "nm.carrier(m, 1.0, 1.5)", "ModelError", "branch"),
+    ("nls k 4", "nm.nls(m, 4.0)", "ModelError", "(0, pi]"),
+    ("nls gain nan", "nm.nls(m, 2.5).gain(math.nan, 0.1)", "ModelError", "offset"),
+    ("nls peak_gain -0.1", "nm.nls(m, 2.5).peak_gain(-0.1)", "ModelError", "amplitude"),
+    ("nls soliton 0", "nm.nls(m, 1.0).soliton(0.0)", "ModelError", "amplitude"),
+    ("branches nan", "nm.branches(m, math.nan)", "ModelError", "kappa"),
+    ("branches '1'", "nm.branches(m, '1')", "ModelError", "kappa"),
+    ("damping_rates nan", "nm.damping_rates(lossy, math.nan)", "ModelError", "kappa"),
+    ("carrier_damping k 7", "nm.carrier_damping(lossy, 7.0)", "ModelError", "(0, pi]"),
+    ("model_coefficients amp 0", "nm.model_coefficients(m, 1.0, 0.0)", "ModelError",
+     "amplitude"),
+    ("travelling_wave amp 10", "nm.travelling_wave(m, 1.0, 10.0)", "ModelError", "amplitude"),
+    ("travelling_wave harmonics 0", "nm.travelling_wave(m, 1.0, 0.1, harmonics=0)",
+     "ModelError", "harmonics"),
+    ("travelling_wave harmonics 10**6", "nm.travelling_wave(m, 1.0, 0.1, harmonics=10**6)",
+     "ModelError", "harmonics"),
+    ("exact_gain N 2", "nm.exact_gain(m, 1.0, 0.1, N=2)", "ModelError", "N must"),
+    ("exact_gain N 3.5", "nm.exact_gain(m, 1.0, 0.1, N=3.5)", "ModelError", "N must"),
+    ("exact_gain samples 1", "nm.exact_gain(m, 1.0, 0.1, samples=1)", "ModelError", "samples"),
+    ("exact_gain samples 10**8", "nm.exact_gain(m, 1.0, 0.1, samples=10**8)", "ModelError",
+     "samples"),
+    ("four_wave samples 1", "nm.four_wave(m, 1.0, 0.1, samples=1)", "ModelError", "samples"),
+    ("four_wave samples 10**8", "nm.four_wave(m, 2.5, 0.1, samples=10**8)", "ModelError",
+     "samples"),
+    ("hill_spectrum None", "nm.hill_spectrum(None, [0.1])", "ModelError", "wave"),
+    ("hill_spectrum nan", "nm.hill_spectrum(nm.travelling_wave(m, 1.0, 0.1), [math.nan])",
+     "ModelError", "offsets"),
+    ("ring_offsets 0", "nm.ring_offsets(0)", "ModelError", "N must"),
+    ("ring_offsets 2.5", "nm.ring_offsets(2.5)", "ModelError", "N must"),
+    ("simulate_model t_end 0", "nm.simulate_model(m, 1.0, 0.1, N=16, t_end=0)", "ModelError",
+     "t_end"),
+    ("simulate_model dt 0", "nm.simulate_model(m, 1.0, 0.1, N=16, t_end=10, dt=0)",
+     "ModelError", "dt"),
+    ("simulate_model noise nan",
+     "nm.simulate_model(m, 1.0, 0.1, N=16, t_end=10, noise=math.nan)", "ModelError", "noise"),
+    ("simulate_model method x", "nm.simulate_model(m, 1.0, 0.1, N=16, t_end=10, method='x')",
+     "ValueError", "method"),
+    ("simulate_seeds seeds 0", "nm.simulate_seeds(m, 1.0, 0.1, None, N=16, seeds=0, t_end=10)",
+     "ModelError", "seeds"),
+    ("simulate_soliton travel nan", "nm.simulate_soliton(m, 1.0, 0.05, travel=math.nan)",
+     "ModelError", "travel"),
+    ("ring_soliton kind x", "nm.ring_soliton(m, 1.0, 0.05, kind='x')", "ModelError", "kind"),
+    ("with_params beta nan", "m.with_params(beta=math.nan)", "ModelError", "beta"),
+    ("load_model 42", "energy.load_model(42)", "ModelError", "model"),
+    ("bright_width -a", "w = closed.bright_width(-0.002, 0.02, 40.0); assert w > 0, w", "", None),
+    ("dark_width -a", "w = closed.dark_width(-0.1, 0.2, 1.0, -4.0); assert w > 0, w", "", None),
+    ("parse_spec 1:2:0", "mp.parse_spec('1:2:0', 'x')", "ValueError", "SPEC"),
+    ("parse_spec 1:2:1e9", "mp.parse_spec('1:2:1000000000', 'x')", "ValueError", "at most"),
+    ("snap_carrier nan", "mp.snap_carrier(math.nan, 64)", "ValueError", "k must"),
+    ("run_map None", "mp.run_map(None, 'x')", "TypeError", "params"),
+    ("damping_parameters 'x'", "mp.damping_parameters('x')", "ValueError TypeError ModelError",
+     "lattice"),
+    ("ModelMapParameters N 3", "mp.ModelMapParameters.from_model('fput', ('beta', [1.0, 2.0]), "
+     "('k', [1.0, 2.0]), 0.02, N=3, theory_only=True)", "ValueError ModelError", "N"),
+    ("solve_case nonsense", "derivation.solve_case('nonsense')", "ValueError", "case"),
+    ("model_energies None", "derivation.model_energies(None)", "ModelError", "model"),
+    ("compile_model folder", "import tempfile; derivation.compile_model(energy.builtin('fput'), "
+     "tempfile.mkdtemp())", "ValueError", "folder"),
+    ("compile_model None", "derivation.compile_model(energy.builtin('fput'), None)",
+     "TypeError", "path"),
+]
+
+
+def run_py(label: str, stmt: str, expect: str, needle: str | None) -> dict:
+    """One Python try in a fresh interpreter (a hang or a crash is a finding)."""
+    code = (f"{PY_SETUP}\ntry:\n    {stmt}\nexcept Exception as e:\n"
+            "    print('RAISED', type(e).__name__, '|', str(e)[:300])\nelse:\n"
+            "    print('RETURNED')\n")
+    env = {**os.environ, "OMP_NUM_THREADS": "1", "NUMBA_NUM_THREADS": "1"}
+    t0 = time.perf_counter()
+    try:
+        p = subprocess.run([PY, "-c", code], cwd=ROOT, capture_output=True, timeout=LIMIT,
+                           env=env)
+    except subprocess.TimeoutExpired:
+        return {"try": label, "finding": f"no answer within {LIMIT:.0f} s"}
+    out = p.stdout.decode(errors="replace").strip().splitlines()
+    said = out[-1] if out else p.stderr.decode(errors="replace").strip()[-200:]
+    problems = []
+    if p.returncode != 0:
+        problems.append(f"interpreter exit {p.returncode}")
+    elif expect and not said.startswith("RAISED"):
+        problems.append("returned, no error")
+    elif expect and said.split()[1] not in expect.split():
+        problems.append(f"raised {said.split()[1]}, not {expect}")
+    elif not expect and not said.startswith("RETURNED"):
+        problems.append("raised")
+    if expect and needle and needle.lower() not in said.lower():
+        problems.append(f"error does not name {needle!r}")
+    return {"try": label, "rc": p.returncode, "seconds": round(time.perf_counter() - t0, 2),
+            "said": said[:220], **({"finding": "; ".join(problems)} if problems else {})}
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--only", help="run only the tries whose text holds this")
     ap.add_argument("--json", help="write every try's outcome here")
+    ap.add_argument("--part", choices=("all", "cli", "python"), default="all")
     a = ap.parse_args(argv)
     results = []
     with tempfile.TemporaryDirectory() as t:
         tmp = Path(t)
         try:
             for args, expect, needle, out in _cli_tries(tmp):
-                if a.only and a.only not in args:
+                if a.part == "python" or a.only and a.only not in args:
                     continue
                 r = run_cli(args, tmp, expect, needle, out)
                 results.append(r)
@@ -327,6 +433,14 @@ def main(argv=None) -> int:
                       + (f"\n    !! {r['finding']}" if "finding" in r else ""), flush=True)
         finally:
             os.chmod(tmp / "readonly", stat.S_IRWXU)
+    for label, stmt, expect, needle in PY_TRIES:
+        if a.part == "cli" or a.only and a.only not in label:
+            continue
+        r = run_py(label, stmt, expect, needle)
+        results.append(r)
+        mark = "FINDING" if "finding" in r else "ok"
+        print(f"[{mark}] python: {label}\n    -> {r.get('said', '')}"
+              + (f"\n    !! {r['finding']}" if "finding" in r else ""), flush=True)
     n = sum("finding" in r for r in results)
     print(f"{len(results)} tries, {n} findings")
     if a.json:
