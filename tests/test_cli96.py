@@ -183,3 +183,24 @@ def test_compile_model_names_a_path_it_cannot_write(tmp_path):
     with pytest.raises(TypeError, match="path must be the module file to write"):
         derivation.compile_model(lat, None)
     assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("argv, names", [
+    (["point", "--model", "fput", "--k", "2.5", "--amplitude", "0.1", "--N", "64"],
+     ["point.json", "point.png"]),
+    (["soliton", "--model", "fput", "--k", "1.0", "--amplitude", "0.05"],
+     ["soliton.json", "soliton.png"]),
+])
+def test_json_with_out_names_the_files_it_wrote(capsys, tmp_path, argv, names):
+    # before: with --json the "wrote ..." line is left out (stdout holds one JSON object)
+    # and the object did not say what was written where; a map's --json has "files"
+    import json
+
+    from cli.app import main
+
+    out = tmp_path / "o"
+    assert main(argv + ["--json", "--out", str(out)]) == 0
+    printed = json.loads(capsys.readouterr().out)
+    assert printed["files"] == [str(out / n) for n in names]
+    assert all((out / n).stat().st_size > 0 for n in names)
+    assert "files" not in json.loads((out / names[0]).read_text())
