@@ -230,6 +230,18 @@ def _cli_tries(tmp: Path):
         ("coefficients --model fput --param alpha=1 --param beta=1 --k 1.57 --amplitude 0.1",
          "ok", None, None),
         ("scenes", "ok", None, None),
+        ("point --model fput --param alpha=1 --param beta=1.5 --k 3.1 --amplitude 0.1 --N 64 "
+         "--simulate --seeds 2 --out out/point", "ok", "wrote", None),
+        ("point --physical 0.01,2e-6,0.02,1e4,185,1 --k 1.0 --case rotation --simulate "
+         "--seeds 2 --out out/point", "ok", "wrote", None),
+        ("soliton --model fput --param alpha=0.5 --k 1.6 --amplitude 0.1 --simulate --travel 5 "
+         "--out out/soliton", "ok", "wrote", None),
+        ("soliton --alpha 3 --K-s 0.05 --K-theta 0.03 --k 0.7 --amplitude 0.009 --kind dark "
+         "--simulate --travel 5 --out out/soliton", "ok", "wrote", None),
+        ("scene fig2-dispersion --quick --out out", "ok", "wrote", None),
+        ("table --A0 1.4", "ok", None, None),
+        ("models", "ok", None, None),
+        # `flexmm run --quick --out out` (every scene, ~2 min) is left to make run / CI
         # soliton
         (f"soliton {FPUT} --k 1.0 --amplitude 0.05 --kind nosuch", "bad", "--kind", None),
         (f"soliton {FPUT} --k 1.0 --amplitude 0.05 --travel 0 --simulate", "bad", "--travel",

@@ -204,3 +204,14 @@ def test_json_with_out_names_the_files_it_wrote(capsys, tmp_path, argv, names):
     assert printed["files"] == [str(out / n) for n in names]
     assert all((out / n).stat().st_size > 0 for n in names)
     assert "files" not in json.loads((out / names[0]).read_text())
+
+
+@pytest.mark.parametrize("N", ["0", "3", "1048577"])
+def test_a_theory_only_model_map_checks_its_ring(capsys, tmp_path, N):
+    # before: --N 0, 3 and 1048577 wrote a map whose store said N = 0 (3, 1048577), where
+    # point refuses them; the ring's size bounds the same [8, 2**20] everywhere
+    out = tmp_path / "m"
+    err = _fails(capsys, ["map", "--model", "fput", "--param", "beta=1:2:2", "--k", "1:2:2",
+                          "--theory-only", "--N", N, "--workers", "1", "--out", str(out)])
+    assert err.startswith("flexmm: error: --N: N must be an integer in [8, 1048576]")
+    assert not out.exists()
