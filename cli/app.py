@@ -309,6 +309,9 @@ def _dispatch(args, scenes) -> int:
 
         checks.real("--k", args.k, 0.0, math.pi)  # the option's name, as in point
         checks.real("--amplitude", args.amplitude, 0.0, MAX_AMPLITUDE)
+        from ._resolved import check_paper_amplitude
+
+        check_paper_amplitude(mat, args.k, args.amplitude)
         print(format_coefficients(mat, args.k, args.amplitude, units))
         return 0
     if args.cmd == "scenes":

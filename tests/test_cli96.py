@@ -215,3 +215,23 @@ def test_a_theory_only_model_map_checks_its_ring(capsys, tmp_path, N):
                           "--theory-only", "--N", N, "--workers", "1", "--out", str(out)])
     assert err.startswith("flexmm: error: --N: N must be an integer in [8, 1048576]")
     assert not out.exists()
+
+
+PAPER_FLAGS = ["--alpha", "2.5", "--K-s", "0.01851", "--K-theta", "0.01551", "--k", "1"]
+
+
+@pytest.mark.parametrize("argv", [
+    ["coefficients", *PAPER_FLAGS], ["point", *PAPER_FLAGS, "--case", "coupled"],
+    ["soliton", *PAPER_FLAGS, "--case", "coupled"]])
+@pytest.mark.parametrize("amplitude", ["1e-320", "1e-9"])
+def test_the_paper_flags_refuse_an_amplitude_float64_cannot_resolve(capsys, argv, amplitude):
+    # before (1e-320): coefficients said case II "MI" with peak gain 0, point called the
+    # focusing case II (g = 992) "stable" with gain 0, soliton printed width inf after a
+    # RuntimeWarning; a --model command refuses such an amplitude (ModelNLS.check_resolved).
+    # By hand: |g2| a^2 / 4 against eps omega, with the semi-discrete omega ~ 0.774 and
+    # |g2| ~ 18 (case I, the larger) at this point: a >= 2 sqrt(eps omega / |g2|) ~ 6e-9
+    err = _fails(capsys, argv + ["--amplitude", amplitude])
+    assert err.startswith(f"flexmm: error: --amplitude {float(amplitude):.3g} is below what "
+                          "float64 resolves")
+    least = float(err.rsplit(">= ", 1)[1])
+    assert 2 * math.sqrt(2.2e-16 * 0.77 / 18.4) == pytest.approx(least, rel=0.01)
