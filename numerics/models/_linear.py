@@ -19,6 +19,8 @@ import numpy as np
 
 from energy import MAX_VALUE, Model, ModelError
 
+from ._args import check_harmonics, check_k, wavenumbers  # noqa: F401 (imported from here)
+
 
 def blocks(H: np.ndarray, d: int):
     return H[:d, :d], H[:d, d:], H[d:, :d], H[d:, d:]
@@ -69,20 +71,6 @@ class Carrier:
     group_velocity: float
     g1: float
     gap: float
-
-
-def wavenumbers(kappa, name: str = "kappa") -> np.ndarray:
-    """``kappa`` as a float array of finite real wavenumbers; ModelError naming ``name``
-    otherwise (a bool, a string such as "1" that numpy would cast, a complex, NaN)."""
-    try:
-        raw = np.asarray(kappa)
-        kap = raw.astype(float) if raw.dtype.kind in "fiu" else None
-    except (TypeError, ValueError):
-        kap = None
-    if kap is None or not np.all(np.isfinite(kap)):
-        raise ModelError(f"{name} must be finite real wavenumbers (rad/site), got "
-                         f"{kappa!r}"[:300])
-    return kap
 
 
 def branches(model: Model, kappa) -> np.ndarray:
@@ -188,29 +176,6 @@ def check_model(model) -> Model:
         raise ModelError(f"model must be an energy.Model (energy.load_model(name, file or "
                          f"Lattice)), got {type(model).__name__} {str(model)[:60]!r}")
     return model
-
-
-#: The most harmonics a truncation takes: 8x the travelling wave's own largest default (32);
-#: 10**6 asked for 116 TiB (numpy's MemoryError, naming no argument)
-MAX_HARMONICS = 256
-
-
-def check_harmonics(harmonics, low: int, why: str, name: str = "harmonics") -> int | None:
-    """A truncation: None (the default) or an integer (not a bool) in [``low``,
-    MAX_HARMONICS]; ``why`` says what the lower bound is for, in the error."""
-    if harmonics is None:
-        return None
-    if isinstance(harmonics, (bool, np.bool_)) or not isinstance(harmonics, numbers.Integral):
-        raise ModelError(f"{name} must be an integer >= {low} or None (the default), got "
-                         f"{type(harmonics).__name__} {harmonics!r}")
-    if int(harmonics) < low:
-        raise ModelError(f"{name} must be an integer >= {low} ({why}) or None (the "
-                         f"default), got {int(harmonics)}")
-    if int(harmonics) > MAX_HARMONICS:
-        raise ModelError(f"{name} must be at most {MAX_HARMONICS} (a wave that needs more is "
-                         f"not weakly nonlinear; None picks the truncation from the wave's "
-                         f"decay), got {int(harmonics)}")
-    return int(harmonics)
 
 
 def check_amplitude(amplitude, name: str = "amplitude") -> float:
@@ -339,19 +304,6 @@ def smallest_resolved_k(model: Model, k: float, branch=None, of: str = "omega") 
 
     found = _smallest_k(resolved, k)
     return math.nan if found is None else found
-
-
-def check_k(k) -> float:
-    """A carrier wavenumber: a finite real number (not a bool) in (0, pi], the range nls,
-    exact_gain and four_wave take (a Carrier that said k = -1 or 7 would be read
-    downstream as a wave it is not: its v_g and e are those of k mod 2 pi)."""
-    if isinstance(k, (bool, np.bool_)) or not isinstance(k, numbers.Real) \
-            or not math.isfinite(k):
-        raise ModelError(f"k must be a finite real number, got {type(k).__name__} {k!r}")
-    if not 0 < k <= math.pi:
-        raise ModelError(f"k must be in (0, pi] rad/site, got {k!r}: fold it into (0, pi] "
-                         f"(k mod 2 pi, then 2 pi - k above pi)")
-    return float(k)
 
 
 def carrier(model: Model, k: float, branch=None) -> Carrier:
