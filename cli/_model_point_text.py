@@ -111,8 +111,9 @@ def report(args, point, units, since=None) -> dict:
 
         log_to(args)(f"took {duration(time.perf_counter() - since)} after the estimate "
                      f"(estimated {duration(point.estimate.seconds)})")
-    if args.json:
-        _emit(out)
+    if args.json:  # the files written named, as a map's --json does (no "wrote" line here)
+        _emit(out | ({"files": [str(Path(args.out) / "point.json"),
+                                str(Path(args.out) / "point.png")]} if args.out else {}))
         return out
     print(f"model:    {model.describe()}")
     # the k asked, where the ring moved it (by 30% from 1 on N = 9), as the paper's point

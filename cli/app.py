@@ -70,6 +70,7 @@ def main(argv=None) -> int:
                                                 else list(argv)))
             if getattr(args, "out", None) is not None:
                 args.out = args.out or "."  # --out '' is the current folder, and says so
+                _check_out(args.out)
                 created = _missing_folders(args.out)
             return _run(args)
         except KeyboardInterrupt as exc:  # SIGINT or SIGTERM, at any moment
@@ -150,6 +151,26 @@ def _refuse_repeated(sub, argv) -> None:
             option, before = seen[action.dest]
             raise ValueError(f"{option} given twice ({before} and {value}): give it once")
         seen[action.dest] = (action.option_strings[-1], value)
+
+
+def _check_out(out) -> None:
+    """--out named in the error where it is a file or lies under one, before any work (the
+    commands' own checks said "X is a file, not a folder", naming no option)."""
+    path = Path(out).absolute()
+    base = path
+    while not base.exists() and base != base.parent:
+        base = base.parent
+    if base.exists() and not base.is_dir():
+        where = "" if base == path else f" cannot be created: {base}"
+        raise ValueError(f"--out {out}{where} is a file, not a folder: give a folder (it is "
+                         "created if missing)")
+    from common.output import check_output
+
+    try:  # a dangling link, a folder that takes no new entries (read-only, /proc)
+        check_output(out, cache=False)
+    except ValueError as exc:
+        raise ValueError(f"{exc}" + ("" if "--out" in str(exc) else
+                                     ": give an --out you can write to")) from None
 
 
 def _missing_folders(out) -> list:
@@ -268,8 +289,14 @@ def _dispatch(args, scenes) -> int:
         run_map_command(args)
         return 0
     if args.cmd == "table":
+        from common import paper
+        from numerics.lattice import checks
+        from numerics.theory import MAX_AMPLITUDE
+
         from .table import format_table
 
+        # named as the option (was 'A0 must be in (0, 75]'), the bound nls_summary's
+        checks.real("--A0", args.A0, 0.0, MAX_AMPLITUDE / (2 * paper.EPS), high_open=False)
         print(format_table(args.A0))
         return 0
     if args.cmd == "coefficients":
@@ -282,6 +309,9 @@ def _dispatch(args, scenes) -> int:
 
         checks.real("--k", args.k, 0.0, math.pi)  # the option's name, as in point
         checks.real("--amplitude", args.amplitude, 0.0, MAX_AMPLITUDE)
+        from ._resolved import check_paper_amplitude
+
+        check_paper_amplitude(mat, args.k, args.amplitude)
         print(format_coefficients(mat, args.k, args.amplitude, units))
         return 0
     if args.cmd == "scenes":
@@ -295,6 +325,10 @@ def _dispatch(args, scenes) -> int:
 
         checks.seed(args.seed, "--seed")
     if args.cmd == "scene" and args.replot:
+        if not (Path(args.out) / args.name / "data.h5").is_file():
+            raise ValueError(f"--replot: {Path(args.out) / args.name / 'data.h5'} does not "
+                             f"exist: run `flexmm scene {args.name} --out {args.out}` (without "
+                             "--replot) first")
         folder = scenes.replot_scene(args.name, args.out)
         print(f"{args.name}: redrew {folder}/figure.png and figure.pdf from data.h5 in "
               f"{time.perf_counter() - t0:.1f} s")

@@ -85,13 +85,12 @@ def run_map(args) -> int:
     if amp is not None and check_value("--amplitude", amp) <= 0:
         raise ValueError(f"--amplitude must be > 0, got {amp!r}")
     ring = args.exact or simulated  # the ring the exact theory and the runs use
-    if ring:
-        from numerics.models import check_ring
+    from numerics.models import check_ring
 
-        try:
-            check_ring(args.N)
-        except ValueError as exc:
-            raise ValueError(f"--N: {exc}") from None
+    try:  # a theory-only map's too: it names the offsets a ring of N samples, and stores N
+        check_ring(args.N)  # (--N 0 and 3 were stored as N, 1048577 too, without a word)
+    except ValueError as exc:
+        raise ValueError(f"--N: {exc}") from None
     seeds, t_end = args.seeds, None
     if simulated:
         if isinstance(seeds, bool) or not isinstance(seeds, int) or not 1 <= seeds <= 1000:

@@ -135,9 +135,6 @@ def run_model_soliton(args, model, units, branch) -> dict:
 
     from .models import _emit
 
-    if getattr(args, "theory", "semi-discrete") == "paper":
-        raise ValueError("--theory paper: the paper's continuum NLS is the paper chain's "
-                         "(no --model); a model's soliton is its semi-discrete NLS's")
     folder = prepare_output(args.out, cache=False) if args.out else None
     run = None
     if args.simulate:
@@ -163,9 +160,7 @@ def run_model_soliton(args, model, units, branch) -> dict:
     damping, lossy = lossy_note(model, pred.k, pred.nls.carrier.branch, units)
     if damping > 0:  # a lossy model's soliton was printed as if it lasted
         report["carrier_damping"] = damping
-    if args.json:
-        _emit(with_units(report, units))
-    else:
+    if not args.json:
         from numerics.models import nls
 
         asked = nls(model, args.k, pred.nls.carrier.branch)  # the ring's k comes below
@@ -206,6 +201,10 @@ def run_model_soliton(args, model, units, branch) -> dict:
         _figure(Path(folder) / "soliton.png", pred, run, model)
         if not args.json:
             print(f"wrote {folder / 'soliton.json'} and {folder / 'soliton.png'}")
+    if args.json:  # after the files, which it names (as a map's --json): stdout holds no line
+        _emit(with_units(report, units) | ({"files": [str(folder / "soliton.json"),
+                                                      str(folder / "soliton.png")]}
+                                           if folder is not None else {}))
     return report
 
 

@@ -349,6 +349,9 @@ def run_soliton(args) -> int:
 
     from .units import add_units, model_units
 
+    if getattr(args, "theory", "semi-discrete") == "paper":  # every path, printing too
+        raise ValueError("--theory paper: the paper's continuum NLS is the paper chain's "
+                         "(no --model); a model's soliton is its semi-discrete NLS's")
     model = load(args)
     units = model_units(args)
     checks.real("--k", args.k, 0.0, math.pi, high_open=False)

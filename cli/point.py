@@ -83,6 +83,9 @@ def _checked(args, mat):
     computed before the input is known good)."""
     amplitude = checks.real("--amplitude", args.amplitude, 0.0, MAX_AMPLITUDE)
     k, m = snap_carrier(args.k, args.N, names=("--k", "--N"))
+    from ._resolved import check_paper_amplitude
+
+    check_paper_amplitude(mat, k, amplitude)
     checks.integer("--seeds", args.seeds, 1, MAX_SEEDS)
     if args.t_end is not None:
         checks.real("--t-end", args.t_end, 0.0, MAX_T_END)

@@ -58,6 +58,9 @@ def run_soliton(args, log=print) -> dict:
         prepare_output(args.out, cache=False)
     amplitude = checks.real("--amplitude", args.amplitude, 0.0, 1.0)
     k = checks.real("--k", args.k, 0.0, math.pi)
+    from ._resolved import check_paper_amplitude
+
+    check_paper_amplitude(mat, k, amplitude)
     theory = next(t.label for t in NLS_THEORIES if t.cli == args.theory)
     if args.simulate:
         checks.real("--travel", args.travel, 0.0, 1000.0)

@@ -248,11 +248,18 @@ def _damping_text(e: Energies) -> list:
 
 def compile_model(lat: Lattice, path, command: str = ""):
     """Derive ``lat`` and write its generated module to ``path`` (atomically)."""
+    import os
     from pathlib import Path
 
     from common.files import write_text
 
+    if not isinstance(path, (str, os.PathLike)):  # None: "expected str, bytes or ..."
+        raise TypeError(f"path must be the module file to write (a str or os.PathLike), got "
+                        f"{type(path).__name__} {path!r}")
     path = Path(path)
+    if path.is_dir():  # was an IsADirectoryError after a temporary file beside the folder
+        raise ValueError(f"path {str(path)!r} is a folder: give the module file to write in "
+                         f"it, such as {str(path / 'model.py')!r}")
     path.parent.mkdir(parents=True, exist_ok=True)
     return write_text(path, model_module_text(lat, command=command))
 

@@ -135,6 +135,10 @@ def forms(closed_form, derivation):
     check({**dk, "envelope": dk["envelope"].subs(phi, 0),
            "strain": dk["strain"].subs(phi, 0)}, -1)
     material = (k, alpha, K_s, K_theta)
+    # amplitude is the peak rotation 2|E|: a size. E -> -E is a symmetry of the NLS, so the
+    # soliton of amplitude -a is the one of |a| (a phase pi): every form takes |amplitude|
+    # (printed as typed, a width 2/(amplitude sqrt(g)) was -500 sites at amplitude -0.002)
+    even = ("amplitude",)
     note = (" Lattice units: xi = n - v_g t (sites), t in T, amplitude = peak rotation "
             "2|E| (rad); g1, g2 from generated.coefficients (paper NLS) or "
             "generated.lattice_coefficients (semi-discrete NLS).")
@@ -142,37 +146,39 @@ def forms(closed_form, derivation):
     return (
         closed_form("bright_envelope", br["envelope"], (xi, t) + NLS_ARGS,
                     "Bright soliton E(xi, t) of i E_t + g1/2 E_xixi + g2 |E|^2 E = 0 "
-                    "(g2/g1 > 0); theta_n = E e^{i(k n - omega t)} + c.c." + note, "NLS"),
+                    "(g2/g1 > 0); theta_n = E e^{i(k n - omega t)} + c.c." + note, "NLS",
+                    even_in=even),
         closed_form("bright_width", br["width"], NLS_ARGS,
                     "Width w of the bright soliton, |E| = a sech(xi/w): 1/(a sqrt(g2/g1)), "
-                    "a = amplitude/2 (sites)." + note, "NLS"),
+                    "a = amplitude/2 (sites)." + note, "NLS", even_in=even),
         closed_form("bright_frequency_shift", br["frequency_shift"], NLS_ARGS,
                     "E ~ e^{i s t}: the soliton's carrier frequency is omega - s, "
-                    "s = g2 a^2/2." + note, "NLS"),
+                    "s = g2 a^2/2." + note, "NLS", even_in=even),
         closed_form("bright_kink", br["kink"], (amplitude, g1, g2, mu),
                     "Height of the kink of U under a bright soliton: the integral of the "
                     "mean strain mu |E|^2, 2 mu a^2 w (case II; mu = 1/(v_g^2 - 1) < 0)."
-                    + note, "u1"),
+                    + note, "u1", even_in=even),
         closed_form("dark_envelope", dk["envelope"], (xi, t, amplitude, phi, g1, g2),
                     "Dark soliton on a background of peak rotation `amplitude` (g2/g1 < 0), "
                     "grey with angle phi (|phi| < pi/2; phi = 0 black, at rest in the frame "
-                    "moving with v_g)." + note, "NLS"),
+                    "moving with v_g)." + note, "NLS", even_in=even),
         closed_form("dark_width", dk["width"], (amplitude, phi, g1, g2),
                     "Width w of the dark soliton, |E|^2 = a^2 (1 - cos^2(phi) "
                     "sech^2((xi - V t)/w)): 1/(a cos(phi) sqrt(-g2/g1)) (sites)." + note,
-                    "NLS"),
+                    "NLS", even_in=even),
         closed_form("dark_velocity", dk["velocity"], (amplitude, phi, g1, g2),
                     "Velocity V of a grey soliton relative to v_g (sites per T); 0 for the "
-                    "black one." + note, "NLS"),
+                    "black one." + note, "NLS", even_in=even),
         closed_form("dark_frequency_shift", dk["frequency_shift"], (amplitude, g2),
                     "E ~ e^{i s t} on the background: carrier frequency omega - s, "
-                    "s = g2 a^2." + note, "NLS"),
+                    "s = g2 a^2." + note, "NLS", even_in=even),
         closed_form("dark_phase_jump", dk["phase_jump"], (phi,),
                     "Jump of arg E across a dark soliton, 2 phi - pi (rad): a ring of N "
                     "sites closes only if k N + jump is a multiple of 2 pi." + note, "NLS"),
         closed_form("dark_kink", dk["kink"], (amplitude, phi, g1, g2, mu),
                     "Height of the kink of U across a dark soliton: the integral of mu "
-                    "(|E|^2 - a^2), -2 mu a^2 cos^2(phi) w (case II)." + note, "u1"),
+                    "(|E|^2 - a^2), -2 mu a^2 cos^2(phi) w (case II)." + note, "u1",
+                    even_in=even),
         closed_form("continuum_mean_flow_coefficient", continuum_mean_flow(), material,
                     "mu of the continuum, U_X = mu |E|^2 under a profile moving with v_g: "
                     "1/(v_g^2 - 1), from eq. `eqnorm1`. The paper's NLS leaves its feedback "
@@ -190,8 +196,9 @@ MODULE_DOC = """Envelope solitons of the NLS (eq. `NLS`) and the kink of U they 
 Bright (g = g2/g1 > 0) and dark, black or grey (g < 0), solitons of
 i E_t + g1/2 E_xixi + g2 |E|^2 E = 0 in lattice units (xi = n - v_g t, theta_n =
 E e^{i(k n - omega t)} + c.c.; `amplitude` is the peak rotation 2|E|, as everywhere in the
-project), each checked symbolically to solve the NLS by `make derive`. Take g1, g2 (and
-omega, v_g) from `generated.coefficients` for the paper's continuum NLS or from
+project: a size, so each form takes |amplitude|, E -> -E being a symmetry of the NLS), each
+checked symbolically to solve the NLS by `make derive`. Take g1, g2 (and omega, v_g) from
+`generated.coefficients` for the paper's continuum NLS or from
 `generated.lattice_coefficients` for the semi-discrete NLS. The mean strain under the
 envelope is U_{n+1} - U_n = mu (|E|^2 - background), mu = 1/(v_g^2 - 1); the kink is its
 integral. Follow-up: Demiquel et al., arXiv 2406.09871 (envelope vector solitons).

@@ -9,8 +9,9 @@
 Bright (g = g2/g1 > 0) and dark, black or grey (g < 0), solitons of
 i E_t + g1/2 E_xixi + g2 |E|^2 E = 0 in lattice units (xi = n - v_g t, theta_n =
 E e^{i(k n - omega t)} + c.c.; `amplitude` is the peak rotation 2|E|, as everywhere in the
-project), each checked symbolically to solve the NLS by `make derive`. Take g1, g2 (and
-omega, v_g) from `generated.coefficients` for the paper's continuum NLS or from
+project: a size, so each form takes |amplitude|, E -> -E being a symmetry of the NLS), each
+checked symbolically to solve the NLS by `make derive`. Take g1, g2 (and omega, v_g) from
+`generated.coefficients` for the paper's continuum NLS or from
 `generated.lattice_coefficients` for the semi-discrete NLS. The mean strain under the
 envelope is U_{n+1} - U_n = mu (|E|^2 - background), mu = 1/(v_g^2 - 1); the kink is its
 integral. Follow-up: Demiquel et al., arXiv 2406.09871 (envelope vector solitons).
@@ -36,7 +37,7 @@ def bright_envelope(xi, t, amplitude, g1, g2):
 
     Paper: eq. `NLS`. Derived closed form:
 
-    .. math:: \frac{amplitude e^{\frac{i amplitude^{2} g_{2} t}{8}}}{2 \cosh{\left(\frac{amplitude \xi \sqrt{\frac{g_{2}}{g_{1}}}}{2} \right)}}
+    .. math:: \frac{e^{\frac{i amplitude^{2} g_{2} t}{8}} \left|{amplitude}\right|}{2 \cosh{\left(\frac{\xi \sqrt{\frac{g_{2}}{g_{1}}} \left|{amplitude}\right|}{2} \right)}}
 
     Parameters are floats or arrays (NumPy broadcasting); singular points
     give inf/nan with NumPy's RuntimeWarning, never an exception.
@@ -46,7 +47,7 @@ def bright_envelope(xi, t, amplitude, g1, g2):
     amplitude = _real('amplitude', amplitude)
     g1 = _real('g1', g1)
     g2 = _real('g2', g2)
-    x0 = (1/2)*amplitude
+    x0 = (1/2)*numpy.abs(amplitude)
     return x0*numpy.exp((1/8)*1j*amplitude**2*g2*t)/numpy.cosh(x0*xi*numpy.sqrt(g2/g1))
 
 
@@ -55,7 +56,7 @@ def bright_width(amplitude, g1, g2):
 
     Paper: eq. `NLS`. Derived closed form:
 
-    .. math:: \frac{2}{amplitude \sqrt{\frac{g_{2}}{g_{1}}}}
+    .. math:: \frac{2}{\sqrt{\frac{g_{2}}{g_{1}}} \left|{amplitude}\right|}
 
     Parameters are floats or arrays (NumPy broadcasting); singular points
     give inf/nan with NumPy's RuntimeWarning, never an exception.
@@ -63,7 +64,7 @@ def bright_width(amplitude, g1, g2):
     amplitude = _real('amplitude', amplitude)
     g1 = _real('g1', g1)
     g2 = _real('g2', g2)
-    return 2/(amplitude*numpy.sqrt(g2/g1))
+    return 2/(numpy.sqrt(g2/g1)*numpy.abs(amplitude))
 
 
 def bright_frequency_shift(amplitude, g1, g2):
@@ -87,7 +88,7 @@ def bright_kink(amplitude, g1, g2, mu):
 
     Paper: eq. `u1`. Derived closed form:
 
-    .. math:: \frac{amplitude \mu}{\sqrt{\frac{g_{2}}{g_{1}}}}
+    .. math:: \frac{\mu \left|{amplitude}\right|}{\sqrt{\frac{g_{2}}{g_{1}}}}
 
     Parameters are floats or arrays (NumPy broadcasting); singular points
     give inf/nan with NumPy's RuntimeWarning, never an exception.
@@ -96,7 +97,7 @@ def bright_kink(amplitude, g1, g2, mu):
     g1 = _real('g1', g1)
     g2 = _real('g2', g2)
     mu = _real('mu', mu)
-    return amplitude*mu/numpy.sqrt(g2/g1)
+    return mu*numpy.abs(amplitude)/numpy.sqrt(g2/g1)
 
 
 def dark_envelope(xi, t, amplitude, phi, g1, g2):
@@ -104,7 +105,7 @@ def dark_envelope(xi, t, amplitude, phi, g1, g2):
 
     Paper: eq. `NLS`. Derived closed form:
 
-    .. math:: \frac{amplitude \left(i \sin{\left(\phi \right)} + \cos{\left(\phi \right)} \tanh{\left(\frac{amplitude \sqrt{- \frac{g_{2}}{g_{1}}} \left(- \frac{amplitude g_{1} t \sqrt{- \frac{g_{2}}{g_{1}}} \sin{\left(\phi \right)}}{2} + \xi\right) \cos{\left(\phi \right)}}{2} \right)}\right) e^{\frac{i amplitude^{2} g_{2} t}{4}}}{2}
+    .. math:: \frac{\left(i \sin{\left(\phi \right)} + \cos{\left(\phi \right)} \tanh{\left(\frac{\sqrt{- \frac{g_{2}}{g_{1}}} \left(- \frac{g_{1} t \sqrt{- \frac{g_{2}}{g_{1}}} \sin{\left(\phi \right)} \left|{amplitude}\right|}{2} + \xi\right) \cos{\left(\phi \right)} \left|{amplitude}\right|}{2} \right)}\right) e^{\frac{i amplitude^{2} g_{2} t}{4}} \left|{amplitude}\right|}{2}
 
     Parameters are floats or arrays (NumPy broadcasting); singular points
     give inf/nan with NumPy's RuntimeWarning, never an exception.
@@ -117,7 +118,7 @@ def dark_envelope(xi, t, amplitude, phi, g1, g2):
     g2 = _real('g2', g2)
     x0 = numpy.sin(phi)
     x1 = numpy.cos(phi)
-    x2 = (1/2)*amplitude
+    x2 = (1/2)*numpy.abs(amplitude)
     x3 = x2*numpy.sqrt(-g2/g1)
     return x2*(1j*x0 + x1*numpy.tanh(x1*x3*(-g1*t*x0*x3 + xi)))*numpy.exp((1/4)*1j*amplitude**2*g2*t)
 
@@ -127,7 +128,7 @@ def dark_width(amplitude, phi, g1, g2):
 
     Paper: eq. `NLS`. Derived closed form:
 
-    .. math:: \frac{2}{amplitude \sqrt{- \frac{g_{2}}{g_{1}}} \cos{\left(\phi \right)}}
+    .. math:: \frac{2}{\sqrt{- \frac{g_{2}}{g_{1}}} \cos{\left(\phi \right)} \left|{amplitude}\right|}
 
     Parameters are floats or arrays (NumPy broadcasting); singular points
     give inf/nan with NumPy's RuntimeWarning, never an exception.
@@ -136,7 +137,7 @@ def dark_width(amplitude, phi, g1, g2):
     phi = _real('phi', phi)
     g1 = _real('g1', g1)
     g2 = _real('g2', g2)
-    return 2/(amplitude*numpy.sqrt(-g2/g1)*numpy.cos(phi))
+    return 2/(numpy.sqrt(-g2/g1)*numpy.cos(phi)*numpy.abs(amplitude))
 
 
 def dark_velocity(amplitude, phi, g1, g2):
@@ -144,7 +145,7 @@ def dark_velocity(amplitude, phi, g1, g2):
 
     Paper: eq. `NLS`. Derived closed form:
 
-    .. math:: \frac{amplitude g_{1} \sqrt{- \frac{g_{2}}{g_{1}}} \sin{\left(\phi \right)}}{2}
+    .. math:: \frac{g_{1} \sqrt{- \frac{g_{2}}{g_{1}}} \sin{\left(\phi \right)} \left|{amplitude}\right|}{2}
 
     Parameters are floats or arrays (NumPy broadcasting); singular points
     give inf/nan with NumPy's RuntimeWarning, never an exception.
@@ -153,7 +154,7 @@ def dark_velocity(amplitude, phi, g1, g2):
     phi = _real('phi', phi)
     g1 = _real('g1', g1)
     g2 = _real('g2', g2)
-    return (1/2)*amplitude*g1*numpy.sqrt(-g2/g1)*numpy.sin(phi)
+    return (1/2)*g1*numpy.sqrt(-g2/g1)*numpy.sin(phi)*numpy.abs(amplitude)
 
 
 def dark_frequency_shift(amplitude, g2):
@@ -190,7 +191,7 @@ def dark_kink(amplitude, phi, g1, g2, mu):
 
     Paper: eq. `u1`. Derived closed form:
 
-    .. math:: - \frac{amplitude \mu \cos{\left(\phi \right)}}{\sqrt{- \frac{g_{2}}{g_{1}}}}
+    .. math:: - \frac{\mu \cos{\left(\phi \right)} \left|{amplitude}\right|}{\sqrt{- \frac{g_{2}}{g_{1}}}}
 
     Parameters are floats or arrays (NumPy broadcasting); singular points
     give inf/nan with NumPy's RuntimeWarning, never an exception.
@@ -200,7 +201,7 @@ def dark_kink(amplitude, phi, g1, g2, mu):
     g1 = _real('g1', g1)
     g2 = _real('g2', g2)
     mu = _real('mu', mu)
-    return -amplitude*mu*numpy.cos(phi)/numpy.sqrt(-g2/g1)
+    return -mu*numpy.cos(phi)*numpy.abs(amplitude)/numpy.sqrt(-g2/g1)
 
 
 def continuum_mean_flow_coefficient(k, alpha, K_s, K_theta):

@@ -419,6 +419,9 @@ class _Sidebands:
 
 def ring_offsets(N: int) -> np.ndarray:
     """The perturbation wavenumbers of a ring of N sites, q = 2 pi j / N, 0 < q <= pi."""
+    from ._simulate import check_ring
+
+    N = check_ring(N)  # N = 0 or -4 was an empty array, 2.5 a wavenumber 2.51 > pi/2
     return 2 * np.pi * np.arange(1, N // 2 + 1) / N
 
 
@@ -431,7 +434,7 @@ def exact_gain(model: Model, k: float, amplitude: float, branch=None, *, N: int 
     log-spaced below, the peak refined between them). On one BLAS thread
     (``common.threads``: a multithreaded BLAS only adds synchronisation to small dense
     algebra, and on a busy machine its threads spin against the work)."""
-    from ._simulate import check_count, check_ring, snap_ring
+    from ._simulate import MAX_RING, check_count, check_ring, snap_ring
 
     if N is not None:
         N = check_ring(N)  # N = 0 is a bad ring, not the infinite chain
@@ -443,7 +446,10 @@ def exact_gain(model: Model, k: float, amplitude: float, branch=None, *, N: int 
         if not (math.isfinite(k) and 0 < k <= math.pi):
             raise ModelError(f"k must be in (0, pi], got {k!r}")
         k = float(k)
-    samples = check_count("samples", samples, least=8)
+    # at most the offsets of the largest ring (a finer grid only costs: 10**8 was a
+    # MemoryError naming no argument; 65536 takes ~3 s for fput)
+    samples = check_count("samples", samples, least=8, most=MAX_RING // 2,
+                          why=f"the offsets of the largest ring, N = {MAX_RING}")
     from ._nls import check_resolved_amplitude
 
     check_resolved_amplitude(model, k, amplitude, branch)  # no rates from rounding

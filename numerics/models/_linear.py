@@ -19,6 +19,8 @@ import numpy as np
 
 from energy import MAX_VALUE, Model, ModelError
 
+from ._args import check_harmonics, check_k, wavenumbers  # noqa: F401 (imported from here)
+
 
 def blocks(H: np.ndarray, d: int):
     return H[:d, :d], H[:d, d:], H[d:, :d], H[d:, d:]
@@ -76,12 +78,7 @@ def branches(model: Model, kappa) -> np.ndarray:
     H = model.code.taylor(model.p)[0]
     m = model.masses
     s = 1 / np.sqrt(m)
-    try:
-        kap = np.asarray(kappa, dtype=float)
-    except (TypeError, ValueError):
-        kap = None
-    if kap is None or not np.all(np.isfinite(kap)) or np.asarray(kappa).dtype.kind == "b":
-        raise ModelError(f"kappa must be finite real wavenumbers (rad/site), got {kappa!r}")
+    kap = wavenumbers(kappa)
     out = np.empty(kap.shape + (len(m),))
     for idx in np.ndindex(kap.shape):
         A = s[:, None] * dynamical_matrix(H, float(kap[idx])) * s[None, :]
@@ -179,20 +176,6 @@ def check_model(model) -> Model:
         raise ModelError(f"model must be an energy.Model (energy.load_model(name, file or "
                          f"Lattice)), got {type(model).__name__} {str(model)[:60]!r}")
     return model
-
-
-def check_harmonics(harmonics, low: int, why: str, name: str = "harmonics") -> int | None:
-    """A truncation: None (the default) or an integer (not a bool) >= ``low``; ``why``
-    says what the lower bound is for, in the error."""
-    if harmonics is None:
-        return None
-    if isinstance(harmonics, (bool, np.bool_)) or not isinstance(harmonics, numbers.Integral):
-        raise ModelError(f"{name} must be an integer >= {low} or None (the default), got "
-                         f"{type(harmonics).__name__} {harmonics!r}")
-    if int(harmonics) < low:
-        raise ModelError(f"{name} must be an integer >= {low} ({why}) or None (the "
-                         f"default), got {int(harmonics)}")
-    return int(harmonics)
 
 
 def check_amplitude(amplitude, name: str = "amplitude") -> float:
@@ -326,9 +309,7 @@ def smallest_resolved_k(model: Model, k: float, branch=None, of: str = "omega") 
 def carrier(model: Model, k: float, branch=None) -> Carrier:
     """The carrier of ``branch`` at ``k`` with its group velocity and g1 (perturbation
     theory of the Hermitian eigenproblem; checked against finite differences in tests)."""
-    if isinstance(k, (bool, np.bool_)) or not isinstance(k, numbers.Real) \
-            or not math.isfinite(k):
-        raise ModelError(f"k must be a finite real number, got {type(k).__name__} {k!r}")
+    check_k(k)
     b = branch_index(model, k, branch)
     if why := rest_kink(model):
         raise ModelError(why)
@@ -473,7 +454,7 @@ def _one_field_roots(a, b) -> np.ndarray:
 def damping_rates(model: Model, kappa) -> np.ndarray:
     """Gamma_b(kappa) = -Im omega_b: each branch's amplitude decay rate (1/time), shape
     (..., d), ascending branches as :func:`branches`; zeros without [dissipation]."""
-    kap = np.asarray(kappa, dtype=float)
+    kap = wavenumbers(kappa)  # a NaN was numpy's LinAlgError 'Array must not contain infs'
     out = np.zeros(kap.shape + (model.n_fields,))
     if not model.lossy:
         return out
@@ -488,7 +469,9 @@ def damping_rates(model: Model, kappa) -> np.ndarray:
 
 
 def carrier_damping(model: Model, k: float, branch=None) -> float:
-    """Gamma of the carrier's branch at k (0 without [dissipation])."""
+    """Gamma of the carrier's branch at k (0 without [dissipation]); k in (0, pi] as for
+    :func:`carrier`."""
+    check_k(k)
     if not model.lossy:
         return 0.0
     return float(damping_rates(model, k)[branch_index(model, k, branch)])

@@ -27,6 +27,8 @@ import numpy as np
 
 from energy import Model, ModelError
 
+from ._args import MAX_RING, check_count, check_ring
+
 # compiled_force, lattice_energy, lattice_force: here too, for the modules that import them
 # from here (the package's __init__, _reach)
 from ._compiled import _kernels, compiled_force, lattice_energy, lattice_force  # noqa: F401
@@ -49,26 +51,10 @@ class _Stop(Exception):
     """Ctrl-C noticed between two compiled calls of a run; ``args[0]``: the signal."""
 
 
-#: The largest ring (sites): a run keeps ``records`` spectra of N values each.
-MAX_RING = 2**20
 #: the most steps a run may take: 1e10 steps of a small ring are hours of CPU; a run past
 #: it is a stiff model (a mass of 1e-300 puts a branch at 1e150: 1e154 steps, where the
 #: run and the estimate's probe hung without a word) or a T no one can wait for
 MAX_STEPS = 1e10
-
-
-def check_ring(N) -> int:
-    """A ring size: an integer in [8, MAX_RING] (not a bool)."""
-    if isinstance(N, bool) or not isinstance(N, (int, np.integer)) or not 8 <= N <= MAX_RING:
-        raise ModelError(f"N must be an integer in [8, {MAX_RING}], got {N!r}")
-    return int(N)
-
-
-def check_count(name: str, value, least: int = 1) -> int:
-    """An integer option (records, samples, seed, ...) >= ``least``, not a bool."""
-    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < least:
-        raise ModelError(f"{name} must be an integer >= {least}, got {value!r}")
-    return int(value)
 
 
 def snap_ring(k: float, N: int) -> tuple[float, int]:

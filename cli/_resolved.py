@@ -1,0 +1,35 @@
+"""The paper chain's smallest amplitude float64 resolves: the rule a model's commands
+apply (``numerics.models.ModelNLS.smallest_amplitude``), for the paper flags' point,
+soliton and coefficients."""
+
+from __future__ import annotations
+
+import math
+
+
+def check_paper_amplitude(mat, k: float, amplitude: float) -> float:
+    """``amplitude``, or a ValueError naming --amplitude where the semi-discrete NLS's
+    frequency shift |g2| a^2 / 4 (the larger case's |g2|) is below omega's rounding error
+    eps omega: there every theory's rate is rounding or an underflow (at 1e-320 `point`
+    called the focusing case II "stable", its gain 0; `soliton` printed a width of inf)."""
+    import numpy as np
+
+    from generated import lattice_coefficients as lc
+
+    at = (k, mat.alpha, mat.K_s, mat.K_theta)
+    with np.errstate(all="ignore"):
+        omega = float(lc.omega(*at))
+        g2 = [abs(float(f(*at))) for f in (lc.g2_rotation, lc.g2_coupled)]
+    g2 = max((g for g in g2 if math.isfinite(g)), default=0.0)
+    if not (math.isfinite(omega) and omega > 0 and g2 > 0):
+        return amplitude  # no NLS here: the theories say why
+    eps = float(np.finfo(float).eps)
+    least = 2 * math.sqrt(eps * omega / g2)  # eps omega / g2 first: a^2 may underflow
+    if amplitude < least:
+        raise ValueError(
+            f"--amplitude {amplitude:.3g} is below what float64 resolves at k = {k:.6g}: "
+            f"the NLS's frequency shift |g2| a^2 / 4 = {g2 / 4 * amplitude * amplitude:.3g} "
+            f"is under omega's rounding error eps omega = {eps * omega:.3g}, so every "
+            f"theory's growth rate there is rounding, not a verdict; give --amplitude >= "
+            f"{least:.3g}")
+    return amplitude

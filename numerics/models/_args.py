@@ -1,0 +1,83 @@
+"""The argument checks the model layer shares (a ring's size, a count, a truncation, a
+carrier's k, wavenumbers): each a one-line ModelError naming the argument and its range."""
+
+from __future__ import annotations
+
+import math
+import numbers
+
+import numpy as np
+
+from energy import ModelError
+
+#: The largest ring (sites): a run keeps ``records`` spectra of N values each.
+MAX_RING = 2**20
+
+
+def check_ring(N) -> int:
+    """A ring size: an integer in [8, MAX_RING] (not a bool)."""
+    if isinstance(N, bool) or not isinstance(N, (int, np.integer)) or not 8 <= N <= MAX_RING:
+        raise ModelError(f"N must be an integer in [8, {MAX_RING}], got {N!r}")
+    return int(N)
+
+
+def check_count(name: str, value, least: int = 1, most: int | None = None,
+                why: str = "") -> int:
+    """An integer option (records, samples, seed, ...) >= ``least`` (and <= ``most``,
+    ``why`` saying what bounds it), not a bool."""
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < least:
+        raise ModelError(f"{name} must be an integer >= {least}, got {value!r}")
+    if most is not None and value > most:
+        raise ModelError(f"{name} must be an integer in [{least}, {most}]"
+                         + (f" ({why})" if why else "") + f", got {value!r}")
+    return int(value)
+
+
+#: The most harmonics a truncation takes: 8x the travelling wave's own largest default (32);
+#: 10**6 asked for 116 TiB (numpy's MemoryError, naming no argument)
+MAX_HARMONICS = 256
+
+
+def check_harmonics(harmonics, low: int, why: str, name: str = "harmonics") -> int | None:
+    """A truncation: None (the default) or an integer (not a bool) in [``low``,
+    MAX_HARMONICS]; ``why`` says what the lower bound is for, in the error."""
+    if harmonics is None:
+        return None
+    if isinstance(harmonics, (bool, np.bool_)) or not isinstance(harmonics, numbers.Integral):
+        raise ModelError(f"{name} must be an integer >= {low} or None (the default), got "
+                         f"{type(harmonics).__name__} {harmonics!r}")
+    if int(harmonics) < low:
+        raise ModelError(f"{name} must be an integer >= {low} ({why}) or None (the "
+                         f"default), got {int(harmonics)}")
+    if int(harmonics) > MAX_HARMONICS:
+        raise ModelError(f"{name} must be at most {MAX_HARMONICS} (a wave that needs more is "
+                         f"not weakly nonlinear; None picks the truncation from the wave's "
+                         f"decay), got {int(harmonics)}")
+    return int(harmonics)
+
+
+def check_k(k) -> float:
+    """A carrier wavenumber: a finite real number (not a bool) in (0, pi], the range nls,
+    exact_gain and four_wave take (a Carrier that said k = -1 or 7 would be read
+    downstream as a wave it is not: its v_g and e are those of k mod 2 pi)."""
+    if isinstance(k, (bool, np.bool_)) or not isinstance(k, numbers.Real) \
+            or not math.isfinite(k):
+        raise ModelError(f"k must be a finite real number, got {type(k).__name__} {k!r}")
+    if not 0 < k <= math.pi:
+        raise ModelError(f"k must be in (0, pi] rad/site, got {k!r}: fold it into (0, pi] "
+                         f"(k mod 2 pi, then 2 pi - k above pi)")
+    return float(k)
+
+
+def wavenumbers(kappa, name: str = "kappa") -> np.ndarray:
+    """``kappa`` as a float array of finite real wavenumbers; ModelError naming ``name``
+    otherwise (a bool, a string such as "1" that numpy would cast, a complex, NaN)."""
+    try:
+        raw = np.asarray(kappa)
+        kap = raw.astype(float) if raw.dtype.kind in "fiu" else None
+    except (TypeError, ValueError):
+        kap = None
+    if kap is None or not np.all(np.isfinite(kap)):
+        raise ModelError(f"{name} must be finite real wavenumbers (rad/site), got "
+                         f"{kappa!r}"[:300])
+    return kap
