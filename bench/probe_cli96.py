@@ -1,4 +1,4 @@
-"""Issue 96's probe: the command line and the Python entry points as a new user meets them,
+"""probe 96: the command line and the Python entry points as a new user meets them,
 at inputs nobody tried (odd numbers, bad files, hostile output folders).
 
 Every try runs in a fresh process with a 60 s limit (a try past it is a finding). A failure

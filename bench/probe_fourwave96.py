@@ -1,4 +1,4 @@
-"""Issue 96's probe of the four-wave theory and of how it names the fastest pair, where the
+"""probe 96 of the four-wave theory and of how it names the fastest pair, where the
 NLS is blind: backward pairs near k = pi/2, decays into another branch, crossings of two
 fields' branches (exact and avoided, couplings 1e-3 and 1e-2), a diatomic chain near its
 gap, Klein-Gordon chains with and without a cubic on-site term.

@@ -1,4 +1,4 @@
-"""Issue 96's probe of losses, from the model file to the map: five lossy model files
+"""probe 96 of losses, from the model file to the map: five lossy model files
 written here (FPUT with bond damping, Klein-Gordon with on-site damping, a diatomic chain
 damped on one field only, a mass-in-mass chain with a dashpot on its inner mass, the
 paper's chain with losses at other K_theta, alpha, k), damping from 1e-6 to past critical.

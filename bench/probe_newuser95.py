@@ -1,4 +1,4 @@
-"""A new user's five lattices, end to end (issue 95's probe): model files of kinds the
+"""A new user's five lattices, end to end (probe 95): model files of kinds the
 project had not tried, each checked against what can be derived without the code under
 test, at chosen points near band edges, crossings, zero dispersion and k = pi, pi/2.
 

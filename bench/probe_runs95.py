@@ -1,6 +1,6 @@
-"""Issue 95's check: a run's measured growth rate against the exact lattice theory on the
+"""Probe 95's check: a run's measured growth rate against the exact lattice theory on the
 run's own ring, at seeded random points of several models (one and two fields), by the
-rule before issue 95 ("largest": the largest mode at the linear stage's end, fitted over
+rule before probe 95 ("largest": the largest mode at the linear stage's end, fitted over
 its stretch above 10x its start) and the rule now ("settled": every mode's settled slope,
 read while the products of growing modes are below it; ``numerics.models._growth``).
 
@@ -144,7 +144,7 @@ def paper_maps(quick: bool = True) -> str:
     """The paper's Fig. 3 map by simulation (``scenes.fig3_simulated``'s grid, both cases):
     each cell's run (``cell_records``), its verdict by the factor as read (a map cell's,
     unchanged: MI once it passed 20x) and by exponential growth only (a point's run verdict
-    since issue 95: MI once the exponential reading of the records so far passed 20x, as
+    since probe 95: MI once the exponential reading of the records so far passed 20x, as
     an early stop under that rule would decide). Cells where they differ are listed."""
     from common import paper
     from numerics import Material

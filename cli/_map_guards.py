@@ -30,7 +30,7 @@ def check_rest(model, named) -> None:
         for combo in itertools.product(*(v for _, v in axes)):
             values = {n: float(v) for (n, _), v in zip(axes, combo)}
             given = ", ".join(f"--param {n}={v:g}" for n, v in values.items())
-            try:  # a damping of the wrong sign (R < 0): its value named (issue 96)
+            try:  # a damping of the wrong sign (R < 0): its value named (probe 96)
                 m = model.with_params(**values)
                 m.damping  # noqa: B018 (reading it checks R >= 0)
             except ModelError as exc:

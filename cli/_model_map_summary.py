@@ -94,7 +94,7 @@ def _no_wave_text(ds, params, summary: dict) -> str:
 
 def _overdamped_text(ds, params) -> str | None:
     """A lossy map's line for the cells whose carrier is overdamped (|Re w| <= |Im w|: it
-    decays before its phase turns, no wave to modulate; issue 96): their theories' 1x
+    decays before its phase turns, no wave to modulate; probe 96): their theories' 1x
     and 'stable' are the losses', as point's note says; None where there is none."""
     import numpy as np
 

@@ -229,7 +229,7 @@ def run_map(args) -> int:
 
             shutil.rmtree(path, ignore_errors=True)
         # the NLS alone has no verdict where its expansion fails (a flat branch's g1 = 0:
-        # issue 95's v oscillator); the exact lattice and four-wave theories may have one
+        # probe 95's v oscillator); the exact lattice and four-wave theories may have one
         more = ("" if simulated or params.exact else
                 ", or add --exact (the exact lattice and four-wave theories on the ring)")
         raise ValueError(f"every cell of the map is undefined (first cell: "

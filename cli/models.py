@@ -97,7 +97,7 @@ def load(args, axes_ok=False):
         if "has no parameter" in str(exc):  # a typo: named as the option, the likely name
             _unknown_parameter(load_model(args.model), fixed)
         where = str(args.model)
-        if "semi-definite" in str(exc) and fixed:  # issue 96: the --param that made R < 0
+        if "semi-definite" in str(exc) and fixed:  # probe 96: the --param that made R < 0
             given = ", ".join(f"--param {n}={v!r}" for n, v in fixed.items())
             raise type(exc)(f"{given}: {str(exc).split(': ', 1)[-1]}; a damping must keep "
                             "R >= 0 (a viscous coefficient >= 0)") from None

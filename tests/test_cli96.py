@@ -1,4 +1,4 @@
-"""Issue 96: the command line and the Python entry points at inputs nobody tried
+"""Probe 96: the command line and the Python entry points at inputs nobody tried
 (bench/probe_cli96.py). Each test names what the old tree did."""
 
 from __future__ import annotations

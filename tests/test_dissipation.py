@@ -605,7 +605,7 @@ TODAY = [
     ("kg", dict(gamma=0.001), 2.0, 0.4, 256, (1499086492.8973968, 1873.3961311031956,
                                              (1.7426021750380885, 2.552544031041707)),
      (2770573653.8069577, 1963.9493185422402)),
-    # issue 95: the flexmm-lossy rows changed, as physics, not round-off: a sideband past
+    # probe 95: the flexmm-lossy rows changed, as physics, not round-off: a sideband past
     # the theta-U crossing (k ~ 0.78; the fields are linearly uncoupled) is theta's and was
     # damped at U's rate (the carrier's branch index there is U's). Before: the blue point
     # 2165 at t 6660 (the four-wave theory, which damps each pair's own waves, 1030: now

@@ -307,7 +307,7 @@ def test_a_bad_scene_seed_names_the_option(cmd, tmp_path, capsys):
 def test_the_exact_and_four_wave_rows_name_one_pair_in_one_order(capsys):
     """flexmm at k 0.785 on 64 sites: the note said 'branch 1 (theta) at 0.2945 and branch
     0 (theta) at 1.276', the four-wave line the same pair the other way round. (Both waves
-    are theta waves on the carrier's sheet, across the theta-U crossing: since issue 95
+    are theta waves on the carrier's sheet, across the theta-U crossing: since probe 95
     the pair is 'sidebands', not 'parametric', and the exact row's note says so without
     naming the waves; its JSON names them in the same order.)"""
     assert main(["point", "--model", "flexmm", "--k", "0.8", "--amplitude", "0.02", "--N",

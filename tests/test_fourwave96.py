@@ -1,4 +1,4 @@
-"""Issue 96: how the four-wave theory and the exact theory name the fastest pair where two
+"""Probe 96: how the four-wave theory and the exact theory name the fastest pair where two
 fields' branches cross through a weak linear coupling (an avoided crossing), checked
 against the field content of the pair's waves from a dynamical matrix written by hand
 (bench/probe_fourwave96.py holds the model texts and the probe)."""

@@ -1,4 +1,4 @@
-"""Losses at models and dampings nobody tried (issue 96): a tiny damping's amplification,
+"""Losses at models and dampings nobody tried (probe 96): a tiny damping's amplification,
 an overdamped carrier, a lossy model's rates against its quadratic pencil."""
 
 import math

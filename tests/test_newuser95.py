@@ -1,4 +1,4 @@
-"""What issue 95's new user found with five lattices nobody had tried (bench/probe_newuser95.py
+"""What probe 95's new user found with five lattices nobody had tried (bench/probe_newuser95.py
 holds the model texts and reruns the probe), each reproduced on its point:
 
 - branches of two linearly uncoupled fields cross (the paper's own chain: theta and U near

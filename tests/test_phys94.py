@@ -283,7 +283,7 @@ def test_a_fastest_offset_on_the_carriers_harmonics_is_said():
 def test_a_four_wave_rate_far_off_the_exact_one_is_said():
     """The probe's seed-7 point 6 (bond r^2/2 - 0.596 r^3 + 0.673 r^4, k 1.52, a 0.152,
     128 sites; its frequency shifted 8%): a backward pair grows at 0.0110 (a run read
-    0.0090 at T = 1000 before issue 95's reading, 0.0110 since: tests/test_runs95.py), the four-wave theory names the same pair at 0.0044. Both are stated; the
+    0.0090 at T = 1000 before probe 95's reading, 0.0110 since: tests/test_runs95.py), the four-wave theory names the same pair at 0.0044. Both are stated; the
     note says the four-wave rate is the a^2 order and by how much the exact one exceeds it
     (the long wave at -0.098 and the wave at 1.62 are no isolated decay: the four-wave
     row stays defined)."""

@@ -1,4 +1,4 @@
-"""Issue 95: runs that measure what the theory predicts.
+"""Probe 95: runs that measure what the theory predicts.
 
 1. A model run's rate is the fastest Floquet exponent its linear stage shows (every mode's
    settled slope, ``numerics.models.settled_rate``), not the slope of the mode that happens

@@ -127,7 +127,7 @@ def exponential_bound(t: np.ndarray, top: np.ndarray) -> float:
     e-foldings; an algebraic one, t^p, has s L = p ln 4 at most there (``4^p``): near
     delta = 0 of the paper chain (alpha 2.2, K_s 0.02, delta -1e-5, k = 2 pi 41/256,
     rotation) the exact lattice is stable and a run of T = 40000 grew 35x, nearly
-    linearly in t (a near-degenerate pair's secular exchange, issue 95); this reads 1.7x.
+    linearly in t (a near-degenerate pair's secular exchange, probe 95); this reads 1.7x.
     The model runs' rule (``numerics.models._growth``), for the paper chain."""
     t = np.asarray(t, float)
     top = np.asarray(top, float)

@@ -21,7 +21,7 @@ import numpy as np
 #: the amplification the critical damping is read at (the runs' 20x)
 THRESHOLD = 20.0
 #: the theories' largest amplification, e^700 (numerics.models' along_decay and damped
-#: NLS: past it a factor is only a lower bound; issue 96)
+#: NLS: past it a factor is only a lower bound; probe 96)
 CAP = math.exp(700.0)
 
 

@@ -132,7 +132,7 @@ class ModelMapParameters:
         if "k" in (self.rows[0], self.cols[0]) and "k" in {
                 str(n) for n, _ in self.parameters}:
             # a model parameter named k: the axis 'k' is the carrier's, and a sweep of the
-            # parameter read as the carrier's silently (issue 95: --param k=0.3,0.6
+            # parameter read as the carrier's silently (probe 95: --param k=0.3,0.6
             # --amplitude 0.1,0.2 --k 1 mapped carriers 0.3, 0.6 and ignored --k 1)
             raise ValueError("map axis 'k' is ambiguous: the model has a parameter named 'k' "
                              "(the carrier's wavenumber is the axis 'k'); rename it in the "

@@ -113,7 +113,7 @@ def simulated_row(model, k, amplitude, branch, N, seeds, t_end, spec, start, pea
         amps = sorted((r.amplification() for r in runs), key=lambda a: a.amplification)
         med = amps[len(amps) // 2]
         row.update(med.row())
-        # issue 96: a run whose A(t) never rose PEAK_RISE (peaked False) but ended below
+        # probe 96: a run whose A(t) never rose PEAK_RISE (peaked False) but ended below
         # half its largest and below its midpoint's, falling (an overdamped carrier's
         # noise only decays), did answer: no; one still rising at its cap did not
         A = med.A
@@ -122,7 +122,7 @@ def simulated_row(model, k, amplitude, branch, N, seeds, t_end, spec, start, pea
         row["energy_balance"] = max(r.energy_balance() for r in runs)
         if (med.amplification <= 1.0 and peak_time is not None and math.isfinite(peak_time)
                 and peak_time > 0):
-            # issue 95: lossy-res (gr 5e-4, k 1.18, a 0.2, 64 sites) printed 'grew 1x by
+            # probe 95: lossy-res (gr 5e-4, k 1.18, a 0.2, 64 sites) printed 'grew 1x by
             # t = 0' where the exact theory's mode grows 9.6x: it started ~25x below the
             # largest noisy mode, which A(t) measures from
             row["note"] = ("A(t) never passed A(0), the largest of the ring's noisy modes at "

@@ -1,4 +1,4 @@
-"""Which damped root continues which lossless branch (issue 96).
+"""Which damped root continues which lossless branch (probe 96).
 
 ``_linear._damped_many`` picks each wavenumber's d forward roots of the damped symbol
 det(K - i w C - w^2 M) = 0 and listed them by ascending Re w, which is the lossless

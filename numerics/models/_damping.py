@@ -53,7 +53,7 @@ def rayleigh(model: Model, v: np.ndarray, matrices=None) -> float:
 #: a damped run's samples of 2R (``simulate_model``'s energy balance) are at most
 #: LOSS_DECAY / (the damping's fastest rate) apart, besides ``LOSS_SAMPLE`` radians of the
 #: carrier: a strong damping's 2R falls as a sum of exponentials (an overdamped pair: two
-#: rates), which one exponential through two samples far apart misreads. Issue 96, balance
+#: rates), which one exponential through two samples far apart misreads. Probe 96, balance
 #: errors from samples 8 radians apart, then at most 0.1 / rate apart (a sample every step
 #: where that is shorter than the step): Klein-Gordon gamma 0.5, 5.0e-3 -> 1.8e-4; gamma 3
 #: (overdamped at k 1) 0.099 -> 0.011 (0.72 -> 0.01 on a point's T = 5000); FPUT bond

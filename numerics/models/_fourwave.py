@@ -350,7 +350,7 @@ def four_wave(model: Model, k: float, amplitude: float, branch=None, *, N: int |
                "ordering does not rate; the exact theory holds")
     if not why and not best > GAIN_FLOOR * car.omega:
         # a decay the carrier's own shift could bring into resonance: 'stable' is not
-        # known at this order (issue 96: opt at pi/2, exact 6.3e-3, four-wave 'stable')
+        # known at this order (probe 96: opt at pi/2, exact 6.3e-3, four-wave 'stable')
         near = _decay(model, k, a, branch, N, samples, margin=True)
         if near is not None and near[0] > GAIN_FLOOR * car.omega:
             rate3, (b1, k1), (b3, k3) = near
@@ -371,7 +371,7 @@ _ISOLATED_PAIR = 4.0
 def _isolated(model, k, q, pairs, rate, det, coup):
     """The pairs' rates with nan where a wave lies within ``_ISOLATED_PAIR`` couplings of
     another branch at its own wavenumber: there both linear waves answer the pump (near a
-    crossing the 2 x 2 reduction picks one mixed wave). Issue 96: cross + 1e-3 (u_next -
+    crossing the 2 x 2 reduction picks one mixed wave). Probe 96: cross + 1e-3 (u_next -
     u) v (bench/probe_fourwave96.py), the v carrier at k 0.288, a 0.115: a pair with a
     wave at the avoided crossing pi/3 (gap 1e-3) read 2.21e-3 against the exact 1.69e-3,
     which is the u pair at 1.355, -0.779 (four-wave 1.72e-3 there, as at eps = 0)."""

@@ -10,7 +10,7 @@ exponentially (the log-slope over the linear stage's second half, run over the w
 bounds the factor: algebraic growth of a stable wave's near-carrier pairs does not pass),
 with the rate the fastest Floquet exponent the linear stage shows (``settled_rate``: every
 mode's log-slope over its settled stretch, read on the best measured copy of the fastest
-mode; issue 95); otherwise "no growth within T", with the slowest rate the run could have
+mode; probe 95); otherwise "no growth within T", with the slowest rate the run could have
 shown.
 """
 
@@ -158,7 +158,7 @@ def settled_rate(t: np.ndarray, S: np.ndarray, start: np.ndarray, amplitude: flo
     In the linear stage each ring mode j grows at the exact rate of its own offset once
     the fastest Floquet mode there outweighs the neutral ones: its log amplitude's
     least-squares slope over that stretch is that rate. The largest mode at the stage's
-    end need not be the fastest (issue 95: fput alpha 0.5, beta 1, k 1.52, a 0.2 on 128
+    end need not be the fastest (probe 95: fput alpha 0.5, beta 1, k 1.52, a 0.2 on 128
     sites: the mode at 0.98, rate 0.0261, started higher and stayed ahead of the fastest,
     0.93 at 0.0289, through the whole stage: the run read 10% low at any T). So every
     mode is read over its own stretch: from the last record where it was below
@@ -172,7 +172,7 @@ def settled_rate(t: np.ndarray, S: np.ndarray, start: np.ndarray, amplitude: flo
     grew most, the best measured; the run's rate is the fastest such reading. Where no
     mode counts (a short stage) the largest mode
     at the stage's end is read over its stretch above 10x its start (the rule before
-    issue 95).
+    probe 95).
 
     Parameters
     ----------
@@ -204,7 +204,7 @@ def settled_rate(t: np.ndarray, S: np.ndarray, start: np.ndarray, amplitude: flo
     clean = finite & (r >= PRODUCTS * np.max(r, axis=1, keepdims=True) ** 2)
     # the neutral modes' level at each record (their lower quartile: robust while fewer
     # than 3/4 of the modes grow); it moves: the noise's launch transient raised every
-    # mode ~30x within the first ~100 time units (issue 95, a Hertz-like bond at k 1.52,
+    # mode ~30x within the first ~100 time units (probe 95, a Hertz-like bond at k 1.52,
     # a 0.15), so a mode's own start is no reference
     floor = np.quantile(np.where(finite, S, np.finfo(float).max), 0.25, axis=1)
     best, col = -math.inf, -1
@@ -226,7 +226,7 @@ def settled_rate(t: np.ndarray, S: np.ndarray, start: np.ndarray, amplitude: flo
         # a Floquet mode shows on its pair and first copies (j -> +-j + l m, |l| <= 2:
         # kappa, 2 k - kappa, kappa +- k; one exponent), and is read on the one that grew
         # most over its stretch, the best measured: a weak copy's short stretch read 13%
-        # above the exact rate (fput at k = pi / 2 on 64 sites, issue 95), its family's
+        # above the exact rate (fput at k = pi / 2 on 64 sites, probe 95), its family's
         # best 1%. Farther copies, weighted by the wave's higher harmonics, would take in
         # other offsets' modes on a ring.
         index = {int(modes[i]): i for i in rates}
@@ -245,7 +245,7 @@ def settled_rate(t: np.ndarray, S: np.ndarray, start: np.ndarray, amplitude: flo
     return _fit(t, y[:, i], math.log(SETTLED * start[i])), i
 
 
-#: the rules ``measure_growth`` reads a rate by: "settled" (issue 95, the default) and
+#: the rules ``measure_growth`` reads a rate by: "settled" (probe 95, the default) and
 #: "largest" (the rule before it, kept for bench/probe_runs95's comparison)
 RATE_RULES = ("settled", "largest")
 
@@ -277,7 +277,7 @@ def read_modes(run: ModelRun) -> np.ndarray:
 
 def measure_growth(run: ModelRun, rule: str = "settled") -> Growth:
     """What ``run`` shows (the module's rule); ``rule``: how its rate is read, one of
-    ``RATE_RULES`` ("settled", the default; "largest", the rule before issue 95)."""
+    ``RATE_RULES`` ("settled", the default; "largest", the rule before probe 95)."""
     N = run.N
     m = int(round(run.k * N / (2 * math.pi)))
     keep = read_modes(run)

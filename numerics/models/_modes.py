@@ -189,7 +189,7 @@ def classify_mode(spectrum) -> dict:
             # omega^2 < 0 on every branch there (a rest state that is no minimum): no
             # linear wave to name; before, nanargmin raised 'All-NaN slice encountered'
             continue
-        # each wave's branch: the one its harmonic's eigenvector lies along (issue 96:
+        # each wave's branch: the one its harmonic's eigenvector lies along (probe 96:
         # cross's v carrier at pi/2 holds only v in both harmonics, yet the u branch lay
         # nearer one wave's frequency); the nearest in frequency where it is not known
         own1 = _branch_along(model, kap, vec, l, conj=False)

@@ -122,7 +122,7 @@ def visible_gain(spec, N: int) -> float:
     the carrier (h m mod N, |h| <= the wave's harmonics), which a run leaves out of its
     growth (``numerics.maps``' ``harmonic_note`` says so on a point). A run's default
     length is chosen from this rate: from the peak, a run's T held too few e-foldings of
-    what it can see (issue 95: the probe's rotor chain, kt 0.997, w0 0.544, c -0.039, k
+    what it can see (probe 95: the probe's rotor chain, kt 0.997, w0 0.544, c -0.039, k
     1.767, a 0.078, 256 sites: peak 1.65e-3 on the mean flow and 2k, T 5500; the fastest
     visible mode, 1.05e-3, grew 5.9x by then: "no growth within T")."""
     gain = np.asarray(getattr(spec, "gain", ()), float)

@@ -57,7 +57,7 @@ def decay_rates(model: Model, k: float, wave, offsets, *,
         Also the decays that the carrier's own shift |Omega - omega| could bring into
         resonance (their detuning less that shift beaten by the coupling): the rate they
         would have at resonance, sqrt(kappa13 kappa31 - (max(|Delta| - shift, 0)/2)^2).
-        Issue 96: opt (mass-in-mass, tests/test_fourwave96.py) at k pi/2 decays at 6.3e-3
+        Probe 96: opt (mass-in-mass, tests/test_fourwave96.py) at k pi/2 decays at 6.3e-3
         (exact) into waves each moved up by the carrier (0.03, 0.02): linearly detuned
         by -0.013, resonant once the daughters' and the carrier's shifts are counted.
 
