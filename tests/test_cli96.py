@@ -235,3 +235,22 @@ def test_the_paper_flags_refuse_an_amplitude_float64_cannot_resolve(capsys, argv
                           "float64 resolves")
     least = float(err.rsplit(">= ", 1)[1])
     assert 2 * math.sqrt(2.2e-16 * 0.77 / 18.4) == pytest.approx(least, rel=0.01)
+
+
+def test_damping_parameters_names_what_it_takes():
+    """A name (not a lattice) was an AttributeError about 'lossy'; a Model is read by its
+    lattice (the same answer as Model.lattice)."""
+    from numerics.maps import damping_parameters
+
+    with pytest.raises(TypeError, match="energy.Lattice or Model"):
+        damping_parameters("x")
+    lossy = energy.load_model("flexmm-lossy")
+    assert damping_parameters(lossy) == damping_parameters(lossy.lattice) != ()
+
+
+def test_four_wave_caps_its_samples_as_exact_gain():
+    """samples=10**8 ran past 60 s (exact_gain refuses it by the largest ring)."""
+    from numerics.models import four_wave
+
+    with pytest.raises(ModelError, match="samples must be an integer in"):
+        four_wave(energy.load_model("fput"), 2.5, 0.1, samples=10**8)

@@ -26,10 +26,17 @@ CAP = math.exp(700.0)
 
 
 def damping_parameters(lattice) -> tuple:
-    """The parameters of ``lattice`` (``energy.Lattice``) its [dissipation] functions use,
-    sorted; () for a lossless model."""
+    """The parameters of ``lattice`` (``energy.Lattice``, or a ``Model``: its lattice) its
+    [dissipation] functions use, sorted; () for a lossless model."""
     import ast
 
+    from energy import Lattice, Model
+
+    if isinstance(lattice, Model):
+        lattice = lattice.lattice
+    if not isinstance(lattice, Lattice):  # 'x' said: 'str' object has no attribute 'lossy'
+        raise TypeError(f"lattice must be an energy.Lattice or Model (energy.parse_model, "
+                        f"energy.load_model), got {type(lattice).__name__} {lattice!r}")
     if not lattice.lossy:
         return ()
     names = set()

@@ -273,7 +273,7 @@ def four_wave(model: Model, k: float, amplitude: float, branch=None, *, N: int |
         expansion fails (a resonant second harmonic, a degenerate carrier) or the model's
         energy is not real along the wave (``energy_not_real``).
     """
-    from ._simulate import check_count, check_ring, snap_ring
+    from ._simulate import MAX_RING, check_count, check_ring, snap_ring
 
     check_model(model)
     a = check_amplitude(amplitude)
@@ -289,7 +289,9 @@ def four_wave(model: Model, k: float, amplitude: float, branch=None, *, N: int |
         k = float(k)
         if not (math.isfinite(k) and 0 < k <= math.pi):
             raise ModelError(f"k must be in (0, pi], got {k!r}")
-        q = _offset_grid(check_count("samples", samples, least=8))  # exact_gain's rule
+        # exact_gain's rule: at most the offsets of the largest ring (10**8 ran > 60 s)
+        q = _offset_grid(check_count("samples", samples, least=8, most=MAX_RING // 2,
+                                     why=f"the offsets of the largest ring, N = {MAX_RING}"))
     from ._nls import check_resolved_amplitude
     from ._reach import energy_not_real
     from ._rest_order import rest_not_cubic
