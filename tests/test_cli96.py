@@ -254,3 +254,12 @@ def test_four_wave_caps_its_samples_as_exact_gain():
 
     with pytest.raises(ModelError, match="samples must be an integer in"):
         four_wave(energy.load_model("fput"), 2.5, 0.1, samples=10**8)
+
+
+def test_model_map_parameters_check_their_ring_without_one():
+    """from_model(..., N=3, theory_only=True) was accepted and run (the CLI refuses it)."""
+    from numerics.maps import ModelMapParameters
+
+    with pytest.raises(ValueError, match="N"):
+        ModelMapParameters.from_model("fput", ("beta", [0.8, 1.6]), ("k", [2.6, 2.8]), 0.1,
+                                      params={"alpha": 1.0}, theory_only=True, N=3)

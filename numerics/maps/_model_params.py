@@ -167,8 +167,9 @@ class ModelMapParameters:
         for flag in ("exact", "theory_only"):
             if not isinstance(getattr(self, flag), (bool, np.bool_)):
                 raise TypeError(f"{flag} must be True or False, got {getattr(self, flag)!r}")
-        if self.ring:  # the ring of the exact theory and the runs
-            checks.integer("N", self.N, 8, 2**20 + 1)
+        # the ring of the exact theory and the runs; checked where no ring is used too, as
+        # the command line does (N = 3 went into a theory-only map's store)
+        checks.integer("N", self.N, 8, 2**20 + 1)
         checks.integer("seeds", self.seeds, 1, 1001)
         checks.integer("block", self.block, 1, 10**6 + 1)
         if self.t_end is not None:
