@@ -4,8 +4,11 @@ Each block advances one chain (one cell and seed) of eq. `norm` with a symplecti
 (BAB, the coefficients of ``_integrators``: srkn11b at the map's step, as on the CPU) and
 reduces its records on the chip to what a map cell keeps (``numerics.maps._cells``): the
 largest non-carrier component of the theta (and U) spectrum over the carrier at each of the
-RECORDS records, its running maximum, where it sits, and the early stop once the growth
-passed the threshold. Nothing per step leaves the GPU; one small row per chain comes back.
+RECORDS records (kept per record in global memory, ``tops``), its running maximum, where it
+sits, the exponential bound of those records (``_bound.bound_of_records``, the CPU's
+function compiled for the device: the growth exponential growth accounts for, issue 96)
+and the early stop once that reading passed the threshold. Nothing per step leaves the
+GPU; one small row per chain comes back.
 
 The same site force as the CPU: ``_kernels._acc`` and ``_kernels._sincosvers`` (the
 branch-free polynomial sin, cos and 1 - cos), compiled for the device from the same Python
@@ -37,6 +40,8 @@ import math
 import numpy as np
 from numba import cuda, float64
 
+from ._analysis import STAGE_END
+from ._bound import bound_of_records
 from ._kernels import TRIG_LIMIT, _acc, _sincosvers
 
 #: sites a thread owns at most (its velocities and accelerations live in local arrays)
@@ -56,7 +61,9 @@ OUT_U0 = 4        # U: top ratio at record i0_U (the reference)
 OUT_UMAX = 5      # U: largest top ratio over records >= i0_U
 OUT_UQ = 6        # U: its bin
 OUT_STATUS = 7    # STATUS_OK, or STATUS_BAD: a position left the polynomial's range
-OUT_WIDTH = 8
+OUT_THEXP = 8     # theta: exponential bound of the records taken (inf: none to bound with)
+OUT_UEXP = 9      # U: exponential bound of the records from i0_U (0 where none after it)
+OUT_WIDTH = 10
 STATUS_OK, STATUS_BAD = 0.0, 1.0
 
 # shared scalars after the fields and the reduction scratch
@@ -66,6 +73,8 @@ _SCALARS = 3
 # the CPU kernels' force, compiled for the device from the same source
 _sincosvers_d = cuda.jit(device=True)(_sincosvers.py_func)
 _acc_d = cuda.jit(device=True)(_acc.py_func)
+# the exponential reading of the records, the host's function (plain Python) for the device
+_bound_d = cuda.jit(device=True)(bound_of_records)
 
 
 def shared_bytes(N: int, threads: int) -> int:
@@ -153,12 +162,14 @@ def _record(th, U, red, sh, cos_t, sin_t, mask_th, mask_U, m, coupled, spectra, 
 @cuda.jit
 def cells_kernel(theta0, w0, U0, V0, params, carrier_bin, mask_th, mask_U, coupled, acoef,
                  bcoef, dt, per_record, records, i0_U, threshold, cos_t, sin_t, out, spectra,
-                 keep):
+                 keep, tops, t_rec):
     """Advance chain ``blockIdx.x`` (theta0[chain], ...) record by record; see the module.
 
     params[chain] = (alpha^2, K_s, K_theta); carrier_bin[chain] = m; mask_*[chain] the
     bins that count (``non_carrier_bins``); i0_U the record of U's reference; ``out`` the
-    rows OUT_*; ``spectra[chain, j]`` the theta spectrum of record j when ``keep``.
+    rows OUT_*; ``spectra[chain, j]`` the theta spectrum of record j when ``keep``;
+    ``tops[chain, f, j]`` field f's (theta, U) largest component over the carrier at
+    record j (thread 0's, for the exponential bound); ``t_rec[j]`` the record times.
     """
     chain = cuda.blockIdx.x
     t = cuda.threadIdx.x
@@ -259,6 +270,8 @@ def cells_kernel(theta0, w0, U0, V0, params, carrier_bin, mask_th, mask_U, coupl
             carrier = scal[_CARRIER]
             top_th = red[0] / carrier
             top_U = red[2 * bs] / carrier
+            tops[chain, 0, j] = top_th
+            tops[chain, 1, j] = top_U
             if j == 0:
                 r_th0 = top_th
                 r_thmax = top_th
@@ -274,9 +287,13 @@ def cells_kernel(theta0, w0, U0, V0, params, carrier_bin, mask_th, mask_U, coupl
                 elif top_U > r_Umax:
                     r_Umax = top_U
                     q_U = red[3 * bs]
-            # the early stop of cell_records: the verdict "MI" is certain
-            if j > 0 and (top_th > threshold * r_th0
-                          or (coupled and j >= i0_U and top_U > threshold * r_U0)):
+            # the early stop of cell_records: the factor so far and its exponential bound
+            # (the bound only where the factor passed: the records so far, O(j) once)
+            if j > 0 and r_th0 > 0 and r_thmax > threshold * r_th0 and _bound_d(
+                    t_rec, tops[chain, 0], 0, j + 1, STAGE_END) > threshold:
+                scal[_STOP] = 1.0
+            if coupled and j > i0_U and r_U0 > 0 and r_Umax > threshold * r_U0 and _bound_d(
+                    t_rec, tops[chain, 1], i0_U, j + 1, STAGE_END) > threshold:
                 scal[_STOP] = 1.0
         cuda.syncthreads()
         if scal[_STOP] != 0.0:
@@ -292,6 +309,9 @@ def cells_kernel(theta0, w0, U0, V0, params, carrier_bin, mask_th, mask_U, coupl
         row[OUT_UMAX] = r_Umax
         row[OUT_UQ] = q_U
         row[OUT_STATUS] = status
+        row[OUT_THEXP] = _bound_d(t_rec, tops[chain, 0], 0, taken, STAGE_END)
+        row[OUT_UEXP] = (_bound_d(t_rec, tops[chain, 1], i0_U, taken, STAGE_END)
+                         if coupled and i0_U < taken - 1 else 0.0)
 
 
 def twiddles(N: int) -> tuple[np.ndarray, np.ndarray]:
