@@ -195,10 +195,12 @@ def cell_records(material: Material, case: str, k: float, N: int, t_end: float,
     # its running maximum: the early stop's reading
     top_th = np.zeros(RECORDS + 1)
     top_U = np.zeros(RECORDS + 1)
+    peak = [0.0, 0.0]  # theta's from record 0, U's from i0_U
 
-    def passed(top, i0, j):
-        """growth_of's exponential reading of records i0 .. j above the threshold."""
-        return (top[i0] > 0 and top[i0:j + 1].max() > GROWTH_THRESHOLD * top[i0]
+    def passed(top, f, i0, j):
+        """growth_of's exponential reading of records i0 .. j above the threshold (the
+        bound, O(j), only once the factor has passed)."""
+        return (top[i0] > 0 and peak[f] > GROWTH_THRESHOLD * top[i0]
                 and exponential_bound(t[i0:j + 1], top[i0:j + 1]) > GROWTH_THRESHOLD)
 
     take(0)
@@ -218,9 +220,12 @@ def cell_records(material: Material, case: str, k: float, N: int, t_end: float,
         # as it exceeds the threshold (the module's rule)
         for i in (0, j) if j == 1 else (j,):
             top_th[i] = th_hat[i, mask].max() / th_hat[i, m]
+            peak[0] = max(peak[0], top_th[i])
             if coupled:
                 top_U[i] = U_hat[i, mask_U].max() / th_hat[i, m]
-        if passed(top_th, 0, j) or coupled and j > i0_U and passed(top_U, i0_U, j):
+                if i >= i0_U:
+                    peak[1] = max(peak[1], top_U[i])
+        if passed(top_th, 0, 0, j) or coupled and j > i0_U and passed(top_U, 1, i0_U, j):
             break
     n = j + 1
     return {"t": t[:n], "theta_hat": th_hat[:n], "U_hat": U_hat[:n] if coupled else None,

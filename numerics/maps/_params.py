@@ -40,8 +40,10 @@ PREDICT_SECONDS = {"travelling": 0.15, "paper": 0.35}
 CRITERION = (f"MI when the largest non-carrier, non-harmonic component (theta; U: its "
              f"non-forced components, from its level at 5% of the run) grows more than "
              f"{GROWTH_THRESHOLD:g}x over the run, relative to the carrier (the scenes' "
-             "criterion); a run stops as soon as that happens (the verdict is then certain)."
-             " With several seeds: the verdict of the majority, the median growth.")
+             "criterion), exponentially: the factor at most exp(s L), s the log-slope over "
+             "the linear stage's second half (growth_exponential; algebraic growth is no MI)"
+             "; a run stops as soon as that happens (the verdict is then certain). With "
+             "several seeds: the verdict of the majority, the median growth.")
 
 
 #: values per map axis at most (a SPEC's num)
