@@ -156,9 +156,9 @@ def spectrum_growth(t, ratios: dict, bins: dict, N: int, t_end: float | None = N
     exponential : bool
         Count exponential growth only: each field's factor is at most
         :func:`exponential_bound` of its records (algebraic growth, a secular exchange of
-        a stable wave's near-degenerate modes, does not pass the threshold; a point's run
-        verdict). False (default; a map cell's, on CPU and GPU alike): the factor as read,
-        max over records.
+        a stable wave's near-degenerate modes, does not pass the threshold: a point's and a
+        map cell's run verdict, issue 96). False (default): the factor as read, max over
+        records (the stored ``growth``).
 
     Returns
     -------
