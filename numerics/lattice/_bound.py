@@ -53,4 +53,6 @@ def bound_of_records(t, top, lo, hi, stage_end):
             sxy += dx * (math.log(top[i]) - my)
             sxx += dx * dx
     slope = sxy / sxx
-    return math.exp(min(max(slope, 0.0) * length, 700.0))
+    # no min/max builtins: numba-cuda 0.30 does not type them in a device function
+    e = slope * length if slope > 0.0 else 0.0
+    return math.exp(e if e < 700.0 else 700.0)
