@@ -4,11 +4,11 @@ Each block advances one chain (one cell and seed) of eq. `norm` with a symplecti
 (BAB, the coefficients of ``_integrators``: srkn11b at the map's step, as on the CPU) and
 reduces its records on the chip to what a map cell keeps (``numerics.maps._cells``): the
 largest non-carrier component of the theta (and U) spectrum over the carrier at each of the
-RECORDS records (kept per record in global memory, ``tops``), its running maximum, where it
-sits, the exponential bound of those records (``_bound.bound_of_records``, the CPU's
-function compiled for the device: the growth exponential growth accounts for, issue 96)
-and the early stop once that reading passed the threshold. Nothing per step leaves the
-GPU; one small row per chain comes back.
+RECORDS records (kept per record in global memory, ``tops``: 2 x 201 numbers a chain, sent
+back with the row for the host's exponential reading), its running maximum, where it sits,
+and the early stop once the factor and the exponential bound of the records so far passed
+the threshold (``_bound.bound_of_records``, the CPU's function compiled for the device,
+issue 96). Nothing per step leaves the GPU; one small row and series per chain come back.
 
 The same site force as the CPU: ``_kernels._acc`` and ``_kernels._sincosvers`` (the
 branch-free polynomial sin, cos and 1 - cos), compiled for the device from the same Python
@@ -61,9 +61,7 @@ OUT_U0 = 4        # U: top ratio at record i0_U (the reference)
 OUT_UMAX = 5      # U: largest top ratio over records >= i0_U
 OUT_UQ = 6        # U: its bin
 OUT_STATUS = 7    # STATUS_OK, or STATUS_BAD: a position left the polynomial's range
-OUT_THEXP = 8     # theta: exponential bound of the records taken (inf: none to bound with)
-OUT_UEXP = 9      # U: exponential bound of the records from i0_U (0 where none after it)
-OUT_WIDTH = 10
+OUT_WIDTH = 8
 STATUS_OK, STATUS_BAD = 0.0, 1.0
 
 # shared scalars after the fields and the reduction scratch
@@ -169,7 +167,7 @@ def cells_kernel(theta0, w0, U0, V0, params, carrier_bin, mask_th, mask_U, coupl
     bins that count (``non_carrier_bins``); i0_U the record of U's reference; ``out`` the
     rows OUT_*; ``spectra[chain, j]`` the theta spectrum of record j when ``keep``;
     ``tops[chain, f, j]`` field f's (theta, U) largest component over the carrier at
-    record j (thread 0's, for the exponential bound); ``t_rec[j]`` the record times.
+    record j (thread 0's: the exponential bound's series); ``t_rec[j]`` the record times.
     """
     chain = cuda.blockIdx.x
     t = cuda.threadIdx.x
@@ -289,12 +287,14 @@ def cells_kernel(theta0, w0, U0, V0, params, carrier_bin, mask_th, mask_U, coupl
                     q_U = red[3 * bs]
             # the early stop of cell_records: the factor so far and its exponential bound
             # (the bound only where the factor passed: the records so far, O(j) once)
-            if j > 0 and r_th0 > 0 and r_thmax > threshold * r_th0 and _bound_d(
-                    t_rec, tops[chain, 0], 0, j + 1, STAGE_END) > threshold:
-                scal[_STOP] = 1.0
-            if coupled and j > i0_U and r_U0 > 0 and r_Umax > threshold * r_U0 and _bound_d(
-                    t_rec, tops[chain, 1], i0_U, j + 1, STAGE_END) > threshold:
-                scal[_STOP] = 1.0
+            # (one call site: each inlined copy of the bound costs registers)
+            for f in range(2):
+                lo = 0 if f == 0 else i0_U
+                r0 = r_th0 if f == 0 else r_U0
+                rmax = r_thmax if f == 0 else r_Umax
+                if j > lo and (f == 0 or coupled) and r0 > 0 and rmax > threshold * r0:
+                    if _bound_d(t_rec, tops[chain, f], lo, j + 1, STAGE_END) > threshold:
+                        scal[_STOP] = 1.0
         cuda.syncthreads()
         if scal[_STOP] != 0.0:
             break
@@ -309,9 +309,6 @@ def cells_kernel(theta0, w0, U0, V0, params, carrier_bin, mask_th, mask_U, coupl
         row[OUT_UMAX] = r_Umax
         row[OUT_UQ] = q_U
         row[OUT_STATUS] = status
-        row[OUT_THEXP] = _bound_d(t_rec, tops[chain, 0], 0, taken, STAGE_END)
-        row[OUT_UEXP] = (_bound_d(t_rec, tops[chain, 1], i0_U, taken, STAGE_END)
-                         if coupled and i0_U < taken - 1 else 0.0)
 
 
 def twiddles(N: int) -> tuple[np.ndarray, np.ndarray]:
