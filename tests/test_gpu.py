@@ -43,10 +43,10 @@ print(json.dumps(out))
 """
 
 
-def run_simulated(cells: list) -> dict:
+def run_simulated(cells: list, timeout: float = 600) -> dict:
     env = dict(os.environ, NUMBA_ENABLE_CUDASIM="1")
     res = subprocess.run([sys.executable, "-c", SCRIPT, json.dumps(cells)], env=env,
-                         capture_output=True, text=True, timeout=600)
+                         capture_output=True, text=True, timeout=timeout)
     assert res.returncode == 0, res.stderr[-3000:]
     return json.loads(res.stdout.splitlines()[-1])
 
@@ -84,11 +84,14 @@ def test_gpu_cells_equal_cpu_cells_under_the_simulator():
 
 @pytest.mark.slow
 def test_gpu_srkn11b_cells_stable_and_mi_both_cases_under_the_simulator():
-    """srkn11b at the map's kind of step; an MI cell stops early on both devices (~10 min)."""
+    """srkn11b at the map's kind of step; an MI cell stops early on both devices (7.6 min measured:
+    since issue 96 the rotation cell at a 0.2, k 2 pi 2/16 runs all of T, its 33x being
+    3.5x exponentially, where it stopped at t 69 on 20x: 11% more simulated time, and a
+    timeout of 20 min, not 10, for a loaded machine)."""
     cells = [{"point": "blue", "case": case, "ks": [2 * np.pi * 2 / N, 2 * np.pi * 4 / N],
               "N": N, "t_end": 100.0, "amplitude": amp, "seeds": 1, "method": "srkn11b",
               "dt": 0.25} for case in ("rotation", "coupled") for amp in (0.02, 0.2)]
-    out = run_simulated(cells)
+    out = run_simulated(cells, timeout=1200)
     assert any(r["stopped_early"] for r in out["runs"])
     compare(cells, out["runs"])
 
