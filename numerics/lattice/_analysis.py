@@ -9,6 +9,8 @@ import math
 
 import numpy as np
 
+from ._bound import bound_of_records  # the GPU kernel compiles the same function
+
 #: A run is "unstable" when the largest non-carrier component of the theta spectrum,
 #: relative to the carrier, grows by more than this factor over the run. Measured at the
 #: paper's four points (N = 500, T = 5000): stable runs grow by 5-7x (bounded four-wave
@@ -128,19 +130,11 @@ def exponential_bound(t: np.ndarray, top: np.ndarray) -> float:
     delta = 0 of the paper chain (alpha 2.2, K_s 0.02, delta -1e-5, k = 2 pi 41/256,
     rotation) the exact lattice is stable and a run of T = 40000 grew 35x, nearly
     linearly in t (a near-degenerate pair's secular exchange, probe 95); this reads 1.7x.
-    The model runs' rule (``numerics.models._growth``), for the paper chain."""
+    The model runs' rule (``numerics.models._growth``), for the paper chain; a point's run,
+    a map cell's on the CPU and on the GPU (``_bound.bound_of_records``, one source)."""
     t = np.asarray(t, float)
     top = np.asarray(top, float)
-    if t.size < 2 or not np.all(np.isfinite(top)) or not np.all(top > 0):
-        return math.inf  # nothing to bound with: the factor as read
-    over = np.flatnonzero(top > STAGE_END)
-    end = max(int(over[0]) if over.size else t.size - 1, 1)
-    length = float(t[end] - t[0])
-    half = t[:end + 1] >= t[0] + length / 2
-    if half.sum() < 3:  # too few records to fit a slope: the factor as read
-        return math.inf
-    slope = float(np.polyfit(t[:end + 1][half], np.log(top[:end + 1][half]), 1)[0])
-    return float(math.exp(min(max(slope, 0.0) * length, 700.0)))
+    return float(bound_of_records(t, top, 0, t.size, STAGE_END))
 
 
 def spectrum_growth(t, ratios: dict, bins: dict, N: int, t_end: float | None = None,
@@ -162,9 +156,9 @@ def spectrum_growth(t, ratios: dict, bins: dict, N: int, t_end: float | None = N
     exponential : bool
         Count exponential growth only: each field's factor is at most
         :func:`exponential_bound` of its records (algebraic growth, a secular exchange of
-        a stable wave's near-degenerate modes, does not pass the threshold; a point's run
-        verdict). False (default; a map cell's, on CPU and GPU alike): the factor as read,
-        max over records.
+        a stable wave's near-degenerate modes, does not pass the threshold: a point's and a
+        map cell's run verdict, probe 96). False (default): the factor as read, max over
+        records (the stored ``growth``).
 
     Returns
     -------

@@ -4,8 +4,11 @@ Each block advances one chain (one cell and seed) of eq. `norm` with a symplecti
 (BAB, the coefficients of ``_integrators``: srkn11b at the map's step, as on the CPU) and
 reduces its records on the chip to what a map cell keeps (``numerics.maps._cells``): the
 largest non-carrier component of the theta (and U) spectrum over the carrier at each of the
-RECORDS records, its running maximum, where it sits, and the early stop once the growth
-passed the threshold. Nothing per step leaves the GPU; one small row per chain comes back.
+RECORDS records (kept per record in global memory, ``tops``: 2 x 201 numbers a chain, sent
+back with the row for the host's exponential reading), its running maximum, where it sits,
+and the early stop once the factor and the exponential bound of the records so far passed
+the threshold (``_bound.bound_of_records``, the CPU's function compiled for the device,
+probe 96). Nothing per step leaves the GPU; one small row and series per chain come back.
 
 The same site force as the CPU: ``_kernels._acc`` and ``_kernels._sincosvers`` (the
 branch-free polynomial sin, cos and 1 - cos), compiled for the device from the same Python
@@ -37,6 +40,8 @@ import math
 import numpy as np
 from numba import cuda, float64
 
+from ._analysis import STAGE_END
+from ._bound import bound_of_records
 from ._kernels import TRIG_LIMIT, _acc, _sincosvers
 
 #: sites a thread owns at most (its velocities and accelerations live in local arrays)
@@ -66,6 +71,8 @@ _SCALARS = 3
 # the CPU kernels' force, compiled for the device from the same source
 _sincosvers_d = cuda.jit(device=True)(_sincosvers.py_func)
 _acc_d = cuda.jit(device=True)(_acc.py_func)
+# the exponential reading of the records, the host's function (plain Python) for the device
+_bound_d = cuda.jit(device=True)(bound_of_records)
 
 
 def shared_bytes(N: int, threads: int) -> int:
@@ -153,12 +160,14 @@ def _record(th, U, red, sh, cos_t, sin_t, mask_th, mask_U, m, coupled, spectra, 
 @cuda.jit
 def cells_kernel(theta0, w0, U0, V0, params, carrier_bin, mask_th, mask_U, coupled, acoef,
                  bcoef, dt, per_record, records, i0_U, threshold, cos_t, sin_t, out, spectra,
-                 keep):
+                 keep, tops, t_rec):
     """Advance chain ``blockIdx.x`` (theta0[chain], ...) record by record; see the module.
 
     params[chain] = (alpha^2, K_s, K_theta); carrier_bin[chain] = m; mask_*[chain] the
     bins that count (``non_carrier_bins``); i0_U the record of U's reference; ``out`` the
-    rows OUT_*; ``spectra[chain, j]`` the theta spectrum of record j when ``keep``.
+    rows OUT_*; ``spectra[chain, j]`` the theta spectrum of record j when ``keep``;
+    ``tops[chain, f, j]`` field f's (theta, U) largest component over the carrier at
+    record j (thread 0's: the exponential bound's series); ``t_rec[j]`` the record times.
     """
     chain = cuda.blockIdx.x
     t = cuda.threadIdx.x
@@ -259,6 +268,8 @@ def cells_kernel(theta0, w0, U0, V0, params, carrier_bin, mask_th, mask_U, coupl
             carrier = scal[_CARRIER]
             top_th = red[0] / carrier
             top_U = red[2 * bs] / carrier
+            tops[chain, 0, j] = top_th
+            tops[chain, 1, j] = top_U
             if j == 0:
                 r_th0 = top_th
                 r_thmax = top_th
@@ -274,10 +285,16 @@ def cells_kernel(theta0, w0, U0, V0, params, carrier_bin, mask_th, mask_U, coupl
                 elif top_U > r_Umax:
                     r_Umax = top_U
                     q_U = red[3 * bs]
-            # the early stop of cell_records: the verdict "MI" is certain
-            if j > 0 and (top_th > threshold * r_th0
-                          or (coupled and j >= i0_U and top_U > threshold * r_U0)):
-                scal[_STOP] = 1.0
+            # the early stop of cell_records: the factor so far and its exponential bound
+            # (the bound only where the factor passed: the records so far, O(j) once)
+            # (one call site: each inlined copy of the bound costs registers)
+            for f in range(2):
+                lo = 0 if f == 0 else i0_U
+                r0 = r_th0 if f == 0 else r_U0
+                rmax = r_thmax if f == 0 else r_Umax
+                if j > lo and (f == 0 or coupled) and r0 > 0 and rmax > threshold * r0:
+                    if _bound_d(t_rec, tops[chain, f], lo, j + 1, STAGE_END) > threshold:
+                        scal[_STOP] = 1.0
         cuda.syncthreads()
         if scal[_STOP] != 0.0:
             break

@@ -47,16 +47,21 @@ def keep_freed_memory() -> bool:
 
 def simulated_row(runs: list, pred) -> dict:
     """A cell's simulated columns from its seeds' runs (``simulate_cell``'s answers, on the
-    CPU or the GPU): the seed-majority verdict (as measure_point decides), the median
-    growth, field and q of the seed that grew most, the longest time simulated, the median
-    measured peak gain, and log10(predicted / measured growth) over the first seed's span
-    (a run stops early once its verdict is certain)."""
+    CPU or the GPU): the seed-majority verdict of the exponential readings (as
+    measure_point decides: algebraic growth is no MI), the median growth and median
+    exponential reading, field and q of the seed that grew most, the longest time
+    simulated, the median measured peak gain, and log10(predicted / measured growth) over
+    the first seed's span (a run stops early once its verdict is certain)."""
     from ._cells import seed_majority
 
     growths = [r["growth"] for r in runs]
+    # a run dict without the exponential reading (one a caller assembled, as before issue
+    # 96) is read by its factor
+    expo = [r.get("growth_exponential", r["growth"]) for r in runs]
     top = runs[int(np.argmax(growths))]
     row = {
-        "verdict_simulated": bool(seed_majority(growths)), "growth": float(np.median(growths)),
+        "verdict_simulated": bool(seed_majority(expo)), "growth": float(np.median(growths)),
+        "growth_exponential": float(np.median(expo)),
         "growth_field": FIELD_CODES[top["growth_field"]],
         "growth_q": float(top["growth_q"]),
         "t_simulated": float(max(r["t_simulated"] for r in runs)),

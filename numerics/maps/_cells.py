@@ -13,10 +13,20 @@ constants (GROWTH_ERROR_CONSTANTS, measured by ``bench/calibrate_growth.py``) fo
 relative growth error GROWTH_TOL (1%); a map takes one step for all its cells
 (:func:`map_step`, at its fastest carrier) and records it in the store's attrs.
 
-Early stop (the rule): the spectrum is recorded RECORDS times over the run; as soon as the
-growth factor exceeds the threshold the verdict "MI" is certain (the factor is a running
-maximum and can only grow), so the run stops there. A stable verdict needs the whole run.
-The run is one stepper advanced record by record (no re-built state between checks).
+Verdict (probe 96): MI when the growth factor that exponential growth accounts for,
+``growth_exponential`` (the factor, at most ``numerics.lattice.exponential_bound`` of the
+records: exp(s L), s the log-slope over the linear stage's second half), exceeds the
+threshold: a point's run verdict, on the same records. Algebraic (secular) growth, a
+stable wave's near-degenerate pair exchanging amplitude near delta = 0, does not count:
+before, a cell of such a run that grew past 20x read MI where ``flexmm point`` said "no
+growth within T".
+
+Early stop (the rule): the spectrum is recorded RECORDS times over the run; the run stops
+at the first record where the factor so far exceeds the threshold and so does the
+exponential bound of the records so far (the bound alone can fall later where growth
+decelerates, but an exponential growth keeps its rate to the linear stage's end, after
+which the bound is fixed). A verdict other than MI needs the whole run. The run is one
+stepper advanced record by record (no re-built state between checks).
 """
 
 from __future__ import annotations
@@ -35,6 +45,7 @@ from ..lattice import (
     blowup_message,
     choose_step,
     dominant_frequency,
+    exponential_bound,
     get_method,
     growth_rates,
     initial_condition,
@@ -129,15 +140,16 @@ def simulate_cell(material: Material, case: str, k: float, N: int, t_end: float,
     ``method`` and ``dt`` default to :func:`cell_step`'s choice for ``growth_tol``; the
     step used is t_end / (RECORDS n) for a whole n, so that records fall on steps.
 
-    Returns the verdict (True = MI), the largest growth factor and the field ("theta" or
-    "U") and wavenumber carrying it, the time simulated, whether it stopped early, and
-    the method and step used.
+    Returns the verdict (True = MI: ``growth_exponential`` above the threshold), the
+    largest growth factor, its exponential reading and the field ("theta" or "U") and
+    wavenumber carrying it, the time simulated, whether it stopped early, and the method
+    and step used.
     """
     rec = cell_records(material, case, k, N, t_end, amplitude, noise, seed, start, dt,
                        method, early_stop, growth_tol)
     t, th_hat, U_hat, m = rec["t"], rec["theta_hat"], rec["U_hat"], rec["m"]
     g = growth_of(t, th_hat, U_hat, m, N, t_end)
-    mi = bool(g["growth"] > GROWTH_THRESHOLD)
+    mi = bool(g["growth_exponential"] > GROWTH_THRESHOLD)  # a point's run verdict
     t_sim = float(t[-1])
     return {"verdict_simulated": mi, **g, "growth_q": float(g["growth_q"]),
             "peak_gain": measured_peak_gain(t, th_hat, m, N) if mi else float("nan"),
@@ -179,9 +191,19 @@ def cell_records(material: Material, case: str, k: float, N: int, t_end: float,
         if coupled:
             U_hat[j] = spectrum(st.U)
 
+    # the largest non-carrier component over the carrier per record (growth_of's top), and
+    # its running maximum: the early stop's reading
+    top_th = np.zeros(RECORDS + 1)
+    top_U = np.zeros(RECORDS + 1)
+    peak = [0.0, 0.0]  # theta's from record 0, U's from i0_U
+
+    def passed(top, f, i0, j):
+        """growth_of's exponential reading of records i0 .. j above the threshold (the
+        bound, O(j), only once the factor has passed)."""
+        return (top[i0] > 0 and peak[f] > GROWTH_THRESHOLD * top[i0]
+                and exponential_bound(t[i0:j + 1], top[i0:j + 1]) > GROWTH_THRESHOLD)
+
     take(0)
-    top_th0 = th_hat[0, mask].max() / th_hat[0, m]
-    top_U0 = None
     last = RECORDS if stop_at is None else min(stop_at, RECORDS)
     j = 0
     while j < last:
@@ -194,16 +216,17 @@ def cell_records(material: Material, case: str, k: float, N: int, t_end: float,
         take(j)
         if not early_stop:
             continue
-        # the growth factor so far (growth_of's, from its running parts): MI is certain
-        # as soon as it exceeds the threshold
-        carrier = th_hat[j, m]
-        if th_hat[j, mask].max() / carrier > GROWTH_THRESHOLD * top_th0:
+        # the exponential reading so far (growth_of's, on the records so far): MI as soon
+        # as it exceeds the threshold (the module's rule)
+        for i in (0, j) if j == 1 else (j,):
+            top_th[i] = th_hat[i, mask].max() / th_hat[i, m]
+            peak[0] = max(peak[0], top_th[i])
+            if coupled:
+                top_U[i] = U_hat[i, mask_U].max() / th_hat[i, m]
+                if i >= i0_U:
+                    peak[1] = max(peak[1], top_U[i])
+        if passed(top_th, 0, 0, j) or coupled and j > i0_U and passed(top_U, 1, i0_U, j):
             break
-        if coupled and j >= i0_U:
-            if top_U0 is None:
-                top_U0 = U_hat[i0_U, mask_U].max() / th_hat[i0_U, m]
-            if U_hat[j, mask_U].max() / carrier > GROWTH_THRESHOLD * top_U0:
-                break
     n = j + 1
     return {"t": t[:n], "theta_hat": th_hat[:n], "U_hat": U_hat[:n] if coupled else None,
             "m": m, "k": ks, "method": meth.name, "dt": dt_eff}

@@ -25,11 +25,17 @@ VERDICT_ATTRS = {"flag_values": [UNDETERMINED, STABLE, MI],
 #: the variables a simulated block writes (with ``done`` and the checksum); every other
 #: data variable is written once, when the store is made (the theories)
 SIMULATED = ("verdict_simulated", "growth", "growth_field", "growth_q", "t_simulated",
-             "peak_gain", "growth_log_ratio")
+             "peak_gain", "growth_log_ratio", "growth_exponential")
 #: the variables every block writes (with ``done_predicted``), theory-only maps included
 PREDICTED = ("growth_predicted", "verdict_predicted", "rate_predicted", "predicted_status")
-#: version of the store's layout (tri-state verdicts, checksums), in its attributes
-STORE_FORMAT = 2
+#: version of the store's layout (tri-state verdicts, checksums), in its attributes; 3: a
+#: simulated verdict reads ``growth_exponential`` (probe 96; a store of format 2 counted
+#: algebraic growth past 20x as MI, and holds no ``growth_exponential``: it is named as of
+#: an older format, never resumed)
+STORE_FORMAT = 3
+#: a model map's store: its verdicts read the exponential reading since probe 95 (the
+#: runs' ``measure_growth``), so its layout is unchanged
+MODEL_STORE_FORMAT = 2
 
 
 def _simulated_columns(shape) -> dict:
@@ -37,10 +43,16 @@ def _simulated_columns(shape) -> dict:
     fl = lambda: np.full(shape, np.nan)
     return {
         "verdict_simulated": (np.full(shape, UNDETERMINED, np.int8),
-                              {"long_name": f"simulation: grows more than {GROWTH_THRESHOLD:g}x "
-                                            "within t_end", **VERDICT_ATTRS,
+                              {"long_name": f"simulation: grows exponentially more than "
+                                            f"{GROWTH_THRESHOLD:g}x within t_end (most "
+                                            "seeds' growth_exponential)", **VERDICT_ATTRS,
                                "undetermined": "not simulated yet (done = False)"}),
         "growth": (fl(), {"long_name": "largest growth factor over the run", "units": "1"}),
+        "growth_exponential": (fl(), {
+            "long_name": "the growth factor exponential growth accounts for (at most "
+                         "exp(s L), s the log-slope over the linear stage's second half: "
+                         "numerics.lattice.exponential_bound; median over the seeds): the "
+                         "verdict's reading", "units": "1"}),
         "growth_field": (np.full(shape, -1, np.int8),
                          {"flag_values": [-1, 0, 1], "flag_meanings": "none theta U"}),
         "growth_q": (fl(), {"long_name": "wavenumber of the largest growth",
@@ -176,4 +188,5 @@ def theory_columns(params: MapParameters) -> dict:
 
 
 __all__ = ["MI", "STABLE", "UNDETERMINED", "SIMULATED", "PREDICTED", "STORE_FORMAT",
+           "MODEL_STORE_FORMAT",
            "EXACT_OFFSETS", "UNDETERMINED_REASONS", "THEORY_NAMES", "tri_state", "theory_columns"]

@@ -27,6 +27,7 @@ from ..lattice import (
     Material,
     check_case,
     cuda_kernels,
+    exponential_bound,
     get_method,
     initial_condition,
     non_carrier_bins,
@@ -124,25 +125,31 @@ def _chains(materials, case, ks, N, amplitude, noise, seeds, start):
     return cells, arrays
 
 
-def _row_to_cell(row, N, t_end, i0_U, coupled):
-    """simulate_cell's growth fields from a chain's output row (growth_of's rules)."""
+def _row_to_cell(row, tops, N, t_end, i0_U, coupled):
+    """simulate_cell's growth fields from a chain's output row and its per-record top
+    ratios ``tops`` (2, RECORDS + 1: theta, U) (growth_of's rules)."""
     K = cuda_kernels()
 
     n = int(row[K.OUT_RECORDS])
-    growth, field, q = 0.0, "theta", float("nan")
+    t = np.arange(RECORDS + 1) * (t_end / RECORDS)
+    growth, field, q, expo = 0.0, "theta", float("nan"), 0.0
     r0 = row[K.OUT_TH0]
     g = row[K.OUT_THMAX] / r0 if r0 > 0 else 0.0
     if g > growth:
         growth, q = g, 2 * np.pi * row[K.OUT_THQ] / N
+    # the exponential reading: each field's factor at most its bound (the CPU's
+    # exponential_bound of the series the chip kept), the larger field's
+    expo = max(expo, min(g, exponential_bound(t[:n], tops[0, :n])))
     # U's reference: the record at U_REFERENCE t_end, when the run got past it
     if coupled and min(i0_U, n) < n - 1:
         r0 = row[K.OUT_U0]
         g = row[K.OUT_UMAX] / r0 if r0 > 0 else 0.0
         if g > growth:
             growth, field, q = g, "U", 2 * np.pi * row[K.OUT_UQ] / N
-    t = np.arange(RECORDS + 1) * (t_end / RECORDS)
+        expo = max(expo, min(g, exponential_bound(t[i0_U:n], tops[1, i0_U:n])))
     t_sim = float(t[n - 1])
-    return {"verdict_simulated": bool(growth > GROWTH_THRESHOLD), "growth": float(growth),
+    return {"verdict_simulated": bool(expo > GROWTH_THRESHOLD), "growth": float(growth),
+            "growth_exponential": float(expo),
             "growth_field": field, "growth_q": float(q), "t_simulated": t_sim,
             "stopped_early": bool(t_sim < t_end * (1 - 1e-9))}, t[:n]
 
@@ -180,7 +187,8 @@ def simulate_cells_gpu(materials, case: str, ks, N: int, t_end: float,
     Returns
     -------
     list of dict, one per (cell, seed), cell-major (cell 0 seed 0, cell 0 seed 1, ...):
-    ``simulate_cell``'s fields (verdict_simulated, growth, growth_field, growth_q,
+    ``simulate_cell``'s fields (verdict_simulated, growth, growth_exponential,
+    growth_field, growth_q,
     peak_gain, t_simulated, stopped_early, k, method, dt) and ``seed`` and ``device``
     ("gpu", or "cpu" for a chain whose theta left the polynomial's range, run again by
     ``simulate_cell``: the libm loops continue it there, or it reports the blow-up).
@@ -210,23 +218,27 @@ def simulate_cells_gpu(materials, case: str, ks, N: int, t_end: float,
     per_chain = (RECORDS + 1) * nq * 8
     batch = max(1, max_spectra_bytes // per_chain) if peak_gain else len(cells)
     cos_t, sin_t = (cuda.to_device(a) for a in K.twiddles(N))
+    t_rec = cuda.to_device(t_grid)
     acoef, bcoef = cuda.to_device(np.array(meth.a)), cuda.to_device(np.array(meth.b))
-    rows, spectra = [], []
+    rows, spectra, series = [], [], []
     for b0 in range(0, len(cells), batch):
         part = {name: cuda.to_device(np.ascontiguousarray(a[b0:b0 + batch]))
                 for name, a in host.items()}
         nb = part["theta0"].shape[0]
         out = cuda.device_array((nb, K.OUT_WIDTH))
         spec = cuda.device_array((nb, RECORDS + 1, nq) if peak_gain else (1, 1, 1))
+        tops = cuda.device_array((nb, 2, RECORDS + 1))  # 3.2 kB a chain
         K.cells_kernel[nb, bs, 0, K.shared_bytes(N, bs)](
             part["theta0"], part["w0"], part["U0"], part["V0"], part["params"],
             part["carrier_bin"], part["mask_th"], part["mask_U"], coupled, acoef, bcoef,
             dt_eff, per_record, RECORDS, i0_U, GROWTH_THRESHOLD, cos_t, sin_t, out, spec,
-            peak_gain)
+            peak_gain, tops, t_rec)
         rows.append(out.copy_to_host())
+        series.append(tops.copy_to_host())
         if peak_gain:
             spectra.append(spec.copy_to_host())
     rows = np.concatenate(rows)
+    series = np.concatenate(series)
     spectra = np.concatenate(spectra) if peak_gain else None
     results = []
     for c, ((mat, k, k_s, m, seed), row) in enumerate(zip(cells, rows)):
@@ -235,7 +247,7 @@ def simulate_cells_gpu(materials, case: str, ks, N: int, t_end: float,
                                 dt, method)
             results.append({**res, "seed": seed, "device": "cpu"})
             continue
-        res, t = _row_to_cell(row, N, t_end, i0_U, coupled)
+        res, t = _row_to_cell(row, series[c], N, t_end, i0_U, coupled)
         res["peak_gain"] = (measured_peak_gain(t, spectra[c, :len(t)], m, N)
                             if peak_gain and res["verdict_simulated"] else float("nan"))
         results.append({**res, "k": k_s, "method": meth.name, "dt": dt_eff, "seed": seed,

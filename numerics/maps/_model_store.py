@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._columns import STORE_FORMAT, UNDETERMINED
+from ._columns import MODEL_STORE_FORMAT, UNDETERMINED
 from ._model_columns import (
     MODE_KIND_ATTRS,
     MODE_KIND_CODES,
@@ -110,4 +110,4 @@ def new_dataset(params):
 
     coords = {n: (n, np.asarray(v), axis_attrs(n)) for n, v in params.store_coords().items()}
     return xr.Dataset(data, coords=coords, attrs={**params.attrs(),
-                                                   "store_format": STORE_FORMAT})
+                                                   "store_format": MODEL_STORE_FORMAT})

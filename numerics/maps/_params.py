@@ -40,8 +40,10 @@ PREDICT_SECONDS = {"travelling": 0.15, "paper": 0.35}
 CRITERION = (f"MI when the largest non-carrier, non-harmonic component (theta; U: its "
              f"non-forced components, from its level at 5% of the run) grows more than "
              f"{GROWTH_THRESHOLD:g}x over the run, relative to the carrier (the scenes' "
-             "criterion); a run stops as soon as that happens (the verdict is then certain)."
-             " With several seeds: the verdict of the majority, the median growth.")
+             "criterion), exponentially: the factor at most exp(s L), s the log-slope over "
+             "the linear stage's second half (growth_exponential; algebraic growth is no MI)"
+             "; a run stops as soon as that happens (the verdict is then certain). With "
+             "several seeds: the verdict of the majority, the median growth.")
 
 
 #: values per map axis at most (a SPEC's num)
@@ -348,6 +350,13 @@ class MapParameters:
         """What a store of another map holds, in words (its attributes ``attrs``)."""
         if attrs.get("map_of") == "model":  # `map --model`'s store, not this chain's flags
             return f"a map of model {attrs.get('model')!r} (flexmm map --model)"
+        from ._columns import STORE_FORMAT
+
+        fmt = attrs.get("store_format")
+        if isinstance(fmt, int) and fmt < STORE_FORMAT:
+            return (f"a map of an older format (store_format {fmt}, this version writes "
+                    f"{STORE_FORMAT}: its simulated verdicts read the raw growth factor, "
+                    "algebraic growth past 20x as MI, and it holds no growth_exponential)")
         return "a map with other parameters (or of an older format)"
 
     def new_dataset(self):

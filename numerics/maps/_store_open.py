@@ -8,7 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ._columns import STORE_FORMAT
+from ._columns import MODEL_STORE_FORMAT, STORE_FORMAT
 from ._integrity import CHECKSUM, unsound_chunks
 from ._params import MapParameters
 
@@ -80,8 +80,14 @@ def not_a_map_store(path: Path) -> str | None:
 
 
 
+def store_format_of(params) -> int:
+    """The layout version a store of ``params`` is written in (a model map's, the paper
+    chain's)."""
+    return MODEL_STORE_FORMAT if hasattr(params, "lattice_model") else STORE_FORMAT
+
+
 def _attrs_hold(attrs: dict, params: MapParameters) -> bool:
-    return (attrs.get("store_format") == STORE_FORMAT
+    return (attrs.get("store_format") == store_format_of(params)
             and all(attrs.get(n) == v for n, v in params.identity().items()))
 
 
