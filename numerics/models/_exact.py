@@ -45,7 +45,9 @@ whole spectrum is the dense one at H + 4. tests/test_exact_gain_anchors.py holds
 implementation before this one (dense ``eig`` at H + 4 per offset) to 1e-6 relative.
 Where the wave's second harmonic is large (``HARMONIC_CHECK``: every flexmm carrier) the
 continuation from small amplitude (``_connected``) gives the wave, the harmonic balance
-from the linear wave solved only where the continuation loses the branch.
+from the linear wave solved only where the continuation loses the branch. On the infinite
+chain a band narrower than a sample step is found where two roots of opposite Krein signs
+cross between quiet samples (``_crossings``).
 """
 
 from __future__ import annotations
@@ -463,15 +465,23 @@ def exact_gain(model: Model, k: float, amplitude: float, branch=None, *, N: int 
     q = np.concatenate([np.geomspace(1e-5, np.pi / samples, 40, endpoint=False),
                         np.linspace(np.pi / samples, np.pi, samples)])
     spec = engine.spectrum(q)
+    # a band narrower than a step between two samples that hold no growing mode: at the
+    # crossings of opposite-sign roots there (``_crossings``), kept where they grow
+    from ._crossings import merged, with_crossings
+
+    spec = with_crossings(engine, spec)
+    q = spec.offsets
     if spec.peak_gain <= 0:
         return spec
     # the infinite chain's peak between the samples (bounded scalar search of the rate)
     from scipy.optimize import minimize_scalar
 
+    from ._crossings import band_bracket
+
     i = int(np.argmax(spec.gain))
-    lo, hi = q[max(i - 1, 0)], q[min(i + 1, q.size - 1)]
-    best = minimize_scalar(lambda x: -engine.spectrum([x], gains_only=True).gain[0],
-                           bounds=(lo, hi),
+    rate = lambda x: engine.spectrum([x], gains_only=True).gain[0]  # noqa: E731
+    lo, hi = band_bracket(rate, q, spec.gain, i)
+    best = minimize_scalar(lambda x: -rate(x), bounds=(lo, hi),
                            method="bounded", options={"xatol": 1e-6 * (hi - lo)})
     extra = engine.checked(np.array([best.x]))
     if len(extra.truncations) != 2:  # the peak did not persist: the old dense way
@@ -479,10 +489,4 @@ def exact_gain(model: Model, k: float, amplitude: float, branch=None, *, N: int 
 
         spec = _dense_spectrum(wave, q, wave.harmonics + 4, False)
         extra = _dense_spectrum(wave, extra.offsets, wave.harmonics + 4, False)
-    order = np.argsort(np.concatenate([q, extra.offsets]))
-    return HillSpectrum(
-        wave=wave, offsets=np.concatenate([q, extra.offsets])[order],
-        gain=np.concatenate([spec.gain, extra.gain])[order],
-        harmonic=np.concatenate([spec.harmonic, extra.harmonic])[order],
-        sideband_offset=np.concatenate([spec.sideband_offset, extra.sideband_offset])[order],
-        truncations=extra.truncations)
+    return dataclasses.replace(merged(spec, extra), truncations=extra.truncations)
