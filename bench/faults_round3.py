@@ -229,8 +229,9 @@ ROUND3 += [
                   "--case", "coupled", "--k", "1.1"),
      (C, 2, r"not a positive float64 number .* not a resonance")),
     # class 5: advice names a real option of the command that gave it
-    ("soliton: --amplitude 3e-9 --simulate: advice names --travel and --amplitude",
-     lambda: _cli(*SOLITON, "--amplitude", "3e-9", "--simulate"),
+    # 1e-8: above the smallest amplitude float64 resolves there (6.93e-9, probe 96)
+    ("soliton: --amplitude 1e-8 --simulate: advice names --travel and --amplitude",
+     lambda: _cli(*SOLITON, "--amplitude", "1e-8", "--simulate"),
      (C, 2, r"^(?!.*t_end).*take T = .*give --travel <= \S+, or --amplitude >= \S+")),
     # class 5: a --scheduler that no client here can use is one line naming it and the remedy
     ("map: --scheduler inproc://", lambda: _cli(*MAP, "--delta", "0.0035", "--k", "1.1",
