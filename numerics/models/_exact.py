@@ -467,7 +467,7 @@ def exact_gain(model: Model, k: float, amplitude: float, branch=None, *, N: int 
     spec = engine.spectrum(q)
     # a band narrower than a step between two samples that hold no growing mode: at the
     # crossings of opposite-sign roots there (``_crossings``), kept where they grow
-    from ._crossings import merged, with_crossings
+    from ._crossings import band_bracket, merged, with_crossings
 
     spec = with_crossings(engine, spec)
     q = spec.offsets
@@ -475,8 +475,6 @@ def exact_gain(model: Model, k: float, amplitude: float, branch=None, *, N: int 
         return spec
     # the infinite chain's peak between the samples (bounded scalar search of the rate)
     from scipy.optimize import minimize_scalar
-
-    from ._crossings import band_bracket
 
     i = int(np.argmax(spec.gain))
     rate = lambda x: engine.spectrum([x], gains_only=True).gain[0]  # noqa: E731
