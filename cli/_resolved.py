@@ -1,10 +1,12 @@
-"""The paper chain's smallest amplitude float64 resolves: the rule a model's commands
-apply (``numerics.models.ModelNLS.smallest_amplitude``), for the paper flags' point,
-soliton and coefficients."""
+"""The paper chain's smallest amplitude float64 resolves, for the paper flags' point,
+soliton and coefficients: the rule of ``common.resolution``, which a model's commands apply
+too (``numerics.models.ModelNLS.smallest_amplitude``)."""
 
 from __future__ import annotations
 
 import math
+
+from common.resolution import EPS, smallest_resolved_amplitude
 
 
 def check_paper_amplitude(mat, k: float, amplitude: float) -> float:
@@ -21,15 +23,12 @@ def check_paper_amplitude(mat, k: float, amplitude: float) -> float:
         omega = float(lc.omega(*at))
         g2 = [abs(float(f(*at))) for f in (lc.g2_rotation, lc.g2_coupled)]
     g2 = max((g for g in g2 if math.isfinite(g)), default=0.0)
-    if not (math.isfinite(omega) and omega > 0 and g2 > 0):
-        return amplitude  # no NLS here: the theories say why
-    eps = float(np.finfo(float).eps)
-    least = 2 * math.sqrt(eps * omega / g2)  # eps omega / g2 first: a^2 may underflow
+    least = smallest_resolved_amplitude(omega, g2)  # 0: no NLS here, the theories say why
     if amplitude < least:
         raise ValueError(
             f"--amplitude {amplitude:.3g} is below what float64 resolves at k = {k:.6g}: "
             f"the NLS's frequency shift |g2| a^2 / 4 = {g2 / 4 * amplitude * amplitude:.3g} "
-            f"is under omega's rounding error eps omega = {eps * omega:.3g}, so every "
+            f"is under omega's rounding error eps omega = {EPS * omega:.3g}, so every "
             f"theory's growth rate there is rounding, not a verdict; give --amplitude >= "
             f"{least:.3g}")
     return amplitude

@@ -297,8 +297,9 @@ def run_map(args) -> int:
               + (f"{share:.0%}" if math.isfinite(share) else "no cell decided")
               + (f" ({n} of {ds[v].size} cells undetermined, left out)" if n else ""))
     ag = summary.get("agreement_with_simulation_percent") or {}
+    # each theory's row (the runs' own undetermined cells are said with the MI shares)
     told = [n.removesuffix("_undetermined_cells") for n in ag
-            if n.endswith("_undetermined_cells")]
+            if n.endswith("_undetermined_cells") and n != "simulated_undetermined_cells"]
     if told:  # the runs' verdict against each theory's (summary.json's numbers)
         print("agreement with the runs (cells the theory decides): " + ", ".join(
             (f"{n}: no cell it could evaluate" if not math.isfinite(ag[n]) else  # not nan%

@@ -194,7 +194,8 @@ def map_figure(ds, ax=None):
         shown, what = "verdict_predicted", "predicted"
         mi, stable = f" (grows > {threshold:g}x)", f" (grows <= {threshold:g}x)"
         done = ds["done_predicted"].values & (ds["verdict_predicted"].values >= 0)
-    background = np.where(done, np.where(ds[shown].values == 1, 1.0, -1.0), np.nan)
+    v = ds[shown].values  # tri-state: a done cell the runs cannot decide (-1) stays grey
+    background = np.where(done & (v >= 0), np.where(v == 1, 1.0, -1.0), np.nan)
     verdict_image(ax, k, d, background)
     handles = [Patch(facecolor=c, edgecolor="k", label=lab)
                for c, lab, present in (("white", f"{what}: MI{mi}", background > 0),

@@ -270,7 +270,7 @@ def test_map_figure_centres_every_cell_on_its_value(shape):
     # the colour of each cell: white MI, black stable, grey not done or undetermined
     rgba = mesh[0].to_rgba(mesh[0].get_array()).reshape(*shape, 4)
     sim = ds["verdict_simulated"].values
-    want = np.where(ds["done"].values, np.where(sim == 1, 1.0, 0.0), 0.6)
+    want = np.where(ds["done"].values & (sim >= 0), np.where(sim == 1, 1.0, 0.0), 0.6)
     np.testing.assert_allclose(rgba[..., 0], want, atol=0.01)
     # boundaries: every segment on a cell edge, between two cells of different verdicts
     xe, ye = cell_edges(ds["k"].values), cell_edges(ds["delta"].values)

@@ -143,11 +143,15 @@ def test_aggregate_seeds_is_simulate_blocks_rule():
                    "growth_field": 1, "growth_q": 0.5, "t_simulated": 100.0,
                    "peak_gain": 0.015}
     # the verdict reads the exponential readings (probe 96): two of three seeds grew past
-    # 20x, but one of them algebraically (its bound 3x): no majority, no MI
+    # 20x, but one of them algebraically (its bound 3x): no majority, no MI; the median
+    # reading 5x lies above sqrt(20) = 4.5: undetermined (-1), as the point says (probe 97)
     expo = [{**r, "growth_exponential": e} for r, e in zip(runs, (30.0, 5.0, 3.0))]
     row = aggregate_seeds(expo)
-    assert row["verdict_simulated"] is False and row["growth"] == 25.0
+    assert row["verdict_simulated"] == -1 and row["growth"] == 25.0
     assert row["growth_exponential"] == 5.0
+    row = aggregate_seeds([{**r, "growth_exponential": e}
+                           for r, e in zip(runs, (30.0, 4.0, 3.0))])
+    assert row["verdict_simulated"] == 0  # the median 4x: no growth within T
 
 
 PTX_SCRIPT = """

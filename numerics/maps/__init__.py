@@ -5,6 +5,7 @@ Imports ``numerics.lattice`` and ``numerics.theory``; nothing below imports it.
 Exact maps       resonance_map (re-exported from numerics.theory, where the engine lives)
 One cell         simulate_cell (the simulated verdict, growth factor, early stop),
                  cell_step (its method and step), seed_majority (the seeds' verdict),
+                 cell_verdict (a cell's stored verdict code: the point's three words),
                  growth_of, measured_peak_gain
 One point        measure_point -> PointResult (`flexmm point`: the theories over the
                  sideband offsets, the predicted growth, a simulation with a cell's step
@@ -43,6 +44,7 @@ from ._cells import (
                      GROWTH_TOL,
                      cell_records,
                      cell_step,
+                     cell_verdict,
                      growth_of,
                      measured_peak_gain,
                      predict_cell,
@@ -92,7 +94,7 @@ __all__ = [
     "parse_spec", "run_map", "DEVICES", "resolve_device", "theory_columns", "agreement", "AGREEMENT_MARGIN",
     "open_or_create", "check_store",
     "simulate_block", "CRITERION", "MapCellError", "local_cores",
-    "seed_majority", "PointResult", "measure_point", "point_step", "theory_curves",
+    "seed_majority", "cell_verdict", "PointResult", "measure_point", "point_step", "theory_curves",
     "ModelPointSpec", "ModelPoint", "PointInputError", "waves_in_order", "POINT_KINDS", "register_point_kind",
     "offset_curve", "fold", "snap_carrier", "MAX_SEEDS", "MAX_T_END",
     "cell_records", "predict_cell", "GROWTH_TOL", "GROWTH_ERROR_CONSTANTS", "tri_state",

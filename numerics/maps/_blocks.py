@@ -47,12 +47,13 @@ def keep_freed_memory() -> bool:
 
 def simulated_row(runs: list, pred) -> dict:
     """A cell's simulated columns from its seeds' runs (``simulate_cell``'s answers, on the
-    CPU or the GPU): the seed-majority verdict of the exponential readings (as
-    measure_point decides: algebraic growth is no MI), the median growth and median
+    CPU or the GPU): the verdict of the exponential readings by the point's rule
+    (``cell_verdict``: algebraic growth is no MI; a run that grew, but less than the
+    threshold, is undetermined, never stable), the median growth and median
     exponential reading, field and q of the seed that grew most, the longest time
     simulated, the median measured peak gain, and log10(predicted / measured growth) over
     the first seed's span (a run stops early once its verdict is certain)."""
-    from ._cells import seed_majority
+    from ._cells import cell_verdict
 
     growths = [r["growth"] for r in runs]
     # a run dict without the exponential reading (one a caller assembled, as before issue
@@ -60,7 +61,8 @@ def simulated_row(runs: list, pred) -> dict:
     expo = [r.get("growth_exponential", r["growth"]) for r in runs]
     top = runs[int(np.argmax(growths))]
     row = {
-        "verdict_simulated": bool(seed_majority(expo)), "growth": float(np.median(growths)),
+        "verdict_simulated": cell_verdict(expo, max(r["t_simulated"] for r in runs)),
+        "growth": float(np.median(growths)),
         "growth_exponential": float(np.median(expo)),
         "growth_field": FIELD_CODES[top["growth_field"]],
         "growth_q": float(top["growth_q"]),

@@ -106,6 +106,19 @@ def seed_majority(growths) -> bool:
     return sum(g > GROWTH_THRESHOLD for g in growths) * 2 > len(growths)
 
 
+def cell_verdict(growths, t_end: float) -> int:
+    """A map cell's stored verdict (int8 code) from its seeds' exponential readings: the
+    point's rule (``numerics.lattice.simulated_verdict``, ``measure_point``), so a map and
+    a point never name one run differently. 1: MI (most seeds grew more than
+    GROWTH_THRESHOLD); 0: no growth within T (the median stayed below its square root);
+    -1: undetermined (it grew, less than the threshold: a longer run decides; or no
+    finite growth factor). Before probe 97 the band between was stored 0, "stable"."""
+    from ..lattice import simulated_verdict
+
+    word = simulated_verdict(list(growths), t_end).word
+    return {"MI": 1, "no growth within T": 0}.get(word, -1)
+
+
 def cell_step(state, material: Material, case: str, t_end: float,
               growth_tol: float = GROWTH_TOL, methods=None) -> tuple[str, float]:
     """(method, dt) whose predicted relative error of the growth factor over ``t_end`` is
@@ -282,4 +295,5 @@ def predict_cell(material: Material, case: str, k: float, N: int, t_end: float,
 
 
 __all__ = ["simulate_cell", "cell_records", "cell_step", "map_step", "growth_of", "seed_majority",
+           "cell_verdict",
            "measured_peak_gain", "predict_cell", "PREDICTED_STATUS"]

@@ -31,8 +31,15 @@ PREDICTED = ("growth_predicted", "verdict_predicted", "rate_predicted", "predict
 #: version of the store's layout (tri-state verdicts, checksums), in its attributes; 3: a
 #: simulated verdict reads ``growth_exponential`` (probe 96; a store of format 2 counted
 #: algebraic growth past 20x as MI, and holds no ``growth_exponential``: it is named as of
-#: an older format, never resumed)
-STORE_FORMAT = 3
+#: an older format, never resumed); 4: a cell that grew, but less than the threshold, is
+#: undetermined (-1) as the point says (``_cells.cell_verdict``; format 3 stored it 0)
+STORE_FORMAT = 4
+#: what an older store's simulated verdicts meant (``MapParameters.other_map`` names it)
+OLDER_FORMATS = {
+    2: "its simulated verdicts read the raw growth factor, algebraic growth past 20x as MI, "
+       "and it holds no growth_exponential",
+    3: "its simulated verdicts stored a run that grew, but less than 20x, as stable (0) "
+       "where this version says undetermined (-1)"}
 #: a model map's store: its verdicts read the exponential reading since probe 95 (the
 #: runs' ``measure_growth``), so its layout is unchanged
 MODEL_STORE_FORMAT = 2
@@ -46,7 +53,15 @@ def _simulated_columns(shape) -> dict:
                               {"long_name": f"simulation: grows exponentially more than "
                                             f"{GROWTH_THRESHOLD:g}x within t_end (most "
                                             "seeds' growth_exponential)", **VERDICT_ATTRS,
-                               "undetermined": "not simulated yet (done = False)"}),
+                               "verdict_words": (
+                                   f"MI -> 1 (most seeds grew more than {GROWTH_THRESHOLD:g}x); "
+                                   "'no growth within T' -> 0 (stable within t_end: the median "
+                                   f"stayed below {math.sqrt(GROWTH_THRESHOLD):.3g}x); "
+                                   "undetermined -> -1 (grew between the two: a longer "
+                                   "t_end decides; or no finite growth factor)"),
+                               "undetermined": "not simulated yet (done = False), or "
+                                               "undetermined (done = True: grew, less than "
+                                               "the threshold)"}),
         "growth": (fl(), {"long_name": "largest growth factor over the run", "units": "1"}),
         "growth_exponential": (fl(), {
             "long_name": "the growth factor exponential growth accounts for (at most "
@@ -188,5 +203,6 @@ def theory_columns(params: MapParameters) -> dict:
 
 
 __all__ = ["MI", "STABLE", "UNDETERMINED", "SIMULATED", "PREDICTED", "STORE_FORMAT",
+           "OLDER_FORMATS",
            "MODEL_STORE_FORMAT",
            "EXACT_OFFSETS", "UNDETERMINED_REASONS", "THEORY_NAMES", "tri_state", "theory_columns"]

@@ -350,13 +350,12 @@ class MapParameters:
         """What a store of another map holds, in words (its attributes ``attrs``)."""
         if attrs.get("map_of") == "model":  # `map --model`'s store, not this chain's flags
             return f"a map of model {attrs.get('model')!r} (flexmm map --model)"
-        from ._columns import STORE_FORMAT
+        from ._columns import OLDER_FORMATS, STORE_FORMAT
 
         fmt = attrs.get("store_format")
         if isinstance(fmt, int) and fmt < STORE_FORMAT:
             return (f"a map of an older format (store_format {fmt}, this version writes "
-                    f"{STORE_FORMAT}: its simulated verdicts read the raw growth factor, "
-                    "algebraic growth past 20x as MI, and it holds no growth_exponential)")
+                    f"{STORE_FORMAT}: {OLDER_FORMATS.get(fmt, OLDER_FORMATS[2])})")
         return "a map with other parameters (or of an older format)"
 
     def new_dataset(self):

@@ -35,6 +35,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from common.resolution import EPS, smallest_resolved_amplitude
 from energy import Model, ModelError
 
 from ._linear import Carrier, blocks, carrier, check_amplitude, dynamical_matrix
@@ -97,12 +98,9 @@ class ModelNLS:
         wave's frequency) reaches omega's rounding error eps omega. Below it the wave is
         linear to the last bit of omega: every theory's rate (~ the shift) is rounding
         or an underflow, no verdict. 0 where the NLS is undefined or g2 = 0."""
-        g2 = abs(self.g2)
-        if self.undefined or not g2 > 0 or not math.isfinite(g2):
+        if self.undefined:
             return 0.0
-        eps = float(np.finfo(float).eps)
-        # the product eps * omega / g2 first: a^2 itself may underflow
-        return 2 * math.sqrt(eps * self.carrier.omega / g2)
+        return smallest_resolved_amplitude(self.carrier.omega, self.g2)
 
     def check_resolved(self, amplitude: float) -> float:
         """``amplitude``, or a ModelError naming the smallest one resolved
@@ -114,7 +112,7 @@ class ModelNLS:
                 f"amplitude a = {a:.3g} is below what float64 resolves at k = "
                 f"{self.carrier.k:.6g}: its nonlinear frequency shift |g2| a^2 / 4 = "
                 f"{abs(self.g2) / 4 * a * a:.3g} is under omega's rounding error eps omega = "
-                f"{float(np.finfo(float).eps) * self.carrier.omega:.3g}, so every theory's "
+                f"{EPS * self.carrier.omega:.3g}, so every theory's "
                 f"growth rate there is rounding, not a verdict; give amplitude "
                 f"(--amplitude) >= {least:.3g}")
         return a
