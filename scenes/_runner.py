@@ -226,7 +226,8 @@ def write_report(summaries: dict, out: Path, quick: bool) -> Path:
              f"Mode: {'quick (reduced N / t_end / grids; see each figure)' if quick else 'full'}."
              f" Package {package_version()}.", "",
              "Outcome: *agrees*; *paper disagrees (...)*: a known disagreement with the paper "
-             "(erratum or a finding in docs/), as expected; **FAIL**: something unexpected.", "",
+             "(erratum or a finding in docs/), as expected; anything unexpected is marked in bold "
+             "and listed under \"Unexpected results\" (none: no such section).", "",
              "| scene | check | theory | numerics | outcome |", "|---|---|---|---|---|"]
     failed = []
     for name, s in summaries.items():
