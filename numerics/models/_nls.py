@@ -164,6 +164,9 @@ class ModelNLS:
         if self.undefined:
             raise ModelError(f"no soliton: the NLS is undefined ({self.undefined})")
         a = check_amplitude(amplitude)
+        # below it the soliton's frequency shift is omega's rounding and its width
+        # (~1 / a) beyond any lattice: 1e-200 printed 8.5e199 sites and omega unshifted
+        self.check_resolved(a)
         g = self.g
         if g == 0:  # a linear chain (or cancelling terms): no envelope is held together
             raise ModelError(f"no soliton: g2 = 0 at k = {self.carrier.k:.6g} (no cubic "

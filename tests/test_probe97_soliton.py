@@ -1,0 +1,77 @@
+"""Probe 97 of envelope solitons of models (bench/probe_soliton97.py): the checks that
+found bugs. A soliton whose amplitude float64 cannot resolve, or whose default ring
+exceeds the largest ring, or whose run is too long, is refused in one line naming the
+option, before anything is allocated or estimated; and the closed-form physics the probe
+checks the code against (FPUT's and Klein-Gordon's NLS by hand)."""
+
+from __future__ import annotations
+
+import math
+import time
+
+import pytest
+
+from cli.app import main as cli
+from energy import ModelError, load_model
+from numerics.models import nls, ring_soliton
+
+
+def _refused(capsys, argv, option):
+    code = cli(["soliton", *argv])
+    out, err = capsys.readouterr()
+    lines = err.strip().splitlines()
+    assert code == 2, out + err
+    assert len(lines) == 1 and option in lines[0] and "Traceback" not in err, err
+    assert "estimate" not in out  # refused before the run's estimate
+    return lines[0]
+
+
+def test_amplitude_float64_cannot_resolve_is_refused():
+    # fput k = 1: |g2| a^2 / 4 < eps omega below a = 2 sqrt(eps omega / |g2|) = 2.5e-8;
+    # 1e-200 printed 'width 8.515e+199 sites, frequency 0.958851' (omega, unshifted)
+    r = nls(load_model("fput"), 1.0)
+    least = 2 * math.sqrt(2.220446049250313e-16 * r.carrier.omega / abs(r.g2))
+    with pytest.raises(ModelError, match="amplitude"):
+        r.soliton(1e-200)
+    with pytest.raises(ModelError, match="amplitude"):
+        r.soliton(least / 2)
+    assert r.soliton(2 * least).kind == "bright"
+
+
+def test_soliton_wider_than_the_largest_ring_is_refused(capsys):
+    # Klein-Gordon with C = 1e4 at k = 1e-3: g1 ~ C omega0^2 / omega^3 ~ 1e4, so a
+    # resolved amplitude (2x the least) gives a soliton ~3e9 sites wide: the default ring
+    # of 20 widths asked numpy for ~500 GiB ('Unable to allocate', no option named)
+    model = load_model("klein-gordon", C=1e4)
+    r = nls(model, 1e-3)
+    a = 4 * math.sqrt(2.220446049250313e-16 * r.carrier.omega / abs(r.g2))
+    assert r.soliton(a).width > 1e9
+    with pytest.raises(ModelError, match="largest"):
+        ring_soliton(model, 1e-3, a)
+    line = _refused(capsys, ["--model", "klein-gordon", "--param", "C=1e4", "--k", "1e-3",
+                             "--amplitude", f"{a:.17g}", "--simulate"], "--amplitude")
+    assert "--amplitude >=" in line
+
+
+def test_run_too_long_is_refused_with_numbers_before_its_estimate(capsys):
+    # fput k = 1, amplitude 3e-5: 20 widths take T = 6.5e5 > 5e5; the estimate's own
+    # short run on the 567 692-site ring took minutes before this refusal, which advised
+    # 'a shorter travel' without a number
+    t0 = time.perf_counter()
+    line = _refused(capsys, ["--model", "fput", "--k", "1", "--amplitude", "3e-5",
+                             "--simulate"], "--travel <=")
+    assert "--amplitude >=" in line
+    assert time.perf_counter() - t0 < 20  # seconds: refused before any run (was minutes)
+
+
+@pytest.mark.parametrize("alpha,beta", [(0.0, 1.0), (0.7, -0.2)])
+def test_fput_nls_with_mean_flow_against_hand_closed_form(alpha, beta):
+    # multiple scales by hand (bench/probe_soliton97.py): g2 = (omega / 2) (8 alpha^2 +
+    # 2 alpha^2 omega^2 - 3 beta omega^2), omega = 2 sin(k/2); agreement to rounding (1e-9)
+    m = load_model("fput", alpha=alpha, beta=beta)
+    for k in (0.5, 1.6, 3.0):
+        w = 2 * math.sin(k / 2)
+        r = nls(m, k)
+        assert r.g2 == pytest.approx((w / 2) * (8 * alpha**2 + 2 * alpha**2 * w * w
+                                                - 3 * beta * w * w), rel=1e-9)
+        assert r.g1 == pytest.approx(-math.sin(k / 2) / 2, rel=1e-9)
