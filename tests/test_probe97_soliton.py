@@ -75,3 +75,21 @@ def test_fput_nls_with_mean_flow_against_hand_closed_form(alpha, beta):
         assert r.g2 == pytest.approx((w / 2) * (8 * alpha**2 + 2 * alpha**2 * w * w
                                                 - 3 * beta * w * w), rel=1e-9)
         assert r.g1 == pytest.approx(-math.sin(k / 2) / 2, rel=1e-9)
+
+
+def test_a_plane_waves_frequency_shift_leaves_the_mean_flow_out():
+    # fput alpha 1, beta 0.5, k 1, a 0.01: g2 = (omega/2)(8 alpha^2 + 2 alpha^2 omega^2
+    # - 3 beta omega^2), of which the mean flow's 8 alpha^2 omega acts only on a
+    # modulation; a uniform wave shifts by (omega a^2/8)(3 beta omega^2 + 8 alpha^2
+    # cos^2(k/2)) = +9.04e-5 (hand closed form, to rounding: 1e-9), which the exact
+    # travelling wave (harmonic balance) confirms to its O(a^2) = 1e-4 relative (1%).
+    # `flexmm coefficients --model` printed -1.01e-4 (-g2 a^2/4: wrong sign)
+    from numerics.models import model_coefficients, travelling_wave
+
+    alpha, beta, k, a = 1.0, 0.5, 1.0, 0.01
+    m = load_model("fput", alpha=alpha, beta=beta)
+    w = 2 * math.sin(k / 2)
+    hand = w * a * a / 8 * (3 * beta * w * w + 8 * alpha**2 * math.cos(k / 2) ** 2)
+    shift = model_coefficients(m, k, a)["frequency_shift"]
+    assert shift == pytest.approx(hand, rel=1e-9)
+    assert travelling_wave(m, k, a).omega - w == pytest.approx(hand, rel=1e-2)

@@ -156,8 +156,16 @@ class ModelNLS:
         return amplitude * math.sqrt(self.g) if self.verdict == "MI" else math.nan
 
     def frequency_shift(self, amplitude: float) -> float:
-        """The NLS's nonlinear frequency shift -g2 a^2/4 of the plane wave."""
-        return -self.g2 * check_amplitude(amplitude)**2 / 4
+        """The plane wave's nonlinear frequency shift -(g2 - g2_meanflow) a^2/4.
+
+        A uniform wave drives no mean strain (on a ring it has none; on a chain its
+        strain is an integration constant, zero at rest ends), so g2's mean-flow part,
+        the strain that travels with a modulation, does not act on it: the exact wave's
+        shift is this one (tests/test_models_exact.py). -g2 a^2/4, reported before,
+        had the wrong sign and 1.1x the size at fput alpha 1, beta 0.5, k 1 (-1.01e-4
+        against the wave's +9.04e-5)."""
+        a = check_amplitude(amplitude)
+        return -(self.g2 - self.parts.get("mean flow", 0.0)) * a**2 / 4
 
     def soliton(self, amplitude: float) -> ModelSoliton:
         """The envelope soliton of peak (bright) or background (dark) amplitude a."""
