@@ -76,7 +76,7 @@ def _estimate(args, model, branch) -> None:
     try:
         pred = ring_soliton(model, args.k, args.amplitude, N=args.N, kind=args.kind,
                             branch=branch)
-        check_soliton_launch(model, pred)  # a launch refused is refused before its estimate
+        check_soliton_launch(model, pred, args.k)  # refused before its estimate
         # a run too long is refused before it too: the estimate's own short run on its
         # ring (567 692 sites at fput, k = 1, amplitude 3e-5) took minutes first
         t_end = travel_time(pred, args.travel)

@@ -120,10 +120,11 @@ MIN_LAUNCH_WIDTH = 2.0
 MIN_SEPARATION = 6.0
 
 
-def check_soliton_launch(model: Model, pred: RingSoliton):
+def check_soliton_launch(model: Model, pred: RingSoliton, k_asked: float | None = None):
     """Refuse (ModelError) a launch of ``pred`` (``ring_soliton``'s) the lattice cannot
     carry or the measurement cannot see, each with its remedy: what ``simulate_soliton``
-    asks before it runs (a command asks it before estimating the run)."""
+    asks before it runs (a command asks it before estimating the run). ``k_asked``: the
+    k the ring's was moved from (the remedy's ring moves it again)."""
     from ._reach import energy_not_real
 
     if model.lossy and any(np.any(m != 0) for m in model.damping):
@@ -140,10 +141,15 @@ def check_soliton_launch(model: Model, pred: RingSoliton):
                          f"(< {MIN_LAUNCH_WIDTH:g}): no envelope; amplitude <= "
                          f"{a * w / MIN_WIDTH:.3g} makes it {MIN_WIDTH:g} sites wide")
     if pred.k * w < MIN_SEPARATION:
+        # the wider soliton's ring (20 widths) moves k again, by up to pi / N: from the
+        # asked k (KG k = 0.01, dark: ring k 0.0144 advised 0.00392, whose ring's k 0.0102
+        # was refused in turn), k w' >= 6 + pi/20 keeps the ring's k w' >= 6
+        k0 = pred.k if k_asked is None else min(pred.k, float(k_asked))
+        advice = a * k0 * w / (MIN_SEPARATION + math.pi / 20) / 1.006  # 3 digits printed
         raise ModelError(f"k x width = {pred.k:.4g} x {w:.3g} = {pred.k * w:.3g} < "
                          f"{MIN_SEPARATION:g}: the envelope's spectrum reaches the mean "
                          "flow (q = 0), so the carrier cannot be told from it; a larger k or "
-                         f"an amplitude <= {a * pred.k * w / MIN_SEPARATION:.3g} (wider)")
+                         f"an amplitude <= {advice:.3g} (wider)")
 
 
 def travel_time(pred: RingSoliton, travel: float) -> float:
@@ -206,7 +212,7 @@ def simulate_soliton(model: Model, k: float, amplitude: float, kind: str | None 
         raise ModelError(f"no soliton at k = {k:.6g}: {probe.undefined}")
     N = soliton_ring(probe.soliton(amplitude)) if N is None else check_ring(N)
     pred = ring_soliton(model, k, amplitude, N, kind, probe.carrier.branch)
-    check_soliton_launch(model, pred)
+    check_soliton_launch(model, pred, k)
     snapshots = check_count("snapshots", snapshots, least=3)
     if t_end is None:
         t_end = travel_time(pred, travel)
