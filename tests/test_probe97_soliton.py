@@ -146,3 +146,20 @@ def test_the_paper_chains_kink_on_a_ring_of_13_widths_is_measured():
     run = simulate_soliton(Material(alpha=3.0, K_s=0.05, K_theta=0.03), "coupled", 0.7,
                            0.009, N=400, travel=2)
     assert abs(run.errors()["kink_height"]) < 0.01, run.errors()
+
+
+def test_a_long_wave_without_mean_stress_has_its_nls():
+    # beta-FPUT (alpha = 0) at k = 1e-5: v_g^2 - 1 = -sin^2(k/2) = -2.5e-11 is singular,
+    # but the mean stress tau is exactly 0 (no cubic term), so there is no mean flow to
+    # resonate; it read 'the mean flow resonates' and had no soliton. The hand forms
+    # g1 = -sin(k/2)/2, g2 = -(3/2) beta omega^3 hold to rounding (g1's two terms ~1
+    # cancel to ~1e-16 / 2.5e-6 = 1e-10 relative: bar 1e-6)
+    k = 1e-5
+    r = nls(load_model("fput"), k)
+    assert not r.undefined, r.undefined
+    w = 2 * math.sin(k / 2)
+    assert r.g1 == pytest.approx(-math.sin(k / 2) / 2, rel=1e-6)
+    assert r.g2 == pytest.approx(-1.5 * w**3, rel=1e-9)
+    assert r.soliton(0.05).kind == "bright"
+    # with a cubic term the resonance stands (alpha = 1: a mean flow that diverges)
+    assert "sound speed" in nls(load_model("fput", alpha=1.0), k).undefined

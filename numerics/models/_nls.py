@@ -411,9 +411,14 @@ def nls(model: Model, k: float, branch=None) -> ModelNLS:
         A = c.group_velocity**2 * (N.T @ M @ N) - C
         sa = np.linalg.svd(A, compute_uv=False)
         if sa[-1] < SINGULAR * max(scale, float(np.max(m))):
-            return undefined(f"group velocity {c.group_velocity:.6g} equals a sound speed "
-                             f"at k = {k:.6g} (the mean flow resonates)")
-        s = np.linalg.solve(A, tau)
+            if np.any(T != 0):  # (tau itself: 2 - 2 cos k rounds to 0 at k = 1e-9)
+                return undefined(f"group velocity {c.group_velocity:.6g} equals a sound "
+                                 f"speed at k = {k:.6g} (the mean flow resonates)")
+            # no cubic term at all (beta-FPUT): no mean stress, no mean flow to resonate;
+            # fput k = 1e-5 read 'the mean flow resonates' and had no NLS
+            s = np.zeros_like(tau)
+        else:
+            s = np.linalg.solve(A, tau)
         w = w_wave + w_strain @ s
         strain_dir = N @ s
     else:
