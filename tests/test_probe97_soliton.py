@@ -164,3 +164,14 @@ def test_a_long_wave_without_mean_stress_has_its_nls():
     assert r.soliton(0.05).kind == "bright"
     # with a cubic term the resonance stands (alpha = 1: a mean flow that diverges)
     assert "sound speed" in nls(load_model("fput", alpha=1.0), k).undefined
+
+
+def test_a_g2_that_cancels_is_not_called_a_linear_chain():
+    # fput alpha 1, beta 4/3 at k = pi: cubic -3 beta omega^3/2 = -16 and mean flow
+    # 8 alpha^2 omega = +16 cancel (hand forms; 3 beta = 4 alpha^2 is FPUT's MI border at
+    # pi); the refusal said 'no cubic nonlinearity: a linear chain at this order'
+    r = nls(load_model("fput", alpha=1.0, beta=4 / 3), math.pi)
+    assert r.g2 == 0.0, r.parts
+    with pytest.raises(ModelError, match="cancel") as err:
+        r.soliton(0.05)
+    assert "linear chain" not in str(err.value)

@@ -177,8 +177,13 @@ class ModelNLS:
         self.check_resolved(a)
         g = self.g
         if g == 0:  # a linear chain (or cancelling terms): no envelope is held together
-            raise ModelError(f"no soliton: g2 = 0 at k = {self.carrier.k:.6g} (no cubic "
-                             "nonlinearity: a linear chain at this order)")
+            parts = ", ".join(f"{key} {v:.4g}" for key, v in self.parts.items() if v)
+            # fput alpha 1, beta 4/3 at pi read 'no cubic nonlinearity: a linear chain'
+            raise ModelError(f"no soliton: g2 = 0 at k = {self.carrier.k:.6g}: "
+                             + (f"its parts cancel ({parts}), so" if parts else
+                                "the energy has no cubic or quartic term, so")
+                             + " nothing holds an envelope together at this order (a "
+                             "neighbouring k, or the exact theory)")
         kind = "bright" if g > 0 else "dark"
         width = 2 / (a * math.sqrt(abs(g)))
         # the mean strain eps^2 |A|^2 s integrated over the envelope |E|^2 = (a/2)^2 sech^2
