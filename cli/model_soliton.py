@@ -71,15 +71,15 @@ def _estimate(args, model, branch) -> None:
     from common.text import duration
     from energy import ModelError
     from numerics.maps import estimate_model_point
-    from numerics.models import check_soliton_launch, ring_soliton
+    from numerics.models import check_soliton_launch, ring_soliton, travel_time
 
     try:
         pred = ring_soliton(model, args.k, args.amplitude, N=args.N, kind=args.kind,
                             branch=branch)
-        check_soliton_launch(model, pred)  # a launch refused is refused before its estimate
-        t_end = args.travel * pred.width / max(abs(pred.velocity), 1e-12)
-        if not math.isfinite(t_end):
-            return
+        check_soliton_launch(model, pred, args.k)  # refused before its estimate
+        # a run too long is refused before it too: the estimate's own short run on its
+        # ring (567 692 sites at fput, k = 1, amplitude 3e-5) took minutes first
+        t_end = travel_time(pred, args.travel)
         est = estimate_model_point(model, pred.k, args.amplitude, pred.nls.carrier.branch,
                                    N=pred.N, seeds=1, t_end=t_end, figure=bool(args.out))
     except ModelError:
@@ -98,6 +98,9 @@ def _as_options(text: str) -> str:
     import re
 
     text = re.sub(r"^kind (\w+):", r"--kind \1:", text)
+    # 'give travel <= 1.5, or amplitude >= 3e-4' (the API's names: travel_time, soliton_ring)
+    text = re.sub(r"(?<![-\w])(travel|amplitude) (<=|>=) ", r"--\1 \2 ", text)
+    text = re.sub(r"^amplitude (?=[\d.])", "--amplitude ", text)
     return re.sub(r"(^|: |; )N = (\d+) ", r"\1--N \2 ", text)  # and the ring it advises
 
 
@@ -155,7 +158,10 @@ def run_model_soliton(args, model, units, branch) -> dict:
             raise ValueError(_as_options(str(exc))) from None
         pred = run.predicted
     else:
-        pred = ring_soliton(model, args.k, args.amplitude, kind=args.kind, branch=branch)
+        try:
+            pred = ring_soliton(model, args.k, args.amplitude, kind=args.kind, branch=branch)
+        except ValueError as exc:
+            raise ValueError(_as_options(str(exc))) from None
     report = soliton_report(pred, run)
     damping, lossy = lossy_note(model, pred.k, pred.nls.carrier.branch, units)
     if damping > 0:  # a lossy model's soliton was printed as if it lasted

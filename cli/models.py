@@ -392,7 +392,10 @@ def run_soliton(args) -> int:
           f"{r.carrier.branch}, omega = {r.carrier.omega:.6g}; g1 = {r.g1:.6g}, "
           f"g2 = {r.g2:.6g}")
     print(f"units:    {units.describe()}")
-    print(f"{s.kind} soliton, amplitude {s.amplitude:g}: width {s.width:.4g} sites"
+    # the field the amplitude measures (it can change with k: diatomic fput's acoustic
+    # branch at k = pi moves v only, so a there is v's, at k = 3.1 u's)
+    print(f"{s.kind} soliton, amplitude {s.amplitude:g} (first harmonic of "
+          f"{model.fields[r.carrier.field]}): width {s.width:.4g} sites"
           f"{units.si(s.width, 'length')}, velocity {s.velocity:.4g} sites/time"
           f"{units.si(s.velocity, 'velocity')}, frequency {s.frequency:.6g}"
           f"{units.si(s.frequency, 'rate')}")

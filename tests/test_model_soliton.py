@@ -185,7 +185,7 @@ def test_cli_json_scales_the_numbers_to_si_but_not_the_errors(capsys):
 
 @pytest.mark.parametrize("argv, message", [
     (["--k", "0.8", "--amplitude", "0.1", "--kind", "bright"], "only dark solitons"),
-    (["--k", "1.6", "--amplitude", "3"], "no envelope; amplitude <="),
+    (["--k", "1.6", "--amplitude", "3"], "no envelope; --amplitude <="),
     (["--k", "1.6", "--amplitude", "0.05", "--N", "100"], "too short"),
     (["--k", "0.001", "--amplitude", "0.05"], "k x width"),
     (["--k", "1.6", "--amplitude", "0.05", "--theory", "paper"], "--theory paper"),

@@ -58,7 +58,8 @@ from ._force_steppers import ForceStepper, band_flow, linear_damping, local_flow
 from ._integrators import METHODS, Method, get_method
 from ._baseline import numpy_accel, numpy_rk4
 from ._kernels import FASTMATH, TRIG_LIMIT, accel, sincos_vers, site_acceleration
-from ._profile_fit import RADIATION_WINDOW, ProfileFit, fit_soliton_profile, ring_distance
+from ._profile_fit import (RADIATION_WINDOW, KINK_WINDOW, ProfileFit, fit_soliton_profile,
+                          kink_window, ring_distance)
 from ._model import (CASES, LatticeState, Material, check_case, discrete_omega_longitudinal,
                      discrete_omega_rotation, energy)
 from ._runcontrol import deferred_interrupt, steps_per_call
@@ -110,4 +111,5 @@ __all__ = ["cuda_kernels", "cuda_model_kernels", "TRIG_LIMIT",
     "flexmm_rotation_force", "FLEXMM_ROWS",
     # the soliton measurement of the paper chain (theory) and of any model (models)
     "fit_soliton_profile", "ProfileFit", "RADIATION_WINDOW", "ring_distance",
+    "KINK_WINDOW", "kink_window",
 ]

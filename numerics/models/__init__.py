@@ -102,6 +102,7 @@ from ._soliton_run import (
                      check_soliton_launch,
                      simulate_soliton,
                      soliton_report,
+                     travel_time,
 )
 from ._summary import model_coefficients
 
@@ -118,6 +119,6 @@ __all__ = ["Carrier", "carrier", "branches", "branch_index", "check_rest_stable"
            "lattice_force", "lattice_energy", "snap_ring", "Amplified", "amplified_row", "nls_amplification",
            "four_wave_amplification", "exact_amplification", "simulate_soliton",
            "ModelSolitonRun", "RingSoliton", "ring_soliton", "check_soliton_launch",
-           "soliton_report", "lossy_runs",
+           "soliton_report", "travel_time", "lossy_runs",
            "FORCES", "energy_hash", "run_force", "ExtraTheory", "extra_theories",
            "register_extra_theory", "ExtraStart", "extra_starts", "register_extra_start"]

@@ -154,18 +154,34 @@ class ModelNLS:
         return amplitude * math.sqrt(self.g) if self.verdict == "MI" else math.nan
 
     def frequency_shift(self, amplitude: float) -> float:
-        """The NLS's nonlinear frequency shift -g2 a^2/4 of the plane wave."""
-        return -self.g2 * check_amplitude(amplitude)**2 / 4
+        """The plane wave's nonlinear frequency shift -(g2 - g2_meanflow) a^2/4.
+
+        A uniform wave drives no mean strain (on a ring it has none; on a chain its
+        strain is an integration constant, zero at rest ends), so g2's mean-flow part,
+        the strain that travels with a modulation, does not act on it: the exact wave's
+        shift is this one (tests/test_models_exact.py). -g2 a^2/4, reported before,
+        had the wrong sign and 1.1x the size at fput alpha 1, beta 0.5, k 1 (-1.01e-4
+        against the wave's +9.04e-5)."""
+        a = check_amplitude(amplitude)
+        return -(self.g2 - self.parts.get("mean flow", 0.0)) * a**2 / 4
 
     def soliton(self, amplitude: float) -> ModelSoliton:
         """The envelope soliton of peak (bright) or background (dark) amplitude a."""
         if self.undefined:
             raise ModelError(f"no soliton: the NLS is undefined ({self.undefined})")
         a = check_amplitude(amplitude)
+        # below it the soliton's frequency shift is omega's rounding and its width
+        # (~1 / a) beyond any lattice: 1e-200 printed 8.5e199 sites and omega unshifted
+        self.check_resolved(a)
         g = self.g
         if g == 0:  # a linear chain (or cancelling terms): no envelope is held together
-            raise ModelError(f"no soliton: g2 = 0 at k = {self.carrier.k:.6g} (no cubic "
-                             "nonlinearity: a linear chain at this order)")
+            parts = ", ".join(f"{key} {v:.4g}" for key, v in self.parts.items() if v)
+            # fput alpha 1, beta 4/3 at pi read 'no cubic nonlinearity: a linear chain'
+            raise ModelError(f"no soliton: g2 = 0 at k = {self.carrier.k:.6g}: "
+                             + (f"its parts cancel ({parts}), so" if parts else
+                                "the energy has no cubic or quartic term, so")
+                             + " nothing holds an envelope together at this order (a "
+                             "neighbouring k, or the exact theory)")
         kind = "bright" if g > 0 else "dark"
         width = 2 / (a * math.sqrt(abs(g)))
         # the mean strain eps^2 |A|^2 s integrated over the envelope |E|^2 = (a/2)^2 sech^2
@@ -398,9 +414,14 @@ def nls(model: Model, k: float, branch=None) -> ModelNLS:
         A = c.group_velocity**2 * (N.T @ M @ N) - C
         sa = np.linalg.svd(A, compute_uv=False)
         if sa[-1] < SINGULAR * max(scale, float(np.max(m))):
-            return undefined(f"group velocity {c.group_velocity:.6g} equals a sound speed "
-                             f"at k = {k:.6g} (the mean flow resonates)")
-        s = np.linalg.solve(A, tau)
+            if np.any(T != 0):  # (tau itself: 2 - 2 cos k rounds to 0 at k = 1e-9)
+                return undefined(f"group velocity {c.group_velocity:.6g} equals a sound "
+                                 f"speed at k = {k:.6g} (the mean flow resonates)")
+            # no cubic term at all (beta-FPUT): no mean stress, no mean flow to resonate;
+            # fput k = 1e-5 read 'the mean flow resonates' and had no NLS
+            s = np.zeros_like(tau)
+        else:
+            s = np.linalg.solve(A, tau)
         w = w_wave + w_strain @ s
         strain_dir = N @ s
     else:

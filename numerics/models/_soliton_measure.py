@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..lattice import RADIATION_WINDOW, fit_soliton_profile, ring_distance
+from ..lattice import RADIATION_WINDOW, fit_soliton_profile, kink_window, ring_distance
 
 if TYPE_CHECKING:  # the prediction's type only
     from ._soliton_ring import RingSoliton
@@ -50,12 +50,12 @@ def analytic_carrier(u, v, pred: RingSoliton) -> np.ndarray:
 
 def _kinks(u, pred: RingSoliton, centre, width):
     """Each kink field's step: its strain low-passed at |q| < k/2 (the harmonics out),
-    summed over +-8 widths, minus the background strain over the window."""
+    summed over +-8 widths (``kink_window``: less on a short ring), minus the background strain over the window."""
     d, N = u.shape
     out = np.zeros(d)
     q = 2 * np.pi * np.fft.rfftfreq(N)
     dist = ring_distance(np.arange(N) + 0.5, centre, N)
-    win = np.abs(dist) < 8 * width
+    win = np.abs(dist) < kink_window(width, N)
     for i in pred.kink_fields():
         s_hat = np.fft.rfft(np.roll(u[i], -1) - u[i])
         s_hat[q > pred.k / 2] = 0

@@ -66,6 +66,25 @@ def default_ring(width: float) -> int:
     return int(max(256, 2 * math.ceil(10 * width)))
 
 
+def soliton_ring(soliton: ModelSoliton) -> int:
+    """:func:`default_ring` of ``soliton``'s width, or a ModelError naming the amplitude
+    that fits the largest ring (``MAX_RING``): a soliton 8.5e8 sites wide (fput, k = 1,
+    amplitude 1e-9) asked numpy for a ring of 1.7e10 sites ('Unable to allocate 127.
+    GiB'), naming no argument."""
+    from ._args import MAX_RING
+
+    N = default_ring(soliton.width)
+    if N > MAX_RING:
+        # width ~ 1 / amplitude; 2 sites of slack for default_ring's rounding up, 0.6%
+        # for the 3 digits printed (rounded to nearest: the advice refused itself)
+        least = 1.006 * soliton.amplitude * soliton.width / ((MAX_RING - 2) / 20)
+        raise ModelError(f"amplitude {soliton.amplitude:g}: the {soliton.kind} soliton is "
+                         f"{soliton.width:.3g} sites wide, and its ring of 20 widths ({N} "
+                         f"sites) exceeds the largest, {MAX_RING} sites; give amplitude >= "
+                         f"{least:.3g} (a narrower soliton)")
+    return N
+
+
 @dataclass(frozen=True)
 class RingSoliton:
     """The predicted soliton on a ring of N sites.
@@ -232,7 +251,7 @@ def ring_soliton(model: Model, k: float, amplitude: float, N: int | None = None,
         raise ModelError(f"no soliton at k = {k:.6g}: {probe.undefined}")
     exists = probe.soliton(amplitude).kind
     if N is None:
-        N = default_ring(probe.soliton(amplitude).width)
+        N = soliton_ring(probe.soliton(amplitude))
     if kind is not None and kind != exists:
         raise ModelError(f"kind {kind}: the NLS at k = {k:.6g} has g = g2/g1 = {probe.g:.4g} "
                          f"({'> 0' if probe.g > 0 else '< 0'}), so only {exists} solitons")

@@ -28,6 +28,7 @@ from ._soliton_ring import (
     default_ring,
     ring_soliton,
     ring_wavenumber,
+    soliton_ring,
 )
 
 
@@ -119,10 +120,11 @@ MIN_LAUNCH_WIDTH = 2.0
 MIN_SEPARATION = 6.0
 
 
-def check_soliton_launch(model: Model, pred: RingSoliton):
+def check_soliton_launch(model: Model, pred: RingSoliton, k_asked: float | None = None):
     """Refuse (ModelError) a launch of ``pred`` (``ring_soliton``'s) the lattice cannot
     carry or the measurement cannot see, each with its remedy: what ``simulate_soliton``
-    asks before it runs (a command asks it before estimating the run)."""
+    asks before it runs (a command asks it before estimating the run). ``k_asked``: the
+    k the ring's was moved from (the remedy's ring moves it again)."""
     from ._reach import energy_not_real
 
     if model.lossy and any(np.any(m != 0) for m in model.damping):
@@ -139,10 +141,33 @@ def check_soliton_launch(model: Model, pred: RingSoliton):
                          f"(< {MIN_LAUNCH_WIDTH:g}): no envelope; amplitude <= "
                          f"{a * w / MIN_WIDTH:.3g} makes it {MIN_WIDTH:g} sites wide")
     if pred.k * w < MIN_SEPARATION:
+        # the wider soliton's ring (20 widths) moves k again, by up to pi / N: from the
+        # asked k (KG k = 0.01, dark: ring k 0.0144 advised 0.00392, whose ring's k 0.0102
+        # was refused in turn), k w' >= 6 + pi/20 keeps the ring's k w' >= 6
+        k0 = pred.k if k_asked is None else min(pred.k, float(k_asked))
+        advice = a * k0 * w / (MIN_SEPARATION + math.pi / 20) / 1.006  # 3 digits printed
         raise ModelError(f"k x width = {pred.k:.4g} x {w:.3g} = {pred.k * w:.3g} < "
                          f"{MIN_SEPARATION:g}: the envelope's spectrum reaches the mean "
                          "flow (q = 0), so the carrier cannot be told from it; a larger k or "
-                         f"an amplitude <= {a * pred.k * w / MIN_SEPARATION:.3g} (wider)")
+                         f"an amplitude <= {advice:.3g} (wider)")
+
+
+def travel_time(pred: RingSoliton, travel: float) -> float:
+    """The run time T for ``pred`` to move ``travel`` widths at v_g, or a ModelError past
+    ``MAX_T_END`` naming the travel and the amplitude that fit (asked before a command's
+    estimate, whose own short run on such a ring took minutes before the refusal)."""
+    if not (isinstance(travel, (int, float)) and math.isfinite(travel) and travel > 0):
+        raise ModelError(f"travel must be a number of widths > 0, got {travel!r}")
+    t_end = travel * pred.width / max(abs(pred.velocity), 1e-12)
+    if t_end > MAX_T_END:
+        a = pred.soliton.amplitude  # T ~ width ~ 1 / a; 0.6%: the 3 digits printed
+        raise ModelError(
+            f"the soliton moves at {pred.velocity:.3g} sites/time: {travel:g} widths "
+            f"take T = {t_end:.3g} (> {MAX_T_END:g}); give travel <= "
+            f"{travel * MAX_T_END / t_end / 1.006:.3g}, or amplitude >= "
+            f"{1.006 * a * t_end / MAX_T_END:.3g} "
+            "(its width shrinks as 1 / amplitude)")
+    return t_end
 
 
 def simulate_soliton(model: Model, k: float, amplitude: float, kind: str | None = None, *,
@@ -185,20 +210,12 @@ def simulate_soliton(model: Model, k: float, amplitude: float, kind: str | None 
     probe = nls(model, k, branch)
     if probe.undefined:
         raise ModelError(f"no soliton at k = {k:.6g}: {probe.undefined}")
-    s0 = probe.soliton(amplitude)
-    N = default_ring(s0.width) if N is None else check_ring(N)
+    N = soliton_ring(probe.soliton(amplitude)) if N is None else check_ring(N)
     pred = ring_soliton(model, k, amplitude, N, kind, probe.carrier.branch)
-    check_soliton_launch(model, pred)
+    check_soliton_launch(model, pred, k)
     snapshots = check_count("snapshots", snapshots, least=3)
     if t_end is None:
-        if not (isinstance(travel, (int, float)) and math.isfinite(travel) and travel > 0):
-            raise ModelError(f"travel must be a number of widths > 0, got {travel!r}")
-        t_end = travel * pred.width / max(abs(pred.velocity), 1e-12)
-        if t_end > MAX_T_END:
-            raise ModelError(
-                f"the soliton moves at {pred.velocity:.3g} sites/time: {travel:g} widths "
-                f"take T = {t_end:.3g} (> {MAX_T_END:g}); give a shorter travel, or a larger "
-                "amplitude (its width shrinks as 1 / amplitude)")
+        t_end = travel_time(pred, travel)
     if not (math.isfinite(t_end) and t_end > 0):
         raise ModelError(f"t_end must be a finite time > 0, got {t_end!r}")
     u, v = pred.state()
@@ -250,5 +267,6 @@ def soliton_report(pred: RingSoliton, run: ModelSolitonRun | None = None) -> dic
     return out
 
 
-__all__ = ["ring_wavenumber", "default_ring", "RingSoliton", "ring_soliton",
+__all__ = ["ring_wavenumber", "default_ring", "soliton_ring", "travel_time", "RingSoliton",
+           "ring_soliton",
            "ModelSolitonRun", "simulate_soliton", "soliton_report"]

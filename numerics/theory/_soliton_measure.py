@@ -9,7 +9,13 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..lattice import RADIATION_WINDOW, LatticeState, fit_soliton_profile, ring_distance
+from ..lattice import (
+    RADIATION_WINDOW,
+    LatticeState,
+    fit_soliton_profile,
+    kink_window,
+    ring_distance,
+)
 from ._soliton import Soliton
 
 
@@ -34,7 +40,8 @@ class Snapshot:
 
 def _kink(state, sol, centre, width):
     """U across the soliton: the low-passed strain (|q| < k/2 drops the second harmonic)
-    summed over +-8 widths, minus the background strain times the window."""
+    summed over +-8 widths (``kink_window``: less on a short ring), minus the background
+    strain times the window."""
     N = state.N
     strain = np.roll(state.U, -1) - state.U
     s_hat = np.fft.rfft(strain)
@@ -42,7 +49,7 @@ def _kink(state, sol, centre, width):
     s_hat[q > sol.k / 2] = 0
     strain = np.fft.irfft(s_hat, N)
     d = ring_distance(np.arange(N) + 0.5, centre, N)
-    win = np.abs(d) < 8 * width
+    win = np.abs(d) < kink_window(width, N)
     bg = np.median(strain[~win]) if (~win).any() else 0.0
     return float(np.sum(strain[win] - bg))
 
