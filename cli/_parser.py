@@ -57,7 +57,9 @@ class _Help(argparse.ArgumentDefaultsHelpFormatter, argparse.RawDescriptionHelpF
     """Defaults shown after every option's help; the example epilog kept as written."""
 
     def _get_help_string(self, action):
-        if action.default in (None, False) or "default" in (action.help or ""):
+        # ``is``, not ``in``: 0 == False, and a default of 0 (--seed) is one to show
+        if action.default is None or action.default is False \
+                or "default" in (action.help or ""):
             return action.help
         return super()._get_help_string(action)
 

@@ -161,3 +161,10 @@ def test_help_and_coefficients_answer_in_under_a_second_of_cpu():
     # cost, and a regression (matplotlib and the scenes: 2 s) fails all three
     assert min(_cpu_seconds(["--help"]) for _ in range(3)) < 0.5
     assert min(_cpu_seconds(argv) for _ in range(3)) < 1.0
+
+
+@pytest.mark.parametrize("cmd", ["scene", "run"])
+def test_a_default_of_zero_is_shown(cmd, capsys):
+    """A default of 0 is a default (--seed 0): before, ``0 in (None, False)`` (0 == False)
+    left it out of --help, as if the option had none."""
+    assert "--seed SEED noise seed (default: 0)" in _help(cmd, capsys)
