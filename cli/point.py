@@ -34,6 +34,8 @@ from numerics.theory import (
     nls_coefficients,
 )
 
+from ._slow import SLOW_MODEL_POINT, SLOW_PAPER_POINT, said_if_slow
+from ._slow import to_stderr as _stderr
 from .coefficients import weak_nonlinearity_note
 
 #: what point.json's numbers are in (the lattice units), beside the SI ones of --physical
@@ -222,15 +224,6 @@ def _log_fastest(log, rows, k, units):
             f"time {units.time(1 / best[2])}")
 
 
-#: said where a point's theories take over ``_slow.SLOW_NOTE_S`` (the first point after an
-#: install compiles their kernels: 93 s of silence under load for the README's lossy FPUT)
-SLOW_MODEL_POINT = ("point: computing the theories (slow here: a busy machine, or the "
-                    "kernels compiling once after an install, a minute or two)")
-SLOW_PAPER_POINT = ("point: computing the theories and each seed's predicted growth (slow "
-                    "here: a busy machine, or the kernels compiling once after an install, "
-                    "a minute or two)")
-
-
 def run_point(args, log=print) -> dict:
     """`flexmm point`: check the options, echo them, ``measure_point``, print the table
     and (``--out``) write point.json and point.png. Returns point.json's dict.
@@ -245,15 +238,13 @@ def run_point(args, log=print) -> dict:
     if args.out:  # before any computation (a simulation may take minutes)
         prepare_output(args.out, cache=False)
     _log_header(log, args, mat, units, k, m, amplitude)
-    from ._slow import said_if_slow
-
     if args.simulate:  # said before the runs, which take seconds to minutes
         log(f"point: the theories and each seed's predicted growth, then {args.seeds} "
             f"run(s) of the ring of N = {args.N} sites, T = "
             + (f"{args.t_end:g}" if args.t_end else "9 e-foldings of the exact rate (at most "
                f"{T_CAP:g})") + ": seconds to minutes")
     # without runs said only where slow (the predicted growth: 15 s under load)
-    with (contextlib.nullcontext() if args.simulate else said_if_slow(log, SLOW_PAPER_POINT)):
+    with (contextlib.nullcontext() if args.simulate else said_if_slow(_stderr, SLOW_PAPER_POINT)):
         res = measure_point(mat, args.case, args.k, amplitude, N=args.N, start=args.start,
                             simulate=args.simulate, t_end=args.t_end, seeds=args.seeds)
     result = res.as_dict(units={**UNITS, "seconds_per_T": units.seconds_per_T,
@@ -479,11 +470,9 @@ def _run_model_point(args) -> dict:
         text.say_estimate(args, est)
         said.append(time.perf_counter())
 
-    from ._slow import said_if_slow
-
     # a point --simulate said what it does above; without runs, said only where slow
     slow = (contextlib.nullcontext() if args.simulate
-            else said_if_slow(text.log_to(args), SLOW_MODEL_POINT))
+            else said_if_slow(_stderr, SLOW_MODEL_POINT))
     try:
         with slow:
             point = measure_point(spec, on_estimate=on_estimate,

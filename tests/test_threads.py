@@ -45,16 +45,16 @@ def test_a_models_run_records_its_wave_on_one_blas_thread(monkeypatch):
     from threadpoolctl import threadpool_limits
 
     from energy import load_model
-    from numerics.models import _wave, simulate_model
+    from numerics.models import TravellingWave, simulate_model
 
     seen = []
-    real = _wave.TravellingWave.ring_profile
+    real = TravellingWave.ring_profile
 
     def ring_profile(self, *a, **kw):
         seen.append(_blas_threads())
         return real(self, *a, **kw)
 
-    monkeypatch.setattr(_wave.TravellingWave, "ring_profile", ring_profile)
+    monkeypatch.setattr(TravellingWave, "ring_profile", ring_profile)
     with threadpool_limits(limits=2, user_api="blas"):
         simulate_model(load_model("fput"), 2.0, 0.1, N=16, t_end=5.0, records=4)
     assert seen and all(n == 1 for threads in seen for n in threads), seen
