@@ -118,6 +118,10 @@ def build_parser(model_mode: bool = False):
         prog="flexmm", description="Modulation instability in flexible mechanical "
         "metamaterials: coefficients, MI verdicts, simulations, maps and the paper's figures.",
         epilog="run `flexmm COMMAND --help` for a command's options and an example")
+    from importlib.metadata import version
+
+    p.add_argument("--version", action="version",
+                   version=f"%(prog)s {version('flexmm-mi')} (flexmm-mi)")
     sub = p.add_subparsers(dest="cmd", required=True, metavar="COMMAND")
     p.commands = sub.choices  # {name: its parser}, for the errors of _parse
     co = _sub(sub, "coefficients", "NLS coefficients and MI band of any model or material "

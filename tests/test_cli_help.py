@@ -187,3 +187,14 @@ def test_the_paper_chains_simulated_point_example_runs_in_seconds():
     res = measure_point(mat, args.case, args.k, args.amplitude, N=args.N, start="paper",
                         seeds=1)
     assert res.t_end <= 10_000, res.t_end
+
+
+def test_version_is_answered(capsys):
+    """`flexmm --version` said "the following arguments are required: COMMAND" (exit 2):
+    now the package's version, exit 0, from its metadata (pyproject.toml)."""
+    from importlib.metadata import version
+
+    with pytest.raises(SystemExit) as exc:
+        cli(["--version"])
+    assert exc.value.code == 0
+    assert capsys.readouterr().out.strip() == f"flexmm {version('flexmm-mi')} (flexmm-mi)"
