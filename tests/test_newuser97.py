@@ -29,3 +29,18 @@ def test_a_store_of_more_theories_asked_with_fewer_says_which_options_continue_i
            "semidiscrete asked" in err and "give its --exact" in err
     assert cli([*FPUT_EXACT, "--exact", *out]) == 0  # the remedy said: it continues
     assert "estimate: none needed" in capsys.readouterr().out
+
+
+def test_the_docs_import_public_names_only():
+    """docs/gpu.md told readers `from numerics.maps._gpu import gpu_status` (and
+    simulate_cells_gpu), private modules, where numerics.maps exports both: a reader copies
+    what the page shows. Every import a page shows is of a public module. Fails on the old
+    tree (gpu.md)."""
+    import re
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[1]
+    pages = [root / "README.md", *sorted((root / "docs").glob("*.md"))]
+    private = [(p.name, m.group(0)) for p in pages for m in re.finditer(
+        r"^\s*(?:>>> |\.\.\. )?(?:from|import) [\w.]*\._\w+", p.read_text(), flags=re.M)]
+    assert not private, private
