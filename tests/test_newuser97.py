@@ -44,3 +44,21 @@ def test_the_docs_import_public_names_only():
     private = [(p.name, m.group(0)) for p in pages for m in re.finditer(
         r"^\s*(?:>>> |\.\.\. )?(?:from|import) [\w.]*\._\w+", p.read_text(), flags=re.M)]
     assert not private, private
+
+
+def test_a_map_interrupted_before_its_store_says_no_cell_had_started(tmp_path, capsys,
+                                                                    monkeypatch):
+    """Ctrl-C during a map's estimate (before its store exists) said "nothing was written
+    to OUT/map.zarr; the cells that were running were not kept": none were. Fails on the
+    old tree."""
+    import numerics.maps as maps
+
+    def interrupted(params):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(maps, "probe_model_cell", interrupted)
+    out = tmp_path / "m"
+    assert cli([*FPUT_EXACT, "--out", str(out)]) == 130
+    err = capsys.readouterr().err.strip().splitlines()
+    assert err == [f"flexmm: interrupted (SIGINT); nothing was written to {out / 'map.zarr'}"
+                   ", no cell had started: run the same command again to start"], err
