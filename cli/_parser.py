@@ -28,8 +28,8 @@ EPILOG = {
              "--param alpha=1 --param beta=1.5 --k 3.1 --amplitude 0.1 --N 64 --simulate "
              "--seeds 2 --out out/point\n  the paper chain:\n  flexmm point --alpha 2.5 "
              "--K-s 0.01851 --K-theta 0.01551 --k 0.81681 --case coupled\n  flexmm point "
-             "--physical 0.01,2e-6,0.02,1e4,185,1 --k 1.0 --case rotation --simulate "
-             "--seeds 2 --out out/point",
+             "--physical 0.01,2e-6,0.02,1e4,185,1 --k 1.0 --amplitude 0.1 --case rotation "
+             "--simulate --seeds 2 --out out/point",
     "soliton": "examples:\n  any model:\n  flexmm soliton --model fput --param alpha=1 "
                "--param beta=1 --k 1.0 --amplitude 0.05\n  flexmm soliton --model fput "
                "--param alpha=0.5 --k 1.6 --amplitude 0.1 --simulate --travel 5 --out "
@@ -57,7 +57,9 @@ class _Help(argparse.ArgumentDefaultsHelpFormatter, argparse.RawDescriptionHelpF
     """Defaults shown after every option's help; the example epilog kept as written."""
 
     def _get_help_string(self, action):
-        if action.default in (None, False) or "default" in (action.help or ""):
+        # ``is``, not ``in``: 0 == False, and a default of 0 (--seed) is one to show
+        if action.default is None or action.default is False \
+                or "default" in (action.help or ""):
             return action.help
         return super()._get_help_string(action)
 
@@ -116,6 +118,10 @@ def build_parser(model_mode: bool = False):
         prog="flexmm", description="Modulation instability in flexible mechanical "
         "metamaterials: coefficients, MI verdicts, simulations, maps and the paper's figures.",
         epilog="run `flexmm COMMAND --help` for a command's options and an example")
+    from importlib.metadata import version
+
+    p.add_argument("--version", action="version",
+                   version=f"%(prog)s {version('flexmm-mi')} (flexmm-mi)")
     sub = p.add_subparsers(dest="cmd", required=True, metavar="COMMAND")
     p.commands = sub.choices  # {name: its parser}, for the errors of _parse
     co = _sub(sub, "coefficients", "NLS coefficients and MI band of any model or material "
@@ -196,7 +202,9 @@ def _point_parser(sub, model_mode=False):
                    help="(required) carrier wavenumber, rad per site, in (0, pi) (with --model "
                          "(0, pi]: the zone boundary too)")
     _experiment_args(p)
-    p.add_argument("--simulate", action="store_true", help="measure sigma(q) too")
+    p.add_argument("--simulate", action="store_true",
+                   help="also run the ring of --N sites from noise (--seeds runs) and measure "
+                        "the growth rate sigma(q) and the verdict, the theories' check")
     p.add_argument("--t-end", dest="t_end", type=float,
                    help="run length in T (default: 9 e-foldings of the exact peak gain, "
                         "within [1000, 100000]; 5000 where nothing grows; the output says "

@@ -217,10 +217,12 @@ def _interrupted(args, exc) -> str:
         from numerics.maps import cells_done
 
         done = cells_done(store)
-        kept = (f"{done[0]} of {done[1]} cells are kept in {store} (checksummed)"
-                if done else f"nothing was written to {store}")
-        return (f"interrupted ({name}); {kept}; the cells that were running were not kept: "
-                "run the same command again to continue")
+        if not done:  # the store is made before any cell runs: none had started
+            return (f"interrupted ({name}); nothing was written to {store}, no cell had "
+                    "started: run the same command again to start")
+        return (f"interrupted ({name}); {done[0]} of {done[1]} cells are kept in {store} "
+                "(checksummed); the cells that were running were not kept: run the same "
+                "command again to continue")
     if cmd in ("point", "soliton"):  # each writes its files at its end, or nothing
         return (f"interrupted ({name}); nothing was written"
                 + (f" to {args.out}" if getattr(args, "out", None) else ""))

@@ -6,6 +6,7 @@ model point's table and files in ``_model_point_text``)."""
 
 from __future__ import annotations
 
+import contextlib
 import json
 import math
 from pathlib import Path
@@ -19,6 +20,7 @@ from numerics import Material
 from numerics.lattice import (
     DECIDE_E_FOLDINGS,
     GROWTH_THRESHOLD,
+    T_CAP,
     checks,
     grows_beyond_threshold,
     paper_start_undefined,
@@ -32,6 +34,8 @@ from numerics.theory import (
     nls_coefficients,
 )
 
+from ._slow import SLOW_MODEL_POINT, SLOW_PAPER_POINT, said_if_slow
+from ._slow import to_stderr as _stderr
 from .coefficients import weak_nonlinearity_note
 
 #: what point.json's numbers are in (the lattice units), beside the SI ones of --physical
@@ -234,8 +238,15 @@ def run_point(args, log=print) -> dict:
     if args.out:  # before any computation (a simulation may take minutes)
         prepare_output(args.out, cache=False)
     _log_header(log, args, mat, units, k, m, amplitude)
-    res = measure_point(mat, args.case, args.k, amplitude, N=args.N, start=args.start,
-                        simulate=args.simulate, t_end=args.t_end, seeds=args.seeds)
+    if args.simulate:  # said before the runs, which take seconds to minutes
+        log(f"point: the theories and each seed's predicted growth, then {args.seeds} "
+            f"run(s) of the ring of N = {args.N} sites, T = "
+            + (f"{args.t_end:g}" if args.t_end else "9 e-foldings of the exact rate (at most "
+               f"{T_CAP:g})") + ": seconds to minutes")
+    # without runs said only where slow (the predicted growth: 15 s under load)
+    with (contextlib.nullcontext() if args.simulate else said_if_slow(_stderr, SLOW_PAPER_POINT)):
+        res = measure_point(mat, args.case, args.k, amplitude, N=args.N, start=args.start,
+                            simulate=args.simulate, t_end=args.t_end, seeds=args.seeds)
     result = res.as_dict(units={**UNITS, "seconds_per_T": units.seconds_per_T,
                                 "metres_per_site": units.metres_per_site})
     rows = _rows(res)
@@ -459,8 +470,13 @@ def _run_model_point(args) -> dict:
         text.say_estimate(args, est)
         said.append(time.perf_counter())
 
+    # a point --simulate said what it does above; without runs, said only where slow
+    slow = (contextlib.nullcontext() if args.simulate
+            else said_if_slow(_stderr, SLOW_MODEL_POINT))
     try:
-        point = measure_point(spec, on_estimate=on_estimate, estimate_figure=bool(args.out))
+        with slow:
+            point = measure_point(spec, on_estimate=on_estimate,
+                                  estimate_figure=bool(args.out))
     except PointInputError as exc:  # --simulate where the model has no travelling wave
         raise _option_error(exc, args) from None
     return text.report(args, point, units, said[0] if said else None)

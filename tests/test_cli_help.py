@@ -7,7 +7,7 @@ import shlex
 
 import pytest
 
-from cli.app import EPILOG
+from cli.app import EPILOG, build_parser
 from cli.app import main as cli
 
 #: examples too slow for the default suite (a full scene run, a simulation)
@@ -161,3 +161,40 @@ def test_help_and_coefficients_answer_in_under_a_second_of_cpu():
     # cost, and a regression (matplotlib and the scenes: 2 s) fails all three
     assert min(_cpu_seconds(["--help"]) for _ in range(3)) < 0.5
     assert min(_cpu_seconds(argv) for _ in range(3)) < 1.0
+
+
+@pytest.mark.parametrize("cmd", ["scene", "run"])
+def test_a_default_of_zero_is_shown(cmd, capsys):
+    """A default of 0 is a default (--seed 0): before, ``0 in (None, False)`` (0 == False)
+    left it out of --help, as if the option had none."""
+    assert "--seed SEED noise seed (default: 0)" in _help(cmd, capsys)
+
+
+def test_the_paper_chains_simulated_point_example_runs_in_seconds():
+    """`point --help`'s --physical example with --simulate: its runs' T follows the exact
+    rate (9 e-foldings). At the paper's amplitude 0.02 that material grows at 7e-5 /T, T hit
+    the cap 100 000 and the example took 94 s (a new user, a loaded 2-core machine); at 0.1
+    it grows 25x faster (the NLS's rate is a^2: (0.1/0.02)^2). 10 000 T: 2x the T it needs
+    (5 200), a fifth of the cap's cost, the README's 5-60 s for a simulated point."""
+    from cli.point import material_from
+    from numerics.maps import measure_point
+
+    line = next(ln.strip() for ln in EPILOG["point"].splitlines() if "--physical" in ln)
+    args = build_parser(False).parse_args(shlex.split(line)[1:])
+    assert args.simulate
+    mat, _ = material_from(args)
+    assert args.start is None  # the paper chain's default start: eq. IC
+    res = measure_point(mat, args.case, args.k, args.amplitude, N=args.N, start="paper",
+                        seeds=1)
+    assert res.t_end <= 10_000, res.t_end
+
+
+def test_version_is_answered(capsys):
+    """`flexmm --version` said "the following arguments are required: COMMAND" (exit 2):
+    now the package's version, exit 0, from its metadata (pyproject.toml)."""
+    from importlib.metadata import version
+
+    with pytest.raises(SystemExit) as exc:
+        cli(["--version"])
+    assert exc.value.code == 0
+    assert capsys.readouterr().out.strip() == f"flexmm {version('flexmm-mi')} (flexmm-mi)"

@@ -34,3 +34,27 @@ def test_the_theory_entry_points_are_limited():
     for fn in (predict_growth, resonance_map, stability_map, mi_gain):
         assert hasattr(fn, "__wrapped__"), fn.__name__
 
+
+
+def test_a_models_run_records_its_wave_on_one_blas_thread(monkeypatch):
+    """simulate_model (a point's runs in the client, a map's probe) builds the wave on the
+    ring at each record by a small complex matrix product: on OpenBLAS' threads of a loaded
+    2-core machine 3.8 ms a call, and a map's probe read a 0.07 s run as 3.2-3.7 s (a new
+    user's map: estimated 4 min, took 34 s). The product runs on one thread, whatever
+    the caller's limit (here 2, as OpenBLAS' default on 2 cores)."""
+    from threadpoolctl import threadpool_limits
+
+    from energy import load_model
+    from numerics.models import TravellingWave, simulate_model
+
+    seen = []
+    real = TravellingWave.ring_profile
+
+    def ring_profile(self, *a, **kw):
+        seen.append(_blas_threads())
+        return real(self, *a, **kw)
+
+    monkeypatch.setattr(TravellingWave, "ring_profile", ring_profile)
+    with threadpool_limits(limits=2, user_api="blas"):
+        simulate_model(load_model("fput"), 2.0, 0.1, N=16, t_end=5.0, records=4)
+    assert seen and all(n == 1 for threads in seen for n in threads), seen

@@ -40,6 +40,12 @@ def other_map(params, attrs: dict) -> str:
         return (f"a map of model {name!r} made before its no_wave column (its cells where "
                 "the model carries no wave of the amplitude may hold an NLS verdict of a "
                 "wave that does not exist)")
+    stored, asked = str(attrs.get("theories")).split(), params.theory_columns()
+    if set(stored) > set(asked):  # a simulated or --exact store asked without them
+        return (f"a map of model {name!r} of more theories than this one asks "
+                f"({' '.join(stored)} stored, {' '.join(asked)} asked: a simulated map's, "
+                "or --theory-only --exact's; give its --exact, or leave out --theory-only, "
+                "to continue it, or open it with xarray as it is)")
     if attrs.get("theories") != " ".join(params.theory_columns()):
         return (f"a map of model {name!r} of other theories ({attrs.get('theories')} "
                 f"against {' '.join(params.theory_columns())}; a --theory-only map without "

@@ -25,6 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from common.threads import one_blas_thread
 from energy import Model, ModelError
 
 from ._args import MAX_RING, check_count, check_ring
@@ -224,6 +225,11 @@ def saturation_time(rate: float, noise: float = NOISE) -> float:
 PEAK_RISE = math.sqrt(20.0)
 
 
+# one BLAS thread: each record's wave on the ring is a (d, 2H+1) @ (2H+1, N) product, 3.8 ms
+# a call on OpenBLAS' two threads of a loaded 2-core machine against microseconds on one
+# (a new user's pendulum chain, N 256, T 100: 0.79 s wall against 0.017 s; a map's probe
+# read its run as 3.2-3.7 s of CPU for 0.07-0.09 s and estimated 4 min for a 34 s map)
+@one_blas_thread
 def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: int = 256,
                    t_end: float | None = None, dt: float | None = None,
                    method: str = "srkn11b", start: str = "exact", noise: float | None = None,

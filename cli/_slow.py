@@ -1,0 +1,42 @@
+"""A line said when a command's step takes longer than a user waits in silence (a fresh
+clone's first `flexmm point --model fput-lossy.toml ...` printed nothing for 93 s, under
+load, while its theories' kernels compiled once; the paper chain's `point --simulate`
+nothing for 94 s)."""
+
+from __future__ import annotations
+
+import contextlib
+import sys
+import threading
+
+#: seconds of silence after which a step says what it is doing (as `map`'s estimate does)
+SLOW_NOTE_S = 5.0
+
+
+@contextlib.contextmanager
+def said_if_slow(log, message: str, after: float | None = None):
+    """Run the ``with`` body; where it is still running ``after`` seconds (default
+    ``SLOW_NOTE_S``) on, ``log(message)`` once, from a timer thread. Nothing is said
+    where the body ends first (or raises)."""
+    timer = threading.Timer(SLOW_NOTE_S if after is None else after, lambda: log(message))
+    timer.daemon = True
+    timer.start()
+    try:
+        yield
+    finally:
+        timer.cancel()
+
+
+def to_stderr(message: str) -> None:
+    """A note that depends on the machine (how long a step took) goes to stderr: stdout's
+    text, and JSON, stay the same on every machine."""
+    print(message, file=sys.stderr, flush=True)
+
+
+#: said where a point's theories take over ``SLOW_NOTE_S`` (the first point after an
+#: install compiles their kernels: 93 s of silence under load for the README's lossy FPUT)
+SLOW_MODEL_POINT = ("point: computing the theories (slow here: a busy machine, or the "
+                    "kernels compiling once after an install, a minute or two)")
+SLOW_PAPER_POINT = ("point: computing the theories and each seed's predicted growth (slow "
+                    "here: a busy machine, or the kernels compiling once after an install, "
+                    "a minute or two)")
