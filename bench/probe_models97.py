@@ -439,11 +439,18 @@ def three_way_checks(rep, paths):
                    chain_modulational=chain.modulational_gain)
         checks = judge(row)
         checks.pop("dispersion")
+        rates_ = (f"NLS {_g(row['nls_rate'])}, exact ring {_g(row['exact_rate'])} "
+                  f"({row['exact_kind']}), chain {_g(row['chain_rate'])}, four-wave "
+                  f"{_g(row['fw_rate'])}, run {_g(row['sim_rate'])} ({row['sim_verdict']})")
+        print(f"     point {name} {params} k={d['k']:.4f} a={a} N={N} branch={branch}: "
+              f"{rates_}", flush=True)
         for key, v in checks.items():
             rep.check(f"three-way {name} {params} k={k} a={a} {key}", v is not False,
-                      "ok" if v is True else str(v)[:90] if v is not False else
-                      f"NLS {row['nls_rate']} exact {row['exact_rate']} ({row['exact_kind']}) "
-                      f"4w {row['fw_rate']} run {row['sim_rate']} chain {row['chain_rate']}")
+                      "ok" if v is True else str(v)[:90] if v is not False else rates_)
+
+
+def _g(x):
+    return "-" if x is None else f"{x:.4g}"
 
 
 def _cli(args, timeout=600):
