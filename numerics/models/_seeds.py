@@ -146,8 +146,14 @@ def harmonic_offsets(spec, N: int) -> np.ndarray:
     # a 0.12 has H = 16, and the fastest offset's waves sit on the 8th and 10th harmonics
     # (|c_h| ~ 1e-12, 1e-15): the note said a run leaves them out and 'may measure 0 /time',
     # the run's T was the no-growth default, where the run measured the exact 0.01597
-    size = np.max(np.abs(np.asarray(spec.wave.coefficients)), axis=0)[H:]  # |c_h|, h >= 0
-    seen = [h for h in range(H + 1) if h <= 1 or size[h] > 0.01 * NOISE * spec.wave.amplitude]
+    # (a wave given without its coefficients: every harmonic up to H counts)
+    coefficients = getattr(spec.wave, "coefficients", None)
+    if coefficients is None:
+        seen = range(H + 1)
+    else:
+        size = np.max(np.abs(np.asarray(coefficients)), axis=0)[H:]  # |c_h|, h >= 0
+        floor = 0.01 * NOISE * spec.wave.amplitude
+        seen = [h for h in range(H + 1) if h <= 1 or size[h] > floor]
     harm = {(s * h * m) % N for h in seen for s in (1, -1)}
     return np.array([(m + j) % N in harm and (m - j) % N in harm
                      for j in range(1, len(spec.gain) + 1)], dtype=bool)
