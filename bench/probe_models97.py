@@ -52,8 +52,9 @@ Checks (bars in brackets, each with its reason):
 
     OMP_NUM_THREADS=1 NUMBA_NUM_THREADS=1 python -m bench.probe_models97 [--skip-cli]
 
-Prints one line a check (`ok` or `FAIL`) and the disagreements at the end (~4 min on the
-2-core VM, the CLI part ~2 of them; 2026-11-27, after probe 97's fixes: 0 disagreements).
+Prints one line a check (`ok` or `FAIL`) and the disagreements at the end (2-core VM,
+2026-11-27, after probe 97's fixes: ``--skip-cli`` 159 checks in ~1 min with the forces
+compiled, the CLI part 39 more in ~10 min; 0 disagreements).
 """
 
 from __future__ import annotations
