@@ -207,8 +207,11 @@ def _point_parser(sub, model_mode=False):
                         "the growth rate sigma(q) and the verdict, the theories' check")
     p.add_argument("--t-end", dest="t_end", type=float,
                    help="run length in T (default: 9 e-foldings of the exact peak gain, "
-                        "within [1000, 100000]; 5000 where nothing grows; the output says "
-                        "when the cap stops a run short of the 4 e-foldings that decide). "
+                        "within [1000, 100000]; 5000 where nothing grows; with --model "
+                        "those bounds times 10/omega_max where the fastest linear "
+                        "frequency omega_max is above 10, 0.1/omega_max below 0.1; the "
+                        "output says when the cap stops a run short of the 4 e-foldings "
+                        "that decide). "
                         "A run's verdict: MI, 'no growth within T' or undetermined")
     p.add_argument("--seeds", type=int, default=4, help="noise seeds of the runs (--simulate) and of the paper "
                    "chain's predicted growth factor (no runs needed); a model's point: "

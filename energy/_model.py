@@ -53,8 +53,10 @@ def module_name(name: str) -> str:
 #: module of another layout is derived again (2: the site loop accelerations_into, argument
 #: names that no field or parameter can shadow; 3: no text of the model file but checked
 #: names and repr literals, and a last line holding the hash of the body; 4: the force loop
-#: over the bonds, each bond's pulls computed once, the ring's ends outside the loop).
-CODEGEN_VERSION = 4
+#: over the bonds, each bond's pulls computed once, the ring's ends outside the loop;
+#: 5: a derivative at rest that SymPy's simplify splits into a Piecewise with an infinite
+#: branch at a special parameter value is printed unsimplified, not as nan, probe 97).
+CODEGEN_VERSION = 5
 
 #: The last line of a generated model module: sha256 of everything before it.
 BODY_HASH_PREFIX = "# BODY_SHA256 = "

@@ -62,9 +62,16 @@ class RunLength:
                 f"decide: --t-end {self.decides_at:g} would")
 
 
-def run_length(rate: float, cap: float = T_CAP) -> RunLength:
+def run_length(rate: float, cap: float | None = None, *, time_scale: float = 1.0) -> RunLength:
     """T for a run whose fastest predicted rate is ``rate`` (1/T): MEASURE_E_FOLDINGS
     e-foldings rounded up to 100 T, within [T_MIN, cap]; DEFAULT_T where nothing grows.
+
+    ``time_scale``: the bounds (T_MIN, the cap, DEFAULT_T, the rounding) are in units of
+    it (``numerics.models.time_scale``: 1 for a chain whose fastest linear frequency is
+    0.1 to 10, as the paper's; a stiff chain's 1/omega_max: before probe 97, a model of
+    stiffness 1e6 and mass 1e-3 (omega ~ 6e4) ran at least T = 1000, 6e7 radians, an
+    estimated 88 min on 64 sites, where 9 e-foldings took T = 1; a cap of None is T_CAP
+    in those units).
 
     Returns
     -------
@@ -72,12 +79,14 @@ def run_length(rate: float, cap: float = T_CAP) -> RunLength:
     """
     from . import checks
 
-    cap = checks.positive("cap", cap)  # before: cap = -1 gave t_end = -1
+    tau = checks.positive("time_scale", time_scale)
+    cap = tau * T_CAP if cap is None else checks.positive("cap", cap)  # before: cap = -1
     if not (isinstance(rate, (int, float, np.floating)) and rate > 0 and math.isfinite(rate)):
-        return RunLength(DEFAULT_T, float("nan"), False, float("nan"), cap)
+        return RunLength(tau * DEFAULT_T, float("nan"), False, float("nan"), cap)
     rate = float(rate)
-    t = min(max(math.ceil(MEASURE_E_FOLDINGS / rate / 100) * 100, T_MIN), cap)
-    decides = math.ceil(DECIDE_E_FOLDINGS / rate / 100) * 100
+    step = 100 * tau
+    t = min(max(math.ceil(MEASURE_E_FOLDINGS / rate / step) * step, tau * T_MIN), cap)
+    decides = math.ceil(DECIDE_E_FOLDINGS / rate / step) * step
     return RunLength(float(t), rate, rate * t < DECIDE_E_FOLDINGS, float(decides), cap)
 
 

@@ -380,8 +380,10 @@ def probe_model_cell(params) -> ModelCellCost:
             row = rows[n] if n in rows else theories(values, k, amplitude)[1]
             rate = row.get("peak_gain_exact" if start == "exact"
                            else f"peak_gain_{start}_start", math.nan)
+            from numerics.models import time_scale
             t_end = (float(params.t_end) if params.t_end is not None
-                     else run_length(rate).t_end)
+                     else run_length(rate, time_scale=time_scale(
+                         params.lattice_model.with_params(**values))).t_end)
             try:
                 # the solver's overflow at a cell with no wave is no warning of the map's
                 with warnings.catch_warnings(), np.errstate(all="ignore"):

@@ -276,11 +276,13 @@ def simulate_model_cells_gpu(model, cells, amplitude: float, branch=None, *, N: 
         why_cpu = K.fits(model.n_fields, K.device_force_of(model.code, fast_force)[1], N)
     rows: list = [None] * len(cells)
     chains: list = []
+    from numerics.models import time_scale
     for c, ((_, k), m, spec) in enumerate(zip(cells, models, specs)):
         if isinstance(spec, Exception):
             rows[c] = dict(UNDEFINED_ROW, growth_runs=[], device="cpu")
             continue
-        T = float(t_end) if t_end is not None else run_length(visible_gain(spec, N)).t_end
+        T = float(t_end) if t_end is not None else run_length(
+            visible_gain(spec, N), time_scale=time_scale(m)).t_end
         if why_cpu is not None:
             try:
                 sim = simulate_seeds(m, k, amplitude, spec, branch=branch, N=N, seeds=seeds,

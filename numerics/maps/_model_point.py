@@ -165,13 +165,13 @@ class ModelPoint:
 def _estimate(spec, hill, gain, figure):
     """The runs' estimate (``estimate_model_point``: one run measured here), their T the
     exact (or the start's) rate's unless ``t_end``."""
-    from numerics.models import visible_gain
+    from numerics.models import time_scale, visible_gain
 
     from ..lattice import run_length
     from ._estimate import estimate_model_point
-
     t_end = spec.t_end if spec.t_end is not None else run_length(
-        visible_gain(hill, spec.N) if gain is None else gain).t_end
+        visible_gain(hill, spec.N) if gain is None else gain,
+        time_scale=time_scale(spec.model)).t_end
     return estimate_model_point(spec.model, spec.k_ring, spec.amplitude, spec.branch,
                                 N=spec.N, seeds=spec.seeds, t_end=t_end, figure=figure,
                                 wave=hill.wave)

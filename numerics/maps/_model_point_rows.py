@@ -57,8 +57,11 @@ def simulated_row(model, k, amplitude, branch, N, seeds, t_end, spec, start, pea
     if model.lossy and t_end is None and peak_time is not None and math.isfinite(peak_time):
         # the cap reaches past the exact theory's peak (1.5x its time), at least the
         # lossless run's length
+        from numerics.models import time_scale
+
         from ..lattice import run_length
-        t_end = max(run_length(spec.peak_gain).t_end, 1.5 * peak_time)
+        t_end = max(run_length(spec.peak_gain, time_scale=time_scale(model)).t_end,
+                    1.5 * peak_time)
     from common.progress import progress_class
     tqdm = progress_class()
 

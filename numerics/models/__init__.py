@@ -16,6 +16,7 @@ field_groups, wave_sheet, sheet_pair_kind, sheet_branches   dispersion sheets: a
 energy_not_real, amplitude_reach        where the energy stops being real along a wave: why
 exact_gain_checked                      there is no travelling wave, the largest amplitude
 simulate_model -> ModelRun              a ring of the model; .growth() -> Growth
+time_scale                              the unit of a run's length bounds (a stiff chain's)
 simulate_soliton -> ModelSolitonRun     its NLS soliton launched on a ring and tracked
                                         (ring_soliton: the prediction on that ring)
 lattice_force, lattice_energy           the compiled force and the model's energy
@@ -105,6 +106,7 @@ from ._soliton_run import (
                      travel_time,
 )
 from ._summary import model_coefficients
+from ._time_scale import time_scale
 
 __all__ = ["Carrier", "carrier", "branches", "branch_index", "check_rest_stable", "ModelNLS",
            "ModelSoliton", "nls", "acoustic_directions", "model_map", "map_cells",
@@ -121,4 +123,5 @@ __all__ = ["Carrier", "carrier", "branches", "branch_index", "check_rest_stable"
            "ModelSolitonRun", "RingSoliton", "ring_soliton", "check_soliton_launch",
            "soliton_report", "travel_time", "lossy_runs",
            "FORCES", "energy_hash", "run_force", "ExtraTheory", "extra_theories",
-           "register_extra_theory", "ExtraStart", "extra_starts", "register_extra_start"]
+           "register_extra_theory", "ExtraStart", "extra_starts", "register_extra_start",
+           "time_scale"]

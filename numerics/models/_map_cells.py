@@ -208,7 +208,9 @@ def lossy_runs(model: Model, k: float, amplitude: float, spec, *, branch=None,
     from ._seeds import simulate_seeds
 
     if t_end is None and peak_time is not None and math.isfinite(peak_time):
-        t_end = max(run_length(spec.peak_gain).t_end, 1.5 * peak_time)
+        from ._time_scale import time_scale
+        t_end = max(run_length(spec.peak_gain, time_scale=time_scale(model)).t_end,
+                    1.5 * peak_time)
     sim = simulate_seeds(model, k, amplitude, spec, branch=branch, N=N, seeds=seeds,
                          t_end=t_end, noise_on="carrier", until_peak=True, energy=energy)
     amps = sorted((r.amplification() for r in sim.runs), key=lambda a: a.amplification)

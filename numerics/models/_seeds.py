@@ -134,11 +134,27 @@ def visible_gain(spec, N: int) -> float:
 def harmonic_offsets(spec, N: int) -> np.ndarray:
     """Which of the ring's offsets j = 1 .. len(spec.gain) (``ring_offsets(N)``: q = 2 pi
     j / N) put both their waves, ring modes m + j and m - j, on harmonics of the carrier
-    (h m mod N, |h| <= the wave's harmonics): the offsets a run leaves out of its growth
+    (h m mod N, |h| <= the wave's harmonics above the noise): the offsets a run leaves out of its growth
     (``visible_gain``; ``numerics.maps``' ``harmonic_note``). Boolean, shape (len(gain),)."""
+    from ._simulate import NOISE
+
     m = int(round(spec.wave.k * N / (2 * math.pi)))
     H = int(spec.wave.harmonics)
-    harm = {(h * m) % N for h in range(-H, H + 1)}
+    # only the harmonics a run can tell from its noise (``read_modes`` leaves out those
+    # whose drift shows over the noise floor): |c_h| above a hundredth of the noise's
+    # amplitude. Before probe 97 every h <= H counted: FPUT (alpha 0.5) at k = 2 pi 21/64,
+    # a 0.12 has H = 16, and the fastest offset's waves sit on the 8th and 10th harmonics
+    # (|c_h| ~ 1e-12, 1e-15): the note said a run leaves them out and 'may measure 0 /time',
+    # the run's T was the no-growth default, where the run measured the exact 0.01597
+    # (a wave given without its coefficients: every harmonic up to H counts)
+    coefficients = getattr(spec.wave, "coefficients", None)
+    if coefficients is None:
+        seen = range(H + 1)
+    else:
+        size = np.max(np.abs(np.asarray(coefficients)), axis=0)[H:]  # |c_h|, h >= 0
+        floor = 0.01 * NOISE * spec.wave.amplitude
+        seen = [h for h in range(H + 1) if h <= 1 or size[h] > floor]
+    harm = {(s * h * m) % N for h in seen for s in (1, -1)}
     return np.array([(m + j) % N in harm and (m - j) % N in harm
                      for j in range(1, len(spec.gain) + 1)], dtype=bool)
 
@@ -159,8 +175,9 @@ def simulate_seeds(model: Model, k: float, amplitude: float, spec, *, branch=Non
     if t_end is not None and (isinstance(t_end, bool) or not isinstance(t_end, numbers.Real)):
         raise ModelError(f"t_end must be a finite time > 0, got {type(t_end).__name__} "
                          f"{t_end!r}")
-    length = run_length(visible_gain(spec, N) if gain is None else gain) \
-        if t_end is None else None
+    from ._time_scale import time_scale
+    length = run_length(visible_gain(spec, N) if gain is None else gain,
+                        time_scale=time_scale(model)) if t_end is None else None
     T = float(t_end) if t_end is not None else length.t_end
     runs = [simulate_model(model, k, amplitude, branch=branch, N=N, t_end=T, start=start,
                            seed=s, wave=spec.wave, **run) for s in range(int(seeds))]

@@ -324,7 +324,8 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
         if expected_gain is None:
             from ._exact import hill_spectrum
             expected_gain = hill_spectrum(wave, ring_offsets(N)).peak_gain
-        t_end = run_length(expected_gain).t_end
+        from ._time_scale import time_scale
+        t_end = run_length(expected_gain, time_scale=time_scale(model)).t_end
     if isinstance(t_end, bool) or not isinstance(t_end, (int, float, np.floating)) or not (
             math.isfinite(t_end) and t_end > 0):
         raise ModelError(f"t_end must be a finite time > 0, got {t_end!r}")
