@@ -261,6 +261,9 @@ def measure_model_point(spec: ModelPointSpec, *, on_estimate=None,
     reach = rows.reach_note(model, k, amplitude, branch, out)
     mode = rows.mode_note(out)
     blind = rows.harmonic_note(hill, N)
+    unsettled = out["exact lattice"].get("not_converged")
+    if unsettled:  # the exact row's rate is not converged: said on its line
+        blind = f"{blind}; {unsettled}" if blind else unsettled
     if blind and mode:  # one sentence for the table's one line of the exact row
         mode = f"{mode}; {blind}"
     elif blind:

@@ -12,12 +12,17 @@ def exact_row(spec) -> dict:
     """The exact lattice theory's row from its spectrum on the ring (``spec``,
     ``numerics.models.exact_gain_checked``): verdict, peak gain, the fastest mode and what
     kind of mode it is."""
-    from ..models import classify_mode
+    from ..models import classify_mode, not_converged
 
     row = {"verdict": spec.verdict, "peak_gain": spec.peak_gain,
            "fastest_offset": spec.fastest_offset, "mode": spec.mode,
            "modulational_gain": spec.modulational_gain,
-           "omega": spec.wave.omega, "omega_linear": spec.wave.carrier.omega}
+           "omega": spec.wave.omega, "omega_linear": spec.wave.carrier.omega,
+           # the Hill truncations the rate rests on (two: it persists, CONVENTIONS.md)
+           "truncations": list(spec.truncations)}
+    why = not_converged(spec)
+    if why:
+        row["not_converged"] = why
     row.update(classify_mode(spec))  # mode_kind, mode_waves and the pair's own offset
     return row
 

@@ -8,6 +8,8 @@ model_coefficients                      the NLS at one carrier as a JSON-ready d
 travelling_wave -> TravellingWave       the exact plane wave (harmonic balance)
 hill_spectrum -> HillSpectrum           its sidebands' growth rates (Hill/Floquet)
 exact_gain                              both at one point: the exact lattice theory
+not_converged                           its sentence where the fastest mode does not
+                                        persist across Hill truncations
 four_wave -> FourWave                   every four-wave pair's rate (Zakharov's kernel of the
                                         lattice): sidebands, backward pairs, parametric decays
 classify_mode, ring_misses              what an exact mode is; bands a ring does not sample
@@ -53,6 +55,7 @@ from ._extras import (
 from ._forces import FORCES, energy_hash, run_force
 from ._fourwave import FourWave, four_wave, pair_rates
 from ._growth import read_modes, saturation_record, settled_rate
+from ._hill_dense import not_converged
 from ._linear import (
                      Carrier,
                      branch_index,
@@ -112,7 +115,7 @@ __all__ = ["Carrier", "carrier", "branches", "branch_index", "check_rest_stable"
            "ModelSoliton", "nls", "acoustic_directions", "model_map", "map_cells",
            "simulated_cell", "model_coefficients", "carrier_damping", "damped_frequencies",
            "damping_matrix", "damping_rates", "TravellingWave", "HillSpectrum",
-           "travelling_wave", "hill_spectrum", "exact_gain", "exact_gain_checked",
+           "travelling_wave", "hill_spectrum", "exact_gain", "exact_gain_checked", "not_converged",
            "energy_not_real", "amplitude_reach", "FourWave", "four_wave", "pair_rates",
            "classify_mode", "field_groups", "sheet_branches", "sheet_pair_kind", "wave_sheet", "ring_misses", "ring_offsets", "simulate_model", "simulate_seeds",
            "SeededRuns", "ModelRun", "NOISE", "Growth", "measure_growth", "saturation_record",
