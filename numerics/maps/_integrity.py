@@ -165,6 +165,23 @@ def _sound_blosc_frame(frame: bytes, want: int) -> bool:
     return bool(np.all((starts >= table) & (starts < cbytes)))
 
 
+def consolidated_agrees(path: Path, meta: dict) -> bool:
+    """Whether ``meta`` (the ``metadata`` of the store's ``.zmetadata``) is the store's
+    metadata files, each entry equal to its file and every file entered: ``xr.open_zarr``
+    reads the consolidated copy alone, so a flipped byte there ("<f8" read as "<f4") made
+    the user's read of a verified store fail, or read other values, while the engine,
+    which reads the files, resumed it (probe 97)."""
+    entered = set()
+    for f in [*path.glob(".z*"), *path.glob("*/.z*")]:  # the store's folders are flat
+        key = f.relative_to(path).as_posix()
+        if key == ".zmetadata":
+            continue
+        if key not in meta or json.loads(f.read_text()) != meta[key]:
+            return False
+        entered.add(key)
+    return entered == set(meta)
+
+
 def read_raw(path: Path, names, shape) -> tuple[dict, np.ndarray]:
     """The store's variables ``names`` as stored, and a mask of the cells that could not
     be read (a missing variable, a chunk that does not decode): those get a value no

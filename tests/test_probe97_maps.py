@@ -1,0 +1,94 @@
+"""Probe 97 of the map engine (bench/probe_maps97.py): what it found, kept as tests.
+
+A map store whose metadata an xarray reader cannot use is damaged, found on resume and
+rebuilt keeping its verified cells, never resumed as sound: a variable's ``.zattrs`` lost
+(the resume raised xarray's KeyError, a traceback), and a flipped byte in the consolidated
+``.zmetadata`` (the resume said every checksum held while ``xr.open_zarr``, the way the
+docs open a store, failed on it)."""
+
+from __future__ import annotations
+
+import json
+import shutil
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from numerics.maps import ModelMapParameters, open_or_create, run_map
+
+pytestmark = pytest.mark.slow  # a LocalCluster started once: 21 s on the loaded 2-core VM
+
+
+def _fput_map(**options):
+    return ModelMapParameters.from_model("fput", ("beta", [0.8, 1.6]), ("k", [2.6, 2.8]),
+                                         0.1, params={"alpha": 1.0}, **options)
+
+
+@pytest.fixture(scope="module")
+def _finished(tmp_path_factory):
+    """A finished theory-only map of 2 x 2 cells, made once (a LocalCluster's start)."""
+    out = tmp_path_factory.mktemp("finished")
+    params = _fput_map(N=16, theory_only=True, exact=True)
+    ds = run_map(params, out, workers=1, progress=False, log=lambda *a: None)
+    return params, out, ds.load()
+
+
+@pytest.fixture
+def theory_store(_finished, tmp_path):
+    """A copy of the finished map's store, to damage, and its values."""
+    params, out, ds = _finished
+    shutil.copytree(out / "map.zarr", tmp_path / "map.zarr")
+    return params, tmp_path, ds
+
+
+def _resume(params, out):
+    """The store opened as a resumed map opens it (its checks, repair and verification;
+    nothing is left to compute, so no cluster is needed)."""
+    said = []
+    ds = open_or_create(out / "map.zarr", params, log=said.append)
+    return ds.load(), said
+
+
+def _same_cells(a, b):
+    """The cells' values of ``b`` equal ``a``'s, bit for bit (a store rebuilt before its
+    map's end lacks the summary's derived variables: those are written at the end)."""
+    assert b["done_predicted"].values.all()
+    for name in b.data_vars:
+        np.testing.assert_array_equal(a[name].values, b[name].values, err_msg=name)
+
+
+@pytest.mark.parametrize("variable", ["verdict_semidiscrete", "k_simulated", "beta"])
+def test_a_variable_whose_zattrs_is_lost_is_damaged_and_rebuilt(theory_store, variable):
+    params, out, first = theory_store
+    (out / "map.zarr" / variable / ".zattrs").unlink()
+    ds, said = _resume(params, out)  # before: KeyError (_ARRAY_DIMENSIONS), a traceback
+    assert any("damaged" in line and variable in line for line in said), said
+    _same_cells(first, ds)  # every cell kept: their data and checksums survive
+    _same_cells(first, xr.open_zarr(out / "map.zarr").load())  # as the docs open it
+
+
+def test_a_flipped_byte_in_the_consolidated_metadata_is_found(theory_store):
+    params, out, first = theory_store
+    meta = out / "map.zarr" / ".zmetadata"
+    text = meta.read_text()
+    at = text.index('"<f8"', text.index('"peak_gain_exact/.zarray"'))
+    meta.write_text(text[:at] + '"<f4"' + text[at + 5:])  # one byte: 8 -> 4
+    with pytest.raises(ValueError):  # what the user met: the store unreadable to xarray
+        xr.open_zarr(out / "map.zarr")["peak_gain_exact"].load()
+    ds, said = _resume(params, out)  # before: "checksums verified", the store left as it was
+    assert any("damaged" in line and ".zmetadata" in line for line in said), said
+    back = xr.open_zarr(out / "map.zarr").load()
+    _same_cells(first, back)
+    # the consolidated copy is the files again, entry for entry
+    entries = json.loads(meta.read_text())["metadata"]
+    for key, value in entries.items():
+        assert json.loads((out / "map.zarr" / key).read_text()) == value, key
+
+
+def test_an_intact_store_is_not_called_damaged(theory_store):
+    """The check must not cry wolf: a finished store resumes without a rebuild."""
+    params, out, first = theory_store
+    ds, said = _resume(params, out)
+    assert not any("damaged" in line for line in said), said
+    _same_cells(first, ds)
