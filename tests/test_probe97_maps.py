@@ -4,7 +4,8 @@ A map store whose metadata an xarray reader cannot use is damaged, found on resu
 rebuilt keeping its verified cells, never resumed as sound: a variable's ``.zattrs`` lost
 (the resume raised xarray's KeyError, a traceback), and a flipped byte in the consolidated
 ``.zmetadata`` (the resume said every checksum held while ``xr.open_zarr``, the way the
-docs open a store, failed on it)."""
+docs open a store, failed on it). A map's progress lines: no "about 0 s left" once the
+estimate has passed with no cell back, and their clock starts before the cluster's."""
 
 from __future__ import annotations
 
@@ -17,7 +18,9 @@ import xarray as xr
 
 from numerics.maps import ModelMapParameters, open_or_create, run_map
 
-pytestmark = pytest.mark.slow  # a LocalCluster started once: 21 s on the loaded 2-core VM
+#: the store's tests share a finished map (a LocalCluster started once: 21 s in all on the
+#: loaded 2-core VM)
+slow = pytest.mark.slow
 
 
 def _fput_map(**options):
@@ -58,6 +61,7 @@ def _same_cells(a, b):
         np.testing.assert_array_equal(a[name].values, b[name].values, err_msg=name)
 
 
+@slow
 @pytest.mark.parametrize("variable", ["verdict_semidiscrete", "k_simulated", "beta"])
 def test_a_variable_whose_zattrs_is_lost_is_damaged_and_rebuilt(theory_store, variable):
     params, out, first = theory_store
@@ -68,6 +72,7 @@ def test_a_variable_whose_zattrs_is_lost_is_damaged_and_rebuilt(theory_store, va
     _same_cells(first, xr.open_zarr(out / "map.zarr").load())  # as the docs open it
 
 
+@slow
 def test_a_flipped_byte_in_the_consolidated_metadata_is_found(theory_store):
     params, out, first = theory_store
     meta = out / "map.zarr" / ".zmetadata"
@@ -86,9 +91,61 @@ def test_a_flipped_byte_in_the_consolidated_metadata_is_found(theory_store):
         assert json.loads((out / "map.zarr" / key).read_text()) == value, key
 
 
+@slow
 def test_an_intact_store_is_not_called_damaged(theory_store):
     """The check must not cry wolf: a finished store resumes without a rebuild."""
     params, out, first = theory_store
     ds, said = _resume(params, out)
     assert not any("damaged" in line for line in said), said
     _same_cells(first, ds)
+
+
+class _Clock:
+    def __init__(self):
+        self.now = 100.0
+
+    def __call__(self):
+        return self.now
+
+
+def test_past_the_estimate_with_no_cell_back_no_time_left_is_claimed():
+    """A paper map on a busy machine estimated 31 s; at 40 s, no cell back yet, its line
+    said 'about 0 s left' and the map took 72 s more."""
+    from numerics.maps import _progress
+
+    clock, said = _Clock(), []
+    p = _progress.ProgressLines(6, "simulated", 31.0, said.append, clock)
+    clock.now = 110.0
+    p.tick()
+    assert said[-1].endswith("about 21 s left (the estimate; no cell back yet)")
+    clock.now = 140.0
+    p.tick()
+    assert "0 s left" not in said[-1] and "past the estimate (31 s)" in said[-1], said
+
+
+def test_the_progress_clock_starts_before_the_cluster(monkeypatch, tmp_path):
+    """The lines count from before the cluster's start, as the estimate they quote does:
+    the first came 10 s after a start-up of 13-50 s on a busy machine, its time left the
+    estimate less only the tasks' time."""
+    from numerics.maps import _cluster, _progress, _store
+
+    order = []
+    real = _progress.progress_lines
+
+    def lines(*a, **k):
+        order.append("lines")
+        return real(*a, **k)
+
+    class Stop(Exception):
+        pass
+
+    def connect(*a, **k):
+        order.append("connect")
+        raise Stop
+
+    monkeypatch.setattr(_progress, "progress_lines", lines)
+    monkeypatch.setattr(_cluster, "connect", connect)
+    with pytest.raises(Stop):
+        _store._run_tasks(_fput_map(N=16, theory_only=True), tmp_path / "map.zarr", [], 4,
+                          None, 1, None, lambda *a: None)
+    assert order == ["lines", "connect"]
