@@ -149,3 +149,26 @@ def test_the_progress_clock_starts_before_the_cluster(monkeypatch, tmp_path):
         _store._run_tasks(_fput_map(N=16, theory_only=True), tmp_path / "map.zarr", [], 4,
                           None, 1, None, lambda *a: None)
     assert order == ["lines", "connect"]
+
+
+def test_a_lock_created_a_moment_ago_without_its_record_yet_is_held(tmp_path):
+    """A writer creates the lock (O_EXCL), then writes its record: a second map in between
+    read an empty file as 'no flexmm lock record', took it over, and both wrote the store."""
+    from numerics.maps._integrity import StoreLocked, store_lock
+
+    store = tmp_path / "map.zarr"
+    lock = tmp_path / "map.zarr.lock"
+    lock.write_bytes(b"")  # the first writer, between its O_EXCL create and its record
+    with pytest.raises(StoreLocked, match="holds no record yet"):
+        with store_lock(store, log=lambda *a: None):
+            pass
+    assert lock.read_bytes() == b""  # left to its writer
+    # an old record-less file (a writer that died mid-way) is still taken over, said
+    import os
+    import time
+    old = time.time() - 60
+    os.utime(lock, (old, old))
+    said = []
+    with store_lock(store, log=said.append):
+        assert b'"pid"' in lock.read_bytes()
+    assert any("no flexmm lock record" in line for line in said) and not lock.exists()
