@@ -172,3 +172,31 @@ def test_a_lock_created_a_moment_ago_without_its_record_yet_is_held(tmp_path):
     with store_lock(store, log=said.append):
         assert b'"pid"' in lock.read_bytes()
     assert any("no flexmm lock record" in line for line in said) and not lock.exists()
+
+
+@pytest.mark.parametrize("axes", [
+    ["--param", "beta=1:1:1", "--k", "2.6:2.6:1"],  # a 1 x 1 map
+    ["--param", "beta=1", "--k", "2.6:2.6:1", "--amplitude", "0.1:0.1:1"],
+])
+def test_a_one_value_spec_of_k_or_amplitude_is_an_axis_as_a_params_is(axes, monkeypatch,
+                                                                      tmp_path):
+    """--param beta=1:1:1 made an axis of one value while --k 2.6:2.6:1 and --amplitude
+    0.1:0.1:1 were fixed values, so no map of one cell could be asked ('got 1: beta')."""
+    import numerics.maps
+    from cli.app import main as cli
+
+    class Asked(BaseException):
+        pass
+
+    def check_store(path, params, overwrite=False):  # the map as resolved, before work
+        raise Asked(params)
+
+    monkeypatch.setattr(numerics.maps, "check_store", check_store)
+    args = ["map", "--model", "fput", "--param", "alpha=1", *axes, "--N", "64",
+            "--theory-only", "--out", str(tmp_path)]
+    if "--amplitude" not in axes:
+        args += ["--amplitude", "0.1"]
+    with pytest.raises(Asked) as asked:
+        cli(args)
+    params = asked.value.args[0]
+    assert params.grid_shape == (1, 1), params.dims
