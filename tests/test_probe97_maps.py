@@ -200,3 +200,26 @@ def test_a_one_value_spec_of_k_or_amplitude_is_an_axis_as_a_params_is(axes, monk
         cli(args)
     params = asked.value.args[0]
     assert params.grid_shape == (1, 1), params.dims
+
+
+def test_a_store_set_aside_by_a_stopped_rewrite_is_restored(tmp_path):
+    """A rewrite (a damaged store rebuilt) renames the store aside, then its successor into
+    place: a kill -9 between the two left no map.zarr, and the next run deleted the store
+    set aside with every finished cell in it."""
+    import zarr
+
+    params = _fput_map(N=16, theory_only=True)
+    store = tmp_path / "map.zarr"
+    open_or_create(store, params, log=lambda *a: None)
+    from numerics.maps._integrity import CHECKSUM, cell_checksums
+
+    group = zarr.open_group(str(store), mode="r+")
+    group["g1"][0, 0] = 4.25  # a finished cell (flagged, its checksum right) to find again
+    group["done_predicted"][0, 0] = True
+    names = [n for n in group.array_keys() if n not in (CHECKSUM, *params.store_coords())]
+    group[CHECKSUM][...] = cell_checksums({n: group[n][...] for n in names})
+    store.rename(tmp_path / ".map.zarr.old")
+    said = []
+    ds = open_or_create(store, params, log=said.append)
+    assert any("restored" in line for line in said), said
+    assert float(ds["g1"][0, 0]) == 4.25

@@ -274,6 +274,13 @@ def _open(path: Path, params: MapParameters, overwrite: bool = False, log=print)
         return {n: (ds[n].values if raw is None or n not in raw else
                     np.asarray(raw[n], ds[n].dtype)) for n in ds.data_vars}
 
+    old = path.with_name(f".{path.name}.old")
+    if not path.exists() and not path.is_symlink() and old.is_dir():
+        # a rebuild stopped between its two renames (_write_new: the store set aside, the
+        # new one not yet in place): the store set aside is the map's, its cells kept
+        old.rename(path)
+        log(f"note: {path} restored from {old.name} (a rewrite of it was stopped between "
+            "setting it aside and putting its successor in place)")
     what, detail = _checked(path, params, overwrite)
     if what == "discard":  # --overwrite: the user asked for the map afresh
         done = _finished_cells(path)
