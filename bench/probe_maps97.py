@@ -139,7 +139,7 @@ def part_interrupt(tmp, rng, tries):
     for workers in ("1", "2"):
         args = FPUT12 + ["--workers", workers]
         ref = tmp / f"ref{workers}"
-        p, whole = flexmm(args + ["--out", str(ref)])
+        p, whole = flexmm(["map", *args, "--out", str(ref)])
         say("interrupt", f"reference, {workers} worker(s)", p.returncode == 0, f"{whole:.0f} s")
         for i in range(tries):
             sig = rng.choice([signal.SIGINT, signal.SIGTERM, signal.SIGKILL])

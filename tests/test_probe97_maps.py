@@ -18,9 +18,8 @@ import xarray as xr
 
 from numerics.maps import ModelMapParameters, open_or_create, run_map
 
-#: the store's tests share a finished map (a LocalCluster started once: 21 s in all on the
-#: loaded 2-core VM)
-slow = pytest.mark.slow
+#: the store's tests share a finished map (a LocalCluster started once): the file takes
+#: 6 s on the 2-core VM (21 s while other sessions loaded it to 7), so none is slow-marked
 
 
 def _fput_map(**options):
@@ -61,7 +60,6 @@ def _same_cells(a, b):
         np.testing.assert_array_equal(a[name].values, b[name].values, err_msg=name)
 
 
-@slow
 @pytest.mark.parametrize("variable", ["verdict_semidiscrete", "k_simulated", "beta"])
 def test_a_variable_whose_zattrs_is_lost_is_damaged_and_rebuilt(theory_store, variable):
     params, out, first = theory_store
@@ -72,7 +70,6 @@ def test_a_variable_whose_zattrs_is_lost_is_damaged_and_rebuilt(theory_store, va
     _same_cells(first, xr.open_zarr(out / "map.zarr").load())  # as the docs open it
 
 
-@slow
 def test_a_flipped_byte_in_the_consolidated_metadata_is_found(theory_store):
     params, out, first = theory_store
     meta = out / "map.zarr" / ".zmetadata"
@@ -91,7 +88,6 @@ def test_a_flipped_byte_in_the_consolidated_metadata_is_found(theory_store):
         assert json.loads((out / "map.zarr" / key).read_text()) == value, key
 
 
-@slow
 def test_an_intact_store_is_not_called_damaged(theory_store):
     """The check must not cry wolf: a finished store resumes without a rebuild."""
     params, out, first = theory_store
