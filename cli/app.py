@@ -216,9 +216,16 @@ def _interrupted(args, exc) -> str:
         store = Path(args.out) / "map.zarr"
         from numerics.maps import cells_done
 
-        done = cells_done(store)
+        # a theory-only map's cells are predicted, not simulated: its own flag counts them
+        # (probe 97: an interrupted --theory-only map said '0 of 4 cells are kept')
+        done = cells_done(store, "done_predicted" if getattr(args, "theory_only", False)
+                          else "done")
         kept = (f"{done[0]} of {done[1]} cells are kept in {store} (checksummed)"
                 if done else f"nothing was written to {store}")
+        if done and done[0] == done[1]:  # stopped after its last cell (probe 97: it said
+            # that running cells were lost, of a map that had none left)
+            return (f"interrupted ({name}); {kept}: every cell is done; run the same "
+                    "command again for its summary and figure")
         return (f"interrupted ({name}); {kept}; the cells that were running were not kept: "
                 "run the same command again to continue")
     if cmd in ("point", "soliton"):  # each writes its files at its end, or nothing

@@ -219,3 +219,19 @@ def test_a_store_set_aside_by_a_stopped_rewrite_is_restored(tmp_path):
     ds = open_or_create(store, params, log=said.append)
     assert any("restored" in line for line in said), said
     assert float(ds["g1"][0, 0]) == 4.25
+
+
+def test_an_interrupt_after_the_last_cell_says_every_cell_is_done(_finished, tmp_path):
+    """Ctrl-C after a map's last cell said 'the cells that were running were not kept: run
+    the same command again to continue', of a map with no cell left; and a theory-only
+    map's interrupt counted its cells by the simulations' flag: '0 of 4 cells are kept'."""
+    import argparse
+    import signal
+
+    from cli.app import _interrupted
+
+    _, out, _ = _finished
+    args = argparse.Namespace(cmd="map", out=str(out), theory_only=True)
+    said = _interrupted(args, KeyboardInterrupt(signal.SIGINT))
+    assert "4 of 4 cells are kept" in said and "every cell is done" in said, said
+    assert "were not kept" not in said
