@@ -36,13 +36,18 @@ What it tries (one line a try, ``!!`` where a bar is missed):
     OMP_NUM_THREADS=1 NUMBA_NUM_THREADS=1 python -m bench.probe_maps97 [--part NAME]
         [--tries N] [--seed S]
 
-Run time on the 2-core VM shared with other sessions (load average 6-10), 2026-11-27:
-interrupt ~6 min for 12 tries, store ~12 min for 30 tries (each rerun starts a cluster),
-refuse ~2 min, cells ~3 min, grids ~3 min, progress ~1.5 min. Findings of that run
-(fixed, tests/test_probe97_maps.py): a variable's lost ``.zattrs`` made the resume a
-traceback; a flipped byte in ``.zmetadata`` was resumed as sound while ``xr.open_zarr``
-failed; a progress line said "about 0 s left" 70 s before the end; a lock file caught
-between its creation and its record was taken over by a second map.
+Run time on the 2-core VM shared with other sessions (load average 2-10), 2026-11-27,
+``--tries 3``/``8``: interrupt ~5 min, store ~4 min, refuse ~2 min, cells ~4 min (12
+``point --simulate`` calls), grids ~3 min, progress ~10 s idle (~70 s loaded).
+Findings (fixed, tests/test_probe97_maps.py): a variable's lost ``.zattrs`` made the
+resume a traceback; a flipped byte in ``.zmetadata`` was resumed as sound while
+``xr.open_zarr`` failed; a progress line said "about 0 s left" 70 s before the end; a
+lock file caught between its creation and its record was taken over by a second map; a
+store set aside by a stopped rewrite was deleted by the next run; a one-value SPEC of
+--k was no axis (no 1 x 1 map); a theory-only map's interrupt line counted 0 cells kept.
+Left: SIGINT during the interpreter's exit, after the last line ("wrote ..."), ends the
+process by the signal (exit -2, no line; the store complete), which the interrupt part
+reports with ``!!``.
 """
 
 from __future__ import annotations
