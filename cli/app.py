@@ -216,13 +216,20 @@ def _interrupted(args, exc) -> str:
         store = Path(args.out) / "map.zarr"
         from numerics.maps import cells_done
 
-        done = cells_done(store)
+        # a theory-only map's cells are predicted, not simulated: its own flag counts them
+        # (probe 97: an interrupted --theory-only map said '0 of 4 cells are kept')
+        done = cells_done(store, "done_predicted" if getattr(args, "theory_only", False)
+                          else "done")
         if not done:  # the store is made before any cell runs: none had started
             return (f"interrupted ({name}); nothing was written to {store}, no cell had "
                     "started: run the same command again to start")
-        return (f"interrupted ({name}); {done[0]} of {done[1]} cells are kept in {store} "
-                "(checksummed); the cells that were running were not kept: run the same "
-                "command again to continue")
+        kept = f"{done[0]} of {done[1]} cells are kept in {store} (checksummed)"
+        if done[0] == done[1]:  # stopped after its last cell (probe 97: it said that
+            # running cells were lost, of a map that had none left)
+            return (f"interrupted ({name}); {kept}: every cell is done; run the same "
+                    "command again for its summary and figure")
+        return (f"interrupted ({name}); {kept}; the cells that were running were not kept: "
+                "run the same command again to continue")
     if cmd in ("point", "soliton"):  # each writes its files at its end, or nothing
         return (f"interrupted ({name}); nothing was written"
                 + (f" to {args.out}" if getattr(args, "out", None) else ""))

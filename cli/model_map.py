@@ -38,8 +38,8 @@ def run_map(args) -> int:
         vals = parse_spec(args.k, "--k")
         if not np.all((vals > 0) & (vals <= math.pi)):  # named as the option, before work
             raise ValueError(f"--k must be in (0, pi], got {args.k!r}")
-        if vals.size > 1:
-            k_axis = vals
+        if vals.size > 1 or ":" in args.k or "," in args.k:  # a SPEC, as --param's: an
+            k_axis = vals  # axis even of one value (a 1 x 1 map: probe 97)
         else:
             k_fixed = float(vals[0])
     amp, amp_axis = args.amplitude, None
@@ -49,7 +49,8 @@ def run_map(args) -> int:
             raise ValueError(f"--amplitude must be > 0, got {amp!r}")
         for v in vals:
             check_value("--amplitude", float(v))
-        amp, amp_axis = (None, vals) if vals.size > 1 else (float(vals[0]), None)
+        amp, amp_axis = (None, vals) if vals.size > 1 or ":" in amp or "," in amp else (
+            float(vals[0]), None)
     named = (list(axes.items()) + ([("k", k_axis)] if k_axis is not None else [])
              + ([("amplitude", amp_axis)] if amp_axis is not None else []))
     if len(named) != 2:

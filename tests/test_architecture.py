@@ -162,6 +162,8 @@ TEST_EXCEPTIONS = {
     "numerics.lattice._simulate": "an interrupt injected into the run loop",
     "numerics.maps._store": "the map store's format and damage handling",
     "numerics.maps._progress": "the progress lines' timing and pace, on a clock of the test's",
+    "numerics.maps._cluster": "the progress lines' clock started before the cluster (probe 97)",
+    "cli.app._interrupted": "the interrupt line of a map whose every cell is done (probe 97)",
     "numerics.maps._devices": "a run stopped where the store's closing attributes are written",
     "numerics.maps._model_columns": "the mode kind's attributes, read beside a map cell",
     "numerics.maps._model_point_rows": "a point's note from rows built by hand (damped "

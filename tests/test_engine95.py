@@ -333,7 +333,8 @@ def test_a_model_map_killed_mid_map_resumes_to_the_undisturbed_store(signum, cod
     kept = cells_done(out / "map.zarr")[0]
     assert kept >= 1
     if signum != signal.SIGKILL:
-        lines = err.strip().splitlines()
+        # the progress lines a busy machine's map prints first (stderr a pipe) aside
+        lines = [t for t in err.strip().splitlines() if not re.match(r"map: \d+ of \d+ cells ", t)]
         assert len(lines) == 1 and "Traceback" not in err, err
         assert f"{kept} of 8 cells are kept" in lines[0], lines
         assert not (out / "map.zarr.lock").exists()

@@ -41,6 +41,9 @@ CHECKSUM_ATTRS = {
 HEARTBEAT = 10.0
 #: a lock of another host not touched for this long is stale (12 missed heartbeats)
 STALE_SECONDS = 120.0
+#: a lock file without a record, younger than this, is a writer's between its creation and
+#: its record (microseconds apart; seconds on a loaded machine): held, not foreign
+FRESH_SECONDS = 5.0
 
 
 def _canonical(a: np.ndarray) -> np.ndarray:
@@ -165,6 +168,23 @@ def _sound_blosc_frame(frame: bytes, want: int) -> bool:
     return bool(np.all((starts >= table) & (starts < cbytes)))
 
 
+def consolidated_agrees(path: Path, meta: dict) -> bool:
+    """Whether ``meta`` (the ``metadata`` of the store's ``.zmetadata``) is the store's
+    metadata files, each entry equal to its file and every file entered: ``xr.open_zarr``
+    reads the consolidated copy alone, so a flipped byte there ("<f8" read as "<f4") made
+    the user's read of a verified store fail, or read other values, while the engine,
+    which reads the files, resumed it (probe 97)."""
+    entered = set()
+    for f in [*path.glob(".z*"), *path.glob("*/.z*")]:  # the store's folders are flat
+        key = f.relative_to(path).as_posix()
+        if key == ".zmetadata":
+            continue
+        if key not in meta or json.loads(f.read_text()) != meta[key]:
+            return False
+        entered.add(key)
+    return entered == set(meta)
+
+
 def read_raw(path: Path, names, shape) -> tuple[dict, np.ndarray]:
     """The store's variables ``names`` as stored, and a mask of the cells that could not
     be read (a missing variable, a chunk that does not decode): those get a value no
@@ -258,17 +278,23 @@ def lock_holder(lock: Path) -> dict | None:
         info = json.loads(data.decode("utf-8"))
         host, pid = str(info["host"]), int(info["pid"])
     except (ValueError, KeyError, TypeError, AttributeError):
-        # not a record of ours (a torn write whose writer died mid-way, or a foreign file):
-        # nobody can be holding it
-        return {"host": "?", "pid": -1, "since": "?", "stale": True, "age": age,
-                "foreign": True}
+        # not a record of ours: a torn write whose writer died mid-way, or a foreign file,
+        # nobody holding it; but a lock younger than FRESH_SECONDS may be one a live writer
+        # has created and not yet written (O_EXCL, then the record): taken over, two maps
+        # wrote one store (probe 97)
+        return {"host": "?", "pid": -1, "since": "just now", "stale": age > FRESH_SECONDS,
+                "age": age, "foreign": True, "bytes": data}
     same_host = host == socket.gethostname()
     stale = (not _alive(pid)) if same_host else age > STALE_SECONDS
     return {"since": "an unknown time", **info, "host": host, "pid": pid, "stale": stale,
-            "age": age}
+            "age": age, "bytes": data}
 
 
 def _held(store: Path, lock: Path, holder: dict) -> str:
+    if holder.get("foreign"):
+        return (f"{store}: its lock {lock} was created {holder['age']:.1f} s ago and holds "
+                "no record yet (another map starting on it?); wait a few seconds and run "
+                "the command again: it continues the map, or says who holds it")
     return (f"{store} is being written by pid {holder['pid']} on {holder['host']} since "
             f"{holder['since']} (lock {lock}); wait for it to finish, or stop it: the same "
             "command then continues its map")
@@ -306,8 +332,11 @@ def store_lock(store: Path, log=print):
             else:
                 log(f"note: took over the stale lock {lock} of pid {holder['pid']} on "
                     f"{holder['host']} (since {holder['since']}; that process is gone)")
+            # removed only while it still holds what was judged stale: another command
+            # may have taken it over meanwhile and written its own record (probe 97)
             with contextlib.suppress(FileNotFoundError):
-                lock.unlink()
+                if lock.read_bytes() == holder["bytes"]:
+                    lock.unlink()
             continue
         with os.fdopen(fd, "w") as f:
             f.write(record)

@@ -2,7 +2,8 @@
 file, ``nohup``, a batch job, ``flexmm map ... 2>&1 | tee``), where tqdm's bar is off and
 a map of a hundred cells said nothing between its estimate and its end (minutes).
 
-The first line comes FIRST_LINE_S after the tasks start, then one every EVERY_S at most
+The first line comes FIRST_LINE_S after the tasks' start (the cluster's start-up included,
+as in the estimate the caller gives), then one every EVERY_S at most
 (also while no cell finishes, so that a silent map is a working one): cells done, the
 time since the tasks started and what is left. What is left is measured, not assumed:
 the cells finished since the first block came back over the time since then (the
@@ -53,8 +54,10 @@ class ProgressLines:
             if self.done > d1 and now > t1:
                 return rest * (now - t1) / (self.done - d1)
             return rest * (t1 - self.t0) / d1  # one block back: its mean, start-up included
-        if self.estimate is not None:
-            return max(self.estimate - (now - self.t0), 0.0)
+        if self.estimate is not None and now - self.t0 < self.estimate:
+            return self.estimate - (now - self.t0)
+        # past the estimate with no cell back: nothing measured says what is left (probe
+        # 97: "about 0 s left" at 40 s of a paper map that took 72 s more)
         return None
 
     def line(self, now: float) -> str:
@@ -67,6 +70,9 @@ class ProgressLines:
                 f"; about {duration(left)} left" + (" at the pace so far"
                                                     if self._first is not None
                                                     else " (the estimate; no cell back yet)"))
+        if left is None and self.estimate is not None and self._first is None:
+            when = (f"; no cell back yet, past the estimate ({duration(self.estimate)}): "
+                    "slower than measured (a busier machine, or slow cells)")
         return (f"map: {self.done} of {self.total} cells {self.what}{share} in "
                 f"{now - self.t0:.0f} s{when}")
 

@@ -360,18 +360,19 @@ def _run_tasks(params, path, todo, n_todo, scheduler, workers, progress, log, ar
     tqdm = progress_class()
 
     from ._cluster import ClusterLost, Watchdog, connect, signals_held
+    from ._progress import progress_lines
 
+    # no bar (stderr a log file or a pipe): a plain line every 30 s at most, the first
+    # after 10 s (a 100-cell map said nothing for minutes), counted from before the
+    # cluster's start, as the estimate is (probe 97: the first line came 10 s after a
+    # start-up of 13-50 s on a busy machine)
+    lines = progress_lines(progress, n_todo,
+                           "predicted" if params.theory_only else "simulated", estimate)
     client, cluster = connect(scheduler, workers, timeout)
     writer = _CellWriter(path)
     report = progress if callable(progress) else None
     bar = tqdm(total=n_todo, unit="cell", desc="map",
                disable=True if report else None if progress is None else not progress)
-    from ._progress import progress_lines
-
-    # no bar (stderr a log file or a pipe): a plain line every 30 s at most, the first
-    # after 10 s (a 100-cell map said nothing for minutes)
-    lines = progress_lines(progress, n_todo,
-                           "predicted" if params.theory_only else "simulated", estimate)
     t0 = time.perf_counter()
     address = scheduler or "of this machine's LocalCluster"
     watch = Watchdog(client, scheduler or getattr(cluster, "scheduler_address", "local"),

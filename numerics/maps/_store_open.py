@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 
 from ._columns import MODEL_STORE_FORMAT, STORE_FORMAT
-from ._integrity import CHECKSUM, unsound_chunks
+from ._integrity import CHECKSUM, consolidated_agrees, unsound_chunks
 from ._params import MapParameters
 
 
@@ -127,6 +127,8 @@ def _inspect(path: Path, params: MapParameters):
             continue
         try:
             arr = group[name]
+            if not _dims_named(arr, None):
+                raise ValueError("no _ARRAY_DIMENSIONS: xarray cannot open it")
             whole = arr.nchunks_initialized == arr.nchunks
             if unsound_chunks(path / name):
                 raise ValueError("a chunk's Blosc header does not match its file")
@@ -142,17 +144,28 @@ def _inspect(path: Path, params: MapParameters):
     for name in empty_dataset_names(params):
         try:
             arr = group[name]
-            if tuple(arr.shape) != shape:
+            if tuple(arr.shape) != shape or not _dims_named(arr, params.dims):
                 raise ValueError
         except Exception:  # a variable's metadata missing or garbled
             damaged.append(name)
     try:
         meta = json.loads((path / ".zmetadata").read_text())["metadata"]
-        if not isinstance(meta, dict):
+        if not isinstance(meta, dict) or not consolidated_agrees(path, meta):
             raise ValueError
-    except Exception:  # what xr.open_zarr reads first
+    except Exception:  # what xr.open_zarr reads first, and all it reads (probe 97)
         damaged.append(".zmetadata")
     return "this", damaged
+
+
+def _dims_named(arr, dims) -> bool:
+    """Whether the zarr array ``arr`` names its dimensions as xarray needs
+    (``_ARRAY_DIMENSIONS``: one name per axis; ``dims`` those names where given): a
+    variable whose ``.zattrs`` was lost or garbled made ``xr.open_zarr`` raise KeyError,
+    a traceback of the resumed map (probe 97)."""
+    named = arr.attrs.get("_ARRAY_DIMENSIONS")
+    return (isinstance(named, list) and len(named) == arr.ndim
+            and all(isinstance(n, str) for n in named)
+            and (dims is None or tuple(named) == tuple(dims)))
 
 
 def _axes_differ(path: Path, params) -> str:
@@ -261,6 +274,13 @@ def _open(path: Path, params: MapParameters, overwrite: bool = False, log=print)
         return {n: (ds[n].values if raw is None or n not in raw else
                     np.asarray(raw[n], ds[n].dtype)) for n in ds.data_vars}
 
+    old = path.with_name(f".{path.name}.old")
+    if not path.exists() and not path.is_symlink() and old.is_dir():
+        # a rebuild stopped between its two renames (_write_new: the store set aside, the
+        # new one not yet in place): the store set aside is the map's, its cells kept
+        old.rename(path)
+        log(f"note: {path} restored from {old.name} (a rewrite of it was stopped between "
+            "setting it aside and putting its successor in place)")
     what, detail = _checked(path, params, overwrite)
     if what == "discard":  # --overwrite: the user asked for the map afresh
         done = _finished_cells(path)
@@ -275,12 +295,17 @@ def _open(path: Path, params: MapParameters, overwrite: bool = False, log=print)
         log(f"note: {path} held another map with no finished cell (every cell failed, "
             "or none ran): replaced")
     if what == "this":
+        ds = None
+        if not detail:
+            try:
+                ds = xr.open_zarr(path, consolidated=False, chunks=None)
+            except Exception as exc:  # noqa: BLE001 - metadata xarray cannot read: rebuilt
+                detail = [f"xarray cannot open it ({type(exc).__name__})"]
         if detail:
             log(f"{path}: damaged: {', '.join(detail)}; rebuilt from this map's parameters, "
                 "keeping every cell whose data and checksum survive")
             ds, raw = _verified(path, None, params, log, rebuild=True)
             return ds, values(ds, raw)
-        ds = xr.open_zarr(path, consolidated=False, chunks=None)
         ds, raw = _verified(path, ds, params, log)
         return ds, values(ds, raw)  # raw None: rewritten, read afresh
     ds = params.new_dataset()
