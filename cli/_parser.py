@@ -208,7 +208,7 @@ def _point_parser(sub, model_mode=False):
     p.add_argument("--t-end", dest="t_end", type=float,
                    help="run length in T (default: 9 e-foldings of the exact peak gain, "
                         "within [1000, 100000]; 5000 where nothing grows; with --model "
-                        "those bounds times 10/omega_max where the fastest linear "
+                        "those bounds times 10/omega_max where the lowest branch's top "
                         "frequency omega_max is above 10, 0.1/omega_max below 0.1; the "
                         "output says when the cap stops a run short of the 4 e-foldings "
                         "that decide). "
