@@ -17,17 +17,14 @@ from ._energy import Energies, _regular, energies, lattice_of, taylor_tensors
 def _printer():
     from sympy.printing.numpy import NumPyPrinter
 
+    from ._codegen import _Printer
+
     class Printer(NumPyPrinter):
         """Max and Heaviside (a positive part's, ``_energy._positive_parts``) printed
         elementwise, as Numba compiles them: numpy.maximum, and Heaviside(y) as
         (1 + sign(y))/2, 1/2 at the kink as SymPy's Heaviside(0) and Abs's derivative."""
 
-        def _print_Max(self, expr):
-            args = [self._print(a) for a in sorted(expr.args, key=sp.default_sort_key)]
-            out = args[0]
-            for a in args[1:]:
-                out = f"numpy.maximum({out}, {a})"
-            return out
+        _print_Max = _Printer._print_Max  # the coefficients' printer's, one definition
 
         def _print_Heaviside(self, expr):
             return f"(0.5 + 0.5*numpy.sign({self._print(expr.args[0])}))"
