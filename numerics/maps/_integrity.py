@@ -168,21 +168,24 @@ def _sound_blosc_frame(frame: bytes, want: int) -> bool:
     return bool(np.all((starts >= table) & (starts < cbytes)))
 
 
-def consolidated_agrees(path: Path, meta: dict) -> bool:
+def consolidated_agrees(path: Path, meta: dict, damaged=()) -> bool:
     """Whether ``meta`` (the ``metadata`` of the store's ``.zmetadata``) is the store's
     metadata files, each entry equal to its file and every file entered: ``xr.open_zarr``
     reads the consolidated copy alone, so a flipped byte there ("<f8" read as "<f4") made
     the user's read of a verified store fail, or read other values, while the engine,
-    which reads the files, resumed it (probe 97)."""
+    which reads the files, resumed it (probe 97). Entries of the variables in ``damaged``
+    (named damaged already: a deleted .zarray, a lost variable) are not compared: the
+    rebuild rewrites them, and the store's report names their variable, not .zmetadata."""
+    skip = set(damaged)
     entered = set()
     for f in [*path.glob(".z*"), *path.glob("*/.z*")]:  # the store's folders are flat
         key = f.relative_to(path).as_posix()
-        if key == ".zmetadata":
+        if key == ".zmetadata" or key.split("/")[0] in skip:
             continue
         if key not in meta or json.loads(f.read_text()) != meta[key]:
             return False
         entered.add(key)
-    return entered == set(meta)
+    return entered == {key for key in meta if key.split("/")[0] not in skip}
 
 
 def read_raw(path: Path, names, shape) -> tuple[dict, np.ndarray]:
@@ -264,6 +267,11 @@ def _alive(pid: int) -> bool:
     return True
 
 
+#: how every lock record of ours begins (``store_lock``'s json.dumps of a dict whose first
+#: key is "host"): a file that is empty or a prefix of it may be a record being written
+RECORD_START = b'{"host": '
+
+
 def lock_holder(lock: Path) -> dict | None:
     """The lock's record, with ``stale`` (True when its holder is gone), or None."""
     try:
@@ -279,10 +287,13 @@ def lock_holder(lock: Path) -> dict | None:
         host, pid = str(info["host"]), int(info["pid"])
     except (ValueError, KeyError, TypeError, AttributeError):
         # not a record of ours: a torn write whose writer died mid-way, or a foreign file,
-        # nobody holding it; but a lock younger than FRESH_SECONDS may be one a live writer
-        # has created and not yet written (O_EXCL, then the record): taken over, two maps
-        # wrote one store (probe 97)
-        return {"host": "?", "pid": -1, "since": "just now", "stale": age > FRESH_SECONDS,
+        # nobody holding it; but a lock younger than FRESH_SECONDS that is empty or the
+        # start of a record may be one a live writer has created and not yet written
+        # (O_EXCL, then the record): taken over, two maps wrote one store (probe 97). A
+        # file no writer of ours makes (bytes 0..255, a JSON list) is replaced at any age
+        writing = RECORD_START.startswith(data[:len(RECORD_START)])
+        return {"host": "?", "pid": -1, "since": "just now",
+                "stale": age > FRESH_SECONDS or not writing,
                 "age": age, "foreign": True, "bytes": data}
     same_host = host == socket.gethostname()
     stale = (not _alive(pid)) if same_host else age > STALE_SECONDS

@@ -150,7 +150,7 @@ def _inspect(path: Path, params: MapParameters):
             damaged.append(name)
     try:
         meta = json.loads((path / ".zmetadata").read_text())["metadata"]
-        if not isinstance(meta, dict) or not consolidated_agrees(path, meta):
+        if not isinstance(meta, dict) or not consolidated_agrees(path, meta, damaged):
             raise ValueError
     except Exception:  # what xr.open_zarr reads first, and all it reads (probe 97)
         damaged.append(".zmetadata")
