@@ -370,7 +370,9 @@ def harmonic_note(spec, N) -> str | None:
     phase drift shows), so it may measure the slower rate. Issue 94's probe: an
     unequal-mass chain's optical carrier at k = 2 pi 63/128 (near pi), a 0.085: the
     fastest offset j = 2 (1.08e-3) has its waves at -k and 3k; the runs measured the
-    next, j = 1 (8.6e-4), 21% below the exact row."""
+    next, j = 1 (8.6e-4), 21% below the exact row; probe 97's two-field rotor (its
+    three-wave decay products on 3k and -2k of a ring of 64) measured 0.049, the hidden
+    mode's (0.0285) products, 1.7x the exact row."""
     import numpy as np
 
     from numerics.models import harmonic_offsets
@@ -385,6 +387,13 @@ def harmonic_note(spec, N) -> str | None:
             gain[blind]) >= spec.peak_gain:
         return None
     at = int(j[blind & (gain >= spec.peak_gain * (1 - 1e-9))][0])  # its copies: the same
+    # or, once the hidden mode has grown, its products with itself, which fall in the
+    # bins a run reads, at up to twice its rate (probe 97: rotor2, g 0.6, k 2 pi 20/64,
+    # a 0.1: the exact 0.0285 on the harmonics, 0.016 off them, the run 0.049; at N = 66,
+    # off the harmonics, the run 0.0278 against 0.0284)
     return (f"the exact ring's fastest offset (j = {at} of 2 pi j / N) puts both its waves "
             f"on harmonics of the carrier, which a run leaves out of its growth: a run may "
-            f"measure the fastest offset off them, {seen:.3g} /time, not {spec.peak_gain:.3g}")
+            f"measure the fastest offset off them, {seen:.3g} /time, not {spec.peak_gain:.3g}"
+            f", or the hidden mode's products with itself, up to twice its rate "
+            f"({2 * spec.peak_gain:.3g}); a ring whose N puts no wave on the harmonics "
+            "measures the exact row")
