@@ -36,6 +36,8 @@ def test_the_rule_is_the_points():
     # two seeds of three past the threshold: MI; one of three: the median decides
     assert cell_verdict([30.0, 25.0, 1.0], 100.0) == 1
     assert cell_verdict([30.0, 1.0, 1.5], 100.0) == 0
+    # a run stopped at its first record (t 0) or a NaN time: still a code, not an error
+    assert cell_verdict([30.0], 0.0) == 1 and cell_verdict([1.0], math.nan) == 0
 
 
 def test_a_cell_that_grew_less_than_the_threshold_is_undetermined_as_the_point_says(tmp_path):

@@ -115,6 +115,9 @@ def cell_verdict(growths, t_end: float) -> int:
     finite growth factor). Before probe 97 the band between was stored 0, "stable"."""
     from ..lattice import simulated_verdict
 
+    # t_end names the span in the verdict's text only: a run stopped at its first record
+    # (t 0) or a NaN time must not make a cell an error
+    t_end = float(t_end) if t_end > 0 and math.isfinite(t_end) else 1.0
     word = simulated_verdict(list(growths), t_end).word
     return {"MI": 1, "no growth within T": 0}.get(word, -1)
 
