@@ -67,8 +67,8 @@ def run_length(rate: float, cap: float | None = None, *, time_scale: float = 1.0
     e-foldings rounded up to 100 T, within [T_MIN, cap]; DEFAULT_T where nothing grows.
 
     ``time_scale``: the bounds (T_MIN, the cap, DEFAULT_T, the rounding) are in units of
-    it (``numerics.models.time_scale``: 1 for a chain whose fastest linear frequency is
-    0.1 to 10, as the paper's; a stiff chain's 1/omega_max: before probe 97, a model of
+    it (``numerics.models.time_scale``: 1 for a chain whose lowest branch tops out at 0.1
+    to 10, as the paper's; a stiff chain's 10/omega_max: before probe 97, a model of
     stiffness 1e6 and mass 1e-3 (omega ~ 6e4) ran at least T = 1000, 6e7 radians, an
     estimated 88 min on 64 sites, where 9 e-foldings took T = 1; a cap of None is T_CAP
     in those units).
