@@ -151,6 +151,14 @@ class RingSoliton:
                        "overlap the mean and the second harmonic in wavenumber, so their "
                        "measurement (band and low pass at k/2) is not clean; a smaller "
                        "amplitude (a wider envelope) or a larger k separates them")
+        from ._summary import harmonic_resonance_note
+
+        # the envelope carries the NLS's second harmonic (``state``): near its resonance
+        # the launch and the width both rest on a harmonic that is neither small nor slaved
+        note = harmonic_resonance_note(self.nls.model, self.nls.carrier,
+                                       self.soliton.amplitude, "the soliton's NLS")
+        if note:
+            out.append(f"warning: {note}")
         return out
 
     def carrier_signal(self, u, v) -> np.ndarray:

@@ -10,6 +10,7 @@ from energy import Model, ModelError
 
 from ._linear import carrier_damping, check_amplitude, field_rule
 from ._nls import nls
+from ._wave import HARMONIC_CHECK
 
 #: The NLS's own frequency shift beyond this share of omega is outside the weakly nonlinear
 #: expansion (the paper chain's coefficients command warns at the same 10%).
@@ -44,6 +45,36 @@ def _unstable_rest(model: Model) -> str:
     return ""
 
 
+def harmonic_resonance_note(model: Model, c, a: float, what: str) -> str:
+    """A sentence where the carrier ``c``'s second harmonic at amplitude ``a`` is past
+    ``HARMONIC_CHECK`` of its first (``second_harmonic_size``: near a second-harmonic
+    resonance, 2 omega close to a branch at 2k), naming the branch and the amplitude below
+    which it is not; '' elsewhere. ``what``: the theory that assumes the harmonic small.
+
+    The NLS's g2 holds the harmonic's response 1/D(2k, 2 omega): across the resonance it
+    changes sign through a pole, and so does its verdict (diatomic FPUT, m 2, alpha 0.5,
+    a 0.05: g2 +20.7 'stable' at k 1.917, -21.5 'MI' at 1.937, the harmonic 1.9x the
+    carrier at both, and no word said). The travelling wave distrusts its harmonic balance
+    from the linear wave at the same size (``_wave.HARMONIC_CHECK``).
+    """
+    from ._fourwave_kernel import second_harmonic_size
+    from ._linear import branches
+
+    size = second_harmonic_size(model, c.k, a, car=c)
+    if not size > HARMONIC_CHECK:  # nan: no harmonic to speak of
+        return ""
+    om2 = np.asarray(branches(model, 2 * c.k), float).ravel()
+    b = int(np.argmin(np.where(np.isfinite(om2), np.abs(om2 - 2 * c.omega), np.inf)))
+    near = (f"near branch {b}'s omega(2k) = {om2[b]:.4g}" if np.isfinite(om2[b])
+            else "near a branch at 2k")
+    size_text = f"{size:.2g} x" if math.isfinite(size) else "unbounded against"
+    below = (f"; below a = {a * HARMONIC_CHECK / size:.2g} it is {HARMONIC_CHECK:g} of it"
+             if math.isfinite(size) else "")
+    return (f"the wave's second harmonic is {size_text} its carrier at a = {a:g} (2 omega = "
+            f"{2 * c.omega:.4g} {near}: a second-harmonic resonance): {what} assumes it "
+            f"small and slaved to the carrier{below}; the exact lattice theory holds")
+
+
 def model_coefficients(model: Model, k: float, amplitude: float, branch=None) -> dict:
     """The semi-discrete NLS of ``model`` at carrier ``k`` and amplitude ``a``.
 
@@ -68,6 +99,8 @@ def model_coefficients(model: Model, k: float, amplitude: float, branch=None) ->
         warn.append(f"the NLS's frequency shift |g2| a^2/4 = {scale:.3g} "
                     f"is {share} omega: beyond the weakly "
                     "nonlinear expansion; lower the amplitude or ask the exact theory")
+    if not r.undefined and (note := harmonic_resonance_note(model, c, a, "the NLS")):
+        warn.append(note)
     edge = r.band_edge(a) if not r.undefined else math.nan
     if r.verdict == "MI" and math.isfinite(edge) and edge > WIDE_BAND:
         # a nearly flat branch (tiny g1): flat-kg, C 1e-3, k 2.5, a 0.1 put its NLS band
