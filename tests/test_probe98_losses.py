@@ -9,7 +9,13 @@ import numpy as np
 import pytest
 
 from energy import load_model, parse_model
-from numerics.models import carrier, damping_rates
+from numerics.models import (
+    carrier,
+    damping_rates,
+    exact_amplification,
+    four_wave_amplification,
+    nls_amplification,
+)
 
 RESONATOR = """name = "ground-resonator"
 fields = ["u", "v"]
@@ -27,6 +33,23 @@ site = "kc*(v - u)**2/2 + kg*v**2/2"
 [dissipation]
 site = "gamma*v_t**2/2"
 """
+
+KG_CUBIC = """name = "kg-cubic-damped"
+fields = ["u"]
+[parameters]
+C = 1.0
+omega0 = 1.0
+a3 = 0.8
+beta = 1.0
+gamma = 0.005
+[energy]
+kinetic = "u_t**2/2"
+bond = "C*(u_next - u)**2/2"
+site = "omega0**2*u**2/2 + a3*u**3/3 + beta*u**4/4"
+[dissipation]
+site = "gamma*u_t**2/2"
+"""
+
 
 def _resonator_roots(gamma, k, p=(0.7, 0.4, 0.5)):
     """omega of det(K - i omega C - omega^2 M) = 0, the resonator's pencil by hand: K from
@@ -55,3 +78,20 @@ def test_overdamped_resonator_keeps_the_carriers_oscillating_root():
     assert w.real > 0.5  # it still oscillates
     # 1e-8: two eigenvalue solvers of the same 4 x 4 pencil (round-off ~1e-15)
     assert float(damping_rates(model, c.k)[c.branch]) == pytest.approx(-w.imag, rel=1e-8)
+
+
+@pytest.mark.parametrize("gamma", [1e3, 1e8])
+def test_overdamped_carrier_grows_nothing(gamma):
+    """A Klein-Gordon carrier (k 2, a 0.4) damped past critical does not oscillate: its
+    root omega = -i (gamma/2 - sqrt(gamma^2/4 - omega0^2 - 4 sin^2 1)) is imaginary
+    (closed form here), a relaxation. Before: the theories took its slow rate
+    (~omega^2/gamma, 3.8e-8 at 1e8) for a nearly undamped carrier: MI, amplification e^700,
+    observable (2.2x at 1e3)."""
+    model = load_model(parse_model(KG_CUBIC), gamma=gamma)
+    w2 = 1.0 + 4 * math.sin(1.0) ** 2
+    assert gamma / 2 > math.sqrt(w2)  # overdamped, by hand
+    for f in (nls_amplification, lambda m, k, a: exact_amplification(m, k, a, N=64),
+              lambda m, k, a: four_wave_amplification(m, k, a, N=64)):
+        a = f(model, 2.0, 0.4)
+        assert a.amplification == 1.0 and not a.observable
+        assert a.damped_verdict("MI")["verdict"] == "stable"
