@@ -39,7 +39,7 @@ fields = ["u"]
 [parameters]
 C = 1.0
 omega0 = 1.0
-a3 = 0.8
+a3 = 0.5
 beta = 1.0
 gamma = 0.005
 [energy]
@@ -86,7 +86,7 @@ def test_overdamped_carrier_grows_nothing(gamma):
     root omega = -i (gamma/2 - sqrt(gamma^2/4 - omega0^2 - 4 sin^2 1)) is imaginary
     (closed form here), a relaxation. Before: the theories took its slow rate
     (~omega^2/gamma, 3.8e-8 at 1e8) for a nearly undamped carrier: MI, amplification e^700,
-    observable (2.2x at 1e3)."""
+    observable (3.6x, the NLS's, at 1e3)."""
     model = load_model(parse_model(KG_CUBIC), gamma=gamma)
     w2 = 1.0 + 4 * math.sin(1.0) ** 2
     assert gamma / 2 > math.sqrt(w2)  # overdamped, by hand
@@ -95,3 +95,21 @@ def test_overdamped_carrier_grows_nothing(gamma):
         a = f(model, 2.0, 0.4)
         assert a.amplification == 1.0 and not a.observable
         assert a.damped_verdict("MI")["verdict"] == "stable"
+
+
+def test_damped_run_does_not_stop_at_a_first_band_before_the_theorys_peak():
+    """kg-cubic (a3 0.5), k 2.266, a 0.4059, gamma 1.15e-3 on 64 sites: the near-carrier
+    band peaks at ~86x at t ~ 561 and halves, while the band of offset ~1.96 (the exact
+    theory's, peak at t ~ 1516) grows on: an unstopped run reaches 2540x by t 2500. Before,
+    the run stopped at the first halving (t 680) and read 86x at t 561; now not before the
+    theory's peak time. Bar 1000: between the first band's 86 and the later band's 2540
+    (seed 0 as the cell's)."""
+    from numerics.models import exact_gain, lossy_runs
+
+    model = load_model(parse_model(KG_CUBIC), gamma=0.00115)
+    k, a, N = 2.266, 0.4059, 64
+    spec = exact_gain(model, k, a, N=N)
+    peak = exact_amplification(model, k, a, N=N, first=spec).amplification_time
+    sim, amp = lossy_runs(model, k, a, spec, N=N, seeds=1, peak_time=peak)
+    assert sim.runs[0].t[-1] >= peak
+    assert amp["amplification_simulated"] > 1000

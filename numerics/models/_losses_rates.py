@@ -120,7 +120,7 @@ def carrier_overdamped(model: Model, k: float, branch) -> bool:
     critical, a relaxation, not a wave). Probe 98: a Klein-Gordon chain with on-site
     damping gamma 1e8 (k 2, a 0.4) has its carrier's root at -i omega^2 / gamma, a rate of
     3.8e-8, and every theory read it as a nearly undamped carrier: MI, amplification
-    e^700 at t ~ 1e7, observable (2.2x at gamma 1e3), where a chain that stiff in its
+    e^700 at t ~ 1e7, observable (2.2x at gamma 1e3, cubic a3 0.8), where a chain that stiff in its
     damping only relaxes. Re omega below 1e-9 |omega| is LAPACK's round-off of zero."""
     from ._linear import branch_index, damped_frequencies
 
