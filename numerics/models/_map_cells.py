@@ -215,7 +215,7 @@ def lossy_runs(model: Model, k: float, amplitude: float, spec, *, branch=None,
     # 1.15e-3 on 64 sites: the near-carrier band peaked at 86x at t 561 and halved, the
     # run stopped at 680; the band of offset 1.96 the theory's 4.5e6x at t 1516 grows on,
     # 2540x by t 2500)
-    hold = peak_time if peak_time is not None and math.isfinite(peak_time) else True
+    hold = peak_time if peak_time is not None and 0 < peak_time < math.inf else True
     sim = simulate_seeds(model, k, amplitude, spec, branch=branch, N=N, seeds=seeds,
                          t_end=t_end, noise_on="carrier", until_peak=hold, energy=energy)
     amps = sorted((r.amplification() for r in sim.runs), key=lambda a: a.amplification)

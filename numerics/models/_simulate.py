@@ -254,7 +254,7 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
     exact half steps around each symplectic step: order 2). ``until_peak``: stop once
     the sidebands' amplitude A(t) (``sideband_amplitude``) has risen ``PEAK_RISE`` (sqrt 20)
     times and fallen to half its maximum (else ``t_end`` is the cap); a time: not before it
-    (the theory's peak: a first band may peak and fall before a later one, probe 98). ``noise_on="carrier"``: the noise on the
+    (> 0, the theory's peak: a first band may peak and fall before a later one, probe 98). ``noise_on="carrier"``: the noise on the
     carrier field's positions only (the amplification's launch, issue 42). ``initial``:
     (u, v), each shape (d, N), the state to start from instead of ``start`` (noise added).
     ``force="generated"``: the force generated from the energy even where a fast force
