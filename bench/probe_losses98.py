@@ -30,7 +30,15 @@ Checks (one line each):
     the model lacks, a symbol that is not a parameter, t, a position, quartic and
     nonlinear damping, each through ``flexmm point`` (exit 2, one line) or the API.
 
-Run: ``python -m bench.probe_losses98`` (~15-25 min on the 2-core VM, most of it the
+Found (fixed, tests/test_probe98_losses.py): the resonator damped past critical (gamma 3,
+k 0.3) gave its carrier the resonator's slow relaxation rate (0.210 for 0.055); a carrier
+damped past critical (kg-cubic gamma 1e3, 1e8) read MI, up to e^700 and observable; a
+damped run stopped at a first band's halving (kg-cubic k 2.27, gamma 1.15e-3: 86x at
+t 561) before the theory's band peaked (2130x by its cap); the critical damping of a map
+had no units. Left: the kg-cubic runs read 1e-3 to 0.15 of the exact amplification at
+weak damping (the theories 1e5-4e6), below the 0.2-0.5x the docs give; verdicts agree.
+
+Run: ``python -m bench.probe_losses98`` (~10 min on the 2-core VM, 585 s measured, most of it the
 runs and the CLI's start-up; ``--quick``: one point per model, no maps). Seeded (numpy
 default_rng(98) for the points, seed 0 for the runs' noise).
 """
