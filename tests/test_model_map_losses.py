@@ -87,6 +87,8 @@ def test_critical_damping_against_a_bisection_of_the_point(tmp_path, capsys, fpu
         for theory, g in want.items():
             var = ds[f"critical_gamma_{theory}"]
             assert var.dims == ("k",) and var.attrs["damping_axis"] == "gamma"
+            # probe 98: the critical damping carries the damping axis' unit
+            assert var.attrs["units"] == ds["gamma"].attrs["units"]
             got = float(var.sel(k=K))
             # ln ln A is linear in ln gamma but for the carrier's last e-foldings' share
             # (-ln(sigma0/Gamma)/2 in ln A): measured 0.1% (exact) and 0.4% (NLS) on this

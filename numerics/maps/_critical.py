@@ -128,6 +128,8 @@ def critical_variables(params, arrays: dict) -> dict:
     simulated``): the damping where the amplification falls below 20x
     (:func:`critical_damping`), nan where it does not cross inside the axis (the
     variable's ``reason`` attribute says why, per value). {} without a damping axis."""
+    from ._model_axes import axis_attrs
+
     out = {}
     axis = params.damping_axis()
     if axis is None or not params.amplified():
@@ -150,6 +152,8 @@ def critical_variables(params, arrays: dict) -> dict:
             "long_name": f"critical {axis}: where the {theory} amplification falls below "
                          f"{THRESHOLD:g}x for good along the {axis} axis (the sidebands "
                          "are not observable above it)",
+            # the damping axis' unit (probe 98: the only float variable without one)
+            "units": axis_attrs(axis)["units"],
             "damping_axis": axis, "theory": theory, "threshold": THRESHOLD,
             "interpolation": "between the two cells that bracket the crossing: "
                              "ln(ln A) linear in ln of the damping (ln A where the "

@@ -58,7 +58,10 @@ def simulated_row(model, k, amplitude, branch, N, seeds, t_end, spec, start, pea
         raise ValueError(f"seeds must be an integer >= 1, got {seeds!r}")
     # a lossy model's runs are launched as issue 42 measures an amplification: noise on
     # the carrier field's positions, run until A(t) has fallen to half its peak (T a cap)
-    launch = {"noise_on": "carrier", "until_peak": True} if model.lossy else {}
+    # (not before the exact theory's peak time: a first band may peak and halve before
+    # the theory's, ``lossy_runs``)
+    hold = peak_time if peak_time is not None and 0 < peak_time < math.inf else True
+    launch = {"noise_on": "carrier", "until_peak": hold} if model.lossy else {}
     if model.lossy and t_end is None and peak_time is not None and math.isfinite(peak_time):
         # the cap reaches past the exact theory's peak (1.5x its time), at least the
         # lossless run's length

@@ -45,7 +45,14 @@ from ._losses_nls import (  # noqa: F401  (re-exported: the pair integrator's te
     _pairs_later,
     integrate_pairs,
 )
-from ._losses_rates import _carrier_damping, _sampling, rates_once, side_rates, sideband_damping
+from ._losses_rates import (
+    _carrier_damping,
+    _sampling,
+    overdamped_answer,
+    rates_once,
+    side_rates,
+    sideband_damping,
+)
 
 #: amplification a theory calls observable (the runs' threshold)
 OBSERVABLE = 20.0
@@ -139,6 +146,8 @@ def nls_amplification(model: Model, k: float, amplitude: float, branch=None, *,
     # its own offsets, shared with no other theory: one call, not kept (``rates_once``)
     G, Gamma = rates_once(model, c.k, q, c.branch)
     Gamma = max(Gamma, 0.0) + 0.0  # -0.0 at zero damping
+    if (over := overdamped_answer(model, c.k, c.branch, Gamma)) is not None:
+        return over
     rate0 = abs(P) * q * np.sqrt(np.maximum(q**2 * 0 + (2 * Q / P) * psi0**2 - q**2, 0))
     net0 = float(np.max(rate0 - G))
     if Gamma <= 0:  # the lossless limit: a constant carrier, growth never stops
@@ -386,6 +395,8 @@ def exact_amplification(model: Model, k: float, amplitude: float, branch=None, *
     top = float(np.max(net0)) if q.size else 0.0
     if first.peak_gain <= 0 or top <= 0:
         return Amplified(Gamma, 1.0, 0.0, math.nan, False, top)
+    if (over := overdamped_answer(model, c.k, c.branch, Gamma)) is not None:
+        return over
     if Gamma <= 0:
         return _unbounded(Gamma, top, float(q[int(np.argmax(net0))]))
     live = np.flatnonzero(net0 > 0)
@@ -428,6 +439,8 @@ def four_wave_amplification(model: Model, k: float, amplitude: float, branch=Non
     col_q = np.repeat(q, rates0.shape[1])
     if top <= 0:
         return Amplified(Gamma, 1.0, 0.0, math.nan, False, top)
+    if (over := overdamped_answer(model, first.k, first.branch, Gamma)) is not None:
+        return over
     if Gamma <= 0:
         return _unbounded(Gamma, top, float(col_q[int(np.argmax(net0))]))
     live = net0.ravel() > 0

@@ -113,3 +113,30 @@ def _sampling(ratio, most) -> tuple[float, int]:
         raise ModelError(f"ratio (of the squared amplitudes sampled along the decay) must "
                          f"be in (0, 1), got {ratio!r}")
     return float(ratio), check_count("most", most)
+
+
+def carrier_overdamped(model: Model, k: float, branch) -> bool:
+    """Whether the carrier's damped root does not oscillate (Re omega = 0: damped past
+    critical, a relaxation, not a wave). Probe 98: a Klein-Gordon chain with on-site
+    damping gamma 1e8 (k 2, a 0.4) has its carrier's root at -i omega^2 / gamma, a rate of
+    3.8e-8, and every theory read it as a nearly undamped carrier: MI, amplification
+    e^700 at t ~ 1e7, observable (2.2x at gamma 1e3, cubic a3 0.8), where a chain that stiff in its
+    damping only relaxes. Re omega below 1e-9 |omega| is LAPACK's round-off of zero."""
+    from ._linear import branch_index, damped_frequencies
+
+    if not model.lossy:
+        return False
+    w = complex(damped_frequencies(model, k)[branch_index(model, k, branch)])
+    return bool(abs(w) > 0 and w.real <= 1e-9 * abs(w))
+
+
+def overdamped_answer(model: Model, k: float, branch, Gamma: float):
+    """A theory's answer where the carrier is overdamped (``carrier_overdamped``): nothing
+    oscillates to pump a sideband, so nothing grows: (amplification 1 at t = 0, not
+    observable, net gain 0, the ``damped_verdict`` 'stable' where the lossless chain
+    says MI); None where the carrier oscillates."""
+    from ._losses import Amplified
+
+    if Gamma <= 0 or not carrier_overdamped(model, k, branch):
+        return None
+    return Amplified(Gamma, 1.0, 0.0, float("nan"), False, 0.0)

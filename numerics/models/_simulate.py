@@ -253,7 +253,8 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
     in every stage; an SRKN method is wrapped in a Strang splitting (the damping flow's
     exact half steps around each symplectic step: order 2). ``until_peak``: stop once
     the sidebands' amplitude A(t) (``sideband_amplitude``) has risen ``PEAK_RISE`` (sqrt 20)
-    times and fallen to half its maximum (else ``t_end`` is the cap). ``noise_on="carrier"``: the noise on the
+    times and fallen to half its maximum (else ``t_end`` is the cap); a time: not before it
+    (> 0, the theory's peak: a first band may peak and fall before a later one, probe 98). ``noise_on="carrier"``: the noise on the
     carrier field's positions only (the amplification's launch, issue 42). ``initial``:
     (u, v), each shape (d, N), the state to start from instead of ``start`` (noise added).
     ``force="generated"``: the force generated from the energy even where a fast force
@@ -434,6 +435,7 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
         a0 = float(np.max(spec[0][modes]))
         top = a0
         peaked = False
+        hold = 0.0 if until_peak is True else float(until_peak)  # no stop before it
     # Ctrl-C (SIGINT, or SIGTERM where handled as one) is deferred to the end of a compiled
     # call of bounded work (numerics.lattice's run control): the run stops on a state whose
     # time is known, with its records kept (SimulationInterrupted)
@@ -471,7 +473,7 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
                 if until_peak:
                     a = float(np.max(spec[-1][modes]))
                     top = max(top, a)
-                    if top >= PEAK_RISE * a0 and a <= top / 2:
+                    if top >= PEAK_RISE * a0 and a <= top / 2 and done * dt >= hold:
                         peaked = True
                         break
             if interrupted():  # at the last record: the run is whole, and says it stopped
