@@ -67,6 +67,17 @@ def run_step(model: Model, method, wave, dt, u, force, p, rows,
     limit = method.stability_limit()
     if not given:
         fastest = max(top * 1.1 + wave.omega, 1.1 * local)
+        if model.lossy:
+            # the damping's fastest rate c bounds the step like a frequency: rk4 takes the
+            # damping in every stage (an overdamped mode's eigenvalue near -c must stay
+            # in its region), and the SRKN splitting, exact in the damping alone, errs as
+            # (c dt)^2 in the creep of an overdamped mode (probe 98, a unit chain with
+            # site damping gamma = 100, T = 20: rk4 blew up at the oscillation's step,
+            # srkn11b ended at E = 1.1e-3 where the overdamped creep keeps 0.13; at
+            # gamma 1e4 its energy balance read 900)
+            from ._damping import LOSS_DECAY, loss_spacing
+
+            fastest = max(fastest, LOSS_DECAY / loss_spacing(model, u.shape[1]))
         if not math.isfinite(fastest):
             raise ModelError(f"model {model.describe()}: the start state's stiffness is not "
                              "finite (a bond past its range); lower the amplitude")
