@@ -125,6 +125,17 @@ site = "kc*(u - v)**2/2"
 site = "gv*v_t**2/2"
 bond = "eta*(u_next_t - u_t)**2/2 + eta*(v_next_t - v_t)**2/2"
 ''',
+    "soft": '''name = "soft98"
+description = "a softening bond: a barrier at r = 1, past it the energy falls without end"
+fields = ["u"]
+[parameters]
+beta = 1.0
+w0 = 0.5
+[energy]
+kinetic = "u_t**2/2"
+bond = "(u_next - u)**2/2 - beta*(u_next - u)**4/4"
+site = "w0**2*u**2/2"
+''',
 }
 
 
@@ -171,6 +182,10 @@ def energy(name: str, u, v) -> float:
         r = _r(x)
         return float(np.sum(y**2 / 2 + r**2 / 2 + 0.4 * r**3 / 3 + r**4 / 4
                             + 0.25 * x**2 / 2))
+    if name == "soft":
+        (x,), (y,) = u, v
+        r = _r(x)
+        return float(np.sum(y**2 / 2 + r**2 / 2 - r**4 / 4 + 0.25 * x**2 / 2))
     if name == "damp2":
         (x, z), (y, w) = u, v
         r = _r(x)
@@ -209,7 +224,7 @@ def linear(name: str, k: float):
     if name == "tri":
         return np.diag([1.0, 1.0, 0.7]), np.array([
             [s + 0.4, -0.4, 0.0], [-0.4, 0.5 * s + 0.81 + 0.8, -0.4], [0.0, -0.4, 1.96 + 0.4]])
-    if name == "damped":
+    if name in ("damped", "soft"):
         return np.eye(1), np.array([[0.25 + s]])
     if name == "damp2":  # (v_{n+1} - u_n)^2 / 2: K_uv = -e^{ik} - kc (Hermitian)
         e = np.exp(1j * k)
