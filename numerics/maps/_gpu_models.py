@@ -72,21 +72,24 @@ def chain_start(model, k: float, amplitude: float, spec, N: int, t_end: float, s
     """(u, v, dt, nsteps, every): ``simulate_model``'s start from ``spec``'s exact wave
     (its step, record spacing and seeded noise, drawn in the same order)."""
     from numerics.lattice import get_method
-    from numerics.models import branches
+    from numerics.models import run_force, run_step
 
     meth = get_method(method)
     noise = _default("noise") if noise is None else noise
     wave = spec.wave
-    wmax = float(np.nanmax(branches(model, np.linspace(0, math.pi, 129)))) * 1.1 + wave.omega
-    dt = 0.2 * meth.stability_limit() / wmax
-    nsteps = max(1, int(math.ceil(t_end / dt)))
-    dt = t_end / nsteps
-    every = max(1, nsteps // _default("records"))
     d = model.n_fields
     rng = np.random.default_rng(seed)
     u, v = wave.state(N)
     u = u + noise * amplitude * rng.standard_normal((d, N))
     v = v + noise * amplitude * wave.omega * rng.standard_normal((d, N))
+    # the CPU run's step rule (``numerics.models``' ``run_step``: the branches' top or the
+    # start state's own local frequency, probe 98), read with the CPU force
+    kernel, p_force, rows, _ = run_force(model)
+    dt, _ = run_step(model, meth, wave, None, np.ascontiguousarray(u), kernel, p_force, rows,
+                     False)
+    nsteps = max(1, int(math.ceil(t_end / dt)))
+    dt = t_end / nsteps
+    every = max(1, nsteps // _default("records"))
     return np.ascontiguousarray(u), np.ascontiguousarray(v), dt, nsteps, every
 
 

@@ -19,6 +19,8 @@ energy_not_real, amplitude_reach        where the energy stops being real along 
 exact_gain_checked                      there is no travelling wave, the largest amplitude
 simulate_model -> ModelRun              a ring of the model; .growth() -> Growth
 time_scale                              the unit of a run's length bounds (a stiff chain's)
+run_step, local_frequency               a run's step: the branches', the start state's or
+                                        the damping's fastest rate; a dt past the limit refused
 simulate_soliton -> ModelSolitonRun     its NLS soliton launched on a ring and tracked
                                         (ring_soliton: the prediction on that ring)
 lattice_force, lattice_energy           the compiled force and the model's energy
@@ -108,6 +110,7 @@ from ._soliton_run import (
                      soliton_report,
                      travel_time,
 )
+from ._step import local_frequency, run_step
 from ._summary import model_coefficients
 from ._time_scale import time_scale
 
@@ -117,7 +120,7 @@ __all__ = ["Carrier", "carrier", "branches", "branch_index", "check_rest_stable"
            "damping_matrix", "damping_rates", "TravellingWave", "HillSpectrum",
            "travelling_wave", "hill_spectrum", "exact_gain", "exact_gain_checked", "not_converged",
            "energy_not_real", "amplitude_reach", "FourWave", "four_wave", "pair_rates",
-           "classify_mode", "field_groups", "sheet_branches", "sheet_pair_kind", "wave_sheet", "ring_misses", "ring_offsets", "simulate_model", "simulate_seeds",
+           "classify_mode", "field_groups", "sheet_branches", "sheet_pair_kind", "wave_sheet", "ring_misses", "ring_offsets", "simulate_model", "simulate_seeds", "run_step", "local_frequency",
            "SeededRuns", "ModelRun", "NOISE", "Growth", "measure_growth", "saturation_record",
            "settled_rate", "read_modes", "visible_gain", "harmonic_offsets",
            "saturation_time", "check_ring", "compiled_force",

@@ -247,7 +247,8 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
     ``t_end`` None: ``numerics.lattice.run_length`` of ``expected_gain`` (default: the
     exact theory's on this ring), as for the paper's chain: 9 e-foldings within
     [1 000, 100 000], 5 000 where nothing is predicted to grow. ``dt`` None: a fifth of
-    the method's stability limit over the highest frequency of the lattice.
+    the method's stability limit over the highest frequency of the lattice, or of the
+    start state where it is stiffer (``_step``); a ``dt`` past the limit is refused.
 
     A model with [dissipation] runs with its damping force -M^-1 dR/dv: ``rk4`` takes it
     in every stage; an SRKN method is wrapped in a Strang splitting (the damping flow's
@@ -286,7 +287,7 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
 
     from ._exact import ring_offsets, travelling_wave
     from ._forces import FORCES, run_force
-    from ._linear import branches
+    from ._step import run_step
 
     meth = get_method(method)
     if meth.kind not in ("srkn", "rk4"):
@@ -330,20 +331,6 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
     if isinstance(t_end, bool) or not isinstance(t_end, (int, float, np.floating)) or not (
             math.isfinite(t_end) and t_end > 0):
         raise ModelError(f"t_end must be a finite time > 0, got {t_end!r}")
-    wmax = float(np.nanmax(branches(model, np.linspace(0, math.pi, 129)))) * 1.1 + wave.omega
-    if dt is None:
-        dt = 0.2 * meth.stability_limit() / wmax
-    if not (math.isfinite(dt) and dt > 0):
-        raise ModelError(f"dt must be a finite step > 0, got {dt!r}")
-    if t_end / dt > MAX_STEPS:
-        raise ModelError(f"the lattice's highest frequency {wmax:.3g} asks for a step dt = "
-                         f"{dt:.3g} (0.2 of the method's stability limit): a run of T = "
-                         f"{t_end:g} would take {t_end / dt:.2g} steps, more than "
-                         f"{MAX_STEPS:g}; a model whose frequencies span less (a mass near "
-                         "0 is stiff), or a shorter T")
-    nsteps = max(1, int(math.ceil(t_end / dt)))
-    dt = t_end / nsteps
-    every = max(1, nsteps // records)
     d = model.n_fields
     rng = np.random.default_rng(seed)
     u, v = wave.state(N)
@@ -378,6 +365,16 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
     else:
         u, v = np.ascontiguousarray(u, float), np.ascontiguousarray(v, float)
     kernel, p_force, rows, force_label = run_force(model, force)
+    dt, wmax = run_step(model, meth, wave, dt, u, kernel, p_force, rows, dt is not None)
+    if t_end / dt > MAX_STEPS:
+        raise ModelError(f"the lattice's highest frequency {wmax:.3g} asks for a step dt = "
+                         f"{dt:.3g}: a run of T = {t_end:g} would take {t_end / dt:.2g} "
+                         f"steps, more than "
+                         f"{MAX_STEPS:g}; a model whose frequencies span less (a mass near "
+                         "0 is stiff), or a shorter T")
+    nsteps = max(1, int(math.ceil(t_end / dt)))
+    dt = t_end / nsteps
+    every = max(1, nsteps // records)
     energy_of = _kernels(model).energy if energy else None
     p = np.asarray(model.p, float)
     masses = np.asarray(model.masses, float)
