@@ -44,7 +44,7 @@ def _harmonic_notes(report):
 
 
 def test_the_code_s_branches_are_the_hand_ones(model):
-    from numerics.models._linear import branches
+    from numerics.models import branches
 
     # the referee's own footing: 1e-12 is round-off of a 2 x 2 eigenproblem
     for k in (0.3, 1.9, 3.0):
