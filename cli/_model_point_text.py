@@ -144,7 +144,15 @@ def report(args, point, units, since=None) -> dict:
         _loss_table(out, units)
         damped = [name for name in ("semi-discrete NLS", "four-wave", "exact lattice")
                   if out.get(name, {}).get("lossless_verdict")]
-        if damped:  # its verdict stable beside a gain: said why
+        from numerics.models import carrier_overdamped
+
+        if damped and carrier_overdamped(model, out["k"], out["branch"]):
+            # 'net rate at best 0' read as a sideband balanced by its damping (probe 98)
+            print(f"note: {', '.join(damped)}: stable with these losses, the carrier is "
+                  "damped past critical (its root does not oscillate: a relaxation, not a "
+                  "wave to modulate); the peak gain shown is the lossless chain's, which is "
+                  "MI")
+        elif damped:  # its verdict stable beside a gain: said why
             print(f"note: {', '.join(damped)}: stable with these losses, no sideband "
                   "outgrows its damping at t = 0 (net rate at best "
                   + ", ".join(f"{_fmt(out[n]['net_gain'], 3)}" for n in damped)

@@ -113,3 +113,18 @@ def test_damped_run_does_not_stop_at_a_first_band_before_the_theorys_peak():
     sim, amp = lossy_runs(model, k, a, spec, N=N, seeds=1, peak_time=peak)
     assert sim.runs[0].t[-1] >= peak
     assert amp["amplification_simulated"] > 1000
+
+
+def test_point_names_an_overdamped_carrier_in_its_stable_note(tmp_path, capsys):
+    """After the theories answer 1x for an overdamped carrier, ``point``'s note read 'no
+    sideband outgrows its damping at t = 0 (net rate at best 0 /time)': a sideband balanced
+    by its damping, where there is no wave at all. It now says the carrier is damped past
+    critical (gamma 1e3 > 2 omega, by hand in test_overdamped_carrier_grows_nothing)."""
+    from cli.app import main
+
+    path = tmp_path / "kg-cubic-damped.toml"
+    path.write_text(KG_CUBIC)
+    assert main(["point", "--model", str(path), "--param", "gamma=1e3", "--k", "2",
+                 "--amplitude", "0.4", "--N", "64"]) == 0
+    out = capsys.readouterr().out
+    assert "damped past critical" in out and "net rate at best" not in out

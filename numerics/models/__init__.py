@@ -33,6 +33,7 @@ nls_amplification, four_wave_amplification, exact_amplification
                                         with [dissipation]: each theory's sidebands'
                                         amplification along the decaying carrier
 lossy_runs                              a lossy cell's runs and their amplification
+carrier_overdamped                      whether the carrier's damped root does not oscillate
 extra_theories, register_extra_theory   theories only some models have (the paper chain's
                                         continuum NLS), registered by content, not named
                                         by the commands
@@ -76,6 +77,7 @@ from ._losses import (
                      four_wave_amplification,
                      nls_amplification,
 )
+from ._losses_rates import carrier_overdamped
 from ._map import model_map, simulated_cell
 from ._map_cells import lossy_runs, map_cells
 from ._modes import (
@@ -116,7 +118,7 @@ from ._time_scale import time_scale
 
 __all__ = ["Carrier", "carrier", "branches", "branch_index", "check_rest_stable", "ModelNLS",
            "ModelSoliton", "nls", "acoustic_directions", "model_map", "map_cells",
-           "simulated_cell", "model_coefficients", "carrier_damping", "damped_frequencies",
+           "simulated_cell", "model_coefficients", "carrier_damping", "damped_frequencies", "carrier_overdamped",
            "damping_matrix", "damping_rates", "TravellingWave", "HillSpectrum",
            "travelling_wave", "hill_spectrum", "exact_gain", "exact_gain_checked", "not_converged",
            "energy_not_real", "amplitude_reach", "FourWave", "four_wave", "pair_rates",
