@@ -160,3 +160,33 @@ def test_a_shifted_start_runs_the_shifted_run():
                        initial=(np.roll(u0, 1, axis=1), np.roll(v0, 1, axis=1)))
     assert a.dt == b.dt
     assert np.array_equal(np.roll(a.state[0], 1, axis=1), b.state[0])
+
+
+def test_a_wave_past_its_range_is_refused_promptly():
+    """Probe 98: a Morse wave at a 2, k pi (past the branch's range) took 120-340 s CPU to be
+    refused: the least-squares fallback ran 200 (n + 1) evaluations with a finite-difference
+    Jacobian (16 184 Jacobians of 64 residuals each). It now uses the exact Jacobian, at most
+    100 + 4 n evaluations: ~0.7 s. The bar, 30 s CPU, is a hang guard (40x the time now,
+    4x below the old one on an idle machine), not a benchmark."""
+    import time
+
+    from numerics.models import travelling_wave
+
+    model = load_model(parse_model(MORSE_RANGE))
+    t0 = time.process_time()
+    with pytest.raises(ModelError, match="no travelling wave of amplitude 2"):
+        travelling_wave(model, math.pi, 2.0)
+    assert time.process_time() - t0 < 30
+
+
+MORSE_RANGE = '''name = "morse98"
+fields = ["u"]
+[parameters]
+D = 0.5
+b = 1.5
+w0 = 0.3
+[energy]
+kinetic = "u_t**2/2"
+bond = "D*(1 - exp(-b*(u_next - u)))**2"
+site = "w0**2*u**2/2 + u**4/8"
+'''

@@ -18,9 +18,9 @@ U' for any U), so the system is solved in the least-squares sense and its residu
 checked to be round-off.
 
 How it is computed (``_wave_solve``): Gauss-Newton on the collocation equations with their
-exact Jacobian, the DFT of the generated cell Hessian along the wave (least squares with
-finite differences where Newton does not settle). Where the wave's second harmonic is large
-(``HARMONIC_CHECK``: every flexmm carrier) the continuation from small amplitude
+exact Jacobian, the DFT of the generated cell Hessian along the wave (Levenberg-Marquardt
+with it where Newton does not settle). Where the wave's second harmonic is large
+(``HARMONIC_CHECK``: flexmm carriers near 2 omega = omega_U(2k)) the continuation from small amplitude
 (``_connected``) gives the wave, the harmonic balance from the linear wave solved only
 where the continuation loses the branch.
 """

@@ -33,7 +33,8 @@ def _pack_layout(d, H, field, acoustic):
 
 
 def _least_squares(*args, **kwargs):
-    """scipy's least_squares, imported on the first call: the fallback where Newton does
+    """scipy's least_squares (Levenberg-Marquardt with the exact Jacobian, at most
+    ``_lm_evaluations``), imported on the first call: the fallback where Newton does
     not settle (importing scipy.optimize costs ~0.8 s, in every process that finds a wave:
     each map worker)."""
     from scipy.optimize import least_squares
@@ -43,7 +44,7 @@ def _least_squares(*args, **kwargs):
 
 def _solve(model, car, a, masses, acoustic, H, c0, omega0, least_squares):
     """The collocation equations at H harmonics: Gauss-Newton with their exact Jacobian
-    (from the generated cell Hessian), least squares with a finite-difference Jacobian
+    (from the generated cell Hessian), Levenberg-Marquardt with the same Jacobian
     (scipy's "lm") where Newton does not settle. Both solve the same equations; Newton
     needs ~5 steps of one Hessian evaluation and a small least-squares solve each."""
     d = model.n_fields
@@ -124,8 +125,8 @@ def _solve(model, car, a, masses, acoustic, H, c0, omega0, least_squares):
     x0 = np.array(x0 + list(parts0[free]))
     x = _gauss_newton(residual, jacobian, x0)
     if x is None:
-        sol = least_squares(residual, x0, method="lm", xtol=1e-15, ftol=1e-15, gtol=1e-15,
-                            max_nfev=200 * (x0.size + 1))
+        sol = least_squares(residual, x0, jac=jacobian, method="lm", xtol=1e-15,
+                            ftol=1e-15, gtol=1e-15, max_nfev=_lm_evaluations(x0.size))
         x = sol.x
     omega, c = unpack(x)
     res = float(np.max(np.abs(residual(x)))) if np.all(np.isfinite(x)) else math.inf
@@ -169,8 +170,8 @@ def _solve_fast(model, car, a, masses, acoustic, H, c0, omega0, least_squares, q
     if x is None:
         x = _gauss_newton(residual, jacobian, x0, qr=qr, done=done)
     if x is None:
-        x = least_squares(residual, x0, method="lm", xtol=1e-15, ftol=1e-15, gtol=1e-15,
-                          max_nfev=200 * (x0.size + 1)).x
+        x = least_squares(residual, x0, jac=jacobian, method="lm", xtol=1e-15, ftol=1e-15,
+                          gtol=1e-15, max_nfev=_lm_evaluations(x0.size)).x
         residual(x)
     last = getattr(residual, "at", (None,))
     if last[0] is not None and np.array_equal(last[0], x):
@@ -186,6 +187,15 @@ def _solve_fast(model, car, a, masses, acoustic, H, c0, omega0, least_squares, q
     # the residual of x is the last one computed (Newton's, or the line above's)
     res = float(np.max(np.abs(residual.last))) if np.all(np.isfinite(x)) else math.inf
     return float(x[0]), c, res
+
+
+def _lm_evaluations(n: int) -> int:
+    """The least-squares fallback's evaluations at most, for n unknowns. With the exact
+    Jacobian each is one iteration; the fallback settled in 11-155 where it settles at all
+    (the test suite's waves). 200 (n + 1) with a finite-difference Jacobian (n residuals
+    an iteration) took 120-340 s to refuse a Morse wave past its range (probe 98: a 2 at
+    k pi, 16 184 Jacobians)."""
+    return 100 + 4 * n
 
 
 def _gauss_newton(residual, jacobian, x0, steps=40, qr=False, done=1e-14):
