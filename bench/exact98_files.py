@@ -79,7 +79,7 @@ g = 1.0
 [energy]
 kinetic = "u_t**2/2 + v_t**2/2 + 2*w_t**2/2"
 bond = "(u_next - u)**2/2 + (u_next - u)**4/4 + 0.01*(w_next - w)**2/2"
-site = "kv*(v - u)**2/2 + g*(v - u)**3/3 + (v - u)**4/4 + kw*(w - v)**2/2 + g*(w - v)**2*u + (w - v)**4/4"
+site = "kv*(v - u)**2/2 + g*(v - u)**3/3 + (v - u)**4/4 + kw*(w - v)**2/2 + g*(w - v)**2*(v - u) + (w - v)**4/4"
 ''',
     # two Klein-Gordon fields, tiny springs, strong cubic coupling both ways
     "kg2": '''name = "kg2"
@@ -207,7 +207,7 @@ def _tri_flat(x, y, p):
     r, s, t = un - u, v - u, w - v
     return (r**2 / 2 + r**4 / 4 + 0.01 * (wn - w)**2 / 2
             + p["kv"] * s**2 / 2 + p["g"] * s**3 / 3 + s**4 / 4
-            + p["kw"] * t**2 / 2 + p["g"] * t**2 * u + t**4 / 4)
+            + p["kw"] * t**2 / 2 + p["g"] * t**2 * s + t**4 / 4)
 
 
 def _kg2(x, y, p):
