@@ -38,7 +38,12 @@ the loaded 2-core VM (2026-11-27): ~10 min for the default 72 points; other seed
 waves near a harmonic's resonance with a flat branch (H = 32, P = 36: every offset dense)
 at 2-4 min each. Found: a Gershgorin cluster's close pair refrozen between its roots was
 a start only within 2x their gap, and a growing band (stiff-hinge, 2.4e-3) was certified
-stable (fixed in ``_cluster_solve``; tests/test_probe98_exact.py); left: at q = k on an
+stable (fixed in ``_cluster_solve``), and a start of the frozen central pencil whose
+vector, distorted by the frozen fold, was heaviest off centre was left where the mode
+(weights 0.170 at l = -1 and at 4) is kept: stiff-hinge's chain at k 0.308, a 0.103 read
+stable where it grows at 3.9e-3 (seed 98003, ``--only flexmm-stiff-hinge``; left: a
+start whose near-heaviest harmonics include a central one refined fixes it at 1.5-2x the
+cost of flexmm's ring; tests/test_probe98_exact.py holds it as a strict xfail); at q = k on an
 FPUT ring a truncation artefact of the translation mode reads 3e-6 (ring copies) against
 5e-7 (dense at the same P), 0 at P + 4 (the persistence check holds the peak only).
 """
