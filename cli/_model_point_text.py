@@ -144,9 +144,7 @@ def report(args, point, units, since=None) -> dict:
         _loss_table(out, units)
         damped = [name for name in ("semi-discrete NLS", "four-wave", "exact lattice")
                   if out.get(name, {}).get("lossless_verdict")]
-        from numerics.models import carrier_overdamped
-
-        if damped and carrier_overdamped(model, out["k"], out["branch"]):
+        if damped and all(out[n].get("carrier_overdamped") for n in damped):
             # 'net rate at best 0' read as a sideband balanced by its damping (probe 98)
             print(f"note: {', '.join(damped)}: stable with these losses, the carrier is "
                   "damped past critical (its root does not oscillate: a relaxation, not a "

@@ -66,7 +66,8 @@ class Amplified:
     """A theory's answer with losses: ``carrier_damping`` (Gamma, 1/time),
     ``amplification`` (max over offsets and times), ``amplification_time``,
     ``offset`` (rad/site) of the mode that reaches it, ``observable``
-    (amplification >= 20), ``initial_gain`` (the net rate at t = 0: gain minus damping)."""
+    (amplification >= 20), ``initial_gain`` (the net rate at t = 0: gain minus damping),
+    ``overdamped`` (the carrier's root does not oscillate: ``carrier_overdamped``)."""
 
     carrier_damping: float
     amplification: float
@@ -74,6 +75,7 @@ class Amplified:
     offset: float
     observable: bool
     initial_gain: float
+    overdamped: bool = False
 
     def row(self) -> dict:
         return {"carrier_damping": self.carrier_damping, "amplification": self.amplification,
@@ -84,10 +86,12 @@ class Amplified:
         """A theory's ``verdict`` with these losses, the one rule for point, coefficients
         and map cells: {} where it stands; where the lossless chain's MI has no gain that
         beats its damping at t = 0 (the losses win from the start), {"verdict": "stable",
-        "lossless_verdict": "MI", "net_gain": ``initial_gain`` (<= 0)}."""
+        "lossless_verdict": "MI", "net_gain": ``initial_gain`` (<= 0)}, and
+        "carrier_overdamped": True where that is why."""
         if verdict == "MI" and not self.initial_gain > 0:
             return {"verdict": "stable", "lossless_verdict": "MI",
-                    "net_gain": self.initial_gain}
+                    "net_gain": self.initial_gain} | (
+                        {"carrier_overdamped": True} if self.overdamped else {})
         return {}
 
 

@@ -139,4 +139,4 @@ def overdamped_answer(model: Model, k: float, branch, Gamma: float):
 
     if Gamma <= 0 or not carrier_overdamped(model, k, branch):
         return None
-    return Amplified(Gamma, 1.0, 0.0, float("nan"), False, 0.0)
+    return Amplified(Gamma, 1.0, 0.0, float("nan"), False, 0.0, overdamped=True)
