@@ -5,7 +5,6 @@ at one offset), fed the project's travelling wave.
 """
 
 import numpy as np
-import pytest
 
 from bench.exact98_files import own_rates
 from energy import load_model
@@ -34,15 +33,14 @@ def test_pair_meeting_far_from_the_cluster_centre_is_not_certified_stable():
         assert abs(spec.gain[i] - own) <= RTOL * own, (qi, spec.gain[i], own)
 
 
-@pytest.mark.xfail(strict=True, reason="left (probe 98): refining such starts (the near-"
-                   "heaviest harmonic nearest l = 0, within 1/2 or 0.8 of the heaviest) "
-                   "fixes it but costs flexmm's ring 1.5-2x (bench.models --exact-only)")
 def test_spread_mode_whose_frozen_vector_is_heaviest_off_centre_is_refined():
     """On stiff-hinge's chain at k 0.308, a 0.103 the mode at q 2.686 weighs 0.170 at
     l = -1 and 0.170 at l = 4 (kept, centred at -1); the frozen central pencil's vector
     of its start weighed 0.173 and 0.184 there, so the start was left as off centre and
     the whole chain read stable where the dense eigenproblem at 10, 14 and 20 harmonics
-    and the referee give 3.9e-3 (1.3% of omega). Not fixed yet: strict xfail."""
+    and the referee give 3.9e-3 (1.3% of omega). Such a start is now refined where a
+    central harmonic weighs half its heaviest (``_frozen.SPREAD_SHARE``). Fails on the old
+    tree."""
     params = {"K_theta": 0.04027227773041101, "alpha": 2.0088227561455416,
               "K_3": 0.2192270079958528}
     model = load_model("flexmm-stiff-hinge").with_params(**params)

@@ -227,7 +227,8 @@ def strong_modes(Hh, masses, k, omega, P, Pc, offsets, floor, max_modes):
                     nsrc += 1
     s_starts = np.zeros((nsrc + 1, width), np.complex128)
     s_gaps = np.zeros((nsrc + 1, width))
-    s_larg = np.zeros((nsrc + 1, width), np.int64)
+    s_larg = np.zeros((nsrc + 1, width), np.int64)  # ``_start_vector``'s two answers
+    s_near = np.zeros((nsrc + 1, width), np.int64)
     # written before they are read (a slot's frozen pencil; a start's vector where
     # ``s_made`` says so): not cleared (the chain's anchors: ~200 slots)
     s_vecs = np.empty((nsrc + 1, width, n), np.complex128)
@@ -289,7 +290,7 @@ def strong_modes(Hh, masses, k, omega, P, Pc, offsets, floor, max_modes):
                     for js in range(s_count[j] if alike else 0):
                         if s_gaps[j, js] > 0:
                             if not s_made[j, js]:
-                                s_larg[j, js] = _start_vector(
+                                s_larg[j, js], s_near[j, js] = _start_vector(
                                     s_F0[j], s_X[j], Om, cidx, ridx, lvec, P, sq,
                                     s_starts[j, js], s_vecs[j, js])
                                 s_made[j, js] = True
@@ -378,10 +379,7 @@ def strong_modes(Hh, masses, k, omega, P, Pc, offsets, floor, max_modes):
             for s in range(ns):
                 reach[s] = starts[s].real if starts[s].real > 1e-9 * omega else 0.0
             first = np.argsort(-reach)
-            found = 0
-            bad = False
-            kept = 0.0
-            moved = 1e-9 * omega
+            found, bad, kept, moved = 0, False, 0.0, 1e-9 * omega
             if merged:  # the anchors' refinements measured the frozen starts' error
                 moved = max(moved, s_moved[lo[iq]], s_moved[hi[iq]])
             moved = max(moved, ring_moved)  # and a ring's sources theirs
@@ -398,22 +396,25 @@ def strong_modes(Hh, masses, k, omega, P, Pc, offsets, floor, max_modes):
                     _translate(w, v, P, d, sigma, mir)
                 else:
                     if not s_made[j, js]:
-                        s_larg[j, js] = _start_vector(s_F0[j], s_X[j], Om, cidx, ridx, lvec, P, sq,
-                                                      s_starts[j, js], s_vecs[j, js])
+                        s_larg[j, js], s_near[j, js] = _start_vector(
+                            s_F0[j], s_X[j], Om, cidx, ridx, lvec, P, sq, s_starts[j, js],
+                            s_vecs[j, js])
                         s_made[j, js] = True
                     lq = -s_larg[j, js] if mir else s_larg[j, js]
+                    ln = -s_near[j, js] if mir else s_near[j, js]
                     if merged and abs(lq) > 2 and src_alt[s] >= 0:
                         # a matched pair: the other anchor's vector where it is central (a
                         # mode whose weight moves between harmonics across the anchors)
                         j = ja if j == jb else jb
                         js = src_alt[s]
                         if not s_made[j, js]:
-                            s_larg[j, js] = _start_vector(s_F0[j], s_X[j], Om, cidx, ridx, lvec,
-                                                          P, sq, s_starts[j, js], s_vecs[j, js])
+                            s_larg[j, js], s_near[j, js] = _start_vector(
+                                s_F0[j], s_X[j], Om, cidx, ridx, lvec, P, sq, s_starts[j, js],
+                                s_vecs[j, js])
                             s_made[j, js] = True
-                        lq = s_larg[j, js]
-                    if abs(lq - sigma) > 2:
-                        continue  # its frozen eigenvector is heaviest off the centre: not kept
+                        lq, ln = s_larg[j, js], s_near[j, js]
+                    if abs(lq - sigma) > 2 and abs(ln - sigma) > 2:
+                        continue  # off the centre, none central near as heavy: not kept
                     # the whole frozen eigenvector refined on the whole pencil; Newton on the
                     # Schur complement where that does not settle
                     _translate(s_vecs[j, js], v, P, d, sigma, mir)
