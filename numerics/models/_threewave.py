@@ -41,8 +41,8 @@ from energy import Model
 ISOLATED = 4.0
 
 
-def decay_rates(model: Model, k: float, wave, offsets, *,
-                margin: bool = False) -> tuple[np.ndarray, np.ndarray]:
+def decay_rates(model: Model, k: float, wave, offsets, *, margin: bool = False,
+                isolated_only: bool = True) -> tuple[np.ndarray, np.ndarray]:
     """Every isolated three-wave decay's rate at the offsets q (any sign, rad/site).
 
     Parameters
@@ -60,6 +60,10 @@ def decay_rates(model: Model, k: float, wave, offsets, *,
         Probe 96: opt (mass-in-mass, tests/test_fourwave96.py) at k pi/2 decays at 6.3e-3
         (exact) into waves each moved up by the carrier (0.03, 0.02): linearly detuned
         by -0.013, resonant once the daughters' and the carrier's shifts are counted.
+    isolated_only : bool
+        False: the triads that grow but are not isolated too (another harmonic near a
+        branch), at the two-wave reduction's rate: an estimate of a process neither this
+        truncation nor the four-wave ordering treats (``four_wave``'s note).
 
     Returns
     -------
@@ -129,23 +133,25 @@ def decay_rates(model: Model, k: float, wave, offsets, *,
         # near a branch as the triad is, and they all share the energy; Toda at k 0.56,
         # a 0.053, integrable, would read 1.7e-3 with its l = 2 wave twice as far out)
         isolated = apart > ISOLATED * np.maximum(np.sqrt(np.abs(kk)), np.abs(delta))
+    if not isolated_only:
+        isolated = True
     rates = np.where(live & isolated & robust & np.isfinite(sig), sig, 0.0)
     return rates, delta
 
 
 def fastest_decay(model: Model, k: float, wave, offsets, *, refine: bool,
-                  margin: bool = False) -> tuple | None:
+                  margin: bool = False, isolated_only: bool = True) -> tuple | None:
     """The fastest isolated decay over ``offsets`` (``_fastest_decay``)."""
-    return _fastest_decay(model, k, wave, offsets, refine, margin)
+    return _fastest_decay(model, k, wave, offsets, refine, margin, isolated_only)
 
 
-def _fastest_decay(model, k, wave, offsets, refine, margin):
+def _fastest_decay(model, k, wave, offsets, refine, margin, isolated_only=True):
     """The fastest isolated decay over ``offsets`` as (rate, (b1, k1), (b3, k3)), or None
     where none grows. ``refine``: the offsets are a grid of the infinite chain, and the
     detuning's roots between them are added (a decay's band is O(a) wide); False for a
     ring's own offsets. ``margin``: ``decay_rates``'s."""
     q = np.atleast_1d(np.asarray(offsets, dtype=float))
-    rates, delta = decay_rates(model, k, wave, q, margin=margin)
+    rates, delta = decay_rates(model, k, wave, q, margin=margin, isolated_only=isolated_only)
     roots = []
     for b1 in range(delta.shape[1]):
         for b3 in range(delta.shape[2]):
@@ -156,7 +162,8 @@ def _fastest_decay(model, k, wave, offsets, refine, margin):
     if roots and refine:
         q = np.concatenate([q, roots])
         rates = np.concatenate([rates, decay_rates(model, k, wave, np.array(roots),
-                                                   margin=margin)[0]])
+                                                   margin=margin,
+                                                   isolated_only=isolated_only)[0]])
     if not np.max(rates, initial=0.0) > 0:
         return None
     n, b1, b3 = np.unravel_index(int(np.argmax(rates)), rates.shape)
