@@ -83,3 +83,31 @@ def test_four_wave_names_a_decay_it_cannot_rate_instead_of_a_slower_pair():
     own, _ = own_rates("res2", dict(model.params), wave, q, chain.truncations[0])
     assert own == pytest.approx(chain.peak_gain, rel=RTOL)  # the referee agrees with exact
     assert own / 1.5 < estimate < 1.5 * own, (estimate, own)
+
+
+def test_a_slow_offset_that_does_not_persist_is_not_reported():
+    """Probe 98's point 6 (seed 20261198): on an FPUT ring of 512 (alpha 0.361, beta 1.761,
+    k 2 pi 129/512, a 0.384) the offset q = k, whose l = -1 copy is the uniform translation,
+    grew at 2.95e-6 (1.7e-6 omega) at P = 10 where the referee (the probe's own pencil)
+    and the dense eigenproblem give 0 at P + 4: a truncation artefact the persistence
+    check, made at the fastest offset only, let through. Slow offsets are now checked at
+    P + 4 too (``_persist``). Fails on the old tree."""
+    import os
+    import tempfile
+
+    from bench.exact98_files import MODELS
+    from numerics.models import exact_gain
+
+    params = {"alpha": 0.36099291758377827, "beta": 1.7608450912122011}
+    with tempfile.TemporaryDirectory() as folder:  # the file as the probe loads it
+        path = os.path.join(folder, "fput1.toml")
+        with open(path, "w") as f:
+            f.write(MODELS["fput1"])
+        model = load_model(path).with_params(**params)
+        spec = exact_gain(model, 1.5790647382486804, 0.38353596204164525, 0, N=512)
+    i = int(np.argmin(np.abs(spec.offsets - spec.wave.k)))
+    own, _ = own_rates("fput1", dict(model.params), spec.wave, spec.offsets[i],
+                       spec.truncations[0] + 4)
+    assert own == 0  # the referee: no mode at P + 4
+    assert spec.gain[i] == 0, spec.gain[i]
+    assert spec.peak_gain > 0.16  # the band itself stays (0.1665)

@@ -408,9 +408,13 @@ class _Sidebands:
         if spec.peak_gain <= 0:
             return spec
         i = int(np.argmax(spec.gain))
-        again = _Sidebands(self.wave, self.P + PERSIST_STEP).spectrum(offsets[i:i + 1])
+        finer = _Sidebands(self.wave, self.P + PERSIST_STEP)
+        again = finer.spectrum(offsets[i:i + 1])
         P2 = self.P + PERSIST_STEP
         if abs(again.gain[0] - spec.gain[i]) <= 1e-6 * spec.gain[i]:
+            from ._persist import slow_offsets_persist
+
+            spec = slow_offsets_persist(spec, finer.spectrum)
             return dataclasses.replace(spec, truncations=(self.P, P2))
         from ._hill_dense import _dense_spectrum
 

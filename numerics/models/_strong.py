@@ -64,6 +64,7 @@ from ._cluster_solve import _newton
 from ._frozen import _frozen_starts, _start_vector
 from ._real_gauge import _components
 from ._refine import _kept, _newton_past, _refine
+from ._ring_shift import _neighbours, _translate
 from ._sidebands import _pencil_from_parts
 from ._small_algebra import _drop_roundoff
 
@@ -78,49 +79,6 @@ _KW = dict(cache=True, nogil=True, error_model="numpy", boundscheck=False)
 #: it; the bench flexmm point is one), P_C = 3 at 13 (73 offsets). 5 keeps one harmonic
 #: of margin over the first that failed (P_C = 6 before)
 CENTRAL_MARGIN = 5
-
-
-@njit(**_KW)
-def _neighbours(offsets, k):
-    """For each offset t and sign sigma (+1, -1): the index j of the offset s with
-    t = s' + sigma k (mod 2 pi), s' = s or -s (``mirror``), or -1. A mode at s' is one at
-    s' + sigma k, one harmonic over and i sigma omega lower; at -s, its mirror image
-    (lambda -> conj(lambda), l -> -l): the real lattice."""
-    Q = offsets.size
-    nb = np.full((Q, 2), -1, np.int64)
-    mirror = np.zeros((Q, 2), np.bool_)
-    for i in range(Q):
-        for c in range(2):
-            sigma = 1.0 if c == 0 else -1.0
-            x = (offsets[i] - sigma * k) % (2 * np.pi)
-            mir = x > np.pi
-            if mir:
-                x = 2 * np.pi - x
-            for j in range(Q):
-                if j != i and abs(offsets[j] - x) <= 1e-9:
-                    nb[i, c] = j
-                    mirror[i, c] = mir
-                    break
-    return nb, mirror
-
-
-@njit(inline="always")
-def _translate(c_s, v, P, d, sigma, mir):
-    """A start's vector ``c_s`` moved from its source to this offset, into ``v``: the
-    pencil at q + sigma k is the one at q shifted one harmonic, c_t[l] = c'[l + sigma]
-    (zero past the truncation's edge), c'[l] = conj(c_s[-l]) where mirrored (the source
-    at -q: lambda -> conj(lambda), l -> -l); sigma 0: the vector itself."""
-    for li in range(2 * P + 1):
-        ls = li - P + sigma
-        if abs(ls) > P:
-            for a in range(d):
-                v[li * d + a] = 0.0
-            continue
-        if mir:
-            ls = -ls
-        for a in range(d):
-            val = c_s[(ls + P) * d + a]
-            v[li * d + a] = np.conj(val) if mir else val
 
 
 @njit(**_KW)
@@ -383,12 +341,26 @@ def strong_modes(Hh, masses, k, omega, P, Pc, offsets, floor, max_modes):
             if merged:  # the anchors' refinements measured the frozen starts' error
                 moved = max(moved, s_moved[lo[iq]], s_moved[hi[iq]])
             moved = max(moved, ring_moved)  # and a ring's sources theirs
-            for t in range(ns):
-                s = first[t]
+            # the starts whose frozen vector is heaviest off the centre but weighs half that
+            # at a central harmonic (``_frozen.SPREAD_SHARE``) after the others, cut off as
+            # they are (refined first, they doubled flexmm's ring)
+            later = np.empty(ns, np.int64)
+            nlater, t, deferred = 0, 0, False
+            while True:
+                if t >= (nlater if deferred else ns):
+                    if deferred:
+                        break
+                    deferred, t = True, 0
+                    continue
+                s = later[t] if deferred else first[t]
+                t += 1
                 if kept > 0 and sure[s] and reach[s] + gaps[s] < kept:
                     continue
                 if kept > 0 and reach[s] + gaps[s] + 10 * moved < kept:
-                    break
+                    if deferred:
+                        break
+                    deferred, t = True, 0
+                    continue
                 j, js, sigma, mir = src[s], src_s[s], src_sigma[s], src_mir[s]
                 if j < 0:  # a refined mode: an anchor's (``_between``) or a ring source's
                     for a in range(n):
@@ -415,6 +387,10 @@ def strong_modes(Hh, masses, k, omega, P, Pc, offsets, floor, max_modes):
                         lq, ln = s_larg[j, js], s_near[j, js]
                     if abs(lq - sigma) > 2 and abs(ln - sigma) > 2:
                         continue  # off the centre, none central near as heavy: not kept
+                    if abs(lq - sigma) > 2 and not deferred:
+                        later[nlater] = s
+                        nlater += 1
+                        continue
                     # the whole frozen eigenvector refined on the whole pencil; Newton on the
                     # Schur complement where that does not settle
                     _translate(s_vecs[j, js], v, P, d, sigma, mir)
