@@ -172,21 +172,9 @@ def test_a_wave_past_its_range_is_refused_promptly():
 
     from numerics.models import travelling_wave
 
-    model = load_model(parse_model(MORSE_RANGE))
+    model = load_model(parse_model(H.FILES["morse"]))
     t0 = time.process_time()
     with pytest.raises(ModelError, match="no travelling wave of amplitude 2"):
         travelling_wave(model, math.pi, 2.0)
     assert time.process_time() - t0 < 30
 
-
-MORSE_RANGE = '''name = "morse98"
-fields = ["u"]
-[parameters]
-D = 0.5
-b = 1.5
-w0 = 0.3
-[energy]
-kinetic = "u_t**2/2"
-bond = "D*(1 - exp(-b*(u_next - u)))**2"
-site = "w0**2*u**2/2 + u**4/8"
-'''
