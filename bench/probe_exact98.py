@@ -41,11 +41,12 @@ a start only within 2x their gap, and a growing band (stiff-hinge, 2.4e-3) was c
 stable (fixed in ``_cluster_solve``), and a start of the frozen central pencil whose
 vector, distorted by the frozen fold, was heaviest off centre was left where the mode
 (weights 0.170 at l = -1 and at 4) is kept: stiff-hinge's chain at k 0.308, a 0.103 read
-stable where it grows at 3.9e-3 (seed 98003, ``--only flexmm-stiff-hinge``; left: a
-start whose near-heaviest harmonics include a central one refined fixes it at 1.5-2x the
-cost of flexmm's ring; tests/test_probe98_exact.py holds it as a strict xfail); at q = k on an
-FPUT ring a truncation artefact of the translation mode reads 3e-6 (ring copies) against
-5e-7 (dense at the same P), 0 at P + 4 (the persistence check holds the peak only).
+stable where it grows at 3.9e-3 (seed 98003, ``--only flexmm-stiff-hinge``; fixed after:
+a start whose central harmonic weighs half its heaviest is refined, after the others,
+``_frozen.SPREAD_SHARE``, at 1.5x the cost of flexmm's and stiff-hinge's rings); at q = k on
+an FPUT ring a truncation artefact of the translation mode read 3e-6 (ring copies) against
+5e-7 (dense at the same P), 0 at P + 4 (fixed after: slow offsets are checked at P + 4,
+``_persist``; the dense referee at P still shows its 5e-7, below the probe's floor).
 """
 
 from __future__ import annotations
