@@ -408,6 +408,8 @@ def strong_modes(Hh, masses, k, omega, P, Pc, offsets, floor, max_modes):
                 if not whole and (not settled or lam.real < -floor):
                     lam, settled = _newton(K, Om, starts[s], cidx, ridx, scale, y, False, X)
                 if not settled:
+                    if deferred:  # a spread start is a guess: unsure is no mode here
+                        continue
                     bad = True
                     break
                 if lam.real <= floor:
@@ -432,6 +434,8 @@ def strong_modes(Hh, masses, k, omega, P, Pc, offsets, floor, max_modes):
                     lam2, settled = _newton_past(K, Om, starts[s], cidx, ridx, scale, X, lam)
                     if (not settled or abs(lam2 - starts[s]) > near
                             or abs(lam2 - lam) <= 1e-6 * (abs(lam) + scale)):
+                        if deferred:
+                            continue
                         bad = True
                         break
                     if lam2.real <= floor:
@@ -439,6 +443,8 @@ def strong_modes(Hh, masses, k, omega, P, Pc, offsets, floor, max_modes):
                     lam, settled = _newton(K, Om, lam2, cidx, ridx, scale, y, True, X)
                     whole = False
                     if not settled or lam.real <= floor:
+                        if deferred:
+                            continue
                         bad = True
                         break
                 dup = False
@@ -448,6 +454,8 @@ def strong_modes(Hh, masses, k, omega, P, Pc, offsets, floor, max_modes):
                 if dup:
                     continue
                 if found >= max_modes:
+                    if deferred:
+                        continue
                     bad = True
                     break
                 if whole:
@@ -461,6 +469,8 @@ def strong_modes(Hh, masses, k, omega, P, Pc, offsets, floor, max_modes):
                         for b in range(rc):
                             acc += X[a, b] * y[b]
                         vec_out[iq, found, ridx[a]] = -acc * sq[ridx[a] % d]
+                if deferred and not _kept(vec_out[iq, found], P, d):
+                    continue  # a spread start counts only where it finds a kept mode
                 lam_out[iq, found] = lam
                 moved = max(moved, abs(lam - starts[s]))
                 if lam.real > kept and _kept(vec_out[iq, found], P, d):
