@@ -447,7 +447,9 @@ def _decay(model, k, a, branch, N, samples, margin=False, isolated_only=True):
         q = q[q != 0]
     if margin:
         return fastest_near_decay(model, k, wave, q, refine=not N)
-    return fastest_decay(model, k, wave, q, refine=not N, isolated_only=isolated_only)
+    if isolated_only:
+        return fastest_decay(model, k, wave, q, refine=not N)
+    return fastest_decay(model, k, wave, q, refine=not N, isolated_only=False)
 
 
 def _untreated(q, pairs, rate, det) -> str:
