@@ -85,8 +85,7 @@ def chain_start(model, k: float, amplitude: float, spec, N: int, t_end: float, s
     # the CPU run's step rule (``numerics.models``' ``run_step``: the branches' top or the
     # start state's own local frequency, probe 98), read with the CPU force
     kernel, p_force, rows, _ = run_force(model)
-    dt, _ = run_step(model, meth, wave, None, np.ascontiguousarray(u), kernel, p_force, rows,
-                     False)
+    dt, _ = run_step(model, meth, wave, None, np.ascontiguousarray(u), kernel, p_force, rows)
     nsteps = max(1, int(math.ceil(t_end / dt)))
     dt = t_end / nsteps
     every = max(1, nsteps // _default("records"))

@@ -365,7 +365,7 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
     else:
         u, v = np.ascontiguousarray(u, float), np.ascontiguousarray(v, float)
     kernel, p_force, rows, force_label = run_force(model, force)
-    dt, wmax = run_step(model, meth, wave, dt, u, kernel, p_force, rows, dt is not None)
+    dt, wmax = run_step(model, meth, wave, dt, u, kernel, p_force, rows)
     if t_end / dt > MAX_STEPS:
         raise ModelError(f"the lattice's highest frequency {wmax:.3g} asks for a step dt = "
                          f"{dt:.3g}: a run of T = {t_end:g} would take {t_end / dt:.2g} "

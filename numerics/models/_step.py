@@ -58,19 +58,18 @@ def local_frequency(force, p, rows: int, u: np.ndarray) -> float:
     return math.sqrt(lam) if math.isfinite(lam) else math.inf
 
 
-def run_step(model: Model, method, wave, dt, u, force, p, rows,
-             given: bool) -> tuple[float, float]:
-    """(step, the frequency it is set by) of a run: ``dt`` as given, refused where it is past the method's stability
-    limit at the lattice's fastest frequency (the linear branches' top, or the start
-    state's own where higher); None: ``STEP_FRACTION`` of the limit over the larger of
-    1.1 times the branches' top plus the carrier's frequency (the rule since the start)
-    and 1.1 times the start state's local frequency."""
+def run_step(model: Model, method, wave, dt, u, force, p, rows) -> tuple[float, float]:
+    """(step, the frequency it is set by) of a run: ``dt`` as given, refused where it is
+    past the method's stability limit at the lattice's fastest frequency (the linear
+    branches' top, or the start state's own where higher); None: ``STEP_FRACTION`` of the
+    limit over the larger of 1.1 times the branches' top plus the carrier's frequency (the
+    rule since the start) and 1.1 times the start state's local frequency."""
     from ._linear import branches
 
     top = float(np.nanmax(branches(model, np.linspace(0, math.pi, 129))))
     local = local_frequency(force, p, rows, u)
     limit = method.stability_limit()
-    if not given:
+    if dt is None:
         fastest = max(top * 1.1 + wave.omega, 1.1 * local)
         if model.lossy:
             # the damping's fastest rate c bounds the step like a frequency: rk4 takes the
