@@ -353,7 +353,7 @@ def test_the_decay_check_visits_every_offset_of_the_ring(N, monkeypatch):
 
     seen = []
 
-    def spy(model, k, wave, offsets, *, refine):
+    def spy(model, k, wave, offsets, *, refine, isolated_only=True):
         seen.append(np.asarray(offsets, float))
         return None
 

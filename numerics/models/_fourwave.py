@@ -447,9 +447,7 @@ def _decay(model, k, a, branch, N, samples, margin=False, isolated_only=True):
         q = q[q != 0]
     if margin:
         return fastest_near_decay(model, k, wave, q, refine=not N)
-    if isolated_only:
-        return fastest_decay(model, k, wave, q, refine=not N)
-    return fastest_decay(model, k, wave, q, refine=not N, isolated_only=False)
+    return fastest_decay(model, k, wave, q, refine=not N, isolated_only=isolated_only)
 
 
 def _untreated(q, pairs, rate, det) -> str:
