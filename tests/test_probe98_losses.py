@@ -8,6 +8,7 @@ import math
 import numpy as np
 import pytest
 
+from bench.probe_losses98 import FILES
 from energy import load_model, parse_model
 from numerics.models import (
     carrier,
@@ -17,38 +18,9 @@ from numerics.models import (
     nls_amplification,
 )
 
-RESONATOR = """name = "ground-resonator"
-fields = ["u", "v"]
-branch = "u"
-[parameters]
-m2 = 0.7
-kc = 0.4
-kg = 0.5
-beta = 1.0
-gamma = 0.02
-[energy]
-kinetic = "u_t**2/2 + m2*v_t**2/2"
-bond = "(u_next - u)**2/2 + beta*(u_next - u)**4/4"
-site = "kc*(v - u)**2/2 + kg*v**2/2"
-[dissipation]
-site = "gamma*v_t**2/2"
-"""
-
-KG_CUBIC = """name = "kg-cubic-damped"
-fields = ["u"]
-[parameters]
-C = 1.0
-omega0 = 1.0
-a3 = 0.5
-beta = 1.0
-gamma = 0.005
-[energy]
-kinetic = "u_t**2/2"
-bond = "C*(u_next - u)**2/2"
-site = "omega0**2*u**2/2 + a3*u**3/3 + beta*u**4/4"
-[dissipation]
-site = "gamma*u_t**2/2"
-"""
+# the probe's own files (bench/probe_losses98.py), one text each
+RESONATOR = FILES["resonator"]
+KG_CUBIC = FILES["kgcubic"]
 
 
 def _resonator_roots(gamma, k, p=(0.7, 0.4, 0.5)):
