@@ -167,3 +167,23 @@ def test_a_map_near_delta_zero_agrees_with_the_points_and_the_exact_theory():
             assert (row["verdict_simulated"] == 1) == (exact == "MI"), (d, m, exact)
             mi += row["verdict_simulated"] == 1
     assert 0 < mi < 12  # both verdicts occur: the grid tests both readings
+
+
+def test_the_compiled_host_bound_is_the_python_source():
+    """exponential_bound runs ``bound_of_records`` compiled on the host (a GPU launch reads
+    every chain's bound after it): equal to the plain-Python function to the bit on random
+    series (growing, decaying, noisy, short; one non-positive), and a mismatched pair is
+    one line."""
+    from numerics.lattice._analysis import STAGE_END, exponential_bound
+    from numerics.lattice._bound import bound_of_records
+
+    rng = np.random.default_rng(96)
+    for _ in range(200):
+        n = int(rng.integers(2, 202))
+        t = np.linspace(0.0, float(rng.uniform(10, 5000)), n)
+        top = 1e-3 * np.exp(rng.normal() * 1e-3 * t) * (1 + 0.2 * rng.random(n))
+        if rng.random() < 0.05:
+            top[rng.integers(n)] = 0.0
+        assert exponential_bound(t, top) == bound_of_records(t, top, 0, n, STAGE_END)
+    with pytest.raises(ValueError, match="one length"):
+        exponential_bound(np.arange(5.0), np.ones(4))
