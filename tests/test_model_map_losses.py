@@ -18,8 +18,8 @@ from numerics.maps import critical_damping, damping_parameters
 
 #: the lossy FPUT chain at k 2.5, a 0.2 on 64 sites (tests/test_dissipation.py: gamma 0.012
 #: grows past 20x in the theories and a run, 0.03 does not); N = 64 so that the sidebands
-#: next to the carrier are not aliases of its harmonics (on 32 sites they are, and a run's
-#: A(t), which leaves the harmonics out, cannot see them)
+#: next to the carrier are not aliases of its harmonics (on 32 sites they are: a run's A(t)
+#: reads them there only where they stand above the harmonics' drift bound)
 K, AMPLITUDE, N = 2.5, 0.2, 64
 
 

@@ -35,11 +35,12 @@ from ._args import MAX_RING, check_count, check_ring
 from ._compiled import _kernels, compiled_force, lattice_energy, lattice_force  # noqa: F401
 from ._damping import damping_flow, loss_spacing, rayleigh
 from ._growth import (
+    OVER_DRIFT,
     SATURATION,
     Amplification,
     Growth,
     _lower_keep,
-    _sideband_modes,
+    harmonic_drift,
     measure_amplification,
     measure_growth,
 )
@@ -253,7 +254,7 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
     A model with [dissipation] runs with its damping force -M^-1 dR/dv: ``rk4`` takes it
     in every stage; an SRKN method is wrapped in a Strang splitting (the damping flow's
     exact half steps around each symplectic step: order 2). ``until_peak``: stop once
-    the sidebands' amplitude A(t) (``sideband_amplitude``) has risen ``PEAK_RISE`` (sqrt 20)
+    the sidebands' amplitude A(t) (``amplitude_series``) has risen ``PEAK_RISE`` (sqrt 20)
     times and fallen to half its maximum (else ``t_end`` is the cap); a time: not before it
     (> 0, the theory's peak: a first band may peak and fall before a later one, probe 98). ``noise_on="carrier"``: the noise on the
     carrier field's positions only (the amplification's launch, issue 42). ``initial``:
@@ -428,8 +429,9 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
         lower = _lower_keep(N, int(round(k_ring * N / (2 * math.pi))), wave.harmonics)
         level = SATURATION * float(amplitude)
     if until_peak:
-        modes = _sideband_modes(N, int(round(k_ring * N / (2 * math.pi))), wave.harmonics)
-        a0 = float(np.max(spec[0][modes]))
+        # measure_amplification's modes (``amplitude_series``)
+        bound = OVER_DRIFT * harmonic_drift(wave, N, k_ring, start == "exact")
+        a0 = float(np.max(np.where(spec[0] > bound, spec[0], 0.0)))
         top = a0
         peaked = False
         hold = 0.0 if until_peak is True else float(until_peak)  # no stop before it
@@ -468,7 +470,7 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
                     saturated = True
                     break
                 if until_peak:
-                    a = float(np.max(spec[-1][modes]))
+                    a = float(np.max(np.where(spec[-1] > bound, spec[-1], 0.0)))
                     top = max(top, a)
                     if top >= PEAK_RISE * a0 and a <= top / 2 and done * dt >= hold:
                         peaked = True
