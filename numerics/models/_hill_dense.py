@@ -12,6 +12,10 @@ import numpy as np
 from ._exact import GAIN_FLOOR, PERSIST_STEP, HillSpectrum, _centre, _hessian_harmonics
 from ._wave import _wrap
 
+#: sqrt(machine epsilon): how far eig splits a near-double eigenvalue, relative to the
+#: matrix's scale (``_DensePencil.resolved``)
+RESOLUTION = math.sqrt(np.finfo(float).eps)
+
 
 def _sideband_offsets(q, l_, k, w_best):
     """``_sideband_offset`` of many offsets q (shape (m,)) at once, w_best (m, 2P + 1)."""
@@ -51,6 +55,17 @@ class _DensePencil:
         self._diff = l_[:, None] - l_[None, :] + 2 * P
         self._back = np.exp(-1j * (l_[:, None] - l_[None, :]) * self.k)[..., None, None]
 
+    def resolved(self, lam):
+        """The least rate eig resolves at one offset (its eigenvalues ``lam``): the floor,
+        or where larger 2 sqrt(eps) max |lambda|. A pair that collides on the axis is a
+        near-double eigenvalue of the linearisation, which eig splits by ~sqrt(eps) times
+        its scale, the pencil's largest frequency, not the carrier's (probe 98: a
+        diatomic-fput ring of 128, m 2.58, k 0.056, a 0.027, omega 0.018, P = 36: a rate of
+        2.85e-8 = 1.6e-6 omega at one offset, 0 in the probe's own pencil at P = 36, max
+        |lambda| 2.4 here: resolution 3.6e-8). Only the dense paths: the compiled ones
+        solve small clusters by Newton, resolved far below it."""
+        return max(self.floor, 2 * RESOLUTION * float(np.max(np.abs(lam))))
+
     def stiffness(self, q):
         """L(q): block (l, h) = A + B e^{i th_h} + C e^{-i th_l} + D e^{-i (l - h) k}."""
         d, l_ = self.d, self.l_
@@ -71,7 +86,7 @@ def _dense_growing(wave, offsets, P):
 
     pencil = _DensePencil(wave, P)
     d, k, omega, l_, n = pencil.d, pencil.k, pencil.omega, pencil.l_, pencil.n
-    m, Minv, ll, floor = pencil.m, pencil.Minv, pencil.ll, pencil.floor
+    m, Minv, ll = pencil.m, pencil.Minv, pencil.ll
     gains = np.zeros(offsets.size)
     modes = np.zeros(offsets.size, int)
     offs = np.full(offsets.size, math.nan)
@@ -83,8 +98,9 @@ def _dense_growing(wave, offsets, P):
         A[n:, :n] = -Minv[:, None] * (L - np.diag(ll**2 * omega**2 * m))
         A[n:, n:] = np.diag(2j * omega * ll)
         lam = np.linalg.eigvals(A)
+        least = pencil.resolved(lam)
         for j in np.argsort(-lam.real):
-            if not lam[j].real > floor:
+            if not lam[j].real > least:
                 break
             # A - lam I is singular to round-off: two solves give its null vector
             shift = lam[j] + 1e-13 * (abs(lam[j]) + omega)
@@ -109,7 +125,7 @@ def _dense_spectrum(wave, offsets, P, return_eigenvalues):
     linearisation): the reference the compiled path equals, and its fallback."""
     pencil = _DensePencil(wave, P)
     d, k, omega, l_, n = pencil.d, pencil.k, pencil.omega, pencil.l_, pencil.n
-    m, Minv, ll, floor = pencil.m, pencil.Minv, pencil.ll, pencil.floor
+    m, Minv, ll = pencil.m, pencil.Minv, pencil.ll
     gains, modes, lams, offs = [], [], [], []
     outer = np.zeros((2 * P + 1, d), bool)
     outer[:3] = outer[-3:] = True
@@ -131,7 +147,7 @@ def _dense_spectrum(wave, offsets, P, return_eigenvalues):
         re = np.where(resolved, lam.real, -np.inf)
         best = int(np.argmax(re))
         g = float(re[best]) if np.isfinite(re[best]) else 0.0
-        gains.append(g if g > floor else 0.0)
+        gains.append(g if g > pencil.resolved(lam) else 0.0)
         modes.append(int(centre[best]))
         kap = q + l_ * k
         dist = np.minimum(_wrap(kap - k), _wrap(kap + k))
