@@ -36,7 +36,7 @@ from numerics.theory import (
 
 from ._slow import SLOW_MODEL_POINT, SLOW_PAPER_POINT, said_if_slow
 from ._slow import to_stderr as _stderr
-from .coefficients import weak_nonlinearity_note
+from .coefficients import weak_nonlinearity_note, wide_band_note
 
 #: what point.json's numbers are in (the lattice units), beside the SI ones of --physical
 UNITS = {"time": "T = t sqrt(k_l/m)", "gain": "1/T", "wavenumber": "rad/site",
@@ -115,9 +115,10 @@ def _log_header(log, args, mat, units, k, m, amplitude):
     log(f"NLS (semi-discrete): omega = {co['omega']:.6g} 1/T, v_g = {co['v_g']:.4g} site/T, "
         f"g1 = {co['g1']:.4g}, g2 = {co[args.case]['g2']:.4g}, g = {co[args.case]['g']:.4g}")
     log(f"units:    {units.describe()}")
-    note = weak_nonlinearity_note(co_all, amplitude, remedy="the exact rows below")
-    if note:
-        log(note)
+    for note in (weak_nonlinearity_note(co_all, amplitude, remedy="the exact rows below"),
+                 wide_band_note(co_all, amplitude, (args.case,))):
+        if note:
+            log(note)
 
 
 def _rows(res) -> list:

@@ -75,6 +75,9 @@ def test_the_n_a_missed_band_note_advises_samples_that_band(capsys, tmp_path):
     import re
 
     for note in notes:
+        # a band 6e-4 wide printed "1.142 to 1.142": its edges with the digits that differ
+        lo, hi = re.search(r"band of offsets (\S+) to (\S+) rad/site", note).groups()
+        assert float(lo) < float(hi), note
         m = re.search(r"samples: N = (\d+)(?: with --k (\S+))?", note)
         assert m, note
         k = m.group(2) or "1"  # the old text named no k: the user's own
@@ -82,10 +85,38 @@ def test_the_n_a_missed_band_note_advises_samples_that_band(capsys, tmp_path):
         assert exact.split()[2] == "MI", (note, exact)
 
 
-def test_a_narrow_missed_band_is_printed_with_distinct_edges():
-    from cli._model_point_text import _miss_text
+@pytest.mark.parametrize("command, extra", [("coefficients", []),
+                                            ("point", ["--case", "coupled", "--N", "64"])])
+def test_the_paper_chains_nls_band_past_half_the_zone_is_said(command, extra, capsys,
+                                                              monkeypatch):
+    """alpha 2, K_s 0.03, K_theta 0.02, k 1, a 0.5 (A0 = 25): the semi-discrete NLS's case
+    II band |q - k| < a sqrt(g) (g = 169) reaches 6.5 rad/site, past the zone; point's gain
+    curve (offsets up to pi) then peaked at its end and printed 'fastest growth: offset
+    3.142, sidebands q at 2.136 and 2.136' without a word (a model's coefficients say so
+    past pi/2). The exact theory is cut short here: only the header's notes are asked."""
+    import cli.point
 
-    text = _miss_text({"band": (1.14183, 1.14241), "peak_gain": 2e-4, "N": 352,
-                       "same_k": True}, 128, 0.98174770424681)
-    assert "offsets 1.1418 to 1.1424 rad/site" in text
-    assert "N = 352 with --k 0.981747704" in text
+    class _Stop(Exception):
+        pass
+
+    def stop(*a, **k):
+        raise _Stop
+
+    monkeypatch.setattr(cli.point, "measure_point", stop)  # the header is what is tested
+    argv = [command, *PAPER, "--amplitude", "0.5", *extra]
+    try:
+        main(argv)
+    except _Stop:
+        pass
+    out = capsys.readouterr().out
+    warn = [l for l in out.splitlines() if "MI band reaches offset" in l]
+    # 6.5 at k = 1, 6.83 at the 64-site ring's k = 0.98175 (g = 186.5)
+    assert len(warn) == 1 and "semi-discrete case II to 6." in warn[0], out
+    assert "lower the amplitude" in warn[0]
+
+
+def test_no_wide_band_note_at_the_readmes_amplitude(capsys):
+    # the README's material at a = 0.02: band 0.18 rad/site, far inside pi/2
+    assert main(["coefficients", "--alpha", "2.0", "--K-s", "0.03", "--K-theta", "0.02",
+                 "--k", "1.2"]) == 0
+    assert "MI band reaches" not in capsys.readouterr().out
