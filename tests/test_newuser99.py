@@ -120,3 +120,19 @@ def test_no_wide_band_note_at_the_readmes_amplitude(capsys):
     assert main(["coefficients", "--alpha", "2.0", "--K-s", "0.03", "--K-theta", "0.02",
                  "--k", "1.2"]) == 0
     assert "MI band reaches" not in capsys.readouterr().out
+
+
+def test_a_model_maps_shares_print_in_the_figures_order_fresh_or_resumed(capsys, tmp_path):
+    """A simulated model map printed its MI shares in the store's variable order: simulated,
+    semidiscrete, exact, fourwave when fresh, simulated, fourwave, exact, semidiscrete when
+    the same command reopened the finished store. Both now follow the figure's panels:
+    semi-discrete NLS, four-wave, exact lattice, simulated."""
+    argv = ["map", "--model", "fput", "--param", "beta=1:1.5:2", "--k", "1,2", "--amplitude",
+            "0.1", "--N", "16", "--workers", "1", "--out", str(tmp_path / "m")]
+    orders = []
+    for _ in range(2):  # fresh, then the finished store reopened
+        assert main(argv) == 0
+        orders.append([l.split(":")[0].removeprefix("MI share, ")
+                       for l in capsys.readouterr().out.splitlines()
+                       if l.startswith("MI share, ")])
+    assert orders[0] == orders[1] == ["semidiscrete", "fourwave", "exact", "simulated"]
