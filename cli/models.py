@@ -115,7 +115,15 @@ def load(args, axes_ok=False):
     from numerics.models import check_rest_stable
 
     if not axes:
-        check_rest_stable(model)
+        try:
+            check_rest_stable(model)
+        except ValueError as exc:  # named as what the user gave: the values, or the file
+            if "is not a minimum" not in str(exc):
+                raise
+            why = str(exc).split(": ", 1)[-1]  # past 'model NAME (values)'
+            src = (", ".join(f"--param {n}={v:g}" for n, v in fixed.items()) if fixed
+                   else str(args.model))
+            raise type(exc)(f"{src}: model {model.name!r}: {why}") from None
     return (model, axes) if axes_ok else model
 
 

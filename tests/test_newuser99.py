@@ -136,3 +136,30 @@ def test_a_model_maps_shares_print_in_the_figures_order_fresh_or_resumed(capsys,
                        for l in capsys.readouterr().out.splitlines()
                        if l.startswith("MI share, ")])
     assert orders[0] == orders[1] == ["semidiscrete", "fourwave", "exact", "simulated"]
+
+
+INVERTED = """name = "inverted"
+fields = ["u"]
+[parameters]
+beta = 1.0
+[energy]
+kinetic = "u_t**2/2"
+bond = "-(u_next - u)**2/2 + beta*(u_next - u)**4/4"
+"""
+
+
+def test_a_rest_state_that_is_no_minimum_names_the_file_or_values_and_the_fix(capsys,
+                                                                              tmp_path):
+    """A sign slip, -(u_next - u)**2/2: omega^2 = -4 sin^2(k/2) < 0 at every k. The error
+    named neither the file (every other error of a model file does) nor what to change."""
+    (tmp_path / "inv.toml").write_text(INVERTED)
+    err = _one_line_error(capsys, ["coefficients", "--model", str(tmp_path / "inv.toml"),
+                                   "--k", "1"])
+    assert err.startswith(f"flexmm: error: {tmp_path / 'inv.toml'}: model 'inverted': the "
+                          "rest state is not a minimum"), err
+    assert "check the signs of its stiffness terms" in err
+    # Klein-Gordon with C = -1, omega0 = 0.5: omega^2 = 0.25 - 4 sin^2(k/2) < 0 past k = 0.505
+    err = _one_line_error(capsys, ["point", "--model", "klein-gordon", "--param", "C=-1",
+                                   "--param", "omega0=0.5", "--k", "1"])
+    assert err.startswith("flexmm: error: --param C=-1, --param omega0=0.5: model "
+                          "'klein-gordon': the rest state is not a minimum"), err
