@@ -163,3 +163,31 @@ def test_a_rest_state_that_is_no_minimum_names_the_file_or_values_and_the_fix(ca
                                    "--param", "omega0=0.5", "--k", "1"])
     assert err.startswith("flexmm: error: --param C=-1, --param omega0=0.5: model "
                           "'klein-gordon': the rest state is not a minimum"), err
+
+
+CROSS = """name = "cross-chain"
+fields = ["u", "v"]
+branch = "u"
+[parameters]
+w0 = 1.5
+kappa = 0.3
+[energy]
+kinetic = "u_t**2/2 + v_t**2/2"
+bond = "(u_next - u)**2/2 + (u_next - u)**4/4 + kappa*(u_next - u)**2*v"
+site = "w0**2*v**2/2"
+"""
+
+
+@pytest.mark.parametrize("k", ["1", "2"])
+def test_a_flat_branch_says_g1_is_zero_at_every_k(k, capsys, tmp_path):
+    """v is an on-site oscillator coupled to u only through the cubic kappa r^2 v: its
+    branch is omega = w0 at every k (no linear coupling), so v_g = g1 = 0 exactly and the
+    NLS is undefined for that reason. At k = 1 (v is branch 1: above u's 2 sin(1/2) =
+    0.96) the command said g1 was below float64's resolution and to give k >= 1.7, where
+    the branches swap (2 sin(k/2) = 1.5 at k = 1.696); at k = 2 it said g1 = 0."""
+    (tmp_path / "cross.toml").write_text(CROSS)
+    assert main(["coefficients", "--model", str(tmp_path / "cross.toml"), "--k", k,
+                 "--branch", "v", "--amplitude", "0.05"]) == 0
+    out = capsys.readouterr().out
+    assert "omega (1/time)                                 1.5" in out
+    assert f"undefined: g1 = d^2 omega/dk^2 = 0 at k = {k} (no dispersion" in out
