@@ -191,3 +191,14 @@ def test_a_flat_branch_says_g1_is_zero_at_every_k(k, capsys, tmp_path):
     out = capsys.readouterr().out
     assert "omega (1/time)                                 1.5" in out
     assert f"undefined: g1 = d^2 omega/dk^2 = 0 at k = {k} (no dispersion" in out
+
+
+def test_the_slow_point_note_names_the_waves_that_take_minutes():
+    """The note a slow point prints named only a busy machine or a first compile; a wave
+    near a harmonic resonance (the cross chain at k 0.49, 3 omega ~ w0: 65 s against 3.5 s
+    at its other k, kernels compiled, machine idle) or at a large amplitude (the paper
+    chain at A0 = 25: 3.5 min) is slow for its own reason, which the user can change."""
+    import cli._slow
+
+    for note in (cli._slow.SLOW_MODEL_POINT, cli._slow.SLOW_PAPER_POINT):
+        assert "large amplitude" in note and "resonance" in note
