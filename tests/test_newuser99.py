@@ -196,7 +196,7 @@ def test_a_flat_branch_says_g1_is_zero_at_every_k(k, capsys, tmp_path):
 def test_the_slow_point_note_names_the_waves_that_take_minutes():
     """The note a slow point prints named only a busy machine or a first compile; a wave
     near a harmonic resonance (the cross chain at k 0.49, 3 omega ~ w0: 65 s against 3.5 s
-    at its other k, kernels compiled, machine idle) or at a large amplitude (the paper
+    at its other k, kernels compiled, same machine) or at a large amplitude (the paper
     chain at A0 = 25: 3.5 min) is slow for its own reason, which the user can change."""
     import cli._slow
 
