@@ -202,3 +202,20 @@ def test_the_slow_point_note_names_the_waves_that_take_minutes():
 
     for note in (cli._slow.SLOW_MODEL_POINT, cli._slow.SLOW_PAPER_POINT):
         assert "large amplitude" in note and "resonance" in note
+
+
+def test_the_paper_points_unsampled_band_note_names_a_ring_of_the_same_k(capsys):
+    """The README's material at a = 0.005 on 64 sites (k 1.2 -> 2 pi 12/64): its exact band
+    (offsets below 0.047) holds no offset of the ring (2 pi/64 = 0.098). The note named
+    N = 134, whose k snaps to 2 pi 26/134 = 1.219, another carrier; a ring that keeps k
+    is a multiple of 16 (64/gcd(12, 64)): 144 (2 pi/144 = 0.0436, inside the band)."""
+    base = ["point", "--alpha", "2.0", "--K-s", "0.03", "--K-theta", "0.02", "--amplitude",
+            "0.005", "--case", "coupled", "--start", "travelling"]
+    assert main([*base, "--k", "1.2", "--N", "64"]) == 0
+    note = next(l for l in capsys.readouterr().out.splitlines()
+                if "holds no offset 2 pi j / N" in l)
+    assert "N = 144 with --k 1.17809725 samples it" in note, note
+    assert main([*base, "--k", "1.17809725", "--N", "144"]) == 0
+    out = capsys.readouterr().out
+    assert "2 pi 27/144" in out  # the same k: 27/144 = 12/64
+    assert next(l for l in out.splitlines() if l.startswith("exact lattice")).split()[2] == "MI"
