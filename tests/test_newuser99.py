@@ -219,3 +219,16 @@ def test_the_paper_points_unsampled_band_note_names_a_ring_of_the_same_k(capsys)
     out = capsys.readouterr().out
     assert "2 pi 27/144" in out  # the same k: 27/144 = 12/64
     assert next(l for l in out.splitlines() if l.startswith("exact lattice")).split()[2] == "MI"
+
+
+def test_the_table_says_which_nls_it_shows(capsys):
+    """`flexmm table` is the paper's continuum NLS, and said so nowhere: a user who then ran
+    `point` at the blue point, case II, read 'semi-discrete NLS: stable' against the
+    table's 'MI (focusing)'. The semi-discrete NLS reverses both case II verdicts: blue
+    g2 = -36.25 (stable), green g2 > 0 (MI) (`coefficients` at the paper's materials;
+    docs/theory.md: its mean flow, which the paper leaves out)."""
+    assert main(["table"]) == 0
+    last = capsys.readouterr().out.strip().splitlines()[-1]
+    assert last.startswith("these are the paper's continuum NLS"), last
+    assert "blue coupled: stable" in last and "green coupled: MI" in last
+    assert "rotation" not in last  # case I: both NLS agree at both points
