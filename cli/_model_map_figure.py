@@ -13,6 +13,15 @@ OBSERVABLE = 20.0
 CRITICAL_COLOURS = {"semidiscrete": "#1a9850", "fourwave": "#5e3c99", "exact": "#b2182b",
                     "simulated": "white"}
 
+#: the theories' panels, in the order the figure draws them and the map prints them
+PANELS = {"verdict_paper": "the paper's continuum NLS",
+          "verdict_semidiscrete": "semi-discrete NLS",
+          "verdict_fourwave": "four-wave",
+          "verdict_exact": "exact lattice",
+          "verdict_paper_start": "exact lattice, paper start (eq. IC)",
+          "verdict_simulated": "simulated (MI: grew 20x)"}
+VERDICT_ORDER = tuple(PANELS)
+
 
 def _plot_map(ds, path: Path, model):
     import matplotlib
@@ -45,14 +54,7 @@ def _plot_map(ds, path: Path, model):
         return np.clip(e, 0.0, np.pi) if dim == "k" else e
 
     code = {"stable": 0, "MI": 1, "undefined": 2}
-    panels = [(v, label) for v, label in (("verdict_paper", "the paper's continuum NLS"),
-                                          ("verdict_semidiscrete", "semi-discrete NLS"),
-                                          ("verdict_fourwave", "four-wave"),
-                                          ("verdict_exact", "exact lattice"),
-                                          ("verdict_paper_start",
-                                           "exact lattice, paper start (eq. IC)"),
-                                          ("verdict_simulated", "simulated (MI: grew 20x)"))
-              if v in ds]
+    panels = [(v, PANELS[v]) for v in VERDICT_ORDER if v in ds]
     code = {**code, "no growth within T": 0, "undetermined": 2}
     # one row of panels, what they share said once above them; fixed margins (a tight
     # layout measures every text first: a third of the drawing's time, measured)

@@ -41,10 +41,16 @@ def _waves(row) -> str:
 MISSES_SHOWN = 3
 
 
-def _miss_text(b, N) -> str:
+def _miss_text(b, N, k) -> str:
+    lo, hi = b["band"]
+    # digits enough to tell the edges apart (a band 1e-4 wide read "1.142 to 1.142")
+    d = next((d for d in range(4, 10) if f"{lo:.{d}g}" != f"{hi:.{d}g}"), 10)
+    ring = (f"N = {b['N']} with --k {k:.9g} does (a ring that carries this k, so this band)"
+            if b.get("same_k") else
+            f"N = {b['N']} does (k snaps to 2 pi m / N there: the band moves with it)")
     return (f"the infinite chain grows at {b['peak_gain']:.3g} /time in the band of offsets "
-            f"{b['band'][0]:.4g} to {b['band'][1]:.4g} rad/site, which no offset 2 pi j / N "
-            f"of the ring of N = {N} samples: N = {b['N']} does (k snaps to 2 pi m / N)")
+            f"{lo:.{d}g} to {hi:.{d}g} rad/site, which no offset 2 pi j / N "
+            f"of the ring of N = {N} samples: {ring}")
 
 
 def _times(x, f):
@@ -199,7 +205,7 @@ def report(args, point, units, since=None) -> dict:
     # the fastest few in full; near the zone boundary a small ring can miss a dozen bands
     shown = sorted(misses, key=lambda m: -m["peak_gain"])[:MISSES_SHOWN]
     for m in sorted(shown, key=lambda m: m["band"][0]):
-        print(f"note: {_miss_text(m, args.N)}")
+        print(f"note: {_miss_text(m, args.N, out['k'])}")
     if len(misses) > len(shown):
         rest = [m for m in misses if m not in shown]
         print(f"note: {len(rest)} more such bands, growing at up to "

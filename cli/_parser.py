@@ -304,7 +304,7 @@ def _map_parser(sub, model_mode=False):
     add_model_args(p, "print one JSON object on stdout (MI shares, files written)")
     param = next(a for a in p._actions if a.dest == "param")
     param.metavar = "NAME=VALUE|NAME=start:stop:num"
-    param.help = ("a parameter of the model (repeatable): a value, or an axis swept "
+    param.help = ("with --model: a parameter of the model (repeatable): a value, or an axis swept "
                   "--param NAME=start:stop:num (or NAME=v1,v2,...); a map sweeps two axes: "
                   "one parameter and --k SPEC, or two parameters at one --k; the others "
                   "keep their defaults")

@@ -34,9 +34,13 @@ def to_stderr(message: str) -> None:
 
 
 #: said where a point's theories take over ``SLOW_NOTE_S`` (the first point after an
-#: install compiles their kernels: 93 s of silence under load for the README's lossy FPUT)
-SLOW_MODEL_POINT = ("point: computing the theories (slow here: a busy machine, or the "
-                    "kernels compiling once after an install, a minute or two)")
-SLOW_PAPER_POINT = ("point: computing the theories and each seed's predicted growth (slow "
-                    "here: a busy machine, or the kernels compiling once after an install, "
-                    "a minute or two)")
+#: install compiles their kernels: 93 s of silence under load for the README's lossy FPUT;
+#: newuser99: a wave whose exact state needs many harmonics took minutes with the kernels
+#: compiled, on the machine where the other points took seconds: a cross-coupled chain's
+#: k 0.49, near 3 omega = w0, 65 s against 3.5 s at its other k; the paper chain at
+#: A0 = 25, 3.5 min; and the note blamed the machine)
+_WHY_SLOW = ("slow here: a busy machine, the kernels compiling once after an install (a "
+             "minute or two), or an exact wave that needs many harmonics: a large amplitude "
+             "or a harmonic near resonance with a branch (minutes)")
+SLOW_MODEL_POINT = f"point: computing the theories ({_WHY_SLOW})"
+SLOW_PAPER_POINT = f"point: computing the theories and each seed's predicted growth ({_WHY_SLOW})"

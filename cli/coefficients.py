@@ -71,6 +71,26 @@ def weak_nonlinearity_note(co: dict, amplitude: float,
             f"expansion the NLS rests on; ask the exact lattice theory ({remedy})")
 
 
+def wide_band_note(co: dict, amplitude: float, cases=("rotation", "coupled"),
+                   eps: float = paper.EPS) -> str | None:
+    """A warning line where an NLS's MI band |q - k| < eps K_c reaches past pi/2 (as a
+    model's ``coefficients`` says): the envelope expansion does not hold that far from the
+    carrier, and past pi its gain curve (offsets up to pi) peaks at the grid's end
+    (newuser99: amplitude 0.5 at alpha 2, K_s 0.03, K_theta 0.02, k 1 read 'fastest growth
+    offset 3.142, sidebands at 2.136 and 2.136', a band 6.5 rad/site wide)."""
+    wide = [(n, case, eps * c[case]["K_c"]) for n, c in co.items() for case in cases
+            if c[case]["verdict"] == "MI" and math.isfinite(c[case]["K_c"])
+            and eps * c[case]["K_c"] > math.pi / 2]
+    if not wide:
+        return None
+    which = ", ".join(f"{n} case {'I' if case == 'rotation' else 'II'} to {edge:.3g}"
+                      for n, case, edge in wide)
+    return (f"warning: at amplitude {amplitude:g} the NLS's MI band reaches offset |q - k| "
+            f"beyond pi/2 rad/site ({which}): the envelope's long-wave expansion does not "
+            "hold that far from the carrier, and its peak offset is no wavenumber the "
+            "lattice selects; lower the amplitude, or trust the exact lattice theory")
+
+
 def _number(x: float, spec: str) -> str:
     """A table cell: '-' where the number is undefined (nan, inf), as every other
     undefined cell of the table."""
@@ -126,9 +146,9 @@ def format_coefficients(material: Material, k: float, amplitude: float, units: U
                                for i, (c, w) in enumerate(zip(r, widths))).rstrip())
         if j == 0:
             lines.append("  ".join("-" * w for w in widths))
-    note = weak_nonlinearity_note(co, amplitude)
-    if note:
-        lines.append(note)
+    for note in (weak_nonlinearity_note(co, amplitude), wide_band_note(co, amplitude, eps=eps)):
+        if note:
+            lines.append(note)
     for n in names:
         for case, roman in (("rotation", "I"), ("coupled", "II")):
             if "undefined" in co[n][case]:

@@ -9,7 +9,7 @@ import math
 from pathlib import Path
 
 from ._map_guards import cells_done, check_rest, option
-from ._model_map_figure import OBSERVABLE, _plot_map
+from ._model_map_figure import OBSERVABLE, VERDICT_ORDER, _plot_map
 from ._model_map_summary import _no_wave_text, _overdamped_text, _print_observable, _summary
 from .models import _emit, branch_of, load
 
@@ -222,8 +222,12 @@ def run_map(args) -> int:
     ds = run_engine(params, out, args.scheduler, args.workers,
                     log=with_wall(log, started, estimated), overwrite=args.overwrite,
                     timeout=args.timeout, device=device, estimate=left)
-    verdicts = [v for v in ds.data_vars if v.startswith("verdict_")
-                and (simulated or v != "verdict_simulated")]
+    # the figure's panel order, whatever order the store lists them in (newuser99: a
+    # resumed map, its store reopened, printed its MI shares in another order)
+    verdicts = sorted((v for v in ds.data_vars if v.startswith("verdict_")
+                       and (simulated or v != "verdict_simulated")),
+                      key=lambda v: (VERDICT_ORDER.index(v) if v in VERDICT_ORDER
+                                     else len(VERDICT_ORDER), v))
     if all((ds[v].values < 0).all() for v in verdicts):
         if not existed:  # it holds nothing worth keeping, and would block the corrected map
             import shutil

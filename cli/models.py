@@ -17,10 +17,10 @@ def add_model_args(p, json_help="print one JSON object on stdout and nothing els
     g.add_argument("--model", metavar="NAME|FILE.toml",
                    help="a built-in model (`flexmm models`) or a model file (docs/models.md)")
     g.add_argument("--param", action="append", default=[], metavar="NAME=VALUE",
-                   help="a parameter of the model (repeatable); the others keep their "
-                        "defaults")
+                   help="with --model: a parameter of the model (repeatable); the others "
+                        "keep their defaults")
     g.add_argument("--branch", default=None, metavar="INDEX|FIELD",
-                   help="dispersion branch: index (0 = lowest frequency at k) or the field "
+                   help="with --model: dispersion branch: index (0 = lowest frequency at k) or the field "
                         "that carries most of its kinetic energy (default: the model's branch "
                         "field, else 0; for flexmm the rotational branch theta). The "
                         "amplitude a measures that field (an index: the model's branch "
@@ -115,7 +115,15 @@ def load(args, axes_ok=False):
     from numerics.models import check_rest_stable
 
     if not axes:
-        check_rest_stable(model)
+        try:
+            check_rest_stable(model)
+        except ValueError as exc:  # named as what the user gave: the values, or the file
+            if "is not a minimum" not in str(exc):
+                raise
+            why = str(exc).split(": ", 1)[-1]  # past 'model NAME (values)'
+            src = (", ".join(f"--param {n}={v:g}" for n, v in fixed.items()) if fixed
+                   else str(args.model))
+            raise type(exc)(f"{src}: model {model.name!r}: {why}") from None
     return (model, axes) if axes_ok else model
 
 

@@ -36,7 +36,7 @@ from numerics.theory import (
 
 from ._slow import SLOW_MODEL_POINT, SLOW_PAPER_POINT, said_if_slow
 from ._slow import to_stderr as _stderr
-from .coefficients import weak_nonlinearity_note
+from .coefficients import weak_nonlinearity_note, wide_band_note
 
 #: what point.json's numbers are in (the lattice units), beside the SI ones of --physical
 UNITS = {"time": "T = t sqrt(k_l/m)", "gain": "1/T", "wavenumber": "rad/site",
@@ -115,9 +115,10 @@ def _log_header(log, args, mat, units, k, m, amplitude):
     log(f"NLS (semi-discrete): omega = {co['omega']:.6g} 1/T, v_g = {co['v_g']:.4g} site/T, "
         f"g1 = {co['g1']:.4g}, g2 = {co[args.case]['g2']:.4g}, g = {co[args.case]['g']:.4g}")
     log(f"units:    {units.describe()}")
-    note = weak_nonlinearity_note(co_all, amplitude, remedy="the exact rows below")
-    if note:
-        log(note)
+    for note in (weak_nonlinearity_note(co_all, amplitude, remedy="the exact rows below"),
+                 wide_band_note(co_all, amplitude, (args.case,))):
+        if note:
+            log(note)
 
 
 def _rows(res) -> list:
@@ -291,13 +292,24 @@ def _ring_note(res) -> str | None:
     ring = 2 * np.pi * np.arange(1, res.N // 2 + 1) / res.N
     if np.any(np.interp(ring, Q, np.where(grows, c, 0.0)) > 0):
         return None
-    n = next((n for n in range(res.N + 1, 64 * res.N)
-              if math.floor(hi * n / (2 * math.pi)) >= math.ceil(lo * n / (2 * math.pi))),
-             None)
+    def samples(n):
+        return math.floor(hi * n / (2 * math.pi)) >= math.ceil(lo * n / (2 * math.pi))
+
+    # a ring that carries this k (a multiple of its period), so this band (newuser99; as
+    # a model's point): elsewhere k snaps to another value and the band moves with it
+    m = round(res.k * res.N / (2 * np.pi))
+    step = res.N // math.gcd(m, res.N)
+    n = next((n for n in range(step * (res.N // step + 1), 64 * res.N + 1, step)
+              if samples(n)), None)
+    same = n is not None
+    if not same:
+        n = next((n for n in range(res.N + 1, 64 * res.N) if samples(n)), None)
     return (f"note: the band of the '{res.exact_theory}' theory (offsets {lo:.3g} to "
             f"{hi:.3g} rad/site, the infinite chain's) holds no offset 2 pi j / N of the ring of N = {res.N} (the smallest "
             f"{2 * math.pi / res.N:.3g}): no ring mode grows, so a run shows no MI here"
-            + (f"; N = {n} samples it (k snaps to 2 pi m / N)" if n else ""))
+            + (f"; N = {n} with --k {res.k:.9g} samples it (a ring that carries this k)"
+               if n and same else
+               f"; N = {n} samples it (k snaps to 2 pi m / N there)" if n else ""))
 
 
 def _why_no_gain(res, mat, case, amplitude) -> str | None:

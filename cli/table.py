@@ -38,4 +38,25 @@ def format_table(A0: float = paper.A0) -> str:
         lines.append("  ".join(cell.rjust(w) for cell, w in zip(row, widths)))
         if j == 0:
             lines.append("  ".join("-" * w for w in widths))
+    lines += ["", _which_nls(A0)]
     return "\n".join(lines)
+
+
+def _which_nls(A0: float) -> str:
+    """The line under the table: these are the paper's continuum NLS, and where the
+    semi-discrete one (the lattice's own, the default everywhere else) says otherwise
+    (newuser99: the table named no NLS, and a user who then ran `point` at blue, case II
+    read 'semi-discrete NLS: stable' against the table's 'MI (focusing)')."""
+    from numerics.theory import nls_coefficients
+
+    differ = []
+    for point in paper.POINTS:
+        co = nls_coefficients(Material.paper(point), paper.k(point), 2 * paper.EPS * A0)
+        for case in ("rotation", "coupled"):
+            mine = co["semi-discrete"][case]["verdict"]
+            if mine != co["continuum (paper)"][case]["verdict"]:
+                differ.append(f"{point} {case}: {mine}")
+    return ("these are the paper's continuum NLS (eq. NLS); the semi-discrete NLS, derived on "
+            "the lattice (`flexmm coefficients`), "
+            + (f"says otherwise at {', '.join(differ)}" if differ else "agrees on every verdict")
+            + "; `flexmm point` asks the exact lattice")

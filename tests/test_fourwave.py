@@ -194,20 +194,22 @@ def test_a_hertz_chain_grows_where_the_nls_sees_nothing_and_a_small_ring_misses_
     assert exact_gain(model, 1.458, 0.05, N=256).verdict == "stable"
     (miss,) = ring_misses(model, 1.458, 0.05, N=256)
     lo, hi = miss["band"]
-    assert 0.70 < lo < hi < 0.75 and 256 < miss["N"] <= 500
+    # the ring that keeps k = 2 pi 59/256 (gcd 1): 512 sites, offset 2 pi 59/512 = 0.7240
+    assert 0.70 < lo < hi < 0.75 and miss["N"] == 512 and miss["same_k"]
 
 
 # ------------------------------------------------ the ring's misses
 def test_the_ring_says_which_band_it_misses():
     """A weak sine-Gordon wave's band (offsets below 0.022) fits no offset of a 128-site
-    ring (2 pi / 128 = 0.049): ring_misses names the band and N = 282 (2 pi / 282 = 0.0223);
-    300 sites carry it."""
+    ring (2 pi / 128 = 0.049): ring_misses names the band and the ring that keeps
+    k = 2 pi 7/128 and samples it, N = 384 (256's smallest offset, 0.0245, lies above the
+    band; 384's, 0.0164, inside); 300 sites (another k) carry it too."""
     model = load_model("sine-gordon", C=1.901, omega0=1.092)
     misses = ring_misses(model, 0.335, 0.05, N=128)
     assert len(misses) == 1
     lo, hi = misses[0]["band"]
     assert lo < 0.001 and 0.020 < hi < 0.025
-    assert 129 <= misses[0]["N"] <= 300
+    assert misses[0]["N"] == 384 and misses[0]["same_k"]
     assert ring_misses(model, 0.335, 0.05, N=300) == []
 
 
@@ -283,10 +285,11 @@ def test_point_names_the_band_the_ring_misses(capsys):
             "omega0=1.092", "--k", "0.335", "--amplitude", "0.05", "--N", "128"]
     assert main([*argv, "--json"]) == 0
     misses = json.loads(capsys.readouterr().out)["ring_misses"]
-    assert len(misses) == 1 and misses[0]["N"] == 282
+    # k = 2 pi 7/128: a ring keeps it at multiples of 128; 384 samples the band (above)
+    assert len(misses) == 1 and misses[0]["N"] == 384
     assert main(argv) == 0
-    assert "which no offset 2 pi j / N of the ring of N = 128 samples: N = 282 does" in \
-        capsys.readouterr().out
+    assert ("which no offset 2 pi j / N of the ring of N = 128 samples: N = 384 with "
+            "--k 0.343611696 does") in capsys.readouterr().out
 
 
 # ------------------------------------ the paper chain: the resonances its own engine finds

@@ -275,12 +275,15 @@ def test_a_simulated_maps_last_line_says_what_was_written_where(tmp_path, capsys
 def test_point_says_when_the_ring_samples_none_of_the_band(capsys):
     """k = 1, case I of the --physical example: the exact band (offsets < 0.037) lies below
     the smallest offset 2 pi / 128 = 0.049 of a ring of 128 sites, which therefore cannot
-    grow (a run: 'no growth within T' beside three MI theories); 180 sites sample it."""
+    grow (a run: 'no growth within T' beside three MI theories); 180 sites sample it. The
+    note names a ring that keeps k = 2 pi 20/128 (a multiple of 128/gcd(20, 128) = 32):
+    160's smallest offset, 0.0393, lies above the band, 192's, 0.0327, inside."""
     base = ["point", "--physical", "0.01,2e-6,0.02,1e4,185,1", "--k", "1.0", "--case",
             "rotation"]
     assert cli(base + ["--N", "128"]) == 0
     note = [ln for ln in capsys.readouterr().out.splitlines() if "holds no offset" in ln]
-    assert len(note) == 1 and "N = 128" in note[0] and "N = 172 samples it" in note[0]
+    assert len(note) == 1 and "N = 128" in note[0]
+    assert "N = 192 with --k 0.981747704 samples it" in note[0]
     assert cli(base + ["--N", "180"]) == 0
     assert "holds no offset" not in capsys.readouterr().out
 

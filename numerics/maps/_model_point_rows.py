@@ -40,10 +40,11 @@ def own_offset(row, k):
 
 def missed_bands(model, k, amplitude, branch, N) -> list:
     """The infinite chain's unstable bands that the ring's offsets do not sample:
-    [{band, peak_gain, N}] (``numerics.models.ring_misses``)."""
+    [{band, peak_gain, N, same_k}] (``numerics.models.ring_misses``)."""
     from ..models import ring_misses
 
-    return [{"band": list(b["band"]), "peak_gain": b["peak_gain"], "N": b["N"]}
+    return [{"band": list(b["band"]), "peak_gain": b["peak_gain"], "N": b["N"],
+             "same_k": b.get("same_k", False)}
             for b in ring_misses(model, k, amplitude, branch, N=N)]
 
 

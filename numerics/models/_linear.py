@@ -166,7 +166,9 @@ def check_rest_stable(model: Model, samples: int = 257):
     if bad.size:
         i = int(bad[0])
         raise ModelError(f"model {model.describe()}: the rest state is not a minimum: "
-                         f"branch 0 has omega^2 = {lowest[i]:.3g} < 0 at k = {kap[i]:.4g}")
+                         f"branch 0 has omega^2 = {lowest[i]:.3g} < 0 at k = {kap[i]:.4g}; "
+                         "the energy's quadratic part (bond + site to second order) must be "
+                         "positive: check the signs of its stiffness terms and parameters")
 
 
 def check_model(model) -> Model:

@@ -278,13 +278,15 @@ def ring_misses(model: Model, k: float, amplitude: float, branch=None, *, N: int
     wide), so the Hill spectrum is also sampled where the four-wave theory puts a band.
     Returns a list of dicts: ``band`` (lo, hi), the Hill offsets q (rad/site) where the
     chain grows, ``peak_gain`` there and ``N``, the smallest ring size above N with an
-    offset inside the band (its k snaps to 2 pi m / N as well).
+    offset inside the band, a multiple of the ring's own period of k where one up to 64 N
+    has one (``same_k`` True: that ring carries this k, so this band), else any (its k
+    snaps elsewhere, and the band moves with it).
     """
     from ._exact import exact_gain
     from ._fourwave import four_wave
     from ._simulate import snap_ring
 
-    k_ring = snap_ring(k, N)[0]
+    k_ring, m_ring = snap_ring(k, N)
     if chain is None:
         chain = exact_gain(model, k_ring, amplitude, branch)
     from ._exact import hill_spectrum
@@ -329,15 +331,27 @@ def ring_misses(model: Model, k: float, amplitude: float, branch=None, *, N: int
         if any(_same_mode(mid, (b["band"][0] + b["band"][1]) / 2, k_ring, hi - lo)
                for b in out):
             continue
+        n_any = next((n for n in range(N + 1, 64 * N) if _samples(lo, hi, n)), None)
+        # a ring whose k is this one (a multiple of the reduced denominator of m / N):
+        # there the band is this band; on any other ring k snaps elsewhere and the band
+        # moves with it (newuser99: the LJ chain's advised N = 132 snapped k = 0.9817 to
+        # 0.9996, whose band that ring missed again, N = 145 advised next)
+        step = N // math.gcd(m_ring, N)
+        n_same = next((n for n in range(step * (N // step + 1), 64 * N + 1, step)
+                       if _samples(lo, hi, n)), None)
         out.append({"band": (lo, hi), "peak_gain": float(np.max(g[start:stop])),
-                    "N": next((n for n in range(N + 1, 64 * N) if
-                               math.floor(hi * n / (2 * math.pi))
-                               >= math.ceil(lo * n / (2 * math.pi))), None)})
+                    "N": n_same if n_same is not None else n_any,
+                    "same_k": n_same is not None})
     # Hill's spectrum at +-q + l k is the one at q: a piece between two ring offsets of a
     # band that is a copy of a band the ring samples is that band's mode, which the ring
     # shows (at k = pi on 64 sites the sidebands' copies near pi - q read as 13 bands)
     return [b for b in out if b["N"] is not None
             and not any(_copy_inside(b["band"], s, k_ring) for s in sampled)]
+
+
+def _samples(lo: float, hi: float, n: int) -> bool:
+    """Whether an offset 2 pi j / n of a ring of n sites lies in [lo, hi]."""
+    return math.floor(hi * n / (2 * math.pi)) >= math.ceil(lo * n / (2 * math.pi))
 
 
 def _copy_inside(band, other, k) -> bool:

@@ -291,8 +291,14 @@ def _check_g1_resolved(model: Model, c, branch) -> None:
     from ._linear import _EPS, _carrier_parts, _rounding_floor, g1_resolved, smallest_resolved_k
 
     lam, _, H, s, lam1, lam2 = _carrier_parts(model, c.k, c.branch)
-    if c.k == math.pi or g1_resolved(lam[c.branch], lam1, lam2,
-                                     _rounding_floor(H, s, c.k)):
+    floor = _rounding_floor(H, s, c.k)
+    if c.k == math.pi or g1_resolved(lam[c.branch], lam1, lam2, floor):
+        return
+    if abs(lam2) + lam1 ** 2 / (2 * lam[c.branch]) <= floor:
+        # no two terms that cancel: both are omega^2's own rounding, a flat branch (an
+        # on-site oscillator coupled to nothing at linear order), whose g1 = 0 is the
+        # answer (newuser99: a flat v branch at k = 1 was told "give k >= 1.7", where
+        # the branches swap, as if its g1 were a long acoustic wave's lost digits)
         return
     least = smallest_resolved_k(model, c.k, c.branch, of="g1")
     if least == least and least > c.k * (1 + math.sqrt(_EPS)):
