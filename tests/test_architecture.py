@@ -191,6 +191,12 @@ TEST_EXCEPTIONS = {
                                     "l = 0 against the spectrum solved offset by offset",
     "numerics.models._real_gauge": "the phase that makes the Hill pencil real, and the "
                                    "frozen pencil's real eigenvalues against the complex ones",
+    "numerics.lattice._bound": "the exponential bound's Python source against its "
+                               "compiled host copy",
+    "numerics.models._growth": "the drift bound of a carrier harmonic's ring mode and the "
+                               "modes a damped run's amplification reads",
+    "numerics.models._hill_dense": "the dense eigenproblem's resolution (sqrt(eps) of the "
+                                   "pencil's scale)",
     "numerics.theory._plane_wave": "the batched plane-wave solver the exact map uses",
     "numerics.theory._quasiperiodic": "the torus gain spectrum of a launched state",
     "numerics.theory._resonance": "the exact-map engine's reduced determinant",
