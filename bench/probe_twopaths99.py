@@ -25,12 +25,15 @@ and against physics written here from eq. `norm` (nothing of the code under test
   Theta(0)) is printed, not failed;
 - ``fourwave``: the model's four-wave row against its exact chain (10%, the project's
   bar) where a sideband band grows (the paper engine has no four-wave theory);
-- ``runs``: seeded points whose eq. `IC` state has a linear theory: a paper-engine run
-  and a model run from eq. `IC` (same seed, method and step: the final states equal
-  within 1e-12), and this probe's own RK4 of eq. `norm` in numpy with its own noise;
-  every run's fastest-mode slope (read here from the theta spectrum) against the
-  paper-start exact theory on the ring (5%: a slope fitted over ~3 e-foldings of a
-  noisy start) and the model run's own ``growth().rate`` (5%);
+- ``runs``: seeded points whose eq. `IC` state has a linear theory whose fastest
+  sidebands a run can see (off the carrier's harmonics; a point whose fastest mode hides
+  there is skipped and said): a paper-engine run and a model run from eq. `IC` (same
+  seed, srkn11b, same step: the final states equal to the bit, as docs/models.md says),
+  and this probe's own RK4 of eq. `norm` in numpy from the same state built here; each
+  run's largest visible theta mode's slope (read here) against the paper-start exact
+  theory at that mode's offset (5%: a slope fitted over ~3 e-foldings of a noisy start),
+  the own run's against the engine's (same mode, 1%), and the model run's own
+  ``growth().rate`` against the fastest (5%);
 - ``paper``: the two test points' verdicts in both cases and engines as the paper states
   them (blue: I stable, II MI; green: I MI, II stable, the paper's 'focusing' there is
   erratum 1), k + eps K_m < 3k at both MI runs (Sec. 'Numerical simulations');
@@ -308,9 +311,11 @@ def _rhs(th, U, al, Ks, Kt, coupled):
 
 
 def own_run(al, Ks, Kt, case, N, m, a, T, dt, seed, records=500):
-    """RK4 of eq. `norm` from eq. `IC` with this probe's own noise; |FFT theta| records."""
+    """RK4 of eq. `norm` from eq. `IC` as the paper writes it (omega from eq.
+    `continuum2`, b0 ~ U[-1e-3, 1e-3] from ``default_rng(seed)``: the engines' state,
+    built here); |FFT theta| records."""
     k, n = 2 * np.pi * m / N, np.arange(N)
-    w = al * math.sqrt(6 * Kt + 4 * (Ks - Kt) * math.sin(k / 2) ** 2)
+    w = al * math.sqrt(6 * Kt + (Ks - Kt) * k * k)
     b0 = np.random.default_rng(seed).uniform(-1e-3, 1e-3, N)
     y = [a * (1 + b0) * np.cos(k * n), np.zeros(N), a * w * (1 + b0) * np.sin(k * n), np.zeros(N)]
     c = case == "coupled"
@@ -351,13 +356,17 @@ def slope(t, spec, m, N, a):
     0.9] of the time the modes take to reach 5% of a (its linear stage, past the noise's
     transient; the largest, not the steepest: products of growing modes rise at twice
     their rate)."""
-    side = spec[:, ~harmonic_bins(m, N)]
+    bins = np.nonzero(~harmonic_bins(m, N))[0]
+    side = spec[:, bins]
     hit = np.nonzero(side.max(axis=1) > 0.05 * a)[0]
     if not len(hit):
-        return 0.0
+        return 0.0, 0
     sel = (t >= 0.5 * t[hit[0]]) & (t <= 0.9 * t[hit[0]])
     col = int(np.argmax(side[np.nonzero(sel)[0][-1]]))
-    return float(np.polyfit(t[sel], np.log(side[sel, col]), 1)[0])
+    # the mode's ring offset from +-k (wrapped): its theory rate is th at that offset
+    b = int(bins[col])
+    j = min(abs((b - m + N // 2) % N - N // 2), abs((b + m + N // 2) % N - N // 2))
+    return float(np.polyfit(t[sel], np.log(side[sel, col]), 1)[0]), j
 
 
 def visible(q, m, N):
@@ -380,6 +389,10 @@ def part_runs(rng, n=3):
         a = float(rng.uniform(0.02, 0.06))
         mat = Material(al, Ks, Kt)
         q = ring_offsets(N)
+        # a cheap screen first (the travelling wave's rate, ~0.1 s): the paper start's
+        # theory costs ~0.2 s an offset
+        if not 0.002 < mi_gain(mat, case, k, a, q, modes="all").max() < 0.02:
+            continue
         try:
             th = theory_gain(PAPER_START, mat, case, k, a, q)
         except ArithmeticError:
@@ -399,17 +412,23 @@ def part_runs(rng, n=3):
         # srkn11b: the two engines' paper starts step bit for bit (docs/models.md)
         r = simulate(mat, case, N, k, amplitude=a, seed=done, t_end=T, method="srkn11b",
                      dt=0.2, save_every=T / 500, start="paper")
-        rp = slope(r.t, np.abs(np.fft.fft(r.theta, axis=1)) * 2 / N, mm, N, a)
+        rp, jp = slope(r.t, np.abs(np.fft.fft(r.theta, axis=1)) * 2 / N, mm, N, a)
         mr = simulate_model(model_of(case, al, Ks, Kt), k, a, N=N, start="paper", seed=done,
                             t_end=T, method="srkn11b", dt=0.2, records=500)
         same = float(np.max(np.abs(mr.state[0][0] - r.theta[-1])))
         say("runs same state", same == 0.0, f"{tag}: |theta_model - theta_paper| at T {same:.1e}")
         gm = mr.growth().rate
-        t, sp = own_run(al, Ks, Kt, case, N, mm, a, T, 0.05, 1000 + done)
-        ro = slope(t, sp, mm, N, a)
-        ok = all(rel(x, rate, rate) < 0.05 for x in (rp, gm, ro))
+        t, sp = own_run(al, Ks, Kt, case, N, mm, a, T, 0.05, done)
+        ro, jo = slope(t, sp, mm, N, a)
+        # each run's largest mode against the theory at its own offset (another seed's
+        # largest can be a neighbour of the fastest); the model's reading: the fastest
+        at = {j_: float(th[np.argmin(np.abs(q - 2 * np.pi * j_ / N))]) for j_ in (jp, jo)}
+        # the same state integrated here: its reading within 1% of the engine's run's
+        ok = (rel(rp, at[jp], rate) < 0.05 and rel(ro, at[jo], rate) < 0.05
+              and rel(gm, rate, rate) < 0.05 and jo == jp and rel(ro, rp) < 0.01)
         say("runs rate", ok, f"{tag}: paper-start theory {rate:.5g} (all offsets "
-            f"{th.max():.5g}); paper-engine run {rp:.5g}, model run {gm:.5g}, own RK4 {ro:.5g}")
+            f"{th.max():.5g}); paper-engine run {rp:.5g} (theory at its j = {jp}: "
+            f"{at[jp]:.5g}), model run {gm:.5g}, own RK4 {ro:.5g} (j = {jo}: {at[jo]:.5g})")
 
 
 # ---------------------------------------------------------------- paper's points
