@@ -47,6 +47,7 @@ from ._quasiperiodic import (
     gain_spectrum_torus,
     hill_matrices,
     neutral_offsets,
+    off_centre,
     sideband_shares,
     torus_of_wave,
 )
@@ -89,6 +90,11 @@ def _sideband_share(vec, labels, a2):
     """Kinetic-energy share of the theta harmonics p = +1, -1 in each eigenvector
     (``_quasiperiodic.sideband_shares`` with the labels p of :func:`_hill_batch`)."""
     return sideband_shares(vec, labels[:, None], int(np.sum(labels % 2 == 1)), a2)
+
+
+def _off_centre(vec, labels, a2, P):
+    """``_quasiperiodic.off_centre`` with the labels p of :func:`_hill_batch`."""
+    return off_centre(vec, labels[:, None], int(np.sum(labels % 2 == 1)), a2, P)
 
 
 def _hill_matrices(wave, material, q, P):
@@ -157,7 +163,9 @@ def mi_gain(material: Material, case: str, k: float, amplitude: float, offset,
     modes : {"sidebands", "all"}
         "sidebands": modes whose kinetic energy sits mostly (> 3/4) in theta at k + q
         and k - q, both present: the modulational instability. "all": every Hill
-        mode at Bloch offset q, which
+        mode at Bloch offset q centred on theta's p = +-1 or U's p = 0, +-2 (a copy
+        relabelled to other harmonics is counted at its own offset; cut off at the
+        truncation's edge it grew spuriously, ``_quasiperiodic.off_centre``), which
         also holds resonant instabilities living in U (pairs of longitudinal waves
         driven by the carrier, 2 Omega = omega_U(q) + omega_U(q - 2k)).
     start : {"travelling", "paper", "discrete"}
@@ -193,8 +201,14 @@ def mi_gain(material: Material, case: str, k: float, amplitude: float, offset,
         _check_wave(wave, material, case, k, amplitude, H)
     if modes not in ("sidebands", "all"):
         raise ValueError(f"modes must be 'sidebands' or 'all', got {modes!r}")
-    lam, share = hill_spectrum(wave, material, q_arr.ravel(), 2 * H - 1)
-    growth = lam.real if modes == "all" else np.where(_is_mi(share), lam.real, 0.0)
+    if modes == "all":  # every mode centred at |p| <= CENTRE (``off_centre``)
+        A, labels = _hill_matrices(wave, material, q_arr.ravel(), 2 * H - 1)
+        lam, vec = np.linalg.eig(A)
+        growth = np.where(_off_centre(vec, labels, material.alpha**2, 2 * H - 1), 0.0,
+                          lam.real)
+    else:
+        lam, share = hill_spectrum(wave, material, q_arr.ravel(), 2 * H - 1)
+        growth = np.where(_is_mi(share), lam.real, 0.0)
     sigma = growth.max(axis=1)
     sigma[sigma < ROUNDOFF * wave.omega] = 0.0
     sigma[neutral_offsets(q_arr.ravel())] = 0.0
@@ -319,9 +333,14 @@ def _stability_chunk(kk, Kt, alpha, K_s, amplitude, q, H, coupled, modes):
     lam = np.linalg.eigvals(A)
     grow = lam.real.max(axis=-1) > ROUNDOFF * x[:, -1:]
     gq = np.zeros(grow.shape)
-    if modes == "all":
+    if modes == "all" and H == 1:  # every harmonic is |p| <= CENTRE: nothing to drop
         gq = np.where(grow, lam.real.max(axis=-1), 0.0)
-    elif np.any(grow):
+    elif modes == "all" and np.any(grow):
+        lam_u, vec = np.linalg.eig(A[grow])
+        a2 = np.broadcast_to(al[:, None] ** 2, grow.shape)[grow]
+        off = _off_centre(vec, labels, a2, 2 * H - 1)
+        gq[grow] = np.where(off, 0.0, lam_u.real).max(axis=-1)
+    elif np.any(grow) and modes != "all":
         lam_u, vec = np.linalg.eig(A[grow])
         share = _sideband_share(vec, labels, np.broadcast_to(al[:, None] ** 2,
                                                              grow.shape)[grow])
