@@ -47,8 +47,9 @@ EPILOG = {
 
 #: --amplitude, the same for every command that takes --model
 AMPLITUDE_HELP = ("amplitude a of the carrier's first harmonic in its field (any model: the "
-                  "field is a cos(k n - omega t) + higher harmonics); for the paper chain "
-                  "the peak rotation, rad (the paper's 2 eps A0)")
+                  "field is a cos(k n - omega t) + higher harmonics); for the paper chain's "
+                  "flags (no --model) the peak rotation, rad (the paper's 2 eps A0; "
+                  "equal to leading order)")
 #: the title of the paper chain's group of options
 PAPER_GROUP = "the paper chain's shorthand (without --model; there required: "
 
