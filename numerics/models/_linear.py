@@ -19,7 +19,7 @@ import numpy as np
 
 from energy import MAX_VALUE, Model, ModelError
 
-from ._args import check_harmonics, check_k, wavenumbers  # noqa: F401 (imported from here)
+from ._args import check_harmonics, check_k, scalar, wavenumbers  # noqa: F401 (imported from here)
 
 
 def blocks(H: np.ndarray, d: int):
@@ -180,6 +180,7 @@ def check_model(model) -> Model:
 
 def check_amplitude(amplitude, name: str = "amplitude") -> float:
     """A carrier's amplitude: a real number (not a bool or a string) in (0, MAX_VALUE]."""
+    amplitude = scalar(amplitude)
     if isinstance(amplitude, (bool, np.bool_)) or not isinstance(amplitude, numbers.Real):
         raise ModelError(f"{name} must be a real number > 0, got "
                          f"{type(amplitude).__name__} {amplitude!r}")
