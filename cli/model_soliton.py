@@ -147,7 +147,9 @@ def run_model_soliton(args, model, units, branch) -> dict:
                              "soliton decays, and the NLS it is measured against is "
                              f"lossless; add {lossless_params(model)} to launch the "
                              "lossless one")
-        checks.real("--travel", args.travel, 0.0, 1000.0)
+        from numerics.models import MIN_TRAVEL  # below it the velocity is round-off
+
+        checks.real("--travel", args.travel, MIN_TRAVEL, 1000.0, low_open=False)
         if args.N is not None:
             checks.integer("--N", args.N, 16, 10**6)
         _estimate(args, model, branch)

@@ -38,6 +38,10 @@ from ._slow import SLOW_MODEL_POINT, SLOW_PAPER_POINT, said_if_slow
 from ._slow import to_stderr as _stderr
 from .coefficients import weak_nonlinearity_note
 
+#: the shortest --t-end: below it the slowest rate a run can show, ln(20) / T, is past
+#: float64 (probe 99: --t-end 5e-324 printed "a rate below inf /time cannot show")
+MIN_T_END = 1e-300
+
 #: what point.json's numbers are in (the lattice units), beside the SI ones of --physical
 UNITS = {"time": "T = t sqrt(k_l/m)", "gain": "1/T", "wavenumber": "rad/site",
          "curves": "theories: curve over offset Q = |q - k| (0 .. pi), q the upper sideband "
@@ -92,7 +96,7 @@ def _checked(args, mat):
     check_paper_amplitude(mat, k, amplitude)
     checks.integer("--seeds", args.seeds, 1, MAX_SEEDS)
     if args.t_end is not None:
-        checks.real("--t-end", args.t_end, 0.0, MAX_T_END)
+        checks.real("--t-end", args.t_end, MIN_T_END, MAX_T_END, low_open=False)
     if args.start == "paper" and (why := paper_start_undefined(mat, k, ("travelling",))):
         raise ValueError(f"--start paper: {why}")
     return amplitude, k, m
@@ -449,7 +453,7 @@ def _run_model_point(args) -> dict:
     if args.simulate:  # the runs' options, as the paper chain's point checks them: before
         checks.integer("--seeds", args.seeds, 1, MAX_SEEDS)  # any theory (--t-end 1e30
         if args.t_end is not None:  # hung in the estimate's probe)
-            checks.real("--t-end", args.t_end, 0.0, MAX_T_END)
+            checks.real("--t-end", args.t_end, MIN_T_END, MAX_T_END, low_open=False)
     start = _model_start(args, model)
     try:  # the ring, the amplitude's resolution, a registered start's state
         spec = ModelPointSpec(model, args.k, args.amplitude, branch_of(args), N=args.N,

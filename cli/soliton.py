@@ -63,7 +63,9 @@ def run_soliton(args, log=print) -> dict:
     check_paper_amplitude(mat, k, amplitude)
     theory = next(t.label for t in NLS_THEORIES if t.cli == args.theory)
     if args.simulate:
-        checks.real("--travel", args.travel, 0.0, 1000.0)
+        from numerics.models import MIN_TRAVEL  # probe 99: 1e-100 said "dt > t_end"
+
+        checks.real("--travel", args.travel, MIN_TRAVEL, 1000.0, low_open=False)
         if args.N is not None:
             checks.integer("--N", args.N, 16, 10**6)
     with warnings.catch_warnings(record=True) as caught:
