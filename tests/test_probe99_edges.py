@@ -130,3 +130,13 @@ def test_more_workers_than_cells_start_one_a_cell(tmp_path):
     said = p.stdout + p.stderr
     assert p.returncode == 0, said[-300:]
     assert "on 4 worker(s)" in said and "Traceback" not in said
+
+
+@pytest.mark.parametrize("noise", [1.0, 1e300])
+def test_noise_is_a_share_of_the_amplitude_below_1(fput, noise):
+    """As the paper chain's (``numerics.lattice``): before, 1e300 blew up "by t = 0 ...
+    lower the amplitude or dt", naming neither."""
+    with pytest.raises(ModelError, match=r"^noise must be a number in \[0, 1\)"):
+        nm.simulate_model(fput, 2.5, 0.1, N=16, t_end=10.0, noise=noise)
+    assert nm.simulate_model(fput, 2.5, 0.1, N=16, t_end=10.0, noise=0.5,
+                             records=2).t[-1] == 10.0

@@ -312,9 +312,13 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
         raise ModelError(f"force must be one of {', '.join(FORCES)}, got {force!r}")
     if noise is None:  # the start's own: 1e-8 of the amplitude, the paper's b0 for eq. IC
         noise = extra.noise if extra is not None else NOISE
-    if isinstance(noise, bool) or not (isinstance(noise, (int, float)) and math.isfinite(
-            noise) and noise >= 0):
-        raise ModelError(f"noise must be a finite number >= 0, got {noise!r}")
+    noise = scalar(noise)
+    # below 1, as the paper chain's (noise is relative to the amplitude: at 1 the start is
+    # noise, not a wave; probe 99: 1e300 blew up "by t = 0 ... lower the amplitude or dt")
+    if isinstance(noise, (bool, np.bool_)) or not (
+            isinstance(noise, numbers.Real) and math.isfinite(noise) and 0 <= noise < 1):
+        raise ModelError(f"noise must be a number in [0, 1) (of the amplitude), got "
+                         f"{noise!r}")
     records = check_count("records", records)
     seed = check_count("seed", seed, least=0)
     k_ring, _ = snap_ring(k, N)
