@@ -140,3 +140,19 @@ def test_noise_is_a_share_of_the_amplitude_below_1(fput, noise):
         nm.simulate_model(fput, 2.5, 0.1, N=16, t_end=10.0, noise=noise)
     assert nm.simulate_model(fput, 2.5, 0.1, N=16, t_end=10.0, noise=0.5,
                              records=2).t[-1] == 10.0
+
+
+def test_a_zero_branch_names_the_branch_that_carries_a_wave():
+    """v is in the kinetic energy only: a zero branch, the lowest, the default. Before: "no
+    carrier wave there", no remedy. u is FPUT's: omega = 2 sin(k/2) by hand."""
+    from energy import Lattice
+
+    lat = Lattice(name="nodep", fields=("u", "v"), parameters={"beta": 1.0},
+                  kinetic="u_t**2/2 + v_t**2/2",
+                  bond="(u_next - u)**2/2 + beta*(u_next - u)**4/4")
+    model = load_model(lat)
+    with pytest.raises(ModelError, match=r"no carrier wave there; branch 1 carries one: give "
+                                         r"branch \(--branch\) 1$"):
+        nm.model_coefficients(model, 2.5, 0.1)
+    assert nm.model_coefficients(model, 2.5, 0.1, 1)["omega"] == pytest.approx(
+        2 * math.sin(1.25), rel=1e-12)
