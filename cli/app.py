@@ -230,9 +230,19 @@ def _interrupted(args, exc) -> str:
                     "command again for its summary and figure")
         return (f"interrupted ({name}); {kept}; the cells that were running were not kept: "
                 "run the same command again to continue")
-    if cmd in ("point", "soliton"):  # each writes its files at its end, or nothing
+    if cmd in ("point", "soliton"):  # each writes its files at its end, together, or nothing
+        out = getattr(args, "out", None)
+        files = [Path(out) / f"{cmd}.{ext}" for ext in ("json", "png")] if out else []
+        # an interrupt held back while the files were written arrives after them (probe
+        # 99: the command said "nothing was written" beside a soliton.json it had written)
+        from common.files import results_written
+
+        written = {f.resolve() for f in results_written()}
+        if files and all(f.resolve() in written for f in files):
+            return (f"interrupted ({name}) after writing {files[0]} and {files[1]} (whole; "
+                    "what came after them, the last lines, was not printed)")
         return (f"interrupted ({name}); nothing was written"
-                + (f" to {args.out}" if getattr(args, "out", None) else ""))
+                + (f" to {args.out}" if out else ""))
     return f"interrupted ({name})"
 
 

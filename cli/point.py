@@ -13,7 +13,7 @@ from pathlib import Path
 
 import numpy as np
 
-from common.files import write_text
+from common.files import write_results
 from common.output import prepare_output, strict_json
 from common.paper import EPS
 from numerics import Material
@@ -273,9 +273,10 @@ def run_point(args, log=print) -> dict:
     if args.out:
         out = Path(args.out)
         out.mkdir(parents=True, exist_ok=True)
-        _figure(out, res.theories, res.measured, k, args, amplitude, mat,
-                (res.simulated or {}).get("no_rate"))
-        write_text(out / "point.json", json.dumps(strict_json(result), indent=2) + "\n")
+        png = _figure(res.theories, res.measured, k, args, amplitude, mat,
+                      (res.simulated or {}).get("no_rate"))
+        write_results({out / "point.png": png,
+                       out / "point.json": json.dumps(strict_json(result), indent=2) + "\n"})
         log(f"wrote {out / 'point.json'} and {out / 'point.png'}")
     return result
 
@@ -357,8 +358,8 @@ def _table(rows, units=None) -> str:
     return "\n".join(lines)
 
 
-def _figure(out, th, meas, k, args, amplitude, mat=None, no_rate=None):
-    from common.files import atomic_write
+def _figure(th, meas, k, args, amplitude, mat=None, no_rate=None) -> bytes:
+    """point.png's bytes."""
     from scenes import plt
 
     fig, ax = plt.subplots(figsize=(7, 4), layout="constrained")
@@ -396,9 +397,12 @@ def _figure(out, th, meas, k, args, amplitude, mat=None, no_rate=None):
                  + f"case {args.case}\n$k$ = {k:.4g}, amplitude {amplitude:g} rad, "
                  f"start {args.start}", fontsize=9)
     ax.legend(fontsize=7)
-    with atomic_write(out / "point.png", mode=None) as tmp:
-        fig.savefig(tmp, format="png", dpi=110)
+    import io
+
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=110)
     plt.close(fig)
+    return buf.getvalue()
 
 
 # ------------------------------------------------------------------ --model

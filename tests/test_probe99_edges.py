@@ -156,3 +156,51 @@ def test_a_zero_branch_names_the_branch_that_carries_a_wave():
         nm.model_coefficients(model, 2.5, 0.1)
     assert nm.model_coefficients(model, 2.5, 0.1, 1)["omega"] == pytest.approx(
         2 * math.sin(1.25), rel=1e-12)
+
+
+SOLITON = ["soliton", *FPUT, "--k", "1", "--amplitude", "0.05"]
+
+
+def test_an_interrupt_while_the_figure_is_drawn_leaves_nothing(tmp_path, monkeypatch, capsys):
+    """Before: soliton.json was written, then SIGTERM came while soliton.png was drawn:
+    soliton.json alone, and the command said "nothing was written"."""
+    import signal
+
+    import cli.model_soliton as ms
+    from common.signals import Interrupted
+
+    def drawing(*args, **kw):
+        raise Interrupted(signal.SIGTERM)  # what the handler raises mid-drawing
+
+    monkeypatch.setattr(ms, "_figure", drawing)
+    assert cli([*SOLITON, "--out", str(tmp_path / "s")]) == 143
+    assert "nothing was written" in capsys.readouterr().err
+    assert not (tmp_path / "s").exists() or not any((tmp_path / "s").iterdir())
+
+
+def test_an_interrupt_while_the_files_are_written_waits_for_both(tmp_path, monkeypatch,
+                                                                  capsys):
+    """A SIGTERM sent while the first file is written is held until the second is: both are
+    whole, and the message names them."""
+    import os
+    import signal
+
+    import common.files as files
+
+    real = files.atomic_write
+    sent = []
+
+    def first_write_signalled(path, mode="w"):
+        if not sent and Path(path).name.startswith("soliton."):
+            sent.append(path)
+            os.kill(os.getpid(), signal.SIGTERM)
+        return real(path, mode)
+
+    monkeypatch.setattr(files, "atomic_write", first_write_signalled)
+    out = tmp_path / "s"
+    assert cli([*SOLITON, "--out", str(out)]) == 143
+    assert sent, "the writer was not reached"
+    err = capsys.readouterr().err
+    assert "after writing" in err and "soliton.json" in err and "soliton.png" in err
+    assert json.loads((out / "soliton.json").read_text())["kind"] == "dark"
+    assert (out / "soliton.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
