@@ -72,7 +72,13 @@ def main(argv=None) -> int:
                 args.out = args.out or "."  # --out '' is the current folder, and says so
                 _check_out(args.out)
                 created = _missing_folders(args.out)
-            return _run(args)
+            code = _run(args)
+            if (interrupt := received()) is not None:
+                # an interrupt that a library swallowed (raised in a __del__ or a weakref
+                # callback, Python prints "Exception ignored" and goes on; probe 99: a
+                # SIGTERM during soliton.png's drawing, exit 0): still the interrupt's
+                raise interrupt
+            return code
         except KeyboardInterrupt as exc:  # SIGINT or SIGTERM, at any moment
             _remove_if_empty(created)
             try:

@@ -204,3 +204,24 @@ def test_an_interrupt_while_the_files_are_written_waits_for_both(tmp_path, monke
     assert "after writing" in err and "soliton.json" in err and "soliton.png" in err
     assert json.loads((out / "soliton.json").read_text())["kind"] == "dark"
     assert (out / "soliton.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_an_interrupt_a_library_swallowed_is_still_the_exit(tmp_path, monkeypatch, capsys):
+    """The handler's Interrupted raised inside a __del__ (or any code that catches it) was
+    lost: the command went on and exited 0 (probe 99, once, a SIGTERM while soliton.png was
+    drawn: a traceback printed and exit 0). It is the exit code all the same."""
+    import signal
+
+    import cli.model_soliton as ms
+    from common.signals import raise_interrupted
+
+    def drawing(*args, **kw):
+        try:
+            raise_interrupted(signal.SIGTERM, None)  # the handler, mid-drawing
+        except KeyboardInterrupt:
+            pass  # as Python does with an exception raised in a __del__
+        return b"\x89PNG\r\n\x1a\n"
+
+    monkeypatch.setattr(ms, "_figure", drawing)
+    assert cli([*SOLITON, "--out", str(tmp_path / "s")]) == 143
+    assert "interrupted (SIGTERM)" in capsys.readouterr().err
