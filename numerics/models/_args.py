@@ -77,6 +77,18 @@ def check_rate(name: str, rate) -> float:
     return float(rate)
 
 
+def check_noise(noise) -> float:
+    """A run's noise, relative to the amplitude: a real number in [0, 1), as the paper
+    chain's (at 1 the start is noise, not a wave; probe 99: 1e300 blew up "by t = 0 ...
+    lower the amplitude or dt", naming neither)."""
+    noise = scalar(noise)
+    if isinstance(noise, (bool, np.bool_)) or not (
+            isinstance(noise, numbers.Real) and math.isfinite(noise) and 0 <= noise < 1):
+        raise ModelError(f"noise must be a number in [0, 1) (of the amplitude), got "
+                         f"{noise!r}")
+    return float(noise)
+
+
 def check_k(k) -> float:
     """A carrier wavenumber: a finite real number (not a bool) in (0, pi], the range nls,
     exact_gain and four_wave take (a Carrier that said k = -1 or 7 would be read

@@ -29,7 +29,7 @@ import numpy as np
 from common.threads import one_blas_thread
 from energy import Model, ModelError
 
-from ._args import MAX_RING, check_count, check_rate, check_ring, scalar
+from ._args import MAX_RING, check_count, check_noise, check_rate, check_ring, scalar
 
 # compiled_force, lattice_energy, lattice_force: here too, for the modules that import them
 # from here (the package's __init__, _reach)
@@ -312,13 +312,7 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
         raise ModelError(f"force must be one of {', '.join(FORCES)}, got {force!r}")
     if noise is None:  # the start's own: 1e-8 of the amplitude, the paper's b0 for eq. IC
         noise = extra.noise if extra is not None else NOISE
-    noise = scalar(noise)
-    # below 1, as the paper chain's (noise is relative to the amplitude: at 1 the start is
-    # noise, not a wave; probe 99: 1e300 blew up "by t = 0 ... lower the amplitude or dt")
-    if isinstance(noise, (bool, np.bool_)) or not (
-            isinstance(noise, numbers.Real) and math.isfinite(noise) and 0 <= noise < 1):
-        raise ModelError(f"noise must be a number in [0, 1) (of the amplitude), got "
-                         f"{noise!r}")
+    noise = check_noise(noise)
     records = check_count("records", records)
     seed = check_count("seed", seed, least=0)
     k_ring, _ = snap_ring(k, N)
@@ -361,10 +355,8 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
                              f"({d}, {N}), got {type(initial).__name__} of shapes "
                              f"{[np.shape(x) for x in initial][:2]}")
         u, v = (np.array(x, dtype=float).reshape(d, N) for x in initial)
-        if not (np.all(np.isfinite(u)) and np.all(np.isfinite(v))):
-            # before probe 99: a BlowUpError "by t = 0 ... lower the amplitude or dt"
-            raise ModelError("initial must be finite: its (u, v) hold nan or inf; give the "
-                             "state to start from as finite arrays")
+        if not (np.all(np.isfinite(u)) and np.all(np.isfinite(v))):  # was a BlowUpError
+            raise ModelError("initial must be finite: its (u, v) hold nan or inf")
     if noise_on not in ("all", "carrier"):
         raise ModelError(f"noise_on must be 'all' or 'carrier', got {noise_on!r}")
     if noise_on == "carrier":
