@@ -103,15 +103,16 @@ def report(args, point, units, since=None) -> dict:
     if args.out:
         import json
 
-        from common.files import write_text
+        from common.files import write_results
         from common.output import prepare_output
         folder = prepare_output(args.out, cache=False)
-        write_text(folder / "point.json", json.dumps(out, indent=1, allow_nan=False) + "\n")
         from .model_figure import figure
         curves = {n: c for n, c in out["curves"].items() if n not in ("description",
                                                                        "simulated")}
-        figure(folder / "point.png", model, out, curves, out["curves"].get("simulated"),
-               getattr(args, "seeds", 1), args.simulate)
+        png = figure(model, out, curves, out["curves"].get("simulated"),
+                     getattr(args, "seeds", 1), args.simulate)
+        write_results({folder / "point.json": json.dumps(out, indent=1, allow_nan=False)
+                       + "\n", folder / "point.png": png})
     if point.estimate is not None:
         from common.text import duration
 

@@ -247,7 +247,8 @@ def _soliton_parser(sub, model_mode=False):
                    help="launch it in the lattice (srkn11b; dt = 0.25 for the paper chain, a "
                         "fifth of the stability limit for --model) and measure it")
     p.add_argument("--travel", type=float, default=20.0,
-                   help="with --simulate: run until it has moved this many widths")
+                   help="with --simulate: run until it has moved this many widths "
+                        "(0.1 to 1000; shorter, the measured velocity is round-off)")
     p.add_argument("--N", type=int, help="with --simulate: ring size (default: 20 widths, at "
                    "least 256 sites); k moves to the nearest wavenumber the ring carries")
     p.add_argument("--out", help="folder for soliton.json and soliton.png (default: none, "

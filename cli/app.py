@@ -72,7 +72,13 @@ def main(argv=None) -> int:
                 args.out = args.out or "."  # --out '' is the current folder, and says so
                 _check_out(args.out)
                 created = _missing_folders(args.out)
-            return _run(args)
+            code = _run(args)
+            if (interrupt := received()) is not None:
+                # an interrupt that a library swallowed (raised in a __del__ or a weakref
+                # callback, Python prints "Exception ignored" and goes on; probe 99: a
+                # SIGTERM during soliton.png's drawing, exit 0): still the interrupt's
+                raise interrupt
+            return code
         except KeyboardInterrupt as exc:  # SIGINT or SIGTERM, at any moment
             _remove_if_empty(created)
             try:
@@ -230,9 +236,19 @@ def _interrupted(args, exc) -> str:
                     "command again for its summary and figure")
         return (f"interrupted ({name}); {kept}; the cells that were running were not kept: "
                 "run the same command again to continue")
-    if cmd in ("point", "soliton"):  # each writes its files at its end, or nothing
+    if cmd in ("point", "soliton"):  # each writes its files at its end, together, or nothing
+        out = getattr(args, "out", None)
+        files = [Path(out) / f"{cmd}.{ext}" for ext in ("json", "png")] if out else []
+        # an interrupt held back while the files were written arrives after them (probe
+        # 99: the command said "nothing was written" beside a soliton.json it had written)
+        from common.files import results_written
+
+        written = {f.resolve() for f in results_written()}
+        if files and all(f.resolve() in written for f in files):
+            return (f"interrupted ({name}) after writing {files[0]} and {files[1]} (whole; "
+                    "what came after them, the last lines, was not printed)")
         return (f"interrupted ({name}); nothing was written"
-                + (f" to {args.out}" if getattr(args, "out", None) else ""))
+                + (f" to {args.out}" if out else ""))
     return f"interrupted ({name})"
 
 

@@ -10,10 +10,9 @@ import math
 import numpy as np
 
 
-def figure(path, model, out, curves, measured, seeds, simulate):
-    """point.png: each theory's gain over the offset, the measured sigma(Q) with its
+def figure(model, out, curves, measured, seeds, simulate) -> bytes:
+    """point.png's bytes: each theory's gain over the offset, the measured sigma(Q) with its
     spread; what is missing is said on the axes (as the paper chain's figure does)."""
-    from common.files import atomic_write
     from scenes import plt
 
     fig, ax = plt.subplots(figsize=(7, 4), layout="constrained")
@@ -68,6 +67,9 @@ def figure(path, model, out, curves, measured, seeds, simulate):
                  f"({out['field']}), amplitude a = {out['amplitude']:g}", fontsize=9)
     if ax.get_legend_handles_labels()[0]:
         ax.legend(fontsize=7)
-    with atomic_write(path, mode=None) as tmp:
-        fig.savefig(tmp, format="png", dpi=110)
+    import io
+
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=110)
     plt.close(fig)
+    return buf.getvalue()

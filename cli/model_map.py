@@ -12,6 +12,7 @@ from ._map_guards import cells_done, check_rest, option
 from ._model_map_figure import OBSERVABLE, VERDICT_ORDER, _plot_map
 from ._model_map_summary import _no_wave_text, _overdamped_text, _print_observable, _summary
 from .models import _emit, branch_of, load
+from .point import MIN_T_END
 
 
 # ------------------------------------------------------------------ map
@@ -97,8 +98,10 @@ def run_map(args) -> int:
         if isinstance(seeds, bool) or not isinstance(seeds, int) or not 1 <= seeds <= 1000:
             raise ValueError(f"--seeds must be an integer in [1, 1000], got {seeds!r}")
         t_end = args.t_end if "--t-end" in given else None
-        if t_end is not None and not (isinstance(t_end, (int, float)) and 0 < t_end < 1e12):
-            raise ValueError(f"--t-end must be a finite time > 0, got {t_end!r}")
+        if t_end is not None and not (isinstance(t_end, (int, float))
+                                      and MIN_T_END <= t_end < 1e12):
+            raise ValueError(f"--t-end must be a finite time in [{MIN_T_END:g}, 1e12), got "
+                             f"{t_end!r}")
     if args.workers is not None and args.scheduler:
         raise ValueError("give --scheduler or --workers, not both")
     if args.workers is not None and not (isinstance(args.workers, int)
@@ -142,7 +145,10 @@ def run_map(args) -> int:
                          "map runs on the CPU (--device cpu)")
     device = resolve_device("cpu" if start != "exact" else asked, params.theory_only, log,
                             args.scheduler)
-    n_workers = args.workers or (1 if args.scheduler else None)
+    workers = args.workers
+    if workers and workers > len(x[1]) * len(y[1]):  # idle workers only cost their start
+        workers = len(x[1]) * len(y[1])
+    n_workers = workers or (1 if args.scheduler else None)
     from numerics.maps import local_cores
 
     fixed = ", ".join(f"{p} = {v:g}" for p, v in model.params.items()
@@ -219,7 +225,7 @@ def run_map(args) -> int:
 
     from .map import with_wall
 
-    ds = run_engine(params, out, args.scheduler, args.workers,
+    ds = run_engine(params, out, args.scheduler, workers,
                     log=with_wall(log, started, estimated), overwrite=args.overwrite,
                     timeout=args.timeout, device=device, estimate=left)
     # the figure's panel order, whatever order the store lists them in (newuser99: a

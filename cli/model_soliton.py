@@ -147,7 +147,9 @@ def run_model_soliton(args, model, units, branch) -> dict:
                              "soliton decays, and the NLS it is measured against is "
                              f"lossless; add {lossless_params(model)} to launch the "
                              "lossless one")
-        checks.real("--travel", args.travel, 0.0, 1000.0)
+        from numerics.models import MIN_TRAVEL  # below it the velocity is round-off
+
+        checks.real("--travel", args.travel, MIN_TRAVEL, 1000.0, low_open=False)
         if args.N is not None:
             checks.integer("--N", args.N, 16, 10**6)
         _estimate(args, model, branch)
@@ -199,12 +201,13 @@ def run_model_soliton(args, model, units, branch) -> dict:
         if lossy:
             print(lossy)
     if folder is not None:
-        from common.files import write_text
+        from common.files import write_results
         from common.output import strict_json
 
-        write_text(folder / "soliton.json",
-                   json.dumps(strict_json(with_units(report, units)), indent=2) + "\n")
-        _figure(Path(folder) / "soliton.png", pred, run, model)
+        png = _figure(pred, run, model)
+        write_results({folder / "soliton.json":
+                       json.dumps(strict_json(with_units(report, units)), indent=2) + "\n",
+                       Path(folder) / "soliton.png": png})
         if not args.json:
             print(f"wrote {folder / 'soliton.json'} and {folder / 'soliton.png'}")
     if args.json:  # after the files, which it names (as a map's --json): stdout holds no line
@@ -214,12 +217,11 @@ def run_model_soliton(args, model, units, branch) -> dict:
     return report
 
 
-def _figure(path, pred, run, model):
-    """soliton.png: (a) the carrier's first harmonic against the predicted envelope, (b) the
+def _figure(pred, run, model) -> bytes:
+    """soliton.png's bytes: (a) the carrier's first harmonic against the predicted envelope, (b) the
     kink fields' mean displacement, (c) the trajectory against v_g t."""
     import numpy as np
 
-    from common.files import atomic_write
     from scenes import plt
 
     fig, axes = plt.subplots(1, 3, figsize=(12, 3.8), layout="constrained")
@@ -294,6 +296,9 @@ def _figure(path, pred, run, model):
            title="(c) trajectory")
     fig.suptitle(f"{model.describe()}; k = {pred.k:.6g}, amplitude {pred.soliton.amplitude:g}"
                  f"; semi-discrete NLS; ring N = {N}", fontsize=9)
-    with atomic_write(path, mode=None) as tmp:
-        fig.savefig(tmp, format="png", dpi=110)
+    import io
+
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=110)
     plt.close(fig)
+    return buf.getvalue()

@@ -13,7 +13,7 @@ from pathlib import Path
 
 import numpy as np
 
-from common.files import write_text
+from common.files import write_results
 from common.output import prepare_output, strict_json
 from common.paper import EPS
 from numerics import Material
@@ -37,6 +37,10 @@ from numerics.theory import (
 from ._slow import SLOW_MODEL_POINT, SLOW_PAPER_POINT, said_if_slow
 from ._slow import to_stderr as _stderr
 from .coefficients import weak_nonlinearity_note, wide_band_note
+
+#: the shortest --t-end: below it the slowest rate a run can show, ln(20) / T, is past
+#: float64 (probe 99: --t-end 5e-324 printed "a rate below inf /time cannot show")
+MIN_T_END = 1e-300
 
 #: what point.json's numbers are in (the lattice units), beside the SI ones of --physical
 UNITS = {"time": "T = t sqrt(k_l/m)", "gain": "1/T", "wavenumber": "rad/site",
@@ -92,7 +96,7 @@ def _checked(args, mat):
     check_paper_amplitude(mat, k, amplitude)
     checks.integer("--seeds", args.seeds, 1, MAX_SEEDS)
     if args.t_end is not None:
-        checks.real("--t-end", args.t_end, 0.0, MAX_T_END)
+        checks.real("--t-end", args.t_end, MIN_T_END, MAX_T_END, low_open=False)
     if args.start == "paper" and (why := paper_start_undefined(mat, k, ("travelling",))):
         raise ValueError(f"--start paper: {why}")
     return amplitude, k, m
@@ -270,9 +274,10 @@ def run_point(args, log=print) -> dict:
     if args.out:
         out = Path(args.out)
         out.mkdir(parents=True, exist_ok=True)
-        _figure(out, res.theories, res.measured, k, args, amplitude, mat,
-                (res.simulated or {}).get("no_rate"))
-        write_text(out / "point.json", json.dumps(strict_json(result), indent=2) + "\n")
+        png = _figure(res.theories, res.measured, k, args, amplitude, mat,
+                      (res.simulated or {}).get("no_rate"))
+        write_results({out / "point.png": png,
+                       out / "point.json": json.dumps(strict_json(result), indent=2) + "\n"})
         log(f"wrote {out / 'point.json'} and {out / 'point.png'}")
     return result
 
@@ -365,8 +370,8 @@ def _table(rows, units=None) -> str:
     return "\n".join(lines)
 
 
-def _figure(out, th, meas, k, args, amplitude, mat=None, no_rate=None):
-    from common.files import atomic_write
+def _figure(th, meas, k, args, amplitude, mat=None, no_rate=None) -> bytes:
+    """point.png's bytes."""
     from scenes import plt
 
     fig, ax = plt.subplots(figsize=(7, 4), layout="constrained")
@@ -404,9 +409,12 @@ def _figure(out, th, meas, k, args, amplitude, mat=None, no_rate=None):
                  + f"case {args.case}\n$k$ = {k:.4g}, amplitude {amplitude:g} rad, "
                  f"start {args.start}", fontsize=9)
     ax.legend(fontsize=7)
-    with atomic_write(out / "point.png", mode=None) as tmp:
-        fig.savefig(tmp, format="png", dpi=110)
+    import io
+
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=110)
     plt.close(fig)
+    return buf.getvalue()
 
 
 # ------------------------------------------------------------------ --model
@@ -461,7 +469,7 @@ def _run_model_point(args) -> dict:
     if args.simulate:  # the runs' options, as the paper chain's point checks them: before
         checks.integer("--seeds", args.seeds, 1, MAX_SEEDS)  # any theory (--t-end 1e30
         if args.t_end is not None:  # hung in the estimate's probe)
-            checks.real("--t-end", args.t_end, 0.0, MAX_T_END)
+            checks.real("--t-end", args.t_end, MIN_T_END, MAX_T_END, low_open=False)
     start = _model_start(args, model)
     try:  # the ring, the amplitude's resolution, a registered start's state
         spec = ModelPointSpec(model, args.k, args.amplitude, branch_of(args), N=args.N,

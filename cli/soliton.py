@@ -8,7 +8,7 @@ import math
 import warnings
 from pathlib import Path
 
-from common.files import write_text
+from common.files import write_results
 from common.output import prepare_output, strict_json
 from numerics.lattice import checks
 from numerics.theory import (
@@ -63,7 +63,9 @@ def run_soliton(args, log=print) -> dict:
     check_paper_amplitude(mat, k, amplitude)
     theory = next(t.label for t in NLS_THEORIES if t.cli == args.theory)
     if args.simulate:
-        checks.real("--travel", args.travel, 0.0, 1000.0)
+        from numerics.models import MIN_TRAVEL  # probe 99: 1e-100 said "dt > t_end"
+
+        checks.real("--travel", args.travel, MIN_TRAVEL, 1000.0, low_open=False)
         if args.N is not None:
             checks.integer("--N", args.N, 16, 10**6)
     with warnings.catch_warnings(record=True) as caught:
@@ -142,21 +144,24 @@ def run_soliton(args, log=print) -> dict:
     if args.out:
         out = Path(args.out)
         out.mkdir(parents=True, exist_ok=True)
-        write_text(out / "soliton.json", json.dumps(strict_json(result), indent=2) + "\n")
-        _figure(out / "soliton.png", sol, run)
+        png = _figure(sol, run)
+        write_results({out / "soliton.json": json.dumps(strict_json(result), indent=2) + "\n",
+                       out / "soliton.png": png})
         log(f"wrote {out / 'soliton.json'} and {out / 'soliton.png'}")
     return result
 
 
-def _figure(path, sol, run):
-    """soliton.png: profile, kink and trajectory against the prediction."""
-    from common.files import atomic_write
+def _figure(sol, run) -> bytes:
+    """soliton.png's bytes: profile, kink and trajectory against the prediction."""
     from scenes import plt, soliton_figure
 
     fig = soliton_figure(sol, run)
-    with atomic_write(path, mode=None) as tmp:
-        fig.savefig(tmp, format="png", dpi=110)
+    import io
+
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=110)
     plt.close(fig)
+    return buf.getvalue()
 
 
 #: the kink is measured by low-passing the strain at |q| < k/2; a sech^2 kink of width w

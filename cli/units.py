@@ -64,7 +64,7 @@ class ModelUnits(Units):
     def si(self, x: float | None, kind: str) -> str:
         """`` = VALUE UNIT`` of a lattice number in SI ('' where not given, or not finite)."""
         f = self.factor(kind)
-        if f is None or x is None or not math.isfinite(x):
+        if f is None or x is None or not math.isfinite(x * f):
             return ""
         return f" = {x * f:.4g} {KINDS[kind][1]}"
 
@@ -86,7 +86,7 @@ class ModelUnits(Units):
                     kind = _KIND_OF[key]
                     found[key] = kind
                     f = self.factor(kind)
-                    if f is not None and math.isfinite(v):
+                    if f is not None and math.isfinite(v * f):
                         out[key] = v * f
             return out
 
@@ -107,7 +107,17 @@ def model_units(args) -> ModelUnits:
         checks.positive("--time-unit", t)
     if a is not None:
         checks.positive("--length-unit", a)
-    return ModelUnits(t, a)
+    units = ModelUnits(t, a)
+    # probe 99: --time-unit 5e-324 printed "omega = inf 1/s" and "peak gain 0 = nan 1/s"
+    for kind, (_, si) in KINDS.items():
+        f = units.factor(kind)
+        if f is not None and not (math.isfinite(f) and f > 0):
+            given = " and ".join(f"{o} {v:g}" for o, v in (("--time-unit", t),
+                                                             ("--length-unit", a)) if v)
+            raise ValueError(f"{given} put the SI values past float64's range (1 "
+                             f"{KINDS[kind][0]} = {f:g} {si}); give units between 1e-150 "
+                             f"and 1e150")
+    return units
 
 
 def add_units(out: dict, units: ModelUnits) -> dict:

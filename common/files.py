@@ -60,3 +60,26 @@ def write_text(path, text: str) -> Path:
     with atomic_write(path) as fh:
         fh.write(text)
     return Path(path)
+
+
+def write_results(files: dict) -> None:
+    """Write each ``path: text or bytes`` atomically, all of them with SIGINT and SIGTERM
+    held (``common.signals.held``): a command's results land together or not at all
+    (probe 99: a SIGTERM while soliton.png was drawn left soliton.json alone, and the
+    command said that nothing was written). Render first, then call this."""
+    from .signals import held
+
+    with held():
+        for path, data in files.items():
+            with atomic_write(path, "wb" if isinstance(data, bytes) else "w") as fh:
+                fh.write(data)
+            _WRITTEN.append(Path(path))
+
+
+#: what ``write_results`` wrote in this process (the CLI's interrupt message reads it)
+_WRITTEN: list = []
+
+
+def results_written() -> list:
+    """The paths ``write_results`` has written in this process, in order."""
+    return list(_WRITTEN)

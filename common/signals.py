@@ -6,6 +6,7 @@ the CLI's one-line message) serves ``kill PID`` as it serves Ctrl-C, and the exi
 from __future__ import annotations
 
 import contextlib
+import os
 import signal
 import threading
 
@@ -68,3 +69,30 @@ def interrupts():
     finally:
         for s, h in old.items():
             signal.signal(s, h if h is not None else signal.SIG_DFL)
+
+
+@contextlib.contextmanager
+def held():
+    """SIGINT and SIGTERM held back meanwhile (main thread; elsewhere nothing changes): one
+    that comes is recorded and handled, by the handler in place before, on exit. For a few
+    file writes that must land together (``common.files.write_results``). Python-level, as
+    a signal mask is per thread: a process-directed signal blocked in this thread went to
+    another (numba's, a BLAS pool's), and Python ran its handler here at once."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    came: list = []
+    old = {s: signal.getsignal(s) for s in SIGNALS}
+    for s in SIGNALS:
+        signal.signal(s, lambda signum, frame: came.append(signum))
+    try:
+        yield
+    finally:
+        for s, h in old.items():
+            signal.signal(s, h if h is not None else signal.SIG_DFL)
+        if came:
+            handler = old[came[0]]
+            if callable(handler):
+                handler(came[0], None)
+            elif handler == signal.SIG_DFL:
+                os.kill(os.getpid(), came[0])

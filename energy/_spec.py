@@ -291,6 +291,9 @@ def check_value(where: str, v) -> float:
     """A parameter value (or a carrier's amplitude): a finite real number (not a bool, a
     string or a complex) of size at most ``MAX_VALUE``, the bound on a number in an energy
     (beyond it a coefficient's powers overflow: g2 of FPUT at alpha = 1e100 is inf)."""
+    if getattr(v, "ndim", None) == 0 and getattr(getattr(v, "dtype", None), "kind", "") \
+            in "fiu" and not isinstance(v, numbers.Number):
+        v = v.item()  # a 0-d real array is the number it holds (probe 99)
     if isinstance(v, bool) or not isinstance(v, numbers.Real):
         raise ModelError(f"{where} must be a real number, got {type(v).__name__} {v!r}")
     v = float(v)

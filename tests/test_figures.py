@@ -332,8 +332,8 @@ def test_point_figure_of_a_failed_run_says_so(tmp_path):
     old = P.plt.close
     P.plt.close = keep
     try:
-        point._figure(tmp_path, th, None, 1.0, args, 0.02, Material(2.0, 0.03, 0.02),
-                      "no seed had a linear stage to fit a rate over")
+        png = point._figure(th, None, 1.0, args, 0.02, Material(2.0, 0.03, 0.02),
+                            "no seed had a linear stage to fit a rate over")
     finally:
         P.plt.close = old
     fig = captured["fig"]
@@ -341,5 +341,6 @@ def test_point_figure_of_a_failed_run_says_so(tmp_path):
     assert any("no seed had a linear stage" in t for t in texts)
     assert any("g1 = 0" in t for t in texts)
     assert "K_s = 0.03" in fig.axes[0].get_title()
+    (tmp_path / "point.png").write_bytes(png)  # point._figure renders; the command writes
     assert mpimg.imread(tmp_path / "point.png").shape[0] > 100
     plt.close(fig)

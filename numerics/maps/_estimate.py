@@ -290,7 +290,10 @@ def probe_model_run(model, k: float, amplitude: float, branch=None, *, N: int, t
     if wave is None:
         wave = travelling_wave(model, snap_ring(k, N)[0], amplitude, branch)
     t0 = time.process_time()
-    first = simulate_model(model, k, amplitude, branch=branch, N=N, t_end=t_end / 1e4,
+    # a ten-thousandth of T loads the kernels (T itself where that underflows: probe 99's
+    # --t-end 5e-324 was refused as "t_end ... got 0.0", naming neither option nor value)
+    first = simulate_model(model, k, amplitude, branch=branch, N=N,
+                           t_end=t_end / 1e4 if t_end / 1e4 > 0 else t_end,
                            wave=wave, records=2, energy=energy)
     warm = time.process_time() - t0
     probe_t = min(t_end, PROBE_STEPS * first.dt)

@@ -368,6 +368,12 @@ def _run_tasks(params, path, todo, n_todo, scheduler, workers, progress, log, ar
     # start-up of 13-50 s on a busy machine)
     lines = progress_lines(progress, n_todo,
                            "predicted" if params.theory_only else "simulated", estimate)
+    if not scheduler and workers and workers > n_todo:
+        # a worker more than the cells has nothing to do (probe 99: --workers 1000 on a
+        # 4-cell map started 1000 processes on 2 cores, no answer in 60 s)
+        log(f"map: {n_todo} cell(s) to compute: starting {n_todo} of the {workers} workers "
+            "asked")
+        workers = n_todo
     client, cluster = connect(scheduler, workers, timeout)
     writer = _CellWriter(path)
     report = progress if callable(progress) else None

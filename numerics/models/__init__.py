@@ -106,6 +106,7 @@ from ._simulate import (
 )
 from ._soliton_ring import RingSoliton, ring_soliton
 from ._soliton_run import (
+                     MIN_TRAVEL,
                      ModelSolitonRun,
                      check_soliton_launch,
                      simulate_soliton,
@@ -129,7 +130,7 @@ __all__ = ["Carrier", "carrier", "branches", "branch_index", "check_rest_stable"
            "lattice_force", "lattice_energy", "snap_ring", "Amplified", "amplified_row", "nls_amplification",
            "four_wave_amplification", "exact_amplification", "simulate_soliton",
            "ModelSolitonRun", "RingSoliton", "ring_soliton", "check_soliton_launch",
-           "soliton_report", "travel_time", "lossy_runs",
+           "soliton_report", "travel_time", "MIN_TRAVEL", "lossy_runs",
            "FORCES", "energy_hash", "run_force", "ExtraTheory", "extra_theories",
            "register_extra_theory", "ExtraStart", "extra_starts", "register_extra_start",
            "time_scale"]

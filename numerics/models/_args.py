@@ -56,10 +56,44 @@ def check_harmonics(harmonics, low: int, why: str, name: str = "harmonics") -> i
     return int(harmonics)
 
 
+def scalar(value):
+    """``value`` itself, or the number a 0-d real array holds (``np.array(2.5)``, what
+    numpy's reductions and indexing hand back): the scalar checks below then take it as
+    the number it is (probe 99: ``exact_gain(m, np.array(2.5), ...)`` was refused as "k
+    must be in (0, pi], got array(2.5)", and ``t_end=np.array(10.0)`` as not > 0)."""
+    if isinstance(value, np.ndarray) and value.ndim == 0 and value.dtype.kind in "fiu":
+        return value.item()
+    return value
+
+
+def check_rate(name: str, rate) -> float:
+    """A growth rate given to set a run's length: a finite real number >= 0 (probe 99: nan,
+    -1 and inf were taken silently, as a rate of 0, the run then 5000 long)."""
+    rate = scalar(rate)
+    if isinstance(rate, (bool, np.bool_)) or not (
+            isinstance(rate, numbers.Real) and math.isfinite(rate) and rate >= 0):
+        raise ModelError(f"{name} must be a finite rate >= 0 (1/time) or None (the exact "
+                         f"theory's), got {rate!r}")
+    return float(rate)
+
+
+def check_noise(noise) -> float:
+    """A run's noise, relative to the amplitude: a real number in [0, 1), as the paper
+    chain's (at 1 the start is noise, not a wave; probe 99: 1e300 blew up "by t = 0 ...
+    lower the amplitude or dt", naming neither)."""
+    noise = scalar(noise)
+    if isinstance(noise, (bool, np.bool_)) or not (
+            isinstance(noise, numbers.Real) and math.isfinite(noise) and 0 <= noise < 1):
+        raise ModelError(f"noise must be a number in [0, 1) (of the amplitude), got "
+                         f"{noise!r}")
+    return float(noise)
+
+
 def check_k(k) -> float:
     """A carrier wavenumber: a finite real number (not a bool) in (0, pi], the range nls,
     exact_gain and four_wave take (a Carrier that said k = -1 or 7 would be read
     downstream as a wave it is not: its v_g and e are those of k mod 2 pi)."""
+    k = scalar(k)
     if isinstance(k, (bool, np.bool_)) or not isinstance(k, numbers.Real) \
             or not math.isfinite(k):
         raise ModelError(f"k must be a finite real number, got {type(k).__name__} {k!r}")

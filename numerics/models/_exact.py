@@ -63,7 +63,7 @@ import numpy as np
 from common.threads import one_blas_thread
 from energy import Model, ModelError
 
-from ._linear import check_harmonics
+from ._linear import check_harmonics, scalar
 from ._wave import (  # noqa: F401 (TravellingWave, travelling_wave, continued_wave: here too)
     TravellingWave,
     _wrap,
@@ -446,6 +446,7 @@ def exact_gain(model: Model, k: float, amplitude: float, branch=None, *, N: int 
         N = check_ring(N)  # N = 0 is a bad ring, not the infinite chain
         k, m = snap_ring(k, N)
     else:  # the ring's snap checks k; the chain's as four_wave and nls do
+        k = scalar(k)
         if isinstance(k, (bool, np.bool_)) or not isinstance(k, numbers.Real):
             raise ModelError(f"k must be a real number in (0, pi], got {type(k).__name__} "
                              f"{k!r}")

@@ -54,7 +54,7 @@ from energy import Model, ModelError
 
 from ._exact import GAIN_FLOOR  # one floor for both theories' verdicts
 from ._fourwave_kernel import _kernel
-from ._linear import carrier, check_amplitude, check_model
+from ._linear import carrier, check_amplitude, check_model, scalar
 from ._modes import _wrap, field_groups, own_offset, pair_kind, wave_field, wave_sheets
 
 KINDS = ("sidebands", "backward", "parametric", "resonance")
@@ -301,6 +301,7 @@ def four_wave(model: Model, k: float, amplitude: float, branch=None, *, N: int |
         k = snap_ring(k, N)[0]
         q = 2 * np.pi * np.arange(1, N // 2 + 1) / N
     else:
+        k = scalar(k)
         if isinstance(k, (bool, np.bool_)) or not isinstance(k, numbers.Real):
             raise ModelError(f"k must be a real number in (0, pi], got {type(k).__name__} "
                              f"{k!r}")

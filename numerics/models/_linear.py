@@ -19,7 +19,7 @@ import numpy as np
 
 from energy import MAX_VALUE, Model, ModelError
 
-from ._args import check_harmonics, check_k, wavenumbers  # noqa: F401 (imported from here)
+from ._args import check_harmonics, check_k, scalar, wavenumbers  # noqa: F401 (imported from here)
 
 
 def blocks(H: np.ndarray, d: int):
@@ -182,6 +182,7 @@ def check_model(model) -> Model:
 
 def check_amplitude(amplitude, name: str = "amplitude") -> float:
     """A carrier's amplitude: a real number (not a bool or a string) in (0, MAX_VALUE]."""
+    amplitude = scalar(amplitude)
     if isinstance(amplitude, (bool, np.bool_)) or not isinstance(amplitude, numbers.Real):
         raise ModelError(f"{name} must be a real number > 0, got "
                          f"{type(amplitude).__name__} {amplitude!r}")
@@ -325,8 +326,13 @@ def carrier(model: Model, k: float, branch=None) -> Carrier:
                 f"{model.describe()}: omega^2 = {lam[b]:.3g} is within its rounding error "
                 f"{floor:.2g} or underflows (not a missing carrier); give k (--k) >= {least:.3g}")
     if lam[b] <= 0:
+        # a branch that carries a wave there, named (probe 99: a field in no energy is a
+        # zero branch, the lowest, and the default; the error said no more)
+        waves = [j for j in range(len(lam)) if lam[j] > floor]
         raise ModelError(f"model {model.describe()}: branch {b} has omega^2 = {lam[b]:.3g} "
-                         f"<= 0 at k = {k:.6g}: no carrier wave there")
+                         f"<= 0 at k = {k:.6g}: no carrier wave there"
+                         + (f"; branch {waves[0]} carries one: give branch (--branch) "
+                            f"{waves[0]}" if waves else ""))
     omega = math.sqrt(lam[b])
     phi = vecs[:, b]
     others = [j for j in range(len(lam)) if j != b]

@@ -38,7 +38,7 @@ import numpy as np
 from common.resolution import EPS, smallest_resolved_amplitude
 from energy import Model, ModelError
 
-from ._linear import Carrier, blocks, carrier, check_amplitude, dynamical_matrix
+from ._linear import Carrier, blocks, carrier, check_amplitude, dynamical_matrix, scalar
 from ._rest_order import rest_not_cubic
 
 #: Relative size under which a matrix is singular: a resonance, not a number.
@@ -352,7 +352,8 @@ def nls(model: Model, k: float, branch=None) -> ModelNLS:
     second harmonic resonant with a branch (omega_b(2k) = 2 omega), a group velocity equal
     to a sound speed, or g1 = 0.
     """
-    if isinstance(k, bool) or not isinstance(k, numbers.Real):
+    k = scalar(k)
+    if isinstance(k, (bool, np.bool_)) or not isinstance(k, numbers.Real):
         raise ModelError(f"k must be a real number, got {type(k).__name__} {k!r}")
     k = float(k)
     # k = pi (the zone boundary) included: the 2k harmonic is uniform there but at 2 omega,

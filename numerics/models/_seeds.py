@@ -14,6 +14,7 @@ import numpy as np
 
 from energy import Model, ModelError
 
+from ._args import check_rate, scalar
 from ._simulate import simulate_model, snap_ring
 
 
@@ -172,9 +173,12 @@ def simulate_seeds(model: Model, k: float, amplitude: float, spec, *, branch=Non
     if isinstance(seeds, bool) or not isinstance(seeds, (int, np.integer)) or seeds < 1:
         raise ModelError(f"seeds must be an integer >= 1, got {seeds!r}")
     _check_spec(model, k, amplitude, spec, branch, N)
+    t_end = scalar(t_end)
     if t_end is not None and (isinstance(t_end, bool) or not isinstance(t_end, numbers.Real)):
         raise ModelError(f"t_end must be a finite time > 0, got {type(t_end).__name__} "
                          f"{t_end!r}")
+    if gain is not None:
+        gain = check_rate("gain", gain)
     from ._time_scale import time_scale
     length = run_length(visible_gain(spec, N) if gain is None else gain,
                         time_scale=time_scale(model)) if t_end is None else None

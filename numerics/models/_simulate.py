@@ -21,6 +21,7 @@ Measurement: ``_growth`` (``ModelRun.growth``, ``ModelRun.amplification``).
 from __future__ import annotations
 
 import math
+import numbers
 from dataclasses import dataclass
 
 import numpy as np
@@ -28,7 +29,7 @@ import numpy as np
 from common.threads import one_blas_thread
 from energy import Model, ModelError
 
-from ._args import MAX_RING, check_count, check_ring
+from ._args import MAX_RING, check_count, check_noise, check_rate, check_ring, scalar
 
 # compiled_force, lattice_energy, lattice_force: here too, for the modules that import them
 # from here (the package's __init__, _reach)
@@ -62,7 +63,9 @@ MAX_STEPS = 1e10
 def snap_ring(k: float, N: int) -> tuple[float, int]:
     """(2 pi m / N, m) nearest to k on a ring of N sites; k = pi is allowed (N even)."""
     N = check_ring(N)
-    if not (isinstance(k, (int, float, np.floating)) and math.isfinite(k) and 0 < k <= math.pi):
+    k = scalar(k)
+    if isinstance(k, (bool, np.bool_)) or not (
+            isinstance(k, numbers.Real) and math.isfinite(k) and 0 < k <= math.pi):
         raise ModelError(f"k must be in (0, pi], got {k!r}")
     m = int(round(k * N / (2 * math.pi)))
     if m == 0:
@@ -310,9 +313,7 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
         raise ModelError(f"force must be one of {', '.join(FORCES)}, got {force!r}")
     if noise is None:  # the start's own: 1e-8 of the amplitude, the paper's b0 for eq. IC
         noise = extra.noise if extra is not None else NOISE
-    if isinstance(noise, bool) or not (isinstance(noise, (int, float)) and math.isfinite(
-            noise) and noise >= 0):
-        raise ModelError(f"noise must be a finite number >= 0, got {noise!r}")
+    noise = check_noise(noise)
     records = check_count("records", records)
     seed = check_count("seed", seed, least=0)
     k_ring, _ = snap_ring(k, N)
@@ -321,6 +322,8 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
     else:  # before: another model's, amplitude's or k's wave was run silently
         from ._seeds import check_wave
         check_wave(model, k_ring, amplitude, wave, branch)
+    if expected_gain is not None:
+        expected_gain = check_rate("expected_gain", expected_gain)
     if t_end is None:
         if expected_gain is None and extra is not None:  # the launched state's theory
             expected_gain = extra.theory(model, k_ring, amplitude, N)["peak_gain"] or 0.0
@@ -329,6 +332,7 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
             expected_gain = hill_spectrum(wave, ring_offsets(N)).peak_gain
         from ._time_scale import time_scale
         t_end = run_length(expected_gain, time_scale=time_scale(model)).t_end
+    t_end = scalar(t_end)
     if isinstance(t_end, bool) or not isinstance(t_end, (int, float, np.floating)) or not (
             math.isfinite(t_end) and t_end > 0):
         raise ModelError(f"t_end must be a finite time > 0, got {t_end!r}")
@@ -352,6 +356,8 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
                              f"({d}, {N}), got {type(initial).__name__} of shapes "
                              f"{[np.shape(x) for x in initial][:2]}")
         u, v = (np.array(x, dtype=float).reshape(d, N) for x in initial)
+        if not (np.all(np.isfinite(u)) and np.all(np.isfinite(v))):  # was a BlowUpError
+            raise ModelError("initial must be finite: its (u, v) hold nan or inf")
     if noise_on not in ("all", "carrier"):
         raise ModelError(f"noise_on must be 'all' or 'carrier', got {noise_on!r}")
     if noise_on == "carrier":
