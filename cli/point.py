@@ -34,6 +34,7 @@ from numerics.theory import (
     nls_coefficients,
 )
 
+from ._model_point_args import _model_start, _option_error
 from ._slow import SLOW_MODEL_POINT, SLOW_PAPER_POINT, said_if_slow
 from ._slow import to_stderr as _stderr
 from .coefficients import weak_nonlinearity_note, wide_band_note
@@ -418,33 +419,6 @@ def _figure(th, meas, k, args, amplitude, mat=None, no_rate=None) -> bytes:
 
 
 # ------------------------------------------------------------------ --model
-def _model_start(args, model) -> str:
-    """The run's start: "exact" (--start travelling, the default), "linear", or a start the
-    model registers (``numerics.models.extra_starts``: "paper", eq. IC, for the paper
-    chain's energy)."""
-    from numerics.models import extra_starts
-
-    start = getattr(args, "start", None)
-    if start in (None, "travelling"):
-        return "exact"
-    if start == "linear" or start in extra_starts(model):
-        return start
-    raise ValueError(f"--start {start}: model {model.name} has no such start; it starts "
-                     "from travelling (the exact wave, default) or linear (the linear plane "
-                     "wave)" + ("; the paper's start (eq. IC) belongs to the paper chain's "
-                                "energy, lossless (flexmm, flexmm-rotation)"
-                                if start == "paper" else ""))
-
-
-def _option_error(exc, args) -> ValueError:
-    """A ``PointInputError`` said with the option's name (``--N: ...``), the start's as
-    the command spells it (travelling for the API's "exact")."""
-    if exc.field == "start":
-        return ValueError(f"--start {args.start}: " + exc.reason.replace(
-            "use start 'exact' or 'linear'", "use --start travelling or linear"))
-    return ValueError(f"--{exc.field}: {exc.reason}")
-
-
 def _run_model_point(args) -> dict:
     """`flexmm point --model`: the options checked (each by its name, before any theory
     runs), ``measure_point`` of the ``ModelPointSpec``, then ``_model_point_text``."""
