@@ -9,6 +9,7 @@
 import pytest
 
 from cli.app import main
+from energy import ModelError, load_model, parse_model
 
 PAPER = ["--alpha", "2", "--K-s", "0.03", "--K-theta", "0.02", "--k", "1"]
 
@@ -232,3 +233,16 @@ def test_the_table_says_which_nls_it_shows(capsys):
     assert last.startswith("these are the paper's continuum NLS"), last
     assert "blue coupled: stable" in last and "green coupled: MI" in last
     assert "rotation" not in last  # case I: both NLS agree at both points
+
+
+def test_the_rest_state_error_names_the_lowest_frequency():
+    """A bond with the wrong sign and a site spring c: omega^2(k) = c - 4 sin^2(k/2) by hand,
+    lowest at k = pi (0.5 - 4 = -3.5); the error named the first negative k (0.72, -0.0123
+    there), not the worst (newuser99's left note)."""
+    from numerics.models import check_rest_stable
+
+    m = load_model(parse_model('name = "neg"\nfields = ["u"]\n[parameters]\nc = 0.5\n'
+                               '[energy]\nkinetic = "u_t**2/2"\n'
+                               'bond = "-(u_next - u)**2/2"\nsite = "c*u**2/2"\n'))
+    with pytest.raises(ModelError, match=r"omega\^2 = -3.5 < 0 at k = 3.142 \(its lowest\)"):
+        check_rest_stable(m)

@@ -164,9 +164,10 @@ def check_rest_stable(model: Model, samples: int = 257):
     lowest = np.linalg.eigvalsh(s[:, None] * K * s[None, :])[:, 0]
     bad = np.flatnonzero(lowest < -1e-12 * scale)
     if bad.size:
-        i = int(bad[0])
+        i = int(bad[np.argmin(lowest[bad])])  # the most negative (newuser99: the first)
         raise ModelError(f"model {model.describe()}: the rest state is not a minimum: "
-                         f"branch 0 has omega^2 = {lowest[i]:.3g} < 0 at k = {kap[i]:.4g}; "
+                         f"branch 0 has omega^2 = {lowest[i]:.3g} < 0 at k = {kap[i]:.4g} "
+                         "(its lowest); "
                          "the energy's quadratic part (bond + site to second order) must be "
                          "positive: check the signs of its stiffness terms and parameters")
 
