@@ -187,3 +187,5 @@ def test_the_compiled_host_bound_is_the_python_source():
         assert exponential_bound(t, top) == bound_of_records(t, top, 0, n, STAGE_END)
     with pytest.raises(ValueError, match="one length"):
         exponential_bound(np.arange(5.0), np.ones(4))
+    # records at one time (no slope): 1, not a ZeroDivisionError of the compiled copy
+    assert exponential_bound(np.full(10, 3.0), np.linspace(0.01, 0.02, 10)) == 1.0

@@ -52,6 +52,8 @@ def bound_of_records(t, top, lo, hi, stage_end):
             dx = t[i] - mx
             sxy += dx * (math.log(top[i]) - my)
             sxx += dx * dx
+    if not sxx > 0.0:  # the second half's records at one time: no slope (1, as numpy's
+        return 1.0     # nan slope read before the host's copy was compiled)
     slope = sxy / sxx
     # no min/max builtins: numba-cuda 0.30 does not type them in a device function
     e = slope * length if slope > 0.0 else 0.0

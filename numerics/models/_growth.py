@@ -125,11 +125,6 @@ def saturation_record(spectrum: np.ndarray, N: int, k: float, H: int,
     return int(over[0]) if over.size else None
 
 
-#: a harmonic's ring mode is read where it stands this many times above the most the wave's
-#: own content can put there (``harmonic_drift``): its value is then the sidebands' to 10%
-OVER_DRIFT = 10.0
-
-
 def harmonic_drift(wave, N: int, k: float, exact_start: bool = True) -> np.ndarray:
     """Per ring mode j (shape (N,)): the most the carrier's own harmonics can put into the
     deviation from the wave there, 2 sum |c_h| over the harmonics h = 2..H (either sign)
@@ -152,15 +147,18 @@ def harmonic_drift(wave, N: int, k: float, exact_start: bool = True) -> np.ndarr
 
 
 def amplitude_series(spectrum: np.ndarray, drift: np.ndarray) -> np.ndarray:
-    """A(t): the largest mode of each record (``spectrum`` (records, N)) over the modes
-    that are no carrier harmonic and the harmonics' modes where they stand ``OVER_DRIFT``
-    times above their ``harmonic_drift``. On a small ring a high harmonic aliases onto
-    the fastest sidebands (kg-cubic on 64 sites, k = 2 pi 23 / 64: h = -13 on mode 21,
-    which grew e^14 in a damped run while the modes no harmonic reached 2e3): leaving
-    every harmonic's mode out read 1e-3 of the exact amplification."""
+    """A(t): the largest of each record's modes (``spectrum`` (records, N), or one record
+    (N,)) less its ``harmonic_drift``, where positive: the modes that are no carrier
+    harmonic as they are, a harmonic's mode by what it holds beyond the most the wave's own
+    content can put there (a lower bound on its sidebands, continuous in t), the mean and
+    the carrier's own never. On a small ring a high harmonic aliases onto the fastest
+    sidebands (kg-cubic on 64 sites, k = 2 pi 23 / 64: h = -13 on mode 21, which grew e^14
+    in a damped run while the modes no harmonic reached 2e3): leaving every harmonic's mode
+    out read 1e-3 of the exact amplification."""
     S = np.asarray(spectrum)
-    read = S > OVER_DRIFT * drift
-    return np.max(np.where(read, S, 0.0), axis=-1)
+    with np.errstate(invalid="ignore"):
+        beyond = np.where(np.isfinite(drift), S - drift, 0.0)
+    return np.max(np.maximum(beyond, 0.0), axis=-1)
 
 
 def measure_amplification(run: ModelRun) -> Amplification:

@@ -36,11 +36,11 @@ from ._args import MAX_RING, check_count, check_noise, check_rate, check_ring, s
 from ._compiled import _kernels, compiled_force, lattice_energy, lattice_force  # noqa: F401
 from ._damping import damping_flow, loss_spacing, rayleigh
 from ._growth import (
-    OVER_DRIFT,
     SATURATION,
     Amplification,
     Growth,
     _lower_keep,
+    amplitude_series,
     harmonic_drift,
     measure_amplification,
     measure_growth,
@@ -122,7 +122,7 @@ class ModelRun:
     Attributes
     ----------
     k, amplitude, N, t_end, dt, method, start, noise, seed
-        The run's inputs (k snapped to the ring).
+        The run's inputs (k snapped to the ring; start "initial" where one was given).
     wave : TravellingWave
         The exact wave the deviation is measured from.
     t : ndarray
@@ -400,14 +400,14 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
                            damping=damping, flow=flow)
 
     wave_at = wave.ring_profile(N, k_ring)  # wave.profile on the ring, for many t
+    launch = "initial" if initial is not None else start  # off the family (harmonic_drift)
 
     def record(t):
         U = wave_at(t)
         delta = u - U
         ts.append(t)
-        # a state still finite but past 1e154 overflows its squares to inf: a run leaving
-        # the lattice's range, which the stepper's check or a map cell's saturation stop
-        # reads and says (numpy's overflow warnings, printed by a map's workers, did not)
+        # a state past 1e154 overflows its squares to inf: a run leaving the lattice's range,
+        # which the stepper's check or a map's saturation stop says (numpy's warnings did not)
         with np.errstate(over="ignore", invalid="ignore"):
             spec.append(np.sqrt(np.sum(np.abs(np.fft.fft(delta, axis=1)) ** 2, axis=0)) / N)
             dev.append(float(np.sqrt(np.mean(delta**2))))
@@ -419,7 +419,7 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
     def run_so_far(t_last):
         """The run's records so far (to ``t_last``) and its state now."""
         return ModelRun(model=model, k=k_ring, amplitude=float(amplitude), N=N,
-                        t_end=t_last, dt=dt, method=method, start=start, noise=float(noise),
+                        t_end=t_last, dt=dt, method=method, start=launch, noise=float(noise),
                         seed=int(seed), wave=wave, t=np.array(ts), spectrum=np.array(spec),
                         deviation=np.array(dev), energy=np.array(en),
                         dissipation=np.array(diss) if lossy else None,
@@ -436,8 +436,8 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
         level = SATURATION * float(amplitude)
     if until_peak:
         # measure_amplification's modes (``amplitude_series``)
-        bound = OVER_DRIFT * harmonic_drift(wave, N, k_ring, start == "exact")
-        a0 = float(np.max(np.where(spec[0] > bound, spec[0], 0.0)))
+        drift = harmonic_drift(wave, N, k_ring, launch == "exact")
+        a0 = float(amplitude_series(spec[0], drift))
         top = a0
         peaked = False
         hold = 0.0 if until_peak is True else float(until_peak)  # no stop before it
@@ -476,7 +476,7 @@ def simulate_model(model: Model, k: float, amplitude: float, *, branch=None, N: 
                     saturated = True
                     break
                 if until_peak:
-                    a = float(np.max(np.where(spec[-1] > bound, spec[-1], 0.0)))
+                    a = float(amplitude_series(spec[-1], drift))
                     top = max(top, a)
                     if top >= PEAK_RISE * a0 and a <= top / 2 and done * dt >= hold:
                         peaked = True
