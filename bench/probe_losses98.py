@@ -39,7 +39,7 @@ had no units. Left then: the kg-cubic runs read 1e-3 to 0.15 of the exact amplif
 weak damping (the theories 1e5-4e6), below the 0.2-0.5x the docs give; verdicts agree.
 Fixed after (tests/test_amplification_modes.py): A(t) left out every carrier harmonic's ring
 mode, and on 64 sites the 13th harmonic aliased onto the fastest sidebands (its drift bound
-1e-18): a harmonic's mode is read by what it holds beyond 2 |c_h|; now 0.03-0.39.
+1e-18): a harmonic's mode is read by what it holds beyond 10 x 2 |c_h|; now 0.03-0.39.
 
 Run: ``python -m bench.probe_losses98`` (~10 min on the 2-core VM, 585 s measured, most of it the
 runs and the CLI's start-up; ``--quick``: one point per model, no maps). Seeded (numpy
