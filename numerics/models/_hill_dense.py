@@ -58,9 +58,10 @@ class _DensePencil:
         self._diff = l_[:, None] - l_[None, :] + 2 * P
         self._back = np.exp(-1j * (l_[:, None] - l_[None, :]) * self.k)[..., None, None]
 
-    def resolved(self, A, lam, j, x=None) -> bool:
+    def resolved(self, A, lam, j, x=None, lu=None) -> bool:
         """Whether eig resolves the rate of eigenvalue ``lam[j]`` of the linearisation ``A``
-        (its right eigenvector ``x`` where known): above the floor, and either above
+        (its right eigenvector ``x`` and the LU of A - lam I shifted, ``_dense_growing``'s,
+        where known): above the floor, and either above
         2 sqrt(eps) max |lambda| (eig splits a near-double eigenvalue by ~sqrt(eps) times
         the pencil's scale, however ill-conditioned) or above COND_MARGIN times its own
         first-order error eps ||A||_F kappa, kappa = |x| |y| / |y^H x| (y its left
@@ -82,8 +83,9 @@ class _DensePencil:
         from scipy.linalg import lu_factor, lu_solve
 
         size = A.shape[0]
-        shift = lam[j] + 1e-13 * (abs(lam[j]) + self.omega)
-        lu = lu_factor(A - shift * np.eye(size), check_finite=False)
+        if lu is None:
+            shift = lam[j] + 1e-13 * (abs(lam[j]) + self.omega)
+            lu = lu_factor(A - shift * np.eye(size), check_finite=False)
         b = np.random.default_rng(1).standard_normal(size) + 0j
         if x is None:
             x = lu_solve(lu, b, check_finite=False)
@@ -139,7 +141,7 @@ def _dense_growing(wave, offsets, P):
             centre, central = _centre(per_l, l_)
             if not central or per_l[:3].sum() + per_l[-3:].sum() >= 1e-6:
                 continue
-            if not pencil.resolved(A, lam, j, x):
+            if not pencil.resolved(A, lam, j, x, lu):
                 continue  # round-off of a pair on the axis: the next one
             gains[i] = lam[j].real
             modes[i] = int(centre)
