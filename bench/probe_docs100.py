@@ -28,9 +28,11 @@ What it checks (each line names the page and line of the claim, ``ok`` or ``!!``
   the paper flags', the scene count), and bench/stress.md's counts against the pages;
 - ``keys``: the store variables, attributes and JSON keys the pages name, in the outputs of
   the README's theory-only map, a model map with its ring, ``point --json`` and
-  ``coefficients --json``.
+  ``coefficients --json``;
+- ``runs``: the README's simulated point (exact to 0.1%, NLS 14% high, 1.5e3x measured against
+  3.3e3x predicted) and docs/models.md's lossy FPUT amplifications, measured again.
 
-    python -m bench.probe_docs100 [--part names|cli|physics|measured|remeasured|tested|keys]
+    python -m bench.probe_docs100 [--part names|cli|physics|measured|remeasured|tested|keys|runs]
 
 Exit 1 where any claim disagrees (``!!``); the list at the end. ~1-2 min on the 2-core VM.
 """
@@ -816,8 +818,52 @@ def part_keys() -> None:
               + (f" (missing {missing})" if missing else ""))
 
 
+def part_runs() -> None:
+    """Numbers the pages give from runs and damped theories, measured again (~25 s)."""
+    from energy import load_model, parse_model
+    from numerics.models import exact_amplification, nls_amplification
+    lossy = ("name = \"fput-lossy\"\nfields = [\"u\"]\n[parameters]\nbeta = 1.0\n"
+             "gamma = 0.03\n[energy]\nkinetic = \"u_t**2/2\"\n"
+             "bond = \"(u_next - u)**2/2 + beta*(u_next - u)**4/4\"\n[dissipation]\n"
+             "site = \"gamma*u_t**2/2\"\n")
+    for g, nls_txt, ex_txt, ring_txt in ((0.012, "252", "146", "217"), (0.03, "5.8", "4.6", "5.5")):
+        m = load_model(parse_model(lossy, "fput-lossy.toml"), gamma=g)
+        a_chain = nls_amplification(m, 2.5, 0.2).amplification
+        a_ring = nls_amplification(m, 2 * math.pi * 25 / 64, 0.2).amplification
+        a_ex = exact_amplification(m, 2.5, 0.2, N=64).amplification
+        claim("docs/models.md", f"| FPUT, {g} | {nls_txt} |", shown(a_chain, nls_txt)
+              and shown(a_ex, ex_txt), f"measured: lossy FPUT gamma {g}: NLS at k 2.5 "
+              f"{a_chain:.4g}, exact (N 64) {a_ex:.4g}")
+        claim("docs/models.md", "where the NLS reads 217 and 5.5", shown(a_ring, ring_txt),
+              f"measured: lossy FPUT gamma {g}: NLS at 2 pi 25/64 {a_ring:.4g} (page {ring_txt})")
+    # README's --simulate point (~16 s): exact to 0.1%, NLS 14% high, 1.5e3x / 3.3e3x
+    with tempfile.TemporaryDirectory() as tmp:
+        r = _run_cli(["point", "--alpha", "2.0", "--K-s", "0.03", "--K-theta", "0.02", "--k",
+                      "1.2", "--amplitude", "0.04", "--case", "coupled", "--simulate",
+                      "--seeds", "2", "--out", "out/point"], tmp)
+        rate = {}
+        for line in r.stdout.splitlines():
+            m = re.match(r"(semi-discrete NLS|exact lattice, paper start|simulated \(.*?\))\s+MI"
+                         r"\s+(\S+)", line)
+            if m:
+                rate[m.group(1).split(" (")[0].split(",")[0]] = float(m.group(2))
+        gm = re.search(r"predicted ([\d.e+]+)x, ([\d.e+]+)x; measured ([\d.e+]+)x, ([\d.e+]+)x",
+                       r.stdout)
+        ok = len(rate) == 3 and gm is not None
+        ex = abs(rate["exact lattice"] / rate["simulated"] - 1) if ok else float("nan")
+        nl = rate["semi-discrete NLS"] / rate["simulated"] - 1 if ok else float("nan")
+        claim("README.md", "The exact theory (at the ring's fastest pair) predicts the measured",
+              ok and ex <= 0.0015 and shown(nl * 100, "14"),
+              f"measured: README's point: exact / run - 1 = {ex:.1e}, NLS / run - 1 = {nl:.3f}")
+        claim("README.md", "(1.5e3x measured, 3.3e3x", ok and shown(float(gm.group(3)), "1.5e3")
+              and shown(float(gm.group(1)), "3.3e3"),
+              f"measured: README's point: predicted {gm.group(1) if gm else '?'}x, measured "
+              f"{gm.group(3) if gm else '?'}x (seed 0)")
+
+
 PARTS = {"names": part_names, "cli": part_cli, "physics": part_physics,
-         "measured": part_measured, "remeasured": part_remeasured, "tested": part_tested, "keys": part_keys}
+         "measured": part_measured, "remeasured": part_remeasured, "tested": part_tested, "keys": part_keys,
+         "runs": part_runs}
 
 
 def main(argv=None) -> int:
