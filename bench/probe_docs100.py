@@ -512,6 +512,47 @@ def part_physics() -> None:
           "gamma 0.008: 0.008 x 6.25 / 2 = 0.025")
     claim("README.md", "semi-discrete NLS               0.015", shown(0.03 / 2, "0.015"),
           "fput-lossy gamma 0.03 on site, unit mass: amplitude decay gamma/2 = 0.015")
+    # models.md: FPUT alpha 1, beta 1.5 at k 2.45: g2 = -0.80 of a cubic -15.0 and mean flow +15.1
+    h = fput_by_hand(1.0, 1.5, 2.45)
+    claim("docs/models.md", "has g2 = −0.80 left of a cubic part −15.0", shown(h["g2"], "-0.80")
+          and shown(h["cubic"], "-15.0") and shown(h["mf"], "15.1"),
+          f"FPUT (1, 1.5) k 2.45 by hand: g2 {h['g2']:.3f}, cubic {h['cubic']:.2f}, mean flow "
+          f"{h['mf']:.2f}")
+    # solitons.md's closed forms solve i E_t + g1/2 E_xx + g2 |E|^2 E = 0 (finite differences)
+    worst = 0.0
+    for _ in range(6):
+        g1_ = rng.uniform(0.01, 0.5) * rng.choice([-1, 1])
+        a = rng.uniform(0.001, 0.05)
+        for kind in ("bright", "dark"):
+            g2_ = abs(rng.uniform(0.5, 50)) * (np.sign(g1_) if kind == "bright" else -np.sign(g1_))
+            g = g2_ / g1_
+            phi = rng.uniform(-1.2, 1.2)
+            if kind == "bright":
+                w = 1 / (a * math.sqrt(g))
+
+                def E(x, t, a=a, w=w, g2_=g2_):
+                    return a / np.cosh(x / w) * np.exp(1j * g2_ * a * a * t / 2)
+            else:
+                w = 1 / (a * math.cos(phi) * math.sqrt(-g))
+                V = g1_ * a * math.sin(phi) * math.sqrt(-g)
+
+                def E(x, t, a=a, w=w, g2_=g2_, V=V, phi=phi):
+                    return (a * np.exp(1j * g2_ * a * a * t)
+                            * (math.cos(phi) * np.tanh((x - V * t) / w) + 1j * math.sin(phi)))
+            x = np.linspace(-4 * w, 4 * w, 41)
+            hx, ht = w * 1e-3, 1e-3 / (abs(g2_) * a * a)
+            Et = (E(x, ht) - E(x, -ht)) / (2 * ht)
+            Exx = (E(x + hx, 0) - 2 * E(x, 0) + E(x - hx, 0)) / hx ** 2
+            res = 1j * Et + g1_ / 2 * Exx + g2_ * np.abs(E(x, 0)) ** 2 * E(x, 0)
+            worst = max(worst, np.max(np.abs(res)) / (abs(g2_) * a ** 3))
+    claim("docs/solitons.md", "| bright (g > 0) | a sech(xi/w) e^{i g2 a^2 t/2}", worst < 1e-4,
+          f"bright and grey closed forms solve the NLS at 12 random (g1, g2, a, phi): residual "
+          f"{worst:.1e} of g2 a^3 (bar 1e-4: second differences at h = 1e-3 w, O(h^2))")
+    a_, mu_, g_ = 0.0031, -1.7, 45.0
+    w_ = 1 / (a_ * math.sqrt(g_))
+    claim("docs/solitons.md", "2 mu a^2 w = mu amplitude / sqrt(g)",
+          close(2 * mu_ * a_ * a_ * w_, mu_ * (2 * a_) / math.sqrt(g_), 1e-14),
+          "kink 2 mu a^2 w = mu amplitude / sqrt(g) with w = 1/(a sqrt g), amplitude = 2a")
     # NLS gain formulas (models.md): peak |g2| a^2/4 at a sqrt(g/2), edge a sqrt(g)
     g1, g2, a = -0.3, -1.7, 0.07
     g = g2 / g1
@@ -836,6 +877,23 @@ def part_runs() -> None:
               f"{a_chain:.4g}, exact (N 64) {a_ex:.4g}")
         claim("docs/models.md", "where the NLS reads 217 and 5.5", shown(a_ring, ring_txt),
               f"measured: lossy FPUT gamma {g}: NLS at 2 pi 25/64 {a_ring:.4g} (page {ring_txt})")
+    # docs/theory.md's four-wave table: two rows measured again (~9 s)
+    with tempfile.TemporaryDirectory() as tmp:
+        for args, row, fw_txt, ex_txt, nls_txt in (
+                (["fput", "--param", "alpha=0.5", "--param", "beta=1"],
+                 "| FPUT α 0.5, β 1, N 256, k = 2π 64/256 |", "8.760e-3", "8.666e-3", "5.30e-3"),
+                (["klein-gordon", "--param", "C=1", "--param", "omega0=1", "--param",
+                  "alpha=0.5", "--param", "beta=1"], "| Klein-Gordon C 1, ω0 1, α 0.5, β 1, k = π/2",
+                 "2.076e-3", "2.075e-3", "1.49e-3")):
+            r = _run_cli(["point", "--model", *args, "--k", "1.5708", "--amplitude", "0.1",
+                          "--N", "256", "--json"], tmp)
+            pt = json.loads(r.stdout)
+            fw, ex = pt["four-wave"]["peak_gain"], pt["exact lattice"]["peak_gain"]
+            nl = pt["semi-discrete NLS"]["peak_gain"]
+            claim("docs/theory.md", row, shown(fw, fw_txt) and shown(ex, ex_txt)
+                  and shown(nl, nls_txt) and pt["exact lattice"]["mode_kind"] == "backward",
+                  f"measured: four-wave {fw:.4g}, exact {ex:.4g}, NLS {nl:.3g}, kind "
+                  f"{pt['exact lattice']['mode_kind']}")
     # README's --simulate point (~16 s): exact to 0.1%, NLS 14% high, 1.5e3x / 3.3e3x
     with tempfile.TemporaryDirectory() as tmp:
         r = _run_cli(["point", "--alpha", "2.0", "--K-s", "0.03", "--K-theta", "0.02", "--k",
