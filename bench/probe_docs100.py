@@ -30,9 +30,10 @@ What it checks (each line names the page and line of the claim, ``ok`` or ``!!``
   the README's theory-only map, a model map with its ring, ``point --json`` and
   ``coefficients --json``;
 - ``runs``: the README's simulated point (exact to 0.1%, NLS 14% high, 1.5e3x measured against
-  3.3e3x predicted) and docs/models.md's lossy FPUT amplifications, measured again.
+  3.3e3x predicted) and docs/models.md's lossy FPUT amplifications, measured again;
+- ``install``: README's Install and Layout claims against pyproject.toml, the Makefile, LICENSE.
 
-    python -m bench.probe_docs100 [--part names|cli|physics|measured|remeasured|tested|keys|runs]
+    python -m bench.probe_docs100 [--part names|cli|physics|measured|remeasured|tested|keys|runs|install]
 
 Exit 1 where any claim disagrees (``!!``); the list at the end. ~1-2 min on the 2-core VM.
 """
@@ -919,9 +920,32 @@ def part_runs() -> None:
               f"{gm.group(3) if gm else '?'}x (seed 0)")
 
 
+def part_install() -> None:
+    """README's Install and Layout claims against pyproject.toml, the Makefile and LICENSE."""
+    import tomllib
+    pp = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]
+    mk = (ROOT / "Makefile").read_text()
+    claim("README.md", "Python ≥ 3.11 and `make`", pp["requires-python"] == ">=3.11",
+          f"install: requires-python {pp['requires-python']}")
+    claim("README.md", "adds dask-jobqueue for HPC clusters",
+          any("dask-jobqueue" in x for x in pp["optional-dependencies"].get("jobqueue", [])),
+          "install: the jobqueue extra holds dask-jobqueue")
+    claim("README.md", "Then put `flexmm` on your PATH", pp["scripts"].get("flexmm") == "cli:main",
+          f"install: the flexmm entry point is {pp['scripts'].get('flexmm')!r} "
+          "(docs/architecture.md: cli:main)")
+    claim("README.md", "all of it as an HTML site in `build/docs/index.html`",
+          re.search(r"sphinx .*-b html docs build/docs", mk) is not None,
+          "install: make docs builds docs/ into build/docs")
+    claim("docs/gpu.md", "The GPU path needs the `gpu` extra",
+          any(x.startswith("numba-cuda") for x in pp["optional-dependencies"].get("gpu", [])),
+          "install: the gpu extra holds numba-cuda")
+    claim("README.md", "License: MIT", (ROOT / "LICENSE").read_text().startswith("MIT License"),
+          "install: LICENSE is MIT")
+
+
 PARTS = {"names": part_names, "cli": part_cli, "physics": part_physics,
          "measured": part_measured, "remeasured": part_remeasured, "tested": part_tested, "keys": part_keys,
-         "runs": part_runs}
+         "runs": part_runs, "install": part_install}
 
 
 def main(argv=None) -> int:
