@@ -31,9 +31,10 @@ What it checks (each line names the page and line of the claim, ``ok`` or ``!!``
   ``coefficients --json``;
 - ``runs``: the README's simulated point (exact to 0.1%, NLS 14% high, 1.5e3x measured against
   3.3e3x predicted) and docs/models.md's lossy FPUT amplifications, measured again;
-- ``install``: README's Install and Layout claims against pyproject.toml, the Makefile, LICENSE.
+- ``install``: README's Install and Layout claims against pyproject.toml, the Makefile, LICENSE;
+- ``constants``: bounds and tolerances the pages state against the constants the code uses.
 
-    python -m bench.probe_docs100 [--part names|cli|physics|measured|remeasured|tested|keys|runs|install]
+    python -m bench.probe_docs100 [--part names|cli|physics|measured|remeasured|tested|keys|runs|install|constants]
 
 Exit 1 where any claim disagrees (``!!``); the list at the end. ~1-2 min on the 2-core VM.
 """
@@ -943,9 +944,56 @@ def part_install() -> None:
           "install: LICENSE is MIT")
 
 
+def _const(path: str, name: str) -> float:
+    """A module-level constant read from the source (the bench reaches no private module)."""
+    m = re.search(rf"^{name} = ([^#\n]+)", (ROOT / path).read_text(), re.M)
+    if m is None:
+        return float("nan")
+    expr = m.group(1).strip()
+    if not re.fullmatch(r"[\d_.e+\-* ()]+", expr):
+        return float("nan")
+    return float(eval(expr, {"__builtins__": {}}))  # digits and * only, checked above
+
+
+def part_constants() -> None:
+    """Bounds and tolerances the pages state, against the constants the code uses."""
+    import inspect
+
+    from numerics.lattice import simulate
+    E, S = "energy/_expressions.py", "energy/_spec.py"
+    mm = "docs/models.md"
+    claim(mm, "a file of at most 256 KiB, 8 fields, 64", _const(S, "MAX_FILE_BYTES") == 256 * 1024
+          and _const(S, "MAX_FIELDS") == 8 and _const(S, "MAX_PARAMETERS") == 64,
+          "constants: 256 KiB, 8 fields, 64 parameters (energy/_spec.py)")
+    claim(mm, "parameters; an energy of at most 20 000 characters and 10 000 terms and symbols,",
+          _const(E, "MAX_EXPRESSION") == 20_000 and _const(E, "MAX_NODES") == 10_000,
+          "constants: 20 000 characters, 10 000 nodes (energy/_expressions.py)")
+    claim(mm, "functions nested at most 4 deep, numbers up to 1e15, constant exponents up to 64",
+          _const(E, "MAX_CALL_DEPTH") == 4 and _const(E, "MAX_CONSTANT") == 1e15
+          and _const(E, "MAX_EXPONENT") == 64, "constants: call depth 4, 1e15, exponent 64")
+    claim("docs/reliability.md", "nesting <= 60 levels", _const(E, "MAX_DEPTH") == 60,
+          "constants: nesting 60")
+    claim(mm, "ASCII letters and digits with single `_` between them, at most 64",
+          _const(S, "MAX_NAME") == 64, "constants: names up to 64 characters")
+    claim(mm, "Rates below 3e-7 ω are eigen-solver round-off",
+          _const("numerics/models/_exact.py", "GAIN_FLOOR") == 3e-7,
+          "constants: exact_gain's floor 3e-7 omega (numerics/models/_exact.py)")
+    claim("docs/solitons.md", "`MIN_WIDTH` = 8 sites",
+          _const("numerics/theory/_soliton.py", "MIN_WIDTH") == 8
+          and _const("numerics/models/_soliton_ring.py", "MIN_WIDTH") == 8,
+          "constants: MIN_WIDTH 8 (paper chain and models)")
+    claim("docs/simulator.md", "`energy_tolerance` (default 1e-3)",
+          inspect.signature(simulate).parameters["energy_tolerance"].default == 1e-3,
+          "constants: simulate's energy_tolerance default 1e-3")
+    lim = _const("numerics/lattice/_kernels.py", "TRIG_LIMIT")
+    claim("docs/simulator.md", "beyond |theta| = 1e4 the libm loops take over", lim == 1e4,
+          f"constants: TRIG_LIMIT {lim:g}")
+
+
 PARTS = {"names": part_names, "cli": part_cli, "physics": part_physics,
          "measured": part_measured, "remeasured": part_remeasured, "tested": part_tested, "keys": part_keys,
-         "runs": part_runs, "install": part_install}
+         "runs": part_runs, "install": part_install,
+         "constants": part_constants}
 
 
 def main(argv=None) -> int:
