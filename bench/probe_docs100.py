@@ -497,6 +497,35 @@ def part_physics() -> None:
           and shown(GL.group_velocity(k, al, Ks, Kt), "0.08882"),
           f"black soliton: w = 1/(a sqrt(-g)) {w:.2f}, kink -2 mu a^2 w {-2 * mu * a * a * w:.4g}, "
           f"v = v_g {GL.group_velocity(k, al, Ks, Kt):.5f} (generated g, v_g; the page's forms)")
+    # theory.md: the blue point's near-resonance 2 sin(k + q/2) = Omega + omega(k + q), q ~ 0.13
+    from scipy.optimize import brentq
+    al, Ks, Kt, k = 2.5, 0.01851, 0.01551, 0.81681
+
+    def w2(q):
+        return al * math.sqrt(6 * Kt + 4 * (Ks - Kt) * math.sin(q / 2) ** 2)
+    qr = brentq(lambda q: 2 * math.sin(k + q / 2) - w2(k) - w2(k + q), 0.01, 0.5)
+    claim("docs/theory.md", "(2 sin(k + q/2) = Omega + omega(k + q) at q ~ 0.13)", shown(qr, "0.13"),
+          f"blue II near-resonance by hand (discrete2, U's 2 sin(q/2), Omega ~ omega): q = {qr:.4f}")
+    # simulator.md: the green point's second-harmonic denominators
+    kg, Ktg = 0.92991, 0.02151
+    om_c2 = 2.5 ** 2 * (6 * Ktg - 0.003 * kg * kg)
+    om_l2 = 2.5 ** 2 * (6 * Ktg - 0.012 * math.sin(kg / 2) ** 2)
+    claim("docs/simulator.md", "(+0.074) and the lattice one, sin^2 k - omega^2 (-0.15)",
+          shown(kg * kg - om_c2, "0.074") and shown(math.sin(kg) ** 2 - om_l2, "-0.15"),
+          f"green: k^2 - omega_c^2 = {kg * kg - om_c2:.4f}, sin^2 k - omega_l^2 = "
+          f"{math.sin(kg) ** 2 - om_l2:.4f} (by hand)")
+    # theory.md: the mean flow mu = 1/(v_g^2 - 1) adds 2 alpha^2/(omega (1 - v_g^2)) to g2
+    from generated import soliton as GS
+    worst = 0.0
+    for _ in range(20):
+        p_ = (rng.uniform(0.05, 3), rng.uniform(1.5, 3.5), rng.uniform(0.005, 0.05),
+              rng.uniform(0.005, 0.05))
+        w_, v_ = GL.omega(*p_), GL.group_velocity(*p_)
+        worst = max(worst, abs(GS.lattice_g2_mean_flow(*p_) / (2 * p_[1] ** 2 / (w_ * (1 - v_ * v_)))
+                               - 1), abs(GL.mean_flow_coefficient(*p_) * (v_ * v_ - 1) - 1))
+    claim("docs/theory.md", "and the induced mean flow mu = 1/(v_g^2 - 1), which adds", worst < 1e-12,
+          f"generated mean flow = 1/(v_g^2 - 1) and its g2 part 2 alpha^2/(omega (1 - v_g^2)) at 20 "
+          f"random points: worst {worst:.1e}")
     # flexmm-lossy: theta decays at gamma_theta alpha^2 / 2
     claim("docs/models.md", "θ decays at `gamma_theta` α²/2", shown(1e-3 * 2.5 ** 2 / 2, "0.003125"),
           "gamma_theta alpha^2/2 = 1e-3 x 6.25 / 2 = 0.003125")
