@@ -201,6 +201,18 @@ def part_cli() -> None:
                 if t.endswith("-"):
                     continue
                 _token(rel, i, t in scenes, f"cli: scene {t} is registered")
+    # docs/models.md's built-in table: the names, fields and defaults `flexmm models` lists
+    listing = py(["-m", "cli", "models"]).stdout
+    listed = {m.group(1): m.group(2).replace(" ", "").split(",")
+              for m in re.finditer(r"^([\w-]+)\s+fields ([\w, ]+?)\s{2,}", listing, re.M)}
+    table = {m.group(1): m.group(2).replace(" ", "").split(",")
+             for m in re.finditer(r"^\| `([\w-]+)` \| ([\w, ]+) \|",
+                                  (ROOT / "docs/models.md").read_text(), re.M)}
+    claim("docs/models.md", "| name | fields | what |", table == listed,
+          f"cli: the built-in table ({len(table)} models, their fields) = `flexmm models` "
+          f"({len(listed)})")
+    claim("docs/models.md", "(`gamma_theta`, `gamma_U`, 1e-3 each by default)",
+          "gamma_theta=0.001, gamma_U=0.001" in listing, "cli: flexmm-lossy's damping defaults")
     # the cheap epilog examples run as written (the ones with --simulate or `run` are
     # tests/test_cli_help.py's; ~1 min here)
     with tempfile.TemporaryDirectory() as tmp:
