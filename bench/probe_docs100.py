@@ -458,6 +458,36 @@ def part_physics() -> None:
         verdict_ok = ("MI" in gr[8]) == (g > 0)
         claim("README.md", f"{pt:>5}  {case:>8}", ok and verdict_ok,
               f"{pt} {case}: {detail}; verdict {gr[8].strip()!r} for g {g}")
+    # simulator.md's full-run table: the paper NLS's peak |g2| a^2/4 and half-gain edge
+    # (sigma = sigma_max/2 at q^2 = g a^2 (1 + sqrt3/2)/2), and the carrier's frequency
+    for pt, case, peak, edge in (("blue", "coupled", "4.97e-3", "0.883"),
+                                 ("green", "rotation", "2.11e-3", "0.605")):
+        g2_, g_ = float(tab[(pt, case)][4]), float(tab[(pt, case)][5])
+        pk, ed = abs(g2_) * 0.02 ** 2 / 4, 0.02 * math.sqrt(g_ * (1 + math.sqrt(3) / 2) / 2)
+        claim("docs/simulator.md", f"| peak gain, {pt} case {'II' if case == 'coupled' else 'I'} | {peak}",
+              shown(pk, peak), f"{pt} {case}: paper NLS peak |g2| a^2/4 = {pk:.3e} (a = 0.02)")
+        claim("docs/simulator.md", f"| half-gain band edge, {pt} case", shown(ed, edge),
+              f"{pt} {case}: half-gain edge {ed:.4f} (by hand from sigma(q))")
+    om_l = 2.5 * math.sqrt(6 * 0.02151 - 0.012 * math.sin(0.92991 / 2) ** 2)
+    fr = om_l - 1e-4 * float(tab[("green", "coupled")][4])
+    claim("docs/simulator.md", "discrete2 - eps^2 g2 A0^2 = 0.8836", shown(fr, "0.8836"),
+          f"green II: discrete2 {om_l:.5f} - eps^2 g2 = {fr:.5f}")
+    gg = tab[("green", "coupled")]
+    om_g = 2.5 * math.sqrt(6 * 0.02151 - 0.003 * 0.92991 ** 2)
+    vg_g = -2.5 ** 2 * 0.003 * 0.92991 / om_g
+    g1 = -2.5 ** 2 * 0.003 / om_g - vg_g * vg_g / om_g     # continuum g1 at the green point
+    claim("docs/reliability.md", "g_coupled(k=0.92991, delta=-0.003) = -2.82e3 < 0 (g2 > 0, g1 < 0)",
+          float(gg[5]) < 0 and float(gg[4]) > 0 and g1 < 0 and shown(float(gg[5]), "-2.82e3"),
+          f"erratum 1: green II g {gg[5]}, g2 {gg[4]} > 0, g1 {g1:.6f} < 0 (hand dispersion)")
+    # README's coefficients example: peak |g2| a^2/4, e-folding 1/peak, U at 2k = |c| amp^2/2
+    pk = 1.3722 * 0.02 ** 2 / 4
+    claim("README.md", "peak gain (1/T)                         0       0.00013722",
+          shown(pk, "0.00013722"), f"coefficients: peak |g2| a^2/4 = {pk:.5g}")
+    claim("README.md", "e-folding time (T)                      -             7288",
+          shown(1 / 1.3722e-4, "7288"), f"coefficients: e-folding 1/peak = {1 / 1.3722e-4:.1f}")
+    claim("README.md", "U at 2k = |c| amp^2/2             6.649e-05        5.001e-05",
+          shown(0.332447 * 0.02 ** 2 / 2, "6.649e-05") and shown(0.250034 * 0.02 ** 2 / 2, "5.001e-05"),
+          "coefficients: U at 2k = |c| amp^2/2 from the printed |c|")
     worst = 0.0
     for _ in range(40):
         al, Ks, Kt, k = (rng.uniform(1.5, 3.5), rng.uniform(0.005, 0.05),
