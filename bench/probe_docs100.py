@@ -499,6 +499,28 @@ def part_physics() -> None:
         worst = max(worst, abs(GC.g_rotation(k, al, Ks, Kt) - gf) / abs(gf))
     claim("docs/theory.md", "g = -(delta k^2 + 6 K_theta) /", worst < 1e-10,
           f"case I g formula vs generated g_rotation at random materials: worst {worst:.1e}")
+    # theory.md's singular points: NumPy semantics, never an exception
+    import warnings
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        sing = dict(g1=GC.g1(0.8, 2.5, 0.02, 0.02), g=GC.g_rotation(0.8, 2.5, 0.02, 0.02),
+                    cut=GC.mi_cutoff(-5.0, 1.0), fast=GC.mi_fastest(-5.0, 1.0),
+                    out=GC.mi_growth_rate(100.0, 50.0, 1.0), inb=GC.mi_growth_rate(1.0, 50.0, 1.0),
+                    im=GC.omega(3.5, 2.5, 0.01, 0.02))
+    kr = math.sqrt(6 * 2.5 ** 2 * 0.01551 / (1 - 2.5 ** 2 * 0.003))   # k^2 = omega^2 (continuum)
+    near = abs(GC.u2_coefficient(kr + 1e-7, 2.5, 0.01851, 0.01551))
+    far = abs(GC.u2_coefficient(kr + 0.1, 2.5, 0.01851, 0.01551))
+    claim("docs/theory.md", "Singular points follow NumPy semantics", sing["g1"] == 0
+          and math.isinf(sing["g"]) and math.isnan(sing["cut"]) and math.isnan(sing["fast"])
+          and sing["out"] == 0 and sing["inb"] > 0 and len(caught) > 0,
+          f"g1 = 0, g = {sing['g']} at delta = 0; mi_cutoff/fastest NaN for g < 0; growth 0 "
+          f"outside the band; {len(caught)} RuntimeWarning(s), no exception")
+    claim("docs/theory.md", "diverge at the resonance k^2 = omega^2", near > 1e4 * far,
+          f"u2 at k_r + 1e-7 ({near:.3g}) against k_r + 0.1 ({far:.3g}), k_r = "
+          f"sqrt(6 alpha^2 K_theta / (1 - alpha^2 delta)) = {kr:.5f} by hand")
+    claim("docs/maps.md", "(δ < 0, k² > 6 K_θ / |δ|)", math.isnan(sing["im"])
+          and not math.isnan(GC.omega(3.4, 2.5, 0.01, 0.02)),
+          "continuum omega NaN at delta -0.01, K_theta 0.02, k 3.5 (k^2 > 12), real at 3.4")
     # erratum 4: the rotational branch's edges, from eq. discrete2's generated form
     worst = 0.0
     for _ in range(20):
