@@ -36,7 +36,7 @@ What it checks (each line names the page and line of the claim, ``ok`` or ``!!``
 
     python -m bench.probe_docs100 [--part names|cli|physics|measured|remeasured|tested|keys|runs|install|constants]
 
-Exit 1 where any claim disagrees (``!!``); the list at the end. ~1-2 min on the 2-core VM.
+Exit 1 where any claim disagrees (``!!``); the list at the end. ~2-3 min on the 2-core VM.
 """
 
 from __future__ import annotations
