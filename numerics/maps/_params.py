@@ -75,15 +75,17 @@ def parse_spec(text: str, name: str) -> np.ndarray:
                                   f"and {stop:g}, so it would drop {stop:g}; give num >= 2 "
                                   f"for both ends, or the single value {start:g}")
             values = np.linspace(start, stop, min(num, MAX_AXIS + 1))  # > MAX_AXIS: refused
+            asked = num  # the count the SPEC asks for, not linspace's capped one
         else:
             values = np.array([float(v) for v in text.split(",")])
+            asked = values.size
     except _DropsBound:
         raise
     except ValueError:
         raise ValueError(f"{name}: cannot read SPEC {text!r}; give v1,v2,... or "
                          "start:stop:num (num >= 1, inclusive)") from None
     if values.size > MAX_AXIS:
-        raise ValueError(f"{name}: SPEC {text!r} asks for {values.size} values; at most "
+        raise ValueError(f"{name}: SPEC {text!r} asks for {asked} values; at most "
                          f"{MAX_AXIS} per axis")
     if not np.all(np.isfinite(values)):
         raise ValueError(f"{name}: SPEC {text!r} holds a non-finite value")
