@@ -9,7 +9,7 @@ from types import SimpleNamespace
 import numpy as np
 
 import scenes
-from scenes._runner import Context
+from scenes import Context
 
 ALPHA, K_S, EPS = 2.5, 0.01851, 0.01  # the paper's Fig. 2 caption and eq. `IC`
 
