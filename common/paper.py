@@ -4,9 +4,14 @@ Every layer reads them from here (derivation report, scenes, tests, benchmarks),
 number the paper states is typed exactly once. Pure Python: importing this module costs
 nothing (no SymPy, no NumPy, no Numba).
 
-Sources in the paper (LaTeX labels): alpha and K_s, Sec. 'Parametric study' and Fig. 3;
-the blue and green points, Fig. 4 and Figs. 5-8; eps, the noise b0 and the chain of N = 500
-sites integrated by RK4 with dt = 0.05 up to T = 5000, Sec. 'Numerical results' (eq. `IC`).
+Sources in the paper (LaTeX labels): K_s, Fig. 2's caption (Figs. 3-4 state no K_s:
+their maps take the test points' K_s, K_theta = K_s - delta); alpha = 2.5, Figs. 2 and 4
+and Sec. 'Numerical simulations of the flexMM' (Fig. 3 adds 1.5 and 3.5); the blue and
+green points, Fig. 4's caption and Figs. 5-8; eps, the noise b0 and the periodic chain of
+N = 500 sites integrated by RK4, the same section (eq. `IC`). The paper states no time
+step and no run length: T = 5000 is what its figures imply (Fig. 9's green run is shown
+at t = 5000; Fig. 5's stable run lasts 'more than 500 oscillations', T > 4076), dt = 0.05
+is this project's choice.
 """
 
 from __future__ import annotations
@@ -34,7 +39,8 @@ AMPLITUDE = 2 * EPS * A0
 NOISE = 1e-3
 #: Number of sites of the periodic chain.
 N = 500
-#: Duration and time step of the paper's RK4 runs.
+#: Duration and time step of the RK4 runs of Figs. 5-9 (neither stated in the paper: T from
+#: Fig. 9's t = 5000 and Fig. 5's 'more than 500 oscillations'; dt our choice).
 T_END = 5000.0
 DT = 0.05
 #: Times at which Fig. 9 shows the spectra, by (point, A0) (caption; erratum 2).

@@ -2,7 +2,7 @@
 
 A scene registers itself with :func:`register`; ``flexmm scenes`` lists the registry and
 the tests run every registered scene. A check says what it compares and what is expected:
-agreement, or a known disagreement with the paper (an erratum or a README finding), so
+agreement, or a known disagreement with the paper (an erratum or a finding in docs/), so
 the report calls "FAIL" only what nobody expected.
 """
 
@@ -114,7 +114,7 @@ def get_scene(name: str) -> Scene:
 
 def known(reason: str) -> str:
     """Expectation of a check that records a known disagreement with the paper;
-    ``reason`` names it: "erratum 6" or "finding: <README section>"."""
+    ``reason`` names it: "erratum 6" or "finding: <what>, <docs page and section>"."""
     return f"paper disagrees ({reason})"
 
 

@@ -2,7 +2,9 @@
 
 Eqs. `discrete1`, `discrete2` (solid, generated from eq. `norm`) against `continuum1`,
 `continuum2` (dashed). Checks the paper's claim that the continuum captures the lattice
-for q <= 1: the largest relative gap of the rotational branch there. Under a second.
+for q <= 1: the largest relative gap of either branch there, on a grid that ends at q = 1
+(where both gaps are largest: 4.07% rotational, panel a; 4.29% longitudinal).
+About 1 s, mostly the figure files.
 """
 
 from __future__ import annotations
@@ -26,17 +28,26 @@ def compute(ctx):
     q = np.linspace(0, np.pi, 200 if ctx.quick else 600)
     data = {"q": q, "alpha": paper.ALPHA, "K_s": paper.K_S, "K_theta": list(K_THETAS)}
     gaps = {}
-    sel = (q > 0) & (q <= 1)
+    # the gaps grow with q: the plotting grid need not hit q = 1, this one ends there
+    q1 = np.linspace(0, 1, 201)[1:]
     for kt, lab in zip(K_THETAS, "abcd"):
-        wd2 = discrete_omega_rotation(q, Material(paper.ALPHA, paper.K_S, kt))
+        material = Material(paper.ALPHA, paper.K_S, kt)
+        wd2 = discrete_omega_rotation(q, material)
         with np.errstate(invalid="ignore"):
             wc2 = co.omega(q, paper.ALPHA, paper.K_S, kt)
-        gaps[str(kt)] = float(np.max(np.abs(wc2[sel] - wd2[sel]) / wd2[sel]))
+        lattice = discrete_omega_rotation(q1, material)
+        gaps[str(kt)] = float(np.max(np.abs(co.omega(q1, paper.ALPHA, paper.K_S, kt)
+                                            - lattice) / lattice))
         data[f"discrete2_{lab}"], data[f"continuum2_{lab}"] = wd2, wc2
     data["discrete1"] = discrete_omega_longitudinal(q)
+    lattice = discrete_omega_longitudinal(q1)
+    gaps["longitudinal"] = float(np.max(np.abs(q1 - lattice) / lattice))  # continuum1: q
     gap = max(gaps.values())
-    checks = [check("continuum vs discrete rotational branch, q <= 1 (paper: 'captures well')",
-                    f"gap < {GAP_TOLERANCE:.0%}", f"max gap {gap:.2%}", gap < GAP_TOLERANCE)]
+    worst = max(gaps, key=gaps.get)
+    where = "longitudinal" if worst == "longitudinal" else f"rotational, K_theta = {worst}"
+    checks = [check("continuum vs discrete dispersion, both branches, q <= 1 (paper: "
+                    "'captures well')", f"gap < {GAP_TOLERANCE:.0%}",
+                    f"max gap {gap:.2%} ({where})", gap < GAP_TOLERANCE)]
     return data, {"max_relative_gap_q_le_1": gaps, "checks": checks}
 
 
@@ -62,4 +73,4 @@ def plot(data):
 
 
 SCENE = register(Scene("fig2-dispersion", "discrete vs continuum dispersion, four K_theta "
-                       "(Fig. 2)", "Fig. 2 (disp_rel_example)", "<1 s", False, compute, plot))
+                       "(Fig. 2)", "Fig. 2 (disp_rel_example)", "~1 s", False, compute, plot))

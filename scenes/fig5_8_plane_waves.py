@@ -3,7 +3,8 @@
 |theta| over (n, T) and its k-spectrum (and U for case II). Checks the sign of g (the
 paper's NLS) against the simulated sideband growth (``numerics.stability_verdict``:
 the largest non-carrier, non-harmonic theta component relative to the carrier grows more
-than 20x over the run for "MI"). About 2 s each (quick under 1 s).
+than 20x over the run for "MI"). About 2 s for case I, 3 s for case II (quick 1 s and
+2 s), mostly drawing and writing the figure files (case II draws four image panels).
 """
 
 from __future__ import annotations
@@ -97,6 +98,9 @@ def plot(data):
     return reserve_quick_stamp(fig, data)
 
 
+#: run time (full, quick) by case: measured on 2 cores, mostly the figure files
+RUNTIME = {"rotation": "~2 s (quick ~1 s)", "coupled": "~3 s (quick ~2 s)"}
+
 for _name, _point, _case, _fig in (
         ("fig5-blue-rotation", "blue", "rotation", "Fig. 5"),
         ("fig6-blue-coupled", "blue", "coupled", "Fig. 6"),
@@ -104,5 +108,5 @@ for _name, _point, _case, _fig in (
         ("fig8-green-coupled", "green", "coupled", "Fig. 8")):
     register(Scene(_name, f"{_fig}: N = 500 plane wave, {_point} point, case "
                    f"{case_label(_case)}; |theta|(n,T) and spectrum", _fig,
-                   "~2 s (quick <1 s)", True,
+                   RUNTIME[_case], True,
                    functools.partial(compute, point=_point, case=_case, figure=_fig), plot))

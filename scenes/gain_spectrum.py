@@ -4,8 +4,8 @@ Growth rate of every sideband from log-linear fits of |theta_hat(q, t)| over the
 stage (from 5x growth to 1% of the carrier), mean and spread over seeds, for the two
 unstable runs; against the paper's eps^2 |g1| Omega_I (eqs. `NLS`, `Omega_I`). Reports
 peak gain and band edge (where the gain falls to half its peak). The paper's NLS is
-known to overestimate the peak by 25-45% (README, 'Beyond the paper'): that check records
-a finding. About 15 s (quick about 3 s).
+known to overestimate the peak by 35-60% (docs/simulator.md; docs/theory.md 'Beyond the
+paper'): that check records a finding. About 15 s (quick about 3 s).
 """
 
 from __future__ import annotations

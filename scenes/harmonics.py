@@ -6,7 +6,7 @@ c_L = i sin 2k / (8 (sin^2 k - omega^2)) at the measured carrier frequency and a
 a: |c_L| a^2 / 2), separated from the free waves the paper's initial condition launches
 (erratum 6); and the measured carrier frequency against `continuum2`, `discrete2` and
 discrete2 - eps^2 g2 A0^2 (the NLS shift). The continuum u2 and the continuum frequency
-shift are known to be wrong here (README, 'Second harmonic'): those checks record
+shift are known to be wrong here (docs/simulator.md, 'Second harmonic'): those checks record
 findings. About 2 s (quick under 1 s).
 """
 
