@@ -13,6 +13,7 @@
 """
 
 import json
+import math
 import time
 
 import numpy as np
@@ -128,3 +129,49 @@ def test_a_map_of_zero_damping_is_lossless_and_a_damping_axis_from_zero_lossy():
                                          exact=True)
     assert axis.lossy and "exact" in axis.amplified()
     assert "paper" not in axis.theory_columns()  # damped cells have no continuum NLS
+
+
+def _no_plane_wave_line(capsys, case, k):
+    assert main(["point", "--alpha", "2.5", "--K-s", "0.01851", "--K-theta", "0.01551",
+                 "--k", str(k), "--case", case, "--start", "paper", "--N", "200",
+                 "--amplitude", "0.05"]) == 0
+    return next(line for line in capsys.readouterr().out.splitlines()
+                if "no plane wave" in line)
+
+
+def test_eq_ic_not_quasi_periodic_in_case_i_names_its_counter_wave_not_u(capsys):
+    import re
+
+    line = _no_plane_wave_line(capsys, "rotation", 3.0)  # k snaps to 2 pi 95/200
+    assert "omega_U" not in line  # case I freezes U (the old text named 2 Omega = omega_U(2k))
+    m = re.search(r"\(([\d.]+) of its amplitude: theta_dot set by the frequency ([\d.]+), "
+                  r"not the lattice's omega\(k\) = ([\d.]+)", line)
+    assert m, line
+    share, w_start, w = map(float, m.groups())
+    k, mat = 2 * math.pi * 95 / 200, (2.5, 0.01851, 0.01551)
+    assert w == pytest.approx(_omega_theta(k), rel=1e-3)
+    # eq. `continuum2` by hand: eq. IC's theta_dot frequency alpha sqrt(6 K_theta + delta k^2)
+    alpha, K_s, K_theta = mat
+    assert w_start == pytest.approx(alpha * math.sqrt(6 * K_theta + (K_s - K_theta) * k**2),
+                                    rel=1e-3)  # printed to 4 digits
+    # theta = a cos(k n), theta_dot = a w_start sin(k n) is a wave at +k of (1 + w_start/w)/2
+    # and one at -k of (1 - w_start/w)/2: their ratio, from the printed (4-digit) numbers
+    assert share == pytest.approx(abs(w_start - w) / (w_start + w), rel=2e-2)
+
+
+def _omega_theta(k, alpha=2.5, K_s=0.01851, K_theta=0.01551):
+    """eq. `discrete2` by hand from the energy linearised at U = 0: omega^2 / alpha^2 =
+    4 K_s sin^2(k/2) + 4 K_theta cos^2(k/2) + 2 K_theta."""
+    return alpha * math.sqrt(4 * K_s * math.sin(k / 2)**2 + 4 * K_theta * math.cos(k / 2)**2
+                             + 2 * K_theta)
+
+
+def test_eq_ic_near_u_resonance_in_case_ii_names_it(capsys):
+    line = _no_plane_wave_line(capsys, "coupled", 0.97)
+    assert "2 Omega = omega_U(2k)" in line and "the wave at -k" not in line, line
+    # by hand at k = 2 pi 31/200: omega_U(q) = 2 sin(q/2) (mass 4, bond 2 (dU)^2), the
+    # detuning |2 omega - omega_U(2k)| / (2 omega), printed to 0.1%
+    k = 2 * math.pi * 31 / 200
+    w = _omega_theta(k)
+    off = float(line.split("omega_U(2k), ")[1].split("%")[0]) / 100
+    assert off == pytest.approx(abs(2 * w - 2 * math.sin(k)) / (2 * w), abs=1e-3)
