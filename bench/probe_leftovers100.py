@@ -165,12 +165,14 @@ def part4(tmp):
                      or "carrier damping" in line]
             say(4, f"{name} {command}", code == 0 and "damping:  zero" in out and not lines,
                 f"exit {code}; loss lines {lines[:2]}")
-        code, out, _, _ = cli("map", *zero[:-2], "--param",
-                              "beta=0.5:1.0:2" if "fput" in name else "K_theta=0.01:0.02:2",
-                              "--k", "0.8:1.2:2", "--N", "64", "--theory-only", "--exact",
-                              "--out", str(tmp / f"zero-{name}"))
+        model = [a for a in zero if not a.startswith("--k") and a not in ("1", "2.5")]
+        code, out, err, _ = cli("map", *model, "--param",
+                                "beta=0.5:1.0:2" if "fput" in name else "K_theta=0.01:0.02:2",
+                                "--k", "0.8:1.2:2", "--N", "64", "--theory-only", "--exact",
+                                "--out", str(tmp / f"zero-{name}"))
         say(4, f"{name} map", code == 0 and "damping:  zero" in out and "observable" not in
-            out, out.splitlines()[1][:100] if code == 0 else "failed")
+            out, next((x for x in out.splitlines() if x.startswith("damping")), "")
+            if code == 0 else f"exit {code}: {err.strip()[-150:]}")
 
 
 def omega_theta(k, alpha, K_s, K_theta):

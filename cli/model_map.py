@@ -169,7 +169,7 @@ def run_map(args) -> int:
     log(f"units: {units.describe()} (the store's numbers in lattice units, the factors in "
         "its attributes time_unit_s and length_unit_m)")
     if not params.lossy and (note := zero_damping_note(model)):  # no damping axis either
-        log(note.replace("these answers", "this map"))
+        log(note.replace("so are these answers", "so is this map"))
     if ring:  # as the paper chain's map says it: k = pi on 33 sites is 3.046, not pi
         ks = [float(v) for v in (x[1] if x[0] == "k" else [k_fixed])]
         if moved := [(a, b) for a in ks if abs((b := snap_ring(a, args.N)[0]) - a) > 1e-9 * a]:
