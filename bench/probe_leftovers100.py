@@ -112,8 +112,7 @@ bond = "eps*((1 + u_next - u)**(-12) - 2*(1 + u_next - u)**(-6) + 1)"
 
 def part3():
     from energy import load_model, parse_model
-    from numerics.models import exact_gain, ring_misses, snap_ring
-    from numerics.models._exact import hill_spectrum
+    from numerics.models import exact_gain, hill_spectrum, ring_misses, snap_ring
 
     model = load_model(parse_model(LJ))
     for k in [1.0, *RNG.uniform(0.9, 1.1, 2)]:
