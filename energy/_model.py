@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 import hashlib
 import importlib
 import importlib.util
@@ -243,7 +244,7 @@ class Model:
                                 if used else ": give each velocity a positive mass"))
         return m
 
-    @property
+    @functools.cached_property
     def lossy(self) -> bool:
         """Whether the model damps anything at these values: a [dissipation] table whose
         Rayleigh function is not zero here (probe 100: ``flexmm-lossy`` at gamma_theta =
