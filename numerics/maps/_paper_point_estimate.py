@@ -16,13 +16,15 @@ def estimate_paper_point(material, case: str, k: float, amplitude: float, *, N: 
                          save_every: float, figure: bool = True) -> PointEstimate:
     """The wall time of ``seeds`` runs of ``t_end`` on the ring of ``N`` sites with
     ``method`` at ``dt`` (a simulated point's, ``point_step``), and its figure, slowed by
-    the load: a run of a few steps loads the kernels, then PROBE_STEPS steps are timed
-    (CPU seconds) and scaled to ``t_end`` (the run's cost is its steps)."""
+    the load: a run of a few steps loads the kernels, then PROBE_STEPS steps (at most a
+    tenth of the run, at least 200) are timed (CPU seconds) and scaled to ``t_end`` (the
+    run's cost is its steps)."""
     run = dict(material=material, case=case, N=N, k=k, amplitude=amplitude, seed=0,
                method=method, dt=dt, start=start, progress=False, store="spectrum",
                energy_tolerance=1.0)
     simulate_chain(**run, t_end=min(t_end, 4 * dt), save_every=min(t_end, 4 * dt))
-    probe_t = min(t_end, PROBE_STEPS * dt)
+    # at most a tenth of a run (not below 200 steps): a short run is not run twice
+    probe_t = min(t_end, PROBE_STEPS * dt, max(t_end / 10, 200 * dt))
     t0 = time.process_time()
     simulate_chain(**run, t_end=probe_t, save_every=min(save_every, probe_t))
     one = (time.process_time() - t0) * t_end / probe_t
