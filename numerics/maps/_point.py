@@ -386,7 +386,7 @@ def measure_point(material, *args, **kwargs):
     Parameters
     ----------
     material : Material or ModelPointSpec
-    case, k, amplitude, N, start, simulate, t_end, seeds
+    case, k, amplitude, N, start, simulate, t_end, seeds, on_estimate, estimate_figure
         A Material's point: see ``_measure_material`` (below).
 
     Returns
