@@ -442,7 +442,7 @@ def estimate_model_map(params, workers: int, scheduler: str | None = None,
     # the summary, the figure and the cluster's close after the cells, in the client
     total = (startup + MODEL_MAP_TAIL_SECONDS) * alone \
         + (warmup + (theory + runs) / workers) * slowdown
-    startup += warmup
+    startup += warmup + MODEL_MAP_TAIL_SECONDS  # the fixed costs, the end among them
     return MapEstimate(total, startup, theory, runs, slowdown, load, cores, alone)
 
 
