@@ -101,7 +101,7 @@ def _overdamped_text(ds, params) -> str | None:
     from energy import ModelError
     from numerics.models import carrier, damped_frequencies
 
-    if not params.lattice_model.lossy:
+    if not params.lossy:
         return None
     shape = ds["no_wave"].shape
     hit = []

@@ -123,6 +123,10 @@ def report(args, point, units, since=None) -> dict:
                                 str(Path(args.out) / "point.png")]} if args.out else {}))
         return out
     print(f"model:    {model.describe()}")
+    from .models import zero_damping_note
+
+    if note := zero_damping_note(model):
+        print(note)
     # the k asked, where the ring moved it (by 30% from 1 on N = 9), as the paper's point
     asked = "" if f"{out['k']:g}" == f"{args.k:g}" else f", asked {args.k:g}"
     print(f"carrier:  k = {out['k']:g} rad/site (2 pi m / N on the ring of N = {args.N}"

@@ -53,7 +53,8 @@ class Units:
 
 
 #: the NLS is a weakly nonlinear expansion: past this ratio of the plane wave's own
-#: frequency shift eps^2 |g2| A0^2 to omega its verdicts and bands are not to be trusted
+#: frequency shift eps^2 |g2 - g2_mf| A0^2 (``nls_summary``'s, the mean flow's part left
+#: out: the exact wave's) to omega its verdicts and bands are not to be trusted
 WEAK_NONLINEARITY = 0.1
 
 
@@ -67,7 +68,8 @@ def weak_nonlinearity_note(co: dict, amplitude: float,
     if not ratio > WEAK_NONLINEARITY:
         return None
     return (f"warning: at amplitude {amplitude:g} the plane wave's own frequency shift "
-            f"(eps^2 |g2| A0^2) is {ratio:.0%} of omega: beyond the weakly nonlinear "
+            f"(eps^2 |g2 - g2_mf| A0^2, the mean flow's part g2_mf left out) is {ratio:.0%} "
+            "of omega: beyond the weakly nonlinear "
             f"expansion the NLS rests on; ask the exact lattice theory ({remedy})")
 
 

@@ -11,7 +11,7 @@ from pathlib import Path
 from ._map_guards import cells_done, check_rest, option
 from ._model_map_figure import OBSERVABLE, VERDICT_ORDER, _plot_map
 from ._model_map_summary import _no_wave_text, _overdamped_text, _print_observable, _summary
-from .models import _emit, branch_of, load
+from .models import _emit, branch_of, load, zero_damping_note
 from .point import MIN_T_END
 
 
@@ -161,13 +161,15 @@ def run_map(args) -> int:
         + (f" and {seeds} run(s) per cell (N = {args.N}, T = "
            + (f"{t_end:g}" if t_end is not None else "from each cell's "
               + ("exact" if start == "exact" else f"{start}-start theory's") + " rate"
-              + (" and its peak time" if model.lossy else ""))
+              + (" and its peak time" if params.lossy else ""))
            + ("; with losses: noise on the carrier field, until A(t) halves, T a cap)"
-              if model.lossy else ")")
+              if params.lossy else ")")
            if simulated else "")
         + f" on {n_workers or local_cores()} worker(s)")
     log(f"units: {units.describe()} (the store's numbers in lattice units, the factors in "
         "its attributes time_unit_s and length_unit_m)")
+    if not params.lossy and (note := zero_damping_note(model)):  # no damping axis either
+        log(note.replace("so are these answers", "so is this map"))
     if ring:  # as the paper chain's map says it: k = pi on 33 sites is 3.046, not pi
         ks = [float(v) for v in (x[1] if x[0] == "k" else [k_fixed])]
         if moved := [(a, b) for a in ks if abs((b := snap_ring(a, args.N)[0]) - a) > 1e-9 * a]:

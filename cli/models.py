@@ -233,6 +233,8 @@ def run_coefficients(args) -> int:
           f"({co['field']} = a cos(k n - omega t) + harmonics + mean; a measures "
           f"{co['field']}: {co['field_rule']})")
     print(f"units:    {units.describe()}")
+    if note := zero_damping_note(model):
+        print(note)
     parts = co["g2_parts"]
     rows = [("omega (1/time)", co["omega"], "omega"),
             ("group velocity (site/time)", co["group_velocity"], "group_velocity"),
@@ -416,3 +418,17 @@ def run_soliton(args) -> int:
     if lossy:
         print(lossy)
     return 0
+
+
+def zero_damping_note(model) -> str | None:
+    """One line where a model file's [dissipation] damps nothing at its values: the
+    answers are the lossless chain's (``Model.lossy`` False), said so; else None."""
+    if model.lossy or not model.lattice.lossy:
+        return None
+    from numerics.maps import damping_parameters
+
+    names = damping_parameters(model.lattice)
+    at = ", ".join(f"{n} = {model.params[n]:g}" for n in names)
+    return (f"damping:  zero at these values ({at or 'its [dissipation]'}): the chain is "
+            "lossless here, and so are these answers")
+

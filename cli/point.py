@@ -9,6 +9,7 @@ from __future__ import annotations
 import contextlib
 import json
 import math
+import time
 from pathlib import Path
 
 import numpy as np
@@ -16,6 +17,7 @@ import numpy as np
 from common.files import write_results
 from common.output import prepare_output, strict_json
 from common.paper import EPS
+from common.text import duration
 from numerics import Material
 from numerics.lattice import (
     DECIDE_E_FOLDINGS,
@@ -249,10 +251,17 @@ def run_point(args, log=print) -> dict:
             f"run(s) of the ring of N = {args.N} sites, T = "
             + (f"{args.t_end:g}" if args.t_end else "9 e-foldings of the exact rate (at most "
                f"{T_CAP:g})") + ": seconds to minutes")
+    said = []  # (when the runs' estimate was said, its seconds), as a model point's
+
+    def on_estimate(est):
+        _say_estimate(log, est, args.N)
+        said.append((time.perf_counter(), est.seconds))
+
     # without runs said only where slow (the predicted growth: 15 s under load)
     with (contextlib.nullcontext() if args.simulate else said_if_slow(_stderr, SLOW_PAPER_POINT)):
         res = measure_point(mat, args.case, args.k, amplitude, N=args.N, start=args.start,
-                            simulate=args.simulate, t_end=args.t_end, seeds=args.seeds)
+                            simulate=args.simulate, t_end=args.t_end, seeds=args.seeds,
+                            on_estimate=on_estimate, estimate_figure=bool(args.out))
     result = res.as_dict(units={**UNITS, "seconds_per_T": units.seconds_per_T,
                                 "metres_per_site": units.metres_per_site})
     rows = _rows(res)
@@ -279,8 +288,21 @@ def run_point(args, log=print) -> dict:
                       (res.simulated or {}).get("no_rate"))
         write_results({out / "point.png": png,
                        out / "point.json": json.dumps(strict_json(result), indent=2) + "\n"})
+    if said:
+        log(f"took {duration(time.perf_counter() - said[0][0])} after the estimate "
+            f"(estimated {duration(said[0][1])})")
+    if args.out:
         log(f"wrote {out / 'point.json'} and {out / 'point.png'}")
     return result
+
+
+def _say_estimate(log, est, N) -> None:
+    """The runs' estimate (``PointEstimate``, one short run measured here), said before
+    them, as ``flexmm point --model --simulate`` says its own."""
+    log(f"estimate: about {duration(est.seconds)} more ({est.seeds} run(s) of T = "
+        f"{est.t_end:g} on N = {N} sites ~{est.seeds * est.run:.2g} s of CPU, measured here"
+        + (f"; the cores shared (load average {est.load:.1f} on {est.cores}): "
+           f"{est.slowdown:.1f}x slower, counted" if est.slowdown > 1 else "") + ")")
 
 
 def _ring_note(res) -> str | None:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 import hashlib
 import importlib
 import importlib.util
@@ -243,10 +244,18 @@ class Model:
                                 if used else ": give each velocity a positive mass"))
         return m
 
-    @property
+    @functools.cached_property
     def lossy(self) -> bool:
-        """Whether the model has a [dissipation] table."""
-        return self.lattice.lossy
+        """Whether the model damps anything at these values: a [dissipation] table whose
+        Rayleigh function is not zero here (probe 100: ``flexmm-lossy`` at gamma_theta =
+        gamma_U = 0 printed a carrier damping of 0 and an unbounded amplification, where
+        the lossless answer is the whole story). ``lattice.lossy`` says whether the file
+        has the table (a map over a damping axis from 0 is a lossy map)."""
+        if not self.lattice.lossy:
+            return False
+        import numpy as np
+
+        return any(bool(np.any(C != 0)) for C in self.damping)
 
     @property
     def damping(self):
@@ -280,7 +289,7 @@ class Model:
         vals = dict(self.params)
         vals.update({p: checked[p] for p in params})
         out = Model(self.lattice, MappingProxyType(vals), self.code)
-        if out.lossy:
+        if out.lattice.lossy:
             out.damping  # noqa: B018 (checks R >= 0 at the new values)
         return out
 

@@ -191,7 +191,7 @@ def test_a_prediction_past_the_linear_stage_says_a_run_measures_less(capsys):
 
 
 def test_the_nls_warns_beyond_weak_nonlinearity(capsys):
-    """The NLS's own frequency shift eps^2 g2 A0^2 is the exact plane wave's (case I,
+    """The NLS's own frequency shift -eps^2 g2 A0^2 is the exact plane wave's (case I,
     semi-discrete: to 0.1% at amplitude 0.005, where O(a^4) is 1e-3 of it); past 10% of
     omega the commands say the expansion no longer holds (amplitude 0.5: 89%)."""
     from generated import lattice_coefficients
@@ -200,7 +200,7 @@ def test_the_nls_warns_beyond_weak_nonlinearity(capsys):
     mat = Material(alpha=2.0, K_s=0.03, K_theta=0.02)
     s = nls_summary(mat, "rotation", 1.2, amplitude=0.005, nls=lattice_coefficients)
     exact = plane_wave(mat, "rotation", 1.2, 0.005).omega - s["omega"]
-    assert exact == pytest.approx(-s["frequency_shift"], rel=1e-3)
+    assert exact == pytest.approx(s["frequency_shift"], rel=1e-3)  # Omega - omega (probe 100)
     base = ["coefficients", "--alpha", "1.8", "--K-s", "0.05", "--K-theta", "0.03",
             "--k", "1.234"]
     assert cli(base + ["--amplitude", "0.5"]) == 0

@@ -27,7 +27,8 @@ Run time         estimate_map -> MapEstimate (start-up + cells at this machine's
                  speed, machine_speed, cached), slowed by the load average;
                  estimate_model_map (a model's map: one cell measured here,
                  probe_model_cell -> ModelCellCost); estimate_model_point (a model's
-                 point after its exact theory -> PointEstimate)
+                 point after its exact theory -> PointEstimate); estimate_paper_point
+                 (the paper chain's point: one short run of its ring -> PointEstimate)
 On a GPU         gpu_status (is there one, or what is missing), simulate_cells_gpu
                  (simulate_cell for many cells in one launch), simulate_map_cells_gpu;
                  simulate_model_cells_gpu (any model's cells, its generated force on the
@@ -71,6 +72,7 @@ from ._integrity import store_lock
 from ._model_params import MODE_KIND_CODES, VERDICT_CODES, ModelMapParameters, model_text
 from ._model_point import ModelPoint, ModelPointSpec, PointInputError
 from ._model_point_rows import waves_in_order
+from ._paper_point_estimate import estimate_paper_point
 from ._params import CRITERION, MapParameters, local_cores, parse_spec
 from ._point import (
                      MAX_SEEDS,
@@ -101,7 +103,7 @@ __all__ = [
     "store_lock", "cells_done", "local_cluster", "LOCAL_CLUSTER_CONFIG",
     "simulate_block", "CRITERION", "MapCellError", "local_cores", "MapEstimate",
     "estimate_map", "machine_speed", "ModelCellCost", "probe_model_cell", "estimate_model_map",
-    "PointEstimate", "estimate_model_point",
+    "PointEstimate", "estimate_model_point", "estimate_paper_point",
     "gpu_status", "simulate_cells_gpu", "simulate_map_cells_gpu", "simulate_model_cells_gpu",
     "DEVICE_PATHS", "DevicePath", "register_device_path", "critical_damping", "damping_parameters",
 ]

@@ -304,21 +304,30 @@ class ModelMapParameters:
 
             own += (extra_starts(self.lattice_model)[self.start].column,)
         # what only this model has (the paper chain's continuum NLS: ``paper``)
+        # (none on a lossy map: a damping axis from 0 has an undamped model, damped cells)
         return own + tuple(dict.fromkeys(e.column for e in
-                                         extra_theories(self.lattice_model)))
+                                         extra_theories(self.lattice_model)
+                                         if not self.lossy))
 
     def amplified(self) -> tuple:
         """The theories whose amplification a cell stores: each of ``theory_columns`` for a
         lossy model (``[dissipation]``, issue 42), none for a lossless one."""
         own = ("semidiscrete", "exact", "fourwave")  # an extra theory has no losses
         return (tuple(t for t in self.theory_columns() if t in own)
-                if self.lattice_model.lossy else ())
+                if self.lossy else ())
 
     def simulated_columns(self) -> tuple:
         """The variables a simulated block writes (with ``done``): a lossy model's runs add
         their amplification (``numerics.models.lossy_runs``)."""
-        return SIMULATED_COLUMNS + (LOSSY_SIMULATED_COLUMNS if self.lattice_model.lossy
-                                    else ())
+        return SIMULATED_COLUMNS + (LOSSY_SIMULATED_COLUMNS if self.lossy else ())
+
+    @property
+    def lossy(self) -> bool:
+        """Whether the map is a lossy model's: its model damps at its values, or an axis is
+        a damping parameter (the cells at zero damping then answer the lossless limit).
+        A [dissipation] whose damping is zero over the whole map is the lossless map."""
+        return self.lattice_model.lossy or (self.lattice_model.lattice.lossy
+                                            and self.damping_axis() is not None)
 
     def flag_columns(self) -> dict:
         theory = ["g1", "g2", "k_simulated", "no_wave"] + [f"{kind}_{name}" for name in

@@ -297,9 +297,11 @@ def _predicted(material, case, k, amplitude, start, N, t_end, seeds):
                   "predict_growth)"}
 
 
-def _simulated(material, case, k, amplitude, start, N, t_end, seeds):
+def _simulated(material, case, k, amplitude, start, N, t_end, seeds, on_estimate=None,
+               figure=True):
     """(the JSON's "simulated", measure_gain's sigma(q) or None, each seed's growth): the
-    seeds run with a map cell's step and judged by its seed majority."""
+    seeds run with a map cell's step and judged by its seed majority; ``on_estimate``
+    is called with their ``PointEstimate`` before they start."""
     runs = []
 
     def sim(**kw):
@@ -308,6 +310,12 @@ def _simulated(material, case, k, amplitude, start, N, t_end, seeds):
         return run
 
     method, dt = point_step(material, case, N, k, amplitude, start, t_end)
+    if on_estimate is not None:
+        from ._paper_point_estimate import estimate_paper_point
+
+        on_estimate(estimate_paper_point(material, case, k, amplitude, N=N, start=start,
+                                         t_end=t_end, seeds=seeds, method=method, dt=dt,
+                                         save_every=SAVE_EVERY, figure=figure))
     meas = measure_gain(sim, range(seeds), material=material, case=case, N=N, k=k,
                         amplitude=amplitude, t_end=t_end, method=method, dt=dt,
                         save_every=SAVE_EVERY, start=start, progress=None,
@@ -378,7 +386,7 @@ def measure_point(material, *args, **kwargs):
     Parameters
     ----------
     material : Material or ModelPointSpec
-    case, k, amplitude, N, start, simulate, t_end, seeds
+    case, k, amplitude, N, start, simulate, t_end, seeds, on_estimate, estimate_figure
         A Material's point: see ``_measure_material`` (below).
 
     Returns
@@ -394,7 +402,8 @@ def measure_point(material, *args, **kwargs):
 def _measure_material(material: Material, case: str, k: float,
                       amplitude: float = paper.AMPLITUDE, *, N: int = paper.N,
                       start: str = "paper", simulate: bool = False,
-                      t_end: float | None = None, seeds: int = 4) -> PointResult:
+                      t_end: float | None = None, seeds: int = 4, on_estimate=None,
+                      estimate_figure: bool = True) -> PointResult:
     """MI at one point: the three theories, the predicted growth and (``simulate``) the run.
 
     Parameters
@@ -419,6 +428,9 @@ def _measure_material(material: Material, case: str, k: float,
         to decide, within a cap).
     seeds : int
         Noise seeds of the prediction and the simulation.
+    on_estimate : callable, optional
+        Called with the runs' ``PointEstimate`` before they start (``estimate_figure``:
+        the figure counted), as a model point's.
 
     Returns
     -------
@@ -450,7 +462,7 @@ def _measure_material(material: Material, case: str, k: float,
     simulated = meas = growths = None
     if simulate:
         simulated, meas, growths = _simulated(material, case, k, amplitude, start, N, t_end,
-                                              seeds)
+                                              seeds, on_estimate, estimate_figure)
         # the theories keep their physical verdict; "grows 20x within T" is an observable
         for t in th.values():
             t["grows_beyond_threshold_within_t_end"] = (

@@ -80,7 +80,7 @@ def _cell_columns(model, k, amplitude, branch, *, exact, simulate, N, seeds, t_e
         row[f"verdict_{extra.column}"] = got["verdict"]
         row[f"peak_gain_{extra.column}"] = (math.nan if got["peak_gain"] is None
                                             else float(got["peak_gain"]))
-    lossy = model.lossy
+    lossy = model.lattice.lossy  # the map's columns: a damping axis from 0 too
     if lossy:  # issue 42: the sidebands' amplification along the decaying carrier
         from ._losses import nls_amplification
 
@@ -152,7 +152,7 @@ def _simulated_columns(row, model, k, amplitude, spec, *, branch, N, seeds, t_en
     """A cell's runs and their columns (``_cell_columns``'s last part)."""
     from ._seeds import simulate_seeds
 
-    lossy = model.lossy
+    lossy = model.lattice.lossy  # the map's columns: a damping axis from 0 too
     if lossy:  # issue 42: launched as a point's, the runs' amplification
         sim, amp = lossy_runs(model, k, amplitude, spec, branch=branch, N=N, seeds=seeds,
                               t_end=t_end, peak_time=peak_time, energy=False)

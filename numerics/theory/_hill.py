@@ -393,11 +393,49 @@ def gain_spectrum(material: Material, case: str, k: float, amplitude: float, off
             raise ArithmeticError(
                 f"the state eq. `IC` launches at k = {k:.6g}, amplitude {amplitude:g} is not "
                 f"quasi-periodic (torus misfit {tor.residual:.2g} over T = "
-                f"{tor.duration:.0f} > {TORUS_TOLERANCE}): its carrier exchanges energy with "
-                "its own harmonics (near a resonance such as 2 Omega = omega_U(2k)), so no "
-                "linear theory of its sidebands applies; simulate it (flexmm point "
+                f"{tor.duration:.0f} > {TORUS_TOLERANCE}): {_exchange(material, case, k, amplitude, start)}"
+                ", so no linear theory of its sidebands applies; simulate it (flexmm point "
                 "--simulate)")
     return gain_spectrum_torus(tor, material, case, q, 2 * H - 1, R, modes, start)
+
+
+#: a counter-propagating wave a start launches is named from this share of the carrier on
+#: (case I, k 2.5: 1.8% and quasi-periodic; k 2.98: 3.3%, misfit 0.064)
+COUNTER_WAVE = 0.01
+
+
+def _exchange(material, case, k, amplitude, start) -> str:
+    """What a launched state that is not quasi-periodic exchanges energy with, computed
+    at this material, case and k (probe 100: case I near pi was told of '2 Omega =
+    omega_U(2k)', a resonance of U, which case I freezes, and far from it anyway): the
+    start's own frequency against the lattice's (a frequency other than omega(k) launches
+    a counter-propagating wave at -k beside the carrier) and the nearest harmonic
+    resonance of the case's fields (3 Omega = omega_theta(3k); case II also 2 Omega =
+    omega_U(2k), U's second harmonic)."""
+    from ..lattice import initial_condition
+
+    W = float(model.omega_rotation(k, material.alpha, material.K_s, material.K_theta))
+    # the start's frequency: theta_dot = a Omega_start sin(k n) on a noiseless ring
+    n = np.arange(64)
+    state = initial_condition(material, case, n.size, k, amplitude, 0.0, 0, start)
+    s = np.sin(k * n)
+    Ws = float(state.theta_dot @ s / (amplitude * (s @ s))) if s @ s > 1e-9 else W
+    near = [(abs(3 * W - float(model.omega_rotation(3 * k, material.alpha, material.K_s,
+                                                       material.K_theta))) / (3 * W),
+             "3 Omega = omega_theta(3k)")]
+    if case == "coupled":
+        near.append((abs(2 * W - float(model.omega_longitudinal(2 * k))) / (2 * W),
+                     "2 Omega = omega_U(2k)"))
+    detuning, name = min(near)
+    counter = abs(Ws - W) / (Ws + W)
+    case_name = "case II" if case == "coupled" else "case I"
+    return ("its carrier exchanges energy with "
+            + (f"the wave at -k its start launches beside it ({counter:.2g} of its amplitude: "
+               f"theta_dot set by the frequency {Ws:.4g}, not the lattice's omega(k) = "
+               f"{W:.4g}; the travelling start launches none) or " if counter > COUNTER_WAVE
+               else "")
+            + f"its own harmonics (the nearest resonance of {case_name}, {name}, "
+            f"{detuning:.1%} off)")
 
 
 @functools.lru_cache(maxsize=64)
