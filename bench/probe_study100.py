@@ -314,18 +314,28 @@ def part_store(folder):
             "2.6,2.8,3.0", "--amplitude", 0.1, "--N", 64, "--t-end", 1500, "--workers", 1,
             "--block", 1]
     t0 = time.perf_counter()
-    rc, _, se, full = cli(*args, "--out", folder / "sim-full", "--overwrite")
-    say("store", "simulated 2 x 3 map", rc == 0, f"{full:.1f} s; estimate {_estimate(se)} s")
+    rc, so, se, full = cli(*args, "--out", folder / "sim-full", "--overwrite")
+    say("store", "simulated 2 x 3 map", rc == 0,
+        f"{full:.1f} s; estimate {_estimate(so + se)} s")
     env = dict(os.environ, PYTHONPATH=str(ROOT))
     p = subprocess.Popen([sys.executable, "-m", "cli", *map(str, args), "--out",
                           folder / "sim-int", "--overwrite"], env=env, cwd=ROOT,
                          stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    time.sleep(max(0.6 * full, 5.0))
+    end = time.perf_counter() + 3 * full
+    while time.perf_counter() < end and p.poll() is None:  # until 2 cells are kept
+        time.sleep(0.3)
+        try:
+            with xr.open_zarr(folder / "sim-int" / "map.zarr") as ds:
+                if int(ds["done"].values.sum()) >= 2:
+                    break
+        except Exception:  # noqa: BLE001 - the store not written yet, or mid-write
+            continue
     p.send_signal(signal.SIGINT)
     so, se = p.communicate(timeout=120)
     with xr.open_zarr(folder / "sim-int" / "map.zarr") as ds:
         done = int(ds["done"].values.sum())
-    say("store", "SIGINT: exits, keeps its finished cells", p.returncode != 0 and done < 6,
+    say("store", "SIGINT: exits, keeps its finished cells",
+        p.returncode != 0 and 0 < done < 6,
         f"rc {p.returncode}, {done} of 6 done; {se.strip().splitlines()[-1][:80] if se else ''}")
     rc, so, se, _ = cli(*args, "--out", folder / "sim-int")
     with xr.open_zarr(folder / "sim-int" / "map.zarr") as a, \
