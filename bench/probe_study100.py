@@ -26,7 +26,8 @@ Parts (one line a check, ``!!`` where one disagrees; exit 1 if any):
 1. ``disp``: the three branches against the hand roots (1e-9) at 20 seeded k; v_g and g1 of
    the theta carrier (``coefficients --json`` and ``numerics.models.carrier``) against
    central differences of the hand root (h = 1e-3: truncation ~h^2 w''' ~ 1e-7, bar 1e-6);
-2. ``map``: a theory-only map K_s x k (5 x 15; g1 per cell against the hand differences),
+2. ``map``: a theory-only map K_s x k (5 x 15; g1 per cell against the hand differences;
+   the theta carrier's branch index along k, 2 -> 1 -> 0 by hand, said by the map),
    an ``--exact`` map (3 x 5): every cell whose NLS verdict differs from the exact one must
    be explained by the map's printed output and by ``point``'s notes at that cell;
 3. ``point``: three points simulated: the runs' rate against the exact ring rate (5%),
@@ -171,6 +172,11 @@ def part_map(folder):
                            "--k", "0.2:3.0:15", "--amplitude", 0.1, "--N", 128, "--theory-only",
                            "--workers", 1, "--out", out, "--overwrite")
     say("map", "theory-only 5 x 15 map", rc == 0, f"{wall:.1f} s; {so.splitlines()[-2]}")
+    # the theta carrier is the optical root (index 2) at small k, below U from k ~ 1.3
+    # (index 1), the lowest root near pi (4 K_b / J < 4 K_s there): the map must say so
+    jump = re.search(r"changes along k: (.*?);", so + se)
+    say("map", "the theta branch's index changes said", bool(jump) and re.findall(
+        r"index (\d)", jump[1]) == ["2", "1", "0"], jump[1][:100] if jump else "not said")
     with xr.open_zarr(out / "map.zarr") as ds:
         worst = 0.0
         for i, Ks in enumerate(ds["K_s"].values):

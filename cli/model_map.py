@@ -8,7 +8,7 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
-from ._map_guards import cells_done, check_rest, option
+from ._map_guards import branch_jumps, cells_done, check_rest, option
 from ._model_map_figure import OBSERVABLE, VERDICT_ORDER, _plot_map
 from ._model_map_summary import (
     _differ_text,
@@ -182,6 +182,9 @@ def run_map(args) -> int:
                 "uses the snapped k (variable k_simulated)")
         if same := params.same_ring_k():
             log(f"note: {same}")
+    if x[0] == "k" and (jump := branch_jumps(model, x[1], branch_of(args)
+                                              or model.lattice.branch or None)):
+        log(f"note: {jump}")
     if start != "exact":
         from numerics.models import extra_starts
 

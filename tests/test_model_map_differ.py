@@ -64,3 +64,38 @@ def test_a_map_says_where_and_why_the_nls_and_the_exact_theory_differ(tmp_path, 
 
     notes = " ".join(json.loads(capsys.readouterr().out)["notes"])
     assert "three-wave decay" in notes
+
+
+def _hand_theta_index(k, J=0.5, K_s=0.1, K_b=0.05):
+    """The index (ascending) of the root whose kinetic energy theta carries most of, by
+    hand: the theta-V block K = [[4 K_s s^2, 2 i K_s sin k], [-2 i K_s sin k, 4 K_s c^2 +
+    4 K_b s^2]] (V, theta) with masses (1, J); U (2 |sin k/2|) is pure U."""
+    import numpy as np
+
+    s, c = math.sin(k / 2), math.cos(k / 2)
+    K = np.array([[4 * K_s * s * s, 2j * K_s * math.sin(k)],
+                  [-2j * K_s * math.sin(k), 4 * K_s * c * c + 4 * K_b * s * s]])
+    Mh = np.diag([1.0, 1 / math.sqrt(J)])  # M^(-1/2)
+    w2, v = np.linalg.eigh(Mh @ K @ Mh)
+    theta = max(range(2), key=lambda i: abs(v[1, i]) ** 2)  # kinetic share of theta
+    w = math.sqrt(w2[theta])
+    return min(range(3), key=lambda i: abs(hand_omegas(k)[i] - w))
+
+
+def test_a_map_says_where_the_named_branch_changes_index(tmp_path, capsys):
+    f = tmp_path / "hinge3.toml"
+    f.write_text(HINGE3)
+    ks = (0.2, 1.0, 1.6, 2.8)
+    assert main(["map", "--model", str(f), "--param", "K_s=0.1,0.2", "--k",
+                 ",".join(map(str, ks)), "--amplitude", "0.1", "--theory-only",
+                 "--workers", "1", "--out", str(tmp_path / "m")]) == 0
+    out = capsys.readouterr().out
+    line = next((ln for ln in out.splitlines() if "changes along k" in ln), None)
+    assert line is not None, out
+    got = [int(x) for x in re.findall(r"index (\d) at k", line)]
+    want = []
+    for k in ks:  # the runs of equal indices, by hand
+        b = _hand_theta_index(k)
+        if not want or want[-1] != b:
+            want.append(b)
+    assert got == want and len(want) >= 2, (line, want)
