@@ -182,4 +182,4 @@ def _differ_text(ds, params, model_arg: str) -> str | None:
             f"cells (the exact theory rates whatever grows on the ring: a three-wave decay "
             f"of the carrier, a backward or parametric pair the NLS cannot see, or the "
             f"NLS's a^2 error); first at {at}: NLS {word[int(nls[i, j])]}, exact "
-            f"{word[int(ex[i, j])]}; {why}; `{cmd}` names the mode that grows")
+            f"{word[int(ex[i, j])]}; {why}; `{cmd}` says what grows there, and why")
