@@ -83,3 +83,36 @@ def cells_done(out, params) -> tuple:
     done = maps.cells_done(store, "done_predicted" if params.theory_only else "done",
                            params)
     return done if done is not None and done[1] == cells else (0, cells)
+
+
+def branch_jumps(model, ks, branch) -> str | None:
+    """A note where ``--branch FIELD`` names a different branch index along the k axis
+    (each k's carrier is the branch that field dominates there: across an avoided crossing
+    it moves to another root, and the map's omega, g1 and verdicts jump with it), at the
+    model's fixed values; None where the index holds, or the branch is an index (probe 100:
+    a three-field hinge chain's theta carrier went from index 2 to 1 to 0 over k, its
+    frequency 1.05 -> 0.49 between k 2.2 and 2.4, and nothing said so)."""
+    from energy import ModelError
+    from numerics.models import carrier
+
+    if branch is None or str(branch).lstrip("-").isdigit():
+        return None
+    runs = []  # [index, first k, last k, omega at the first, omega at the last]
+    for k in ks:
+        try:
+            c = carrier(model, float(k), branch)
+        except (ModelError, ValueError):
+            continue
+        if runs and runs[-1][0] == c.branch:
+            runs[-1][2], runs[-1][4] = float(k), c.omega
+        else:
+            runs.append([c.branch, float(k), float(k), c.omega, c.omega])
+    if len(runs) < 2:
+        return None
+    where = ", ".join(f"index {b} at k {lo:g}" + (f" to {hi:g}" if hi != lo else "")
+                      + f" (omega {w0:.4g}" + (f" to {w1:.4g})" if hi != lo else ")")
+                      for b, lo, hi, w0, w1 in runs)
+    return (f"the branch of field {branch} changes along k: {where}; each k's carrier is "
+            f"the branch {branch} dominates there: across a crossing omega is continuous, "
+            "across an avoided crossing the carrier moves to another root and omega, g1 "
+            "and the verdicts jump (--branch INDEX follows one index)")

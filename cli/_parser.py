@@ -267,7 +267,10 @@ def _map_parser(sub, model_mode=False):
     p.add_argument("--k", required=True, help="(required) SPEC of k (rad per site): "
                    "v1,v2,... or start:stop:num (with --model one value where two "
                    "parameters are swept); each k is snapped to 2 pi m / N "
-                   "(k_simulated in the dataset; the theories use it too)")
+                   "(k_simulated in the dataset; the theories use it too) where the map "
+                   "uses the ring: the paper chain's maps, a simulated map, --exact; a "
+                   "--model --theory-only map without --exact takes k as given (the NLS "
+                   "of the infinite chain; --N unused)")
     _experiment_args(p)
     p.add_argument("--exact", action="store_true",
                    help="with --model: add the exact lattice theory per cell (harmonic "

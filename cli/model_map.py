@@ -8,9 +8,15 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
-from ._map_guards import cells_done, check_rest, option
+from ._map_guards import branch_jumps, cells_done, check_rest, option
 from ._model_map_figure import OBSERVABLE, VERDICT_ORDER, _plot_map
-from ._model_map_summary import _no_wave_text, _overdamped_text, _print_observable, _summary
+from ._model_map_summary import (
+    _differ_text,
+    _no_wave_text,
+    _overdamped_text,
+    _print_observable,
+    _summary,
+)
 from .models import _emit, branch_of, load, zero_damping_note
 from .point import MIN_T_END
 
@@ -178,6 +184,9 @@ def run_map(args) -> int:
                 "uses the snapped k (variable k_simulated)")
         if same := params.same_ring_k():
             log(f"note: {same}")
+    if x[0] == "k" and (jump := branch_jumps(model, x[1], branch_of(args)
+                                              or model.lattice.branch or None)):
+        log(f"note: {jump}")
     if start != "exact":
         from numerics.models import extra_starts
 
@@ -325,6 +334,8 @@ def run_map(args) -> int:
                  "the runs' is 20x growth: the agreement on observable below compares "
                  "like with like" if "observable_fraction" in summary else ""))
     _print_observable(summary)
+    if (differ := _differ_text(ds, params, str(args.model))) is not None:
+        print(differ)
     if unsampled and unsampled["cells"]:
         print(_unsampled_text(unsampled, args.N))
     if summary.get("no_wave_cells"):

@@ -220,10 +220,15 @@ class Model:
 
     @property
     def p(self):
-        """Parameter values as a float array in the model's order."""
+        """Parameter values as a float array in the generated code's order (its
+        ``PARAMETERS``): two files that differ only in the order of their parameters share
+        one content hash, and so one cached module, derived from whichever came first
+        (probe 100: a file with ``gamma`` declared before ``K_b`` ran on another's module
+        with the two values swapped, its damping 25x and its bending stiffness 25x off)."""
         import numpy as np
 
-        return np.array([self.params[k] for k in self.lattice.parameters], dtype=float)
+        order = getattr(self.code, "PARAMETERS", None) or self.lattice.parameters
+        return np.array([self.params[k] for k in order], dtype=float)
 
     @property
     def masses(self):
