@@ -55,7 +55,7 @@ from energy import Model, ModelError
 from ._exact import GAIN_FLOOR  # one floor for both theories' verdicts
 from ._fourwave_kernel import _kernel
 from ._linear import carrier, check_amplitude, check_model, scalar
-from ._modes import _wrap, field_groups, own_offset, pair_kind, wave_field, wave_sheets
+from ._modes import _wrap, field_groups, own_offset, pair_kind, same_wave, wave_field, wave_sheets
 
 KINDS = ("sidebands", "backward", "parametric", "resonance")
 
@@ -131,7 +131,9 @@ class FourWave:
         table = self._sheets
         if table[0] == "followed":  # the fields all coupled: the followed branch indices
             b1, b2 = self.pairs[j]
-            on = b1 == table[1][i] and b2 == table[2][i]
+            q = float(self.offsets[i])  # a branch meeting the followed one is it (same_wave)
+            on = (same_wave(self.model, self.k + q, b1, int(table[1][i]))
+                  and same_wave(self.model, self.k - q, b2, int(table[2][i])))
             return pair_kind(self.branch, (self.branch,) * 2 if on else (-1, -1),
                              self.offsets[i])
         own, plus, minus = table
