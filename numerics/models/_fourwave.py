@@ -87,6 +87,9 @@ class FourWave:
         sqrt|kappa12 kappa21|, the pair's coupling (1/time).
     undefined : str
         Why there is no theory (empty when there is one).
+    crossing_gain : float
+        The fastest two-wave rate among the pairs left unrated at a crossing (0 if none):
+        where it passes ``gain``, the rated pair may not be the fastest.
     """
 
     model: Model
@@ -101,6 +104,7 @@ class FourWave:
     detuning: np.ndarray
     coupling: np.ndarray
     undefined: str = ""
+    crossing_gain: float = 0.0
 
     @property
     def gain(self) -> float:
@@ -207,7 +211,7 @@ class FourWave:
                                 "field": wave_field(self.model, kap, b)}
                                for b, kap in self.mode_waves],
                 "frequency": self.frequency if math.isfinite(self.frequency) else None,
-                "kind_rates": self.kind_rates(),
+                "kind_rates": self.kind_rates(), "crossing_gain": self.crossing_gain,
                 "reason": self.undefined}
 
 
@@ -398,7 +402,7 @@ def four_wave(model: Model, k: float, amplitude: float, branch=None, *, N: int |
                    "next order, which the four-wave ordering does not rate; the exact "
                    "theory holds")
     return FourWave(model, k, a, car.branch, car.omega, float(Omega), q, tuple(pairs),
-                    rate, det, coup, why)
+                    rate, det, coup, why, lost[0])
 
 
 #: a pair whose wave has another branch at its own wavenumber nearer than this many
