@@ -145,7 +145,8 @@ class ModelPoint:
         The runs' estimate, made before them (``simulate``).
     mode_note : str or None
         Where the exact lattice's fastest mode is not the carrier's sidebands (the NLS
-        cannot see it; also in "notes").
+        cannot see it), or the four-wave row's rate is 25% off the exact one (also in
+        "notes").
     """
 
     spec: ModelPointSpec

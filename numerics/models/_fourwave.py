@@ -55,7 +55,7 @@ from energy import Model, ModelError
 from ._exact import GAIN_FLOOR  # one floor for both theories' verdicts
 from ._fourwave_kernel import _kernel
 from ._linear import carrier, check_amplitude, check_model, scalar
-from ._modes import _wrap, field_groups, own_offset, pair_kind, wave_field, wave_sheets
+from ._modes import _wrap, field_groups, own_offset, pair_kind, same_wave, wave_field, wave_sheets
 
 KINDS = ("sidebands", "backward", "parametric", "resonance")
 
@@ -87,6 +87,9 @@ class FourWave:
         sqrt|kappa12 kappa21|, the pair's coupling (1/time).
     undefined : str
         Why there is no theory (empty when there is one).
+    crossing_gain : float
+        The fastest two-wave rate among the pairs left unrated at a crossing (0 if none):
+        where it passes ``gain``, the rated pair may not be the fastest.
     """
 
     model: Model
@@ -101,6 +104,7 @@ class FourWave:
     detuning: np.ndarray
     coupling: np.ndarray
     undefined: str = ""
+    crossing_gain: float = 0.0
 
     @property
     def gain(self) -> float:
@@ -131,7 +135,9 @@ class FourWave:
         table = self._sheets
         if table[0] == "followed":  # the fields all coupled: the followed branch indices
             b1, b2 = self.pairs[j]
-            on = b1 == table[1][i] and b2 == table[2][i]
+            q = float(self.offsets[i])  # a branch meeting the followed one is it (same_wave)
+            on = (same_wave(self.model, self.k + q, b1, int(table[1][i]))
+                  and same_wave(self.model, self.k - q, b2, int(table[2][i])))
             return pair_kind(self.branch, (self.branch,) * 2 if on else (-1, -1),
                              self.offsets[i])
         own, plus, minus = table
@@ -205,7 +211,7 @@ class FourWave:
                                 "field": wave_field(self.model, kap, b)}
                                for b, kap in self.mode_waves],
                 "frequency": self.frequency if math.isfinite(self.frequency) else None,
-                "kind_rates": self.kind_rates(),
+                "kind_rates": self.kind_rates(), "crossing_gain": self.crossing_gain,
                 "reason": self.undefined}
 
 
@@ -396,7 +402,7 @@ def four_wave(model: Model, k: float, amplitude: float, branch=None, *, N: int |
                    "next order, which the four-wave ordering does not rate; the exact "
                    "theory holds")
     return FourWave(model, k, a, car.branch, car.omega, float(Omega), q, tuple(pairs),
-                    rate, det, coup, why)
+                    rate, det, coup, why, lost[0])
 
 
 #: a pair whose wave has another branch at its own wavenumber nearer than this many
