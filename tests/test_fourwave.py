@@ -219,16 +219,20 @@ def test_a_band_far_narrower_than_the_chains_samples_is_still_named():
     q = 1.128 (rate 4.3e-5), between the chain's samples (pi / 400 apart) and the 1e-3
     grid ring_misses put across the four-wave band (the four-wave rates' round-off, ~1e-13,
     also read as a band over the whole zone). It is named, with the ring that samples it;
-    the four-wave theory sees it within 10% (its own band 6e-5 wide inside the exact one)."""
+    the four-wave theory sees it within 10% (its own band 6e-5 wide inside the exact one).
+    Since probe 100 the chain's shifted crossings find its copy at q - k (0.1464: one mode,
+    either copy may be named) and a second band at 0.0817 (1.7e-6, a dense Hill scan
+    1.70e-6): the fastest miss is this one."""
     model = load_model(Lattice(
         name="hertz1", fields=("u",), parameters={"d": 1.0}, kinetic="u_t**2/2",
         bond="(2/5)*(d + u - u_next)**2.5 - d**1.5*(u - u_next) - (2/5)*d**2.5"))
     k = 2 * math.pi * 10 / 64
     fw = four_wave(model, k, 0.05)
     assert fw.gain == pytest.approx(4.3e-5, rel=0.10)
-    (miss,) = ring_misses(model, k, 0.05, N=64)
+    miss = max(ring_misses(model, k, 0.05, N=64), key=lambda m: m["peak_gain"])
     lo, hi = miss["band"]
-    assert 1.1280 < lo < hi < 1.1283 and hi - lo < 2e-4
+    shift = 0.0 if lo > 1 else k  # the copy at q - k is the same mode
+    assert 1.1280 < lo + shift < hi + shift < 1.1283 and hi - lo < 2e-4
     assert miss["peak_gain"] == pytest.approx(fw.gain, rel=0.10)
     # the ring named has an offset 2 pi j / N inside the band
     n = miss["N"]
