@@ -289,7 +289,9 @@ def corrected_crossings(engine, q, gain, more, steps: int = 30):
         d0 = plus[j][:, None] - minus[j][None, :]
         d1 = plus[j + 1][:, None] - minus[j + 1][None, :]
         cen = central[:, None] | central[None, :]
-        lin = np.where(cen & (d0 * d1 < 0), qs[j] + (qs[j + 1] - qs[j]) * d0 / (d0 - d1), np.nan)
+        with np.errstate(divide="ignore", invalid="ignore"):  # d0 = d1: not a crossing
+            lin = np.where(cen & (d0 * d1 < 0), qs[j] + (qs[j + 1] - qs[j]) * d0 / (d0 - d1),
+                           np.nan)
         for a, b in zip(*np.nonzero(np.abs(lin - x) <= 1e-12 * max(1.0, abs(x)))):
             # the shifted crossing may lie a few samples over (a fine grid): the bracket
             # widened over quiet samples towards the smaller |f|, at most WIDEN steps
