@@ -18,6 +18,13 @@ roots (one of them in a harmonic |l| <= 1, where a kept mode lives) whose differ
 changes sign gives one more offset, at its linear crossing (``crossing_offsets``); the
 caller solves the spectrum there and keeps the offsets that grow. A band wider than a
 step holds a sample already, so this adds offsets only where the grid saw nothing.
+
+The diagonal roots leave out the O(a^2) shifts the couplings to the other harmonics give
+each root, which can move the crossing by more than a narrow band's width (probe 100: 7.5e-4
+against a band 1.3e-4 wide on a Morse chain). Where a linear crossing holds no growing
+mode, the same pair's crossing with each root's second-order (Feshbach) shift, the pair's
+own coupling left out, is found by regula falsi between quiet samples and solved too
+(``corrected_crossings``).
 """
 
 from __future__ import annotations
