@@ -13,18 +13,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from bench._fourwave100_models import MORSE
 from energy import load_model
 from numerics.models import exact_gain, four_wave, hill_spectrum
-
-MORSE = '''name = "morse-shifted"
-fields = ["u"]
-[parameters]
-D = 0.5
-b = 1.0
-[energy]
-kinetic = "u_t**2/2"
-bond = "D*(1 - exp(-b*(u_next - u)))**2"
-'''
 
 
 @pytest.fixture(scope="module")
