@@ -10,7 +10,7 @@
 #   bench-update             the same as bench, rewriting the committed bench/results.json + PNGs
 #   stress, stress-quick     bench/stress.py into out/bench/
 #   stress-update            the same as stress, rewriting the committed bench/stress.json/.md
-#   bench-gpu                bench/gpu.py -> bench/results_gpu.json (needs a GPU and .[gpu])
+#   bench-gpu                bench/gpu.py, gpu_occupancy.py -> bench/results_gpu.json (needs a GPU and .[gpu])
 PY ?= python3
 VENV := .venv
 VPY := $(VENV)/bin/python
@@ -146,6 +146,7 @@ stress-update:
 bench-gpu: $(STAMP)
 	command -v nvidia-smi >/dev/null && $(VPY) -m pip install -q -e '.[gpu]' || true
 	$(VPY) -m bench.gpu --update $(BENCH_ARGS)
+	$(VPY) -m bench.gpu_occupancy --update
 
 clean:
 	rm -rf $(VENV) out .pytest_cache

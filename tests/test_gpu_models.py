@@ -213,6 +213,23 @@ def test_what_fits_a_block(d, nf, N, fits):
     assert why is None or "\n" not in why
 
 
+@pytest.mark.parametrize("N, chains, simulated, threads", [
+    (500, 4096, False, 64), (256, 2048, False, 32), (16, 2048, False, 32),
+    (1024, 4096, False, 128), (500, 100, False, 128), (256, 511, False, 128),
+    (256, 512, False, 32), (256, None, False, 32), (500, 4096, True, 64), (16, 10, True, 2)])
+def test_threads_a_chain_follow_the_measured_rule(N, chains, simulated, threads):
+    """Both kernels' threads_for (bench.gpu_occupancy on an H200, docs/gpu.md "Threads a
+    chain"): the fewest powers of two holding N in PER_THREAD = 8 sites, at least a warp on a
+    GPU, from FILL_CHAINS = 512 chains a launch; THREADS (128) for smaller launches; under
+    the simulator the fewest (every thread a Python thread)."""
+    from numerics.lattice import cuda_kernels
+
+    for K in (cuda_kernels(), cuda_model_kernels()):
+        assert K.threads_for(N, simulated, chains) == threads
+        assert threads * K.PER_THREAD >= N
+
+
+
 MAP_SCRIPT = """
 import json, sys, tempfile
 from numerics.maps import ModelMapParameters, run_map
@@ -404,3 +421,16 @@ def test_model_cells_on_a_gpu_equal_the_cpu(name, fast):
         np.testing.assert_allclose(rms, np.sqrt(np.sum(run.spectrum[:, 1:] ** 2, axis=1)),
                                    rtol=REL_TOL)
     assert row["verdict_simulated"] == cpu.verdict.word
+
+
+def test_bench_gpu_occupancy_without_a_gpu_says_so_and_exits_0(tmp_path, capsys):
+    """`make bench-gpu`'s second step where no GPU is usable: one line "no GPU", exit 0."""
+    from bench import gpu_occupancy
+    from numerics.maps import gpu_status
+
+    if gpu_status()[0]:
+        pytest.skip("a GPU is usable here")
+    assert gpu_occupancy.main(["--out", str(tmp_path)]) == 0
+    out = capsys.readouterr().out.strip().splitlines()
+    assert len(out) == 1 and out[0].startswith("no GPU"), out
+    assert not any(tmp_path.iterdir())

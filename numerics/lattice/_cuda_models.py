@@ -30,6 +30,7 @@ import math
 import numpy as np
 from numba import cuda, float64
 
+from ._cuda import fewest_threads
 from ._cuda_print import DeviceSourceError, device_source
 from ._kernels import TRIG_LIMIT, _sincosvers
 
@@ -325,15 +326,11 @@ def twiddles(N: int) -> tuple[np.ndarray, np.ndarray]:
     return np.cos(2 * np.pi * j / N), np.sin(2 * np.pi * j / N)
 
 
-def threads_for(N: int, simulated: bool = False) -> int:
-    """Threads per block: THREADS on a GPU; under the simulator the fewest powers of two
-    that hold N in PER_THREAD sites each (every thread is a Python thread)."""
-    if not simulated:
-        return THREADS
-    bs = 1
-    while bs * PER_THREAD < N:
-        bs *= 2
-    return bs
+def threads_for(N: int, simulated: bool = False, chains: int | None = None) -> int:
+    """Threads per block: the paper kernel's rule (``_cuda.fewest_threads``): the fewest
+    powers of two that hold N in PER_THREAD sites, at least a warp on a GPU, where a launch
+    holds ``chains`` >= FILL_CHAINS; THREADS on a GPU for fewer chains."""
+    return fewest_threads(N, PER_THREAD, THREADS, simulated, chains)
 
 
 __all__ = ["model_kernel", "device_source", "sign", "device_force_of", "register_device_force",

@@ -206,9 +206,9 @@ def simulate_cells_gpu(materials, case: str, ks, N: int, t_end: float,
         raise ValueError("give dt (a map's cell_step; simulate_cell chooses one per cell)")
     if not 3 <= N <= K.MAX_SITES:
         raise ValueError(f"N = {N}: the GPU holds chains of 3 to {K.MAX_SITES} sites on chip")
-    bs = threads or K.threads_for(N, simulated())
-    if bs & (bs - 1) or bs * K.PER_THREAD < N:
-        raise ValueError(f"threads = {bs}: a power of two with threads * {K.PER_THREAD} >= N")
+    if threads is not None and (threads & (threads - 1) or threads * K.PER_THREAD < N):
+        raise ValueError(f"threads = {threads}: a power of two with threads * "
+                         f"{K.PER_THREAD} >= N")
     coupled = case == "coupled"
     per_record, dt_eff = record_step(t_end, dt)
     t_grid = np.arange(RECORDS + 1) * (t_end / RECORDS)
@@ -217,6 +217,7 @@ def simulate_cells_gpu(materials, case: str, ks, N: int, t_end: float,
     nq = N // 2 + 1
     per_chain = (RECORDS + 1) * nq * 8
     batch = max(1, max_spectra_bytes // per_chain) if peak_gain else len(cells)
+    bs = threads or K.threads_for(N, simulated(), min(batch, len(cells)))
     cos_t, sin_t = (cuda.to_device(a) for a in K.twiddles(N))
     t_rec = cuda.to_device(t_grid)
     acoef, bcoef = cuda.to_device(np.array(meth.a)), cuda.to_device(np.array(meth.b))

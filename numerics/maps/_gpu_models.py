@@ -110,9 +110,9 @@ def launch_chains(chains: list, N: int, threads: int | None = None,
     kernel, _ = K.model_kernel(code, fast_force)
     d = chains[0].model.n_fields
     nf = K.device_force_of(code, fast_force)[1]
-    bs = threads or K.threads_for(N, simulated())
-    if bs & (bs - 1) or bs * K.PER_THREAD < N:
-        raise ValueError(f"threads = {bs}: a power of two with threads * {K.PER_THREAD} >= N")
+    if threads is not None and (threads & (threads - 1) or threads * K.PER_THREAD < N):
+        raise ValueError(f"threads = {threads}: a power of two with threads * "
+                         f"{K.PER_THREAD} >= N")
     meth = get_method("srkn11b")
     acoef = cuda.to_device(np.array(meth.a, float))
     bcoef = cuda.to_device(np.array(meth.b, float))
@@ -122,6 +122,7 @@ def launch_chains(chains: list, N: int, threads: int | None = None,
     H = max((c.spec.wave.coefficients.shape[1] - 1) // 2 for c in chains)
     per_chain = max(nrec) * nq * 8
     batch = max(1, max_spectra_bytes // per_chain)
+    bs = threads or K.threads_for(N, simulated(), min(batch, len(chains)))
     out = []
     for b0 in range(0, len(chains), batch):
         part = chains[b0:b0 + batch]
