@@ -1,0 +1,53 @@
+"""Newuser 101's findings: what a new user's first two hours turned up (docs/models.md's
+losses and point sections)."""
+
+from __future__ import annotations
+
+import pytest
+
+from energy import load_model
+from numerics.maps import ModelPointSpec, measure_point
+
+# a two-field chain of the user's own (a linear cross term in the bond, a quartic bond on u,
+# an on-site v), its u damped: MI at k 1, a 0.1 (0.0033 /time), the carrier damped at 2.4e-4
+TWOFIELD_LOSSY = '''name = "twofield-lossy"
+fields = ["u", "v"]
+[parameters]
+Cv = 0.5
+eta = 0.3
+w0 = 1.5
+beta = 1.0
+m = 1.0
+gamma = 0.0005
+[energy]
+kinetic = "u_t**2/2 + m*v_t**2/2"
+bond = "(u_next - u)**2/2 + Cv*(v_next - v)**2/2 + eta*(u_next - u)*(v_next - v) + beta*(u_next - u)**4/4"
+site = "w0**2*v**2/2"
+[dissipation]
+site = "gamma*u_t**2/2"
+'''
+
+
+@pytest.fixture(scope="module")
+def twofield_lossy(tmp_path_factory):
+    path = tmp_path_factory.mktemp("nu101") / "twofield-lossy.toml"
+    path.write_text(TWOFIELD_LOSSY)
+    return load_model(path)
+
+
+def test_a_lossy_points_estimate_covers_the_runs_it_makes(twofield_lossy):
+    """A lossy point's runs go on past the exact theory's peak time (to 1.5x it, at least
+    the lossless run's length) until A(t) has halved; its estimate was of runs of the
+    lossless T (2800 here), while they ran to 5565 (at gamma 2e-5: to 9.5e4, 8 s for an
+    estimated 1 s). The estimate's T must reach as far as the runs do."""
+    seen = []
+    point = measure_point(ModelPointSpec(twofield_lossy, 1.0, 0.1, N=64, simulate=True,
+                                         seeds=1), on_estimate=seen.append)
+    sim = point.as_dict()["simulated"]
+    peak = point.as_dict()["exact lattice"]["amplification_time"]
+    assert len(seen) == 1
+    # the runs reach the exact theory's peak before they may stop (the rule itself)
+    assert sim["t_end"] >= peak
+    # the estimate is of runs at least as long as those made (its T their cap)
+    assert seen[0].t_end >= sim["t_end"]
+    assert seen[0].at_most
