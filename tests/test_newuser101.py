@@ -51,3 +51,30 @@ def test_a_lossy_points_estimate_covers_the_runs_it_makes(twofield_lossy):
     # the estimate is of runs at least as long as those made (its T their cap)
     assert seen[0].t_end >= sim["t_end"]
     assert seen[0].at_most
+
+
+TWOFIELD = TWOFIELD_LOSSY.replace('name = "twofield-lossy"', 'name = "twofield"').split(
+    "[dissipation]")[0].replace("gamma = 0.0005\n", "")
+
+
+def test_four_wave_names_why_a_pair_near_another_branch_is_unrated(tmp_path):
+    """At eta 0 the two-field chain's u is an FPUT beta chain (alpha 0) and v a linear chain
+    of its own; at k 2.8 (a 0.1, 256 sites) the u pair's waves near pi lie 0.06 below the
+    v branch, within 4 couplings, and ``_isolated`` leaves them unrated. The four-wave row
+    said 'a driven wave too large to be slaved', a process a chain without a cubic term
+    has none of; its reason is the crossing, and the rate it would have is FPUT's own."""
+    from numerics.models import four_wave
+
+    path = tmp_path / "twofield.toml"
+    path.write_text(TWOFIELD)
+    model = load_model(path).with_params(eta=0.0)
+    fw = four_wave(model, 2.8, 0.1, N=256)
+    assert fw.verdict == "undefined"
+    assert "driven wave" not in fw.undefined
+    assert "crossing" in fw.undefined
+    # the u chain alone: FPUT alpha 0, beta 1 at the same ring k (0.0282 /time)
+    alone = four_wave(load_model("fput").with_params(alpha=0.0, beta=1.0), 2.8, 0.1, N=256)
+    assert alone.verdict == "MI"
+    rate = float(fw.undefined.split("about ")[1].split(" ")[0])
+    # the reason prints 3 significant digits: within 0.5% of the lone chain's rate
+    assert abs(rate / alone.gain - 1) < 5e-3
