@@ -78,3 +78,20 @@ def test_four_wave_names_why_a_pair_near_another_branch_is_unrated(tmp_path):
     rate = float(fw.undefined.split("about ")[1].split(" ")[0])
     # the reason prints 3 significant digits: within 0.5% of the lone chain's rate
     assert abs(rate / alone.gain - 1) < 5e-3
+
+
+def test_a_zero_mode_that_is_no_symmetry_is_refused_with_its_field_and_the_remedy(tmp_path):
+    """site = "u**3" alone: K(0) = 0 (u is free at k = 0) but the energy is not invariant
+    under a uniform shift, so the NLS has no mean flow to solve; the refusal gave only the
+    mode vector [1.] and "not supported"."""
+    from energy import ModelError
+    from numerics.models import nls
+
+    path = tmp_path / "cubic-site.toml"
+    path.write_text('name = "cubic-site"\nfields = ["u"]\n[parameters]\nD = 0.5\n[energy]\n'
+                    'kinetic = "u_t**2/2"\nbond = "D*(u_next - u)**2"\nsite = "u**3"\n')
+    with pytest.raises(ModelError) as err:
+        nls(load_model(path), 1.0)
+    msg = str(err.value)
+    assert "\n" not in msg
+    assert "field u" in msg and "on-site stiffness" in msg and "(u_next - u)" in msg
