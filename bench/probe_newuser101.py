@@ -19,7 +19,7 @@ the docs' edited statements run as written, and the findings fixed on branch new
     python -m bench.probe_newuser101
 
 One line a check, ``!!`` where it disagrees, the list at the end (exit 1 where any). ~15 s
-on the 2-core VM (2026-11-27: 18 checks in 12 s, 0 disagreements on branch newuser101).
+on the 2-core VM (2026-11-27: 18 checks in 12 s, 0 disagreements on branch newuser101, 4 on main before it).
 """
 
 from __future__ import annotations
