@@ -95,3 +95,15 @@ def test_a_zero_mode_that_is_no_symmetry_is_refused_with_its_field_and_the_remed
     msg = str(err.value)
     assert "\n" not in msg
     assert "field u" in msg and "on-site stiffness" in msg and "(u_next - u)" in msg
+
+
+def test_case_with_a_model_says_the_case_is_the_model(capsys):
+    """--case coupled beside --model: the refusal told to give --param values, which pick
+    no case; the paper chain's cases are the models flexmm and flexmm-rotation."""
+    from cli.app import main
+
+    assert main(["point", "--model", "fput", "--k", "1", "--amplitude", "0.1",
+                 "--case", "coupled"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.count("\n") == 0 and "--case" in err
+    assert "--model flexmm (coupled)" in err and "flexmm-rotation (rotation)" in err
