@@ -203,9 +203,14 @@ def ring_note(model, k, amplitude, branch, N, row) -> str | None:
     if ring > 0:
         return None
     edge = row["band_edge"]
+    # the ring advised has its first offset where the band grows at half its peak or
+    # more: the NLS's rate |g1|/2 q sqrt(edge^2 - q^2) is half its peak at q = edge
+    # sin 15 and edge cos 15 (one offset just inside the edge grows at ~0: leftovers101)
+    need = math.ceil(2 * math.pi / (edge * math.cos(math.pi / 12)))
     return (f"the semi-discrete NLS's band (offsets below {edge:.3g}) is narrower than the "
             f"ring's first sideband offset 2 pi / N = {2 * math.pi / N:.3g}: a ring of "
-            f"N = {N} carries none of it; --N above {math.ceil(2 * math.pi / edge)} does")
+            f"N = {N} carries none of it; --N {need} or more does (its first offset where "
+            "the band grows at half its peak)")
 
 
 def reach_note(model, k, amplitude, branch, out) -> str | None:
