@@ -113,3 +113,53 @@ def test_a_simulated_map_at_zero_damping_is_the_lossless_map_bit_for_bit(tmp_pat
     assert set(lossy.data_vars) == set(plain.data_vars)
     for v in plain.data_vars:
         np.testing.assert_array_equal(lossy[v].values, plain[v].values, err_msg=v)
+
+
+# ------------------------------------------ one name a mode in point's exact row
+def _point_json(capsys, *argv):
+    import json
+
+    assert main(["point", *argv, "--json"]) == 0
+    return json.loads(capsys.readouterr().out)
+
+
+def test_points_exact_row_names_a_three_wave_decay_as_its_notes_do(capsys, tmp_path):
+    """decay2 (acoustic u, optical v, only a cubic cross term) at k 2.2, a 0.1 on 128
+    sites: the carrier decays into v at 0.98 and u at 1.23 (the four-wave row's reason;
+    their wavenumbers sum to k by hand below). The row's ``mode`` said 'resonance at
+    wavenumber 0.9817' where its note says 'three-wave decay'; now both say the latter
+    (``mode_kind`` stays 'resonance': its waves are no four-wave pair)."""
+    import re
+
+    from bench._fourwave100_models import FILES
+
+    path = tmp_path / "decay2.toml"
+    path.write_text(FILES["decay2"])
+    out = _point_json(capsys, "--model", str(path), "--k", "2.2", "--amplitude", "0.1",
+                      "--N", "128")
+    ex = out["exact lattice"]
+    k = out["k"]
+    got = re.search(r"three-wave decay of the carrier into branch \d+ at (-?[\d.]+) and "
+                    r"branch \d+ at (-?[\d.]+)", out["four-wave"]["reason"])
+    k1, k3 = float(got.group(1)), float(got.group(2))
+    # the decay's momentum balance k1 + k3 = k (mod 2 pi), to the reason's 4 digits
+    assert abs((k1 + k3 - k + math.pi) % (2 * math.pi) - math.pi) < 2e-3
+    assert ex["mode_kind"] == "resonance"
+    assert ex["mode"].startswith("three-wave decay of the carrier")
+    assert any("three-wave decay" in n for n in out["notes"])
+
+
+def test_points_exact_row_names_a_backward_pair_once(capsys):
+    """FPUT alpha 0.5, beta 1 at k pi/2, a 0.1 on 256 sites grows through a backward pair
+    (tests/test_fourwave.py); the row's ``mode`` said 'sidebands k +- q' beside
+    ``mode_kind`` 'backward'. Now 'backward pair at wavenumbers k1 and k2', its waves'."""
+    out = _point_json(capsys, "--model", "fput", "--param", "alpha=0.5", "--param", "beta=1",
+                      "--k", str(math.pi / 2), "--amplitude", "0.1", "--N", "256")
+    ex = out["exact lattice"]
+    assert ex["mode_kind"] == "backward"
+    waves = sorted(w["wavenumber"] for w in ex["mode_waves"])
+    assert ex["mode"] == "backward pair at wavenumbers " + " and ".join(
+        f"{w:.4g}" for w in waves[::-1])
+    # a four-wave pair: k1 + k2 = 2k (mod 2 pi), both near k - pi (the umklapp)
+    s = sum(waves) - 2 * out["k"]
+    assert abs((s + math.pi) % (2 * math.pi) - math.pi) < 1e-9

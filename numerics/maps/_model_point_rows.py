@@ -25,7 +25,33 @@ def exact_row(spec) -> dict:
     if why:
         row["not_converged"] = why
     row.update(classify_mode(spec))  # mode_kind, mode_waves and the pair's own offset
+    row["mode"] = mode_name(row, spec)
     return row
+
+
+def mode_name(row, spec) -> str:
+    """The exact row's ``mode`` named by its ``mode_kind``, one name a mode (the spectrum's
+    own ``mode`` said 'sidebands k +- q' of a backward pair and of a three-wave decay,
+    whose dominant harmonic it reads near the carrier): 'sidebands k +- q', 'backward
+    pair' or 'parametric pair' at its waves' wavenumbers, 'resonance at wavenumber' the
+    dominant harmonic's, 'none'. A resonance the four-wave row names a three-wave decay
+    is renamed by ``decay_named``."""
+    kind = row.get("mode_kind")
+    if kind in ("backward", "parametric"):
+        at = " and ".join(f"{w['wavenumber']:.4g}" for w in waves_in_order(row))
+        return f"{kind} pair at wavenumbers {at}"
+    if kind == "resonance":
+        return f"resonance at wavenumber {spec.fastest_wavenumber:.4g}"
+    return "sidebands k +- q" if kind == "sidebands" else spec.mode
+
+
+def decay_named(out) -> None:
+    """The exact row's ``mode`` where the four-wave row names the carrier's three-wave
+    decay and the exact mode is a resonance (its waves no four-wave pair): 'three-wave
+    decay of the carrier', the name the notes give it (a resonance before)."""
+    ex = out.get("exact lattice", {})
+    if _decays(out) and ex.get("mode_kind") == "resonance":
+        ex["mode"] = "three-wave decay of the carrier (the four-wave row's reason)"
 
 
 def own_offset(row, k):
