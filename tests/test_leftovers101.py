@@ -3,8 +3,12 @@
 - ``ring_misses`` (``flexmm point``'s advice where a ring misses a band of the infinite
   chain) advised the smallest ring with any offset in the band, which can sit at the band's
   edge where the rate is ~0 and a run shows nothing: it now advises a ring whose offset
-  grows at half the band's peak or more, or says none up to 64 N has one; the NLS band's
-  note and the paper chain's note advise by the same rule.
+  grows at half the band's peak or more, or says none up to 64 N has one (such a band was
+  dropped without a word); the NLS band's note and the paper chain's note advise by the
+  same rule.
+- ``point``'s exact row named a mode twice: ``mode`` 'sidebands k +- q' beside
+  ``mode_kind`` 'backward', 'resonance at wavenumber' where its notes say 'three-wave
+  decay'; ``mode`` now follows ``mode_kind``, and names the decay as the notes do.
 - A simulated map of a lossy model file whose damping is zero over the whole map (no
   damping axis) ran its cells as lossy cells (runs launched as issue 42's, amplification
   theories) although the map stores the lossless columns: its stored growth, growth_q,
@@ -163,3 +167,17 @@ def test_points_exact_row_names_a_backward_pair_once(capsys):
     # a four-wave pair: k1 + k2 = 2k (mod 2 pi), both near k - pi (the umklapp)
     s = sum(waves) - 2 * out["k"]
     assert abs((s + math.pi) % (2 * math.pi) - math.pi) < 1e-9
+
+
+def test_a_band_no_ring_up_to_64_n_resolves_is_said_not_dropped(capsys):
+    """FPUT alpha 1 at k 0.8043, a 0.2248 on 64 sites: the chain grows in a band of offsets
+    below 4.4e-4 rad/site, under the smallest offset 2 pi / 4096 = 1.5e-3 of any ring up to
+    64 N (by hand below). It was dropped without a word; now the note says so."""
+    out = _point_json(capsys, "--model", "fput", "--param", "alpha=1", "--k", "0.8043",
+                      "--amplitude", "0.2248", "--N", "64")
+    none = [b for b in out["ring_misses"] if b["N"] is None]
+    assert len(none) == 1 and none[0]["band"][1] < 2 * math.pi / (64 * 64)
+    assert main(["point", "--model", "fput", "--param", "alpha=1", "--k", "0.8043",
+                 "--amplitude", "0.2248", "--N", "64"]) == 0
+    assert "no ring up to N = 4096 has an offset where it grows at half that" in \
+        capsys.readouterr().out
