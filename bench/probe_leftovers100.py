@@ -100,17 +100,8 @@ def part2(tmp):
             f"{wall:.1f} s (ratio {wall / e:.2f}; load average {load:.1f})")
 
 
-LJ = """name = "lj-chain"
-fields = ["u"]
-[parameters]
-eps = 0.013888888888888888
-[energy]
-kinetic = "u_t**2/2"
-bond = "eps*((1 + u_next - u)**(-12) - 2*(1 + u_next - u)**(-6) + 1)"
-"""
-
-
 def part3():
+    from bench.probe_newuser99 import LJ  # the Lennard-Jones file's one copy
     from energy import load_model, parse_model
     from numerics.models import exact_gain, hill_spectrum, ring_misses, snap_ring
 

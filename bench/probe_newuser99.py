@@ -41,7 +41,10 @@ import sys
 import tempfile
 from pathlib import Path
 
+#: the Lennard-Jones chain (unit stiffness at rest: eps = 1/72), the one copy of its file
+#: (probe_leftovers100 and tests/test_newuser99.py, test_leftovers100.py import it)
 LJ = """name = "lj-chain"
+description = "unit masses, Lennard-Jones bonds of unit stiffness at rest"
 fields = ["u"]
 [parameters]
 eps = 0.013888888888888888

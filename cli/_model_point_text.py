@@ -48,7 +48,10 @@ def _miss_text(b, N, k) -> str:
     lo, hi = b["band"]
     # digits enough to tell the edges apart (a band 1e-4 wide read "1.142 to 1.142")
     d = next((d for d in range(4, 10) if f"{lo:.{d}g}" != f"{hi:.{d}g}"), 10)
-    ring = (f"N = {b['N']} with --k {k:.9g} does (a ring that carries this k, so this band)"
+    # the ring advised has an offset where the band grows at half its peak or more
+    ring = (f"no ring up to N = {64 * N} has an offset where it grows at half that"
+            if b["N"] is None else
+            f"N = {b['N']} with --k {k:.9g} does (a ring that carries this k, so this band)"
             if b.get("same_k") else
             f"N = {b['N']} does (k snaps to 2 pi m / N there: the band moves with it)")
     return (f"the infinite chain grows at {b['peak_gain']:.3g} /time in the band of offsets "
@@ -218,7 +221,9 @@ def report(args, point, units, since=None) -> dict:
         rest = [m for m in misses if m not in shown]
         print(f"note: {len(rest)} more such bands, growing at up to "
               f"{max(m['peak_gain'] for m in rest):.3g} /time (all in ring_misses: --json, "
-              f"or point.json with --out); N = {min(m['N'] for m in misses)} samples one")
+              f"or point.json with --out)" + (
+                  f"; N = {min(ns)} samples one" if (ns := [m["N"] for m in misses
+                                                            if m["N"] is not None]) else ""))
     for w in point.warnings:
         print(f"note: {w}")
     if args.out:

@@ -320,24 +320,23 @@ def _ring_note(res) -> str | None:
     ring = 2 * np.pi * np.arange(1, res.N // 2 + 1) / res.N
     if np.any(np.interp(ring, Q, np.where(grows, c, 0.0)) > 0):
         return None
-    def samples(n):
-        return math.floor(hi * n / (2 * math.pi)) >= math.ceil(lo * n / (2 * math.pi))
+    # the ring advised has an offset where the band grows at half its peak (at its edge
+    # the rate is ~0, a run shows nothing): the samples at or above it about the peak
+    top = int(np.argmax(np.where(grows, c, -np.inf)))
+    half = np.concatenate([[False], np.where(grows, c, 0.0) >= c[top] / 2, [False]])
+    rlo = float(Q[top - int(np.argmin(half[top + 1::-1])) + 1])
+    rhi = float(Q[top + int(np.argmin(half[top + 1:])) - 1])
+    from common.rings import advised_ring  # one that keeps k first, as a model's point
 
-    # a ring that carries this k (a multiple of its period), so this band (newuser99; as
-    # a model's point): elsewhere k snaps to another value and the band moves with it
-    m = round(res.k * res.N / (2 * np.pi))
-    step = res.N // math.gcd(m, res.N)
-    n = next((n for n in range(step * (res.N // step + 1), 64 * res.N + 1, step)
-              if samples(n)), None)
-    same = n is not None
-    if not same:
-        n = next((n for n in range(res.N + 1, 64 * res.N) if samples(n)), None)
+    n, same = advised_ring(rlo, rhi, res.N, round(res.k * res.N / (2 * np.pi)))
     return (f"note: the band of the '{res.exact_theory}' theory (offsets {lo:.3g} to "
             f"{hi:.3g} rad/site, the infinite chain's) holds no offset 2 pi j / N of the ring of N = {res.N} (the smallest "
             f"{2 * math.pi / res.N:.3g}): no ring mode grows, so a run shows no MI here"
             + (f"; N = {n} with --k {res.k:.9g} samples it (a ring that carries this k)"
                if n and same else
-               f"; N = {n} samples it (k snaps to 2 pi m / N there)" if n else ""))
+               f"; N = {n} samples it (k snaps to 2 pi m / N there)" if n else
+               f"; no ring up to N = {64 * res.N} has an offset where it grows at half its "
+               "peak"))
 
 
 def _why_no_gain(res, mat, case, amplitude) -> str | None:

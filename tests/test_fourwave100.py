@@ -1,23 +1,13 @@
 """Probe 100 of the four-wave theory (bench/probe_fourwave100.py): a three-wave decay that
 the exact mode's classifier named 'sidebands'."""
 
+from bench._fourwave100_models import FILES
 from energy import load_model, parse_model
 from numerics.models import branches, classify_mode, exact_gain
 
 #: acoustic u, optical v (omega_v ~ 0.6), only a cubic cross term: the u carrier's
 #: instabilities of order a are three-wave decays u(k) -> u(k1) + v(k - k1)
-DECAY2 = '''name = "decay2"
-fields = ["u", "v"]
-branch = "u"
-[parameters]
-wv = 0.6
-cv = 0.05
-g = 0.5
-[energy]
-kinetic = "u_t**2/2 + v_t**2/2"
-bond = "(u_next - u)**2/2 + cv*(v_next - v)**2/2 + g*(u_next - u)**2*v"
-site = "wv**2*v**2/2"
-'''
+DECAY2 = FILES["decay2"]  # probe 100's file (bench/_fourwave100_models.py)
 
 
 def test_decay_is_not_called_sidebands_at_larger_amplitude():
@@ -41,18 +31,7 @@ def test_decay_is_not_called_sidebands_at_larger_amplitude():
 
 #: FPUT with next-nearest-neighbour springs as a two-site cell (a = site 2n, b = site
 #: 2n + 1): one monatomic branch folded at kappa = pi, where the cell's two branches meet
-NNN = '''name = "nnn"
-fields = ["a", "b"]
-[parameters]
-alpha = 0.3
-beta = 1.0
-c2 = 0.25
-beta2 = 0.5
-[energy]
-kinetic = "a_t**2/2 + b_t**2/2"
-site = "(b - a)**2/2 + alpha*(b - a)**3/3 + beta*(b - a)**4/4"
-bond = "(a_next - b)**2/2 + alpha*(a_next - b)**3/3 + beta*(a_next - b)**4/4 + c2*(a_next - a)**2/2 + beta2*(a_next - a)**4/4 + c2*(b_next - b)**2/2 + beta2*(b_next - b)**4/4"
-'''
+NNN = FILES["nnn"]  # probe 100's file (bench/_fourwave100_models.py)
 
 
 def test_a_wave_where_the_folded_branches_meet_is_on_the_carriers_sheet():
@@ -106,22 +85,7 @@ def test_the_points_note_on_sidebands_the_four_wave_rate_misses():
 
 #: acoustic u with optical v, w, coupled only nonlinearly (u'^2 v, u'^3 w): the u and w
 #: branches cross near kappa = 1.68 (2 sin(kappa/2) = sqrt(ww^2 + 4 cw sin^2(kappa/2)))
-TRI = '''name = "tri"
-fields = ["u", "v", "w"]
-branch = "u"
-[parameters]
-bu = 1.0
-wv = 1.842392
-cv = 0.1
-ww = 1.420464
-cw = 0.1
-g2 = 0.3
-g3 = 0.3
-[energy]
-kinetic = "u_t**2/2 + v_t**2/2 + w_t**2/2"
-bond = "(u_next - u)**2/2 + bu*(u_next - u)**4/4 + cv*(v_next - v)**2/2 + cw*(w_next - w)**2/2 + g2*(u_next - u)**2*v + g3*(u_next - u)**3*w"
-site = "wv**2*v**2/2 + v**4/4 + ww**2*w**2/2 + w**4/4"
-'''
+TRI = FILES["tri"]  # probe 100's file (bench/_fourwave100_models.py)
 
 
 def test_a_rated_pair_slower_than_one_left_out_at_a_crossing_is_said():

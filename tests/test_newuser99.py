@@ -8,6 +8,7 @@
 
 import pytest
 
+from bench.probe_newuser99 import LJ  # the probe's copy of the file
 from cli.app import main
 from energy import ModelError, load_model, parse_model
 
@@ -44,15 +45,6 @@ def test_model_options_still_act_with_a_model(capsys):
     assert "m = 3" in capsys.readouterr().out
 
 
-LJ = """name = "lj-chain"
-description = "unit masses, Lennard-Jones bonds of unit stiffness at rest"
-fields = ["u"]
-[parameters]
-eps = 0.013888888888888888
-[energy]
-kinetic = "u_t**2/2"
-bond = "eps*((1 + u_next - u)**(-12) - 2*(1 + u_next - u)**(-6) + 1)"
-"""
 
 
 def _exact_row_and_misses(capsys, argv):

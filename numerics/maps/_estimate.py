@@ -348,7 +348,8 @@ def probe_model_cell(params) -> ModelCellCost:
         t0 = time.process_time()
         row = map_cells(params.lattice_model, [(values, k)], amplitude, params.branch_value,
                         exact=params.ring, simulate=False, N=params.N,
-                        start=getattr(params, "start", "exact"))[0]
+                        start=getattr(params, "start", "exact"),
+                        lossy=getattr(params, "lossy", None))[0]
         return time.process_time() - t0, row
 
     t0 = time.process_time()  # the NLS alone first: the imports a worker pays once

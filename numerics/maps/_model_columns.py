@@ -143,7 +143,7 @@ def model_block(params: ModelMapParameters, i: int, js: list, simulate: bool = T
         got = map_cells(params.lattice_model, [params.cell(i, js[n]) for n in ns], amplitude,
                         params.branch_value, exact=params.ring, simulate=simulate,
                         N=params.N, seeds=params.seeds, t_end=params.t_end,
-                        start=params.start)
+                        start=params.start, lossy=params.lossy)
         for n, row in zip(ns, got):
             rows[n] = row
     flags = params.flag_columns()

@@ -231,6 +231,7 @@ def measure_model_point(spec: ModelPointSpec, *, on_estimate=None,
                                 "reason": str(exc)}
     fw = four_wave(model, k, amplitude, branch, N=N)
     out["four-wave"] = fw.row()
+    rows.decay_named(out)  # one name for the carrier's three-wave decay, as the notes'
     out["ring_misses"] = [] if hill is None else rows.missed_bands(model, k, amplitude,
                                                                    branch, N)
     start_curve, start_gain, start_label = None, None, None

@@ -25,7 +25,33 @@ def exact_row(spec) -> dict:
     if why:
         row["not_converged"] = why
     row.update(classify_mode(spec))  # mode_kind, mode_waves and the pair's own offset
+    row["mode"] = mode_name(row, spec)
     return row
+
+
+def mode_name(row, spec) -> str:
+    """The exact row's ``mode`` named by its ``mode_kind``, one name a mode (the spectrum's
+    own ``mode`` said 'sidebands k +- q' of a backward pair and of a three-wave decay,
+    whose dominant harmonic it reads near the carrier): 'sidebands k +- q', 'backward
+    pair' or 'parametric pair' at its waves' wavenumbers, 'resonance at wavenumber' the
+    dominant harmonic's, 'none'. A resonance the four-wave row names a three-wave decay
+    is renamed by ``decay_named``."""
+    kind = row.get("mode_kind")
+    if kind in ("backward", "parametric"):
+        at = " and ".join(f"{w['wavenumber']:.4g}" for w in waves_in_order(row))
+        return f"{kind} pair at wavenumbers {at}"
+    if kind == "resonance":
+        return f"resonance at wavenumber {spec.fastest_wavenumber:.4g}"
+    return "sidebands k +- q" if kind == "sidebands" else spec.mode
+
+
+def decay_named(out) -> None:
+    """The exact row's ``mode`` where the four-wave row names the carrier's three-wave
+    decay and the exact mode is a resonance (its waves no four-wave pair): 'three-wave
+    decay of the carrier', the name the notes give it (a resonance before)."""
+    ex = out.get("exact lattice", {})
+    if _decays(out) and ex.get("mode_kind") == "resonance":
+        ex["mode"] = "three-wave decay of the carrier (the four-wave row's reason)"
 
 
 def own_offset(row, k):
@@ -209,9 +235,14 @@ def ring_note(model, k, amplitude, branch, N, row) -> str | None:
     if ring > 0:
         return None
     edge = row["band_edge"]
+    # the ring advised has its first offset where the band grows at half its peak or
+    # more: the NLS's rate |g1|/2 q sqrt(edge^2 - q^2) is half its peak at q = edge
+    # sin 15 and edge cos 15 (one offset just inside the edge grows at ~0: leftovers101)
+    need = math.ceil(2 * math.pi / (edge * math.cos(math.pi / 12)))
     return (f"the semi-discrete NLS's band (offsets below {edge:.3g}) is narrower than the "
             f"ring's first sideband offset 2 pi / N = {2 * math.pi / N:.3g}: a ring of "
-            f"N = {N} carries none of it; --N above {math.ceil(2 * math.pi / edge)} does")
+            f"N = {N} carries none of it; --N {need} or more does (its first offset where "
+            "the band grows at half its peak)")
 
 
 def reach_note(model, k, amplitude, branch, out) -> str | None:

@@ -11,7 +11,7 @@ exact_gain                              both at one point: the exact lattice the
 not_converged                           its sentence where the fastest mode does not
                                         persist across Hill truncations
 four_wave -> FourWave                   every four-wave pair's rate (Zakharov's kernel of the
-                                        lattice): sidebands, backward pairs, parametric decays
+                                        lattice): sidebands, backward pairs, parametric pairs
 classify_mode, ring_misses              what an exact mode is; bands a ring does not sample
 field_groups, wave_sheet, sheet_pair_kind, sheet_branches   dispersion sheets: a wave's own branch where
                                         branches of uncoupled fields cross

@@ -202,9 +202,10 @@ class HillSpectrum:
 
     @property
     def mode(self) -> str:
-        """What grows fastest: 'sidebands k +- q' (the modulational instability: the mode
-        has sideband components near the carrier) or 'resonance at wavenumber kappa' (a
-        parametric one, far from the carrier)."""
+        """Where the fastest mode lies: 'sidebands k +- q' (it has sideband components near
+        the carrier) or 'resonance at wavenumber kappa' (none: its dominant harmonic's
+        wavenumber). Its kind (a backward or parametric pair, a three-wave decay) is
+        ``classify_mode``'s, which ``point``'s row names it by."""
         if self.peak_gain <= 0:
             return "none"
         if math.isfinite(self.sideband_offset[int(np.argmax(self.gain))]):

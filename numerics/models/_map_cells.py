@@ -16,12 +16,12 @@ from ._nls import nls, remember_nls
 
 def _map_cell(model: Model, k: float, amplitude: float, branch=None, *, exact: bool = False,
               simulate: bool = False, N: int = 256, seeds: int = 1,
-              t_end: float | None = None, start: str = "exact") -> dict:
+              t_end: float | None = None, start: str = "exact", lossy=None) -> dict:
     from common.threads import one_blas_thread
 
     return one_blas_thread(_cell_columns)(model, k, amplitude, branch, exact=exact,
                                           simulate=simulate, N=N, seeds=seeds, t_end=t_end,
-                                          start=start)
+                                          start=start, lossy=lossy)
 
 
 def _start_columns(model, k, amplitude, N, start) -> tuple:
@@ -44,7 +44,7 @@ def _start_columns(model, k, amplitude, N, start) -> tuple:
 
 
 def _cell_columns(model, k, amplitude, branch, *, exact, simulate, N, seeds, t_end,
-                  start="exact"):
+                  start="exact", lossy=None):
     from numerics.lattice import BlowUpError
 
     from ._reach import energy_not_real, exact_gain_checked
@@ -80,7 +80,8 @@ def _cell_columns(model, k, amplitude, branch, *, exact, simulate, N, seeds, t_e
         row[f"verdict_{extra.column}"] = got["verdict"]
         row[f"peak_gain_{extra.column}"] = (math.nan if got["peak_gain"] is None
                                             else float(got["peak_gain"]))
-    lossy = model.lattice.lossy  # the map's columns: a damping axis from 0 too
+    if lossy is None:  # the map's columns: a damping axis from 0 too (map_cells)
+        lossy = model.lattice.lossy
     if lossy:  # issue 42: the sidebands' amplification along the decaying carrier
         from ._losses import nls_amplification
 
@@ -135,7 +136,7 @@ def _cell_columns(model, k, amplitude, branch, *, exact, simulate, N, seeds, t_e
             return _simulated_columns(row, model, k, amplitude, spec, branch=branch, N=N,
                                       seeds=seeds, t_end=t_end, start=start,
                                       start_gain=start_gain, launch_ok=launch_ok,
-                                      peak_time=peak_time)
+                                      peak_time=peak_time, lossy=lossy)
         except BlowUpError as exc:
             # a run that left the lattice's range (a softening bond past its barrier, say):
             # the cell's runs say nothing more about MI, and the other cells stand; stored
@@ -148,12 +149,11 @@ def _cell_columns(model, k, amplitude, branch, *, exact, simulate, N, seeds, t_e
 
 
 def _simulated_columns(row, model, k, amplitude, spec, *, branch, N, seeds, t_end, start,
-                       start_gain, launch_ok, peak_time):
+                       start_gain, launch_ok, peak_time, lossy):
     """A cell's runs and their columns (``_cell_columns``'s last part)."""
     from ._seeds import simulate_seeds
 
-    lossy = model.lattice.lossy  # the map's columns: a damping axis from 0 too
-    if lossy:  # issue 42: launched as a point's, the runs' amplification
+    if lossy:  # the map's columns: a damping axis from 0 too  # issue 42: launched as a point's, the runs' amplification
         sim, amp = lossy_runs(model, k, amplitude, spec, branch=branch, N=N, seeds=seeds,
                               t_end=t_end, peak_time=peak_time, energy=False)
         row.update(amp)
@@ -269,7 +269,7 @@ def _amplification(row: dict, theory: str, f) -> None:
 
 def map_cells(model: Model, cells, amplitude: float, branch=None, *, exact: bool = False,
               simulate: bool = False, N: int = 256, seeds: int = 1,
-              t_end: float | None = None, start: str = "exact") -> list:
+              t_end: float | None = None, start: str = "exact", lossy=None) -> list:
     """The columns of a block of map cells (what one task of ``numerics.maps.run_map``
     computes), on one BLAS thread.
 
@@ -291,6 +291,12 @@ def map_cells(model: Model, cells, amplitude: float, branch=None, *, exact: bool
         (``extra_starts``: "paper", eq. IC, for the paper chain's energy); then, on the
         ring, its theory's ``verdict_<start>_start`` and ``peak_gain_<start>_start``, and
         the runs' T from that theory's rate.
+    lossy : bool, optional
+        Whether the cells take a lossy model's columns and runs (amplifications; runs
+        launched as issue 42 measures one, ``lossy_runs``): the map's
+        (``ModelMapParameters.lossy``). None: wherever the model's file has a
+        [dissipation] (a damping axis from 0). A file whose damping is zero over the whole
+        map is the lossless map: False runs its cells as the lossless model's, bit for bit.
 
     Returns
     -------
@@ -324,5 +330,6 @@ def map_cells(model: Model, cells, amplitude: float, branch=None, *, exact: bool
         ``t_simulated`` the time it blew up; the other cells stand.
     """
     return [_map_cell(model.with_params(**values), k, amplitude, branch, exact=exact,
-                      simulate=simulate, N=N, seeds=seeds, t_end=t_end, start=start)
+                      simulate=simulate, N=N, seeds=seeds, t_end=t_end, start=start,
+                      lossy=lossy)
             for values, k in cells]

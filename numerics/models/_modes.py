@@ -4,7 +4,8 @@ classify_mode   the fastest mode of an exact Hill spectrum as a four-wave pair: 
                 ('sidebands', 'backward', 'parametric', 'resonance'), its two waves and its
                 own offset (not a copy's at a commensurate k)
 ring_misses     the infinite chain's unstable bands that no offset 2 pi j / N of a ring
-                samples, with the ring size that would
+                samples, with the ring size that would (where the band grows at half its
+                peak: common.rings.advised_ring)
 wave_field, pair_kind, own_offset   the naming rules, shared with ``_fourwave``
 sheet_pair_kind, wave_sheet   pair_kind by dispersion sheets, where uncoupled branches cross
 """
@@ -15,6 +16,7 @@ import math
 
 import numpy as np
 
+from common.rings import advised_ring
 from energy import Model
 
 
@@ -302,9 +304,11 @@ def ring_misses(model: Model, k: float, amplitude: float, branch=None, *, N: int
     wide), so the Hill spectrum is also sampled where the four-wave theory puts a band.
     Returns a list of dicts: ``band`` (lo, hi), the Hill offsets q (rad/site) where the
     chain grows, ``peak_gain`` there and ``N``, the smallest ring size above N with an
-    offset inside the band, a multiple of the ring's own period of k where one up to 64 N
-    has one (``same_k`` True: that ring carries this k, so this band), else any (its k
-    snaps elsewhere, and the band moves with it).
+    offset where the band grows at least ``RESOLVED`` (half) of its peak (an offset at
+    the band's edge grows at ~0: a run cannot show it), a multiple of the ring's own
+    period of k where one up to 64 N has one (``same_k`` True: that ring carries this k,
+    so this band), else any (its k snaps elsewhere, and the band moves with it); None
+    where no ring up to 64 N has such an offset.
     """
     from ._exact import exact_gain
     from ._fourwave import four_wave
@@ -355,30 +359,21 @@ def ring_misses(model: Model, k: float, amplitude: float, branch=None, *, N: int
         if any(_same_mode(mid, (b["band"][0] + b["band"][1]) / 2, k_ring, hi - lo)
                for b in out):
             continue
-        n_any = next((n for n in range(N + 1, 64 * N) if _samples(lo, hi, n)), None)
-        # a ring whose k is this one (a multiple of the reduced denominator of m / N):
-        # there the band is this band; on any other ring k snaps elsewhere and the band
-        # moves with it (newuser99: the LJ chain's advised N = 132 snapped k = 0.9817 to
-        # 0.9996, whose band that ring missed again, N = 145 advised next)
-        step = N // math.gcd(m_ring, N)
-        n_same = next((n for n in range(step * (N // step + 1), 64 * N + 1, step)
-                       if _samples(lo, hi, n)), None)
         # the band's own peak, not its sampled offsets' (probe 100: 10% low on a 1e-3
         # wide band of a Lennard-Jones chain)
-        out.append({"band": (lo, hi), "peak_gain": _band_peak(
-                        chain.wave, lo, hi, float(np.max(g[start:stop]))),
-                    "N": n_same if n_same is not None else n_any,
-                    "same_k": n_same is not None})
+        peak, at = _band_peak(chain.wave, lo, hi, float(np.max(g[start:stop])),
+                              float(q[start + int(np.argmax(g[start:stop]))]))
+        # the ring advised has an offset where the band grows at >= RESOLVED of its peak:
+        # an offset at the band's edge grows at ~0 and a run shows nothing there
+        # (leftovers101: kgeven at k 0.393, a 0.175, N = 128 was told N = 256, whose only
+        # offset in the band 0.4148-0.4173, 0.41724, grows at 1.5e-4 of a peak 6.3e-4)
+        rlo, rhi = _resolved_span(chain.wave, lo, hi, at, RESOLVED * peak)
+        n, same = advised_ring(rlo, rhi, N, m_ring)
+        out.append({"band": (lo, hi), "peak_gain": peak, "N": n, "same_k": same})
     # Hill's spectrum at +-q + l k is the one at q: a piece between two ring offsets of a
     # band that is a copy of a band the ring samples is that band's mode, which the ring
     # shows (at k = pi on 64 sites the sidebands' copies near pi - q read as 13 bands)
-    return [b for b in out if b["N"] is not None
-            and not any(_copy_inside(b["band"], s, k_ring) for s in sampled)]
-
-
-def _samples(lo: float, hi: float, n: int) -> bool:
-    """Whether an offset 2 pi j / n of a ring of n sites lies in [lo, hi]."""
-    return math.floor(hi * n / (2 * math.pi)) >= math.ceil(lo * n / (2 * math.pi))
+    return [b for b in out if not any(_copy_inside(b["band"], s, k_ring) for s in sampled)]
 
 
 def _copy_inside(band, other, k) -> bool:
@@ -422,16 +417,17 @@ def _edge(wave, inside: float, outside, steps: int = 12) -> float:
 PEAK_SAMPLES = 33
 
 
-def _band_peak(wave, lo: float, hi: float, sampled: float) -> float:
-    """The largest Hill rate over the offsets [lo, hi] of a band: PEAK_SAMPLES across it,
-    then Brent's bounded search between the best sample's neighbours (to 1e-4 of the
-    band's width); never below ``sampled``, the rate already seen inside it."""
+def _band_peak(wave, lo: float, hi: float, sampled: float, at: float) -> tuple:
+    """The largest Hill rate over the offsets [lo, hi] of a band and where: PEAK_SAMPLES
+    across it, then Brent's bounded search between the best sample's neighbours (to 1e-4
+    of the band's width); never below ``sampled``, the rate already seen inside it (at the
+    offset ``at``). Returns (rate, offset)."""
     from scipy.optimize import minimize_scalar
 
     from ._exact import hill_spectrum
 
     if not hi > lo:
-        return sampled
+        return sampled, at
     q = np.linspace(lo, hi, PEAK_SAMPLES)
     g = np.nan_to_num(hill_spectrum(wave, q).gain, nan=0.0)
     i = int(np.argmax(g))
@@ -439,4 +435,31 @@ def _band_peak(wave, lo: float, hi: float, sampled: float) -> float:
     best = minimize_scalar(lambda x: -float(np.nan_to_num(hill_spectrum(wave, [x]).gain[0])),
                            bounds=(a, b), method="bounded",
                            options={"xatol": 1e-4 * (hi - lo)})
-    return float(max(sampled, g[i], -best.fun))
+    return max((sampled, at), (float(g[i]), float(q[i])), (-float(best.fun), float(best.x)))
+
+
+#: the share of a band's peak rate that an advised ring's offset must grow at: a run
+#: resolves a mode at half the peak within twice the peak's e-folding time
+RESOLVED = 0.5
+
+
+def _resolved_span(wave, lo: float, hi: float, at: float, rate: float,
+                   steps: int = 14) -> tuple:
+    """The offsets about ``at`` (the band's peak) where Hill's rate is at least ``rate``:
+    bisection between the peak and each edge of [lo, hi] (2^-14 of the band's width)."""
+    from ._exact import hill_spectrum
+
+    def above(x):
+        return float(np.nan_to_num(hill_spectrum(wave, [x]).gain[0])) >= rate
+
+    ends = []
+    for edge in (lo, hi):
+        a, b = at, edge  # a: at least rate; b: below, or the edge itself
+        if above(b):
+            ends.append(b)
+            continue
+        for _ in range(steps):
+            m = (a + b) / 2
+            a, b = (m, b) if above(m) else (a, m)
+        ends.append(a)
+    return ends[0], ends[1]
