@@ -174,7 +174,8 @@ def part_map(folder):
     say("map", "theory-only 5 x 15 map", rc == 0, f"{wall:.1f} s; {so.splitlines()[-2]}")
     # the theta carrier is the optical root (index 2) at small k, below U from k ~ 1.3
     # (index 1), the lowest root near pi (4 K_b / J < 4 K_s there): the map must say so
-    jump = re.search(r"changes along k: (.*?);", so + se)
+    # (per row since newuser 101: the file's K_s = 0.2 row)
+    jump = re.search(r"changes along k: .*?at K_s = 0.2: (.*?);", so + se)
     say("map", "the theta branch's index changes said", bool(jump) and re.findall(
         r"index (\d)", jump[1]) == ["2", "1", "0"], jump[1][:100] if jump else "not said")
     with xr.open_zarr(out / "map.zarr") as ds:

@@ -85,18 +85,39 @@ def cells_done(out, params) -> tuple:
     return done if done is not None and done[1] == cells else (0, cells)
 
 
-def branch_jumps(model, ks, branch) -> str | None:
+def branch_jumps(model, ks, branch, rows=None) -> str | None:
     """A note where ``--branch FIELD`` names a different branch index along the k axis
     (each k's carrier is the branch that field dominates there: across an avoided crossing
     it moves to another root, and the map's omega, g1 and verdicts jump with it), at the
-    model's fixed values; None where the index holds, or the branch is an index (probe 100:
-    a three-field hinge chain's theta carrier went from index 2 to 1 to 0 over k, its
-    frequency 1.05 -> 0.49 between k 2.2 and 2.4, and nothing said so)."""
+    model's fixed values, or per value of ``rows`` = (parameter, values) where the other
+    axis is a parameter (newuser 101: a two-field chain's map over eta and k gave the file's
+    eta's index ranges and omegas for every row); None where the index holds, or the branch
+    is an index (probe 100: a three-field hinge chain's theta carrier went from index 2 to
+    1 to 0 over k, its frequency 1.05 -> 0.49 between k 2.2 and 2.4, and nothing said so)."""
+    if branch is None or str(branch).lstrip("-").isdigit():
+        return None
+    if rows is not None and rows[0] in model.params:
+        name, values = rows
+        parts = [(v, _index_runs(model.with_params(**{name: float(v)}), ks, branch))
+                 for v in values]
+        parts = [(v, w) for v, w in parts if w]
+        where = "; ".join(f"at {name} = {float(v):g}: {w}" for v, w in parts)
+    else:
+        where = _index_runs(model, ks, branch)
+    if not where:
+        return None
+    return (f"the branch of field {branch} changes along k: {where}; each k's carrier is "
+            f"the branch {branch} dominates there: across a crossing omega is continuous, "
+            "across an avoided crossing the carrier moves to another root and omega, g1 "
+            "and the verdicts jump (--branch INDEX follows one index)")
+
+
+def _index_runs(model, ks, branch) -> str:
+    """'index b at k lo to hi (omega w0 to w1), ...' along ``ks`` at the model's values, or
+    '' where one index holds."""
     from energy import ModelError
     from numerics.models import carrier
 
-    if branch is None or str(branch).lstrip("-").isdigit():
-        return None
     runs = []  # [index, first k, last k, omega at the first, omega at the last]
     for k in ks:
         try:
@@ -108,11 +129,7 @@ def branch_jumps(model, ks, branch) -> str | None:
         else:
             runs.append([c.branch, float(k), float(k), c.omega, c.omega])
     if len(runs) < 2:
-        return None
-    where = ", ".join(f"index {b} at k {lo:g}" + (f" to {hi:g}" if hi != lo else "")
-                      + f" (omega {w0:.4g}" + (f" to {w1:.4g})" if hi != lo else ")")
-                      for b, lo, hi, w0, w1 in runs)
-    return (f"the branch of field {branch} changes along k: {where}; each k's carrier is "
-            f"the branch {branch} dominates there: across a crossing omega is continuous, "
-            "across an avoided crossing the carrier moves to another root and omega, g1 "
-            "and the verdicts jump (--branch INDEX follows one index)")
+        return ""
+    return ", ".join(f"index {b} at k {lo:g}" + (f" to {hi:g}" if hi != lo else "")
+                     + f" (omega {w0:.4g}" + (f" to {w1:.4g})" if hi != lo else ")")
+                     for b, lo, hi, w0, w1 in runs)

@@ -21,9 +21,12 @@ def say_estimate(args, est) -> None:
     measured here), said before them."""
     from common.text import duration
 
-    log_to(args)(f"estimate: about {duration(est.seconds)} more ({est.seeds} run(s) of T = "
-                 f"{est.t_end:g} on N = {args.N} sites ~{est.seeds * est.run:.2g} s of CPU, "
-                 "measured here"
+    upto = " at most" if getattr(est, "at_most", False) else ""
+    cap = (" (a lossy run's cap: it stops once A(t) has halved past the exact theory's "
+           "peak)") if upto else ""
+    log_to(args)(f"estimate: about {duration(est.seconds)} more{upto} ({est.seeds} run(s) of "
+                 f"T = {est.t_end:g}{cap} on N = {args.N} sites "
+                 f"~{est.seeds * est.run:.2g} s of CPU, measured here"
                  + (f"; the cores shared (load average {est.load:.1f} on {est.cores}): "
                     f"{est.slowdown:.1f}x slower, counted" if est.slowdown > 1 else "") + ")")
 

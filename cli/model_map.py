@@ -185,7 +185,7 @@ def run_map(args) -> int:
         if same := params.same_ring_k():
             log(f"note: {same}")
     if x[0] == "k" and (jump := branch_jumps(model, x[1], branch_of(args)
-                                              or model.lattice.branch or None)):
+                                              or model.lattice.branch or None, y)):
         log(f"note: {jump}")
     if start != "exact":
         from numerics.models import extra_starts

@@ -54,7 +54,11 @@ def refuse_paper_flags(args):
         raise ValueError(f"{flags}: the paper chain's flags; with --model give the model's "
                          "parameters as --param NAME=VALUE"
                          + (", and its units (SI answers) as --time-unit SECONDS and "
-                            "--length-unit METRES" if "physical" in given else ""))
+                            "--length-unit METRES" if "physical" in given else "")
+                         # the case is a model (newuser 101: --case coupled with --model
+                         # fput was told to give parameters, which picks no case)
+                         + ("; the case is the model: --model flexmm (coupled) or "
+                            "flexmm-rotation (rotation)" if "case" in given else ""))
 
 
 def params_of(args, axes_ok=False) -> tuple:

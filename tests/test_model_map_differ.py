@@ -79,7 +79,7 @@ def _hand_theta_index(k, J=0.5, K_s=0.1, K_b=0.05):
     w2, v = np.linalg.eigh(Mh @ K @ Mh)
     theta = max(range(2), key=lambda i: abs(v[1, i]) ** 2)  # kinetic share of theta
     w = math.sqrt(w2[theta])
-    return min(range(3), key=lambda i: abs(hand_omegas(k)[i] - w))
+    return min(range(3), key=lambda i: abs(hand_omegas(k, J, K_s, K_b)[i] - w))
 
 
 def test_a_map_says_where_the_named_branch_changes_index(tmp_path, capsys):
@@ -92,10 +92,15 @@ def test_a_map_says_where_the_named_branch_changes_index(tmp_path, capsys):
     out = capsys.readouterr().out
     line = next((ln for ln in out.splitlines() if "changes along k" in ln), None)
     assert line is not None, out
-    got = [int(x) for x in re.findall(r"index (\d) at k", line)]
-    want = []
-    for k in ks:  # the runs of equal indices, by hand
-        b = _hand_theta_index(k)
-        if not want or want[-1] != b:
-            want.append(b)
-    assert got == want and len(want) >= 2, (line, want)
+    # each row's own indices (newuser 101: the note gave the file's K_s's for every row;
+    # at K_s 0.2 the theta carrier goes 2, 1, 0 where at 0.1 it goes 2, 1)
+    for ks_row in (0.1, 0.2):
+        part = re.search(rf"at K_s = {ks_row:g}: (.*?)(; at K_s|; each k)", line)
+        assert part is not None, line
+        got = [int(x) for x in re.findall(r"index (\d) at k", part[1])]
+        want = []
+        for k in ks:  # the runs of equal indices, by hand
+            b = _hand_theta_index(k, K_s=ks_row)
+            if not want or want[-1] != b:
+                want.append(b)
+        assert got == want and len(want) >= 2, (line, ks_row, want)

@@ -333,8 +333,9 @@ def threads_for(N: int, simulated: bool = False, chains: int | None = None) -> i
 def fewest_threads(N: int, per_thread: int, most: int, simulated: bool = False,
                    chains: int | None = None) -> int:
     """The rule of both kernels' ``threads_for`` (measured by ``bench.gpu_occupancy`` on an
-    H200: a full launch runs 1.15x (paper kernel, 64 threads) to 1.5x (models' kernel, 32
-    threads) faster at the fewest threads a chain than at 128, more chains sharing an SM
+    H200, docs/gpu.md 'Threads a chain': a full launch runs 1.23x (paper kernel, 64
+    threads) to 1.39x (flexmm's) and 1.86x (fput's, models' kernel, 32 threads) faster at
+    the fewest threads a chain than at 128, more chains sharing an SM
     where ~170-255 registers a thread allow few threads an SM; a launch of few chains
     leaves SMs idle, and more threads a chain finish each chain sooner)."""
     bs = 1

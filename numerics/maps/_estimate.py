@@ -468,11 +468,13 @@ class PointEstimate:
     slowdown: float
     load: float
     cores: int
+    at_most: bool = False  # t_end a lossy run's cap: it stops once A(t) has halved
 
 
 def estimate_model_point(model, k: float, amplitude: float, branch=None, *, N: int,
                          seeds: int, t_end: float, theories: float = 0.0,
-                         figure: bool = True, wave=None) -> PointEstimate:
+                         figure: bool = True, wave=None, at_most: bool = False
+                         ) -> PointEstimate:
     """The wall time of a model point's runs and what follows them: ``seeds`` runs of
     ``t_end`` on the ring of ``N`` sites (one measured here, :func:`probe_model_run`; its
     kernels stay compiled for the runs), ``theories`` CPU seconds still to compute and the
@@ -481,7 +483,7 @@ def estimate_model_point(model, k: float, amplitude: float, branch=None, *, N: i
     slowdown, load, cores = load_slowdown(1)
     total = (theories + seeds * run + (POINT_FIGURE_SECONDS if figure else 0.0)) * slowdown
     return PointEstimate(total, theories, run, int(seeds), float(t_end), slowdown, load,
-                         cores)
+                         cores, at_most)
 
 
 __all__ = ["MapEstimate", "estimate_map", "machine_speed", "measure_speed", "load_slowdown",

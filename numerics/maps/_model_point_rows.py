@@ -74,6 +74,19 @@ def missed_bands(model, k, amplitude, branch, N) -> list:
             for b in ring_misses(model, k, amplitude, branch, N=N)]
 
 
+def lossy_cap(model, t_end, spec, peak_time):
+    """A lossy model's runs' cap T where ``t_end`` is not given: past the exact theory's
+    peak (1.5x its time ``peak_time``), at least the lossless run's length (``spec`` the
+    exact spectrum); else ``t_end`` as given (None: the lossless rule's)."""
+    if model.lossy and t_end is None and peak_time is not None and math.isfinite(peak_time):
+        from numerics.models import time_scale
+
+        from ..lattice import run_length
+        return max(run_length(spec.peak_gain, time_scale=time_scale(model)).t_end,
+                   1.5 * peak_time)
+    return t_end
+
+
 def simulated_row(model, k, amplitude, branch, N, seeds, t_end, spec, start, peak_time=None,
                   gain=None) -> dict:
     """Seeded runs of the ring from the exact wave (or the linear one) and the verdict
@@ -90,14 +103,7 @@ def simulated_row(model, k, amplitude, branch, N, seeds, t_end, spec, start, pea
     # the theory's, ``lossy_runs``)
     hold = peak_time if peak_time is not None and 0 < peak_time < math.inf else True
     launch = {"noise_on": "carrier", "until_peak": hold} if model.lossy else {}
-    if model.lossy and t_end is None and peak_time is not None and math.isfinite(peak_time):
-        # the cap reaches past the exact theory's peak (1.5x its time), at least the
-        # lossless run's length
-        from numerics.models import time_scale
-
-        from ..lattice import run_length
-        t_end = max(run_length(spec.peak_gain, time_scale=time_scale(model)).t_end,
-                    1.5 * peak_time)
+    t_end = lossy_cap(model, t_end, spec, peak_time)
     from common.progress import progress_class
     tqdm = progress_class()
 

@@ -361,8 +361,12 @@ def four_wave(model: Model, k: float, amplitude: float, branch=None, *, N: int |
             q, rate, det, coup = _merge(q, (rate, det, coup), fine, rates(fine))
     why = ""
     best = float(np.nanmax(np.nan_to_num(rate, nan=0.0), initial=0.0))
+    # the pairs ``_isolated`` left unrated (a wave near another branch) are no driven wave
+    # too large to be slaved (newuser 101: a two-field chain with its v decoupled, eta 0,
+    # at k 2.8 read so; the 'lost' reason below is theirs)
+    mixed = np.isnan(_isolated(model, k, q, pairs, np.ones_like(rate), det, coup)[0])
     if not best > GAIN_FLOOR * car.omega:
-        why = _untreated(q, pairs, rate, det)
+        why = _untreated(q, pairs, rate, det, mixed)
         if not why and lost[0] > GAIN_FLOOR * car.omega:
             why = (f"no rated pair grows, but a pair with a wave at a crossing (another "
                    f"branch at its wavenumber within {_ISOLATED_PAIR:g} couplings) would "
@@ -370,7 +374,7 @@ def four_wave(model: Model, k: float, amplitude: float, branch=None, *, N: int |
                    "does not hold there; the exact theory holds")
     decay = _decay(model, k, a, branch, N, samples)
     if (not why and best > GAIN_FLOOR * car.omega and (decay is None or decay[0] <= best)
-            and _untreated(q, pairs, rate, det)):
+            and _untreated(q, pairs, rate, det, mixed)):
         # a pair resonant through a driven wave too large to be slaved (its rate nan)
         # beside a rated one: the rated pair is the fastest only where that process is
         # slower. Probe 98: res2's optical carrier (k 0.120, a 0.0221) decays into two
@@ -457,12 +461,15 @@ def _decay(model, k, a, branch, N, samples, margin=False, isolated_only=True):
     return fastest_decay(model, k, wave, q, refine=not N, isolated_only=isolated_only)
 
 
-def _untreated(q, pairs, rate, det) -> str:
+def _untreated(q, pairs, rate, det, mixed=None) -> str:
     """Why 'stable' cannot be said: a pair resonant (its detuning through zero) where its
     rate is nan -- a driven wave not slaved, a three-wave process this ordering does not
-    rate -- or '' where every resonant pair was rated."""
+    rate -- or '' where every resonant pair was rated. ``mixed``: where the nan is
+    ``_isolated``'s (a wave near another branch), not the kernel's."""
     for j, pair in enumerate(pairs):
         d, r = det[:, j], rate[:, j]
+        if mixed is not None:
+            r = np.where(mixed[:, j], 0.0, r)
         i = np.flatnonzero(np.isfinite(d[:-1]) & np.isfinite(d[1:])
                            & (np.sign(d[:-1]) * np.sign(d[1:]) < 0)
                            & (np.isnan(r[:-1]) | np.isnan(r[1:])))

@@ -253,10 +253,16 @@ def acoustic_directions(model: Model, H=None, T=None, Q=None) -> np.ndarray:
         bad = max(np.max(np.abs(H @ nn)), np.max(np.abs(np.einsum("ibc,c->ib", T, nn))),
                   np.max(np.abs(np.einsum("ibcd,d->ibc", Q, nn))))
         if bad > 1e-9 * scale:
+            # name the fields and the remedy (newuser 101: site = "u**3" alone read as a
+            # zero mode [1.] "not supported", with no hint of what to write instead)
+            fields = ", ".join(f for f, x in zip(model.fields, N[:, j], strict=True)
+                               if abs(x) > 1e-6)
             raise ModelError(
                 f"model {model.describe()}: K(0) has a zero mode {np.round(N[:, j], 6)} "
-                "that is not a symmetry of the energy (a zero frequency at k = 0 without "
-                "translation invariance): not supported")
+                f"(field {fields}) that is not a symmetry of the energy (a zero frequency at "
+                "k = 0 without translation invariance): not supported; give the field an "
+                "on-site stiffness (a quadratic site term, e.g. w0**2*u**2/2), or let the "
+                "energy depend on it only through differences (u_next - u)")
     return N if d else N
 
 
