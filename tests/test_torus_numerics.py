@@ -37,3 +37,27 @@ def test_peak_finds_the_windowed_maximum():
     h = 100 * PEAK_TOL * span
     assert S(nu) >= S(nu - h) and S(nu) >= S(nu + h)
     assert abs(nu - 0.9318) < 0.1 * 2 * np.pi / T
+
+
+def test_a_launched_state_of_many_free_waves_is_refused_at_once(tmp_path, capsys):
+    """The paper chain's point at amplitude 1 rad (eq. `IC` launches 6 significant free
+    waves: 5^6 = 15625 torus modes, more than the 12624 samples, ~2.5e13 flops) ran its torus
+    fit for 8 minutes in one BLAS call that ignored Ctrl-C and SIGTERM; it is now the
+    paper start's row undefined with the reason (no linear theory of sidebands: no carrier
+    with small sidebands), the NLS rows still printed, exit 0, in seconds. At 0.05 rad (2
+    free waves) the theory still answers."""
+    from cli.app import main
+    from numerics.lattice import Material
+    from numerics.theory import PAPER_START, theory_gain
+
+    with pytest.raises(ArithmeticError, match="6 significant free waves.*--start travelling"):
+        theory_gain(PAPER_START, Material(2.0, 0.03, 0.02), "coupled", 1.1938,
+                    offset=np.array([0.1]), eps=0.01, A0=50.0)
+    assert main(["point", "--alpha", "2.0", "--K-s", "0.03", "--K-theta", "0.02", "--k", "1.2",
+                 "--amplitude", "1.0", "--case", "coupled", "--out", str(tmp_path)]) == 0
+    out = capsys.readouterr().out
+    assert "exact lattice, paper start: start 'paper': the state eq. `IC` launches holds 6" in out
+    assert "semi-discrete NLS           MI" in out
+    g = theory_gain(PAPER_START, Material(2.0, 0.03, 0.02), "coupled", 1.1938,
+                    offset=np.array([0.1]), eps=0.01, A0=2.5)
+    assert np.all(np.isfinite(g))

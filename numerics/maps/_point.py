@@ -37,6 +37,7 @@ from ..theory import (
     MAX_AMPLITUDE,
     PAPER_START,
     THEORIES,
+    NoPlaneWaveError,
     measure_gain,
     nls_coefficients,
     nls_undefined,
@@ -233,8 +234,10 @@ def theory_curves(material, case, k, amplitude, start="travelling", N=None) -> d
             q = fold(k + Q)  # the upper sideband's wavenumber (k + Q beyond pi folds)
             with np.errstate(all="ignore"):
                 curve = theory_gain(th, material, case, k, offset=Q, eps=EPS, A0=A0)
-        except ArithmeticError as exc:  # no plane wave (a resonance): say so, no verdict
-            out[th] = _undefined(Q, q, np.full(q.shape, np.nan), f"no plane wave: {exc}")
+        except ArithmeticError as exc:  # no plane wave (a resonance), or a launched state
+            # no linear theory applies to (``_torus``): say which, no verdict
+            why = f"no plane wave: {exc}" if isinstance(exc, NoPlaneWaveError) else str(exc)
+            out[th] = _undefined(Q, q, np.full(q.shape, np.nan), why)
             continue
         if not np.all(np.isfinite(curve)):  # no real omega, g1 = 0 or a resonance
             why = (nls_undefined(th, material, case, k) if th in THEORIES[:2] else None) \

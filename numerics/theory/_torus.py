@@ -46,6 +46,13 @@ BEATS, MIN_CARRIER_PERIODS, MAX_DURATION = 25, 200, 20000.0
 #: torus Fourier indices kept per free phase, |m_j| <= FIT_ORDER (one free phase) or
 #: FIT_ORDER - 1 (more); harmonics of the carrier kept, |p| <= TORUS_HARMONICS
 FIT_ORDER, TORUS_HARMONICS = 3, 8
+#: the fit of the torus (normal equations: ~8 samples x modes^2 flops for the Gram matrix,
+#: modes = (2 order + 1)^free waves) is refused above this: a state with 5 or more
+#: significant free waves (3125 modes, ~1e12 flops: minutes in one uninterruptible BLAS
+#: call; the paper chain at amplitude 1 rad launches 6: 15625 modes, more than its samples)
+#: is no carrier with small sidebands, the linear response's premise; 4 (625 modes, ~4e10
+#: flops, ~10 s) are fitted
+TORUS_FIT_FLOPS = 1e11
 #: the reduced chain is integrated by SRKN11b (order 6) with omega_max dt below this: its
 #: error model (``_accuracy.ERROR_CONSTANTS``) gives ~6e-6 relative over 20 000 T (the
 #: tori last ~2000 T); halving it changes predicted growth factors by < 3e-6 (60 fig3 cells)
@@ -306,9 +313,20 @@ def torus(material, case, k, fields0, free, omega_guess, P=TORUS_HARMONICS, M=PH
         abs(f) + order * sum(abs(nu0)) for _, _, f in free]
     samples = int(np.ceil(duration * max(SAMPLES_PER_PERIOD * omega_guess,
                                          2.5 * max(searched)) / (2 * np.pi))) + 1
-    # the fit's basis: samples x (2 order + 1)^d complex values (a state with many free
-    # waves, e.g. no carrier, would ask for terabytes)
-    checks.memory("start 'paper'", 16.0 * samples * (2 * order + 1) ** d,
+    # the fit's basis: samples x (2 order + 1)^d complex values, twice (B and its adjoint),
+    # and its Gram matrix (a state with many free waves, e.g. no carrier, would ask for
+    # terabytes)
+    nm = (2 * order + 1) ** d
+    if nm > samples / 2 or 8.0 * samples * nm**2 > TORUS_FIT_FLOPS:
+        # no linear theory of its sidebands (as a state that is no torus): ArithmeticError,
+        # the theory's row undefined with this reason, a map cell's "not quasi-periodic"
+        raise ArithmeticError(
+            f"start 'paper': the state eq. `IC` launches holds {d} significant free waves "
+            f"besides the carrier ({nm} quasi-periodic modes to fit to {samples} samples, "
+            f"~{8.0 * samples * nm**2:.1e} flops): no carrier with small sidebands, the "
+            "linear response's premise (an amplitude far beyond the NLS's range); lower "
+            "--amplitude, or use --start travelling (the exact travelling wave)")
+    checks.memory("start 'paper'", 16.0 * (2 * samples * nm + nm * nm),
                   f"the torus of the state eq. `IC` launches, with {d} free waves ({samples} "
                   "samples; a smaller amplitude launches fewer, the travelling start none)")
     t, y = trajectory(material, case, k, fields0, duration, samples, M)
