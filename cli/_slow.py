@@ -17,12 +17,13 @@ SLOW_NOTE_S = 5.0
 def said_if_slow(log, message: str, after: float | None = None):
     """Run the ``with`` body; where it is still running ``after`` seconds (default
     ``SLOW_NOTE_S``) on, ``log(message)`` once, from a timer thread. Nothing is said
-    where the body ends first (or raises)."""
+    where the body ends first (or raises), or where the body cancels the timer it is
+    given (``with said_if_slow(...) as timer``: a step that says more itself)."""
     timer = threading.Timer(SLOW_NOTE_S if after is None else after, lambda: log(message))
     timer.daemon = True
     timer.start()
     try:
-        yield
+        yield timer
     finally:
         timer.cancel()
 

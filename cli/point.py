@@ -252,13 +252,18 @@ def run_point(args, log=print) -> dict:
             + (f"{args.t_end:g}" if args.t_end else "9 e-foldings of the exact rate (at most "
                f"{T_CAP:g})") + ": seconds to minutes")
     said = []  # (when the runs' estimate was said, its seconds), as a model point's
+    slow = []  # the slow note's timer: the runs' estimate, once said, says the rest
 
     def on_estimate(est):
+        for timer in slow:
+            timer.cancel()
         _say_estimate(log, est, args.N)
         said.append((time.perf_counter(), est.seconds))
 
-    # without runs said only where slow (the predicted growth: 15 s under load)
-    with (contextlib.nullcontext() if args.simulate else said_if_slow(_stderr, SLOW_PAPER_POINT)):
+    # said only where slow (the predicted growth: 15 s under load; with runs, the theories
+    # before the runs' estimate: 32 s of silence in a fresh clone, the kernels compiling)
+    with said_if_slow(_stderr, SLOW_PAPER_POINT) as timer:
+        slow.append(timer)
         res = measure_point(mat, args.case, args.k, amplitude, N=args.N, start=args.start,
                             simulate=args.simulate, t_end=args.t_end, seeds=args.seeds,
                             on_estimate=on_estimate, estimate_figure=bool(args.out))

@@ -78,3 +78,12 @@ def test_nothing_is_said_where_the_step_ends_first():
         raise ZeroDivisionError
     time.sleep(0.4)
     assert said == []
+
+
+def test_a_paper_point_with_runs_says_its_slow_theories(slow_points, capsys):
+    """--simulate: the theories before the runs' estimate said nothing (a fresh clone: 32 s
+    while the kernels compiled, newuser101); now the slow note, once, on stderr, as
+    without runs."""
+    assert main([*PAPER, "--N", "64", "--seeds", "1", "--simulate", "--t-end", "200"]) == 0
+    out, err = capsys.readouterr()
+    assert err.count(cli._slow.SLOW_PAPER_POINT) == 1 and cli._slow.SLOW_PAPER_POINT not in out
