@@ -176,7 +176,8 @@ def part5():
              "paper", "--N", "200", "--amplitude", "0.05"]
     for case, k in (("rotation", 2.98), ("rotation", 3.1), ("coupled", 0.97)):
         code, out, err, _ = cli("point", *flags, "--case", case, "--k", str(k))
-        line = next((x for x in out.splitlines() if "no plane wave: the state" in x), "")
+        line = next((x for x in out.splitlines()
+                     if x.startswith("exact lattice, paper start: the state")), "")
         kk = 2 * math.pi * round(k * 200 / (2 * math.pi)) / 200
         w = omega_theta(kk, *mat)
         if case == "rotation":
