@@ -42,6 +42,23 @@ _KW = dict(cache=True, nogil=True, error_model="numpy", boundscheck=False)
 
 
 @njit(**_KW)
+def _harmonic_block(parts, s, x, blk, h):
+    """Harmonic l's own block K_ll(q) into ``blk`` (x = q + l k), and for two fields its
+    Hermitian part into ``h`` (the closed-form ``_eigh2``'s input)."""
+    d = parts.shape[2]
+    e = np.exp(1j * x)
+    for a in range(d):
+        for b in range(d):
+            blk[a, b] = (parts[0, s, a, b] + parts[1, s, a, b] * e
+                         + parts[2, s, a, b] * np.conj(e))
+    if d == 2:
+        h[0, 0] = blk[0, 0].real
+        h[1, 1] = blk[1, 1].real
+        h[0, 1] = 0.5 * (blk[0, 1] + np.conj(blk[1, 0]))
+        h[1, 0] = np.conj(h[0, 1])
+
+
+@njit(**_KW)
 def _diagonal_roots(parts, P, k, omega, q):
     """The roots l omega + w_lj (Krein +) and l omega - w_lj (Krein -) of each harmonic's own
     block K_ll(q) (``_sidebands._pencil_from_parts``'s block (l, l)), shape (Q, d (2P + 1))
@@ -59,18 +76,10 @@ def _diagonal_roots(parts, P, k, omega, q):
     s = 2 * P
     for i in range(Q):
         for li in range(nl):
-            e = np.exp(1j * (q[i] + (li - P) * k))
-            for a in range(d):
-                for b in range(d):
-                    blk[a, b] = (parts[0, s, a, b] + parts[1, s, a, b] * e
-                                 + parts[2, s, a, b] * np.conj(e))
+            _harmonic_block(parts, s, q[i] + (li - P) * k, blk, h)
             if d == 1:
                 ev = np.array([blk[0, 0].real])
             elif d == 2:
-                h[0, 0] = blk[0, 0].real
-                h[1, 1] = blk[1, 1].real
-                h[0, 1] = 0.5 * (blk[0, 1] + np.conj(blk[1, 0]))
-                h[1, 0] = np.conj(h[0, 1])
                 _eigh2(h, ev2, vec2)
                 ev = ev2
             else:
@@ -186,19 +195,11 @@ def _block_basis(parts, P, k, q, w2, V):
     vec2 = np.empty((2, 2), np.complex128)
     s = 2 * P
     for li in range(nl):
-        e = np.exp(1j * (q + (li - P) * k))
-        for a in range(d):
-            for b in range(d):
-                blk[a, b] = (parts[0, s, a, b] + parts[1, s, a, b] * e
-                             + parts[2, s, a, b] * np.conj(e))
+        _harmonic_block(parts, s, q + (li - P) * k, blk, h)
         if d == 1:
             w2[li] = blk[0, 0].real
             V[li, 0, 0] = 1.0
         elif d == 2:
-            h[0, 0] = blk[0, 0].real
-            h[1, 1] = blk[1, 1].real
-            h[0, 1] = 0.5 * (blk[0, 1] + np.conj(blk[1, 0]))
-            h[1, 0] = np.conj(h[0, 1])
             _eigh2(h, ev2, vec2)
             for a in range(2):
                 w2[li * 2 + a] = ev2[a]
