@@ -32,15 +32,8 @@ from pathlib import Path
 
 import numpy as np
 
-MORSE = '''name = "morse"
-fields = ["u"]
-[parameters]
-D = 0.5
-b = 1.0
-[energy]
-kinetic = "u_t**2/2"
-bond = "D*(1 - exp(-b*(u_next - u)))**2"
-'''
+from bench._fourwave100_models import MORSE
+
 TWOFIELD = '''name = "twofield"
 fields = ["u", "v"]
 [parameters]

@@ -5,27 +5,13 @@ from __future__ import annotations
 
 import pytest
 
+# the probe's files: a two-field chain of the user's own (a linear cross term in the bond, a
+# quartic bond on u, an on-site v) and its twin with u damped: MI at k 1, a 0.1 (0.0033
+# /time), the carrier damped at 2.4e-4
+from bench.probe_newuser101 import LOSSY as TWOFIELD_LOSSY
+from bench.probe_newuser101 import TWOFIELD
 from energy import load_model
 from numerics.maps import ModelPointSpec, measure_point
-
-# a two-field chain of the user's own (a linear cross term in the bond, a quartic bond on u,
-# an on-site v), its u damped: MI at k 1, a 0.1 (0.0033 /time), the carrier damped at 2.4e-4
-TWOFIELD_LOSSY = '''name = "twofield-lossy"
-fields = ["u", "v"]
-[parameters]
-Cv = 0.5
-eta = 0.3
-w0 = 1.5
-beta = 1.0
-m = 1.0
-gamma = 0.0005
-[energy]
-kinetic = "u_t**2/2 + m*v_t**2/2"
-bond = "(u_next - u)**2/2 + Cv*(v_next - v)**2/2 + eta*(u_next - u)*(v_next - v) + beta*(u_next - u)**4/4"
-site = "w0**2*v**2/2"
-[dissipation]
-site = "gamma*u_t**2/2"
-'''
 
 
 @pytest.fixture(scope="module")
@@ -51,10 +37,6 @@ def test_a_lossy_points_estimate_covers_the_runs_it_makes(twofield_lossy):
     # the estimate is of runs at least as long as those made (its T their cap)
     assert seen[0].t_end >= sim["t_end"]
     assert seen[0].at_most
-
-
-TWOFIELD = TWOFIELD_LOSSY.replace('name = "twofield-lossy"', 'name = "twofield"').split(
-    "[dissipation]")[0].replace("gamma = 0.0005\n", "")
 
 
 def test_four_wave_names_why_a_pair_near_another_branch_is_unrated(tmp_path):
