@@ -42,9 +42,9 @@ _KW = dict(cache=True, nogil=True, error_model="numpy", boundscheck=False)
 
 
 @njit(**_KW)
-def _harmonic_block(parts, s, x, blk, h):
+def _harmonic_block(parts, s, x, blk, herm):
     """Harmonic l's own block K_ll(q) into ``blk`` (x = q + l k), and for two fields its
-    Hermitian part into ``h`` (the closed-form ``_eigh2``'s input)."""
+    Hermitian part into ``herm`` (the closed-form ``_eigh2``'s input)."""
     d = parts.shape[2]
     e = np.exp(1j * x)
     for a in range(d):
@@ -52,10 +52,10 @@ def _harmonic_block(parts, s, x, blk, h):
             blk[a, b] = (parts[0, s, a, b] + parts[1, s, a, b] * e
                          + parts[2, s, a, b] * np.conj(e))
     if d == 2:
-        h[0, 0] = blk[0, 0].real
-        h[1, 1] = blk[1, 1].real
-        h[0, 1] = 0.5 * (blk[0, 1] + np.conj(blk[1, 0]))
-        h[1, 0] = np.conj(h[0, 1])
+        herm[0, 0] = blk[0, 0].real
+        herm[1, 1] = blk[1, 1].real
+        herm[0, 1] = 0.5 * (blk[0, 1] + np.conj(blk[1, 0]))
+        herm[1, 0] = np.conj(herm[0, 1])
 
 
 @njit(**_KW)
