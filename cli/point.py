@@ -6,7 +6,6 @@ model point's table and files in ``_model_point_text``)."""
 
 from __future__ import annotations
 
-import contextlib
 import json
 import math
 import time
@@ -36,14 +35,10 @@ from numerics.theory import (
     nls_coefficients,
 )
 
-from ._model_point_args import _model_start, _option_error
-from ._slow import SLOW_MODEL_POINT, SLOW_PAPER_POINT, said_if_slow
+from ._model_point_args import MIN_T_END, run_model_point
+from ._slow import SLOW_PAPER_POINT, said_if_slow
 from ._slow import to_stderr as _stderr
 from .coefficients import weak_nonlinearity_note, wide_band_note
-
-#: the shortest --t-end: below it the slowest rate a run can show, ln(20) / T, is past
-#: float64 (probe 99: --t-end 5e-324 printed "a rate below inf /time cannot show")
-MIN_T_END = 1e-300
 
 #: what point.json's numbers are in (the lattice units), beside the SI ones of --physical
 UNITS = {"time": "T = t sqrt(k_l/m)", "gain": "1/T", "wavenumber": "rad/site",
@@ -240,7 +235,7 @@ def run_point(args, log=print) -> dict:
     ``_model_point_text`` (``log`` is the paper flags' only: a model point's messages go
     to stderr with --json)."""
     if getattr(args, "model", None) is not None:
-        return _run_model_point(args)
+        return run_model_point(args)
     mat, units = material_from(args)
     amplitude, k, m = _checked(args, mat)
     if args.out:  # before any computation (a simulation may take minutes)
@@ -442,61 +437,3 @@ def _figure(th, meas, k, args, amplitude, mat=None, no_rate=None) -> bytes:
     fig.savefig(buf, format="png", dpi=110)
     plt.close(fig)
     return buf.getvalue()
-
-
-# ------------------------------------------------------------------ --model
-def _run_model_point(args) -> dict:
-    """`flexmm point --model`: the options checked (each by its name, before any theory
-    runs), ``measure_point`` of the ``ModelPointSpec``, then ``_model_point_text``."""
-    import time
-
-    from numerics.maps import ModelPointSpec, PointInputError
-
-    from . import _model_point_text as text
-    from .models import branch_of, check_amplitude, load
-    from .units import model_units
-
-    model = load(args)
-    units = model_units(args)
-    checks.real("--k", args.k, 0.0, math.pi, high_open=False)
-    check_amplitude(args.amplitude)
-    if args.t_end is not None and not args.simulate:
-        raise ValueError("--t-end acts with --simulate only")
-    if not args.simulate and ("--seeds" in getattr(args, "given", ()) or args.seeds != 4):
-        # the paper chain's point predicts its growth per seed; a model's seeds are runs
-        raise ValueError("--seeds: a model point's seeds are its runs'; add --simulate, "
-                         "or leave --seeds out")
-    if args.simulate:  # the runs' options, as the paper chain's point checks them: before
-        checks.integer("--seeds", args.seeds, 1, MAX_SEEDS)  # any theory (--t-end 1e30
-        if args.t_end is not None:  # hung in the estimate's probe)
-            checks.real("--t-end", args.t_end, MIN_T_END, MAX_T_END, low_open=False)
-    start = _model_start(args, model)
-    try:  # the ring, the amplitude's resolution, a registered start's state
-        spec = ModelPointSpec(model, args.k, args.amplitude, branch_of(args), N=args.N,
-                              start=start, simulate=args.simulate, seeds=args.seeds,
-                              t_end=args.t_end)
-    except PointInputError as exc:
-        raise _option_error(exc, args) from None
-    if args.out:
-        from common.output import check_output
-        check_output(args.out, cache=False)
-    if args.simulate:  # said before anything that takes time
-        text.log_to(args)(f"point: the theories, then an estimate of the {args.seeds} "
-                          "run(s) (a model's first run compiles its force for this "
-                          "machine, once: seconds to tens of seconds)")
-    said = []  # when the estimate was said: the runs' wall time is counted from there
-
-    def on_estimate(est):
-        text.say_estimate(args, est)
-        said.append(time.perf_counter())
-
-    # a point --simulate said what it does above; without runs, said only where slow
-    slow = (contextlib.nullcontext() if args.simulate
-            else said_if_slow(_stderr, SLOW_MODEL_POINT))
-    try:
-        with slow:
-            point = measure_point(spec, on_estimate=on_estimate,
-                                  estimate_figure=bool(args.out))
-    except PointInputError as exc:  # --simulate where the model has no travelling wave
-        raise _option_error(exc, args) from None
-    return text.report(args, point, units, said[0] if said else None)

@@ -135,6 +135,7 @@ TEST_EXCEPTIONS = {
     "cli.map._agreement_text": "the map summary's wording, a sentence at a time",
     "cli._resolved": "the paper flags' resolution check against a model's, one rule",
     "cli._slow": "the slow step's note, its timer's threshold set to 0.05 s to fire it",
+    "cli._model_point_args": "a model point's measure_point made slower to fire its note",
     "derivation._continuum": "the continuum model's symbolic steps against the paper",
     "derivation._energy": "a Rayleigh function refused by the derivation (not quadratic)",
     "numerics.models._losses": "the damped NLS's pair integrator against solve_ivp, the "
@@ -385,8 +386,8 @@ def test_one_map_engine():
 
 # --- one point path ---------------------------------------------------------------------------
 
-#: the cli modules of `flexmm point` (the command, a model point's text, its figure)
-POINT_MODULES = ("point.py", "_model_point_text.py", "model_figure.py")
+#: the cli modules of `flexmm point` (the command, a model point's checks, text and figure)
+POINT_MODULES = ("point.py", "_model_point_args.py", "_model_point_text.py", "model_figure.py")
 #: what a model point computes, in numerics.models: the numbers of its rows and curves
 MODEL_THEORY = {"exact_gain", "exact_gain_checked", "four_wave", "nls", "simulate_seeds",
                 "simulate_model", "model_coefficients", "ring_misses", "ring_offsets",

@@ -8,6 +8,7 @@ import time
 
 import pytest
 
+import cli._model_point_args
 import cli._slow
 import cli.point
 from cli._slow import said_if_slow
@@ -28,7 +29,8 @@ def slow_points(monkeypatch):
         time.sleep(0.5)
         return real(*args, **kwargs)
 
-    monkeypatch.setattr(cli.point, "measure_point", slow)
+    monkeypatch.setattr(cli.point, "measure_point", slow)  # the paper chain's point
+    monkeypatch.setattr(cli._model_point_args, "measure_point", slow)  # --model's
     monkeypatch.setattr(cli._slow, "SLOW_NOTE_S", 0.05)
 
 
