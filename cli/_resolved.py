@@ -32,3 +32,20 @@ def check_paper_amplitude(mat, k: float, amplitude: float) -> float:
             f"theory's growth rate there is rounding, not a verdict; give --amplitude >= "
             f"{least:.3g}")
     return amplitude
+
+
+def check_peak_rotation(value, high: float) -> float:
+    """--amplitude of the paper chain's flags: the peak rotation in rad, in (0, ``high``),
+    or a ValueError naming it and its unit, and, past ``high``, what the value would be
+    had it been meant in degrees (newuser 102: an experimentalist's "5 degrees" read
+    "--amplitude must be in (0, 1.5), got 5.0", no unit and no remedy)."""
+    from numerics.lattice import checks
+
+    try:
+        return checks.real("--amplitude", value, 0.0, high)
+    except ValueError as exc:
+        v = float(value)
+        hint = (f"; if {v:g} was meant in degrees: --amplitude {math.radians(v):.4g}"
+                if math.isfinite(v) and v >= high else "")
+        raise ValueError(f"{exc} (rad: the peak rotation, below {high:g} rad where the "
+                         f"theories hold){hint}") from None

@@ -333,8 +333,9 @@ def _dispatch(args, scenes) -> int:
         from numerics.theory import MAX_AMPLITUDE
 
         checks.real("--k", args.k, 0.0, math.pi)  # the option's name, as in point
-        checks.real("--amplitude", args.amplitude, 0.0, MAX_AMPLITUDE)
-        from ._resolved import check_paper_amplitude
+        from ._resolved import check_paper_amplitude, check_peak_rotation
+
+        check_peak_rotation(args.amplitude, MAX_AMPLITUDE)
 
         check_paper_amplitude(mat, args.k, args.amplitude)
         print(format_coefficients(mat, args.k, args.amplitude, units))

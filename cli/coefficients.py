@@ -38,6 +38,13 @@ class Units:
             s += f" = {T * self.seconds_per_T:.4g} s"
         return s
 
+    def hertz(self, omega: float) -> float | None:
+        """An angular frequency in 1/T as a frequency in Hz, omega / (2 pi) per second (what
+        a shaker or a spectrum analyser reads; None without a time unit)."""
+        if not self.seconds_per_T or not math.isfinite(omega):
+            return None
+        return omega / (2 * math.pi * self.seconds_per_T)
+
     def wavenumber(self, k: float) -> str:
         s = f"{k:.5g} rad/site"
         if self.metres_per_site and math.isfinite(k):
@@ -116,6 +123,10 @@ def format_coefficients(material: Material, k: float, amplitude: float, units: U
     table = [["quantity"] + names]
     for label, key in rows:
         table.append([label] + [_number(co[n][key], ".6g") for n in names])
+        if key == "omega" and units.seconds_per_T:  # newuser 102: a shaker's f, not omega
+            table.append(["f = omega/2pi (Hz)"]
+                         + [_number(units.hertz(co[n]["omega"]) or math.nan, ".6g")
+                            for n in names])
     for case, roman in (("rotation", "I"), ("coupled", "II")):
         table.append([f"case {roman} ({case})"] + [""] * len(names))
         for label, key in (("  g2", "g2"), ("  g = g2/g1", "g"), ("  verdict", "verdict"),

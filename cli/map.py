@@ -114,6 +114,12 @@ def _map_parameters(args):
         raise ValueError(f"--k and --delta ask for {cells} cells; at most {MAX_CELLS} "
                          "(split the map into several --out folders)")
     checks.positive("--timeout", args.timeout)
+    if isinstance(args.amplitude, (int, float)):  # its unit, and degrees (newuser 102)
+        from numerics.theory import MAX_AMPLITUDE
+
+        from ._resolved import check_peak_rotation
+
+        check_peak_rotation(args.amplitude, MAX_AMPLITUDE)
     try:
         params = MapParameters(case=args.case, alpha=args.alpha, K_s=args.K_s, **rows,
                                k=tuple(float(x) for x in k), amplitude=args.amplitude,

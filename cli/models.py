@@ -248,7 +248,10 @@ def run_coefficients(args) -> int:
     rows += [("g = g2/g1 (1/(site^2 amplitude^2))", co["g"], None)]
     W = 35  # the longest label: g = g2/g1 with its unit
     for name, v, key in rows:
-        print(f"{name:<{W}} {_fmt(v):>14}" + (units.si(v, kind_of[key]) if key else ""))
+        print(f"{name:<{W}} {_fmt(v):>14}" + (units.si(v, kind_of[key]) if key else "")
+              # newuser 102: omega is angular; a shaker and a spectrum read f = omega/2pi
+              + (f" (f = {hz:.4g} Hz)" if key == "omega" and (hz := units.hertz(v)) is not None
+                 else ""))
     verdict = co["verdict"]
     if co.get("lossless_verdict"):  # focusing, but the losses win from t = 0
         verdict += " (damped)"

@@ -87,9 +87,10 @@ def material_from(args):
 def _checked(args, mat):
     """(amplitude, k, m) after every option's check, named as the option (nothing is
     computed before the input is known good)."""
-    amplitude = checks.real("--amplitude", args.amplitude, 0.0, MAX_AMPLITUDE)
+    from ._resolved import check_paper_amplitude, check_peak_rotation
+
+    amplitude = check_peak_rotation(args.amplitude, MAX_AMPLITUDE)
     k, m = snap_carrier(args.k, args.N, names=("--k", "--N"))
-    from ._resolved import check_paper_amplitude
 
     check_paper_amplitude(mat, k, amplitude)
     checks.integer("--seeds", args.seeds, 1, MAX_SEEDS)

@@ -56,9 +56,10 @@ def run_soliton(args, log=print) -> dict:
     mat, units = material_from(args)
     if args.out:  # before any computation (a simulation may take minutes)
         prepare_output(args.out, cache=False)
-    amplitude = checks.real("--amplitude", args.amplitude, 0.0, 1.0)
+    from ._resolved import check_paper_amplitude, check_peak_rotation
+
+    amplitude = check_peak_rotation(args.amplitude, 1.0)
     k = checks.real("--k", args.k, 0.0, math.pi)
-    from ._resolved import check_paper_amplitude
 
     check_paper_amplitude(mat, k, amplitude)
     theory = next(t.label for t in NLS_THEORIES if t.cli == args.theory)
