@@ -9,6 +9,7 @@
   refusal now names the unit and the value in rad.
 """
 
+import json
 import math
 
 import pytest
@@ -88,3 +89,50 @@ def test_a_negative_amplitude_names_the_unit_but_no_degrees(capsys):
     assert main(argv) == 2
     err = capsys.readouterr().err.strip()
     assert "peak rotation" in err and "degrees" not in err
+
+
+def test_an_angle_past_a_quarter_turn_is_said_with_its_value_in_degrees(capsys):
+    """flexmm-lossy at a = 3 (meant: 3 degrees) answered with the exact lattice's 4.6e266x
+    amplification, "observable", and no word on the unit."""
+    co = json.loads(_out(capsys, ["coefficients", "--model", "flexmm-lossy", "--k", "0.81681",
+                                  "--amplitude", "3", "--json"]))
+    notes = [w for w in co["warnings"] if "degrees" in w]
+    assert len(notes) == 1, co["warnings"]
+    # 3 rad = 171.9 degrees; 3 degrees = 0.05236 rad (math, not the code under test)
+    assert f"{math.degrees(3):.4g} degrees" in notes[0]
+    assert f"--amplitude {math.radians(3):.4g}" in notes[0]
+
+
+@pytest.mark.parametrize("model, amplitude", [
+    ("flexmm-lossy", 0.028),   # an angle, well inside a quarter turn
+    ("flexmm-lossy", 1.5),     # just inside (pi/2 = 1.5708)
+    ("fput", 3.0),             # a displacement: no cos/sin of u in its energy
+])
+def test_no_angle_note_inside_a_quarter_turn_or_for_a_displacement(capsys, model, amplitude):
+    co = json.loads(_out(capsys, ["coefficients", "--model", model, "--k", "1",
+                                  "--amplitude", str(amplitude), "--json"]))
+    assert not [w for w in co["warnings"] if "degrees" in w]
+
+
+def test_the_angle_note_reads_the_field_of_the_next_cell_too():
+    """A field the energy reads only as cos(u_next) is an angle as well; a field whose name
+    only begins another's (u in cos(uu)) is not."""
+    from energy import load_model, parse_model
+    from numerics.models import model_coefficients
+
+    src = ('name = "t"\nfields = ["u", "uu"]\nbranch = "u"\n[parameters]\nC = 1.0\n'
+           '[energy]\nkinetic = "u_t**2/2 + uu_t**2/2"\n'
+           'bond = "C*(u_next - u)**2/2 + (1 - cos(u_next)) + (1 - cos(uu))"\n'
+           'site = "u**2 + uu**2"\n')
+
+    def said(text):
+        warnings = model_coefficients(load_model(parse_model(text)), 1.0, 2.0)["warnings"]
+        return [w for w in warnings if "degrees" in w]
+
+    assert said(src)
+    assert not said(src.replace("(1 - cos(u_next)) + ", ""))
+
+
+def _out(capsys, argv) -> str:
+    assert main(argv) == 0
+    return capsys.readouterr().out

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 
@@ -21,6 +22,26 @@ WIDE_BAND = math.pi / 2
 #: The amplitude's field moving less than this share of the wave's largest field is said:
 #: a = 0.1 of u on diatomic FPUT's acoustic branch at k = 3.14 is v = 125
 SMALL_FIELD = 0.1
+
+
+#: An amplitude past a quarter turn of a field the energy reads as an angle is said, with
+#: its value in degrees and in rad had it been meant in degrees (newuser 102: flexmm-lossy
+#: at a = 3, an experimentalist's "3 degrees", printed the exact lattice's amplification
+#: 4.6e266, "observable", and no word on the unit; the paper chain's flags stop at 1.5 rad)
+QUARTER_TURN = math.pi / 2
+
+
+def angle_note(model: Model, field: str, a: float) -> str:
+    """A sentence where ``a`` (rad) of ``field`` is past ``QUARTER_TURN`` and the model's
+    energy holds cos, sin or tan of that field (of cell n or n + 1: an angle), else ''."""
+    lat = model.lattice
+    text = " ".join(str(e) for e in (lat.kinetic, lat.bond, lat.site) if e)
+    if not a > QUARTER_TURN or not re.search(rf"\b(?:cos|sin|tan)\(\s*{re.escape(field)}"
+                                             r"(?:_next)?\s*\)", text):
+        return ""
+    return (f"a = {a:g} of {field}, which the energy reads through cos/sin (an angle, in "
+            f"rad), is {math.degrees(a):.4g} degrees, past a quarter turn; if a was meant in "
+            f"degrees, give --amplitude {math.radians(a):.4g}")
 
 
 def _num(x):
@@ -141,6 +162,8 @@ def model_coefficients(model: Model, k: float, amplitude: float, branch=None) ->
         verdict, reason = "undefined", unstable_rest
         peak, no_wave = math.nan, True
     fields = model.fields
+    if note := angle_note(model, fields[c.field], a):
+        warn.insert(0, note)  # first: it changes every other number
     e = np.abs(np.asarray(c.e))
     big = int(np.argmax(e))
     if e[c.field] < SMALL_FIELD * e[big]:  # a of a field that hardly moves: a huge wave
