@@ -382,8 +382,9 @@ def exact_amplification(model: Model, k: float, amplitude: float, branch=None, *
     """The exact lattice theory along the decaying carrier (module docstring): the Hill
     gain on a ring of N sites at the carrier amplitudes a0 e^{-Gamma t} (``along_decay``:
     a few amplitudes, the gain interpolated between them), for the offsets that grow net
-    of their damping at t = 0, each damped as the carrier branch's sidebands (a mode of
-    other branches is damped at their rates: this is then approximate). ``first``: ``exact_gain`` at a0 on this
+    of their damping at t = 0, each damped as the carrier branch's sidebands k +- s (s the
+    mode's ``sideband_offset``, q where it has none; a mode of other branches is damped at
+    their rates: this is then approximate). ``first``: ``exact_gain`` at a0 on this
     ring, where already computed."""
     from ._exact import exact_gain
 
@@ -393,7 +394,15 @@ def exact_amplification(model: Model, k: float, amplitude: float, branch=None, *
     c = first.wave.carrier
     q = np.asarray(first.offsets, float)
     gain0 = np.asarray(first.gain, float)
-    G = sideband_damping(model, c.k, q, c.branch) if model.lossy else np.zeros(q.size)
+    # each offset's mode damped at its own sidebands k +- s, s its heaviest sideband's
+    # distance from +-k (``sideband_offset``): s = q where the mode is centred at l = +-1,
+    # but a ring shows the same pair at other offsets too (probe 102: at k = pi, N = 10 the
+    # pair pi +- 0.628 also at q = 2.513, centred at l = 0, was damped as pi +- 2.513, at
+    # 1.6e-4 where a monodromy of the damped ring reads 6.2e-4); q where no sideband is
+    # (a resonance: approximate, as said above)
+    side = np.asarray(first.sideband_offset, float)
+    s = np.where(np.isfinite(side), side, q)
+    G = sideband_damping(model, c.k, s, c.branch) if model.lossy else np.zeros(q.size)
     Gamma = max(_carrier_damping(model, c.k, c.branch), 0.0) + 0.0  # -0.0 at zero damping
     net0 = gain0 - G
     top = float(np.max(net0)) if q.size else 0.0
