@@ -398,20 +398,20 @@ def exact_amplification(model: Model, k: float, amplitude: float, branch=None, *
     q = np.asarray(first.offsets, float)
     gain0 = np.asarray(first.gain, float)
     G = sideband_damping(model, c.k, q, c.branch) if model.lossy else np.zeros(q.size)
+    Gamma = max(_carrier_damping(model, c.k, c.branch), 0.0) + 0.0  # -0.0 at zero damping
+    # an overdamped carrier first, as the NLS's: its modes' damping from the pencil (a
+    # relaxation's, huge) would beat every gain, which is not why nothing grows
+    if first.peak_gain > 0 and (over := overdamped_answer(model, c.k, c.branch,
+                                                          Gamma)) is not None:
+        return over
     if model.lossy and (grow := np.flatnonzero(gain0 > 0)).size:
         # a growing mode damped at every wave it holds, from the damped Hill pencil
         # (``_losses_hill``): the sidebands k +- q only where it is centred at l = +-1
         from ._losses_hill import mode_damping
 
         G[grow] = mode_damping(first, model, grow)
-    Gamma = max(_carrier_damping(model, c.k, c.branch), 0.0) + 0.0  # -0.0 at zero damping
     net0 = gain0 - G
     top = float(np.max(net0)) if q.size else 0.0
-    # an overdamped carrier first, as the NLS's: its modes' damping from the pencil (a
-    # relaxation's, huge) beats every gain, which is not why nothing grows
-    if first.peak_gain > 0 and (over := overdamped_answer(model, c.k, c.branch,
-                                                          Gamma)) is not None:
-        return over
     if first.peak_gain <= 0 or top <= 0:
         return Amplified(Gamma, 1.0, 0.0, math.nan, False, top)
     if Gamma <= 0:
