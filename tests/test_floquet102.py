@@ -85,3 +85,17 @@ def test_a_lossy_rings_growing_mode_is_damped_at_the_waves_it_holds(tmp_path, pa
     # the damped Hill pencil and the damped ring's monodromy are the same linear
     # equations: issue 41's 1e-6 (measured 1e-10 at 0.1x, 1x and 10x the damping)
     assert net == pytest.approx(damped, rel=RTOL)
+
+
+def test_the_paper_chains_lossy_pair_is_damped_with_the_u_it_holds(tmp_path):
+    """docs/models.md's flexmm-lossy point (gamma 0.008 each, k 1, a 0.1, 64 sites): its
+    theta pair holds U harmonics (the carrier's second harmonic near U's branch), damped at
+    gamma_U / 8, so the damped ring nets +0.0059 at t = 0; damped as two theta waves it read
+    0.0212 - 0.025 = -0.0038 (stable)."""
+    params = {"gamma_theta": 0.008, "gamma_U": 0.008}
+    model, spec, ref = _point(tmp_path, "flexmm-lossy", params, 10, 64, 0.1, 0)
+    lossless, damped = _damped_rates(ref, wave_state(spec.wave, 64), spec.wave.omega)
+    assert lossless == pytest.approx(spec.peak_gain, rel=RTOL)
+    net = exact_amplification(model, 2 * math.pi * 10 / 64, 0.1, 0, N=64,
+                              first=spec).initial_gain
+    assert damped > 0.005 and net == pytest.approx(damped, rel=RTOL)
