@@ -20,7 +20,10 @@ the growing eigenvector at t = 0; the amplification is |(x, y)(t)| / |(x, y)(0)|
 Exact lattice theory along the decaying carrier: the Hill gain sigma(q, a) of the exact
 travelling wave (``exact_gain``, a black box) at a few amplitudes (``along_decay``:
 s = (a/a0)^2 halved until nothing grows, sigma^2 piecewise linear in s), minus G_q,
-integrated in time per ring offset: amplification = max over q and t of
+the damping of the offset's growing mode at t = 0 from the damped Hill pencil (every
+harmonic damped at its own wavenumber, ``_losses_hill``; probe 102: k +- q was a pair's
+waves only at the offset where it is centred at l = +-1), integrated in time per ring
+offset: amplification = max over q and t of
 exp(int_0^t (sigma(q, a(s)) - G_q) ds). The lower amplitudes' spectra are computed coarse
 to fine over the offsets (``_losses_sampling``). The four-wave theory the same way, per
 pair, its rates at the lower amplitudes in closed form (``_losses_fourwave``: the kernel
@@ -382,8 +385,9 @@ def exact_amplification(model: Model, k: float, amplitude: float, branch=None, *
     """The exact lattice theory along the decaying carrier (module docstring): the Hill
     gain on a ring of N sites at the carrier amplitudes a0 e^{-Gamma t} (``along_decay``:
     a few amplitudes, the gain interpolated between them), for the offsets that grow net
-    of their damping at t = 0, each damped as the carrier branch's sidebands (a mode of
-    other branches is damped at their rates: this is then approximate). ``first``: ``exact_gain`` at a0 on this
+    of their damping at t = 0, each damped at t = 0 as the damped Hill pencil says (every
+    harmonic of the mode at its own wavenumber: ``_losses_hill``), along the decay at
+    that rate. ``first``: ``exact_gain`` at a0 on this
     ring, where already computed."""
     from ._exact import exact_gain
 
@@ -395,12 +399,21 @@ def exact_amplification(model: Model, k: float, amplitude: float, branch=None, *
     gain0 = np.asarray(first.gain, float)
     G = sideband_damping(model, c.k, q, c.branch) if model.lossy else np.zeros(q.size)
     Gamma = max(_carrier_damping(model, c.k, c.branch), 0.0) + 0.0  # -0.0 at zero damping
+    # an overdamped carrier first, as the NLS's: its modes' damping from the pencil (a
+    # relaxation's, huge) would beat every gain, which is not why nothing grows
+    if first.peak_gain > 0 and (over := overdamped_answer(model, c.k, c.branch,
+                                                          Gamma)) is not None:
+        return over
+    if model.lossy and (grow := np.flatnonzero(gain0 > 0)).size:
+        # a growing mode damped at every wave it holds, from the damped Hill pencil
+        # (``_losses_hill``): the sidebands k +- q only where it is centred at l = +-1
+        from ._losses_hill import mode_damping
+
+        G[grow] = mode_damping(first, model, grow)
     net0 = gain0 - G
     top = float(np.max(net0)) if q.size else 0.0
     if first.peak_gain <= 0 or top <= 0:
         return Amplified(Gamma, 1.0, 0.0, math.nan, False, top)
-    if (over := overdamped_answer(model, c.k, c.branch, Gamma)) is not None:
-        return over
     if Gamma <= 0:
         return _unbounded(Gamma, top, float(q[int(np.argmax(net0))]))
     live = np.flatnonzero(net0 > 0)
@@ -408,8 +421,14 @@ def exact_amplification(model: Model, k: float, amplitude: float, branch=None, *
 
     from ._losses_sampling import exact_along_decay
 
+    # along the decay each mode keeps its damping at t = 0, but not below 0: a damping
+    # that speeds a pumped mode (probe 102: fput, eta 0.02, k 1.52, a 0.3 on 128 sites, a
+    # resonance of a long and a short wave at q = 1.914 grows at 0.0236 damped, 0.0089
+    # without; the damped ring's monodromy the same) does so only while the carrier
+    # pumps, and held as a negative damping it would grow without end as a -> 0
     amp, t, j, _ = exact_along_decay(first, model, c, q[live], live, amplitude,
-                                     gain0[live], G[live], Gamma, ratio, most)
+                                     gain0[live], np.maximum(G[live], 0.0), Gamma, ratio,
+                                     most)
     return Amplified(Gamma, amp, t, float(qk[j]), amp >= OBSERVABLE, top)
 
 
