@@ -99,3 +99,31 @@ def test_the_paper_chains_lossy_pair_is_damped_with_the_u_it_holds(tmp_path):
     net = exact_amplification(model, 2 * math.pi * 10 / 64, 0.1, 0, N=64,
                               first=spec).initial_gain
     assert damped > 0.005 and net == pytest.approx(damped, rel=RTOL)
+
+
+def test_every_growing_offsets_damped_rate_is_a_rate_of_the_damped_ring(tmp_path):
+    """Each growing offset's net rate (its lossless rate less ``mode_damping``'s G) is a
+    Floquet rate of the damped ring's monodromy, not only the fastest one. The two-sided
+    Rayleigh iteration from a random vector could land on the growing mode's decaying
+    partner (2 sigma away) and read G ~0.05 where the damped pencil's eigenvalue nearest
+    the lossless one is 0.0063 away (flexmm-lossy here at q = 0.982, 1.276, 3.043; review
+    of probe 102's change); inverse iteration at the lossless eigenvalue first."""
+    from numerics.models._losses_hill import mode_damping
+
+    params = {"gamma_theta": 0.002, "gamma_U": 0.002}
+    model, spec, ref = _point(tmp_path, "flexmm-lossy", params, 23, 64, 0.18, 0)
+    mu, _, T, _ = monodromy(ref, wave_state(spec.wave, 64), spec.wave.omega)
+    rates = np.log(np.abs(mu)) / T
+    grow = np.flatnonzero(spec.gain > 0)
+    assert grow.size >= 10
+    net = spec.gain[grow] - mode_damping(spec, model, grow)
+    # issue 41's 1e-6 of the peak: the referee's own error is ~1e-10 relative
+    miss = [float(np.min(np.abs(rates - x))) for x in net]
+    assert max(miss) <= 1e-6 * spec.peak_gain, (spec.offsets[grow], net, miss)
+    # and it is the growing mode's own rate, damped: G is first order in the damping (a
+    # quarter of it gives a quarter of G, to the second order's 1 - 3 G/4-ish share:
+    # 10%); the decaying partner's rate, also one of the ring's, is ~2 sigma below and
+    # does not scale
+    weak = model.with_params(gamma_theta=0.0005, gamma_U=0.0005)
+    ratio = mode_damping(spec, model, grow) / mode_damping(spec, weak, grow)
+    assert np.all(np.abs(ratio - 4) <= 0.4), (spec.offsets[grow], ratio)

@@ -313,17 +313,21 @@ class _Sidebands:
     """The compiled Hill spectrum of one wave at truncation P (``_sidebands``): the cell
     Hessian's harmonics computed once for every offset asked."""
 
-    def __init__(self, wave, P=None):
+    def __init__(self, wave, P=None, Hh=None):
         self.wave = wave
         self.P = P or _work_harmonics(wave)
-        self.Hh = _hessian_harmonics(wave, self.P)
+        # ``Hh``: the harmonics at this P where the caller has them (``_losses_hill``)
+        self.Hh = _hessian_harmonics(wave, self.P) if Hh is None else Hh
         self.masses = np.asarray(wave.model.masses, float)
         self.floor = GAIN_FLOOR * max(wave.omega, 1e-300)
 
-    def spectrum(self, offsets, gains_only=False) -> HillSpectrum:
+    def spectrum(self, offsets, gains_only=False, eigenvalues=None) -> HillSpectrum:
         """The spectrum at ``offsets``; ``gains_only``: the rates alone (harmonic 0 and
         sideband offset nan where the compiled path keeps a mode: a damped point's lower
-        amplitudes, ``_losses_sampling``)."""
+        amplitudes, ``_losses_sampling``). ``eigenvalues``: a complex array of the
+        offsets' size that gets the fastest kept mode's eigenvalue lambda where the
+        compiled paths found it (left as given where no mode grows or the offset was
+        solved densely: ``_losses_hill``)."""
         from ._sidebands import sideband_modes
         from ._strong import CENTRAL_MARGIN, strong_modes
 
@@ -336,7 +340,7 @@ class _Sidebands:
         # kernel 3-15% slower (measured, fput and klein-gordon, alternating in one process)
         lam, vec, count = sideband_modes(self.Hh, self.masses, wave.k, wave.omega, P, offsets,
                                          self.floor, MAX_MODES, MAX_CLUSTER, True, False)
-        self._keep(offsets, lam, vec, count, gains, modes, offs, gains_only)
+        self._keep(offsets, lam, vec, count, gains, modes, offs, gains_only, eigenvalues)
         dense = np.flatnonzero(count < 0)
         Pc = P - CENTRAL_MARGIN
         if dense.size and 2 <= Pc and P <= WORK_HARMONICS + PERSIST_STEP:
@@ -346,8 +350,11 @@ class _Sidebands:
             lam, vec, count = strong_modes(self.Hh, self.masses, wave.k, wave.omega, P, Pc,
                                            offsets[dense], self.floor, MAX_MODES)
             sub = (gains[dense], modes[dense], offs[dense])
-            self._keep(offsets[dense], lam, vec, count, *sub)
+            lam_sub = None if eigenvalues is None else eigenvalues[dense]
+            self._keep(offsets[dense], lam, vec, count, *sub, eigenvalues=lam_sub)
             gains[dense], modes[dense], offs[dense] = sub
+            if eigenvalues is not None:
+                eigenvalues[dense] = lam_sub
             dense = dense[count < 0]
         if dense.size:
             from ._hill_dense import _dense_growing
@@ -358,10 +365,12 @@ class _Sidebands:
         return HillSpectrum(wave=wave, offsets=offsets, gain=gains, harmonic=modes,
                             sideband_offset=offs, truncations=(P,))
 
-    def _keep(self, offsets, lam, vec, count, gains, modes, offs, gains_only=False):
+    def _keep(self, offsets, lam, vec, count, gains, modes, offs, gains_only=False,
+              eigenvalues=None):
         """The kept modes' rate, harmonic and sideband offset into gains, modes, offs at the
         offsets with count >= 0 (the dense spectrum's rule: heaviest at |l| <= 1 or a tie
-        centred there, less than 1e-6 of it in the outer three harmonics)."""
+        centred there, less than 1e-6 of it in the outer three harmonics); the fastest
+        kept mode's eigenvalue into ``eigenvalues`` where given."""
         P, k, d = self.P, self.wave.k, self.wave.model.n_fields
         if gains_only:  # the rates alone: the same rule, compiled (``_kept``)
             from ._kept import kept_gains
@@ -388,6 +397,8 @@ class _Sidebands:
         grows = np.flatnonzero(re[np.arange(offsets.size), best] > self.floor)
         at = rows[grows]
         gains[at] = re[grows, best[grows]]
+        if eigenvalues is not None:
+            eigenvalues[at] = lam[grows, best[grows]]
         w_best = per_l[grows, best[grows]]                           # (grows, 2P + 1)
         modes[at] = centre[grows, best[grows]]
         from ._hill_dense import _sideband_offsets

@@ -3,31 +3,49 @@
 A mode e^{lambda t} e^{i q n} sum_l c_l e^{i l xi_n} of the held carrier with Rayleigh
 damping: its harmonic l is a wave of wavenumber q + l k and time factor
 e^{(lambda - i l omega) t}, damped by the force -C(q + l k) (lambda - i l omega) c_l
-(``damping_matrix``). The pencil of ``_hill_dense`` gains C(q + l k) (lambda - i l omega)
-per harmonic; its eigenvalue continued from the lossless growing one (from the compiled
-path's eigenvalue, by a two-sided Rayleigh iteration of the quadratic pencil: a damping
-moves it by ~G, its copies lie omega apart) gives the mode's net rate, every harmonic
-damped at its own wavenumber: the time-domain monodromy of the damped ring (probe 102,
-``bench/_floquet102_ref.py``) to 1e-12. Before, each offset was damped as the carrier
+(``damping_matrix``). The scaled pencil of ``_sidebands`` gains C(q + l k)
+(lambda - i l omega) per harmonic; its eigenvalue continued from the lossless growing one
+(``_damped_rayleigh``: the lossless eigenvalue from the compiled paths, its right and left
+eigenvectors, the first-order damped eigenvalue from them, inverse iteration there, then
+the two-sided Rayleigh iteration) gives the mode's net rate, every harmonic damped at its
+own wavenumber: the time-domain monodromy of the damped ring (probe 102,
+``bench/_floquet102_ref.py``) to 1e-12, and the dense damped pencil's eigenvalue followed
+along the damping at 560 growing offsets of random flexmm-lossy, fput and Klein-Gordon
+rings (damping 1e-3 to 0.2). Before, each offset was damped as the carrier
 branch's sidebands k +- q, the mode's waves only where it is centred at l = +-1: a ring
 shows the same pair at other offsets too (at k = pi on 10 sites the pair pi +- 0.628 also
 at q = 2.513, centred at l = 0, damped at 1.6e-4 for the monodromy's 6.25e-4), and the
 paper chain's theta pairs hold U harmonics, damped at U's rate (flexmm-lossy, k 1, a 0.1,
-gamma_U 0: G 0.0040 for 0.0063). Cost: ~0.15 ms a mode (the copies of a mode on a ring
-share it), 1.9-2.6x a lossless point's theory rows where 1.6-1.9x before
-(``bench.losses_points``).
+gamma_U 0: G 0.0040 for 0.0063). Cost: compiled, a few LUs of the pencil a mode (the
+copies of a mode on a ring share it): 2 ms (Klein-Gordon, N 256) to 12 ms (flexmm,
+N 256, 58 growing offsets, most of it their eigenvalues from the compiled paths again);
+in numpy with the dense eigenvalues at flexmm's offsets it was 2-10x that.
 """
 
 
 from __future__ import annotations
 
 import numpy as np
+from numba import njit
 
+from ._chaining import pencil_parts
 from ._hill_dense import _DensePencil
+from ._sidebands import _pencil_from_parts
+from ._small_algebra import _drop_roundoff, _lu, _lu_solve, _lu_solve_t
 
 #: Rayleigh-quotient steps on the damped pencil from the lossless eigenvalue (converges
 #: quadratically: two suffice at every probe-102 point; the rest is margin)
 STEPS = 6
+#: inverse-iteration steps at the first-order damped eigenvalue before the Rayleigh
+#: iteration (one LU). From a random vector, the Rayleigh quotient's first shift may
+#: land nearer the growing mode's decaying partner (-conj(lam0), 2 sigma away): 12 of 369
+#: growing offsets of random flexmm-lossy, fput and Klein-Gordon rings (flexmm-lossy,
+#: gamma 0.002 each, k 2 pi 23/64, a 0.18: G 0.052 where the damped pencil's eigenvalue
+#: nearest lam0 is 0.0063 away; review of probe 102's change); inverse iteration at lam0
+#: alone, the damped eigenvalue nearest it, is another mode where the damping is as
+#: large as the rate (fput, gamma 0.3: G 0.133 for 0.150): the start is the first-order
+#: one, from the lossless eigenvectors
+FIXED = 3
 
 
 def _damping_blocks(S, B, kappas) -> np.ndarray:
@@ -62,8 +80,7 @@ def mode_damping(spec, model, live) -> np.ndarray:
     """G at the offsets ``spec.offsets[live]``: each one's fastest lossless rate minus the
     damped pencil's rate of the same mode, at the spectrum's truncation P (``_copies``:
     once per mode a ring shows at several offsets)."""
-    from ._exact import MAX_CLUSTER, MAX_MODES
-    from ._sidebands import sideband_modes
+    from ._exact import _Sidebands
 
     wave = spec.wave
     P = int(spec.truncations[0]) if spec.truncations else wave.harmonics + 4
@@ -78,20 +95,18 @@ def mode_damping(spec, model, live) -> np.ndarray:
     own = np.flatnonzero(rep == np.arange(live.size))
     q_own, g_own = offsets[live[own]], gains[live[own]]
     R = own.size
-    # the lossless modes' eigenvalues from the compiled path (``_sidebands``), where it
-    # settles; else the dense eigenvalues
-    lam_c, _, count = sideband_modes(pencil.Hh, np.asarray(model.masses, float), k, omega,
-                                     P, q_own, pencil.floor, MAX_MODES, MAX_CLUSTER, True,
-                                     False)
-    K0 = np.zeros((R, n, n), complex)
+    # the lossless modes' eigenvalues from the compiled paths (``_exact._Sidebands``: the
+    # clusters, else the central pencil refined: flexmm's offsets, whose dense
+    # eigenvalues cost ~3 ms each), where they settle; else the dense eigenvalues
+    lam_c = np.full(R, np.nan, complex)
+    _Sidebands(wave, P, pencil.Hh).spectrum(q_own, eigenvalues=lam_c)
     lam0 = np.zeros(R, complex)
     for r, (q, g) in enumerate(zip(q_own, g_own)):
-        K0[r] = pencil.stiffness(q) - np.diag(ll**2 * omega**2 * m)
-        lam = lam_c[r, :count[r]] if count[r] > 0 else np.zeros(0, complex)
+        lam = lam_c[r:r + 1][np.isfinite(lam_c[r:r + 1])]
         if not np.any(np.abs(lam.real - g) <= 1e-8 * max(g, omega)):
             A = np.zeros((2 * n, 2 * n), complex)
             A[:n, n:] = np.eye(n)
-            A[n:, :n] = -Minv[:, None] * K0[r]
+            A[n:, :n] = -Minv[:, None] * (pencil.stiffness(q) - np.diag(ll**2 * omega**2 * m))
             A[n:, n:] = np.diag(2j * omega * ll)
             lam = np.linalg.eigvals(A)
         # the mode of that rate, its copy nearest the centre (the copies lie omega apart
@@ -99,39 +114,155 @@ def mode_damping(spec, model, live) -> np.ndarray:
         near = np.flatnonzero(np.abs(lam.real - g) <= 1e-8 * max(g, omega))
         lam0[r] = lam[near[np.argmin(np.abs(lam[near].imag))]] if near.size else \
             lam[np.argmin(np.abs(lam.real - g))]
-    # the pencil Q(lam) = m lam^2 + lam D1 + D0 of each harmonic's wave: m (lam - i l w)^2
-    # + C (lam - i l w) + L, C block diagonal over the harmonics at their wavenumbers
-    # q + l k
+    # each harmonic's damping C(q + l k), scaled as the pencil M^{-1/2} C M^{-1/2}
+    sq = 1 / np.sqrt(np.asarray(model.masses, float))
     blocks = _damping_blocks(S, B, (q_own[:, None] + l_[None, :] * k).ravel())
-    blocks = blocks.reshape(R, 2 * P + 1, d, d)
-    C = np.zeros((R, 2 * P + 1, d, 2 * P + 1, d), complex)
-    h = np.arange(2 * P + 1)
-    C[:, h, :, h, :] = blocks.transpose(1, 0, 2, 3)
-    C = C.reshape(R, n, n)
-    D1 = C + np.diag(-2j * omega * ll * m)[None]
-    D0 = K0 - 1j * omega * ll[None, None, :] * C
-    Mm = np.diag(m).astype(complex)[None]
-    # the damped eigenvalue continued from lam0 (a damping moves it by ~G, its copies lie
-    # omega away): two-sided Rayleigh iteration of the quadratic pencil,
-    # x <- Q^-1 Q' x, y <- Q^-H Q'^H y, lam <- lam - y^H Q x / y^H Q' x
+    Cs = np.ascontiguousarray(blocks.reshape(R, 2 * P + 1, d, d) * np.outer(sq, sq))
+    parts = pencil_parts(_drop_roundoff(pencil.Hh), sq, np.exp(
+        -1j * (np.arange(4 * P + 1) - 2 * P) * k))
     start = np.random.default_rng(0).standard_normal(n) + 0j
-    x = np.broadcast_to(start, (R, n))[..., None]
-    y = x
-    shift = lam0.copy()
-    for _ in range(STEPS):
-        lam_ = shift[:, None, None]
-        Q = lam_**2 * Mm + lam_ * D1 + D0
-        dQ = 2 * lam_ * Mm + D1
-        x = np.linalg.solve(Q + 1e-14 * omega**2 * Mm, dQ @ x)
-        y = np.linalg.solve(np.conj(Q.transpose(0, 2, 1)) + 1e-14 * omega**2 * Mm,
-                            np.conj(dQ.transpose(0, 2, 1)) @ y)
-        x /= np.linalg.norm(x, axis=1, keepdims=True)
-        y /= np.linalg.norm(y, axis=1, keepdims=True)
-        yH = np.conj(y.transpose(0, 2, 1))
-        step = (yH @ Q @ x)[:, 0, 0] / (yH @ dQ @ x)[:, 0, 0]
-        shift = shift - step
-        if np.all(np.abs(step) <= 1e-12 * (np.abs(shift) + omega)):
-            break
+    shift = np.empty(R, complex)
+    _damped_rayleigh(parts, P, k, omega, q_own, lam0, Cs, start, STEPS, shift)
     G_own = g_own - shift.real
     where = {int(o): r for r, o in enumerate(own)}
     return np.array([G_own[where[int(rep[i])]] for i in range(live.size)])
+
+
+@njit(cache=True, nogil=True, error_model="numpy", boundscheck=False)
+def _pencil_at(K, Cs_r, z, d, damped, Q):
+    """Q(lam) = (lam - i l omega)^2 + K + [damped] C_l (lam - i l omega) into ``Q``; ``z``
+    holds lam - i l omega per harmonic."""
+    n = K.shape[0]
+    for i in range(n):
+        for j in range(n):
+            Q[i, j] = K[i, j]
+    for li in range(z.size):
+        for a in range(d):
+            i = li * d + a
+            Q[i, i] += z[li] * z[li]
+            if damped:
+                for b in range(d):
+                    Q[i, li * d + b] += Cs_r[li, a, b] * z[li]
+
+
+@njit(cache=True, nogil=True, error_model="numpy", boundscheck=False)
+def _derivative_products(Cs_r, z, d, damped, x, y, bx, by):
+    """Q'(lam) x into ``bx`` and conj(Q'(lam)^H y) into ``by`` (the right side of the
+    transposed solve: Q^H u = c is Q^T conj(u) = conj(c)); Q' = 2 (lam - i l omega)
+    + [damped] C_l, block diagonal."""
+    for li in range(z.size):
+        for a in range(d):
+            i = li * d + a
+            ax = 2 * z[li] * x[i]
+            ay = np.conj(2 * z[li]) * y[i]
+            if damped:
+                for b in range(d):
+                    ax += Cs_r[li, a, b] * x[li * d + b]
+                    ay += np.conj(Cs_r[li, b, a]) * y[li * d + b]
+            bx[i, 0] = ax
+            by[i, 0] = np.conj(ay)
+
+
+@njit(cache=True, nogil=True, error_model="numpy", boundscheck=False)
+def _factor(Q, omega, F, piv):
+    """The LU of Q + 1e-14 omega^2 (a shift at an eigenvalue stays solvable) into F."""
+    n = Q.shape[0]
+    for i in range(n):
+        for j in range(n):
+            F[i, j] = Q[i, j]
+        F[i, i] += 1e-14 * omega * omega
+    return _lu(F, piv)
+
+
+@njit(cache=True, nogil=True, error_model="numpy", boundscheck=False)
+def _inverse_step(F, piv, bx, by, x, y):
+    """x <- Q^-1 Q' x, y <- Q^-H Q'^H y from the products in bx, by; both normalised."""
+    _lu_solve(F, piv, bx)
+    _lu_solve_t(F, piv, by)
+    nx = 0.0
+    ny = 0.0
+    for i in range(x.size):
+        nx += bx[i, 0].real ** 2 + bx[i, 0].imag ** 2
+        ny += by[i, 0].real ** 2 + by[i, 0].imag ** 2
+    nx, ny = np.sqrt(nx), np.sqrt(ny)
+    for i in range(x.size):
+        x[i] = bx[i, 0] / nx
+        y[i] = np.conj(by[i, 0]) / ny
+
+
+@njit(cache=True, nogil=True, error_model="numpy", boundscheck=False)
+def _rayleigh_step(Q, Cs_r, z, d, x, y):
+    """y^H Q x / y^H Q'(damped) x: the two-sided Rayleigh quotient's correction."""
+    num = 0j
+    den = 0j
+    n = x.size
+    for li in range(z.size):
+        for a in range(d):
+            i = li * d + a
+            qx = 0j
+            for j in range(n):
+                qx += Q[i, j] * x[j]
+            dx = 2 * z[li] * x[i]
+            for b in range(d):
+                dx += Cs_r[li, a, b] * x[li * d + b]
+            num += np.conj(y[i]) * qx
+            den += np.conj(y[i]) * dx
+    return num / den
+
+
+@njit(cache=True, nogil=True, error_model="numpy", boundscheck=False)
+def _damped_rayleigh(parts, P, k, omega, offsets, lam0, Cs, start, most, out):
+    """Each mode's damped eigenvalue into ``out``, continued from its lossless ``lam0``
+    on the scaled quadratic pencil Q(lam) = (lam - i l omega)^2 + K(q) + C_l (lam - i l
+    omega) (K: ``_sidebands._pencil_from_parts``; C_l = ``Cs``, each harmonic's damping
+    at q + l k). The lossless pencil's right and left eigenvectors at lam0 (inverse
+    iteration there, one LU), the first-order damped eigenvalue from them (one Rayleigh
+    correction: a start whose error is second order in the damping), inverse iteration at
+    that start (``FIXED`` steps, one LU: the damped eigenvalue nearest it), then the
+    two-sided Rayleigh iteration x <- Q^-1 Q' x, y <- Q^-H Q'^H y, lam <- lam - y^H Q x /
+    y^H Q' x, until a step is below 1e-12 (|lam| + omega) or after ``most`` steps."""
+    d = parts.shape[2]
+    nl = 2 * P + 1
+    n = d * nl
+    K = np.empty((n, n), np.complex128)
+    Q = np.empty((n, n), np.complex128)
+    F = np.empty((n, n), np.complex128)
+    eq = np.empty(nl, np.complex128)
+    piv = np.empty(n, np.int64)
+    bx = np.empty((n, 1), np.complex128)
+    by = np.empty((n, 1), np.complex128)
+    x = np.empty(n, np.complex128)
+    y = np.empty(n, np.complex128)
+    z = np.empty(nl, np.complex128)
+    for r in range(offsets.size):
+        _pencil_from_parts(parts, P, k, offsets[r], eq, K)
+        Cs_r = Cs[r]
+        shift = lam0[r]
+        x[:] = start
+        y[:] = start
+        for li in range(nl):
+            z[li] = shift - 1j * (li - P) * omega
+        # the lossless eigenvectors at lam0 (an eigenvalue: two steps are round-off's)
+        _pencil_at(K, Cs_r, z, d, False, Q)
+        if _factor(Q, omega, F, piv):  # (an exact zero pivot: from the random vectors)
+            for _ in range(2):
+                _derivative_products(Cs_r, z, d, False, x, y, bx, by)
+                _inverse_step(F, piv, bx, by, x, y)
+            _pencil_at(K, Cs_r, z, d, True, Q)
+            shift = shift - _rayleigh_step(Q, Cs_r, z, d, x, y)
+        for it in range(FIXED + most):
+            for li in range(nl):
+                z[li] = shift - 1j * (li - P) * omega
+            _pencil_at(K, Cs_r, z, d, True, Q)
+            if it == 0 or it >= FIXED:  # the shift held for FIXED steps: one LU there
+                if not _factor(Q, omega, F, piv):
+                    break
+            _derivative_products(Cs_r, z, d, True, x, y, bx, by)
+            _inverse_step(F, piv, bx, by, x, y)
+            if it < FIXED - 1:
+                continue
+            step = _rayleigh_step(Q, Cs_r, z, d, x, y)
+            shift = shift - step
+            if abs(step) <= 1e-12 * (abs(shift) + omega):
+                break
+        out[r] = shift
