@@ -127,3 +127,14 @@ def test_every_growing_offsets_damped_rate_is_a_rate_of_the_damped_ring(tmp_path
     weak = model.with_params(gamma_theta=0.0005, gamma_U=0.0005)
     ratio = mode_damping(spec, model, grow) / mode_damping(spec, weak, grow)
     assert np.all(np.abs(ratio - 4) <= 0.4), (spec.offsets[grow], ratio)
+
+
+def test_a_ring_snaps_k_into_its_zone():
+    """k = 2 pi (N/2) / N computed in floats is pi + 4e-16 at N = 26 and was refused ("k
+    must be in (0, pi]"); k = pi on an odd ring rounded to m = (N + 1) / 2, a wave of
+    2 pi 14 / 27 > pi, refused downstream with a value the caller never gave. Now: pi
+    exactly, and 2 pi 13 / 27, the ring's wavenumber nearest pi inside the zone."""
+    model = load_model("fput")
+    assert exact_gain(model, 2 * math.pi * 13 / 26, 0.05, N=26).wave.k == math.pi
+    assert exact_gain(model, math.pi, 0.05, N=27).wave.k == pytest.approx(
+        2 * math.pi * 13 / 27, rel=1e-15)

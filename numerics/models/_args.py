@@ -115,3 +115,25 @@ def wavenumbers(kappa, name: str = "kappa") -> np.ndarray:
         raise ModelError(f"{name} must be finite real wavenumbers (rad/site), got "
                          f"{kappa!r}"[:300])
     return kap
+
+
+def snap_ring(k: float, N: int) -> tuple[float, int]:
+    """(2 pi m / N, m) nearest to k in (0, pi] on a ring of N sites (pi on an odd ring:
+    m = (N - 1) / 2, not 2 pi (N + 1) / 2N > pi); k = pi (N even) also as 2 pi (N/2) / N
+    a few ulps above it (probe 102: refused), returned as pi exactly."""
+    N = check_ring(N)
+    k = scalar(k)
+    if isinstance(k, (bool, np.bool_)) or not (
+            isinstance(k, numbers.Real) and math.isfinite(k)
+            and 0 < k <= math.pi * (1 + 8 * np.finfo(float).eps)):
+        raise ModelError(f"k must be in (0, pi], got {k!r}")
+    m = min(int(round(k * N / (2 * math.pi))), N // 2)
+    if 2 * m == N:
+        return math.pi, m
+    if m == 0:
+        need = math.ceil(math.pi / k)
+        raise ModelError(f"k = {k:g} snaps to 0 on a ring of N = {N} (no wave): " + (
+            f"raise N above {need}" if need < MAX_RING else
+            f"no ring carries it (N at most {MAX_RING}): k at least "
+            f"{2 * math.pi / MAX_RING:.3g}"))
+    return 2 * math.pi * m / N, m

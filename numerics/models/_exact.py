@@ -196,8 +196,7 @@ class HillSpectrum:
         return float(min(_wrap(kap - k), _wrap(kap + k)))
 
     @property
-    def verdict(self) -> str:
-        """'MI' where a sideband grows, else 'stable'."""
+    def verdict(self) -> str:  # 'MI' where a sideband grows, else 'stable'
         return "MI" if self.peak_gain > 0 else "stable"
 
     @property
@@ -316,18 +315,15 @@ class _Sidebands:
     def __init__(self, wave, P=None, Hh=None):
         self.wave = wave
         self.P = P or _work_harmonics(wave)
-        # ``Hh``: the harmonics at this P where the caller has them (``_losses_hill``)
-        self.Hh = _hessian_harmonics(wave, self.P) if Hh is None else Hh
+        self.Hh = _hessian_harmonics(wave, self.P) if Hh is None else Hh  # a caller's
         self.masses = np.asarray(wave.model.masses, float)
         self.floor = GAIN_FLOOR * max(wave.omega, 1e-300)
 
     def spectrum(self, offsets, gains_only=False, eigenvalues=None) -> HillSpectrum:
         """The spectrum at ``offsets``; ``gains_only``: the rates alone (harmonic 0 and
         sideband offset nan where the compiled path keeps a mode: a damped point's lower
-        amplitudes, ``_losses_sampling``). ``eigenvalues``: a complex array of the
-        offsets' size that gets the fastest kept mode's eigenvalue lambda where the
-        compiled paths found it (left as given where no mode grows or the offset was
-        solved densely: ``_losses_hill``)."""
+        amplitudes, ``_losses_sampling``). ``eigenvalues`` (complex, one an offset): the
+        fastest kept mode's lambda where a compiled path found it (``_losses_hill``)."""
         from ._sidebands import sideband_modes
         from ._strong import CENTRAL_MARGIN, strong_modes
 
@@ -349,12 +345,12 @@ class _Sidebands:
             # MAX_MODES, that offset's dense eigenproblem)
             lam, vec, count = strong_modes(self.Hh, self.masses, wave.k, wave.omega, P, Pc,
                                            offsets[dense], self.floor, MAX_MODES)
-            sub = (gains[dense], modes[dense], offs[dense])
-            lam_sub = None if eigenvalues is None else eigenvalues[dense]
-            self._keep(offsets[dense], lam, vec, count, *sub, eigenvalues=lam_sub)
-            gains[dense], modes[dense], offs[dense] = sub
+            sub = (gains[dense], modes[dense], offs[dense],
+                   None if eigenvalues is None else eigenvalues[dense])
+            self._keep(offsets[dense], lam, vec, count, *sub[:3], eigenvalues=sub[3])
+            gains[dense], modes[dense], offs[dense] = sub[:3]
             if eigenvalues is not None:
-                eigenvalues[dense] = lam_sub
+                eigenvalues[dense] = sub[3]
             dense = dense[count < 0]
         if dense.size:
             from ._hill_dense import _dense_growing
@@ -367,10 +363,9 @@ class _Sidebands:
 
     def _keep(self, offsets, lam, vec, count, gains, modes, offs, gains_only=False,
               eigenvalues=None):
-        """The kept modes' rate, harmonic and sideband offset into gains, modes, offs at the
-        offsets with count >= 0 (the dense spectrum's rule: heaviest at |l| <= 1 or a tie
-        centred there, less than 1e-6 of it in the outer three harmonics); the fastest
-        kept mode's eigenvalue into ``eigenvalues`` where given."""
+        """The kept modes' rate, harmonic and sideband offset (and lambda: ``eigenvalues``)
+        into gains, modes, offs at the offsets with count >= 0 (the dense spectrum's rule:
+        heaviest at |l| <= 1 or a tie centred there, < 1e-6 of it in the outer three)."""
         P, k, d = self.P, self.wave.k, self.wave.model.n_fields
         if gains_only:  # the rates alone: the same rule, compiled (``_kept``)
             from ._kept import kept_gains

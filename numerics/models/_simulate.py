@@ -21,7 +21,6 @@ Measurement: ``_growth`` (``ModelRun.growth``, ``ModelRun.amplification``).
 from __future__ import annotations
 
 import math
-import numbers
 from dataclasses import dataclass
 
 import numpy as np
@@ -29,7 +28,15 @@ import numpy as np
 from common.threads import one_blas_thread
 from energy import Model, ModelError
 
-from ._args import MAX_RING, check_count, check_noise, check_rate, check_ring, scalar
+from ._args import (  # MAX_RING, check_ring, snap_ring: here too, for their importers
+    MAX_RING,  # noqa: F401
+    check_count,
+    check_noise,
+    check_rate,
+    check_ring,  # noqa: F401
+    scalar,
+    snap_ring,
+)
 
 # compiled_force, lattice_energy, lattice_force: here too, for the modules that import them
 # from here (the package's __init__, _reach)
@@ -58,23 +65,6 @@ class _Stop(Exception):
 #: it is a stiff model (a mass of 1e-300 puts a branch at 1e150: 1e154 steps, where the
 #: run and the estimate's probe hung without a word) or a T no one can wait for
 MAX_STEPS = 1e10
-
-
-def snap_ring(k: float, N: int) -> tuple[float, int]:
-    """(2 pi m / N, m) nearest to k on a ring of N sites; k = pi is allowed (N even)."""
-    N = check_ring(N)
-    k = scalar(k)
-    if isinstance(k, (bool, np.bool_)) or not (
-            isinstance(k, numbers.Real) and math.isfinite(k) and 0 < k <= math.pi):
-        raise ModelError(f"k must be in (0, pi], got {k!r}")
-    m = int(round(k * N / (2 * math.pi)))
-    if m == 0:
-        need = math.ceil(math.pi / k)
-        raise ModelError(f"k = {k:g} snaps to 0 on a ring of N = {N} (no wave): " + (
-            f"raise N above {need}" if need < MAX_RING else
-            f"no ring carries it (N at most {MAX_RING}): k at least "
-            f"{2 * math.pi / MAX_RING:.3g}"))
-    return 2 * math.pi * m / N, m
 
 
 def _exp_integral(h: float, f0: float, f1: float) -> float:
