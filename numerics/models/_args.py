@@ -137,3 +137,9 @@ def snap_ring(k: float, N: int) -> tuple[float, int]:
             f"no ring carries it (N at most {MAX_RING}): k at least "
             f"{2 * math.pi / MAX_RING:.3g}"))
     return 2 * math.pi * m / N, m
+
+
+def ring_offsets(N: int) -> np.ndarray:
+    """The perturbation wavenumbers of a ring of N sites, q = 2 pi j / N, 0 < q <= pi."""
+    N = check_ring(N)  # N = 0 or -4 was an empty array, 2.5 a wavenumber 2.51 > pi/2
+    return 2 * np.pi * np.arange(1, N // 2 + 1) / N

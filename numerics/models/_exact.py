@@ -63,6 +63,7 @@ import numpy as np
 from common.threads import one_blas_thread
 from energy import Model, ModelError
 
+from ._args import ring_offsets  # noqa: F401 (here too, for its importers)
 from ._linear import check_harmonics, scalar
 from ._wave import (  # noqa: F401 (TravellingWave, travelling_wave, continued_wave: here too)
     TravellingWave,
@@ -428,14 +429,6 @@ class _Sidebands:
         P = self.wave.harmonics + 4
         return dataclasses.replace(_dense_spectrum(self.wave, offsets, P, False),
                                    truncations=(P,))
-
-
-def ring_offsets(N: int) -> np.ndarray:
-    """The perturbation wavenumbers of a ring of N sites, q = 2 pi j / N, 0 < q <= pi."""
-    from ._simulate import check_ring
-
-    N = check_ring(N)  # N = 0 or -4 was an empty array, 2.5 a wavenumber 2.51 > pi/2
-    return 2 * np.pi * np.arange(1, N // 2 + 1) / N
 
 
 @one_blas_thread
