@@ -45,7 +45,7 @@ STEPS = 6
 #: alone, the damped eigenvalue nearest it, is another mode where the damping is as
 #: large as the rate (fput, gamma 0.3: G 0.133 for 0.150): the start is the first-order
 #: one, from the lossless eigenvectors
-FIXED = 3
+FIXED = 1
 
 
 def _damping_blocks(S, B, kappas) -> np.ndarray:
@@ -60,19 +60,22 @@ def _copies(offsets, gains, live, k) -> np.ndarray:
     """For each live offset, the live offset whose damping it takes: itself, or an
     earlier one where a copy of its mode sits (q +- k, q +- 2k folded into [0, pi]) with
     the same rate to 1e-12 (a ring shows one mode at each harmonic it is centred at)."""
-    where = {round(float(q), 9): int(j) for j, q in zip(live, offsets[live])}
-    rep = {}
-    out = np.empty(len(live), int)
-    for i, j in enumerate(live):
-        q, g = float(offsets[j]), float(gains[j])
-        out[i] = i
-        for s_ in (-2, -1, 1, 2):
-            c = abs((q + s_ * k + np.pi) % (2 * np.pi) - np.pi)
-            h = where.get(round(c, 9))
-            if h is not None and h in rep and abs(gains[h] - g) <= 1e-12 * g:
-                out[i] = rep[h]
+    live = np.asarray(live, int)
+    key = np.round(offsets[live], 9)
+    order = np.argsort(key, kind="stable")
+    # each live offset's copies' positions among the live ones (-1: none), s = -2..2
+    c = np.round(np.abs((offsets[live][:, None] + np.array([-2, -1, 1, 2]) * k + np.pi)
+                        % (2 * np.pi) - np.pi), 9)
+    at = np.searchsorted(key[order], c)
+    hit = (at < key.size) & (key[order][np.minimum(at, key.size - 1)] == c)
+    pos = np.where(hit, order[np.minimum(at, key.size - 1)], -1)
+    g = gains[live]
+    out = np.arange(live.size)
+    for i in range(live.size):
+        for h in pos[i]:
+            if 0 <= h < i and abs(g[h] - g[i]) <= 1e-12 * g[i]:
+                out[i] = out[h]
                 break
-        rep[int(j)] = int(out[i])
     return out
 
 
@@ -100,15 +103,16 @@ def mode_damping(spec, model, live) -> np.ndarray:
     # eigenvalues cost ~3 ms each), where they settle; else the dense eigenvalues
     lam_c = np.full(R, np.nan, complex)
     _Sidebands(wave, P, pencil.Hh).spectrum(q_own, eigenvalues=lam_c)
-    lam0 = np.zeros(R, complex)
-    for r, (q, g) in enumerate(zip(q_own, g_own)):
-        lam = lam_c[r:r + 1][np.isfinite(lam_c[r:r + 1])]
-        if not np.any(np.abs(lam.real - g) <= 1e-8 * max(g, omega)):
-            A = np.zeros((2 * n, 2 * n), complex)
-            A[:n, n:] = np.eye(n)
-            A[n:, :n] = -Minv[:, None] * (pencil.stiffness(q) - np.diag(ll**2 * omega**2 * m))
-            A[n:, n:] = np.diag(2j * omega * ll)
-            lam = np.linalg.eigvals(A)
+    lam0 = lam_c.copy()
+    with np.errstate(invalid="ignore"):
+        found = np.abs(lam_c.real - g_own) <= 1e-8 * np.maximum(g_own, omega)
+    for r in np.flatnonzero(~found):  # the dense eigenvalues where none was found
+        q, g = q_own[r], g_own[r]
+        A = np.zeros((2 * n, 2 * n), complex)
+        A[:n, n:] = np.eye(n)
+        A[n:, :n] = -Minv[:, None] * (pencil.stiffness(q) - np.diag(ll**2 * omega**2 * m))
+        A[n:, n:] = np.diag(2j * omega * ll)
+        lam = np.linalg.eigvals(A)
         # the mode of that rate, its copy nearest the centre (the copies lie omega apart
         # with one rate; a copy near the truncation is the distorted one)
         near = np.flatnonzero(np.abs(lam.real - g) <= 1e-8 * max(g, omega))
@@ -218,7 +222,7 @@ def _damped_rayleigh(parts, P, k, omega, offsets, lam0, Cs, start, most, out):
     at q + l k). The lossless pencil's right and left eigenvectors at lam0 (inverse
     iteration there, one LU), the first-order damped eigenvalue from them (one Rayleigh
     correction: a start whose error is second order in the damping), inverse iteration at
-    that start (``FIXED`` steps, one LU: the damped eigenvalue nearest it), then the
+    that start (``FIXED`` step: toward the damped eigenvalue nearest it), then the
     two-sided Rayleigh iteration x <- Q^-1 Q' x, y <- Q^-H Q'^H y, lam <- lam - y^H Q x /
     y^H Q' x, until a step is below 1e-12 (|lam| + omega) or after ``most`` steps."""
     d = parts.shape[2]
@@ -245,9 +249,8 @@ def _damped_rayleigh(parts, P, k, omega, offsets, lam0, Cs, start, most, out):
         # the lossless eigenvectors at lam0 (an eigenvalue: two steps are round-off's)
         _pencil_at(K, Cs_r, z, d, False, Q)
         if _factor(Q, omega, F, piv):  # (an exact zero pivot: from the random vectors)
-            for _ in range(2):
-                _derivative_products(Cs_r, z, d, False, x, y, bx, by)
-                _inverse_step(F, piv, bx, by, x, y)
+            _derivative_products(Cs_r, z, d, False, x, y, bx, by)
+            _inverse_step(F, piv, bx, by, x, y)
             _pencil_at(K, Cs_r, z, d, True, Q)
             shift = shift - _rayleigh_step(Q, Cs_r, z, d, x, y)
         for it in range(FIXED + most):
