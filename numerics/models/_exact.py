@@ -324,7 +324,8 @@ class _Sidebands:
         """The spectrum at ``offsets``; ``gains_only``: the rates alone (harmonic 0 and
         sideband offset nan where the compiled path keeps a mode: a damped point's lower
         amplitudes, ``_losses_sampling``). ``eigenvalues`` (complex, one an offset): the
-        fastest kept mode's lambda where a compiled path found it (``_losses_hill``)."""
+        fastest kept mode's lambda where a compiled path found it; 2-D (offsets,
+        MAX_MODES): every kept growing mode's, nan elsewhere (``_losses_hill``)."""
         from ._sidebands import sideband_modes
         from ._strong import CENTRAL_MARGIN, strong_modes
 
@@ -393,8 +394,10 @@ class _Sidebands:
         grows = np.flatnonzero(re[np.arange(offsets.size), best] > self.floor)
         at = rows[grows]
         gains[at] = re[grows, best[grows]]
-        if eigenvalues is not None:
+        if eigenvalues is not None and eigenvalues.ndim == 1:
             eigenvalues[at] = lam[grows, best[grows]]
+        elif eigenvalues is not None:  # every kept growing mode's (``_losses_hill``)
+            eigenvalues[at, :width] = np.where(re[grows] > self.floor, lam[grows], np.nan)
         w_best = per_l[grows, best[grows]]                           # (grows, 2P + 1)
         modes[at] = centre[grows, best[grows]]
         from ._hill_dense import _sideband_offsets

@@ -16,7 +16,12 @@ branch's sidebands k +- q, the mode's waves only where it is centred at l = +-1:
 shows the same pair at other offsets too (at k = pi on 10 sites the pair pi +- 0.628 also
 at q = 2.513, centred at l = 0, damped at 1.6e-4 for the monodromy's 6.25e-4), and the
 paper chain's theta pairs hold U harmonics, damped at U's rate (flexmm-lossy, k 1, a 0.1,
-gamma_U 0: G 0.0040 for 0.0063). Cost: compiled, a few LUs of the pencil a mode (the
+gamma_U 0: G 0.0040 for 0.0063). The offset's net rate is its fastest damped mode's,
+not the fastest lossless mode's damped: the offset's other growing modes are continued
+where their lossless rate passes that (review 102: theta damped, U not, a slower mode
+holding less theta nets 0.0547 where the fastest nets 0.0056). Not covered: a mode
+neutral without losses that the damping destabilises (negative energy; review 102's
+strict xfail, tests/test_lossreview102.py). Cost: compiled, a few LUs of the pencil a mode (the
 copies of a mode on a ring share it): 2 ms (Klein-Gordon, N 256) to 12 ms (flexmm,
 N 256, 58 growing offsets, most of it their eigenvalues from the compiled paths again);
 in numpy with the dense eigenvalues at flexmm's offsets it was 2-10x that.
@@ -100,12 +105,16 @@ def mode_damping(spec, model, live) -> np.ndarray:
     R = own.size
     # the lossless modes' eigenvalues from the compiled paths (``_exact._Sidebands``: the
     # clusters, else the central pencil refined: flexmm's offsets, whose dense
-    # eigenvalues cost ~3 ms each), where they settle; else the dense eigenvalues
-    lam_c = np.full(R, np.nan, complex)
-    _Sidebands(wave, P, pencil.Hh).spectrum(q_own, eigenvalues=lam_c)
-    lam0 = lam_c.copy()
+    # eigenvalues cost ~3 ms each), every kept growing one, where they settle; else the
+    # dense eigenvalues
+    from ._exact import MAX_MODES
+
+    lam_all = np.full((R, MAX_MODES), np.nan, complex)
+    _Sidebands(wave, P, pencil.Hh).spectrum(q_own, eigenvalues=lam_all)
+    re = np.where(np.isfinite(lam_all.real), lam_all.real, -np.inf)
+    lam0 = lam_all[np.arange(R), np.argmax(re, axis=1)]
     with np.errstate(invalid="ignore"):
-        found = np.abs(lam_c.real - g_own) <= 1e-8 * np.maximum(g_own, omega)
+        found = np.abs(lam0.real - g_own) <= 1e-8 * np.maximum(g_own, omega)
     for r in np.flatnonzero(~found):  # the dense eigenvalues where none was found
         q, g = q_own[r], g_own[r]
         A = np.zeros((2 * n, 2 * n), complex)
@@ -118,6 +127,10 @@ def mode_damping(spec, model, live) -> np.ndarray:
         near = np.flatnonzero(np.abs(lam.real - g) <= 1e-8 * max(g, omega))
         lam0[r] = lam[near[np.argmin(np.abs(lam[near].imag))]] if near.size else \
             lam[np.argmin(np.abs(lam.real - g))]
+        # the other growing modes: one copy each, the one nearest the centre
+        lam = lam[(lam.real > 0) & (np.abs(lam.imag) <= omega / 2)][:MAX_MODES]
+        lam_all[r] = np.nan
+        lam_all[r, :lam.size] = lam
     # each harmonic's damping C(q + l k), scaled as the pencil M^{-1/2} C M^{-1/2}
     sq = 1 / np.sqrt(np.asarray(model.masses, float))
     blocks = _damping_blocks(S, B, (q_own[:, None] + l_[None, :] * k).ravel())
@@ -127,7 +140,25 @@ def mode_damping(spec, model, live) -> np.ndarray:
     start = np.random.default_rng(0).standard_normal(n) + 0j
     shift = np.empty(R, complex)
     _damped_rayleigh(parts, P, k, omega, q_own, lam0, Cs, start, STEPS, shift)
-    G_own = g_own - shift.real
+    best = shift.real.copy()
+    # the offset's other growing modes, where one could outgrow the fastest damped (a
+    # damping on one field leaves a slower mode of the other ahead: flexmm-lossy,
+    # gamma_theta 0.043, gamma_U 0, k 2 pi 7/16, a 0.169: the theta mode nets -0.096,
+    # a U-heavy one +0.018, the damped ring's monodromy 0.018; review 102). Not the
+    # fastest's copies (lam0 + i l omega) nor a mode slower than the best already
+    # damped (a damping that speeds a mode is rare: probe 102's one resonance was the
+    # fastest mode)
+    turns = np.abs((lam_all.imag - lam0.imag[:, None]) / omega)
+    copy = (np.abs(lam_all.real - lam0.real[:, None]) <= 1e-8 * np.maximum(
+        g_own, omega)[:, None]) & (np.abs(turns - np.round(turns)) <= 1e-6)
+    with np.errstate(invalid="ignore"):
+        rows, cols = np.nonzero((lam_all.real > best[:, None]) & ~copy)
+    if rows.size:
+        more = np.empty(rows.size, complex)
+        _damped_rayleigh(parts, P, k, omega, q_own[rows], lam_all[rows, cols],
+                         np.ascontiguousarray(Cs[rows]), start, STEPS, more)
+        np.maximum.at(best, rows, more.real)
+    G_own = g_own - best
     where = {int(o): r for r, o in enumerate(own)}
     return np.array([G_own[where[int(rep[i])]] for i in range(live.size)])
 
