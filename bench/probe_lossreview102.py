@@ -19,7 +19,7 @@ Checks, one line a point (``!!`` per disagreement):
   1e-9 omega, issue 41's bar: the same linear equations, the referee's own error ~1e-10),
   where either grows; and each growing offset's net rate is one of the monodromy's rates.
 - runs (``--runs``; flexmm-lossy on 64 sites, 3 seeds, launched as ``point --simulate``,
-  ``_map_cells.lossy_runs``, and with noise 1e-4): the theory's amplification against the
+  ``numerics.models.lossy_runs``, and with noise 1e-4): the theory's amplification against the
   median seed's max A(t) / A(0), in log, within the seeds' spread plus ln 3 (a run starts
   from noise, of which the growing mode holds a share; the theory from the mode itself).
 
@@ -49,7 +49,7 @@ import time
 import numpy as np
 
 from energy import ModelError, load_model
-from numerics.models import exact_amplification, exact_gain
+from numerics.models import exact_amplification, exact_gain, lossy_runs, simulate_seeds
 
 from ._floquet102_ref import RingReferee, monodromy, wave_state
 from .probe_floquet102 import MODELS as FLOQUET_MODELS
@@ -167,13 +167,10 @@ def _median_log(runs):
 
 def check_runs(gamma, k, a, N=64, seeds=3):
     """(line, disagreements): the theory's amplification against seeded damped runs,
-    launched as ``point --simulate`` (``_map_cells.lossy_runs``) and with noise 1e-4 (the
+    launched as ``point --simulate`` (``numerics.models.lossy_runs``) and with noise 1e-4 (the
     launch's default noise, A(0) ~3.5e-10, sits below a deterministic departure of the
     damped carrier from the lossless wave family, ~7e-8 in harmonic 8's mode by t 20 at
     gamma 0.003, k 1, a 0.15, whatever the noise: 1e-4 puts it at 2% of A(0))."""
-    from numerics.models._map_cells import lossy_runs
-    from numerics.models._seeds import simulate_seeds
-
     model = load_model("flexmm-lossy", gamma_theta=gamma, gamma_U=gamma)
     spec = exact_gain(model, k, a, 0, N=N)
     th = exact_amplification(model, k, a, 0, N=N, first=spec)

@@ -209,6 +209,8 @@ TEST_EXCEPTIONS = {
 }
 #: the bench reaches private code only to time its parts
 BENCH_EXCEPTIONS = {
+    "numerics.models._losses_hill": "bench/probe_lossreview102.py: each growing offset's "
+                                    "damping against the damped ring's monodromy rates",
     "numerics.lattice._kernels": "bench/speed.py times the kernel's parts one by one "
                                  "(stencil, the libm variant, the vectorised loops)",
     "numerics.maps._cells": "bench/gpu.py takes a map's step (map_step) as a map does",

@@ -13,7 +13,7 @@ import pytest
 from bench._floquet102_ref import RingReferee, monodromy, wave_state
 from bench.probe_floquet102 import model_text
 from energy import load_model
-from numerics.models import exact_amplification, exact_gain
+from numerics.models import exact_amplification, exact_gain, simulate_seeds
 
 #: issue 41's bar, as test_floquet102: the damped Hill pencil and the damped ring's
 #: monodromy are the same linear equations (the referee's own error ~1e-10 relative)
@@ -61,8 +61,6 @@ def test_a_neutral_mode_the_damping_destabilises(tmp_path):
 
 def _theory_and_runs(gamma, a, **launch):
     """flexmm-lossy at k 1 on 64 sites: the exact theory's answer and 3 seeded runs."""
-    from numerics.models._seeds import simulate_seeds
-
     model = load_model("flexmm-lossy", gamma_theta=gamma, gamma_U=gamma)
     spec = exact_gain(model, 1.0, a, 0, N=64)
     th = exact_amplification(model, 1.0, a, 0, N=64, first=spec)
