@@ -30,6 +30,9 @@ for the monodromy's 0.0547); fixed (every growing mode continued where it could 
 (2) not fixed: a mode neutral without losses that the damping destabilises
 (gamma_theta 0.0431, gamma_U 0, k 2 pi 7/16, a 0.169: initial_gain -0.096, the monodromy
 +0.0178, rate proportional to the damping); tests/test_lossreview102.py's strict xfail.
+(3) lossless: flexmm at k 2 pi/18, a 0.3733 (the point with gamma_U 0 read 'nothing grows
+lossless', the damped ring 0.447): exact_gain stable where the ring grows at 0.566;
+fixed in ``_exact._Sidebands.checked``.
 
     OMP_NUM_THREADS=1 python -m bench.probe_lossreview102 [--points 24] [--seed S]
         [--quick] [--runs]

@@ -101,20 +101,20 @@ def test_a_damped_runs_amplification_is_its_sidebands():
     assert np.median(logs) < math.log(20)
 
 
-@pytest.mark.xfail(strict=True, reason="review 102, not fixed: a stable verdict at the "
-                   "truncation P is not checked at P + 4; a mode reaching the truncation's "
-                   "edge is dropped as distorted")
-def test_the_paper_chain_grows_where_exact_gain_says_stable(tmp_path):
-    """flexmm (lossless, the file's parameters) at k 2 pi/18, a 0.3733 on 18 sites:
-    exact_gain's peak 0 (P 10: the central pencil finds 4 modes at 0.566 per offset and
-    the kept-mode rule drops them, their weight reaching the outer harmonics; the dense
-    pencil at P 10 has none) where the dense Hill pencil grows at 0.5664 at P 12, 16 and 20
-    and the ring's monodromy at 0.56638 (rate > omega 0.347: no narrow band)."""
+@pytest.mark.parametrize("N, a", [(18, 0.3733), (24, 0.2)])
+def test_the_paper_chain_grows_where_exact_gain_said_stable(tmp_path, N, a):
+    """flexmm (lossless, the file's parameters) at k 2 pi/N: exact_gain's peak was 0 at
+    P 10 (the central pencil finds modes growing at 0.566 (N 18, a 0.3733) and 0.253
+    (N 24, a 0.2) and the kept-mode rule dropped them, their weight reaching the outer
+    harmonics; the dense pencil at P 10 has none) where the dense Hill pencil at P 12-20
+    and the ring's monodromy grow (0.56638 at N 18: a rate past omega 0.347, no narrow
+    band). 9 of 27 (k, a) of the paper chain at k <= 0.35, a >= 0.1 on 256 sites; now the
+    whole spectrum again at P + 4 where such a mode was dropped and nothing kept."""
     path = tmp_path / "flexmm.toml"
     path.write_text(model_text("flexmm"))
     model = load_model(str(path))
-    spec = exact_gain(model, 2 * math.pi / 18, 0.3733, 0, N=18)
-    ref = RingReferee(model_text("flexmm"), {}, 18)
-    mu, _, T, back = monodromy(ref, wave_state(spec.wave, 18), spec.wave.omega)
+    spec = exact_gain(model, 2 * math.pi / N, a, 0, N=N)
+    ref = RingReferee(model_text("flexmm"), {}, N)
+    mu, _, T, back = monodromy(ref, wave_state(spec.wave, N), spec.wave.omega)
     assert back < 1e-6  # the project's wave is a solution of the referee's ring
     assert spec.peak_gain == pytest.approx(float((np.log(np.abs(mu)) / T).max()), rel=RTOL)

@@ -65,12 +65,7 @@ from energy import Model, ModelError
 
 from ._args import ring_offsets  # noqa: F401 (here too, for its importers)
 from ._linear import check_harmonics, scalar
-from ._wave import (  # noqa: F401 (TravellingWave, travelling_wave, continued_wave: here too)
-    TravellingWave,
-    _wrap,
-    continued_wave,
-    travelling_wave,
-)
+from ._wave import TravellingWave, _wrap, continued_wave, travelling_wave  # noqa: F401 (here too)
 from ._wave_solve import _grid
 
 #: A growth rate below this fraction of omega is round-off of the eigensolver: at a
@@ -323,19 +318,18 @@ class _Sidebands:
     def spectrum(self, offsets, gains_only=False, eigenvalues=None) -> HillSpectrum:
         """The spectrum at ``offsets``; ``gains_only``: the rates alone (harmonic 0 and
         sideband offset nan where the compiled path keeps a mode: a damped point's lower
-        amplitudes, ``_losses_sampling``). ``eigenvalues`` (complex, one an offset): the
-        fastest kept mode's lambda where a compiled path found it; 2-D (offsets,
-        MAX_MODES): every kept growing mode's, nan elsewhere (``_losses_hill``)."""
+        amplitudes, ``_losses_sampling``). ``eigenvalues``: the fastest kept mode's lambda
+        (2-D, (offsets, MAX_MODES): every kept growing one's) where a compiled path found
+        it (``_losses_hill``)."""
         from ._sidebands import sideband_modes
         from ._strong import CENTRAL_MARGIN, strong_modes
 
-        wave, P = self.wave, self.P
+        wave, P, self.edge = self.wave, self.P, False
         offsets = np.atleast_1d(np.asarray(offsets, dtype=float))
         gains = np.zeros(offsets.size)
         modes = np.zeros(offsets.size, int)
         offs = np.full(offsets.size, math.nan)
-        # every argument given: numba's specialisation with the defaults omitted ran the
-        # kernel 3-15% slower (measured, fput and klein-gordon, alternating in one process)
+        # every argument given (numba's specialisation without the defaults: 3-15% slower)
         lam, vec, count = sideband_modes(self.Hh, self.masses, wave.k, wave.omega, P, offsets,
                                          self.floor, MAX_MODES, MAX_CLUSTER, True, False)
         self._keep(offsets, lam, vec, count, gains, modes, offs, gains_only, eigenvalues)
@@ -390,14 +384,16 @@ class _Sidebands:
         outer = per_l[..., :3].sum(axis=-1) + per_l[..., -3:].sum(axis=-1)
         have = np.arange(width)[None, :] < count[:, None]
         re = np.where(have & central & (outer < 1e-6), lam.real, -np.inf)
+        self.edge = getattr(self, "edge", False) or bool(np.any(  # (``checked``)
+            have & central & (outer >= 1e-6) & (lam.real > self.floor)))
         best = np.argmax(re, axis=1)
         grows = np.flatnonzero(re[np.arange(offsets.size), best] > self.floor)
         at = rows[grows]
         gains[at] = re[grows, best[grows]]
-        if eigenvalues is not None and eigenvalues.ndim == 1:
-            eigenvalues[at] = lam[grows, best[grows]]
-        elif eigenvalues is not None:  # every kept growing mode's (``_losses_hill``)
-            eigenvalues[at, :width] = np.where(re[grows] > self.floor, lam[grows], np.nan)
+        if eigenvalues is not None:  # the fastest's, or every kept growing one's (2-D)
+            two = eigenvalues.ndim == 2
+            eigenvalues[(at[:, None], np.arange(width)) if two else at] = np.where(
+                re[grows] > self.floor, lam[grows], np.nan) if two else lam[grows, best[grows]]
         w_best = per_l[grows, best[grows]]                           # (grows, 2P + 1)
         modes[at] = centre[grows, best[grows]]
         from ._hill_dense import _sideband_offsets
@@ -406,17 +402,19 @@ class _Sidebands:
 
     def checked(self, offsets, ring=None) -> HillSpectrum:
         """``spectrum``, its fastest mode checked at P + PERSIST_STEP harmonics: where it
-        moves by more than 1e-6 relative, the whole spectrum densely at the wave's
-        H + 4 (the truncation before issue 41). ``ring``: (N, m), ``offsets`` the ring's
-        and k = 2 pi m / N, a one-field wave: the spectrum from the modes' copies at l = 0
-        (``_ring_copies``: ~half the clusters solved)."""
+        moves by more than 1e-6 relative, the whole spectrum densely at the wave's H + 4;
+        where none is kept but a central one grew into the outer harmonics (``edge``), the
+        whole at P + PERSIST_STEP (twice at most). ``ring``: (N, m), k = 2 pi m / N, a
+        one-field wave: the spectrum from the modes' copies at l = 0 (``_ring_copies``)."""
         if ring is None:
             spec = self.spectrum(offsets)
         else:
             from ._ring_copies import ring_copies
 
             spec = ring_copies(self, *ring)
-        if spec.peak_gain <= 0:
+        if spec.peak_gain <= 0:  # (review 102: flexmm, k 2 pi/24, a 0.2 grows at 0.25)
+            if getattr(self, "edge", False) and self.P < self.wave.harmonics + 3 * PERSIST_STEP:
+                return _Sidebands(self.wave, self.P + PERSIST_STEP).checked(offsets, ring)
             return spec
         i = int(np.argmax(spec.gain))
         finer = _Sidebands(self.wave, self.P + PERSIST_STEP)
