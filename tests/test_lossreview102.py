@@ -118,3 +118,19 @@ def test_the_paper_chain_grows_where_exact_gain_said_stable(tmp_path, N, a):
     mu, _, T, back = monodromy(ref, wave_state(spec.wave, N), spec.wave.omega)
     assert back < 1e-6  # the project's wave is a solution of the referee's ring
     assert spec.peak_gain == pytest.approx(float((np.log(np.abs(mu)) / T).max()), rel=RTOL)
+
+
+def test_the_paper_chains_infinite_chain_grows_at_least_as_its_ring(tmp_path):
+    """The infinite chain holds every offset of a ring of its k, so its peak is at least
+    the ring's fastest monodromy rate (k 2 pi/24, a 0.2: 0.2535 on 24 sites); exact_gain
+    on the chain read 0 there (the same dropped modes as the ring's, its samples never
+    re-checked at P + 4)."""
+    path = tmp_path / "flexmm.toml"
+    path.write_text(model_text("flexmm"))
+    model = load_model(str(path))
+    ring = exact_gain(model, 2 * math.pi / 24, 0.2, 0, N=24)
+    ref = RingReferee(model_text("flexmm"), {}, 24)
+    mu, _, T, _ = monodromy(ref, wave_state(ring.wave, 24), ring.wave.omega)
+    rate = float((np.log(np.abs(mu)) / T).max())
+    chain = exact_gain(model, 2 * math.pi / 24, 0.2, 0)
+    assert rate > 0.2 and chain.peak_gain >= rate * (1 - RTOL)

@@ -324,7 +324,7 @@ class _Sidebands:
         from ._sidebands import sideband_modes
         from ._strong import CENTRAL_MARGIN, strong_modes
 
-        wave, P, self.edge = self.wave, self.P, False
+        wave, P = self.wave, self.P
         offsets = np.atleast_1d(np.asarray(offsets, dtype=float))
         gains = np.zeros(offsets.size)
         modes = np.zeros(offsets.size, int)
@@ -470,12 +470,15 @@ def exact_gain(model: Model, k: float, amplitude: float, branch=None, *, N: int 
     # O(a) wide (a = 0.002: edge 0.005, inside the first uniform step pi / 400)
     q = np.concatenate([np.geomspace(1e-5, np.pi / samples, 40, endpoint=False),
                         np.linspace(np.pi / samples, np.pi, samples)])
-    spec = engine.spectrum(q)
     # a band narrower than a step between two samples that hold no growing mode: at the
     # crossings of opposite-sign roots there (``_crossings``), kept where they grow
     from ._crossings import band_bracket, merged, with_crossings
 
-    spec = with_crossings(engine, spec)
+    for _ in range(3):  # at P + PERSIST_STEP where a mode grew into the edge (``checked``)
+        spec = with_crossings(engine, engine.spectrum(q))
+        if spec.peak_gain > 0 or not getattr(engine, "edge", False):
+            break
+        engine = _Sidebands(wave, engine.P + PERSIST_STEP)
     q = spec.offsets
     if spec.peak_gain <= 0:
         return spec
