@@ -133,9 +133,7 @@ class HillSpectrum:
     sideband_offset: np.ndarray
     truncations: tuple = ()
 
-    @property
-    def peak_gain(self) -> float:
-        return float(np.max(self.gain)) if self.gain.size else 0.0
+    peak_gain = property(lambda self: float(np.max(self.gain)) if self.gain.size else 0.0)
 
     def to_xarray(self):
         """The spectrum as an ``xarray.Dataset`` over ``offset`` (q): ``gain``, the kept
@@ -384,9 +382,11 @@ class _Sidebands:
         outer = per_l[..., :3].sum(axis=-1) + per_l[..., -3:].sum(axis=-1)
         have = np.arange(width)[None, :] < count[:, None]
         re = np.where(have & central & (outer < 1e-6), lam.real, -np.inf)
-        self.edge = getattr(self, "edge", False) or bool(np.any(  # (``checked``)
-            have & central & (outer >= 1e-6) & (lam.real > self.floor)))
         best = np.argmax(re, axis=1)
+        # a central mode grown into the outer harmonics faster than the kept (``checked``)
+        cut = np.where(have & central & (outer >= 1e-6), lam.real, -np.inf).max(axis=1)
+        self.edge = getattr(self, "edge", False) or bool(np.any(
+            cut > np.maximum(re[np.arange(offsets.size), best], self.floor)))
         grows = np.flatnonzero(re[np.arange(offsets.size), best] > self.floor)
         at = rows[grows]
         gains[at] = re[grows, best[grows]]
@@ -401,20 +401,20 @@ class _Sidebands:
         offs[at] = _sideband_offsets(offsets[grows], l_, k, w_best)
 
     def checked(self, offsets, ring=None) -> HillSpectrum:
-        """``spectrum``, its fastest mode checked at P + PERSIST_STEP harmonics: where it
-        moves by more than 1e-6 relative, the whole spectrum densely at the wave's H + 4;
-        where none is kept but a central one grew into the outer harmonics (``edge``), the
-        whole at P + PERSIST_STEP (twice at most). ``ring``: (N, m), k = 2 pi m / N, a
-        one-field wave: the spectrum from the modes' copies at l = 0 (``_ring_copies``)."""
+        """``spectrum``, its fastest mode checked at P + PERSIST_STEP harmonics (moved by >
+        1e-6 relative: the whole densely at H + 4); where a central mode grew into the outer
+        harmonics faster than the kept (``edge``; review 102: flexmm, k 2 pi/24, a 0.2 read
+        stable, grows at 0.25), all at P + PERSIST_STEP (twice at most). ``ring``: (N, m),
+        a one-field wave: from the modes' copies at l = 0 (``_ring_copies``)."""
         if ring is None:
             spec = self.spectrum(offsets)
         else:
             from ._ring_copies import ring_copies
 
             spec = ring_copies(self, *ring)
-        if spec.peak_gain <= 0:  # (review 102: flexmm, k 2 pi/24, a 0.2 grows at 0.25)
-            if getattr(self, "edge", False) and self.P < self.wave.harmonics + 3 * PERSIST_STEP:
-                return _Sidebands(self.wave, self.P + PERSIST_STEP).checked(offsets, ring)
+        if getattr(self, "edge", False) and self.P < self.wave.harmonics + 3 * PERSIST_STEP:
+            return _Sidebands(self.wave, self.P + PERSIST_STEP).checked(offsets, ring)
+        if spec.peak_gain <= 0:
             return spec
         i = int(np.argmax(spec.gain))
         finer = _Sidebands(self.wave, self.P + PERSIST_STEP)
@@ -474,9 +474,9 @@ def exact_gain(model: Model, k: float, amplitude: float, branch=None, *, N: int 
     # crossings of opposite-sign roots there (``_crossings``), kept where they grow
     from ._crossings import band_bracket, merged, with_crossings
 
-    for _ in range(3):  # at P + PERSIST_STEP where a mode grew into the edge (``checked``)
+    for attempt in range(3):  # at P + PERSIST_STEP where a mode grew into the edge
         spec = with_crossings(engine, engine.spectrum(q))
-        if spec.peak_gain > 0 or not getattr(engine, "edge", False):
+        if not getattr(engine, "edge", False) or attempt == 2:
             break
         engine = _Sidebands(wave, engine.P + PERSIST_STEP)
     q = spec.offsets
