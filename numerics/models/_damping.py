@@ -71,10 +71,9 @@ def loss_spacing(model: Model, N: int) -> float:
     """The most time between two samples of 2R: LOSS_DECAY over the fastest rate of the
     damping alone, the largest eigenvalue of M^-1/2 C(kappa) M^-1/2 over the ring's
     wavenumbers (inf where nothing is damped)."""
-    S, B = model.damping
-    d = model.n_fields
+    from ._linear import damping_matrices
+
     s = 1 / np.sqrt(np.asarray(model.masses, float))
-    z = np.exp(2j * math.pi * np.arange(N) / N)[:, None, None]
-    C = S + B[:d, :d] + B[d:, d:] + B[:d, d:] * z + B[d:, :d] / z
+    C = damping_matrices(model, 2 * math.pi * np.arange(N) / N)
     top = float(np.max(np.linalg.eigvalsh(C * s[None, :, None] * s[None, None, :])))
     return LOSS_DECAY / top if top > 0 else math.inf

@@ -310,6 +310,7 @@ class _Sidebands:
         self.wave = wave
         self.P = P or _work_harmonics(wave)
         self.Hh = _hessian_harmonics(wave, self.P) if Hh is None else Hh  # a caller's
+        self.edge = False  # a mode grown into the outer harmonics (``_keep``, ``checked``)
         self.masses = np.asarray(wave.model.masses, float)
         self.floor = GAIN_FLOOR * max(wave.omega, 1e-300)
 
@@ -385,7 +386,7 @@ class _Sidebands:
         best = np.argmax(re, axis=1)
         # a central mode grown into the outer harmonics faster than the kept (``checked``)
         cut = np.where(have & central & (outer >= 1e-6), lam.real, -np.inf).max(axis=1)
-        self.edge = getattr(self, "edge", False) or bool(np.any(
+        self.edge = self.edge or bool(np.any(
             cut > np.maximum(re[np.arange(offsets.size), best], self.floor)))
         grows = np.flatnonzero(re[np.arange(offsets.size), best] > self.floor)
         at = rows[grows]
@@ -412,7 +413,7 @@ class _Sidebands:
             from ._ring_copies import ring_copies
 
             spec = ring_copies(self, *ring)
-        if getattr(self, "edge", False) and self.P < self.wave.harmonics + 3 * PERSIST_STEP:
+        if self.edge and self.P < self.wave.harmonics + 3 * PERSIST_STEP:
             return _Sidebands(self.wave, self.P + PERSIST_STEP).checked(offsets, ring)
         if spec.peak_gain <= 0:
             return spec
@@ -476,7 +477,7 @@ def exact_gain(model: Model, k: float, amplitude: float, branch=None, *, N: int 
 
     for attempt in range(3):  # at P + PERSIST_STEP where a mode grew into the edge
         spec = with_crossings(engine, engine.spectrum(q))
-        if not getattr(engine, "edge", False) or attempt == 2:
+        if not engine.edge or attempt == 2:
             break
         engine = _Sidebands(wave, engine.P + PERSIST_STEP)
     q = spec.offsets

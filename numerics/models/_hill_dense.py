@@ -96,6 +96,16 @@ class _DensePencil:
         error = np.finfo(float).eps * float(np.linalg.norm(A)) * kappa
         return rate > COND_MARGIN * error
 
+    def linearisation(self, q) -> np.ndarray:
+        """The lossless pencil's first-order form at offset q, 2n x 2n: its eigenvalues
+        are the Hill spectrum's."""
+        n, omega, ll, m = self.n, self.omega, self.ll, self.m
+        A = np.zeros((2 * n, 2 * n), complex)
+        A[:n, n:] = np.eye(n)
+        A[n:, :n] = -self.Minv[:, None] * (self.stiffness(q) - np.diag(ll**2 * omega**2 * m))
+        A[n:, n:] = np.diag(2j * omega * ll)
+        return A
+
     def stiffness(self, q):
         """L(q): block (l, h) = A + B e^{i th_h} + C e^{-i th_l} + D e^{-i (l - h) k}."""
         d, l_ = self.d, self.l_
@@ -116,17 +126,12 @@ def _dense_growing(wave, offsets, P):
 
     pencil = _DensePencil(wave, P)
     d, k, omega, l_, n = pencil.d, pencil.k, pencil.omega, pencil.l_, pencil.n
-    m, Minv, ll = pencil.m, pencil.Minv, pencil.ll
     gains = np.zeros(offsets.size)
     modes = np.zeros(offsets.size, int)
     offs = np.full(offsets.size, math.nan)
     b = np.random.default_rng(0).standard_normal(2 * n) + 0j  # inverse iteration's start
     for i, q in enumerate(offsets):
-        L = pencil.stiffness(q)
-        A = np.zeros((2 * n, 2 * n), complex)
-        A[:n, n:] = np.eye(n)
-        A[n:, :n] = -Minv[:, None] * (L - np.diag(ll**2 * omega**2 * m))
-        A[n:, n:] = np.diag(2j * omega * ll)
+        A = pencil.linearisation(q)
         lam = np.linalg.eigvals(A)
         for j in np.argsort(-lam.real):
             if not lam[j].real > pencil.floor:

@@ -383,6 +383,14 @@ def damping_matrix(model: Model, kappa: float) -> np.ndarray:
     return S.astype(complex) + dynamical_matrix(B, kappa)
 
 
+def damping_matrices(model: Model, kappas) -> np.ndarray:
+    """``damping_matrix`` at every kappa of a 1-d array, shape (n, d, d)."""
+    S, B = model.damping
+    d = S.shape[0]
+    z = np.exp(1j * np.asarray(kappas, float))[:, None, None]
+    return S + B[:d, :d] + B[d:, d:] + B[:d, d:] * z + B[d:, :d] / z
+
+
 def damped_frequencies(model: Model, kappa: float) -> np.ndarray:
     """Complex omega_b(kappa) of every branch, ascending in Re omega: the roots of
     det(K - i omega C - omega^2 M) = 0 with Re omega >= 0 (a wave e^{i(kappa n - omega t)}

@@ -35,30 +35,13 @@ from numba import njit
 
 from ._chaining import pencil_parts
 from ._hill_dense import _DensePencil
+from ._linear import damping_matrices
 from ._sidebands import _pencil_from_parts
 from ._small_algebra import _drop_roundoff, _lu, _lu_solve, _lu_solve_t
 
-#: Rayleigh-quotient steps on the damped pencil from the lossless eigenvalue (converges
+#: Rayleigh-quotient steps on the damped pencil after its first-order start (converges
 #: quadratically: two suffice at every probe-102 point; the rest is margin)
 STEPS = 6
-#: inverse-iteration steps at the first-order damped eigenvalue before the Rayleigh
-#: iteration (one LU). From a random vector, the Rayleigh quotient's first shift may
-#: land nearer the growing mode's decaying partner (-conj(lam0), 2 sigma away): 12 of 369
-#: growing offsets of random flexmm-lossy, fput and Klein-Gordon rings (flexmm-lossy,
-#: gamma 0.002 each, k 2 pi 23/64, a 0.18: G 0.052 where the damped pencil's eigenvalue
-#: nearest lam0 is 0.0063 away; review of probe 102's change); inverse iteration at lam0
-#: alone, the damped eigenvalue nearest it, is another mode where the damping is as
-#: large as the rate (fput, gamma 0.3: G 0.133 for 0.150): the start is the first-order
-#: one, from the lossless eigenvectors
-FIXED = 1
-
-
-def _damping_blocks(S, B, kappas) -> np.ndarray:
-    """C(kappa) for many kappa at once, shape (len, d, d): ``damping_matrix``'s
-    C_site + B11 + B22 + B12 e^{i kappa} + B21 e^{-i kappa} (S, B: ``Model.damping``)."""
-    d = S.shape[0]
-    z = np.exp(1j * np.asarray(kappas, float))[:, None, None]
-    return (S + B[:d, :d] + B[d:, d:])[None] + B[:d, d:][None] * z + B[d:, :d][None] / z
 
 
 def _copies(offsets, gains, live, k) -> np.ndarray:
@@ -94,8 +77,6 @@ def mode_damping(spec, model, live) -> np.ndarray:
     P = int(spec.truncations[0]) if spec.truncations else wave.harmonics + 4
     pencil = _DensePencil(wave, P)
     d, k, omega, l_, n = pencil.d, pencil.k, pencil.omega, pencil.l_, pencil.n
-    Minv, ll, m = pencil.Minv, pencil.ll, pencil.m
-    S, B = model.damping
     offsets = np.asarray(spec.offsets, float)
     gains = np.asarray(spec.gain, float)
     live = np.asarray(live, int)
@@ -117,11 +98,7 @@ def mode_damping(spec, model, live) -> np.ndarray:
         found = np.abs(lam0.real - g_own) <= 1e-8 * np.maximum(g_own, omega)
     for r in np.flatnonzero(~found):  # the dense eigenvalues where none was found
         q, g = q_own[r], g_own[r]
-        A = np.zeros((2 * n, 2 * n), complex)
-        A[:n, n:] = np.eye(n)
-        A[n:, :n] = -Minv[:, None] * (pencil.stiffness(q) - np.diag(ll**2 * omega**2 * m))
-        A[n:, n:] = np.diag(2j * omega * ll)
-        lam = np.linalg.eigvals(A)
+        lam = np.linalg.eigvals(pencil.linearisation(q))
         # the mode of that rate, its copy nearest the centre (the copies lie omega apart
         # with one rate; a copy near the truncation is the distorted one)
         near = np.flatnonzero(np.abs(lam.real - g) <= 1e-8 * max(g, omega))
@@ -133,7 +110,7 @@ def mode_damping(spec, model, live) -> np.ndarray:
         lam_all[r, :lam.size] = lam
     # each harmonic's damping C(q + l k), scaled as the pencil M^{-1/2} C M^{-1/2}
     sq = 1 / np.sqrt(np.asarray(model.masses, float))
-    blocks = _damping_blocks(S, B, (q_own[:, None] + l_[None, :] * k).ravel())
+    blocks = damping_matrices(model, (q_own[:, None] + l_[None, :] * k).ravel())
     Cs = np.ascontiguousarray(blocks.reshape(R, 2 * P + 1, d, d) * np.outer(sq, sq))
     parts = pencil_parts(_drop_roundoff(pencil.Hh), sq, np.exp(
         -1j * (np.arange(4 * P + 1) - 2 * P) * k))
@@ -158,9 +135,7 @@ def mode_damping(spec, model, live) -> np.ndarray:
         _damped_rayleigh(parts, P, k, omega, q_own[rows], lam_all[rows, cols],
                          np.ascontiguousarray(Cs[rows]), start, STEPS, more)
         np.maximum.at(best, rows, more.real)
-    G_own = g_own - best
-    where = {int(o): r for r, o in enumerate(own)}
-    return np.array([G_own[where[int(rep[i])]] for i in range(live.size)])
+    return (g_own - best)[np.searchsorted(own, rep)]  # own: the representatives, sorted
 
 
 @njit(cache=True, nogil=True, error_model="numpy", boundscheck=False)
@@ -252,9 +227,8 @@ def _damped_rayleigh(parts, P, k, omega, offsets, lam0, Cs, start, most, out):
     omega) (K: ``_sidebands._pencil_from_parts``; C_l = ``Cs``, each harmonic's damping
     at q + l k). The lossless pencil's right and left eigenvectors at lam0 (inverse
     iteration there, one LU), the first-order damped eigenvalue from them (one Rayleigh
-    correction: a start whose error is second order in the damping), inverse iteration at
-    that start (``FIXED`` step: toward the damped eigenvalue nearest it), then the
-    two-sided Rayleigh iteration x <- Q^-1 Q' x, y <- Q^-H Q'^H y, lam <- lam - y^H Q x /
+    correction: a start whose error is second order in the damping), one inverse step at
+    that start, then the two-sided Rayleigh iteration x <- Q^-1 Q' x, y <- Q^-H Q'^H y, lam <- lam - y^H Q x /
     y^H Q' x, until a step is below 1e-12 (|lam| + omega) or after ``most`` steps."""
     d = parts.shape[2]
     nl = 2 * P + 1
@@ -277,24 +251,28 @@ def _damped_rayleigh(parts, P, k, omega, offsets, lam0, Cs, start, most, out):
         y[:] = start
         for li in range(nl):
             z[li] = shift - 1j * (li - P) * omega
-        # the lossless eigenvectors at lam0 (an eigenvalue: two steps are round-off's)
+        # the start: the lossless right and left eigenvectors at lam0 (one inverse step:
+        # lam0 is an eigenvalue) and the first-order damped eigenvalue from them. From a
+        # random vector, the Rayleigh iteration's first shift landed on the growing mode's
+        # decaying partner (-conj(lam0), 2 sigma away) at 12 of 369 random growing offsets
+        # (flexmm-lossy, gamma 0.002 each, k 2 pi 23/64, a 0.18: G 0.052 for 0.0063); an
+        # inverse iteration at lam0 alone, the damped eigenvalue nearest it, is another
+        # mode where the damping is as large as the rate (fput gamma 0.3: G 0.133 for
+        # 0.150)
         _pencil_at(K, Cs_r, z, d, False, Q)
         if _factor(Q, omega, F, piv):  # (an exact zero pivot: from the random vectors)
             _derivative_products(Cs_r, z, d, False, x, y, bx, by)
             _inverse_step(F, piv, bx, by, x, y)
             _pencil_at(K, Cs_r, z, d, True, Q)
             shift = shift - _rayleigh_step(Q, Cs_r, z, d, x, y)
-        for it in range(FIXED + most):
+        for _ in range(1 + most):  # an inverse step at the start, then Rayleigh's
             for li in range(nl):
                 z[li] = shift - 1j * (li - P) * omega
             _pencil_at(K, Cs_r, z, d, True, Q)
-            if it == 0 or it >= FIXED:  # the shift held for FIXED steps: one LU there
-                if not _factor(Q, omega, F, piv):
-                    break
+            if not _factor(Q, omega, F, piv):
+                break
             _derivative_products(Cs_r, z, d, True, x, y, bx, by)
             _inverse_step(F, piv, bx, by, x, y)
-            if it < FIXED - 1:
-                continue
             step = _rayleigh_step(Q, Cs_r, z, d, x, y)
             shift = shift - step
             if abs(step) <= 1e-12 * (abs(shift) + omega):
