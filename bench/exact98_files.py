@@ -4,12 +4,14 @@ masses), and the independent Hill referee built from them (``own_rates``): exact
 derivatives by hyper-dual numbers (no finite differences, no SymPy), the Hessian's Fourier
 coefficients along the project's travelling wave, and the dense quadratic pencil at one
 offset solved by ``numpy.linalg.eig``. ``bench.probe_exact98`` uses them (its docstring
-says which models and why); tests/test_probe98_exact.py too.
+says which models and why); tests/test_probe98_exact.py too. ``exact_where_a_wave_is``:
+the probes' (98, 102) exact ring or chain at the largest halved amplitude with a wave.
 """
 
 from __future__ import annotations
 
 import math
+import time
 
 import numpy as np
 
@@ -333,3 +335,22 @@ def own_rates(name, params, wave, q, P, M=512):
         best, harm = float(lam[j].real), int(L_[np.argmax(per_l)])
         break
     return best, harm
+
+
+def exact_where_a_wave_is(model, k, a, branch, N, tries=6):
+    """``exact_gain`` at amplitude a, halved (at most ``tries`` times) until the model
+    carries a travelling wave there: (spectrum, a, wall seconds, ""), or (None, a, nan,
+    the last ModelError's text) where none was found."""
+    from energy import ModelError
+    from numerics.models import exact_gain
+
+    why = ""
+    for _ in range(tries):
+        try:
+            t0 = time.perf_counter()
+            spec = exact_gain(model, k, a, branch, N=N)
+            return spec, a, time.perf_counter() - t0, ""
+        except ModelError as e:
+            why = str(e)
+            a /= 2
+    return None, a, math.nan, why

@@ -64,10 +64,11 @@ import time
 
 import numpy as np
 
-from energy import ModelError, load_model
-from numerics.models import exact_amplification, exact_gain
+from energy import load_model
+from numerics.models import exact_amplification
 
 from ._floquet102_ref import RingReferee, monodromy, wave_state
+from .exact98_files import exact_where_a_wave_is
 
 SEED = 20261202
 RTOL = 1e-6
@@ -247,18 +248,9 @@ def check_point(name, params, m, N, a, branch, folder, rtol=1e-11):
         with open(path, "w") as f:
             f.write(text)
     k = 2 * math.pi * m / N
-    why = ""
-    for _ in range(6):
-        try:
-            model = load_model(path, **params)
-            t0 = time.perf_counter()
-            spec = exact_gain(model, k, a, branch, N=N)
-            wall = time.perf_counter() - t0
-            break
-        except ModelError as e:
-            why = str(e)
-            a /= 2
-    else:
+    model = load_model(path, **params)
+    spec, a, wall, why = exact_where_a_wave_is(model, k, a, branch, N)
+    if spec is None:
         return f"{name:18s} N {N} m {m} b{branch}: no wave ({why[:70]})", []
     wave, omega = spec.wave, spec.wave.omega
     ref = RingReferee(text, params, N)

@@ -51,10 +51,11 @@ import time
 
 import numpy as np
 
-from energy import ModelError, load_model
+from energy import load_model
 from numerics.models import exact_amplification, exact_gain, lossy_runs, simulate_seeds
 
 from ._floquet102_ref import RingReferee, monodromy, wave_state
+from .exact98_files import exact_where_a_wave_is
 from .probe_floquet102 import MODELS as FLOQUET_MODELS
 from .probe_floquet102 import model_text as floquet_text
 
@@ -125,14 +126,9 @@ def check_point(file, params, m, N, a, branch, folder):
     with open(path, "w") as f:
         f.write(model_text(file))
     k = 2 * math.pi * m / N
-    for _ in range(6):
-        try:
-            model = load_model(path, **params)
-            spec = exact_gain(model, k, a, branch, N=N)
-            break
-        except ModelError:
-            a /= 2
-    else:
+    model = load_model(path, **params)
+    spec, a, _, _ = exact_where_a_wave_is(model, k, a, branch, N)
+    if spec is None:
         return f"{file:16s} N {N} m {m} b{branch}: no wave", []
     omega = spec.wave.omega
     net = exact_amplification(model, k, a, branch, N=N, first=spec).initial_gain
